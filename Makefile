@@ -1,0 +1,57 @@
+# Two commands do everything on a fresh Debian machine with Python 3.11 (see README):
+#   make demo   - create/reuse .venv, install, start the panel in demo mode (ARGS="..." reach it)
+#   make test   - create/reuse .venv, install with test extras, lint, run the whole test suite
+PYTHON ?= python3
+VENV   := .venv
+VPY    := $(VENV)/bin/python
+ARGS   ?=
+
+.PHONY: demo test lint bench sysdeps clean
+
+# Debian packages Qt needs even offscreen (GL, EGL, fonts, xkb) and iproute2 for the
+# EtherCAT link tests. Installed only when something is missing, and only as root.
+sysdeps:
+	@missing=""; \
+	for lib in libEGL.so.1 libGL.so.1 libxkbcommon.so.0 libfontconfig.so.1 libdbus-1.so.3; do \
+	  ldconfig -p 2>/dev/null | grep -q "$$lib" || missing="$$missing $$lib"; done; \
+	command -v ip >/dev/null 2>&1 || missing="$$missing ip"; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing Debian packages for:$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+	      libegl1 libgl1 libxkbcommon0 libfontconfig1 libdbus-1-3 iproute2 >/dev/null; \
+	  else \
+	    echo "missing system libraries:$$missing"; \
+	    echo "install them with: sudo apt-get install libegl1 libgl1 libxkbcommon0 libfontconfig1 libdbus-1-3 iproute2"; \
+	    exit 1; \
+	  fi; \
+	fi
+
+$(VPY):
+	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \
+	  echo "python3 -m venv failed; installing Debian's python3-venv"; \
+	  apt-get update -qq && apt-get install -y -qq python3-venv >/dev/null && $(PYTHON) -m venv $(VENV); }
+	@$(VPY) -m pip install -q --upgrade pip
+
+$(VENV)/.installed: pyproject.toml | $(VPY)
+	$(VPY) -m pip install -q -e .
+	@touch $@
+
+$(VENV)/.installed-test: pyproject.toml | $(VPY)
+	$(VPY) -m pip install -q -e '.[test]'
+	@touch $@ $(VENV)/.installed
+
+demo: sysdeps $(VENV)/.installed
+	$(VPY) -m app --demo $(ARGS)
+
+lint: $(VENV)/.installed-test
+	$(VENV)/bin/ruff check app planner ethercat tests bench
+
+test: sysdeps $(VENV)/.installed-test lint
+	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest
+
+bench: $(VENV)/.installed-test
+	$(VPY) -m bench
+
+clean:
+	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis

@@ -1,0 +1,70 @@
+"""`cnc-panel`: start the operator panel.
+
+cnc-panel [--demo] [--config FILE] [PROGRAM] [--screenshot FILE.png] [--page NAME]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from app.context import PanelOptions
+from app.pages import PAGE_NAMES
+
+NO_DISPLAY_HELP = """\
+cnc-panel: no display found (neither DISPLAY nor WAYLAND_DISPLAY is set).
+  To render the panel to a picture without a screen:
+      QT_QPA_PLATFORM=offscreen cnc-panel --demo --screenshot panel.png
+      (make demo ARGS="--screenshot panel.png" does the same)
+  To run it interactively on a virtual screen:
+      apt-get install xvfb && xvfb-run -s "-screen 0 1280x800x24" cnc-panel --demo
+"""
+
+
+def parse_args(argv: list[str] | None = None) -> PanelOptions:
+    parser = argparse.ArgumentParser(prog="cnc-panel", description="Touchscreen CNC operator panel")
+    parser.add_argument("program", nargs="?", type=Path, help="G-code program to load")
+    parser.add_argument("--demo", action="store_true", help="simulated drives, sample program loaded")
+    parser.add_argument("--config", type=Path, help="machine configuration TOML")
+    parser.add_argument("--screenshot", type=Path, metavar="FILE.png",
+                        help="render the panel to a PNG and exit")
+    parser.add_argument("--page", default="auto", choices=PAGE_NAMES, help="page to show first")
+    parser.add_argument("--lang", default="en", choices=("en", "tr"), help="user interface language")
+    parser.add_argument("--size", default="1280x800", help="window size WIDTHxHEIGHT (default 1280x800)")
+    parser.add_argument("--state-dir", type=Path,
+                        help="where settings, alarms and positions persist "
+                             "(default ~/.local/state/cnc-panel)")
+    ns = parser.parse_args(argv)
+    try:
+        width, height = (int(v) for v in ns.size.lower().split("x"))
+    except ValueError:
+        parser.error(f"--size must look like 1280x800, got {ns.size!r}")
+    return PanelOptions(demo=ns.demo, config_path=ns.config, program_path=ns.program,
+                        screenshot_path=ns.screenshot, page=ns.page, language=ns.lang,
+                        width_px=width, height_px=height, state_dir=ns.state_dir)
+
+
+def _has_display() -> bool:
+    if os.environ.get("QT_QPA_PLATFORM"):
+        return True
+    if sys.platform != "linux":
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def main(argv: list[str] | None = None) -> int:
+    options = parse_args(argv)
+    if not _has_display():
+        if options.screenshot_path is None:
+            sys.stderr.write(NO_DISPLAY_HELP)
+            return 2
+        os.environ["QT_QPA_PLATFORM"] = "offscreen"
+    from app.application import run  # Qt is imported only once we know it can start
+
+    return run(options)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,45 @@
+"""Build the QApplication and the main window; render a screenshot when asked."""
+
+from __future__ import annotations
+
+import sys
+
+from PySide6.QtCore import QTimer
+from PySide6.QtWidgets import QApplication
+
+from app.context import RESOURCES, PanelOptions
+from app.main_window import MainWindow
+
+
+def apply_theme(app: QApplication) -> None:
+    app.setStyle("Fusion")
+    app.setStyleSheet((RESOURCES / "styles" / "dark.qss").read_text(encoding="utf-8"))
+
+
+def create_window(options: PanelOptions) -> MainWindow:
+    window = MainWindow(options)
+    window.resize(options.width_px, options.height_px)
+    return window
+
+
+def save_screenshot(window: MainWindow, path) -> None:
+    window.resize(window.options.width_px, window.options.height_px)
+    pixmap = window.grab()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not pixmap.save(str(path), "PNG"):
+        raise OSError(f"could not write screenshot to {path}")
+
+
+def run(options: PanelOptions) -> int:
+    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setApplicationName("cnc-panel")
+    apply_theme(app)
+    window = create_window(options)
+    window.show()
+    if options.screenshot_path is not None:
+        def shoot() -> None:
+            save_screenshot(window, options.screenshot_path)
+            print(f"screenshot written to {options.screenshot_path}")
+            app.quit()
+        QTimer.singleShot(300, shoot)
+    return app.exec()

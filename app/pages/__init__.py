@@ -1,0 +1,41 @@
+"""Registry of the panel's pages, in navigation order.
+
+Each entry names the page (used by ``--page NAME``), its navigation label and the module
+that builds it. A module exposes ``create_page(context) -> QWidget``. Pages not built yet
+say so plainly on screen (see placeholder.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class PageInfo:
+    name: str
+    label: str
+    module: str          # module under app.pages providing create_page(context)
+    service: bool = False  # behind the service password
+
+
+PAGES: tuple[PageInfo, ...] = (
+    PageInfo("auto", "Auto", "auto"),
+    PageInfo("manual", "Manual", "manual"),
+    PageInfo("program", "Program", "program"),
+    PageInfo("preview", "Preview", "preview"),
+    PageInfo("machine_zero", "Machine zero", "machine_zero"),
+    PageInfo("part_zero", "Part zero", "part_zero"),
+    PageInfo("axes", "Axes", "axes", service=True),
+    PageInfo("parameters", "Parameters", "parameters", service=True),
+    PageInfo("diagnostics", "Diagnostics", "diagnostics"),
+    PageInfo("alarms", "Alarms", "alarms"),
+)
+
+PAGE_NAMES: tuple[str, ...] = tuple(p.name for p in PAGES)
+
+
+def page_info(name: str) -> PageInfo:
+    for p in PAGES:
+        if p.name == name:
+            return p
+    raise KeyError(f"unknown page {name!r}; pages are: {', '.join(PAGE_NAMES)}")

@@ -1,0 +1,252 @@
+"""The planner's data model: a G-code program as an exact list of moves (paper section 2).
+
+Units: lengths mm, angles of arcs rad, rotary axis positions degrees (as in G-code),
+feed mm/s. Every move is parametrised by its path length u in [0, length_mm]:
+``Move.evaluate(u)`` gives position, unit tangent dq/du and curvature, exactly (closed
+form for lines, circles and helices; spirals by their exact arc length, inverted by
+Newton's method).
+
+Arc convention (RS274/NGC, LinuxCNC): the plane's (first, second) axes are XY for G17,
+ZX for G18 (first axis Z!), YZ for G19; the angle is measured in that frame, so a
+positive sweep is counter-clockwise (G03) seen from the positive end of the normal axis.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "Arc",
+    "Event",
+    "EventKind",
+    "Move",
+    "MoveKind",
+    "Program",
+    "STOPPING_EVENTS",
+    "arc_length_mm",
+    "arc_param_at_length",
+]
+
+
+class MoveKind(enum.IntEnum):
+    RAPID = 0
+    LINE = 1
+    ARC = 2
+
+
+@dataclass(frozen=True, slots=True)
+class Arc:
+    """Exact circle / helix / spiral geometry of one G02/G03 move."""
+
+    plane: str  # "XY" (G17), "ZX" (G18: first axis Z, second X), "YZ" (G19)
+    first_axis: int  # column index into Program.axes
+    second_axis: int
+    normal_axis: int  # column index, -1 if the machine has no such axis
+    center: tuple[float, float]  # absolute centre (first, second), machine coords, mm
+    radius_start_mm: float
+    radius_end_mm: float  # differs from radius_start_mm only for spirals
+    start_angle_rad: float  # angle of the start point around the centre, (first, second) frame
+    sweep_rad: float  # signed: + counter-clockwise (G03) seen from + normal; includes whole turns
+    rise_mm: float  # helix: change of the normal axis over the arc
+    turns: int = 1  # P word (LinuxCNC's |rotation|); sweep already includes the extra turns
+
+    @property
+    def clockwise(self) -> bool:
+        return self.sweep_rad < 0.0
+
+
+# 16-point Gauss-Legendre rule on [0, 1] for the arc length of near-circular spirals.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
+_GL_X = (_GL_X + 1.0) * 0.5
+_GL_W = _GL_W * 0.5
+
+
+def _spiral_speed(arc: Arc, t: np.ndarray) -> np.ndarray:
+    """|dp/dt| of the linear-axis curve, t in [0, 1] the normalised angle parameter."""
+    dr = arc.radius_end_mm - arc.radius_start_mm
+    r = arc.radius_start_mm + dr * t
+    return np.sqrt(dr * dr + (r * arc.sweep_rad) ** 2 + arc.rise_mm * arc.rise_mm)
+
+
+def _spiral_s(arc: Arc, t: np.ndarray) -> np.ndarray:
+    """Arc length from t = 0 to t (exact: closed form, or Gauss-Legendre where it cancels)."""
+    r0 = arc.radius_start_mm
+    dr = arc.radius_end_mm - r0
+    w_abs = abs(arc.sweep_rad)
+    if abs(dr) > 1e-3 * r0:
+        # s = (F(w(t)) - F(w0)) / (|W| dr), w = |W| r(t), F(w) = (w sqrt(w^2+k^2) + k^2 asinh(w/k))/2
+        k2 = dr * dr + arc.rise_mm * arc.rise_mm
+        k = math.sqrt(k2)
+
+        def f(w):
+            return 0.5 * (w * np.sqrt(w * w + k2) + k2 * np.arcsinh(w / k))
+
+        return (f(w_abs * (r0 + dr * t)) - f(w_abs * r0)) / (w_abs * dr)
+    # Nearly a circle: the integrand is almost constant, 16 Gauss points are exact to rounding.
+    t = np.asarray(t, dtype=float)
+    pts = t[..., None] * _GL_X
+    return t * (_spiral_speed(arc, pts) @ _GL_W)
+
+
+def arc_length_mm(arc: Arc) -> float:
+    """Exact length of an arc, helix or spiral over its linear axes."""
+    if arc.radius_end_mm == arc.radius_start_mm:
+        return math.hypot(arc.radius_start_mm * arc.sweep_rad, arc.rise_mm)
+    return float(_spiral_s(arc, np.asarray(1.0)))
+
+
+def arc_param_at_length(arc: Arc, u_mm: np.ndarray, length_mm: float) -> np.ndarray:
+    """Normalised angle parameter t in [0, 1] at path length u (exact inverse of the length)."""
+    u = np.clip(np.asarray(u_mm, dtype=float), 0.0, length_mm)
+    if arc.radius_end_mm == arc.radius_start_mm or length_mm <= 0.0:
+        return u / length_mm if length_mm > 0.0 else np.zeros_like(u)
+    t = u / length_mm
+    for _ in range(12):  # Newton on s(t) = u; ds/dt varies slowly, converges in 2-4 steps
+        step = (_spiral_s(arc, t) - u) / _spiral_speed(arc, t)
+        t = np.clip(t - step, 0.0, 1.0)
+        if not np.any(np.abs(step) > 1e-15):
+            break
+    return t
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Move:
+    """One motion block: a rapid, a straight feed or an arc/helix/spiral."""
+
+    index: int
+    line: int  # 1-based source line
+    kind: MoveKind
+    start: np.ndarray  # (n_axes,), machine coords, mm / deg
+    end: np.ndarray
+    feed_mm_s: float  # programmed feed (rapids: math.inf; the planner applies the rapid limit)
+    length_mm: float  # u runs over [0, length_mm]; linear-axis length, rotary degrees if none
+    arc: Arc | None
+    exact_stop: bool  # G61 active -> full stop at the end of this move
+
+    def evaluate(self, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position (N, n_axes), unit tangent dq/du (N, n_axes) and curvature 1/mm (N,) at u.
+
+        u is clipped to [0, length_mm]; at u = length_mm the position is exactly ``end``.
+        The tangent's linear-axis part has unit norm; rotary components ride along
+        (deg per mm of path). Curvature is that of the linear-axis path.
+        """
+        u = np.atleast_1d(np.asarray(u_mm, dtype=float)).ravel()
+        length = self.length_mm
+        n_pts = u.shape[0]
+        start = self.start
+        delta = self.end - start
+        arc = self.arc
+        if arc is None:
+            if length > 0.0:
+                t = np.clip(u, 0.0, length) / length
+                tangent = np.broadcast_to(delta / length, (n_pts, start.shape[0])).copy()
+            else:
+                t = np.zeros(n_pts)
+                tangent = np.zeros((n_pts, start.shape[0]))
+            pos = start + t[:, None] * delta
+            pos[t >= 1.0] = self.end
+            return pos, tangent, np.zeros(n_pts)
+
+        t = arc_param_at_length(arc, u, length)
+        f, s, nrm = arc.first_axis, arc.second_axis, arc.normal_axis
+        w = arc.sweep_rad
+        dr = arc.radius_end_mm - arc.radius_start_mm
+        r = arc.radius_start_mm + dr * t
+        theta = arc.start_angle_rad + w * t
+        c, sn = np.cos(theta), np.sin(theta)
+
+        # Axes other than the plane's move linearly in t (helix axis, rotary axes).
+        pos = start + t[:, None] * delta
+        pos[:, f] = arc.center[0] + r * c
+        pos[:, s] = arc.center[1] + r * sn
+        if nrm >= 0:
+            pos[:, nrm] = start[nrm] + arc.rise_mm * t
+        pos[t >= 1.0] = self.end
+
+        # Derivatives with respect to t.
+        d1f = dr * c - r * w * sn
+        d1s = dr * sn + r * w * c
+        d2f = -2.0 * dr * w * sn - r * w * w * c
+        d2s = 2.0 * dr * w * c - r * w * w * sn
+        rise = arc.rise_mm
+        speed = np.sqrt(d1f * d1f + d1s * d1s + rise * rise)  # ds/dt > 0 (radius > 0)
+        tangent = np.empty((n_pts, start.shape[0]))
+        tangent[:] = delta
+        tangent /= speed[:, None]
+        tangent[:, f] = d1f / speed
+        tangent[:, s] = d1s / speed
+        if nrm >= 0:
+            tangent[:, nrm] = rise / speed
+        # |p' x p''| / |p'|^3 with p = (first, second, normal), p''_normal = 0.
+        cx = -rise * d2s
+        cy = rise * d2f
+        cz = d1f * d2s - d1s * d2f
+        curvature = np.sqrt(cx * cx + cy * cy + cz * cz) / speed**3
+        return pos, tangent, curvature
+
+    @property
+    def is_arc(self) -> bool:
+        return self.arc is not None
+
+
+class EventKind(enum.Enum):
+    DWELL = "dwell"  # G04 P (value: seconds)
+    PAUSE = "pause"  # M00
+    OPTIONAL_PAUSE = "optional_pause"  # M01
+    END = "end"  # M02 / M30
+    TOOL_CHANGE = "tool_change"  # M06 (no tool changer: a stop with a message)
+    SPINDLE = "spindle"  # M03/M04/M05 or S change (value: rpm, + CW, - CCW, 0 off)
+    TOOL = "tool"  # T word (value: tool number)
+
+
+STOPPING_EVENTS = frozenset(
+    {
+        EventKind.DWELL,
+        EventKind.PAUSE,
+        EventKind.OPTIONAL_PAUSE,
+        EventKind.END,
+        EventKind.TOOL_CHANGE,
+        EventKind.SPINDLE,
+    }
+)
+
+
+@dataclass(frozen=True, slots=True)
+class Event:
+    """A non-motion action between moves; stopping kinds force a full stop after ``after_move``."""
+
+    kind: EventKind
+    line: int
+    after_move: int  # index of the move before it, -1 if none
+    value: float = 0.0
+    message: str = ""
+
+    @property
+    def stops(self) -> bool:
+        return self.kind in STOPPING_EVENTS
+
+
+@dataclass(frozen=True, eq=False)
+class Program:
+    """An interpreted, fully checked program."""
+
+    name: str
+    axes: tuple[str, ...]
+    rotary: tuple[bool, ...]
+    moves: tuple[Move, ...]
+    events: tuple[Event, ...]
+    start_position: np.ndarray  # machine position before the first move
+    # Additions (not in the minimal contract):
+    move_offsets: np.ndarray | None = None  # (n_moves, n_axes) work offset active per move
+    line_count: int = 0  # number of source lines
+
+    @property
+    def end_position(self) -> np.ndarray:
+        return self.moves[-1].end if self.moves else self.start_position
+
+    def axis_index(self, name: str) -> int:
+        return self.axes.index(name.upper())
