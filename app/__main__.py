@@ -31,7 +31,8 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
     parser.add_argument("--screenshot", type=Path, metavar="FILE.png",
                         help="render the panel to a PNG and exit")
     parser.add_argument("--page", default="auto", choices=PAGE_NAMES, help="page to show first")
-    parser.add_argument("--lang", default="en", choices=("en", "tr"), help="user interface language")
+    parser.add_argument("--lang", default=None, choices=("en", "tr"),
+                        help="user interface language (default: the last one chosen, else en)")
     parser.add_argument("--size", default="1280x800", help="window size WIDTHxHEIGHT (default 1280x800)")
     parser.add_argument("--state-dir", type=Path,
                         help="where settings, alarms and positions persist "

@@ -35,6 +35,7 @@ def run(options: PanelOptions) -> int:
     app.setApplicationName("cnc-panel")
     apply_theme(app)
     window = create_window(options)
+    app.aboutToQuit.connect(window.context.controller.shutdown)
     window.show()
     if options.screenshot_path is not None:
         def shoot() -> None:

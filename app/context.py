@@ -1,13 +1,24 @@
-"""What the panel is started with: options from the command line, resolved once."""
+"""What the panel is started with (options from the command line) and what its pages share."""
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # Qt-free at import time: __main__ reads this before Qt may start
+    from app.dialogs import Dialogs
+    from app.i18n import I18n
+    from app.machine.controller import MachineController
+    from app.panel_settings import SettingsStore
+    from app.program_document import ProgramDocument
+    from app.program_model import ProgramModel
 
 RESOURCES = Path(__file__).resolve().parent.parent / "resources"
 DEMO_PROGRAM = RESOURCES / "programs" / "pocket.nc"
 DEFAULT_CONFIG = RESOURCES / "machines" / "xyz_mill.toml"
+DEFAULT_STATE_DIR = Path(os.path.expanduser("~/.local/state/cnc-panel"))
 
 
 @dataclass(frozen=True, slots=True)
@@ -17,7 +28,7 @@ class PanelOptions:
     program_path: Path | None = None
     screenshot_path: Path | None = None
     page: str = "auto"
-    language: str = "en"
+    language: str | None = None   # None: the saved choice (English at first start)
     width_px: int = 1280
     height_px: int = 800
     state_dir: Path | None = None   # where settings, alarms and positions persist
@@ -27,3 +38,22 @@ class PanelOptions:
         if self.program_path is not None:
             return self.program_path
         return DEMO_PROGRAM if self.demo else None
+
+    @property
+    def effective_state_dir(self) -> Path:
+        return self.state_dir if self.state_dir is not None else DEFAULT_STATE_DIR
+
+
+@dataclass
+class PanelContext:
+    """Shared by every page: the controller (commands + signals) and the panel's own models."""
+
+    options: PanelOptions
+    state_dir: Path
+    controller: MachineController
+    i18n: I18n
+    settings: SettingsStore
+    dialogs: Dialogs
+    document: ProgramDocument
+    program: ProgramModel
+    service_unlocked: bool = False

@@ -1,10 +1,11 @@
-"""Main window: navigation column, page stack, status bar."""
+"""Main window: status header (DRO, state, bus, E-stop, alarms), navigation, pages, status line."""
 
 from __future__ import annotations
 
 import importlib
 
-from PySide6.QtCore import Signal
+from PySide6.QtCore import QTimer, Signal
+from PySide6.QtGui import QCloseEvent
 from PySide6.QtWidgets import (
     QButtonGroup,
     QHBoxLayout,
@@ -16,12 +17,15 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from app.context import PanelOptions
+from app.context import PanelContext, PanelOptions
+from app.i18n import LANGUAGES, tr
 from app.pages import PAGES, PageInfo, page_info
 from app.pages.placeholder import PlaceholderPage
+from app.widgets.service_gate import ServiceGate
+from app.widgets.status_header import StatusHeader
 
 
-def build_page(info: PageInfo, context: object) -> QWidget:
+def build_page(info: PageInfo, context: PanelContext) -> QWidget:
     """The page's own module if it exists, else a placeholder that says it is not built yet."""
     try:
         module = importlib.import_module(f"app.pages.{info.module}")
@@ -35,49 +39,136 @@ def build_page(info: PageInfo, context: object) -> QWidget:
 class MainWindow(QMainWindow):
     pageChanged = Signal(str)
 
-    def __init__(self, options: PanelOptions, context: object | None = None) -> None:
+    def __init__(self, options: PanelOptions, context: PanelContext | None = None) -> None:
         super().__init__()
+        if context is None:
+            from app.context_factory import build_context
+
+            context = build_context(options)
         self.options = options
         self.context = context
+        ctx = context
         self.setWindowTitle("CNC panel")
+        language = options.language or ctx.settings.settings.language
+        if language != "en":
+            ctx.i18n.set_language(language)
         central = QWidget()
-        root = QHBoxLayout(central)
-        root.setContentsMargins(4, 4, 4, 4)
+        outer = QVBoxLayout(central)
+        outer.setContentsMargins(4, 4, 4, 0)
+        outer.setSpacing(4)
+        self.header = StatusHeader(ctx)
+        outer.addWidget(self.header)
+        body = QHBoxLayout()
+        outer.addLayout(body, 1)
 
         nav = QVBoxLayout()
+        nav.setSpacing(3)
         self._nav_group = QButtonGroup(self)
         self._nav_group.setExclusive(True)
         self._buttons: dict[str, QPushButton] = {}
         self._stack = QStackedWidget()
         self._pages: dict[str, QWidget] = {}
         for info in PAGES:
-            button = QPushButton(info.label)
+            button = QPushButton()
+            ctx.i18n.bind(button, info.label)
             button.setObjectName("navButton")
             button.setCheckable(True)
-            button.setMinimumHeight(56)
+            button.setMinimumHeight(48)
             button.setMinimumWidth(170)
             button.clicked.connect(lambda _=False, name=info.name: self.show_page(name))
             self._nav_group.addButton(button)
             nav.addWidget(button)
             self._buttons[info.name] = button
-            page = build_page(info, context if context is not None else options)
-            self._pages[info.name] = page
-            self._stack.addWidget(page)
         nav.addStretch(1)
-        root.addLayout(nav)
-        root.addWidget(self._stack, 1)
+        self.language_button = QPushButton()
+        self.language_button.setObjectName("languageButton")
+        self.language_button.clicked.connect(self.toggle_language)
+        nav.addWidget(self.language_button)
+        body.addLayout(nav)
+        body.addWidget(self._stack, 1)
         self.setCentralWidget(central)
+        self._gates: dict[str, ServiceGate] = {}
+        for info in PAGES:  # built after the navigation so a slow page never hides it
+            page = build_page(info, ctx)
+            self._pages[info.name] = page
+            if info.service:
+                gate = ServiceGate(page, ctx.i18n)
+                gate.unlockRequested.connect(lambda name=info.name: self.show_page(name))
+                self._gates[info.name] = gate
+                self._stack.addWidget(gate)
+            else:
+                self._stack.addWidget(page)
 
-        self._state_label = QLabel("state: demo" if options.demo else "state: disconnected")
-        self.statusBar().addPermanentWidget(self._state_label)
-        self.show_page(options.page)
+        self._message = QLabel()
+        self.statusBar().addWidget(self._message, 1)
+        self._program_label = QLabel()
+        self.statusBar().addPermanentWidget(self._program_label)
+        ctx.controller.message.connect(self.show_message)
+        ctx.controller.commandRefused.connect(
+            lambda action, reason: self.show_message(tr("Refused: {0}").format(reason)))
+        ctx.controller.programLoaded.connect(self._on_program_loaded)
+        ctx.controller.programErrors.connect(self._on_program_errors)
+        ctx.i18n.languageChanged.connect(self._on_language)
+        self._on_language(ctx.i18n.language)
+        self._current = ""
+        self.show_page(options.page, ask_password=False)
+        QTimer.singleShot(0, self._start)
 
-    def show_page(self, name: str) -> None:
+    # --- start-up ------------------------------------------------------------------------
+    def _start(self) -> None:
+        ctx = self.context
+        if self.options.demo:
+            ctx.controller.connect_bus()
+        program = self.options.effective_program
+        if program is not None and ctx.program.info is None:
+            ctx.document.open(program)
+            ctx.controller.load_program(program)
+
+    def _on_program_loaded(self, info: object) -> None:
+        self.context.program.set_loaded(info, self.context.controller.config.machine)
+        self._program_label.setText(str(getattr(info, "name", "")))
+
+    def _on_program_errors(self, issues: object) -> None:
+        self.context.program.set_errors(issues)
+        n = len(issues)  # type: ignore[arg-type]
+        self.show_message(tr("Program refused: {0} error(s)").format(n))
+
+    # --- navigation ----------------------------------------------------------------------
+    def show_page(self, name: str, ask_password: bool = True) -> bool:
+        """Show a page; a service page asks for the password first (its lock screen otherwise).
+
+        Returns True when the page itself is shown (False: locked)."""
         info = page_info(name)
-        self._stack.setCurrentWidget(self._pages[info.name])
+        unlocked = True
+        if info.service:
+            if not self.context.service_unlocked and ask_password:
+                self.unlock_service()
+            unlocked = self.context.service_unlocked
+            for gate in self._gates.values():
+                gate.set_locked(not unlocked)
+        widget = self._gates.get(info.name, self._pages[info.name])
+        self._stack.setCurrentWidget(widget)
         self._buttons[info.name].setChecked(True)
-        self.statusBar().showMessage(info.label)
+        self._current = info.name
         self.pageChanged.emit(info.name)
+        return unlocked
+
+    def unlock_service(self) -> bool:
+        ctx = self.context
+        password = ctx.dialogs.ask_text(self, tr("Service level"), tr("Service password:"), password=True)
+        if password is None:
+            return False
+        if not ctx.settings.check_password(password):
+            self.show_message(tr("Wrong service password"))
+            return False
+        ctx.service_unlocked = True
+        self.show_message(tr("Service level unlocked"))
+        return True
+
+    def lock_service(self) -> None:
+        self.context.service_unlocked = False
+        for gate in self._gates.values():
+            gate.set_locked(True)
 
     def page(self, name: str) -> QWidget:
         return self._pages[page_info(name).name]
@@ -85,4 +176,30 @@ class MainWindow(QMainWindow):
     @property
     def current_page_name(self) -> str:
         current = self._stack.currentWidget()
-        return next(n for n, w in self._pages.items() if w is current)
+        return next(n for n, w in self._pages.items() if w is current or self._gates.get(n) is current)
+
+    # --- language, messages --------------------------------------------------------------
+    def toggle_language(self) -> None:
+        languages = list(LANGUAGES)
+        current = self.context.i18n.language
+        self.set_language(languages[(languages.index(current) + 1) % len(languages)])
+
+    def set_language(self, language: str) -> None:
+        self.context.i18n.set_language(language)
+        self.context.settings.update(language=language)
+
+    def _on_language(self, language: str) -> None:
+        other = [lang for lang in LANGUAGES if lang != language][0]
+        self.language_button.setText(f"{LANGUAGES[other]}")
+
+    def show_message(self, text: str) -> None:
+        self._message.setText(text)
+
+    def closeEvent(self, event: QCloseEvent) -> None:  # noqa: N802 - Qt override
+        for page in self._pages.values():
+            can_close = getattr(page, "can_close", None)
+            if can_close is not None and not can_close():
+                event.ignore()
+                return
+        self.context.controller.shutdown()
+        super().closeEvent(event)

@@ -88,7 +88,8 @@ class SdoAbortError(SdoError):
         self.abort_code = abort_code
         detail = f": {text}" if text else ""
         super().__init__(
-            f"SDO 0x{index:04X}:{subindex} on slave {position} aborted{detail} (abort code 0x{abort_code:08X})"
+            f"SDO 0x{index:04X}:{subindex} on slave {position} aborted{detail} "
+            f"(abort code 0x{abort_code:08X})"
         )
 
 

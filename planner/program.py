@@ -29,6 +29,7 @@ __all__ = [
     "STOPPING_EVENTS",
     "arc_length_mm",
     "arc_param_at_length",
+    "spiral_length_mm",
 ]
 
 
@@ -92,11 +93,35 @@ def _spiral_s(arc: Arc, t: np.ndarray) -> np.ndarray:
     return t * (_spiral_speed(arc, pts) @ _GL_W)
 
 
+# 4-point Gauss-Legendre on [0, 1] (scalar path): exact to rounding for |dr| <= 1e-3 r0.
+_GL4 = tuple(zip(((np.polynomial.legendre.leggauss(4)[0] + 1.0) * 0.5).tolist(),
+                 (np.polynomial.legendre.leggauss(4)[1] * 0.5).tolist()))
+
+
+def spiral_length_mm(r0: float, r1: float, sweep_rad: float, rise_mm: float) -> float:
+    """Exact length of a circle/helix (r0 == r1) or linear spiral, with floats only."""
+    dr = r1 - r0
+    if dr == 0.0:
+        return math.hypot(r0 * sweep_rad, rise_mm)
+    w = abs(sweep_rad)
+    if abs(dr) > 1e-3 * r0:
+        k2 = dr * dr + rise_mm * rise_mm
+        k = math.sqrt(k2)
+        wa, wb = w * r0, w * r1
+        fa = 0.5 * (wa * math.sqrt(wa * wa + k2) + k2 * math.asinh(wa / k))
+        fb = 0.5 * (wb * math.sqrt(wb * wb + k2) + k2 * math.asinh(wb / k))
+        return (fb - fa) / (w * dr)
+    c = dr * dr + rise_mm * rise_mm
+    total = 0.0
+    for x, wt in _GL4:
+        r = r0 + dr * x
+        total += wt * math.sqrt(c + r * r * w * w)
+    return total
+
+
 def arc_length_mm(arc: Arc) -> float:
     """Exact length of an arc, helix or spiral over its linear axes."""
-    if arc.radius_end_mm == arc.radius_start_mm:
-        return math.hypot(arc.radius_start_mm * arc.sweep_rad, arc.rise_mm)
-    return float(_spiral_s(arc, np.asarray(1.0)))
+    return spiral_length_mm(arc.radius_start_mm, arc.radius_end_mm, arc.sweep_rad, arc.rise_mm)
 
 
 def arc_param_at_length(arc: Arc, u_mm: np.ndarray, length_mm: float) -> np.ndarray:
@@ -201,6 +226,7 @@ class EventKind(enum.Enum):
     TOOL_CHANGE = "tool_change"  # M06 (no tool changer: a stop with a message)
     SPINDLE = "spindle"  # M03/M04/M05 or S change (value: rpm, + CW, - CCW, 0 off)
     TOOL = "tool"  # T word (value: tool number)
+    COOLANT = "coolant"  # addition: M07 mist (value 1), M08 flood (2), M09 off (0); not stopping
 
 
 STOPPING_EVENTS = frozenset(
@@ -250,3 +276,44 @@ class Program:
 
     def axis_index(self, name: str) -> int:
         return self.axes.index(name.upper())
+
+
+# Fast constructors for the interpreter (frozen slotted dataclasses set fields one by one
+# through object.__setattr__; these set the slots directly, about 2x faster).
+_new = object.__new__
+_MOVE_SET = tuple(getattr(Move, f).__set__ for f in Move.__dataclass_fields__)
+_ARC_SET = tuple(getattr(Arc, f).__set__ for f in Arc.__dataclass_fields__)
+
+
+def _make_move(index, line, kind, start, end, feed_mm_s, length_mm, arc, exact_stop, _new=_new, _cls=Move,
+               _s=_MOVE_SET) -> Move:
+    m = _new(_cls)
+    s0, s1, s2, s3, s4, s5, s6, s7, s8 = _s
+    s0(m, index)
+    s1(m, line)
+    s2(m, kind)
+    s3(m, start)
+    s4(m, end)
+    s5(m, feed_mm_s)
+    s6(m, length_mm)
+    s7(m, arc)
+    s8(m, exact_stop)
+    return m
+
+
+def _make_arc(plane, first_axis, second_axis, normal_axis, center, r0, r1, a0, sweep, rise, turns,
+              _new=_new, _cls=Arc, _s=_ARC_SET) -> Arc:
+    a = _new(_cls)
+    s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10 = _s
+    s0(a, plane)
+    s1(a, first_axis)
+    s2(a, second_axis)
+    s3(a, normal_axis)
+    s4(a, center)
+    s5(a, r0)
+    s6(a, r1)
+    s7(a, a0)
+    s8(a, sweep)
+    s9(a, rise)
+    s10(a, turns)
+    return a

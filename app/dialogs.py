@@ -1,0 +1,59 @@
+"""Modal questions the pages ask the operator, behind one object so tests can script answers.
+
+Every dangerous action (run from a line, homing, parameter changes, discarding edits)
+goes through ``confirm``; numbers through the on-screen keypad; text through a dialog
+with the on-screen keyboard.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import QInputDialog, QLineEdit, QMessageBox, QWidget
+
+from app.i18n import tr
+from app.widgets.keypad import ask_number
+
+
+class Dialogs:
+    def confirm(self, parent: QWidget | None, title: str, text: str) -> bool:
+        box = QMessageBox(QMessageBox.Icon.Warning, title, text,
+                          QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.No, parent)
+        box.button(QMessageBox.StandardButton.Yes).setText(tr("Yes"))
+        box.button(QMessageBox.StandardButton.No).setText(tr("No"))
+        box.setDefaultButton(QMessageBox.StandardButton.No)
+        return box.exec() == QMessageBox.StandardButton.Yes
+
+    def choose(self, parent: QWidget | None, title: str, text: str, options: list[str]) -> int:
+        """Index of the chosen option, -1 when cancelled (e.g. Save / Discard / Cancel)."""
+        box = QMessageBox(QMessageBox.Icon.Question, title, text, QMessageBox.StandardButton.NoButton,
+                          parent)
+        buttons = [box.addButton(o, QMessageBox.ButtonRole.ActionRole) for o in options]
+        box.exec()
+        clicked = box.clickedButton()
+        return buttons.index(clicked) if clicked in buttons else -1
+
+    def ask_number(self, parent: QWidget | None, title: str, value: float, minimum: float = -1e9,
+                   maximum: float = 1e9, decimals: int = 3) -> float | None:
+        return ask_number(parent, title, value, minimum, maximum, decimals)
+
+    def ask_text(self, parent: QWidget | None, title: str, label: str, password: bool = False,
+                 text: str = "") -> str | None:
+        mode = QLineEdit.EchoMode.Password if password else QLineEdit.EchoMode.Normal
+        value, ok = QInputDialog.getText(parent, title, label, mode, text)
+        return value if ok else None
+
+    def ask_open_file(self, parent: QWidget | None, directory: str) -> str | None:
+        from PySide6.QtWidgets import QFileDialog
+
+        path, _ = QFileDialog.getOpenFileName(parent, tr("Open program"), directory,
+                                              tr("G-code (*.nc *.ngc *.gcode *.tap *.txt);;All files (*)"))
+        return path or None
+
+    def ask_save_file(self, parent: QWidget | None, directory: str) -> str | None:
+        from PySide6.QtWidgets import QFileDialog
+
+        path, _ = QFileDialog.getSaveFileName(parent, tr("Save program as"), directory,
+                                              tr("G-code (*.nc *.ngc *.gcode *.tap *.txt);;All files (*)"))
+        return path or None
+
+    def inform(self, parent: QWidget | None, title: str, text: str) -> None:
+        QMessageBox.information(parent, title, text)

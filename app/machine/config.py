@@ -1,0 +1,354 @@
+"""The machine configuration: one TOML file, read strictly, written atomically.
+
+Full configuration = the planner's ``MachineSpec`` (axes, path limits, planner settings, work
+offsets; read by ``planner.machine.machine_from_dict``) + ``[homing]`` + ``[bus]`` with
+``[[bus.drives]]`` + ``[controller]`` (jog, streaming lead, override budget, spindle).
+
+Writing: the new text goes to a temporary file in the same directory (flushed and fsync'ed),
+the current file - if it is itself valid - is copied to ``<file>.bak`` (also by temp + rename),
+then ``os.replace`` puts the new file in place. The file name therefore always names either
+the old or the new complete file, never a partial one.
+
+Reading: a missing, damaged (truncated, not TOML) or invalid file raises ``ConfigError`` with
+a message naming the file, the key and the value, and the backup path when a valid backup
+exists. Nothing ever falls back silently to defaults; ``recover_config`` restores the backup
+explicitly (keeping the damaged file as ``<file>.damaged``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import tempfile
+import tomllib
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from app.machine.errors import ConfigError
+from planner.errors import PlannerError
+from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_dict, shipped_machine
+
+__all__ = [
+    "BusSettings",
+    "ControllerSettings",
+    "DriveIdentity",
+    "HomingSettings",
+    "MachineConfig",
+    "config_from_dict",
+    "config_to_toml",
+    "load_config",
+    "recover_config",
+    "save_config",
+]
+
+HOMING_METHODS = ("set_here", "drive")
+BUS_KINDS = ("sim", "soem")
+
+
+@dataclass(frozen=True, slots=True)
+class HomingSettings:
+    required: bool = True  # programs may not start before every axis is homed
+    method: str = "set_here"  # "set_here" | "drive" (CiA 402 homing mode 6)
+    drive_method: int = 35  # 0x6098 homing method for "drive"
+    timeout_s: float = 60.0
+
+
+@dataclass(frozen=True, slots=True)
+class DriveIdentity:
+    position: int
+    vendor_id: int = 0
+    product_code: int = 0
+
+
+@dataclass(frozen=True, slots=True)
+class BusSettings:
+    kind: str = "sim"  # "sim" | "soem"
+    adapter: str = ""  # network interface for "soem"
+    wkc_error_limit: int = 3
+    drives: tuple[DriveIdentity, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class ControllerSettings:
+    """Controller tuning. The override budget (see ``app.machine.timescale``): the program is
+    planned with ``(1 - accel_reserve)`` of every acceleration limit and ``(1 - jerk_reserve)``
+    of every jerk limit; the rest is kept for changing the time scale (override, hold)."""
+
+    jog_speed_mm_s: float = 10.0  # continuous jog speed at 100 % (deg/s for rotary axes)
+    lead_s: float = 0.08  # set-points queued in the worker ahead of time
+    accel_reserve: float = 0.15
+    jerk_reserve: float = 0.3
+    spindle_max_rpm: float = 24000.0
+    spindle_drive: int = 0  # index of the drive whose digital outputs switch the spindle
+    position_tolerance: float = 0.01  # mm|deg: persisted vs reported position to keep homed
+
+
+@dataclass(frozen=True)
+class MachineConfig:
+    machine: MachineSpec
+    homing: HomingSettings = field(default_factory=HomingSettings)
+    bus: BusSettings = field(default_factory=BusSettings)
+    controller: ControllerSettings = field(default_factory=ControllerSettings)
+    path: str = ""  # file it was read from ("" if built in memory)
+
+    @property
+    def axes(self) -> tuple[str, ...]:
+        return self.machine.axis_names
+
+    @staticmethod
+    def default() -> MachineConfig:
+        """The shipped 3-axis XYZ mill (resources/machines/xyz_mill.toml)."""
+        return load_config(shipped_machine("xyz_mill"))
+
+    def with_offsets(self, offsets: dict[str, tuple[float, ...]]) -> MachineConfig:
+        return replace(self, machine=replace(self.machine, work_offsets=dict(offsets)))
+
+
+# ------------------------------------------------------------------------------ reading
+def _num(table: dict[str, Any], key: str, where: str, default: float, lo: float | None = None,
+         hi: float | None = None) -> float:
+    value = table.get(key, default)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ConfigError(f"{where}: '{key}' must be a number, got {value!r}")
+    if lo is not None and value < lo or hi is not None and value > hi:
+        raise ConfigError(f"{where}: '{key}' must be within [{lo}, {hi}], got {value}")
+    return float(value)
+
+
+def _int(table: dict[str, Any], key: str, where: str, default: int, lo: int = 0) -> int:
+    value = table.get(key, default)
+    if isinstance(value, bool) or not isinstance(value, int) or value < lo:
+        raise ConfigError(f"{where}: '{key}' must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
+def config_from_dict(data: dict[str, Any], where: str = "<config>") -> MachineConfig:
+    """Validate a parsed configuration (every message names the file, key and value)."""
+    try:
+        machine = machine_from_dict(data, where)
+    except PlannerError as exc:
+        raise ConfigError(str(exc), where) from None
+    n = len(machine.axes)
+    h = data.get("homing", {})
+    if not isinstance(h, dict):
+        raise ConfigError(f"{where}: [homing] must be a table")
+    method = h.get("method", "set_here")
+    if method not in HOMING_METHODS:
+        raise ConfigError(f"{where}: [homing] method must be one of {HOMING_METHODS}, got {method!r}")
+    required = h.get("required", True)
+    if not isinstance(required, bool):
+        raise ConfigError(f"{where}: [homing] required must be true or false, got {required!r}")
+    homing = HomingSettings(required=required, method=method,
+                            drive_method=_int(h, "drive_method", f"{where}: [homing]", 35, lo=-128),
+                            timeout_s=_num(h, "timeout_s", f"{where}: [homing]", 60.0, 0.1, 3600.0))
+    b = data.get("bus", {})
+    if not isinstance(b, dict):
+        raise ConfigError(f"{where}: [bus] must be a table")
+    kind = b.get("kind", "sim")
+    if kind not in BUS_KINDS:
+        raise ConfigError(f"{where}: [bus] kind must be one of {BUS_KINDS}, got {kind!r}")
+    adapter = b.get("adapter", "")
+    if not isinstance(adapter, str):
+        raise ConfigError(f"{where}: [bus] adapter must be a string, got {adapter!r}")
+    if kind == "soem" and not adapter:
+        raise ConfigError(f"{where}: [bus] adapter is required when kind = \"soem\"")
+    drives = []
+    for i, d in enumerate(b.get("drives", [])):
+        w = f"{where}: bus.drives[{i}]"
+        drives.append(DriveIdentity(position=_int(d, "position", w, i),
+                                    vendor_id=_int(d, "vendor_id", w, 0),
+                                    product_code=_int(d, "product_code", w, 0)))
+    positions = {a.drive_position for a in machine.axes}
+    for d in drives:
+        if d.position not in positions:
+            raise ConfigError(f"{where}: bus.drives position {d.position} is not the drive of any axis")
+    bus = BusSettings(kind=kind, adapter=adapter,
+                      wkc_error_limit=_int(b, "wkc_error_limit", f"{where}: [bus]", 3, lo=1),
+                      drives=tuple(drives))
+    c = data.get("controller", {})
+    w = f"{where}: [controller]"
+    ctl = ControllerSettings(
+        jog_speed_mm_s=_num(c, "jog_speed_mm_s", w, 10.0, 1e-3, 1e4),
+        lead_s=_num(c, "lead_s", w, 0.08, 0.01, 1.0),
+        accel_reserve=_num(c, "accel_reserve", w, 0.15, 0.01, 0.5),
+        jerk_reserve=_num(c, "jerk_reserve", w, 0.3, 0.01, 0.7),
+        spindle_max_rpm=_num(c, "spindle_max_rpm", w, 24000.0, 1.0, 1e6),
+        spindle_drive=_int(c, "spindle_drive", w, 0),
+        position_tolerance=_num(c, "position_tolerance", w, 0.01, 0.0, 100.0),
+    )
+    if ctl.spindle_drive >= n:
+        raise ConfigError(f"{w}: spindle_drive {ctl.spindle_drive} must be below the axis count {n}")
+    return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ctl, path=where)
+
+
+def _parse(path: Path) -> MachineConfig:
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: machine configuration file not found", str(path)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot read: {exc}", str(path)) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: damaged file, not valid TOML: {exc}", str(path)) from None
+    return config_from_dict(data, str(path))
+
+
+def backup_path(path: str | os.PathLike[str]) -> Path:
+    p = Path(path)
+    return p.with_name(p.name + ".bak")
+
+
+def load_config(path: str | os.PathLike[str]) -> MachineConfig:
+    """Read and validate; on failure ``ConfigError`` names the problem and a valid backup."""
+    p = Path(path)
+    try:
+        return _parse(p)
+    except ConfigError as exc:
+        bak = backup_path(p)
+        good_backup = None
+        if bak.exists():
+            try:
+                _parse(bak)
+                good_backup = str(bak)
+            except ConfigError:
+                good_backup = None
+        raise ConfigError(str(exc), str(p), good_backup) from None
+
+
+def recover_config(path: str | os.PathLike[str]) -> tuple[MachineConfig, str]:
+    """Restore ``<file>.bak`` over a damaged ``<file>`` (kept as ``<file>.damaged``).
+
+    Returns the configuration and a message saying what happened. Raises ``ConfigError``
+    when there is no valid backup.
+    """
+    p = Path(path)
+    bak = backup_path(p)
+    try:
+        cfg = _parse(bak)
+    except ConfigError as exc:
+        raise ConfigError(f"{p}: no valid backup to recover from ({exc})", str(p)) from None
+    reason = ""
+    try:
+        _parse(p)
+        return load_config(p), f"{p} is valid; nothing recovered"
+    except ConfigError as exc:
+        reason = str(exc)
+    if p.exists():
+        os.replace(p, p.with_name(p.name + ".damaged"))
+    _atomic_write(p, bak.read_text(encoding="utf-8"))
+    cfg = replace(cfg, path=str(p))
+    return cfg, f"{reason}; restored from {bak} (damaged file kept as {p.name}.damaged)"
+
+
+# ------------------------------------------------------------------------------ writing
+def _fmt(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, str):
+        escaped = value.replace("\\", "\\\\").replace('"', '\\"')
+        return f'"{escaped}"'
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    raise TypeError(f"cannot write {value!r} to TOML")
+
+
+def config_to_toml(config: MachineConfig) -> str:
+    """The whole configuration as TOML text (round-trips through ``config_from_dict``)."""
+    m = config.machine
+    out = ["# Machine configuration (written by the CNC panel). Units: mm or deg, s.",
+           "[machine]", f"name = {_fmt(m.name)}", ""]
+    for a in m.axes:
+        out += ["[[axes]]", f"name = {_fmt(a.name)}", f"kind = {_fmt('rotary' if a.rotary else 'linear')}",
+                f"drive_position = {a.drive_position}", f"counts_per_unit = {_fmt(float(a.counts_per_unit))}",
+                f"direction = {a.direction}", f"min = {_fmt(float(a.min_pos))}",
+                f"max = {_fmt(float(a.max_pos))}",
+                f"v_max = {_fmt(float(a.v_max))}", f"a_max = {_fmt(float(a.a_max))}",
+                f"j_max = {_fmt(float(a.j_max))}",
+                f"following_error_window = {_fmt(float(a.following_error_window))}", ""]
+    lim = m.limits
+    out += ["[limits]", f"v_max_mm_s = {_fmt(float(lim.v_max_mm_s))}",
+            f"a_max_mm_s2 = {_fmt(float(lim.a_max_mm_s2))}", f"j_max_mm_s3 = {_fmt(float(lim.j_max_mm_s3))}",
+            f"rapid_mm_s = {_fmt(float(lim.rapid_mm_s))}", "",
+            "[planner]", f"ts_s = {_fmt(float(m.planner.ts_s))}", f"mode = {_fmt(m.planner.mode)}",
+            f"interpolation = {_fmt(m.planner.interpolation)}", "", "[offsets]"]
+    for name in WORK_OFFSET_NAMES:
+        out.append(f"{name} = {_fmt([float(v) for v in m.offset(name)])}")
+    h = config.homing
+    out += ["", "[homing]", f"required = {_fmt(h.required)}", f"method = {_fmt(h.method)}",
+            f"drive_method = {h.drive_method}", f"timeout_s = {_fmt(float(h.timeout_s))}", ""]
+    b = config.bus
+    out += ["[bus]", f"kind = {_fmt(b.kind)}", f"adapter = {_fmt(b.adapter)}",
+            f"wkc_error_limit = {b.wkc_error_limit}", ""]
+    for d in b.drives:
+        out += ["[[bus.drives]]", f"position = {d.position}", f"vendor_id = 0x{d.vendor_id:08X}",
+                f"product_code = 0x{d.product_code:08X}"]
+    c = config.controller
+    out += ["", "[controller]", f"jog_speed_mm_s = {_fmt(float(c.jog_speed_mm_s))}",
+            f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",
+            f"jerk_reserve = {_fmt(float(c.jerk_reserve))}",
+            f"spindle_max_rpm = {_fmt(float(c.spindle_max_rpm))}", f"spindle_drive = {c.spindle_drive}",
+            f"position_tolerance = {_fmt(float(c.position_tolerance))}", ""]
+    return "\n".join(out)
+
+
+def _atomic_write(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    try:  # make the rename durable
+        dfd = os.open(path.parent, os.O_RDONLY)
+        try:
+            os.fsync(dfd)
+        finally:
+            os.close(dfd)
+    except OSError:
+        pass
+
+
+def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = None) -> MachineConfig:
+    """Validate and write atomically; the previous valid file is kept as ``<file>.bak``.
+
+    Returns the configuration as re-read from the written text (so what is applied is
+    exactly what is on disk).
+    """
+    p = Path(path if path is not None else config.path)
+    if not str(p):
+        raise ConfigError("no file name to save the machine configuration to")
+    text = config_to_toml(config)
+    try:
+        new = config_from_dict(tomllib.loads(text), str(p))
+    except tomllib.TOMLDecodeError as exc:  # pragma: no cover - writer bug
+        raise ConfigError(f"{p}: internal error, written TOML does not parse: {exc}") from None
+    if p.exists():
+        try:
+            _parse(p)
+            current_valid = True
+        except ConfigError:
+            current_valid = False
+        if current_valid:
+            bak = backup_path(p)
+            fd, tmp = tempfile.mkstemp(prefix=f".{bak.name}.", suffix=".tmp", dir=p.parent)
+            os.close(fd)
+            shutil.copy2(p, tmp)
+            os.replace(tmp, bak)
+    _atomic_write(p, text)
+    return new

@@ -1,0 +1,114 @@
+"""Soft limits checked on the whole path, arcs by their exact extremes (not only end points).
+
+A circle or helix reaches its extreme along a plane axis where the angle crosses a multiple
+of pi/2 inside the swept range: those points are added to the end points. Spirals (radius
+changing linearly with the angle) are checked on dense samples (every 1 degree) plus the
+end points, with the radius bound as a safety margin only where the samples get close.
+Other axes of an arc (helix axis, rotary axes) move linearly: their end points are extreme.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.machine import MachineSpec
+from planner.program import Move, Program
+
+__all__ = ["LimitViolation", "check_point", "check_program", "move_bounds", "program_bounds"]
+
+_EPS = 1e-9  # mm|deg: rounding allowance at a limit
+
+
+@dataclass(frozen=True, slots=True)
+class LimitViolation:
+    line: int
+    axis: str
+    value: float  # the extreme reached (mm|deg)
+    limit: float  # the limit it crosses
+    where: str  # "end point", "arc extreme", "path"
+
+    def __str__(self) -> str:
+        side = "max" if self.value > self.limit else "min"
+        return (f"line {self.line}: axis {self.axis} reaches {self.value:.4f} ({self.where}), "
+                f"beyond its soft limit {side} {self.limit:g}")
+
+
+def move_bounds(move: Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(min per axis, max per axis, points where they occur (2, n_axes) unused) of one move."""
+    pts = [move.start, move.end]
+    arc = move.arc
+    if arc is not None:
+        if arc.radius_end_mm == arc.radius_start_mm:
+            a0 = arc.start_angle_rad
+            a1 = a0 + arc.sweep_rad
+            lo, hi = min(a0, a1), max(a0, a1)
+            k0 = math.ceil(lo / (math.pi / 2) - 1e-12)
+            k1 = math.floor(hi / (math.pi / 2) + 1e-12)
+            if k1 >= k0:
+                ang = np.arange(k0, k1 + 1) * (math.pi / 2)
+                # Angle -> path length: u = L (ang - a0) / sweep (angle linear in u).
+                u = move.length_mm * (ang - a0) / arc.sweep_rad if arc.sweep_rad else np.zeros_like(ang)
+                p = move.evaluate(u)[0]
+                # Exact plane coordinates at the extreme angles (no rounding from u).
+                p[:, arc.first_axis] = arc.center[0] + arc.radius_start_mm * np.cos(ang)
+                p[:, arc.second_axis] = arc.center[1] + arc.radius_start_mm * np.sin(ang)
+                pts.extend(p)
+        else:
+            n = max(int(abs(arc.sweep_rad) / math.radians(1.0)) + 2, 8)
+            pts.extend(move.evaluate(np.linspace(0.0, move.length_mm, n))[0])
+    arr = np.vstack(pts)
+    return arr.min(axis=0), arr.max(axis=0), arr
+
+
+def program_bounds(program: Program) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned bounding box of the whole path (machine coordinates), arcs exact."""
+    lo = np.asarray(program.start_position, dtype=float).copy()
+    hi = lo.copy()
+    for m in program.moves:
+        a, b, _ = move_bounds(m)
+        np.minimum(lo, a, out=lo)
+        np.maximum(hi, b, out=hi)
+    return lo, hi
+
+
+def check_point(machine: MachineSpec, q: np.ndarray) -> list[tuple[str, float, float]]:
+    """(axis, value, limit) for every axis of ``q`` outside its travel."""
+    out = []
+    for i, ax in enumerate(machine.axes):
+        v = float(q[i])
+        if v > ax.max_pos + _EPS:
+            out.append((ax.name, v, ax.max_pos))
+        elif v < ax.min_pos - _EPS:
+            out.append((ax.name, v, ax.min_pos))
+    return out
+
+
+def check_program(program: Program, machine: MachineSpec, max_reports: int = 50) -> list[LimitViolation]:
+    """Every move whose path leaves an axis' travel, with its line and axis (first report per
+    move and axis). Empty when the whole path is inside the soft limits."""
+    lo_lim = np.array([a.min_pos for a in machine.axes])
+    hi_lim = np.array([a.max_pos for a in machine.axes])
+    names = machine.axis_names
+    out: list[LimitViolation] = []
+    for m in program.moves:
+        a, b, _ = move_bounds(m)
+        bad_hi = b > hi_lim + _EPS
+        bad_lo = a < lo_lim - _EPS
+        if not (bad_hi.any() or bad_lo.any()):
+            continue
+        ends = np.vstack([m.start, m.end])
+        for i in np.nonzero(bad_hi | bad_lo)[0]:
+            if bad_hi[i]:
+                value, limit = float(b[i]), float(hi_lim[i])
+                at_end = ends[:, i].max() > hi_lim[i] + _EPS
+            else:
+                value, limit = float(a[i]), float(lo_lim[i])
+                at_end = ends[:, i].min() < lo_lim[i] - _EPS
+            where = "end point" if at_end else ("arc extreme" if m.arc is not None else "path")
+            out.append(LimitViolation(m.line, names[i], value, limit, where))
+            if len(out) >= max_reports:
+                return out
+    return out

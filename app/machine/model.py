@@ -1,0 +1,197 @@
+"""Value types the controller publishes: states, refusals, alarms, spindle, bus, tracking.
+
+All frozen dataclasses (immutable snapshots), safe to pass through Qt signals as ``object``.
+Units: positions mm (linear) / degrees (rotary), times s, speeds mm/s, spindle rpm.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+
+
+class MachineState(enum.Enum):
+    """Machine states (issue 6). Legal transitions: see ``controller.TRANSITIONS``."""
+
+    DISCONNECTED = "disconnected"  # worker not running / bus not in OP
+    IDLE = "idle"  # drives enabled, nothing moving (jog, MDI and program start allowed)
+    HOMING = "homing"  # one or more axes homing (drive method or set-here)
+    RUNNING = "running"  # program, MDI block or jog in motion (see ``Activity``)
+    HOLD = "hold"  # feed hold: stopped on the path, resumable
+    ALARM = "alarm"  # an alarm stopped motion; reset (after acknowledging) returns to idle
+    ESTOP = "estop"  # emergency stop: drives quick-stopped and disabled
+
+    @property
+    def label(self) -> str:
+        return {"estop": "E-stop"}.get(self.value, self.value.capitalize())
+
+
+class Activity(enum.Enum):
+    """What the machine is doing while RUNNING / HOLD."""
+
+    NONE = "none"
+    PROGRAM = "program"
+    MDI = "mdi"
+    JOG = "jog"
+    APPROACH = "approach"  # safe move to the start of a run-from-line / resume point
+    HOMING = "homing"
+
+
+class Severity(enum.IntEnum):
+    """How an alarm stops motion."""
+
+    INFO = 0  # recorded only
+    WARNING = 1  # recorded; motion continues (e.g. configuration fell back to backup)
+    STOP = 2  # jerk-limited stop along the path, program abandoned, state ALARM
+    QUICK_STOP = 3  # drives' quick stop at once (fault, following error, bus loss), state ALARM
+    ESTOP = 4  # emergency stop, state ESTOP
+
+
+class AlarmState(enum.Enum):
+    ACTIVE = "active"
+    ACKNOWLEDGED = "acknowledged"
+
+
+@dataclass(frozen=True, slots=True)
+class Alarm:
+    """One alarm entry (persisted in ``<state_dir>/alarms.json``)."""
+
+    id: int
+    time_s: float  # UNIX time
+    source: str  # "worker", "drive X", "bus", "planner", "controller", "operator", "config"
+    cause: str  # human-readable cause
+    severity: Severity
+    state: AlarmState = AlarmState.ACTIVE
+    code: str = ""  # short machine-readable code, e.g. "drive_fault", "following_error"
+
+    @property
+    def active(self) -> bool:
+        return self.state is AlarmState.ACTIVE
+
+
+@dataclass(frozen=True, slots=True)
+class CommandResult:
+    """Outcome of every controller command. Truthy when accepted; ``reason`` says why not.
+
+    Commands never raise for an operator-level refusal (wrong state, not homed, soft limit,
+    program errors): they return ``CommandResult(False, reason)`` and emit ``commandRefused``.
+    """
+
+    ok: bool
+    action: str = ""
+    reason: str = ""
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+
+@dataclass(frozen=True, slots=True)
+class SpindleState:
+    """Spindle: ``direction`` +1 CW (M03), -1 CCW (M04), 0 off; ``rpm`` the commanded speed."""
+
+    direction: int = 0
+    rpm: float = 0.0
+
+    @property
+    def on(self) -> bool:
+        return self.direction != 0
+
+
+@dataclass(frozen=True, slots=True)
+class BusStatus:
+    """Bus / worker state as seen by the panel."""
+
+    kind: str = "sim"  # "sim" | "soem"
+    connected: bool = False
+    state: str = "disconnected"  # worker state text
+    drive_states: tuple[str, ...] = ()  # CiA 402 state per axis
+    buffer_level: int = 0  # set-points queued in the worker
+    late_cycles: int = 0
+    period_p99_us: float = 0.0
+    message: str = ""
+    jitter_hist_bin_us: float = 0.0  # width of one bin of the cycle-start jitter histogram
+    jitter_hist_counts: tuple[int, ...] = ()  # counts per bin from 0 us (last bin = overflow)
+    jitter_max_us: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class TrackingReport:
+    """Reference vs actual per axis over the last (or current) run: paper Eq. 18, Table 4."""
+
+    axes: tuple[str, ...] = ()
+    samples: int = 0
+    rmse: tuple[float, ...] = ()  # per axis, mm or deg
+    mse: tuple[float, ...] = ()  # per axis, mm^2 or deg^2
+    max_abs: tuple[float, ...] = ()  # per axis, largest |reference - actual|
+    trace_path: str = ""  # NPZ trace of the last run ("" if none): keys t (N,) s, reference (N, n_axes),
+    # actual (N, n_axes) machine coordinates, axes (names), rmse, mse (per axis)
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramIssue:
+    """One error of a program, located at its line (1-based) and column."""
+
+    line: int
+    col: int
+    message: str
+    axis: str = ""  # set for soft-limit errors
+
+    def __str__(self) -> str:
+        where = f"line {self.line}" + (f", axis {self.axis}" if self.axis else "")
+        return f"{where}: {self.message}"
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramInfo:
+    """A loaded and checked program (emitted by ``programLoaded``)."""
+
+    name: str
+    path: str  # "" for text programs
+    text: str
+    line_count: int
+    move_count: int
+    cycle_time_s: float  # planner's estimate at 100 % override
+    length_mm: float
+    bounds_min: tuple[float, ...]  # machine coordinates, per axis, whole path (arcs included)
+    bounds_max: tuple[float, ...]
+    line_times_s: tuple[tuple[int, float], ...] = ()  # (line, planned start time) per move
+    program: object = field(default=None, repr=False, compare=False)  # planner.program.Program
+    plan: object = field(default=None, repr=False, compare=False)  # planner.plan.Plan (reduced limits)
+
+
+@dataclass(frozen=True, slots=True)
+class RunSummary:
+    """End of a program run (emitted by ``programFinished``)."""
+
+    name: str
+    completed: bool  # False when stopped, reset, aborted by an alarm
+    cycle_time_s: float  # measured (worker samples consumed * Ts)
+    estimated_s: float
+    last_line: int
+    tracking: TrackingReport = field(default_factory=TrackingReport)
+    limits: dict[str, float] = field(default_factory=dict)  # measured maxima of the reference
+    reason: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class ControllerSnapshot:
+    """Everything the panel shows, in one immutable object (``MachineController.snapshot()``)."""
+
+    state: MachineState
+    activity: Activity
+    axes: tuple[str, ...]
+    machine_pos: tuple[float, ...]
+    work_pos: tuple[float, ...]
+    homed: tuple[bool, ...]
+    active_offset: str
+    line: int
+    progress: float
+    remaining_s: float
+    path_speed_mm_s: float
+    feed_override_pct: float
+    rapid_override_pct: float
+    single_block: bool
+    optional_stop: bool
+    spindle: SpindleState
+    alarms: tuple[Alarm, ...]
+    bus: BusStatus

@@ -1,0 +1,142 @@
+"""What survives a restart, in the state directory (default ~/.local/state/cnc-panel):
+
+    state.json    raw drive positions, home offsets, homed flags, active work offset
+    offsets.json  the G54-G59 table (machine coordinates of part zero, per axis)
+    alarms.json   the alarm list (active and history, newest last, at most 500)
+    machine.toml  the machine configuration when none is given on the command line
+    last_run.npz  trace of the last program run (reference and actual per axis)
+
+Every file is written atomically (temporary file + fsync + os.replace). A damaged file is
+reported (``MachineError`` text for the alarm list) and moved aside, never silently replaced.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from app.machine.model import Alarm, AlarmState, Severity
+
+__all__ = ["StateStore"]
+
+MAX_ALARMS = 500
+
+
+def atomic_write_text(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+
+
+class StateStore:
+    """Reads and writes the state directory. Problems found while reading are collected in
+    ``problems`` (the controller raises them as alarms)."""
+
+    def __init__(self, state_dir: str | os.PathLike[str]) -> None:
+        self.dir = Path(state_dir).expanduser()
+        self.dir.mkdir(parents=True, exist_ok=True)
+        self.problems: list[str] = []
+
+    def path(self, name: str) -> Path:
+        return self.dir / name
+
+    def _read_json(self, name: str) -> Any:
+        p = self.path(name)
+        if not p.exists():
+            return None
+        try:
+            return json.loads(p.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as exc:
+            aside = p.with_name(f"{p.name}.damaged-{int(time.time())}")
+            try:
+                os.replace(p, aside)
+            except OSError:
+                pass
+            self.problems.append(f"{p}: damaged ({exc}); moved aside to {aside.name}")
+            return None
+
+    def _write_json(self, name: str, data: Any) -> None:
+        atomic_write_text(self.path(name), json.dumps(data, indent=1))
+
+    # ------------------------------------------------------------------ machine state
+    def load_state(self, axes: tuple[str, ...]) -> dict[str, Any] | None:
+        data = self._read_json("state.json")
+        if not isinstance(data, dict):
+            return None
+        if tuple(data.get("axes", ())) != tuple(axes):
+            self.problems.append(f"{self.path('state.json')}: saved for axes {data.get('axes')}, "
+                                 f"machine has {list(axes)}: positions and homed state not restored")
+            return None
+        try:
+            n = len(axes)
+            out = {
+                "raw_position": [float(x) for x in data["raw_position"]][:n],
+                "home_offset": [float(x) for x in data["home_offset"]][:n],
+                "homed": [bool(x) for x in data["homed"]][:n],
+                "active_offset": str(data.get("active_offset", "G54")),
+            }
+            if any(len(out[k]) != n for k in ("raw_position", "home_offset", "homed")):
+                raise ValueError("wrong number of values")
+            return out
+        except (KeyError, TypeError, ValueError) as exc:
+            self.problems.append(f"{self.path('state.json')}: invalid ({exc}); not restored")
+            return None
+
+    def save_state(self, axes: tuple[str, ...], raw_position: list[float], home_offset: list[float],
+                   homed: list[bool], active_offset: str) -> None:
+        self._write_json("state.json", {"axes": list(axes), "raw_position": list(raw_position),
+                                        "home_offset": list(home_offset), "homed": list(homed),
+                                        "active_offset": active_offset, "saved": time.time()})
+
+    # ------------------------------------------------------------------ work offsets
+    def load_offsets(self, n_axes: int) -> dict[str, tuple[float, ...]] | None:
+        data = self._read_json("offsets.json")
+        if not isinstance(data, dict):
+            return None
+        out: dict[str, tuple[float, ...]] = {}
+        for k, v in data.items():
+            if not (isinstance(v, list) and len(v) == n_axes):
+                self.problems.append(f"{self.path('offsets.json')}: {k} does not have {n_axes} values; "
+                                     "offsets from the configuration used")
+                return None
+            out[k] = tuple(float(x) for x in v)
+        return out
+
+    def save_offsets(self, offsets: dict[str, tuple[float, ...]]) -> None:
+        self._write_json("offsets.json", {k: list(v) for k, v in offsets.items()})
+
+    # ------------------------------------------------------------------ alarms
+    def load_alarms(self) -> list[Alarm]:
+        data = self._read_json("alarms.json")
+        if not isinstance(data, list):
+            return []
+        out = []
+        for d in data:
+            try:
+                out.append(Alarm(id=int(d["id"]), time_s=float(d["time_s"]), source=str(d["source"]),
+                                 cause=str(d["cause"]), severity=Severity(int(d["severity"])),
+                                 state=AlarmState(d["state"]), code=str(d.get("code", ""))))
+            except (KeyError, TypeError, ValueError):
+                continue
+        return out[-MAX_ALARMS:]
+
+    def save_alarms(self, alarms: list[Alarm]) -> None:
+        self._write_json("alarms.json", [
+            {"id": a.id, "time_s": a.time_s, "source": a.source, "cause": a.cause,
+             "severity": int(a.severity), "state": a.state.value, "code": a.code}
+            for a in alarms[-MAX_ALARMS:]])

@@ -1,0 +1,521 @@
+r"""Feed override, rapid override and feed hold by time-scaling the planned trajectory.
+
+The planner gives q_p(tau) (positions against planned time tau, every axis and the path).
+The executor runs it as q(t) = q_p(tau(t)) with d tau / d t = sigma(t), the time scale:
+sigma = 1 is the plan, 0.5 half speed, 0 standing still on the path (feed hold), up to 1.5
+(150 %). Since only the time axis changes, the tool never leaves the programmed path and
+ends exactly at the programmed end. Differentiating (for every axis and for the path):
+
+    dq/dt     = q_p' sigma
+    d2q/dt2   = q_p'' sigma^2 + q_p' sigma_dot
+    d3q/dt3   = q_p''' sigma^3 + 3 q_p'' sigma sigma_dot + q_p' sigma_ddot
+
+**Budget.** The program is planned with the full velocity limits V_k but only k_a A_k and
+k_j J_k for acceleration and jerk (k_a = 1 - accel_reserve, k_j = 1 - jerk_reserve), for every
+constraint k (the path and each axis). Write r_v, r_a, r_j for the largest |q_p'|/V_k,
+|q_p''|/A_k, |q_p'''|/J_k over the constraints near tau (per 16-sample block, from finite
+differences of the plan's samples; a window ahead of tau), and alpha = max |q_p'|/A_k,
+beta = max |q_p''|/J_k, gamma = max |q_p'|/J_k (seconds, s, s^2). With m = min(sigma, 1)
+the controller keeps
+
+    (1)  |sigma_dot|  <= D1 = min( (1 - r_a m^2) / alpha , (1 - r_j m^3) / (6 beta m) )
+    (2)  |sigma_ddot| <= D2 = (1 - r_j m^3) / (2 gamma)
+    (3)  sigma        <= cap = max(1, min(1 / r_v, sqrt(k_a / r_a), cbrt(k_j / r_j)))
+
+**Claim: no velocity, acceleration or jerk limit is exceeded.** For sigma <= 1 the plan gives
+r_v <= 1, r_a <= k_a, r_j <= k_j. For 1 < sigma <= cap, (3) gives r_v sigma <= 1,
+r_a sigma^2 <= k_a and r_j sigma^3 <= k_j, and |q_p'| <= V_k / sigma <= V_k,
+|q_p''| sigma <= k_a A_k / sigma <= k_a A_k m. In both cases, for every constraint k:
+
+    |dq/dt|   <= r_v sigma V_k <= V_k
+    |d2q/dt2| <= A_k (r_a m^2 + alpha D1)                          <= A_k        by (1)
+    |d3q/dt3| <= J_k (r_j m^3 + 3 beta m D1 + gamma D2)
+              <= J_k (r_j m^3 + (1 - r_j m^3) / 2 + (1 - r_j m^3) / 2) = J_k   by (1), (2)
+
+(the sigma > 1 case uses r_a, r_j at sigma = 1 scaled as shown, i.e. the m = 1 terms). The
+bounds are evaluated over a window that covers the distance tau travels while sigma changes,
+so they hold for every tau the step visits. ``check_limits`` measures it numerically.
+
+**Control of sigma.** sigma follows its target (override, 0 for hold, capped by (3) over the
+braking distance ahead) with a sqrt braking law: sigma_dot_wanted = sign(e) min(D1,
+sqrt(2 D2_ref |e|)), reached with |sigma_ddot| <= D2, where D2_ref <= D2 is the worst-case
+bound (so braking is always feasible). A feed hold is sigma -> 0 under the same bounds: a
+jerk-limited stop along the path; resume ramps sigma back up and the plan continues to the
+same end. Full stops of the plan (block ends with zero speed: M00, M01, dwell, single block,
+program end) are pause points: tau stops exactly there (speed and acceleration of the plan
+are zero there, so stopping tau is smooth), and restarts at the target sigma.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.machine import MachineSpec
+from planner.plan import Plan
+
+__all__ = ["BlockStats", "Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
+           "reduced_machine"]
+
+BLOCK = 16  # samples per statistics block
+SIGMA_MAX = 1.5
+
+
+@dataclass(frozen=True, slots=True)
+class Budget:
+    """Share of the acceleration and jerk limits the plan may use (the rest is for sigma)."""
+
+    k_a: float = 0.85
+    k_j: float = 0.7
+
+
+def reduced_machine(machine: MachineSpec, budget: Budget) -> MachineSpec:
+    """The machine with acceleration and jerk limits (path and axes) scaled by the budget."""
+    from dataclasses import replace
+
+    axes = tuple(replace(a, a_max=a.a_max * budget.k_a, j_max=a.j_max * budget.k_j) for a in machine.axes)
+    lim = replace(machine.limits, a_max_mm_s2=machine.limits.a_max_mm_s2 * budget.k_a,
+                  j_max_mm_s3=machine.limits.j_max_mm_s3 * budget.k_j)
+    return replace(machine, axes=axes, limits=lim)
+
+
+@dataclass(frozen=True, slots=True)
+class PausePoint:
+    """A planned full stop where tau halts: kind in "single_block", "pause", "optional_pause",
+    "tool_change", "dwell", "spindle", "end"; ``value`` dwell s / spindle rpm / tool."""
+
+    tau_s: float
+    kind: str
+    line: int
+    move: int
+    value: float = 0.0
+    message: str = ""
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ScaledChunk:
+    q: np.ndarray  # (N, n_axes) set-points, mm|deg
+    tau: np.ndarray  # (N,) planned time of each set-point
+    sigma: np.ndarray  # (N,) time scale
+    line: np.ndarray  # (N,) int source line
+    move: np.ndarray  # (N,) int move index
+    s_mm: np.ndarray  # (N,) cumulative path length
+    pause: PausePoint | None  # set when the chunk ends at a pause point
+
+
+class BlockStats:
+    """Per-block maxima of the plan's normalised velocity/acceleration/jerk, computed lazily
+    from ``plan.iter_chunks`` ahead of execution (true machine limits, not the reduced ones)."""
+
+    def __init__(self, plan: Plan, machine: MachineSpec) -> None:
+        self.plan = plan
+        ts = plan.ts_s
+        self.ts = ts
+        lin = np.array([not a.rotary for a in machine.axes])
+        self.lin = lin
+        self.v_ax = np.array([a.v_max for a in machine.axes])
+        self.a_ax = np.array([a.a_max for a in machine.axes])
+        self.j_ax = np.array([a.j_max for a in machine.axes])
+        lim = machine.limits
+        self.v_feed, self.v_rapid = lim.v_max_mm_s, lim.rapid_mm_s
+        self.a_path, self.j_path = lim.a_max_mm_s2, lim.j_max_mm_s3
+        self.rapid_move = plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
+        self._chunks: Iterator = plan.iter_chunks(chunk_samples=BLOCK * 256)
+        self._tail_q: np.ndarray | None = None
+        self._tail_m: np.ndarray | None = None
+        self._pending_q: list[np.ndarray] = []
+        self.n_blocks = 0
+        cap = 1024
+        self.cols = {k: np.zeros(cap) for k in ("rv", "ra", "rj", "alpha", "beta", "gamma", "rjraw", "raraw")}
+        self.has_rapid = np.zeros(cap, bool)
+        self.has_feed = np.zeros(cap, bool)
+        self.done = False
+        self._carry_q = np.zeros((0, len(machine.axes)))
+        self._carry_m = np.zeros(0, np.int64)
+
+    def _grow(self, need: int) -> None:
+        cap = len(self.has_rapid)
+        if need <= cap:
+            return
+        new = max(need, 2 * cap)
+        for k, v in self.cols.items():
+            self.cols[k] = np.concatenate([v, np.zeros(new - cap)])
+        self.has_rapid = np.concatenate([self.has_rapid, np.zeros(new - cap, bool)])
+        self.has_feed = np.concatenate([self.has_feed, np.zeros(new - cap, bool)])
+
+    def ensure(self, tau_s: float) -> None:
+        """Compute blocks up to planned time tau_s (or the end)."""
+        need = int(tau_s / (self.ts * BLOCK)) + 2
+        while self.n_blocks < need and not self.done:
+            try:
+                ch = next(self._chunks)
+            except StopIteration:
+                self.done = True
+                if len(self._carry_q):
+                    self._process(self._carry_q, self._carry_m, final=True)
+                return
+            q = np.concatenate([self._carry_q, ch.q])
+            m = np.concatenate([self._carry_m, ch.move_index.astype(np.int64)])
+            self._carry_q, self._carry_m = self._process(q, m, final=False)
+
+    def _process(self, q: np.ndarray, m: np.ndarray, final: bool) -> tuple[np.ndarray, np.ndarray]:
+        """q holds samples starting at block self.n_blocks, with 3 samples of history before
+        when n_blocks > 0 (kept in the carry). Returns the new carry."""
+        hist = 3 if self.n_blocks > 0 else 0
+        body = len(q) - hist
+        nb = body // BLOCK if not final else -(-body // BLOCK)
+        if nb <= 0:
+            return q, m
+        end = hist + nb * BLOCK
+        qq = q[:min(end, len(q))]
+        mm = m[:min(end, len(m))]
+        ts = self.ts
+        dq = np.diff(qq, axis=0) / ts
+        aq = np.diff(qq, 2, axis=0) / ts**2
+        jq = np.diff(qq, 3, axis=0) / ts**3
+        lin = self.lin
+
+        def path(x: np.ndarray) -> np.ndarray:
+            return np.linalg.norm(x[:, lin], axis=1) if lin.any() else np.zeros(len(x))
+
+        same4 = (mm[3:] == mm[:-3]) & (mm[1:-2] == mm[3:])
+        rapid = self.rapid_move[np.clip(mm, 0, len(self.rapid_move) - 1)] if len(self.rapid_move) else \
+            np.zeros(len(mm), bool)
+        v_path_lim = np.where(rapid[1:], self.v_rapid, self.v_feed)
+        # normalised per sample (FD value k belongs to the sample it ends at: index k+order)
+        n = len(qq)
+        rv = np.zeros(n)
+        ra = np.zeros(n)
+        rj = np.zeros(n)
+        alpha = np.zeros(n)
+        beta = np.zeros(n)
+        gamma = np.zeros(n)
+        vp = path(dq)
+        rv[1:] = np.maximum(vp / v_path_lim, np.max(np.abs(dq) / self.v_ax, axis=1))
+        alpha[1:] = np.maximum(vp / self.a_path, np.max(np.abs(dq) / self.a_ax, axis=1))
+        gamma[1:] = np.maximum(vp / self.j_path, np.max(np.abs(dq) / self.j_ax, axis=1))
+        ap = path(aq)
+        ra[2:] = np.maximum(ap / self.a_path, np.max(np.abs(aq) / self.a_ax, axis=1))
+        beta[2:] = np.maximum(ap / self.j_path, np.max(np.abs(aq) / self.j_ax, axis=1))
+        jp = path(jq)
+        rjs = np.maximum(jp / self.j_path, np.max(np.abs(jq) / self.j_ax, axis=1))
+        rj[3:] = np.where(same4, rjs, 0.0)
+        # FD spans the previous sample too: spread each value to both ends (max with neighbour)
+        for arr in (rv, ra, rj, alpha, beta, gamma):
+            arr[:-1] = np.maximum(arr[:-1], arr[1:])
+        sl = slice(hist, hist + nb * BLOCK)
+
+        def blocks(x: np.ndarray) -> np.ndarray:
+            y = x[sl]
+            pad = nb * BLOCK - len(y)
+            if pad > 0:
+                y = np.concatenate([y, np.zeros(pad)])
+            return y.reshape(nb, BLOCK).max(axis=1)
+
+        b0 = self.n_blocks
+        self._grow(b0 + nb)
+        for key, arr in (("rv", rv), ("ra", ra), ("rj", rj), ("alpha", alpha), ("beta", beta),
+                         ("gamma", gamma)):
+            self.cols[key][b0:b0 + nb] = blocks(arr)
+        rp = rapid[sl]
+        pad = nb * BLOCK - len(rp)
+        rpf = np.concatenate([rp, np.repeat(rp[-1:], pad)]) if pad > 0 and len(rp) else rp
+        if len(rpf) == nb * BLOCK:
+            rr = rpf.reshape(nb, BLOCK)
+            self.has_rapid[b0:b0 + nb] = rr.any(axis=1)
+            self.has_feed[b0:b0 + nb] = (~rr).any(axis=1)
+        self.n_blocks = b0 + nb
+        keep = max(end - 3, 0)
+        return q[keep:], m[keep:]
+
+    def window(self, tau0_s: float, tau1_s: float) -> slice:
+        bt = self.ts * BLOCK
+        b0 = max(int(tau0_s / bt) - 1, 0)
+        b1 = min(int(tau1_s / bt) + 2, self.n_blocks)
+        return slice(b0, max(b1, min(b0 + 1, self.n_blocks)))
+
+
+class TimeScaledExecutor:
+    """Runs a plan at a time scale sigma (override / hold), producing set-points every Ts."""
+
+    def __init__(self, plan: Plan, machine: MachineSpec, budget: Budget,
+                 pauses: list[PausePoint] | None = None, feed_override: float = 1.0,
+                 rapid_override: float = 1.0) -> None:
+        self.plan = plan
+        self.machine = machine
+        self.budget = budget
+        self.ts = plan.ts_s
+        self.stats = BlockStats(plan, machine)
+        seg = plan.segment
+        self.seg = seg
+        self.n_moves = len(seg.table)
+        self.t_end = float(seg.t_end)
+        self.tau = 0.0
+        self.sigma = 0.0
+        self.sigma_dot = 0.0
+        self.feed_override = float(feed_override)
+        self.rapid_override = float(rapid_override)
+        self.hold = False
+        self.pauses = sorted(pauses or [], key=lambda p: p.tau_s)
+        self._pause_i = 0
+        self.paused: PausePoint | None = None
+        self.finished = self.n_moves == 0
+        # worst-case (global) bounds for the braking law and the look-ahead distance
+        lim = machine.limits
+        v_lin = max(lim.v_max_mm_s, lim.rapid_mm_s)
+        t1 = max([v_lin / lim.a_max_mm_s2] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.a_max
+                                              for a in machine.axes])
+        t2 = max([lim.a_max_mm_s2 / lim.j_max_mm_s3] + [a.a_max / a.j_max for a in machine.axes])
+        t3 = max([v_lin / lim.j_max_mm_s3] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.j_max
+                                              for a in machine.axes])
+        k_a, k_j = budget.k_a, budget.k_j
+        self.d1_ref = min((1.0 - k_a) / t1, (1.0 - k_j) / (6.0 * k_a * t2))
+        self.d2_ref = (1.0 - k_j) / (2.0 * t3)
+        self._win_valid_until = -1.0
+        self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
+        self._target_cache = 1.0
+        self.sigma_start = True  # at a standstill of the plan (start or pause point)
+
+    # ------------------------------------------------------------------ commands
+    @property
+    def time_to_ramp_s(self) -> float:
+        """Upper bound of the time to change sigma by 1.5 with the worst-case bounds."""
+        return SIGMA_MAX / self.d1_ref + self.d1_ref / self.d2_ref
+
+    def set_overrides(self, feed: float | None = None, rapid: float | None = None) -> None:
+        if feed is not None:
+            self.feed_override = min(max(float(feed), 0.0), SIGMA_MAX)
+        if rapid is not None:
+            self.rapid_override = min(max(float(rapid), 0.0), 1.0)
+
+    def release_pause(self) -> None:
+        """Continue after a pause point (M00, single block, dwell elapsed, ...)."""
+        if self.paused is not None:
+            if self.paused.kind == "dwell":
+                self.tau = min(self.tau + self.paused.value, self.t_end)  # the dwell is timed by the caller
+            self.paused = None
+            self.sigma_start = True
+
+    @property
+    def standing(self) -> bool:
+        return self.sigma == 0.0 and self.sigma_dot == 0.0
+
+    # ------------------------------------------------------------------ evaluation
+    def evaluate(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Exact plan at arbitrary planned times: (q, line, move index, cumulative s)."""
+        seg = self.seg
+        tau = np.asarray(tau, dtype=float)
+        m = np.searchsorted(seg.t0, tau, side="right") - 1
+        np.clip(m, 0, self.n_moves - 1, out=m)
+        s = seg.profiles.evaluate_s(m, tau - seg.t0[m])
+        q = seg.table.positions(m, s)
+        return q, seg.table.line[m].astype(np.int64), seg.table.index[m].astype(np.int64), seg.s0[m] + s
+
+    def _local_bounds(self) -> None:
+        st = self.stats
+        horizon = max(0.3, 1.2 * SIGMA_MAX * self.time_to_ramp_s)
+        st.ensure(self.tau + horizon + 0.1)
+        w = st.window(self.tau, self.tau + 0.25)
+        c = st.cols
+        if w.stop <= w.start:
+            self._bounds = (0.0, 0.0, 0.0, 1e-9, 1e-9, 1e-9)
+        else:
+            self._bounds = (float(c["rv"][w].max()), float(c["ra"][w].max()), float(c["rj"][w].max()),
+                            max(float(c["alpha"][w].max()), 1e-9), max(float(c["beta"][w].max()), 1e-9),
+                            max(float(c["gamma"][w].max()), 1e-9))
+        # target: override per block kind, capped (3), over the braking distance ahead
+        k_a, k_j = self.budget.k_a, self.budget.k_j
+        w2 = st.window(self.tau, self.tau + horizon)
+        if w2.stop <= w2.start:
+            self._target_cache = 0.0 if self.hold else min(self.feed_override, 1.0)
+            return
+        rv = c["rv"][w2]
+        ra = c["ra"][w2]
+        rj = c["rj"][w2]
+        with np.errstate(divide="ignore"):
+            cap = np.minimum(np.minimum(1.0 / rv, np.sqrt(k_a / ra)), np.cbrt(k_j / rj))
+        cap = np.maximum(np.nan_to_num(cap, nan=SIGMA_MAX, posinf=SIGMA_MAX), 1.0)
+        hr = st.has_rapid[w2]
+        hf = st.has_feed[w2]
+        tgt = np.minimum(np.where(hf, self.feed_override, SIGMA_MAX),
+                         np.where(hr, self.rapid_override, SIGMA_MAX))
+        tgt = np.where(hr | hf, tgt, self.feed_override)
+        x = np.minimum(cap, tgt)
+        bt = self.ts * BLOCK
+        start_tau = (np.arange(w2.start, w2.stop) * bt)
+        dist = start_tau - self.tau
+        sig = max(self.sigma, 1e-3, 0.0 if self.hold else min(float(x.max()), SIGMA_MAX))
+        need = sig * (np.maximum(sig - x, 0.0) / self.d1_ref + self.d1_ref / self.d2_ref) * 1.3 + 2 * bt
+        binding = (dist <= need) | (dist <= bt)
+        self._target_cache = float(x[binding].min()) if binding.any() else float(x[0])
+
+    def _step_bounds(self, sigma: float) -> tuple[float, float]:
+        rv, ra, rj, alpha, beta, gamma = self._bounds
+        k_a, k_j = self.budget.k_a, self.budget.k_j
+        m = min(sigma, 1.0)
+        ra_u = min(ra, k_a) if sigma <= 1.0 else k_a
+        rj_u = min(rj, k_j) if sigma <= 1.0 else k_j
+        jr = max(1.0 - rj_u * m**3, 0.0)
+        d1 = (1.0 - ra_u * m * m) / alpha
+        if m > 0.0:
+            d1 = min(d1, jr / (6.0 * beta * m))
+        d2 = jr / (2.0 * gamma)
+        return max(d1, 0.0), max(d2, 0.0)
+
+    # ------------------------------------------------------------------ generation
+    def generate(self, n: int) -> ScaledChunk | None:
+        """Up to ``n`` set-points; fewer when a pause point or the end is reached. None when
+        paused (call ``release_pause``) or finished."""
+        if self.finished or self.paused is not None or n <= 0:
+            return None
+        ts = self.ts
+        taus = np.empty(n)
+        sigmas = np.empty(n)
+        pause: PausePoint | None = None
+        k = 0
+        d2_ref = self.d2_ref
+        while k < n:
+            if k % 8 == 0:
+                self._local_bounds()
+            target = 0.0 if self.hold else self._target_cache
+            sigma, sd = self.sigma, self.sigma_dot
+            if self.sigma_start and not self.hold:
+                # at a standstill of the plan itself: start directly at the target (the plan's
+                # speed and acceleration are zero here, see the module docstring)
+                sigma, sd = target, 0.0
+                self.sigma_start = False
+            elif self.sigma_start and self.hold:
+                sigma, sd = 0.0, 0.0
+            else:
+                d1, d2 = self._step_bounds(sigma)
+                e = target - sigma
+                if abs(e) < 0.5 * d2_ref * ts * ts and abs(sd) < d2_ref * ts:
+                    sigma, sd = target, 0.0
+                else:
+                    # braking law with 70 % of the worst-case sigma_ddot (discrete steps do not overshoot)
+                    want = math.copysign(min(d1, math.sqrt(1.4 * d2_ref * abs(e))), e)
+                    acc = min(max((want - sd) / ts, -d2), d2)
+                    sd_new = sd + acc * ts
+                    sd_new = min(max(sd_new, -d1), d1)
+                    sigma_new = sigma + 0.5 * (sd + sd_new) * ts
+                    if (target - sigma_new) * e < 0.0:  # would cross the target: land on it
+                        sigma_new, sd_new = target, 0.0
+                    if sigma_new <= 0.0:
+                        sigma_new, sd_new = 0.0, 0.0
+                    sigma, sd = sigma_new, sd_new
+            tau_new = self.tau + 0.5 * (self.sigma + sigma) * ts
+            self.sigma, self.sigma_dot = sigma, sd
+            nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
+            limit_tau = nxt.tau_s if nxt is not None else self.t_end
+            if tau_new >= limit_tau:
+                tau_new = limit_tau
+                self.tau = tau_new
+                taus[k] = tau_new
+                sigmas[k] = sigma
+                k += 1
+                if nxt is not None:
+                    pause = nxt
+                    self._pause_i += 1
+                    self.paused = nxt
+                    if nxt.kind == "end" or limit_tau >= self.t_end:
+                        self.finished = nxt.kind == "end" or self._pause_i >= len(self.pauses)
+                else:
+                    self.finished = True
+                self.sigma_dot = 0.0
+                break
+            self.tau = tau_new
+            taus[k] = tau_new
+            sigmas[k] = sigma
+            k += 1
+        taus = taus[:k]
+        q, line, move, s = self.evaluate(taus)
+        return ScaledChunk(q, taus, sigmas[:k].copy(), line, move, s, pause)
+
+    def progress(self) -> float:
+        return 1.0 if self.t_end <= 0 else min(self.tau / self.t_end, 1.0)
+
+
+def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[PausePoint]:
+    """Pause points of a plan from its program's stopping events (and every block end in
+    single-block mode; the plan must then have been made with exact stops)."""
+    from planner.program import EventKind
+
+    seg = plan.segment
+    prog = plan.program
+    n = len(seg.table)
+    if n == 0:
+        return []
+    t_end_move = seg.t0 + seg.profiles.duration
+    out: dict[int, PausePoint] = {}
+    kinds = {EventKind.PAUSE: "pause", EventKind.OPTIONAL_PAUSE: "optional_pause",
+             EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
+             EventKind.SPINDLE: "spindle", EventKind.END: "end"}
+    extra: list[PausePoint] = []
+    for ev in prog.events:
+        if ev.kind not in kinds or ev.after_move < 0 or ev.after_move >= n:
+            continue
+        if ev.kind is EventKind.OPTIONAL_PAUSE and not optional_stop:
+            continue
+        i = ev.after_move
+        extra.append(PausePoint(float(t_end_move[i]), kinds[ev.kind], ev.line, i, float(ev.value),
+                                ev.message))
+    if single_block:
+        for i in range(n - 1):
+            out[i] = PausePoint(float(t_end_move[i]), "single_block", int(seg.table.line[i]), i)
+    pts = sorted(extra + list(out.values()), key=lambda p: (p.tau_s, p.line))
+    pts.append(PausePoint(float(seg.t_end), "end", int(seg.table.line[-1]), n - 1))
+    return pts
+
+
+def check_limits(q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, machine: MachineSpec, ts_s: float,
+                 rapid_move: np.ndarray | None = None) -> dict[str, float]:
+    """Measured maxima of executed set-points, as ratios to the machine's limits (<= 1 holds).
+
+    Like the planner's limit report: per-axis velocity and acceleration everywhere; jerk and
+    the tangential (path-length) quantities inside moves (stencils within one move); joints
+    (tangent breaks, curvature jumps) carry the planner's own joint figures and are excluded
+    from the jerk ratios. Keys: tangential_v/a/j, axis_v/a/j (worst ratio over axes) and the
+    same with ``_max`` for absolute maxima of the tangential values.
+    """
+    out = {"tangential_v": 0.0, "tangential_a": 0.0, "tangential_j": 0.0,
+           "axis_v": 0.0, "axis_a": 0.0, "axis_j": 0.0,
+           "tangential_v_max": 0.0, "tangential_a_max": 0.0, "tangential_j_max": 0.0}
+    if len(q) < 4:
+        return out
+    lim = machine.limits
+    v_ax = np.array([a.v_max for a in machine.axes])
+    a_ax = np.array([a.a_max for a in machine.axes])
+    j_ax = np.array([a.j_max for a in machine.axes])
+    dq = np.abs(np.diff(q, axis=0)) / ts_s
+    aq = np.abs(np.diff(q, 2, axis=0)) / ts_s**2
+    jq = np.abs(np.diff(q, 3, axis=0)) / ts_s**3
+    same2 = move[1:] == move[:-1]
+    same3 = (move[2:] == move[:-2]) & (move[1:-1] == move[2:])
+    same4 = (move[3:] == move[:-3]) & (move[1:-2] == move[3:]) & (move[2:-1] == move[3:])
+    # Rounding noise of finite differences: |q| eps / Ts^k
+    scale = max(1.0, float(np.max(np.abs(q))))
+    eps = np.finfo(float).eps * scale * 16
+    out["axis_v"] = float(np.max((dq - eps / ts_s) / v_ax))
+    out["axis_a"] = float(np.max((aq - 4 * eps / ts_s**2) / a_ax))
+    if same4.any():
+        out["axis_j"] = float(np.max((jq[same4] - 8 * eps / ts_s**3) / j_ax))
+    sv = np.abs(np.diff(s_mm)) / ts_s
+    sa = np.abs(np.diff(s_mm, 2)) / ts_s**2
+    sj = np.abs(np.diff(s_mm, 3)) / ts_s**3
+    if rapid_move is not None and len(rapid_move):
+        vlim = np.where(rapid_move[np.clip(move[1:], 0, len(rapid_move) - 1)], lim.rapid_mm_s, lim.v_max_mm_s)
+    else:
+        vlim = np.full(len(sv), max(lim.v_max_mm_s, lim.rapid_mm_s))
+    if same2.any():
+        out["tangential_v"] = float(np.max(sv[same2] / vlim[same2]))
+        out["tangential_v_max"] = float(sv[same2].max())
+    if same3.any():
+        out["tangential_a"] = float(np.max(sa[same3]) / lim.a_max_mm_s2)
+        out["tangential_a_max"] = float(sa[same3].max())
+    if same4.any():
+        out["tangential_j"] = float(np.max(sj[same4] - 8 * eps / ts_s**3) / lim.j_max_mm_s3)
+        out["tangential_j_max"] = float(sj[same4].max())
+    return out

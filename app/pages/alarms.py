@@ -1,0 +1,95 @@
+"""Alarms: active alarms and the history, acknowledge one or all, reset the machine."""
+
+from __future__ import annotations
+
+import time
+
+from PySide6.QtWidgets import (
+    QHBoxLayout,
+    QPushButton,
+    QTableWidget,
+    QTableWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.context import PanelContext
+from app.i18n import N_, tr
+from app.widgets.touch import touch_rows
+
+COLUMNS = (N_("Time"), N_("Source"), N_("Cause"), N_("Severity"), N_("State"))
+
+
+class AlarmsPage(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("alarmsPage")
+        self.ctx = context
+        c = context.controller
+        i18n = context.i18n
+        layout = QVBoxLayout(self)
+        bar = QHBoxLayout()
+        self.show_history = QPushButton()
+        self.show_history.setCheckable(True)
+        i18n.bind(self.show_history, N_("Show history"))
+        self.ack_button = QPushButton()
+        i18n.bind(self.ack_button, N_("Acknowledge"))
+        self.ack_all_button = QPushButton()
+        i18n.bind(self.ack_all_button, N_("Acknowledge all"))
+        self.reset_button = QPushButton()
+        i18n.bind(self.reset_button, N_("Reset"))
+        for b in (self.show_history, self.ack_button, self.ack_all_button, self.reset_button):
+            bar.addWidget(b)
+        bar.addStretch(1)
+        layout.addLayout(bar)
+        self.table = QTableWidget(0, len(COLUMNS))
+        self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
+        self.table.setSelectionBehavior(QTableWidget.SelectionBehavior.SelectRows)
+        self.table.horizontalHeader().setStretchLastSection(False)
+        self.table.setColumnWidth(0, 120)
+        self.table.setColumnWidth(1, 140)
+        self.table.setColumnWidth(2, 460)
+        self.table.setColumnWidth(3, 130)
+        touch_rows(self.table)
+        layout.addWidget(self.table, 1)
+        self._alarms: tuple = tuple(c.alarms)
+        self.show_history.toggled.connect(lambda _on: self.refresh())
+        self.ack_button.clicked.connect(self.acknowledge_selected)
+        self.ack_all_button.clicked.connect(lambda: c.acknowledge_alarm(None))
+        self.reset_button.clicked.connect(lambda: c.reset())
+        c.alarmsChanged.connect(self._on_alarms)
+        i18n.languageChanged.connect(lambda _l: self.refresh())
+        self.refresh()
+
+    def _on_alarms(self, alarms: object) -> None:
+        self._alarms = tuple(alarms)  # type: ignore[arg-type]
+        self.refresh()
+
+    def shown_alarms(self) -> list:
+        alarms = [a for a in self._alarms if a.active or self.show_history.isChecked()]
+        return sorted(alarms, key=lambda a: a.time_s, reverse=True)
+
+    def refresh(self) -> None:
+        self.table.setHorizontalHeaderLabels([tr(c) for c in COLUMNS])
+        alarms = self.shown_alarms()
+        self.table.setRowCount(len(alarms))
+        for row, a in enumerate(alarms):
+            when = time.strftime("%H:%M:%S", time.localtime(a.time_s)) if a.time_s else "--:--:--"
+            state = tr("active") if a.active else tr("acknowledged")
+            values = (when, a.source, a.cause, a.severity.name.replace("_", " ").lower(), state)
+            for col, value in enumerate(values):
+                item = QTableWidgetItem(str(value))
+                item.setData(256, a.id)  # Qt.UserRole
+                self.table.setItem(row, col, item)
+
+    def acknowledge_selected(self) -> None:
+        row = self.table.currentRow()
+        if row < 0:
+            return
+        item = self.table.item(row, 0)
+        if item is not None:
+            self.ctx.controller.acknowledge_alarm(int(item.data(256)))
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return AlarmsPage(context)

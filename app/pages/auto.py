@@ -1,0 +1,198 @@
+"""Auto: run the loaded program: cycle start, hold, stop, reset, single block, optional stop,
+run from line, feed and rapid override, current line kept in view, progress and path speed."""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import (
+    QGridLayout,
+    QHBoxLayout,
+    QLabel,
+    QProgressBar,
+    QPushButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.context import PanelContext
+from app.format import format_duration, format_speed
+from app.i18n import N_, tr
+from app.widgets.code_editor import CodeEditor
+from app.widgets.gcode_highlighter import GCodeHighlighter
+from app.widgets.override_control import OverrideControl
+from app.widgets.touch import enable_kinetic_scrolling
+
+BUTTONS = (  # (key, label, object name, controller action for refusal())
+    ("start", N_("Cycle start"), "cycleStart", "cycle_start"),
+    ("hold", N_("Feed hold"), "feedHold", "feed_hold"),
+    ("stop", N_("Stop"), "stopButton", "stop"),
+    ("reset", N_("Reset"), "resetButton", "reset"),
+)
+
+
+class AutoPage(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("autoPage")
+        self.ctx = context
+        c = context.controller
+        i18n = context.i18n
+        layout = QHBoxLayout(self)
+        left = QVBoxLayout()
+        self.program_label = QLabel()
+        self.program_label.setObjectName("programName")
+        left.addWidget(self.program_label)
+        self.editor = CodeEditor(read_only=True)
+        GCodeHighlighter(self.editor.document())
+        enable_kinetic_scrolling(self.editor)
+        left.addWidget(self.editor, 1)
+        layout.addLayout(left, 3)
+
+        right = QVBoxLayout()
+        grid = QGridLayout()
+        self.buttons: dict[str, QPushButton] = {}
+        for i, (key, label, obj, _action) in enumerate(BUTTONS):
+            button = QPushButton()
+            button.setObjectName(obj)
+            button.setMinimumHeight(72)
+            i18n.bind(button, label)
+            grid.addWidget(button, i // 2, i % 2)
+            self.buttons[key] = button
+        self.buttons["start"].clicked.connect(self.cycle_start)
+        self.buttons["hold"].clicked.connect(lambda: c.feed_hold())
+        self.buttons["stop"].clicked.connect(lambda: c.stop())
+        self.buttons["reset"].clicked.connect(lambda: c.reset())
+        self.single_block = QPushButton()
+        self.single_block.setCheckable(True)
+        i18n.bind(self.single_block, N_("Single block"))
+        self.single_block.clicked.connect(lambda on: c.set_single_block(on))
+        self.optional_stop = QPushButton()
+        self.optional_stop.setCheckable(True)
+        i18n.bind(self.optional_stop, N_("Optional stop"))
+        self.optional_stop.clicked.connect(lambda on: c.set_optional_stop(on))
+        grid.addWidget(self.single_block, 2, 0)
+        grid.addWidget(self.optional_stop, 2, 1)
+        self.run_from = QPushButton()
+        i18n.bind(self.run_from, N_("Run from line…"))
+        self.run_from.clicked.connect(self.run_from_line)
+        grid.addWidget(self.run_from, 3, 0, 1, 2)
+        right.addLayout(grid)
+
+        self.feed = OverrideControl("")
+        i18n.bind(self.feed.title, N_("Feed override"))
+        self.feed.changed.connect(lambda v: c.set_feed_override(v))
+        self.rapid = OverrideControl("", maximum=100)
+        i18n.bind(self.rapid.title, N_("Rapid override"))
+        self.rapid.changed.connect(lambda v: c.set_rapid_override(v))
+        right.addWidget(self.feed)
+        right.addWidget(self.rapid)
+        self.progress = QProgressBar()
+        self.progress.setRange(0, 1000)
+        self.progress.setTextVisible(False)
+        self.progress.setMinimumHeight(24)
+        right.addWidget(self.progress)
+        self.info_label = QLabel()
+        self.info_label.setObjectName("runInfo")
+        self.info_label.setWordWrap(True)
+        right.addWidget(self.info_label)
+        right.addStretch(1)
+        layout.addLayout(right, 2)
+
+        self._fraction, self._remaining, self._speed, self._line = 0.0, float("nan"), 0.0, 0
+        c.programLoaded.connect(self._on_loaded)
+        c.lineChanged.connect(self._on_line)
+        c.progressChanged.connect(self._on_progress)
+        c.speedChanged.connect(self._on_speed)
+        c.overridesChanged.connect(self._on_overrides)
+        c.modesChanged.connect(self._on_modes)
+        c.stateChanged.connect(lambda *_: self._update_buttons())
+        context.program.changed.connect(self._on_program_model)
+        i18n.languageChanged.connect(lambda _l: self._update_info())
+        self._on_overrides(c.feed_override_pct, c.rapid_override_pct)
+        self._on_modes(c.single_block, c.optional_stop)
+        if c.program_info is not None:
+            self._on_loaded(c.program_info)
+        self._update_buttons()
+        self._update_info()
+
+    # --- commands ------------------------------------------------------------------------
+    def cycle_start(self) -> None:
+        c = self.ctx.controller
+        if str(getattr(c.state, "value", "")) == "hold":
+            c.resume()
+        else:
+            c.cycle_start()
+
+    def run_from_line(self) -> None:
+        ctx = self.ctx
+        info = ctx.controller.program_info
+        if info is None:
+            return
+        line = ctx.dialogs.ask_number(self, tr("Run from line"), float(max(1, self.editor.current_line())),
+                                      1, float(info.line_count), 0)
+        if line is None:
+            return
+        if ctx.dialogs.confirm(self, tr("Run from line"),
+                               tr("Move to the start of line {0} and run the program from there?")
+                               .format(int(line))):
+            ctx.controller.run_from_line(int(line))
+
+    # --- controller signals --------------------------------------------------------------
+    def _on_loaded(self, info: object) -> None:
+        text = str(getattr(info, "text", ""))
+        if self.editor.toPlainText() != text:
+            self.editor.setPlainText(text)
+        self.program_label.setText(str(getattr(info, "name", "")))
+        self._remaining = float(getattr(info, "cycle_time_s", float("nan")))
+        self._fraction = 0.0
+        self.progress.setValue(0)
+        self._update_info()
+        self._update_buttons()
+
+    def _on_program_model(self) -> None:
+        model = self.ctx.program
+        if model.info is None and model.text and self.editor.toPlainText() != model.text:
+            self.editor.setPlainText(model.text)
+            self.program_label.setText(model.name)
+        self.editor.set_errors(model.errors)
+        self._update_buttons()
+
+    def _on_line(self, line: int) -> None:
+        self._line = line
+        self.editor.set_run_line(line)
+        self._update_info()
+
+    def _on_progress(self, fraction: float, remaining_s: float) -> None:
+        self._fraction, self._remaining = fraction, remaining_s
+        self.progress.setValue(round(1000 * fraction))
+        self._update_info()
+
+    def _on_speed(self, speed: float) -> None:
+        self._speed = speed
+        self._update_info()
+
+    def _on_overrides(self, feed: float, rapid: float) -> None:
+        self.feed.set_value(feed)
+        self.rapid.set_value(rapid)
+
+    def _on_modes(self, single_block: bool, optional_stop: bool) -> None:
+        self.single_block.setChecked(single_block)
+        self.optional_stop.setChecked(optional_stop)
+
+    def _update_info(self) -> None:
+        self.info_label.setText(
+            tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
+                self._line, 100 * self._fraction, format_duration(self._remaining),
+                format_speed(self._speed)))
+
+    def _update_buttons(self) -> None:
+        c = self.ctx.controller
+        for key, _label, _obj, action in BUTTONS:
+            reason = c.refusal(action)
+            if key == "start" and str(getattr(c.state, "value", "")) == "hold":
+                reason = c.refusal("resume")
+            self.buttons[key].setEnabled(not reason)
+        self.run_from.setEnabled(not c.refusal("run_from_line"))
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return AutoPage(context)

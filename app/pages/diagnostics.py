@@ -1,0 +1,129 @@
+"""Diagnostics: v/a/j of the loaded program against time (Fig. 14), reference vs actual per
+axis with RMSE/MSE (Fig. 17, Table 4), EtherCAT slaves and states, cycle-timing histogram."""
+
+from __future__ import annotations
+
+import threading
+
+from PySide6.QtCore import QTimer, Signal
+from PySide6.QtWidgets import QLabel, QTabWidget, QVBoxLayout, QWidget
+
+from app.context import PanelContext
+from app.format import format_duration
+from app.i18n import N_, tr
+from app.path_profile import PathProfile, path_profile
+from app.widgets.bus_view import BusView
+from app.widgets.profile_plots import ProfilePlots
+from app.widgets.tracking_view import TrackingView, load_trace
+
+REDRAW_MS = 33  # 30 Hz
+
+
+class DiagnosticsPage(QWidget):
+    _profileReady = Signal(int, object)  # generation, PathProfile | str (error)
+
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("diagnosticsPage")
+        self.ctx = context
+        c = context.controller
+        i18n = context.i18n
+        layout = QVBoxLayout(self)
+        self.tabs = QTabWidget()
+        layout.addWidget(self.tabs)
+        profile_tab = QWidget()
+        pl = QVBoxLayout(profile_tab)
+        self.profile_label = QLabel()
+        pl.addWidget(self.profile_label)
+        self.profile_plots = ProfilePlots()
+        pl.addWidget(self.profile_plots, 1)
+        self.tracking = TrackingView(c.axes, i18n)
+        self.bus = BusView(i18n)
+        self.tabs.addTab(profile_tab, "")
+        self.tabs.addTab(self.tracking, "")
+        self.tabs.addTab(self.bus, "")
+        for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"))):
+            i18n.bind(self.tabs, text, lambda t, i=index: self.tabs.setTabText(i, t))
+
+        self.profile: PathProfile | None = None
+        self._generation = 0
+        self._profile_state = N_("No program loaded.")
+        self._profileReady.connect(self._on_profile)
+        context.program.changed.connect(self.compute_profile)
+        c.positionChanged.connect(lambda machine, _work: self.tracking.add_position(machine))
+        c.trackingUpdated.connect(self.tracking.set_report)
+        c.programFinished.connect(self._on_finished)
+        c.busStateChanged.connect(lambda bus: self.bus.set_state(bus, c.config))
+        i18n.languageChanged.connect(lambda _l: self._show_profile_state())
+        self.bus.set_state(c.bus_status, c.config)
+        self.tracking.set_report(c.tracking)
+        self.timer = QTimer(self)
+        self.timer.setInterval(REDRAW_MS)
+        self.timer.timeout.connect(self.tracking.redraw)
+        self.compute_profile()
+
+    def showEvent(self, event) -> None:  # noqa: N802 - Qt override
+        self.timer.start()
+        super().showEvent(event)
+
+    def hideEvent(self, event) -> None:  # noqa: N802 - Qt override
+        self.timer.stop()
+        super().hideEvent(event)
+
+    # --- path profile (computed off the GUI thread) ---------------------------------------
+    def compute_profile(self) -> None:
+        program = self.ctx.program.program
+        self._generation += 1
+        if program is None:
+            self.profile = None
+            self.profile_plots.set_profile(None)
+            self._profile_state = N_("No program loaded.")
+            self._show_profile_state()
+            return
+        generation, machine = self._generation, self.ctx.controller.config.machine
+        self._profile_state = N_("Planning…")
+        self._show_profile_state()
+
+        def work() -> None:
+            try:
+                result: object = path_profile(program, machine)
+            except Exception as exc:  # noqa: BLE001 - shown on the page, never kills the panel
+                result = f"{type(exc).__name__}: {exc}"
+            self._profileReady.emit(generation, result)
+
+        threading.Thread(target=work, name="diag-plan", daemon=True).start()
+
+    def _on_profile(self, generation: int, result: object) -> None:
+        if generation != self._generation:
+            return
+        if isinstance(result, PathProfile):
+            self.profile = result
+            self.profile_plots.set_profile(result)
+            self._profile_state = ""
+        else:
+            self._profile_state = str(result)
+        self._show_profile_state()
+
+    def _show_profile_state(self) -> None:
+        p = self.profile
+        if self._profile_state:
+            self.profile_label.setText(tr(self._profile_state))
+        elif p is not None:
+            vmax, amax, jmax = p.limits
+            text = tr("Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³"
+                      ).format(format_duration(p.cycle_time_s), vmax, amax, jmax)
+            if p.truncated:
+                text += tr(" (first {0:.0f} s shown)").format(p.t[-1] if len(p.t) else 0.0)
+            self.profile_label.setText(text)
+
+    def _on_finished(self, summary: object) -> None:
+        report = getattr(summary, "tracking", None)
+        if report is not None:
+            self.tracking.set_report(report)
+            trace = load_trace(str(getattr(report, "trace_path", "") or ""))
+            if trace is not None:
+                self.tracking.show_trace(trace)
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return DiagnosticsPage(context)

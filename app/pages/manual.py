@@ -1,0 +1,136 @@
+"""Manual: jog per axis (hold / increments), spindle on/off and speed, MDI with history."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QEvent, QObject
+from PySide6.QtWidgets import (
+    QApplication,
+    QGroupBox,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QListWidget,
+    QPushButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.context import PanelContext
+from app.i18n import N_, tr
+from app.widgets.jog_panel import JogPanel
+from app.widgets.keyboard import OnScreenKeyboard
+from app.widgets.numeric_field import NumericField
+from app.widgets.touch import touch_rows
+
+MDI_HISTORY = 50
+
+
+class ManualPage(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("manualPage")
+        self.ctx = context
+        c = context.controller
+        i18n = context.i18n
+        layout = QHBoxLayout(self)
+        jog_box = QGroupBox()
+        i18n.bind(jog_box, N_("Jog"), jog_box.setTitle)
+        jog_layout = QVBoxLayout(jog_box)
+        self.jog = JogPanel(c.axes, i18n)
+        jog_layout.addWidget(self.jog)
+        self.jog.jogStart.connect(lambda axis, d: c.jog_start(axis, d))
+        self.jog.jogStop.connect(lambda axis: c.jog_stop(axis or None))
+        self.jog.jogStep.connect(lambda axis, step, d: c.jog_increment(axis, step, d))
+        layout.addWidget(jog_box, 1)
+
+        right = QVBoxLayout()
+        spindle_box = QGroupBox()
+        i18n.bind(spindle_box, N_("Spindle"), spindle_box.setTitle)
+        sp = QVBoxLayout(spindle_box)
+        row = QHBoxLayout()
+        self.spindle_buttons: dict[str, QPushButton] = {}
+        for key, label in (("cw", N_("CW (M03)")), ("ccw", N_("CCW (M04)")), ("off", N_("Off (M05)"))):
+            button = QPushButton()
+            i18n.bind(button, label)
+            row.addWidget(button)
+            self.spindle_buttons[key] = button
+        sp.addLayout(row)
+        max_rpm = float(c.config.controller.spindle_max_rpm)
+        self.rpm = NumericField(tr("Spindle speed"), c.spindle.rpm or 1000.0, 0.0, max_rpm, 0, "rpm",
+                                ask=context.dialogs.ask_number)
+        sp.addWidget(self.rpm)
+        self.spindle_label = QLabel()
+        sp.addWidget(self.spindle_label)
+        self.spindle_buttons["cw"].clicked.connect(lambda: c.spindle_on(True, self.rpm.value()))
+        self.spindle_buttons["ccw"].clicked.connect(lambda: c.spindle_on(False, self.rpm.value()))
+        self.spindle_buttons["off"].clicked.connect(lambda: c.spindle_off())
+        self.rpm.valueChanged.connect(lambda rpm: c.spindle_speed(rpm))
+        right.addWidget(spindle_box)
+
+        mdi_box = QGroupBox()
+        i18n.bind(mdi_box, N_("MDI"), mdi_box.setTitle)
+        mdi = QVBoxLayout(mdi_box)
+        row = QHBoxLayout()
+        self.mdi_line = QLineEdit()
+        self.mdi_line.setMinimumHeight(48)
+        i18n.bind(self.mdi_line, N_("G-code block, e.g. G01 X10 F600"), self.mdi_line.setPlaceholderText)
+        self.mdi_send = QPushButton()
+        i18n.bind(self.mdi_send, N_("Send"))
+        self.keyboard_button = QPushButton()
+        self.keyboard_button.setCheckable(True)
+        i18n.bind(self.keyboard_button, N_("Keyboard"))
+        row.addWidget(self.mdi_line, 1)
+        row.addWidget(self.mdi_send)
+        row.addWidget(self.keyboard_button)
+        mdi.addLayout(row)
+        self.history = QListWidget()
+        touch_rows(self.history)
+        self.history.addItems(list(context.settings.settings.mdi_history))
+        mdi.addWidget(self.history, 1)
+        self.keyboard = OnScreenKeyboard()
+        self.keyboard.set_target(self.mdi_line)
+        self.keyboard.hide()
+        mdi.addWidget(self.keyboard)
+        right.addWidget(mdi_box, 1)
+        layout.addLayout(right, 1)
+
+        self.mdi_send.clicked.connect(self.send_mdi)
+        self.mdi_line.returnPressed.connect(self.send_mdi)
+        self.history.itemClicked.connect(lambda item: self.mdi_line.setText(item.text()))
+        self.keyboard_button.toggled.connect(self.keyboard.setVisible)
+        c.spindleChanged.connect(self._on_spindle)
+        i18n.languageChanged.connect(lambda _l: self._on_spindle(c.spindle))
+        self._on_spindle(c.spindle)
+        app = QApplication.instance()
+        if app is not None:
+            app.applicationStateChanged.connect(lambda _s: self.jog.release_all())
+            app.installEventFilter(self)
+
+    def eventFilter(self, obj: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt override
+        # Safe release: a window deactivation or a touch cancel stops continuous jogging.
+        if event.type() in (QEvent.Type.WindowDeactivate, QEvent.Type.TouchCancel):
+            self.jog.release_all()
+        return False
+
+    def send_mdi(self) -> None:
+        block = self.mdi_line.text().strip()
+        if not block:
+            return
+        result = self.ctx.controller.mdi(block)
+        if result:
+            history = [h for h in self.ctx.settings.settings.mdi_history if h != block] + [block]
+            history = history[-MDI_HISTORY:]
+            self.ctx.settings.update(mdi_history=tuple(history))
+            self.history.clear()
+            self.history.addItems(history)
+            self.mdi_line.clear()
+
+    def _on_spindle(self, spindle: object) -> None:
+        direction = int(getattr(spindle, "direction", 0))
+        rpm = float(getattr(spindle, "rpm", 0.0))
+        state = {1: tr("CW"), -1: tr("CCW")}.get(direction, tr("off"))
+        self.spindle_label.setText(tr("Spindle: {0}, {1:.0f} rpm").format(state, rpm))
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return ManualPage(context)

@@ -1,0 +1,186 @@
+"""Parameters (service level): path limits, Ts, planner mode and interpolation, homing, bus,
+service password. Changes are checked, confirmed and applied atomically by the controller."""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import (
+    QButtonGroup,
+    QFormLayout,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QPushButton,
+    QScrollArea,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.config_edit import validate, with_bus, with_homing, with_limits, with_planner
+from app.context import PanelContext
+from app.i18n import N_, tr
+from app.panel_settings import password_hash
+from app.widgets.apply_bar import ApplyBar
+from app.widgets.numeric_field import NumericField
+from app.widgets.touch import enable_kinetic_scrolling
+from planner.machine import INTERPOLATIONS, PLANNER_MODES
+
+LIMIT_FIELDS = (  # (attribute, label, unit, minimum, maximum, decimals)
+    ("v_max_mm_s", N_("Path speed Vmax"), "mm/s", 0.001, 10000.0, 3),
+    ("a_max_mm_s2", N_("Path acceleration Amax"), "mm/s²", 0.001, 1e6, 1),
+    ("j_max_mm_s3", N_("Path jerk Jmax"), "mm/s³", 0.001, 1e8, 1),
+    ("rapid_mm_s", N_("Rapid speed"), "mm/s", 0.001, 10000.0, 3),
+)
+
+
+def _choice_row(values: tuple[str, ...]) -> tuple[QWidget, QButtonGroup, dict[str, QPushButton]]:
+    box = QWidget()
+    row = QHBoxLayout(box)
+    row.setContentsMargins(0, 0, 0, 0)
+    group = QButtonGroup(box)
+    buttons = {}
+    for v in values:
+        b = QPushButton(v)
+        b.setCheckable(True)
+        group.addButton(b)
+        row.addWidget(b)
+        buttons[v] = b
+    row.addStretch(1)
+    return box, group, buttons
+
+
+class ParametersPage(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("parametersPage")
+        self.ctx = context
+        c = context.controller
+        i18n = context.i18n
+        outer = QVBoxLayout(self)
+        scroll = QScrollArea()
+        scroll.setWidgetResizable(True)
+        enable_kinetic_scrolling(scroll)
+        outer.addWidget(scroll, 1)
+        body = QWidget()
+        scroll.setWidget(body)
+        form = QFormLayout(body)
+        self.fields: dict[str, NumericField] = {}
+
+        def label(text: str) -> QLabel:
+            lab = QLabel()
+            i18n.bind(lab, text)
+            return lab
+
+        for attr, text, unit, lo, hi, decimals in LIMIT_FIELDS:
+            field = NumericField(tr(text), 0.0, lo, hi, decimals, unit, ask=context.dialogs.ask_number)
+            field.valueChanged.connect(lambda v, a=attr: self._set(with_limits(self.pending, **{a: v})))
+            form.addRow(label(text), field)
+            self.fields[attr] = field
+        self.ts_field = NumericField(tr("Cycle time Ts"), 1.0, 0.01, 100.0, 3, "ms",
+                                     ask=context.dialogs.ask_number)
+        self.ts_field.valueChanged.connect(lambda v: self._set(with_planner(self.pending, ts_s=v / 1000.0)))
+        form.addRow(label(N_("Cycle time Ts")), self.ts_field)
+        box, _g, self.mode_buttons = _choice_row(PLANNER_MODES)
+        for mode, b in self.mode_buttons.items():
+            b.clicked.connect(lambda _=False, m=mode: self._set(with_planner(self.pending, mode=m)))
+        form.addRow(label(N_("Planner mode")), box)
+        box, _g, self.interp_buttons = _choice_row(INTERPOLATIONS)
+        for interp, b in self.interp_buttons.items():
+            b.clicked.connect(lambda _=False, m=interp: self._set(
+                with_planner(self.pending, interpolation=m)))
+        form.addRow(label(N_("Interpolation")), box)
+        self.homing_required = QPushButton()
+        self.homing_required.setCheckable(True)
+        i18n.bind(self.homing_required, N_("Homing required before a program"))
+        self.homing_required.clicked.connect(lambda on: self._set(with_homing(self.pending, required=on)))
+        form.addRow(label(N_("Homing")), self.homing_required)
+        box, _g, self.bus_buttons = _choice_row(("sim", "soem"))
+        for kind, b in self.bus_buttons.items():
+            b.clicked.connect(lambda _=False, k=kind: self._set(with_bus(self.pending, kind=k)))
+        form.addRow(label(N_("Bus")), box)
+        self.adapter = QLineEdit()
+        self.adapter.setMinimumHeight(48)
+        self.adapter.editingFinished.connect(
+            lambda: self._set(with_bus(self.pending, adapter=self.adapter.text().strip())))
+        form.addRow(label(N_("Network adapter")), self.adapter)
+        row = QHBoxLayout()
+        self.password_button = QPushButton()
+        i18n.bind(self.password_button, N_("Change service password"))
+        self.password_button.clicked.connect(self.change_password)
+        self.lock_button = QPushButton()
+        i18n.bind(self.lock_button, N_("Lock service level"))
+        self.lock_button.clicked.connect(self.lock)
+        row.addWidget(self.password_button)
+        row.addWidget(self.lock_button)
+        form.addRow(label(N_("Service")), row)
+
+        self.apply_bar = ApplyBar(i18n)
+        self.apply_bar.apply_button.clicked.connect(self.apply)
+        self.apply_bar.revert_button.clicked.connect(self.revert)
+        outer.addWidget(self.apply_bar)
+        self.pending = c.config
+        c.configChanged.connect(lambda _cfg: self.revert())
+        self.revert()
+
+    def _set(self, config: object) -> None:
+        self.pending = config  # type: ignore[assignment]
+        self.refresh()
+
+    def revert(self) -> None:
+        self.pending = self.ctx.controller.config
+        self.refresh()
+
+    def refresh(self) -> None:
+        m = self.pending.machine
+        for attr, field in self.fields.items():
+            field.setValue(getattr(m.limits, attr))
+        self.ts_field.setValue(m.planner.ts_s * 1000.0)
+        for mode, b in self.mode_buttons.items():
+            b.setChecked(mode == m.planner.mode)
+        for interp, b in self.interp_buttons.items():
+            b.setChecked(interp == m.planner.interpolation)
+        self.homing_required.setChecked(self.pending.homing.required)
+        for kind, b in self.bus_buttons.items():
+            b.setChecked(kind == self.pending.bus.kind)
+        if self.adapter.text() != self.pending.bus.adapter:
+            self.adapter.setText(self.pending.bus.adapter)
+        dirty = self.pending is not self.ctx.controller.config
+        self.apply_bar.set_state(dirty, validate(self.pending) if dirty else "")
+
+    def apply(self) -> bool:
+        error = validate(self.pending)
+        if error:
+            self.apply_bar.set_state(True, error)
+            return False
+        running = str(getattr(self.ctx.controller.state, "value", "")) in ("running", "hold", "homing")
+        text = tr("Apply the changed parameters?")
+        if running:
+            text += "\n" + tr("The machine is moving.")
+        if not self.ctx.dialogs.confirm(self, tr("Apply parameters"), text):
+            return False
+        result = self.ctx.controller.update_config(self.pending)
+        if not result:
+            self.apply_bar.set_state(True, tr("Refused: {0}").format(result.reason))
+            return False
+        return True
+
+    def change_password(self) -> None:
+        d = self.ctx.dialogs
+        new = d.ask_text(self, tr("Service password"), tr("New service password:"), password=True)
+        if not new:
+            return
+        again = d.ask_text(self, tr("Service password"), tr("Repeat the new password:"), password=True)
+        if again != new:
+            d.inform(self, tr("Service password"), tr("The passwords differ; nothing changed."))
+            return
+        self.ctx.settings.update(service_password_sha256=password_hash(new))
+
+    def lock(self) -> None:
+        self.ctx.service_unlocked = False
+        window = self.window()
+        lock = getattr(window, "lock_service", None)
+        if lock is not None:
+            lock()
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return ParametersPage(context)

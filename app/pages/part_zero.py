@@ -1,0 +1,101 @@
+"""Part zero: work offsets G54-G59 (machine coordinates of part zero), select the active one,
+touch off per axis (the current position becomes a chosen work coordinate)."""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import (
+    QButtonGroup,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QTableWidget,
+    QTableWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.context import PanelContext
+from app.i18n import N_, tr
+from app.widgets.touch import touch_rows
+from planner.machine import WORK_OFFSET_NAMES
+
+
+class PartZeroPage(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("partZeroPage")
+        self.ctx = context
+        c = context.controller
+        i18n = context.i18n
+        self.axes = c.axes
+        layout = QVBoxLayout(self)
+        select = QHBoxLayout()
+        active = QLabel()
+        i18n.bind(active, N_("Active:"))
+        select.addWidget(active)
+        self.select_group = QButtonGroup(self)
+        self.select_buttons: dict[str, QPushButton] = {}
+        for name in WORK_OFFSET_NAMES:
+            button = QPushButton(name)
+            button.setCheckable(True)
+            button.clicked.connect(lambda _=False, n=name: c.select_work_offset(n))
+            self.select_group.addButton(button)
+            select.addWidget(button)
+            self.select_buttons[name] = button
+        layout.addLayout(select)
+        self.table = QTableWidget(len(WORK_OFFSET_NAMES), len(self.axes))
+        self.table.setVerticalHeaderLabels(list(WORK_OFFSET_NAMES))
+        self.table.setHorizontalHeaderLabels(list(self.axes))
+        self.table.horizontalHeader().setStretchLastSection(True)
+        self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
+        touch_rows(self.table)
+        self.table.cellClicked.connect(self.edit_cell)
+        layout.addWidget(self.table, 1)
+        hint = QLabel()
+        hint.setWordWrap(True)
+        i18n.bind(hint, N_("Tap a value to type it. Touch off: the current position becomes the "
+                           "work coordinate you enter, in the selected offset."))
+        layout.addWidget(hint)
+        touch = QHBoxLayout()
+        self.touch_buttons: dict[str, QPushButton] = {}
+        for axis in self.axes:
+            button = QPushButton()
+            i18n.bind(button, N_("Touch off {0}"), lambda t, b=button, a=axis: b.setText(t.format(a)))
+            button.clicked.connect(lambda _=False, a=axis: self.touch_off(a))
+            touch.addWidget(button)
+            self.touch_buttons[axis] = button
+        layout.addLayout(touch)
+        self._offsets: dict[str, tuple[float, ...]] = dict(c.work_offsets)
+        self._active = c.active_offset
+        c.offsetsChanged.connect(self._on_offsets)
+        self._on_offsets(self._offsets, self._active)
+
+    def _on_offsets(self, offsets: object, active: str) -> None:
+        self._offsets = dict(offsets)  # type: ignore[call-overload]
+        self._active = active
+        for r, name in enumerate(WORK_OFFSET_NAMES):
+            values = self._offsets.get(name, (0.0,) * len(self.axes))
+            for col, value in enumerate(values[: len(self.axes)]):
+                item = QTableWidgetItem(f"{value:+.3f}")
+                self.table.setItem(r, col, item)
+        if active in self.select_buttons:
+            self.select_buttons[active].setChecked(True)
+            self.table.selectRow(WORK_OFFSET_NAMES.index(active))
+
+    def edit_cell(self, row: int, col: int) -> None:
+        name = WORK_OFFSET_NAMES[row]
+        values = list(self._offsets.get(name, (0.0,) * len(self.axes)))
+        value = self.ctx.dialogs.ask_number(self, tr("{0} {1} (machine coordinate of part zero)")
+                                            .format(name, self.axes[col]), values[col])
+        if value is not None:
+            values[col] = value
+            self.ctx.controller.set_work_offset(name, tuple(values))
+
+    def touch_off(self, axis: str) -> None:
+        value = self.ctx.dialogs.ask_number(self, tr("Touch off {0}: work coordinate here").format(axis), 0.0)
+        if value is not None:
+            self.ctx.controller.touch_off(axis, value, self._active)
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return PartZeroPage(context)

@@ -1,0 +1,241 @@
+"""Program: edit G-code with line numbers, highlighting, find, go to line, errors marked as you
+type; open / save / save as (atomic), autosave and recovery, on-screen keyboard; load the program
+into the machine."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtCore import QTimer
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+
+from app.context import RESOURCES, PanelContext
+from app.i18n import N_, tr
+from app.program_checker import ProgramChecker
+from app.widgets.code_editor import CodeEditor
+from app.widgets.find_bar import FindBar
+from app.widgets.gcode_highlighter import GCodeHighlighter
+from app.widgets.keyboard import OnScreenKeyboard
+from app.widgets.touch import enable_kinetic_scrolling
+
+AUTOSAVE_MS = 5000
+TOOLBAR = (
+    ("new", N_("New")), ("open", N_("Open…")), ("save", N_("Save")), ("save_as", N_("Save as…")),
+    ("find", N_("Find")), ("goto", N_("Go to line")), ("keyboard", N_("Keyboard")),
+    ("load", N_("Load into machine")),
+)
+
+
+class ProgramPage(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("programPage")
+        self.ctx = context
+        self.doc = context.document
+        i18n = context.i18n
+        layout = QVBoxLayout(self)
+        bar = QHBoxLayout()
+        self.buttons: dict[str, QPushButton] = {}
+        for key, label in TOOLBAR:
+            button = QPushButton()
+            i18n.bind(button, label)
+            bar.addWidget(button)
+            self.buttons[key] = button
+        self.buttons["keyboard"].setCheckable(True)
+        self.buttons["load"].setObjectName("cycleStart")
+        layout.addLayout(bar)
+        self.title = QLabel()
+        self.title.setObjectName("programName")
+        layout.addWidget(self.title)
+        self.find_bar = FindBar(i18n)
+        self.find_bar.hide()
+        layout.addWidget(self.find_bar)
+        self.editor = CodeEditor()
+        GCodeHighlighter(self.editor.document())
+        enable_kinetic_scrolling(self.editor)
+        layout.addWidget(self.editor, 1)
+        self.error_label = QLabel()
+        self.error_label.setObjectName("errorLine")
+        self.error_label.setWordWrap(True)
+        layout.addWidget(self.error_label)
+        self.keyboard = OnScreenKeyboard()
+        self.keyboard.set_target(self.editor)
+        self.keyboard.hide()
+        layout.addWidget(self.keyboard)
+
+        self.checker = ProgramChecker(context.controller.config.machine)
+        self.checker.checked.connect(self._on_checked)
+        self._autosave = QTimer(self)
+        self._autosave.setSingleShot(True)
+        self._autosave.setInterval(AUTOSAVE_MS)
+        self._autosave.timeout.connect(self.doc.autosave)
+        self._loading = False
+
+        self.buttons["new"].clicked.connect(self.new_program)
+        self.buttons["open"].clicked.connect(self.open_dialog)
+        self.buttons["save"].clicked.connect(self.save)
+        self.buttons["save_as"].clicked.connect(self.save_as)
+        self.buttons["find"].clicked.connect(self._show_find)
+        self.buttons["goto"].clicked.connect(self.go_to_line_dialog)
+        self.buttons["keyboard"].toggled.connect(self.keyboard.setVisible)
+        self.buttons["load"].clicked.connect(self.load_into_machine)
+        self.find_bar.findNext.connect(self.editor.find_text)
+        self.find_bar.field.installEventFilter(self)
+        self.editor.textChanged.connect(self._on_text_changed)
+        self.editor.lineActivated.connect(self._show_line_error)
+        context.controller.programLoaded.connect(self._on_program_loaded)
+        context.controller.programErrors.connect(self._on_program_errors)
+        self._update_title()
+
+    # --- editing -------------------------------------------------------------------------
+    def set_text(self, text: str) -> None:
+        self._loading = True
+        self.editor.setPlainText(text)
+        self._loading = False
+        self.doc.text = text
+        self.checker.check_now(text)
+        self._update_title()
+
+    def _on_text_changed(self) -> None:
+        if self._loading:
+            return
+        self.doc.text = self.editor.toPlainText()
+        self.checker.request(self.doc.text)
+        self._autosave.start()
+        self._update_title()
+
+    def _on_checked(self, errors: object) -> None:
+        self.editor.set_errors(errors)  # type: ignore[arg-type]
+        self._show_line_error(self.editor.current_line())
+        n = len(errors)  # type: ignore[arg-type]
+        if n and self.error_label.text() == "":
+            first = min(errors)  # type: ignore[type-var]
+            self.error_label.setText(tr("{0} error(s); first at line {1}: {2}").format(
+                n, first, errors[first]))  # type: ignore[index]
+
+    def _show_line_error(self, line: int) -> None:
+        errors = self.editor.errors
+        if line in errors:
+            self.error_label.setText(tr("Line {0}: {1}").format(line, errors[line]))
+        elif errors:
+            first = min(errors)
+            self.error_label.setText(tr("{0} error(s); first at line {1}: {2}").format(
+                len(errors), first, errors[first]))
+        else:
+            self.error_label.setText("")
+
+    def _update_title(self) -> None:
+        mark = " ●" if self.doc.modified else ""
+        self.title.setText(f"{self.doc.name}{mark}")
+
+    def _show_find(self) -> None:
+        self.find_bar.show()
+        self.find_bar.field.setFocus()
+        self.keyboard.set_target(self.find_bar.field)
+
+    def eventFilter(self, obj, event) -> bool:  # noqa: N802 - Qt override
+        from PySide6.QtCore import QEvent
+
+        if obj is self.find_bar.field and event.type() == QEvent.Type.FocusOut:
+            self.keyboard.set_target(self.editor)
+        return super().eventFilter(obj, event)
+
+    def go_to_line_dialog(self) -> None:
+        line = self.ctx.dialogs.ask_number(self, tr("Go to line"), float(self.editor.current_line()), 1,
+                                           float(max(1, self.editor.blockCount())), 0)
+        if line is not None:
+            self.editor.go_to_line(int(line))
+
+    # --- files ---------------------------------------------------------------------------
+    def can_close(self) -> bool:
+        """Ask before unsaved changes are dropped: Save / Discard / Cancel."""
+        if not self.doc.modified:
+            return True
+        choice = self.ctx.dialogs.choose(self, tr("Unsaved changes"),
+                                         tr("{0} has unsaved changes.").format(self.doc.name),
+                                         [tr("Save"), tr("Discard"), tr("Cancel")])
+        if choice == 0:
+            return self.save()
+        if choice == 1:
+            self.doc.discard_autosave()
+            return True
+        return False
+
+    def new_program(self) -> None:
+        if self.can_close():
+            self.doc.new()
+            self.set_text("")
+
+    def open_dialog(self) -> None:
+        if not self.can_close():
+            return
+        start = str(self.doc.path.parent if self.doc.path else RESOURCES / "programs")
+        path = self.ctx.dialogs.ask_open_file(self, start)
+        if path:
+            self.open_file(Path(path))
+
+    def open_file(self, path: Path) -> None:
+        text = self.doc.open(path)
+        recovered = self.doc.recovery_text(path)
+        if recovered is not None and self.ctx.dialogs.confirm(
+                self, tr("Recover"), tr("An autosave of {0} with unsaved changes exists. Recover it?")
+                .format(path.name)):
+            self.set_text(recovered)
+            self.doc.text = recovered
+        else:
+            self.doc.discard_autosave()
+            self.set_text(text)
+        self._update_title()
+
+    def save(self) -> bool:
+        if self.doc.path is None:
+            return self.save_as()
+        try:
+            self.doc.save()
+        except OSError as exc:
+            self.ctx.dialogs.inform(self, tr("Save failed"), str(exc))
+            return False
+        self._update_title()
+        return True
+
+    def save_as(self) -> bool:
+        start = str(self.doc.path.parent if self.doc.path else self.ctx.state_dir)
+        path = self.ctx.dialogs.ask_save_file(self, start)
+        if not path:
+            return False
+        try:
+            self.doc.save(Path(path))
+        except OSError as exc:
+            self.ctx.dialogs.inform(self, tr("Save failed"), str(exc))
+            return False
+        self._update_title()
+        return True
+
+    def load_into_machine(self) -> None:
+        c = self.ctx.controller
+        if self.doc.path is not None and not self.doc.modified:
+            c.load_program(self.doc.path)
+        else:
+            c.load_program(self.doc.text, name=self.doc.name)
+
+    # --- controller ----------------------------------------------------------------------
+    def _on_program_loaded(self, info: object) -> None:
+        path = str(getattr(info, "path", "") or "")
+        text = str(getattr(info, "text", ""))
+        if self.doc.modified or text == self.doc.text:
+            return
+        if path:
+            self.open_file(Path(path))
+        else:
+            self.set_text(text)
+
+    def _on_program_errors(self, issues: object) -> None:
+        errors: dict[int, str] = {}
+        for issue in issues:  # type: ignore[attr-defined]
+            errors.setdefault(int(issue.line), str(issue.message))
+        self.editor.set_errors(errors)
+        self._show_line_error(self.editor.current_line())
+
+
+def create_page(context: PanelContext) -> QWidget:
+    return ProgramPage(context)

@@ -1,0 +1,54 @@
+"""Speed, acceleration and jerk along the path of a planned program against time (Fig. 14).
+
+Derived from the planner's 1 ms samples of the path length s(t) by finite differences; the
+first ``max_time_s`` seconds only, so a long program never costs unbounded memory.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.machine import MachineSpec
+from planner.program import Program
+
+MAX_TIME_S = 600.0
+
+
+@dataclass(frozen=True, slots=True)
+class PathProfile:
+    t: np.ndarray      # s
+    v: np.ndarray      # mm/s
+    a: np.ndarray      # mm/s^2
+    j: np.ndarray      # mm/s^3
+    cycle_time_s: float
+    truncated: bool    # True when only the first max_time_s are shown
+    limits: tuple[float, float, float]  # Vmax, Amax, Jmax of the machine
+
+
+def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX_TIME_S) -> PathProfile:
+    from planner.plan import plan_program
+
+    plan = plan_program(program, machine)
+    ts = plan.ts_s
+    t_parts, s_parts = [], []
+    n = 0
+    limit = int(max_time_s / ts) + 4
+    for chunk in plan.iter_chunks():
+        t_parts.append(chunk.t)
+        s_parts.append(chunk.s)
+        n += len(chunk)
+        if n >= limit:
+            break
+    t = np.concatenate(t_parts)[:limit] if t_parts else np.zeros(0)
+    s = np.concatenate(s_parts)[:limit] if s_parts else np.zeros(0)
+    lim = machine.limits
+    limits = (lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3)
+    if len(t) < 4:
+        z = np.zeros(len(t))
+        return PathProfile(t, z, z, z, plan.cycle_time_s, False, limits)
+    v = np.gradient(s, ts)
+    a = np.gradient(v, ts)
+    j = np.gradient(a, ts)
+    return PathProfile(t, v, a, j, plan.cycle_time_s, plan.cycle_time_s > max_time_s, limits)

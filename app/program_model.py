@@ -1,0 +1,88 @@
+"""The loaded program as the pages see it: text, geometry (planner Program), tool path, errors.
+
+Fed by the controller's ``programLoaded`` / ``programErrors`` signals. The geometry for the
+preview is interpreted here from the same text with the same machine (the controller's
+``ProgramInfo`` carries no geometry).
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QObject, Signal
+
+from app.toolpath import ToolPath, build_toolpath
+from planner.errors import PlannerError, ProgramError
+from planner.machine import MachineSpec
+from planner.program import Program
+
+
+def interpret(text: str, name: str, machine: MachineSpec | None) -> Program:
+    from planner.interpreter import parse_program  # lands with the interpreter issue
+
+    return parse_program(text, name=name, machine=machine)
+
+
+def errors_by_line(exc: PlannerError) -> dict[int, str]:
+    """{line: message} from a ProgramError (first message per line) or any planner error."""
+    out: dict[int, str] = {}
+    if isinstance(exc, ProgramError):
+        for e in exc.errors:
+            out.setdefault(e.line, e.message)
+    else:
+        out[getattr(exc, "line", 1) or 1] = str(exc)
+    return out
+
+
+class ProgramModel(QObject):
+    """Emits ``changed`` when a program is loaded (geometry + tool path) or rejected."""
+
+    changed = Signal()
+    errorsChanged = Signal(object)  # dict[int, str]: line -> message
+    lineRequested = Signal(int)  # a page asks to show this source line in the program editor
+
+    def __init__(self, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self.name = ""
+        self.path = ""
+        self.text = ""
+        self.info: object | None = None   # controller's ProgramInfo
+        self.program: Program | None = None
+        self.toolpath: ToolPath | None = None
+        self.errors: dict[int, str] = {}
+
+    def move_at_line(self, line: int) -> int:
+        """Index of the first move at or after ``line`` (len(moves) past the end, -1 if none)."""
+        if self.toolpath is None:
+            return -1
+        import numpy as np
+
+        return int(np.searchsorted(self.toolpath.move_lines, line, side="left"))
+
+    def set_loaded(self, info: object, machine: MachineSpec | None) -> None:
+        self.info = info
+        self.name = str(getattr(info, "name", ""))
+        self.path = str(getattr(info, "path", ""))
+        self.text = str(getattr(info, "text", ""))
+        try:
+            self.program = interpret(self.text, self.name or "<program>", machine)
+            self.toolpath = build_toolpath(self.program)
+            self.errors = {}
+        except PlannerError as exc:  # the controller accepted it: should not happen
+            self.program, self.toolpath = None, None
+            self.errors = errors_by_line(exc)
+        self.errorsChanged.emit(self.errors)
+        self.changed.emit()
+
+    def set_errors(self, issues: object, text: str = "", name: str = "") -> None:
+        """The controller refused a program: keep its text and the errors per line."""
+        self.info, self.program, self.toolpath = None, None, None
+        if text:
+            self.text = text
+        if name:
+            self.name = name
+        errors: dict[int, str] = {}
+        for issue in issues or ():  # ProgramIssue(line, col, message, axis)
+            line = int(getattr(issue, "line", 1) or 1)
+            errors.setdefault(line, str(getattr(issue, "message", issue)))
+        self.errors = errors
+        self.errorsChanged.emit(self.errors)
+        self.changed.emit()

@@ -1,0 +1,155 @@
+"""Tool path of a Program as flat polylines for drawing (no Qt): vectorised over all moves.
+
+Lines and rapids become point pairs; arcs, helices and spirals are sampled at most
+ARC_STEP_RAD apart (at least MIN_ARC_POINTS points) from their exact parametrisation, all
+arcs at once. Each kind is one array of points with a ``connect`` array (True: draw to the
+next point), so pyqtgraph draws a whole program with a few items.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.program import MoveKind, Program
+
+ARC_STEP_RAD = math.radians(6.0)
+MIN_ARC_POINTS = 5
+MAX_ARC_POINTS = 400
+
+
+@dataclass(frozen=True, slots=True)
+class Polylines:
+    """Points (N, n_axes) of one move kind in program order; connect[i]: segment i -> i+1."""
+
+    points: np.ndarray
+    connect: np.ndarray  # bool (N,)
+    move_index: np.ndarray  # int32 (N,), move of each point
+    count: int  # number of moves drawn
+
+
+@dataclass(frozen=True, slots=True)
+class ToolPath:
+    axes: tuple[str, ...]
+    kinds: dict[MoveKind, Polylines]
+    all: Polylines  # every move, program order (for the executed-part overlay)
+    move_lines: np.ndarray  # int32 (n_moves,), source line per move
+    move_first_point: np.ndarray  # int (n_moves,), index of each move's first point in ``all``
+    bounds: tuple[np.ndarray, np.ndarray]  # (min, max) per axis
+
+    def column(self, name: str) -> int | None:
+        return self.axes.index(name) if name in self.axes else None
+
+
+def _empty(n_axes: int) -> Polylines:
+    return Polylines(np.zeros((0, n_axes)), np.zeros(0, bool), np.zeros(0, np.int32), 0)
+
+
+def _straight(starts: np.ndarray, ends: np.ndarray, idx: np.ndarray) -> Polylines:
+    n = len(idx)
+    pts = np.empty((2 * n, starts.shape[1]))
+    pts[0::2], pts[1::2] = starts, ends
+    connect = np.zeros(2 * n, bool)
+    connect[0::2] = True
+    return Polylines(pts, connect, np.repeat(idx, 2).astype(np.int32), n)
+
+
+def _arcs(program: Program, idx: np.ndarray) -> Polylines:
+    """Sample every arc at once: per-arc point counts, then one vectorised evaluation."""
+    moves = program.moves
+    n_axes = len(program.axes)
+    if len(idx) == 0:
+        return _empty(n_axes)
+    arcs = [moves[i].arc for i in idx]
+    start = np.array([moves[i].start for i in idx])
+    end = np.array([moves[i].end for i in idx])
+    sweep = np.array([a.sweep_rad for a in arcs])
+    a0 = np.array([a.start_angle_rad for a in arcs])
+    r0 = np.array([a.radius_start_mm for a in arcs])
+    r1 = np.array([a.radius_end_mm for a in arcs])
+    cf = np.array([a.center[0] for a in arcs])
+    cs = np.array([a.center[1] for a in arcs])
+    rise = np.array([a.rise_mm for a in arcs])
+    f_ax = np.array([a.first_axis for a in arcs])
+    s_ax = np.array([a.second_axis for a in arcs])
+    n_ax = np.array([a.normal_axis for a in arcs])
+
+    counts = np.clip(np.ceil(np.abs(sweep) / ARC_STEP_RAD).astype(int) + 1, MIN_ARC_POINTS, MAX_ARC_POINTS)
+    total = int(counts.sum())
+    owner = np.repeat(np.arange(len(idx)), counts)
+    first = np.cumsum(counts) - counts
+    t = (np.arange(total) - first[owner]) / (counts[owner] - 1)
+
+    pts = start[owner] + t[:, None] * (end - start)[owner]   # axes off the plane: linear in t
+    theta = a0[owner] + sweep[owner] * t
+    r = r0[owner] + (r1 - r0)[owner] * t
+    rows = np.arange(total)
+    pts[rows, f_ax[owner]] = cf[owner] + r * np.cos(theta)
+    pts[rows, s_ax[owner]] = cs[owner] + r * np.sin(theta)
+    has_n = n_ax[owner] >= 0
+    rn, on, nn = rows[has_n], owner[has_n], n_ax[owner][has_n]
+    pts[rn, nn] = start[on, nn] + rise[on] * t[has_n]
+    last = first + counts - 1
+    pts[last] = end  # exact end points
+    connect = np.ones(total, bool)
+    connect[last] = False
+    return Polylines(pts, connect, idx[owner].astype(np.int32), len(idx))
+
+
+def _merge(parts: list[Polylines], n_axes: int) -> Polylines:
+    """Concatenate polylines and reorder their points by move index (stable within a move)."""
+    if not parts:
+        return _empty(n_axes)
+    pts = np.concatenate([p.points for p in parts])
+    con = np.concatenate([p.connect for p in parts])
+    mi = np.concatenate([p.move_index for p in parts])
+    order = np.argsort(mi, kind="stable")
+    return Polylines(pts[order], con[order], mi[order], sum(p.count for p in parts))
+
+
+def build_toolpath(program: Program) -> ToolPath:
+    n_axes = len(program.axes)
+    moves = program.moves
+    kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=len(moves))
+    lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=len(moves))
+    result: dict[MoveKind, Polylines] = {}
+    for kind in (MoveKind.RAPID, MoveKind.LINE):
+        idx = np.flatnonzero(kinds == kind)
+        if len(idx):
+            starts = np.array([moves[i].start for i in idx])
+            ends = np.array([moves[i].end for i in idx])
+            result[kind] = _straight(starts, ends, idx)
+        else:
+            result[kind] = _empty(n_axes)
+    result[MoveKind.ARC] = _arcs(program, np.flatnonzero(kinds == MoveKind.ARC))
+    everything = _merge([result[k] for k in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)], n_axes)
+    first_point = np.searchsorted(everything.move_index, np.arange(len(moves)))
+    if len(everything.points):
+        lo, hi = everything.points.min(axis=0), everything.points.max(axis=0)
+    else:
+        lo = hi = np.asarray(program.start_position, float)
+    return ToolPath(tuple(program.axes), result, everything, lines, first_point, (lo, hi))
+
+
+def nearest_move(path: ToolPath, cols: tuple[int | None, int | None], x: float,
+                 y: float) -> tuple[int, float]:
+    """Move index nearest to (x, y) in the projection on ``cols`` and its distance (-1 if none)."""
+    pl = path.all
+    if len(pl.points) < 2:
+        return -1, math.inf
+    px = pl.points[:, cols[0]] if cols[0] is not None else np.zeros(len(pl.points))
+    py = pl.points[:, cols[1]] if cols[1] is not None else np.zeros(len(pl.points))
+    seg = np.flatnonzero(pl.connect[:-1])
+    ax, ay, bx, by = px[seg], py[seg], px[seg + 1], py[seg + 1]
+    dx, dy = bx - ax, by - ay
+    den = dx * dx + dy * dy
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.where(den > 0, ((x - ax) * dx + (y - ay) * dy) / den, 0.0)
+    t = np.clip(t, 0.0, 1.0)
+    d2 = (ax + t * dx - x) ** 2 + (ay + t * dy - y) ** 2
+    if len(d2) == 0:
+        return -1, math.inf
+    k = int(np.argmin(d2))
+    return int(pl.move_index[seg[k]]), float(math.sqrt(d2[k]))

@@ -1,0 +1,74 @@
+"""EtherCAT slaves and their states, bus figures, and the cycle-timing histogram."""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtWidgets import QLabel, QTableWidget, QTableWidgetItem, QVBoxLayout, QWidget
+
+from app.i18n import N_, I18n, tr
+
+SLAVE_COLUMNS = (N_("Position"), N_("Axis"), N_("Vendor"), N_("Product"), N_("State"))
+
+
+class BusView(QWidget):
+    def __init__(self, i18n: I18n, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        layout = QVBoxLayout(self)
+        self.summary = QLabel()
+        self.summary.setWordWrap(True)
+        layout.addWidget(self.summary)
+        self.table = QTableWidget(0, len(SLAVE_COLUMNS))
+        self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
+        self.table.horizontalHeader().setStretchLastSection(True)
+        layout.addWidget(self.table, 1)
+        self.histogram_title = QLabel()
+        i18n.bind(self.histogram_title, N_("Cycle timing histogram (period, µs)"))
+        layout.addWidget(self.histogram_title)
+        self.histogram = pg.PlotWidget(background="#0a0d10")
+        self.histogram.getPlotItem().hideButtons()
+        self.histogram.setLabel("bottom", "period", units="µs")
+        self.histogram.setLabel("left", "cycles")
+        self.bars = pg.BarGraphItem(x=[], height=[], width=1.0, brush="#40e0d0")
+        self.histogram.addItem(self.bars)
+        layout.addWidget(self.histogram, 1)
+        self._bus: object | None = None
+        self._config: object | None = None
+        i18n.languageChanged.connect(lambda _l: self.refresh())
+
+    def set_state(self, bus: object, config: object) -> None:
+        self._bus, self._config = bus, config
+        self.refresh()
+
+    def refresh(self) -> None:
+        bus, config = self._bus, self._config
+        self.table.setHorizontalHeaderLabels([tr(c) for c in SLAVE_COLUMNS])
+        if bus is None or config is None:
+            return
+        drives = tuple(getattr(getattr(config, "bus", None), "drives", ()) or ())
+        axes = getattr(config, "axes", ())
+        states = tuple(getattr(bus, "drive_states", ()) or ())
+        n = max(len(drives), len(states), len(axes))
+        self.table.setRowCount(n)
+        for row in range(n):
+            d = drives[row] if row < len(drives) else None
+            values = (
+                str(d.position if d is not None else row),
+                axes[row] if row < len(axes) else "",
+                f"0x{d.vendor_id:08X}" if d is not None else "",
+                f"0x{d.product_code:08X}" if d is not None else "",
+                states[row] if row < len(states) else tr("unknown"),
+            )
+            for col, text in enumerate(values):
+                self.table.setItem(row, col, QTableWidgetItem(text))
+        connected = tr("connected") if getattr(bus, "connected", False) else tr("not connected")
+        self.summary.setText(tr("Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, "
+                                "period p99 {5:.1f} µs. {6}").format(
+            str(getattr(bus, "kind", "")).upper(), getattr(bus, "state", ""), connected,
+            getattr(bus, "buffer_level", 0), getattr(bus, "late_cycles", 0),
+            float(getattr(bus, "period_p99_us", 0.0)), getattr(bus, "message", "")))
+        edges = np.asarray(getattr(bus, "period_hist_us", ()) or (), float)
+        counts = np.asarray(getattr(bus, "period_hist_counts", ()) or (), float)
+        if len(edges) == len(counts) + 1 and len(counts):
+            centres = 0.5 * (edges[:-1] + edges[1:])
+            self.bars.setOpts(x=centres, height=counts, width=float(np.min(np.diff(edges))) * 0.9)

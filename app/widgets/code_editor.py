@@ -1,0 +1,179 @@
+"""G-code editor: line numbers, current-line and error-line highlights, go to line, find.
+
+Errors are set per line (1-based) with their message; the margin shows a red marker and the
+line is tinted. The file handling (open/save/autosave) lives in program_document.py.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QRect, QSize, Qt, Signal
+from PySide6.QtGui import (
+    QColor,
+    QFont,
+    QPainter,
+    QPaintEvent,
+    QResizeEvent,
+    QTextCursor,
+    QTextDocument,
+    QTextFormat,
+)
+from PySide6.QtWidgets import QPlainTextEdit, QTextEdit, QWidget
+
+ERROR_BG = QColor("#5a1020")
+CURRENT_BG = QColor("#1c3550")
+RUN_BG = QColor("#1b5f2a")
+
+
+class _LineNumberArea(QWidget):
+    def __init__(self, editor: CodeEditor) -> None:
+        super().__init__(editor)
+        self.editor = editor
+
+    def sizeHint(self) -> QSize:  # noqa: N802 - Qt override
+        return QSize(self.editor.line_number_width(), 0)
+
+    def paintEvent(self, event: QPaintEvent) -> None:  # noqa: N802 - Qt override
+        self.editor.paint_line_numbers(event)
+
+
+class CodeEditor(QPlainTextEdit):
+    lineActivated = Signal(int)  # 1-based line the cursor moved to
+
+    def __init__(self, parent: QWidget | None = None, read_only: bool = False) -> None:
+        super().__init__(parent)
+        self.setObjectName("codeEditor")
+        font = QFont("DejaVu Sans Mono")
+        font.setStyleHint(QFont.StyleHint.Monospace)
+        font.setPointSize(13)
+        self.setFont(font)
+        self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
+        self.setReadOnly(read_only)
+        self._errors: dict[int, str] = {}
+        self._run_line = 0
+        self._numbers = _LineNumberArea(self)
+        self.blockCountChanged.connect(self._update_margin)
+        self.updateRequest.connect(self._scroll_margin)
+        self.cursorPositionChanged.connect(self._on_cursor)
+        self._update_margin()
+
+    # --- line numbers -------------------------------------------------------------------
+    def line_number_width(self) -> int:
+        digits = max(3, len(str(self.blockCount())))
+        return 22 + self.fontMetrics().horizontalAdvance("9") * digits
+
+    def _update_margin(self, _count: int = 0) -> None:
+        self.setViewportMargins(self.line_number_width(), 0, 0, 0)
+
+    def _scroll_margin(self, rect: QRect, dy: int) -> None:
+        if dy:
+            self._numbers.scroll(0, dy)
+        else:
+            self._numbers.update(0, rect.y(), self._numbers.width(), rect.height())
+
+    def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt override
+        super().resizeEvent(event)
+        cr = self.contentsRect()
+        self._numbers.setGeometry(QRect(cr.left(), cr.top(), self.line_number_width(), cr.height()))
+
+    def paint_line_numbers(self, event: QPaintEvent) -> None:
+        painter = QPainter(self._numbers)
+        painter.fillRect(event.rect(), QColor("#0f1318"))
+        block = self.firstVisibleBlock()
+        number = block.blockNumber() + 1
+        top = round(self.blockBoundingGeometry(block).translated(self.contentOffset()).top())
+        height = round(self.blockBoundingRect(block).height())
+        width = self._numbers.width()
+        while block.isValid() and top <= event.rect().bottom():
+            if block.isVisible() and top + height >= event.rect().top():
+                if number in self._errors:
+                    painter.fillRect(0, top, 8, height, QColor("#ff3050"))
+                    painter.setPen(QColor("#ff8090"))
+                elif number == self._run_line:
+                    painter.setPen(QColor("#9fffb0"))
+                else:
+                    painter.setPen(QColor("#7a8796"))
+                painter.drawText(0, top, width - 6, height, Qt.AlignmentFlag.AlignRight, str(number))
+            block = block.next()
+            top += height
+            height = round(self.blockBoundingRect(block).height())
+            number += 1
+        painter.end()
+
+    # --- highlights ----------------------------------------------------------------------
+    def set_errors(self, errors: dict[int, str]) -> None:
+        """Mark these 1-based lines as erroneous (message per line); empty clears."""
+        self._errors = dict(errors)
+        self._refresh_selections()
+        self._numbers.update()
+
+    @property
+    def errors(self) -> dict[int, str]:
+        return dict(self._errors)
+
+    def set_run_line(self, line: int, keep_visible: bool = True) -> None:
+        """Highlight the line being executed (0: none) and scroll it into view."""
+        if line == self._run_line:
+            return
+        self._run_line = line
+        self._refresh_selections()
+        self._numbers.update()
+        if keep_visible and line > 0:
+            block = self.document().findBlockByNumber(line - 1)
+            if block.isValid():
+                cursor = QTextCursor(block)
+                self.setTextCursor(cursor)
+                self.centerCursor()
+
+    @property
+    def run_line(self) -> int:
+        return self._run_line
+
+    def _selection(self, line: int, color: QColor) -> QTextEdit.ExtraSelection | None:
+        block = self.document().findBlockByNumber(line - 1)
+        if not block.isValid():
+            return None
+        sel = QTextEdit.ExtraSelection()
+        sel.format.setBackground(color)
+        sel.format.setProperty(QTextFormat.Property.FullWidthSelection, True)
+        sel.cursor = QTextCursor(block)
+        return sel
+
+    def _refresh_selections(self) -> None:
+        selections = []
+        current = self.textCursor().blockNumber() + 1
+        for line, color in [(current, CURRENT_BG)] + [(n, ERROR_BG) for n in sorted(self._errors)] + [
+                (self._run_line, RUN_BG)]:
+            if line > 0:
+                sel = self._selection(line, color)
+                if sel is not None:
+                    selections.append(sel)
+        self.setExtraSelections(selections)
+
+    def _on_cursor(self) -> None:
+        self._refresh_selections()
+        self.lineActivated.emit(self.current_line())
+
+    # --- navigation ----------------------------------------------------------------------
+    def current_line(self) -> int:
+        return self.textCursor().blockNumber() + 1
+
+    def go_to_line(self, line: int) -> bool:
+        block = self.document().findBlockByNumber(max(0, line - 1))
+        if not block.isValid():
+            return False
+        self.setTextCursor(QTextCursor(block))
+        self.centerCursor()
+        return True
+
+    def find_text(self, text: str, backward: bool = False) -> bool:
+        """Find the next occurrence (wrapping around); case-insensitive."""
+        if not text:
+            return False
+        flags = QTextDocument.FindFlag.FindBackward if backward else QTextDocument.FindFlag(0)
+        if self.find(text, flags):
+            return True
+        cursor = self.textCursor()
+        cursor.movePosition(QTextCursor.MoveOperation.End if backward else QTextCursor.MoveOperation.Start)
+        self.setTextCursor(cursor)
+        return self.find(text, flags)
+

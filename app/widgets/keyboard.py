@@ -1,0 +1,60 @@
+"""On-screen keyboard for the program editor and MDI: letters, digits and G-code symbols.
+
+Keys are sent as key events to the target widget, so undo, selection and highlighting work
+as with a real keyboard. Buttons never take focus away from the target.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QCoreApplication, Qt
+from PySide6.QtGui import QKeyEvent
+from PySide6.QtWidgets import QGridLayout, QPushButton, QSizePolicy, QWidget
+
+ROWS: tuple[tuple[str, ...], ...] = (
+    ("1", "2", "3", "4", "5", "6", "7", "8", "9", "0", "-", ".", "⌫"),
+    ("G", "M", "X", "Y", "Z", "A", "C", "I", "J", "K", "R", "F", "S"),
+    ("Q", "W", "E", "T", "U", "O", "P", "D", "H", "L", "N", "B", "V"),
+    ("(", ")", ";", "%", "/", "=", "#", "[", "]", "←", "→", "Space", "Enter"),
+)
+SPECIAL: dict[str, tuple[int, str]] = {
+    "⌫": (Qt.Key.Key_Backspace, ""),
+    "←": (Qt.Key.Key_Left, ""),
+    "→": (Qt.Key.Key_Right, ""),
+    "Space": (Qt.Key.Key_Space, " "),
+    "Enter": (Qt.Key.Key_Return, "\r"),
+}
+
+
+class OnScreenKeyboard(QWidget):
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("onScreenKeyboard")
+        self._target: QWidget | None = None
+        grid = QGridLayout(self)
+        grid.setSpacing(4)
+        grid.setContentsMargins(0, 0, 0, 0)
+        self.buttons: dict[str, QPushButton] = {}
+        for r, row in enumerate(ROWS):
+            for c, key in enumerate(row):
+                button = QPushButton(key)
+                button.setFocusPolicy(Qt.FocusPolicy.NoFocus)
+                button.setMinimumSize(48, 48)
+                button.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
+                button.setAutoRepeat(key in ("⌫", "←", "→"))
+                button.clicked.connect(lambda _=False, k=key: self.press(k))
+                grid.addWidget(button, r, c)
+                self.buttons[key] = button
+
+    def set_target(self, widget: QWidget | None) -> None:
+        self._target = widget
+
+    def press(self, key: str) -> None:
+        target = self._target
+        if target is None:
+            return
+        code, text = SPECIAL.get(key, (0, key))
+        if not code:
+            code = ord(key.upper()) if len(key) == 1 else 0
+        for kind in (QKeyEvent.Type.KeyPress, QKeyEvent.Type.KeyRelease):
+            event = QKeyEvent(kind, code, Qt.KeyboardModifier.NoModifier, text)
+            QCoreApplication.sendEvent(target, event)

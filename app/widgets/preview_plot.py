@@ -1,0 +1,189 @@
+"""Tool path plot (pyqtgraph): arcs turquoise, lines green (paper Fig. 13a), rapids dashed.
+
+One PlotDataItem per move kind with a ``connect`` array, so a 35,000-line program is a few
+items. Plane views XY / XZ / YZ; pinch and drag to zoom and pan; tap a segment to pick its
+program line; the live tool position and the executed part drawn on top.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import QEvent, QPointF, Qt, Signal
+from PySide6.QtGui import QColor, QPen
+from PySide6.QtWidgets import QGestureEvent, QPinchGesture, QWidget
+
+from app.toolpath import ToolPath, nearest_move
+from planner.program import MoveKind
+
+ARC_COLOR = QColor(64, 224, 208)     # turquoise
+LINE_COLOR = QColor(0, 200, 70)      # green
+RAPID_COLOR = QColor(255, 170, 60)   # orange, dashed
+DONE_COLOR = QColor(255, 240, 90)    # executed part
+TOOL_COLOR = QColor(255, 60, 90)
+
+PLANES: dict[str, tuple[str, str]] = {"XY": ("X", "Y"), "XZ": ("X", "Z"), "YZ": ("Y", "Z")}
+PICK_RADIUS_PX = 24.0
+
+
+def kind_pen(kind: MoveKind) -> QPen:
+    if kind is MoveKind.ARC:
+        return pg.mkPen(ARC_COLOR, width=2)
+    if kind is MoveKind.LINE:
+        return pg.mkPen(LINE_COLOR, width=2)
+    return pg.mkPen(RAPID_COLOR, width=2, style=Qt.PenStyle.DashLine)
+
+
+class PreviewPlot(pg.PlotWidget):
+    moveTapped = Signal(int, int)  # move index, source line
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent, background="#0a0d10")
+        self.setObjectName("previewPlot")
+        self.plane = "XY"
+        self.path: ToolPath | None = None
+        self.showGrid(x=True, y=True, alpha=0.25)
+        self.setAspectLocked(True)
+        self.getPlotItem().hideButtons()  # no hover-only controls
+        self.items: dict[MoveKind, pg.PlotDataItem] = {}
+        for kind in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC):
+            item = pg.PlotDataItem(pen=kind_pen(kind), antialias=False, skipFiniteCheck=True)
+            item.setZValue(int(kind))
+            self.addItem(item)
+            self.items[kind] = item
+        self.done_item = pg.PlotDataItem(pen=pg.mkPen(DONE_COLOR, width=4), skipFiniteCheck=True)
+        self.done_item.setZValue(5)
+        self.addItem(self.done_item)
+        self.tool_item = pg.ScatterPlotItem(size=18, brush=pg.mkBrush(TOOL_COLOR),
+                                            pen=pg.mkPen("w", width=2), symbol="o")
+        self.tool_item.setZValue(10)
+        self.addItem(self.tool_item)
+        self.selected_item = pg.PlotDataItem(pen=pg.mkPen("#ffffff", width=5), skipFiniteCheck=True)
+        self.selected_item.setZValue(6)
+        self.addItem(self.selected_item)
+        self._done_move = -1
+        self._tool = np.zeros(0)
+        self.grabGesture(Qt.GestureType.PinchGesture)
+        self.scene().sigMouseClicked.connect(self._on_click)
+
+    # --- data ----------------------------------------------------------------------------
+    def _cols(self) -> tuple[int | None, int | None]:
+        if self.path is None:
+            return None, None
+        a, b = PLANES[self.plane]
+        return self.path.column(a), self.path.column(b)
+
+    def _xy(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        c0, c1 = self._cols()
+        n = len(points)
+        x = points[:, c0] if c0 is not None else np.zeros(n)
+        y = points[:, c1] if c1 is not None else np.zeros(n)
+        return x, y
+
+    def set_toolpath(self, path: ToolPath | None) -> None:
+        self.path = path
+        self._done_move = -1
+        self.done_item.setData([], [])
+        self.selected_item.setData([], [])
+        self._redraw()
+        self.fit()
+
+    def set_plane(self, plane: str) -> None:
+        if plane not in PLANES:
+            raise ValueError(f"unknown plane {plane!r}")
+        self.plane = plane
+        a, b = PLANES[plane]
+        self.setLabel("bottom", a, units="mm")
+        self.setLabel("left", b, units="mm")
+        self._redraw()
+        done, self._done_move = self._done_move, -1
+        self.set_executed(done)
+        self.fit()
+
+    def _redraw(self) -> None:
+        for kind, item in self.items.items():
+            if self.path is None or self.path.kinds[kind].count == 0:
+                item.setData([], [])
+                continue
+            pl = self.path.kinds[kind]
+            x, y = self._xy(pl.points)
+            item.setData(x, y, connect=pl.connect)
+        if len(self._tool):
+            self.set_tool_position(self._tool)
+
+    def fit(self) -> None:
+        if self.path is None or len(self.path.all.points) == 0:
+            self.getViewBox().setRange(xRange=(-10, 10), yRange=(-10, 10))
+            return
+        x, y = self._xy(self.path.all.points)
+        pad = 0.05 * max(float(np.ptp(x)), float(np.ptp(y)), 1.0)
+        self.getViewBox().setRange(xRange=(x.min() - pad, x.max() + pad),
+                                   yRange=(y.min() - pad, y.max() + pad), padding=0)
+
+    # --- live ----------------------------------------------------------------------------
+    def set_tool_position(self, machine_pos: np.ndarray) -> None:
+        self._tool = np.asarray(machine_pos, float)
+        if self.path is None:
+            self.tool_item.setData([], [])
+            return
+        x, y = self._xy(self._tool[None, : len(self.path.axes)])
+        self.tool_item.setData(x, y)
+
+    def set_executed(self, move_index: int) -> None:
+        """Highlight moves 0 .. move_index - 1 (those finished) as executed."""
+        if self.path is None or move_index == self._done_move:
+            return
+        self._done_move = move_index
+        if move_index <= 0:
+            self.done_item.setData([], [])
+            return
+        end = int(self.path.move_first_point[min(move_index, len(self.path.move_first_point) - 1)])
+        if move_index >= len(self.path.move_first_point):
+            end = len(self.path.all.points)
+        pl = self.path.all
+        x, y = self._xy(pl.points[:end])
+        connect = pl.connect[:end].copy()
+        if end:
+            connect[-1] = False
+        self.done_item.setData(x, y, connect=connect)
+
+    def highlight_move(self, move_index: int) -> None:
+        if self.path is None or move_index < 0:
+            self.selected_item.setData([], [])
+            return
+        pl = self.path.all
+        sel = pl.move_index == move_index
+        x, y = self._xy(pl.points[sel])
+        self.selected_item.setData(x, y)
+
+    # --- touch ---------------------------------------------------------------------------
+    def pick(self, x: float, y: float, radius: float) -> int:
+        """Move index within ``radius`` (data units) of (x, y), else -1."""
+        if self.path is None:
+            return -1
+        index, dist = nearest_move(self.path, self._cols(), x, y)
+        return index if dist <= radius else -1
+
+    def _on_click(self, event) -> None:  # pyqtgraph MouseClickEvent
+        if self.path is None or event.button() != Qt.MouseButton.LeftButton:
+            return
+        vb = self.getViewBox()
+        p = vb.mapSceneToView(event.scenePos())
+        px = vb.viewPixelSize()[0]
+        index = self.pick(p.x(), p.y(), PICK_RADIUS_PX * px)
+        if index >= 0:
+            self.highlight_move(index)
+            self.moveTapped.emit(index, int(self.path.move_lines[index]))
+
+    def event(self, ev: QEvent) -> bool:
+        if ev.type() == QEvent.Type.Gesture and isinstance(ev, QGestureEvent):
+            pinch = ev.gesture(Qt.GestureType.PinchGesture)
+            if isinstance(pinch, QPinchGesture):
+                factor = pinch.scaleFactor()
+                if factor > 0:
+                    local = self.mapFromGlobal(pinch.centerPoint().toPoint())  # screen -> widget
+                    centre = self.getViewBox().mapSceneToView(QPointF(self.mapToScene(local)))
+                    self.getViewBox().scaleBy((1 / factor, 1 / factor), center=centre)
+                ev.accept()
+                return True
+        return super().event(ev)

@@ -1,0 +1,117 @@
+"""Always visible: DRO, machine state, bus state, E-stop state and button, active alarm banner."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+
+from app.context import PanelContext
+from app.i18n import N_, tr
+from app.widgets.dro import DroWidget
+
+STATE_TEXT = {  # MachineState.value -> label (translated when shown)
+    "disconnected": N_("Disconnected"), "idle": N_("Idle"), "homing": N_("Homing"),
+    "running": N_("Running"), "hold": N_("Feed hold"), "alarm": N_("Alarm"), "estop": N_("E-stop"),
+}
+STATE_COLOR = {
+    "disconnected": "#6b7783", "idle": "#2f6f9f", "homing": "#8f5fbf", "running": "#1b7f3a",
+    "hold": "#a86b00", "alarm": "#b00020", "estop": "#b00020",
+}
+
+
+class StatusHeader(QWidget):
+    def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("statusHeader")
+        self.ctx = context
+        c = context.controller
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.setSpacing(2)
+        row = QHBoxLayout()
+        self.dro = DroWidget(c.axes, c.config.machine.rotary, context.i18n)
+        row.addWidget(self.dro, 1)
+        status = QVBoxLayout()
+        self.state_label = QLabel()
+        self.state_label.setObjectName("machineState")
+        self.state_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.state_label.setMinimumWidth(190)
+        self.bus_label = QLabel()
+        self.bus_label.setObjectName("busState")
+        self.bus_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        status.addWidget(self.state_label)
+        status.addWidget(self.bus_label)
+        row.addLayout(status)
+        self.estop_button = QPushButton()
+        self.estop_button.setObjectName("estopButton")
+        self.estop_button.setCheckable(False)
+        self.estop_button.setMinimumSize(96, 80)
+        self.estop_button.clicked.connect(self._estop_clicked)
+        row.addWidget(self.estop_button)
+        outer.addLayout(row)
+        self.alarm_banner = QPushButton()
+        self.alarm_banner.setObjectName("alarmBanner")
+        self.alarm_banner.setVisible(False)
+        outer.addWidget(self.alarm_banner)
+
+        self._state = c.state
+        self._bus = c.bus_status
+        self._alarms = c.active_alarms
+        c.stateChanged.connect(self._on_state)
+        c.positionChanged.connect(self._on_position)
+        c.homedChanged.connect(self.dro.set_homed)
+        c.busStateChanged.connect(self._on_bus)
+        c.alarmsChanged.connect(self._on_alarms)
+        context.i18n.languageChanged.connect(lambda _lang: self.refresh())
+        self.dro.set_positions(c.machine_position, c.work_position)
+        self.dro.set_homed(c.homed)
+        self.refresh()
+
+    # --- controller signals --------------------------------------------------------------
+    def _on_state(self, state: object, _reason: str) -> None:
+        self._state = state
+        self.refresh()
+
+    def _on_position(self, machine: object, work: object) -> None:
+        self.dro.set_positions(machine, work)  # type: ignore[arg-type]
+
+    def _on_bus(self, bus: object) -> None:
+        self._bus = bus
+        self.refresh()
+
+    def _on_alarms(self, alarms: object) -> None:
+        self._alarms = tuple(a for a in alarms if a.active)  # type: ignore[attr-defined, union-attr]
+        self.refresh()
+
+    def _estop_clicked(self) -> None:
+        if self._state_value() == "estop":
+            if self.ctx.dialogs.confirm(self, tr("Release E-stop"),
+                                        tr("Release the emergency stop and enable the drives?")):
+                self.ctx.controller.estop_release()
+        else:
+            self.ctx.controller.estop("operator")
+
+    # --- display -------------------------------------------------------------------------
+    def _state_value(self) -> str:
+        return str(getattr(self._state, "value", self._state))
+
+    def refresh(self) -> None:
+        value = self._state_value()
+        self.state_label.setText(tr(STATE_TEXT.get(value, value)))
+        self.state_label.setStyleSheet(
+            f"background: {STATE_COLOR.get(value, '#26303b')}; color: white; font-size: 22px;"
+            "font-weight: 800; padding: 6px; border-radius: 6px;")
+        bus = self._bus
+        kind = str(getattr(bus, "kind", "")).upper()
+        connected = bool(getattr(bus, "connected", False))
+        self.bus_label.setText(tr("Bus {0}: {1}").format(
+            kind, tr("connected") if connected else tr("not connected")))
+        self.bus_label.setProperty("ok", connected)
+        self.bus_label.setStyleSheet("color: %s; font-weight: 700;" % ("#7fe0a0" if connected else "#ff9080"))
+        self.estop_button.setText(tr("RELEASE\nE-STOP") if value == "estop" else tr("E-STOP"))
+        alarms = self._alarms
+        if alarms:
+            last = alarms[-1]
+            more = tr(" (+{0} more)").format(len(alarms) - 1) if len(alarms) > 1 else ""
+            self.alarm_banner.setText(tr("ALARM: {0}: {1}").format(last.source, last.cause) + more)
+        self.alarm_banner.setVisible(bool(alarms))

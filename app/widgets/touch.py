@@ -1,0 +1,27 @@
+"""Touch helpers: kinetic scrolling on scroll areas (QScroller), touch-sized item views."""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import QAbstractItemView, QAbstractScrollArea, QScroller, QWidget
+
+
+def enable_kinetic_scrolling(area: QAbstractScrollArea) -> None:
+    """Flick to scroll with a finger (and with the left mouse button, for touch emulation)."""
+    QScroller.grabGesture(area.viewport(), QScroller.ScrollerGestureType.LeftMouseButtonGesture)
+    if isinstance(area, QAbstractItemView):
+        area.setVerticalScrollMode(QAbstractItemView.ScrollMode.ScrollPerPixel)
+        area.setHorizontalScrollMode(QAbstractItemView.ScrollMode.ScrollPerPixel)
+
+
+def touch_rows(view: QAbstractItemView, height_px: int = 48) -> None:
+    """Rows at least one touch target high; kinetic scrolling."""
+    header = getattr(view, "verticalHeader", None)
+    if header is not None:
+        header().setDefaultSectionSize(height_px)
+        header().setMinimumSectionSize(height_px)
+    enable_kinetic_scrolling(view)
+
+
+def set_min_touch(widget: QWidget, size_px: int = 48) -> None:
+    widget.setMinimumHeight(max(widget.minimumHeight(), size_px))
+    widget.setMinimumWidth(max(widget.minimumWidth(), size_px))

@@ -1,0 +1,5 @@
+"""`python -m ethercat` = `cnc-ethercat`."""
+
+from .cli import main
+
+raise SystemExit(main())

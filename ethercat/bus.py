@@ -1,0 +1,267 @@
+"""The one bus interface (python-can style) and the backend registry.
+
+A `Bus` owns the process data of N CiA 402 drives as preallocated NumPy arrays, one
+element per drive (index = position in `drives`, not necessarily the slave position):
+
+    outputs (RxPDO, master -> drive)   controlword u16, target_position i32, modes_of_operation i8
+    inputs  (TxPDO, drive -> master)   statusword u16, position_actual i32, following_error i32,
+                                       error_code u16, modes_display i8
+
+The worker writes the output arrays in place, calls `exchange()` once per cycle (send
+and receive one frame; returns the working counter, -1 when no frame came back) and
+reads the input arrays in place. Inputs are only updated when the frame came back.
+
+    with make_bus("sim", drives, cycle_time_s=0.001) as bus:
+        bus.controlword[:] = 0x06
+        wkc = bus.exchange()
+        assert wkc == bus.expected_wkc
+
+Backends implement the transport only (`_open`, `_close`, `_exchange`, `_sdo_upload`,
+`_sdo_download`, and `_slaves`); the base class does state checks, the context manager,
+harmless double close, typed SDO helpers. Backends are chosen by name (`make_bus`) and
+imported lazily: "sim" -> `ethercat.sim_bus.SimBus`, "soem" -> `ethercat.soem_bus.SoemBus`.
+
+SDO transfers are acyclic and may take milliseconds on a real bus: never call them from
+the cycle except for rare, explicit commands (homing method, digital outputs).
+"""
+
+from __future__ import annotations
+
+import abc
+import importlib
+import struct
+from collections.abc import Sequence
+from dataclasses import dataclass
+from types import TracebackType
+from typing import Any
+
+import numpy as np
+
+from .errors import BusStateError, ConfigurationError
+
+
+@dataclass(frozen=True, slots=True)
+class DriveSpec:
+    """One CiA 402 drive of the machine (from `[[bus.drives]]` / the axis definitions).
+
+    position: slave position on the bus (0-based, in wiring order).
+    counts_per_unit: encoder counts per mm (linear) or per degree (rotary), > 0.
+    direction: +1 or -1 (sign between axis units and drive counts).
+    following_error_window: largest |reference - actual| allowed, in axis units (mm|deg).
+    vendor_id / product_code: expected identity (0 = do not check).
+    """
+
+    position: int
+    axis_name: str
+    counts_per_unit: float = 10_000.0
+    direction: int = 1
+    following_error_window: float = 1.0
+    vendor_id: int = 0
+    product_code: int = 0
+
+    def __post_init__(self) -> None:
+        if self.position < 0:
+            raise ConfigurationError(f"drive {self.axis_name}: position must be >= 0, got {self.position}")
+        if not self.counts_per_unit > 0.0:
+            raise ConfigurationError(
+                f"drive {self.axis_name}: counts_per_unit must be > 0, got {self.counts_per_unit}")
+        if self.direction not in (1, -1):
+            raise ConfigurationError(
+                f"drive {self.axis_name}: direction must be +1 or -1, got {self.direction}")
+        if not self.following_error_window > 0.0:
+            raise ConfigurationError(
+                f"drive {self.axis_name}: following_error_window must be > 0, "
+                f"got {self.following_error_window}")
+
+
+@dataclass(frozen=True, slots=True)
+class SlaveInfo:
+    """Identity and state of one slave as found on the bus."""
+
+    position: int
+    name: str
+    vendor_id: int
+    product_code: int
+    revision: int = 0
+    serial: int = 0
+    state: str = ""        # AL state: "INIT", "PRE-OP", "SAFE-OP", "OP", "" if unknown
+    al_status_code: int = 0
+
+
+def check_drives(drives: Sequence[DriveSpec]) -> tuple[DriveSpec, ...]:
+    """Validate a drive list: at least one drive, distinct positions and axis names."""
+    drives = tuple(drives)
+    if not drives:
+        raise ConfigurationError("no drives configured")
+    positions = [d.position for d in drives]
+    if len(set(positions)) != len(positions):
+        raise ConfigurationError(f"duplicate drive positions: {positions}")
+    names = [d.axis_name for d in drives]
+    if len(set(names)) != len(names):
+        raise ConfigurationError(f"duplicate axis names: {names}")
+    return drives
+
+
+class Bus(abc.ABC):
+    """Abstract EtherCAT bus with N CiA 402 drives in CSP. See the module docstring."""
+
+    #: registry name of the backend ("sim", "soem")
+    kind: str = ""
+
+    def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001) -> None:
+        self.drives = check_drives(drives)
+        if not 0.000_1 <= cycle_time_s <= 0.1:
+            raise ConfigurationError(f"cycle_time_s must be within [0.0001, 0.1] s, got {cycle_time_s}")
+        self.cycle_time_s = float(cycle_time_s)
+        n = len(self.drives)
+        # outputs (RxPDO)
+        self.controlword = np.zeros(n, dtype=np.uint16)
+        self.target_position = np.zeros(n, dtype=np.int32)
+        self.modes_of_operation = np.full(n, 8, dtype=np.int8)
+        # inputs (TxPDO)
+        self.statusword = np.zeros(n, dtype=np.uint16)
+        self.position_actual = np.zeros(n, dtype=np.int32)
+        self.following_error = np.zeros(n, dtype=np.int32)
+        self.error_code = np.zeros(n, dtype=np.uint16)
+        self.modes_display = np.zeros(n, dtype=np.int8)
+        self._is_open = False
+
+    # ------------------------------------------------------------------ life cycle
+    @property
+    def n_drives(self) -> int:
+        return len(self.drives)
+
+    @property
+    def is_open(self) -> bool:
+        return self._is_open
+
+    def open(self) -> None:
+        """Bring the bus to OP with process data running (idempotent).
+
+        After `open()` the inputs hold the first received values and the outputs hold
+        `target_position = position_actual`, controlword 0, mode CSP.
+        """
+        if self._is_open:
+            return
+        self._open()
+        self._is_open = True
+
+    def close(self) -> None:
+        """Back to INIT and release the adapter. Closing twice is harmless."""
+        if not self._is_open:
+            return
+        self._is_open = False
+        self._close()
+
+    def __enter__(self) -> Bus:
+        self.open()
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        self.close()
+
+    def __del__(self) -> None:  # pragma: no cover - best effort
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def _check_open(self) -> None:
+        if not self._is_open:
+            raise BusStateError(f"{type(self).__name__} is not open")
+
+    # ------------------------------------------------------------------ cyclic
+    @property
+    @abc.abstractmethod
+    def expected_wkc(self) -> int:
+        """Working counter of one good cycle (2 per output slave + 1 per input slave for LRW)."""
+
+    def exchange(self) -> int:
+        """Send the outputs and receive the inputs (one cycle). Returns the working counter,
+        -1 if no frame came back; inputs keep their previous values then. No allocation."""
+        return self._exchange()
+
+    def set_outputs(self, index: int, controlword: int, target_position: int, mode: int = 8) -> None:
+        """Convenience for tests and tools: write one drive's outputs."""
+        self.controlword[index] = controlword
+        self.target_position[index] = target_position
+        self.modes_of_operation[index] = mode
+
+    # ------------------------------------------------------------------ acyclic
+    def slaves(self) -> tuple[SlaveInfo, ...]:
+        """All slaves found on the bus with identity and AL state, in bus order."""
+        self._check_open()
+        return self._slaves()
+
+    def sdo_upload(self, position: int, index: int, subindex: int = 0) -> bytes:
+        """CoE SDO upload (read) from the slave at bus `position`."""
+        self._check_open()
+        return self._sdo_upload(position, index, subindex)
+
+    def sdo_download(self, position: int, index: int, subindex: int, data: bytes) -> None:
+        """CoE SDO download (write) to the slave at bus `position`."""
+        self._check_open()
+        self._sdo_download(position, index, subindex, bytes(data))
+
+    def sdo_read(self, position: int, index: int, subindex: int, fmt: str) -> Any:
+        """Upload and unpack with a struct format ('<H', '<i', ...)."""
+        return struct.unpack(fmt, self.sdo_upload(position, index, subindex))[0]
+
+    def sdo_write(self, position: int, index: int, subindex: int, fmt: str, value: Any) -> None:
+        """Pack with a struct format and download."""
+        self.sdo_download(position, index, subindex, struct.pack(fmt, value))
+
+    def set_digital_outputs(self, index: int, value: int) -> None:
+        """Drive's digital outputs 0x60FE:1 (spindle enable/direction), by SDO."""
+        self.sdo_write(self.drives[index].position, 0x60FE, 1, "<I", value)
+
+    def lost_slaves(self) -> tuple[int, ...]:
+        """Positions of slaves known to be lost (diagnosis after a working counter error)."""
+        return ()
+
+    # ------------------------------------------------------------------ backend
+    @abc.abstractmethod
+    def _open(self) -> None: ...
+
+    @abc.abstractmethod
+    def _close(self) -> None: ...
+
+    @abc.abstractmethod
+    def _exchange(self) -> int: ...
+
+    @abc.abstractmethod
+    def _slaves(self) -> tuple[SlaveInfo, ...]: ...
+
+    @abc.abstractmethod
+    def _sdo_upload(self, position: int, index: int, subindex: int) -> bytes: ...
+
+    @abc.abstractmethod
+    def _sdo_download(self, position: int, index: int, subindex: int, data: bytes) -> None: ...
+
+
+#: backend name -> "module:Class", imported lazily by `make_bus`
+BACKENDS: dict[str, str] = {
+    "sim": "ethercat.sim_bus:SimBus",
+    "soem": "ethercat.soem_bus:SoemBus",
+}
+
+
+def bus_class(kind: str) -> type[Bus]:
+    """The backend class registered under `kind` (imported on first use)."""
+    try:
+        target = BACKENDS[kind]
+    except KeyError:
+        raise ConfigurationError(f"unknown bus kind {kind!r}; known: {sorted(BACKENDS)}") from None
+    module_name, _, cls_name = target.partition(":")
+    try:
+        module = importlib.import_module(module_name)
+    except ImportError as exc:
+        raise ConfigurationError(f"bus backend {kind!r} is not available: {exc}") from exc
+    return getattr(module, cls_name)  # type: ignore[no-any-return]
+
+
+def make_bus(kind: str, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001, **options: Any) -> Bus:
+    """Create (not open) a bus by backend name. `options` go to the backend, e.g.
+    `adapter="eth0"` for "soem", `drive_params=[...]` for "sim"."""
+    return bus_class(kind)(drives, cycle_time_s=cycle_time_s, **options)

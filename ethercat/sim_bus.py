@@ -1,0 +1,222 @@
+"""SimBus: the `Bus` interface over simulated CiA 402 servo drives (`drive_model.DriveModel`).
+
+Seen from above it behaves like `SoemBus` in OP: `exchange()` latches each drive's inputs
+(as the LRW passes the slave), hands it the outputs, advances every drive by
+`cycle_time_s` of simulated time and returns the working counter of one LRW (3 per drive).
+So the inputs show the drive's reaction to outputs one cycle later, as on a real bus.
+Simulated time advances per `exchange()`, not with the wall clock, so tests can run many
+cycles faster than real time and the worker runs it in real time.
+
+Fault injection (the same names work through `CyclicWorker.inject` in every worker mode):
+    inject_drive_fault(i, error_code=0x2310, persistent=False)  drive i trips a fault
+    inject_following_error(i, jammed=True)   drive i's load is blocked -> 0x8611 fault
+    drop_frames(n)                           the next n frames are lost (wkc -1, inputs stale)
+    lose_slave(i) / restore_slave(i)         drive i stops answering (wkc - 3); after
+                                             `watchdog_s` without process data it faults 0x8700
+Limits: no AL state machine (always OP while open), no DC, SDOs are instantaneous.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from .bus import Bus, DriveSpec, SlaveInfo
+from .drive_model import ERROR_OVERCURRENT, OBJECTS, DriveModel, DriveParams, decode_object, encode_object
+from .errors import ConfigurationError, SdoAbortError
+
+#: injection names accepted by `SimBus.inject`
+INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
+              "lose_slave", "restore_slave")
+
+
+class SimBus(Bus):
+    """Simulated bus. `drive_params`: one `DriveParams` for all drives or one per drive;
+    by default `DriveParams.for_axis(counts_per_unit, following_error_window_units=4 x window)`
+    (the drive's own monitor is looser than the worker's, as usually configured)."""
+
+    kind = "sim"
+
+    def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001,
+                 drive_params: DriveParams | Sequence[DriveParams] | None = None,
+                 initial_positions_counts: Sequence[float] | None = None,
+                 watchdog_s: float = 0.1, **_ignored: object) -> None:
+        super().__init__(drives, cycle_time_s)
+        n = self.n_drives
+        if drive_params is None:
+            params = [DriveParams.for_axis(d.counts_per_unit,
+                                           following_error_window_units=4.0 * d.following_error_window)
+                      for d in self.drives]
+        elif isinstance(drive_params, DriveParams):
+            params = [drive_params] * n
+        else:
+            params = list(drive_params)
+            if len(params) != n:
+                raise ConfigurationError(f"{len(params)} drive_params for {n} drives")
+        if initial_positions_counts is not None:
+            if len(initial_positions_counts) != n:
+                raise ConfigurationError(f"{len(initial_positions_counts)} initial positions for {n} drives")
+            params = [_replace_initial(p, float(x)) for p, x in zip(params, initial_positions_counts)]
+        self.models: tuple[DriveModel, ...] = tuple(
+            DriveModel(p, position=d.position) for p, d in zip(params, self.drives))
+        self._by_position = {d.position: i for i, d in enumerate(self.drives)}
+        self._lost = [False] * n
+        self._silent_s = [0.0] * n
+        self._drop_frames = 0
+        self.watchdog_s = float(watchdog_s)
+        self.frames_sent = 0
+
+    # ------------------------------------------------------------------ backend
+    @property
+    def expected_wkc(self) -> int:
+        return 3 * self.n_drives
+
+    def _open(self) -> None:
+        for m in self.models:
+            m.controlword = 0
+            m.step(self.cycle_time_s)            # NOT READY -> SWITCH ON DISABLED
+        self._lost = [False] * self.n_drives
+        self._drop_frames = 0
+        self._read_inputs_all()
+        self.controlword[:] = 0
+        self.modes_of_operation[:] = 8
+        self.target_position[:] = self.position_actual
+
+    def _close(self) -> None:
+        for m in self.models:
+            m.controlword = 0
+            m.step(self.cycle_time_s)
+
+    def _read_inputs_all(self) -> None:
+        for i, m in enumerate(self.models):
+            self._read_inputs(i, m)
+
+    def _read_inputs(self, i: int, m: DriveModel) -> None:
+        self.statusword[i] = m.statusword
+        self.position_actual[i] = m.position_actual
+        self.following_error[i] = m.following_error_actual
+        self.error_code[i] = m.error_code
+        self.modes_display[i] = m.modes_of_operation_display
+
+    def _exchange(self) -> int:
+        self._check_open()
+        dt = self.cycle_time_s
+        self.frames_sent += 1
+        lost_frame = self._drop_frames > 0
+        if lost_frame:
+            self._drop_frames -= 1
+        wkc = 0
+        cw = self.controlword
+        tp = self.target_position
+        mode = self.modes_of_operation
+        for i, m in enumerate(self.models):
+            if lost_frame or self._lost[i]:
+                self._silent_s[i] += dt
+                if self._silent_s[i] >= self.watchdog_s:
+                    m.watchdog_expired()
+                m.step(dt)
+                continue
+            self._silent_s[i] = 0.0
+            self._read_inputs(i, m)          # inputs latched before the drive takes the outputs
+            m.controlword = int(cw[i])
+            m.target_position = int(tp[i])
+            m.modes_of_operation = int(mode[i])
+            m.step(dt)
+            wkc += 3
+        return -1 if lost_frame else wkc
+
+    def _slaves(self) -> tuple[SlaveInfo, ...]:
+        out = []
+        for i, (d, m) in enumerate(zip(self.drives, self.models)):
+            out.append(SlaveInfo(
+                position=d.position, name=f"SimServo {d.axis_name}",
+                vendor_id=d.vendor_id or m.params.vendor_id,
+                product_code=d.product_code or m.params.product_code,
+                revision=m.params.revision, serial=m.params.serial,
+                state="SAFE-OP" if self._lost[i] else "OP",
+                al_status_code=0x001B if self._lost[i] else 0))
+        return tuple(out)
+
+    def _model_at(self, position: int) -> DriveModel:
+        try:
+            return self.models[self._by_position[position]]
+        except KeyError:
+            raise ConfigurationError(f"no slave at position {position}") from None
+
+    def _sdo_upload(self, position: int, index: int, subindex: int) -> bytes:
+        m = self._model_at(position)
+        if (index, subindex) in ((0x1018, 1), (0x1018, 2)):
+            info = self._slaves()[self._by_position[position]]
+            value = info.vendor_id if subindex == 1 else info.product_code
+        else:
+            value = m.read_object(index, subindex)
+        return encode_object(OBJECTS[(index, subindex)], value)
+
+    def _sdo_download(self, position: int, index: int, subindex: int, data: bytes) -> None:
+        m = self._model_at(position)
+        entry = m.object_entry(index, subindex)
+        try:
+            value = decode_object(entry, data)
+        except SdoAbortError as exc:
+            raise SdoAbortError(position, index, subindex, exc.abort_code) from None
+        m.write_object(index, subindex, value)
+
+    def lost_slaves(self) -> tuple[int, ...]:
+        return tuple(d.position for d, lost in zip(self.drives, self._lost) if lost)
+
+    def set_digital_outputs(self, index: int, value: int) -> None:
+        self.models[index].digital_outputs = int(value)
+
+    # ------------------------------------------------------------------ fault injection
+    def inject_drive_fault(self, index: int, error_code: int = ERROR_OVERCURRENT,
+                           persistent: bool = False) -> None:
+        """Drive `index` trips a fault (see `DriveModel.inject_fault`)."""
+        self.models[index].inject_fault(error_code, persistent)
+
+    def clear_drive_fault(self, index: int) -> None:
+        self.models[index].clear_fault()
+
+    def inject_following_error(self, index: int, jammed: bool = True) -> None:
+        """Block (or free) drive `index`'s load: its following error grows."""
+        self.models[index].set_jam(jammed)
+
+    def drop_frames(self, n: int) -> None:
+        """Lose the next `n` frames (exchange returns -1, inputs not updated)."""
+        self._drop_frames = max(0, int(n))
+
+    def lose_slave(self, index: int) -> None:
+        """Drive `index` stops answering (cable cut behind it is not modelled)."""
+        self._lost[index] = True
+
+    def restore_slave(self, index: int) -> None:
+        self._lost[index] = False
+        self._silent_s[index] = 0.0
+
+    def inject(self, name: str, index: int = 0, value: int = 0) -> None:
+        """Dispatch by name (used by the worker's command channel); see `INJECTIONS`."""
+        if name == "drive_fault":
+            self.inject_drive_fault(index, value or ERROR_OVERCURRENT)
+        elif name == "persistent_fault":
+            self.inject_drive_fault(index, value or ERROR_OVERCURRENT, persistent=True)
+        elif name == "clear_fault":
+            self.clear_drive_fault(index)
+        elif name == "jam":
+            self.inject_following_error(index, True)
+        elif name == "unjam":
+            self.inject_following_error(index, False)
+        elif name == "drop_frames":
+            self.drop_frames(value)
+        elif name == "lose_slave":
+            self.lose_slave(index)
+        elif name == "restore_slave":
+            self.restore_slave(index)
+        else:
+            raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
+
+
+def _replace_initial(p: DriveParams, initial_counts: float) -> DriveParams:
+    from dataclasses import replace
+
+    if not math.isfinite(initial_counts):
+        raise ConfigurationError(f"initial position {initial_counts} is not finite")
+    return replace(p, initial_position_counts=initial_counts)

@@ -1,0 +1,580 @@
+"""SoemBus: the `Bus` interface on real EtherCAT frames through pysoem (SOEM 1.4 API).
+
+Start-up (`open()`), each step failing with an `EtherCATError` that says what and where:
+
+1. open the adapter by name (`AdapterError`, also a `ConnectionError`);
+2. `config_init()`: enumerate the slaves (-1: no frame came back; 0: no slave answered);
+3. check every configured drive's vendor id and product code against the slave at its
+   position (`SlaveIdentityError` names the position and both identities);
+4. PDO mapping by SDO in each drive's setup hook (PRE-OP -> SAFE-OP): RxPDO controlword
+   0x6040, target position 0x607A, mode 0x6060; TxPDO statusword 0x6041, position
+   actual 0x6064, following error 0x60F4, error code 0x603F, mode display 0x6061. The
+   mapping is a `PdoMapping`, chosen per drive model (vendor id, product code);
+5. `config_map()`: SOEM raises `ConfigMapError` whenever its error list is not empty,
+   even when the mapping worked; the list is inspected and only SDO/mailbox errors of
+   the drives' own mapping (or a wrong process data size) are fatal;
+6. distributed clocks: `config_dc()` and SYNC0 = Ts on EVERY slave (not just the last);
+7. SAFE-OP, then OP with process data running, each with a timeout; every state error
+   names the slave, its AL state and its AL status code (with SOEM's text).
+
+Cyclic: `exchange()` packs each drive's outputs exactly to the slave's output size
+(pysoem copies `len(bytes)` without a bounds check), sends one LRW (+ the DC FRMW),
+receives with a timeout and unpacks the inputs only when the working counter is right.
+pysoem releases the GIL in every call (`always_release_gil`), so an SDO in one thread
+does not stall the cyclic thread. `close()` disables SYNC0 and takes the bus to INIT.
+
+Per-cycle cost: one small `bytes` per drive for `slave.output` and one from
+`slave.input` (pysoem's API takes and returns `bytes`); no NumPy allocation.
+"""
+
+from __future__ import annotations
+
+import struct
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .bus import Bus, DriveSpec, SlaveInfo
+from .errors import (
+    AdapterError,
+    AlStateError,
+    AlStateTimeoutError,
+    ConfigurationError,
+    EtherCATError,
+    EtherCATTimeoutError,
+    SdoAbortError,
+    SdoError,
+    SdoTimeoutError,
+    SlaveIdentityError,
+)
+
+AL_INIT, AL_PREOP, AL_BOOT, AL_SAFEOP, AL_OP = 1, 2, 3, 4, 8
+AL_STATE_NAMES = {0: "NONE", AL_INIT: "INIT", AL_PREOP: "PRE-OP", AL_BOOT: "BOOT",
+                  AL_SAFEOP: "SAFE-OP", AL_OP: "OP"}
+
+_TYPES = {8: "b", 16: "h", 32: "i"}
+
+
+def al_state_name(state: int) -> str:
+    """'OP', 'SAFE-OP + ERROR', ... for an AL status value (bit 4 = error indication)."""
+    name = AL_STATE_NAMES.get(state & 0x0F, f"0x{state & 0x0F:X}")
+    return name + (" + ERROR" if state & 0x10 else "")
+
+
+def al_status_text(code: int) -> str:
+    try:
+        import pysoem
+
+        return str(pysoem.al_status_code_to_string(code))
+    except Exception:  # pragma: no cover - text is a convenience only
+        return ""
+
+
+@dataclass(frozen=True, slots=True)
+class PdoEntry:
+    """One mapped object: index, subindex, bit length (8, 16 or 32), signed."""
+
+    index: int
+    subindex: int
+    bits: int
+    signed: bool = False
+
+    @property
+    def value(self) -> int:
+        """Mapping entry as written to 0x16xx/0x1Axx: index << 16 | subindex << 8 | bits."""
+        return (self.index << 16) | (self.subindex << 8) | self.bits
+
+    @property
+    def code(self) -> str:
+        c = _TYPES[self.bits]
+        return c if self.signed else c.upper()
+
+
+@dataclass(frozen=True, slots=True)
+class PdoMapping:
+    """Process data layout of one drive model, written by SDO in PRE-OP.
+
+    rx: RxPDO entries (master -> drive) in `rx_pdo`, assigned to SM2 via 0x1C12;
+    tx: TxPDO entries (drive -> master) in `tx_pdo`, assigned to SM3 via 0x1C13.
+    complete_access: write each object in one SDO (CoE complete access) instead of
+    entry by entry. dc_sync_mode: also write 0x1C32:1 = 2 (DC SYNC0), which some drives
+    need for CSP with distributed clocks.
+    """
+
+    rx: tuple[PdoEntry, ...]
+    tx: tuple[PdoEntry, ...]
+    rx_pdo: int = 0x1600
+    tx_pdo: int = 0x1A00
+    complete_access: bool = False
+    dc_sync_mode: bool = False
+
+    def __post_init__(self) -> None:
+        rx_objects = {e.index for e in self.rx}
+        tx_objects = {e.index for e in self.tx}
+        if not {0x6040, 0x607A} <= rx_objects:
+            raise ConfigurationError("RxPDO mapping must contain controlword 0x6040 and target "
+                                     "position 0x607A")
+        if not {0x6041, 0x6064} <= tx_objects:
+            raise ConfigurationError("TxPDO mapping must contain statusword 0x6041 and position "
+                                     "actual 0x6064")
+        for e in self.rx + self.tx:
+            if e.bits not in _TYPES:
+                raise ConfigurationError(f"PDO entry 0x{e.index:04X}:{e.subindex}: {e.bits} bits unsupported")
+
+    @property
+    def rx_struct(self) -> struct.Struct:
+        return struct.Struct("<" + "".join(e.code for e in self.rx))
+
+    @property
+    def tx_struct(self) -> struct.Struct:
+        return struct.Struct("<" + "".join(e.code for e in self.tx))
+
+
+#: CSP mapping used unless a drive model has its own (issue 5: controlword, target
+#: position, mode; statusword, position actual, following error, error code, mode display)
+CSP_MAPPING = PdoMapping(
+    rx=(PdoEntry(0x6040, 0, 16), PdoEntry(0x607A, 0, 32, True), PdoEntry(0x6060, 0, 8, True)),
+    tx=(PdoEntry(0x6041, 0, 16), PdoEntry(0x6064, 0, 32, True), PdoEntry(0x60F4, 0, 32, True),
+        PdoEntry(0x603F, 0, 16), PdoEntry(0x6061, 0, 8, True)),
+)
+
+#: drive model (vendor id, product code) -> mapping; extend for real drives. The
+#: emulator's drive (ethercat.drive_model.DriveParams defaults) uses complete access.
+DRIVE_MAPPINGS: dict[tuple[int, int], PdoMapping] = {
+    (0x0000_0A5E, 0x0402_0001): PdoMapping(CSP_MAPPING.rx, CSP_MAPPING.tx, complete_access=True,
+                                           dc_sync_mode=True),
+}
+
+# bus array attribute per object (outputs / inputs)
+_RX_ARRAYS = {0x6040: "controlword", 0x607A: "target_position", 0x6060: "modes_of_operation"}
+_TX_ARRAYS = {0x6041: "statusword", 0x6064: "position_actual", 0x60F4: "following_error",
+              0x603F: "error_code", 0x6061: "modes_display"}
+
+
+def _import_pysoem() -> Any:
+    try:
+        import pysoem
+    except ImportError as exc:  # pragma: no cover - pysoem is a dependency
+        raise ConfigurationError(f"pysoem is not installed: {exc}") from exc
+    return pysoem
+
+
+def open_master(adapter: str) -> Any:
+    """A pysoem Master opened on `adapter`, releasing the GIL in every call."""
+    pysoem = _import_pysoem()
+    if not adapter:
+        raise AdapterError("no network adapter given for the EtherCAT bus")
+    master = pysoem.Master()
+    master.always_release_gil = True
+    try:
+        master.open(adapter)
+    except ConnectionError as exc:
+        raise AdapterError(f"cannot open network adapter {adapter!r} ({exc}); it must exist and "
+                           "the process needs root or CAP_NET_RAW") from exc
+    return master
+
+
+def config_init(master: Any, adapter: str) -> int:
+    """Enumerate slaves; raise if none answer."""
+    n = int(master.config_init())
+    if n < 0:
+        raise EtherCATTimeoutError(f"no EtherCAT frame came back on {adapter!r} (config_init returned {n}): "
+                                   "cable, link or slave power?")
+    if n == 0:
+        raise ConfigurationError(f"no EtherCAT slave answered on {adapter!r}")
+    return n
+
+
+def _map_sdo_error(exc: Exception, position: int, index: int, subindex: int) -> EtherCATError:
+    pysoem = _import_pysoem()
+    if isinstance(exc, pysoem.SdoError):
+        return SdoAbortError(position, index, subindex, int(exc.abort_code), str(exc.desc))
+    if isinstance(exc, pysoem.WkcError):
+        return SdoTimeoutError(f"SDO 0x{index:04X}:{subindex} on slave {position}: no answer "
+                               f"(working counter {getattr(exc, 'wkc', '?')})")
+    return SdoError(f"SDO 0x{index:04X}:{subindex} on slave {position}: {exc}")
+
+
+def sdo_upload(master: Any, position: int, index: int, subindex: int, size: int = 256,
+               complete_access: bool = False) -> bytes:
+    """SDO upload with errors mapped to `SdoAbortError` / `SdoTimeoutError` / `SdoError`."""
+    pysoem = _import_pysoem()
+    slaves = master.slaves
+    if not 0 <= position < len(slaves):
+        raise ConfigurationError(f"no slave at position {position} ({len(slaves)} slaves)")
+    try:
+        return bytes(slaves[position].sdo_read(index, subindex, size, complete_access, release_gil=True))
+    except (pysoem.SdoError, pysoem.WkcError, pysoem.MailboxError, pysoem.PacketError) as exc:
+        raise _map_sdo_error(exc, position, index, subindex) from exc
+
+
+def sdo_download(master: Any, position: int, index: int, subindex: int, data: bytes,
+                 complete_access: bool = False) -> None:
+    """SDO download with errors mapped as in `sdo_upload`."""
+    pysoem = _import_pysoem()
+    slaves = master.slaves
+    if not 0 <= position < len(slaves):
+        raise ConfigurationError(f"no slave at position {position} ({len(slaves)} slaves)")
+    try:
+        slaves[position].sdo_write(index, subindex, bytes(data), complete_access, release_gil=True)
+    except (pysoem.SdoError, pysoem.WkcError, pysoem.MailboxError, pysoem.PacketError) as exc:
+        raise _map_sdo_error(exc, position, index, subindex) from exc
+
+
+def write_mapping(master: Any, position: int, mapping: PdoMapping) -> None:
+    """Write `mapping` into the drive at `position` (must be in PRE-OP), CiA 301 order:
+    assignment off, mapping off, entries, mapping count, assignment, assignment count."""
+
+    def w(index: int, sub: int, fmt: str, value: int) -> None:
+        sdo_download(master, position, index, sub, struct.pack(fmt, value))
+
+    for assign, pdo, entries in ((0x1C12, mapping.rx_pdo, mapping.rx), (0x1C13, mapping.tx_pdo, mapping.tx)):
+        if mapping.complete_access:
+            sdo_download(master, position, assign, 0, struct.pack("<Bx", 0), complete_access=True)
+            sdo_download(master, position, pdo, 0,
+                         struct.pack(f"<Bx{len(entries)}I", len(entries), *(e.value for e in entries)),
+                         complete_access=True)
+            sdo_download(master, position, assign, 0, struct.pack("<BxH", 1, pdo), complete_access=True)
+            continue
+        w(assign, 0, "<B", 0)
+        w(pdo, 0, "<B", 0)
+        for k, e in enumerate(entries, start=1):
+            w(pdo, k, "<I", e.value)
+        w(pdo, 0, "<B", len(entries))
+        w(assign, 1, "<H", pdo)
+        w(assign, 0, "<B", 1)
+    if mapping.dc_sync_mode:
+        w(0x1C32, 1, "<H", 2)
+
+
+def read_mapping(master: Any, position: int) -> dict[str, list[tuple[int, list[int]]]]:
+    """The slave's PDO assignment and mapping: {"rx": [(pdo, [entry values])], "tx": [...]}."""
+    out: dict[str, list[tuple[int, list[int]]]] = {"rx": [], "tx": []}
+    for key, assign in (("rx", 0x1C12), ("tx", 0x1C13)):
+        n = sdo_upload(master, position, assign, 0)[0]
+        for k in range(1, n + 1):
+            pdo = struct.unpack("<H", sdo_upload(master, position, assign, k)[:2])[0]
+            m = sdo_upload(master, position, pdo, 0)[0]
+            entries = [struct.unpack("<I", sdo_upload(master, position, pdo, j)[:4])[0]
+                       for j in range(1, m + 1)]
+            out[key].append((pdo, entries))
+    return out
+
+
+def slave_infos(master: Any) -> tuple[SlaveInfo, ...]:
+    """Identity and AL state of every slave (reads the states first)."""
+    master.read_state()
+    infos = []
+    for i, s in enumerate(master.slaves):
+        infos.append(SlaveInfo(position=i, name=str(s.name), vendor_id=int(s.man), product_code=int(s.id),
+                               revision=int(s.rev), state=AL_STATE_NAMES.get(int(s.state) & 0x0F, ""),
+                               al_status_code=int(s.al_status)))
+    return tuple(infos)
+
+
+def state_report(master: Any, wanted: int) -> tuple[str, int, int]:
+    """(text naming every slave not in `wanted`, first such position, its AL status code)."""
+    master.read_state()
+    parts = []
+    first_pos, first_code = -1, 0
+    for i, s in enumerate(master.slaves):
+        st = int(s.state)
+        if st & 0x0F != wanted or st & 0x10:
+            code = int(s.al_status)
+            parts.append(f"slave {i} ({s.name}) in {al_state_name(st)}, AL status code 0x{code:04X} "
+                         f"{al_status_text(code)}")
+            if first_pos < 0:
+                first_pos, first_code = i, code
+    return "; ".join(parts), first_pos, first_code
+
+
+class SoemBus(Bus):
+    """EtherCAT bus on pysoem. Options (keyword arguments, also via `make_bus("soem", ...)`):
+
+    adapter: network interface name (required).
+    mappings: (vendor id, product code) -> `PdoMapping`, over `DRIVE_MAPPINGS`.
+    default_mapping: mapping for drive models not listed (`CSP_MAPPING`).
+    dc: use distributed clocks (SYNC0 = cycle time on every slave).
+    safeop_timeout_s / op_timeout_s / init_timeout_s: AL state change timeouts.
+    receive_timeout_us: how long `exchange()` waits for the frame (SOEM's EC_TIMEOUTRET).
+    """
+
+    kind = "soem"
+
+    def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001, adapter: str = "",
+                 mappings: Mapping[tuple[int, int], PdoMapping] | None = None,
+                 default_mapping: PdoMapping = CSP_MAPPING, dc: bool = True,
+                 safeop_timeout_s: float = 2.0, op_timeout_s: float = 3.0, init_timeout_s: float = 2.0,
+                 receive_timeout_us: int = 2000, **_ignored: object) -> None:
+        super().__init__(drives, cycle_time_s)
+        self.adapter = adapter
+        self.mappings: dict[tuple[int, int], PdoMapping] = {**DRIVE_MAPPINGS, **(mappings or {})}
+        self.default_mapping = default_mapping
+        self.dc = dc
+        self.safeop_timeout_s = safeop_timeout_s
+        self.op_timeout_s = op_timeout_s
+        self.init_timeout_s = init_timeout_s
+        self.receive_timeout_us = int(receive_timeout_us)
+        self.master: Any = None
+        self.n_slaves = 0
+        self.warnings: list[str] = []       # SOEM error list entries judged harmless
+        self.slave_mappings: dict[int, PdoMapping] = {}
+        self._expected_wkc = 0
+        self._io: list[_DriveIo] = []
+        self._dc_active = False
+        self._io_ready = False              # True between a finished open() and close()
+
+    # ------------------------------------------------------------------ start-up
+    @property
+    def expected_wkc(self) -> int:
+        return self._expected_wkc
+
+    def mapping_for(self, vendor_id: int, product_code: int) -> PdoMapping:
+        return self.mappings.get((vendor_id, product_code), self.default_mapping)
+
+    def _open(self) -> None:
+        pysoem = _import_pysoem()
+        self.master = open_master(self.adapter)
+        try:
+            self._configure(pysoem)
+        except BaseException:
+            self._shutdown()
+            raise
+
+    def _configure(self, pysoem: Any) -> None:
+        master = self.master
+        self.n_slaves = n = config_init(master, self.adapter)
+        for d in self.drives:
+            if d.position >= n:
+                raise ConfigurationError(f"drive {d.axis_name} is configured at slave position {d.position}, "
+                                         f"but only {n} slave(s) answered on {self.adapter!r}")
+        # identity check (0 in the configuration = do not check that field)
+        for d in self.drives:
+            s = master.slaves[d.position]
+            found = (int(s.man), int(s.id))
+            if (d.vendor_id and d.vendor_id != found[0]) or (d.product_code and d.product_code != found[1]):
+                raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
+        # PDO mapping in the PRE-OP -> SAFE-OP hook of each drive
+        hook_errors: list[EtherCATError] = []
+        for d in self.drives:
+            s = master.slaves[d.position]
+            mapping = self.mapping_for(int(s.man), int(s.id))
+            self.slave_mappings[d.position] = mapping
+            s.setup_func = self._make_hook(d.position, mapping, hook_errors)
+        try:
+            master.config_map()
+        except pysoem.ConfigMapError as exc:
+            self._judge_config_map_errors(list(getattr(exc, "error_list", []) or []))
+        if hook_errors:
+            raise hook_errors[0]
+        self._build_io()
+        # distributed clocks: SYNC0 = Ts on every slave
+        if self.dc:
+            if not master.config_dc():
+                self.warnings.append("no slave supports distributed clocks; running without SYNC0")
+            else:
+                cycle_ns = int(round(self.cycle_time_s * 1e9))
+                for s in master.slaves:
+                    s.dc_sync(True, cycle_ns)
+                self._dc_active = True
+        self._wait_state(AL_SAFEOP, self.safeop_timeout_s, "SAFE-OP")
+        # process data in SAFE-OP: inputs become valid, outputs safe (controlword 0)
+        self.controlword[:] = 0
+        self.modes_of_operation[:] = 8
+        for _ in range(3):
+            self._cycle()
+            time.sleep(self.cycle_time_s)
+        np.copyto(self.target_position, self.position_actual)
+        self._request_op()
+        np.copyto(self.target_position, self.position_actual)
+        self._io_ready = True
+
+    def _make_hook(self, position: int, mapping: PdoMapping,
+                   errors: list[EtherCATError]) -> Callable[[Any], int]:
+        def hook(_slave: Any) -> int:
+            try:
+                write_mapping(self.master, position, mapping)
+            except EtherCATError as exc:
+                errors.append(exc)
+            return 0
+
+        return hook
+
+    def _judge_config_map_errors(self, error_list: list[Any]) -> None:
+        """SOEM's error list after config_map: SDO/mailbox errors of configured drives are
+        fatal (their mapping failed); the rest (e.g. emergencies) become warnings."""
+        drive_positions = {d.position for d in self.drives}
+        fatal = []
+        for err in error_list:
+            pos = int(getattr(err, "slave_pos", 0)) - 1      # SOEM counts slaves from 1
+            text = f"slave {pos}: {type(err).__name__} {getattr(err, 'desc', err)}"
+            if pos in drive_positions and hasattr(err, "abort_code"):
+                fatal.append(SdoAbortError(pos, int(getattr(err, "index", 0)),
+                                           int(getattr(err, "subindex", 0)), int(err.abort_code),
+                                           f"during PDO mapping: {err.desc}"))
+            else:
+                self.warnings.append(text)
+        if fatal:
+            raise fatal[0]
+
+    def _build_io(self) -> None:
+        master = self.master
+        self._io = []
+        outputs_slaves = inputs_slaves = 0
+        for s in master.slaves:
+            outputs_slaves += 1 if len(s.output) else 0
+            inputs_slaves += 1 if len(s.input) else 0
+        for i, d in enumerate(self.drives):
+            s = master.slaves[d.position]
+            mapping = self.slave_mappings[d.position]
+            rx, tx = mapping.rx_struct, mapping.tx_struct
+            if len(s.output) != rx.size or len(s.input) != tx.size:
+                raise ConfigurationError(
+                    f"slave {d.position} ({s.name}): process data is {len(s.output)} output / {len(s.input)} "
+                    f"input bytes, the PDO mapping needs {rx.size} / {tx.size}"
+                    + (f" (SOEM reported: {'; '.join(self.warnings)})" if self.warnings else ""))
+            self._io.append(_DriveIo(self, i, s, mapping))
+        self._expected_wkc = 2 * outputs_slaves + inputs_slaves
+        reported = int(getattr(master, "expected_wkc", self._expected_wkc))
+        if reported and reported != self._expected_wkc:
+            self.warnings.append(f"SOEM expects working counter {reported}, computed {self._expected_wkc}")
+            self._expected_wkc = reported
+
+    def _wait_state(self, state: int, timeout_s: float, name: str) -> None:
+        master = self.master
+        deadline = time.monotonic() + timeout_s
+        while True:
+            if int(master.state_check(state, 50_000)) == state:
+                master.read_state()
+                if all(int(s.state) == state for s in master.slaves):
+                    return
+            if time.monotonic() > deadline:
+                text, pos, code = state_report(master, state)
+                raise AlStateTimeoutError(f"{name} not reached within {timeout_s:.1f} s: {text}", pos, code)
+
+    def _request_op(self) -> None:
+        master = self.master
+        master.state = AL_OP
+        master.write_state()
+        deadline = time.monotonic() + self.op_timeout_s
+        next_check = 0.0
+        while True:
+            t0 = time.monotonic()
+            self._cycle()
+            if t0 >= next_check:
+                next_check = t0 + 0.01
+                lowest = int(master.read_state())
+                states = [int(s.state) for s in master.slaves]
+                if lowest == AL_OP and all(st == AL_OP for st in states):
+                    return
+                if any(st & 0x10 for st in states):
+                    text, pos, code = state_report(master, AL_OP)
+                    raise AlStateError(f"OP refused: {text}", pos, code)
+            if t0 > deadline:
+                text, pos, code = state_report(master, AL_OP)
+                raise AlStateTimeoutError(f"OP not reached within {self.op_timeout_s:.1f} s: {text}",
+                                          pos, code)
+            time.sleep(max(0.0, self.cycle_time_s - (time.monotonic() - t0)))
+
+    # ------------------------------------------------------------------ cyclic
+    def _exchange(self) -> int:
+        if self._io_ready:
+            return self._cycle()
+        self._check_open()
+        return self._cycle()
+
+    def _cycle(self) -> int:
+        master = self.master
+        for io in self._io:
+            io.write()
+        master.send_processdata()
+        wkc = int(master.receive_processdata(self.receive_timeout_us))
+        if wkc == self._expected_wkc:
+            for io in self._io:
+                io.read()
+        return wkc
+
+    # ------------------------------------------------------------------ shutdown
+    def _close(self) -> None:
+        self._shutdown()
+
+    def _shutdown(self) -> None:
+        master = self.master
+        if master is None:
+            return
+        self._io_ready = False
+        try:
+            if self._io:                    # drives: disable voltage before leaving OP
+                self.controlword[:] = 0
+                for _ in range(3):
+                    self._cycle()
+            if self._dc_active:
+                for s in master.slaves:
+                    s.dc_sync(False, 0)
+                self._dc_active = False
+            master.state = AL_INIT
+            master.write_state()
+            master.state_check(AL_INIT, int(self.init_timeout_s * 1e6))
+        except Exception as exc:  # best effort: the adapter is released below in any case
+            self.warnings.append(f"shutdown: {exc}")
+        finally:
+            self.master = None
+            self._io = []
+            master.close()
+
+    # ------------------------------------------------------------------ acyclic
+    def _slaves(self) -> tuple[SlaveInfo, ...]:
+        return slave_infos(self.master)
+
+    def _sdo_upload(self, position: int, index: int, subindex: int) -> bytes:
+        return sdo_upload(self.master, position, index, subindex)
+
+    def _sdo_download(self, position: int, index: int, subindex: int, data: bytes) -> None:
+        sdo_download(self.master, position, index, subindex, data)
+
+    def lost_slaves(self) -> tuple[int, ...]:
+        """Slaves that no longer answer (AL state unreadable), found by one state read."""
+        if self.master is None:
+            return ()
+        self.master.read_state()
+        return tuple(i for i, s in enumerate(self.master.slaves) if int(s.state) == 0)
+
+    def al_states(self) -> tuple[tuple[str, int], ...]:
+        """(AL state name, AL status code) per slave, read now."""
+        self._check_open()
+        return tuple((s.state, s.al_status_code) for s in slave_infos(self.master))
+
+
+@dataclass(slots=True)
+class _DriveIo:
+    """Packs one drive's outputs and unpacks its inputs (mapping order, little endian)."""
+
+    bus: SoemBus
+    i: int
+    slave: Any
+    mapping: PdoMapping
+    rx: struct.Struct = field(init=False)
+    tx: struct.Struct = field(init=False)
+    out_arrays: tuple[np.ndarray | None, ...] = field(init=False)
+    in_arrays: tuple[np.ndarray | None, ...] = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.rx = self.mapping.rx_struct
+        self.tx = self.mapping.tx_struct
+        self.out_arrays = tuple(getattr(self.bus, _RX_ARRAYS[e.index]) if e.index in _RX_ARRAYS else None
+                                for e in self.mapping.rx)
+        self.in_arrays = tuple(getattr(self.bus, _TX_ARRAYS[e.index]) if e.index in _TX_ARRAYS else None
+                               for e in self.mapping.tx)
+
+    def write(self) -> None:
+        i = self.i
+        self.slave.output = self.rx.pack(*[0 if a is None else int(a[i]) for a in self.out_arrays])
+
+    def read(self) -> None:
+        i = self.i
+        for a, v in zip(self.in_arrays, self.tx.unpack(self.slave.input)):
+            if a is not None:
+                a[i] = v

@@ -1,0 +1,207 @@
+"""``cnc-plan``: plan a G-code program and report, export or plot its set-points.
+
+    cnc-plan PROGRAM [--vmax 30] [--amax 1000] [--jmax 10000] [--ts 0.001]
+             [--mode lookahead|paper] [--interp exact|taylor|classic] [--config MACHINE.toml]
+             [--samples OUT.npz] [--csv OUT.csv] [--plot OUT.png] [--canon OUT.jsonl] [--json]
+
+Units mm, s (F in the program in mm/min). Without --config the machine is a 3-axis XYZ mill
+whose per-axis limits equal the path limits; with --config the file's axes and limits apply
+and --vmax/--amax/--jmax/--ts, when given, replace its path limits and sample period.
+A bad program: exit status 2, the errors on stderr, nothing written.
+
+--plot needs the panel's pyqtgraph: it is imported lazily, by name, from ``app.plot_export``
+(the planner package itself never imports Qt or app/).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import os
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from planner.errors import PlannerError, ProgramError
+from planner.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
+
+__all__ = ["build_machine", "main"]
+
+PAPER_V, PAPER_A, PAPER_J, PAPER_TS = 30.0, 1000.0, 10_000.0, 0.001
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="cnc-plan", description="Plan a G-code program: jerk-limited "
+                                "profiles, joint speeds and set-points every Ts.")
+    p.add_argument("program", help="G-code file")
+    p.add_argument("--vmax", type=float, default=None, help="path speed limit, mm/s (default 30)")
+    p.add_argument("--amax", type=float, default=None, help="path acceleration limit, mm/s^2 (default 1000)")
+    p.add_argument("--jmax", type=float, default=None, help="path jerk limit, mm/s^3 (default 10000)")
+    p.add_argument("--ts", type=float, default=None, help="sample period, s (default 0.001)")
+    p.add_argument("--mode", choices=PLANNER_MODES, default=None, help="joint speeds (default lookahead)")
+    p.add_argument("--interp", choices=INTERPOLATIONS, default=None, help="interpolation (default exact)")
+    p.add_argument("--config", help="machine configuration TOML")
+    p.add_argument("--samples", help="write t, q, axes, s, line to this NPZ file")
+    p.add_argument("--csv", help="write the samples to this CSV file")
+    p.add_argument("--plot", help="write a velocity/acceleration/jerk PNG (paper Fig. 14)")
+    p.add_argument("--canon", help="write the moves as LinuxCNC canonical calls (JSONL)")
+    p.add_argument("--json", action="store_true", help="print a JSON report on stdout")
+    return p
+
+
+def build_machine(config: str | None, vmax: float | None, amax: float | None, jmax: float | None,
+                  ts: float | None) -> MachineSpec:
+    """The machine of the command line (see the module docstring)."""
+    for name, value in (("--vmax", vmax), ("--amax", amax), ("--jmax", jmax), ("--ts", ts)):
+        if value is not None and not (np.isfinite(value) and value > 0):
+            raise PlannerError(f"{name} must be a positive number, got {value}")
+    if config:
+        machine = load_machine(config)
+        changes = {k: v for k, v in (("v_max_mm_s", vmax), ("a_max_mm_s2", amax),
+                                     ("j_max_mm_s3", jmax)) if v is not None}
+        if changes:
+            machine = machine.with_limits(**changes)
+        if ts is not None:
+            machine = machine.with_planner(ts_s=ts)
+        return machine
+    v = PAPER_V if vmax is None else vmax
+    a = PAPER_A if amax is None else amax
+    j = PAPER_J if jmax is None else jmax
+    base = MachineSpec.default()
+    axes = tuple(replace(ax, v_max=v, a_max=a, j_max=j) for ax in base.axes)
+    machine = replace(base, axes=axes).with_limits(v_max_mm_s=v, a_max_mm_s2=a, j_max_mm_s3=j,
+                                                   rapid_mm_s=v)
+    return machine.with_planner(ts_s=PAPER_TS if ts is None else ts)
+
+
+def _atomic(path: str, write) -> None:
+    tmp = f"{path}.tmp{os.getpid()}{Path(path).suffix}"  # keep the suffix: writers pick the format by it
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _write_npz(path: str, chunk, axes) -> None:
+    def w(tmp):
+        with open(tmp, "wb") as fh:
+            np.savez(fh, t=chunk.t, q=chunk.q, axes=np.array(axes), s=chunk.s, line=chunk.line)
+    _atomic(path, w)
+
+
+def _write_csv(path: str, plan, axes) -> None:
+    def w(tmp):
+        with open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(",".join(["t", *axes, "s", "line"]) + "\n")
+            d = len(axes)
+            for c in plan.iter_chunks():
+                block = np.column_stack([c.t, c.q, c.s, c.line])
+                np.savetxt(fh, block, fmt=["%.6f"] + ["%.9f"] * d + ["%.9f", "%d"], delimiter=",")
+    _atomic(path, w)
+
+
+def _path_vaj(chunk, ts: float):
+    """Path speed, acceleration and jerk from finite differences of s(t_k) (what the drives get)."""
+    s = chunk.s
+    v = np.gradient(s, ts) if s.size > 1 else np.zeros_like(s)
+    a = np.gradient(v, ts) if s.size > 1 else np.zeros_like(s)
+    j = np.gradient(a, ts) if s.size > 1 else np.zeros_like(s)
+    return v, a, j
+
+
+def _plot(path: str, plan, chunk, title: str) -> None:
+    exporter = importlib.import_module("app.plot_export")  # lazy, by name: planner/ has no Qt
+    v, a, j = _path_vaj(chunk, plan.ts_s)
+    lim = plan.machine.limits
+
+    def w(tmp):
+        exporter.export_vaj_png(tmp, chunk.t, v, a, j, title=title,
+                                limits=(lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3))
+    _atomic(path, w)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    from planner.canon import write_canon
+    from planner.interpreter import parse_file
+    from planner.plan import plan_program
+
+    try:
+        machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
+        started = time.perf_counter()
+        program = parse_file(args.program, machine)
+        parse_s = time.perf_counter() - started
+        plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
+    except ProgramError as exc:
+        print(str(exc), file=sys.stderr)
+        return 2
+    except PlannerError as exc:
+        print(f"{args.program}: error: {exc}", file=sys.stderr)
+        return 2
+
+    axes = list(program.axes)
+    need_samples = bool(args.samples or args.plot)
+    started = time.perf_counter()
+    chunks = []
+    n_samples = 0
+    for c in plan.iter_chunks():
+        n_samples += len(c)
+        if need_samples:
+            chunks.append(c)
+    interp_s = time.perf_counter() - started
+    from planner.interpolate import SampleChunk
+
+    collected = SampleChunk.concat(chunks, len(axes)) if need_samples else None
+    try:
+        if args.canon:
+            write_canon(program, args.canon)
+        if args.samples:
+            _write_npz(args.samples, collected, axes)
+        if args.csv:
+            _write_csv(args.csv, plan, axes)
+        if args.plot:
+            _plot(args.plot, plan, collected, f"{Path(args.program).name}: {plan.mode}, {plan.interpolation}")
+    except OSError as exc:
+        print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
+        return 1
+
+    if args.json:
+        report = plan.limit_report()
+        out = {
+            "program": str(args.program),
+            "lines": int(program.line_count),
+            "moves": len(program.moves),
+            "mode": plan.mode,
+            "interpolation": plan.interpolation,
+            "ts_s": plan.ts_s,
+            "cycle_time_s": plan.cycle_time_s,
+            "samples": n_samples,
+            "parse_s": parse_s,
+            "plan_s": plan.plan_s,
+            "interp_s": interp_s,
+            "tangential": report.tangential,
+            "tangential_samples": report.tangential_samples,
+            "axes": report.axes,
+            "contour_error_mm": report.contour_error_mm,
+            "end_error_mm": report.end_error_mm,
+            "violations": report.violations,
+            "joint_jerk": report.joint_jerk,
+            "ok": report.ok,
+            "move_list": plan.moves_summary(),
+        }
+        json.dump(out, sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        print(f"{program.name}: {len(program.moves)} moves, cycle time {plan.cycle_time_s:.3f} s, "
+              f"{n_samples} samples, plan {plan.plan_s * 1e3:.1f} ms, interpolation {interp_s * 1e3:.1f} ms")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

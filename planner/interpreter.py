@@ -1,0 +1,777 @@
+"""G-code interpreter: RS274/NGC text -> Program of exact moves, read the way LinuxCNC 2.9 does.
+
+Supported (everything else is an error with file:line:col, never skipped):
+  G00 G01 G02 G03 (R or I/J/K, P turns), G04 P (s), G17 G18 G19, G20 G21, G90 G91,
+  G90.1 G91.1, G94, G54-G59, G53 (one block, with G00/G01), G61 G64 (P/Q accepted),
+  G28 (via the programmed point to machine zero of the named axes, or of all axes),
+  G40, G41/G42 (the machine has no tool table: radius 0, the path is the programmed path),
+  G43 H / G49 (tool length 0), G80; F S T; M00 M01 M02 M30 M03 M04 M05 M06 M07 M08 M09;
+  N line numbers, '/' block delete, ( ) and ; comments, % delimiters, Fanuc 'O0001' lines,
+  LinuxCNC expressions [..] and #numbered / #<named> parameters.
+Set-up as LinuxCNC's reference run: G21 G17 G40 G49 G54 G80 G90 G94 G91.1 G64, motion mode
+none (axis words need a G00-G03 first).
+"""
+
+from __future__ import annotations
+
+import gc
+import math
+import os
+import re
+from collections.abc import Sequence
+
+import numpy as np
+
+from planner.arcs import (
+    MM_PER_INCH,
+    ArcError,
+    center_from_radius,
+    check_center_radii,
+    sweep_angle,
+)
+from planner.errors import PlannerError, ProgramError, SourceError
+from planner.lexer import LexError, Params, compact, original_column, read_line
+from planner.program import (
+    Arc,
+    Event,
+    EventKind,
+    MoveKind,
+    Program,
+    _make_arc,
+    _make_move,
+    spiral_length_mm,
+)
+
+__all__ = ["parse_program", "parse_file", "MAX_ERRORS"]
+
+MAX_ERRORS = 100
+_VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
+_MAX_TURNS = 10_000
+_ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
+
+# Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
+_G_GROUP = {
+    40: 0, 280: 0, 530: 0,
+    0: 1, 10: 1, 20: 1, 30: 1, 800: 1,
+    170: 2, 180: 2, 190: 2,
+    900: 3, 910: 3,
+    901: 4, 911: 4,
+    940: 5,
+    200: 6, 210: 6,
+    400: 7, 410: 7, 420: 7,
+    430: 8, 490: 8,
+    540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12,
+    610: 13, 640: 13,
+}
+_G_UNSUPPORTED = {
+    50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
+    80: "G08 lathe radius mode", 100: "G10 data setting", 281: "G28.1", 300: "G30 second home",
+    301: "G30.1", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
+    382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
+    411: "G41.1 dynamic cutter compensation", 421: "G42.1 dynamic cutter compensation",
+    431: "G43.1 dynamic tool length offset", 432: "G43.2 additional tool length offset",
+    520: "G52 local offset", 591: "G59.1 work offset", 592: "G59.2 work offset",
+    593: "G59.3 work offset", 611: "G61.1 exact path mode", 730: "G73 canned cycle",
+    760: "G76 threading cycle", 810: "G81 canned cycle", 820: "G82 canned cycle",
+    830: "G83 canned cycle", 840: "G84 canned cycle", 850: "G85 canned cycle",
+    860: "G86 canned cycle", 870: "G87 canned cycle", 880: "G88 canned cycle",
+    890: "G89 canned cycle", 920: "G92 coordinate offset", 921: "G92.1", 922: "G92.2",
+    923: "G92.3", 930: "G93 inverse time feed", 950: "G95 feed per revolution",
+    960: "G96 constant surface speed", 970: "G97 spindle rpm mode", 980: "G98 canned return",
+    990: "G99 canned return", 150: "G15 polar coordinates", 160: "G16 polar coordinates",
+    680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
+}
+_M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
+_WORD_LETTERS = set("FSTPQRIJKDH")
+_AXIS_LETTERS = "XYZABC"
+# plane code -> (name, first, second, normal, centre letter of first, of second, letter not allowed)
+_PLANES = {
+    170: ("XY", "X", "Y", "Z", "I", "J", "K"),
+    180: ("ZX", "Z", "X", "Y", "K", "I", "J"),
+    190: ("YZ", "Y", "Z", "X", "J", "K", "I"),
+}
+_PLANE_G = {170: "G17", 180: "G18", 190: "G19"}
+_RAPID, _LINE, _ARC = MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC
+_ZERO_FEED = "feed rate is zero: program an F word before the first G01/G02/G03"
+_FAST_NUM = r"[-+]?(?:\d{1,9}(?:\.\d*)?|\.\d+)"
+_SLOW_CHARS = frozenset("()%;/[#Oo")
+_FAST_G = {"0": 0, "00": 0, "1": 10, "01": 10, "2": 20, "02": 20, "3": 30, "03": 30}
+_STOP_EVENTS = {0: EventKind.PAUSE, 1: EventKind.OPTIONAL_PAUSE, 2: EventKind.END, 30: EventKind.END}
+
+
+class _BlockError(Exception):
+    def __init__(self, message: str, letter: str | None = None, col: int | None = None):
+        super().__init__(message)
+        self.message = message
+        self.letter = letter  # locate the error at this word's column
+        self.col = col
+
+
+def _gname(code10: int) -> str:
+    return f"G{code10 // 10}" if code10 % 10 == 0 else f"G{code10 // 10}.{code10 % 10}"
+
+
+class _Interpreter:
+    def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int):
+        if machine is None:
+            from planner.machine import MachineSpec
+
+            machine = MachineSpec.default()
+        self.name = name
+        self.axes: tuple[str, ...] = tuple(a.name.upper() for a in machine.axes)
+        self.rotary: tuple[bool, ...] = tuple(bool(a.rotary) for a in machine.axes)
+        n = len(self.axes)
+        self.n = n
+        self.axis_index = {a: i for i, a in enumerate(self.axes)}
+        self.linear_idx = tuple(i for i in range(n) if not self.rotary[i])
+        self.rotary_idx = tuple(i for i in range(n) if self.rotary[i])
+        self.all_linear = not self.rotary_idx
+        offsets = getattr(machine, "work_offsets", None) or {}
+        self.work_offsets: dict[int, tuple[float, ...]] = {}
+        for k in range(6):
+            key = f"G5{4 + k}"
+            val = tuple(float(v) for v in offsets.get(key, (0.0,) * n))
+            if len(val) != n:
+                raise PlannerError(f"machine work offset {key} has {len(val)} values for {n} axes")
+            self.work_offsets[540 + 10 * k] = val
+        if start_position is None:
+            start = [0.0] * n
+        else:
+            start = [float(v) for v in np.asarray(start_position, dtype=float).ravel()]
+            if len(start) != n:
+                raise PlannerError(f"start_position has {len(start)} values for {n} axes")
+        self.start = tuple(start)
+        self.block_delete = block_delete
+        self.max_errors = max_errors
+        # Modal state (LinuxCNC reference set-up: G21 G17 G40 G49 G54 G80 G90 G94 G91.1).
+        self.pos = list(start)
+        self.motion: int | None = None
+        self.plane = 170
+        self.inch = False
+        self.scale = 1.0  # mm per program length unit
+        self.absolute = True
+        self.arc_absolute = False
+        self.feed_mm_s = 0.0
+        self.offset = self.work_offsets[540]
+        self.exact_stop = False
+        self.spindle_dir = 0
+        self.spindle_rpm = 0.0
+        self.tool = 0
+        self.params = Params()
+        self.fast_letters = frozenset(self.axes) | frozenset("IJKRF")
+        # The usual CAM block, in the usual word order, as one regex; numbers below 1e9.
+        self.fast_re = re.compile(
+            r"(?:N\d+)?(?:G0*([0-3]))?"
+            + "".join(f"(?:{a}({_FAST_NUM}))?" for a in self.axes)
+            + "".join(f"(?:{a}({_FAST_NUM}))?" for a in "IJKRF")
+            + r"\Z"
+        )
+        # Output, as flat lists (Move objects are built once at the end).
+        self.ends: list[list[float]] = []  # end position of each move (never mutated after emit)
+        # per move: (line, kind, feed_mm_s, length_mm, arc, exact_stop)
+        self.recs: list[tuple] = []
+        self.offset_changes: list[tuple[int, tuple[float, ...]]] = [(0, self.offset)]  # (first move, offset)
+        self.events: list[Event] = []
+        self.errors: list[SourceError] = []
+        self.truncated = False
+        self.ended = False
+
+    # ------------------------------------------------------------------ driver
+    def run(self, text: str) -> Program:
+        started = False  # saw content or an opening '%'
+        line_no = 0
+        fast_match = self.fast_re.match
+        fast = self.fast_line
+        slow_chars = _SLOW_CHARS
+        for line_no, raw in enumerate(text.split("\n"), 1):
+            # Fast path: one compiled-regex match of the usual CAM block (no comment, no '%', '/').
+            if slow_chars.isdisjoint(raw):
+                code = "".join(raw.split()).upper()
+                if not code:
+                    continue
+                m = fast_match(code)
+                if m is not None:
+                    started = True
+                    try:
+                        if fast(m.groups(), line_no):
+                            continue
+                    except _BlockError as e:
+                        self.error(line_no, self.column(raw, e.letter), e.message)
+                        if self.truncated:
+                            break
+                        continue
+            if raw.endswith("\r"):
+                raw = raw[:-1]
+            s = raw.strip()
+            if not s:
+                continue
+            if s[0] == "%":
+                if s != "%" and compact(s) != "%":
+                    self.error(line_no, raw.index("%") + 1, "'%' must be alone on its line")
+                    continue
+                if started:
+                    break  # closing '%': the rest of the file is not part of the program
+                started = True
+                continue
+            started = True
+            if s[0] == "/":
+                if self.block_delete:
+                    continue
+                raw = raw.replace("/", " ", 1)
+            try:
+                self.block(raw, line_no)
+            except _BlockError as e:
+                col = e.col if e.col is not None else self.column(raw, e.letter)
+                self.error(line_no, col, e.message)
+            except LexError as e:
+                col = e.raw_col if e.raw_col is not None else original_column(raw, e.index)
+                self.error(line_no, col, e.message)
+            except RecursionError:
+                self.error(line_no, 1, "expression nested too deeply")
+            if self.ended or self.truncated:
+                break
+        if self.errors:
+            raise ProgramError(self.errors, self.truncated)
+        return self.build(line_no)
+
+    def fast_line(self, groups: tuple, line_no: int) -> bool:
+        """A block matched by fast_re: [N] [G00-G03] axis words (machine order) [I J K R] [F].
+
+        Returns False to hand the line to the general path (which also diagnoses errors).
+        """
+        n = self.n
+        gtxt = groups[0]
+        axis_vals = groups[1:n + 1]
+        i_t, j_t, k_t, r_t, f_t = groups[n + 1:]
+        ctr = i_t is not None or j_t is not None or k_t is not None or r_t is not None
+        if f_t is not None and f_t[0] == "-":
+            return False  # negative feed: diagnosed by the general path
+        if axis_vals.count(None) == n:  # no axis words
+            if gtxt is None and not ctr:
+                if f_t is not None:
+                    self.feed_mm_s = float(f_t) * self.scale / 60.0
+                return True
+            return False
+        motion = int(gtxt) * 10 if gtxt is not None else self.motion
+        if motion is None or motion == 800 or (ctr and motion < 20):
+            return False
+        scale = self.scale
+        if f_t is not None:
+            self.feed_mm_s = float(f_t) * scale / 60.0
+        if gtxt is not None:
+            self.motion = motion
+        pos = self.pos
+        target = pos.copy()
+        rot = self.rotary
+        if self.absolute:
+            off = self.offset
+            for i, v in enumerate(axis_vals):
+                if v is not None:
+                    target[i] = (float(v) if rot[i] else float(v) * scale) + off[i]
+        else:
+            for i, v in enumerate(axis_vals):
+                if v is not None:
+                    target[i] = pos[i] + (float(v) if rot[i] else float(v) * scale)
+        if motion < 20:
+            if self.all_linear:  # inline of straight() for the common machine
+                length = math.dist(pos, target)
+                if length <= _ZERO_LEN:
+                    return True
+                if motion == 0:
+                    feed = math.inf
+                else:
+                    feed = self.feed_mm_s
+                    if feed <= 0.0:
+                        raise _BlockError(_ZERO_FEED, "G")
+                self.ends.append(target)
+                self.recs.append((line_no, _RAPID if motion == 0 else _LINE, feed, length, None,
+                                  self.exact_stop))
+                self.pos = target
+            else:
+                self.straight(target, motion == 0, line_no)
+        else:
+            vals = {}
+            if i_t is not None:
+                vals["I"] = float(i_t)
+            if j_t is not None:
+                vals["J"] = float(j_t)
+            if k_t is not None:
+                vals["K"] = float(k_t)
+            if r_t is not None:
+                vals["R"] = float(r_t)
+            self.arc(target, vals, motion == 20, scale, line_no)
+        return True
+
+    def error(self, line: int, col: int, message: str) -> None:
+        if len(self.errors) >= self.max_errors:
+            self.truncated = True
+            return
+        self.errors.append(SourceError(self.name, line, col, message))
+
+    @staticmethod
+    def column(raw: str, letter: str | None) -> int:
+        if not letter:
+            return 1
+        try:
+            code = compact(raw)
+        except LexError:
+            return 1
+        i = code.find(letter)
+        return original_column(raw, i) if i >= 0 else 1
+
+    def set_offset(self, offset: tuple[float, ...]) -> None:
+        self.offset = offset
+        first = len(self.recs)
+        if self.offset_changes[-1][0] == first:
+            self.offset_changes[-1] = (first, offset)
+        else:
+            self.offset_changes.append((first, offset))
+
+    def build(self, line_count: int) -> Program:
+        n_moves = len(self.ends)
+        positions = np.empty((n_moves + 1, self.n))
+        positions[0] = self.start
+        if n_moves:
+            positions[1:] = self.ends
+        positions.setflags(write=False)
+        rows = list(positions)  # read-only row views: move i runs rows[i] -> rows[i + 1]
+        if n_moves:
+            lines, kinds, feeds, lengths, arcs, stops = zip(*self.recs)
+            moves = tuple(map(_make_move, range(n_moves), lines, kinds, rows[:-1], rows[1:], feeds, lengths,
+                              arcs, stops))
+        else:
+            moves = ()
+        offsets = np.empty((n_moves, self.n))
+        changes = self.offset_changes + [(n_moves, None)]
+        for (first, off), (nxt, _) in zip(changes[:-1], changes[1:]):
+            offsets[first:nxt] = off
+        offsets.setflags(write=False)
+        start = positions[0].copy()
+        start.setflags(write=False)
+        return Program(
+            name=self.name,
+            axes=self.axes,
+            rotary=self.rotary,
+            moves=moves,
+            events=tuple(self.events),
+            start_position=start,
+            move_offsets=offsets,
+            line_count=line_count,
+        )
+
+    # ------------------------------------------------------------------ one block
+    def block(self, raw: str, line_no: int) -> None:
+        words, assigns = read_line(raw, self.params)
+        if not words:
+            self.assign(assigns)
+            return
+        if not assigns and self.fast_block(words, line_no):
+            return
+        self.general_block(words, assigns, line_no)
+
+    def fast_block(self, words: list, line_no: int) -> bool:
+        """The common CAM line (optional N, one G00-G03, axis words, I/J/K/R, F) without checks
+        that cannot fail for it. Returns False to let general_block handle (and diagnose) it."""
+        vals: dict[str, float] = {}
+        g = -1
+        fast_letters = self.fast_letters
+        for letter, t in words:
+            if letter in fast_letters:
+                if letter in vals:
+                    return False
+                v = float(t)
+                if not -_VALUE_LIMIT < v < _VALUE_LIMIT:
+                    return False
+                vals[letter] = v
+            elif letter == "G" and g < 0 and t in _FAST_G:
+                g = _FAST_G[t]
+            elif letter != "N" or vals or g >= 0:
+                return False
+        axis_index = self.axis_index
+        axis_words = [letter for letter in vals if letter in axis_index]
+        ctr = "I" in vals or "J" in vals or "K" in vals or "R" in vals
+        if not axis_words:
+            if g < 0 and not ctr and "F" in vals and vals["F"] >= 0.0:
+                self.feed_mm_s = vals["F"] * self.scale / 60.0
+                return True
+            return False
+        motion = g if g >= 0 else self.motion
+        if motion is None or motion == 800 or (ctr and motion < 20):
+            return False
+        if "F" in vals:
+            f = vals["F"]
+            if f < 0.0:
+                return False
+            self.feed_mm_s = f * self.scale / 60.0
+        if g >= 0:
+            self.motion = g
+        target = self.target(vals, axis_words, self.scale, False)
+        if motion < 20:
+            self.straight(target, motion == 0, line_no)
+        else:
+            self.arc(target, vals, motion == 20, self.scale, line_no)
+        return True
+
+    def general_block(self, words: list, assigns: list, line_no: int) -> None:
+        gcodes: list[int] = []
+        mcodes: list[int] = []
+        vals: dict[str, float] = {}
+        first = True
+        for letter, t in words:
+            v = float(t)
+            if not -_VALUE_LIMIT < v < _VALUE_LIMIT:
+                raise _BlockError(f"{letter} value {v:g} out of range (|value| < 1e9)", letter)
+            if letter == "G":
+                c = round(v * 10.0)
+                if abs(v * 10.0 - c) > 1e-6:
+                    raise _BlockError(f"unknown G code G{v:g}", "G")
+                gcodes.append(c)
+            elif letter == "M":
+                c = round(v)
+                if abs(v - c) > 1e-9:
+                    raise _BlockError(f"unknown M code M{v:g}", "M")
+                mcodes.append(c)
+            elif letter == "N":
+                if not first:
+                    raise _BlockError("N word (line number) must begin the block", "N")
+            elif letter == "O":
+                if len(words) != 1:
+                    raise _BlockError("O-word program numbers must be alone on their line", "O")
+                return  # Fanuc-style program number: nothing to do
+            elif letter in vals:
+                raise _BlockError(f"two {letter} words in one block", letter)
+            else:
+                vals[letter] = v
+            first = False
+
+        # ---- which codes are in this block, by modal group
+        groups: dict[int, int] = {}
+        for c in gcodes:
+            g = _G_GROUP.get(c)
+            if g is None:
+                what = _G_UNSUPPORTED.get(c)
+                if what:
+                    raise _BlockError(f"{_gname(c)} is not supported ({what})", "G")
+                raise _BlockError(f"unknown G code {_gname(c)}", "G")
+            if g in groups:
+                raise _BlockError(
+                    f"{_gname(groups[g])} and {_gname(c)} are in the same modal group (one per block)", "G"
+                )
+            groups[g] = c
+        mgroups: dict[int, int] = {}
+        for c in mcodes:
+            g = _M_GROUP.get(c)
+            if g is None:
+                raise _BlockError(f"M{c} is not supported", "M")
+            if g in mgroups and not (g == 8 and {mgroups[g], c} == {7, 8}):
+                raise _BlockError(f"M{mgroups[g]} and M{c} are in the same modal group (one per block)", "M")
+            mgroups[g] = c
+
+        axis_words = []
+        for letter in vals:
+            if letter in _AXIS_LETTERS:
+                if letter not in self.axis_index:
+                    raise _BlockError(
+                        f"axis {letter} is not on this machine (axes: {' '.join(self.axes)})", letter
+                    )
+                axis_words.append(letter)
+            elif letter not in _WORD_LETTERS:
+                if letter in "UVW":
+                    raise _BlockError(
+                        f"axis {letter} is not on this machine (axes: {' '.join(self.axes)})", letter
+                    )
+                raise _BlockError(f"word {letter} is not supported", letter)
+
+        g0 = groups.get(0)
+        g1 = groups.get(1)
+        if g0 == 280 and g1 is not None and g1 != 800:
+            raise _BlockError("cannot use two G codes that both use axis values (G28 and a motion code)", "G")
+        if g1 == 800 and axis_words and g0 != 280:
+            raise _BlockError("cannot use axis values with G80", axis_words[0])
+        if g1 is not None:
+            motion = g1
+        elif g0 != 280 and (
+            axis_words
+            or (self.motion in (20, 30) and ("I" in vals or "J" in vals or "K" in vals or "R" in vals))
+        ):
+            motion = self.motion  # LinuxCNC 2.9: centre words alone repeat a modal G02/G03
+        else:
+            motion = None
+        if motion == 800:
+            motion = None
+        if axis_words and motion is None and g0 != 280:
+            raise _BlockError(
+                "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
+            )
+        is_arc = motion in (20, 30)
+        for letter in ("I", "J", "K", "R"):
+            if letter in vals and not is_arc:
+                raise _BlockError(f"{letter} word with no G02/G03 to use it", letter)
+        if "P" in vals and not (g0 == 40 or is_arc or groups.get(13) == 640):
+            raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64)", "P")
+        if "Q" in vals and groups.get(13) != 640:
+            raise _BlockError("Q word with no G code that uses it (G64)", "Q")
+        if "D" in vals and groups.get(7) not in (410, 420):
+            raise _BlockError("D word with no G41/G42 to use it", "D")
+        if "H" in vals and groups.get(8) != 430:
+            raise _BlockError("H word with no G43 to use it", "H")
+
+        # ---- execute in RS274/NGC order
+        after = len(self.ends) - 1
+        ev = self.events
+        if 6 in groups:  # units before anything that reads a length
+            self.inch = groups[6] == 200
+            self.scale = MM_PER_INCH if self.inch else 1.0
+        scale = self.scale
+        if "F" in vals:
+            f = vals["F"]
+            if f < 0.0:
+                raise _BlockError(f"negative feed F{f:g}", "F")
+            self.feed_mm_s = f * scale / 60.0
+        if "S" in vals:
+            s = vals["S"]
+            if s < 0.0:
+                raise _BlockError(f"negative spindle speed S{s:g}", "S")
+            changed = s != self.spindle_rpm
+            self.spindle_rpm = s
+            if changed and self.spindle_dir != 0 and mgroups.get(7) is None:
+                ev.append(Event(EventKind.SPINDLE, line_no, after, self.spindle_dir * s))
+        if "T" in vals:
+            t = vals["T"]
+            if t < 0 or t != int(t):
+                raise _BlockError(f"tool number T{t:g} must be a whole number >= 0", "T")
+            self.tool = int(t)
+            ev.append(Event(EventKind.TOOL, line_no, after, float(t), f"tool T{int(t)} selected"))
+        if mgroups.get(6) == 6:
+            ev.append(
+                Event(
+                    EventKind.TOOL_CHANGE, line_no, after, float(self.tool),
+                    f"M06: change to tool T{self.tool} by hand (the machine has no tool changer), "
+                    "then press cycle start",
+                )
+            )
+        m7 = mgroups.get(7)
+        if m7 is not None:
+            self.spindle_dir = {3: 1, 4: -1, 5: 0}[m7]
+            ev.append(Event(EventKind.SPINDLE, line_no, after, self.spindle_dir * self.spindle_rpm,
+                            f"M0{m7}"))
+        m8 = [c for c in mcodes if c in (7, 8, 9)]
+        for c in m8:
+            ev.append(Event(EventKind.COOLANT, line_no, after, {7: 1.0, 8: 2.0, 9: 0.0}[c], f"M0{c}"))
+        if g0 == 40:
+            p = vals.get("P")
+            if p is None:
+                raise _BlockError("G04 needs a P word (dwell time in seconds)", "G")
+            if p < 0.0:
+                raise _BlockError(f"negative dwell time P{p:g}", "P")
+            ev.append(Event(EventKind.DWELL, line_no, after, p, f"dwell {p:g} s"))
+        if 2 in groups:
+            self.plane = groups[2]
+        # group 7 (cutter comp): radius 0 from the (empty) tool table -> the programmed path.
+        # group 8 (tool length): length 0 -> no offset.
+        if 12 in groups:
+            self.set_offset(self.work_offsets[groups[12]])
+        if 13 in groups:
+            self.exact_stop = groups[13] == 610
+        if 3 in groups:
+            self.absolute = groups[3] == 900
+        if 4 in groups:
+            self.arc_absolute = groups[4] == 901
+        if g1 is not None:
+            self.motion = None if g1 == 800 else g1
+
+        # ---- motion
+        if g0 == 280:
+            self.g28(vals, axis_words, scale, line_no)
+        elif motion is not None:
+            if g0 == 530:
+                if motion not in (0, 10):
+                    raise _BlockError("G53 needs G00 or G01", "G")
+                if not self.absolute:
+                    raise _BlockError("G53 cannot be used in incremental mode (G91)", "G")
+            target = self.target(vals, axis_words, scale, g0 == 530)
+            if motion in (0, 10):
+                self.straight(target, motion == 0, line_no)
+            else:
+                self.arc(target, vals, motion == 20, scale, line_no)
+        elif g0 == 530:
+            raise _BlockError("G53 needs G00 or G01 with axis words", "G")
+
+        m4 = mgroups.get(4)
+        if m4 is not None:
+            kind = _STOP_EVENTS[m4]
+            ev.append(Event(kind, line_no, len(self.ends) - 1, 0.0, f"M{m4:02d}"))
+            if kind is EventKind.END:
+                self.ended = True
+        self.assign(assigns)
+
+    def assign(self, assigns: Sequence[tuple[object, float]]) -> None:
+        for key, value in assigns:
+            if isinstance(key, str):
+                self.params.named[key] = value
+            else:
+                self.params.numbered[key] = value  # type: ignore[index]
+
+    # ------------------------------------------------------------------ motion helpers
+    def target(
+        self, vals: dict[str, float], axis_words: list[str], scale: float, machine: bool
+    ) -> list[float]:
+        pos = self.pos
+        tgt = pos.copy()
+        idx = self.axis_index
+        rot = self.rotary
+        off = self.offset
+        absolute = self.absolute
+        for letter in axis_words:
+            i = idx[letter]
+            v = vals[letter] if rot[i] else vals[letter] * scale
+            if machine:
+                tgt[i] = v
+            elif absolute:
+                tgt[i] = v + off[i]
+            else:
+                tgt[i] = pos[i] + v
+        return tgt
+
+    def path_length(self, a: Sequence[float], b: Sequence[float]) -> float:
+        if self.all_linear:
+            return math.dist(a, b)
+        lin = self.linear_idx
+        length = math.sqrt(sum((b[i] - a[i]) ** 2 for i in lin)) if lin else 0.0
+        if length > _ZERO_LEN:
+            return length
+        rot = self.rotary_idx
+        rot_len = math.sqrt(sum((b[i] - a[i]) ** 2 for i in rot))
+        return rot_len if rot_len > _ZERO_LEN else length
+
+    def straight(self, target: list[float], rapid: bool, line_no: int) -> None:
+        length = self.path_length(self.pos, target)
+        if length <= _ZERO_LEN:
+            return  # zero-length move: dropped (position unchanged)
+        if rapid:
+            feed = math.inf
+        else:
+            feed = self.feed_mm_s
+            if feed <= 0.0:
+                raise _BlockError(_ZERO_FEED, "G")
+        self.emit(target, _RAPID if rapid else _LINE, feed, length, None, line_no)
+
+    def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
+             line_no: int) -> None:
+        self.ends.append(target)
+        self.recs.append((line_no, kind, feed, length, arc, self.exact_stop))
+        self.pos = target
+
+    def g28(self, vals: dict[str, float], axis_words: list[str], scale: float, line_no: int) -> None:
+        """G28: rapid to the programmed point (if any), then to machine zero of those axes.
+
+        LinuxCNC's G28 position (#5161-#5166) is machine zero in the reference set-up; this
+        machine has no stored G28 position, so machine zero it is. No axis words: all axes.
+        """
+        if axis_words:
+            mid = self.target(vals, axis_words, scale, False)
+            self.straight(mid, True, line_no)
+            home = self.pos.copy()
+            for letter in axis_words:
+                home[self.axis_index[letter]] = 0.0
+        else:
+            home = [0.0] * self.n
+        self.straight(home, True, line_no)
+
+    def arc(self, target: list[float], vals: dict[str, float], cw: bool, scale: float, line_no: int) -> None:
+        pname, fl, sl, nl, fc, sc, bad = _PLANES[self.plane]
+        idx = self.axis_index
+        fa = idx.get(fl)
+        sa = idx.get(sl)
+        if fa is None or sa is None:
+            raise _BlockError(
+                f"arc in plane {_PLANE_G[self.plane]} ({pname}) needs axes {fl} and {sl}; "
+                f"this machine has {' '.join(self.axes)}",
+                "G",
+            )
+        na = idx.get(nl, -1)
+        feed = self.feed_mm_s
+        if feed <= 0.0:
+            raise _BlockError(_ZERO_FEED, "G")
+        turns = 1
+        if "P" in vals:
+            p = vals["P"]
+            if p != int(p) or p < 1:
+                raise _BlockError(f"P (number of turns) must be a whole number >= 1, got P{p:g}", "P")
+            if p > _MAX_TURNS:
+                raise _BlockError(f"P{p:g}: more than {_MAX_TURNS} turns", "P")
+            turns = int(p)
+        pos = self.pos
+        x0, y0, x1, y1 = pos[fa], pos[sa], target[fa], target[sa]
+        try:
+            if "R" in vals:
+                if "I" in vals or "J" in vals or "K" in vals:
+                    raise _BlockError("mixed radius (R) and centre (I/J/K) format for arc", "R")
+                cx, cy = center_from_radius(x0, y0, x1, y1, vals["R"] * scale, cw)
+                r0 = r1 = math.hypot(x0 - cx, y0 - cy)
+            else:
+                if bad in vals:
+                    raise _BlockError(
+                        f"{bad} word given for arc in the {pname} plane ({_PLANE_G[self.plane]})", bad
+                    )
+                if fc not in vals and sc not in vals:
+                    raise _BlockError("arc needs R or a centre: R, I, J and K words all missing", "G")
+                if self.arc_absolute:
+                    if fc not in vals or sc not in vals:
+                        raise _BlockError(f"G90.1 (absolute arc centre) needs both {fc} and {sc}",
+                                          fc if fc not in vals else sc)
+                    cx = vals[fc] * scale + self.offset[fa]
+                    cy = vals[sc] * scale + self.offset[sa]
+                else:
+                    cx = x0 + vals.get(fc, 0.0) * scale
+                    cy = y0 + vals.get(sc, 0.0) * scale
+                r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.inch, (fl, sl))
+                if abs(r1 - r0) <= 1e-12 * r0:
+                    r1 = r0
+            a0, sweep = sweep_angle(x0, y0, x1, y1, cx, cy, cw, turns)
+        except ArcError as e:
+            raise _BlockError(str(e), "R" if "R" in vals else "G") from None
+        rise = target[na] - pos[na] if na >= 0 else 0.0
+        arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, rise, turns)
+        length = math.hypot(r0 * sweep, rise) if r0 == r1 else spiral_length_mm(r0, r1, sweep, rise)
+        self.emit(target, _ARC, feed, length, arc, line_no)
+
+
+def parse_program(
+    text: str,
+    name: str = "<string>",
+    machine=None,
+    start_position=None,
+    *,
+    block_delete: bool = True,
+    max_errors: int = MAX_ERRORS,
+) -> Program:
+    """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
+
+    ``machine``: a planner.machine.MachineSpec (axes, work offsets); default 3-axis XYZ.
+    ``start_position``: machine position before the first move (default all zeros).
+    ``block_delete``: lines starting with '/' are skipped (switch on) or run (off).
+    """
+    interp = _Interpreter(name, machine, start_position, block_delete, max_errors)
+    # The parse allocates tens of thousands of small acyclic objects; the cyclic GC would
+    # re-scan them many times over (about 20 % of the time). Paused for the parse only.
+    was_enabled = gc.isenabled()
+    gc.disable()
+    try:
+        return interp.run(text)
+    finally:
+        if was_enabled:
+            gc.enable()
+
+
+def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
+    """Read and interpret a G-code file (UTF-8, falling back to Latin-1)."""
+    try:
+        data = open(path, "rb").read()  # noqa: SIM115
+    except OSError as exc:
+        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return parse_program(text, str(path), machine, **kwargs)

@@ -1,0 +1,326 @@
+"""RS274/NGC line reader: comments, words, numbers, and LinuxCNC expressions/parameters.
+
+One compiled-regex pass per ordinary line (the fast path). Lines with ``[``, ``#`` or
+``O`` go through a small recursive-descent reader for LinuxCNC's expression syntax
+(``X[1 + 2 * sqrt[2]]``, ``#<name> = 5``, ``Z#<name>``); see the LinuxCNC G-code manual,
+chapters "O codes"/"Numbered and named parameters"/"Expressions".
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+__all__ = ["LexError", "Params", "read_line", "original_column"]
+
+# A word: letter + number with optional sign, digits with optional dot, or a leading dot.
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
+_WORD_RE = re.compile(r"([A-Z])(" + _NUM + r")")
+_LINE_RE = re.compile(r"(?:[A-Z]" + _NUM + r")*")
+_COMMENT_RE = re.compile(r"\([^()]*\)")
+
+
+class LexError(Exception):
+    """A syntax error at a 0-based index into the compact (comment- and space-free) line."""
+
+    def __init__(self, message: str, index: int = 0, raw_col: int | None = None):
+        super().__init__(message)
+        self.message = message
+        self.index = index
+        self.raw_col = raw_col  # 1-based column in the raw line if already known
+
+
+class Params:
+    """Numbered (#1-#5399) and named (#<name>) parameters; unset numbered ones read as 0."""
+
+    def __init__(self) -> None:
+        self.numbered: dict[int, float] = {}
+        self.named: dict[str, float] = {}
+
+
+def _strip_comments(raw: str) -> str:
+    """Remove ( ) comments and everything after ';'. Raises LexError with the raw column."""
+    out = []
+    i = 0
+    n = len(raw)
+    while i < n:
+        ch = raw[i]
+        if ch == "(":
+            j = raw.find(")", i + 1)
+            if j < 0:
+                raise LexError("unclosed comment: '(' without ')'", raw_col=i + 1)
+            k = raw.find("(", i + 1, j)
+            if k >= 0:
+                raise LexError("nested comment: '(' inside a comment", raw_col=k + 1)
+            i = j + 1
+            out.append(" ")  # a comment separates like a space (it is removed anyway)
+            continue
+        if ch == ";":
+            break
+        if ch == ")":
+            raise LexError("')' without '('", raw_col=i + 1)
+        out.append(ch)
+        i += 1
+    return "".join(out)
+
+
+def original_column(raw: str, index: int) -> int:
+    """1-based column in ``raw`` of the character at ``index`` of the compact line."""
+    count = 0
+    i = 0
+    n = len(raw)
+    while i < n:
+        ch = raw[i]
+        if ch == "(":
+            j = raw.find(")", i + 1)
+            i = n if j < 0 else j + 1
+            continue
+        if ch == ";":
+            break
+        if not ch.isspace():
+            if count == index:
+                return i + 1
+            count += 1
+        i += 1
+    return max(1, min(n, i) + (1 if index >= count else 0))
+
+
+def compact(raw: str) -> str:
+    """The line without comments and whitespace, upper case (what the words are read from)."""
+    code = _strip_comments(raw) if ("(" in raw or ";" in raw or ")" in raw) else raw
+    return "".join(code.split()).upper()
+
+
+def read_line(raw: str, params: Params | None) -> tuple[list, list[tuple[object, float]]]:
+    """Words of one line (block delete and '%' handled by the caller).
+
+    Returns (words, assignments): words as (LETTER, value) in order, value a number's text
+    (fast path) or a float (expression path): ``float(value)`` works for both; assignments
+    as (key, value) for parameter settings, applied after the line (LinuxCNC rule).
+    """
+    code = compact(raw)
+    if "#" in code or "[" in code or "O" in code:
+        return _Reader(code, params).read()
+    m = _LINE_RE.match(code)
+    if m.end() != len(code):
+        raise LexError(_bad_char_message(code, m.end()), m.end())
+    return _WORD_RE.findall(code), []  # values as text here; the caller applies float()
+
+
+def _bad_char_message(code: str, i: int) -> str:
+    ch = code[i]
+    if ch.isalpha():
+        return f"letter '{ch}' without a number"
+    if ch.isdigit() or ch in ".+-":
+        return f"unexpected number text '{code[i:i + 8]}' (two decimal points, or a number without a letter?)"
+    return f"unexpected character '{ch}'"
+
+
+# ---------------------------------------------------------------- expressions (slow path)
+
+_FUNCS_1 = {
+    "ABS": abs,
+    "ACOS": lambda v: math.degrees(math.acos(v)),
+    "ASIN": lambda v: math.degrees(math.asin(v)),
+    "COS": lambda v: math.cos(math.radians(v)),
+    "SIN": lambda v: math.sin(math.radians(v)),
+    "TAN": lambda v: math.tan(math.radians(v)),
+    "EXP": math.exp,
+    "LN": math.log,
+    "SQRT": math.sqrt,
+    "FIX": lambda v: float(math.floor(v)),
+    "FUP": lambda v: float(math.ceil(v)),
+    "ROUND": lambda v: float(math.floor(v + 0.5)) if v >= 0 else -float(math.floor(-v + 0.5)),
+}
+# Binary operators by precedence level (LinuxCNC: ** > * / MOD > + - > comparisons > logic).
+_OPS = [
+    ("AND", 1), ("OR", 1), ("XOR", 1),
+    ("EQ", 2), ("NE", 2), ("GT", 2), ("GE", 2), ("LT", 2), ("LE", 2),
+    ("MOD", 4), ("**", 5), ("+", 3), ("-", 3), ("*", 4), ("/", 4),
+]
+_OPS_BY_LENGTH = sorted(_OPS, key=lambda o: -len(o[0]))
+_NUM_RE = re.compile(_NUM)
+_NAME_RE = re.compile(r"[A-Z]+")
+_MAX_NUMBERED = 5399
+
+
+class _Reader:
+    def __init__(self, code: str, params: Params | None):
+        self.s = code
+        self.i = 0
+        self.params = params if params is not None else Params()
+
+    def fail(self, message: str) -> LexError:
+        return LexError(message, min(self.i, max(len(self.s) - 1, 0)))
+
+    def read(self) -> tuple[list[tuple[str, float]], list[tuple[object, float]]]:
+        s = self.s
+        words: list[tuple[str, float]] = []
+        assigns: list[tuple[object, float]] = []
+        if s.startswith("O"):
+            if re.fullmatch(r"O\d+", s):  # Fanuc-style program number line: "O0001"
+                return [("O", float(s[1:]))], []
+            self.i = 0
+            raise self.fail("O-word subroutines and control flow (o-codes) are not supported")
+        while self.i < len(s):
+            ch = s[self.i]
+            if ch == "#":
+                start = self.i
+                key = self.param_key()
+                if self.i < len(s) and s[self.i] == "=":
+                    self.i += 1
+                    assigns.append((key, self.value()))
+                else:
+                    self.i = start
+                    raise self.fail("parameter reference without a word letter (expected '#...=value')")
+            elif "A" <= ch <= "Z":
+                if ch == "O":
+                    raise self.fail("O-word subroutines and control flow (o-codes) are not supported")
+                self.i += 1
+                words.append((ch, self.value()))
+            else:
+                raise self.fail(f"unexpected character '{ch}'")
+        return words, assigns
+
+    # value: number | [expr] | #param | FUNC[expr] | sign + one of those
+    def value(self) -> float:
+        s = self.s
+        if self.i >= len(s):
+            raise self.fail("missing value at end of line")
+        ch = s[self.i]
+        if ch in "+-" and self.i + 1 < len(s) and s[self.i + 1] in "[#":
+            self.i += 1
+            v = self.value()
+            return -v if ch == "-" else v
+        if ch == "[":
+            self.i += 1
+            v = self.expr()
+            self.expect("]")
+            return v
+        if ch == "#":
+            return self.param_value()
+        if "A" <= ch <= "Z":
+            return self.function()
+        m = _NUM_RE.match(s, self.i)
+        if not m:
+            raise self.fail(f"expected a number, found '{s[self.i:self.i + 8]}'")
+        self.i = m.end()
+        return float(m.group())
+
+    def expect(self, text: str) -> None:
+        if not self.s.startswith(text, self.i):
+            raise self.fail(f"expected '{text}'")
+        self.i += len(text)
+
+    def function(self) -> float:
+        s = self.s
+        m = _NAME_RE.match(s, self.i)
+        name = m.group() if m else ""
+        if name == "ATAN":
+            self.i = m.end()
+            self.expect("[")
+            a = self.expr()
+            self.expect("]")
+            self.expect("/")
+            self.expect("[")
+            b = self.expr()
+            self.expect("]")
+            return math.degrees(math.atan2(a, b))
+        if name == "EXISTS":
+            self.i = m.end()
+            self.expect("[")
+            key = self.param_key()
+            self.expect("]")
+            return 1.0 if self.lookup(key, must=False) is not None else 0.0
+        for fname, fn in _FUNCS_1.items():
+            if name.startswith(fname) and s.startswith(fname + "[", self.i):
+                self.i += len(fname) + 1
+                a = self.expr()
+                self.expect("]")
+                try:
+                    return float(fn(a))
+                except (ValueError, OverflowError):
+                    raise self.fail(f"{fname}[{a:g}] is outside the function's domain") from None
+        raise self.fail(f"unknown function or misplaced letters '{name[:10]}'")
+
+    def expr(self, min_level: int = 1) -> float:
+        """Precedence climbing; ** is right-associative."""
+        left = self.unary()
+        while True:
+            op = self.peek_op()
+            if op is None or op[1] < min_level:
+                return left
+            name, level = op
+            self.i += len(name)
+            right = self.expr(level if name == "**" else level + 1)
+            left = self.apply(name, left, right)
+
+    def peek_op(self) -> tuple[str, int] | None:
+        s = self.s
+        for name, level in _OPS_BY_LENGTH:
+            if s.startswith(name, self.i):
+                return name, level
+        return None
+
+    def unary(self) -> float:
+        s = self.s
+        if (self.i + 1 < len(s) and s[self.i] in "+-"
+                and (s[self.i + 1] in "[#" or "A" <= s[self.i + 1] <= "Z")):
+            ch = s[self.i]
+            self.i += 1
+            v = self.unary()
+            return -v if ch == "-" else v
+        return self.value()
+
+    def apply(self, op: str, a: float, b: float) -> float:
+        try:
+            if op == "+":
+                return a + b
+            if op == "-":
+                return a - b
+            if op == "*":
+                return a * b
+            if op == "/":
+                return a / b
+            if op == "**":
+                return float(a**b)
+            if op == "MOD":
+                r = math.fmod(a, b)
+                return r + abs(b) if r < 0.0 else r  # LinuxCNC: result in [0, |b|)
+        except (ZeroDivisionError, OverflowError, ValueError, TypeError):
+            raise self.fail(f"arithmetic error: {a:g} {op} {b:g}") from None
+        return float(
+            {
+                "EQ": a == b, "NE": a != b, "GT": a > b, "GE": a >= b, "LT": a < b, "LE": a <= b,
+                "AND": bool(a) and bool(b), "OR": bool(a) or bool(b), "XOR": bool(a) != bool(b),
+            }[op]
+        )
+
+    def param_key(self) -> object:
+        s = self.s
+        self.expect("#")
+        if self.i < len(s) and s[self.i] == "<":
+            j = s.find(">", self.i)
+            if j < 0:
+                raise self.fail("named parameter without closing '>'")
+            name = s[self.i + 1:j]
+            if not name:
+                raise self.fail("empty parameter name '#<>'")
+            self.i = j + 1
+            return name
+        v = self.value()
+        n = int(round(v))
+        if abs(v - n) > 1e-9 or not 1 <= n <= _MAX_NUMBERED:
+            raise self.fail(f"parameter number #{v:g} out of range (1-{_MAX_NUMBERED})")
+        return n
+
+    def lookup(self, key: object, must: bool = True) -> float | None:
+        if isinstance(key, str):
+            v = self.params.named.get(key)
+            if v is None and must:
+                raise self.fail(f"named parameter #<{key.lower()}> is not defined")
+            return v
+        return self.params.numbered.get(key, 0.0)  # type: ignore[arg-type]
+
+    def param_value(self) -> float:
+        return self.lookup(self.param_key())  # type: ignore[return-value]

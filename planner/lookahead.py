@@ -1,0 +1,358 @@
+"""Speeds at the joints between moves (paper section 3.2), and the look-ahead passes.
+
+Units as in Klipper's toolhead: ``_v`` mm/s, ``_a`` mm/s^2, ``_j`` mm/s^3, lengths mm.
+Rotary axes: per-axis limits in deg/s, deg/s^2, deg/s^3, tangent components in deg/mm.
+
+Two modes (``planner.mode``):
+
+* ``"paper"`` - Table 3 of the paper, literally. Reading (documented in METHOD.md section 4):
+  chords d10 = P1 - P0 of the current move and d21 = P2 - P1 to the end of the next move,
+  both projected on the current arc's plane (first, second axes); beta' = acos of their
+  normalised dot product, beta = 180 - beta' (degrees); Norm1 when the turn d10 x d21 has
+  the sense of the current arc (left for G03, right for G02; a zero cross product counts as
+  Norm1). Same direction (G02->G02, G03->G03): Norm1 beta<90: Vmax, beta>=90: Vmax/2;
+  Norm-1 beta<90: 0, beta>=90: Vmax/2. Opposite direction: beta<90: 0, beta>=90: Vmax.
+  Any joint to or from G00/G01, or with a zero chord (full circles), or between arcs in
+  different planes: 0. Cruise at min(F, Vmax) (rapids: the rapid speed); tangential A and J
+  are the path limits; no per-axis or centripetal limit (the limit report shows the result).
+
+* ``"lookahead"`` (default) - caps from the real geometry:
+  - cruise speed of a move: min(F, Vmax) (rapids: rapid speed), every axis' velocity limit
+    through its tangent component (rotary included); on arcs the centripetal acceleration
+    kappa v^2 <= cos(30 deg) A_plane and the centripetal jerk kappa |omega| v^3
+    (= v^3 / R^2 on a circle) <= J_plane / 2.
+  - tangential acceleration and jerk of a move: the path limits, every axis' limit through
+    its tangent component, and on arcs what the in-plane budget leaves. The acceleration
+    split follows LinuxCNC's trajectory planner (normal <= cos 30 = 0.866, tangential gets
+    at least sin 30 = 0.5 of the budget): the in-plane acceleration vector
+    sqrt((rho a_t)^2 + (kappa v^2)^2) stays <= A_plane, so each in-plane axis does. The
+    in-plane jerk vector is rho (j_t - kappa |omega| v^3 / rho) e_theta - 3 kappa v a_t e_r:
+    the cross term 3 kappa v a_t gets <= 0.6 J_plane (a_t is lowered if needed), the
+    centripetal jerk <= 0.5 J_plane, and j_t gets the rest (>= 0.3 J_plane), so
+    |jerk vector| <= J_plane. A_plane, J_plane: the smaller limit of the two plane axes.
+  - tangent break at a joint: the velocity change v |t2 - t1| happens within one sample Ts;
+    for every axis k: v |dt_k| / Ts + kappa v^2 + 2 Ts J_k <= A_k (the arcs' centripetal
+    acceleration and the jerk-limited tangential acceleration one sample either side share
+    the budget) - solved exactly as a quadratic in v.
+  - curvature jump at a joint: the normal acceleration v^2 |d(kappa n)_k| changes within one
+    sample: v^2 |d(kappa n)_k| <= J_k Ts for every axis.
+  - full stop at stopping events (M00 M01 M02 M30 G04 M06 M03/M04/M05/S), under G61, at the
+    end of the program.
+
+Both modes then run a backward and a forward pass with the exact reachable speed of the
+jerk-limited profile (``profile.reachable_speed_scalar``), so every move goes from its
+start speed to its end speed within its length. Planning runs in windows of moves: the
+backward pass from an assumed stop at the window's end is final up to the last joint whose
+cap holds whatever the rest of the program allows, the forward pass is causal, so the
+windowed plan equals the whole-program plan (tested). "Final" needs care: the reachable speed is not monotone in the start speed (a faster start leaves less time to
+accelerate), so a joint is final only where its cap is below the least speed reachable
+over the next move from any start speed; stops always are.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.errors import PlannerError
+from planner.machine import MachineSpec
+from planner.movetable import MoveTable, take_rows
+from planner.profile import reachable_speed_lower_bound, reachable_speed_scalar
+from planner.program import EventKind, Program
+
+__all__ = [
+    "ACCEL_NORMAL_SHARE",
+    "JERK_CROSS_SHARE",
+    "JERK_NORMAL_SHARE",
+    "LimitSet",
+    "MoveLimits",
+    "PlannedBlock",
+    "backward_pass",
+    "forward_pass",
+    "joint_caps",
+    "move_limits",
+    "plan_blocks",
+    "plan_whole",
+    "stop_and_dwell",
+]
+
+ACCEL_NORMAL_SHARE = math.cos(math.radians(30.0))  # LinuxCNC's BLEND_ACC_RATIO_NORMAL
+JERK_NORMAL_SHARE = 0.5
+JERK_CROSS_SHARE = 0.6
+MODES = ("lookahead", "paper")
+
+
+@dataclass(frozen=True, slots=True)
+class LimitSet:
+    """Path and axis limits as arrays (per-axis values in mm or deg units)."""
+
+    v_path: float
+    a_path: float
+    j_path: float
+    rapid_v: float
+    ts_s: float
+    v_axis: np.ndarray
+    a_axis: np.ndarray
+    j_axis: np.ndarray
+
+    @staticmethod
+    def from_machine(machine: MachineSpec, ts_s: float | None = None) -> LimitSet:
+        lim = machine.limits
+        return LimitSet(
+            v_path=lim.v_max_mm_s, a_path=lim.a_max_mm_s2, j_path=lim.j_max_mm_s3,
+            rapid_v=lim.rapid_mm_s, ts_s=machine.planner.ts_s if ts_s is None else ts_s,
+            v_axis=np.array([a.v_max for a in machine.axes], dtype=float),
+            a_axis=np.array([a.a_max for a in machine.axes], dtype=float),
+            j_axis=np.array([a.j_max for a in machine.axes], dtype=float),
+        )
+
+
+@dataclass(frozen=True, slots=True)
+class MoveLimits:
+    """Per-move cruise speed cap and tangential limits (arrays of shape (n,))."""
+
+    vc: np.ndarray  # cruise speed cap
+    a_t: np.ndarray  # tangential acceleration limit of the profile
+    j_t: np.ndarray  # tangential jerk limit of the profile
+    v_prog: np.ndarray  # programmed speed limit min(F, Vmax) (rapids: rapid speed)
+
+
+def _safe_div(num, den):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), np.inf)
+
+
+def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
+    n = len(table)
+    rapid = table.is_rapid
+    v_prog = np.where(rapid, lim.rapid_v, np.minimum(table.feed, lim.v_path))
+    if mode == "paper":
+        return MoveLimits(v_prog.copy(), np.full(n, lim.a_path), np.full(n, lim.j_path), v_prog)
+    if mode != "lookahead":
+        raise PlannerError(f"planner mode must be one of {MODES}, got {mode!r}")
+    arc = table.is_arc
+    # Axes whose tangent component is constant along the move (all for lines; on arcs all but
+    # the plane's two): a_k = t_k a_t, j_k = t_k j_t, v_k = t_k v.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tc = np.abs(table.end - table.start) / table.length[:, None]
+    k = np.nonzero(arc)[0]
+    tc[k, table.first[k]] = 0.0
+    tc[k, table.second[k]] = 0.0
+    vc = np.minimum(v_prog, np.min(_safe_div(lim.v_axis[None, :], tc), axis=1))
+    a_t = np.minimum(lim.a_path, np.min(_safe_div(lim.a_axis[None, :], tc), axis=1))
+    j_t = np.minimum(lim.j_path, np.min(_safe_div(lim.j_axis[None, :], tc), axis=1))
+    if k.size:
+        rho, kappa, omega = table.arc_terms()
+        rho, kappa, omega = rho[k], kappa[k], omega[k]
+        f, s = table.first[k], table.second[k]
+        v_pl = np.minimum(lim.v_axis[f], lim.v_axis[s])
+        a_pl = np.minimum(lim.a_axis[f], lim.a_axis[s])
+        j_pl = np.minimum(lim.j_axis[f], lim.j_axis[s])
+        v = np.minimum(vc[k], _safe_div(v_pl, rho))
+        v = np.minimum(v, np.sqrt(ACCEL_NORMAL_SHARE * a_pl / kappa))
+        v = np.minimum(v, np.cbrt(JERK_NORMAL_SHARE * j_pl / (kappa * omega)))
+        a_n = kappa * v * v
+        at = np.minimum(a_t[k], _safe_div(np.sqrt(np.maximum(a_pl * a_pl - a_n * a_n, 0.0)), rho))
+        at = np.minimum(at, _safe_div(JERK_CROSS_SHARE * j_pl, 3.0 * kappa * v))
+        j_n = kappa * omega * v**3
+        cross = 3.0 * kappa * v * at
+        jt = np.minimum(j_t[k], _safe_div(np.sqrt(np.maximum(j_pl * j_pl - cross * cross, 0.0)) - j_n, rho))
+        vc[k], a_t[k], j_t[k] = v, at, jt
+    if np.any(~(vc > 0)) or np.any(~(a_t > 0)) or np.any(~(j_t > 0)):
+        i = int(np.argmax(~((vc > 0) & (a_t > 0) & (j_t > 0))))
+        raise PlannerError(f"line {int(table.line[i])}: no positive speed/acceleration/jerk limit "
+                           f"(v {vc[i]:.4g}, a {a_t[i]:.4g}, j {j_t[i]:.4g})")
+    return MoveLimits(vc, a_t, j_t, v_prog)
+
+
+def _paper_joint_caps(table: MoveTable, vc: np.ndarray, lim: LimitSet) -> np.ndarray:
+    """Table 3 at the n-1 joints between consecutive moves of ``table``."""
+    n = len(table)
+    if n < 2:
+        return np.zeros(0)
+    cur = np.arange(n - 1)
+    nxt = cur + 1
+    both_arcs = table.is_arc[cur] & table.is_arc[nxt]
+    f, s = table.first[cur], table.second[cur]
+    p0, p1, p2 = table.start[cur], table.end[cur], table.end[nxt]
+    d10 = np.stack([p1[cur, f] - p0[cur, f], p1[cur, s] - p0[cur, s]], axis=1)
+    d21 = np.stack([p2[cur, f] - p1[cur, f], p2[cur, s] - p1[cur, s]], axis=1)
+    n10 = np.hypot(d10[:, 0], d10[:, 1])
+    n21 = np.hypot(d21[:, 0], d21[:, 1])
+    ok = both_arcs & (n10 > 1e-9) & (n21 > 1e-9)
+    ok &= (table.first[nxt] == f) & (table.second[nxt] == s)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cosb = np.clip((d10 * d21).sum(axis=1) / (n10 * n21), -1.0, 1.0)
+    beta = 180.0 - np.degrees(np.arccos(cosb))
+    cross = d10[:, 0] * d21[:, 1] - d10[:, 1] * d21[:, 0]
+    ccw = table.sweep[cur] > 0.0
+    norm1 = np.where(ccw, cross >= 0.0, cross <= 0.0)
+    same_dir = (table.sweep[cur] > 0.0) == (table.sweep[nxt] > 0.0)
+    acute = beta < 90.0
+    vmax = lim.v_path
+    same = np.where(norm1, np.where(acute, vmax, vmax / 2), np.where(acute, 0.0, vmax / 2))
+    opposite = np.where(acute, 0.0, vmax)
+    cap = np.where(same_dir, same, opposite)
+    cap = np.where(ok, cap, 0.0)
+    return np.minimum(cap, np.minimum(vc[cur], vc[nxt]))
+
+
+def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np.ndarray:
+    """Speed caps at the n-1 joints between consecutive moves of ``table`` (no stops)."""
+    n = len(table)
+    if n < 2:
+        return np.zeros(0)
+    if mode == "paper":
+        return _paper_joint_caps(table, ml.vc, lim)
+    cur = slice(0, n - 1)
+    nxt = slice(1, n)
+    cap = np.minimum(ml.vc[cur], ml.vc[nxt])
+    t_start, t_end = table.end_tangents()
+    c_start, c_end = table.end_curvature_vectors()
+    _, kappa, _ = table.arc_terms()
+    ts = lim.ts_s
+    # Tangent break: kappa v^2 + (|dt_k| / Ts) v <= A_k - 2 Ts J_k, per axis.
+    dt = np.abs(t_start[nxt] - t_end[cur])
+    dt = np.where(dt > 1e-12, dt, 0.0)
+    b = dt / ts
+    c = np.maximum(lim.a_axis - 2.0 * ts * lim.j_axis, 0.1 * lim.a_axis)[None, :]
+    kap = np.maximum(kappa[cur], kappa[nxt])[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v_break = np.where(b > 0.0, 2.0 * c / (b + np.sqrt(b * b + 4.0 * kap * c)), np.inf)
+    cap = np.minimum(cap, v_break.min(axis=1))
+    # Curvature jump: v^2 |d(kappa n)_k| <= J_k Ts.
+    dk = np.abs(c_start[nxt] - c_end[cur])
+    dk = np.where(dk > 1e-12, dk, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v_curv = np.where(dk > 0.0, np.sqrt(lim.j_axis[None, :] * ts / dk), np.inf)
+    return np.minimum(cap, v_curv.min(axis=1))
+
+
+def stop_and_dwell(program: Program) -> tuple[np.ndarray, np.ndarray, float]:
+    """(stop after move i (n,), dwell seconds after move i (n,), dwell before the first move)."""
+    n = len(program.moves)
+    stop = np.zeros(n, dtype=bool)
+    dwell = np.zeros(n)
+    before = 0.0
+    for ev in program.events:
+        i = ev.after_move
+        if ev.kind == EventKind.DWELL:
+            if i < 0:
+                before += max(ev.value, 0.0)
+            elif i < n:
+                dwell[i] += max(ev.value, 0.0)
+        if ev.stops and 0 <= i < n:
+            stop[i] = True
+    if n:
+        stop[-1] = True
+    return stop, dwell, before
+
+
+# -- passes ---------------------------------------------------------------------------------
+def backward_pass(v: list[float], cap: list[float], length, a_t, j_t, r0, lo: int = 0) -> None:
+    """v[j] = min(cap[j], reach(v[j+1], L_j)) for j = len-2 .. lo+1 (v[lo] is fixed, in place).
+
+    ``r0[j]`` is a lower bound of reach(v, L_j) for every v (``reachable_speed_lower_bound``;
+    reach is not monotone in v): where cap[j] <= r0[j] the cap holds without solving.
+    """
+    for j in range(len(v) - 2, lo, -1):
+        cj = cap[j]
+        nxt = v[j + 1]
+        if cj <= nxt or cj <= r0[j]:
+            v[j] = cj
+        else:
+            r = reachable_speed_scalar(nxt, length[j], a_t[j], j_t[j])
+            v[j] = cj if cj <= r else r
+
+
+def forward_pass(v: list[float], length, a_t, j_t, r0, lo: int = 0, hi: int | None = None) -> None:
+    """v[j+1] = min(v[j+1], reach(v[j], L_j)) for j = lo .. hi-1 (in place)."""
+    hi = len(v) - 1 if hi is None else hi
+    for j in range(lo, hi):
+        nxt = v[j + 1]
+        if nxt <= v[j] or nxt <= r0[j]:
+            continue
+        r = reachable_speed_scalar(v[j], length[j], a_t[j], j_t[j])
+        if r < nxt:
+            v[j + 1] = r
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class PlannedBlock:
+    """Consecutive moves with final speeds: ``table`` rows are moves first..first+n-1."""
+
+    first: int
+    table: MoveTable
+    limits: MoveLimits
+    vs: np.ndarray
+    ve: np.ndarray
+    dwell_after: np.ndarray
+
+
+def _window(program: Program, lim: LimitSet, mode: str, a: int, b: int, stop: np.ndarray):
+    table = MoveTable.from_moves(program.moves[a:b], len(program.axes))
+    ml = move_limits(table, lim, mode)
+    caps = np.empty(b - a + 1)
+    caps[1:-1] = joint_caps(table, ml, lim, mode)
+    caps[1:] = np.where(stop[a:b] | table.exact_stop, 0.0, caps[1:])
+    caps[-1] = 0.0  # assumed stop at the window's end (exact at the program's end)
+    r0 = reachable_speed_lower_bound(table.length, ml.a_t, ml.j_t)
+    return table, ml, caps, r0
+
+
+def plan_blocks(program: Program, lim: LimitSet, mode: str = "lookahead",
+                window: int = 256) -> Iterator[PlannedBlock]:
+    """Plan ``program`` window by window; yields blocks whose speeds are final."""
+    n = len(program.moves)
+    stop, dwell, _ = stop_and_dwell(program)
+    a = 0
+    v_a = 0.0
+    w = max(int(window), 2)
+    while a < n:
+        b = min(n, a + w)
+        table, ml, caps, r0 = _window(program, lim, mode, a, b, stop)
+        length, at, jt = table.length.tolist(), ml.a_t.tolist(), ml.j_t.tolist()
+        r0l = r0.tolist()
+        v = caps.tolist()
+        v[0] = v_a
+        capl = caps.tolist()
+        backward_pass(v, capl, length, at, jt, r0l)
+        if b == n:
+            k = b - a
+        else:
+            # Final: a joint whose cap holds whatever comes after it (cap <= the least speed
+            # reachable over the move after it, from any speed).
+            k = 0
+            for j in range(b - a - 1, 0, -1):
+                if capl[j] <= r0l[j]:
+                    k = j
+                    break
+            if k == 0:  # nothing final yet: look further ahead
+                w *= 2
+                continue
+        forward_pass(v, length, at, jt, r0l, 0, k)
+        va = np.asarray(v[: k + 1])
+        sl = slice(0, k)
+        sub = table if k == len(table) else take_rows(table, sl)
+        yield PlannedBlock(a, sub, MoveLimits(ml.vc[sl], ml.a_t[sl], ml.j_t[sl], ml.v_prog[sl]),
+                           va[:-1].copy(), va[1:].copy(), dwell[a:a + k].copy())
+        a += k
+        v_a = v[k]
+        w = max(int(window), 2)
+
+
+def plan_whole(program: Program, lim: LimitSet, mode: str = "lookahead") -> tuple[np.ndarray, MoveLimits]:
+    """Reference: both passes over the whole program at once. Returns (v at n+1 joints, limits)."""
+    n = len(program.moves)
+    stop, _, _ = stop_and_dwell(program)
+    table, ml, caps, r0 = _window(program, lim, mode, 0, n, stop)
+    v = caps.tolist()
+    v[0] = 0.0
+    length, at, jt, r0l = table.length.tolist(), ml.a_t.tolist(), ml.j_t.tolist(), r0.tolist()
+    backward_pass(v, caps.tolist(), length, at, jt, r0l)
+    forward_pass(v, length, at, jt, r0l)
+    return np.asarray(v), ml
+

@@ -1,0 +1,259 @@
+"""Moves packed into flat NumPy arrays, so geometry is evaluated for many moves at once.
+
+One row per move (Klipper's "one flat record per move"): start, end, length, feed, line
+and, for arcs, the plane's axis columns, centre, radii, start angle, sweep and rise.
+``positions(row, u)`` is the exact geometry of ``Move.evaluate`` (lines: linear in u;
+circles and helices: the angle is linear in u, since |dq/du| is constant), vectorised over
+samples of many different moves. Spirals (I/J/K radius mismatch within tolerance) are rare
+and fall back to the move's own exact ``evaluate``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.program import Move, MoveKind
+
+__all__ = ["MoveTable", "concat_tables", "contour_error", "take_rows"]
+
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
+_GL_X = (_GL_X + 1.0) * 0.5
+_GL_W = _GL_W * 0.5
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class MoveTable:
+    moves: tuple[Move, ...]
+    index: np.ndarray  # (n,) int64 global move index
+    line: np.ndarray  # (n,) int32
+    kind: np.ndarray  # (n,) int8 MoveKind
+    start: np.ndarray  # (n, d)
+    end: np.ndarray  # (n, d)
+    length: np.ndarray  # (n,)
+    feed: np.ndarray  # (n,) mm/s, inf for rapids
+    exact_stop: np.ndarray  # (n,) bool
+    is_arc: np.ndarray  # (n,) bool
+    spiral: np.ndarray  # (n,) bool
+    first: np.ndarray  # (n,) int64 (0 for lines)
+    second: np.ndarray
+    normal: np.ndarray  # -1 when none
+    cx: np.ndarray
+    cy: np.ndarray
+    r0: np.ndarray
+    r1: np.ndarray
+    theta0: np.ndarray
+    sweep: np.ndarray
+    rise: np.ndarray
+
+    @staticmethod
+    def from_moves(moves: tuple[Move, ...] | list[Move], n_axes: int) -> MoveTable:
+        moves = tuple(moves)
+        n = len(moves)
+        if n:
+            start = np.array([m.start for m in moves], dtype=float).reshape(n, n_axes)
+            end = np.array([m.end for m in moves], dtype=float).reshape(n, n_axes)
+        else:
+            start = np.zeros((0, n_axes))
+            end = np.zeros((0, n_axes))
+        rows = [(m.index, m.line, int(m.kind), m.length_mm, m.feed_mm_s, m.exact_stop) for m in moves]
+        cols = list(zip(*rows)) if rows else [()] * 6
+        arc_vals = np.zeros((n, 10))
+        is_arc = np.zeros(n, dtype=bool)
+        for i, m in enumerate(moves):
+            a = m.arc
+            if a is not None:
+                is_arc[i] = True
+                arc_vals[i] = (a.first_axis, a.second_axis, a.normal_axis, a.center[0], a.center[1],
+                               a.radius_start_mm, a.radius_end_mm, a.start_angle_rad, a.sweep_rad,
+                               a.rise_mm)
+        r0, r1 = arc_vals[:, 5], arc_vals[:, 6]
+        return MoveTable(
+            moves=moves,
+            index=np.asarray(cols[0], dtype=np.int64),
+            line=np.asarray(cols[1], dtype=np.int32),
+            kind=np.asarray(cols[2], dtype=np.int8),
+            start=start, end=end,
+            length=np.asarray(cols[3], dtype=float),
+            feed=np.asarray(cols[4], dtype=float),
+            exact_stop=np.asarray(cols[5], dtype=bool),
+            is_arc=is_arc,
+            spiral=is_arc & (r0 != r1),
+            first=arc_vals[:, 0].astype(np.int64), second=arc_vals[:, 1].astype(np.int64),
+            normal=np.where(is_arc, arc_vals[:, 2], -1).astype(np.int64),
+            cx=arc_vals[:, 3], cy=arc_vals[:, 4], r0=r0, r1=r1,
+            theta0=arc_vals[:, 7], sweep=arc_vals[:, 8], rise=arc_vals[:, 9],
+        )
+
+    def __len__(self) -> int:
+        return int(self.length.shape[0])
+
+    @property
+    def n_axes(self) -> int:
+        return int(self.start.shape[1])
+
+    @property
+    def is_rapid(self) -> np.ndarray:
+        return self.kind == int(MoveKind.RAPID)
+
+    # -- geometry -------------------------------------------------------------------------
+    def positions(self, row: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """Exact positions (N, d) of move ``row[k]`` at path length ``u[k]``."""
+        length = self.length[row]
+        frac = np.clip(u / length, 0.0, 1.0)
+        arc = self.is_arc[row]
+        if arc.any():
+            k = np.nonzero(arc)[0]
+            r = row[k]
+            sp = self.spiral[r]
+            if sp.any():
+                frac[k[sp]] = self._spiral_param(r[sp], u[k[sp]])
+        start = self.start[row]
+        q = start + frac[:, None] * (self.end[row] - start)
+        if arc.any():
+            fk = frac[k]
+            theta = self.theta0[r] + self.sweep[r] * fk
+            rad = self.r0[r] + (self.r1[r] - self.r0[r]) * fk
+            x = self.cx[r] + rad * np.cos(theta)
+            y = self.cy[r] + rad * np.sin(theta)
+            f, s = self.first[r], self.second[r]
+            if f.size and np.all(f == f[0]) and np.all(s == s[0]):  # one plane: plain columns
+                q[k, f[0]] = x
+                q[k, s[0]] = y
+            else:
+                q[k, f] = x
+                q[k, s] = y
+        done = frac >= 1.0
+        if done.any():
+            q[done] = self.end[row[done]]
+        return q
+
+    def _spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """Angle parameter t in [0, 1] at path length u on spirals (Newton on the exact length).
+
+        s(t) = t * sum_i w_i |p'(t x_i)| (16-point Gauss-Legendre, exact to rounding for these
+        nearly circular, smooth integrands), as ``planner.program`` computes the length.
+        """
+        length = self.length[r]
+        dr = self.r1[r] - self.r0[r]
+        w = self.sweep[r]
+        rise2 = self.rise[r] ** 2
+        r0 = self.r0[r]
+        u = np.clip(u, 0.0, length)
+        t = u / length
+        for _ in range(4):
+            tau = t[:, None] * _GL_X[None, :]
+            speed_pts = np.sqrt(dr[:, None] ** 2 + ((r0[:, None] + dr[:, None] * tau) * w[:, None]) ** 2
+                                + rise2[:, None])
+            s_t = t * (speed_pts @ _GL_W)
+            speed = np.sqrt(dr * dr + ((r0 + dr * t) * w) ** 2 + rise2)
+            t = np.clip(t - (s_t - u) / speed, 0.0, 1.0)
+        return t
+
+    def end_tangents(self) -> tuple[np.ndarray, np.ndarray]:
+        """Unit tangents dq/du (n, d) at the start and at the end of every move."""
+        n, d = len(self), self.n_axes
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lin = (self.end - self.start) / self.length[:, None]
+        t_start = lin.copy()
+        t_end = lin.copy()
+        k = np.nonzero(self.is_arc)[0]
+        if k.size:
+            w = self.sweep[k]
+            for frac, out in ((0.0, t_start), (1.0, t_end)):
+                theta = self.theta0[k] + w * frac
+                rad = self.r0[k] + (self.r1[k] - self.r0[k]) * frac
+                dr = self.r1[k] - self.r0[k]
+                d1f = dr * np.cos(theta) - rad * w * np.sin(theta)
+                d1s = dr * np.sin(theta) + rad * w * np.cos(theta)
+                speed = np.sqrt(d1f * d1f + d1s * d1s + self.rise[k] ** 2)
+                out[k] = (self.end[k] - self.start[k]) / speed[:, None]
+                out[k, self.first[k]] = d1f / speed
+                out[k, self.second[k]] = d1s / speed
+        del n, d
+        return t_start, t_end
+
+    def end_curvature_vectors(self) -> tuple[np.ndarray, np.ndarray]:
+        """Curvature vectors d2q/du2 (n, d) at the start and end (zero for lines)."""
+        c_start = np.zeros_like(self.start)
+        c_end = np.zeros_like(self.start)
+        k = np.nonzero(self.is_arc)[0]
+        if k.size:
+            omega = self.sweep[k] / self.length[k]  # rad per mm of path
+            for frac, out in ((0.0, c_start), (1.0, c_end)):
+                theta = self.theta0[k] + self.sweep[k] * frac
+                rad = self.r0[k] + (self.r1[k] - self.r0[k]) * frac
+                out[k, self.first[k]] = -rad * omega * omega * np.cos(theta)
+                out[k, self.second[k]] = -rad * omega * omega * np.sin(theta)
+        return c_start, c_end
+
+    def arc_terms(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """For arcs: (rho, kappa, |omega|): in-plane tangent norm, curvature, rad per mm.
+
+        Circle/helix: rho = R |omega|, kappa = R omega^2 (= R / (R^2 + c^2) for a helix),
+        in-plane jerk at constant speed v^3 kappa |omega| (= v^3 / R^2 for a circle).
+        Spirals use their larger radius (a conservative bound on all three).
+        """
+        with np.errstate(divide="ignore", invalid="ignore"):
+            omega = np.where(self.is_arc, np.abs(self.sweep) / self.length, 0.0)
+        rmax = np.maximum(self.r0, self.r1)
+        rho = np.where(self.is_arc, np.minimum(rmax * omega, 1.0), 0.0)
+        kappa = np.where(self.is_arc, rmax * omega * omega, 0.0)
+        return rho, kappa, omega
+
+
+def concat_tables(tables: list[MoveTable]) -> MoveTable:
+    """One table of the rows of several (consecutive) tables."""
+    if len(tables) == 1:
+        return tables[0]
+    vals = {"moves": sum((t.moves for t in tables), ())}
+    for name in MoveTable.__slots__:
+        if name != "moves":
+            vals[name] = np.concatenate([getattr(t, name) for t in tables])
+    return MoveTable(**vals)
+
+
+def take_rows(table: MoveTable, sl: slice) -> MoveTable:
+    """Rows ``sl`` of a table."""
+    return MoveTable(**{name: getattr(table, name)[sl] for name in MoveTable.__slots__})
+
+
+def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Distance (N,) of the points q from the programmed geometry of move ``row[k]``.
+
+    ``u`` (the samples' path parameter) only picks the turn of multi-turn arcs.
+
+    Lines: distance from the segment's line. Arcs: radial error in the plane and the error of
+    the other axes against their value at the point's actual angle (helix pitch included).
+    """
+    start = table.start[row]
+    delta = table.end[row] - start
+    rel = q - start
+    with np.errstate(divide="ignore", invalid="ignore"):
+        proj = np.clip((rel * delta).sum(axis=1) / (delta * delta).sum(axis=1), 0.0, 1.0)
+    proj = np.nan_to_num(proj)
+    err = rel - proj[:, None] * delta
+    arc = table.is_arc[row]
+    if arc.any():
+        k = np.nonzero(arc)[0]
+        r = row[k]
+        f, s = table.first[r], table.second[r]
+        px = q[k, f] - table.cx[r]
+        py = q[k, s] - table.cy[r]
+        ang = np.arctan2(py, px)
+        # Unwrap the angle next to the nominal angle of the point's own path parameter.
+        sweep = table.sweep[r]
+        nominal = table.theta0[r] + sweep * np.clip(u[k] / table.length[r], 0.0, 1.0)
+        ang = nominal + np.remainder(ang - nominal + np.pi, 2.0 * np.pi) - np.pi
+        frac = np.clip((ang - table.theta0[r]) / sweep, 0.0, 1.0)
+        radius = table.r0[r] + (table.r1[r] - table.r0[r]) * frac
+        other = q[k] - (start[k] + frac[:, None] * delta[k])
+        other[np.arange(k.size), f] = 0.0
+        other[np.arange(k.size), s] = 0.0
+        radial = np.hypot(px, py) - radius
+        err_k = np.sqrt(radial * radial + (other * other).sum(axis=1))
+        out = np.sqrt((err * err).sum(axis=1))
+        out[k] = err_k
+        return out
+    return np.sqrt((err * err).sum(axis=1))

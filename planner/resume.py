@@ -1,0 +1,172 @@
+"""Resuming a program part-way: split a move at path length u, build the remaining program,
+the modal state (spindle, tool) as of a line, and a safe approach move to a start point.
+
+Used by the machine controller after a fault (resume at the point where the drives stopped)
+and for "run from line". Units: mm, deg, s; positions are machine coordinates.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from planner.errors import PlannerError
+from planner.program import (
+    Arc,
+    Event,
+    EventKind,
+    Move,
+    MoveKind,
+    Program,
+    arc_length_mm,
+    arc_param_at_length,
+)
+
+__all__ = [
+    "ModalState",
+    "approach_moves",
+    "locate",
+    "modal_state_at",
+    "program_from_moves",
+    "remaining_program",
+    "split_move",
+]
+
+
+def _path_length(a: np.ndarray, b: np.ndarray, rotary: tuple[bool, ...]) -> float:
+    """LinuxCNC's feed rule: length over the linear axes if > 0, else over rotary degrees."""
+    d = np.asarray(b, dtype=float) - np.asarray(a, dtype=float)
+    lin = np.array([not r for r in rotary])
+    length = float(np.linalg.norm(d[lin])) if lin.any() else 0.0
+    if length > 0.0:
+        return length
+    return float(np.linalg.norm(d[~lin])) if (~lin).any() else 0.0
+
+
+def split_move(move: Move, u_mm: float) -> Move:
+    """The part of ``move`` from path length ``u_mm`` to its end (same end point exactly).
+
+    Lines: a line from the point at u. Arcs/helices/spirals: the same circle with the start
+    angle advanced, the sweep, rise and (spiral) start radius reduced, so the geometry of the
+    tail is exactly the geometry of the original over [u, length].
+    """
+    length = move.length_mm
+    u = min(max(float(u_mm), 0.0), length)
+    start = move.evaluate(np.array([u]))[0][0]
+    if u >= length:
+        start = move.end.copy()
+    rest = max(length - u, 0.0)
+    if move.arc is None:
+        return replace(move, start=start, length_mm=rest)
+    arc = move.arc
+    t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 1.0
+    dr = arc.radius_end_mm - arc.radius_start_mm
+    new_arc: Arc = replace(
+        arc,
+        radius_start_mm=arc.radius_start_mm + dr * t,
+        start_angle_rad=arc.start_angle_rad + arc.sweep_rad * t,
+        sweep_rad=arc.sweep_rad * (1.0 - t),
+        rise_mm=arc.rise_mm * (1.0 - t),
+        turns=max(1, math.ceil(abs(arc.sweep_rad * (1.0 - t)) / (2.0 * math.pi) - 1e-12)),
+    )
+    new_len = arc_length_mm(new_arc) if rest > 0.0 else 0.0
+    return replace(move, start=start, arc=new_arc, length_mm=new_len)
+
+
+def program_from_moves(template: Program, moves: list[Move], events: list[Event],
+                       start_position: np.ndarray, name: str | None = None) -> Program:
+    """A Program with ``moves`` re-indexed 0..n-1 (events' ``after_move`` must already refer
+    to the new indices)."""
+    moves = [replace(m, index=i) for i, m in enumerate(moves)]
+    return Program(name=name or template.name, axes=template.axes, rotary=template.rotary,
+                   moves=tuple(moves), events=tuple(events),
+                   start_position=np.asarray(start_position, dtype=float).copy(),
+                   move_offsets=None, line_count=template.line_count)
+
+
+def remaining_program(program: Program, move_index: int, u_mm: float = 0.0) -> Program:
+    """The program from path length ``u_mm`` of move ``move_index`` to its end.
+
+    Events after earlier moves are dropped (their effect is restored with ``modal_state_at``);
+    events after the split move and later keep their place.
+    """
+    n = len(program.moves)
+    if not 0 <= move_index < n:
+        raise PlannerError(f"move index {move_index} outside 0..{n - 1}")
+    first = program.moves[move_index]
+    tail = split_move(first, u_mm) if u_mm > 0.0 else first
+    moves = [tail, *program.moves[move_index + 1:]]
+    events = [replace(e, after_move=e.after_move - move_index) for e in program.events
+              if e.after_move >= move_index]
+    # Drop a zero-length tail (resuming exactly at a move's end).
+    if tail.length_mm <= 1e-12 and len(moves) > 1:
+        moves = moves[1:]
+        events = [replace(e, after_move=max(e.after_move - 1, -1)) for e in events]
+    return program_from_moves(program, moves, events, tail.start)
+
+
+@dataclass(frozen=True, slots=True)
+class ModalState:
+    """What a run from a line must restore (positions and offsets are already in the moves)."""
+
+    spindle_rpm: float = 0.0  # + CW (M03), - CCW (M04), 0 off
+    tool: int = 0
+    feed_mm_s: float = 0.0  # feed of the first move at or after the line (0 if none)
+
+
+def modal_state_at(program: Program, line: int) -> ModalState:
+    """Spindle, tool and feed in effect when execution reaches source line ``line``."""
+    spindle = 0.0
+    tool = 0
+    for e in program.events:
+        if e.line >= line:
+            break
+        if e.kind is EventKind.SPINDLE:
+            spindle = float(e.value)
+        elif e.kind in (EventKind.TOOL, EventKind.TOOL_CHANGE) and e.value:
+            tool = int(e.value)
+    feed = 0.0
+    for m in program.moves:
+        if m.line >= line and m.kind is not MoveKind.RAPID:
+            feed = float(m.feed_mm_s)
+            break
+    return ModalState(spindle_rpm=spindle, tool=tool, feed_mm_s=feed)
+
+
+def locate(program: Program, line: int) -> int:
+    """Index of the first move at or after source line ``line`` (PlannerError if none)."""
+    for m in program.moves:
+        if m.line >= line:
+            return m.index
+    raise PlannerError(f"no motion at or after line {line}")
+
+
+def approach_moves(current: np.ndarray, target: np.ndarray, axes: tuple[str, ...],
+                   rotary: tuple[bool, ...], retract_axis: str = "Z",
+                   retract_to: float | None = None) -> list[Move]:
+    """Rapid moves from ``current`` to ``target`` that stay clear of the part: first the
+    retract axis up to max(current, target, retract_to), then all other axes, then the
+    retract axis down to its target. Without a retract axis: one straight rapid."""
+    cur = np.asarray(current, dtype=float).copy()
+    tgt = np.asarray(target, dtype=float)
+    pts = [cur.copy()]
+    if retract_axis in axes:
+        k = axes.index(retract_axis)
+        high = max(cur[k], tgt[k], retract_to if retract_to is not None else -math.inf)
+        p = cur.copy()
+        p[k] = high
+        pts.append(p)
+        p2 = tgt.copy()
+        p2[k] = high
+        pts.append(p2)
+    pts.append(tgt.copy())
+    moves: list[Move] = []
+    for a, b in zip(pts[:-1], pts[1:]):
+        length = _path_length(a, b, rotary)
+        if length <= 1e-12:
+            continue
+        moves.append(Move(index=len(moves), line=0, kind=MoveKind.RAPID, start=a.copy(), end=b.copy(),
+                          feed_mm_s=math.inf, length_mm=length, arc=None, exact_stop=True))
+    return moves

@@ -1,0 +1,89 @@
+"""Fixtures for the panel tests: scripted dialogs, windows on the fake or the real controller.
+
+Everything persists under pytest's tmp_path (``state_dir``), never in the user's home.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from pathlib import Path
+
+import pytest
+
+from app.dialogs import Dialogs
+
+
+class ScriptedDialogs(Dialogs):
+    """Answers queued by the test; confirmations default to yes. Records every question."""
+
+    def __init__(self) -> None:
+        self.answers: deque[object] = deque()
+        self.asked: list[tuple[str, str]] = []
+        self.default_confirm = True
+
+    def _next(self, default: object) -> object:
+        return self.answers.popleft() if self.answers else default
+
+    def confirm(self, parent, title, text) -> bool:  # type: ignore[override]
+        self.asked.append(("confirm", text))
+        return bool(self._next(self.default_confirm))
+
+    def choose(self, parent, title, text, options) -> int:  # type: ignore[override]
+        self.asked.append(("choose", text))
+        return int(self._next(-1))  # type: ignore[call-overload]
+
+    def ask_number(self, parent, title, value, minimum=-1e9, maximum=1e9, decimals=3):  # type: ignore[override]
+        self.asked.append(("number", title))
+        return self._next(None)
+
+    def ask_text(self, parent, title, label, password=False, text=""):  # type: ignore[override]
+        self.asked.append(("text", label))
+        return self._next(None)
+
+    def ask_open_file(self, parent, directory):  # type: ignore[override]
+        self.asked.append(("open", directory))
+        return self._next(None)
+
+    def ask_save_file(self, parent, directory):  # type: ignore[override]
+        self.asked.append(("save", directory))
+        return self._next(None)
+
+    def inform(self, parent, title, text) -> None:  # type: ignore[override]
+        self.asked.append(("inform", text))
+
+
+@pytest.fixture
+def dialogs() -> ScriptedDialogs:
+    return ScriptedDialogs()
+
+
+@pytest.fixture
+def state_dir(tmp_path: Path) -> Path:
+    d = tmp_path / "state"
+    d.mkdir()
+    return d
+
+
+@pytest.fixture
+def fake_controller():
+    from tests.app.fake_controller import FakeController
+
+    return FakeController()
+
+
+@pytest.fixture
+def fake_window(qtbot, qapp, state_dir, dialogs, fake_controller):
+    """Main window on the fake controller (no worker): fast page tests."""
+    from app.application import apply_theme
+    from app.context import PanelOptions
+    from app.context_factory import build_context
+    from app.main_window import MainWindow
+
+    options = PanelOptions(state_dir=state_dir)
+    apply_theme(qapp)
+    ctx = build_context(options, dialogs=dialogs, controller=fake_controller)
+    window = MainWindow(options, ctx)
+    qtbot.addWidget(window)
+    window.resize(1280, 800)
+    window.show()
+    return window

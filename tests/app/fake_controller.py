@@ -1,0 +1,255 @@
+"""A test double with the MachineController API (signals + commands), no worker, no threads.
+
+Page tests use it to drive the widgets fast and deterministically; the flow tests use the
+real controller on simulated drives.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import replace
+from pathlib import Path
+
+from PySide6.QtCore import QObject, Signal
+
+from app.machine.config import MachineConfig
+from app.machine.model import (
+    Activity,
+    Alarm,
+    AlarmState,
+    BusStatus,
+    CommandResult,
+    MachineState,
+    ProgramInfo,
+    ProgramIssue,
+    Severity,
+    SpindleState,
+    TrackingReport,
+)
+from planner.errors import ProgramError
+from planner.interpreter import parse_program
+
+
+class FakeController(QObject):
+    stateChanged = Signal(object, str)
+    activityChanged = Signal(object)
+    positionChanged = Signal(object, object)
+    programLoaded = Signal(object)
+    programErrors = Signal(object)
+    programFinished = Signal(object)
+    lineChanged = Signal(int)
+    progressChanged = Signal(float, float)
+    speedChanged = Signal(float)
+    overridesChanged = Signal(float, float)
+    modesChanged = Signal(bool, bool)
+    alarmsChanged = Signal(object)
+    homedChanged = Signal(object)
+    offsetsChanged = Signal(object, str)
+    spindleChanged = Signal(object)
+    busStateChanged = Signal(object)
+    trackingUpdated = Signal(object)
+    configChanged = Signal(object)
+    commandRefused = Signal(str, str)
+    message = Signal(str)
+
+    def __init__(self, config: MachineConfig | None = None) -> None:
+        super().__init__()
+        self.config = config or MachineConfig.default()
+        n = len(self.config.axes)
+        self.calls: list[tuple] = []
+        self.state = MachineState.IDLE
+        self.activity = Activity.NONE
+        self.machine_position = (0.0,) * n
+        self.work_position = (0.0,) * n
+        self.homed = (False,) * n
+        self.work_offsets = dict(self.config.machine.work_offsets)
+        self.active_offset = "G54"
+        self.program_info: ProgramInfo | None = None
+        self.current_line = 0
+        self.feed_override_pct = 100.0
+        self.rapid_override_pct = 100.0
+        self.single_block = False
+        self.optional_stop = False
+        self.spindle = SpindleState()
+        self.alarms: tuple[Alarm, ...] = ()
+        self.bus_status = BusStatus(kind="sim", connected=True, state="op",
+                                    drive_states=("operation enabled",) * n)
+        self.tracking = TrackingReport()
+
+    @property
+    def axes(self) -> tuple[str, ...]:
+        return self.config.axes
+
+    @property
+    def active_alarms(self) -> tuple[Alarm, ...]:
+        return tuple(a for a in self.alarms if a.active)
+
+    def _ok(self, action: str, *args: object) -> CommandResult:
+        self.calls.append((action, *args))
+        return CommandResult(True, action)
+
+    def _set_state(self, state: MachineState, reason: str = "") -> None:
+        self.state = state
+        self.stateChanged.emit(state, reason)
+
+    def refusal(self, action: str) -> str:
+        if action in ("cycle_start", "run_from_line") and self.program_info is None:
+            return "no program loaded"
+        return ""
+
+    # commands
+    def connect_bus(self) -> CommandResult:
+        return self._ok("connect_bus")
+
+    def disconnect_bus(self) -> CommandResult:
+        return self._ok("disconnect_bus")
+
+    def shutdown(self) -> None:
+        self.calls.append(("shutdown",))
+
+    def load_program(self, source: str | os.PathLike[str], name: str | None = None) -> CommandResult:
+        if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
+                                               and Path(source).is_file()):
+            path, text = str(source), Path(source).read_text()
+            name = name or Path(source).name
+        else:
+            path, text, name = "", str(source), name or "<text>"
+        try:
+            program = parse_program(text, name=name, machine=self.config.machine)
+        except ProgramError as exc:
+            self.program_info = None
+            self.programErrors.emit(tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors))
+            return CommandResult(False, "load_program", str(exc))
+        n = len(self.axes)
+        self.program_info = ProgramInfo(name=name, path=path, text=text, line_count=text.count("\n") + 1,
+                                        move_count=len(program.moves), cycle_time_s=12.0,
+                                        length_mm=sum(m.length_mm for m in program.moves),
+                                        bounds_min=(0.0,) * n, bounds_max=(0.0,) * n)
+        self.programLoaded.emit(self.program_info)
+        return self._ok("load_program", name)
+
+    def cycle_start(self) -> CommandResult:
+        if self.program_info is None:
+            self.commandRefused.emit("cycle_start", "no program loaded")
+            return CommandResult(False, "cycle_start", "no program loaded")
+        self._set_state(MachineState.RUNNING)
+        return self._ok("cycle_start")
+
+    def feed_hold(self) -> CommandResult:
+        self._set_state(MachineState.HOLD)
+        return self._ok("feed_hold")
+
+    def resume(self) -> CommandResult:
+        self._set_state(MachineState.RUNNING)
+        return self._ok("resume")
+
+    def stop(self) -> CommandResult:
+        self._set_state(MachineState.IDLE)
+        return self._ok("stop")
+
+    def reset(self) -> CommandResult:
+        return self._ok("reset")
+
+    def estop(self, reason: str = "operator") -> CommandResult:
+        self._set_state(MachineState.ESTOP, reason)
+        return self._ok("estop", reason)
+
+    def estop_release(self) -> CommandResult:
+        self._set_state(MachineState.IDLE)
+        return self._ok("estop_release")
+
+    def set_single_block(self, on: bool) -> CommandResult:
+        self.single_block = on
+        self.modesChanged.emit(self.single_block, self.optional_stop)
+        return self._ok("set_single_block", on)
+
+    def set_optional_stop(self, on: bool) -> CommandResult:
+        self.optional_stop = on
+        self.modesChanged.emit(self.single_block, self.optional_stop)
+        return self._ok("set_optional_stop", on)
+
+    def run_from_line(self, line: int) -> CommandResult:
+        return self._ok("run_from_line", line)
+
+    def set_feed_override(self, percent: float) -> CommandResult:
+        self.feed_override_pct = percent
+        self.overridesChanged.emit(self.feed_override_pct, self.rapid_override_pct)
+        return self._ok("set_feed_override", percent)
+
+    def set_rapid_override(self, percent: float) -> CommandResult:
+        self.rapid_override_pct = percent
+        self.overridesChanged.emit(self.feed_override_pct, self.rapid_override_pct)
+        return self._ok("set_rapid_override", percent)
+
+    def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
+        return self._ok("jog_start", axis, direction)
+
+    def jog_stop(self, axis: str | int | None = None) -> CommandResult:
+        return self._ok("jog_stop", axis)
+
+    def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
+        return self._ok("jog_increment", axis, step, direction)
+
+    def mdi(self, block: str) -> CommandResult:
+        return self._ok("mdi", block)
+
+    def home_axis(self, axis: str | int) -> CommandResult:
+        i = self.axes.index(axis) if isinstance(axis, str) else axis
+        homed = list(self.homed)
+        homed[i] = True
+        self.homed = tuple(homed)
+        self.homedChanged.emit(self.homed)
+        return self._ok("home_axis", axis)
+
+    def home_all(self) -> CommandResult:
+        self.homed = (True,) * len(self.axes)
+        self.homedChanged.emit(self.homed)
+        return self._ok("home_all")
+
+    def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
+        return self._ok("set_machine_zero_here", axis)
+
+    def set_work_offset(self, name: str, values) -> CommandResult:
+        self.work_offsets[name] = tuple(values)
+        self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
+        return self._ok("set_work_offset", name, tuple(values))
+
+    def select_work_offset(self, name: str) -> CommandResult:
+        self.active_offset = name
+        self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
+        return self._ok("select_work_offset", name)
+
+    def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
+        return self._ok("touch_off", axis, work_value, offset)
+
+    def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
+        self.spindle = SpindleState(1 if clockwise else -1, rpm or self.spindle.rpm)
+        self.spindleChanged.emit(self.spindle)
+        return self._ok("spindle_on", clockwise, rpm)
+
+    def spindle_off(self) -> CommandResult:
+        self.spindle = SpindleState(0, self.spindle.rpm)
+        self.spindleChanged.emit(self.spindle)
+        return self._ok("spindle_off")
+
+    def spindle_speed(self, rpm: float) -> CommandResult:
+        self.spindle = replace(self.spindle, rpm=rpm)
+        self.spindleChanged.emit(self.spindle)
+        return self._ok("spindle_speed", rpm)
+
+    def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
+        self.alarms = tuple(replace(a, state=AlarmState.ACKNOWLEDGED)
+                            if alarm_id is None or a.id == alarm_id else a for a in self.alarms)
+        self.alarmsChanged.emit(self.alarms)
+        return self._ok("acknowledge_alarm", alarm_id)
+
+    def update_config(self, config: MachineConfig) -> CommandResult:
+        self.config = config
+        self.configChanged.emit(config)
+        return self._ok("update_config")
+
+    # test helpers
+    def raise_alarm(self, cause: str, source: str = "drive X") -> None:
+        alarm = Alarm(len(self.alarms) + 1, 0.0, source, cause, Severity.QUICK_STOP)
+        self.alarms = self.alarms + (alarm,)
+        self.alarmsChanged.emit(self.alarms)

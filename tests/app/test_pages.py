@@ -1,0 +1,243 @@
+"""Every page on the fake controller: buttons reach the controller, signals reach the widgets."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from PySide6.QtCore import QRect
+from PySide6.QtWidgets import QAbstractButton
+
+from app.context import DEMO_PROGRAM
+from app.pages import PAGE_NAMES
+from app.widgets.preview_plot import ARC_COLOR, LINE_COLOR, RAPID_COLOR
+from planner.program import MoveKind
+
+BAD_PROGRAM = "G21 G17 G90\nG01 X10 F100\nG02 X20 Y0 R2\nG01 X0\n"  # line 3: radius too small
+
+
+@pytest.mark.parametrize("size", [(1280, 800), (1920, 1080)])
+def test_every_page_fits_and_has_touch_sized_buttons(fake_window, qtbot, dialogs, size) -> None:
+    window = fake_window
+    window.resize(*size)
+    dialogs.answers.extend(["1234"] * 2)  # service password for the service pages
+    for name in PAGE_NAMES:
+        window.show_page(name)
+        qtbot.wait(5)
+        assert (window.width(), window.height()) == size, f"{name}: window grew (clipping)"
+        page = window._stack.currentWidget()
+        bounds = QRect(0, 0, window.width(), window.height())
+        for button in page.findChildren(QAbstractButton):
+            if not button.isVisibleTo(window) or button.parent() is None:
+                continue
+            if "qt_scrollarea" in button.objectName() or type(button).__name__ == "QTabBarButton":
+                continue
+            assert button.height() >= 48, f"{name}: {button.text()!r} is {button.height()} px high"
+            top_left = button.mapTo(window, button.rect().topLeft())
+            if name != "parameters":  # the parameters form scrolls (kinetic)
+                assert bounds.contains(QRect(top_left, button.size())), f"{name}: {button.text()!r} clipped"
+
+
+def test_preview_draws_arcs_turquoise_and_lines_green(fake_window, fake_controller, qtbot) -> None:
+    fake_controller.load_program(DEMO_PROGRAM)
+    preview = fake_window.page("preview")
+    items = preview.plot.items
+    assert items[MoveKind.ARC].opts["pen"].color() == ARC_COLOR
+    assert items[MoveKind.LINE].opts["pen"].color() == LINE_COLOR
+    assert items[MoveKind.RAPID].opts["pen"].color() == RAPID_COLOR
+    path = preview.plot.path
+    # pocket.nc: 6 G03 (helical entry + rings), 4 G01, 4 G00
+    assert (path.kinds[MoveKind.ARC].count, path.kinds[MoveKind.LINE].count,
+            path.kinds[MoveKind.RAPID].count) == (6, 4, 4)
+    x, _y = items[MoveKind.ARC].getData()
+    assert len(x) == len(path.kinds[MoveKind.ARC].points)
+    preview.set_plane("XZ")
+    _x, z = items[MoveKind.ARC].getData()
+    assert z.min() == pytest.approx(-1.0)
+    # tap a segment: its source line is shown
+    preview.plot.moveTapped.emit(int(path.move_lines.searchsorted(14)), 14)
+    assert preview.line_label.text().startswith("Line 14") and "G03 X5 Y0 I-5 J0" in preview.line_label.text()
+
+
+def test_preview_live_tool_and_executed_part(fake_window, fake_controller) -> None:
+    fake_controller.load_program(DEMO_PROGRAM)
+    preview = fake_window.page("preview")
+    fake_controller.positionChanged.emit((2.0, 0.0, 0.0), (2.0, 0.0, 0.0))
+    x, y = preview.plot.tool_item.getData()
+    assert (x[0], y[0]) == (2.0, 0.0)
+    fake_controller.lineChanged.emit(13)
+    x, _ = preview.plot.done_item.getData()
+    assert len(x) > 0
+
+
+def test_invalid_program_marked_at_its_line_and_start_refused(fake_window, fake_controller, qtbot) -> None:
+    program = fake_window.page("program")
+    program.set_text(BAD_PROGRAM)
+    qtbot.waitUntil(lambda: 3 in program.editor.errors, timeout=5000)
+    assert "radius" in program.editor.errors[3]
+    program.load_into_machine()
+    assert fake_controller.program_info is None
+    assert fake_window.page("auto").editor.errors.keys() == {3}
+    result = fake_controller.cycle_start()
+    assert not result
+    assert "Refused" in fake_window._message.text()
+
+
+def test_program_page_save_and_discard_prompt(fake_window, dialogs, tmp_path: Path) -> None:
+    page = fake_window.page("program")
+    target = tmp_path / "new.nc"
+    page.set_text("G00 X1\n")
+    page._on_text_changed()
+    assert page.doc.modified
+    dialogs.answers.append(-1)  # Cancel
+    assert not page.can_close()
+    dialogs.answers.append(str(target))
+    dialogs.answers.append(0)  # Save -> Save as
+    assert page.can_close()
+    assert target.read_text() == "G00 X1\n" and not page.doc.modified
+
+
+def test_auto_page_buttons(fake_window, fake_controller, dialogs) -> None:
+    auto = fake_window.page("auto")
+    fake_controller.load_program(DEMO_PROGRAM)
+    assert auto.buttons["start"].isEnabled()
+    auto.buttons["start"].click()
+    auto.buttons["hold"].click()
+    auto.buttons["start"].click()  # in hold: resume
+    auto.feed.buttons["-10"].click()
+    auto.single_block.click()
+    dialogs.answers.extend([9.0, True])
+    auto.run_from.click()
+    names = [c[0] for c in fake_controller.calls]
+    assert names[-6:] == ["cycle_start", "feed_hold", "resume", "set_feed_override", "set_single_block",
+                          "run_from_line"]
+    assert fake_controller.calls[-1] == ("run_from_line", 9)
+    fake_controller.lineChanged.emit(12)
+    assert auto.editor.run_line == 12
+    fake_controller.progressChanged.emit(0.5, 65.0)
+    assert "1:05" in auto.info_label.text() and auto.progress.value() == 500
+
+
+def test_manual_jog_spindle_mdi(fake_window, fake_controller, state_dir) -> None:
+    manual = fake_window.page("manual")
+    fake_window.show_page("manual")
+    button = manual.jog.buttons[("X", 1)]
+    button.pressed.emit()
+    button.released.emit()
+    manual.jog.set_step(0.1)
+    manual.jog.buttons[("Z", -1)].pressed.emit()
+    manual.spindle_buttons["cw"].click()
+    manual.mdi_line.setText("G01 X1 F100")
+    manual.send_mdi()
+    assert ("jog_start", "X", 1) in fake_controller.calls and ("jog_stop", "X") in fake_controller.calls
+    assert ("jog_increment", "Z", 0.1, -1) in fake_controller.calls
+    assert ("mdi", "G01 X1 F100") in fake_controller.calls
+    assert "CW" in manual.spindle_label.text()
+    assert manual.history.item(0).text() == "G01 X1 F100"
+    assert "G01 X1 F100" in (state_dir / "panel.json").read_text()
+    # safe release: leaving the page while holding a jog button stops the jog
+    manual.jog.set_step(0.0)
+    manual.jog.buttons[("Y", 1)].pressed.emit()
+    fake_window.show_page("auto")
+    assert fake_controller.calls[-1] == ("jog_stop", None)
+
+
+def test_machine_zero_confirms_homing(fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("machine_zero")
+    dialogs.answers.append(False)
+    page.home_buttons["X"].click()
+    assert ("home_axis", "X") not in fake_controller.calls
+    page.home_all_button.click()
+    assert ("home_all",) in fake_controller.calls
+    assert [lab.text() for lab in page.homed_labels] == ["yes"] * 3
+
+
+def test_part_zero_table_and_touch_off(fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("part_zero")
+    dialogs.answers.append(12.5)
+    page.edit_cell(1, 0)  # G55 X
+    assert fake_controller.work_offsets["G55"][0] == 12.5
+    assert page.table.item(1, 0).text() == "+12.500"
+    page.select_buttons["G55"].click()
+    dialogs.answers.append(0.0)
+    page.touch_buttons["Z"].click()
+    assert fake_controller.calls[-1] == ("touch_off", "Z", 0.0, "G55")
+
+
+def test_service_password_protects_service_pages(fake_window, dialogs) -> None:
+    dialogs.answers.append("wrong")
+    assert not fake_window.show_page("parameters")
+    assert fake_window._gates["parameters"].locked
+    assert "Wrong" in fake_window._message.text()
+    dialogs.answers.append("1234")
+    assert fake_window.show_page("axes")
+    assert not fake_window._gates["axes"].locked and not fake_window._gates["parameters"].locked
+    fake_window.page("parameters").lock()
+    assert fake_window._gates["axes"].locked
+
+
+def test_parameters_apply_goes_through_the_controller(fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("parameters")
+    page.fields["v_max_mm_s"].setValue(25.0, emit=True)
+    assert page.apply_bar.apply_button.isEnabled()
+    page.mode_buttons["paper"].click()
+    assert page.apply()
+    assert fake_controller.config.machine.limits.v_max_mm_s == 25.0
+    assert fake_controller.config.machine.planner.mode == "paper"
+    page.fields["a_max_mm_s2"].setValue(-5.0, emit=True)
+    assert "a_max_mm_s2" in page.apply_bar.message.text() and not page.apply_bar.apply_button.isEnabled()
+
+
+def test_axes_page_edits_and_validates(fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("axes")
+    dialogs.answers.append(-300.0)
+    page.edit_cell(0, 4)  # X min
+    assert page.pending.machine.axes[0].min_pos == -300.0
+    page.edit_cell(1, 1)  # Y direction toggles
+    assert page.pending.machine.axes[1].direction == -1
+    dialogs.answers.append(500.0)
+    page.edit_cell(0, 4)  # min 500 > max 250: invalid
+    assert "min" in page.apply_bar.message.text()
+    page.revert()
+    assert page.pending is fake_controller.config
+
+
+def test_alarms_banner_and_acknowledge(fake_window, fake_controller) -> None:
+    fake_controller.raise_alarm("following error 1.2 mm over window 1.0 mm")
+    header = fake_window.header
+    assert header.alarm_banner.isVisibleTo(fake_window)
+    assert "following error" in header.alarm_banner.text()
+    page = fake_window.page("alarms")
+    assert page.table.rowCount() == 1
+    page.table.selectRow(0)
+    page.ack_button.click()
+    assert not header.alarm_banner.isVisibleTo(fake_window)
+    assert page.table.rowCount() == 0
+    page.show_history.click()
+    assert page.table.rowCount() == 1
+
+
+def test_estop_button_and_state(fake_window, fake_controller, dialogs) -> None:
+    header = fake_window.header
+    header.estop_button.click()
+    assert fake_controller.state.value == "estop"
+    assert header.state_label.text() == "E-stop"
+    header.estop_button.click()  # release, confirmed
+    assert fake_controller.state.value == "idle"
+
+
+def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> None:
+    page = fake_window.page("diagnostics")
+    fake_controller.load_program(DEMO_PROGRAM)
+    qtbot.waitUntil(lambda: page.profile is not None, timeout=10000)
+    p = page.profile
+    assert p.cycle_time_s > 1.0 and len(p.t) > 1000
+    assert abs(p.a).max() <= p.limits[1] * 1.01
+    x, _ = page.profile_plots.curves["v"].getData()
+    assert len(x) == len(p.t)
+    assert page.bus.table.rowCount() == 3
+    for i in range(5):
+        fake_controller.positionChanged.emit((float(i), 0.0, 0.0), (float(i), 0.0, 0.0))
+    page.tracking.redraw()
+    x, y = page.tracking.actual[0].getData()
+    assert list(y) == [0.0, 1.0, 2.0, 3.0, 4.0]

@@ -1,0 +1,73 @@
+"""Tool path arrays for drawing: counts per kind, arcs on their exact geometry, picking."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app.toolpath import build_toolpath, nearest_move
+from planner.interpreter import parse_program
+from planner.program import MoveKind
+
+PROGRAM = """G21 G17 G90
+G00 X0 Y0 Z5
+G01 Z0 F300
+G01 X10 Y0
+G02 X20 Y0 R5
+G03 X30 Y0 Z-1 I5 J0
+G01 X30 Y10
+G19 G02 Y20 Z-1 R5
+G00 Z5
+"""
+
+
+@pytest.fixture(scope="module")
+def path():
+    return build_toolpath(parse_program(PROGRAM, name="t.nc"))
+
+
+def test_counts_per_kind(path) -> None:
+    assert path.kinds[MoveKind.RAPID].count == 2
+    assert path.kinds[MoveKind.LINE].count == 3
+    assert path.kinds[MoveKind.ARC].count == 3
+    assert path.all.count == 8
+    # lines are point pairs; each polyline ends with a break
+    line = path.kinds[MoveKind.LINE]
+    assert len(line.points) == 6 and line.connect.tolist() == [True, False] * 3
+
+
+def test_arc_points_lie_on_the_exact_geometry(path) -> None:
+    program = parse_program(PROGRAM, name="t.nc")
+    arcs = path.kinds[MoveKind.ARC]
+    for move in (m for m in program.moves if m.arc is not None):
+        pts = arcs.points[arcs.move_index == move.index]
+        np.testing.assert_allclose(pts[0], move.start, atol=1e-9)
+        np.testing.assert_allclose(pts[-1], move.end, atol=1e-12)
+        a = move.arc
+        f, s = pts[:, a.first_axis], pts[:, a.second_axis]
+        r = np.hypot(f - a.center[0], s - a.center[1])
+        np.testing.assert_allclose(r, a.radius_start_mm, atol=1e-9)
+        # for a circle/helix the angle parameter is proportional to arc length: compare with evaluate
+        u = np.linspace(0.0, move.length_mm, len(pts))
+        exact, _, _ = move.evaluate(u)
+        np.testing.assert_allclose(pts, exact, atol=1e-9)
+
+
+def test_helix_descends_linearly(path) -> None:
+    arcs = path.kinds[MoveKind.ARC]
+    program = parse_program(PROGRAM, name="t.nc")
+    helix = next(m for m in program.moves if m.arc is not None and m.arc.rise_mm != 0)
+    z = arcs.points[arcs.move_index == helix.index, 2]
+    assert np.all(np.diff(z) < 0) and z[-1] == pytest.approx(-1.0)
+
+
+def test_pick_nearest_segment(path) -> None:
+    index, dist = nearest_move(path, (0, 1), 5.0, 0.2)   # middle of G01 X10 (line 4)
+    assert int(path.move_lines[index]) == 4 and dist == pytest.approx(0.2)
+    index, _ = nearest_move(path, (0, 1), 15.0, 5.0)      # top of the G02 R5 arc (line 5)
+    assert int(path.move_lines[index]) == 5
+
+
+def test_empty_program() -> None:
+    path = build_toolpath(parse_program("G21\n", name="e.nc"))
+    assert path.all.count == 0 and len(path.all.points) == 0

@@ -1,0 +1,413 @@
+"""The cyclic worker on SimBus: state machine, set-point buffer, reactions, tracking, timing.
+
+Most tests run in mode="manual" (cycles stepped by the test, simulated time, deterministic);
+one runs the real-time thread (no drift), one the separate process.
+"""
+
+from __future__ import annotations
+
+import time
+import tracemalloc
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+
+from ethercat.bus import DriveSpec
+from ethercat.cia402 import Cia402State
+from ethercat.errors import ConfigurationError, EtherCATError, WorkerError
+from ethercat.worker import AlarmCode, CyclicWorker, HomingState, WorkerConfig, WorkerState
+
+DRIVES = (
+    DriveSpec(0, "X", counts_per_unit=10_000.0, following_error_window=0.5),
+    DriveSpec(1, "Y", counts_per_unit=10_000.0, direction=-1, following_error_window=0.5),
+)
+W = WorkerState
+
+
+def config(**kw: Any) -> WorkerConfig:
+    base: dict[str, Any] = dict(drives=DRIVES, mode="manual", buffer_capacity=500)
+    base.update(kw)
+    return WorkerConfig(**base)
+
+
+@pytest.fixture
+def worker() -> Iterator[CyclicWorker]:
+    w = CyclicWorker(config())
+    w.start()
+    yield w
+    w.stop()
+
+
+def enable(w: CyclicWorker) -> None:
+    w.enable()
+    w.wait_for(W.ENABLED)
+
+
+def cosine(q0: np.ndarray, q1: np.ndarray, duration_s: float, hold_s: float = 0.0) -> np.ndarray:
+    n = int(round(duration_s / 0.001))
+    u = np.arange(1, n + 1) / n
+    path = q0 + (q1 - q0) * ((1 - np.cos(np.pi * u)) / 2)[:, None]
+    return np.vstack([path, np.repeat(q1[None, :], int(hold_s / 0.001), axis=0)])
+
+
+def feed(w: CyclicWorker, q: np.ndarray, extra_cycles: int = 50) -> None:
+    """Push all set-points (manual mode), stepping as the buffer drains."""
+    k = 0
+    while k < len(q):
+        k += w.push(q[k:])
+        w.step(100)
+    w.step(w.buffer_level() + extra_cycles)
+
+
+def codes(w: CyclicWorker) -> list[AlarmCode]:
+    return [a.code for a in w.alarms()]
+
+
+# ---------------------------------------------------------------------- configuration
+def test_config_validation() -> None:
+    with pytest.raises(ConfigurationError):
+        config(mode="fast")
+    with pytest.raises(ConfigurationError):
+        config(ts_s=0.0)
+    with pytest.raises(ConfigurationError):
+        config(drives=())
+    with pytest.raises(ConfigurationError):
+        config(buffer_capacity=1)
+    assert config().axis_names == ("X", "Y")
+
+
+def test_not_started_is_a_clear_error() -> None:
+    w = CyclicWorker(config())
+    assert w.state() is W.STOPPED
+    with pytest.raises(WorkerError, match="start"):
+        w.push(np.zeros((1, 2)))
+    w.stop()                                             # harmless
+
+
+def test_bad_bus_kind_fails_start() -> None:
+    with pytest.raises(EtherCATError):
+        CyclicWorker(config(bus_kind="nosuchbus")).start()
+
+
+# ---------------------------------------------------------------------- state machine
+def test_start_disabled_enable_disable(worker: CyclicWorker) -> None:
+    worker.step(5)
+    s = worker.snapshot()
+    assert s.state is W.DISABLED
+    assert set(s.drive_states) <= {Cia402State.READY_TO_SWITCH_ON, Cia402State.SWITCH_ON_DISABLED}
+    enable(worker)
+    s = worker.snapshot()
+    assert s.drive_states == (Cia402State.OPERATION_ENABLED,) * 2
+    worker.disable()
+    worker.step(10)
+    assert worker.snapshot().drive_states == (Cia402State.READY_TO_SWITCH_ON,) * 2
+    worker.stop()
+    worker.stop()
+    assert worker.state() is W.STOPPED
+
+
+def test_enable_sets_target_to_actual_no_jump() -> None:
+    cfg = config(bus_options=(("initial_positions_counts", (12_345.0, -5_000.0)),))
+    with CyclicWorker(cfg) as w:
+        enable(w)
+        w.step(100)
+        s = w.snapshot()
+        np.testing.assert_allclose(s.actual_position, [1.2345, 0.5], atol=1e-4)  # Y direction -1
+        np.testing.assert_allclose(s.reference_position, s.actual_position, atol=1e-4)
+        assert max(abs(s.following_error)) < 1e-4
+
+
+# ---------------------------------------------------------------------- set-points
+def test_push_is_bounded(worker: CyclicWorker) -> None:
+    enable(worker)
+    assert worker.free_space() == 500
+    q = np.zeros((800, 2))
+    assert worker.push(q) == 500
+    assert worker.push(q) == 0 and worker.free_space() == 0
+    worker.step(30)
+    assert worker.free_space() == 30
+    with pytest.raises(ConfigurationError):
+        worker.push(np.zeros((3, 3)))
+    with pytest.raises(ConfigurationError):
+        worker.push(np.full((1, 2), np.nan))
+
+
+def test_motion_arrives_with_tracking_eq18(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.reset_tracking()
+    worker.drain_trace()
+    q0 = worker.snapshot().actual_position.copy()
+    q1 = q0 + np.array([10.0, -5.0])
+    q = cosine(q0, q1, 1.0, hold_s=0.1)
+    feed(worker, q)
+    s = worker.snapshot()
+    assert s.state is W.ENABLED and not s.alarms
+    assert s.samples_consumed == len(q)
+    np.testing.assert_allclose(s.actual_position, q1, atol=1e-4)      # within a count
+    # drive counts follow scale and direction
+    models = worker._loop.bus.models                                   # type: ignore[union-attr]
+    assert models[1].position_actual == pytest.approx(-10_000 * q1[1], abs=1)
+    rmse = np.array(s.tracking.rmse)
+    assert np.all(rmse > 1e-4) and np.all(rmse < 0.02)                # microns, as Table 4
+    np.testing.assert_allclose(np.array(s.tracking.mse), rmse**2)
+    # Eq. 18 from the per-cycle trace gives the same numbers
+    tr = worker.drain_trace()
+    e = tr.reference - tr.actual
+    assert len(tr.cycle) == s.tracking.samples and tr.dropped == 0
+    np.testing.assert_allclose(np.sqrt(np.mean(e**2, axis=0)), rmse, rtol=1e-9)
+    np.testing.assert_allclose(np.abs(e).max(axis=0), s.tracking.max_abs)
+
+
+def test_tracking_window_over_blocks() -> None:
+    with CyclicWorker(config(tracking_window_s=1.0)) as w:
+        enable(w)
+        q0 = w.snapshot().actual_position.copy()
+        feed(w, cosine(q0, q0 + 5.0, 1.0, hold_s=2.0), extra_cycles=0)
+        s = w.snapshot()
+        assert s.tracking.window_samples == 1000
+        assert max(s.tracking.window_rmse) < max(s.tracking.rmse)      # window holds the rest only
+
+
+def test_underrun_holds_position_and_alarms(worker: CyclicWorker) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    ramp = q0 + np.outer(np.arange(1, 201) * 0.001 * 5.0, [1.0, 0.0])   # 5 mm/s, ends moving
+    assert worker.push(ramp) == 200
+    worker.step(400)
+    s = worker.snapshot()
+    assert codes(worker) == [AlarmCode.UNDERRUN]
+    assert s.state is W.ENABLED and s.underruns == 1
+    np.testing.assert_allclose(s.reference_position, ramp[-1])
+    np.testing.assert_allclose(s.actual_position, ramp[-1], atol=1e-3)
+    assert "underrun" in s.alarms[0].message
+
+
+def test_draining_at_rest_is_not_an_underrun(worker: CyclicWorker) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    feed(worker, cosine(q0, q0 + 1.0, 0.3, hold_s=0.01), extra_cycles=100)
+    assert worker.alarms() == ()
+
+
+# ---------------------------------------------------------------------- reactions
+def test_wkc_errors_within_limit_tolerated(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.inject("drop_frames", 0, 3)                  # limit is 3 cycles
+    worker.step(20)
+    s = worker.snapshot()
+    assert s.state is W.ENABLED and s.wkc_errors == 3 and not s.alarms
+
+
+def test_wkc_errors_over_limit_quick_stop(worker: CyclicWorker) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    worker.push(cosine(q0, q0 + 5.0, 0.4))
+    worker.step(100)
+    worker.inject("drop_frames", 0, 10)
+    worker.step(50)
+    s = worker.snapshot()
+    assert s.state is W.QUICK_STOP
+    assert codes(worker) == [AlarmCode.WORKING_COUNTER]
+    assert "working counter -1 instead of 6" in s.alarms[0].message
+    assert s.buffer_level == 0                           # flushed
+    assert all(st in (Cia402State.QUICK_STOP_ACTIVE, Cia402State.SWITCH_ON_DISABLED) for st in s.drive_states)
+    worker.fault_reset()
+    worker.wait_for(W.DISABLED)
+    enable(worker)
+
+
+def test_lost_slave_named_in_alarm(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.inject("lose_slave", 1)
+    worker.step(20)
+    s = worker.snapshot()
+    assert s.state is W.QUICK_STOP
+    assert "slaves not answering: [1]" in s.alarms[0].message
+    worker.inject("restore_slave", 1)
+    worker.step(5)
+    worker.fault_reset()                                 # the lost drive faulted on its watchdog
+    worker.wait_for(W.DISABLED)
+    enable(worker)
+
+
+def test_drive_fault_quick_stops_all_then_reset(worker: CyclicWorker) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    worker.push(cosine(q0, q0 + 5.0, 0.4))
+    worker.step(100)
+    worker.inject("drive_fault", "Y", 0x2310)
+    worker.step(30)
+    s = worker.snapshot()
+    assert s.state is W.FAULT
+    assert s.drive_states[1] is Cia402State.FAULT and s.error_codes[1] == 0x2310
+    assert s.drive_states[0] in (Cia402State.QUICK_STOP_ACTIVE, Cia402State.SWITCH_ON_DISABLED)
+    assert codes(worker) == [AlarmCode.DRIVE_FAULT]
+    assert s.alarms[0].axis == "Y"
+    assert "0x2310" in s.alarms[0].message and "over-current" in s.alarms[0].message
+    assert s.buffer_level == 0
+    with pytest.raises(WorkerError, match="enable refused"):
+        worker.enable()
+    worker.fault_reset()
+    assert worker.wait_for(W.DISABLED) is W.DISABLED
+    assert worker.alarms() == ()
+    enable(worker)
+    np.testing.assert_allclose(worker.snapshot().reference_position, worker.snapshot().actual_position)
+
+
+def test_persistent_fault_reset_fails(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.inject("persistent_fault", 0, 0x7305)
+    worker.step(20)
+    worker.fault_reset()
+    worker.step(700)
+    assert worker.state() is W.FAULT
+    assert codes(worker) == [AlarmCode.FAULT_RESET_FAILED]
+    worker.inject("clear_fault", 0)
+    worker.fault_reset()
+    worker.wait_for(W.DISABLED)
+
+
+def test_following_error_over_window(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.inject("jam", "X")
+    q0 = worker.snapshot().actual_position.copy()
+    worker.push(cosine(q0, q0 + np.array([5.0, 0.0]), 0.5))
+    worker.step(400)
+    s = worker.snapshot()
+    assert s.state is W.QUICK_STOP
+    assert codes(worker)[0] is AlarmCode.FOLLOWING_ERROR
+    assert s.alarms[0].axis == "X" and "window 0.5" in s.alarms[0].message
+    fe = float(s.alarms[0].message.split("following error on axis X: ")[1].split()[0])
+    assert 0.5 < fe < 0.6                                   # tripped after 3 cycles over the window
+
+
+@pytest.mark.parametrize(("method", "code", "text"), [
+    ("estop", AlarmCode.ESTOP, "E-stop: quick stop of all axes (E-stop button)"),
+    ("quick_stop", AlarmCode.QUICK_STOP, "quick stop of all axes: E-stop button"),
+])
+def test_estop_and_quick_stop_name_the_cause(worker: CyclicWorker, method: str, code: AlarmCode,
+                                              text: str) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    worker.push(cosine(q0, q0 + 5.0, 0.4))
+    worker.step(150)
+    getattr(worker, method)("E-stop button")
+    worker.step(200)
+    s = worker.snapshot()
+    assert s.state is W.QUICK_STOP and s.buffer_level == 0
+    assert [(a.code, a.message) for a in s.alarms] == [(code, text)]
+    assert all(st is Cia402State.SWITCH_ON_DISABLED for st in s.drive_states)   # stopped, option code 2
+    worker.enable()                                          # allowed again after a quick stop
+    worker.wait_for(W.ENABLED)
+
+
+# ---------------------------------------------------------------------- homing, outputs
+def test_homing_method_35(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.home("X", 35)
+    assert worker.wait_for(W.ENABLED) is W.ENABLED
+    s = worker.snapshot()
+    assert s.homing[0] is HomingState.DONE and s.homed == (True, False)
+    assert s.actual_position[0] == 0.0
+
+
+def test_homing_on_switch_then_csp_again() -> None:
+    cfg = config(bus_options=(("initial_positions_counts", (50_000.0, 0.0)),))
+    with CyclicWorker(cfg) as w:
+        enable(w)
+        w.home(0, 17)
+        assert w.state() is W.HOMING
+        w.wait_for(W.ENABLED, timeout_s=5.0)
+        s = w.snapshot()
+        assert s.homing[0] is HomingState.DONE and not s.alarms
+        assert abs(s.actual_position[0]) < 0.05                 # near the switch edge = home offset 0
+        q0 = s.actual_position.copy()
+        feed(w, cosine(q0, q0 + 1.0, 0.2))
+        np.testing.assert_allclose(w.snapshot().actual_position, q0 + 1.0, atol=1e-4)
+
+
+def test_homing_refused_when_not_enabled(worker: CyclicWorker) -> None:
+    with pytest.raises(WorkerError, match="refused"):
+        worker.home("X")
+
+
+def test_digital_output(worker: CyclicWorker) -> None:
+    worker.set_digital_output("X", 0b11)
+    assert worker.snapshot().digital_outputs == (0b11, 0)
+    assert worker._loop.bus.models[0].digital_outputs == 0b11   # type: ignore[union-attr]
+
+
+def test_cycle_does_not_grow_memory(worker: CyclicWorker) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    q = cosine(q0, q0 + 20.0, 4.0)
+    loop = worker._loop
+    assert loop is not None
+    worker.push(q[:400])
+    for _ in range(200):
+        loop.cycle()
+    tracemalloc.start()
+    before = tracemalloc.take_snapshot()
+    k = 400
+    for _ in range(3000):
+        if worker.free_space() >= 100:
+            k += worker.push(q[k:k + 100])
+        loop.cycle()
+    after = tracemalloc.take_snapshot()
+    tracemalloc.stop()
+    growth = sum(d.size_diff for d in after.compare_to(before, "filename")
+                 if "ethercat" in (d.traceback[0].filename if d.traceback else ""))
+    assert growth < 2048
+
+
+# ---------------------------------------------------------------------- real time
+def test_thread_mode_absolute_deadlines_no_drift() -> None:
+    cfg = config(mode="thread", spin_s=0.0, wkc_error_limit=10**6)
+    with CyclicWorker(cfg) as w:
+        enable(w)
+        q0 = w.snapshot().actual_position.copy()
+        q = cosine(q0, q0 + 2.0, 1.0, hold_s=0.5)
+        k = 0
+        t_end = time.monotonic() + 2.0
+        while time.monotonic() < t_end:
+            k += w.push(q[k:])
+            time.sleep(0.05)
+        s = w.snapshot()
+    t = s.timing
+    deadlines = (t.cycles - 1 + t.missed_cycles)                # periods between first and last start
+    assert t.cycles > 1500
+    # the start times stay on the ts grid: the error is the last cycle's own lateness, not a sum
+    assert abs(t.span_s - deadlines * 0.001) <= t.jitter_max_s + 1e-4
+    assert t.period_mean_s * (t.cycles - 1) == pytest.approx(t.span_s, rel=1e-6)
+    assert sum(t.jitter_histogram) == t.cycles - 1
+    assert s.samples_consumed == len(q)
+
+
+def test_process_mode_end_to_end() -> None:
+    cfg = config(mode="process")
+    w = CyclicWorker(cfg)
+    w.start()
+    try:
+        assert w.realtime_applied                                 # what the child applied, e.g. cpu1,fifo80
+        enable(w)
+        q0 = w.snapshot().actual_position.copy()
+        q = cosine(q0, q0 + np.array([3.0, -1.0]), 0.3, hold_s=0.05)
+        k = 0
+        t_end = time.monotonic() + 5.0
+        while (k < len(q) or w.buffer_level() > 0) and time.monotonic() < t_end:
+            k += w.push(q[k:])
+            time.sleep(0.02)
+        time.sleep(0.1)
+        s = w.snapshot()
+        assert s.samples_consumed == len(q) and not s.alarms
+        np.testing.assert_allclose(s.actual_position, q[-1], atol=1e-4)
+        w.inject("drive_fault", "X")
+        w.wait_for(W.FAULT)
+        assert codes(w) == [AlarmCode.DRIVE_FAULT]
+        w.fault_reset()
+        w.wait_for(W.DISABLED)
+    finally:
+        w.stop()
+    w.stop()

@@ -1,0 +1,95 @@
+"""Random and named G-code programs for the motion tests (fixed seeds, no hypothesis needed)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from planner.cli import build_machine
+from planner.interpreter import parse_program
+from planner.machine import AxisSpec, MachineSpec
+
+ROOT = Path(__file__).resolve().parents[2]
+PROGRAMS = ROOT / "resources" / "programs"
+
+# Plane -> (first, second, normal) axis columns of X Y Z, and the I/J/K letters of first/second.
+PLANES = {"G17": (0, 1, 2), "G18": (2, 0, 1), "G19": (1, 2, 0)}
+OFFSET_LETTER = {0: "I", 1: "J", 2: "K"}
+
+
+def paper_machine(**kw) -> MachineSpec:
+    """3-axis XYZ, per-axis limits = the paper's path limits (what cnc-plan uses by default)."""
+    return build_machine(None, kw.get("vmax"), kw.get("amax"), kw.get("jmax"), kw.get("ts"))
+
+
+def machine_with_axes(axes: list[AxisSpec], **limits) -> MachineSpec:
+    base = paper_machine()
+    m = replace(base, axes=tuple(axes), work_offsets={k: (0.0,) * len(axes) for k in base.work_offsets})
+    return m.with_limits(**limits) if limits else m
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.6f}"
+
+
+def random_program(seed: int, n_blocks: int = 40, events: bool = True, planes: bool = True,
+                   tiny: bool = True) -> str:
+    """Lines (long, short, tiny, collinear), circles/helices in G17/G18/G19 (I/J/K form, both
+    directions, partial and full turns), rapids, feeds, dwells, G61/G64, pauses."""
+    rng = np.random.default_rng(seed)
+    pos = np.zeros(3)
+    out = ["G21 G90 G94 G17 F1800", "G00 X0 Y0 Z0"]
+    plane = "G17"
+    for _ in range(n_blocks):
+        r = rng.random()
+        feed = f" F{rng.uniform(300, 3000):.0f}" if rng.random() < 0.3 else ""
+        if r < 0.35:
+            step = rng.normal(0, 8, 3)
+            if tiny and rng.random() < 0.15:
+                step *= 1e-3
+            if rng.random() < 0.2:  # collinear continuation / small angle change
+                step = np.array([5.0, 0.0, 0.0]) + rng.normal(0, 0.05, 3)
+            pos = pos + step
+            out.append(f"G01 X{_fmt(pos[0])} Y{_fmt(pos[1])} Z{_fmt(pos[2])}{feed or ' F1800'}")
+        elif r < 0.42:
+            pos = pos + rng.normal(0, 10, 3)
+            out.append(f"G00 X{_fmt(pos[0])} Y{_fmt(pos[1])} Z{_fmt(pos[2])}")
+        elif r < 0.9:
+            if planes and rng.random() < 0.4:
+                plane = str(rng.choice(["G17", "G18", "G19"]))
+            f, s, n = PLANES[plane]
+            radius = float(rng.choice([rng.uniform(0.3, 2.0), rng.uniform(2.0, 25.0)]))
+            a0 = rng.uniform(-math.pi, math.pi)
+            center = pos.copy()
+            center[f] -= radius * math.cos(a0)
+            center[s] -= radius * math.sin(a0)
+            full = rng.random() < 0.15
+            sweep = rng.uniform(0.2, 2 * math.pi - 0.2)
+            ccw = rng.random() < 0.5
+            a1 = a0 + (sweep if ccw else -sweep)
+            end = pos.copy()
+            if not full:
+                end[f] = center[f] + radius * math.cos(a1)
+                end[s] = center[s] + radius * math.sin(a1)
+            if rng.random() < 0.4:
+                end[n] += rng.uniform(-3, 3)
+            words = " ".join(f"{'XYZ'[k]}{_fmt(end[k])}" for k in range(3))
+            offs = " ".join(f"{OFFSET_LETTER[k]}{_fmt(center[k] - pos[k])}" for k in (f, s))
+            out.append(f"{plane} {'G03' if ccw else 'G02'} {words} {offs}{feed}")
+            pos = end
+        elif events:
+            out.append(str(rng.choice(["G04 P0.05", "M00", "M01", "G61", "G64", "S5000 M03", "M05"])))
+    out.append("M30")
+    return "\n".join(out) + "\n"
+
+
+def parse(text: str, machine: MachineSpec | None = None, name: str = "<test>"):
+    return parse_program(text, name, machine or paper_machine())
+
+
+def sample_program(name: str, machine: MachineSpec | None = None):
+    path = PROGRAMS / name
+    return parse_program(path.read_text(), str(path), machine or paper_machine())

@@ -1,0 +1,224 @@
+"""Property tests of the exact arc / helix / spiral geometry (hypothesis).
+
+Random start, end, radius, direction, plane, R sign, turns and helix rise; checked:
+exact end points (1e-9 mm), every evaluated point on the radius, the direction of travel,
+u = arc length (unit tangent, length by integration), R form and I/J/K form give the same
+arc, helix axis linear in the angle, spiral radius linear in the angle.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from planner.interpreter import parse_program
+from planner.program import Arc, Move, MoveKind, arc_length_mm, arc_param_at_length
+
+PLANES = {  # G code: (first, second, normal) axis letters and their centre-offset letters
+    "G17": (("X", "Y", "Z"), ("I", "J")),
+    "G18": (("Z", "X", "Y"), ("K", "I")),
+    "G19": (("Y", "Z", "X"), ("J", "K")),
+}
+COLUMN = {"X": 0, "Y": 1, "Z": 2}
+
+coord = st.floats(-300.0, 300.0, allow_nan=False, allow_infinity=False)
+radius = st.floats(0.05, 400.0)
+angle = st.floats(-math.pi, math.pi)
+plane = st.sampled_from(sorted(PLANES))
+gdir = st.sampled_from([2, 3])
+rise = st.one_of(st.just(0.0), st.floats(-50.0, 50.0))
+TOL = 1e-9
+
+
+def num(x: float) -> str:
+    """Shortest round-tripping decimal without an exponent (G-code has none)."""
+    return np.format_float_positional(x, unique=True, trim="-")
+
+
+def program_for(plane_g, start3, words):
+    (f, s, n), _ = PLANES[plane_g]
+    x, y, z = (start3[COLUMN[a]] for a in "XYZ")
+    return f"G0 X{num(x)} Y{num(y)} Z{num(z)}\n{plane_g} G1 F600\n{words}\n"
+
+
+def endpoint_words(plane_g, p1f, p1s, n1):
+    (f, s, n), _ = PLANES[plane_g]
+    return f"{f}{num(p1f)} {s}{num(p1s)} {n}{num(n1)}"
+
+
+def check_exact_geometry(move: Move) -> None:
+    arc = move.arc
+    assert arc is not None and move.kind is MoveKind.ARC
+    f, s, n = arc.first_axis, arc.second_axis, arc.normal_axis
+    u = np.linspace(0.0, move.length_mm, 41)
+    pos, tan, curv = move.evaluate(u)
+    assert np.all(np.isfinite(pos)) and np.all(np.isfinite(tan)) and np.all(np.isfinite(curv))
+    # Exact ends: u = 0 is the start, u = length is the programmed end (bit-exact), and the
+    # analytic end of the arc (centre + radius at start angle + sweep) is within 1e-9 mm.
+    np.testing.assert_allclose(pos[0], move.start, atol=TOL, rtol=0)
+    np.testing.assert_array_equal(pos[-1], move.end)
+    a_end = arc.start_angle_rad + arc.sweep_rad
+    analytic_end = (arc.center[0] + arc.radius_end_mm * math.cos(a_end),
+                    arc.center[1] + arc.radius_end_mm * math.sin(a_end))
+    tol_end = TOL * max(1.0, arc.radius_end_mm * abs(arc.sweep_rad) / 100.0)
+    assert abs(analytic_end[0] - move.end[f]) <= tol_end
+    assert abs(analytic_end[1] - move.end[s]) <= tol_end
+    # Points on the radius (linear in the angle for spirals); helix axis linear in the angle.
+    t = arc_param_at_length(arc, u, move.length_mm)
+    r_expected = arc.radius_start_mm + (arc.radius_end_mm - arc.radius_start_mm) * t
+    r = np.hypot(pos[:, f] - arc.center[0], pos[:, s] - arc.center[1])
+    np.testing.assert_allclose(r[:-1], r_expected[:-1], atol=TOL * max(1.0, arc.radius_start_mm / 100), rtol=0)
+    if n >= 0:
+        np.testing.assert_allclose(pos[:-1, n], move.start[n] + arc.rise_mm * t[:-1], atol=TOL, rtol=0)
+    # Unit tangent over the linear axes.
+    np.testing.assert_allclose(np.linalg.norm(tan, axis=1), 1.0, atol=1e-12)
+    # Direction: (radius vector x tangent) has the sign of the sweep (+ = counter-clockwise).
+    cross = (pos[:, f] - arc.center[0]) * tan[:, s] - (pos[:, s] - arc.center[1]) * tan[:, f]
+    assert np.all(np.sign(cross) == np.sign(arc.sweep_rad))
+    # u is arc length: a fine polyline has the same length.
+    # Chords fall short of the arc by at most L (dtheta)^2 / 24 (dtheta: angle per chord).
+    n_chords = 2000
+    uu = np.linspace(0.0, move.length_mm, n_chords + 1)
+    pp = move.evaluate(uu)[0]
+    poly = np.sum(np.linalg.norm(np.diff(pp, axis=0), axis=1))
+    dtheta = abs(arc.sweep_rad) / n_chords * max(1.0, arc.radius_end_mm / arc.radius_start_mm,
+                                                  arc.radius_start_mm / arc.radius_end_mm)
+    shortfall = move.length_mm - poly
+    assert -1e-9 * move.length_mm <= shortfall <= move.length_mm * (dtheta**2 / 24 * 1.05 + 1e-9)
+
+
+@settings(max_examples=50)
+@given(plane=plane, c1=coord, c2=coord, n0=coord, r=radius, a0=angle, a1=angle, g=gdir, sign=st.sampled_from([1, -1]),
+       h=rise)
+def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
+    chord = 2 * r * abs(math.sin((a1 - a0) / 2))
+    assume(chord > 1e-3 * r and chord > 1e-6)
+    assume(chord < 2 * r * (1 - 1e-9))  # not the snapped half circle (own test)
+    p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
+    p1 = (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
+    (f, s, n), _ = PLANES[plane]
+    start = {f: p0[0], s: p0[1], n: n0}
+    text = program_for(plane, (start["X"], start["Y"], start["Z"]),
+                       f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} R{num(sign * r)}")
+    move = parse_program(text).moves[-1]
+    arc = move.arc
+    check_exact_geometry(move)
+    # G02 clockwise, G03 counter-clockwise; R > 0 at most 180 deg, R < 0 at least 180 deg
+    assert (arc.sweep_rad < 0) == (g == 2)
+    if sign > 0:
+        assert abs(arc.sweep_rad) <= math.pi + 1e-9
+    else:
+        assert abs(arc.sweep_rad) >= math.pi - 1e-9
+    assert arc.radius_start_mm == pytest.approx(r, rel=1e-9, abs=1e-9)
+    assert arc.rise_mm == pytest.approx(h, abs=1e-9)
+    # Centre side: G02 short arc (or G03 long arc) has its centre right of the chord.
+    cross = (p1[0] - p0[0]) * (arc.center[1] - p0[1]) - (p1[1] - p0[1]) * (arc.center[0] - p0[0])
+    right = (g == 2) == (sign > 0)
+    assert (cross < 0) == right or abs(cross) < 1e-9 * r * r
+
+    # The same arc in the I/J/K form (centre from the R form): same centre, sweep, length.
+    _, (ci, cj) = PLANES[plane]
+    ijk = program_for(plane, (start["X"], start["Y"], start["Z"]),
+                      f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
+                      f"{ci}{num(arc.center[0] - p0[0])} {cj}{num(arc.center[1] - p0[1])}")
+    m2 = parse_program(ijk).moves[-1]
+    assert m2.arc.center == pytest.approx(arc.center, abs=1e-9)
+    assert m2.arc.sweep_rad == pytest.approx(arc.sweep_rad, abs=1e-9)
+    assert m2.length_mm == pytest.approx(move.length_mm, abs=1e-9 * max(1.0, move.length_mm))
+
+
+@settings(max_examples=40)
+@given(plane=plane, c1=coord, c2=coord, n0=coord, r=radius, a0=angle, a1=angle, g=gdir,
+       turns=st.integers(1, 4), h=rise, full=st.booleans())
+def test_ijk_form_turns_and_full_circles(plane, c1, c2, n0, r, a0, a1, g, turns, h, full):
+    p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
+    p1 = p0 if full else (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
+    assume(full or math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
+    (f, s, n), (ci, cj) = PLANES[plane]
+    start = {f: p0[0], s: p0[1], n: n0}
+    text = program_for(plane, (start["X"], start["Y"], start["Z"]),
+                       f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
+                       f"{ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} P{turns}")
+    move = parse_program(text).moves[-1]
+    arc = move.arc
+    check_exact_geometry(move)
+    assert arc.turns == turns
+    assert (arc.sweep_rad < 0) == (g == 2)
+    # principal angle in (0, 2 pi] plus whole turns
+    principal = abs(arc.sweep_rad) - 2 * math.pi * (turns - 1)
+    assert 0 < principal <= 2 * math.pi + 1e-12
+    if full:
+        assert principal == pytest.approx(2 * math.pi)
+    expected = math.atan2(p1[1] - c2, p1[0] - c1) - math.atan2(p0[1] - c2, p0[0] - c1)
+    if not full:
+        # same end angle modulo 2 pi
+        d = (arc.sweep_rad - expected) / (2 * math.pi)
+        assert abs(d - round(d)) < 1e-9 * max(1.0, 1.0 / r)
+    if arc.radius_start_mm == arc.radius_end_mm:
+        c = arc.rise_mm / arc.sweep_rad
+        k_expected = arc.radius_start_mm / (arc.radius_start_mm**2 + c * c)
+        np.testing.assert_allclose(move.evaluate(np.array([0.0, move.length_mm / 3]))[2], k_expected, rtol=1e-9)
+
+
+@settings(max_examples=40)
+@given(c1=coord, c2=coord, r=st.floats(1.0, 400.0), a0=angle, a1=angle, g=gdir,
+       frac=st.floats(-0.95, 0.95), h=rise)
+def test_spirals_inside_tolerance(c1, c2, r, a0, a1, g, frac, h):
+    # end radius differs by at most the tolerance: LinuxCNC runs it as a spiral
+    tol = max(0.02828, min(0.001 * r, 2.828))
+    r1 = r + frac * tol
+    p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
+    p1 = (c1 + r1 * math.cos(a1), c2 + r1 * math.sin(a1))
+    assume(math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
+    text = f"G0 X{num(p0[0])} Y{num(p0[1])}\nG1 F600\nG{g} X{num(p1[0])} Y{num(p1[1])} Z{num(h)} I{num(c1 - p0[0])} J{num(c2 - p0[1])}\n"
+    move = parse_program(text).moves[-1]
+    assert move.arc.radius_end_mm == pytest.approx(r1, abs=1e-9)
+    check_exact_geometry(move)
+
+
+def test_r_form_half_circle_snap_is_exact():
+    move = parse_program("G1 F60\nG2 X10.0025 R5").moves[0]
+    assert move.arc.center == (5.00125, 0.0)
+    check_exact_geometry(move)
+
+
+def test_evaluate_line_and_vectorisation():
+    m = parse_program("G1 X3 Y4 Z12 F60").moves[0]
+    assert m.length_mm == 13.0
+    u = np.array([0.0, 6.5, 13.0, 20.0, -1.0])
+    pos, tan, curv = m.evaluate(u)
+    assert pos.shape == (5, 3) and tan.shape == (5, 3) and curv.shape == (5,)
+    np.testing.assert_allclose(pos[1], [1.5, 2, 6])
+    np.testing.assert_array_equal(pos[2], m.end)
+    np.testing.assert_array_equal(pos[3], m.end)  # clipped
+    np.testing.assert_array_equal(pos[4], m.start)
+    np.testing.assert_allclose(tan, np.tile([3 / 13, 4 / 13, 12 / 13], (5, 1)))
+    assert not curv.any()
+    p, _, _ = m.evaluate(6.5)  # scalar u
+    assert p.shape == (1, 3)
+
+
+def test_evaluate_tangent_matches_finite_difference_on_spiral_helix():
+    a = Arc("XY", 0, 1, 2, (0.0, 0.0), 5.0, 5.5, 0.3, 2.5, 2.0)
+    length = arc_length_mm(a)
+    a_end = 0.3 + 2.5
+    start = np.array([5 * math.cos(0.3), 5 * math.sin(0.3), 0.0])
+    end = np.array([5.5 * math.cos(a_end), 5.5 * math.sin(a_end), 2.0])
+    m = Move(0, 1, MoveKind.ARC, start, end, 1.0, length, a, False)
+    u = np.linspace(0.1, length - 0.1, 7)
+    eps = 1e-6
+    p_hi, _, _ = m.evaluate(u + eps)
+    p_lo, _, _ = m.evaluate(u - eps)
+    _, tan, curv = m.evaluate(u)
+    np.testing.assert_allclose((p_hi - p_lo) / (2 * eps), tan, atol=1e-7)
+    # curvature from the second difference of the positions
+    p0, _, _ = m.evaluate(u)
+    h = 1e-3
+    p_h, _, _ = m.evaluate(u + h)
+    p_l, _, _ = m.evaluate(u - h)
+    k_num = np.linalg.norm((p_h - 2 * p0 + p_l) / h**2, axis=1)
+    np.testing.assert_allclose(curv, k_num, rtol=1e-4)
