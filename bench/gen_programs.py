@@ -28,7 +28,7 @@ def _f(x: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def sphere_finishing(radius: float = 60.0, chord_mm: float = 4.2, stepover_mm: float = 0.158) -> str:
+def sphere_finishing(radius: float = 60.0, chord_mm: float = 3.5, stepover_mm: float = 0.19) -> str:
     """Contour finish of a hemisphere: parallels as G01 chords, a G01 step between them."""
     out = list(HEADER)
     levels = int((math.pi / 2 * radius) / stepover_mm)
@@ -50,7 +50,7 @@ def sphere_finishing(radius: float = 60.0, chord_mm: float = 4.2, stepover_mm: f
     return "\n".join(out + FOOTER) + "\n"
 
 
-def sphere_roughing(radius: float = 30.0, levels: int = 166, rings: int = 3,
+def sphere_roughing(radius: float = 28.0, levels: int = 166, rings: int = 3,
                     ring_mm: float = 3.0) -> str:
     """Roughing around a hemisphere: per Z level three G03 full circles (I/J) from the outside
     in, down to 0.5 mm above the sphere, G01 step-overs between them."""
@@ -69,7 +69,7 @@ def sphere_roughing(radius: float = 30.0, levels: int = 166, rings: int = 3,
     return "\n".join(out + FOOTER) + "\n"
 
 
-def circular_pocket(radius: float = 18.0, depth: float = 16.0, dz: float = 0.5,
+def circular_pocket(radius: float = 17.0, depth: float = 17.0, dz: float = 0.5,
                     stepover: float = 1.0) -> str:
     """Circular pocket: per Z level a helical entry, then G03 full-circle rings (I/J) with
     G01 step-overs between them."""

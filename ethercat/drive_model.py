@@ -418,6 +418,9 @@ class DriveModel:
     def _update_state_machine(self) -> None:
         cw = self.controlword
         st = self.state
+        if st is S.OPERATION_ENABLED and (cw & 0x8F) == 0x0F and not self._fault_pending:
+            self._prev_fault_reset_bit = False
+            return                                           # fast path: stays enabled
         fault_reset_edge = bool(cw & CW_FAULT_RESET) and not self._prev_fault_reset_bit
         self._prev_fault_reset_bit = bool(cw & CW_FAULT_RESET)
         if self._fault_pending and st not in (S.FAULT, S.FAULT_REACTION_ACTIVE):

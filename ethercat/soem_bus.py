@@ -19,7 +19,10 @@ Start-up (`open()`), each step failing with an `EtherCATError` that says what an
 
 Cyclic: `exchange()` packs each drive's outputs exactly to the slave's output size
 (pysoem copies `len(bytes)` without a bounds check), sends one LRW (+ the DC FRMW),
-receives with a timeout and unpacks the inputs only when the working counter is right.
+receives with a timeout and checks the working counter every cycle: inputs are unpacked
+only when it is right, otherwise `wkc_errors` counts and the caller (the worker) reacts.
+`lost_slaves()` names the slaves that stopped answering; `recover_slaves()` brings back
+slaves that returned (identity checked, mapping rewritten, SYNC0 restarted, OP).
 pysoem releases the GIL in every call (`always_release_gil`), so an SDO in one thread
 does not stall the cyclic thread. `close()` disables SYNC0 and takes the bus to INIT.
 
@@ -323,6 +326,7 @@ class SoemBus(Bus):
         self.warnings: list[str] = []       # SOEM error list entries judged harmless
         self.slave_mappings: dict[int, PdoMapping] = {}
         self._expected_wkc = 0
+        self.wkc_errors = 0                 # cycles whose working counter was not the expected one
         self._io: list[_DriveIo] = []
         self._dc_active = False
         self._io_ready = False              # True between a finished open() and close()
@@ -495,6 +499,8 @@ class SoemBus(Bus):
         if wkc == self._expected_wkc:
             for io in self._io:
                 io.read()
+        else:
+            self.wkc_errors += 1            # inputs keep their last good values
         return wkc
 
     # ------------------------------------------------------------------ shutdown
@@ -541,6 +547,30 @@ class SoemBus(Bus):
             return ()
         self.master.read_state()
         return tuple(i for i, s in enumerate(self.master.slaves) if int(s.state) == 0)
+
+    def recover_slaves(self, timeout_us: int = 50_000) -> tuple[int, ...]:
+        """Bring slaves that came back (after a loss or a power cycle) to OP again, as
+        SOEM's `ecatcheck` does: find them at their position, check their identity, write
+        their sync managers, run the PDO mapping hook, restart SYNC0, request OP.
+        Acyclic (tens of ms): call it from the thread that owns the bus between cycles
+        while the others keep running. Returns the positions that were re-configured."""
+        self._check_open()
+        master = self.master
+        master.read_state()
+        recovered = []
+        for i, s in enumerate(master.slaves):
+            if int(s.state) == AL_OP:
+                continue
+            if int(s.state) == 0 and s.recover(timeout_us) <= 0:
+                continue                       # still gone
+            if int(s.reconfig(timeout_us)) not in (AL_SAFEOP, AL_SAFEOP | 0x10):
+                continue
+            if self._dc_active:
+                s.dc_sync(True, int(round(self.cycle_time_s * 1e9)))
+            s.state = AL_OP
+            s.write_state()
+            recovered.append(i)
+        return tuple(recovered)
 
     def al_states(self) -> tuple[tuple[str, int], ...]:
         """(AL state name, AL status code) per slave, read now."""

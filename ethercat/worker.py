@@ -37,6 +37,7 @@ Nothing in the cycle allocates arrays or logs; alarm texts are built by the read
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import ctypes
 import enum
@@ -190,10 +191,6 @@ class WorkerSnapshot:
     def enabled(self) -> bool:
         return self.state is WorkerState.ENABLED
 
-    @property
-    def moving(self) -> bool:
-        return self.buffer_level > 0
-
 
 @dataclass(frozen=True, slots=True)
 class TraceChunk:
@@ -220,9 +217,13 @@ class WorkerConfig:
     following_error_cycles: |ref - actual| over the window for more than this many cycles.
     mode: "process" | "thread" | "manual"; cpu: core to pin the loop to (-1 = last core,
     None = no pinning); rt_priority: SCHED_FIFO priority (0 = normal scheduling).
-    spin_s: busy-wait this long before each deadline (after sleeping), for low jitter.
+    spin_s: busy-wait this long before each deadline (after sleeping), for low jitter;
+    None = 0.5 ms in mode "process" (measured: wake-up latency in a VM reaches hundreds
+    of us), 0 in mode "thread" (spinning would hold the GIL against the GUI).
     tracking_delay_cycles: the actual position read in cycle k answers the set-point of
     cycle k - d (bus transport: 1 on SimBus, where inputs are latched before outputs apply).
+    underrun_velocity_units_s: the buffer running empty is an underrun only when the last
+    set-points moved faster than this (a jerk-limited stop ends far below it).
     bus_options: extra keyword arguments for the bus backend, as (name, value) pairs.
     """
 
@@ -236,11 +237,12 @@ class WorkerConfig:
     mode: str = "process"
     cpu: int | None = -1
     rt_priority: int = 80
-    spin_s: float = 0.0002
+    spin_s: float | None = None
     late_threshold_s: float = 0.001
     snapshot_hz: float = 30.0
     tracking_window_s: float = 600.0
     tracking_delay_cycles: int = 1
+    underrun_velocity_units_s: float = 0.01
     enable_timeout_s: float = 1.0
     fault_reset_timeout_s: float = 0.5
     homing_timeout_s: float = 120.0
@@ -275,6 +277,7 @@ class WorkerConfig:
 
 # ---------------------------------------------------------------------- shared layout
 _REF_HISTORY = 8
+PROCESS_SPIN_S = 0.0005
 _FAULTED_LUT = np.array([s in (Cia402State.FAULT, Cia402State.FAULT_REACTION_ACTIVE) for s in Cia402State])
 _NOT_ENABLED_LUT = np.array([s is not Cia402State.OPERATION_ENABLED for s in Cia402State])
 _HIST_BIN_S = 5e-6
@@ -377,6 +380,9 @@ class _Loop:
         self.fe = v["fe"]
         self.prev_ref = np.zeros(n)
         self.ref_hist = np.zeros((_REF_HISTORY, n))
+        # row views made once, so the cycle indexes lists instead of creating array views
+        self.ref_rows = [self.ref_hist[i] for i in range(_REF_HISTORY)]
+        self.ring_rows = [self.ring[i] for i in range(config.buffer_capacity)]
         self.tmp = np.zeros(n)
         self.tmp2 = np.zeros(n)
         self.states = np.zeros(n, dtype=np.int8)
@@ -393,7 +399,7 @@ class _Loop:
         self.block_acc_n = 0
         self.block_index = 0
         self.e = np.zeros(n)
-        self.eps_units = 1e-9
+        self.eps_units = config.underrun_velocity_units_s * config.ts_s   # per cycle
         self.snapshot_every = max(1, int(round(1.0 / (config.snapshot_hz * config.ts_s))))
         self.state = WorkerState.STARTING
         self.state_cycles = 0
@@ -408,7 +414,6 @@ class _Loop:
         self.trace_cap = config.trace_capacity
         self.trace = v["trace"]
         self.stop_requested = False
-        self.prev_start = 0.0
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -434,11 +439,13 @@ class _Loop:
             return
         try:
             if bus.is_open:
-                for _ in range(5):          # leave drives disabled
+                for _ in range(5):          # leave drives disabled (best effort)
                     np.take(cia402.DISABLE_LUT, self.states, out=bus.controlword)
                     bus.target_position[:] = bus.position_actual
                     bus.exchange()
                     cia402.decode_states(bus.statusword, self.states, self.scratch_i)
+        except Exception:  # noqa: BLE001 - the bus is closed below whatever happened
+            pass
         finally:
             bus.close()
             self.bus = None
@@ -465,6 +472,7 @@ class _Loop:
         row[2] = int(self.li[I_CYCLE])
         row[3] = a
         row[4] = b
+        row[5] = self.cmd_seen             # the command behind it (quick stop reason lookup)
         self.v["alarm_f"][k % _ALARM_SLOTS] = f
         self.ctl[C_ALARMS] = k + 1
 
@@ -475,6 +483,7 @@ class _Loop:
     def _hold_actual(self) -> None:
         np.copyto(self.ref, self.act)
         np.copyto(self.prev_ref, self.act)
+        self.ref_hist[:] = self.act
         self._target_from_actual()
 
     def _reaction(self, code: AlarmCode, axis: int = -1, a: int = 0, b: int = 0, f: float = 0.0,
@@ -594,7 +603,7 @@ class _Loop:
             tail = int(self.ctl[C_TAIL])
             np.copyto(self.prev_ref, self.ref)
             if head > tail:
-                np.copyto(self.ref, self.ring[tail % self.cap])
+                np.copyto(self.ref, self.ring_rows[tail % self.cap])
                 self.ctl[C_TAIL] = tail + 1
                 li[I_CONSUMED] += 1
                 np.subtract(self.ref, self.prev_ref, out=self.tmp)
@@ -606,7 +615,7 @@ class _Loop:
                 li[I_UNDERRUNS] += 1
                 self._alarm(AlarmCode.UNDERRUN, -1, int(li[I_CONSUMED]))
             cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
-            bus.controlword[:] = cia402.CW_ENABLE_OPERATION
+            bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
         elif st is WorkerState.HOMING:
             self._homing_outputs()
         else:
@@ -623,6 +632,7 @@ class _Loop:
                     bus.controlword[i] = cw if faulted else cia402.DISABLE_LUT[states[i]]
             else:  # QUICK_STOP, FAULT, ERROR
                 np.take(cia402.QUICK_STOP_LUT, states, out=bus.controlword)
+        np.copyto(self.ref_rows[cycle % _REF_HISTORY], self.ref)
         # ---- exchange
         wkc = bus.exchange()
         li[I_WKC] = wkc
@@ -645,7 +655,9 @@ class _Loop:
         np.copyto(self.v["statusword"], bus.statusword)
         np.copyto(self.v["error_code"], bus.error_code)
         np.copyto(self.v["drive_state"], states)
-        np.subtract(self.ref, self.act, out=self.fe)
+        # following error against the set-point this actual position answers (bus delay)
+        np.subtract(self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % _REF_HISTORY], self.act,
+                    out=self.fe)
         # drive faults (FAULT or FAULT REACTION ACTIVE)
         np.take(_FAULTED_LUT, states, out=self.bool_tmp)
         if self.bool_tmp.any():
@@ -698,16 +710,14 @@ class _Loop:
                 self._set_state(WorkerState.FAULT)
         if self.state is not WorkerState.ENABLED and self.state is not WorkerState.HOMING:
             np.copyto(self.ref, self.act)
-            np.subtract(self.ref, self.act, out=self.fe)
+            self.fe.fill(0.0)
 
     def _track(self) -> None:
         """Tracking error per axis against the set-point of `tracking_delay_cycles` ago (Eq. 18)."""
         cycle = int(self.li[I_CYCLE])
-        self.ref_hist[cycle % _REF_HISTORY] = self.ref
-        d = self.cfg.tracking_delay_cycles
+        ref_d = self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % _REF_HISTORY]
         e = self.e
-        ref_d = self.ref_hist[(cycle - d) % _REF_HISTORY]
-        np.subtract(ref_d, self.act, out=e)
+        np.copyto(e, self.fe)                      # = ref_d - act, computed in cycle()
         v = self.v
         np.abs(e, out=self.tmp)
         np.maximum(v["max_e"], self.tmp, out=v["max_e"])
@@ -789,11 +799,11 @@ class _Loop:
             self.cycle()
         self.publish()
 
-    def run_realtime(self) -> None:
+    def run_realtime(self, default_spin_s: float = 0.0) -> None:
         """The cyclic loop on absolute deadlines until CMD_STOP."""
         cfg = self.cfg
         ts = cfg.ts_s
-        spin = cfg.spin_s
+        spin = cfg.spin_s if cfg.spin_s is not None else default_spin_s
         late_s = cfg.late_threshold_s
         li, lf, hist = self.li, self.lf, self.v["hist"]
         perf = time.perf_counter
@@ -804,6 +814,7 @@ class _Loop:
         deadline = perf() + ts
         prev_start = 0.0
         k_snap = 0
+        missed = 0
         while not self.stop_requested:
             now = perf()
             remaining = deadline - now
@@ -813,9 +824,12 @@ class _Loop:
                 pass
             start = perf()
             jitter = start - deadline
+            li[I_MISSED] += missed               # counted when the deadline after them starts
+            missed = 0
             try:
                 self.cycle()
-            except EtherCATError:
+            except Exception as exc:  # noqa: BLE001 - any bus failure ends the loop with an alarm
+                _write_msg(self.v, f"{type(exc).__name__}: {exc}")
                 self._alarm(AlarmCode.BUS_ERROR)
                 self._set_state(WorkerState.ERROR)
                 self.publish()
@@ -847,7 +861,6 @@ class _Loop:
             deadline += ts
             if end - deadline >= ts:              # overran by whole periods: skip them, stay on grid
                 missed = int((end - deadline) / ts)
-                li[I_MISSED] += missed
                 deadline += missed * ts
             k_snap += 1
             if k_snap >= every:
@@ -912,7 +925,7 @@ def _process_main(cfg: WorkerConfig, shm_name: str, layout_args: tuple[int, int,
         parent = os.getppid()
         watcher = threading.Thread(target=_parent_watch, args=(loop, parent), daemon=True)
         watcher.start()
-        loop.run_realtime()
+        loop.run_realtime(default_spin_s=PROCESS_SPIN_S)
     finally:
         with contextlib.suppress(Exception):
             loop.close_bus()
@@ -966,8 +979,7 @@ class CyclicWorker:
         self._lock = threading.Lock()
         self._alarms: list[Alarm] = []
         self._alarms_read = 0
-        self._reasons: list[tuple[int, str]] = []     # (alarm cycle hint, reason) for quick stops
-        self._pending_reason = ""
+        self._reasons: dict[int, str] = {}      # command seq -> quick stop / E-stop reason
         self._trace_read = 0
         self._started = False
         self.realtime_applied = ""
@@ -983,6 +995,10 @@ class CyclicWorker:
         if self._started:
             return
         cfg = self.config
+        self._alarms.clear()
+        self._alarms_read = 0
+        self._trace_read = 0
+        self._reasons.clear()
         if cfg.mode == "process":
             self._shm = shared_memory.SharedMemory(create=True, size=self._layout.size)
             self._v = self._layout.views(self._shm.buf)
@@ -1011,6 +1027,7 @@ class CyclicWorker:
             self._cleanup()
             raise
         self._started = True
+        atexit.register(self.stop)             # drives disabled and bus closed at interpreter exit
 
     def _thread_main(self) -> None:
         assert self._loop is not None
@@ -1038,6 +1055,7 @@ class CyclicWorker:
         """Disable the drives, close the bus, end the loop. Stopping twice is harmless."""
         if not self._started:
             return
+        atexit.unregister(self.stop)
         try:
             with contextlib.suppress(WorkerError):
                 self._command(CMD_STOP)
@@ -1057,9 +1075,6 @@ class CyclicWorker:
     def _cleanup(self) -> None:
         self._thread = None
         self._process = None
-        if self._v is not None and self._shm is None:
-            # keep final values readable after stop in thread/manual mode
-            pass
         if self._shm is not None:
             shm = self._shm
             self._v = None
@@ -1086,7 +1101,7 @@ class CyclicWorker:
             raise WorkerError("worker is not running: call start() first")
         return self._v
 
-    def _command(self, code: int, a: int = 0, b: int = 0) -> bool:
+    def _command(self, code: int, a: int = 0, b: int = 0, reason: str = "") -> bool:
         v = self._v
         if v is None:
             raise WorkerError("worker is not running")
@@ -1096,6 +1111,8 @@ class CyclicWorker:
             ctl[C_CMD_A] = a
             ctl[C_CMD_B] = b
             seq = int(ctl[C_CMD_SEQ]) + 1
+            if reason:
+                self._reasons[seq] = reason
             ctl[C_CMD_SEQ] = seq
             if self.config.mode == "manual":
                 assert self._loop is not None
@@ -1136,14 +1153,12 @@ class CyclicWorker:
     def quick_stop(self, reason: str = "quick stop requested") -> None:
         """Quick stop of all axes, buffer flushed, alarm QUICK_STOP with `reason`."""
         self._views()
-        self._pending_reason = reason
-        self._command(CMD_QUICK_STOP)
+        self._command(CMD_QUICK_STOP, reason=reason or "requested")
 
     def estop(self, reason: str = "E-stop") -> None:
         """E-stop input: quick stop of all axes and alarm ESTOP."""
         self._views()
-        self._pending_reason = reason
-        self._command(CMD_ESTOP)
+        self._command(CMD_ESTOP, reason=reason or "E-stop")
 
     def home(self, axis: int | str, method: int = 35) -> None:
         """Start the drive's own homing (CiA 402 mode 6, method 0x6098) on one axis.
@@ -1201,8 +1216,11 @@ class CyclicWorker:
         return int(ctl[C_HEAD] - ctl[C_TAIL])
 
     def push(self, q: np.ndarray) -> int:
-        """Append set-points (N, n_axes) in axis units (mm | deg). Returns how many were
-        accepted (the ring is bounded: push the rest later). Accepted only when ENABLED."""
+        """Append set-points (N, n_axes) in axis units (mm | deg), one per cycle. Returns how
+        many were accepted (the ring is bounded: push the rest later). They are consumed
+        only while ENABLED; `enable()`, `disable()`, `fault_reset()` and every reaction
+        (quick stop) flush the buffer, so push after `enable()`, starting at the actual
+        position."""
         v = self._views()
         q = np.asarray(q, dtype=np.float64)
         if q.ndim == 1:
@@ -1291,11 +1309,14 @@ class CyclicWorker:
             code = AlarmCode(int(row[0]))
             axis_i, cycle, a, b = int(row[1]), int(row[2]), int(row[3]), int(row[4])
             axis = names[axis_i] if 0 <= axis_i < len(names) else ""
-            msg = self._alarm_message(code, axis, axis_i, a, b, f)
+            commanded = code in (AlarmCode.ESTOP, AlarmCode.QUICK_STOP)
+            reason = self._reasons.pop(int(row[5]), "") if commanded else ""
+            msg = self._alarm_message(code, axis, axis_i, a, b, f, reason)
             self._alarms.append(Alarm(code, msg, axis, cycle, cycle * ts, time.time()))
         self._alarms_read = total
 
-    def _alarm_message(self, code: AlarmCode, axis: str, axis_i: int, a: int, b: int, f: float) -> str:
+    def _alarm_message(self, code: AlarmCode, axis: str, axis_i: int, a: int, b: int, f: float,
+                       reason: str = "") -> str:
         cfg = self.config
         if code is AlarmCode.UNDERRUN:
             return f"set-point buffer underrun after {a} set-points: holding the last position"
@@ -1316,10 +1337,8 @@ class CyclicWorker:
             return (f"following error on axis {axis}: {f:+.4f} exceeds window {w:g} for more than "
                     f"{cfg.following_error_cycles} cycles: quick stop of all axes")
         if code is AlarmCode.ESTOP:
-            reason, self._pending_reason = self._pending_reason, ""
             return f"E-stop: quick stop of all axes ({reason or 'E-stop'})"
         if code is AlarmCode.QUICK_STOP:
-            reason, self._pending_reason = self._pending_reason, ""
             return f"quick stop of all axes: {reason or 'requested'}"
         if code is AlarmCode.ENABLE_TIMEOUT:
             state = Cia402State(a).name if 0 <= a < len(Cia402State) else str(a)
@@ -1331,7 +1350,8 @@ class CyclicWorker:
             return (f"fault reset of axis {axis} failed: error code 0x{a:04X} {error_code_text(a)} "
                     "still present")
         if code is AlarmCode.BUS_ERROR:
-            return "bus error in the cyclic loop: worker stopped"
+            detail = _read_msg(self._v) if self._v is not None else ""
+            return f"bus error in the cyclic loop ({detail}): worker stopped"
         return code.name
 
     def alarms(self) -> tuple[Alarm, ...]:

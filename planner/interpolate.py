@@ -4,10 +4,11 @@ Sample k is at time t_k = k Ts on one global grid. Three methods (``planner.inte
 
 * ``"exact"`` (default): s(t) of the move's closed-form profile, mapped through the exact
   geometry (for arcs and helices the angle parameter is s / |R'|, |R'| constant).
-* ``"taylor"``: Eq. 16, step by step: s_{k+1} = s_k + V(t_k) Ts + A(t_k) Ts^2 / 2 with V, A
-  of the move's profile; for our curves |R'| is constant and R'.R'' = 0, so stepping s is
-  stepping the angle. Each move starts from the exact s of its first sample (the paper runs
-  every G-code line from its own start); the step sum is a segmented cumulative sum.
+* ``"taylor"``: Eq. 16, step by step: S_{k+1} = S_k + V(t_k) Ts + A(t_k) Ts^2 / 2 with V, A
+  of the profile at t_k; for our curves |R'| is constant and R'.R'' = 0, so stepping the
+  path length is stepping the arc parameter. S runs over the whole program (a cumulative
+  sum carried across chunks), so it drifts from the exact s(t) by the neglected jerk term
+  (about J Ts^3 / 12 per phase switch, partly cancelling); the limit report shows it.
 * ``"classic"``: Eq. 17, constant parameter increment: every move at its cruise speed
   min(F, Vmax), a whole number of samples per move, no soft start (Fig. 11's comparison).
 
@@ -68,6 +69,33 @@ class Segment:
     t_end: float  # end of the segment's time span (after the last move's dwell)
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
+    # Flat phase table (7 phases per move, in time order): absolute start time, duration and
+    # state (s, v, a, jerk / 6) at the phase start. One searchsorted finds move and phase.
+    ph_t: np.ndarray
+    ph_d: np.ndarray
+    ph_s: np.ndarray
+    ph_v: np.ndarray
+    ph_a: np.ndarray
+    ph_j6: np.ndarray
+    t_stop: np.ndarray  # (n,) time each move reaches its end (before any dwell)
+
+    def state(self, t: np.ndarray, need_va: bool = False):
+        """(row, s) or (row, s, v, a) at global times t (closed form, vectorised)."""
+        idx = np.searchsorted(self.ph_t, t, side="right") - 1
+        np.clip(idx, 0, None, out=idx)
+        dt = np.clip(t - self.ph_t[idx], 0.0, self.ph_d[idx])
+        a0 = self.ph_a[idx]
+        j6 = self.ph_j6[idx]
+        v0 = self.ph_v[idx]
+        s = self.ph_s[idx] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
+        row = idx // 7
+        length = self.table.length[row]
+        s = np.where(t >= self.t_stop[row], length, np.minimum(s, length))
+        if not need_va:
+            return row, s
+        v = v0 + dt * (a0 + 3.0 * j6 * dt)
+        a = a0 + 6.0 * j6 * dt
+        return row, s, v, a
 
 
 def first_sample_at(t: float, ts: float) -> int:
@@ -103,8 +131,12 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
         prof = build_profiles(table.length, vs, ve, vc, a_t, j_t)
     bounds = np.cumsum(np.concatenate([[t_start], prof.duration + dwell]))
     s_bounds = np.cumsum(np.concatenate([[s_start], table.length]))
-    return Segment(table, prof, vs, ve, v_prog, bounds[:-1], float(bounds[-1]), s_bounds[:-1],
-                   float(s_bounds[-1]))
+    t0 = bounds[:-1]
+    ph_t = (t0[:, None] + prof.t_b[:, :7]).ravel()
+    return Segment(table, prof, vs, ve, v_prog, t0, float(bounds[-1]), s_bounds[:-1],
+                   float(s_bounds[-1]), ph_t, np.diff(prof.t_b, axis=1).ravel(),
+                   prof.s_b[:, :7].ravel(), prof.v_b[:, :7].ravel(), prof.a_b[:, :7].ravel(),
+                   (prof.jerk / 6.0).ravel(), t0 + prof.duration)
 
 
 class Interpolator:
@@ -115,45 +147,32 @@ class Interpolator:
             raise PlannerError(f"interpolation must be one of {INTERPOLATIONS}, got {interpolation!r}")
         self.interpolation = interpolation
         self.ts = ts
-        self._carry: tuple[int, float, float] | None = None  # (move, s, increment) of last sample
+        self._carry: float | None = None  # Taylor: path length S of the next sample
 
     def samples(self, seg: Segment, k0: int, k1: int) -> SampleChunk:
-        ts = self.ts
-        t = np.arange(k0, k1, dtype=float) * ts
-        n = len(seg.table)
-        m = np.searchsorted(seg.t0, t, side="right") - 1
-        np.clip(m, 0, n - 1, out=m)
-        tau = t - seg.t0[m]
+        t = np.arange(k0, k1, dtype=float) * self.ts
         if self.interpolation == "taylor":
-            s_ex, v, a, _ = seg.profiles.evaluate(m, tau)
-            s = self._taylor(seg, m, s_ex, v, a)
+            _, _, v, a = seg.state(t, need_va=True)
+            s_glob = self._taylor(seg, v, a)
+            m = np.searchsorted(seg.s0, s_glob, side="right") - 1
+            np.clip(m, 0, len(seg.table) - 1, out=m)
+            s = np.clip(s_glob - seg.s0[m], 0.0, seg.table.length[m])
         else:
-            s = seg.profiles.evaluate_s(m, tau)
+            m, s = seg.state(t)
         q = seg.table.positions(m, s)
         return SampleChunk(t, q, seg.s0[m] + s, seg.table.line[m], seg.table.index[m].astype(np.int32))
 
-    def _taylor(self, seg: Segment, m, s_ex, v, a) -> np.ndarray:
+    def _taylor(self, seg: Segment, v: np.ndarray, a: np.ndarray) -> np.ndarray:
+        """Eq. 16 (|R'| constant, R'.R'' = 0): S_{k+1} = S_k + V(t_k) Ts + A(t_k) Ts^2 / 2 on the
+        cumulative path length, carried across chunks and moves (no re-synchronisation)."""
         ts = self.ts
-        gm = seg.table.index[m]
-        inc = v * ts + (0.5 * ts * ts) * a  # Eq. 16 for |R'| constant
-        n = gm.shape[0]
-        if n == 0:
-            return s_ex
-        new = np.empty(n, dtype=bool)
-        new[1:] = gm[1:] != gm[:-1]
-        carry = self._carry
-        new[0] = carry is None or carry[0] != gm[0]
-        base = s_ex.copy()
-        if not new[0]:
-            base[0] = carry[1] + carry[2]
-        flag = new.copy()
-        flag[0] = True
-        starts = np.flatnonzero(flag)
-        seg_id = np.cumsum(flag) - 1
-        prefix = np.empty(n)
-        prefix[0] = 0.0
-        np.cumsum(inc[:-1], out=prefix[1:])
-        s = base[starts][seg_id] + (prefix - prefix[starts][seg_id])
-        np.clip(s, 0.0, seg.table.length[m], out=s)
-        self._carry = (int(gm[-1]), float(s[-1]), float(inc[-1]))
+        inc = v * ts + (0.5 * ts * ts) * a
+        if inc.shape[0] == 0:
+            return inc
+        start = seg.s0[0] if self._carry is None else self._carry
+        s = np.empty_like(inc)
+        s[0] = start
+        np.cumsum(inc[:-1], out=s[1:])
+        s[1:] += start
+        self._carry = float(s[-1] + inc[-1])
         return s

@@ -107,6 +107,13 @@ class _BlockError(Exception):
         self.col = col
 
 
+def _compact_or_none(raw: str) -> str | None:
+    try:
+        return compact(raw)
+    except LexError:
+        return None
+
+
 def _gname(code10: int) -> str:
     return f"G{code10 // 10}" if code10 % 10 == 0 else f"G{code10 // 10}.{code10 % 10}"
 
@@ -206,14 +213,15 @@ class _Interpreter:
             if not s:
                 continue
             if s[0] == "%":
-                if s != "%" and compact(s) != "%":
+                if s != "%" and _compact_or_none(s) != "%":
                     self.error(line_no, raw.index("%") + 1, "'%' must be alone on its line")
                     continue
                 if started:
                     break  # closing '%': the rest of the file is not part of the program
                 started = True
                 continue
-            started = True
+            if not started and _compact_or_none(s) != "":
+                started = True  # comment-only lines before an opening '%' do not count
             if s[0] == "/":
                 if self.block_delete:
                     continue
@@ -232,7 +240,7 @@ class _Interpreter:
                 break
         if self.errors:
             raise ProgramError(self.errors, self.truncated)
-        return self.build(line_no)
+        return self.build(text.count("\n") + 1 if text else 0)
 
     def fast_line(self, groups: tuple, line_no: int) -> bool:
         """A block matched by fast_re: [N] [G00-G03] axis words (machine order) [I J K R] [F].
@@ -265,9 +273,14 @@ class _Interpreter:
         rot = self.rotary
         if self.absolute:
             off = self.offset
-            for i, v in enumerate(axis_vals):
-                if v is not None:
-                    target[i] = (float(v) if rot[i] else float(v) * scale) + off[i]
+            if self.all_linear:
+                for i, v in enumerate(axis_vals):
+                    if v is not None:
+                        target[i] = float(v) * scale + off[i]
+            else:
+                for i, v in enumerate(axis_vals):
+                    if v is not None:
+                        target[i] = (float(v) if rot[i] else float(v) * scale) + off[i]
         else:
             for i, v in enumerate(axis_vals):
                 if v is not None:
@@ -316,6 +329,13 @@ class _Interpreter:
             code = compact(raw)
         except LexError:
             return 1
+        if len(letter) > 1:  # a code such as "G28", "G90.1", "M6": find that word
+            whole, _, frac = letter[1:].partition(".")
+            pat = rf"{letter[0]}0*{whole}" + (rf"\.{frac}0*(?![0-9])" if frac else r"(?![0-9]|\.[0-9])")
+            m = re.search(pat, code)
+            if m:
+                return original_column(raw, m.start())
+            letter = letter[0]
         i = code.find(letter)
         return original_column(raw, i) if i >= 0 else 1
 
@@ -451,20 +471,23 @@ class _Interpreter:
             if g is None:
                 what = _G_UNSUPPORTED.get(c)
                 if what:
-                    raise _BlockError(f"{_gname(c)} is not supported ({what})", "G")
-                raise _BlockError(f"unknown G code {_gname(c)}", "G")
+                    raise _BlockError(f"{_gname(c)} is not supported ({what})", _gname(c))
+                raise _BlockError(f"unknown G code {_gname(c)}", _gname(c))
             if g in groups:
                 raise _BlockError(
-                    f"{_gname(groups[g])} and {_gname(c)} are in the same modal group (one per block)", "G"
+                    f"{_gname(groups[g])} and {_gname(c)} are in the same modal group (one per block)",
+                    _gname(c),
                 )
             groups[g] = c
         mgroups: dict[int, int] = {}
         for c in mcodes:
             g = _M_GROUP.get(c)
             if g is None:
-                raise _BlockError(f"M{c} is not supported", "M")
+                raise _BlockError(f"M{c} is not supported", f"M{c}")
             if g in mgroups and not (g == 8 and {mgroups[g], c} == {7, 8}):
-                raise _BlockError(f"M{mgroups[g]} and M{c} are in the same modal group (one per block)", "M")
+                raise _BlockError(
+                    f"M{mgroups[g]} and M{c} are in the same modal group (one per block)", f"M{c}"
+                )
             mgroups[g] = c
 
         axis_words = []
@@ -485,7 +508,9 @@ class _Interpreter:
         g0 = groups.get(0)
         g1 = groups.get(1)
         if g0 == 280 and g1 is not None and g1 != 800:
-            raise _BlockError("cannot use two G codes that both use axis values (G28 and a motion code)", "G")
+            raise _BlockError(
+                "cannot use two G codes that both use axis values (G28 and a motion code)", "G28"
+            )
         if g1 == 800 and axis_words and g0 != 280:
             raise _BlockError("cannot use axis values with G80", axis_words[0])
         if g1 is not None:
@@ -561,7 +586,7 @@ class _Interpreter:
         if g0 == 40:
             p = vals.get("P")
             if p is None:
-                raise _BlockError("G04 needs a P word (dwell time in seconds)", "G")
+                raise _BlockError("G04 needs a P word (dwell time in seconds)", "G4")
             if p < 0.0:
                 raise _BlockError(f"negative dwell time P{p:g}", "P")
             ev.append(Event(EventKind.DWELL, line_no, after, p, f"dwell {p:g} s"))
@@ -586,16 +611,16 @@ class _Interpreter:
         elif motion is not None:
             if g0 == 530:
                 if motion not in (0, 10):
-                    raise _BlockError("G53 needs G00 or G01", "G")
+                    raise _BlockError("G53 needs G00 or G01", "G53")
                 if not self.absolute:
-                    raise _BlockError("G53 cannot be used in incremental mode (G91)", "G")
+                    raise _BlockError("G53 cannot be used in incremental mode (G91)", "G53")
             target = self.target(vals, axis_words, scale, g0 == 530)
             if motion in (0, 10):
                 self.straight(target, motion == 0, line_no)
             else:
                 self.arc(target, vals, motion == 20, scale, line_no)
         elif g0 == 530:
-            raise _BlockError("G53 needs G00 or G01 with axis words", "G")
+            raise _BlockError("G53 needs G00 or G01 with axis words", "G53")
 
         m4 = mgroups.get(4)
         if m4 is not None:

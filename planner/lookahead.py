@@ -44,9 +44,10 @@ jerk-limited profile (``profile.reachable_speed_scalar``), so every move goes fr
 start speed to its end speed within its length. Planning runs in windows of moves: the
 backward pass from an assumed stop at the window's end is final up to the last joint whose
 cap holds whatever the rest of the program allows, the forward pass is causal, so the
-windowed plan equals the whole-program plan (tested). "Final" needs care: the reachable speed is not monotone in the start speed (a faster start leaves less time to
-accelerate), so a joint is final only where its cap is below the least speed reachable
-over the next move from any start speed; stops always are.
+windowed plan equals the whole-program plan (tested). "Final" needs care: the reachable
+speed is not monotone in the start speed (a faster start leaves less time to accelerate),
+so a joint is final only where its cap is below the least speed reachable over the next
+move from any start speed; stops always are.
 """
 
 from __future__ import annotations
@@ -139,6 +140,12 @@ def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
     with np.errstate(divide="ignore", invalid="ignore"):
         tc = np.abs(table.end - table.start) / table.length[:, None]
     k = np.nonzero(arc)[0]
+    sp = np.nonzero(table.spiral)[0]
+    if sp.size:  # spirals: those axes move linearly in the angle, |dq/du| peaks where ds/dt is least
+        dr = table.r1[sp] - table.r0[sp]
+        r_min = np.minimum(table.r0[sp], table.r1[sp])
+        speed_min = np.sqrt(dr * dr + (r_min * table.sweep[sp]) ** 2 + table.rise[sp] ** 2)
+        tc[sp] = np.abs(table.end[sp] - table.start[sp]) / speed_min[:, None]
     tc[k, table.first[k]] = 0.0
     tc[k, table.second[k]] = 0.0
     vc = np.minimum(v_prog, np.min(_safe_div(lim.v_axis[None, :], tc), axis=1))
@@ -304,13 +311,16 @@ def _window(program: Program, lim: LimitSet, mode: str, a: int, b: int, stop: np
 
 
 def plan_blocks(program: Program, lim: LimitSet, mode: str = "lookahead",
-                window: int = 256) -> Iterator[PlannedBlock]:
-    """Plan ``program`` window by window; yields blocks whose speeds are final."""
+                window: int = 256, first_window: int | None = None) -> Iterator[PlannedBlock]:
+    """Plan ``program`` window by window; yields blocks whose speeds are final.
+
+    ``first_window`` (default ``window``) may be smaller for a quick first block (streaming).
+    """
     n = len(program.moves)
     stop, dwell, _ = stop_and_dwell(program)
     a = 0
     v_a = 0.0
-    w = max(int(window), 2)
+    w = max(int(first_window or window), 2)
     while a < n:
         b = min(n, a + w)
         table, ml, caps, r0 = _window(program, lim, mode, a, b, stop)

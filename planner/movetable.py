@@ -31,6 +31,7 @@ class MoveTable:
     kind: np.ndarray  # (n,) int8 MoveKind
     start: np.ndarray  # (n, d)
     end: np.ndarray  # (n, d)
+    delta: np.ndarray  # (n, d) end - start
     length: np.ndarray  # (n,)
     feed: np.ndarray  # (n,) mm/s, inf for rapids
     exact_stop: np.ndarray  # (n,) bool
@@ -74,7 +75,7 @@ class MoveTable:
             index=np.asarray(cols[0], dtype=np.int64),
             line=np.asarray(cols[1], dtype=np.int32),
             kind=np.asarray(cols[2], dtype=np.int8),
-            start=start, end=end,
+            start=start, end=end, delta=end - start,
             length=np.asarray(cols[3], dtype=float),
             feed=np.asarray(cols[4], dtype=float),
             exact_stop=np.asarray(cols[5], dtype=bool),
@@ -109,8 +110,9 @@ class MoveTable:
             sp = self.spiral[r]
             if sp.any():
                 frac[k[sp]] = self._spiral_param(r[sp], u[k[sp]])
-        start = self.start[row]
-        q = start + frac[:, None] * (self.end[row] - start)
+        q = self.delta[row]
+        q *= frac[:, None]
+        q += self.start[row]
         if arc.any():
             fk = frac[k]
             theta = self.theta0[r] + self.sweep[r] * fk
@@ -149,7 +151,7 @@ class MoveTable:
             s_t = t * (speed_pts @ _GL_W)
             speed = np.sqrt(dr * dr + ((r0 + dr * t) * w) ** 2 + rise2)
             t = np.clip(t - (s_t - u) / speed, 0.0, 1.0)
-        return t
+        return np.where(u >= length, 1.0, t)  # the end point exactly
 
     def end_tangents(self) -> tuple[np.ndarray, np.ndarray]:
         """Unit tangents dq/du (n, d) at the start and at the end of every move."""

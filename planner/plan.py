@@ -83,7 +83,7 @@ def stream_program(program: Program, machine: MachineSpec, mode: str | None = No
     pending_moves = 0
     first = True
     n = len(program.moves)
-    for block in plan_blocks(program, lim, mode, window):
+    for block in plan_blocks(program, lim, mode, window, first_window=min(window, 32)):
         pending.append(block)
         pending_moves += len(block.table)
         last = block.first + len(block.table) == n
@@ -192,8 +192,10 @@ class Plan:
         interp = Interpolator(self.interpolation, self.ts_s)
         k_lo = first_sample_at(max(t_start_s, 0.0), self.ts_s)
         if self.interpolation == "taylor" and k_lo > 0:
-            # Taylor's state: restart exactly at the chunk's first sample.
-            interp._carry = None
+            # Taylor's state when starting late: the exact path length at that sample.
+            row = int(np.clip(np.searchsorted(self.segment.t0, k_lo * self.ts_s, "right") - 1, 0, None))
+            tau = np.array([k_lo * self.ts_s - self.segment.t0[row]])
+            interp._carry = float(self.segment.s0[row] + self.profiles.evaluate_s(np.array([row]), tau)[0])
         yield from _samples_of_segment(interp, self.segment, k_lo, True, chunk_samples)
 
     def collect(self) -> SampleChunk:
@@ -232,7 +234,7 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
 
         empty = MoveTable.from_moves((), len(program.axes))
         z = np.zeros(0)
-        seg = Segment(empty, build_profiles(z, z, z, z, z, z), z, z, z, z, 0.0, z, 0.0)
+        seg = Segment(empty, build_profiles(z, z, z, z, z, z), z, z, z, z, 0.0, z, 0.0, z, z, z, z, z, z, z)
     return Plan(program, machine, mode, interpolation, seg, time.perf_counter() - started)
 
 
@@ -320,7 +322,6 @@ def _report(plan: Plan, chunk_samples: int, rel_tol: float) -> LimitReport:
         # Only stencils that end in the new chunk (the tail's were counted before).
         lo1, lo2, lo3 = max(new_from - 1, 0), max(new_from - 2, 0), max(new_from - 3, 0)
         vq, vs_, aq, as_, jq, js_ = vq[lo1:], vs_[lo1:], aq[lo2:], as_[lo2:], jq[lo3:], js_[lo3:]
-        same3 = (mi[2:] == mi[:-2])[lo2:]
         same4 = ((mi[3:] == mi[:-3]) & (mi[1:-2] == mi[3:]))[lo3:]
         if n_moves:
             row = mi - int(seg.table.index[0])
@@ -335,7 +336,6 @@ def _report(plan: Plan, chunk_samples: int, rel_tol: float) -> LimitReport:
             tan_s["a"] = max(tan_s["a"], float(as_.max()))
         if js_.size and same4.any():
             tan_s["j"] = max(tan_s["j"], float(js_[same4].max()))
-        del same3
         for k, name in enumerate(names):
             if vq.size:
                 ax[name]["v"] = max(ax[name]["v"], float(vq[:, k].max()))

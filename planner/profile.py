@@ -127,17 +127,23 @@ def reachable_speed_lower_bound(length, a_max, j_max):
     """min over v0 >= 0 of reachable_speed(v0, length): a bound that holds whatever v0 is.
 
     reachable_speed is NOT monotone in v0 (a faster start leaves less time to accelerate:
-    from 0 a short move may reach more than from a small v0). With x = sqrt(dv / J) the
-    5-phase reach is L / (2x) + J x^2 / 2, least at x^3 = L / (2J): 1.5 J (L / 2J)^(2/3); the
-    7-phase reach is A L / (dv + A^2/J) + dv / 2, least at sqrt(2 A L) - A^2 / (2J). The
-    smaller of the two unconstrained minima bounds the true reach from below.
+    from rest a short move may reach more than from a small v0). With x = sqrt(dv / J) the
+    5-phase reach is L / (2x) + J x^2 / 2 (x <= A / J), least at x^3 = L / (2J) or at the
+    branch end x = A / J; the 7-phase reach (dv >= A^2 / J) is A L / (dv + A^2/J) + dv / 2,
+    least at dv = sqrt(2 A L) - A^2 / J or at its branch end. The minimum of the two.
     """
     length = np.maximum(np.asarray(length, dtype=float), 0.0)
     a_max = np.asarray(a_max, dtype=float)
     j_max = np.asarray(j_max, dtype=float)
-    r5 = 1.5 * j_max * np.cbrt(length / (2.0 * j_max)) ** 2
-    r7 = np.sqrt(2.0 * a_max * length) - a_max * a_max / (2.0 * j_max)
-    return np.maximum(np.minimum(r5, r7), 0.0) * (1.0 - 1e-12)
+    c = a_max * a_max / j_max
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x5 = np.minimum(np.cbrt(length / (2.0 * j_max)), a_max / j_max)
+        r5 = np.where(x5 > 0.0, length / (2.0 * x5) + 0.5 * j_max * x5 * x5, 0.0)
+        dv7 = np.maximum(np.sqrt(2.0 * a_max * length) - c, c)
+        r7 = a_max * length / (dv7 + c) + 0.5 * dv7
+    has7 = reachable_speed(0.0, length, a_max, j_max) > c
+    r = np.where(has7, np.minimum(r5, r7), r5)
+    return np.maximum(r, 0.0) * (1.0 - 1e-12)
 
 
 def _two_sided_length(x, d1, d2, vlo, a_max, j_max):

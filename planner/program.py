@@ -126,7 +126,7 @@ def arc_length_mm(arc: Arc) -> float:
 
 def arc_param_at_length(arc: Arc, u_mm: np.ndarray, length_mm: float) -> np.ndarray:
     """Normalised angle parameter t in [0, 1] at path length u (exact inverse of the length)."""
-    u = np.clip(np.asarray(u_mm, dtype=float), 0.0, length_mm)
+    u = np.clip(np.atleast_1d(np.asarray(u_mm, dtype=float)), 0.0, length_mm)
     if arc.radius_end_mm == arc.radius_start_mm or length_mm <= 0.0:
         return u / length_mm if length_mm > 0.0 else np.zeros_like(u)
     t = u / length_mm
@@ -135,6 +135,8 @@ def arc_param_at_length(arc: Arc, u_mm: np.ndarray, length_mm: float) -> np.ndar
         t = np.clip(t - step, 0.0, 1.0)
         if not np.any(np.abs(step) > 1e-15):
             break
+    t[u >= length_mm] = 1.0  # the ends exactly
+    t[u <= 0.0] = 0.0
     return t
 
 
@@ -176,6 +178,7 @@ class Move:
             pos[t >= 1.0] = self.end
             return pos, tangent, np.zeros(n_pts)
 
+        u = np.clip(u, 0.0, length)
         t = arc_param_at_length(arc, u, length)
         f, s, nrm = arc.first_axis, arc.second_axis, arc.normal_axis
         w = arc.sweep_rad
@@ -190,7 +193,7 @@ class Move:
         pos[:, s] = arc.center[1] + r * sn
         if nrm >= 0:
             pos[:, nrm] = start[nrm] + arc.rise_mm * t
-        pos[t >= 1.0] = self.end
+        pos[u >= length] = self.end
 
         # Derivatives with respect to t.
         d1f = dr * c - r * w * sn

@@ -9,6 +9,10 @@ the current file - if it is itself valid - is copied to ``<file>.bak`` (also by 
 then ``os.replace`` puts the new file in place. The file name therefore always names either
 the old or the new complete file, never a partial one.
 
+The writer ends the file with an end marker line: a file that starts with the writer's header
+but lacks the marker was cut short (e.g. a copy or a non-atomic editor interrupted) and is
+reported as damaged even when what is left happens to parse.
+
 Reading: a missing, damaged (truncated, not TOML) or invalid file raises ``ConfigError`` with
 a message naming the file, the key and the value, and the backup path when a valid backup
 exists. Nothing ever falls back silently to defaults; ``recover_config`` restores the backup
@@ -44,6 +48,8 @@ __all__ = [
 ]
 
 HOMING_METHODS = ("set_here", "drive")
+HEADER = "# Machine configuration (written by the CNC panel). Units: mm or deg, s."
+END_MARK = "# end of machine configuration"
 BUS_KINDS = ("sim", "soem")
 
 
@@ -190,6 +196,9 @@ def _parse(path: Path) -> MachineConfig:
         raise ConfigError(f"{path}: machine configuration file not found", str(path)) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot read: {exc}", str(path)) from None
+    if text.startswith(HEADER) and END_MARK not in text[-200:]:
+        # written by us, but the end marker is missing: cut short (a truncated write)
+        raise ConfigError(f"{path}: damaged file, truncated (the end marker is missing)", str(path))
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -263,7 +272,7 @@ def _fmt(value: object) -> str:
 def config_to_toml(config: MachineConfig) -> str:
     """The whole configuration as TOML text (round-trips through ``config_from_dict``)."""
     m = config.machine
-    out = ["# Machine configuration (written by the CNC panel). Units: mm or deg, s.",
+    out = [HEADER,
            "[machine]", f"name = {_fmt(m.name)}", ""]
     for a in m.axes:
         out += ["[[axes]]", f"name = {_fmt(a.name)}", f"kind = {_fmt('rotary' if a.rotary else 'linear')}",
@@ -295,7 +304,7 @@ def config_to_toml(config: MachineConfig) -> str:
             f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",
             f"jerk_reserve = {_fmt(float(c.jerk_reserve))}",
             f"spindle_max_rpm = {_fmt(float(c.spindle_max_rpm))}", f"spindle_drive = {c.spindle_drive}",
-            f"position_tolerance = {_fmt(float(c.position_tolerance))}", ""]
+            f"position_tolerance = {_fmt(float(c.position_tolerance))}", "", END_MARK, ""]
     return "\n".join(out)
 
 

@@ -25,6 +25,7 @@ Units: positions mm / degrees (rotary), speeds mm/s, times s, overrides in perce
 from __future__ import annotations
 
 import collections
+import ctypes
 import math
 import os
 import shutil
@@ -74,6 +75,16 @@ from planner.program import EventKind, Move, MoveKind, Program
 from planner.resume import approach_moves, locate, modal_state_at, program_from_moves, remaining_program
 
 __all__ = ["JOG_INCREMENTS", "TRANSITIONS", "MachineController"]
+
+
+def _fix(result: object) -> None:
+    """Work around PySide6 6.12's ``SignalInstance.emit`` returning ``True`` without a new
+    reference (each Python-side emit drops one reference of ``True``; on Python 3.11 the
+    interpreter aborts with "bool_dealloc" after a few hundred emits). Adding the missing
+    reference is harmless if a later PySide6 fixes it."""
+    if result is True:
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(result))
+
 
 S = MachineState
 TRANSITIONS: dict[MachineState, frozenset[MachineState]] = {
@@ -255,7 +266,7 @@ class MachineController(QObject):
 
     # ================================================================== helpers
     def _refuse(self, action: str, reason: str) -> CommandResult:
-        self.commandRefused.emit(action, reason)
+        _fix(self.commandRefused.emit(action, reason))
         return CommandResult(False, action, reason)
 
     def _ok(self, action: str) -> CommandResult:
@@ -276,7 +287,7 @@ class MachineController(QObject):
         if new is old:
             if reason != self._state_reason:
                 self._state_reason = reason
-                self.stateChanged.emit(new, reason)
+                _fix(self.stateChanged.emit(new, reason))
             return
         if new not in TRANSITIONS[old]:
             raise MachineError(f"internal error: illegal transition {old.value} -> {new.value}")
@@ -285,12 +296,12 @@ class MachineController(QObject):
         if new in (MachineState.IDLE, MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP):
             self._set_activity(Activity.NONE)
             self._persist_state()
-        self.stateChanged.emit(new, reason)
+        _fix(self.stateChanged.emit(new, reason))
 
     def _set_activity(self, act: Activity) -> None:
         if act is not self._activity:
             self._activity = act
-            self.activityChanged.emit(act)
+            _fix(self.activityChanged.emit(act))
 
     def _raise_alarm(self, source: str, cause: str, severity: Severity, code: str = "") -> Alarm:
         alarm = Alarm(
@@ -309,8 +320,8 @@ class MachineController(QObject):
             self._store.save_alarms(self._alarms)
         except OSError:
             pass
-        self.alarmsChanged.emit(tuple(self._alarms))
-        self.message.emit(f"{source}: {cause}")
+        _fix(self.alarmsChanged.emit(tuple(self._alarms)))
+        _fix(self.message.emit(f"{source}: {cause}"))
         return alarm
 
     def _machine_pos(self) -> np.ndarray:
@@ -440,7 +451,7 @@ class MachineController(QObject):
                 Severity.WARNING,
                 "position_lost",
             )
-            self.homedChanged.emit(tuple(self._homed))
+            _fix(self.homedChanged.emit(tuple(self._homed)))
         self._raw_pos = actual.copy()
         self._ref_raw = actual.copy()
         self._pushed_total = 0
@@ -546,11 +557,12 @@ class MachineController(QObject):
         """Manual mode: advance until ``predicate()`` is true (True) or ``timeout_s`` of
         simulated time passed (False)."""
         ts = self._cfg.machine.planner.ts_s
-        steps = int(timeout_s / (10 * ts)) + 1
+        step_s = 33 * ts
+        steps = int(timeout_s / step_s) + 1
         for _ in range(steps):
             if predicate():
                 return True
-            self.advance(10 * ts)
+            self.advance(step_s, step_cycles=11)
         return bool(predicate())
 
     # ================================================================== feeding
@@ -570,6 +582,8 @@ class MachineController(QObject):
                 return
             want = self._lead_samples - w.buffer_level()
             while want > 0 and job.pause is None:
+                if job.executor.hold and job.executor.standing:
+                    break  # held still on the path: the worker keeps the last set-point
                 ch = job.executor.generate(min(want, 20))
                 if ch is None:
                     break
@@ -578,11 +592,16 @@ class MachineController(QObject):
                 if n < len(raw):  # pragma: no cover - lead is far below the ring capacity
                     raise MachineError("worker buffer full")
                 job.record(ch, self._pushed_total)
+                job.samples += n
                 self._pushed_total += n
                 want -= n
                 if ch.pause is not None:
+                    # the plan stands still here: repeat the point so the worker sees the
+                    # motion end before its buffer runs empty (no underrun alarm)
+                    hold = np.repeat(raw[-1:], 2, axis=0)
+                    self._pushed_total += w.push(hold)
+                    job.pause_serial = self._pushed_total  # before .pause: the poll reads both
                     job.pause = ch.pause
-                    job.pause_serial = self._pushed_total
 
     # ================================================================== polling
     def _poll(self) -> None:
@@ -653,6 +672,20 @@ class MachineController(QObject):
         if self._spindle.on:
             self._apply_spindle(SpindleState())
 
+    def _alarm_stop(self, cause: str, source: str, code: str) -> None:
+        """A STOP-class alarm: jerk-limited stop along the path, program abandoned (its resume
+        point kept), state ALARM. Motion ends by itself; the poll drops the job at standstill."""
+        self._raise_alarm(source, cause, Severity.STOP, code)
+        with self._lock:
+            job = self._job
+            if job is not None:
+                job.executor.hold = True
+                job.stopping = True
+                job.stop_reason = cause
+                self._resume = job.resume_point(self._consumed(), cause)
+        if self._state in (MachineState.IDLE, MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
+            self._set_state(MachineState.ALARM, cause)
+
     def _consumed(self) -> int:
         snap = self._last_snap
         return int(snap.samples_consumed) if snap is not None else 0
@@ -664,7 +697,7 @@ class MachineController(QObject):
             line, tau = info
             if line != self._line and job.kind in (Activity.PROGRAM, Activity.MDI):
                 self._line = line
-                self.lineChanged.emit(line)
+                _fix(self.lineChanged.emit(line))
             if job.kind is Activity.PROGRAM:
                 t_end = job.executor.t_end + job.time_offset_s
                 tau_g = tau + job.tau_offset_s
@@ -672,19 +705,18 @@ class MachineController(QObject):
                 ovr = max(self._feed_pct / 100.0, 1e-3)
                 remaining = max(t_end - tau_g, 0.0) / ovr
                 self._progress = (frac, remaining)
-                self.progressChanged.emit(frac, remaining)
+                _fix(self.progressChanged.emit(frac, remaining))
         if snap.time_s - self._tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
             self._tracking_emit_t = snap.time_s
             self._tracking = self._tracking_from(snap, "")
-            self.trackingUpdated.emit(self._tracking)
+            _fix(self.trackingUpdated.emit(self._tracking))
         all_done = consumed >= self._pushed_total
         # pause points reached by the drives
         if job.pause is not None and consumed >= job.pause_serial:
             self._at_pause(job, job.pause, snap)
             return
         if job.stopping and job.executor.standing and all_done:
-            self._drop_job(completed=False, reason=job.stop_reason or "stopped")
-            self._set_state(MachineState.IDLE, job.stop_reason or "stopped")
+            self._finish_stop(job)
 
     def _at_pause(self, job: _Job, p: PausePoint, snap: Any) -> None:
         kind = p.kind
@@ -692,8 +724,7 @@ class MachineController(QObject):
             self._finish_job(job, snap)
             return
         if job.stopping:
-            self._drop_job(completed=False, reason=job.stop_reason or "stopped")
-            self._set_state(MachineState.IDLE, job.stop_reason or "stopped")
+            self._finish_stop(job)
             return
         if kind == "spindle":
             self._apply_spindle(SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)))
@@ -701,6 +732,7 @@ class MachineController(QObject):
         elif kind == "dwell":
             if job.dwell_until is None:
                 job.dwell_until = snap.time_s + p.value
+                job.dwell_total_s += p.value
             elif snap.time_s >= job.dwell_until:
                 job.dwell_until = None
                 self._release(job)
@@ -715,6 +747,14 @@ class MachineController(QObject):
                 "single_block": f"single block: end of line {p.line}",
             }.get(kind, kind)
             self._set_state(MachineState.HOLD, reason)
+
+    def _finish_stop(self, job: _Job) -> None:
+        resume = self._resume
+        self._drop_job(completed=False, reason=job.stop_reason or "stopped")
+        if self._state is MachineState.ALARM:
+            self._resume = resume  # a STOP alarm keeps the point to resume from
+            return
+        self._set_state(MachineState.IDLE, job.stop_reason or "stopped")
 
     def _release(self, job: _Job) -> None:
         with self._lock:
@@ -746,12 +786,14 @@ class MachineController(QObject):
                     pass
         if job.kind is not Activity.PROGRAM:
             return None
+        last_line = self._line
         if completed and job.then is None:
             self._resume = None
             self._line = 0
         if snap is None:
             snap = self._last_snap
-        measured = (snap.time_s - job.start_time_s) if snap is not None else 0.0
+        # motion time: set-points sent (holds included) plus dwells; waits for the operator excluded
+        measured = job.samples * job.plan.ts_s + job.dwell_total_s
         trace_path = self._save_trace(job)
         tracking = self._tracking_from(snap, trace_path) if snap is not None else TrackingReport()
         self._tracking = tracking
@@ -760,16 +802,16 @@ class MachineController(QObject):
             completed=completed,
             cycle_time_s=measured,
             estimated_s=job.estimated_s,
-            last_line=self._line,
+            last_line=last_line,
             tracking=tracking,
-            limits=dict(job.meter.result),
+            limits=job.meter.final(),
             reason=reason,
         )
         self._last_summary = summary
-        self.trackingUpdated.emit(tracking)
+        _fix(self.trackingUpdated.emit(tracking))
         if completed:
-            self.progressChanged.emit(1.0, 0.0)
-        self.programFinished.emit(summary)
+            _fix(self.progressChanged.emit(1.0, 0.0))
+        _fix(self.programFinished.emit(summary))
         return summary
 
     def _tracking_from(self, snap: Any, trace_path: str) -> TrackingReport:
@@ -814,16 +856,16 @@ class MachineController(QObject):
         mpos = tuple(float(x) for x in self._machine_pos())
         if mpos != self._last_emit_pos:
             self._last_emit_pos = mpos
-            self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos()))
+            _fix(self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos())))
         ref_m = self._ref_raw - self._home_offset
-        self.trackingSample.emit(float(snap.time_s), tuple(float(x) for x in ref_m), mpos)
+        _fix(self.trackingSample.emit(float(snap.time_s), tuple(float(x) for x in ref_m), mpos))
         lin = np.array([not r for r in self._cfg.machine.rotary])
         if self._last_ref_pos is not None and snap.time_s > self._last_ref_time:
             d = (ref_m - self._last_ref_pos)[lin] if lin.any() else ref_m - self._last_ref_pos
             speed = float(np.linalg.norm(d)) / (snap.time_s - self._last_ref_time)
             if abs(speed - self._speed) > 1e-6:
                 self._speed = speed
-                self.speedChanged.emit(speed)
+                _fix(self.speedChanged.emit(speed))
         self._last_ref_pos = ref_m.copy()
         self._last_ref_time = float(snap.time_s)
 
@@ -852,18 +894,18 @@ class MachineController(QObject):
             status.connected,
             status.late_cycles,
         ) or abs(old.buffer_level - status.buffer_level) > 50:
-            self.busStateChanged.emit(status)
+            _fix(self.busStateChanged.emit(status))
 
     def _emit_all(self) -> None:
-        self.homedChanged.emit(tuple(self._homed))
-        self.offsetsChanged.emit(dict(self._offsets), self._active_offset)
-        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
-        self.modesChanged.emit(self._single_block, self._optional_stop)
-        self.spindleChanged.emit(self._spindle)
-        self.alarmsChanged.emit(tuple(self._alarms))
+        _fix(self.homedChanged.emit(tuple(self._homed)))
+        _fix(self.offsetsChanged.emit(dict(self._offsets), self._active_offset))
+        _fix(self.overridesChanged.emit(self._feed_pct, self._rapid_pct))
+        _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
+        _fix(self.spindleChanged.emit(self._spindle))
+        _fix(self.alarmsChanged.emit(tuple(self._alarms)))
         self._last_emit_pos = ()
         mpos = tuple(float(x) for x in self._machine_pos())
-        self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos()))
+        _fix(self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos())))
 
     # ================================================================== jobs
     def _plan(self, program: Program) -> Plan:
@@ -909,13 +951,16 @@ class MachineController(QObject):
                 self._worker.reset_tracking()
                 self._worker.drain_trace()
         with self._lock:
+            # serial numbers of set-points: the worker's consumed count (+ what is still queued;
+            # a stale snapshot still counts the queue, a flushed buffer counts nothing)
+            self._pushed_total = int(snap.samples_consumed) + int(snap.buffer_level)
             job.serial_base = self._pushed_total
             self._job = job
         self._set_activity(job.kind)
         if self._state is not MachineState.RUNNING:
             self._set_state(MachineState.RUNNING, job.kind.value)
         else:
-            self.stateChanged.emit(self._state, job.kind.value)
+            _fix(self.stateChanged.emit(self._state, job.kind.value))
         if self._worker_mode != "manual":
             self._feed()
 
@@ -954,21 +999,21 @@ class MachineController(QObject):
             program = parse_program(text, name, machine=self._machine, start_position=self._machine_pos())
         except ProgramError as exc:
             issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
-            self.programErrors.emit(issues)
+            _fix(self.programErrors.emit(issues))
             return self._refuse("load_program", f"{len(issues)} error(s) in the program; first: {issues[0]}")
         except PlannerError as exc:
             issues = (ProgramIssue(0, 0, str(exc)),)
-            self.programErrors.emit(issues)
+            _fix(self.programErrors.emit(issues))
             return self._refuse("load_program", str(exc))
         limit_issues = self._check_program_limits(program)
         if limit_issues:
-            self.programErrors.emit(tuple(limit_issues))
+            _fix(self.programErrors.emit(tuple(limit_issues)))
             return self._refuse("load_program", f"soft limit: {limit_issues[0]}")
         try:
             plan = self._plan(program)
         except PlannerError as exc:
             issues = (ProgramIssue(0, 0, f"planner: {exc}"),)
-            self.programErrors.emit(issues)
+            _fix(self.programErrors.emit(issues))
             return self._refuse("load_program", f"planner: {exc}")
         lo, hi = program_bounds(program)
         tab = plan.segment.table
@@ -990,7 +1035,7 @@ class MachineController(QObject):
         self._program_text = text
         self._program_path = path
         self._resume = None
-        self.programLoaded.emit(info)
+        _fix(self.programLoaded.emit(info))
         return self._ok("load_program")
 
     def _fresh_program(self) -> Program | None:
@@ -1092,6 +1137,8 @@ class MachineController(QObject):
             self._set_state(MachineState.IDLE, "reset")
             return self._ok("reset")
         if st is MachineState.ALARM:
+            if self._job is not None:
+                return self._refuse("reset", "the machine is still stopping: wait for standstill")
             self.acknowledge_alarm(None)
             try:
                 self._enable_worker()
@@ -1105,7 +1152,7 @@ class MachineController(QObject):
         if st is MachineState.IDLE:
             self._resume = None
             self._line = 0
-            self.lineChanged.emit(0)
+            _fix(self.lineChanged.emit(0))
             return self._ok("reset")
         return self._refuse("reset", f"reset not possible: machine is {st.label.lower()}")
 
@@ -1158,12 +1205,12 @@ class MachineController(QObject):
     def set_single_block(self, on: bool) -> CommandResult:
         """Takes effect at the next cycle start (the plan is made with a stop at every block end)."""
         self._single_block = bool(on)
-        self.modesChanged.emit(self._single_block, self._optional_stop)
+        _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
         return self._ok("set_single_block")
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         self._optional_stop = bool(on)
-        self.modesChanged.emit(self._single_block, self._optional_stop)
+        _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
         return self._ok("set_optional_stop")
 
     def run_from_line(self, line: int) -> CommandResult:
@@ -1238,7 +1285,7 @@ class MachineController(QObject):
                 self._job.executor.set_overrides(feed=p / 100.0)
             if self._job is not None and self._job.then is not None:
                 self._job.then.executor.set_overrides(feed=p / 100.0)
-        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
+        _fix(self.overridesChanged.emit(self._feed_pct, self._rapid_pct))
         return self._ok("set_feed_override")
 
     def set_rapid_override(self, percent: float) -> CommandResult:
@@ -1250,7 +1297,7 @@ class MachineController(QObject):
             for job in (self._job, self._job.then if self._job else None):
                 if job is not None and job.overrides:
                     job.executor.set_overrides(rapid=p / 100.0)
-        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
+        _fix(self.overridesChanged.emit(self._feed_pct, self._rapid_pct))
         return self._ok("set_rapid_override")
 
     # ================================================================== manual
@@ -1409,7 +1456,7 @@ class MachineController(QObject):
         i = self._homing_queue.pop(0)
         self._homing_axis = i
         self._homed[i] = False
-        self.homedChanged.emit(tuple(self._homed))
+        _fix(self.homedChanged.emit(tuple(self._homed)))
         try:
             with self._lock:
                 self._worker.home(i, self._cfg.homing.drive_method)
@@ -1430,7 +1477,7 @@ class MachineController(QObject):
         if snap.homing[i] is HomingState.DONE and snap.state is WorkerState.ENABLED:
             self._home_offset[i] = 0.0  # the drive's own zero is machine zero
             self._homed[i] = True
-            self.homedChanged.emit(tuple(self._homed))
+            _fix(self.homedChanged.emit(tuple(self._homed)))
             self._next_homing()
 
     def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
@@ -1444,10 +1491,12 @@ class MachineController(QObject):
             self._home_offset[i] = self._raw_pos[i]
             self._homed[i] = True
         self._persist_state()
-        self.homedChanged.emit(tuple(self._homed))
+        _fix(self.homedChanged.emit(tuple(self._homed)))
         self._last_emit_pos = ()
-        self.positionChanged.emit(
-            tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
+        _fix(
+            self.positionChanged.emit(
+                tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
+            )
         )
         return self._ok("set_machine_zero_here")
 
@@ -1483,10 +1532,12 @@ class MachineController(QObject):
                 "persistence", f"cannot save work offsets: {exc}", Severity.WARNING, "state_file"
             )
         self._persist_state()
-        self.offsetsChanged.emit(dict(self._offsets), self._active_offset)
+        _fix(self.offsetsChanged.emit(dict(self._offsets), self._active_offset))
         self._last_emit_pos = ()
-        self.positionChanged.emit(
-            tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
+        _fix(
+            self.positionChanged.emit(
+                tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
+            )
         )
 
     def select_work_offset(self, name: str) -> CommandResult:
@@ -1527,9 +1578,12 @@ class MachineController(QObject):
                 with self._lock:
                     self._worker.set_digital_output(self._cfg.controller.spindle_drive, bits)
             except Exception as exc:  # noqa: BLE001
-                self._raise_alarm("spindle", f"spindle output failed: {exc}", Severity.WARNING, "spindle")
+                if self._job is not None and sp.on:
+                    self._alarm_stop(f"spindle output failed: {exc}", "spindle", "spindle")
+                else:
+                    self._raise_alarm("spindle", f"spindle output failed: {exc}", Severity.WARNING, "spindle")
         self._spindle = sp
-        self.spindleChanged.emit(sp)
+        _fix(self.spindleChanged.emit(sp))
 
     def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
         why = self.refusal("spindle_on")
@@ -1555,7 +1609,7 @@ class MachineController(QObject):
             self._apply_spindle(SpindleState(direction=self._spindle.direction, rpm=speed))
         else:
             self._spindle = SpindleState(direction=0, rpm=speed)
-            self.spindleChanged.emit(self._spindle)
+            _fix(self.spindleChanged.emit(self._spindle))
         return self._ok("spindle_speed")
 
     # ================================================================== alarms
@@ -1571,7 +1625,7 @@ class MachineController(QObject):
             self._store.save_alarms(self._alarms)
         except OSError:
             pass
-        self.alarmsChanged.emit(tuple(self._alarms))
+        _fix(self.alarmsChanged.emit(tuple(self._alarms)))
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         if alarm_id is None:
@@ -1603,13 +1657,13 @@ class MachineController(QObject):
             self._homed = [False] * n
             self._offsets = {k: tuple(v) for k, v in saved.machine.work_offsets.items()}
             self._store.save_offsets(self._offsets)
-            self.homedChanged.emit(tuple(self._homed))
+            _fix(self.homedChanged.emit(tuple(self._homed)))
         self._persist_state()
-        self.configChanged.emit(saved)
+        _fix(self.configChanged.emit(saved))
         if self._program_info is not None:
             self._load_text(self._program_text, self._program_info.name, self._program_path)
         if saved.axes != old_axes and self._worker is not None:
-            self.message.emit("axes changed: reconnect the bus to apply")
+            _fix(self.message.emit("axes changed: reconnect the bus to apply"))
         return self._ok("update_config")
 
     # ================================================================== properties
@@ -1783,6 +1837,8 @@ class _Job:
         self.pause_serial = 0
         self.waiting = False
         self.dwell_until: float | None = None
+        self.dwell_total_s = 0.0
+        self.samples = 0
         self.stopping = False
         self.stop_reason = ""
         self.aborted = False
@@ -1848,8 +1904,23 @@ class LimitMeter:
         self._q: np.ndarray | None = None
         self._s: np.ndarray | None = None
         self._m: np.ndarray | None = None
+        self._pending: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+        self._n = 0
 
     def update(self, q: np.ndarray, s: np.ndarray, move: np.ndarray) -> None:
+        self._pending.append((q, s, move))
+        self._n += len(q)
+        if self._n >= 500:
+            self.flush()
+
+    def flush(self) -> None:
+        if not self._pending:
+            return
+        q = np.concatenate([p[0] for p in self._pending])
+        s = np.concatenate([p[1] for p in self._pending])
+        move = np.concatenate([p[2] for p in self._pending])
+        self._pending.clear()
+        self._n = 0
         if self._q is not None:
             q = np.concatenate([self._q, q])
             s = np.concatenate([self._s, s])  # type: ignore[list-item]
@@ -1859,3 +1930,7 @@ class LimitMeter:
             for k, v in r.items():
                 self.result[k] = max(self.result.get(k, 0.0), v)
         self._q, self._s, self._m = q[-3:].copy(), s[-3:].copy(), move[-3:].copy()
+
+    def final(self) -> dict[str, float]:
+        self.flush()
+        return dict(self.result)

@@ -38,8 +38,8 @@ so they hold for every tau the step visits. ``check_limits`` measures it numeric
 
 **Control of sigma.** sigma follows its target (override, 0 for hold, capped by (3) over the
 braking distance ahead) with a sqrt braking law: sigma_dot_wanted = sign(e) min(D1,
-sqrt(2 D2_ref |e|)), reached with |sigma_ddot| <= D2, where D2_ref <= D2 is the worst-case
-bound (so braking is always feasible). A feed hold is sigma -> 0 under the same bounds: a
+sqrt(2 D2_ref |e|)), reached with |sigma_ddot| <= D2, where D2_ref <= D2 is the smallest bound (2) over the
+window ahead and every sigma (so braking is always feasible). A feed hold is sigma -> 0 under the same bounds: a
 jerk-limited stop along the path; resume ramps sigma back up and the plan continues to the
 same end. Full stops of the plan (block ends with zero speed: M00, M01, dwell, single block,
 program end) are pause points: tau stops exactly there (speed and acceleration of the plan
@@ -277,6 +277,7 @@ class TimeScaledExecutor:
         self._win_valid_until = -1.0
         self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
         self._target_cache = 1.0
+        self._d2_brake = self.d2_ref
         self.sigma_start = True  # at a standstill of the plan (start or pause point)
 
     # ------------------------------------------------------------------ commands
@@ -326,6 +327,10 @@ class TimeScaledExecutor:
             self._bounds = (float(c["rv"][w].max()), float(c["ra"][w].max()), float(c["rj"][w].max()),
                             max(float(c["alpha"][w].max()), 1e-9), max(float(c["beta"][w].max()), 1e-9),
                             max(float(c["gamma"][w].max()), 1e-9))
+        # braking law: the smallest sigma_ddot bound over the window and every sigma (m = 1),
+        # never below the worst-case bound
+        rj_w, gamma_w = self._bounds[2], self._bounds[5]
+        self._d2_brake = max(self.d2_ref, (1.0 - min(rj_w, self.budget.k_j)) / (2.0 * gamma_w))
         # target: override per block kind, capped (3), over the braking distance ahead
         k_a, k_j = self.budget.k_a, self.budget.k_j
         w2 = st.window(self.tau, self.tau + horizon)
@@ -376,16 +381,17 @@ class TimeScaledExecutor:
         sigmas = np.empty(n)
         pause: PausePoint | None = None
         k = 0
-        d2_ref = self.d2_ref
         while k < n:
-            if k % 8 == 0:
+            if k % 16 == 0:
                 self._local_bounds()
+            d2_ref = self._d2_brake
             target = 0.0 if self.hold else self._target_cache
             sigma, sd = self.sigma, self.sigma_dot
             if self.sigma_start and not self.hold:
                 # at a standstill of the plan itself: start directly at the target (the plan's
                 # speed and acceleration are zero here, see the module docstring)
                 sigma, sd = target, 0.0
+                self.sigma = sigma  # the jump happens at the standstill, not over the step
                 self.sigma_start = False
             elif self.sigma_start and self.hold:
                 sigma, sd = 0.0, 0.0
@@ -455,13 +461,16 @@ def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[Pa
              EventKind.SPINDLE: "spindle", EventKind.END: "end"}
     extra: list[PausePoint] = []
     for ev in prog.events:
-        if ev.kind not in kinds or ev.after_move < 0 or ev.after_move >= n:
+        if ev.kind not in kinds or ev.after_move >= n:
             continue
         if ev.kind is EventKind.OPTIONAL_PAUSE and not optional_stop:
             continue
         i = ev.after_move
-        extra.append(PausePoint(float(t_end_move[i]), kinds[ev.kind], ev.line, i, float(ev.value),
-                                ev.message))
+        # events before the first move act at the start (dwell: the plan's timeline starts after it)
+        tau = float(t_end_move[i]) if i >= 0 else 0.0
+        if i < 0 and ev.kind is EventKind.DWELL:
+            continue
+        extra.append(PausePoint(tau, kinds[ev.kind], ev.line, max(i, 0), float(ev.value), ev.message))
     if single_block:
         for i in range(n - 1):
             out[i] = PausePoint(float(t_end_move[i]), "single_block", int(seg.table.line[i]), i)

@@ -345,9 +345,8 @@ class DriveObjects:
     def handle_sdo(self, request: bytes, mbx_data_bytes: int) -> bytes:
         """Answer one CoE SDO request (bytes after the CoE header: command, index,
         subindex, data; trimmed to the mailbox header's length). Returns the SDO response
-        payload (same layout); the caller adds
-        the mailbox and CoE headers. `mbx_data_bytes` is the usable mailbox size after
-        the mailbox header."""
+        payload in the same layout (empty: no answer); the caller adds the mailbox and CoE
+        headers. `mbx_data_bytes` is the usable mailbox size after the mailbox header."""
         cmd = request[0]
         index, sub = struct.unpack_from("<HB", request, 1)
         ccs = cmd >> 5

@@ -21,6 +21,7 @@ from __future__ import annotations
 import struct
 from collections.abc import Callable
 
+from ..cia402 import Cia402State
 from ..drive_model import DriveModel
 from ..errors import SdoAbortError
 from .coe import DriveObjects
@@ -134,10 +135,14 @@ class EscSlave:
         self._last_mailbox = b""
 
     def power_cycle(self) -> None:
-        """Back to the power-on state (a slave that was lost and comes back)."""
+        """Back to the power-on state (a slave that was lost and comes back): registers
+        reset, AL state INIT, the drive restarts (faults cleared, power stage off)."""
         self._reset_registers()
-        self.model.controlword = 0
-        self.model.step(0.001)
+        m = self.model
+        m.controlword = 0
+        m.error_code = 0
+        m.state = Cia402State.NOT_READY_TO_SWITCH_ON
+        m.step(0.001)
 
     # ------------------------------------------------------------------ AL state machine
     def _write_al_status(self) -> None:
@@ -196,7 +201,7 @@ class EscSlave:
     def _outputs_invalid(self) -> None:
         """Leaving OP: the drive loses its set-points (a running drive faults, 0x8700)."""
         m = self.model
-        if m.state.name in ("OPERATION_ENABLED", "QUICK_STOP_ACTIVE"):
+        if m.state in (Cia402State.OPERATION_ENABLED, Cia402State.QUICK_STOP_ACTIVE):
             m.watchdog_expired()
         m.controlword = 0
 
@@ -251,6 +256,12 @@ class EscSlave:
         end = ado + len(data)
         if end > 0x10000:
             return
+        if ado >= 0x1000:                                    # process data / mailbox RAM
+            self.regs[ado:end] = data
+            self._ram_written(ado, end)
+            return
+        if REG_DCSYSTIME <= ado and end <= REG_DCSOF + 8:
+            return      # ARMW/FRMW time distribution: drift compensation is not modelled
         saved = [(a, b, bytes(self.regs[a:b])) for a, b in _READ_ONLY if ado < b and end > a]
         saved_status = [(k, self.regs[k]) for k in _SM_STATUS if ado <= k < end]
         self.regs[ado:end] = data
@@ -258,9 +269,9 @@ class EscSlave:
             self.regs[a:b] = old
         for k, old_byte in saved_status:
             self.regs[k] = old_byte
-        if ado < 0x1000:
-            self._register_side_effects(ado, end)
-            return
+        self._register_side_effects(ado, end)
+
+    def _ram_written(self, ado: int, end: int) -> None:
         sm0_start, sm0_len = self.sms[0][0], self.sms[0][1]
         if sm0_len and ado <= sm0_start + sm0_len - 1 < end and self.al_state != INIT:
             self._mailbox_request()
@@ -423,7 +434,7 @@ class EscSlave:
     def housekeeping(self) -> None:
         """Called every few ms: process data watchdog and the drive's idle time."""
         now = self.clock_ns()
-        if self.al_state == OP and not self.lost:
+        if self.al_state == OP:                              # runs on while disconnected too
             div, wd = struct.unpack_from("<H", self.regs, REG_WD_DIV)[0], \
                 struct.unpack_from("<H", self.regs, REG_WD_PD)[0]
             wd_ns = wd * (div + 2) * 40

@@ -63,8 +63,8 @@ class EmulatedLink:
         self.start_timeout_s = start_timeout_s
         self.control_path = os.path.join(tempfile.gettempdir(), f"{self.netns}.sock")
         self.process: subprocess.Popen[str] | None = None
-        self._log = tempfile.NamedTemporaryFile(prefix=f"{self.netns}-", suffix=".log", delete=False)
-        self.log_path = self._log.name
+        self._log: Any = None
+        self.log_path = ""
         self._ns_created = False
 
     # ------------------------------------------------------------------ life cycle
@@ -90,6 +90,8 @@ class EmulatedLink:
                self.slave_ifname, "--drives", str(self.n_drives), "--control", self.control_path]
         if self.realtime:
             cmd.append("--realtime")
+        self._log = tempfile.NamedTemporaryFile(prefix=f"{self.netns}-", suffix=".log", delete=False)
+        self.log_path = self._log.name
         env = dict(os.environ)
         env["PYTHONPATH"] = str(_REPO_ROOT) + os.pathsep + env.get("PYTHONPATH", "")
         self.process = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=self._log, text=True, env=env,
@@ -111,6 +113,8 @@ class EmulatedLink:
             time.sleep(0.01)
 
     def log(self) -> str:
+        if not self.log_path:
+            return ""
         try:
             return Path(self.log_path).read_text()[-2000:]
         except OSError:
@@ -147,10 +151,12 @@ class EmulatedLink:
                 self._ns_created = False
             if os.path.exists(self.control_path):
                 os.unlink(self.control_path)
-            self._log.close()
+            if self._log is not None:
+                self._log.close()
+                self._log = None
 
     def remove_log(self) -> None:
-        if os.path.exists(self.log_path):
+        if self.log_path and os.path.exists(self.log_path):
             os.unlink(self.log_path)
 
     def __enter__(self) -> EmulatedLink:

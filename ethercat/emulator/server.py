@@ -15,6 +15,7 @@ connection) lets tests and integrators inject faults without touching the link:
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import select
@@ -194,6 +195,10 @@ def run(ifname: str, n_drives: int, control_path: str | None = None, realtime: b
             pass
     for sig in (signal.SIGTERM, signal.SIGINT):
         signal.signal(sig, lambda *_: server.stop())
+    # no reference cycles are made per frame: keep the collector out of the answer path
+    gc.collect()
+    gc.freeze()
+    gc.disable()
     if not quiet:
         print(f"emulating {n_drives} CiA 402 drive(s) on {ifname} (pid {os.getpid()})", flush=True)
     server.serve_forever()

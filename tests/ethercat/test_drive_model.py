@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from ethercat.cia402 import (
     SW_FOLLOWING_ERROR,
@@ -321,3 +323,19 @@ def test_position_wraps_like_int32() -> None:
     m = DriveModel(DriveParams(initial_position_counts=2**31 + 10.0))
     m.step(DT)
     assert m.read_object(0x6064) == -(2**31) + 10
+
+
+@given(distance=st.floats(-50_000.0, 50_000.0), duration_s=st.floats(0.05, 0.5),
+       cycle_s=st.sampled_from([0.0005, 0.001, 0.002, 0.004]))
+@settings(max_examples=40)
+def test_random_moves_arrive_without_nan(distance: float, duration_s: float, cycle_s: float) -> None:
+    m = enabled()
+    x0 = m.position_actual
+    n = max(1, int(duration_s / cycle_s))
+    for k in range(1, n + int(0.3 / cycle_s)):
+        u = min(1.0, k / n)
+        m.target_position = int(round(x0 + distance * (1 - np.cos(np.pi * u)) / 2))
+        m.step(cycle_s)
+        assert np.isfinite(m.motor_position_counts) and np.isfinite(m.velocity_counts_s)
+    assert m.state is S.OPERATION_ENABLED
+    assert abs(m.position_actual - m.target_position) <= 1

@@ -35,12 +35,30 @@ def _fmt(x: float) -> str:
     return f"{x:.6f}"
 
 
+def xyza_machine() -> MachineSpec:
+    """X Y Z plus a rotary A axis (deg), limits as the paper's path limits."""
+    axes = [AxisSpec(n, drive_position=i, v_max=30, a_max=1000, j_max=10000) for i, n in enumerate("XYZ")]
+    axes.append(AxisSpec("A", rotary=True, drive_position=3, v_max=90, a_max=1800, j_max=36000,
+                         min_pos=-1e6, max_pos=1e6))
+    return machine_with_axes(axes)
+
+
 def random_program(seed: int, n_blocks: int = 40, events: bool = True, planes: bool = True,
-                   tiny: bool = True) -> str:
+                   tiny: bool = True, rotary: bool = False) -> str:
     """Lines (long, short, tiny, collinear), circles/helices in G17/G18/G19 (I/J/K form, both
-    directions, partial and full turns), rapids, feeds, dwells, G61/G64, pauses."""
+    directions, partial and full turns), rapids, feeds, dwells, G61/G64, pauses; with
+    ``rotary`` an A axis (deg) moves along on some lines and arcs, or alone."""
     rng = np.random.default_rng(seed)
     pos = np.zeros(3)
+    a_pos = 0.0
+
+    def a_word() -> str:
+        nonlocal a_pos
+        if not rotary or rng.random() < 0.5:
+            return ""
+        a_pos += float(rng.normal(0, 30))
+        return f" A{a_pos:.4f}"
+
     out = ["G21 G90 G94 G17 F1800", "G00 X0 Y0 Z0"]
     plane = "G17"
     for _ in range(n_blocks):
@@ -53,7 +71,7 @@ def random_program(seed: int, n_blocks: int = 40, events: bool = True, planes: b
             if rng.random() < 0.2:  # collinear continuation / small angle change
                 step = np.array([5.0, 0.0, 0.0]) + rng.normal(0, 0.05, 3)
             pos = pos + step
-            out.append(f"G01 X{_fmt(pos[0])} Y{_fmt(pos[1])} Z{_fmt(pos[2])}{feed or ' F1800'}")
+            out.append(f"G01 X{_fmt(pos[0])} Y{_fmt(pos[1])} Z{_fmt(pos[2])}{a_word()}{feed or ' F1800'}")
         elif r < 0.42:
             pos = pos + rng.normal(0, 10, 3)
             out.append(f"G00 X{_fmt(pos[0])} Y{_fmt(pos[1])} Z{_fmt(pos[2])}")
@@ -78,8 +96,11 @@ def random_program(seed: int, n_blocks: int = 40, events: bool = True, planes: b
                 end[n] += rng.uniform(-3, 3)
             words = " ".join(f"{'XYZ'[k]}{_fmt(end[k])}" for k in range(3))
             offs = " ".join(f"{OFFSET_LETTER[k]}{_fmt(center[k] - pos[k])}" for k in (f, s))
-            out.append(f"{plane} {'G03' if ccw else 'G02'} {words} {offs}{feed}")
+            out.append(f"{plane} {'G03' if ccw else 'G02'} {words}{a_word()} {offs}{feed}")
             pos = end
+        elif rotary and rng.random() < 0.3:
+            a_pos += float(rng.normal(0, 45))
+            out.append(f"G01 A{a_pos:.4f}")
         elif events:
             out.append(str(rng.choice(["G04 P0.05", "M00", "M01", "G61", "G64", "S5000 M03", "M05"])))
     out.append("M30")

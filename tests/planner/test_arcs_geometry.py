@@ -62,8 +62,10 @@ def check_exact_geometry(move: Move) -> None:
     np.testing.assert_allclose(pos[0], move.start, atol=TOL, rtol=0)
     np.testing.assert_array_equal(pos[-1], move.end)
     a_end = arc.start_angle_rad + arc.sweep_rad
-    analytic_end = (arc.center[0] + arc.radius_end_mm * math.cos(a_end),
-                    arc.center[1] + arc.radius_end_mm * math.sin(a_end))
+    analytic_end = (
+        arc.center[0] + arc.radius_end_mm * math.cos(a_end),
+        arc.center[1] + arc.radius_end_mm * math.sin(a_end),
+    )
     tol_end = TOL * max(1.0, arc.radius_end_mm * abs(arc.sweep_rad) / 100.0)
     assert abs(analytic_end[0] - move.end[f]) <= tol_end
     assert abs(analytic_end[1] - move.end[s]) <= tol_end
@@ -71,7 +73,9 @@ def check_exact_geometry(move: Move) -> None:
     t = arc_param_at_length(arc, u, move.length_mm)
     r_expected = arc.radius_start_mm + (arc.radius_end_mm - arc.radius_start_mm) * t
     r = np.hypot(pos[:, f] - arc.center[0], pos[:, s] - arc.center[1])
-    np.testing.assert_allclose(r[:-1], r_expected[:-1], atol=TOL * max(1.0, arc.radius_start_mm / 100), rtol=0)
+    np.testing.assert_allclose(
+        r[:-1], r_expected[:-1], atol=TOL * max(1.0, arc.radius_start_mm / 100), rtol=0
+    )
     if n >= 0:
         np.testing.assert_allclose(pos[:-1, n], move.start[n] + arc.rise_mm * t[:-1], atol=TOL, rtol=0)
     # Unit tangent over the linear axes.
@@ -85,15 +89,28 @@ def check_exact_geometry(move: Move) -> None:
     uu = np.linspace(0.0, move.length_mm, n_chords + 1)
     pp = move.evaluate(uu)[0]
     poly = np.sum(np.linalg.norm(np.diff(pp, axis=0), axis=1))
-    dtheta = abs(arc.sweep_rad) / n_chords * max(1.0, arc.radius_end_mm / arc.radius_start_mm,
-                                                  arc.radius_start_mm / arc.radius_end_mm)
+    dtheta = (
+        abs(arc.sweep_rad)
+        / n_chords
+        * max(1.0, arc.radius_end_mm / arc.radius_start_mm, arc.radius_start_mm / arc.radius_end_mm)
+    )
     shortfall = move.length_mm - poly
     assert -1e-9 * move.length_mm <= shortfall <= move.length_mm * (dtheta**2 / 24 * 1.05 + 1e-9)
 
 
 @settings(max_examples=50)
-@given(plane=plane, c1=coord, c2=coord, n0=coord, r=radius, a0=angle, a1=angle, g=gdir, sign=st.sampled_from([1, -1]),
-       h=rise)
+@given(
+    plane=plane,
+    c1=coord,
+    c2=coord,
+    n0=coord,
+    r=radius,
+    a0=angle,
+    a1=angle,
+    g=gdir,
+    sign=st.sampled_from([1, -1]),
+    h=rise,
+)
 def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
     chord = 2 * r * abs(math.sin((a1 - a0) / 2))
     assume(chord > 1e-3 * r and chord > 1e-6)
@@ -102,8 +119,11 @@ def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
     p1 = (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
     (f, s, n), _ = PLANES[plane]
     start = {f: p0[0], s: p0[1], n: n0}
-    text = program_for(plane, (start["X"], start["Y"], start["Z"]),
-                       f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} R{num(sign * r)}")
+    text = program_for(
+        plane,
+        (start["X"], start["Y"], start["Z"]),
+        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} R{num(sign * r)}",
+    )
     move = parse_program(text).moves[-1]
     arc = move.arc
     check_exact_geometry(move)
@@ -122,9 +142,12 @@ def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
 
     # The same arc in the I/J/K form (centre from the R form): same centre, sweep, length.
     _, (ci, cj) = PLANES[plane]
-    ijk = program_for(plane, (start["X"], start["Y"], start["Z"]),
-                      f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
-                      f"{ci}{num(arc.center[0] - p0[0])} {cj}{num(arc.center[1] - p0[1])}")
+    ijk = program_for(
+        plane,
+        (start["X"], start["Y"], start["Z"]),
+        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
+        f"{ci}{num(arc.center[0] - p0[0])} {cj}{num(arc.center[1] - p0[1])}",
+    )
     m2 = parse_program(ijk).moves[-1]
     assert m2.arc.center == pytest.approx(arc.center, abs=1e-9)
     assert m2.arc.sweep_rad == pytest.approx(arc.sweep_rad, abs=1e-9)
@@ -132,17 +155,31 @@ def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
 
 
 @settings(max_examples=40)
-@given(plane=plane, c1=coord, c2=coord, n0=coord, r=radius, a0=angle, a1=angle, g=gdir,
-       turns=st.integers(1, 4), h=rise, full=st.booleans())
+@given(
+    plane=plane,
+    c1=coord,
+    c2=coord,
+    n0=coord,
+    r=radius,
+    a0=angle,
+    a1=angle,
+    g=gdir,
+    turns=st.integers(1, 4),
+    h=rise,
+    full=st.booleans(),
+)
 def test_ijk_form_turns_and_full_circles(plane, c1, c2, n0, r, a0, a1, g, turns, h, full):
     p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
     p1 = p0 if full else (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
     assume(full or math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
     (f, s, n), (ci, cj) = PLANES[plane]
     start = {f: p0[0], s: p0[1], n: n0}
-    text = program_for(plane, (start["X"], start["Y"], start["Z"]),
-                       f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
-                       f"{ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} P{turns}")
+    text = program_for(
+        plane,
+        (start["X"], start["Y"], start["Z"]),
+        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
+        f"{ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} P{turns}",
+    )
     move = parse_program(text).moves[-1]
     arc = move.arc
     check_exact_geometry(move)
@@ -161,12 +198,22 @@ def test_ijk_form_turns_and_full_circles(plane, c1, c2, n0, r, a0, a1, g, turns,
     if arc.radius_start_mm == arc.radius_end_mm:
         c = arc.rise_mm / arc.sweep_rad
         k_expected = arc.radius_start_mm / (arc.radius_start_mm**2 + c * c)
-        np.testing.assert_allclose(move.evaluate(np.array([0.0, move.length_mm / 3]))[2], k_expected, rtol=1e-9)
+        np.testing.assert_allclose(
+            move.evaluate(np.array([0.0, move.length_mm / 3]))[2], k_expected, rtol=1e-9
+        )
 
 
 @settings(max_examples=40)
-@given(c1=coord, c2=coord, r=st.floats(1.0, 400.0), a0=angle, a1=angle, g=gdir,
-       frac=st.floats(-0.95, 0.95), h=rise)
+@given(
+    c1=coord,
+    c2=coord,
+    r=st.floats(1.0, 400.0),
+    a0=angle,
+    a1=angle,
+    g=gdir,
+    frac=st.floats(-0.95, 0.95),
+    h=rise,
+)
 def test_spirals_inside_tolerance(c1, c2, r, a0, a1, g, frac, h):
     # end radius differs by at most the tolerance: LinuxCNC runs it as a spiral
     tol = max(0.02828, min(0.001 * r, 2.828))
@@ -174,7 +221,12 @@ def test_spirals_inside_tolerance(c1, c2, r, a0, a1, g, frac, h):
     p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
     p1 = (c1 + r1 * math.cos(a1), c2 + r1 * math.sin(a1))
     assume(math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
-    text = f"G0 X{num(p0[0])} Y{num(p0[1])}\nG1 F600\nG{g} X{num(p1[0])} Y{num(p1[1])} Z{num(h)} I{num(c1 - p0[0])} J{num(c2 - p0[1])}\n"
+    # the same angle at both ends would be a radial move with no sweep: not an arc to test
+    assume(abs(math.remainder(a1 - a0, 2 * math.pi)) > 1e-6)
+    text = (
+        f"G0 X{num(p0[0])} Y{num(p0[1])}\nG1 F600\n"
+        f"G{g} X{num(p1[0])} Y{num(p1[1])} Z{num(h)} I{num(c1 - p0[0])} J{num(c2 - p0[1])}\n"
+    )
     move = parse_program(text).moves[-1]
     assert move.arc.radius_end_mm == pytest.approx(r1, abs=1e-9)
     check_exact_geometry(move)

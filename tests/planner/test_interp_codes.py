@@ -208,8 +208,12 @@ def test_tool_and_m06_tool_change():
 
 def test_coolant_events():
     p = P("M8\nM9\nM7 M8\n")
-    assert [(e.kind, e.value) for e in p.events] == [(EventKind.COOLANT, 2), (EventKind.COOLANT, 0),
-                                                     (EventKind.COOLANT, 1), (EventKind.COOLANT, 2)]
+    assert [(e.kind, e.value) for e in p.events] == [
+        (EventKind.COOLANT, 2),
+        (EventKind.COOLANT, 0),
+        (EventKind.COOLANT, 1),
+        (EventKind.COOLANT, 2),
+    ]
     assert not p.events[0].stops
 
 
@@ -293,3 +297,12 @@ def test_moves_are_contiguous_and_read_only():
         assert a.end is not None and np.array_equal(a.end, b.start)
     with pytest.raises(ValueError):
         p.moves[0].end[0] = 5.0
+
+
+@pytest.mark.parametrize("k", range(6))
+def test_each_work_offset(k):
+    m = MachineSpec.default()
+    offs = {f"G5{4 + i}": (float(i), 10.0 * i, -1.0 * i) for i in range(6)}
+    m = replace(m, work_offsets=offs)
+    p = P(f"G5{4 + k} G0 X1 Y1 Z1", machine=m)
+    np.testing.assert_array_equal(p.moves[0].end, [1 + k, 1 + 10 * k, 1 - k])

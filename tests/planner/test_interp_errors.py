@@ -49,8 +49,8 @@ def errors_of(text: str, **kw):
         ("M99", "M99 is not supported", 1, 1),
         ("M62 P1", "M62 is not supported", 1, 1),
         ("M1.5", "unknown M code", 1, 1),
-        ("M3 M5", "M3 and M5 are in the same modal group", 1, 1),
-        ("M0 M2", "M0 and M2 are in the same modal group", 1, 1),
+        ("M3 M5", "M3 and M5 are in the same modal group", 1, 4),
+        ("M0 M2", "M0 and M2 are in the same modal group", 1, 4),
         # words
         ("G0 B5", "axis B is not on this machine (axes: X Y Z)", 1, 4),
         ("G0 U5", "axis U is not on this machine", 1, 4),
@@ -65,13 +65,13 @@ def errors_of(text: str, **kw):
         ("T1.5", "whole number >= 0", 1, 1),
         ("G1 X1 Y1 X2 F60", "two X words in one block", 1, 4),
         # non-modal
-        ("G0 G28 Z0", "cannot use two G codes that both use axis values", 1, 1),
+        ("G0 G28 Z0", "cannot use two G codes that both use axis values", 1, 4),
         ("G53 G2 X1 R1 F60", "G53 needs G00 or G01", 1, 1),
-        ("G91 G53 G0 X1", "G53 cannot be used in incremental mode", 1, 1),
+        ("G91 G53 G0 X1", "G53 cannot be used in incremental mode", 1, 5),
         ("G53", "G53 needs G00 or G01 with axis words", 1, 1),
         ("G4", "G04 needs a P word", 1, 1),
         ("G4 P-1", "negative dwell time", 1, 4),
-        ("G28 G4 P1", "same modal group", 1, 1),
+        ("G28 G4 P1", "same modal group", 1, 5),
         ("G80 X1", "cannot use axis values with G80", 1, 5),
     ],
 )
@@ -103,6 +103,13 @@ def test_axis_letters_follow_the_machine():
 def test_errors_do_not_stop_the_check_and_no_program_is_returned():
     errs = errors_of("G0 X1\nG2 X5 R1 F60\nG0 Y1\nM98\n")
     assert [(e.line, e.message.split()[0]) for e in errs] == [(2, "arc"), (4, "M98")]
+
+
+def test_code_columns():
+    (e,) = errors_of("G17 G90 G90.1 G91.1 G0 X1")
+    assert e.col == 15 and "G90.1 and G91.1" in e.message
+    (e,) = errors_of("G1 G17 G0 X1")
+    assert e.col == 8
 
 
 def test_error_after_program_end_not_reported():

@@ -33,8 +33,9 @@ def test_compact_and_spaced_forms_are_the_same():
         assert p.moves[0].arc.center == a.moves[0].arc.center
 
 
-@pytest.mark.parametrize("text,value", [("X.5", 0.5), ("X-.5", -0.5), ("X+2", 2.0), ("X3.", 3.0),
-                                        ("X007", 7.0), ("X-0.25", -0.25)])
+@pytest.mark.parametrize(
+    "text,value", [("X.5", 0.5), ("X-.5", -0.5), ("X+2", 2.0), ("X3.", 3.0), ("X007", 7.0), ("X-0.25", -0.25)]
+)
 def test_number_forms(text, value):
     assert ends(f"G0 {text}")[0][0] == value
 
@@ -155,6 +156,11 @@ def test_fanuc_program_number_and_trailing_dots():
     p = parse_program("%\nO0001 (PART)\nG0G90X0Y0\nG1X15.Y0.F250.\n%\n")
     assert len(p.moves) == 1 and p.moves[0].kind is MoveKind.LINE
     assert p.moves[0].feed_mm_s == pytest.approx(250 / 60)
+
+
+def test_comments_before_opening_percent():
+    p = parse_program("(header)\n\n%\nG0 X1\n%\nG0 X2\n")
+    assert len(p.moves) == 1 and p.line_count == 7
 
 
 def test_text_after_end_is_ignored():

@@ -1,0 +1,117 @@
+"""SoemBus pieces that need no network: PDO mapping rules, exact packing of process data,
+judging SOEM's config_map error list, and `cnc-ethercat` argument handling."""
+
+from __future__ import annotations
+
+import json
+import struct
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from ethercat.bus import DriveSpec
+from ethercat.cli import build_parser, main
+from ethercat.errors import ConfigurationError, SdoAbortError
+from ethercat.soem_bus import (
+    CSP_MAPPING,
+    DRIVE_MAPPINGS,
+    PdoEntry,
+    PdoMapping,
+    SoemBus,
+    _DriveIo,
+    al_state_name,
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+DRIVES = (DriveSpec(0, "X"), DriveSpec(1, "Y", direction=-1))
+
+
+def test_csp_mapping_sizes_and_entries() -> None:
+    assert CSP_MAPPING.rx_struct.size == 7 and CSP_MAPPING.tx_struct.size == 13
+    assert [e.value for e in CSP_MAPPING.rx] == [0x60400010, 0x607A0020, 0x60600008]
+    assert [e.value for e in CSP_MAPPING.tx] == [0x60410010, 0x60640020, 0x60F40020, 0x603F0010, 0x60610008]
+    assert (0x0000_0A5E, 0x0402_0001) in DRIVE_MAPPINGS
+
+
+@pytest.mark.parametrize("rx, tx, text", [
+    ((PdoEntry(0x607A, 0, 32, True),), CSP_MAPPING.tx, "controlword"),
+    (CSP_MAPPING.rx, (PdoEntry(0x6041, 0, 16),), "position actual"),
+    (CSP_MAPPING.rx + (PdoEntry(0x2000, 0, 24),), CSP_MAPPING.tx, "24 bits"),
+])
+def test_mapping_rules(rx: tuple[PdoEntry, ...], tx: tuple[PdoEntry, ...], text: str) -> None:
+    with pytest.raises(ConfigurationError, match=text):
+        PdoMapping(rx, tx)
+
+
+class FakeSlave:
+    def __init__(self, inputs: bytes) -> None:
+        self.output = b""
+        self.input = inputs
+
+
+def test_process_data_packed_exactly_in_mapping_order() -> None:
+    bus = SoemBus(DRIVES, adapter="unused")
+    bus.controlword[:] = [0x0F, 0x06]
+    bus.target_position[:] = [-123456, 7]
+    bus.modes_of_operation[:] = [8, 6]
+    inputs = struct.pack("<HiiHb", 0x1237, -5, 3, 0x2310, 8)
+    slaves = [FakeSlave(inputs), FakeSlave(bytes(13))]
+    ios = [_DriveIo(bus, i, s, CSP_MAPPING) for i, s in enumerate(slaves)]
+    for io in ios:
+        io.write()
+        io.read()
+    assert slaves[0].output == struct.pack("<Hib", 0x0F, -123456, 8)
+    assert slaves[1].output == struct.pack("<Hib", 0x06, 7, 6)
+    assert all(len(s.output) == 7 for s in slaves), "never more than the slave's output size"
+    assert bus.statusword[0] == 0x1237 and bus.position_actual[0] == -5
+    assert bus.following_error[0] == 3 and bus.error_code[0] == 0x2310 and bus.modes_display[0] == 8
+    np.testing.assert_array_equal(bus.statusword, [0x1237, 0])
+
+
+def test_config_map_error_list_judged() -> None:
+    bus = SoemBus(DRIVES, adapter="unused")
+    emergency = SimpleNamespace(slave_pos=3, desc="emergency 0x1000")          # not a configured drive
+    bus._judge_config_map_errors([emergency])
+    assert bus.warnings == ["slave 2: SimpleNamespace emergency 0x1000"]
+    abort = SimpleNamespace(slave_pos=2, index=0x1600, subindex=0, abort_code=0x06040041, desc="not mappable")
+    with pytest.raises(SdoAbortError) as exc:
+        bus._judge_config_map_errors([emergency, abort])
+    assert exc.value.position == 1 and exc.value.abort_code == 0x06040041
+    assert "0x1600" in str(exc.value) and "PDO mapping" in str(exc.value)
+
+
+def test_al_state_names() -> None:
+    assert al_state_name(0x08) == "OP"
+    assert al_state_name(0x14) == "SAFE-OP + ERROR"
+
+
+def test_cli_arguments() -> None:
+    args = build_parser().parse_args(["download", "eth0", "1", "0x6065", "0", "0x10"])
+    assert (args.position, args.index, args.subindex, args.value) == (1, 0x6065, 0, 16)
+    assert main(["bench", "--seconds", "1"]) == 1, "neither --sim nor an interface"
+    assert main(["download", "eth0", "0", "0x2FFF", "0", "1"]) == 1, "unknown type needs --type"
+
+
+def test_cli_bench_sim_json() -> None:
+    res = subprocess.run([sys.executable, "-m", "ethercat", "bench", "--sim", "--seconds", "1", "--json",
+                          "--mode", "thread", "--drives", "2"], capture_output=True, text=True, timeout=60,
+                         cwd=ROOT)
+    assert res.returncode == 0, res.stderr
+    figures = json.loads(res.stdout)
+    assert figures["bus"] == "sim" and figures["drives"] == 2 and figures["cycles"] > 500
+
+
+def test_link_tests_skip_reasons(monkeypatch: pytest.MonkeyPatch) -> None:
+    from ethercat.emulator import link
+
+    monkeypatch.setattr(link.os, "geteuid", lambda: 1000)
+    assert "root" in link.link_unavailable_reason()
+    monkeypatch.setattr(link.os, "geteuid", lambda: 0)
+    monkeypatch.setattr(link.shutil, "which", lambda _name: None)
+    assert "iproute2" in link.link_unavailable_reason()
+    with pytest.raises(ConfigurationError, match="iproute2"):
+        link.EmulatedLink(1).start()

@@ -1,0 +1,118 @@
+"""Machine configuration: strict reading, atomic writing with a backup, recovery."""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from app.machine.config import (
+    MachineConfig,
+    backup_path,
+    config_from_dict,
+    config_to_toml,
+    load_config,
+    recover_config,
+    save_config,
+)
+from app.machine.controller import MachineController
+from app.machine.errors import ConfigError
+from app.machine.model import Severity
+from planner.machine import shipped_machine
+
+
+@pytest.mark.parametrize("name", ["xyz_mill", "paper_yzca"])
+def test_shipped_configurations_round_trip(name: str) -> None:
+    cfg = load_config(shipped_machine(name))
+    text = config_to_toml(cfg)
+    again = config_from_dict(tomllib.loads(text), "again")
+    assert config_to_toml(again) == text
+    assert again.machine.axes == cfg.machine.axes
+    assert again.homing == cfg.homing and again.bus == cfg.bus
+
+
+def test_save_is_atomic_and_keeps_the_previous_file(config_path: Path) -> None:
+    cfg = load_config(config_path)
+    old_text = config_path.read_text()
+    new = replace(cfg, machine=cfg.machine.with_limits(v_max_mm_s=25.0))
+    saved = save_config(new, config_path)
+    assert saved.machine.limits.v_max_mm_s == 25.0
+    assert load_config(config_path).machine.limits.v_max_mm_s == 25.0
+    assert backup_path(config_path).read_text() == old_text
+    assert not list(config_path.parent.glob(".*.tmp"))  # no temporary file left behind
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda t: t.replace("v_max = 100.0", "v_max = -1.0", 1), ["v_max", "-1"]),
+    (lambda t: t.replace('method = "set_here"', 'method = "magic"'), ["method", "magic"]),
+    (lambda t: t.replace('kind = "sim"', 'kind = "can"'), ["kind", "can"]),
+    (lambda t: t.replace("lead_s = 0.08", "lead_s = 5.0"), ["lead_s", "5.0"]),
+])
+def test_invalid_values_are_named(config_path: Path, edit, words) -> None:
+    cfg = load_config(config_path)
+    save_config(cfg, config_path)  # adds the [controller] section
+    config_path.write_text(edit(config_path.read_text()))
+    with pytest.raises(ConfigError) as exc:
+        load_config(config_path)
+    for w in words:
+        assert w in str(exc.value)
+    assert str(config_path) in str(exc.value)
+
+
+def test_truncated_mid_write_is_recovered_from_the_backup(config_path: Path) -> None:
+    cfg = load_config(config_path)
+    save_config(replace(cfg, machine=cfg.machine.with_limits(v_max_mm_s=20.0)), config_path)
+    good = config_path.read_text()
+    save_config(replace(cfg, machine=cfg.machine.with_limits(v_max_mm_s=21.0)), config_path)
+    # a crash of a non-atomic writer: the file cut in the middle of a table
+    text = config_path.read_text()
+    config_path.write_text(text[: len(text) // 2] + "\n[[axes]\nname = ")
+    with pytest.raises(ConfigError) as exc:
+        load_config(config_path)
+    assert exc.value.backup == str(backup_path(config_path))
+    assert "damaged" in str(exc.value)
+    cfg2, message = recover_config(config_path)
+    assert cfg2.machine.limits.v_max_mm_s == 20.0
+    assert config_path.read_text() == good
+    assert config_path.with_name(config_path.name + ".damaged").exists()
+    assert "restored" in message
+
+
+def test_no_backup_no_silent_defaults(tmp_path: Path) -> None:
+    p = tmp_path / "m.toml"
+    p.write_text("[machine]\nname = 'x'\n[[axes]]\nname = 'X'\n")  # min/max missing
+    with pytest.raises(ConfigError) as exc:
+        load_config(p)
+    assert exc.value.backup is None
+    assert "missing 'min'" in str(exc.value)
+    with pytest.raises(ConfigError):
+        MachineController(p, state_dir=tmp_path / "s", worker_mode="manual")
+
+
+def test_controller_recovers_a_damaged_file_and_says_so(qapp, config_path: Path, state_dir: Path) -> None:
+    cfg = load_config(config_path)
+    save_config(cfg, config_path)
+    config_path.write_text(config_path.read_text()[:300])
+    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="manual")
+    try:
+        assert ctl.config.machine.axis_names == ("X", "Y", "Z")
+        warn = [a for a in ctl.alarms if a.code == "config_recovered"]
+        assert warn and warn[0].severity is Severity.WARNING and "restored" in warn[0].cause
+    finally:
+        ctl.shutdown()
+
+
+def test_update_config_is_atomic_and_applied(qapp, config_path: Path, state_dir: Path) -> None:
+    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="manual")
+    try:
+        seen: list[MachineConfig] = []
+        ctl.configChanged.connect(seen.append)
+        new = replace(ctl.config, machine=ctl.config.machine.with_limits(a_max_mm_s2=800.0))
+        assert ctl.update_config(new)
+        assert seen and seen[-1].machine.limits.a_max_mm_s2 == 800.0
+        assert load_config(config_path).machine.limits.a_max_mm_s2 == 800.0
+        assert backup_path(config_path).exists()
+    finally:
+        ctl.shutdown()

@@ -1,0 +1,387 @@
+"""The machine controller on the real CyclicWorker + SimBus ("manual" worker mode: simulated
+time driven by the test). Every behaviour of issue 6 with short programs."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.machine.config import load_config, save_config
+from app.machine.controller import TRANSITIONS, MachineController
+from app.machine.errors import MachineError
+from app.machine.model import Activity, MachineState, Severity
+from tests.machine.conftest import make_controller, run_to_idle, trace
+
+SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"
+LIMIT_KEYS = ("tangential_v", "tangential_a", "tangential_j", "axis_v", "axis_a", "axis_j")
+
+
+def assert_within_limits(limits: dict[str, float]) -> None:
+    for k in LIMIT_KEYS:
+        assert limits[k] <= 1.0 + 1e-6, f"{k} = {limits[k]:.6f}"
+
+
+def start(ctl: MachineController, text: str = SHORT) -> None:
+    assert ctl.load_program(text), "load refused"
+    assert ctl.cycle_start(), "cycle start refused"
+    assert ctl.state is MachineState.RUNNING
+
+
+# ---------------------------------------------------------------------------- states
+def test_transition_table_is_closed() -> None:
+    for src, dsts in TRANSITIONS.items():
+        assert src not in dsts
+        assert MachineState.ESTOP in dsts or src is MachineState.ESTOP
+
+
+def test_refusals_carry_reasons(qapp, config_path: Path, state_dir: Path) -> None:
+    ctl = make_controller(config_path, state_dir, connect=False)
+    refused: list[tuple[str, str]] = []
+    ctl.commandRefused.connect(lambda a, r: refused.append((a, r)))
+    try:
+        r = ctl.cycle_start()
+        assert not r and "disconnected" in r.reason
+        assert ctl.connect_bus()
+        assert ctl.state is MachineState.IDLE
+        assert ctl.load_program(SHORT)
+        r = ctl.cycle_start()
+        assert not r and "not homed" in r.reason and "X Y Z" in r.reason
+        assert not ctl.mdi("G0 X1") and not ctl.run_from_line(2)
+        r = ctl.feed_hold()
+        assert not r and "nothing to hold" in r.reason
+        assert ctl.jog_increment("X", 0.1)  # jogging is allowed before homing
+        run_to_idle(ctl)
+        assert refused and all(reason for _, reason in refused)
+        with pytest.raises(MachineError):
+            ctl._set_state(MachineState.HOLD)  # IDLE -> HOLD is not a legal transition
+    finally:
+        ctl.shutdown()
+
+
+def test_estop_quick_stops_at_once_and_release(ctl: MachineController) -> None:
+    start(ctl)
+    ctl.advance(0.4)
+    assert ctl.estop("test")
+    assert ctl.state is MachineState.ESTOP
+    assert ctl.worker.snapshot().state.name in ("QUICK_STOP", "FAULT")
+    p0 = np.array(ctl.machine_position)
+    ctl.advance(0.3)
+    assert np.linalg.norm(np.array(ctl.machine_position) - p0) < 1.0  # stopped (quick-stop ramp only)
+    assert not ctl.jog_start("X", 1)
+    assert any(a.code == "estop" and a.severity is Severity.ESTOP for a in ctl.active_alarms)
+    assert ctl.estop_release()
+    assert ctl.state is MachineState.IDLE
+    assert ctl.resume_line > 0  # the interrupted program can be resumed
+
+
+# ---------------------------------------------------------------------------- program run
+def test_program_runs_to_its_exact_end(ctl: MachineController) -> None:
+    lines: list[int] = []
+    progress: list[float] = []
+    finished = []
+    ctl.lineChanged.connect(lines.append)
+    ctl.progressChanged.connect(lambda f, r: progress.append(f))
+    ctl.programFinished.connect(finished.append)
+    assert ctl.load_program(SHORT)
+    est = ctl.program_info.cycle_time_s
+    assert 1.0 < est < 5.0
+    assert ctl.cycle_start()
+    run_to_idle(ctl)
+    s = finished[0]
+    assert s.completed and s.last_line == 4
+    assert s.cycle_time_s == pytest.approx(est, abs=0.02)
+    assert [x for x in lines if x] == sorted(x for x in lines if x) and 3 in lines
+    assert progress[-1] == 1.0
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
+    ctl.advance(0.1)
+    np.testing.assert_allclose(ctl.machine_position, (5.0, 20.0, 0.0), atol=2e-4)
+    assert_within_limits(s.limits)
+    assert s.tracking.samples > 1000 and all(r > 0 for r in s.tracking.rmse[:2])
+    t = trace(ctl)
+    assert set(t) >= {"t", "reference", "actual", "axes", "rmse", "mse"}
+    assert t["reference"].shape == t["actual"].shape and t["reference"].shape[1] == 3
+    assert ctl.state is MachineState.IDLE and ctl.activity is Activity.NONE
+
+
+def test_all_program_errors_before_any_motion(ctl: MachineController) -> None:
+    errors = []
+    ctl.programErrors.connect(errors.append)
+    r = ctl.load_program("G0 X1\nG1 X2 Q5 F100\nG2 X3 Y4\nG1 X1 F100\n")
+    assert not r
+    assert [e.line for e in errors[0]] == [2, 3]
+    assert not ctl.cycle_start()
+    assert ctl.machine_position == (0.0, 0.0, 0.0)
+
+
+def test_soft_limit_in_the_middle_of_an_arc_refused_with_its_line(ctl: MachineController) -> None:
+    errors = []
+    ctl.programErrors.connect(errors.append)
+    r = ctl.load_program("G0 X200 Y-60\nG3 X200 Y60 R60 F600\nG0 X0 Y0\n")
+    assert not r and "line 2" in r.reason and "axis X" in r.reason
+    (issue,) = errors[0]
+    assert issue.line == 2 and issue.axis == "X" and "260" in issue.message
+    assert ctl.program_info is None
+
+
+def test_feed_hold_in_an_arc_then_resume_ends_exactly(ctl: MachineController) -> None:
+    start(ctl)
+    assert ctl.run_until(lambda: ctl.current_line == 3, 5)
+    ctl.advance(0.15)
+    assert ctl.feed_hold()
+    assert ctl.state is MachineState.HOLD
+    ctl.advance(0.6)
+    held = np.array(ctl.reference_position)
+    ctl.advance(0.3)
+    np.testing.assert_array_equal(ctl.reference_position, held)  # standing still
+    assert np.hypot(held[0] - 20.0, held[1] - 10.0) == pytest.approx(10.0, abs=1e-9)  # on the arc
+    assert held[0] > 20.0  # in its first half, not at an end
+    assert ctl.resume()
+    run_to_idle(ctl)
+    s = ctl.last_run
+    assert s.completed
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
+    assert_within_limits(s.limits)
+
+
+def test_override_changes_mid_move(ctl: MachineController) -> None:
+    speeds = []
+    ctl.speedChanged.connect(speeds.append)
+    start(ctl, "G0 X5 Y0\nG1 X120 F1200\nM30\n")  # 20 mm/s programmed
+    ctl.advance(1.2)
+    v100 = ctl._speed
+    assert v100 == pytest.approx(20.0, rel=0.02)
+    assert ctl.set_feed_override(150)
+    ctl.advance(1.0)
+    assert ctl._speed == pytest.approx(30.0, rel=0.02)  # 150 % of 20, within Vmax 30
+    assert ctl.set_feed_override(40)
+    ctl.advance(1.0)
+    assert ctl._speed == pytest.approx(8.0, rel=0.03)
+    assert not ctl.set_feed_override(151)
+    assert ctl.set_feed_override(100)
+    run_to_idle(ctl)
+    s = ctl.last_run
+    assert s.completed
+    np.testing.assert_array_equal(ctl.reference_position, (120.0, 0.0, 0.0))
+    assert_within_limits(s.limits)
+    d = np.diff(trace(ctl)["reference"][:, 0])
+    assert np.max(np.abs(np.diff(d))) / 1e-6 < 1000.0  # no jump: acceleration stays bounded
+
+
+def test_single_block_stops_after_every_block(ctl: MachineController) -> None:
+    assert ctl.set_single_block(True)
+    start(ctl)
+    stops = 0
+    while ctl.state is not MachineState.IDLE:
+        assert ctl.run_until(lambda: ctl.state in (MachineState.HOLD, MachineState.IDLE), 10)
+        if ctl.state is MachineState.HOLD:
+            assert "single block" in ctl.state_reason
+            stops += 1
+            assert ctl.cycle_start()
+    assert stops == 3  # after lines 1, 2, 3 (line 4 ends the program)
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
+
+
+def test_m00_pauses_and_m01_only_with_optional_stop(ctl: MachineController) -> None:
+    text = "G1 X5 F1800\nM01\nG1 X10\nM00\nG1 X15\nM30\n"
+    start(ctl, text)
+    assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)
+    assert "M00" in ctl.state_reason and ctl.reference_position[0] == 10.0
+    assert ctl.cycle_start()
+    run_to_idle(ctl)
+    assert ctl.set_optional_stop(True)
+    assert ctl.mdi("G0 X0")
+    run_to_idle(ctl)
+    start(ctl, text)
+    assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)
+    assert "M01" in ctl.state_reason and ctl.reference_position[0] == 5.0
+
+
+def test_run_from_line_moves_safely_and_restores_the_spindle(ctl: MachineController) -> None:
+    text = "G0 Z5\nM3 S1200\nG1 Z-1 F600\nG1 X10 F1800\nG1 Y10\nG1 X0\nM5\nM30\n"
+    assert ctl.load_program(text)
+    acts = []
+    ctl.activityChanged.connect(acts.append)
+    assert ctl.run_from_line(5)
+    assert ctl.activity is Activity.APPROACH
+    assert ctl.run_until(lambda: ctl.activity is Activity.PROGRAM, 5)
+    assert ctl.spindle.direction == 1 and ctl.spindle.rpm == 1200.0
+    np.testing.assert_allclose(ctl.reference_position, (10.0, 0.0, -1.0), atol=1e-9)
+    run_to_idle(ctl)
+    np.testing.assert_array_equal(ctl.reference_position, (0.0, 10.0, -1.0))
+    assert not ctl.spindle.on  # M5 at line 7
+    ref = trace(ctl)["reference"]
+    assert ref[:, 2].max() <= 0.0 + 1e-12
+
+
+# ---------------------------------------------------------------------------- manual
+def test_lost_jog_release_stops_at_the_soft_limit(ctl: MachineController) -> None:
+    assert ctl.mdi("G0 X240")
+    run_to_idle(ctl)
+    assert ctl.jog_start("X", 1)
+    # the release never comes
+    assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 10)
+    assert ctl.reference_position[0] == 250.0
+    assert not ctl.jog_start("X", 1)  # already at the limit
+
+
+def test_jog_release_stops_jerk_limited(ctl: MachineController) -> None:
+    assert ctl.jog_start("Y", -1)
+    ctl.advance(0.5)
+    assert ctl.jog_stop("Y")
+    run_to_idle(ctl, 3)
+    y = ctl.reference_position[1]
+    assert -9.0 < y < -3.0  # 10 mm/s for 0.5 s, then a short stop
+    ctl.advance(0.2)
+    assert ctl.reference_position[1] == y
+
+
+def test_incremental_jog(ctl: MachineController) -> None:
+    for step in (1.0, 0.1, 0.01, 0.001):
+        assert ctl.jog_increment("Z", step, -1)
+        run_to_idle(ctl, 3)
+    assert ctl.reference_position[2] == pytest.approx(-1.111, abs=1e-12)
+    assert not ctl.jog_increment("Z", 0.5)
+    assert ctl.mdi("G0 Z99.5")
+    run_to_idle(ctl)
+    r = ctl.jog_increment("Z", 1.0, 1)
+    assert not r and "soft limit" in r.reason
+
+
+def test_mdi_with_the_same_checks(ctl: MachineController) -> None:
+    assert ctl.mdi("G1 X3 Y4 F600")
+    run_to_idle(ctl)
+    np.testing.assert_array_equal(ctl.reference_position, (3.0, 4.0, 0.0))
+    r = ctl.mdi("G0 X300")
+    assert not r and "X" in r.reason and "soft limit" in r.reason
+    assert not ctl.mdi("G1 X1 Q3")
+    assert ctl.set_work_offset("G55", (10.0, 0.0, 0.0))
+    assert ctl.select_work_offset("G55")
+    assert ctl.mdi("G0 X0 Y0")
+    run_to_idle(ctl)
+    assert ctl.reference_position[0] == 10.0 and ctl.work_position[0] == pytest.approx(0.0, abs=1e-3)
+
+
+def test_drive_homing_mode_6(qapp, config_path: Path, state_dir: Path) -> None:
+    cfg = load_config(config_path)
+    save_config(replace(cfg, homing=replace(cfg.homing, method="drive", drive_method=35)), config_path)
+    ctl = make_controller(config_path, state_dir, zero=False)
+    try:
+        assert ctl.homed == (False, False, False)
+        assert ctl.home_all()
+        assert ctl.state is MachineState.HOMING
+        assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+        assert ctl.homed == (True, True, True)
+        assert ctl.load_program(SHORT) and ctl.cycle_start()
+    finally:
+        ctl.shutdown()
+
+
+def test_offsets_positions_homed_state_survive_a_restart(qapp, config_path: Path, state_dir: Path) -> None:
+    ctl = make_controller(config_path, state_dir)
+    assert ctl.mdi("G0 X12 Y-7 Z-3")
+    run_to_idle(ctl)
+    ctl.advance(0.2)
+    assert ctl.touch_off("Z", 0.0)
+    assert ctl.set_work_offset("G56", {"X": 1.5, "Y": 2.5})
+    assert ctl.select_work_offset("G56")
+    pos = ctl.machine_position
+    ctl.shutdown()
+    again = make_controller(config_path, state_dir, zero=False)
+    try:
+        assert again.homed == (True, True, True)
+        np.testing.assert_allclose(again.machine_position, pos, atol=2e-4)
+        assert again.work_offsets["G54"][2] == pytest.approx(pos[2], abs=1e-9)
+        assert again.work_offsets["G56"][:2] == (1.5, 2.5)
+        assert again.active_offset == "G56"
+    finally:
+        again.shutdown()
+
+
+def test_spindle_by_hand_and_from_the_program(ctl: MachineController) -> None:
+    seen = []
+    ctl.spindleChanged.connect(seen.append)
+    assert ctl.spindle_on(clockwise=False, rpm=3000)
+    assert ctl.spindle.direction == -1 and ctl.spindle.rpm == 3000
+    ctl.advance(0.05)
+    assert ctl.worker.snapshot().digital_outputs[0] == 0b11
+    assert ctl.spindle_off() and ctl.worker.snapshot().digital_outputs[0] == 0
+    start(ctl, "M3 S800\nG1 X5 F1800\nM5\nG1 X6\nM30\n")
+    assert ctl.run_until(lambda: ctl.spindle.on, 3)
+    assert ctl.spindle.rpm == 800
+    run_to_idle(ctl)
+    assert not ctl.spindle.on
+    assert [s.direction for s in seen][-2:] == [1, 0]
+
+
+# ---------------------------------------------------------------------------- faults and alarms
+def test_drive_fault_mid_program_keeps_position_and_line(ctl: MachineController, state_dir: Path) -> None:
+    start(ctl)
+    assert ctl.run_until(lambda: ctl.current_line == 3, 5)
+    ctl.advance(0.1)
+    ctl.worker.inject("drive_fault", "Y", 0x2310)
+    assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 1)
+    ctl.advance(0.3)
+    alarm = [a for a in ctl.active_alarms if a.severity is Severity.QUICK_STOP][0]
+    assert alarm.source == "drive Y" and "0x2310" in alarm.cause
+    assert ctl.resume_line == 3
+    pos = np.array(ctl.machine_position)
+    assert np.hypot(pos[0] - 20.0, pos[1] - 10.0) == pytest.approx(10.0, abs=0.1)  # near the arc
+    saved = json.loads((state_dir / "alarms.json").read_text())
+    assert any(a["cause"] == alarm.cause and a["state"] == "active" for a in saved)
+    assert not ctl.cycle_start()
+    assert ctl.reset()
+    assert ctl.state is MachineState.IDLE
+    assert json.loads((state_dir / "alarms.json").read_text())[-1]["state"] == "acknowledged"
+    np.testing.assert_allclose(ctl.machine_position, pos, atol=1e-3)  # the position is kept
+    assert ctl.resume()
+    run_to_idle(ctl)
+    assert ctl.last_run.completed
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
+
+
+def test_stop_abandons_the_program(ctl: MachineController) -> None:
+    start(ctl)
+    ctl.advance(0.5)
+    assert ctl.stop()
+    run_to_idle(ctl, 3)
+    assert not ctl.last_run.completed
+    assert ctl.resume_line == 0
+    assert ctl.cycle_start()  # and it can start again from the beginning
+    run_to_idle(ctl)
+    assert ctl.last_run.completed
+
+
+def test_stop_class_alarm_stops_along_the_path(ctl: MachineController) -> None:
+    start(ctl)
+    assert ctl.run_until(lambda: ctl.current_line == 3, 5)
+    ctl._alarm_stop("test: coolant pressure lost", "controller", "test")  # a STOP-severity alarm
+    assert ctl.state is MachineState.ALARM
+    assert not ctl.reset() or ctl.state is MachineState.IDLE  # refused until standstill
+    assert ctl.run_until(lambda: ctl.worker.buffer_level() == 0 and ctl._job is None, 2)
+    p = np.array(ctl.reference_position)
+    assert np.hypot(p[0] - 20.0, p[1] - 10.0) == pytest.approx(10.0, abs=1e-9)  # stopped on the arc
+    assert ctl.resume_line == 3
+    assert ctl.reset() and ctl.state is MachineState.IDLE
+    assert ctl.resume()
+    run_to_idle(ctl)
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
+
+
+def test_alarms_persist_across_a_restart(qapp, config_path: Path, state_dir: Path) -> None:
+    ctl = make_controller(config_path, state_dir)
+    ctl.worker.inject("drive_fault", "X", 0x4310)
+    ctl.advance(0.1)
+    assert ctl.state is MachineState.ALARM
+    ctl.shutdown()
+    again = make_controller(config_path, state_dir, zero=False)
+    try:
+        (a,) = [a for a in again.alarms if "0x4310" in a.cause]
+        assert a.active and a.source == "drive X" and a.time_s > 0
+        assert again.acknowledge_alarm(a.id)
+        assert not again.active_alarms or all(x.id != a.id for x in again.active_alarms)
+    finally:
+        again.shutdown()

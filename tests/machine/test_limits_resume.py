@@ -1,0 +1,71 @@
+"""Soft limits on the whole path (arcs by their exact extremes) and the resume helpers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app.machine.config import load_config
+from app.machine.limits import check_program, program_bounds
+from planner.interpreter import parse_program
+from planner.machine import shipped_machine
+from planner.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
+
+
+@pytest.fixture(scope="module")
+def machine():
+    return load_config(shipped_machine("xyz_mill")).machine  # X -250..250, Y -200..200
+
+
+def test_arc_crossing_the_limit_between_its_end_points_is_found(machine) -> None:
+    # both end points inside (X 200), the arc bulges to X = 260 > 250 in its middle
+    prog = parse_program("G0 X200 Y-60\nG3 X200 Y60 R60 F600\nG0 X0 Y0\n", machine=machine)
+    v = check_program(prog, machine)
+    assert len(v) == 1
+    assert v[0].line == 2 and v[0].axis == "X"
+    assert v[0].value == pytest.approx(260.0, abs=1e-9)
+    assert v[0].where == "arc extreme"
+    assert "line 2" in str(v[0]) and "axis X" in str(v[0])
+
+
+def test_bounds_are_exact_for_arcs(machine) -> None:
+    # clockwise from angle 0 to 180 degrees: through -90 degrees, the lower half (Y min -10)
+    prog = parse_program("G0 X10 Y0\nG2 X-10 Y0 R10 F600\n", machine=machine)
+    lo, hi = program_bounds(prog)
+    assert lo[1] == pytest.approx(-10.0, abs=1e-12)
+    assert hi[1] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_helix_and_lines_inside_pass(machine) -> None:
+    prog = parse_program("G0 X0 Y0\nG2 X0 Y0 I50 J0 Z-10 F600\nG1 X240\n", machine=machine)
+    assert check_program(prog, machine) == []
+
+
+def test_split_move_keeps_the_geometry(machine) -> None:
+    prog = parse_program("G0 X20 Y0\nG3 X0 Y20 Z-3 R20 F600\n", machine=machine)
+    arc = prog.moves[1]
+    u = 0.37 * arc.length_mm
+    tail = split_move(arc, u)
+    assert tail.length_mm == pytest.approx(arc.length_mm - u, rel=1e-12)
+    np.testing.assert_array_equal(tail.end, arc.end)
+    w = np.linspace(0.0, tail.length_mm, 50)
+    np.testing.assert_allclose(tail.evaluate(w)[0], arc.evaluate(u + w)[0], atol=1e-12)
+
+
+def test_remaining_program_and_modal_state(machine) -> None:
+    text = "G0 X0 Y0\nM3 S1200\nG1 X10 F600\nM5\nG1 Y10\nM4 S800\nG1 X0\nM30\n"
+    prog = parse_program(text, machine=machine)
+    i = locate(prog, 5)
+    rest = remaining_program(prog, i, 2.5)
+    assert rest.moves[0].line == 5
+    np.testing.assert_allclose(rest.start_position, [10.0, 2.5, 0.0], atol=1e-12)
+    np.testing.assert_array_equal(rest.end_position, prog.end_position)
+    assert modal_state_at(prog, 3).spindle_rpm == 1200.0
+    assert modal_state_at(prog, 5).spindle_rpm == 0.0
+    assert modal_state_at(prog, 7).spindle_rpm == -800.0
+
+
+def test_approach_retracts_first(machine) -> None:
+    moves = approach_moves(np.array([0.0, 0.0, -5.0]), np.array([50.0, 20.0, -2.0]), ("X", "Y", "Z"),
+                           (False, False, False))
+    assert [tuple(m.end) for m in moves] == [(0.0, 0.0, -2.0), (50.0, 20.0, -2.0)]

@@ -1,0 +1,68 @@
+"""`cnc-run` and one run in real time (the worker in its own process, as in the panel)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.machine import run_cli
+from app.machine.controller import MachineController
+from app.machine.model import MachineState
+from planner.machine import shipped_machine
+
+PROGRAMS = Path(__file__).resolve().parents[2] / "resources" / "programs"
+
+
+def test_cnc_run_json_fast(qapp, capsys, tmp_path: Path) -> None:
+    code = run_cli.main([str(PROGRAMS / "fig7_circle.nc"), "--sim", "--json", "--worker", "manual",
+                         "--state-dir", str(tmp_path), "--trace", str(tmp_path / "t.npz")])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["completed"]
+    assert out["limits_ok"]
+    assert out["cycle_time_s"] == pytest.approx(out["estimated_cycle_time_s"], abs=0.01)
+    assert set(out["tracking"]) == {"X", "Y", "Z"} and out["tracking"]["X"]["rmse"] > 0
+    assert out["reference_end_position"] == [0.0, 0.0, 0.0]
+    with np.load(tmp_path / "t.npz") as z:
+        assert z["reference"].shape[1] == 3
+
+
+def test_cnc_run_bad_program_exit_2(qapp, capsys, tmp_path: Path) -> None:
+    bad = tmp_path / "bad.nc"
+    bad.write_text("G1 X1 F100\nG1 X2 Q7\nG0 X900\n")
+    code = run_cli.main([str(bad), "--sim", "--worker", "manual", "--state-dir", str(tmp_path / "s")])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert "line 2" in err and "Q" in err
+
+
+def test_cnc_run_text_report(qapp, capsys, tmp_path: Path) -> None:
+    prog = tmp_path / "p.nc"
+    prog.write_text("G1 X10 F1800\nG2 X20 Y0 R5\nM30\n")
+    code = run_cli.main([str(prog), "--sim", "--worker", "manual",
+                         "--config", str(shipped_machine("xyz_mill")), "--state-dir", str(tmp_path / "s")])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "completed" in out and "RMSE" in out and "within limits: yes" in out
+
+
+def test_realtime_run_in_the_worker_process(qtbot, config_path: Path, state_dir: Path) -> None:
+    ctl = MachineController(config_path, state_dir=state_dir)  # worker_mode="process": real time
+    try:
+        assert ctl.connect_bus()
+        assert ctl.set_machine_zero_here()
+        done = []
+        ctl.programFinished.connect(done.append)
+        assert ctl.load_program("G1 X10 F1800\nG3 X10 Y10 R5\nG1 X0\nM30\n")
+        assert ctl.cycle_start()
+        qtbot.waitUntil(lambda: bool(done), timeout=10_000)
+        qtbot.waitUntil(lambda: ctl.state is MachineState.IDLE, timeout=2_000)
+        s = done[0]
+        assert s.completed and s.cycle_time_s == pytest.approx(ctl.program_info.cycle_time_s, abs=0.1)
+        qtbot.wait(200)
+        np.testing.assert_allclose(ctl.machine_position, (0.0, 10.0, 0.0), atol=1e-3)
+        np.testing.assert_array_equal(ctl.reference_position, (0.0, 10.0, 0.0))
+    finally:
+        ctl.shutdown()

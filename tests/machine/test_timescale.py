@@ -1,0 +1,124 @@
+"""Time-scaling executor (feed override, rapid override, hold) without the worker: the
+set-points stay on the path, end exactly at the programmed end and within every limit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app.machine.config import load_config
+from app.machine.timescale import (
+    Budget,
+    TimeScaledExecutor,
+    check_limits,
+    pause_points,
+    reduced_machine,
+)
+from planner.interpreter import parse_program
+from planner.machine import shipped_machine
+from planner.movetable import contour_error
+from planner.plan import plan_program
+
+PROGRAM = """G0 X10 Y0
+G1 X30 F1200
+G3 X30 Y40 R20
+G1 X0 Y40
+G2 X-20 Y20 R20 Z-5
+G1 Y0
+G0 X0 Y0 Z0
+M30
+"""
+TOL = 1e-6  # relative allowance on the limit ratios (rounding of finite differences)
+
+
+@pytest.fixture(scope="module")
+def machine():
+    return load_config(shipped_machine("xyz_mill")).machine
+
+
+def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budget: Budget | None = None):
+    budget = budget or Budget()
+    prog = parse_program(program_text, machine=machine)
+    plan = plan_program(prog, reduced_machine(machine, budget))
+    ex = TimeScaledExecutor(plan, machine, budget, pause_points(plan, False, False))
+    q, s, mv, sig, tau = [], [], [], [], []
+    k = 0
+    while not ex.finished:
+        for at, (what, value) in list(actions.items()):
+            if k >= at:
+                actions.pop(at)
+                if what == "feed":
+                    ex.set_overrides(feed=value)
+                elif what == "rapid":
+                    ex.set_overrides(rapid=value)
+                elif what == "hold":
+                    ex.hold = bool(value)
+        ch = ex.generate(10)
+        if ch is None:
+            assert ex.paused is not None
+            ex.release_pause()
+            continue
+        q.append(ch.q)
+        s.append(ch.s_mm)
+        mv.append(ch.move)
+        sig.append(ch.sigma)
+        tau.append(ch.tau)
+        k += len(ch.q)
+        assert k < 200_000, "did not finish"
+    return prog, plan, ex, np.vstack(q), np.concatenate(s), np.concatenate(mv), np.concatenate(sig), \
+        np.concatenate(tau)
+
+
+def assert_within(result: dict[str, float]) -> None:
+    for key in ("tangential_v", "tangential_a", "tangential_j", "axis_v", "axis_a", "axis_j"):
+        assert result[key] <= 1.0 + TOL, f"{key} = {result[key]:.6f} over its limit"
+
+
+def test_plain_run_equals_the_plan(machine):
+    prog, plan, ex, q, s, mv, sig, tau = run(machine, PROGRAM, {})
+    ref = plan.collect().q[1:]  # the executor's first set-point is one period after the start
+    n = min(len(ref), len(q))
+    assert abs(len(ref) - len(q)) <= 1
+    assert np.max(np.abs(q[:n] - ref[:n])) < 1e-9
+    np.testing.assert_array_equal(q[-1], prog.end_position)
+
+
+def test_override_changes_mid_move_no_jump_no_limit_exceeded(machine):
+    actions = {800: ("feed", 1.5), 2000: ("feed", 0.3), 2600: ("rapid", 0.25), 3500: ("feed", 1.0),
+               4200: ("feed", 0.0), 4700: ("feed", 1.2)}
+    prog, plan, ex, q, s, mv, sig, tau = run(machine, PROGRAM, actions)
+    np.testing.assert_allclose(q[-1], prog.end_position, atol=0, rtol=0)
+    assert sig.max() <= 1.5 + 1e-12 and sig.max() > 1.2  # the override was applied
+    assert np.all(np.diff(tau) >= -1e-15)  # never runs backwards
+    result = check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid)
+    assert_within(result)
+    # on the programmed geometry everywhere (exact evaluation)
+    seg = plan.segment
+    u = s - seg.s0[mv]
+    assert float(contour_error(seg.table, mv, q, u).max()) < 1e-9
+
+
+def test_hold_in_the_middle_of_an_arc_then_resume(machine):
+    prog = parse_program(PROGRAM, machine=machine)
+    plan = plan_program(prog, reduced_machine(machine, Budget()))
+    arc_mid = 0.5 * (plan.t0[2] + plan.t1[2])  # third move is the G03 arc (line 3)
+    k_hold = int(arc_mid / plan.ts_s)
+    _, _, ex, q, s, mv, sig, tau = run(machine, PROGRAM, {k_hold: ("hold", 1), k_hold + 1500: ("hold", 0)})
+    held = np.nonzero(sig == 0.0)[0]
+    assert len(held) > 100  # it really stood still
+    assert set(mv[held]) == {2}  # ... inside the arc
+    np.testing.assert_array_equal(q[-1], prog.end_position)
+    assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
+    # the stop is short: from 30 mm/s it takes well under a second
+    first_zero = held[0]
+    slowing = np.nonzero(sig[:first_zero] < 1.0)[0]
+    assert (first_zero - slowing[0]) * plan.ts_s < 0.5
+
+
+def test_budget_leaves_room_for_the_ramps(machine):
+    ex_budget = Budget(k_a=0.85, k_j=0.7)
+    prog = parse_program(PROGRAM, machine=machine)
+    plan = plan_program(prog, reduced_machine(machine, ex_budget))
+    ex = TimeScaledExecutor(plan, machine, ex_budget)
+    assert ex.d1_ref > 0.0 and ex.d2_ref > 0.0
+    assert ex.time_to_ramp_s < 5.0

@@ -1,0 +1,112 @@
+"""`cnc-plan`: every flag of issue 4 section 5 and issue 3's --canon; bad programs."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planner.cli import build_machine, main
+
+ROOT = Path(__file__).resolve().parents[2]
+FIG7 = ROOT / "resources" / "programs" / "fig7_circle.nc"
+FIG9 = ROOT / "resources" / "programs" / "fig9_helix.nc"
+PAPER_MACHINE = ROOT / "resources" / "machines" / "paper_yzca.toml"
+
+
+def run_json(capsys, *args) -> dict:
+    assert main([*map(str, args), "--json"]) == 0
+    out = capsys.readouterr().out
+    return json.loads(out)
+
+
+def test_json_report_has_every_field(capsys):
+    rep = run_json(capsys, FIG9)
+    for key in ("program", "lines", "moves", "cycle_time_s", "samples", "plan_s", "interp_s",
+                "tangential", "axes", "contour_error_mm", "violations", "move_list"):
+        assert key in rep, key
+    assert rep["moves"] == 7 and rep["lines"] >= 12
+    assert set(rep["tangential"]) == {"v", "a", "j"}
+    assert set(rep["axes"]) == {"X", "Y", "Z"}
+    assert rep["tangential"]["v"] <= 30.0 + 1e-9
+    assert rep["violations"] == {} and rep["ok"] is True
+    assert rep["contour_error_mm"] <= 1e-9
+    mv = rep["move_list"][1]
+    assert set(mv) == {"line", "kind", "length", "vs", "ve", "vpeak", "t0", "t1"}
+    assert mv["kind"] == "arc" and mv["line"] == 6
+    assert rep["samples"] == int(np.ceil(rep["cycle_time_s"] / 0.001 - 1e-9)) + 1
+
+
+def test_limits_mode_interp_and_ts_flags(capsys):
+    slow = run_json(capsys, FIG9, "--vmax", 10, "--amax", 500, "--jmax", 5000, "--ts", 0.002)
+    assert slow["tangential"]["v"] <= 10 + 1e-9 and slow["ts_s"] == 0.002
+    assert slow["tangential"]["a"] <= 500 + 1e-9 and slow["tangential"]["j"] <= 5000 + 1e-9
+    paper = run_json(capsys, FIG7, "--mode", "paper", "--interp", "classic")
+    assert paper["mode"] == "paper" and paper["interpolation"] == "classic"
+    assert "axis_a" in paper["violations"]
+    taylor = run_json(capsys, FIG7, "--interp", "taylor")
+    assert taylor["interpolation"] == "taylor"
+
+
+def test_config_machine(capsys, tmp_path):
+    prog = tmp_path / "yz.nc"
+    prog.write_text("G21 G90 G19 F1200\nG01 Y10 Z5\nG02 Y20 Z5 R5\nG01 C90 A10\nM30\n")
+    rep = run_json(capsys, prog, "--config", PAPER_MACHINE)
+    assert set(rep["axes"]) == {"Y", "Z", "C", "A"}
+    assert rep["violations"] == {}
+
+
+def test_samples_csv_canon_and_plot_files(tmp_path):
+    npz, csv, canon, png = (tmp_path / n for n in ("s.npz", "s.csv", "c.jsonl", "p.png"))
+    assert main([str(FIG9), "--samples", str(npz), "--csv", str(csv), "--canon", str(canon),
+                 "--plot", str(png)]) == 0
+    data = np.load(npz)
+    assert set(data.files) == {"t", "q", "axes", "s", "line"}
+    n = data["t"].shape[0]
+    assert data["q"].shape == (n, 3) and list(data["axes"]) == ["X", "Y", "Z"]
+    assert data["s"].shape == (n,) and data["line"].shape == (n,)
+    rows = csv.read_text().splitlines()
+    assert rows[0] == "t,X,Y,Z,s,line" and len(rows) == n + 1
+    calls = [json.loads(x) for x in canon.read_text().splitlines()]
+    assert [c["call"] for c in calls] == ["straight_traverse"] + ["arc_feed"] * 6
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert png.stat().st_size > 10_000
+    assert not list(tmp_path.glob("*.tmp*"))
+
+
+def test_bad_program_exit_2_errors_on_stderr_nothing_written(tmp_path):
+    bad = tmp_path / "bad.nc"
+    bad.write_text("G21 G90 F600\nG01 X10\nG02 X20 Y0 R2\nG01 Q5\n")
+    outs = [tmp_path / n for n in ("s.npz", "s.csv", "c.jsonl", "p.png")]
+    result = subprocess.run(
+        [sys.executable, "-m", "planner", str(bad), "--samples", str(outs[0]), "--csv", str(outs[1]),
+         "--canon", str(outs[2]), "--plot", str(outs[3]), "--json"],
+        cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    assert result.stdout == ""
+    assert f"{bad}:3:" in result.stderr and "error:" in result.stderr
+    assert f"{bad}:4:" in result.stderr
+    assert not any(p.exists() for p in outs)
+    assert sorted(tmp_path.iterdir()) == [bad]
+
+
+def test_missing_file_and_bad_flags_exit_2(tmp_path, capsys):
+    assert main([str(tmp_path / "nope.nc")]) == 2
+    assert "nope.nc" in capsys.readouterr().err
+    assert main([str(FIG9), "--vmax", "-3"]) == 2
+    with pytest.raises(SystemExit) as exc:
+        main([str(FIG9), "--mode", "fast"])
+    assert exc.value.code == 2
+
+
+def test_default_machine_has_axis_limits_equal_to_path_limits():
+    m = build_machine(None, 20.0, 800.0, 9000.0, None)
+    assert all((a.v_max, a.a_max, a.j_max) == (20.0, 800.0, 9000.0) for a in m.axes)
+    assert m.limits.v_max_mm_s == 20.0 and m.planner.ts_s == 0.001
+    cfg = build_machine(str(PAPER_MACHINE), 25.0, None, None, 0.002)
+    assert cfg.limits.v_max_mm_s == 25.0 and cfg.limits.a_max_mm_s2 == 1000.0
+    assert cfg.axes[0].v_max == 60.0 and cfg.planner.ts_s == 0.002

@@ -1,0 +1,186 @@
+"""Fuzz: random bytes, G-code-like token soup and mutations of real programs either parse or
+raise ProgramError (a PlannerError) whose every error has a valid line and column; nothing
+else escapes, and whatever parses is geometrically sound (finite, contiguous, evaluable)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.errors import PlannerError, ProgramError
+from planner.interpreter import parse_program
+
+SAMPLES_DIR = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
+BUILTIN = (
+    "%\nO0001 (PART)\nG21 G17 G90 G94 G54\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F300\n"
+    "G2 X10 Y0 R5\nG3 X0 Y0 I-5 J0 P2\nG18 G2 X5 Z-1 K1\nG19 G3 Y5 Z0 R3\nG17 G91 G1 X1 Y1\n"
+    "G90 G4 P0.5\n#<a> = [1 + 2]\nG0 X#<a> Y[2 * 3]\nG28 Z0\nM5\nM30\n%\n"
+)
+
+
+def samples() -> list[str]:
+    texts = [BUILTIN]
+    if SAMPLES_DIR.is_dir():
+        for p in sorted(SAMPLES_DIR.glob("*/*")):
+            if p.is_file() and not p.name.endswith((".jsonl", ".tsv")):
+                # the first 60 lines keep each example fast
+                texts.append("\n".join(p.read_bytes().decode("latin-1").split("\n")[:60]))
+    return texts
+
+
+SAMPLES = samples()
+
+
+def check(text: str) -> None:
+    n_lines = text.count("\n") + 1
+    try:
+        program = parse_program(text, "fuzz.nc")
+    except ProgramError as exc:
+        assert isinstance(exc, PlannerError)
+        assert exc.errors
+        for e in exc.errors:
+            assert 1 <= e.line <= n_lines, e
+            assert e.col >= 1, e
+            assert str(e).startswith(f"fuzz.nc:{e.line}:{e.col}: error: ")
+        return
+    prev = program.start_position
+    for m in program.moves:
+        assert np.all(np.isfinite(m.end)) and np.array_equal(m.start, prev)
+        assert math.isfinite(m.length_mm) and m.length_mm > 0
+        assert 1 <= m.line <= n_lines
+        pos, tan, curv = m.evaluate(np.array([0.0, m.length_mm / 2, m.length_mm]))
+        assert np.all(np.isfinite(pos)) and np.all(np.isfinite(tan)) and np.all(np.isfinite(curv))
+        np.testing.assert_array_equal(pos[-1], m.end)
+        prev = m.end
+
+
+@settings(max_examples=150)
+@given(st.binary(max_size=300))
+def test_random_bytes(data):
+    check(data.decode("latin-1"))
+
+
+token = st.one_of(
+    st.sampled_from(list("GMXYZABCIJKRFSTPQNODHLEUVW%/();#[]<>=.-+ \n\t*")),
+    st.from_regex(r"[GMXYZIJKRFPST][-+]?[0-9]{0,4}(\.[0-9]{0,4})?", fullmatch=True),
+    st.sampled_from(
+        [
+            "G2",
+            "G3",
+            "G17",
+            "G18",
+            "G19",
+            "G20",
+            "G91",
+            "G90.1",
+            "G53",
+            "G28",
+            "M6",
+            "M30",
+            "SQRT[",
+            "ATAN[1]/[",
+            "#<x>",
+            "#1=",
+            "G41",
+            "G43",
+            "G80",
+            "G4",
+        ]
+    ),
+)
+
+
+@settings(max_examples=150)
+@given(st.lists(token, max_size=60))
+def test_gcode_token_soup(tokens):
+    check("".join(tokens))
+
+
+@settings(max_examples=150)
+@given(
+    st.sampled_from(range(len(SAMPLES))),
+    st.lists(
+        st.tuples(
+            st.integers(0, 10**6), st.integers(0, 5), st.sampled_from(list("GXYZIJKR0123456789.-% ()\n"))
+        )
+    ),
+)
+def test_mutated_programs(which, edits):
+    text = list(SAMPLES[which])
+    for pos, kind, ch in edits[:8]:
+        if not text:
+            break
+        i = pos % len(text)
+        if kind == 0:
+            del text[i]
+        elif kind == 1:
+            text.insert(i, ch)
+        elif kind == 2:
+            text[i] = ch
+        elif kind == 3:  # duplicate a slice (repeats lines and words)
+            text[i:i] = text[i : i + 40]
+        elif kind == 4:  # drop a slice
+            del text[i : i + 20]
+        else:  # swap neighbours
+            j = min(i + 1, len(text) - 1)
+            text[i], text[j] = text[j], text[i]
+    check("".join(text))
+
+
+def test_samples_themselves():
+    for text in SAMPLES:
+        check(text)
+
+
+# Differential: the one-regex fast path and the general path read every line the same way.
+# A trailing "( )" comment sends a line through the general path.
+num = st.decimals(-500, 500, places=3, allow_nan=False, allow_infinity=False).map(lambda d: f"{d:f}")
+cam_line = st.one_of(
+    st.builds(lambda g, x, y: f"G{g} X{x} Y{y}", st.sampled_from(["0", "00", "1", "01"]), num, num),
+    st.builds(lambda x, z: f"X{x} Z{z}", num, num),
+    st.builds(
+        lambda g, x, y, r: f"G{g} X{x} Y{y} R{r}", st.sampled_from(["2", "3", "02", "03"]), num, num, num
+    ),
+    st.builds(lambda x, y, i, j: f"X{x} Y{y} I{i} J{j}", num, num, num, num),
+    st.builds(lambda f: f"F{f}", st.integers(-10, 3000)),
+    st.builds(lambda n, x: f"N{n} G1 X{x} F100", st.integers(0, 99999), num),
+    st.sampled_from(["G91", "G90", "G20", "G21", "G18", "G17", "G19", "G90.1", "G91.1", "M3 S100", "G1 F0"]),
+)
+
+
+@settings(max_examples=100)
+@given(st.lists(cam_line, min_size=1, max_size=25))
+def test_fast_and_general_paths_agree(lines):
+    fast_text = "G1 F300\n" + "\n".join(lines)
+    slow_text = "G1 F300\n" + "\n".join(f"{line} ( )" for line in lines)
+    try:
+        a = parse_program(fast_text, "d.nc")
+    except ProgramError as exc:
+        a = exc
+    try:
+        b = parse_program(slow_text, "d.nc")
+    except ProgramError as exc:
+        b = exc
+    assert type(a) is type(b), (a, b)
+    if isinstance(a, ProgramError):
+        assert [(e.line, e.col, e.message) for e in a.errors] == [
+            (e.line, e.col, e.message) for e in b.errors
+        ]
+        return
+    assert len(a.moves) == len(b.moves)
+    for ma, mb in zip(a.moves, b.moves):
+        assert (ma.line, ma.kind, ma.feed_mm_s, ma.length_mm, ma.exact_stop) == (
+            mb.line,
+            mb.kind,
+            mb.feed_mm_s,
+            mb.length_mm,
+            mb.exact_stop,
+        )
+        assert np.array_equal(ma.end, mb.end) and ma.arc == mb.arc
+    assert [(e.kind, e.line, e.after_move, e.value) for e in a.events] == [
+        (e.kind, e.line, e.after_move, e.value) for e in b.events
+    ]

@@ -1,0 +1,117 @@
+"""Issue 4 section 4 on random programs (fixed seeds), lookahead mode: from the closed-form
+profiles and geometry, and again from finite differences of the samples."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.lookahead import LimitSet
+from planner.plan import plan_program
+from tests.planner.motion_programs import paper_machine, parse, random_program, xyza_machine
+
+
+def closed_form_axis_derivatives(plan, n_per_move: int = 64):
+    """Per-axis velocity, acceleration, jerk from the profile (s, v, a, j) and the exact
+    derivatives of line / circle / helix geometry (no finite differences)."""
+    seg = plan.segment
+    tab = seg.table
+    prof = seg.profiles
+    n = len(tab)
+    move = np.repeat(np.arange(n), n_per_move)
+    tau = (np.tile(np.linspace(0.0, 1.0, n_per_move), n)) * prof.duration[move]
+    s, v, a, j = prof.evaluate(move, tau)
+    length = tab.length[move]
+    lin = (tab.end[move] - tab.start[move]) / length[:, None]
+    qv, qa, qj = lin * v[:, None], lin * a[:, None], lin * j[:, None]
+    arc = tab.is_arc[move]
+    k = np.nonzero(arc)[0]
+    if k.size:
+        r = move[k]
+        w = tab.sweep[r] / length[k]  # rad per mm
+        th = tab.theta0[r] + w * s[k]
+        rad = tab.r0[r]
+        c, sn = np.cos(th), np.sin(th)
+        vk, ak, jk = v[k], a[k], j[k]
+        f, se = tab.first[r], tab.second[r]
+        qv[k, f] = -rad * sn * w * vk
+        qv[k, se] = rad * c * w * vk
+        qa[k, f] = -rad * c * w**2 * vk**2 - rad * sn * w * ak
+        qa[k, se] = -rad * sn * w**2 * vk**2 + rad * c * w * ak
+        qj[k, f] = rad * sn * w**3 * vk**3 - 3 * rad * c * w**2 * vk * ak - rad * sn * w * jk
+        qj[k, se] = -rad * c * w**3 * vk**3 - 3 * rad * sn * w**2 * vk * ak + rad * c * w * jk
+    return move, v, a, j, qv, qa, qj
+
+
+def check_program(text: str, machine=None, mode: str = "lookahead") -> None:
+    m = machine or paper_machine()
+    prog = parse(text, m)
+    plan = plan_program(prog, m, mode=mode)
+    lim = LimitSet.from_machine(m)
+    # Closed form: tangential v <= min(F, Vmax), |a| <= Amax, |j| <= Jmax; per axis v, a, j.
+    move, v, a, j, qv, qa, qj = closed_form_axis_derivatives(plan)
+    seg = plan.segment
+    assert np.all(v <= seg.v_prog[move] * (1 + 1e-9))
+    assert np.all(np.abs(a) <= lim.a_path * (1 + 1e-9))
+    assert np.all(np.abs(j) <= lim.j_path * (1 + 1e-9))
+    spiral = seg.table.spiral[move]  # tiny radius mismatch: circle formulas are approximate
+    ok = ~spiral
+    assert np.all(np.abs(qv[ok]) <= lim.v_axis * (1 + 1e-6))
+    assert np.all(np.abs(qa[ok]) <= lim.a_axis * (1 + 1e-6))
+    assert np.all(np.abs(qj[ok]) <= lim.j_axis * (1 + 1e-6))
+    # Finite differences of the samples, contour, end points, NaN, time.
+    rep = plan.limit_report()
+    assert rep.violations == {}, rep.violations
+    assert rep.contour_error_mm <= 1e-9
+    assert rep.end_error_mm == 0.0
+    assert not rep.nan and rep.time_increasing
+    assert rep.samples == plan.n_samples
+    # Every move ends exactly at its programmed end (closed form s(t1) = L, exact geometry).
+    tab = seg.table
+    rows = np.arange(len(tab))
+    end_q = tab.positions(rows, seg.profiles.evaluate_s(rows, seg.profiles.duration))
+    np.testing.assert_array_equal(end_q, tab.end)
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_random_programs_hold_every_limit(seed):
+    check_program(random_program(seed, n_blocks=35))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_random_programs_with_low_axis_limits(seed):
+    m = paper_machine()
+    from dataclasses import replace
+
+    axes = (replace(m.axes[0], a_max=300.0, j_max=3000.0), replace(m.axes[1], v_max=12.0),
+            replace(m.axes[2], a_max=500.0, j_max=20000.0))
+    check_program(random_program(50 + seed, n_blocks=30), replace(m, axes=axes))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_programs_with_a_rotary_axis_moving_along(seed):
+    check_program(random_program(300 + seed, n_blocks=30, rotary=True), xyza_machine())
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), n=st.integers(1, 25))
+def test_hypothesis_programs_hold_every_limit(seed, n):
+    check_program(random_program(seed, n_blocks=n))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(200, 260))
+def test_many_random_programs_hold_every_limit(seed):
+    check_program(random_program(seed, n_blocks=80))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_paper_mode_produces_the_same_report_and_shows_breaks(seed):
+    m = paper_machine()
+    prog = parse(random_program(seed, n_blocks=40), m)
+    rep = plan_program(prog, m, mode="paper").limit_report()
+    assert rep.contour_error_mm <= 1e-9 and not rep.nan and rep.time_increasing
+    assert set(rep.violations) <= {"axis_a", "axis_j", "axis_v"}
+    assert "tangential_a" not in rep.violations
