@@ -12,8 +12,11 @@ from app.main_window import MainWindow
 
 
 def apply_theme(app: QApplication) -> None:
-    app.setStyle("Fusion")
-    app.setStyleSheet((RESOURCES / "styles" / "dark.qss").read_text(encoding="utf-8"))
+    """Fusion style + the dark touch theme; set once (re-setting re-polishes every widget)."""
+    qss = (RESOURCES / "styles" / "dark.qss").read_text(encoding="utf-8")
+    if app.styleSheet() != qss:
+        app.setStyle("Fusion")
+        app.setStyleSheet(qss)
 
 
 def create_window(options: PanelOptions) -> MainWindow:

@@ -42,6 +42,7 @@ SPIRAL_ABS_TOLERANCE_INCH = 2 * 0.001 * math.sqrt(2.0)  # 0.002828 in (G20)
 SPIRAL_REL_TOLERANCE = 0.001  # 0.1 %
 _TINY = 1e-12  # LinuxCNC's TINY: half chord / |R| above 1 - TINY is a half circle
 TWO_PI = 2.0 * math.pi
+FULL_CIRCLE_MM = 1e-9  # start and end closer than this in the plane: a full circle (centre form)
 
 
 class ArcError(Exception):
@@ -113,10 +114,12 @@ def sweep_angle(
 ) -> tuple[float, float]:
     """(start angle, signed sweep) in rad: principal angle in (0, 2 pi] plus 2 pi (turns - 1).
 
-    start = end exactly gives a full circle (LinuxCNC's rule for the centre form).
+    start = end gives a full circle (LinuxCNC's rule for the centre form); "equal" here means
+    within FULL_CIRCLE_MM, the interpreter's zero-length threshold, so that a rounding-size
+    chord never becomes an arc of a few nanometres.
     """
     a0 = math.atan2(y0 - cy, x0 - cx)
-    if x0 == x1 and y0 == y1:
+    if abs(x1 - x0) <= FULL_CIRCLE_MM and abs(y1 - y0) <= FULL_CIRCLE_MM:
         d = TWO_PI
     else:
         # Angle between the two radius vectors, from cross and dot (accurate at any size).

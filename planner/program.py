@@ -289,18 +289,18 @@ _ARC_SET = tuple(getattr(Arc, f).__set__ for f in Arc.__dataclass_fields__)
 
 
 def _make_move(index, line, kind, start, end, feed_mm_s, length_mm, arc, exact_stop, _new=_new, _cls=Move,
-               _s=_MOVE_SET) -> Move:
+               _s0=_MOVE_SET[0], _s1=_MOVE_SET[1], _s2=_MOVE_SET[2], _s3=_MOVE_SET[3], _s4=_MOVE_SET[4],
+               _s5=_MOVE_SET[5], _s6=_MOVE_SET[6], _s7=_MOVE_SET[7], _s8=_MOVE_SET[8]) -> Move:
     m = _new(_cls)
-    s0, s1, s2, s3, s4, s5, s6, s7, s8 = _s
-    s0(m, index)
-    s1(m, line)
-    s2(m, kind)
-    s3(m, start)
-    s4(m, end)
-    s5(m, feed_mm_s)
-    s6(m, length_mm)
-    s7(m, arc)
-    s8(m, exact_stop)
+    _s0(m, index)
+    _s1(m, line)
+    _s2(m, kind)
+    _s3(m, start)
+    _s4(m, end)
+    _s5(m, feed_mm_s)
+    _s6(m, length_mm)
+    _s7(m, arc)
+    _s8(m, exact_stop)
     return m
 
 

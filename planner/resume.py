@@ -29,6 +29,7 @@ __all__ = [
     "approach_moves",
     "locate",
     "modal_state_at",
+    "modal_state_before_move",
     "program_from_moves",
     "remaining_program",
     "split_move",
@@ -132,6 +133,23 @@ def modal_state_at(program: Program, line: int) -> ModalState:
         if m.line >= line and m.kind is not MoveKind.RAPID:
             feed = float(m.feed_mm_s)
             break
+    return ModalState(spindle_rpm=spindle, tool=tool, feed_mm_s=feed)
+
+
+def modal_state_before_move(program: Program, move_index: int) -> ModalState:
+    """Spindle, tool and feed in effect when move ``move_index`` starts (events after earlier
+    moves, including those written on the move's own line before it, have happened)."""
+    spindle = 0.0
+    tool = 0
+    for e in program.events:
+        if e.after_move >= move_index:
+            break
+        if e.kind is EventKind.SPINDLE:
+            spindle = float(e.value)
+        elif e.kind in (EventKind.TOOL, EventKind.TOOL_CHANGE) and e.value:
+            tool = int(e.value)
+    m = program.moves[move_index] if 0 <= move_index < len(program.moves) else None
+    feed = float(m.feed_mm_s) if m is not None and m.kind is not MoveKind.RAPID else 0.0
     return ModalState(spindle_rpm=spindle, tool=tool, feed_mm_s=feed)
 
 

@@ -72,7 +72,13 @@ from planner.interpreter import parse_program
 from planner.machine import WORK_OFFSET_NAMES, MachineSpec, shipped_machine
 from planner.plan import Plan, plan_program
 from planner.program import EventKind, Move, MoveKind, Program
-from planner.resume import approach_moves, locate, modal_state_at, program_from_moves, remaining_program
+from planner.resume import (
+    approach_moves,
+    locate,
+    modal_state_before_move,
+    program_from_moves,
+    remaining_program,
+)
 
 __all__ = ["JOG_INCREMENTS", "TRANSITIONS", "MachineController"]
 
@@ -1206,6 +1212,8 @@ class MachineController(QObject):
         """Takes effect at the next cycle start (the plan is made with a stop at every block end)."""
         self._single_block = bool(on)
         _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
+        if self._job is not None and self._job.kind is Activity.PROGRAM:
+            _fix(self.message.emit("single block takes effect at the next cycle start"))
         return self._ok("set_single_block")
 
     def set_optional_stop(self, on: bool) -> CommandResult:
@@ -1232,14 +1240,14 @@ class MachineController(QObject):
     def _resume_from_point(self, point: _ResumePoint, action: str = "resume") -> CommandResult:
         if self._cfg.homing.required and not all(self._homed):
             return self._refuse(action, "axes not homed")
+        if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
+            return self._refuse(action, "acknowledge the active alarms first")
         prog = point.program
         try:
             rest = remaining_program(prog, point.move_index, point.u_mm)
         except PlannerError as exc:
             return self._refuse(action, str(exc))
-        modal = modal_state_at(prog, rest.moves[0].line if rest.moves else point.line)
-        if point.u_mm > 0.0:  # mid-line: events of this line before the move already happened
-            modal = modal_state_at(prog, point.line + 1) if False else modal
+        modal = modal_state_before_move(prog, point.move_index)
         spindle = SpindleState(direction=int(np.sign(modal.spindle_rpm)), rpm=abs(modal.spindle_rpm))
         cur = self._machine_pos()
         retract = "Z" if "Z" in self._cfg.axes else ""

@@ -201,14 +201,14 @@ def test_m00_pauses_and_m01_only_with_optional_stop(ctl: MachineController) -> N
 
 
 def test_run_from_line_moves_safely_and_restores_the_spindle(ctl: MachineController) -> None:
-    text = "G0 Z5\nM3 S1200\nG1 Z-1 F600\nG1 X10 F1800\nG1 Y10\nG1 X0\nM5\nM30\n"
+    text = "G0 Z5\nM3 S1200\nG1 Z-1 F600\nG1 X10 F1800\nM3 S1500 G1 Y10\nG1 X0\nM5\nM30\n"
     assert ctl.load_program(text)
     acts = []
     ctl.activityChanged.connect(acts.append)
     assert ctl.run_from_line(5)
     assert ctl.activity is Activity.APPROACH
     assert ctl.run_until(lambda: ctl.activity is Activity.PROGRAM, 5)
-    assert ctl.spindle.direction == 1 and ctl.spindle.rpm == 1200.0
+    assert ctl.spindle.direction == 1 and ctl.spindle.rpm == 1500.0  # as of line 5 (M3 S1500 on it)
     np.testing.assert_allclose(ctl.reference_position, (10.0, 0.0, -1.0), atol=1e-9)
     run_to_idle(ctl)
     np.testing.assert_array_equal(ctl.reference_position, (0.0, 10.0, -1.0))

@@ -122,3 +122,54 @@ def test_budget_leaves_room_for_the_ramps(machine):
     ex = TimeScaledExecutor(plan, machine, ex_budget)
     assert ex.d1_ref > 0.0 and ex.d2_ref > 0.0
     assert ex.time_to_ramp_s < 5.0
+
+
+def random_program(rng: np.random.Generator, n: int) -> str:
+    """Lines, rapids and arcs (XY, helix) inside +-80 mm, with varied feeds."""
+    out = ["G0 X0 Y0 Z0"]
+    x = y = 0.0
+    for _ in range(n):
+        kind = rng.integers(0, 4)
+        f = int(rng.choice([300, 900, 1500, 1800, 2400]))
+        tx, ty = (float(v) for v in np.round(rng.uniform(-80, 80, 2), 3))
+        if kind == 0:
+            out.append(f"G0 X{tx} Y{ty}")
+        elif kind == 1:
+            out.append(f"G1 X{tx} Y{ty} Z{float(np.round(rng.uniform(-5, 0), 3))} F{f}")
+        else:
+            chord = np.hypot(tx - x, ty - y)
+            if chord < 1.0:
+                continue
+            r = float(np.round(chord / 2 * rng.uniform(1.01, 3.0), 3))
+            g = "G2" if kind == 2 else "G3"
+            out.append(f"{g} X{tx} Y{ty} R{r} F{f}")
+        x, y = tx, ty
+    out.append("M30")
+    return "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_programs_and_override_sequences_stay_within_limits(machine, seed: int) -> None:
+    rng = np.random.default_rng(1000 + seed)
+    text = random_program(rng, 6)
+    actions: dict[int, tuple[str, float]] = {}
+    k = 0
+    for _ in range(6):
+        k += int(rng.integers(100, 900))
+        what = str(rng.choice(["feed", "feed", "rapid", "hold"]))
+        if what == "feed":
+            actions[k] = ("feed", float(rng.uniform(0.0, 1.5)))
+        elif what == "rapid":
+            actions[k] = ("rapid", float(rng.uniform(0.05, 1.0)))
+        else:
+            actions[k] = ("hold", 1.0)
+            actions[k + int(rng.integers(50, 400))] = ("hold", 0.0)
+            k += 400
+    actions[k + 500] = ("feed", 1.0)  # always finish
+    actions[k + 501] = ("hold", 0.0)
+    prog, plan, ex, q, s, mv, sig, tau = run(machine, text, actions)
+    np.testing.assert_array_equal(q[-1], prog.end_position)
+    assert sig.max() <= 1.5 + 1e-12 and np.all(np.diff(tau) >= -1e-15)
+    assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
+    seg = plan.segment
+    assert float(contour_error(seg.table, mv, q, s - seg.s0[mv]).max()) < 1e-9

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planner.errors import PlannerError, ProgramError
-from planner.interpreter import parse_program
+from planner.interpreter import _Interpreter, parse_program
 
 SAMPLES_DIR = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
 BUILTIN = (
@@ -152,19 +152,14 @@ cam_line = st.one_of(
 )
 
 
-@settings(max_examples=100)
-@given(st.lists(cam_line, min_size=1, max_size=25))
-def test_fast_and_general_paths_agree(lines):
-    fast_text = "G1 F300\n" + "\n".join(lines)
-    slow_text = "G1 F300\n" + "\n".join(f"{line} ( )" for line in lines)
+def _outcome(text: str):
     try:
-        a = parse_program(fast_text, "d.nc")
+        return parse_program(text, "d.nc")
     except ProgramError as exc:
-        a = exc
-    try:
-        b = parse_program(slow_text, "d.nc")
-    except ProgramError as exc:
-        b = exc
+        return exc
+
+
+def _same(a, b) -> None:
     assert type(a) is type(b), (a, b)
     if isinstance(a, ProgramError):
         assert [(e.line, e.col, e.message) for e in a.errors] == [
@@ -184,3 +179,18 @@ def test_fast_and_general_paths_agree(lines):
     assert [(e.kind, e.line, e.after_move, e.value) for e in a.events] == [
         (e.kind, e.line, e.after_move, e.value) for e in b.events
     ]
+
+
+@settings(max_examples=100)
+@given(st.lists(cam_line, min_size=1, max_size=25))
+def test_fast_and_general_paths_agree(lines):
+    text = "G1 F300\n" + "\n".join(lines)
+    fast = _outcome(text)  # mostly the one-regex path
+    commented = _outcome("G1 F300\n" + "\n".join(f"{line} ( )" for line in lines))  # word fast path
+    _Interpreter.use_fast = False
+    try:
+        general = _outcome(text)
+    finally:
+        _Interpreter.use_fast = True
+    _same(fast, general)
+    _same(commented, general)

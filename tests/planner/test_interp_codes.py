@@ -246,8 +246,13 @@ def test_g28_returns_to_machine_zero():
 
 
 def test_zero_length_moves_dropped():
-    p = P("G0 X1\nG0 X1\nG1 X1 F60\nG91 G1 X0\n")
+    p = P("G0 X1\nG0 X1\nG1 X1 F60\nG91 G1 X0\nG90 G2 X1.0000000001 R5\n")
     assert len(p.moves) == 1
+
+
+def test_near_equal_centre_form_end_is_a_full_circle():
+    arc = P("G0 X10\nG3 X10.0000000001 Y0 I-10 F60").moves[1].arc
+    assert arc.sweep_rad == pytest.approx(2 * math.pi)
 
 
 def test_paper_machine_axes_yzca():

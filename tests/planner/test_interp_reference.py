@@ -31,7 +31,7 @@ import pytest
 
 from planner.canon import canon_records
 from planner.errors import ProgramError
-from planner.interpreter import parse_file, parse_program
+from planner.interpreter import _Interpreter, parse_file, parse_program
 from planner.program import EventKind
 
 GCODE_DIR = Path(os.environ.get("CNC_GCODE_REFS", Path(__file__).resolve().parents[3] / "shared" / "gcode"))
@@ -137,8 +137,11 @@ def compare(ours: list[dict], feeds_ours: list[float], ref: list) -> None:
             assert feeds_ours[i] == pytest.approx(feed, rel=1e-9), f"{where}: feed"
 
 
+@pytest.mark.parametrize("path_kind", ["fast", "general"])
 @pytest.mark.parametrize("rel", cam_programs())
-def test_cam_program_against_linuxcnc(rel):
+def test_cam_program_against_linuxcnc(rel, path_kind, monkeypatch):
+    if path_kind == "general":  # the same result without the one-regex / word fast paths
+        monkeypatch.setattr(_Interpreter, "use_fast", False)
     assert rel in CAM_NOTES, f"add a note for {rel}"
     path = GCODE_DIR / "cam" / rel
     ref, dwells, error = reference_calls(Path(str(path) + ".lcnc_canon.jsonl"))
