@@ -3,16 +3,20 @@ without a CPU-bound Qt GUI load (a pyqtgraph plot redrawn offscreen as fast as i
 the parent process.
 
     QT_QPA_PLATFORM=offscreen python -m bench.bench_ethercat --seconds 20 [--json]
+        [--modes process,thread] [--loads idle,gui] [--link 3 | --ifname IF]
+        [--spin-us US] [--rt-priority P] [--min-sleep-us US] [--cpu N]
 
 Prints one JSON object: per case (worker mode x load) the period, cycle start jitter
 percentiles (p50/p99/p99.9/max), late cycles (start later than 1 ms), missed cycles,
 working counter errors. Target (issue 5): jitter p99 <= 100 us, no cycle later than 1 ms.
+`--link N` runs on real frames: an `EmulatedLink` of N emulated drives (root, ip netns),
+removed afterwards. The other flags override `WorkerConfig` defaults (for comparisons).
 """
 
 from __future__ import annotations
 
 import argparse
-import ctypes
+import contextlib
 import json
 import os
 import sys
@@ -23,21 +27,6 @@ from typing import Any
 import numpy as np
 
 from ethercat.benchmark import run_bench
-
-
-def _restore_singleton_refcounts(targets: dict[int, tuple[object, int]]) -> None:
-    """Work around PySide6 6.12.0 on Python 3.11: every call of a void Qt method
-    (QPolygonF.resize, QPainterPath.moveTo, QPointF.setX, ...) decrements None's reference
-    count once (and bool results True/False's), so a redraw loop aborts with "Fatal Python
-    error: none_dealloc" after about 16,000 such calls. Python >= 3.12 (immortal
-    singletons) is not affected."""
-    if sys.version_info >= (3, 12):
-        return
-    incref = ctypes.pythonapi.Py_IncRef
-    incref.argtypes = [ctypes.py_object]
-    for obj, target in targets.values():
-        for _ in range(target - sys.getrefcount(obj)):
-            incref(obj)
 
 
 def make_gui_load(busy_s: float = 0.05) -> Callable[[], None]:
@@ -54,7 +43,6 @@ def make_gui_load(busy_s: float = 0.05) -> Callable[[], None]:
     x = np.linspace(0.0, 100.0, 200_000)
     widget.show()
     phase = [0.0]
-    none_refs = {id(o): (o, sys.getrefcount(o)) for o in (None, True, False)}
 
     def tick() -> None:
         t_end = time.perf_counter() + busy_s
@@ -64,7 +52,6 @@ def make_gui_load(busy_s: float = 0.05) -> Callable[[], None]:
                 c.setData(x, np.sin(x * (k + 1) + phase[0]))
             widget.grab()                      # full offscreen render
             app.processEvents()
-        _restore_singleton_refcounts(none_refs)
 
     return tick
 
@@ -76,15 +63,41 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--modes", default="process,thread")
     ap.add_argument("--loads", default="idle,gui")
     ap.add_argument("--json", action="store_true", help="JSON only (default prints a table too)")
+    ap.add_argument("--link", type=int, default=0, help="bench on an emulated link of N drives")
+    ap.add_argument("--ifname", default="", help="bench on this adapter (SoemBus)")
+    ap.add_argument("--spin-us", type=float, default=None)
+    ap.add_argument("--rt-priority", type=int, default=None)
+    ap.add_argument("--min-sleep-us", type=float, default=None)
+    ap.add_argument("--cpu", type=int, default=-1)
     args = ap.parse_args(argv)
+    with contextlib.ExitStack() as stack:
+        bus, ifname = "sim", ""
+        if args.link:
+            from ethercat.emulator.link import EmulatedLink
+
+            link = stack.enter_context(EmulatedLink(args.link, realtime=True))
+            bus, ifname, args.drives = "soem", link.master_ifname, args.link
+        elif args.ifname:
+            bus, ifname = "soem", args.ifname
+        return _run(args, bus, ifname)
+
+
+def _run(args: argparse.Namespace, bus: str, ifname: str) -> int:
+    overrides: dict[str, Any] = {"cpu": args.cpu}
+    if args.spin_us is not None:
+        overrides["spin_s"] = args.spin_us * 1e-6
+    if args.rt_priority is not None:
+        overrides["rt_priority"] = args.rt_priority
+    if args.min_sleep_us is not None:
+        overrides["min_sleep_s"] = args.min_sleep_us * 1e-6
     load_tick = make_gui_load() if "gui" in args.loads.split(",") else None
     cases: list[dict[str, Any]] = []
     keys = ("jitter_p50_us", "jitter_p99_us", "jitter_p999_us", "jitter_max_us", "period_mean_us",
             "period_max_us", "late_cycles", "missed_cycles", "wkc_errors", "cycles", "exec_mean_us")
     for load in args.loads.split(","):
         for mode in args.modes.split(","):
-            r = run_bench("sim", "", args.seconds, n_drives=args.drives, mode=mode,
-                          on_tick=load_tick if load == "gui" else None)
+            r = run_bench(bus, ifname, args.seconds, n_drives=args.drives, mode=mode,
+                          on_tick=load_tick if load == "gui" else None, **overrides)
             r["load"] = load
             r.pop("alarms", None)
             cases.append(r)

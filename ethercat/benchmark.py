@@ -15,26 +15,30 @@ from typing import Any
 import numpy as np
 
 from .bus import DriveSpec
-from .worker import CyclicWorker, WorkerConfig, WorkerState
+from .worker import PROCESS_SPIN_S, CyclicWorker, WorkerConfig, WorkerState
 
 
 def run_bench(bus_kind: str = "sim", ifname: str = "", seconds: float = 10.0, *, n_drives: int = 4,
               mode: str = "process", ts_s: float = 0.001, spin_s: float | None = None,
-              rt_priority: int = 80, cpu: int | None = -1, amplitude_units: float = 5.0,
-              on_tick: Any = None) -> dict[str, Any]:
+              rt_priority: int | None = None, cpu: int | None = -1, min_sleep_s: float | None = None,
+              amplitude_units: float = 5.0, on_tick: Any = None) -> dict[str, Any]:
     """Run the worker for `seconds` with a moving set-point stream; return figures.
 
     bus_kind "sim" | "soem" (`ifname` = adapter for "soem"); mode "process" | "thread".
+    spin_s, rt_priority, cpu, min_sleep_s: as `WorkerConfig` (None = its default).
     `on_tick()` (optional) is called about every 20 ms from the calling thread while the
     benchmark runs (used to add GUI-like load in the same thread).
     """
     drives = tuple(DriveSpec(i, f"A{i}", counts_per_unit=10_000.0, following_error_window=5.0)
                    for i in range(n_drives))
     kwargs: dict[str, Any] = {}
-    if spin_s is not None:
-        kwargs["spin_s"] = spin_s
+    for name, value in (("spin_s", spin_s), ("rt_priority", rt_priority), ("min_sleep_s", min_sleep_s)):
+        if value is not None:
+            kwargs[name] = value
+    if mode == "thread" and rt_priority is None:
+        kwargs["rt_priority"] = 0          # the plain thread in the caller's process
     cfg = WorkerConfig(drives=drives, ts_s=ts_s, bus_kind=bus_kind, adapter=ifname, mode=mode,
-                       rt_priority=rt_priority, cpu=cpu, buffer_capacity=1000, trace_capacity=0,
+                       cpu=cpu if mode == "process" else None, buffer_capacity=1000, trace_capacity=0,
                        wkc_error_limit=1_000_000, **kwargs)
     worker = CyclicWorker(cfg)
     worker.start()
@@ -61,6 +65,9 @@ def run_bench(bus_kind: str = "sim", ifname: str = "", seconds: float = 10.0, *,
     out: dict[str, Any] = {
         "bus": bus_kind, "ifname": ifname, "mode": mode, "drives": n_drives, "seconds": seconds,
         "ts_us": ts_s * 1e6, "realtime": worker.realtime_applied or "none",
+        "spin_us": (cfg.spin_s if cfg.spin_s is not None else
+                    (PROCESS_SPIN_S if mode == "process" else 0.0)) * 1e6,
+        "min_sleep_us": cfg.min_sleep_s * 1e6,
     }
     out.update(snap.timing.as_dict())
     out.update({

@@ -13,7 +13,9 @@ Fault injection (the same names work through `CyclicWorker.inject` in every work
     drop_frames(n)                           the next n frames are lost (wkc -1, inputs stale)
     lose_slave(i) / restore_slave(i)         drive i stops answering (wkc - 3); after
                                              `watchdog_s` without process data it faults 0x8700
-Limits: no AL state machine (always OP while open), no DC, SDOs are instantaneous.
+    restore_slave(i, power_cycled=True)      drive i is back but in INIT (as after a power
+                                             cycle): silent until `recover_slaves()`
+Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
 from __future__ import annotations
@@ -61,10 +63,12 @@ class SimBus(Bus):
             DriveModel(p, position=d.position) for p, d in zip(params, self.drives))
         self._by_position = {d.position: i for i, d in enumerate(self.drives)}
         self._lost = [False] * n
+        self._init = [False] * n             # back after a power cycle: INIT until recovered
         self._silent_s = [0.0] * n
         self._drop_frames = 0
         self.watchdog_s = float(watchdog_s)
         self.frames_sent = 0
+        self.recoveries = 0
 
     # ------------------------------------------------------------------ backend
     @property
@@ -76,6 +80,7 @@ class SimBus(Bus):
             m.controlword = 0
             m.step(self.cycle_time_s)            # NOT READY -> SWITCH ON DISABLED
         self._lost = [False] * self.n_drives
+        self._init = [False] * self.n_drives
         self._drop_frames = 0
         self._read_inputs_all()
         self.controlword[:] = 0
@@ -110,7 +115,7 @@ class SimBus(Bus):
         tp = self.target_position
         mode = self.modes_of_operation
         for i, m in enumerate(self.models):
-            if lost_frame or self._lost[i]:
+            if lost_frame or self._lost[i] or self._init[i]:
                 self._silent_s[i] += dt
                 if self._silent_s[i] >= self.watchdog_s:
                     m.watchdog_expired()
@@ -133,7 +138,7 @@ class SimBus(Bus):
                 vendor_id=d.vendor_id or m.params.vendor_id,
                 product_code=d.product_code or m.params.product_code,
                 revision=m.params.revision, serial=m.params.serial,
-                state="SAFE-OP" if self._lost[i] else "OP",
+                state="INIT" if self._init[i] else "SAFE-OP" if self._lost[i] else "OP",
                 al_status_code=0x001B if self._lost[i] else 0))
         return tuple(out)
 
@@ -162,7 +167,20 @@ class SimBus(Bus):
         m.write_object(index, subindex, value)
 
     def lost_slaves(self) -> tuple[int, ...]:
-        return tuple(d.position for d, lost in zip(self.drives, self._lost) if lost)
+        return tuple(d.position for d, lost, init in zip(self.drives, self._lost, self._init) if lost or init)
+
+    def recover_slaves(self) -> tuple[int, ...]:
+        """Bring slaves that came back in INIT to OP again (as `SoemBus.recover_slaves`);
+        returns their positions. Slaves still gone are left alone."""
+        self._check_open()
+        back = []
+        for i, d in enumerate(self.drives):
+            if self._init[i] and not self._lost[i]:
+                self._init[i] = False
+                self._silent_s[i] = 0.0
+                back.append(d.position)
+        self.recoveries += len(back)
+        return tuple(back)
 
     def set_digital_outputs(self, index: int, value: int) -> None:
         self.models[index].digital_outputs = int(value)
@@ -188,8 +206,11 @@ class SimBus(Bus):
         """Drive `index` stops answering (cable cut behind it is not modelled)."""
         self._lost[index] = True
 
-    def restore_slave(self, index: int) -> None:
+    def restore_slave(self, index: int, power_cycled: bool = False) -> None:
+        """Drive `index` answers again; `power_cycled`: it comes back in INIT and stays
+        silent until `recover_slaves()` (a real slave after losing power)."""
         self._lost[index] = False
+        self._init[index] = bool(power_cycled)
         self._silent_s[index] = 0.0
 
     def inject(self, name: str, index: int = 0, value: int = 0) -> None:
@@ -209,7 +230,7 @@ class SimBus(Bus):
         elif name == "lose_slave":
             self.lose_slave(index)
         elif name == "restore_slave":
-            self.restore_slave(index)
+            self.restore_slave(index, power_cycled=bool(value))
         else:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
 

@@ -38,6 +38,7 @@ Nothing in the cycle allocates arrays or logs; alarm texts are built by the read
 from __future__ import annotations
 
 import atexit
+import collections
 import contextlib
 import ctypes
 import enum
@@ -62,8 +63,8 @@ from .cia402 import Cia402State
 from .errors import ConfigurationError, EtherCATError, WorkerError, WorkerTimeoutError
 
 __all__ = [
-    "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "HomingState", "TimingStats", "TraceChunk",
-    "TrackingStats", "WorkerConfig", "WorkerSnapshot", "WorkerState",
+    "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HomingState", "TimingStats",
+    "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent", "WorkerSnapshot", "WorkerState",
 ]
 
 
@@ -93,6 +94,13 @@ class AlarmCode(enum.IntEnum):
     HOMING_ERROR = 8
     BUS_ERROR = 9
     FAULT_RESET_FAILED = 10
+    SLAVE_LOST = 11
+
+
+class EventCode(enum.IntEnum):
+    """Things worth telling the operator that are not alarms (codes share the alarm ring, >= 100)."""
+
+    SLAVE_RECOVERED = 101
 
 
 class HomingState(enum.IntEnum):
@@ -112,6 +120,18 @@ class Alarm:
     cycle: int
     time_s: float          # worker time (cycle * Ts) when raised
     wall_time: float       # time.time() when the reader picked it up
+
+
+@dataclass(frozen=True, slots=True)
+class WorkerEvent:
+    """One event reported by the worker (not an alarm: nothing to acknowledge)."""
+
+    code: EventCode
+    message: str
+    axis: str
+    cycle: int
+    time_s: float
+    wall_time: float
 
 
 @dataclass(frozen=True, slots=True)
@@ -186,6 +206,9 @@ class WorkerSnapshot:
     timing: TimingStats
     tracking: TrackingStats
     digital_outputs: tuple[int, ...]
+    command_seq: int = 0               # sequence number of the last command the loop applied
+    lost_slaves: tuple[int, ...] = ()  # slave positions lost and not yet back
+    events: tuple[WorkerEvent, ...] = ()   # recent events (e.g. slave recovered), oldest first
 
     @property
     def enabled(self) -> bool:
@@ -215,11 +238,27 @@ class WorkerConfig:
     wkc_error_limit: working counter may be wrong for this many consecutive cycles.
     buffer_capacity: set-points the ring holds (2000 = 2 s ahead at 1 ms).
     following_error_cycles: |ref - actual| over the window for more than this many cycles.
-    mode: "process" | "thread" | "manual"; cpu: core to pin the loop to (-1 = last core,
-    None = no pinning); rt_priority: SCHED_FIFO priority (0 = normal scheduling).
-    spin_s: busy-wait this long before each deadline (after sleeping), for low jitter;
-    None = 0.5 ms in mode "process" (measured: wake-up latency in a VM reaches hundreds
-    of us), 0 in mode "thread" (spinning would hold the GIL against the GUI).
+    mode: "process" | "thread" | "manual".
+    cpu (mode "process"): core to pin the loop to. -1 = automatic: the highest-numbered
+    core no other worker holds (each worker process holds an flock on
+    /dev/shm/cnc-ethercat-cpu<N>.lock while it runs); when every core is held the new
+    worker runs unpinned with normal scheduling, so two workers (parallel tests, a bench
+    beside the demo) never share one core at real-time priority. An explicit core >= 0 is
+    honoured even when held (`realtime_applied` then says which pid shares it).
+    None = no pinning.
+    rt_priority: SCHED_FIFO priority when permitted (0 = normal scheduling). Default 49:
+    below the threaded interrupt handlers of a PREEMPT_RT kernel (50), whose NIC interrupt
+    the cycle waits on; above every normal task.
+    spin_s: the loop sleeps to `spin_s` before each deadline (clock_nanosleep on an
+    absolute CLOCK_MONOTONIC deadline) and busy-waits the rest; never longer, and not at
+    all when the deadline has passed. None = 0.1 ms in mode "process" (measured here:
+    SCHED_FIFO wake-up latency p50 35 us, p99 60 us), 0 in mode "thread" (spinning would
+    hold the GIL against the GUI).
+    min_sleep_s: the loop sleeps at least this long before every cycle, even when late,
+    so an overrunning loop at real-time priority never monopolises its core (a worker
+    that never sleeps starves everything else on that core, including another worker).
+    recover_interval_s: while slaves are lost, the bus's `recover_slaves()` (if it has
+    one) is tried this often (in a helper thread, so the cycle keeps running).
     tracking_delay_cycles: the actual position read in cycle k answers the set-point of
     cycle k - d (bus transport: 1 on SimBus, where inputs are latched before outputs apply).
     underrun_velocity_units_s: the buffer running empty is an underrun only when the last
@@ -236,8 +275,10 @@ class WorkerConfig:
     following_error_cycles: int = 3
     mode: str = "process"
     cpu: int | None = -1
-    rt_priority: int = 80
+    rt_priority: int = 49
     spin_s: float | None = None
+    min_sleep_s: float = 0.00005
+    recover_interval_s: float = 0.1
     late_threshold_s: float = 0.001
     snapshot_hz: float = 30.0
     tracking_window_s: float = 600.0
@@ -265,6 +306,12 @@ class WorkerConfig:
             raise ConfigurationError(f"tracking_delay_cycles must be within [0, {_REF_HISTORY - 1}]")
         if not 0.0 < self.snapshot_hz <= 1000.0:
             raise ConfigurationError(f"snapshot_hz must be within (0, 1000], got {self.snapshot_hz}")
+        if self.spin_s is not None and not 0.0 <= self.spin_s <= 0.5 * self.ts_s:
+            raise ConfigurationError(f"spin_s must be within [0, ts_s / 2], got {self.spin_s}")
+        if not 0.0 <= self.min_sleep_s <= 0.5 * self.ts_s:
+            raise ConfigurationError(f"min_sleep_s must be within [0, ts_s / 2], got {self.min_sleep_s}")
+        if not 0 <= self.rt_priority <= 99:
+            raise ConfigurationError(f"rt_priority must be within [0, 99], got {self.rt_priority}")
 
     @property
     def n_axes(self) -> int:
@@ -277,12 +324,13 @@ class WorkerConfig:
 
 # ---------------------------------------------------------------------- shared layout
 _REF_HISTORY = 8
-PROCESS_SPIN_S = 0.0005
+PROCESS_SPIN_S = 0.0001
 _FAULTED_LUT = np.array([s in (Cia402State.FAULT, Cia402State.FAULT_REACTION_ACTIVE) for s in Cia402State])
 _NOT_ENABLED_LUT = np.array([s is not Cia402State.OPERATION_ENABLED for s in Cia402State])
 _HIST_BIN_S = 5e-6
 _HIST_BINS = 401              # 0 .. 2 ms in 5 us bins, last = overflow
 _ALARM_SLOTS = 64
+_EVENTS_KEPT = 32
 _MSG_BYTES = 1024
 
 # ctl (int64) indices: mailbox and rings, outside the snapshot
@@ -293,7 +341,7 @@ C_SIZE = 16
 ST_STARTING, ST_RUNNING, ST_STOPPED, ST_FAILED = range(4)
 # live int64 scalars (li) indices
 I_CYCLE, I_STATE, I_CONSUMED, I_UNDERRUNS, I_WKC, I_WKC_EXP, I_WKC_ERRORS, I_LATE, I_MISSED, \
-    I_TRACK_N, I_WIN_N, I_TIMED = range(12)
+    I_TRACK_N, I_WIN_N, I_TIMED, I_CMD_APPLIED, I_LOST = range(14)
 I_SIZE = 16
 # live float64 scalars (lf) indices
 F_TIME, F_PERIOD_SUM, F_PERIOD_MIN, F_PERIOD_MAX, F_JITTER_MAX, F_EXEC_SUM, F_EXEC_MAX, F_FIRST_START, \
@@ -414,6 +462,15 @@ class _Loop:
         self.trace_cap = config.trace_capacity
         self.trace = v["trace"]
         self.stop_requested = False
+        self.publish_now = False           # a command was applied: publish after this cycle
+        # slave loss and recovery (bus.recover_slaves when the backend has it)
+        self.lost_mask = 0
+        self.recover_every = max(1, int(round(config.recover_interval_s / config.ts_s)))
+        self.recover_countdown = 0
+        self.recovered_mask = 0            # written by the recovery helper thread
+        self.recover_calls = 0
+        self._recover_event: threading.Event | None = None
+        self._recover_thread: threading.Thread | None = None
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -437,6 +494,13 @@ class _Loop:
         bus = self.bus
         if bus is None:
             return
+        self.stop_requested = True
+        helper = self._recover_thread
+        if helper is not None:
+            assert self._recover_event is not None
+            self._recover_event.set()
+            helper.join(timeout=5.0)
+            self._recover_thread = None
         try:
             if bus.is_open:
                 for _ in range(5):          # leave drives disabled (best effort)
@@ -464,7 +528,8 @@ class _Loop:
         assert self.bus is not None
         np.copyto(self.bus.target_position, self.bus.position_actual)
 
-    def _alarm(self, code: AlarmCode, axis: int = -1, a: int = 0, b: int = 0, f: float = 0.0) -> None:
+    def _alarm(self, code: AlarmCode | EventCode, axis: int = -1, a: int = 0, b: int = 0,
+               f: float = 0.0) -> None:
         k = int(self.ctl[C_ALARMS])
         row = self.v["alarm"][k % _ALARM_SLOTS]
         row[0] = int(code)
@@ -504,6 +569,8 @@ class _Loop:
         self.cmd_seen = seq
         result = self._command(int(self.ctl[C_CMD_CODE]), int(self.ctl[C_CMD_A]), int(self.ctl[C_CMD_B]))
         self.ctl[C_CMD_RESULT] = result
+        self.li[I_CMD_APPLIED] = seq         # snapshots published from now on show its effect
+        self.publish_now = True
         self.ctl[C_CMD_ACK] = seq
 
     def _command(self, code: int, a: int, b: int) -> int:
@@ -571,6 +638,59 @@ class _Loop:
         else:
             return RESULT_REFUSED
         return RESULT_OK
+
+    def _axis_of(self, position: int) -> int:
+        for i, d in enumerate(self.cfg.drives):
+            if d.position == position:
+                return i
+        return -1
+
+    # ------------------------------------------------------------------ slave recovery
+    def _try_recover(self) -> None:
+        """Every `recover_interval_s` while slaves are lost: the bus's `recover_slaves()`
+        (SoemBus: find the slave again, check identity, remap, SYNC0, OP; tens of ms when
+        it came back) in a helper thread, so the cycle goes on for the others (as SOEM's
+        ecatcheck). Inline in mode "manual". Buses without it recover on their own."""
+        if self.recover_countdown > 0:
+            self.recover_countdown -= 1
+            return
+        self.recover_countdown = self.recover_every
+        bus = self.bus
+        if bus is None or getattr(bus, "recover_slaves", None) is None:
+            return
+        if self.cfg.mode == "manual":
+            self._recover_once()
+            return
+        if self._recover_thread is None:
+            self._recover_event = threading.Event()
+            self._recover_thread = threading.Thread(target=self._recover_main, name="ethercat-recover",
+                                                    daemon=True)
+            self._recover_thread.start()
+        assert self._recover_event is not None
+        self._recover_event.set()
+
+    def _recover_once(self) -> None:
+        bus = self.bus
+        if bus is None:
+            return
+        self.recover_calls += 1
+        try:
+            got = bus.recover_slaves()  # type: ignore[attr-defined]
+        except Exception:  # noqa: BLE001 - a failed attempt is retried at the next interval
+            return
+        for pos in got:
+            self.recovered_mask |= 1 << min(int(pos), 62)
+
+    def _recover_main(self) -> None:
+        event = self._recover_event
+        assert event is not None
+        while not self.stop_requested:
+            if not event.wait(0.2):
+                continue
+            event.clear()
+            if self.stop_requested:
+                break
+            self._recover_once()
 
     def _reset_tracking(self) -> None:
         v = self.v
@@ -647,8 +767,22 @@ class _Loop:
                 for pos in bus.lost_slaves():
                     lost |= 1 << min(pos, 62)
                 self._reaction(AlarmCode.WORKING_COUNTER, -1, wkc, lost, float(li[I_WKC_EXP]))
+                new = lost & ~self.lost_mask
+                self.lost_mask |= lost
+                li[I_LOST] = self.lost_mask
+                for pos in range(63):
+                    if new >> pos & 1:
+                        self._alarm(AlarmCode.SLAVE_LOST, self._axis_of(pos), pos)
+                self.recover_countdown = 0
+            if self.lost_mask:
+                self._try_recover()
             return
         self.wkc_bad_run = 0
+        if self.lost_mask:                     # every slave answers again
+            self._alarm(EventCode.SLAVE_RECOVERED, -1, self.lost_mask, self.recovered_mask)
+            self.lost_mask = 0
+            self.recovered_mask = 0
+            li[I_LOST] = 0
         # ---- inputs and supervision
         cia402.decode_states(bus.statusword, states, self.scratch_i)
         self._read_actual()
@@ -804,10 +938,12 @@ class _Loop:
         cfg = self.cfg
         ts = cfg.ts_s
         spin = cfg.spin_s if cfg.spin_s is not None else default_spin_s
+        min_sleep = cfg.min_sleep_s
         late_s = cfg.late_threshold_s
         li, lf, hist = self.li, self.lf, self.v["hist"]
         perf = time.perf_counter
-        sleep = time.sleep
+        sleep_until = _AbsoluteSleep().until
+        _set_timer_slack_ns(1)                   # normal threads: 50 us slack by default
         inv_bin = 1.0 / _HIST_BIN_S
         last_bin = _HIST_BINS - 1
         every = self.snapshot_every
@@ -815,11 +951,13 @@ class _Loop:
         prev_start = 0.0
         k_snap = 0
         missed = 0
+        self.publish_now = True                  # publish after the first cycle
         while not self.stop_requested:
-            now = perf()
-            remaining = deadline - now
-            if remaining > spin:
-                sleep(remaining - spin)
+            # sleep to `spin` before the deadline (absolute), and always at least min_sleep,
+            # then busy-wait the rest: bounded by `spin`, none when already late
+            wake = deadline - spin
+            earliest = perf() + min_sleep
+            sleep_until(wake if wake > earliest else earliest)
             while perf() < deadline:
                 pass
             start = perf()
@@ -863,23 +1001,118 @@ class _Loop:
                 missed = int((end - deadline) / ts)
                 deadline += missed * ts
             k_snap += 1
-            if k_snap >= every:
+            if k_snap >= every or self.publish_now:
                 k_snap = 0
+                self.publish_now = False
                 self.publish()
         self.publish()
 
 
+# ---------------------------------------------------------------------- timing helpers
+class _Timespec(ctypes.Structure):
+    _fields_ = [("tv_sec", ctypes.c_long), ("tv_nsec", ctypes.c_long)]
+
+
+class _AbsoluteSleep:
+    """Sleep until an absolute `time.perf_counter()` instant: clock_nanosleep(CLOCK_MONOTONIC,
+    TIMER_ABSTIME) through ctypes where perf_counter is CLOCK_MONOTONIC (Linux), so the
+    time spent between reading the clock and going to sleep does not shift the wake-up;
+    `time.sleep` of the remainder elsewhere. ctypes releases the GIL while sleeping."""
+
+    def __init__(self) -> None:
+        self._fn: Any = None
+        with contextlib.suppress(Exception):
+            if "CLOCK_MONOTONIC" in time.get_clock_info("perf_counter").implementation:
+                fn = ctypes.CDLL(None, use_errno=True).clock_nanosleep
+                fn.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.POINTER(_Timespec), ctypes.c_void_p]
+                fn.restype = ctypes.c_int
+                self._ts = _Timespec()
+                self._ref = ctypes.byref(self._ts)
+                self._fn = fn
+
+    def until(self, t: float) -> None:
+        fn = self._fn
+        if fn is None:
+            remaining = t - time.perf_counter()
+            if remaining > 0.0:
+                time.sleep(remaining)
+            return
+        sec = int(t)
+        ts = self._ts
+        ts.tv_sec = sec
+        ts.tv_nsec = int((t - sec) * 1e9)
+        while fn(1, 1, self._ref, None) == 4:    # CLOCK_MONOTONIC, TIMER_ABSTIME; EINTR: again
+            pass
+
+
+def _set_timer_slack_ns(ns: int) -> None:
+    """prctl(PR_SET_TIMERSLACK) for the calling thread (real-time threads have none anyway)."""
+    if sys.platform.startswith("linux"):
+        with contextlib.suppress(Exception):
+            ctypes.CDLL(None, use_errno=True).prctl(29, ctypes.c_ulong(ns), 0, 0, 0)
+
+
 # ---------------------------------------------------------------------- process entry
-def _set_realtime(cfg: WorkerConfig) -> str:
-    """Pin to a core, SCHED_FIFO when permitted, lock memory. Returns what was applied."""
-    done = []
+CPU_LOCK_DIR = "/dev/shm"
+
+
+def _cpu_lock_path(cpu: int) -> str:
+    return os.path.join(CPU_LOCK_DIR, f"cnc-ethercat-cpu{cpu}.lock")
+
+
+def _try_lock_cpu(cpu: int) -> tuple[int | None, str]:
+    """Take the per-core lock (flock, released by the kernel when the process ends).
+    Returns (fd or None, holder pid text when held by another worker)."""
+    import fcntl
+
+    try:
+        fd = os.open(_cpu_lock_path(cpu), os.O_RDWR | os.O_CREAT, 0o666)
+    except OSError:
+        return None, ""
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        holder = os.pread(fd, 32, 0).decode("ascii", "replace").strip() or "?"
+        os.close(fd)
+        return None, holder
+    os.ftruncate(fd, 0)
+    os.pwrite(fd, str(os.getpid()).encode(), 0)
+    return fd, ""
+
+
+def _set_realtime(cfg: WorkerConfig) -> tuple[str, int | None]:
+    """Choose and pin a core, SCHED_FIFO when permitted, lock memory.
+    Returns (what was applied, fd of the core lock to keep open)."""
+    done: list[str] = []
+    lock_fd: int | None = None
+    realtime_ok = True
     if cfg.cpu is not None and hasattr(os, "sched_setaffinity"):
         cpus = sorted(os.sched_getaffinity(0))
-        cpu = cpus[cfg.cpu] if -len(cpus) <= cfg.cpu < len(cpus) else cpus[-1]
-        with contextlib.suppress(OSError):
-            os.sched_setaffinity(0, {cpu})
-            done.append(f"cpu{cpu}")
-    if cfg.rt_priority > 0 and hasattr(os, "sched_setscheduler"):
+        if cfg.cpu >= 0:                       # explicit: honoured even when shared
+            cpu = cfg.cpu if cfg.cpu in cpus else cpus[-1]
+            lock_fd, holder = _try_lock_cpu(cpu)
+            if holder:
+                done.append(f"shared-with-pid{holder}")
+        else:                                  # automatic: a core no other worker holds
+            cpu = -1
+            held = []
+            for c in reversed(cpus):
+                lock_fd, holder = _try_lock_cpu(c)
+                if lock_fd is not None:
+                    cpu = c
+                    break
+                if holder:
+                    held.append(f"cpu{c}:pid{holder}")
+            if cpu < 0 and held:
+                realtime_ok = False            # every core has a worker: do not compete with it
+                done.append("no-free-cpu(" + ",".join(held) + ")")
+            elif cpu < 0:
+                cpu = cpus[-1]                 # locks unavailable: previous behaviour
+        if cpu >= 0:
+            with contextlib.suppress(OSError):
+                os.sched_setaffinity(0, {cpu})
+                done.append(f"cpu{cpu}")
+    if realtime_ok and cfg.rt_priority > 0 and hasattr(os, "sched_setscheduler"):
         try:
             os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(cfg.rt_priority))
             done.append(f"fifo{cfg.rt_priority}")
@@ -889,7 +1122,7 @@ def _set_realtime(cfg: WorkerConfig) -> str:
         libc = ctypes.CDLL(None, use_errno=True)
         if libc.mlockall(3) == 0:            # MCL_CURRENT | MCL_FUTURE
             done.append("mlock")
-    return ",".join(done)
+    return ",".join(done), lock_fd
 
 
 def _write_msg(v: dict[str, np.ndarray], text: str) -> None:
@@ -907,9 +1140,10 @@ def _process_main(cfg: WorkerConfig, shm_name: str, layout_args: tuple[int, int,
     shm = shared_memory.SharedMemory(name=shm_name)
     v = _Layout(*layout_args).views(shm.buf)
     loop = _Loop(cfg, v)
+    lock_fd: int | None = None
     try:
         try:
-            applied = _set_realtime(cfg)
+            applied, lock_fd = _set_realtime(cfg)
             loop.open_bus()
         except Exception as exc:  # noqa: BLE001 - reported to the parent as text
             _write_msg(v, f"{type(exc).__name__}: {exc}")
@@ -932,6 +1166,8 @@ def _process_main(cfg: WorkerConfig, shm_name: str, layout_args: tuple[int, int,
         v["ctl"][C_STATUS] = ST_STOPPED
         del v, loop
         shm.close()
+        if lock_fd is not None:
+            os.close(lock_fd)                # the core is free for the next worker
 
 
 def _parent_watch(loop: _Loop, parent_pid: int) -> None:
@@ -978,7 +1214,9 @@ class CyclicWorker:
         self._process: Any = None
         self._lock = threading.Lock()
         self._alarms: list[Alarm] = []
+        self._events: collections.deque[WorkerEvent] = collections.deque(maxlen=_EVENTS_KEPT)
         self._alarms_read = 0
+        self._cmd_sent = 0                      # sequence number of the last command sent
         self._reasons: dict[int, str] = {}      # command seq -> quick stop / E-stop reason
         self._trace_read = 0
         self._started = False
@@ -996,7 +1234,9 @@ class CyclicWorker:
             return
         cfg = self.config
         self._alarms.clear()
+        self._events.clear()
         self._alarms_read = 0
+        self._cmd_sent = 0
         self._trace_read = 0
         self._reasons.clear()
         if cfg.mode == "process":
@@ -1113,6 +1353,7 @@ class CyclicWorker:
             seq = int(ctl[C_CMD_SEQ]) + 1
             if reason:
                 self._reasons[seq] = reason
+            self._cmd_sent = seq
             ctl[C_CMD_SEQ] = seq
             if self.config.mode == "manual":
                 assert self._loop is not None
@@ -1259,20 +1500,47 @@ class CyclicWorker:
             return WorkerState.STOPPED
         return WorkerState(int(self._v["snap_li"][I_STATE]))
 
+    @property
+    def command_seq(self) -> int:
+        """Sequence number of the last command sent (compare `WorkerSnapshot.command_seq`)."""
+        return self._cmd_sent
+
     def wait_for(self, states: WorkerState | Sequence[WorkerState], timeout_s: float = 2.0) -> WorkerState:
-        """Wait (polling snapshots) until the worker is in one of `states`."""
+        """Wait (polling snapshots) until the worker is in one of `states`, judged only on
+        snapshots taken after at least one cycle ran and after the loop applied the last
+        command sent through this handle: a snapshot published before that (they come at
+        `snapshot_hz`, plus one right after each command) is stale and ignored."""
         wanted = (states,) if isinstance(states, WorkerState) else tuple(states)
         t_end = time.monotonic() + timeout_s
+        need = self._cmd_sent
         while True:
             if self.config.mode == "manual":
                 self.step(10)
-            st = self.state()
-            if st in wanted:
+            li = self._read_snapshot_li()
+            st = WorkerState(int(li[I_STATE]))
+            fresh = int(li[I_CMD_APPLIED]) >= need and int(li[I_CYCLE]) > 0
+            if fresh and st in wanted:
                 return st
             if time.monotonic() > t_end:
-                raise WorkerTimeoutError(f"worker in state {st.name}, wanted {[s.name for s in wanted]}")
+                stale = "" if fresh else f" (no snapshot yet after command {need})"
+                names = [s.name for s in wanted]
+                raise WorkerTimeoutError(f"worker in state {st.name}{stale}, wanted {names}")
             if self.config.mode != "manual":
                 time.sleep(0.002)
+
+    def _read_snapshot_li(self) -> np.ndarray:
+        """Seqlock read of the snapshot's integer scalars only (cheap, for polling)."""
+        v = self._views()
+        ctl = v["ctl"]
+        for _ in range(1000):
+            s1 = int(ctl[C_SNAP_SEQ])
+            if s1 & 1:
+                time.sleep(0)
+                continue
+            li = v["snap_li"].copy()
+            if int(ctl[C_SNAP_SEQ]) == s1:
+                return li
+        raise WorkerTimeoutError("snapshot: writer never stable")
 
     def _read_snapshot_block(self) -> dict[str, np.ndarray]:
         v = self._views()
@@ -1306,14 +1574,33 @@ class CyclicWorker:
         for k in range(start, total):
             row = v["alarm"][k % _ALARM_SLOTS].copy()
             f = float(v["alarm_f"][k % _ALARM_SLOTS])
-            code = AlarmCode(int(row[0]))
             axis_i, cycle, a, b = int(row[1]), int(row[2]), int(row[3]), int(row[4])
             axis = names[axis_i] if 0 <= axis_i < len(names) else ""
+            if int(row[0]) >= 100:
+                ecode = EventCode(int(row[0]))
+                self._events.append(WorkerEvent(ecode, self._event_message(ecode, a, b), axis, cycle,
+                                                cycle * ts, time.time()))
+                continue
+            code = AlarmCode(int(row[0]))
             commanded = code in (AlarmCode.ESTOP, AlarmCode.QUICK_STOP)
             reason = self._reasons.pop(int(row[5]), "") if commanded else ""
             msg = self._alarm_message(code, axis, axis_i, a, b, f, reason)
             self._alarms.append(Alarm(code, msg, axis, cycle, cycle * ts, time.time()))
         self._alarms_read = total
+
+    def _slave_text(self, position: int) -> str:
+        for d in self.config.drives:
+            if d.position == position:
+                return f"slave {position} (axis {d.axis_name})"
+        return f"slave {position}"
+
+    def _event_message(self, code: EventCode, a: int, b: int) -> str:
+        if code is EventCode.SLAVE_RECOVERED:
+            back = ", ".join(self._slave_text(p) for p in range(63) if a >> p & 1)
+            how = " (re-configured to OP by recover_slaves)" if b else ""
+            return (f"{back} answering again{how}: working counter as expected; "
+                    "fault reset and enable to resume")
+        return code.name
 
     def _alarm_message(self, code: AlarmCode, axis: str, axis_i: int, a: int, b: int, f: float,
                        reason: str = "") -> str:
@@ -1349,6 +1636,9 @@ class CyclicWorker:
         if code is AlarmCode.FAULT_RESET_FAILED:
             return (f"fault reset of axis {axis} failed: error code 0x{a:04X} {error_code_text(a)} "
                     "still present")
+        if code is AlarmCode.SLAVE_LOST:
+            return (f"{self._slave_text(a)} lost: not answering process data; "
+                    "trying to recover it when it comes back")
         if code is AlarmCode.BUS_ERROR:
             detail = _read_msg(self._v) if self._v is not None else ""
             return f"bus error in the cyclic loop ({detail}): worker stopped"
@@ -1359,6 +1649,12 @@ class CyclicWorker:
         if self._v is not None:
             self._collect_alarms()
         return tuple(self._alarms)
+
+    def events(self) -> tuple[WorkerEvent, ...]:
+        """Recent events (the last 32; not cleared by `fault_reset`), oldest first."""
+        if self._v is not None:
+            self._collect_alarms()
+        return tuple(self._events)
 
     def snapshot(self) -> WorkerSnapshot:
         """A consistent copy of the worker's state (seqlock read; about 20 us)."""
@@ -1405,6 +1701,9 @@ class CyclicWorker:
             homing=tuple(HomingState(int(x)) for x in s["homing"]), homed=tuple(bool(x) for x in s["homed"]),
             alarms=tuple(self._alarms), timing=timing, tracking=tracking,
             digital_outputs=tuple(int(x) for x in s["dout"]),
+            command_seq=int(li[I_CMD_APPLIED]),
+            lost_slaves=tuple(p for p in range(63) if int(li[I_LOST]) >> p & 1),
+            events=tuple(self._events),
         )
 
     def drain_trace(self) -> TraceChunk:

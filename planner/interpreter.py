@@ -166,6 +166,7 @@ class _Interpreter:
         self.spindle_rpm = 0.0
         self.tool = 0
         self.params = Params()
+        self.plane_cache: dict[int, tuple] = {}
         self.fast_letters = frozenset(self.axes) | frozenset("IJKRF")
         # The usual CAM block, in the usual word order, as one regex; numbers below 1e9.
         self.fast_re = re.compile(
@@ -191,6 +192,8 @@ class _Interpreter:
         fast_match = self.fast_re.match
         fast = self.fast_line
         use_fast = self.use_fast
+        if "\r\n" in text:
+            text = text.replace("\r\n", "\n")  # Windows line ends, once for the whole text
         for line_no, raw in enumerate(text.split("\n"), 1):
             # Fast path: one compiled-regex match of the usual CAM block. The regex admits only
             # N, G00-G03, axis and I J K R F words, so a comment, '%', '/', '[', '#', an O-word,
@@ -706,18 +709,26 @@ class _Interpreter:
             home = [0.0] * self.n
         self.straight(home, True, line_no)
 
+    def plane_axes(self) -> tuple:
+        """(name, first, second, normal column, centre letters, forbidden letter, axis letters) of the
+        current plane, cached per plane; raises if the machine lacks one of the plane's axes."""
+        info = self.plane_cache.get(self.plane)
+        if info is None:
+            pname, fl, sl, nl, fc, sc, bad = _PLANES[self.plane]
+            fa = self.axis_index.get(fl)
+            sa = self.axis_index.get(sl)
+            if fa is None or sa is None:
+                raise _BlockError(
+                    f"arc in plane {_PLANE_G[self.plane]} ({pname}) needs axes {fl} and {sl}; "
+                    f"this machine has {' '.join(self.axes)}",
+                    "G",
+                )
+            info = (pname, fa, sa, self.axis_index.get(nl, -1), fc, sc, bad, (fl, sl))
+            self.plane_cache[self.plane] = info
+        return info
+
     def arc(self, target: list[float], vals: dict[str, float], cw: bool, scale: float, line_no: int) -> None:
-        pname, fl, sl, nl, fc, sc, bad = _PLANES[self.plane]
-        idx = self.axis_index
-        fa = idx.get(fl)
-        sa = idx.get(sl)
-        if fa is None or sa is None:
-            raise _BlockError(
-                f"arc in plane {_PLANE_G[self.plane]} ({pname}) needs axes {fl} and {sl}; "
-                f"this machine has {' '.join(self.axes)}",
-                "G",
-            )
-        na = idx.get(nl, -1)
+        pname, fa, sa, na, fc, sc, bad, letters = self.plane_axes()
         feed = self.feed_mm_s
         if feed <= 0.0:
             raise _BlockError(_ZERO_FEED, "G")
@@ -730,12 +741,16 @@ class _Interpreter:
                 raise _BlockError(f"P{p:g}: more than {_MAX_TURNS} turns", "P")
             turns = int(p)
         pos = self.pos
-        x0, y0, x1, y1 = pos[fa], pos[sa], target[fa], target[sa]
+        x0 = pos[fa]
+        y0 = pos[sa]
+        x1 = target[fa]
+        y1 = target[sa]
         try:
-            if "R" in vals:
+            r_val = vals.get("R")
+            if r_val is not None:
                 if "I" in vals or "J" in vals or "K" in vals:
                     raise _BlockError("mixed radius (R) and centre (I/J/K) format for arc", "R")
-                r_val = vals["R"] * scale
+                r_val *= scale
                 if (x0 != x1 or y0 != y1) and r_val > 0.0 and self.path_length(pos, target) <= _ZERO_LEN:
                     return  # a short R arc between points within 1e-9 mm: a zero-length move
                 cx, cy = center_from_radius(x0, y0, x1, y1, r_val, cw)
@@ -745,18 +760,20 @@ class _Interpreter:
                     raise _BlockError(
                         f"{bad} word given for arc in the {pname} plane ({_PLANE_G[self.plane]})", bad
                     )
-                if fc not in vals and sc not in vals:
+                ci = vals.get(fc)
+                cj = vals.get(sc)
+                if ci is None and cj is None:
                     raise _BlockError("arc needs R or a centre: R, I, J and K words all missing", "G")
                 if self.arc_absolute:
-                    if fc not in vals or sc not in vals:
+                    if ci is None or cj is None:
                         raise _BlockError(f"G90.1 (absolute arc centre) needs both {fc} and {sc}",
-                                          fc if fc not in vals else sc)
-                    cx = vals[fc] * scale + self.offset[fa]
-                    cy = vals[sc] * scale + self.offset[sa]
+                                          fc if ci is None else sc)
+                    cx = ci * scale + self.offset[fa]
+                    cy = cj * scale + self.offset[sa]
                 else:
-                    cx = x0 + vals.get(fc, 0.0) * scale
-                    cy = y0 + vals.get(sc, 0.0) * scale
-                r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.inch, (fl, sl))
+                    cx = x0 + ci * scale if ci is not None else x0
+                    cy = y0 + cj * scale if cj is not None else y0
+                r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.inch, letters)
                 if abs(r1 - r0) <= 1e-12 * r0:
                     r1 = r0
             a0, sweep = sweep_angle(x0, y0, x1, y1, cx, cy, cw, turns)
@@ -765,7 +782,9 @@ class _Interpreter:
         rise = target[na] - pos[na] if na >= 0 else 0.0
         arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, rise, turns)
         length = math.hypot(r0 * sweep, rise) if r0 == r1 else spiral_length_mm(r0, r1, sweep, rise)
-        self.emit(target, _ARC, feed, length, arc, line_no)
+        self.ends.append(target)
+        self.recs.append((line_no, _ARC, feed, length, arc, self.exact_stop))
+        self.pos = target
 
 
 def parse_program(

@@ -305,18 +305,19 @@ def _make_move(index, line, kind, start, end, feed_mm_s, length_mm, arc, exact_s
 
 
 def _make_arc(plane, first_axis, second_axis, normal_axis, center, r0, r1, a0, sweep, rise, turns,
-              _new=_new, _cls=Arc, _s=_ARC_SET) -> Arc:
+              _new=_new, _cls=Arc, _s0=_ARC_SET[0], _s1=_ARC_SET[1], _s2=_ARC_SET[2], _s3=_ARC_SET[3],
+              _s4=_ARC_SET[4], _s5=_ARC_SET[5], _s6=_ARC_SET[6], _s7=_ARC_SET[7], _s8=_ARC_SET[8],
+              _s9=_ARC_SET[9], _s10=_ARC_SET[10]) -> Arc:
     a = _new(_cls)
-    s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10 = _s
-    s0(a, plane)
-    s1(a, first_axis)
-    s2(a, second_axis)
-    s3(a, normal_axis)
-    s4(a, center)
-    s5(a, r0)
-    s6(a, r1)
-    s7(a, a0)
-    s8(a, sweep)
-    s9(a, rise)
-    s10(a, turns)
+    _s0(a, plane)
+    _s1(a, first_axis)
+    _s2(a, second_axis)
+    _s3(a, normal_axis)
+    _s4(a, center)
+    _s5(a, r0)
+    _s6(a, r1)
+    _s7(a, a0)
+    _s8(a, sweep)
+    _s9(a, rise)
+    _s10(a, turns)
     return a

@@ -37,12 +37,14 @@ bounds are evaluated over a window that covers the distance tau travels while si
 so they hold for every tau the step visits. ``check_limits`` measures it numerically.
 
 **Control of sigma.** sigma follows its target (override, 0 for hold, capped by (3) over the
-braking distance ahead) with a sqrt braking law: sigma_dot_wanted = sign(e) min(D1,
+braking distance ahead) with a discrete-time braking law: sigma_dot_wanted is the largest
+value from which steps of sigma_ddot = 0.7 D2_ref stop within the error e (continuous form
 sqrt(1.4 D2_ref |e|)), reached with |sigma_ddot| <= D2, where D2_ref <= D2 is the worst-case
-bound (so braking is always feasible). A step that would cross the target lands on it: the law makes
-|sigma_dot| < 1.4 D2_ref Ts there, so the landing is one sample of |sigma_ddot| <= 1.4 D2_ref
-<= 0.7 (1 - r_j m^3) / gamma while the sigma_dot term is negligible (3 beta m 1.4 D2_ref Ts):
-still inside the jerk budget of (2). A feed hold is sigma -> 0 under the same bounds: a
+bound (so braking is always feasible). A step that would cross the target lands on it only
+when |sigma_dot| <= 1.9 D2_ref Ts (the law makes it so unless the target jumped): one sample
+of |sigma_ddot| <= 1.9 D2_ref <= 0.95 (1 - r_j m^3) / gamma while the sigma_dot term is
+negligible (3 beta m 1.9 D2_ref Ts): inside the jerk budget. When the target jumps just ahead
+of a fast-moving sigma, sigma passes it and comes back under the bounds (1), (2). A feed hold is sigma -> 0 under the same bounds: a
 jerk-limited stop along the path; resume ramps sigma back up and the plan continues to the
 same end. Full stops of the plan (block ends with zero speed: M00, M01, dwell, single block,
 program end) are pause points: tau stops exactly there (speed and acceleration of the plan
@@ -409,14 +411,18 @@ class TimeScaledExecutor:
                 if abs(e) < 0.5 * d2_ref * ts * ts and abs(sd) < d2_ref * ts:
                     sigma, sd = target, 0.0
                 else:
-                    # braking law with 70 % of the worst-case sigma_ddot (discrete steps do not overshoot)
-                    want = math.copysign(min(d1, math.sqrt(1.4 * d2_ref * abs(e))), e)
+                    # discrete-time braking law with 70 % of the worst-case sigma_ddot: the largest
+                    # sigma_dot from which steps of dl * ts stop within |e| (no overshoot)
+                    dl = 0.7 * d2_ref
+                    want = math.copysign(
+                        min(d1, dl * ts * (math.sqrt(2.0 * abs(e) / (dl * ts * ts) + 0.25) - 0.5)), e)
                     acc = min(max((want - sd) / ts, -d2), d2)
+                    # no hard clip of sigma_dot to D1: a tighter D1 appears at the window's far edge
+                    # (0.25 s of plan ahead) and is reached at the rate D2, well before it applies
                     sd_new = sd + acc * ts
-                    sd_new = min(max(sd_new, -d1), d1)
                     sigma_new = sigma + 0.5 * (sd + sd_new) * ts
-                    if (target - sigma_new) * e < 0.0:  # would cross the target: land on it
-                        sigma_new, sd_new = target, 0.0
+                    if (target - sigma_new) * e < 0.0 and abs(sd) <= 1.9 * d2_ref * ts:
+                        sigma_new, sd_new = target, 0.0  # would cross the target: land on it
                     if sigma_new <= 0.0:
                         sigma_new, sd_new = 0.0, 0.0
                     sigma, sd = sigma_new, sd_new

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from PySide6.QtCore import QEvent, QObject
 from PySide6.QtWidgets import (
     QApplication,
     QGroupBox,
@@ -102,15 +101,11 @@ class ManualPage(QWidget):
         i18n.languageChanged.connect(lambda _l: self._on_spindle(c.spindle))
         self._on_spindle(c.spindle)
         app = QApplication.instance()
-        if app is not None:
-            app.applicationStateChanged.connect(lambda _s: self.jog.release_all())
-            app.installEventFilter(self)
+        if app is not None:  # safe release: the panel losing the screen stops continuous jogging
+            app.applicationStateChanged.connect(self._release_jog)
 
-    def eventFilter(self, obj: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt override
-        # Safe release: a window deactivation or a touch cancel stops continuous jogging.
-        if event.type() in (QEvent.Type.WindowDeactivate, QEvent.Type.TouchCancel):
-            self.jog.release_all()
-        return False
+    def _release_jog(self, *_args: object) -> None:
+        self.jog.release_all()
 
     def send_mdi(self) -> None:
         block = self.mdi_line.text().strip()

@@ -16,8 +16,8 @@ import pytest
 
 from ethercat.bus import DriveSpec
 from ethercat.cia402 import Cia402State
-from ethercat.errors import ConfigurationError, EtherCATError, WorkerError
-from ethercat.worker import AlarmCode, CyclicWorker, HomingState, WorkerConfig, WorkerState
+from ethercat.errors import ConfigurationError, EtherCATError, WorkerError, WorkerTimeoutError
+from ethercat.worker import AlarmCode, CyclicWorker, EventCode, HomingState, WorkerConfig, WorkerState
 
 DRIVES = (
     DriveSpec(0, "X", counts_per_unit=10_000.0, following_error_window=0.5),
@@ -241,6 +241,42 @@ def test_lost_slave_named_in_alarm(worker: CyclicWorker) -> None:
     enable(worker)
 
 
+def test_lost_slave_power_cycled_is_recovered_with_an_event(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.inject("lose_slave", 1)
+    worker.step(20)
+    s = worker.snapshot()
+    assert codes(worker) == [AlarmCode.WORKING_COUNTER, AlarmCode.SLAVE_LOST]
+    assert s.alarms[1].axis == "Y" and "slave 1 (axis Y) lost" in s.alarms[1].message
+    assert s.lost_slaves == (1,) and worker.events() == ()
+    worker.inject("restore_slave", 1, 1)                 # back, power cycled: INIT, silent
+    bus = worker._loop.bus                               # type: ignore[union-attr]
+    worker.step(5)
+    assert bus.lost_slaves() == (1,) and bus.recoveries == 0
+    worker.step(150)                                     # next recovery attempt (every 0.1 s)
+    s = worker.snapshot()
+    assert bus.recoveries == 1 and s.lost_slaves == () and s.wkc == s.expected_wkc
+    assert [e.code for e in s.events] == [EventCode.SLAVE_RECOVERED]
+    assert "slave 1 (axis Y) answering again (re-configured to OP" in s.events[0].message
+    assert codes(worker) == [AlarmCode.WORKING_COUNTER, AlarmCode.SLAVE_LOST]   # still to acknowledge
+    worker.fault_reset()                                 # the lost drive faulted on its watchdog
+    worker.wait_for(W.DISABLED)
+    enable(worker)
+    assert worker.events() == s.events                   # events survive the fault reset
+
+
+def test_lost_slave_back_by_itself_is_an_event_without_recovery(worker: CyclicWorker) -> None:
+    enable(worker)
+    worker.inject("lose_slave", 0)
+    worker.step(20)
+    worker.inject("restore_slave", 0)                    # answers at once (no power cycle)
+    worker.step(5)
+    (event,) = worker.events()
+    assert event.code is EventCode.SLAVE_RECOVERED and "re-configured" not in event.message
+    assert "slave 0 (axis X) answering again" in event.message
+    assert worker.snapshot().lost_slaves == ()
+
+
 def test_drive_fault_quick_stops_all_then_reset(worker: CyclicWorker) -> None:
     enable(worker)
     q0 = worker.snapshot().actual_position.copy()
@@ -393,6 +429,29 @@ def test_thread_mode_absolute_deadlines_no_drift() -> None:
     assert t.period_mean_s * (t.cycles - 1) == pytest.approx(t.span_s, rel=1e-6)
     assert sum(t.jitter_histogram) == t.cycles - 1
     assert s.samples_consumed > 0
+
+
+def test_wait_for_ignores_snapshots_older_than_the_last_command() -> None:
+    """Snapshots come at snapshot_hz (here 2 Hz, to make a stale one last): right after a
+    command, the last periodic snapshot still shows the state before it. wait_for must
+    judge only snapshots that carry the command's sequence number (one is published right
+    after the cycle that applied it)."""
+    cfg = config(mode="thread", snapshot_hz=2.0, wkc_error_limit=10**6)
+    with CyclicWorker(cfg) as w:
+        t0 = time.monotonic()
+        assert w.wait_for(W.DISABLED) is W.DISABLED
+        s = w.snapshot()
+        assert s.cycle > 0, "wait_for after start() must not judge the snapshot of cycle 0"
+        assert set(s.drive_states) <= {Cia402State.SWITCH_ON_DISABLED, Cia402State.READY_TO_SWITCH_ON}
+        w.enable()
+        assert w.wait_for(W.ENABLED) is W.ENABLED
+        assert w.snapshot().command_seq == w.command_seq
+        w.quick_stop("test")
+        with pytest.raises(WorkerTimeoutError):                   # never on the stale ENABLED
+            w.wait_for(W.ENABLED, timeout_s=0.3)
+        assert w.wait_for(W.QUICK_STOP) is W.QUICK_STOP
+        assert w.snapshot().command_seq == w.command_seq
+        assert time.monotonic() - t0 < 1.5                        # fresh snapshots, not the 0.5 s ones
 
 
 def test_process_mode_end_to_end() -> None:

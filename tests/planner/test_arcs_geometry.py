@@ -16,7 +16,15 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from planner.interpreter import parse_program
-from planner.program import Arc, Move, MoveKind, arc_length_mm, arc_param_at_length
+from planner.program import (
+    Arc,
+    Move,
+    MoveKind,
+    _spiral_s,
+    arc_length_mm,
+    arc_param_at_length,
+    spiral_length_mm,
+)
 
 PLANES = {  # G code: (first, second, normal) axis letters and their centre-offset letters
     "G17": (("X", "Y", "Z"), ("I", "J")),
@@ -274,3 +282,20 @@ def test_evaluate_tangent_matches_finite_difference_on_spiral_helix():
     p_l, _, _ = m.evaluate(u - h)
     k_num = np.linalg.norm((p_h - 2 * p0 + p_l) / h**2, axis=1)
     np.testing.assert_allclose(curv, k_num, rtol=1e-4)
+
+
+@pytest.mark.parametrize("dr_rel", [1e-12, 1e-6, 9.99e-4, 1.001e-3, 0.05, -0.5])
+@pytest.mark.parametrize("rise_mm", [0.0, 3.0])
+def test_spiral_length_closed_form_and_quadrature(dr_rel, rise_mm):
+    """Both branches of the exact spiral length agree with a fine Simpson integration."""
+    r0, sweep = 7.0, -4.0
+    r1 = r0 * (1 + dr_rel)
+    t = np.linspace(0.0, 1.0, 200_001)
+    f = np.sqrt((r1 - r0) ** 2 + ((r0 + (r1 - r0) * t) * sweep) ** 2 + rise_mm**2)
+    simpson = (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum()) / (3 * (len(t) - 1))
+    assert spiral_length_mm(r0, r1, sweep, rise_mm) == pytest.approx(simpson, rel=1e-13)
+    arc = Arc("XY", 0, 1, 2, (0.0, 0.0), r0, r1, 0.0, sweep, rise_mm)
+    # the vectorised length used by evaluate() agrees with the scalar one
+    length = spiral_length_mm(r0, r1, sweep, rise_mm)
+    assert float(_spiral_s(arc, np.array([1.0]))[0]) == pytest.approx(length, rel=1e-13)
+    assert arc_param_at_length(arc, np.array([length]), length)[0] == 1.0
