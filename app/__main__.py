@@ -37,6 +37,8 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
     parser.add_argument("--state-dir", type=Path,
                         help="where settings, alarms and positions persist "
                              "(default ~/.local/state/cnc-panel)")
+    parser.add_argument("--run-for", type=float, default=0.0, metavar="SECONDS",
+                        help="with --demo --screenshot: press cycle start and shoot SECONDS later")
     ns = parser.parse_args(argv)
     try:
         width, height = (int(v) for v in ns.size.lower().split("x"))
@@ -44,7 +46,8 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
         parser.error(f"--size must look like 1280x800, got {ns.size!r}")
     return PanelOptions(demo=ns.demo, config_path=ns.config, program_path=ns.program,
                         screenshot_path=ns.screenshot, page=ns.page, language=ns.lang,
-                        width_px=width, height_px=height, state_dir=ns.state_dir)
+                        width_px=width, height_px=height, state_dir=ns.state_dir,
+                        run_for_s=ns.run_for)
 
 
 def _has_display() -> bool:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import time
 
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QApplication
@@ -41,9 +42,28 @@ def run(options: PanelOptions) -> int:
     app.aboutToQuit.connect(window.context.controller.shutdown)
     window.show()
     if options.screenshot_path is not None:
-        def shoot() -> None:
-            save_screenshot(window, options.screenshot_path)
-            print(f"screenshot written to {options.screenshot_path}")
-            app.quit()
-        QTimer.singleShot(300, shoot)
+        schedule_screenshot(app, window, options)
     return app.exec()
+
+
+def schedule_screenshot(app: QApplication, window: MainWindow, options: PanelOptions) -> None:
+    """Shoot once the demo is connected (at most 5 s), or ``run_for_s`` after cycle start."""
+    controller = window.context.controller
+    started = time.monotonic()
+
+    def shoot() -> None:
+        save_screenshot(window, options.screenshot_path)
+        print(f"screenshot written to {options.screenshot_path}")
+        app.quit()
+
+    def wait_ready() -> None:
+        ready = not options.demo or (controller.bus_status.connected and controller.program_info is not None)
+        if not ready and time.monotonic() - started < 5.0:
+            QTimer.singleShot(100, wait_ready)
+        elif options.run_for_s > 0 and ready:
+            controller.cycle_start()
+            QTimer.singleShot(round(options.run_for_s * 1000), shoot)
+        else:
+            QTimer.singleShot(200, shoot)
+
+    QTimer.singleShot(300, wait_ready)

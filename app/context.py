@@ -32,6 +32,7 @@ class PanelOptions:
     width_px: int = 1280
     height_px: int = 800
     state_dir: Path | None = None   # where settings, alarms and positions persist
+    run_for_s: float = 0.0   # with --screenshot in demo: press cycle start, shoot this much later
 
     @property
     def effective_program(self) -> Path | None:

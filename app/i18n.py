@@ -18,8 +18,10 @@ import shiboken6
 from PySide6.QtCore import QCoreApplication, QObject, QTranslator, Signal
 
 from app.context import RESOURCES
+from app.i18n_catalog import N_
 
 CONTEXT = "cnc"
+__all__ = ["CONTEXT", "I18n", "LANGUAGES", "N_", "compile_translations", "tr"]
 LANGUAGES: dict[str, str] = {"en": "English", "tr": "Türkçe"}
 TRANSLATIONS = RESOURCES / "translations"
 
@@ -27,11 +29,6 @@ TRANSLATIONS = RESOURCES / "translations"
 def tr(text: str) -> str:
     """The text in the current language (source strings are English)."""
     return QCoreApplication.translate(CONTEXT, text)
-
-
-def N_(text: str) -> str:  # noqa: N802 - gettext's name for "mark for translation, translate later"
-    """Mark a string for the catalogue; it is translated where it is shown."""
-    return text
 
 
 def lrelease_path() -> Path | None:

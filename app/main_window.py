@@ -102,6 +102,7 @@ class MainWindow(QMainWindow):
         self._message = QLabel()
         self.statusBar().addWidget(self._message, 1)
         self._program_label = QLabel()
+        self._program_label.setMinimumWidth(220)
         self.statusBar().addPermanentWidget(self._program_label)
         ctx.controller.message.connect(self.show_message)
         ctx.controller.commandRefused.connect(
@@ -117,12 +118,13 @@ class MainWindow(QMainWindow):
     # --- start-up ------------------------------------------------------------------------
     def _start(self) -> None:
         ctx = self.context
-        if self.options.demo:
+        if self.options.demo:  # simulated drives: connect, and home by "set here" if needed
             ctx.controller.connect_bus()
+            if not all(ctx.controller.homed) and ctx.controller.config.homing.method == "set_here":
+                ctx.controller.home_all()
         program = self.options.effective_program
         if program is not None and ctx.program.info is None:
-            ctx.document.open(program)
-            ctx.controller.load_program(program)
+            ctx.controller.load_program(program)  # the Program page opens it when it is loaded
 
     def _on_program_loaded(self, info: object) -> None:
         self.context.program.set_loaded(info, self.context.controller.config.machine)

@@ -1,8 +1,7 @@
 """The loaded program as the pages see it: text, geometry (planner Program), tool path, errors.
 
-Fed by the controller's ``programLoaded`` / ``programErrors`` signals. The geometry for the
-preview is interpreted here from the same text with the same machine (the controller's
-``ProgramInfo`` carries no geometry).
+Fed by the controller's ``programLoaded`` / ``programErrors`` signals. The geometry is the
+controller's own (``ProgramInfo.program``); only if it is missing is the text interpreted here.
 """
 
 from __future__ import annotations
@@ -48,6 +47,7 @@ class ProgramModel(QObject):
         self.program: Program | None = None
         self.toolpath: ToolPath | None = None
         self.errors: dict[int, str] = {}
+        self._pending: tuple[str, str] = ("", "")
 
     def move_at_line(self, line: int) -> int:
         """Index of the first move at or after ``line`` (len(moves) past the end, -1 if none)."""
@@ -57,14 +57,21 @@ class ProgramModel(QObject):
 
         return int(np.searchsorted(self.toolpath.move_lines, line, side="left"))
 
+    def expect(self, text: str, name: str) -> None:
+        """The panel is about to load this text: shown with its errors if the controller refuses it."""
+        self._pending = (text, name)
+
     def set_loaded(self, info: object, machine: MachineSpec | None) -> None:
         self.info = info
         self.name = str(getattr(info, "name", ""))
         self.path = str(getattr(info, "path", ""))
         self.text = str(getattr(info, "text", ""))
         try:
-            self.program = interpret(self.text, self.name or "<program>", machine)
-            self.toolpath = build_toolpath(self.program)
+            program = getattr(info, "program", None)  # the controller's checked geometry
+            if not isinstance(program, Program):
+                program = interpret(self.text, self.name or "<program>", machine)
+            self.program = program
+            self.toolpath = build_toolpath(program)
             self.errors = {}
         except PlannerError as exc:  # the controller accepted it: should not happen
             self.program, self.toolpath = None, None
@@ -75,6 +82,8 @@ class ProgramModel(QObject):
     def set_errors(self, issues: object, text: str = "", name: str = "") -> None:
         """The controller refused a program: keep its text and the errors per line."""
         self.info, self.program, self.toolpath = None, None, None
+        if not text:
+            text, name = self._pending
         if text:
             self.text = text
         if name:

@@ -11,6 +11,14 @@ percentiles (p50/p99/p99.9/max), late cycles (start later than 1 ms), missed cyc
 working counter errors. Target (issue 5): jitter p99 <= 100 us, no cycle later than 1 ms.
 `--link N` runs on real frames: an `EmulatedLink` of N emulated drives (root, ip netns),
 removed afterwards. The other flags override `WorkerConfig` defaults (for comparisons).
+
+    python -m bench.bench_ethercat --probe 20 [--cpu 1] [--rt-priority 49] [--spin-us 0]
+
+runs no worker: a bare Python loop of absolute clock_nanosleep wake-ups every 1 ms (what
+the worker's timing rests on) and attributes every wake-up later than 200 us: the guest
+run-queue delay of the thread (/proc/thread-self/schedstat: another task or the RT
+throttle held the CPU), its involuntary context switches, and the CPU's steal time (the
+hypervisor did not run this virtual CPU; /proc/stat, 10 ms ticks).
 """
 
 from __future__ import annotations
@@ -56,6 +64,85 @@ def make_gui_load(busy_s: float = 0.05) -> Callable[[], None]:
     return tick
 
 
+def probe(seconds: float, cpu: int, rt_priority: int, spin_s: float) -> dict[str, Any]:
+    """Wake-up lateness of a bare clock_nanosleep loop, with the cause of each late one."""
+    from ethercat.worker import _AbsoluteSleep, _set_timer_slack_ns
+
+    applied = []
+    if cpu >= 0:
+        os.sched_setaffinity(0, {cpu})
+        applied.append(f"cpu{cpu}")
+    else:
+        cpu = -1
+    if rt_priority > 0:
+        os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(rt_priority))
+        applied.append(f"fifo{rt_priority}")
+    _set_timer_slack_ns(1)
+    sched = open("/proc/thread-self/schedstat", "rb", buffering=0)   # noqa: SIM115
+    status_path = "/proc/thread-self/status"
+    stat = open("/proc/stat", "rb", buffering=0)                     # noqa: SIM115
+
+    def run_delay_ns() -> int:
+        sched.seek(0)
+        return int(sched.read().split()[1])
+
+    def cpu_ticks() -> tuple[int, int]:
+        """(steal, irq + softirq) of the probe's CPU, in 10 ms ticks."""
+        stat.seek(0)
+        prefix = f"cpu{cpu} ".encode() if cpu >= 0 else b"cpu "
+        for line in stat.read().splitlines():
+            if line.startswith(prefix):
+                f = line.split()
+                return int(f[8]), int(f[6]) + int(f[7])
+        return 0, 0
+
+    def nonvoluntary() -> int:
+        with open(status_path, "rb") as f:
+            for line in f:
+                if line.startswith(b"nonvoluntary_ctxt_switches"):
+                    return int(line.split()[1])
+        return 0
+
+    n = int(seconds * 1000)
+    late = np.zeros(n)
+    stalls: list[dict[str, float]] = []
+    until = _AbsoluteSleep().until
+    perf = time.perf_counter
+    rd0, (st0, irq0), nv0 = run_delay_ns(), cpu_ticks(), nonvoluntary()
+    steal_start = st0
+    deadline = perf() + 0.001
+    for k in range(n):
+        until(deadline - spin_s)
+        while perf() < deadline:
+            pass
+        lat = perf() - deadline
+        late[k] = lat
+        rd1, (st1, irq1), nv1 = run_delay_ns(), cpu_ticks(), nonvoluntary()
+        if lat > 200e-6:
+            stalls.append({"late_us": round(lat * 1e6), "runqueue_wait_us": round((rd1 - rd0) / 1e3),
+                           "involuntary_switches": nv1 - nv0, "steal_ms": (st1 - st0) * 10,
+                           "irq_softirq_ms": (irq1 - irq0) * 10})
+        rd0, st0, irq0, nv0 = rd1, st1, irq1, nv1
+        deadline += 0.001
+        now = perf()
+        if now > deadline:
+            deadline += ((now - deadline) // 0.001 + 1) * 0.001
+    us = late * 1e6
+    big = [x for x in stalls if x["late_us"] > 1000]
+    return {
+        "probe": "clock_nanosleep", "applied": ",".join(applied) or "none", "spin_us": spin_s * 1e6,
+        "cycles": n, "p50_us": float(np.percentile(us, 50)), "p99_us": float(np.percentile(us, 99)),
+        "p999_us": float(np.percentile(us, 99.9)), "max_us": float(us.max()),
+        "over_100us": int((us > 100).sum()), "over_1ms": int((us > 1000).sum()),
+        "steal_ms_total": (cpu_ticks()[0] - steal_start) * 10,
+        "over_1ms_late_ms_sum": round(sum(x["late_us"] for x in big) / 1e3, 1),
+        "over_1ms_runqueue_wait_ms_sum": round(sum(x["runqueue_wait_us"] for x in big) / 1e3, 1),
+        "over_1ms_steal_ms_sum": sum(x["steal_ms"] for x in big),
+        "over_1ms_irq_softirq_ms_sum": sum(x["irq_softirq_ms"] for x in big),
+        "worst": sorted(stalls, key=lambda x: -x["late_us"])[:8],
+    }
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seconds", type=float, default=10.0, help="duration of each case")
@@ -69,7 +156,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rt-priority", type=int, default=None)
     ap.add_argument("--min-sleep-us", type=float, default=None)
     ap.add_argument("--cpu", type=int, default=-1)
+    ap.add_argument("--probe", type=float, default=0.0, metavar="SECONDS",
+                    help="no worker: attribute the late wake-ups of a bare clock_nanosleep loop")
     args = ap.parse_args(argv)
+    if args.probe:
+        prio = 49 if args.rt_priority is None else args.rt_priority
+        spin = 0.0 if args.spin_us is None else args.spin_us * 1e-6
+        print(json.dumps(probe(args.probe, args.cpu, prio, spin)))
+        return 0
     with contextlib.ExitStack() as stack:
         bus, ifname = "sim", ""
         if args.link:

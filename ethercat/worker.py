@@ -15,10 +15,13 @@ Controller-facing API (the contract of app/machine):
 
 Modes (`WorkerConfig.mode`):
   "process"  the loop runs in its own process (multiprocessing spawn), pinned to a core
-             (os.sched_setaffinity), SCHED_FIFO when permitted, GC disabled; set-points,
-             commands and snapshots cross through one `multiprocessing.shared_memory`
-             block (an SPSC ring, a command mailbox, a seqlock snapshot). Default: a busy
-             Qt GUI in the parent does not disturb it.
+             no other worker holds (`WorkerConfig.cpu`), SCHED_FIFO 49 when permitted,
+             memory locked, GC disabled; set-points, commands and snapshots cross through
+             one `multiprocessing.shared_memory` block (an SPSC ring, a command mailbox, a
+             seqlock snapshot). Default: a busy Qt GUI in the parent does not disturb it.
+             Each cycle sleeps on an absolute deadline (clock_nanosleep) to 0.1 ms before
+             it and busy-waits the rest, and always sleeps at least `min_sleep_s`: a
+             real-time loop that never sleeps would starve its core (and another worker).
   "thread"   the same loop as a plain thread in the calling process (for comparison).
   "manual"   no thread: `step(n)` runs n cycles at once (simulated time; for tests and
              headless fast-forward with `bus_kind="sim"`).
@@ -28,7 +31,12 @@ ENABLED, else target := actual) -> `bus.exchange()` -> supervision (working coun
 drive faults, following error over its window for `following_error_cycles`) ->
 tracking (e = reference - actual per axis, paper Eq. 18: MSE = sum(e^2)/n, RMSE = sqrt(MSE),
 total and over `tracking_window_s`) -> timing (period, start jitter histogram, late
-cycles) -> every 1/30 s a snapshot copy. Reactions: underrun while moving holds the last
+cycles) -> every 1/30 s, and right after a cycle that applied a command, a snapshot copy
+(it carries the command's sequence number: `wait_for` judges only snapshots at least as new
+as the last command). Slave loss: an alarm per lost slave (SLAVE_LOST, with the working
+counter reaction); while lost, the bus's `recover_slaves()` (SoemBus) is tried every
+`recover_interval_s` in a helper thread; when every slave answers again, an event
+SLAVE_RECOVERED (`CyclicWorker.events()`). Reactions: underrun while moving holds the last
 position (alarm UNDERRUN; not a quick stop); working counter wrong for more than
 `wkc_error_limit` cycles, a drive fault, a following error or E-stop: quick stop of all
 axes, the set-point buffer flushed, and an alarm naming the cause.
@@ -1080,6 +1088,36 @@ def _try_lock_cpu(cpu: int) -> tuple[int | None, str]:
     return fd, ""
 
 
+def _pinned_rt_tasks() -> dict[int, list[str]]:
+    """User-space processes (not kernel threads, not this one) running SCHED_FIFO/RR pinned
+    to a single core: {core: ["pid<N>:fifo<P>", ...]}. Catches workers that hold no core
+    lock (older versions) and other real-time programs. One /proc scan, at start-up only."""
+    out: dict[int, list[str]] = {}
+    me = os.getpid()
+    try:
+        pids = [int(d) for d in os.listdir("/proc") if d.isdigit()]
+    except OSError:
+        return out
+    for pid in pids:
+        if pid == me:
+            continue
+        try:
+            with open(f"/proc/{pid}/stat", "rb") as f:
+                fields = f.read().rsplit(b")", 1)[1].split()
+            policy, prio = int(fields[38]), int(fields[37])   # stat fields 41 and 40
+            if policy not in (1, 2):                         # SCHED_FIFO, SCHED_RR
+                continue
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                if not f.read(1):                            # kernel thread
+                    continue
+            cpus = os.sched_getaffinity(pid)
+        except (OSError, ValueError, IndexError):
+            continue
+        if len(cpus) == 1:
+            out.setdefault(next(iter(cpus)), []).append(f"pid{pid}:{'fifo' if policy == 1 else 'rr'}{prio}")
+    return out
+
+
 def _set_realtime(cfg: WorkerConfig) -> tuple[str, int | None]:
     """Choose and pin a core, SCHED_FIFO when permitted, lock memory.
     Returns (what was applied, fd of the core lock to keep open)."""
@@ -1096,7 +1134,11 @@ def _set_realtime(cfg: WorkerConfig) -> tuple[str, int | None]:
         else:                                  # automatic: a core no other worker holds
             cpu = -1
             held = []
+            rt_tasks = _pinned_rt_tasks()
             for c in reversed(cpus):
+                if c in rt_tasks:               # a real-time task (an older worker?) is pinned there
+                    held.append(f"cpu{c}:{'+'.join(rt_tasks[c])}")
+                    continue
                 lock_fd, holder = _try_lock_cpu(c)
                 if lock_fd is not None:
                     cpu = c

@@ -23,6 +23,38 @@ _GL8_X = (_GL8_X + 1.0) * 0.5
 _GL8_W = _GL8_W * 0.5
 
 
+def _spiral_newton(r0, r1, sweep, rise, length, u) -> np.ndarray:
+    """Angle parameter t in [0, 1] with s(t) = u on spirals, by Newton's method.
+
+    s(t) = t * sum_i w_i |p'(t x_i)|: 8-point Gauss-Legendre, exact to rounding for these
+    nearly circular integrands (|p'|^2 is a quadratic in t with a relative spread of about
+    2 dr / r <= 0.1). Starting from t = u / L, Newton converges in 2-3 steps.
+    """
+    t = np.clip(u / length, 0.0, 1.0)
+    active = np.arange(t.shape[0])
+    for _ in range(8):
+        dr = r1[active] - r0[active]
+        w = sweep[active]
+        c0 = dr * dr + rise[active] ** 2
+        ra = r0[active]
+        ta = t[active]
+        rad = ra[:, None] + dr[:, None] * (ta[:, None] * _GL8_X[None, :])
+        s_t = ta * (np.sqrt(c0[:, None] + (rad * w[:, None]) ** 2) @ _GL8_W)
+        speed = np.sqrt(c0 + ((ra + dr * ta) * w) ** 2)
+        step = (s_t - u[active]) / speed
+        t[active] = np.clip(ta - step, 0.0, 1.0)
+        active = active[np.abs(step) > 1e-15]
+        if not active.size:
+            break
+    return t
+
+
+# Degree-7 interpolation at Chebyshev nodes on [0, 1] (one fixed matrix for every spiral).
+_CHEB_X = 0.5 - 0.5 * np.cos((2 * np.arange(8) + 1) * np.pi / 16)
+_CHEB_INV = np.linalg.inv(np.vander(_CHEB_X, 8, increasing=True))
+SPIRAL_POLY_MAX_RATIO = 1e-2  # |dr| / r up to which the polynomial is exact to rounding
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class MoveTable:
     moves: tuple[Move, ...]
@@ -47,6 +79,8 @@ class MoveTable:
     theta0: np.ndarray
     sweep: np.ndarray
     rise: np.ndarray
+    spiral_poly: np.ndarray  # (n, 8) t(x) - x coefficients (x = u / L), spirals only
+    spiral_poly_ok: np.ndarray  # (n,) bool: polynomial exact to rounding for this spiral
 
     @staticmethod
     def from_moves(moves: tuple[Move, ...] | list[Move], n_axes: int) -> MoveTable:
@@ -70,21 +104,35 @@ class MoveTable:
                                a.radius_start_mm, a.radius_end_mm, a.start_angle_rad, a.sweep_rad,
                                a.rise_mm)
         r0, r1 = arc_vals[:, 5], arc_vals[:, 6]
+        length = np.asarray(cols[3], dtype=float)
+        spiral = is_arc & (r0 != r1)
+        poly = np.zeros((n, 8))
+        poly_ok = np.zeros(n, dtype=bool)
+        k = np.nonzero(spiral)[0]
+        if k.size:
+            ratio = np.abs(r1[k] - r0[k]) / np.minimum(r0[k], r1[k])
+            poly_ok[k] = ratio <= SPIRAL_POLY_MAX_RATIO
+            kk = np.repeat(k, 8)
+            u = np.tile(_CHEB_X, k.size) * length[kk]
+            t = _spiral_newton(r0[kk], r1[kk], arc_vals[kk, 8], arc_vals[kk, 9], length[kk], u)
+            dev = (t - np.tile(_CHEB_X, k.size)).reshape(k.size, 8)
+            poly[k] = dev @ _CHEB_INV.T
         return MoveTable(
             moves=moves,
             index=np.asarray(cols[0], dtype=np.int64),
             line=np.asarray(cols[1], dtype=np.int32),
             kind=np.asarray(cols[2], dtype=np.int8),
             start=start, end=end, delta=end - start,
-            length=np.asarray(cols[3], dtype=float),
+            length=length,
             feed=np.asarray(cols[4], dtype=float),
             exact_stop=np.asarray(cols[5], dtype=bool),
             is_arc=is_arc,
-            spiral=is_arc & (r0 != r1),
+            spiral=spiral,
             first=arc_vals[:, 0].astype(np.int64), second=arc_vals[:, 1].astype(np.int64),
             normal=np.where(is_arc, arc_vals[:, 2], -1).astype(np.int64),
             cx=arc_vals[:, 3], cy=arc_vals[:, 4], r0=r0, r1=r1,
             theta0=arc_vals[:, 7], sweep=arc_vals[:, 8], rise=arc_vals[:, 9],
+            spiral_poly=poly, spiral_poly_ok=poly_ok,
         )
 
     def __len__(self) -> int:
@@ -132,31 +180,28 @@ class MoveTable:
         return q
 
     def _spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """Angle parameter t in [0, 1] at path length u on spirals (Newton on the exact length).
+        """Angle parameter t in [0, 1] at path length u on spirals.
 
-        s(t) = t * sum_i w_i |p'(t x_i)|: 8-point Gauss-Legendre, exact to rounding for these
-        nearly circular integrands (|p'|^2 is a quadratic in t with a relative spread of about
-        2 dr / r <= 0.1). Starting from t = u / L, Newton converges in 2-3 steps.
+        Nearly circular spirals (all CAM rounding cases): t = x + g(x), x = u / L, with g the
+        degree-7 interpolant at Chebyshev nodes of the exact deviation (``spiral_poly``; its
+        error is of order (dr / r)^8, below rounding). Others: Newton on the exact length.
         """
         length = self.length[r]
         u = np.clip(u, 0.0, length)
-        t = u / length
-        active = np.arange(r.shape[0])
-        for _ in range(8):
-            ra = r[active]
-            dr = self.r1[ra] - self.r0[ra]
-            w = self.sweep[ra]
-            c0 = dr * dr + self.rise[ra] ** 2
-            r0 = self.r0[ra]
-            ta = t[active]
-            rad = r0[:, None] + dr[:, None] * (ta[:, None] * _GL8_X[None, :])
-            s_t = ta * (np.sqrt(c0[:, None] + (rad * w[:, None]) ** 2) @ _GL8_W)
-            speed = np.sqrt(c0 + ((r0 + dr * ta) * w) ** 2)
-            step = (s_t - u[active]) / speed
-            t[active] = np.clip(ta - step, 0.0, 1.0)
-            active = active[np.abs(step) > 1e-15]
-            if not active.size:
-                break
+        x = u / length
+        ok = self.spiral_poly_ok[r]
+        t = np.empty_like(x)
+        if ok.any():
+            c = self.spiral_poly[r[ok]]
+            xo = x[ok]
+            g = c[:, 7]
+            for k in range(6, -1, -1):
+                g = g * xo + c[:, k]
+            t[ok] = np.clip(xo + g, 0.0, 1.0)
+        if not ok.all():
+            rb = r[~ok]
+            t[~ok] = _spiral_newton(self.r0[rb], self.r1[rb], self.sweep[rb], self.rise[rb],
+                                    length[~ok], u[~ok])
         return np.where(u >= length, 1.0, t)  # the end point exactly
 
     def end_tangents(self) -> tuple[np.ndarray, np.ndarray]:

@@ -83,7 +83,7 @@ class ControllerSettings:
     of every jerk limit; the rest is kept for changing the time scale (override, hold)."""
 
     jog_speed_mm_s: float = 10.0  # continuous jog speed at 100 % (deg/s for rotary axes)
-    lead_s: float = 0.08  # set-points queued in the worker ahead of time
+    lead_s: float = 0.1  # set-points queued in the worker ahead of time (hold reacts after it)
     accel_reserve: float = 0.15
     jerk_reserve: float = 0.3
     spindle_max_rpm: float = 24000.0
@@ -177,7 +177,7 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>") -> MachineCo
     w = f"{where}: [controller]"
     ctl = ControllerSettings(
         jog_speed_mm_s=_num(c, "jog_speed_mm_s", w, 10.0, 1e-3, 1e4),
-        lead_s=_num(c, "lead_s", w, 0.08, 0.01, 1.0),
+        lead_s=_num(c, "lead_s", w, 0.1, 0.01, 1.0),
         accel_reserve=_num(c, "accel_reserve", w, 0.15, 0.01, 0.5),
         jerk_reserve=_num(c, "jerk_reserve", w, 0.3, 0.01, 0.7),
         spindle_max_rpm=_num(c, "spindle_max_rpm", w, 24000.0, 1.0, 1e6),

@@ -19,6 +19,23 @@ States (``MachineState``) and the legal transitions (``TRANSITIONS``)::
     ALARM   -> IDLE (reset, alarms acknowledged) | ESTOP
     ESTOP   -> IDLE (estop_release) | DISCONNECTED
 
+How motion is made. Every motion (program, MDI block, jog, approach move) is parsed, checked
+against the soft limits on its whole path (arcs by their exact extremes) and planned with the
+override budget (``app.machine.timescale``: acceleration and jerk limits reduced to 85 % and
+70 %); a ``TimeScaledExecutor`` then runs the plan at a time scale sigma that carries feed
+override (0-150 %), rapid override (0-100 %) and feed hold without leaving the path or
+exceeding a limit. Continuous jog is a move planned to the soft limit (a lost release stops
+there); a release is a hold followed by abandoning the move. Faults keep the point to resume
+from (``resume_line``; ``resume()`` in IDLE moves there safely and continues).
+
+Machine vs drive coordinates: machine = drive position - home offset (set by homing); work =
+machine - active work offset (G54-G59). Persisted in the state directory (``persist.py``).
+
+Beyond the commands listed above: ``advance(seconds)`` / ``run_until(pred)`` drive simulated
+time in ``worker_mode="manual"`` (tests, fast headless runs); read-only ``resume_line``,
+``reference_position``, ``progress``, ``last_run`` (RunSummary), ``state_reason``,
+``config_path``, ``worker``.
+
 Units: positions mm / degrees (rotary), speeds mm/s, times s, overrides in percent.
 """
 
@@ -29,6 +46,7 @@ import ctypes
 import math
 import os
 import shutil
+import sys
 import threading
 import time
 from collections.abc import Callable
@@ -231,6 +249,7 @@ class MachineController(QObject):
 
     @property
     def config_path(self) -> Path:
+        """The machine configuration file that ``update_config`` writes."""
         return self._config_path
 
     def _restore_persisted(self) -> None:
@@ -339,6 +358,10 @@ class MachineController(QObject):
         )
 
     def refusal(self, action: str) -> str:
+        """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",
+        "resume", "touch_off", "spindle_on", "update_config", ...) would be refused now; "" when
+        allowed (for enabling buttons).
+        """
         st = self._state
         need_idle = {"cycle_start", "run_from_line", "jog", "mdi", "home", "update_config", "load_program"}
         if action == "cycle_start" and st is MachineState.HOLD:
@@ -422,6 +445,10 @@ class MachineController(QObject):
         )
 
     def connect_bus(self) -> CommandResult:
+        """Start the worker (simulated drives when the bus kind is "sim") and enable the drives:
+        DISCONNECTED -> IDLE. Saved positions are restored (simulated drives start there); an axis
+        whose reported position differs from the saved one loses its homed state (warning alarm).
+        """
         if self._state is not MachineState.DISCONNECTED:
             return self._refuse("connect", f"already connected (machine is {self._state.label.lower()})")
         wcfg = self._worker_config()
@@ -463,6 +490,10 @@ class MachineController(QObject):
         self._pushed_total = 0
         self._set_state(MachineState.IDLE, "ready")
         if self._worker_mode != "manual":
+            # the feeder thread shares the GIL with the GUI: a short switch interval keeps it on
+            # time while the GUI computes (NOTES.md: 5 ms default stretches 1 ms loops to 5 ms)
+            if sys.getswitchinterval() > 0.001:
+                sys.setswitchinterval(0.001)
             self._feeder_stop.clear()
             self._feeder = threading.Thread(target=self._feeder_main, name="cnc-feeder", daemon=True)
             self._feeder.start()
@@ -504,6 +535,7 @@ class MachineController(QObject):
                 pass
 
     def disconnect_bus(self) -> CommandResult:
+        """Abandon any motion, disable the drives and stop the worker: -> DISCONNECTED."""
         if self._state is MachineState.DISCONNECTED:
             return self._ok("disconnect")
         with self._lock:
@@ -519,6 +551,7 @@ class MachineController(QObject):
         return self._ok("disconnect")
 
     def shutdown(self) -> None:
+        """Spindle off, disconnect, persist positions and offsets; safe to call twice."""
         if self._shutdown:
             return
         self._shutdown = True
@@ -810,7 +843,7 @@ class MachineController(QObject):
             estimated_s=job.estimated_s,
             last_line=last_line,
             tracking=tracking,
-            limits=job.meter.final(),
+            limits=_merge_max(job.carried_limits, job.meter.final()),
             reason=reason,
         )
         self._last_summary = summary
@@ -938,7 +971,7 @@ class MachineController(QObject):
             feed_override=self._feed_pct / 100.0 if overrides else 1.0,
             rapid_override=self._rapid_pct / 100.0 if overrides else 1.0,
         )
-        return _Job(
+        job = _Job(
             kind=kind,
             name=name,
             program=program,
@@ -948,6 +981,8 @@ class MachineController(QObject):
             estimated_s=plan.cycle_time_s,
             machine=self._machine,
         )
+        job.single_block = single_block
+        return job
 
     def _start_job(self, job: _Job) -> None:
         snap = self._snapshot_now()
@@ -978,6 +1013,14 @@ class MachineController(QObject):
 
     # ================================================================== program
     def load_program(self, source: str | os.PathLike[str], name: str | None = None) -> CommandResult:
+        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text.
+
+        Parses, plans and checks the whole path against the soft limits (arcs by their exact
+        extremes) before anything moves. Emits ``programLoaded`` or ``programErrors`` (all
+        errors, with lines and axes). Refused while running. Programs start in the interpreter's
+        reset state (G54) unless they select a work offset; the active offset
+        (``select_work_offset``) applies to MDI blocks and to the work coordinates shown.
+        """
         why = self.refusal("load_program")
         if why:
             return self._refuse("load_program", why)
@@ -1057,6 +1100,10 @@ class MachineController(QObject):
         return prog
 
     def cycle_start(self) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE; re-interpreted first if the machine
+        moved since loading), or continue (HOLD). Needs homed axes (unless the configuration
+        says otherwise) and no active alarm of severity STOP or above.
+        """
         if self._state is MachineState.HOLD:
             return self.resume()
         why = self.refusal("cycle_start")
@@ -1080,6 +1127,9 @@ class MachineController(QObject):
         return self._ok("cycle_start")
 
     def feed_hold(self) -> CommandResult:
+        """Jerk-limited stop along the path (time scale to 0): RUNNING -> HOLD. The stop starts
+        after the set-points already queued in the worker (``lead_s``, 0.1 s).
+        """
         why = self.refusal("feed_hold")
         if why:
             return self._refuse("feed_hold", why)
@@ -1092,6 +1142,10 @@ class MachineController(QObject):
         return self._ok("feed_hold")
 
     def resume(self) -> CommandResult:
+        """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
+        same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
+        program stopped (``resume_line``) and continue from exactly there.
+        """
         why = self.refusal("resume")
         if why:
             return self._refuse("resume", why)
@@ -1103,6 +1157,16 @@ class MachineController(QObject):
                 return self._refuse("resume", "nothing to resume")
             if job.stopping:
                 return self._refuse("resume", "the program is being stopped")
+            if (
+                job.kind is Activity.PROGRAM
+                and job.single_block != self._single_block
+                and (job.executor.standing or job.waiting)
+                and self._consumed() >= self._pushed_total
+            ):
+                replanned = self._replan_here(job)
+                if replanned is not None:
+                    self._set_state(MachineState.RUNNING, "program")
+                    return self._ok("resume")
             job.executor.hold = False
             if job.pause is not None and job.waiting:
                 job.pause = None
@@ -1111,7 +1175,40 @@ class MachineController(QObject):
         self._set_state(MachineState.RUNNING, job.kind.value)
         return self._ok("resume")
 
+    def _replan_here(self, job: _Job) -> _Job | None:
+        """At a standstill on the path (hold or pause point): plan the rest of the program again
+        from exactly here (single block switched on or off); the new plan starts at rest."""
+        if job.origin is None:
+            return None
+        prog, base, u0 = job.origin
+        ex = job.executor
+        _, _, move, s_cum = ex.evaluate(np.array([ex.tau]))
+        m = int(move[0])
+        u = float(s_cum[0] - job.plan.segment.s0[m])
+        index, u_orig = base + m, (u0 + u if m == 0 else u)
+        if index >= len(prog.moves) - 1 and u_orig >= prog.moves[-1].length_mm - 1e-12:
+            return None  # at the very end: nothing to re-plan
+        try:
+            rest = remaining_program(prog, index, u_orig)
+            new = self._make_job(Activity.PROGRAM, rest, job.name, single_block=self._single_block)
+        except PlannerError:
+            return None
+        full_t = self._program_info.cycle_time_s if self._program_info else new.estimated_s
+        new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.t_end, 0.0)
+        new.origin = (prog, index, u_orig)
+        new.start_time_s = job.start_time_s
+        new.trace = job.trace
+        new.samples, new.dwell_total_s = job.samples, job.dwell_total_s
+        new.carried_limits = job.meter.final()
+        new.estimated_s = job.estimated_s
+        new.serial_base = job.serial_base
+        self._job = new
+        if self._worker_mode != "manual":
+            self._feed()
+        return new
+
     def stop(self) -> CommandResult:
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE)."""
         if self._state not in (MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
             return self._refuse("stop", f"nothing to stop: machine is {self._state.label.lower()}")
         if self._state is MachineState.HOMING:
@@ -1131,6 +1228,10 @@ class MachineController(QObject):
         return self._ok("stop")
 
     def reset(self) -> CommandResult:
+        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
+        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
+        resume point.
+        """
         st = self._state
         if st is MachineState.HOLD:
             with self._lock:
@@ -1176,6 +1277,9 @@ class MachineController(QObject):
             self._set_state(MachineState.ESTOP, reason)
 
     def estop(self, reason: str = "operator") -> CommandResult:
+        """Emergency stop: the drives' quick stop at once, program abandoned (resume point kept),
+        spindle off, -> ESTOP.
+        """
         if self._worker is not None:
             try:
                 with self._lock:
@@ -1191,6 +1295,7 @@ class MachineController(QObject):
         return self._ok("estop")
 
     def estop_release(self) -> CommandResult:
+        """Release the E-stop: fault reset and re-enable the drives, -> IDLE."""
         if self._state is not MachineState.ESTOP:
             return self._refuse("estop_release", "E-stop is not active")
         if self._worker is None:
@@ -1209,19 +1314,27 @@ class MachineController(QObject):
         return self._ok("estop_release")
 
     def set_single_block(self, on: bool) -> CommandResult:
-        """Takes effect at the next cycle start (the plan is made with a stop at every block end)."""
+        """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
+        Switched while running, it takes effect at the next standstill (feed hold, pause point):
+        the rest of the program is planned again from there."""
         self._single_block = bool(on)
         _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
         if self._job is not None and self._job.kind is Activity.PROGRAM:
-            _fix(self.message.emit("single block takes effect at the next cycle start"))
+            _fix(self.message.emit("single block takes effect at the next stop (feed hold, block end, M00)"))
         return self._ok("set_single_block")
 
     def set_optional_stop(self, on: bool) -> CommandResult:
+        """Honour M01 (optional pause); may change while running."""
         self._optional_stop = bool(on)
         _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
         return self._ok("set_optional_stop")
 
     def run_from_line(self, line: int) -> CommandResult:
+        """Start the loaded program at source line ``line``: the spindle as of that line is
+        restored, a safe approach (retract Z to the higher of the current and target heights,
+        move the other axes, then down) brings the tool to the line's start point, then the
+        program runs on from there.
+        """
         why = self.refusal("run_from_line")
         if why:
             return self._refuse("run_from_line", why)
@@ -1284,6 +1397,9 @@ class MachineController(QObject):
         return self._resume.line if self._resume is not None else 0
 
     def set_feed_override(self, percent: float) -> CommandResult:
+        """Feed override 0-150 %, applied while running without a jump and within every limit
+        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
+        """
         p = float(percent)
         if not 0.0 <= p <= 150.0:
             return self._refuse("set_feed_override", f"feed override must be 0-150 %, got {p:g}")
@@ -1297,6 +1413,7 @@ class MachineController(QObject):
         return self._ok("set_feed_override")
 
     def set_rapid_override(self, percent: float) -> CommandResult:
+        """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
         p = float(percent)
         if not 0.0 <= p <= 100.0:
             return self._refuse("set_rapid_override", f"rapid override must be 0-100 %, got {p:g}")
@@ -1337,6 +1454,10 @@ class MachineController(QObject):
         )
 
     def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
+        """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog
+        speed. The motion is planned to end at the soft limit, so a lost release stops exactly
+        there; ``jog_stop`` is a jerk-limited stop.
+        """
         try:
             i = self._axis(axis)
         except MachineError as exc:
@@ -1359,6 +1480,7 @@ class MachineController(QObject):
         return self._ok("jog")
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:
+        """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
         with self._lock:
             job = self._job
             if job is None or job.kind is not Activity.JOG:
@@ -1369,6 +1491,9 @@ class MachineController(QObject):
         return self._ok("jog_stop")
 
     def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
+        """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
+        when the target is beyond the soft limit.
+        """
         try:
             i = self._axis(axis)
         except MachineError as exc:
@@ -1395,6 +1520,9 @@ class MachineController(QObject):
         return self._ok("jog")
 
     def mdi(self, block: str) -> CommandResult:
+        """Execute one G-code block with the active work offset and the same checks as a program
+        (parse, soft limits on the whole path, homed rule).
+        """
         why = self.refusal("mdi")
         if why:
             return self._refuse("mdi", why)
@@ -1428,6 +1556,9 @@ class MachineController(QObject):
 
     # ================================================================== homing / offsets
     def home_axis(self, axis: str | int) -> CommandResult:
+        """Home one axis by the configured method: "drive" (CiA 402 homing mode 6 with
+        ``homing.drive_method``, via the worker) or "set_here" (current position = machine zero).
+        """
         try:
             i = self._axis(axis)
         except MachineError as exc:
@@ -1435,6 +1566,7 @@ class MachineController(QObject):
         return self._home([i])
 
     def home_all(self) -> CommandResult:
+        """Home every axis (Z first) by the configured method."""
         order = list(range(len(self._cfg.axes)))
         if "Z" in self._cfg.axes:  # Z first: clear the part before the others move
             z = self._cfg.axes.index("Z")
@@ -1489,6 +1621,7 @@ class MachineController(QObject):
             self._next_homing()
 
     def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
+        """Declare the current position machine zero for one axis (all when None); homed; persisted."""
         if self._state not in (MachineState.IDLE,):
             return self._refuse("set_machine_zero_here", f"machine is {self._state.label.lower()}")
         try:
@@ -1509,6 +1642,9 @@ class MachineController(QObject):
         return self._ok("set_machine_zero_here")
 
     def set_work_offset(self, name: str, values: dict[str, float] | tuple[float, ...]) -> CommandResult:
+        """Set a G54-G59 offset (machine coordinates of part zero; a dict by axis name or one value
+        per axis); persisted.
+        """
         why = self.refusal("set_work_offset")
         if why:
             return self._refuse("set_work_offset", why)
@@ -1549,6 +1685,7 @@ class MachineController(QObject):
         )
 
     def select_work_offset(self, name: str) -> CommandResult:
+        """Make G54-G59 the active work offset (MDI and work coordinates); persisted."""
         why = self.refusal("select_work_offset")
         if why:
             return self._refuse("select_work_offset", why)
@@ -1560,6 +1697,9 @@ class MachineController(QObject):
         return self._ok("select_work_offset")
 
     def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
+        """Set part zero here: choose the offset (active unless named) so that the current
+        position reads ``work_value`` in work coordinates on ``axis``.
+        """
         why = self.refusal("touch_off")
         if why:
             return self._refuse("touch_off", why)
@@ -1579,7 +1719,7 @@ class MachineController(QObject):
     # ================================================================== spindle
     def _apply_spindle(self, sp: SpindleState) -> None:
         rpm = min(abs(sp.rpm), self._cfg.controller.spindle_max_rpm)
-        sp = SpindleState(direction=sp.direction if rpm > 0 or sp.direction == 0 else sp.direction, rpm=rpm)
+        sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm)  # rpm capped by the config
         if self._worker is not None:
             bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
             try:
@@ -1594,6 +1734,7 @@ class MachineController(QObject):
         _fix(self.spindleChanged.emit(sp))
 
     def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
+        """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
         why = self.refusal("spindle_on")
         if why:
             return self._refuse("spindle_on", why)
@@ -1604,10 +1745,12 @@ class MachineController(QObject):
         return self._ok("spindle_on")
 
     def spindle_off(self) -> CommandResult:
+        """Spindle off (M05); always allowed."""
         self._apply_spindle(SpindleState(direction=0, rpm=self._spindle.rpm))
         return self._ok("spindle_off")
 
     def spindle_speed(self, rpm: float) -> CommandResult:
+        """Set the spindle speed (applied at once when running)."""
         speed = float(rpm)
         if not 0.0 <= speed <= self._cfg.controller.spindle_max_rpm:
             return self._refuse(
@@ -1636,6 +1779,7 @@ class MachineController(QObject):
         _fix(self.alarmsChanged.emit(tuple(self._alarms)))
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
+        """Acknowledge one alarm (all active ones when None); persisted."""
         if alarm_id is None:
             for a in list(self._alarms):
                 if a.active:
@@ -1647,6 +1791,10 @@ class MachineController(QObject):
 
     # ================================================================== configuration
     def update_config(self, config: MachineConfig) -> CommandResult:
+        """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply.
+        Refused while moving; bus and drive changes take effect at the next connect; the loaded
+        program is checked again against the new limits.
+        """
         why = self.refusal("update_config")
         if why:
             return self._refuse("update_config", why)
@@ -1677,30 +1825,37 @@ class MachineController(QObject):
     # ================================================================== properties
     @property
     def state(self) -> MachineState:
+        """Current machine state."""
         return self._state
 
     @property
     def state_reason(self) -> str:
+        """Why the machine is in its state (text for the panel)."""
         return self._state_reason
 
     @property
     def activity(self) -> Activity:
+        """What the machine is doing while RUNNING / HOLD."""
         return self._activity
 
     @property
     def config(self) -> MachineConfig:
+        """The applied machine configuration."""
         return self._cfg
 
     @property
     def axes(self) -> tuple[str, ...]:
+        """Axis names, in configuration order."""
         return self._cfg.axes
 
     @property
     def machine_position(self) -> tuple[float, ...]:
+        """Actual position, machine coordinates."""
         return tuple(float(x) for x in self._machine_pos())
 
     @property
     def work_position(self) -> tuple[float, ...]:
+        """Actual position in the active work offset's coordinates."""
         return tuple(float(x) for x in self._work_pos())
 
     @property
@@ -1710,74 +1865,92 @@ class MachineController(QObject):
 
     @property
     def homed(self) -> tuple[bool, ...]:
+        """Homed flag per axis."""
         return tuple(self._homed)
 
     @property
     def work_offsets(self) -> dict[str, tuple[float, ...]]:
+        """The G54-G59 table."""
         return dict(self._offsets)
 
     @property
     def active_offset(self) -> str:
+        """Name of the active work offset."""
         return self._active_offset
 
     @property
     def program_info(self) -> ProgramInfo | None:
+        """The loaded program (None if none)."""
         return self._program_info
 
     @property
     def program(self) -> object | None:
+        """The loaded, checked ``planner.program.Program`` (None if none)."""
         return self._program_info.program if self._program_info else None
 
     @property
     def plan(self) -> object | None:
+        """The ``planner.plan.Plan`` of the loaded program (planned with the override budget)."""
         return self._program_info.plan if self._program_info else None
 
     @property
     def current_line(self) -> int:
+        """Source line the drives are executing (0 when none)."""
         return self._line
 
     @property
     def progress(self) -> tuple[float, float]:
+        """(fraction 0..1, remaining time s at the current feed override) of the running program."""
         return self._progress
 
     @property
     def feed_override_pct(self) -> float:
+        """Feed override in percent."""
         return self._feed_pct
 
     @property
     def rapid_override_pct(self) -> float:
+        """Rapid override in percent."""
         return self._rapid_pct
 
     @property
     def single_block(self) -> bool:
+        """Single-block mode."""
         return self._single_block
 
     @property
     def optional_stop(self) -> bool:
+        """Optional stop (M01) honoured."""
         return self._optional_stop
 
     @property
     def spindle(self) -> SpindleState:
+        """Spindle state."""
         return self._spindle
 
     @property
     def alarms(self) -> tuple[Alarm, ...]:
+        """All alarms (active and history), oldest first."""
         return tuple(self._alarms)
 
     @property
     def active_alarms(self) -> tuple[Alarm, ...]:
+        """Alarms not yet acknowledged."""
         return tuple(a for a in self._alarms if a.active)
 
     @property
     def bus_status(self) -> BusStatus:
+        """Bus / worker state."""
         return self._bus_status
 
     @property
     def tracking(self) -> TrackingReport:
+        """Tracking RMSE/MSE of the last (or current) run."""
         return self._tracking
 
     @property
     def last_run(self) -> RunSummary | None:
+        """Summary of the last program run (None before the first)."""
         return getattr(self, "_last_summary", None)
 
     @property
@@ -1786,6 +1959,7 @@ class MachineController(QObject):
         return self._worker
 
     def snapshot(self) -> ControllerSnapshot:
+        """Everything the panel shows, in one immutable object."""
         return ControllerSnapshot(
             state=self._state,
             activity=self._activity,
@@ -1853,6 +2027,8 @@ class _Job:
         self.then: _Job | None = None
         self.spindle_before: SpindleState | None = None
         self.origin: tuple[Program, int, float] | None = None
+        self.single_block = False
+        self.carried_limits: dict[str, float] = {}
         self.tau_offset_s = 0.0
         self.time_offset_s = 0.0
         self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
@@ -1899,6 +2075,10 @@ class _Job:
         if orig >= len(prog.moves):
             return None
         return _ResumePoint(prog, orig, u_orig, line, cause)
+
+
+def _merge_max(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:
+    return {k: max(a.get(k, 0.0), b.get(k, 0.0)) for k in set(a) | set(b)}
 
 
 class LimitMeter:

@@ -39,16 +39,20 @@ so they hold for every tau the step visits. ``check_limits`` measures it numeric
 **Control of sigma.** sigma follows its target (override, 0 for hold, capped by (3) over the
 braking distance ahead) with a discrete-time braking law: sigma_dot_wanted is the largest
 value from which steps of sigma_ddot = 0.7 D2_ref stop within the error e (continuous form
-sqrt(1.4 D2_ref |e|)), reached with |sigma_ddot| <= D2, where D2_ref <= D2 is the worst-case
-bound (so braking is always feasible). A step that would cross the target lands on it only
-when |sigma_dot| <= 1.9 D2_ref Ts (the law makes it so unless the target jumped): one sample
-of |sigma_ddot| <= 1.9 D2_ref <= 0.95 (1 - r_j m^3) / gamma while the sigma_dot term is
-negligible (3 beta m 1.9 D2_ref Ts): inside the jerk budget. When the target jumps just ahead
-of a fast-moving sigma, sigma passes it and comes back under the bounds (1), (2). A feed hold is sigma -> 0 under the same bounds: a
-jerk-limited stop along the path; resume ramps sigma back up and the plan continues to the
-same end. Full stops of the plan (block ends with zero speed: M00, M01, dwell, single block,
-program end) are pause points: tau stops exactly there (speed and acceleration of the plan
-are zero there, so stopping tau is smooth), and restarts at the target sigma.
+sqrt(1.4 D2_ref |e|)), reached with |sigma_ddot| <= D2 (semi-implicit Euler steps), where
+D2_ref <= D2 is the worst-case bound (so braking is always feasible). A step that would cross
+the target lands on it only when |sigma_dot| <= 1.9 D2_ref Ts (the law makes it about
+0.7 D2_ref Ts unless the target jumped): one sample of |sigma_ddot| <= 1.9 D2_ref
+<= 0.95 (1 - r_j m^3) / gamma with a negligible sigma_dot term, inside the jerk budget. When
+the target jumps just ahead of a fast-moving sigma, sigma passes it and comes back under the
+bounds (1), (2). A tighter D1 appearing at the far edge of the window is approached at the
+rate D2 (no clipping of sigma_dot, which would be a jump in sigma_ddot).
+
+A feed hold is sigma -> 0 under the same bounds: a jerk-limited stop along the path; resume
+ramps sigma back up and the plan continues to the same end. Full stops of the plan (block
+ends with zero speed: M00, M01, dwell, single block, program end) are pause points: tau stops
+exactly there (speed and acceleration of the plan are zero there, so stopping tau is smooth),
+and restarts at the target sigma.
 
 **What the claim rests on.** (a) The plan keeps r_a <= k_a and r_j <= k_j (the planner's own
 guarantee, made with the reduced limits); jerk at joints (tangent breaks, curvature jumps) is
@@ -58,7 +62,9 @@ for the sigma dynamics. (b) r_*, alpha, beta, gamma are finite-difference maxima
 stop from 150 % covers less). (c) Cost: planning with k_a = 0.85, k_j = 0.7 lengthened the
 shipped programs' cycle times by 0.7-2.3 %; a hold from 30 mm/s takes about 0.33 s (3.6 mm)
 with the worst-case braking law. ``tests/machine/test_timescale.py`` checks every limit on
-the executed set-points with overrides changing mid-move and a hold mid-arc.
+the executed set-points with overrides changing mid-move, a hold mid-arc and random programs
+with random override/hold sequences (a 40-program sweep: worst ratio 0.87 for jerk, 0.82 for
+axis acceleration, velocity 1 + 4e-8).
 """
 
 from __future__ import annotations
@@ -325,7 +331,11 @@ class TimeScaledExecutor:
         tau = np.asarray(tau, dtype=float)
         m = np.searchsorted(seg.t0, tau, side="right") - 1
         np.clip(m, 0, self.n_moves - 1, out=m)
-        s = seg.profiles.evaluate_s(m, tau - seg.t0[m])
+        local = tau - seg.t0[m]
+        s = seg.profiles.evaluate_s(m, local)
+        # within rounding of a move's end (t0 + duration - t0 may lose an ulp): exactly its end
+        dur = seg.profiles.duration[m]
+        s = np.where(local >= dur * (1.0 - 1e-12) - 1e-12, seg.table.length[m], s)
         q = seg.table.positions(m, s)
         return q, seg.table.line[m].astype(np.int64), seg.table.index[m].astype(np.int64), seg.s0[m] + s
 
@@ -420,8 +430,8 @@ class TimeScaledExecutor:
                     # no hard clip of sigma_dot to D1: a tighter D1 appears at the window's far edge
                     # (0.25 s of plan ahead) and is reached at the rate D2, well before it applies
                     sd_new = sd + acc * ts
-                    sigma_new = sigma + 0.5 * (sd + sd_new) * ts
-                    if (target - sigma_new) * e < 0.0 and abs(sd) <= 1.9 * d2_ref * ts:
+                    sigma_new = sigma + sd_new * ts  # semi-implicit Euler, as the braking law assumes
+                    if (target - sigma_new) * e < 0.0 and abs(sd_new) <= 1.9 * d2_ref * ts:
                         sigma_new, sd_new = target, 0.0  # would cross the target: land on it
                     if sigma_new <= 0.0:
                         sigma_new, sd_new = 0.0, 0.0

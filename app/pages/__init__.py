@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from app.i18n_catalog import N_
+
 
 @dataclass(frozen=True, slots=True)
 class PageInfo:
@@ -19,16 +21,16 @@ class PageInfo:
 
 
 PAGES: tuple[PageInfo, ...] = (
-    PageInfo("auto", "Auto", "auto"),
-    PageInfo("manual", "Manual", "manual"),
-    PageInfo("program", "Program", "program"),
-    PageInfo("preview", "Preview", "preview"),
-    PageInfo("machine_zero", "Machine zero", "machine_zero"),
-    PageInfo("part_zero", "Part zero", "part_zero"),
-    PageInfo("axes", "Axes", "axes", service=True),
-    PageInfo("parameters", "Parameters", "parameters", service=True),
-    PageInfo("diagnostics", "Diagnostics", "diagnostics"),
-    PageInfo("alarms", "Alarms", "alarms"),
+    PageInfo("auto", N_("Auto"), "auto"),
+    PageInfo("manual", N_("Manual"), "manual"),
+    PageInfo("program", N_("Program"), "program"),
+    PageInfo("preview", N_("Preview"), "preview"),
+    PageInfo("machine_zero", N_("Machine zero"), "machine_zero"),
+    PageInfo("part_zero", N_("Part zero"), "part_zero"),
+    PageInfo("axes", N_("Axes"), "axes", service=True),
+    PageInfo("parameters", N_("Parameters"), "parameters", service=True),
+    PageInfo("diagnostics", N_("Diagnostics"), "diagnostics"),
+    PageInfo("alarms", N_("Alarms"), "alarms"),
 )
 
 PAGE_NAMES: tuple[str, ...] = tuple(p.name for p in PAGES)

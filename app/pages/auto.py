@@ -98,13 +98,15 @@ class AutoPage(QWidget):
         layout.addLayout(right, 2)
 
         self._fraction, self._remaining, self._speed, self._line = 0.0, float("nan"), 0.0, 0
+        self._refused = ""
         c.programLoaded.connect(self._on_loaded)
         c.lineChanged.connect(self._on_line)
         c.progressChanged.connect(self._on_progress)
         c.speedChanged.connect(self._on_speed)
         c.overridesChanged.connect(self._on_overrides)
         c.modesChanged.connect(self._on_modes)
-        c.stateChanged.connect(lambda *_: self._update_buttons())
+        for signal in (c.stateChanged, c.homedChanged, c.programErrors, c.alarmsChanged):
+            signal.connect(lambda *_: self._update_buttons())
         context.program.changed.connect(self._on_program_model)
         i18n.languageChanged.connect(lambda _l: self._update_info())
         self._on_overrides(c.feed_override_pct, c.rapid_override_pct)
@@ -119,6 +121,10 @@ class AutoPage(QWidget):
         c = self.ctx.controller
         if str(getattr(c.state, "value", "")) == "hold":
             c.resume()
+        elif self.ctx.program.errors:  # the program shown was refused: never run an older one
+            self._refused = tr("Cycle start refused: the program has errors (line {0})").format(
+                min(self.ctx.program.errors))
+            self._update_info()
         else:
             c.cycle_start()
 
@@ -150,6 +156,7 @@ class AutoPage(QWidget):
 
     def _on_program_model(self) -> None:
         model = self.ctx.program
+        self._refused = ""
         if model.info is None and model.text and self.editor.toPlainText() != model.text:
             self.editor.setPlainText(model.text)
             self.program_label.setText(model.name)
@@ -179,10 +186,11 @@ class AutoPage(QWidget):
         self.optional_stop.setChecked(optional_stop)
 
     def _update_info(self) -> None:
-        self.info_label.setText(
-            tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
-                self._line, 100 * self._fraction, format_duration(self._remaining),
-                format_speed(self._speed)))
+        text = tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
+            self._line, 100 * self._fraction, format_duration(self._remaining), format_speed(self._speed))
+        if self._refused:
+            text += "\n" + self._refused
+        self.info_label.setText(text)
 
     def _update_buttons(self) -> None:
         c = self.ctx.controller
@@ -190,6 +198,8 @@ class AutoPage(QWidget):
             reason = c.refusal(action)
             if key == "start" and str(getattr(c.state, "value", "")) == "hold":
                 reason = c.refusal("resume")
+            elif key == "start" and self.ctx.program.errors:
+                reason = "program has errors"
             self.buttons[key].setEnabled(not reason)
         self.run_from.setEnabled(not c.refusal("run_from_line"))
 

@@ -50,7 +50,7 @@ class DiagnosticsPage(QWidget):
         self._profile_state = N_("No program loaded.")
         self._profileReady.connect(self._on_profile)
         context.program.changed.connect(self.compute_profile)
-        c.positionChanged.connect(lambda machine, _work: self.tracking.add_position(machine))
+        c.trackingSample.connect(self.tracking.add_sample)
         c.trackingUpdated.connect(self.tracking.set_report)
         c.programFinished.connect(self._on_finished)
         c.busStateChanged.connect(lambda bus: self.bus.set_state(bus, c.config))

@@ -6,6 +6,7 @@ from __future__ import annotations
 from PySide6.QtWidgets import (
     QButtonGroup,
     QHBoxLayout,
+    QHeaderView,
     QLabel,
     QPushButton,
     QTableWidget,
@@ -46,7 +47,7 @@ class PartZeroPage(QWidget):
         self.table = QTableWidget(len(WORK_OFFSET_NAMES), len(self.axes))
         self.table.setVerticalHeaderLabels(list(WORK_OFFSET_NAMES))
         self.table.setHorizontalHeaderLabels(list(self.axes))
-        self.table.horizontalHeader().setStretchLastSection(True)
+        self.table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
         self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         touch_rows(self.table)
         self.table.cellClicked.connect(self.edit_cell)

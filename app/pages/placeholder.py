@@ -5,6 +5,8 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
+from app.i18n import tr
+
 
 class PlaceholderPage(QWidget):
     def __init__(self, title: str, parent: QWidget | None = None) -> None:
@@ -14,7 +16,7 @@ class PlaceholderPage(QWidget):
         heading = QLabel(title)
         heading.setObjectName("pageTitle")
         heading.setAlignment(Qt.AlignmentFlag.AlignCenter)
-        note = QLabel(self.tr("This page is not built yet."))
+        note = QLabel(tr("This page is not built yet."))
         note.setObjectName("placeholderNote")
         note.setAlignment(Qt.AlignmentFlag.AlignCenter)
         layout.addStretch(1)

@@ -213,6 +213,7 @@ class ProgramPage(QWidget):
 
     def load_into_machine(self) -> None:
         c = self.ctx.controller
+        self.ctx.program.expect(self.doc.text, self.doc.name)
         if self.doc.path is not None and not self.doc.modified:
             c.load_program(self.doc.path)
         else:

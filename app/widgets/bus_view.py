@@ -23,11 +23,11 @@ class BusView(QWidget):
         self.table.horizontalHeader().setStretchLastSection(True)
         layout.addWidget(self.table, 1)
         self.histogram_title = QLabel()
-        i18n.bind(self.histogram_title, N_("Cycle timing histogram (period, µs)"))
+        i18n.bind(self.histogram_title, N_("Cycle timing: start jitter histogram (µs)"))
         layout.addWidget(self.histogram_title)
         self.histogram = pg.PlotWidget(background="#0a0d10")
         self.histogram.getPlotItem().hideButtons()
-        self.histogram.setLabel("bottom", "period", units="µs")
+        self.histogram.setLabel("bottom", "jitter (µs)")
         self.histogram.setLabel("left", "cycles")
         self.bars = pg.BarGraphItem(x=[], height=[], width=1.0, brush="#40e0d0")
         self.histogram.addItem(self.bars)
@@ -63,12 +63,13 @@ class BusView(QWidget):
                 self.table.setItem(row, col, QTableWidgetItem(text))
         connected = tr("connected") if getattr(bus, "connected", False) else tr("not connected")
         self.summary.setText(tr("Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, "
-                                "period p99 {5:.1f} µs. {6}").format(
+                                "period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}").format(
             str(getattr(bus, "kind", "")).upper(), getattr(bus, "state", ""), connected,
             getattr(bus, "buffer_level", 0), getattr(bus, "late_cycles", 0),
-            float(getattr(bus, "period_p99_us", 0.0)), getattr(bus, "message", "")))
-        edges = np.asarray(getattr(bus, "period_hist_us", ()) or (), float)
-        counts = np.asarray(getattr(bus, "period_hist_counts", ()) or (), float)
-        if len(edges) == len(counts) + 1 and len(counts):
-            centres = 0.5 * (edges[:-1] + edges[1:])
-            self.bars.setOpts(x=centres, height=counts, width=float(np.min(np.diff(edges))) * 0.9)
+            float(getattr(bus, "period_p99_us", 0.0)), getattr(bus, "message", ""),
+            float(getattr(bus, "jitter_max_us", 0.0))))
+        width_us = float(getattr(bus, "jitter_hist_bin_us", 0.0) or 0.0)
+        counts = np.asarray(getattr(bus, "jitter_hist_counts", ()) or (), float)
+        if width_us > 0 and len(counts):  # bins from 0 us; the last one collects the overflow
+            centres = (np.arange(len(counts)) + 0.5) * width_us
+            self.bars.setOpts(x=centres, height=counts, width=width_us * 0.9)

@@ -7,7 +7,7 @@ import math
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDialog, QGridLayout, QLabel, QLineEdit, QPushButton, QVBoxLayout, QWidget
 
-from app.i18n import tr
+from app.i18n import N_, tr
 
 KEYS: tuple[tuple[str, ...], ...] = (
     ("7", "8", "9", "⌫"),
@@ -15,6 +15,7 @@ KEYS: tuple[tuple[str, ...], ...] = (
     ("1", "2", "3", "±"),
     ("0", ".", "Cancel", "OK"),
 )
+_LABELS = (N_("Cancel"), N_("OK"))
 
 
 def parse_number(text: str) -> float | None:

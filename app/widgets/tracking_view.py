@@ -6,7 +6,6 @@ Live: actual positions arrive at <= 30 Hz into a preallocated ring buffer and ar
 
 from __future__ import annotations
 
-import time
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -68,15 +67,19 @@ class TrackingView(QWidget):
         side.addWidget(self.samples_label)
         side.addStretch(1)
         layout.addLayout(side, 2)
-        self.buffer = RingBuffer(LIVE_SECONDS * 30, len(self.axes))
-        self._t0 = time.monotonic()
+        self.buffer = RingBuffer(LIVE_SECONDS * 30, 2 * len(self.axes))  # reference | actual
         self._dirty = False
         self._report: object | None = None
         i18n.languageChanged.connect(lambda _l: self.set_report(self._report))
         self.set_report(None)
 
-    def add_position(self, machine: Sequence[float]) -> None:
-        self.buffer.append(time.monotonic() - self._t0, machine[: len(self.axes)])
+    def add_sample(self, time_s: float, reference: Sequence[float], actual: Sequence[float]) -> None:
+        """One live sample (<= 30 Hz, from the controller's trackingSample)."""
+        n = len(self.axes)
+        row = np.empty(2 * n)
+        row[:n] = reference[:n]
+        row[n:] = actual[:n]
+        self.buffer.append(time_s, row)
         self._dirty = True
 
     def redraw(self) -> None:
@@ -85,8 +88,10 @@ class TrackingView(QWidget):
             return
         self._dirty = False
         t, values = self.buffer.ordered()
-        for i, curve in enumerate(self.actual):
-            curve.setData(t, values[:, i])
+        n = len(self.axes)
+        for i in range(n):
+            self.reference[i].setData(t, values[:, i])
+            self.actual[i].setData(t, values[:, n + i])
 
     def show_trace(self, trace: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
         t, ref, act = trace

@@ -86,4 +86,39 @@ def fake_window(qtbot, qapp, state_dir, dialogs, fake_controller):
     qtbot.addWidget(window)
     window.resize(1280, 800)
     window.show()
+    yield window
+    ctx.i18n.set_language("en")  # the translator is installed application-wide
+
+
+@pytest.fixture
+def real_controller(state_dir):
+    """The real controller on simulated drives, with a manual clock (tests advance time)."""
+    from app.machine.controller import MachineController
+
+    controller = MachineController(None, state_dir=state_dir, worker_mode="manual")
+    yield controller
+    controller.shutdown()
+
+
+def make_window(qtbot, qapp, options, dialogs, controller):
+    from app.application import apply_theme
+    from app.context_factory import build_context
+    from app.main_window import MainWindow
+
+    apply_theme(qapp)
+    ctx = build_context(options, dialogs=dialogs, controller=controller)
+    window = MainWindow(options, ctx)
+    qtbot.addWidget(window)
+    window.resize(1280, 800)
+    window.show()
+    return window
+
+
+@pytest.fixture
+def demo_window(qtbot, qapp, state_dir, dialogs, real_controller):
+    """``cnc-panel --demo`` on the real controller (manual clock): connected, homed, pocket.nc loaded."""
+    from app.context import PanelOptions
+
+    window = make_window(qtbot, qapp, PanelOptions(demo=True, state_dir=state_dir), dialogs, real_controller)
+    qtbot.waitUntil(lambda: real_controller.program_info is not None, timeout=20000)
     return window

@@ -48,6 +48,7 @@ class FakeController(QObject):
     spindleChanged = Signal(object)
     busStateChanged = Signal(object)
     trackingUpdated = Signal(object)
+    trackingSample = Signal(float, object, object)
     configChanged = Signal(object)
     commandRefused = Signal(str, str)
     message = Signal(str)
@@ -124,7 +125,7 @@ class FakeController(QObject):
         self.program_info = ProgramInfo(name=name, path=path, text=text, line_count=text.count("\n") + 1,
                                         move_count=len(program.moves), cycle_time_s=12.0,
                                         length_mm=sum(m.length_mm for m in program.moves),
-                                        bounds_min=(0.0,) * n, bounds_max=(0.0,) * n)
+                                        bounds_min=(0.0,) * n, bounds_max=(0.0,) * n, program=program)
         self.programLoaded.emit(self.program_info)
         return self._ok("load_program", name)
 

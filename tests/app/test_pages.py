@@ -16,9 +16,11 @@ from planner.program import MoveKind
 BAD_PROGRAM = "G21 G17 G90\nG01 X10 F100\nG02 X20 Y0 R2\nG01 X0\n"  # line 3: radius too small
 
 
-@pytest.mark.parametrize("size", [(1280, 800), (1920, 1080)])
-def test_every_page_fits_and_has_touch_sized_buttons(fake_window, qtbot, dialogs, size) -> None:
+@pytest.mark.parametrize(("size", "language"), [((1280, 800), "en"), ((1920, 1080), "en"),
+                                                ((1280, 800), "tr")])
+def test_every_page_fits_and_has_touch_sized_buttons(fake_window, qtbot, dialogs, size, language) -> None:
     window = fake_window
+    window.set_language(language)
     window.resize(*size)
     dialogs.answers.extend(["1234"] * 2)  # service password for the service pages
     for name in PAGE_NAMES:
@@ -236,7 +238,8 @@ def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> Non
     assert len(page.profile_plots.curves["v"].xData) == len(p.t)
     assert page.bus.table.rowCount() == 3
     for i in range(5):
-        fake_controller.positionChanged.emit((float(i), 0.0, 0.0), (float(i), 0.0, 0.0))
+        fake_controller.trackingSample.emit(i / 30, (float(i) + 0.1, 0.0, 0.0), (float(i), 0.0, 0.0))
     page.tracking.redraw()
     curve = page.tracking.actual[0]
     assert list(curve.yData) == [0.0, 1.0, 2.0, 3.0, 4.0]  # the data, before clip-to-view
+    assert page.tracking.reference[0].yData[1] == pytest.approx(1.1)

@@ -22,22 +22,29 @@ def png_size(path: Path) -> tuple[int, int]:
     return struct.unpack(">II", header[16:24])
 
 
-def test_navigation_reaches_every_page(qtbot) -> None:
-    window = MainWindow(PanelOptions(demo=True))
-    qtbot.addWidget(window)
+def test_navigation_reaches_every_page(fake_window, dialogs) -> None:
+    dialogs.answers.append("1234")  # service password, asked once
     for info in PAGES:
+        window = fake_window
         window.show_page(info.name)
         assert window.current_page_name == info.name
     assert len(PAGES) == 10
 
 
-def test_navigation_buttons_are_touch_sized(qtbot) -> None:
-    window = MainWindow(PanelOptions(demo=True))
-    qtbot.addWidget(window)
-    window.resize(1280, 800)
-    window.show()
-    for button in window._buttons.values():
+def test_navigation_buttons_are_touch_sized(fake_window) -> None:
+    for button in fake_window._buttons.values():
         assert button.height() >= 48 and button.width() >= 48
+
+
+def test_demo_window_on_the_real_controller(qtbot, qapp, tmp_path: Path) -> None:
+    """MainWindow builds its own controller from the options (state under --state-dir)."""
+    window = MainWindow(PanelOptions(state_dir=tmp_path / "state"))
+    qtbot.addWidget(window)
+    try:
+        assert window.context.state_dir == tmp_path / "state"
+        assert window.context.controller.state.value == "disconnected"  # not --demo: not connected
+    finally:
+        window.context.controller.shutdown()
 
 
 @pytest.mark.parametrize("page", PAGE_NAMES)

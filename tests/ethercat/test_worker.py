@@ -482,6 +482,82 @@ def test_process_mode_end_to_end() -> None:
     w.stop()
 
 
+def test_core_lock_is_exclusive_and_names_the_holder(tmp_path: Any, monkeypatch: pytest.MonkeyPatch) -> None:
+    import os
+
+    from ethercat import worker as wk
+
+    monkeypatch.setattr(wk, "CPU_LOCK_DIR", str(tmp_path))
+    fd, holder = wk._try_lock_cpu(1)
+    assert fd is not None and holder == ""
+    fd2, holder2 = wk._try_lock_cpu(1)                            # another open file: refused
+    assert fd2 is None and holder2 == str(os.getpid())
+    fd3, _ = wk._try_lock_cpu(0)
+    assert fd3 is not None
+    os.close(fd)
+    fd4, _ = wk._try_lock_cpu(1)                                  # free again once closed
+    assert fd4 is not None
+    os.close(fd3)
+    os.close(fd4)
+
+
+def test_two_process_workers_never_share_a_core_at_realtime_priority() -> None:
+    """The bug seen: two process workers pinned to the same core at SCHED_FIFO starved each
+    other (438 ms stall). With cpu=-1 the second one takes another core, or, when every
+    core has a worker, runs unpinned at normal priority."""
+    a, b = CyclicWorker(config(mode="process")), CyclicWorker(config(mode="process"))
+    a.start()
+    try:
+        b.start()
+        try:
+            ra, rb = a.realtime_applied.split(","), b.realtime_applied.split(",")
+            cores_a = {x for x in ra if x.startswith("cpu")}
+            cores_b = {x for x in rb if x.startswith("cpu")}
+            assert not (cores_a & cores_b), (a.realtime_applied, b.realtime_applied)
+            if any(x.startswith("no-free-cpu") for x in rb):
+                assert not any(x.startswith("fifo") for x in rb), b.realtime_applied
+            enable(b)                                              # both cycle
+            enable(a)
+        finally:
+            b.stop()
+    finally:
+        a.stop()
+
+
+def test_overrunning_loop_still_sleeps_every_cycle(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A cycle longer than Ts must not turn the loop into a busy loop at real-time priority:
+    every cycle is preceded by a sleep of at least min_sleep_s; the skipped deadlines are
+    counted as missed."""
+    from ethercat import worker as wk
+
+    naps: list[float] = []
+    real_until = wk._AbsoluteSleep.until
+
+    def until(self: Any, t: float) -> None:
+        naps.append(t - time.perf_counter())
+        real_until(self, t)
+
+    monkeypatch.setattr(wk._AbsoluteSleep, "until", until)
+    with CyclicWorker(config(mode="thread", min_sleep_s=0.0002, wkc_error_limit=10**6)) as w:
+        bus = w._loop.bus                                          # type: ignore[union-attr]
+        fast = bus.exchange
+
+        def slow() -> int:
+            t_end = time.perf_counter() + 0.0015                   # 1.5 x Ts of work
+            while time.perf_counter() < t_end:
+                pass
+            return fast()
+
+        time.sleep(0.05)
+        naps.clear()
+        bus.exchange = slow                                        # type: ignore[method-assign]
+        time.sleep(0.3)
+        s = w.snapshot()
+    assert len(naps) > 50
+    assert min(naps[5:]) >= 0.0002 - 2e-5, min(naps[5:])          # never 0 even when late
+    assert s.timing.missed_cycles > 0
+
+
 def test_bus_exception_ends_loop_with_alarm() -> None:
     with CyclicWorker(config(mode="thread")) as w:
         bus = w._loop.bus                                          # type: ignore[union-attr]

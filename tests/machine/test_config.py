@@ -48,7 +48,7 @@ def test_save_is_atomic_and_keeps_the_previous_file(config_path: Path) -> None:
     (lambda t: t.replace("v_max = 100.0", "v_max = -1.0", 1), ["v_max", "-1"]),
     (lambda t: t.replace('method = "set_here"', 'method = "magic"'), ["method", "magic"]),
     (lambda t: t.replace('kind = "sim"', 'kind = "can"'), ["kind", "can"]),
-    (lambda t: t.replace("lead_s = 0.08", "lead_s = 5.0"), ["lead_s", "5.0"]),
+    (lambda t: t.replace("lead_s = 0.1", "lead_s = 5.0"), ["lead_s", "5.0"]),
 ])
 def test_invalid_values_are_named(config_path: Path, edit, words) -> None:
     cfg = load_config(config_path)

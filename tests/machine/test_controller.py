@@ -385,3 +385,61 @@ def test_alarms_persist_across_a_restart(qapp, config_path: Path, state_dir: Pat
         assert not again.active_alarms or all(x.id != a.id for x in again.active_alarms)
     finally:
         again.shutdown()
+
+
+def test_single_block_switched_on_during_a_hold(ctl: MachineController) -> None:
+    start(ctl)
+    assert ctl.run_until(lambda: ctl.current_line == 2, 5)
+    ctl.advance(0.1)
+    assert ctl.feed_hold()
+    ctl.advance(0.5)
+    assert ctl.set_single_block(True)
+    assert ctl.cycle_start()  # re-planned from the held point with a stop at every block end
+    assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)
+    assert "single block" in ctl.state_reason
+    np.testing.assert_array_equal(ctl.reference_position, (20.0, 0.0, 0.0))  # end of line 2
+    assert ctl.set_single_block(False)
+    assert ctl.cycle_start()  # and switched off again at that stop
+    run_to_idle(ctl)
+    s = ctl.last_run
+    assert s.completed
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
+    assert_within_limits(s.limits)
+
+
+def test_rapid_override_applies_to_rapids_only(ctl: MachineController) -> None:
+    assert ctl.set_rapid_override(25)
+    start(ctl, "G0 X100\nG1 X110 F1200\nM30\n")
+    ctl.advance(1.5)
+    assert ctl._speed == pytest.approx(12.5, rel=0.03)  # 25 % of the 50 mm/s rapid
+    assert ctl.run_until(lambda: ctl.current_line == 2, 10)
+    ctl.advance(0.3)
+    assert ctl._speed == pytest.approx(20.0, rel=0.03)  # the feed is not affected
+    run_to_idle(ctl)
+    assert_within_limits(ctl.last_run.limits)
+    assert not ctl.set_rapid_override(120)
+
+
+def test_homing_not_required_when_the_configuration_says_so(qapp, config_path: Path, state_dir: Path) -> None:
+    cfg = load_config(config_path)
+    save_config(replace(cfg, homing=replace(cfg.homing, required=False)), config_path)
+    ctl = make_controller(config_path, state_dir, zero=False)
+    try:
+        assert ctl.homed == (False, False, False)
+        assert ctl.load_program("G1 X2 F1800\nM30\n") and ctl.cycle_start()
+        run_to_idle(ctl)
+        assert ctl.last_run.completed
+    finally:
+        ctl.shutdown()
+
+
+def test_damaged_state_file_is_reported(qapp, config_path: Path, state_dir: Path) -> None:
+    (state_dir / "state.json").write_text('{"axes": ["X", "Y", "Z"], "raw_pos')
+    ctl = make_controller(config_path, state_dir, connect=False)
+    try:
+        warn = [a for a in ctl.alarms if a.code == "state_file"]
+        assert warn and "damaged" in warn[0].cause and warn[0].severity is Severity.WARNING
+        assert list(state_dir.glob("state.json.damaged-*"))
+        assert ctl.homed == (False, False, False)
+    finally:
+        ctl.shutdown()

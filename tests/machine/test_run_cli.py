@@ -66,3 +66,13 @@ def test_realtime_run_in_the_worker_process(qtbot, config_path: Path, state_dir:
         np.testing.assert_array_equal(ctl.reference_position, (0.0, 10.0, 0.0))
     finally:
         ctl.shutdown()
+
+
+@pytest.mark.slow
+def test_cnc_run_pocket_in_real_time(qapp, capsys, tmp_path: Path) -> None:
+    """About 16 s of real time: the shipped pocket on simulated drives, worker in its process."""
+    code = run_cli.main([str(PROGRAMS / "pocket.nc"), "--sim", "--json", "--state-dir", str(tmp_path)])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["completed"] and out["limits_ok"]
+    assert out["cycle_time_s"] == pytest.approx(out["estimated_cycle_time_s"], abs=0.05)
+    assert out["wall_time_s"] < out["cycle_time_s"] + 2.0  # real time, not slower

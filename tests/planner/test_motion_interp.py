@@ -139,3 +139,21 @@ def test_empty_program_and_dwells():
     assert still.sum() >= 299 and np.all(c.q[still] == [1.0, 0.0, 0.0])
     assert np.all(c.q[c.t <= 0.2] == 0.0)
     assert plan.limit_report().ok
+
+
+def test_spiral_polynomial_parameter_equals_newton():
+    from planner.movetable import _spiral_newton
+
+    m = paper_machine()
+    moves = []
+    for seed in range(10):
+        moves += [mv for mv in parse(random_program(seed, n_blocks=40), m).moves if mv.arc is not None]
+    table = MoveTable.from_moves(moves, 3)
+    rows = np.nonzero(table.spiral_poly_ok)[0]
+    assert rows.size > 10
+    row = np.repeat(rows, 50)
+    u = np.tile(np.linspace(0, 1, 50), rows.size) * table.length[row]
+    t_poly = table._spiral_param(row, u)
+    t_newton = _spiral_newton(table.r0[row], table.r1[row], table.sweep[row], table.rise[row],
+                              table.length[row], u)
+    assert np.max(np.abs(t_poly - t_newton) * table.length[row]) < 1e-12

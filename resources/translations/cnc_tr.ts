@@ -1,0 +1,916 @@
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
+<TS version="2.1" language="tr">
+  <context>
+    <name>cnc</name>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="115" />
+      <source> (+{0} more)</source>
+      <translation> (+{0} tane daha)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="116" />
+      <source> (first {0:.0f} s shown)</source>
+      <translation> (ilk {0:.0f} s gösteriliyor)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="53" />
+      <source>3-D view off: PyOpenGL is not installed (pip install PyOpenGL).</source>
+      <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="116" />
+      <source>ALARM: {0}: {1}</source>
+      <translation>ALARM: {0}: {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="36" />
+      <source>Acknowledge</source>
+      <translation>Onayla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="38" />
+      <source>Acknowledge all</source>
+      <translation>Tümünü onayla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="34" />
+      <source>Active:</source>
+      <translation>Etkin:</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="14" />
+      <source>Alarm</source>
+      <translation>Alarm</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="33" />
+      <source>Alarms</source>
+      <translation>Alarmlar</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Amax</source>
+      <translation>Amax</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="181" />
+      <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
+      <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/apply_bar.py" line="20" />
+      <source>Apply</source>
+      <translation>Uygula</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="91" />
+      <source>Apply axes</source>
+      <translation>Eksenleri uygula</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="158" />
+      <source>Apply parameters</source>
+      <translation>Parametreleri uygula</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="88" />
+      <source>Apply the changed axis definitions?</source>
+      <translation>Değiştirilen eksen tanımları uygulansın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="155" />
+      <source>Apply the changed parameters?</source>
+      <translation>Değiştirilen parametreler uygulansın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="24" />
+      <source>Auto</source>
+      <translation>Otomatik</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="30" />
+      <source>Axes</source>
+      <translation>Eksenler</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="24" />
+      <source>Axis</source>
+      <translation>Eksen</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="99" />
+      <source>Bus</source>
+      <translation>Veri yolu</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="65" />
+      <source>Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}</source>
+      <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="107" />
+      <source>Bus {0}: {1}</source>
+      <translation>Veri yolu {0}: {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="126" />
+      <source>CCW</source>
+      <translation>Saat yönü tersi</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="51" />
+      <source>CCW (M04)</source>
+      <translation>Sol (M04)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="126" />
+      <source>CW</source>
+      <translation>Saat yönü</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="51" />
+      <source>CW (M03)</source>
+      <translation>Sağ (M03)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="156" />
+      <source>Cancel</source>
+      <translation>İptal</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="20" />
+      <source>Cause</source>
+      <translation>Neden</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="107" />
+      <source>Change service password</source>
+      <translation>Servis şifresini değiştir</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/jog_panel.py" line="37" />
+      <source>Continuous</source>
+      <translation>Sürekli</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Counts/unit</source>
+      <translation>Sayım/birim</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="25" />
+      <source>Cycle start</source>
+      <translation>Çevrim başlat</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="125" />
+      <source>Cycle start refused: the program has errors (line {0})</source>
+      <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="78" />
+      <source>Cycle time Ts</source>
+      <translation>Çevrim süresi Ts</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="113" />
+      <source>Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</source>
+      <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="26" />
+      <source>Cycle timing: start jitter histogram (µs)</source>
+      <translation>Çevrim zamanlaması: başlangıç sapması histogramı (µs)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="32" />
+      <source>Diagnostics</source>
+      <translation>Tanılama</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="14" />
+      <source>Direction</source>
+      <translation>Yön</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="156" />
+      <source>Discard</source>
+      <translation>Vazgeç</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="13" />
+      <source>Disconnected</source>
+      <translation>Bağlı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Drive</source>
+      <translation>Sürücü</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="111" />
+      <source>E-STOP</source>
+      <translation>ACİL STOP</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="14" />
+      <source>E-stop</source>
+      <translation>Acil stop</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="45" />
+      <source>EtherCAT</source>
+      <translation>EtherCAT</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="16" />
+      <source>FE window</source>
+      <translation>Takip hatası penceresi</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="26" />
+      <source>Feed hold</source>
+      <translation>İlerleme durdur</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="81" />
+      <source>Feed override</source>
+      <translation>İlerleme oranı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="24" />
+      <source>Find</source>
+      <translation>Bul</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/find_bar.py" line="20" />
+      <source>Find…</source>
+      <translation>Bul…</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="41" />
+      <source>Fit</source>
+      <translation>Sığdır</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="48" />
+      <source>G-code (*.nc *.ngc *.gcode *.tap *.txt);;All files (*)</source>
+      <translation>G-kodu (*.nc *.ngc *.gcode *.tap *.txt);;Tüm dosyalar (*)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="75" />
+      <source>G-code block, e.g. G01 X10 F600</source>
+      <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="24" />
+      <source>Go to line</source>
+      <translation>Satıra git</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="38" />
+      <source>Home</source>
+      <translation>Referansla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="51" />
+      <source>Home all axes</source>
+      <translation>Tüm eksenleri referansla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="69" />
+      <source>Home all axes? The axes may move.</source>
+      <translation>Tüm eksenler referanslansın mı? Eksenler hareket edebilir.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="64" />
+      <source>Home axis</source>
+      <translation>Ekseni referansla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="65" />
+      <source>Home axis {0}? The axis may move.</source>
+      <translation>{0} ekseni referanslansın mı? Eksen hareket edebilir.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="24" />
+      <source>Homed</source>
+      <translation>Referanslı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="95" />
+      <source>Homing</source>
+      <translation>Referanslama</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="93" />
+      <source>Homing required before a program</source>
+      <translation>Programdan önce referanslama gerekli</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="86" />
+      <source>Homing: {0}; {1}.</source>
+      <translation>Referanslama: {0}; {1}.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="13" />
+      <source>Idle</source>
+      <translation>Hazır</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="90" />
+      <source>Interpolation</source>
+      <translation>İnterpolasyon</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Jmax</source>
+      <translation>Jmax</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="36" />
+      <source>Jog</source>
+      <translation>Elle hareket</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="80" />
+      <source>Keyboard</source>
+      <translation>Klavye</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="14" />
+      <source>Kind</source>
+      <translation>Tür</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="189" />
+      <source>Line {0}   Progress {1:.0f} %
+Remaining {2}   Path speed {3}</source>
+      <translation>Satır {0}   İlerleme %{1:.0f}
+Kalan {2}   Yol hızı {3}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="96" />
+      <source>Line {0}: {1}</source>
+      <translation>Satır {0}: {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="25" />
+      <source>Load into machine</source>
+      <translation>Makineye yükle</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="110" />
+      <source>Lock service level</source>
+      <translation>Servis seviyesini kilitle</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="70" />
+      <source>MDI</source>
+      <translation>MDI</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/tracking_view.py" line="104" />
+      <source>MSE</source>
+      <translation>MSE</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/dro.py" line="34" />
+      <source>Machine</source>
+      <translation>Makine</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="24" />
+      <source>Machine position</source>
+      <translation>Makine konumu</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="28" />
+      <source>Machine zero</source>
+      <translation>Makine sıfırı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="74" />
+      <source>Make the current position of {0} its machine zero?</source>
+      <translation>{0} ekseninin şu anki konumu makine sıfırı yapılsın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="25" />
+      <source>Manual</source>
+      <translation>Manuel</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Max</source>
+      <translation>En büyük</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Min</source>
+      <translation>En küçük</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="141" />
+      <source>Move to the start of line {0} and run the program from there?</source>
+      <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="104" />
+      <source>Network adapter</source>
+      <translation>Ağ bağdaştırıcısı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="23" />
+      <source>New</source>
+      <translation>Yeni</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="168" />
+      <source>New service password:</source>
+      <translation>Yeni servis şifresi:</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="21" />
+      <source>No</source>
+      <translation>Hayır</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="50" />
+      <source>No program loaded.</source>
+      <translation>Yüklü program yok.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/keypad.py" line="96" />
+      <source>Not a number</source>
+      <translation>Sayı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/keypad.py" line="18" />
+      <source>OK</source>
+      <translation>Tamam</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="51" />
+      <source>Off (M05)</source>
+      <translation>Kapalı (M05)</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="47" />
+      <source>Open program</source>
+      <translation>Program aç</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="23" />
+      <source>Open…</source>
+      <translation>Aç…</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="70" />
+      <source>Optional stop</source>
+      <translation>İsteğe bağlı duruş</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/keypad.py" line="99" />
+      <source>Out of range: {0} to {1}</source>
+      <translation>Aralık dışında: {0} ile {1} arası</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="31" />
+      <source>Parameters</source>
+      <translation>Parametreler</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="29" />
+      <source>Part zero</source>
+      <translation>Parça sıfırı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="29" />
+      <source>Path acceleration Amax</source>
+      <translation>Yol ivmesi Amax</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="30" />
+      <source>Path jerk Jmax</source>
+      <translation>Yol sarsıntısı Jmax</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="28" />
+      <source>Path speed Vmax</source>
+      <translation>Yol hızı Vmax</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="45" />
+      <source>Path v / a / j</source>
+      <translation>Yol v / a / j</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="85" />
+      <source>Planner mode</source>
+      <translation>Planlayıcı kipi</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="84" />
+      <source>Planning…</source>
+      <translation>Planlanıyor…</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="11" />
+      <source>Position</source>
+      <translation>Konum</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="27" />
+      <source>Preview</source>
+      <translation>Önizleme</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="11" />
+      <source>Product</source>
+      <translation>Ürün</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="26" />
+      <source>Program</source>
+      <translation>Program</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="136" />
+      <source>Program refused: {0} error(s)</source>
+      <translation>Program reddedildi: {0} hata</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="111" />
+      <source>RELEASE
+E-STOP</source>
+      <translation>ACİL STOP
+BIRAK</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/tracking_view.py" line="104" />
+      <source>RMSE</source>
+      <translation>RMSE</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/keypad.py" line="48" />
+      <source>Range: {0} to {1}</source>
+      <translation>Aralık: {0} ile {1} arası</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="84" />
+      <source>Rapid override</source>
+      <translation>Hızlı hareket oranı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="31" />
+      <source>Rapid speed</source>
+      <translation>Hızlı hareket hızı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="181" />
+      <source>Recover</source>
+      <translation>Geri yükle</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="109" />
+      <source>Refused: {0}</source>
+      <translation>Reddedildi: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="88" />
+      <source>Release E-stop</source>
+      <translation>Acil stopu bırak</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="89" />
+      <source>Release the emergency stop and enable the drives?</source>
+      <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="171" />
+      <source>Repeat the new password:</source>
+      <translation>Yeni şifreyi tekrarlayın:</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="40" />
+      <source>Reset</source>
+      <translation>Sıfırla</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/apply_bar.py" line="22" />
+      <source>Revert</source>
+      <translation>Geri al</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="136" />
+      <source>Run from line</source>
+      <translation>Satırdan çalıştır</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="75" />
+      <source>Run from line…</source>
+      <translation>Satırdan çalıştır…</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="14" />
+      <source>Running</source>
+      <translation>Çalışıyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/tracking_view.py" line="112" />
+      <source>Samples: {0}</source>
+      <translation>Örnek sayısı: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="23" />
+      <source>Save</source>
+      <translation>Kaydet</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="23" />
+      <source>Save as…</source>
+      <translation>Farklı kaydet…</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="196" />
+      <source>Save failed</source>
+      <translation>Kaydetme başarısız</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="54" />
+      <source>Save program as</source>
+      <translation>Programı farklı kaydet</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="77" />
+      <source>Send</source>
+      <translation>Gönder</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="114" />
+      <source>Service</source>
+      <translation>Servis</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="160" />
+      <source>Service level</source>
+      <translation>Servis seviyesi</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="167" />
+      <source>Service level unlocked</source>
+      <translation>Servis seviyesi açıldı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="168" />
+      <source>Service password</source>
+      <translation>Servis şifresi</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="160" />
+      <source>Service password:</source>
+      <translation>Servis şifresi:</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="40" />
+      <source>Set here as zero</source>
+      <translation>Burayı sıfır yap</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="73" />
+      <source>Set machine zero</source>
+      <translation>Makine sıfırını ayarla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="20" />
+      <source>Severity</source>
+      <translation>Önem</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="34" />
+      <source>Show history</source>
+      <translation>Geçmişi göster</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="44" />
+      <source>Show in program</source>
+      <translation>Programda göster</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="66" />
+      <source>Single block</source>
+      <translation>Tek blok</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="20" />
+      <source>Source</source>
+      <translation>Kaynak</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="47" />
+      <source>Spindle</source>
+      <translation>İş mili</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="58" />
+      <source>Spindle speed</source>
+      <translation>İş mili devri</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="127" />
+      <source>Spindle: {0}, {1:.0f} rpm</source>
+      <translation>İş mili: {0}, {1:.0f} dev/dak</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="20" />
+      <source>State</source>
+      <translation>Durum</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="27" />
+      <source>Stop</source>
+      <translation>Dur</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="29" />
+      <source>Tap a value to change it. Units: mm for linear axes, degrees for rotary axes. Changes take effect after Apply (written atomically).</source>
+      <translation>Değiştirmek için bir değere dokunun. Birimler: doğrusal eksenlerde mm, döner eksenlerde derece. Değişiklikler Uygula'dan sonra geçerli olur (atomik olarak yazılır).</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="56" />
+      <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
+      <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="90" />
+      <source>The machine is moving.</source>
+      <translation>Makine hareket ediyor.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="173" />
+      <source>The passwords differ; nothing changed.</source>
+      <translation>Şifreler farklı; hiçbir şey değişmedi.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/service_gate.py" line="28" />
+      <source>This page changes the machine configuration. Enter the service password.</source>
+      <translation>Bu sayfa makine yapılandırmasını değiştirir. Servis şifresini girin.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/placeholder.py" line="19" />
+      <source>This page is not built yet.</source>
+      <translation>Bu sayfa henüz hazır değil.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="20" />
+      <source>Time</source>
+      <translation>Zaman</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="63" />
+      <source>Touch off {0}</source>
+      <translation>{0} dokunarak sıfırla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="95" />
+      <source>Touch off {0}: work coordinate here</source>
+      <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="45" />
+      <source>Tracking</source>
+      <translation>Takip</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/tracking_view.py" line="60" />
+      <source>Tracking (reference − actual), Eq. 18</source>
+      <translation>Takip (referans − gerçek), Denklem 18</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/service_gate.py" line="31" />
+      <source>Unlock</source>
+      <translation>Kilidi aç</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="154" />
+      <source>Unsaved changes</source>
+      <translation>Kaydedilmemiş değişiklikler</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="11" />
+      <source>Vendor</source>
+      <translation>Üretici</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="15" />
+      <source>Vmax</source>
+      <translation>Vmax</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/dro.py" line="34" />
+      <source>Work</source>
+      <translation>İş</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="164" />
+      <source>Wrong service password</source>
+      <translation>Yanlış servis şifresi</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="20" />
+      <source>Yes</source>
+      <translation>Evet</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="78" />
+      <source>acknowledged</source>
+      <translation>onaylandı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="78" />
+      <source>active</source>
+      <translation>etkin</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="64" />
+      <source>connected</source>
+      <translation>bağlı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="83" />
+      <source>drive homing method {0}</source>
+      <translation>sürücü referanslama yöntemi {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="56" />
+      <source>linear</source>
+      <translation>doğrusal</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/tracking_view.py" line="104" />
+      <source>max |e|</source>
+      <translation>en büyük |e|</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="81" />
+      <source>no</source>
+      <translation>hayır</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="64" />
+      <source>not connected</source>
+      <translation>bağlı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="126" />
+      <source>off</source>
+      <translation>kapalı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="85" />
+      <source>optional</source>
+      <translation>isteğe bağlı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="85" />
+      <source>required before a program may start</source>
+      <translation>program başlamadan önce gerekli</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/axes.py" line="56" />
+      <source>rotary</source>
+      <translation>döner</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="84" />
+      <source>set current position as zero</source>
+      <translation>şu anki konumu sıfır yap</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="60" />
+      <source>unknown</source>
+      <translation>bilinmiyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/machine_zero.py" line="81" />
+      <source>yes</source>
+      <translation>evet</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="113" />
+      <source>{0} error(s); first at line {1}: {2}</source>
+      <translation>{0} hata; ilki {1}. satırda: {2}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="155" />
+      <source>{0} has unsaved changes.</source>
+      <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="88" />
+      <source>{0} {1} (machine coordinate of part zero)</source>
+      <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
+    </message>
+  </context>
+</TS>

@@ -1,0 +1,115 @@
+"""Main flows on the real controller with simulated drives (manual clock: fast, deterministic)."""
+
+from __future__ import annotations
+
+import pytest
+
+from app.context import PanelOptions
+from tests.app.conftest import make_window
+
+SHORT = "G21 G90 G17\nG00 X1 Y1\nG01 X5 Y2 F1200\nG02 X7 Y4 R2\nM30\n"
+LONG_LINE = "G21 G90 G17\nG01 X40 F600\nM30\n"   # 4 s at 10 mm/s
+BAD = "G21 G90 G17\nG01 X5 F600\nG02 X20 Y0 R2\nM30\n"  # line 3: radius too small
+
+
+def state(controller) -> str:
+    return controller.state.value
+
+
+def test_demo_starts_connected_homed_with_the_pocket(demo_window, real_controller) -> None:
+    assert state(real_controller) == "idle" and all(real_controller.homed)
+    assert real_controller.program_info.name == "pocket.nc"
+    assert demo_window.page("auto").buttons["start"].isEnabled()
+    assert "pocket" in demo_window.page("program").title.text()
+    assert demo_window.page("preview").plot.path.all.count == len(real_controller.program_info.program.moves)
+
+
+def test_run_program_to_the_end(demo_window, real_controller) -> None:
+    c = real_controller
+    assert c.load_program(SHORT, name="short.nc")
+    auto = demo_window.page("auto")
+    auto.buttons["start"].click()
+    assert state(c) == "running"
+    assert c.run_until(lambda: state(c) == "idle", timeout_s=30)
+    dro = demo_window.header.dro
+    assert dro.machine_text("X") == "+7.000" and dro.machine_text("Y") == "+4.000"
+    assert dro.work_text("X") == "+7.000"
+    assert demo_window.header.state_label.text() == "Idle"
+    assert auto.progress.value() == 1000
+    preview = demo_window.page("preview").plot
+    x, y = preview.tool_item.getData()
+    assert (x[0], y[0]) == pytest.approx((7.0, 4.0), abs=1e-3)
+
+
+def test_feed_hold_and_resume(demo_window, real_controller) -> None:
+    c = real_controller
+    assert c.load_program(LONG_LINE, name="line.nc")
+    auto = demo_window.page("auto")
+    auto.buttons["start"].click()
+    c.advance(1.0)
+    auto.buttons["hold"].click()
+    assert c.run_until(lambda: state(c) == "hold", timeout_s=5)
+    c.advance(0.5)
+    held_x = c.machine_position[0]
+    c.advance(1.0)
+    assert c.machine_position[0] == pytest.approx(held_x, abs=1e-6)  # stays on hold
+    assert 5.0 < held_x < 35.0
+    assert demo_window.header.state_label.text() == "Feed hold"
+    auto.buttons["start"].click()  # cycle start in hold resumes
+    assert state(c) == "running"
+    assert c.run_until(lambda: state(c) == "idle", timeout_s=30)
+    assert c.machine_position[0] == pytest.approx(40.0, abs=1e-6)
+
+
+def test_invalid_program_error_at_its_line_and_start_refused(demo_window, real_controller, qtbot) -> None:
+    c = real_controller
+    program = demo_window.page("program")
+    program.set_text(BAD)
+    program.load_into_machine()
+    assert set(program.editor.errors) == {3}
+    assert "radius" in program.editor.errors[3]
+    assert "Line 3" in program.error_label.text() or "line 3" in program.error_label.text()
+    auto = demo_window.page("auto")
+    assert auto.editor.errors.keys() == {3} and "G02 X20 Y0 R2" in auto.editor.toPlainText()
+    assert not auto.buttons["start"].isEnabled()
+    auto.cycle_start()  # even if pressed: refused, nothing moves
+    c.advance(0.5)
+    assert state(c) == "idle" and "refused" in auto.info_label.text()
+
+
+def test_set_part_zero_by_touch_off(demo_window, real_controller, dialogs) -> None:
+    c = real_controller
+    c.jog_increment("X", 1.0, 1)
+    assert c.run_until(lambda: state(c) == "idle" and c.machine_position[0] > 0.999, timeout_s=10)
+    page = demo_window.page("part_zero")
+    dialogs.answers.append(0.0)
+    page.touch_buttons["X"].click()
+    c.advance(0.1)
+    assert c.work_offsets["G54"][0] == pytest.approx(1.0, abs=1e-6)
+    assert page.table.item(0, 0).text() == "+1.000"
+    assert demo_window.header.dro.work_text("X") == "+0.000"
+    assert demo_window.header.dro.machine_text("X") == "+1.000"
+
+
+def test_parameter_change_persists_across_restart(qtbot, qapp, state_dir, dialogs, demo_window,
+                                                   real_controller) -> None:
+    dialogs.answers.append("1234")
+    assert demo_window.show_page("parameters")
+    page = demo_window.page("parameters")
+    page.fields["v_max_mm_s"].setValue(22.5, emit=True)
+    page.mode_buttons["paper"].click()
+    assert page.apply()
+    assert real_controller.config.machine.limits.v_max_mm_s == 22.5
+    demo_window.close()
+    real_controller.shutdown()
+
+    from app.machine.controller import MachineController
+
+    again = MachineController(None, state_dir=state_dir, worker_mode="manual")
+    try:
+        window = make_window(qtbot, qapp, PanelOptions(state_dir=state_dir), dialogs, again)
+        assert again.config.machine.limits.v_max_mm_s == 22.5
+        assert again.config.machine.planner.mode == "paper"
+        assert window.page("parameters").fields["v_max_mm_s"].value() == 22.5
+    finally:
+        again.shutdown()
