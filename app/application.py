@@ -38,7 +38,15 @@ def run(options: PanelOptions) -> int:
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("cnc-panel")
     apply_theme(app)
-    window = create_window(options)
+    from app.machine.errors import ConfigError
+
+    try:
+        window = create_window(options)
+    except ConfigError as exc:  # never fall back silently to defaults over the user's values
+        sys.stderr.write(f"cnc-panel: {exc}\n")
+        if exc.backup:
+            sys.stderr.write(f"  the previous good file is {exc.backup}; copy it over {exc.path} to use it\n")
+        return 2
     app.aboutToQuit.connect(window.context.controller.shutdown)
     window.show()
     if options.screenshot_path is not None:

@@ -109,6 +109,8 @@ class MainWindow(QMainWindow):
             lambda action, reason: self.show_message(tr("Refused: {0}").format(reason)))
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
+        ctx.program.lineRequested.connect(lambda _line: self.show_page("program"))
+        self.header.alarm_banner.clicked.connect(lambda: self.show_page("alarms"))
         ctx.i18n.languageChanged.connect(self._on_language)
         self._on_language(ctx.i18n.language)
         self._current = ""

@@ -27,10 +27,13 @@ class PathProfile:
     limits: tuple[float, float, float]  # Vmax, Amax, Jmax of the machine
 
 
-def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX_TIME_S) -> PathProfile:
-    from planner.plan import plan_program
+def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX_TIME_S,
+                 plan: object | None = None) -> PathProfile:
+    """From the controller's plan when given (what will run), else planned here."""
+    from planner.plan import Plan, plan_program
 
-    plan = plan_program(program, machine)
+    if not isinstance(plan, Plan):
+        plan = plan_program(program, machine)
     ts = plan.ts_s
     t_parts, s_parts = [], []
     n = 0

@@ -1198,6 +1198,9 @@ def _process_main(cfg: WorkerConfig, shm_name: str, layout_args: tuple[int, int,
         gc.collect()
         gc.freeze()
         gc.disable()
+        # helper threads (parent watch, slave recovery) must not keep the GIL from the cycle
+        # for the default 5 ms switch interval
+        sys.setswitchinterval(0.0002)
         parent = os.getppid()
         watcher = threading.Thread(target=_parent_watch, args=(loop, parent), daemon=True)
         watcher.start()

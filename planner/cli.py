@@ -132,12 +132,16 @@ def main(argv: list[str] | None = None) -> int:
     from planner.interpreter import parse_file
     from planner.plan import plan_program
 
+    # --canon alone needs no planning (issue 3's check against LinuxCNC runs it on every file).
+    want_plan = bool(args.json or args.samples or args.csv or args.plot or not args.canon)
+    plan = None
     try:
         machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
         started = time.perf_counter()
         program = parse_file(args.program, machine)
         parse_s = time.perf_counter() - started
-        plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
+        if want_plan:
+            plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
     except ProgramError as exc:
         print(str(exc), file=sys.stderr)
         return 2
@@ -147,17 +151,21 @@ def main(argv: list[str] | None = None) -> int:
 
     axes = list(program.axes)
     need_samples = bool(args.samples or args.plot)
-    started = time.perf_counter()
-    chunks = []
-    n_samples = 0
-    for c in plan.iter_chunks():
-        n_samples += len(c)
-        if need_samples:
-            chunks.append(c)
-    interp_s = time.perf_counter() - started
-    from planner.interpolate import SampleChunk
+    interp_s = 0.0
+    n_samples = plan.n_samples if plan is not None else 0
+    collected = None
+    if plan is not None and (need_samples or args.json):
+        from planner.interpolate import SampleChunk
 
-    collected = SampleChunk.concat(chunks, len(axes)) if need_samples else None
+        started = time.perf_counter()
+        chunks = []
+        n_samples = 0
+        for c in plan.iter_chunks():
+            n_samples += len(c)
+            if need_samples:
+                chunks.append(c)
+        interp_s = time.perf_counter() - started
+        collected = SampleChunk.concat(chunks, len(axes)) if need_samples else None
     try:
         if args.canon:
             write_canon(program, args.canon)
@@ -170,6 +178,8 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
         return 1
+    if plan is None:
+        return 0
 
     if args.json:
         report = plan.limit_report()
@@ -199,7 +209,7 @@ def main(argv: list[str] | None = None) -> int:
         sys.stdout.write("\n")
     else:
         print(f"{program.name}: {len(program.moves)} moves, cycle time {plan.cycle_time_s:.3f} s, "
-              f"{n_samples} samples, plan {plan.plan_s * 1e3:.1f} ms, interpolation {interp_s * 1e3:.1f} ms")
+              f"{n_samples} samples, plan {plan.plan_s * 1e3:.1f} ms")
     return 0
 
 

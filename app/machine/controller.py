@@ -42,7 +42,6 @@ Units: positions mm / degrees (rotary), speeds mm/s, times s, overrides in perce
 from __future__ import annotations
 
 import collections
-import ctypes
 import math
 import os
 import shutil
@@ -101,15 +100,6 @@ from planner.resume import (
 __all__ = ["JOG_INCREMENTS", "TRANSITIONS", "MachineController"]
 
 
-def _fix(result: object) -> None:
-    """Work around PySide6 6.12's ``SignalInstance.emit`` returning ``True`` without a new
-    reference (each Python-side emit drops one reference of ``True``; on Python 3.11 the
-    interpreter aborts with "bool_dealloc" after a few hundred emits). Adding the missing
-    reference is harmless if a later PySide6 fixes it."""
-    if result is True:
-        ctypes.pythonapi.Py_IncRef(ctypes.py_object(result))
-
-
 S = MachineState
 TRANSITIONS: dict[MachineState, frozenset[MachineState]] = {
     S.DISCONNECTED: frozenset({S.IDLE, S.ESTOP}),
@@ -121,6 +111,7 @@ TRANSITIONS: dict[MachineState, frozenset[MachineState]] = {
     S.ESTOP: frozenset({S.IDLE, S.DISCONNECTED}),
 }
 JOG_INCREMENTS: tuple[float, ...] = (0.001, 0.01, 0.1, 1.0)  # mm or degrees
+RAMP_DOWN_TIMEOUT_S = 3.0  # disconnect/shutdown mid-run: longest wait for the stop along the path
 DEFAULT_STATE_DIR = Path(os.path.expanduser("~/.local/state/cnc-panel"))
 
 
@@ -291,7 +282,7 @@ class MachineController(QObject):
 
     # ================================================================== helpers
     def _refuse(self, action: str, reason: str) -> CommandResult:
-        _fix(self.commandRefused.emit(action, reason))
+        self.commandRefused.emit(action, reason)
         return CommandResult(False, action, reason)
 
     def _ok(self, action: str) -> CommandResult:
@@ -312,7 +303,7 @@ class MachineController(QObject):
         if new is old:
             if reason != self._state_reason:
                 self._state_reason = reason
-                _fix(self.stateChanged.emit(new, reason))
+                self.stateChanged.emit(new, reason)
             return
         if new not in TRANSITIONS[old]:
             raise MachineError(f"internal error: illegal transition {old.value} -> {new.value}")
@@ -321,12 +312,12 @@ class MachineController(QObject):
         if new in (MachineState.IDLE, MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP):
             self._set_activity(Activity.NONE)
             self._persist_state()
-        _fix(self.stateChanged.emit(new, reason))
+        self.stateChanged.emit(new, reason)
 
     def _set_activity(self, act: Activity) -> None:
         if act is not self._activity:
             self._activity = act
-            _fix(self.activityChanged.emit(act))
+            self.activityChanged.emit(act)
 
     def _raise_alarm(self, source: str, cause: str, severity: Severity, code: str = "") -> Alarm:
         alarm = Alarm(
@@ -345,8 +336,8 @@ class MachineController(QObject):
             self._store.save_alarms(self._alarms)
         except OSError:
             pass
-        _fix(self.alarmsChanged.emit(tuple(self._alarms)))
-        _fix(self.message.emit(f"{source}: {cause}"))
+        self.alarmsChanged.emit(tuple(self._alarms))
+        self.message.emit(f"{source}: {cause}")
         return alarm
 
     def _machine_pos(self) -> np.ndarray:
@@ -430,17 +421,16 @@ class MachineController(QObject):
                 float(a.direction * a.counts_per_unit * x) for a, x in zip(cfg.machine.axes, self._raw_pos)
             )
             options = (("initial_positions_counts", counts),)
-        mode = self._worker_mode
+        # core, real-time priority and spin: the WorkerConfig defaults (the worker picks a free
+        # core itself and uses SCHED_FIFO 49, below PREEMPT_RT's interrupt threads)
         return WorkerConfig(
             drives=drives,
             ts_s=cfg.machine.planner.ts_s,
             bus_kind=cfg.bus.kind,
             adapter=cfg.bus.adapter,
             wkc_error_limit=cfg.bus.wkc_error_limit,
-            mode=mode,
+            mode=self._worker_mode,
             bus_options=options,
-            rt_priority=80 if mode == "process" else 0,
-            cpu=-1 if mode == "process" else None,
             homing_timeout_s=cfg.homing.timeout_s,
         )
 
@@ -484,7 +474,7 @@ class MachineController(QObject):
                 Severity.WARNING,
                 "position_lost",
             )
-            _fix(self.homedChanged.emit(tuple(self._homed)))
+            self.homedChanged.emit(tuple(self._homed))
         self._raw_pos = actual.copy()
         self._ref_raw = actual.copy()
         self._pushed_total = 0
@@ -521,41 +511,85 @@ class MachineController(QObject):
         return snap
 
     def _stop_worker(self) -> None:
+        """Stop the worker (drives disabled, bus closed), then the feeder thread."""
         self._timer.stop()
-        self._feeder_stop.set()
-        if self._feeder is not None and self._feeder is not threading.current_thread():
-            self._feeder.join(timeout=2.0)
-        self._feeder = None
-        w, self._worker = self._worker, None
+        with self._lock:
+            w, self._worker = self._worker, None  # the feeder sees no worker from here on
         if w is not None:
             try:
                 with self._lock:
                     w.stop()
             except Exception:  # noqa: BLE001 - stopping must not fail
                 pass
+        self._feeder_stop.set()
+        if self._feeder is not None and self._feeder is not threading.current_thread():
+            self._feeder.join(timeout=2.0)
+        self._feeder = None
 
     def disconnect_bus(self) -> CommandResult:
-        """Abandon any motion, disable the drives and stop the worker: -> DISCONNECTED."""
+        """Stop any motion (a jerk-limited stop along the path, at most ``RAMP_DOWN_TIMEOUT_S``),
+        abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED."""
         if self._state is MachineState.DISCONNECTED:
             return self._ok("disconnect")
-        with self._lock:
-            self._drop_job(completed=False, reason="disconnected")
+        self._ramp_down("disconnected")
         if self._worker is not None:
             try:
                 self._poll()
             except Exception:  # noqa: BLE001
                 pass
+        with self._lock:
+            self._drop_job(completed=False, reason="disconnected")
         self._stop_worker()
         self._set_state(MachineState.DISCONNECTED, "disconnected")
         self._emit_bus(BusStatus(kind=self._cfg.bus.kind, connected=False, state="disconnected"))
         return self._ok("disconnect")
 
+    def _ramp_down(self, reason: str, timeout_s: float = RAMP_DOWN_TIMEOUT_S) -> bool:
+        """Bring any motion to a standstill on its path before the worker is stopped: the same
+        jerk-limited stop as ``stop()``, fed as usual, waited for here (the poll timer may be
+        gone at exit). Without it, stopping the feeder first let the worker's buffer run dry
+        while moving (a bogus "set-point buffer underrun" alarm persisted at every quit
+        mid-run) and stopping the worker first cut the drives at speed. True at standstill."""
+        from ethercat.worker import WorkerState
+
+        with self._lock:
+            job, w = self._job, self._worker
+            if job is None or w is None:
+                return True
+            if w.state() is not WorkerState.ENABLED:
+                return True  # the worker already stopped the drives (quick stop, fault)
+            if job.kind is Activity.PROGRAM and job.origin is not None and self._resume is None:
+                self._resume = job.resume_point(self._consumed(), reason)
+            job.executor.hold = True
+            job.stopping = True
+            job.stop_reason = job.stop_reason or reason
+
+        def still() -> bool:
+            with self._lock:
+                if self._worker is None or self._job is not job:
+                    return True
+                standing = job.executor.standing or job.pause is not None or job.executor.finished
+                return standing and self._worker.buffer_level() == 0
+
+        if self._worker_mode == "manual":
+            return self.run_until(still, timeout_s)
+        t_end = time.monotonic() + timeout_s
+        while not still():
+            if time.monotonic() > t_end:
+                return False
+            if self._feeder is None or not self._feeder.is_alive():
+                self._feed()
+            time.sleep(0.005)  # the feeder thread keeps the buffer filled meanwhile
+        return True
+
     def shutdown(self) -> None:
-        """Spindle off, disconnect, persist positions and offsets; safe to call twice."""
+        """Stop any motion (jerk-limited), spindle off, disconnect (worker stopped before the
+        feeder), persist positions and offsets; safe to call twice."""
         if self._shutdown:
             return
         self._shutdown = True
         try:
+            self._ramp_down("shutdown")
             if self._spindle.on:
                 self.spindle_off()
             self.disconnect_bus()
@@ -736,7 +770,7 @@ class MachineController(QObject):
             line, tau = info
             if line != self._line and job.kind in (Activity.PROGRAM, Activity.MDI):
                 self._line = line
-                _fix(self.lineChanged.emit(line))
+                self.lineChanged.emit(line)
             if job.kind is Activity.PROGRAM:
                 t_end = job.executor.t_end + job.time_offset_s
                 tau_g = tau + job.tau_offset_s
@@ -744,11 +778,11 @@ class MachineController(QObject):
                 ovr = max(self._feed_pct / 100.0, 1e-3)
                 remaining = max(t_end - tau_g, 0.0) / ovr
                 self._progress = (frac, remaining)
-                _fix(self.progressChanged.emit(frac, remaining))
+                self.progressChanged.emit(frac, remaining)
         if snap.time_s - self._tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
             self._tracking_emit_t = snap.time_s
             self._tracking = self._tracking_from(snap, "")
-            _fix(self.trackingUpdated.emit(self._tracking))
+            self.trackingUpdated.emit(self._tracking)
         all_done = consumed >= self._pushed_total
         # pause points reached by the drives
         if job.pause is not None and consumed >= job.pause_serial:
@@ -847,10 +881,10 @@ class MachineController(QObject):
             reason=reason,
         )
         self._last_summary = summary
-        _fix(self.trackingUpdated.emit(tracking))
+        self.trackingUpdated.emit(tracking)
         if completed:
-            _fix(self.progressChanged.emit(1.0, 0.0))
-        _fix(self.programFinished.emit(summary))
+            self.progressChanged.emit(1.0, 0.0)
+        self.programFinished.emit(summary)
         return summary
 
     def _tracking_from(self, snap: Any, trace_path: str) -> TrackingReport:
@@ -895,16 +929,16 @@ class MachineController(QObject):
         mpos = tuple(float(x) for x in self._machine_pos())
         if mpos != self._last_emit_pos:
             self._last_emit_pos = mpos
-            _fix(self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos())))
+            self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos()))
         ref_m = self._ref_raw - self._home_offset
-        _fix(self.trackingSample.emit(float(snap.time_s), tuple(float(x) for x in ref_m), mpos))
+        self.trackingSample.emit(float(snap.time_s), tuple(float(x) for x in ref_m), mpos)
         lin = np.array([not r for r in self._cfg.machine.rotary])
         if self._last_ref_pos is not None and snap.time_s > self._last_ref_time:
             d = (ref_m - self._last_ref_pos)[lin] if lin.any() else ref_m - self._last_ref_pos
             speed = float(np.linalg.norm(d)) / (snap.time_s - self._last_ref_time)
             if abs(speed - self._speed) > 1e-6:
                 self._speed = speed
-                _fix(self.speedChanged.emit(speed))
+                self.speedChanged.emit(speed)
         self._last_ref_pos = ref_m.copy()
         self._last_ref_time = float(snap.time_s)
 
@@ -933,18 +967,18 @@ class MachineController(QObject):
             status.connected,
             status.late_cycles,
         ) or abs(old.buffer_level - status.buffer_level) > 50:
-            _fix(self.busStateChanged.emit(status))
+            self.busStateChanged.emit(status)
 
     def _emit_all(self) -> None:
-        _fix(self.homedChanged.emit(tuple(self._homed)))
-        _fix(self.offsetsChanged.emit(dict(self._offsets), self._active_offset))
-        _fix(self.overridesChanged.emit(self._feed_pct, self._rapid_pct))
-        _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
-        _fix(self.spindleChanged.emit(self._spindle))
-        _fix(self.alarmsChanged.emit(tuple(self._alarms)))
+        self.homedChanged.emit(tuple(self._homed))
+        self.offsetsChanged.emit(dict(self._offsets), self._active_offset)
+        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
+        self.modesChanged.emit(self._single_block, self._optional_stop)
+        self.spindleChanged.emit(self._spindle)
+        self.alarmsChanged.emit(tuple(self._alarms))
         self._last_emit_pos = ()
         mpos = tuple(float(x) for x in self._machine_pos())
-        _fix(self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos())))
+        self.positionChanged.emit(mpos, tuple(float(x) for x in self._work_pos()))
 
     # ================================================================== jobs
     def _plan(self, program: Program) -> Plan:
@@ -1001,7 +1035,7 @@ class MachineController(QObject):
         if self._state is not MachineState.RUNNING:
             self._set_state(MachineState.RUNNING, job.kind.value)
         else:
-            _fix(self.stateChanged.emit(self._state, job.kind.value))
+            self.stateChanged.emit(self._state, job.kind.value)
         if self._worker_mode != "manual":
             self._feed()
 
@@ -1032,7 +1066,10 @@ class MachineController(QObject):
             try:
                 data = Path(path).read_bytes()
             except OSError as exc:
-                return self._refuse("load_program", f"{path}: cannot read: {exc.strerror or exc}")
+                return self._load_failed(
+                    (ProgramIssue(0, 0, f"cannot read: {exc.strerror or exc}"),),
+                    f"{path}: cannot read: {exc.strerror or exc}",
+                )
             try:
                 text = data.decode("utf-8")
             except UnicodeDecodeError:
@@ -1048,22 +1085,16 @@ class MachineController(QObject):
             program = parse_program(text, name, machine=self._machine, start_position=self._machine_pos())
         except ProgramError as exc:
             issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
-            _fix(self.programErrors.emit(issues))
-            return self._refuse("load_program", f"{len(issues)} error(s) in the program; first: {issues[0]}")
+            return self._load_failed(issues, f"{len(issues)} error(s) in the program; first: {issues[0]}")
         except PlannerError as exc:
-            issues = (ProgramIssue(0, 0, str(exc)),)
-            _fix(self.programErrors.emit(issues))
-            return self._refuse("load_program", str(exc))
+            return self._load_failed((ProgramIssue(0, 0, str(exc)),), str(exc))
         limit_issues = self._check_program_limits(program)
         if limit_issues:
-            _fix(self.programErrors.emit(tuple(limit_issues)))
-            return self._refuse("load_program", f"soft limit: {limit_issues[0]}")
+            return self._load_failed(tuple(limit_issues), f"soft limit: {limit_issues[0]}")
         try:
             plan = self._plan(program)
         except PlannerError as exc:
-            issues = (ProgramIssue(0, 0, f"planner: {exc}"),)
-            _fix(self.programErrors.emit(issues))
-            return self._refuse("load_program", f"planner: {exc}")
+            return self._load_failed((ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}")
         lo, hi = program_bounds(program)
         tab = plan.segment.table
         info = ProgramInfo(
@@ -1084,8 +1115,19 @@ class MachineController(QObject):
         self._program_text = text
         self._program_path = path
         self._resume = None
-        _fix(self.programLoaded.emit(info))
+        self.programLoaded.emit(info)
         return self._ok("load_program")
+
+    def _load_failed(self, issues: tuple[ProgramIssue, ...], reason: str) -> CommandResult:
+        """A failed load unloads the previous program (as LinuxCNC drops the file on a failed
+        open): cycle start is then refused with "no program loaded" instead of running the old
+        program while the operator looks at the new one's errors."""
+        self._program_info = None
+        self._program_text = ""
+        self._program_path = ""
+        self._resume = None
+        self.programErrors.emit(issues)
+        return self._refuse("load_program", reason)
 
     def _fresh_program(self) -> Program | None:
         """The loaded program, re-interpreted if the machine moved since it was loaded."""
@@ -1259,7 +1301,7 @@ class MachineController(QObject):
         if st is MachineState.IDLE:
             self._resume = None
             self._line = 0
-            _fix(self.lineChanged.emit(0))
+            self.lineChanged.emit(0)
             return self._ok("reset")
         return self._refuse("reset", f"reset not possible: machine is {st.label.lower()}")
 
@@ -1318,15 +1360,15 @@ class MachineController(QObject):
         Switched while running, it takes effect at the next standstill (feed hold, pause point):
         the rest of the program is planned again from there."""
         self._single_block = bool(on)
-        _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
+        self.modesChanged.emit(self._single_block, self._optional_stop)
         if self._job is not None and self._job.kind is Activity.PROGRAM:
-            _fix(self.message.emit("single block takes effect at the next stop (feed hold, block end, M00)"))
+            self.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
         return self._ok("set_single_block")
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         """Honour M01 (optional pause); may change while running."""
         self._optional_stop = bool(on)
-        _fix(self.modesChanged.emit(self._single_block, self._optional_stop))
+        self.modesChanged.emit(self._single_block, self._optional_stop)
         return self._ok("set_optional_stop")
 
     def run_from_line(self, line: int) -> CommandResult:
@@ -1409,7 +1451,7 @@ class MachineController(QObject):
                 self._job.executor.set_overrides(feed=p / 100.0)
             if self._job is not None and self._job.then is not None:
                 self._job.then.executor.set_overrides(feed=p / 100.0)
-        _fix(self.overridesChanged.emit(self._feed_pct, self._rapid_pct))
+        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
         return self._ok("set_feed_override")
 
     def set_rapid_override(self, percent: float) -> CommandResult:
@@ -1422,7 +1464,7 @@ class MachineController(QObject):
             for job in (self._job, self._job.then if self._job else None):
                 if job is not None and job.overrides:
                     job.executor.set_overrides(rapid=p / 100.0)
-        _fix(self.overridesChanged.emit(self._feed_pct, self._rapid_pct))
+        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
         return self._ok("set_rapid_override")
 
     # ================================================================== manual
@@ -1596,7 +1638,7 @@ class MachineController(QObject):
         i = self._homing_queue.pop(0)
         self._homing_axis = i
         self._homed[i] = False
-        _fix(self.homedChanged.emit(tuple(self._homed)))
+        self.homedChanged.emit(tuple(self._homed))
         try:
             with self._lock:
                 self._worker.home(i, self._cfg.homing.drive_method)
@@ -1617,7 +1659,7 @@ class MachineController(QObject):
         if snap.homing[i] is HomingState.DONE and snap.state is WorkerState.ENABLED:
             self._home_offset[i] = 0.0  # the drive's own zero is machine zero
             self._homed[i] = True
-            _fix(self.homedChanged.emit(tuple(self._homed)))
+            self.homedChanged.emit(tuple(self._homed))
             self._next_homing()
 
     def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
@@ -1632,12 +1674,10 @@ class MachineController(QObject):
             self._home_offset[i] = self._raw_pos[i]
             self._homed[i] = True
         self._persist_state()
-        _fix(self.homedChanged.emit(tuple(self._homed)))
+        self.homedChanged.emit(tuple(self._homed))
         self._last_emit_pos = ()
-        _fix(
-            self.positionChanged.emit(
-                tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
-            )
+        self.positionChanged.emit(
+            tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
         )
         return self._ok("set_machine_zero_here")
 
@@ -1676,12 +1716,10 @@ class MachineController(QObject):
                 "persistence", f"cannot save work offsets: {exc}", Severity.WARNING, "state_file"
             )
         self._persist_state()
-        _fix(self.offsetsChanged.emit(dict(self._offsets), self._active_offset))
+        self.offsetsChanged.emit(dict(self._offsets), self._active_offset)
         self._last_emit_pos = ()
-        _fix(
-            self.positionChanged.emit(
-                tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
-            )
+        self.positionChanged.emit(
+            tuple(float(x) for x in self._machine_pos()), tuple(float(x) for x in self._work_pos())
         )
 
     def select_work_offset(self, name: str) -> CommandResult:
@@ -1731,7 +1769,7 @@ class MachineController(QObject):
                 else:
                     self._raise_alarm("spindle", f"spindle output failed: {exc}", Severity.WARNING, "spindle")
         self._spindle = sp
-        _fix(self.spindleChanged.emit(sp))
+        self.spindleChanged.emit(sp)
 
     def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
         """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
@@ -1760,7 +1798,7 @@ class MachineController(QObject):
             self._apply_spindle(SpindleState(direction=self._spindle.direction, rpm=speed))
         else:
             self._spindle = SpindleState(direction=0, rpm=speed)
-            _fix(self.spindleChanged.emit(self._spindle))
+            self.spindleChanged.emit(self._spindle)
         return self._ok("spindle_speed")
 
     # ================================================================== alarms
@@ -1776,7 +1814,7 @@ class MachineController(QObject):
             self._store.save_alarms(self._alarms)
         except OSError:
             pass
-        _fix(self.alarmsChanged.emit(tuple(self._alarms)))
+        self.alarmsChanged.emit(tuple(self._alarms))
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         """Acknowledge one alarm (all active ones when None); persisted."""
@@ -1813,13 +1851,13 @@ class MachineController(QObject):
             self._homed = [False] * n
             self._offsets = {k: tuple(v) for k, v in saved.machine.work_offsets.items()}
             self._store.save_offsets(self._offsets)
-            _fix(self.homedChanged.emit(tuple(self._homed)))
+            self.homedChanged.emit(tuple(self._homed))
         self._persist_state()
-        _fix(self.configChanged.emit(saved))
+        self.configChanged.emit(saved)
         if self._program_info is not None:
             self._load_text(self._program_text, self._program_info.name, self._program_path)
         if saved.axes != old_axes and self._worker is not None:
-            _fix(self.message.emit("axes changed: reconnect the bus to apply"))
+            self.message.emit("axes changed: reconnect the bus to apply")
         return self._ok("update_config")
 
     # ================================================================== properties

@@ -17,7 +17,6 @@ from app.context import PanelContext
 from app.format import format_duration, format_speed
 from app.i18n import N_, tr
 from app.widgets.code_editor import CodeEditor
-from app.widgets.gcode_highlighter import GCodeHighlighter
 from app.widgets.override_control import OverrideControl
 from app.widgets.touch import enable_kinetic_scrolling
 
@@ -42,7 +41,6 @@ class AutoPage(QWidget):
         self.program_label.setObjectName("programName")
         left.addWidget(self.program_label)
         self.editor = CodeEditor(read_only=True)
-        GCodeHighlighter(self.editor.document())
         enable_kinetic_scrolling(self.editor)
         left.addWidget(self.editor, 1)
         layout.addLayout(left, 3)
@@ -146,7 +144,7 @@ class AutoPage(QWidget):
     def _on_loaded(self, info: object) -> None:
         text = str(getattr(info, "text", ""))
         if self.editor.toPlainText() != text:
-            self.editor.setPlainText(text)
+            self.editor.load_text(text)
         self.program_label.setText(str(getattr(info, "name", "")))
         self._remaining = float(getattr(info, "cycle_time_s", float("nan")))
         self._fraction = 0.0
@@ -158,7 +156,7 @@ class AutoPage(QWidget):
         model = self.ctx.program
         self._refused = ""
         if model.info is None and model.text and self.editor.toPlainText() != model.text:
-            self.editor.setPlainText(model.text)
+            self.editor.load_text(model.text)
             self.program_label.setText(model.name)
         self.editor.set_errors(model.errors)
         self._update_buttons()

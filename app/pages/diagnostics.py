@@ -81,12 +81,13 @@ class DiagnosticsPage(QWidget):
             self._show_profile_state()
             return
         generation, machine = self._generation, self.ctx.controller.config.machine
+        plan = getattr(self.ctx.program.info, "plan", None)
         self._profile_state = N_("Planning…")
         self._show_profile_state()
 
         def work() -> None:
             try:
-                result: object = path_profile(program, machine)
+                result: object = path_profile(program, machine, plan=plan)
             except Exception as exc:  # noqa: BLE001 - shown on the page, never kills the panel
                 result = f"{type(exc).__name__}: {exc}"
             self._profileReady.emit(generation, result)

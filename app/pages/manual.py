@@ -37,7 +37,7 @@ class ManualPage(QWidget):
         jog_layout = QVBoxLayout(jog_box)
         self.jog = JogPanel(c.axes, i18n)
         jog_layout.addWidget(self.jog)
-        self.jog.jogStart.connect(lambda axis, d: c.jog_start(axis, d))
+        self.jog.jogStart.connect(lambda axis, d: c.jog_start(axis, d, self.jog.speed_fraction))
         self.jog.jogStop.connect(lambda axis: c.jog_stop(axis or None))
         self.jog.jogStep.connect(lambda axis, step, d: c.jog_increment(axis, step, d))
         layout.addWidget(jog_box, 1)

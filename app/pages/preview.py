@@ -68,7 +68,11 @@ class PreviewPage(QWidget):
             lambda machine, _work: self.plot.set_tool_position(machine))
         context.controller.lineChanged.connect(self._on_line)
         context.controller.programFinished.connect(self._on_finished)
-        self.set_plane("XY")
+        axes = set(context.controller.axes)
+        usable = [p for p, (a, b) in PLANES.items() if a in axes and b in axes]
+        for plane, button in self.plane_buttons.items():
+            button.setEnabled(plane in usable or not usable)
+        self.set_plane(usable[0] if usable else "XY")  # e.g. YZ on the paper's Y-Z-C-A machine
         self._on_program()
 
     def set_plane(self, plane: str) -> None:

@@ -14,7 +14,6 @@ from app.i18n import N_, tr
 from app.program_checker import ProgramChecker
 from app.widgets.code_editor import CodeEditor
 from app.widgets.find_bar import FindBar
-from app.widgets.gcode_highlighter import GCodeHighlighter
 from app.widgets.keyboard import OnScreenKeyboard
 from app.widgets.touch import enable_kinetic_scrolling
 
@@ -51,8 +50,7 @@ class ProgramPage(QWidget):
         self.find_bar.hide()
         layout.addWidget(self.find_bar)
         self.editor = CodeEditor()
-        GCodeHighlighter(self.editor.document())
-        enable_kinetic_scrolling(self.editor)
+        enable_kinetic_scrolling(self.editor, mouse=False)
         layout.addWidget(self.editor, 1)
         self.error_label = QLabel()
         self.error_label.setObjectName("errorLine")
@@ -83,6 +81,8 @@ class ProgramPage(QWidget):
         self.find_bar.field.installEventFilter(self)
         self.editor.textChanged.connect(self._on_text_changed)
         self.editor.lineActivated.connect(self._show_line_error)
+        context.program.lineRequested.connect(self.editor.go_to_line)
+        context.controller.configChanged.connect(self._on_config)
         context.controller.programLoaded.connect(self._on_program_loaded)
         context.controller.programErrors.connect(self._on_program_errors)
         self._update_title()
@@ -90,7 +90,7 @@ class ProgramPage(QWidget):
     # --- editing -------------------------------------------------------------------------
     def set_text(self, text: str) -> None:
         self._loading = True
-        self.editor.setPlainText(text)
+        self.editor.load_text(text)
         self._loading = False
         self.doc.text = text
         self.checker.check_now(text)
@@ -220,6 +220,10 @@ class ProgramPage(QWidget):
             c.load_program(self.doc.text, name=self.doc.name)
 
     # --- controller ----------------------------------------------------------------------
+    def _on_config(self, config: object) -> None:
+        self.checker.machine = getattr(config, "machine", self.checker.machine)
+        self.checker.request(self.doc.text)
+
     def _on_program_loaded(self, info: object) -> None:
         path = str(getattr(info, "path", "") or "")
         text = str(getattr(info, "text", ""))

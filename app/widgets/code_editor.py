@@ -19,6 +19,9 @@ from PySide6.QtGui import (
 )
 from PySide6.QtWidgets import QPlainTextEdit, QTextEdit, QWidget
 
+from app.widgets.gcode_highlighter import GCodeHighlighter
+
+HIGHLIGHT_MAX_LINES = 5000  # highlighting costs ~20 us a line in the GUI thread: off beyond this
 ERROR_BG = QColor("#5a1020")
 CURRENT_BG = QColor("#1c3550")
 RUN_BG = QColor("#1b5f2a")
@@ -50,11 +53,22 @@ class CodeEditor(QPlainTextEdit):
         self.setReadOnly(read_only)
         self._errors: dict[int, str] = {}
         self._run_line = 0
+        self.highlighter = GCodeHighlighter(self.document())
         self._numbers = _LineNumberArea(self)
         self.blockCountChanged.connect(self._update_margin)
         self.updateRequest.connect(self._scroll_margin)
         self.cursorPositionChanged.connect(self._on_cursor)
         self._update_margin()
+
+    def load_text(self, text: str) -> None:
+        """Replace the text; syntax highlighting only for programs up to HIGHLIGHT_MAX_LINES."""
+        big = text.count("\n") > HIGHLIGHT_MAX_LINES
+        self.highlighter.setDocument(None if big else self.document())  # type: ignore[arg-type]
+        self.setPlainText(text)
+
+    @property
+    def highlighting(self) -> bool:
+        return self.highlighter.document() is not None
 
     # --- line numbers -------------------------------------------------------------------
     def line_number_width(self) -> int:

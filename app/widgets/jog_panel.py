@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
 )
 
 from app.i18n import N_, I18n
+from app.widgets.override_control import OverrideControl
 
 INCREMENTS: tuple[float, ...] = (0.001, 0.01, 0.1, 1.0)
 
@@ -56,8 +57,16 @@ class JogPanel(QWidget):
                 grid.addWidget(button, row, col)
                 self.buttons[(axis, direction)] = button
         layout.addLayout(grid)
+        self.speed = OverrideControl("", maximum=100)
+        i18n.bind(self.speed.title, N_("Jog speed"))
+        layout.addWidget(self.speed)
         layout.addStretch(1)
         self._held: set[str] = set()
+
+    @property
+    def speed_fraction(self) -> float:
+        """Continuous jog speed as a fraction of the configured jog speed (0.01 .. 1)."""
+        return max(self.speed.value(), 1.0) / 100.0
 
     @property
     def step(self) -> float:

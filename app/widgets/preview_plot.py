@@ -58,6 +58,9 @@ class PreviewPlot(pg.PlotWidget):
                                             pen=pg.mkPen("w", width=2), symbol="o")
         self.tool_item.setZValue(10)
         self.addItem(self.tool_item)
+        self.current_item = pg.PlotDataItem(pen=pg.mkPen(DONE_COLOR, width=4), skipFiniteCheck=True)
+        self.current_item.setZValue(5)
+        self.addItem(self.current_item)
         self.selected_item = pg.PlotDataItem(pen=pg.mkPen("#ffffff", width=5), skipFiniteCheck=True)
         self.selected_item.setZValue(6)
         self.addItem(self.selected_item)
@@ -84,6 +87,7 @@ class PreviewPlot(pg.PlotWidget):
         self.path = path
         self._done_move = -1
         self.done_item.setData([], [])
+        self.current_item.setData([], [])
         self.selected_item.setData([], [])
         self._redraw()
         self.fit()
@@ -128,12 +132,33 @@ class PreviewPlot(pg.PlotWidget):
             return
         x, y = self._xy(self._tool[None, : len(self.path.axes)])
         self.tool_item.setData(x, y)
+        self._update_current()
+
+    def _update_current(self) -> None:
+        """The part of the move being executed up to the tool (nearest sampled point)."""
+        path, k = self.path, self._done_move
+        if path is None or k < 0 or k >= len(path.move_first_point) or not len(self._tool):
+            self.current_item.setData([], [])
+            return
+        lo = int(path.move_first_point[k])
+        hi = int(path.move_first_point[k + 1]) if k + 1 < len(path.move_first_point) else len(path.all.points)
+        pts = path.all.points[lo:hi]
+        if len(pts) < 2:
+            self.current_item.setData([], [])
+            return
+        n = min(pts.shape[1], len(self._tool))
+        near = 0 if len(pts) == 2 else int(np.argmin(np.sum((pts[:, :n] - self._tool[:n]) ** 2, axis=1)))
+        part = np.vstack([pts[: near + 1], self._tool[None, : pts.shape[1]]]) if n == pts.shape[1] \
+            else pts[: near + 1]
+        x, y = self._xy(part)
+        self.current_item.setData(x, y)
 
     def set_executed(self, move_index: int) -> None:
         """Highlight moves 0 .. move_index - 1 (those finished) as executed."""
         if self.path is None or move_index == self._done_move:
             return
         self._done_move = move_index
+        self._update_current()
         if move_index <= 0:
             self.done_item.setData([], [])
             return

@@ -36,9 +36,9 @@ class StatusHeader(QWidget):
         self.state_label.setObjectName("machineState")
         self.state_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self.state_label.setMinimumWidth(190)
-        self.bus_label = QLabel()
+        self.bus_label = QPushButton()  # tap: connect / disconnect the drives (confirmed)
         self.bus_label.setObjectName("busState")
-        self.bus_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.bus_label.clicked.connect(self._bus_clicked)
         status.addWidget(self.state_label)
         status.addWidget(self.bus_label)
         row.addLayout(status)
@@ -83,6 +83,14 @@ class StatusHeader(QWidget):
         self._alarms = tuple(a for a in alarms if a.active)  # type: ignore[attr-defined, union-attr]
         self.refresh()
 
+    def _bus_clicked(self) -> None:
+        c = self.ctx.controller
+        if bool(getattr(self._bus, "connected", False)):
+            if self.ctx.dialogs.confirm(self, tr("Disconnect"), tr("Stop and disable the drives?")):
+                c.disconnect_bus()
+        elif self.ctx.dialogs.confirm(self, tr("Connect"), tr("Connect to the drives and enable them?")):
+            c.connect_bus()
+
     def _estop_clicked(self) -> None:
         if self._state_value() == "estop":
             if self.ctx.dialogs.confirm(self, tr("Release E-stop"),
@@ -107,7 +115,8 @@ class StatusHeader(QWidget):
         self.bus_label.setText(tr("Bus {0}: {1}").format(
             kind, tr("connected") if connected else tr("not connected")))
         self.bus_label.setProperty("ok", connected)
-        self.bus_label.setStyleSheet("color: %s; font-weight: 700;" % ("#7fe0a0" if connected else "#ff9080"))
+        self.bus_label.setStyleSheet("color: %s; font-weight: 700; background: transparent; border: 0;"
+                                     % ("#7fe0a0" if connected else "#ff9080"))
         self.estop_button.setText(tr("RELEASE\nE-STOP") if value == "estop" else tr("E-STOP"))
         alarms = self._alarms
         if alarms:

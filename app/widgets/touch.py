@@ -5,9 +5,12 @@ from __future__ import annotations
 from PySide6.QtWidgets import QAbstractItemView, QAbstractScrollArea, QScroller, QWidget
 
 
-def enable_kinetic_scrolling(area: QAbstractScrollArea) -> None:
-    """Flick to scroll with a finger (and with the left mouse button, for touch emulation)."""
-    QScroller.grabGesture(area.viewport(), QScroller.ScrollerGestureType.LeftMouseButtonGesture)
+def enable_kinetic_scrolling(area: QAbstractScrollArea, mouse: bool = True) -> None:
+    """Flick to scroll with a finger; ``mouse``: also by dragging with the left mouse button
+    (lists, tables, forms). Text editors keep mouse drags for selecting text (touch only)."""
+    kind = (QScroller.ScrollerGestureType.LeftMouseButtonGesture if mouse
+            else QScroller.ScrollerGestureType.TouchGesture)
+    QScroller.grabGesture(area.viewport(), kind)
     if isinstance(area, QAbstractItemView):
         area.setVerticalScrollMode(QAbstractItemView.ScrollMode.ScrollPerPixel)
         area.setHorizontalScrollMode(QAbstractItemView.ScrollMode.ScrollPerPixel)

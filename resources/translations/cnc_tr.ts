@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="115" />
+      <location filename="../../app/widgets/status_header.py" line="124" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="116" />
+      <location filename="../../app/widgets/status_header.py" line="125" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -34,7 +34,7 @@
       <translation>Tümünü onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="34" />
+      <location filename="../../app/pages/part_zero.py" line="35" />
       <source>Active:</source>
       <translation>Etkin:</translation>
     </message>
@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="181" />
+      <location filename="../../app/pages/program.py" line="183" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -109,7 +109,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="107" />
+      <location filename="../../app/widgets/status_header.py" line="115" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="156" />
+      <location filename="../../app/pages/program.py" line="158" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -149,7 +149,17 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/jog_panel.py" line="37" />
+      <location filename="../../app/widgets/status_header.py" line="91" />
+      <source>Connect</source>
+      <translation>Bağlan</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="91" />
+      <source>Connect to the drives and enable them?</source>
+      <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/jog_panel.py" line="38" />
       <source>Continuous</source>
       <translation>Sürekli</translation>
     </message>
@@ -194,9 +204,14 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="156" />
+      <location filename="../../app/pages/program.py" line="158" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="89" />
+      <source>Disconnect</source>
+      <translation>Bağlantıyı kes</translation>
     </message>
     <message>
       <location filename="../../app/widgets/status_header.py" line="13" />
@@ -209,7 +224,7 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="111" />
+      <location filename="../../app/widgets/status_header.py" line="120" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -332,6 +347,11 @@
       <location filename="../../app/pages/manual.py" line="36" />
       <source>Jog</source>
       <translation>Elle hareket</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/jog_panel.py" line="61" />
+      <source>Jog speed</source>
+      <translation>Elle hareket hızı</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="80" />
@@ -536,12 +556,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="136" />
+      <location filename="../../app/main_window.py" line="137" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="111" />
+      <location filename="../../app/widgets/status_header.py" line="120" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -568,7 +588,7 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="181" />
+      <location filename="../../app/pages/program.py" line="183" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
@@ -578,12 +598,12 @@ BIRAK</translation>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="88" />
+      <location filename="../../app/widgets/status_header.py" line="96" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="89" />
+      <location filename="../../app/widgets/status_header.py" line="97" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -633,7 +653,7 @@ BIRAK</translation>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="196" />
+      <location filename="../../app/pages/program.py" line="198" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -653,12 +673,12 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="160" />
+      <location filename="../../app/main_window.py" line="161" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="167" />
+      <location filename="../../app/main_window.py" line="168" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -668,7 +688,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="160" />
+      <location filename="../../app/main_window.py" line="161" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -733,12 +753,17 @@ BIRAK</translation>
       <translation>Dur</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/status_header.py" line="89" />
+      <source>Stop and disable the drives?</source>
+      <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/axes.py" line="29" />
       <source>Tap a value to change it. Units: mm for linear axes, degrees for rotary axes. Changes take effect after Apply (written atomically).</source>
       <translation>Değiştirmek için bir değere dokunun. Birimler: doğrusal eksenlerde mm, döner eksenlerde derece. Değişiklikler Uygula'dan sonra geçerli olur (atomik olarak yazılır).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="56" />
+      <location filename="../../app/pages/part_zero.py" line="57" />
       <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
       <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
     </message>
@@ -768,12 +793,12 @@ BIRAK</translation>
       <translation>Zaman</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="63" />
+      <location filename="../../app/pages/part_zero.py" line="64" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="95" />
+      <location filename="../../app/pages/part_zero.py" line="96" />
       <source>Touch off {0}: work coordinate here</source>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
@@ -793,7 +818,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="154" />
+      <location filename="../../app/pages/program.py" line="156" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -813,7 +838,7 @@ BIRAK</translation>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="164" />
+      <location filename="../../app/main_window.py" line="165" />
       <source>Wrong service password</source>
       <translation>Yanlış servis şifresi</translation>
     </message>
@@ -898,17 +923,17 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="113" />
+      <location filename="../../app/pages/program.py" line="115" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="155" />
+      <location filename="../../app/pages/program.py" line="157" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="88" />
+      <location filename="../../app/pages/part_zero.py" line="89" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>

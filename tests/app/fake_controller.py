@@ -183,6 +183,7 @@ class FakeController(QObject):
         return self._ok("set_rapid_override", percent)
 
     def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
+        self.jog_speed_fraction = speed_fraction
         return self._ok("jog_start", axis, direction)
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:

@@ -67,9 +67,35 @@ def test_preview_live_tool_and_executed_part(fake_window, fake_controller) -> No
     fake_controller.positionChanged.emit((2.0, 0.0, 0.0), (2.0, 0.0, 0.0))
     x, y = preview.plot.tool_item.getData()
     assert (x[0], y[0]) == (2.0, 0.0)
-    fake_controller.lineChanged.emit(13)
+    fake_controller.lineChanged.emit(14)  # G03 X5 Y0 I-5 J0, the tool a quarter round
+    fake_controller.positionChanged.emit((0.0, 5.0, -1.0), (0.0, 5.0, -1.0))
     x, _ = preview.plot.done_item.getData()
-    assert len(x) > 0
+    assert len(x) > 0 and max(x) == pytest.approx(5.0)   # up to the end of line 13
+    cx, cy = preview.plot.current_item.getData()
+    assert (cx[0], cy[0]) == pytest.approx((5.0, 0.0)) and (cx[-1], cy[-1]) == (0.0, 5.0)
+    assert min(cx) >= -1e-9  # only the first quarter of the ring
+
+
+def test_tapped_line_opens_in_the_program_editor(fake_window, fake_controller) -> None:
+    fake_controller.load_program(DEMO_PROGRAM)
+    preview = fake_window.page("preview")
+    fake_window.show_page("preview")
+    preview.plot.moveTapped.emit(7, 14)
+    preview.show_line_button.click()
+    assert fake_window.current_page_name == "program"
+    assert fake_window.page("program").editor.current_line() == 14
+
+
+def test_program_page_offers_autosave_recovery(fake_window, dialogs, tmp_path: Path) -> None:
+    page = fake_window.page("program")
+    target = tmp_path / "part.nc"
+    target.write_text("G00 X0\n")
+    page.open_file(target)
+    page.editor.appendPlainText("G01 X5 F100")
+    page.doc.autosave()  # what the 5 s timer does; then the panel "crashes"
+    dialogs.answers.append(True)  # recover
+    page.open_file(target)
+    assert "G01 X5 F100" in page.editor.toPlainText() and page.doc.modified
 
 
 def test_invalid_program_marked_at_its_line_and_start_refused(fake_window, fake_controller, qtbot) -> None:
@@ -123,8 +149,10 @@ def test_auto_page_buttons(fake_window, fake_controller, dialogs) -> None:
 def test_manual_jog_spindle_mdi(fake_window, fake_controller, state_dir) -> None:
     manual = fake_window.page("manual")
     fake_window.show_page("manual")
+    manual.jog.speed.buttons["-10"].click()
     button = manual.jog.buttons[("X", 1)]
     button.pressed.emit()
+    assert fake_controller.jog_speed_fraction == pytest.approx(0.9)
     button.released.emit()
     manual.jog.set_step(0.1)
     manual.jog.buttons[("Z", -1)].pressed.emit()
@@ -209,6 +237,8 @@ def test_alarms_banner_and_acknowledge(fake_window, fake_controller) -> None:
     header = fake_window.header
     assert header.alarm_banner.isVisibleTo(fake_window)
     assert "following error" in header.alarm_banner.text()
+    header.alarm_banner.click()
+    assert fake_window.current_page_name == "alarms"
     page = fake_window.page("alarms")
     assert page.table.rowCount() == 1
     page.table.selectRow(0)
@@ -243,3 +273,21 @@ def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> Non
     curve = page.tracking.actual[0]
     assert list(curve.yData) == [0.0, 1.0, 2.0, 3.0, 4.0]  # the data, before clip-to-view
     assert page.tracking.reference[0].yData[1] == pytest.approx(1.1)
+
+
+def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> None:
+    """Y-Z-C-A machine (paper): the preview starts in the YZ plane; planes without axes are off."""
+    from app.context import RESOURCES, PanelOptions
+    from app.machine.config import load_config
+    from tests.app.conftest import make_window
+    from tests.app.fake_controller import FakeController
+
+    controller = FakeController(load_config(RESOURCES / "machines" / "paper_yzca.toml"))
+    window = make_window(qtbot, qapp, PanelOptions(state_dir=state_dir), dialogs, controller)
+    program = "G21 G19 G90\nG00 Y10 Z0\nG02 Y20 Z0 R5 F600\nG01 C90\nM30\n"
+    assert controller.load_program(program, name="yz.nc")
+    preview = window.page("preview")
+    assert preview.plot.plane == "YZ" and not preview.plane_buttons["XY"].isEnabled()
+    _y, z = preview.plot.items[MoveKind.ARC].getData()
+    assert z.max() == pytest.approx(5.0)
+    assert [label.text()[0] for label in window.header.dro.axis_labels] == ["Y", "Z", "C", "A"]

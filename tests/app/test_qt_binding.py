@@ -27,3 +27,22 @@ def test_void_and_bool_methods_keep_singleton_refcounts() -> None:
                                                           ("False", False))}
     drift = {name: after[name] - before[name] for name in before}
     assert all(abs(d) < 100 for d in drift.values()), f"reference counts drifted: {drift}"
+
+
+def test_signal_emit_keeps_singleton_refcounts() -> None:
+    """6.12.0 also dropped a reference to True on every Python-side Signal.emit()."""
+    from PySide6.QtCore import QCoreApplication, QObject, Signal
+
+    class Source(QObject):
+        changed = Signal(object, str)
+
+    app = QCoreApplication.instance() or QCoreApplication([])
+    assert app is not None
+    source, received = Source(), []
+    source.changed.connect(lambda value, text: received.append(value))
+    before = sys.getrefcount(True), sys.getrefcount(None)
+    for i in range(2000):
+        source.changed.emit(i, "x")
+    after = sys.getrefcount(True), sys.getrefcount(None)
+    assert len(received) == 2000
+    assert abs(after[0] - before[0]) < 100 and abs(after[1] - before[1]) < 100, (before, after)

@@ -118,3 +118,17 @@ def test_override_control_does_not_echo(qtbot) -> None:
     control.buttons["+10"].click()
     control.buttons["100%"].click()
     assert seen == [90.0, 100.0]
+
+
+def test_highlighting_tokens_and_large_programs(qtbot) -> None:
+    from app.widgets.gcode_highlighter import tokens
+
+    kinds = [k for _s, _n, k in tokens("N10 G02 X1.5 Y-2 I.5 F600 (cut)")]
+    assert kinds == ["number", "arc", "axis", "axis", "arcword", "feed", "comment"]
+    assert [k for _s, _n, k in tokens("G1 G00 G17 M03")] == ["line", "rapid", "gcode", "mcode"]
+    editor = CodeEditor()
+    qtbot.addWidget(editor)
+    editor.load_text("G01 X1\n" * 10)
+    assert editor.highlighting
+    editor.load_text("G01 X1\n" * 6000)
+    assert not editor.highlighting and editor.blockCount() == 6001

@@ -392,7 +392,7 @@ def test_single_block_switched_on_during_a_hold(ctl: MachineController) -> None:
     assert ctl.run_until(lambda: ctl.current_line == 2, 5)
     ctl.advance(0.1)
     assert ctl.feed_hold()
-    ctl.advance(0.5)
+    assert ctl.run_until(lambda: ctl.worker.buffer_level() == 0, 2)  # standing still (any lead_s)
     assert ctl.set_single_block(True)
     assert ctl.cycle_start()  # re-planned from the held point with a stop at every block end
     assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)

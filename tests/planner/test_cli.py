@@ -110,3 +110,11 @@ def test_default_machine_has_axis_limits_equal_to_path_limits():
     cfg = build_machine(str(PAPER_MACHINE), 25.0, None, None, 0.002)
     assert cfg.limits.v_max_mm_s == 25.0 and cfg.limits.a_max_mm_s2 == 1000.0
     assert cfg.axes[0].v_max == 60.0 and cfg.planner.ts_s == 0.002
+
+
+def test_plain_summary_and_canon_alone(tmp_path, capsys):
+    assert main([str(FIG9)]) == 0
+    assert "7 moves" in capsys.readouterr().out
+    out = tmp_path / "c.jsonl"
+    assert main([str(FIG9), "--canon", str(out)]) == 0  # no planning needed for --canon alone
+    assert len(out.read_text().splitlines()) == 7

@@ -1,0 +1,78 @@
+"""Loading and quitting: a failed load unloads the previous program; shutdown (and disconnect)
+mid-run stop the motion along its path before the worker and the feeder go, so no bogus
+"set-point buffer underrun" alarm is persisted and the drives are not cut at speed."""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from app.machine.controller import MachineController
+from app.machine.model import MachineState
+from tests.machine.conftest import make_controller, trace
+
+SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"
+A_PATH = 1000.0  # xyz_mill path acceleration limit, mm/s^2
+
+
+def saved_alarms(state_dir: Path) -> list[dict]:
+    p = state_dir / "alarms.json"
+    return json.loads(p.read_text()) if p.exists() else []
+
+
+def test_failed_load_unloads_the_previous_program(ctl: MachineController) -> None:
+    assert ctl.load_program(SHORT) and ctl.program_info is not None
+    errors = []
+    ctl.programErrors.connect(errors.append)
+    assert not ctl.load_program("G1 X2 Q5 F100\n")
+    assert errors and ctl.program_info is None and ctl.program is None and ctl.plan is None
+    r = ctl.cycle_start()
+    assert not r and r.reason == "no program loaded"
+    assert ctl.refusal("cycle_start") == "no program loaded"
+    assert not ctl.load_program(Path("/nonexistent/dir/prog.nc"))  # unreadable file: same rule
+    assert ctl.program_info is None
+    assert ctl.load_program(SHORT) and ctl.cycle_start()  # a good load is accepted again
+
+
+def test_shutdown_mid_run_stops_along_the_path_first(qapp, config_path: Path, state_dir: Path) -> None:
+    ctl = make_controller(config_path, state_dir)
+    finished = []
+    ctl.programFinished.connect(finished.append)
+    try:
+        assert ctl.load_program(SHORT) and ctl.cycle_start()
+        ctl.advance(0.5)  # in line 2 at 30 mm/s
+        assert ctl.state is MachineState.RUNNING and ctl._speed > 10.0
+        x0 = ctl.reference_position[0]
+    finally:
+        ctl.shutdown()
+    assert ctl.state is MachineState.DISCONNECTED and ctl.worker is None
+    assert finished and not finished[-1].completed
+    assert not any("underrun" in a["cause"] for a in saved_alarms(state_dir))
+    ref = trace(ctl)["reference"]
+    assert ref[-1, 0] > x0 + 1.0  # the stop ran on past the point of the request ...
+    d2 = np.linalg.norm(np.diff(ref[:, :2], 2, axis=0), axis=1) / 1e-6
+    assert d2.max() <= A_PATH * (1 + 1e-6)  # ... as a jerk-limited ramp, not a cut at speed
+    assert np.linalg.norm(ref[-1] - ref[-2]) < 1e-9  # standing when the drives were disabled
+    st = json.loads((state_dir / "state.json").read_text())
+    assert abs(st["raw_position"][0] - ref[-1, 0]) < 1e-3  # persisted where it stopped
+
+
+def test_realtime_shutdown_mid_run_leaves_no_underrun_alarm(qapp, config_path: Path, state_dir: Path) -> None:
+    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="thread")
+    try:
+        assert ctl.connect_bus() and ctl.set_machine_zero_here()
+        assert ctl.load_program("G1 X60 F1800\nM30\n") and ctl.cycle_start()
+        time.sleep(0.6)
+        assert ctl.state is MachineState.RUNNING
+    finally:
+        t0 = time.monotonic()
+        ctl.shutdown()
+        took = time.monotonic() - t0
+    assert ctl.state is MachineState.DISCONNECTED
+    assert took < 2.0
+    assert not any("underrun" in a["cause"] for a in saved_alarms(state_dir))
+    x = json.loads((state_dir / "state.json").read_text())["raw_position"][0]
+    assert 5.0 < x < 60.0
