@@ -7,10 +7,14 @@ with the on-screen keyboard.
 
 from __future__ import annotations
 
-from PySide6.QtWidgets import QInputDialog, QLineEdit, QMessageBox, QWidget
+from pathlib import Path
+
+from PySide6.QtWidgets import QMessageBox, QWidget
 
 from app.i18n import tr
+from app.widgets.file_picker import FilePicker
 from app.widgets.keypad import ask_number
+from app.widgets.text_dialog import TextDialog
 
 
 class Dialogs:
@@ -37,23 +41,24 @@ class Dialogs:
 
     def ask_text(self, parent: QWidget | None, title: str, label: str, password: bool = False,
                  text: str = "") -> str | None:
-        mode = QLineEdit.EchoMode.Password if password else QLineEdit.EchoMode.Normal
-        value, ok = QInputDialog.getText(parent, title, label, mode, text)
-        return value if ok else None
+        dialog = TextDialog(title, label, password, text, parent)  # with the on-screen keyboard
+        return dialog.text() if dialog.exec() == TextDialog.DialogCode.Accepted else None
 
     def ask_open_file(self, parent: QWidget | None, directory: str) -> str | None:
-        from PySide6.QtWidgets import QFileDialog
-
-        path, _ = QFileDialog.getOpenFileName(parent, tr("Open program"), directory,
-                                              tr("G-code (*.nc *.ngc *.gcode *.tap *.txt);;All files (*)"))
-        return path or None
+        picker = FilePicker(tr("Open program"), Path(directory), parent)
+        if picker.exec() == FilePicker.DialogCode.Accepted and picker.selected is not None:
+            return str(picker.selected)
+        return None
 
     def ask_save_file(self, parent: QWidget | None, directory: str) -> str | None:
-        from PySide6.QtWidgets import QFileDialog
-
-        path, _ = QFileDialog.getSaveFileName(parent, tr("Save program as"), directory,
-                                              tr("G-code (*.nc *.ngc *.gcode *.tap *.txt);;All files (*)"))
-        return path or None
+        """A file name typed with the on-screen keyboard, saved in ``directory`` (.nc added)."""
+        name = self.ask_text(parent, tr("Save program as"), tr("File name in {0}:").format(directory))
+        if not name or not name.strip():
+            return None
+        path = Path(name.strip())
+        if not path.is_absolute():
+            path = Path(directory) / path
+        return str(path if path.suffix else path.with_suffix(".nc"))
 
     def inform(self, parent: QWidget | None, title: str, text: str) -> None:
         QMessageBox.information(parent, title, text)

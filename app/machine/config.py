@@ -76,7 +76,7 @@ class BusSettings:
     drives: tuple[DriveIdentity, ...] = ()
 
 
-DEFAULT_LEAD_S = 0.25
+DEFAULT_LEAD_S = 0.3
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,9 +87,10 @@ class ControllerSettings:
 
     jog_speed_mm_s: float = 10.0  # continuous jog speed at 100 % (deg/s for rotary axes)
     # set-points queued in the worker ahead of time; a feed hold starts after them until the
-    # worker can replace queued set-points. 0.25 s: the feeder thread shares the GIL (and a
-    # core) with the GUI; measured with the panel (demo, --screenshot at 1920x1080): feeder
-    # wake-up gaps up to 228 ms, and 0.1 s underran in 3 of 4 runs, 0.25 s in none.
+    # worker can replace queued set-points. The feeder thread shares the GIL (and a core) with
+    # the GUI; measured with the panel (demo, --screenshot, 1280x800 and 1920x1080, 2 busy
+    # cores): feeder wake-up gaps p99 6-20 ms, max 56-265 ms; lead 0.1 s underran in 3 of 4
+    # runs, 0.25 s in 1 of 4, 0.3 s in 0 of 3 (least buffer left 95 ms).
     lead_s: float = DEFAULT_LEAD_S
     accel_reserve: float = 0.15
     jerk_reserve: float = 0.3

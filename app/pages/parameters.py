@@ -8,7 +8,6 @@ from PySide6.QtWidgets import (
     QFormLayout,
     QHBoxLayout,
     QLabel,
-    QLineEdit,
     QPushButton,
     QScrollArea,
     QVBoxLayout,
@@ -97,10 +96,8 @@ class ParametersPage(QWidget):
         for kind, b in self.bus_buttons.items():
             b.clicked.connect(lambda _=False, k=kind: self._set(with_bus(self.pending, kind=k)))
         form.addRow(label(N_("Bus")), box)
-        self.adapter = QLineEdit()
-        self.adapter.setMinimumHeight(48)
-        self.adapter.editingFinished.connect(
-            lambda: self._set(with_bus(self.pending, adapter=self.adapter.text().strip())))
+        self.adapter = QPushButton()  # tap: type it with the on-screen keyboard
+        self.adapter.clicked.connect(self.edit_adapter)
         form.addRow(label(N_("Network adapter")), self.adapter)
         row = QHBoxLayout()
         self.password_button = QPushButton()
@@ -141,8 +138,7 @@ class ParametersPage(QWidget):
         self.homing_required.setChecked(self.pending.homing.required)
         for kind, b in self.bus_buttons.items():
             b.setChecked(kind == self.pending.bus.kind)
-        if self.adapter.text() != self.pending.bus.adapter:
-            self.adapter.setText(self.pending.bus.adapter)
+        self.adapter.setText(self.pending.bus.adapter or "—")
         dirty = self.pending is not self.ctx.controller.config
         self.apply_bar.set_state(dirty, validate(self.pending) if dirty else "")
 
@@ -162,6 +158,13 @@ class ParametersPage(QWidget):
             self.apply_bar.set_state(True, tr("Refused: {0}").format(result.reason))
             return False
         return True
+
+    def edit_adapter(self) -> None:
+        text = self.ctx.dialogs.ask_text(self, tr("Network adapter"),
+                                         tr("Network interface of the EtherCAT bus:"),
+                                         text=self.pending.bus.adapter)
+        if text is not None:
+            self._set(with_bus(self.pending, adapter=text.strip()))
 
     def change_password(self) -> None:
         d = self.ctx.dialogs

@@ -14,7 +14,7 @@ ROWS: tuple[tuple[str, ...], ...] = (
     ("1", "2", "3", "4", "5", "6", "7", "8", "9", "0", "-", ".", "⌫"),
     ("G", "M", "X", "Y", "Z", "A", "C", "I", "J", "K", "R", "F", "S"),
     ("Q", "W", "E", "T", "U", "O", "P", "D", "H", "L", "N", "B", "V"),
-    ("(", ")", ";", "%", "/", "=", "#", "[", "]", "←", "→", "Space", "Enter"),
+    ("Aa", "(", ")", ";", "%", "/", "=", "#", "←", "→", "_", "Space", "Enter"),
 )
 SPECIAL: dict[str, tuple[int, str]] = {
     "⌫": (Qt.Key.Key_Backspace, ""),
@@ -30,6 +30,7 @@ class OnScreenKeyboard(QWidget):
         super().__init__(parent)
         self.setObjectName("onScreenKeyboard")
         self._target: QWidget | None = None
+        self.lower = False  # "Aa" switches the letters to lower case (passwords, file names)
         grid = QGridLayout(self)
         grid.setSpacing(4)
         grid.setContentsMargins(0, 0, 0, 0)
@@ -49,9 +50,17 @@ class OnScreenKeyboard(QWidget):
         self._target = widget
 
     def press(self, key: str) -> None:
+        if key == "Aa":
+            self.lower = not self.lower
+            for k, button in self.buttons.items():
+                if len(k) == 1 and k.isalpha():
+                    button.setText(k.lower() if self.lower else k)
+            return
         target = self._target
         if target is None:
             return
+        if len(key) == 1 and key.isalpha() and self.lower:
+            key = key.lower()
         code, text = SPECIAL.get(key, (0, key))
         if not code:
             code = ord(key.upper()) if len(key) == 1 else 0

@@ -9,7 +9,7 @@
       <translation> (+{0} tane daha)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="116" />
+      <location filename="../../app/pages/diagnostics.py" line="117" />
       <source> (first {0:.0f} s shown)</source>
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="183" />
+      <location filename="../../app/pages/program.py" line="181" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -69,7 +69,7 @@
       <translation>Eksenleri uygula</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="158" />
+      <location filename="../../app/pages/parameters.py" line="154" />
       <source>Apply parameters</source>
       <translation>Parametreleri uygula</translation>
     </message>
@@ -79,7 +79,7 @@
       <translation>Değiştirilen eksen tanımları uygulansın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="155" />
+      <location filename="../../app/pages/parameters.py" line="151" />
       <source>Apply the changed parameters?</source>
       <translation>Değiştirilen parametreler uygulansın mı?</translation>
     </message>
@@ -99,7 +99,7 @@
       <translation>Eksen</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="99" />
+      <location filename="../../app/pages/parameters.py" line="98" />
       <source>Bus</source>
       <translation>Veri yolu</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="158" />
+      <location filename="../../app/pages/program.py" line="156" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -144,7 +144,7 @@
       <translation>Neden</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="107" />
+      <location filename="../../app/pages/parameters.py" line="104" />
       <source>Change service password</source>
       <translation>Servis şifresini değiştir</translation>
     </message>
@@ -169,22 +169,22 @@
       <translation>Sayım/birim</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="25" />
+      <location filename="../../app/pages/auto.py" line="24" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="125" />
+      <location filename="../../app/pages/auto.py" line="123" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="78" />
+      <location filename="../../app/pages/parameters.py" line="77" />
       <source>Cycle time Ts</source>
       <translation>Çevrim süresi Ts</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="113" />
+      <location filename="../../app/pages/diagnostics.py" line="114" />
       <source>Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</source>
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
@@ -204,7 +204,7 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="158" />
+      <location filename="../../app/pages/program.py" line="156" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
     </message>
@@ -244,17 +244,22 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="26" />
+      <location filename="../../app/pages/auto.py" line="25" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="81" />
+      <location filename="../../app/pages/auto.py" line="79" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="24" />
+      <location filename="../../app/dialogs.py" line="55" />
+      <source>File name in {0}:</source>
+      <translation>{0} içinde dosya adı:</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="23" />
       <source>Find</source>
       <translation>Bul</translation>
     </message>
@@ -269,17 +274,12 @@
       <translation>Sığdır</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="48" />
-      <source>G-code (*.nc *.ngc *.gcode *.tap *.txt);;All files (*)</source>
-      <translation>G-kodu (*.nc *.ngc *.gcode *.tap *.txt);;Tüm dosyalar (*)</translation>
-    </message>
-    <message>
       <location filename="../../app/pages/manual.py" line="75" />
       <source>G-code block, e.g. G01 X10 F600</source>
       <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="24" />
+      <location filename="../../app/pages/program.py" line="23" />
       <source>Go to line</source>
       <translation>Satıra git</translation>
     </message>
@@ -314,12 +314,12 @@
       <translation>Referanslı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="95" />
+      <location filename="../../app/pages/parameters.py" line="94" />
       <source>Homing</source>
       <translation>Referanslama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="93" />
+      <location filename="../../app/pages/parameters.py" line="92" />
       <source>Homing required before a program</source>
       <translation>Programdan önce referanslama gerekli</translation>
     </message>
@@ -334,7 +334,7 @@
       <translation>Hazır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="90" />
+      <location filename="../../app/pages/parameters.py" line="89" />
       <source>Interpolation</source>
       <translation>İnterpolasyon</translation>
     </message>
@@ -364,24 +364,24 @@
       <translation>Tür</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="189" />
+      <location filename="../../app/pages/auto.py" line="187" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   İlerleme %{1:.0f}
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="96" />
+      <location filename="../../app/pages/preview.py" line="100" />
       <source>Line {0}: {1}</source>
       <translation>Satır {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="25" />
+      <location filename="../../app/pages/program.py" line="24" />
       <source>Load into machine</source>
       <translation>Makineye yükle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="110" />
+      <location filename="../../app/pages/parameters.py" line="107" />
       <source>Lock service level</source>
       <translation>Servis seviyesini kilitle</translation>
     </message>
@@ -431,27 +431,32 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="141" />
+      <location filename="../../app/pages/auto.py" line="139" />
       <source>Move to the start of line {0} and run the program from there?</source>
       <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="104" />
+      <location filename="../../app/pages/parameters.py" line="163" />
       <source>Network adapter</source>
       <translation>Ağ bağdaştırıcısı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/parameters.py" line="164" />
+      <source>Network interface of the EtherCAT bus:</source>
+      <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="22" />
       <source>New</source>
       <translation>Yeni</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="168" />
+      <location filename="../../app/pages/parameters.py" line="171" />
       <source>New service password:</source>
       <translation>Yeni servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="21" />
+      <location filename="../../app/dialogs.py" line="25" />
       <source>No</source>
       <translation>Hayır</translation>
     </message>
@@ -476,17 +481,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Kapalı (M05)</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="47" />
+      <location filename="../../app/dialogs.py" line="48" />
       <source>Open program</source>
       <translation>Program aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="22" />
       <source>Open…</source>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="70" />
+      <location filename="../../app/pages/auto.py" line="68" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -506,17 +511,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Parça sıfırı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="29" />
+      <location filename="../../app/pages/parameters.py" line="28" />
       <source>Path acceleration Amax</source>
       <translation>Yol ivmesi Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="30" />
+      <location filename="../../app/pages/parameters.py" line="29" />
       <source>Path jerk Jmax</source>
       <translation>Yol sarsıntısı Jmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="28" />
+      <location filename="../../app/pages/parameters.py" line="27" />
       <source>Path speed Vmax</source>
       <translation>Yol hızı Vmax</translation>
     </message>
@@ -526,12 +531,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yol v / a / j</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="85" />
+      <location filename="../../app/pages/parameters.py" line="84" />
       <source>Planner mode</source>
       <translation>Planlayıcı kipi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="84" />
+      <location filename="../../app/pages/diagnostics.py" line="85" />
       <source>Planning…</source>
       <translation>Planlanıyor…</translation>
     </message>
@@ -556,7 +561,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="137" />
+      <location filename="../../app/main_window.py" line="138" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -578,17 +583,17 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="84" />
+      <location filename="../../app/pages/auto.py" line="82" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="31" />
+      <location filename="../../app/pages/parameters.py" line="30" />
       <source>Rapid speed</source>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="183" />
+      <location filename="../../app/pages/program.py" line="181" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
@@ -608,7 +613,7 @@ BIRAK</translation>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="171" />
+      <location filename="../../app/pages/parameters.py" line="174" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
     </message>
@@ -623,12 +628,12 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="136" />
+      <location filename="../../app/pages/auto.py" line="134" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="75" />
+      <location filename="../../app/pages/auto.py" line="73" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -643,22 +648,22 @@ BIRAK</translation>
       <translation>Örnek sayısı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="22" />
       <source>Save</source>
       <translation>Kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="22" />
       <source>Save as…</source>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="198" />
+      <location filename="../../app/pages/program.py" line="196" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="54" />
+      <location filename="../../app/dialogs.py" line="55" />
       <source>Save program as</source>
       <translation>Programı farklı kaydet</translation>
     </message>
@@ -668,27 +673,27 @@ BIRAK</translation>
       <translation>Gönder</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="114" />
+      <location filename="../../app/pages/parameters.py" line="111" />
       <source>Service</source>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="161" />
+      <location filename="../../app/main_window.py" line="162" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="168" />
+      <location filename="../../app/main_window.py" line="169" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="168" />
+      <location filename="../../app/pages/parameters.py" line="171" />
       <source>Service password</source>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="161" />
+      <location filename="../../app/main_window.py" line="162" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -718,7 +723,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="66" />
+      <location filename="../../app/pages/auto.py" line="64" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -748,7 +753,7 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="27" />
+      <location filename="../../app/pages/auto.py" line="26" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
@@ -773,7 +778,7 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="173" />
+      <location filename="../../app/pages/parameters.py" line="176" />
       <source>The passwords differ; nothing changed.</source>
       <translation>Şifreler farklı; hiçbir şey değişmedi.</translation>
     </message>
@@ -818,7 +823,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="156" />
+      <location filename="../../app/pages/program.py" line="154" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -838,12 +843,12 @@ BIRAK</translation>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="165" />
+      <location filename="../../app/main_window.py" line="166" />
       <source>Wrong service password</source>
       <translation>Yanlış servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="20" />
+      <location filename="../../app/dialogs.py" line="24" />
       <source>Yes</source>
       <translation>Evet</translation>
     </message>
@@ -923,12 +928,12 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="115" />
+      <location filename="../../app/pages/program.py" line="113" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="157" />
+      <location filename="../../app/pages/program.py" line="155" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>

@@ -214,6 +214,9 @@ def test_parameters_apply_goes_through_the_controller(fake_window, fake_controll
     assert page.apply()
     assert fake_controller.config.machine.limits.v_max_mm_s == 25.0
     assert fake_controller.config.machine.planner.mode == "paper"
+    dialogs.answers.append("enp2s0")
+    page.adapter.click()
+    assert page.pending.bus.adapter == "enp2s0" and page.adapter.text() == "enp2s0"
     page.fields["a_max_mm_s2"].setValue(-5.0, emit=True)
     assert "a_max_mm_s2" in page.apply_bar.message.text() and not page.apply_bar.apply_button.isEnabled()
 

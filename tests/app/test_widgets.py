@@ -132,3 +132,30 @@ def test_highlighting_tokens_and_large_programs(qtbot) -> None:
     assert editor.highlighting
     editor.load_text("G01 X1\n" * 6000)
     assert not editor.highlighting and editor.blockCount() == 6001
+
+
+def test_text_dialog_types_a_password_by_touch(qtbot) -> None:
+    from app.widgets.text_dialog import TextDialog
+
+    dialog = TextDialog("Service level", "Service password:", password=True)
+    qtbot.addWidget(dialog)
+    for key in ("Aa", "A", "B", "Aa", "C", "1"):
+        dialog.keyboard.press(key)
+    assert dialog.text() == "abC1"
+    assert dialog.field.echoMode() == dialog.field.EchoMode.Password
+
+
+def test_file_picker_lists_folders_and_gcode(qtbot, tmp_path) -> None:
+    from app.widgets.file_picker import FilePicker
+
+    (tmp_path / "jobs").mkdir()
+    (tmp_path / "jobs" / "part.ngc").write_text("G0 X0\n")
+    (tmp_path / "notes.pdf").write_text("x")
+    (tmp_path / "a.nc").write_text("G0 X0\n")
+    picker = FilePicker("Open", tmp_path)
+    qtbot.addWidget(picker)
+    assert picker.entries() == ["jobs/", "a.nc"]
+    picker.choose("jobs/")
+    assert picker.entries() == ["part.ngc"]
+    picker.choose("part.ngc")
+    assert picker.selected == (tmp_path / "jobs" / "part.ngc").resolve()

@@ -582,5 +582,7 @@ def test_process_mode_timing_target() -> None:
     from ethercat.benchmark import run_bench
 
     r = run_bench("sim", "", 60.0, mode="process")
-    assert r["jitter_p99_us"] <= 100.0, r
+    if "fifo" not in r["realtime"].replace("fifo-denied", ""):
+        pytest.skip(f"the worker got no real-time core ({r['realtime']}): other workers held them")
+    assert r["jitter_p99_us"] <= 100.0, {k: r[k] for k in ("realtime", "jitter_p99_us", "jitter_max_us")}
     assert r["wkc_errors"] == 0 and r["underruns"] == 0

@@ -15,11 +15,19 @@ from app.machine.controller import MachineController
 from app.machine.model import MachineState
 from planner.machine import shipped_machine
 
+# The streaming lead is the feed-hold latency until the worker can replace queued set-points;
+# these tests place holds at given points of short programs, so they pin it to 0.1 s (simulated
+# time has no GIL gaps to cover). The default lead runs in test_run_cli's cnc-run tests and in
+# test_lifecycle's real-time shutdown test.
+TEST_LEAD_S = 0.1
+
 
 @pytest.fixture
 def config_path(tmp_path: Path) -> Path:
     p = tmp_path / "machine.toml"
     shutil.copyfile(shipped_machine("xyz_mill"), p)
+    with p.open("a", encoding="utf-8") as f:
+        f.write(f"\n[controller]\nlead_s = {TEST_LEAD_S}\n")
     return p
 
 

@@ -5,13 +5,16 @@ mid-run stop the motion along its path before the worker and the feeder go, so n
 from __future__ import annotations
 
 import json
+import shutil
 import time
 from pathlib import Path
 
 import numpy as np
 
+from app.machine.config import DEFAULT_LEAD_S
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
+from planner.machine import shipped_machine
 from tests.machine.conftest import make_controller, trace
 
 SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"
@@ -60,8 +63,11 @@ def test_shutdown_mid_run_stops_along_the_path_first(qapp, config_path: Path, st
     assert abs(st["raw_position"][0] - ref[-1, 0]) < 1e-3  # persisted where it stopped
 
 
-def test_realtime_shutdown_mid_run_leaves_no_underrun_alarm(qapp, config_path: Path, state_dir: Path) -> None:
-    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="thread")
+def test_realtime_shutdown_mid_run_leaves_no_underrun_alarm(qapp, tmp_path: Path, state_dir: Path) -> None:
+    shipped = tmp_path / "shipped.toml"  # the default lead_s, in real time (worker thread + feeder thread)
+    shutil.copyfile(shipped_machine("xyz_mill"), shipped)
+    ctl = MachineController(shipped, state_dir=state_dir, worker_mode="thread")
+    assert ctl.config.controller.lead_s == DEFAULT_LEAD_S
     try:
         assert ctl.connect_bus() and ctl.set_machine_zero_here()
         assert ctl.load_program("G1 X60 F1800\nM30\n") and ctl.cycle_start()

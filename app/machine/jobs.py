@@ -1,0 +1,160 @@
+"""Records of a motion being executed: the job (plan, executor, pushed set-point marks, limit
+meter, trace), the point to resume a program from, and the running limit meter."""
+
+from __future__ import annotations
+
+import collections
+from dataclasses import dataclass
+
+import numpy as np
+
+from app.machine.model import Activity, SpindleState
+from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, check_limits
+from planner.machine import MachineSpec
+from planner.plan import Plan
+from planner.program import Program
+
+__all__ = ["Job", "LimitMeter", "ResumePoint", "merge_max"]
+
+
+@dataclass(frozen=True, slots=True)
+class ResumePoint:
+    """Where a program stopped (fault, E-stop, stop alarm): move index and distance within it."""
+
+    program: Program
+    move_index: int
+    u_mm: float
+    line: int
+    cause: str
+
+
+class Job:
+    """One motion being executed (program, MDI block, jog, approach); owned by the controller."""
+
+    def __init__(
+        self,
+        kind: Activity,
+        name: str,
+        program: Program,
+        plan: Plan,
+        executor: TimeScaledExecutor,
+        overrides: bool,
+        estimated_s: float,
+        machine: MachineSpec,
+    ) -> None:
+        self.kind = kind
+        self.name = name
+        self.program = program
+        self.plan = plan
+        self.executor = executor
+        self.overrides = overrides
+        self.estimated_s = estimated_s
+        self.serial_base = 0
+        self.start_time_s = -1.0
+        self.pause: PausePoint | None = None
+        self.pause_serial = 0
+        self.waiting = False
+        self.dwell_until: float | None = None
+        self.dwell_total_s = 0.0
+        self.samples = 0
+        self.stopping = False
+        self.stop_reason = ""
+        self.aborted = False
+        self.then: Job | None = None
+        self.spindle_before: SpindleState | None = None
+        self.origin: tuple[Program, int, float] | None = None
+        self.single_block = False
+        self.carried_limits: dict[str, float] = {}
+        self.tau_offset_s = 0.0
+        self.time_offset_s = 0.0
+        self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+        self.meter = LimitMeter(
+            machine, plan.ts_s, plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
+        )
+        # per pushed chunk: serial of its last sample, line, tau, move, u within the move
+        self._marks: collections.deque[tuple[int, int, float, int, float]] = collections.deque()
+        self._last_mark: tuple[int, int, float, int, float] | None = None
+
+    def record(self, ch: ScaledChunk, serial_start: int) -> None:
+        end = serial_start + len(ch.q) - 1
+        move = int(ch.move[-1])
+        u = float(ch.s_mm[-1] - self.plan.segment.s0[move]) if len(self.plan.segment.table) else 0.0
+        self._marks.append((end, int(ch.line[-1]), float(ch.tau[-1]), move, u))
+        if len(self._marks) > 4096:
+            self._marks.popleft()
+        self.meter.update(ch.q, ch.s_mm, ch.move)
+
+    def info_at(self, consumed: int) -> tuple[int, float] | None:
+        """(line, tau) of the set-point the drives reached (the last consumed one)."""
+        serial = consumed - 1
+        m = self._mark_at(serial)
+        return (m[1], m[2]) if m is not None else None
+
+    def _mark_at(self, serial: int) -> tuple[int, int, float, int, float] | None:
+        marks = self._marks
+        while len(marks) > 1 and marks[0][0] < serial:
+            self._last_mark = marks.popleft()
+        if marks and marks[0][0] <= serial + 20:
+            return marks[0] if marks[0][0] <= serial or self._last_mark is None else self._last_mark
+        return self._last_mark
+
+    def resume_point(self, consumed: int, cause: str) -> ResumePoint | None:
+        if self.kind is not Activity.PROGRAM or self.origin is None:
+            return self.then.resume_point(consumed, cause) if self.then is not None else None
+        prog, base, u0 = self.origin
+        m = self._mark_at(consumed - 1)
+        if m is None:
+            return ResumePoint(prog, base, u0, prog.moves[base].line if prog.moves else 0, cause)
+        _, line, _, move, u = m
+        orig = base + move
+        u_orig = (u0 + u) if move == 0 else u
+        if orig >= len(prog.moves):
+            return None
+        return ResumePoint(prog, orig, u_orig, line, cause)
+
+
+def merge_max(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:
+    return {k: max(a.get(k, 0.0), b.get(k, 0.0)) for k in set(a) | set(b)}
+
+
+class LimitMeter:
+    """Running maxima of the set-points' velocity/acceleration/jerk ratios (``check_limits``)."""
+
+    def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray) -> None:
+        self.machine = machine
+        self.ts = ts_s
+        self.rapid = rapid_move
+        self.result: dict[str, float] = {}
+        self._q: np.ndarray | None = None
+        self._s: np.ndarray | None = None
+        self._m: np.ndarray | None = None
+        self._pending: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+        self._n = 0
+
+    def update(self, q: np.ndarray, s: np.ndarray, move: np.ndarray) -> None:
+        self._pending.append((q, s, move))
+        self._n += len(q)
+        if self._n >= 500:
+            self.flush()
+
+    def flush(self) -> None:
+        if not self._pending:
+            return
+        q = np.concatenate([p[0] for p in self._pending])
+        s = np.concatenate([p[1] for p in self._pending])
+        move = np.concatenate([p[2] for p in self._pending])
+        self._pending.clear()
+        self._n = 0
+        if self._q is not None:
+            q = np.concatenate([self._q, q])
+            s = np.concatenate([self._s, s])  # type: ignore[list-item]
+            move = np.concatenate([self._m, move])  # type: ignore[list-item]
+        if len(q) >= 4:
+            r = check_limits(q, s, move, self.machine, self.ts, self.rapid)
+            for k, v in r.items():
+                self.result[k] = max(self.result.get(k, 0.0), v)
+        self._q, self._s, self._m = q[-3:].copy(), s[-3:].copy(), move[-3:].copy()
+
+    def final(self) -> dict[str, float]:
+        self.flush()
+        return dict(self.result)

@@ -1,0 +1,383 @@
+"""Program commands: load and check, cycle start, feed hold, resume, stop, single block,
+optional stop, run from line, feed and rapid override. Part of ``MachineController`` (mixed in).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from app.machine.jobs import Job, ResumePoint
+from app.machine.limits import check_program, program_bounds
+from app.machine.model import (
+    Activity,
+    CommandResult,
+    MachineState,
+    ProgramInfo,
+    ProgramIssue,
+    Severity,
+    SpindleState,
+)
+from planner.errors import PlannerError, ProgramError
+from planner.interpreter import parse_program
+from planner.program import Program
+from planner.resume import (
+    approach_moves,
+    locate,
+    modal_state_before_move,
+    program_from_moves,
+    remaining_program,
+)
+
+__all__ = ["ProgramMixin"]
+
+
+class ProgramMixin:
+    """Load, start, hold, resume, stop, run from line, overrides.
+
+    Mixed into ``MachineController``, which holds the state.
+    """
+
+    def _check_program_limits(self, program: Program) -> list[ProgramIssue]:
+        return [
+            ProgramIssue(v.line, 1, str(v).split(": ", 1)[1], v.axis)
+            for v in check_program(program, self._machine)
+        ]
+
+    def load_program(self, source: str | os.PathLike[str], name: str | None = None) -> CommandResult:
+        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text.
+
+        Parses, plans and checks the whole path against the soft limits (arcs by their exact
+        extremes) before anything moves. Emits ``programLoaded`` or ``programErrors`` (all
+        errors, with lines and axes). Refused while running. Programs start in the interpreter's
+        reset state (G54) unless they select a work offset; the active offset
+        (``select_work_offset``) applies to MDI blocks and to the work coordinates shown.
+        """
+        why = self.refusal("load_program")
+        if why:
+            return self._refuse("load_program", why)
+        path = ""
+        if isinstance(source, os.PathLike) or (
+            "\n" not in source and len(source) < 4096 and Path(source).is_file()
+        ):
+            path = str(source)
+            try:
+                data = Path(path).read_bytes()
+            except OSError as exc:
+                return self._load_failed(
+                    (ProgramIssue(0, 0, f"cannot read: {exc.strerror or exc}"),),
+                    f"{path}: cannot read: {exc.strerror or exc}",
+                )
+            try:
+                text = data.decode("utf-8")
+            except UnicodeDecodeError:
+                text = data.decode("latin-1")
+            name = name or Path(path).name
+        else:
+            text = str(source)
+            name = name or "<text>"
+        return self._load_text(text, name, path)
+
+    def _load_text(self, text: str, name: str, path: str) -> CommandResult:
+        try:
+            program = parse_program(text, name, machine=self._machine, start_position=self._machine_pos())
+        except ProgramError as exc:
+            issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
+            return self._load_failed(issues, f"{len(issues)} error(s) in the program; first: {issues[0]}")
+        except PlannerError as exc:
+            return self._load_failed((ProgramIssue(0, 0, str(exc)),), str(exc))
+        limit_issues = self._check_program_limits(program)
+        if limit_issues:
+            return self._load_failed(tuple(limit_issues), f"soft limit: {limit_issues[0]}")
+        try:
+            plan = self._plan(program)
+        except PlannerError as exc:
+            return self._load_failed((ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}")
+        lo, hi = program_bounds(program)
+        tab = plan.segment.table
+        info = ProgramInfo(
+            name=name,
+            path=path,
+            text=text,
+            line_count=program.line_count or text.count("\n") + 1,
+            move_count=len(program.moves),
+            cycle_time_s=float(plan.cycle_time_s),
+            length_mm=float(np.sum(tab.length)) if len(tab) else 0.0,
+            bounds_min=tuple(float(x) for x in lo),
+            bounds_max=tuple(float(x) for x in hi),
+            line_times_s=tuple((int(tab.line[i]), float(plan.t0[i])) for i in range(len(tab))),
+            program=program,
+            plan=plan,
+        )
+        self._program_info = info
+        self._program_text = text
+        self._program_path = path
+        self._resume = None
+        self.programLoaded.emit(info)
+        return self._ok("load_program")
+
+    def _load_failed(self, issues: tuple[ProgramIssue, ...], reason: str) -> CommandResult:
+        """A failed load unloads the previous program (as LinuxCNC drops the file on a failed
+        open): cycle start is then refused with "no program loaded" instead of running the old
+        program while the operator looks at the new one's errors."""
+        self._program_info = None
+        self._program_text = ""
+        self._program_path = ""
+        self._resume = None
+        self.programErrors.emit(issues)
+        return self._refuse("load_program", reason)
+
+    def _fresh_program(self) -> Program | None:
+        """The loaded program, re-interpreted if the machine moved since it was loaded."""
+        info = self._program_info
+        if info is None:
+            return None
+        prog: Program = info.program  # type: ignore[assignment]
+        if np.max(np.abs(np.asarray(prog.start_position) - self._machine_pos()), initial=0.0) > 1e-6:
+            if not self._load_text(self._program_text, info.name, self._program_path):
+                return None
+            prog = self._program_info.program  # type: ignore[union-attr,assignment]
+        return prog
+
+    def cycle_start(self) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE; re-interpreted first if the machine
+        moved since loading), or continue (HOLD). Needs homed axes (unless the configuration
+        says otherwise) and no active alarm of severity STOP or above.
+        """
+        if self._state is MachineState.HOLD:
+            return self.resume()
+        why = self.refusal("cycle_start")
+        if why:
+            return self._refuse("cycle_start", why)
+        if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
+            return self._refuse("cycle_start", "acknowledge the active alarms first")
+        prog = self._fresh_program()
+        if prog is None:
+            return self._refuse("cycle_start", "the program no longer passes its checks (see the errors)")
+        info = self._program_info
+        assert info is not None
+        try:
+            job = self._make_job(Activity.PROGRAM, prog, info.name, single_block=self._single_block)
+        except PlannerError as exc:
+            return self._refuse("cycle_start", f"planner: {exc}")
+        job.origin = (prog, 0, 0.0)
+        self._resume = None
+        self._line = 0
+        self._start_job(job)
+        return self._ok("cycle_start")
+
+    def feed_hold(self) -> CommandResult:
+        """Jerk-limited stop along the path (time scale to 0): RUNNING -> HOLD. The stop starts
+        after the set-points already queued in the worker (``lead_s``, 0.3 s by default) until the
+        worker can replace queued set-points.
+        """
+        why = self.refusal("feed_hold")
+        if why:
+            return self._refuse("feed_hold", why)
+        with self._lock:
+            job = self._job
+            if job is None:
+                return self._refuse("feed_hold", "nothing is moving")
+            job.executor.hold = True
+        self._set_state(MachineState.HOLD, "feed hold")
+        return self._ok("feed_hold")
+
+    def resume(self) -> CommandResult:
+        """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
+        same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
+        program stopped (``resume_line``) and continue from exactly there.
+        """
+        why = self.refusal("resume")
+        if why:
+            return self._refuse("resume", why)
+        if self._state is MachineState.IDLE and self._resume is not None:
+            return self._resume_from_point(self._resume)
+        with self._lock:
+            job = self._job
+            if job is None:
+                return self._refuse("resume", "nothing to resume")
+            if job.stopping:
+                return self._refuse("resume", "the program is being stopped")
+            if (
+                job.kind is Activity.PROGRAM
+                and job.single_block != self._single_block
+                and (job.executor.standing or job.waiting)
+                and self._consumed() >= self._pushed_total
+            ):
+                replanned = self._replan_here(job)
+                if replanned is not None:
+                    self._set_state(MachineState.RUNNING, "program")
+                    return self._ok("resume")
+            job.executor.hold = False
+            if job.pause is not None and job.waiting:
+                job.pause = None
+                job.waiting = False
+                job.executor.release_pause()
+        self._set_state(MachineState.RUNNING, job.kind.value)
+        return self._ok("resume")
+
+    def _replan_here(self, job: Job) -> Job | None:
+        """At a standstill on the path (hold or pause point): plan the rest of the program again
+        from exactly here (single block switched on or off); the new plan starts at rest."""
+        if job.origin is None:
+            return None
+        prog, base, u0 = job.origin
+        ex = job.executor
+        _, _, move, s_cum = ex.evaluate(np.array([ex.tau]))
+        m = int(move[0])
+        u = float(s_cum[0] - job.plan.segment.s0[m])
+        index, u_orig = base + m, (u0 + u if m == 0 else u)
+        if index >= len(prog.moves) - 1 and u_orig >= prog.moves[-1].length_mm - 1e-12:
+            return None  # at the very end: nothing to re-plan
+        try:
+            rest = remaining_program(prog, index, u_orig)
+            new = self._make_job(Activity.PROGRAM, rest, job.name, single_block=self._single_block)
+        except PlannerError:
+            return None
+        full_t = self._program_info.cycle_time_s if self._program_info else new.estimated_s
+        new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.t_end, 0.0)
+        new.origin = (prog, index, u_orig)
+        new.start_time_s = job.start_time_s
+        new.trace = job.trace
+        new.samples, new.dwell_total_s = job.samples, job.dwell_total_s
+        new.carried_limits = job.meter.final()
+        new.estimated_s = job.estimated_s
+        new.serial_base = job.serial_base
+        self._job = new
+        if self._worker_mode != "manual":
+            self._feed()
+        return new
+
+    def stop(self) -> CommandResult:
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE)."""
+        if self._state not in (MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
+            return self._refuse("stop", f"nothing to stop: machine is {self._state.label.lower()}")
+        if self._state is MachineState.HOMING:
+            return self._refuse("stop", "homing cannot be stopped mid-way: use E-stop")
+        with self._lock:
+            job = self._job
+            if job is not None:
+                job.executor.hold = True
+                job.stopping = True
+                job.stop_reason = "stopped by the operator"
+                if job.kind is Activity.PROGRAM:
+                    self._resume = None
+        if job is None:
+            self._set_state(MachineState.IDLE, "stopped")
+        elif self._state is MachineState.RUNNING:
+            self._set_state(MachineState.HOLD, "stopping")
+        return self._ok("stop")
+
+    def set_single_block(self, on: bool) -> CommandResult:
+        """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
+        Switched while running, it takes effect at the next standstill (feed hold, pause point):
+        the rest of the program is planned again from there."""
+        self._single_block = bool(on)
+        self.modesChanged.emit(self._single_block, self._optional_stop)
+        if self._job is not None and self._job.kind is Activity.PROGRAM:
+            self.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
+        return self._ok("set_single_block")
+
+    def set_optional_stop(self, on: bool) -> CommandResult:
+        """Honour M01 (optional pause); may change while running."""
+        self._optional_stop = bool(on)
+        self.modesChanged.emit(self._single_block, self._optional_stop)
+        return self._ok("set_optional_stop")
+
+    def run_from_line(self, line: int) -> CommandResult:
+        """Start the loaded program at source line ``line``: the spindle as of that line is
+        restored, a safe approach (retract Z to the higher of the current and target heights,
+        move the other axes, then down) brings the tool to the line's start point, then the
+        program runs on from there.
+        """
+        why = self.refusal("run_from_line")
+        if why:
+            return self._refuse("run_from_line", why)
+        prog = self._fresh_program()
+        if prog is None:
+            return self._refuse("run_from_line", "the program no longer passes its checks")
+        try:
+            i = locate(prog, int(line))
+        except PlannerError as exc:
+            return self._refuse("run_from_line", str(exc))
+        point = ResumePoint(
+            program=prog, move_index=i, u_mm=0.0, line=prog.moves[i].line, cause=f"run from line {line}"
+        )
+        return self._resume_from_point(point, action="run_from_line")
+
+    def _resume_from_point(self, point: ResumePoint, action: str = "resume") -> CommandResult:
+        if self._cfg.homing.required and not all(self._homed):
+            return self._refuse(action, "axes not homed")
+        if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
+            return self._refuse(action, "acknowledge the active alarms first")
+        prog = point.program
+        try:
+            rest = remaining_program(prog, point.move_index, point.u_mm)
+        except PlannerError as exc:
+            return self._refuse(action, str(exc))
+        modal = modal_state_before_move(prog, point.move_index)
+        spindle = SpindleState(direction=int(np.sign(modal.spindle_rpm)), rpm=abs(modal.spindle_rpm))
+        cur = self._machine_pos()
+        retract = "Z" if "Z" in self._cfg.axes else ""
+        moves = approach_moves(cur, rest.start_position, self._cfg.axes, self._cfg.machine.rotary, retract)
+        name = self._program_info.name if self._program_info else prog.name
+        try:
+            main = self._make_job(Activity.PROGRAM, rest, name, single_block=self._single_block)
+        except PlannerError as exc:
+            return self._refuse(action, f"planner: {exc}")
+        # progress relative to the whole program
+        full_t = self._program_info.cycle_time_s if self._program_info else main.estimated_s
+        main.tau_offset_s = max(full_t - main.executor.t_end, 0.0)
+        main.time_offset_s = main.tau_offset_s
+        main.origin = (prog, point.move_index, point.u_mm)
+        main.spindle_before = spindle
+        self._resume = None
+        self._line = point.line
+        if moves:
+            approach = program_from_moves(prog, moves, [], cur, name="approach")
+            issues = self._check_program_limits(approach)
+            if issues:
+                return self._refuse(action, f"approach move: soft limit: {issues[0]}")
+            job = self._make_job(Activity.APPROACH, approach, "approach", overrides=True)
+            job.then = main
+            self._start_job(job)
+        else:
+            self._apply_spindle(spindle)
+            self._start_job(main)
+        return self._ok(action)
+
+    @property
+    def resume_line(self) -> int:
+        """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
+        return self._resume.line if self._resume is not None else 0
+
+    def set_feed_override(self, percent: float) -> CommandResult:
+        """Feed override 0-150 %, applied while running without a jump and within every limit
+        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
+        """
+        p = float(percent)
+        if not 0.0 <= p <= 150.0:
+            return self._refuse("set_feed_override", f"feed override must be 0-150 %, got {p:g}")
+        self._feed_pct = p
+        with self._lock:
+            if self._job is not None and self._job.overrides:
+                self._job.executor.set_overrides(feed=p / 100.0)
+            if self._job is not None and self._job.then is not None:
+                self._job.then.executor.set_overrides(feed=p / 100.0)
+        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
+        return self._ok("set_feed_override")
+
+    def set_rapid_override(self, percent: float) -> CommandResult:
+        """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
+        p = float(percent)
+        if not 0.0 <= p <= 100.0:
+            return self._refuse("set_rapid_override", f"rapid override must be 0-100 %, got {p:g}")
+        self._rapid_pct = p
+        with self._lock:
+            for job in (self._job, self._job.then if self._job else None):
+                if job is not None and job.overrides:
+                    job.executor.set_overrides(rapid=p / 100.0)
+        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
+        return self._ok("set_rapid_override")
