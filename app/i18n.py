@@ -8,6 +8,7 @@ widgets that compose texts (numbers, states) listen to ``I18n.languageChanged`` 
 
 from __future__ import annotations
 
+import hashlib
 import shutil
 import subprocess
 import sys
@@ -40,18 +41,37 @@ def lrelease_path() -> Path | None:
     return Path(found) if found else None
 
 
+def source_digest(ts: Path) -> str:
+    return hashlib.sha256(ts.read_bytes()).hexdigest()
+
+
+def digest_path(qm: Path) -> Path:
+    """Sidecar holding the sha256 of the .ts a .qm was compiled from. File times are no use
+    here: a git checkout gives both files whatever times it likes."""
+    return qm.with_name(qm.name + ".sha256")
+
+
+def is_stale(ts: Path) -> bool:
+    qm = ts.with_suffix(".qm")
+    stamp = digest_path(qm)
+    if not qm.exists() or not stamp.exists():
+        return True
+    return stamp.read_text(encoding="ascii").strip() != source_digest(ts)
+
+
 def compile_translations(directory: Path = TRANSLATIONS) -> list[Path]:
     """Compile every stale .ts to .qm; returns the .qm files written."""
     tool = lrelease_path()
     written = []
     for ts in sorted(directory.glob("*.ts")):
-        qm = ts.with_suffix(".qm")
-        if qm.exists() and qm.stat().st_mtime >= ts.stat().st_mtime:
+        if not is_stale(ts):
             continue
+        qm = ts.with_suffix(".qm")
         if tool is None:
-            raise RuntimeError(f"{qm} is missing or older than {ts.name} and pyside6-lrelease "
+            raise RuntimeError(f"{qm} is missing or out of date with {ts.name} and pyside6-lrelease "
                                "is not installed (pip install PySide6-Essentials)")
         subprocess.run([str(tool), "-silent", str(ts), "-qm", str(qm)], check=True)
+        digest_path(qm).write_text(source_digest(ts) + "\n", encoding="ascii")
         written.append(qm)
     return written
 
@@ -76,8 +96,8 @@ class I18n(QObject):
             self._translator = None
         if language != "en" and app is not None:
             qm = TRANSLATIONS / f"cnc_{language}.qm"
-            if not qm.exists() or (qm.with_suffix(".ts").exists()
-                                   and qm.stat().st_mtime < qm.with_suffix(".ts").stat().st_mtime):
+            ts = qm.with_suffix(".ts")
+            if not qm.exists() or (ts.exists() and is_stale(ts)):
                 compile_translations()
             translator = QTranslator(self)
             if not translator.load(str(qm)):
