@@ -25,6 +25,7 @@ class PathProfile:
     cycle_time_s: float
     truncated: bool    # True when only the first max_time_s are shown
     limits: tuple[float, float, float]  # Vmax, Amax, Jmax of the machine
+    rapid_mm_s: float = 0.0  # G00 moves run up to this, above the feed limit Vmax
 
 
 def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX_TIME_S,
@@ -50,8 +51,9 @@ def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX
     limits = (lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3)
     if len(t) < 4:
         z = np.zeros(len(t))
-        return PathProfile(t, z, z, z, plan.cycle_time_s, False, limits)
+        return PathProfile(t, z, z, z, plan.cycle_time_s, False, limits, lim.rapid_mm_s)
     v = np.gradient(s, ts)
     a = np.gradient(v, ts)
     j = np.gradient(a, ts)
-    return PathProfile(t, v, a, j, plan.cycle_time_s, plan.cycle_time_s > max_time_s, limits)
+    return PathProfile(t, v, a, j, plan.cycle_time_s, plan.cycle_time_s > max_time_s, limits,
+                       lim.rapid_mm_s)

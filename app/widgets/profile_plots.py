@@ -42,6 +42,13 @@ class ProfilePlots(QWidget):
             plot.addItem(hi)
             self.plots[key], self.curves[key], self.limit_lines[key] = plot, curve, (lo, hi)
         self.plots["j"].setLabel("bottom", "t", units="s")
+        # Path speed is never negative: its lower line marks the rapid limit instead (G00 moves
+        # may run above the feed limit Vmax, up to the rapid speed).
+        self.limit_lines["v"][0].setPen(pg.mkPen("#ffd27f", width=1, style=Qt.PenStyle.DotLine))
+        self.limit_lines["v"][0].label = pg.InfLineLabel(self.limit_lines["v"][0], "rapid",
+                                                         position=0.02, color="#ffd27f")
+        self.limit_lines["v"][1].label = pg.InfLineLabel(self.limit_lines["v"][1], "Vmax",
+                                                         position=0.02, color="#ff4060")
 
     def set_profile(self, profile: PathProfile | None) -> None:
         if profile is None:
@@ -51,6 +58,6 @@ class ProfilePlots(QWidget):
         for key, data, limit in zip(("v", "a", "j"), (profile.v, profile.a, profile.j), profile.limits):
             self.curves[key].setData(profile.t, np.asarray(data))
             lo, hi = self.limit_lines[key]
-            lo.setValue(-limit)
+            lo.setValue(profile.rapid_mm_s if key == "v" else -limit)
             hi.setValue(limit)
         self.plots["v"].enableAutoRange()
