@@ -24,9 +24,11 @@ against the soft limits on its whole path (arcs by their exact extremes) and pla
 override budget (``app.machine.timescale``: acceleration and jerk limits reduced to 85 % and
 70 %); a ``TimeScaledExecutor`` then runs the plan at a time scale sigma that carries feed
 override (0-150 %), rapid override (0-100 %) and feed hold without leaving the path or
-exceeding a limit. Continuous jog is a move planned to the soft limit (a lost release stops
-there); a release is a hold followed by abandoning the move. Faults keep the point to resume
-from (``resume_line``; ``resume()`` in IDLE moves there safely and continues).
+exceeding a limit; a hold or stop while moving is the time-optimal jerk-limited stop along the
+path (``planner.stopping``) when it keeps every limit, else sigma's own ramp. Continuous jog
+is a move planned to the soft limit (a lost release stops there); a release is a hold followed
+by abandoning the move. Faults keep the point to resume from (``resume_line``; ``resume()`` in
+IDLE moves there safely and continues).
 
 Machine vs drive coordinates: machine = drive position - home offset (set by homing); work =
 machine - active work offset (G54-G59). Persisted in the state directory (``persist.py``).

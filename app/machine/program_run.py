@@ -169,7 +169,8 @@ class ProgramMixin:
         return self._ok("cycle_start")
 
     def feed_hold(self) -> CommandResult:
-        """Jerk-limited stop along the path (time scale to 0): RUNNING -> HOLD. The stop starts
+        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
+        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts
         after the set-points already queued in the worker (``lead_s``, 0.3 s by default) until the
         worker can replace queued set-points.
         """

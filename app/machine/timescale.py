@@ -49,7 +49,15 @@ bounds (1), (2). A tighter D1 appearing at the far edge of the window is approac
 rate D2 (no clipping of sigma_dot, which would be a jump in sigma_ddot).
 
 A feed hold is sigma -> 0 under the same bounds: a jerk-limited stop along the path; resume
-ramps sigma back up and the plan continues to the same end. Full stops of the plan (block
+ramps sigma back up and the plan continues to the same end. Shorter: when a hold (or stop)
+arrives while moving, the executor first tries ``planner.stopping.plan_path_stop``, the
+time-optimal jerk-limited stop of the path speed from the current (s, v, a) with per-axis
+bounds from the geometry ahead (about half the distance and a third of the time of the ramp:
+30 mm/s on an arc, 1.7 mm in 0.11 s instead of 5.2 mm in 0.43 s); it is used only if the
+executed set-points, with the three before them, pass ``check_limits``, and never across a
+corner or a planned full stop. It ends at rest at a planned time tau (sigma = 0), from
+which a resume ramps sigma up as after any hold, so the run still ends exactly at the end.
+A resume during that stop lets it finish first. Full stops of the plan (block
 ends with zero speed: M00, M01, dwell, single block, program end) are pause points: tau stops
 exactly there (speed and acceleration of the plan are zero there, so stopping tau is smooth),
 and restarts at the target sigma.
@@ -77,6 +85,7 @@ import numpy as np
 
 from planner.machine import MachineSpec
 from planner.plan import Plan
+from planner.stopping import PathStop, plan_path_stop
 
 __all__ = ["BlockStats", "Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
            "reduced_machine"]
@@ -299,6 +308,15 @@ class TimeScaledExecutor:
         self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
         self._target_cache = 1.0
         self.sigma_start = True  # at a standstill of the plan (start or pause point)
+        # hold / stop: the time-optimal stop along the path (planner.stopping) when it keeps
+        # every limit, else sigma -> 0 by the braking law above
+        self.path_stops = True
+        self._stop: PathStop | None = None
+        self._stop_k = 0
+        self._stop_tried = False
+        self.stops_taken = 0  # how many holds used the path stop (diagnostics, tests)
+        self._last = (np.zeros((0, len(machine.axes))), np.zeros(0), np.zeros(0, np.int64))
+        self._rapid_move = seg.table.is_rapid if self.n_moves else np.zeros(0, bool)
 
     # ------------------------------------------------------------------ commands
     @property
@@ -391,11 +409,70 @@ class TimeScaledExecutor:
         return max(d1, 0.0), max(d2, 0.0)
 
     # ------------------------------------------------------------------ generation
+    def _try_path_stop(self) -> None:
+        """On a hold while moving: plan the time-optimal stop along the path from the current
+        (s, v, a) and keep it only if the executed set-points (with the last three before it)
+        stay within every limit (``check_limits``)."""
+        self._stop_tried = True
+        if not self.path_stops or self.sigma <= 0.0 or self.sigma_start:
+            return
+        nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
+        tau_limit = nxt.tau_s if nxt is not None else self.t_end
+        try:
+            stop = plan_path_stop(self.plan, self.machine, self.tau, self.sigma, self.sigma_dot, tau_limit)
+        except (ValueError, FloatingPointError, IndexError):  # pragma: no cover - keep the ramp
+            stop = None
+        if stop is None:
+            return
+        q0, s0, m0 = self._last
+        if len(q0):
+            q = np.concatenate([q0, stop.q])
+            r = check_limits(q, np.concatenate([s0, stop.s_mm]), np.concatenate([m0, stop.move]),
+                             self.machine, self.ts, self._rapid_move)
+            if max(r[k] for k in ("tangential_v", "tangential_a", "tangential_j", "axis_v", "axis_a",
+                                  "axis_j")) > 1.0 + 1e-6:  # as the tests: rounding of v = Vmax
+                return
+        self._stop = stop
+        self._stop_k = 0
+        self.stops_taken += 1
+
+    def _next_stop_chunk(self, n: int) -> ScaledChunk:
+        st = self._stop
+        assert st is not None
+        k0, k1 = self._stop_k, min(self._stop_k + n, len(st.q))
+        self._stop_k = k1
+        sl = slice(k0, k1)
+        _, _, _, s_plan = self.evaluate(st.tau[sl])
+        v_plan = np.gradient(s_plan) / self.ts if k1 - k0 > 1 else np.full(k1 - k0, 1.0)
+        sig = np.clip(st.speed[sl] / np.maximum(np.abs(v_plan), 1e-9), 1e-9, SIGMA_MAX)
+        self.tau = float(st.tau[k1 - 1])
+        if k1 >= len(st.q):  # at rest on the path: resume ramps sigma up from here
+            self._stop = None
+            self.sigma, self.sigma_dot = 0.0, 0.0
+            sig[-1] = 0.0
+        else:
+            self.sigma, self.sigma_dot = float(sig[-1]), 0.0
+        ch = ScaledChunk(st.q[sl].copy(), st.tau[sl].copy(), sig, st.line[sl].copy(), st.move[sl].copy(),
+                         st.s_mm[sl].copy(), None)
+        self._remember(ch)
+        return ch
+
+    def _remember(self, ch: ScaledChunk) -> None:
+        q0, s0, m0 = self._last
+        self._last = (np.concatenate([q0, ch.q])[-3:], np.concatenate([s0, ch.s_mm])[-3:],
+                      np.concatenate([m0, ch.move])[-3:])
+
     def generate(self, n: int) -> ScaledChunk | None:
         """Up to ``n`` set-points; fewer when a pause point or the end is reached. None when
         paused (call ``release_pause``) or finished."""
         if self.finished or self.paused is not None or n <= 0:
             return None
+        if not self.hold:
+            self._stop_tried = False
+        elif self._stop is None and not self._stop_tried:
+            self._try_path_stop()
+        if self._stop is not None:
+            return self._next_stop_chunk(n)
         ts = self.ts
         taus = np.empty(n)
         sigmas = np.empty(n)
@@ -462,7 +539,9 @@ class TimeScaledExecutor:
             k += 1
         taus = taus[:k]
         q, line, move, s = self.evaluate(taus)
-        return ScaledChunk(q, taus, sigmas[:k].copy(), line, move, s, pause)
+        ch = ScaledChunk(q, taus, sigmas[:k].copy(), line, move, s, pause)
+        self._remember(ch)
+        return ch
 
     def progress(self) -> float:
         return 1.0 if self.t_end <= 0 else min(self.tau / self.t_end, 1.0)
