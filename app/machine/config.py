@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from app.atomic import atomic_write_text
 from app.machine.errors import ConfigError
 from planner.errors import PlannerError
 from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_dict, shipped_machine
@@ -256,7 +257,7 @@ def recover_config(path: str | os.PathLike[str]) -> tuple[MachineConfig, str]:
         reason = str(exc)
     if p.exists():
         os.replace(p, p.with_name(p.name + ".damaged"))
-    _atomic_write(p, bak.read_text(encoding="utf-8"))
+    atomic_write_text(p, bak.read_text(encoding="utf-8"))
     cfg = replace(cfg, path=str(p))
     return cfg, f"{reason}; restored from {bak} (damaged file kept as {p.name}.damaged)"
 
@@ -316,31 +317,6 @@ def config_to_toml(config: MachineConfig) -> str:
     return "\n".join(out)
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    try:  # make the rename durable
-        dfd = os.open(path.parent, os.O_RDONLY)
-        try:
-            os.fsync(dfd)
-        finally:
-            os.close(dfd)
-    except OSError:
-        pass
-
-
 def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = None) -> MachineConfig:
     """Validate and write atomically; the previous valid file is kept as ``<file>.bak``.
 
@@ -367,5 +343,5 @@ def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = Non
             os.close(fd)
             shutil.copy2(p, tmp)
             os.replace(tmp, bak)
-    _atomic_write(p, text)
+    atomic_write_text(p, text)
     return new
