@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app import deferred
 from app.context import PanelContext, PanelOptions
 from app.i18n import LANGUAGES, tr
 from app.pages import PAGES, PageInfo, page_info
@@ -109,6 +110,8 @@ class MainWindow(QMainWindow):
             lambda action, reason: self.show_message(tr("Refused: {0}").format(reason)))
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
+        if hasattr(ctx.controller, "loadingChanged"):
+            ctx.controller.loadingChanged.connect(self._on_loading)
         ctx.program.lineRequested.connect(lambda _line: self.show_page("program"))
         self.header.alarm_banner.clicked.connect(lambda: self.show_page("alarms"))
         ctx.i18n.languageChanged.connect(self._on_language)
@@ -128,11 +131,28 @@ class MainWindow(QMainWindow):
         if program is not None and ctx.program.info is None:
             ctx.controller.load_program(program)  # the Program page opens it when it is loaded
 
+    def _on_loading(self, loading: bool, name: str) -> None:
+        """The controller checks a program in its worker thread: say so in the status bar."""
+        if loading:
+            self._program_label.setText(tr("{0} (checking…)").format(name))
+            self.show_message(tr("Checking {0} …").format(name))
+        elif self.context.program.info is None:
+            self._program_label.setText("")
+
     def _on_program_loaded(self, info: object) -> None:
+        name = str(getattr(info, "name", ""))
+        self._program_label.setText(name)
+        self.show_message(tr("Program loaded: {0}").format(name))
+        if deferred.is_big(info):  # the tool path of a big program: in its own event-loop turn
+            deferred.run_soon("program-model", lambda: self._apply_program(info))
+        else:
+            self._apply_program(info)
+
+    def _apply_program(self, info: object) -> None:
         self.context.program.set_loaded(info, self.context.controller.config.machine)
-        self._program_label.setText(str(getattr(info, "name", "")))
 
     def _on_program_errors(self, issues: object) -> None:
+        deferred.cancel("program-model")  # an older program not shown yet: never show it now
         self.context.program.set_errors(issues)
         n = len(issues)  # type: ignore[arg-type]
         self.show_message(tr("Program refused: {0} error(s)").format(n))

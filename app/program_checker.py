@@ -41,6 +41,12 @@ class ProgramChecker(QObject):
         self._timer.stop()
         self._start()
 
+    def cancel(self) -> None:
+        """Forget pending and running checks (their results are dropped)."""
+        self._timer.stop()
+        self._generation += 1
+        self.busy = False
+
     def _start(self) -> None:
         self._generation += 1
         generation, text, machine = self._generation, self._text, self.machine

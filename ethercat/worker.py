@@ -17,14 +17,20 @@ Modes (`WorkerConfig.mode`):
   "process"  the loop runs in its own process (multiprocessing spawn), pinned to a core
              no other worker holds (`WorkerConfig.cpu`), SCHED_FIFO 49 when permitted,
              memory locked, GC disabled; set-points, commands and snapshots cross through
-             one `multiprocessing.shared_memory` block (an SPSC ring, a command mailbox, a
-             seqlock snapshot). Default: a busy Qt GUI in the parent does not disturb it.
+             one `multiprocessing.shared_memory` block (an SPSC ring, a staging area for
+             `replace`, a command mailbox, a seqlock snapshot). Default: a busy Qt GUI in
+             the parent does not disturb it.
              Each cycle sleeps on an absolute deadline (clock_nanosleep) to 0.1 ms before
              it and busy-waits the rest, and always sleeps at least `min_sleep_s`: a
              real-time loop that never sleeps would starve its core (and another worker).
   "thread"   the same loop as a plain thread in the calling process (for comparison).
   "manual"   no thread: `step(n)` runs n cycles at once (simulated time; for tests and
              headless fast-forward with `bus_kind="sim"`).
+
+Set-point serials: the k-th set-point the loop takes since start has serial k;
+`samples_consumed()` (live, not the snapshot) is the serial taken next. `replace(from_serial,
+q)` swaps the queued tail from a serial on, atomically between two cycles (feed hold within a
+cycle or two instead of after the queued lead; protocol in its docstring).
 
 Per cycle (`_Loop.cycle`): command mailbox -> outputs (set-point from the ring when
 ENABLED, else target := actual) -> `bus.exchange()` -> supervision (working counter,
@@ -357,10 +363,13 @@ F_TIME, F_PERIOD_SUM, F_PERIOD_MIN, F_PERIOD_MAX, F_JITTER_MAX, F_EXEC_SUM, F_EX
 F_SIZE = 10
 # commands
 (CMD_NONE, CMD_ENABLE, CMD_DISABLE, CMD_FAULT_RESET, CMD_QUICK_STOP, CMD_ESTOP, CMD_HOME, CMD_DOUT,
- CMD_INJECT, CMD_FLUSH, CMD_RESET_TRACKING, CMD_STOP) = range(12)
+ CMD_INJECT, CMD_FLUSH, CMD_RESET_TRACKING, CMD_STOP, CMD_REPLACE) = range(13)
 INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
                 "lose_slave", "restore_slave")
-RESULT_OK, RESULT_REFUSED = 1, 2
+RESULT_OK, RESULT_REFUSED, RESULT_TOO_LATE, RESULT_BEYOND_END = 1, 2, 3, 4
+# CyclicWorker.replace() return values when nothing was changed
+REPLACE_TOO_LATE = -1        # from_serial was already taken by the loop: retry from a later serial
+REPLACE_BEYOND_END = -2      # from_serial is past the last queued set-point
 
 
 class _Layout:
@@ -379,7 +388,8 @@ class _Layout:
             ("sum_e2", np.float64, (n,)), ("win_e2", np.float64, (n,)), ("max_e", np.float64, (n,)),
             ("hist", np.int64, (_HIST_BINS,)),
         ]
-        tail = [("ring", np.float64, (capacity, n)), ("alarm", np.int64, (_ALARM_SLOTS, 6)),
+        tail = [("ring", np.float64, (capacity, n)), ("stage", np.float64, (capacity, n)),
+                ("alarm", np.int64, (_ALARM_SLOTS, 6)),
                 ("alarm_f", np.float64, (_ALARM_SLOTS,)), ("trace", np.float64, (trace_capacity, 1 + 2 * n))]
         self.fields: dict[str, tuple[int, Any, tuple[int, ...]]] = {}
         off = 0
@@ -639,12 +649,42 @@ class _Loop:
             inject(INJECT_NAMES[name_index], a, b >> 8)
         elif code == CMD_FLUSH:
             self._flush()
+        elif code == CMD_REPLACE:
+            return self._replace(a, b)
         elif code == CMD_RESET_TRACKING:
             self._reset_tracking()
         elif code == CMD_STOP:
             self.stop_requested = True
         else:
             return RESULT_REFUSED
+        return RESULT_OK
+
+    def _replace(self, from_serial: int, n: int) -> int:
+        """CMD_REPLACE, applied between two cycles: the queued set-points with serial >=
+        `from_serial` are dropped and the `n` staged ones take their place. Serial k = the k-th
+        set-point taken since start (`I_CONSUMED` is the serial taken next; it sits at ring
+        index `C_TAIL`). Refused (nothing changed) when that serial was already taken or lies
+        past the queue's end. Runs once per command (not per cycle); the copy is at most
+        two block copies of the staging area into the ring (wrap-around)."""
+        ctl = self.ctl
+        consumed = int(self.li[I_CONSUMED])
+        tail = int(ctl[C_TAIL])
+        head = int(ctl[C_HEAD])
+        if from_serial < consumed:
+            return RESULT_TOO_LATE
+        start = tail + (from_serial - consumed)
+        if start > head:
+            return RESULT_BEYOND_END
+        cap = self.cap
+        n = max(0, min(n, cap - (start - tail)))
+        i0 = start % cap
+        first = min(n, cap - i0)
+        stage = self.v["stage"]
+        if first > 0:
+            np.copyto(self.ring[i0:i0 + first], stage[:first])
+        if n > first:
+            np.copyto(self.ring[:n - first], stage[first:n])
+        ctl[C_HEAD] = start + n            # the producer waits for our ack before touching head
         return RESULT_OK
 
     def _axis_of(self, position: int) -> int:
@@ -1257,7 +1297,7 @@ class CyclicWorker:
         self._loop: _Loop | None = None
         self._thread: threading.Thread | None = None
         self._process: Any = None
-        self._lock = threading.Lock()
+        self._lock = threading.RLock()   # one command in flight; push/replace own C_HEAD
         self._alarms: list[Alarm] = []
         self._events: collections.deque[WorkerEvent] = collections.deque(maxlen=_EVENTS_KEPT)
         self._alarms_read = 0
@@ -1387,6 +1427,9 @@ class CyclicWorker:
         return self._v
 
     def _command(self, code: int, a: int = 0, b: int = 0, reason: str = "") -> bool:
+        return self._command_result(code, a, b, reason) == RESULT_OK
+
+    def _command_result(self, code: int, a: int = 0, b: int = 0, reason: str = "") -> int:
         v = self._v
         if v is None:
             raise WorkerError("worker is not running")
@@ -1415,7 +1458,7 @@ class CyclicWorker:
                     if self._thread is not None and not self._thread.is_alive():
                         raise WorkerError("worker thread has stopped")
                     time.sleep(0.0005)
-            return int(ctl[C_CMD_RESULT]) == RESULT_OK
+            return int(ctl[C_CMD_RESULT])
 
     def enable(self) -> None:
         """Walk every drive to OPERATION ENABLED (target := actual first). Returns at once;
@@ -1517,18 +1560,71 @@ class CyclicWorker:
             raise ConfigurationError("push: set-points must be finite")
         ctl = v["ctl"]
         cap = self.config.buffer_capacity
-        head = int(ctl[C_HEAD])
-        n = min(len(q), cap - (head - int(ctl[C_TAIL])))
-        if n <= 0:
-            return 0
-        ring = v["ring"]
-        start = head % cap
-        first = min(n, cap - start)
-        ring[start:start + first] = q[:first]
-        if n > first:
-            ring[: n - first] = q[first:n]
-        ctl[C_HEAD] = head + n          # publish after the data (x86: stores in order)
+        with self._lock:                # head is ours, except while a replace() is in flight
+            head = int(ctl[C_HEAD])
+            n = min(len(q), cap - (head - int(ctl[C_TAIL])))
+            if n <= 0:
+                return 0
+            ring = v["ring"]
+            start = head % cap
+            first = min(n, cap - start)
+            ring[start:start + first] = q[:first]
+            if n > first:
+                ring[: n - first] = q[first:n]
+            ctl[C_HEAD] = head + n      # publish after the data (x86: stores in order)
         return n
+
+    def replace(self, from_serial: int, q: np.ndarray) -> int:
+        """Atomically drop every queued set-point with serial >= `from_serial` and queue `q`
+        (N, n_axes) in their place. Serial k is the k-th set-point the loop takes since
+        `start()` (`samples_consumed()` is the serial it takes next; a flush drops queued
+        serials without taking them, so the next push continues at `samples_consumed()`).
+
+        The loop applies it between two cycles: the drives see the old set-points up to
+        `from_serial - 1`, then `q[0]`, never a gap or a mix. Returns how many of `q` were
+        queued (the ring is bounded: push the rest later), or `REPLACE_TOO_LATE` (-1) when
+        the loop had already taken `from_serial` (retry from a later serial), or
+        `REPLACE_BEYOND_END` (-2) when `from_serial` is past the queue's end; nothing changed
+        then. Blocks until the loop acknowledges (about one cycle; at once in "manual").
+
+        Protocol (shared memory, single producer = this handle, single consumer = the loop):
+        `q` goes to the staging area; then the command mailbox (code, from_serial, n) and
+        last its sequence number. The loop reads the mailbox at the top of a cycle, checks
+        `from_serial` against its own consumed count, copies the staging area into the ring
+        at the matching index and sets `C_HEAD` itself, then writes result and ack. While the
+        command is in flight the producer holds `_lock` (push() waits), so `C_HEAD` has one
+        writer at any time and the staging area is never read and written at once. Ordering
+        relies on x86-64 total store order (stores are seen in program order) as the ring
+        does; NumPy copies and int64 stores of aligned slots are not reordered by Python.
+        """
+        v = self._views()
+        q = np.asarray(q, dtype=np.float64)
+        if q.ndim == 1:
+            q = q.reshape(1, -1)
+        if q.ndim != 2 or q.shape[1] != self.config.n_axes:
+            raise ConfigurationError(f"replace expects (N, {self.config.n_axes}) set-points, got {q.shape}")
+        if not np.isfinite(q).all():
+            raise ConfigurationError("replace: set-points must be finite")
+        from_serial = int(from_serial)
+        cap = self.config.buffer_capacity
+        with self._lock:
+            # room from from_serial on, judged now; the loop only makes more by consuming
+            kept = max(0, from_serial - int(v["li"][I_CONSUMED]))
+            n = max(0, min(len(q), cap - kept))
+            v["stage"][:n] = q[:n]
+            result = self._command_result(CMD_REPLACE, from_serial, n)
+        if result == RESULT_OK:
+            return n
+        if result == RESULT_TOO_LATE:
+            return REPLACE_TOO_LATE
+        if result == RESULT_BEYOND_END:
+            return REPLACE_BEYOND_END
+        raise WorkerError(f"replace refused (result {result})")
+
+    def samples_consumed(self) -> int:
+        """Live serial the loop takes next (= set-points taken since start), read from the
+        shared block at once (not the 30 Hz snapshot). One aligned int64 load."""
+        return int(self._views()["li"][I_CONSUMED])
 
     # ------------------------------------------------------------------ manual mode
     def step(self, n_cycles: int = 1) -> None:

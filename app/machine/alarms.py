@@ -119,7 +119,7 @@ class AlarmMixin:
         with self._lock:
             job = self._job
             if job is not None:
-                job.executor.hold = True
+                self._hold_motion()
                 job.stopping = True
                 job.stop_reason = cause
                 self._resume = job.resume_point(self._consumed(), cause)

@@ -77,7 +77,7 @@ class BusSettings:
     drives: tuple[DriveIdentity, ...] = ()
 
 
-DEFAULT_LEAD_S = 0.3
+DEFAULT_LEAD_S = 0.5
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,11 +87,14 @@ class ControllerSettings:
     of every jerk limit; the rest is kept for changing the time scale (override, hold)."""
 
     jog_speed_mm_s: float = 10.0  # continuous jog speed at 100 % (deg/s for rotary axes)
-    # set-points queued in the worker ahead of time; a feed hold starts after them until the
-    # worker can replace queued set-points. The feeder thread shares the GIL (and a core) with
-    # the GUI; measured with the panel (demo, --screenshot, 1280x800 and 1920x1080, 2 busy
+    # set-points queued in the worker ahead of time. A feed hold, stop or override change does
+    # not wait for them: the controller replaces the queue from a few cycles ahead of the
+    # drives (``app.machine.feeder``, ~5 ms in simulated time, ~10-13 ms in real time), so the
+    # lead only buys safety against GUI stalls. The feeder thread shares the GIL (and a core)
+    # with the GUI; measured with the panel (demo, --screenshot, 1280x800 and 1920x1080, 2 busy
     # cores): feeder wake-up gaps p99 6-20 ms, max 56-265 ms; lead 0.1 s underran in 3 of 4
-    # runs, 0.25 s in 1 of 4, 0.3 s in 0 of 3 (least buffer left 95 ms).
+    # runs, 0.25 s in 1 of 4, 0.3 s in 0 of 3 (least buffer left 95 ms); with splicing, 0.3 s
+    # left 135-281 ms, 0.5 s 364-469 ms (0 underruns in 5 + 5 runs). Default 0.5 s.
     lead_s: float = DEFAULT_LEAD_S
     accel_reserve: float = 0.15
     jerk_reserve: float = 0.3

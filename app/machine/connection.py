@@ -293,7 +293,7 @@ class ConnectionMixin:
                 return True  # the worker already stopped the drives (quick stop, fault)
             if job.kind is Activity.PROGRAM and job.origin is not None and self._resume is None:
                 self._resume = job.resume_point(self._consumed(), reason)
-            job.executor.hold = True
+            self._hold_motion()
             job.stopping = True
             job.stop_reason = job.stop_reason or reason
 

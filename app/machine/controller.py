@@ -47,7 +47,8 @@ facade's state:
     app.machine.states       state machine: TRANSITIONS, refusals, E-stop, reset
     app.machine.connection   configuration, persistence, worker + feeder life cycle, shutdown
     app.machine.feeder       jobs, set-point streaming (lead_s), pause points, end of a run
-    app.machine.program_run  load, cycle start, feed hold, resume, stop, run from line, overrides
+    app.machine.program_load load (parse, soft limits, plan) in a worker thread
+    app.machine.program_run  cycle start, feed hold, resume, stop, run from line, overrides
     app.machine.manual       jog (continuous, incremental), MDI
     app.machine.homing       machine zero (homing), work offsets, touch-off
     app.machine.spindle      spindle
@@ -87,6 +88,7 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.persist import StateStore
+from app.machine.program_load import LoadMixin, LoadRequest
 from app.machine.program_run import ProgramMixin
 from app.machine.spindle import SpindleMixin
 from app.machine.states import TRANSITIONS, StateMixin
@@ -109,6 +111,7 @@ class MachineController(
     ConnectionMixin,
     FeederMixin,
     ProgramMixin,
+    LoadMixin,
     ManualMixin,
     HomingMixin,
     SpindleMixin,
@@ -131,6 +134,8 @@ class MachineController(
     trackingSample = Signal(float, object, object)  # (time s, reference, actual) machine coords, <= 30 Hz
     programLoaded = Signal(object)  # ProgramInfo (checked: no errors, within soft limits)
     programErrors = Signal(object)  # tuple[ProgramIssue, ...] (parse errors, soft limits)
+    loadingChanged = Signal(bool, str)  # (a program is being checked, its name)
+    _loadDone = Signal(object)  # LoadRequest finished in its worker thread (queued)
     programFinished = Signal(object)  # RunSummary (completed or not)
     lineChanged = Signal(int)  # current source line (1-based), 0 when none
     progressChanged = Signal(float, float)  # (fraction 0..1, remaining time s at current override)
@@ -190,6 +195,10 @@ class MachineController(
         self._program_info: ProgramInfo | None = None
         self._program_text = ""
         self._program_path = ""
+        self._load_request: LoadRequest | None = None  # the load in flight (program_load)
+        self._load_generation = 0
+        self._load_reason = ""  # why the last load was refused
+        self._loadDone.connect(self._on_load_done)
         self._job: Job | None = None
         self._pushed_total = 0
         self._line = 0

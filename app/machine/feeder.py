@@ -4,24 +4,61 @@
 Serial numbers: every set-point pushed gets the next serial; the worker's ``samples_consumed``
 says which one the drives reached (line, progress, resume point). Part of
 ``MachineController`` (mixed in).
+
+Splicing (feed hold, stop, stop-class alarms, jog release, overrides): the executor's state is
+kept per pushed chunk (``Job.chunks``). A change is applied at serial S = the worker's live
+consumed serial + a margin of a few cycles (``SPLICE_MARGIN_S``, raised to the time a splice
+took when that was longer): the executor is rewound to the chunk holding S, regenerates the
+part of it before S (bit-identical: same state, same chunk start), takes the change, and the
+new set-points replace the worker's queue from S (``CyclicWorker.replace``, applied between
+two cycles). When the loop took S meanwhile (refused, queue unchanged) the executor is put
+back and the splice is retried from a later serial; after ``SPLICE_ATTEMPTS`` it falls back
+to applying the change after the queued set-points (the behaviour without splicing). So a
+hold starts decelerating within ~5-10 ms of the request instead of after the lead.
 """
 
 from __future__ import annotations
 
 import os
+import time
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from app.machine.errors import MachineError
-from app.machine.jobs import Job, merge_max
+from app.machine.jobs import ChunkRecord, Job, merge_max
 from app.machine.model import Activity, MachineState, RunSummary, Severity, SpindleState, TrackingReport
-from app.machine.timescale import PausePoint, TimeScaledExecutor, pause_points, reduced_machine
+from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, pause_points, reduced_machine
 from planner.plan import Plan, plan_program
 from planner.program import Program
 
-__all__ = ["FeederMixin"]
+__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "FeederMixin", "SpliceInfo"]
+
+SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
+SPLICE_ATTEMPTS = 6
+CHUNK = 20  # executor samples per pushed chunk
+REPLACE_TOO_LATE, REPLACE_BEYOND_END = -1, -2  # CyclicWorker.replace refusals (ethercat.worker)
+
+
+class SpliceInfo:
+    """The last splice (diagnostics, tests): serial spliced at, live consumed serial when it
+    was asked for, attempts, time it took (s), and whether it fell back to the queue end."""
+
+    __slots__ = ("serial", "consumed", "attempts", "elapsed_s", "fallback")
+
+    def __init__(self, serial: int, consumed: int, attempts: int, elapsed_s: float, fallback: bool) -> None:
+        self.serial, self.consumed, self.attempts = serial, consumed, attempts
+        self.elapsed_s, self.fallback = elapsed_s, fallback
+
+    def __repr__(self) -> str:
+        return (f"SpliceInfo(serial={self.serial}, consumed={self.consumed}, attempts={self.attempts}, "
+                f"elapsed_s={self.elapsed_s:.4f}, fallback={self.fallback})")
+
+
+def _set_hold(ex: TimeScaledExecutor) -> None:
+    ex.hold = True
 
 
 class FeederMixin:
@@ -29,6 +66,10 @@ class FeederMixin:
 
     Mixed into ``MachineController``, which holds the state.
     """
+
+    _splice_est_s: dict[bool, float] = {}  # critical time of the last splice, per kind (hold or not)
+    _splice_critical_s: float = 0.0  # last attempt: from choosing the serial to the replace's ack
+    last_splice: SpliceInfo | None = None
 
     @property
     def _lead_samples(self) -> int:
@@ -93,7 +134,8 @@ class FeederMixin:
         if self._worker_mode != "manual":
             self._feed()
 
-    def _feed(self) -> None:
+    def _feed(self, max_new: int | None = None) -> None:
+        """Keep the worker's queue ``lead_s`` ahead (at most ``max_new`` set-points now)."""
         from ethercat.worker import WorkerState
 
         with self._lock:
@@ -102,28 +144,153 @@ class FeederMixin:
                 return
             if w.state() is not WorkerState.ENABLED:
                 return
+            self._prune_chunks(job, w)
             want = self._lead_samples - w.buffer_level()
+            if max_new is not None:
+                want = min(want, max_new)
+            ex = job.executor
             while want > 0 and job.pause is None:
-                if job.executor.hold and job.executor.standing:
+                if ex.hold and ex.standing:
                     break  # held still on the path: the worker keeps the last set-point
-                ch = job.executor.generate(min(want, 20))
+                state = ex.save_state()
+                ch = ex.generate(min(want, CHUNK))
                 if ch is None:
                     break
-                raw = ch.q + self._home_offset
+                raw = self._chunk_raw(ch)
                 n = w.push(raw)
                 if n < len(raw):  # pragma: no cover - lead is far below the ring capacity
                     raise MachineError("worker buffer full")
-                job.record(ch, self._pushed_total)
-                job.samples += n
-                self._pushed_total += n
+                self._record_chunk(job, ch, state, len(raw))
                 want -= n
-                if ch.pause is not None:
-                    # the plan stands still here: repeat the point so the worker sees the
-                    # motion end before its buffer runs empty (no underrun alarm)
-                    hold = np.repeat(raw[-1:], 2, axis=0)
-                    self._pushed_total += w.push(hold)
-                    job.pause_serial = self._pushed_total  # before .pause: the poll reads both
-                    job.pause = ch.pause
+
+    def _chunk_raw(self, ch: ScaledChunk) -> np.ndarray:
+        """Set-points of a chunk in drive units; at a pause point the plan stands still, so the
+        point is repeated: the worker sees the motion end before its buffer runs empty."""
+        raw = ch.q + self._home_offset
+        if ch.pause is not None:
+            raw = np.vstack([raw, np.repeat(raw[-1:], 2, axis=0)])
+        return raw
+
+    def _record_chunk(self, job: Job, ch: ScaledChunk, state: tuple, pushed: int) -> None:
+        """Bookkeeping of a chunk the worker queued at serial ``_pushed_total`` (under the lock)."""
+        serial = self._pushed_total
+        job.record(ch, serial)
+        job.samples += len(ch.q)
+        job.chunks.append(ChunkRecord(serial, len(ch.q), pushed, state, ch.pause is not None))
+        self._pushed_total = serial + pushed
+        if ch.pause is not None:
+            job.pause_serial = self._pushed_total  # before .pause: the poll reads both
+            job.pause = ch.pause
+
+    @staticmethod
+    def _live_consumed(w: Any) -> int | None:
+        live = getattr(w, "samples_consumed", None)
+        return int(live()) if callable(live) else None
+
+    def _prune_chunks(self, job: Job, w: Any) -> None:
+        consumed = self._live_consumed(w)
+        if consumed is None:
+            return
+        chunks = job.chunks
+        while len(chunks) > 1 and chunks[0].serial + chunks[0].pushed <= consumed:
+            chunks.popleft()
+
+    def _change_motion(self, change: Callable[[TimeScaledExecutor], None]) -> None:
+        """Apply ``change`` (hold, override) to the running job's executor from a serial a few
+        cycles ahead of the drives, replacing the worker's queue from there (module docstring).
+        Without a job nothing happens; without a queue (or a worker that cannot replace) the
+        change simply applies to the next set-points generated."""
+        with self._lock:
+            job, w = self._job, self._worker
+            if job is None:
+                return
+            ex = job.executor
+            consumed = self._live_consumed(w) if w is not None and not job.aborted else None
+            if consumed is None or not hasattr(w, "replace") or consumed >= self._pushed_total:
+                change(ex)
+                return
+            current = ex.save_state()
+            ts = self._cfg.machine.planner.ts_s
+            hold = change is _set_hold
+            margin_s = SPLICE_MARGIN_S
+            if self._worker_mode != "manual":
+                # real time: the loop runs on while we compute (a hold plans the time-optimal
+                # stop, ~6 ms here); the margin covers the last such splice's critical part
+                est = self._splice_est_s.get(hold, 0.008 if hold else 0.003)
+                margin_s = max(margin_s, 1.2 * est + 0.001)
+            t_start = time.perf_counter()
+            first_consumed = consumed
+            for attempt in range(1, SPLICE_ATTEMPTS + 1):
+                consumed = self._live_consumed(w) or 0
+                serial = consumed + max(int(round(margin_s / ts)), 1)
+                done = self._splice_at(job, w, serial, consumed, change)
+                dt = self._splice_critical_s
+                if done == REPLACE_BEYOND_END:  # the worker dropped its queue (quick stop, flush)
+                    ex.restore_state(current)
+                    change(ex)
+                    done = 0
+                if done >= 0:
+                    if done:
+                        self._splice_est_s = {**self._splice_est_s, hold: dt}
+                    took = time.perf_counter() - t_start
+                    self.last_splice = SpliceInfo(serial, first_consumed, attempt, took, not done)
+                    return
+                ex.restore_state(current)  # refused: the queue is unchanged, so is the executor
+                margin_s = max(2.0 * margin_s, 1.5 * dt + 0.002)
+            change(ex)  # the loop kept outrunning us: apply after the queued set-points
+            took = time.perf_counter() - t_start
+            self.last_splice = SpliceInfo(-1, first_consumed, SPLICE_ATTEMPTS, took, True)
+
+    def _hold_motion(self) -> None:
+        """The running job's executor to hold (sigma -> 0 / the time-optimal path stop), from a
+        few cycles ahead of the drives (feed hold, stop, STOP alarms, jog release)."""
+        job = self._job
+        if job is not None and not job.executor.hold:
+            self._change_motion(_set_hold)
+
+    def _splice_at(self, job: Job, w: Any, serial: int, consumed: int,
+                   change: Callable[[TimeScaledExecutor], None]) -> int:
+        """One splice attempt at ``serial``: 1 done, 0 applied without a splice (nothing queued
+        there to replace), or the worker's refusal (``REPLACE_TOO_LATE``, ``REPLACE_BEYOND_END``;
+        the executor state is then to be restored by the caller)."""
+        t0 = time.perf_counter()
+        ex = job.executor
+        rec = next((r for r in reversed(job.chunks) if r.serial <= serial), None)
+        if serial >= self._pushed_total or rec is None or serial >= rec.serial + rec.pushed:
+            change(ex)
+            return 0
+        p = serial - rec.serial
+        if rec.pause and p >= rec.samples:
+            change(ex)  # in the standstill after a pause point: nothing to decelerate
+            return 0
+        ex.restore_state(rec.state)
+        prefix = ex.generate(p) if p > 0 else None
+        if p > 0 and (prefix is None or len(prefix.q) != p):  # pragma: no cover - deterministic
+            return REPLACE_TOO_LATE
+        change(ex)
+        new: list[tuple[tuple, ScaledChunk, np.ndarray]] = []
+        # only the first set-points go in the replace (the sooner it reaches the loop, the
+        # smaller the margin a splice needs); the feeder tops the queue up right after it
+        state = ex.save_state()
+        ch = ex.generate(CHUNK)
+        if ch is not None:
+            new.append((state, ch, self._chunk_raw(ch)))
+        q = np.vstack([r for _, _, r in new]) if new else np.zeros((0, len(self._home_offset)))
+        n = w.replace(serial, q)
+        self._splice_critical_s = time.perf_counter() - t0
+        if n < 0:
+            return n
+        if n < len(q):  # pragma: no cover - lead is far below the ring capacity
+            raise MachineError("worker buffer full")
+        job.rewind(rec.serial)
+        self._pushed_total = rec.serial
+        if prefix is not None:
+            self._record_chunk(job, prefix, rec.state, p)
+        for state, ch, raw in new:
+            self._record_chunk(job, ch, state, len(raw))
+        # a plain push (no race with the loop) of 0.1 s more now; the feeder thread adds the rest
+        self._feed(max_new=int(0.1 / self._cfg.machine.planner.ts_s))
+        return 1
 
     def _consumed(self) -> int:
         snap = self._last_snap

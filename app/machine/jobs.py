@@ -14,7 +14,20 @@ from planner.machine import MachineSpec
 from planner.plan import Plan
 from planner.program import Program
 
-__all__ = ["Job", "LimitMeter", "ResumePoint", "merge_max"]
+__all__ = ["ChunkRecord", "Job", "LimitMeter", "ResumePoint", "merge_max"]
+
+
+@dataclass(frozen=True, slots=True)
+class ChunkRecord:
+    """One pushed chunk: serial of its first set-point, executor samples in it, set-points
+    pushed (plus the repeats after a pause point), and the executor's state before it
+    (``TimeScaledExecutor.save_state``): the controller rewinds to it to splice the queue."""
+
+    serial: int
+    samples: int
+    pushed: int
+    state: tuple
+    pause: bool
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,6 +87,23 @@ class Job:
         # per pushed chunk: serial of its last sample, line, tau, move, u within the move
         self._marks: collections.deque[tuple[int, int, float, int, float]] = collections.deque()
         self._last_mark: tuple[int, int, float, int, float] | None = None
+        # pushed chunks still (partly) queued in the worker, oldest first
+        self.chunks: collections.deque[ChunkRecord] = collections.deque()
+
+    def rewind(self, serial: int) -> None:
+        """Forget what was pushed from ``serial`` on (a chunk start; the worker's queue is being
+        replaced from there): marks, chunk records, metered and counted samples, pause point."""
+        while self._marks and self._marks[-1][0] >= serial:
+            self._marks.pop()
+        dropped = 0
+        while self.chunks and self.chunks[-1].serial >= serial:
+            rec = self.chunks.pop()
+            dropped += rec.samples
+            if rec.pause:
+                self.pause = None
+                self.pause_serial = 0
+        self.samples -= dropped
+        self.meter.rewind(dropped)
 
     def record(self, ch: ScaledChunk, serial_start: int) -> None:
         end = serial_start + len(ch.q) - 1
@@ -118,12 +148,16 @@ def merge_max(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:
 
 
 class LimitMeter:
-    """Running maxima of the set-points' velocity/acceleration/jerk ratios (``check_limits``)."""
+    """Running maxima of the set-points' velocity/acceleration/jerk ratios (``check_limits``).
 
-    def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray) -> None:
+    The newest ``keep`` samples stay unmetered, so a splice of the worker's queue (at most its
+    capacity, 2000 set-points) can take them back (``rewind``) before they count."""
+
+    def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray, keep: int = 4096) -> None:
         self.machine = machine
         self.ts = ts_s
         self.rapid = rapid_move
+        self.keep = keep
         self.result: dict[str, float] = {}
         self._q: np.ndarray | None = None
         self._s: np.ndarray | None = None
@@ -134,17 +168,36 @@ class LimitMeter:
     def update(self, q: np.ndarray, s: np.ndarray, move: np.ndarray) -> None:
         self._pending.append((q, s, move))
         self._n += len(q)
-        if self._n >= 500:
-            self.flush()
+        if self._n >= self.keep + 500:
+            self._flush(self._n - self.keep)
+
+    def rewind(self, n: int) -> None:
+        """Drop the newest ``n`` samples (never executed: replaced in the worker's queue)."""
+        n = min(n, self._n)
+        while n > 0 and self._pending:
+            q, s, m = self._pending[-1]
+            if len(q) <= n:
+                self._pending.pop()
+                self._n -= len(q)
+                n -= len(q)
+            else:
+                k = len(q) - n
+                self._pending[-1] = (q[:k], s[:k], m[:k])
+                self._n -= n
+                n = 0
 
     def flush(self) -> None:
-        if not self._pending:
+        self._flush(self._n)
+
+    def _flush(self, count: int) -> None:
+        if not self._pending or count <= 0:
             return
         q = np.concatenate([p[0] for p in self._pending])
         s = np.concatenate([p[1] for p in self._pending])
         move = np.concatenate([p[2] for p in self._pending])
-        self._pending.clear()
-        self._n = 0
+        self._pending = [(q[count:], s[count:], move[count:])] if count < len(q) else []
+        self._n = len(q) - min(count, len(q))
+        q, s, move = q[:count], s[:count], move[:count]
         if self._q is not None:
             q = np.concatenate([self._q, q])
             s = np.concatenate([self._s, s])  # type: ignore[list-item]

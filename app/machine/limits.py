@@ -17,7 +17,9 @@ import numpy as np
 from planner.machine import MachineSpec
 from planner.program import Move, Program
 
-__all__ = ["LimitViolation", "check_point", "check_program", "move_bounds", "program_bounds"]
+__all__ = [
+    "LimitViolation", "check_point", "check_program", "move_bounds", "move_bounds_table", "program_bounds",
+]
 
 _EPS = 1e-9  # mm|deg: rounding allowance at a limit
 
@@ -63,14 +65,36 @@ def move_bounds(move: Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return arr.min(axis=0), arr.max(axis=0), arr
 
 
-def program_bounds(program: Program) -> tuple[np.ndarray, np.ndarray]:
-    """Axis-aligned bounding box of the whole path (machine coordinates), arcs exact."""
+def move_bounds_table(program: Program, chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
+    """Per-move bounds (lo (M, n_axes), hi (M, n_axes)), arcs exact: NumPy over lines and
+    rapids (their end points), ``move_bounds`` for arcs. Built in chunks so that a load in a
+    worker thread never holds the GIL for long."""
+    moves = program.moves
+    n = len(program.axes) if program.axes else len(program.start_position)
+    lo = np.empty((len(moves), n))
+    hi = np.empty((len(moves), n))
+    for k in range(0, len(moves), chunk):
+        part = moves[k:k + chunk]
+        starts = np.array([m.start for m in part], dtype=float).reshape(len(part), n)
+        ends = np.array([m.end for m in part], dtype=float).reshape(len(part), n)
+        np.minimum(starts, ends, out=lo[k:k + len(part)])
+        np.maximum(starts, ends, out=hi[k:k + len(part)])
+        for i, m in enumerate(part):
+            if m.arc is not None:
+                lo[k + i], hi[k + i], _ = move_bounds(m)
+    return lo, hi
+
+
+def program_bounds(program: Program, table: tuple[np.ndarray, np.ndarray] | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned bounding box of the whole path (machine coordinates), arcs exact.
+    ``table``: a ``move_bounds_table`` of the program, if already built."""
     lo = np.asarray(program.start_position, dtype=float).copy()
     hi = lo.copy()
-    for m in program.moves:
-        a, b, _ = move_bounds(m)
-        np.minimum(lo, a, out=lo)
-        np.maximum(hi, b, out=hi)
+    mlo, mhi = table if table is not None else move_bounds_table(program)
+    if len(mlo):
+        np.minimum(lo, mlo.min(axis=0), out=lo)
+        np.maximum(hi, mhi.max(axis=0), out=hi)
     return lo, hi
 
 
@@ -86,19 +110,24 @@ def check_point(machine: MachineSpec, q: np.ndarray) -> list[tuple[str, float, f
     return out
 
 
-def check_program(program: Program, machine: MachineSpec, max_reports: int = 50) -> list[LimitViolation]:
+def check_program(program: Program, machine: MachineSpec, max_reports: int = 50,
+                  table: tuple[np.ndarray, np.ndarray] | None = None) -> list[LimitViolation]:
     """Every move whose path leaves an axis' travel, with its line and axis (first report per
-    move and axis). Empty when the whole path is inside the soft limits."""
+    move and axis). Empty when the whole path is inside the soft limits. ``table``: a
+    ``move_bounds_table`` of the program, if already built."""
     lo_lim = np.array([a.min_pos for a in machine.axes])
     hi_lim = np.array([a.max_pos for a in machine.axes])
     names = machine.axis_names
     out: list[LimitViolation] = []
-    for m in program.moves:
-        a, b, _ = move_bounds(m)
-        bad_hi = b > hi_lim + _EPS
-        bad_lo = a < lo_lim - _EPS
-        if not (bad_hi.any() or bad_lo.any()):
-            continue
+    mlo, mhi = table if table is not None else move_bounds_table(program)
+    if not len(mlo):
+        return out
+    bad_hi_all = mhi > hi_lim + _EPS
+    bad_lo_all = mlo < lo_lim - _EPS
+    for j in np.flatnonzero((bad_hi_all | bad_lo_all).any(axis=1)):
+        m = program.moves[int(j)]
+        a, b = mlo[j], mhi[j]
+        bad_hi, bad_lo = bad_hi_all[j], bad_lo_all[j]
         ends = np.vstack([m.start, m.end])
         for i in np.nonzero(bad_hi | bad_lo)[0]:
             if bad_hi[i]:

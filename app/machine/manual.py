@@ -83,7 +83,7 @@ class ManualMixin:
             job = self._job
             if job is None or job.kind is not Activity.JOG:
                 return self._ok("jog_stop")
-            job.executor.hold = True
+            self._hold_motion()
             job.stopping = True
             job.stop_reason = "jog released"
         return self._ok("jog_stop")

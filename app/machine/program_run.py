@@ -1,27 +1,21 @@
-"""Program commands: load and check, cycle start, feed hold, resume, stop, single block,
-optional stop, run from line, feed and rapid override. Part of ``MachineController`` (mixed in).
+"""Program commands: cycle start, feed hold, resume, stop, single block,
+optional stop, run from line, feed and rapid override (loading: ``app.machine.program_load``).
+Part of ``MachineController`` (mixed in).
 """
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import numpy as np
 
 from app.machine.jobs import Job, ResumePoint
-from app.machine.limits import check_program, program_bounds
 from app.machine.model import (
     Activity,
     CommandResult,
     MachineState,
-    ProgramInfo,
-    ProgramIssue,
     Severity,
     SpindleState,
 )
-from planner.errors import PlannerError, ProgramError
-from planner.interpreter import parse_program
+from planner.errors import PlannerError
 from planner.program import Program
 from planner.resume import (
     approach_moves,
@@ -35,99 +29,10 @@ __all__ = ["ProgramMixin"]
 
 
 class ProgramMixin:
-    """Load, start, hold, resume, stop, run from line, overrides.
+    """Start, hold, resume, stop, run from line, overrides (loading: ``LoadMixin``).
 
     Mixed into ``MachineController``, which holds the state.
     """
-
-    def _check_program_limits(self, program: Program) -> list[ProgramIssue]:
-        return [
-            ProgramIssue(v.line, 1, str(v).split(": ", 1)[1], v.axis)
-            for v in check_program(program, self._machine)
-        ]
-
-    def load_program(self, source: str | os.PathLike[str], name: str | None = None) -> CommandResult:
-        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text.
-
-        Parses, plans and checks the whole path against the soft limits (arcs by their exact
-        extremes) before anything moves. Emits ``programLoaded`` or ``programErrors`` (all
-        errors, with lines and axes). Refused while running. Programs start in the interpreter's
-        reset state (G54) unless they select a work offset; the active offset
-        (``select_work_offset``) applies to MDI blocks and to the work coordinates shown.
-        """
-        why = self.refusal("load_program")
-        if why:
-            return self._refuse("load_program", why)
-        path = ""
-        if isinstance(source, os.PathLike) or (
-            "\n" not in source and len(source) < 4096 and Path(source).is_file()
-        ):
-            path = str(source)
-            try:
-                data = Path(path).read_bytes()
-            except OSError as exc:
-                return self._load_failed(
-                    (ProgramIssue(0, 0, f"cannot read: {exc.strerror or exc}"),),
-                    f"{path}: cannot read: {exc.strerror or exc}",
-                )
-            try:
-                text = data.decode("utf-8")
-            except UnicodeDecodeError:
-                text = data.decode("latin-1")
-            name = name or Path(path).name
-        else:
-            text = str(source)
-            name = name or "<text>"
-        return self._load_text(text, name, path)
-
-    def _load_text(self, text: str, name: str, path: str) -> CommandResult:
-        try:
-            program = parse_program(text, name, machine=self._machine, start_position=self._machine_pos())
-        except ProgramError as exc:
-            issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
-            return self._load_failed(issues, f"{len(issues)} error(s) in the program; first: {issues[0]}")
-        except PlannerError as exc:
-            return self._load_failed((ProgramIssue(0, 0, str(exc)),), str(exc))
-        limit_issues = self._check_program_limits(program)
-        if limit_issues:
-            return self._load_failed(tuple(limit_issues), f"soft limit: {limit_issues[0]}")
-        try:
-            plan = self._plan(program)
-        except PlannerError as exc:
-            return self._load_failed((ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}")
-        lo, hi = program_bounds(program)
-        tab = plan.segment.table
-        info = ProgramInfo(
-            name=name,
-            path=path,
-            text=text,
-            line_count=program.line_count or text.count("\n") + 1,
-            move_count=len(program.moves),
-            cycle_time_s=float(plan.cycle_time_s),
-            length_mm=float(np.sum(tab.length)) if len(tab) else 0.0,
-            bounds_min=tuple(float(x) for x in lo),
-            bounds_max=tuple(float(x) for x in hi),
-            line_times_s=tuple((int(tab.line[i]), float(plan.t0[i])) for i in range(len(tab))),
-            program=program,
-            plan=plan,
-        )
-        self._program_info = info
-        self._program_text = text
-        self._program_path = path
-        self._resume = None
-        self.programLoaded.emit(info)
-        return self._ok("load_program")
-
-    def _load_failed(self, issues: tuple[ProgramIssue, ...], reason: str) -> CommandResult:
-        """A failed load unloads the previous program (as LinuxCNC drops the file on a failed
-        open): cycle start is then refused with "no program loaded" instead of running the old
-        program while the operator looks at the new one's errors."""
-        self._program_info = None
-        self._program_text = ""
-        self._program_path = ""
-        self._resume = None
-        self.programErrors.emit(issues)
-        return self._refuse("load_program", reason)
 
     def _fresh_program(self) -> Program | None:
         """The loaded program, re-interpreted if the machine moved since it was loaded."""
@@ -170,9 +75,9 @@ class ProgramMixin:
 
     def feed_hold(self) -> CommandResult:
         """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
-        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts
-        after the set-points already queued in the worker (``lead_s``, 0.3 s by default) until the
-        worker can replace queued set-points.
+        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
+        cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
+        beyond that are replaced (``FeederMixin._change_motion``), not run first.
         """
         why = self.refusal("feed_hold")
         if why:
@@ -181,7 +86,7 @@ class ProgramMixin:
             job = self._job
             if job is None:
                 return self._refuse("feed_hold", "nothing is moving")
-            job.executor.hold = True
+            self._hold_motion()
         self._set_state(MachineState.HOLD, "feed hold")
         return self._ok("feed_hold")
 
@@ -260,7 +165,7 @@ class ProgramMixin:
         with self._lock:
             job = self._job
             if job is not None:
-                job.executor.hold = True
+                self._hold_motion()
                 job.stopping = True
                 job.stop_reason = "stopped by the operator"
                 if job.kind is Activity.PROGRAM:
@@ -363,8 +268,9 @@ class ProgramMixin:
             return self._refuse("set_feed_override", f"feed override must be 0-150 %, got {p:g}")
         self._feed_pct = p
         with self._lock:
-            if self._job is not None and self._job.overrides:
-                self._job.executor.set_overrides(feed=p / 100.0)
+            job = self._job
+            if job is not None and job.overrides and job.executor.feed_override != min(p / 100.0, 1.5):
+                self._change_motion(lambda ex: ex.set_overrides(feed=p / 100.0))
             if self._job is not None and self._job.then is not None:
                 self._job.then.executor.set_overrides(feed=p / 100.0)
         self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
@@ -377,8 +283,10 @@ class ProgramMixin:
             return self._refuse("set_rapid_override", f"rapid override must be 0-100 %, got {p:g}")
         self._rapid_pct = p
         with self._lock:
-            for job in (self._job, self._job.then if self._job else None):
-                if job is not None and job.overrides:
-                    job.executor.set_overrides(rapid=p / 100.0)
+            job = self._job
+            if job is not None and job.overrides and job.executor.rapid_override != min(p / 100.0, 1.0):
+                self._change_motion(lambda ex: ex.set_overrides(rapid=p / 100.0))
+            if job is not None and job.then is not None and job.then.overrides:
+                job.then.executor.set_overrides(rapid=p / 100.0)
         self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
         return self._ok("set_rapid_override")

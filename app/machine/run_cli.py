@@ -82,7 +82,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"cnc-run: {res.reason}", file=sys.stderr)
             return 2
         ctl.set_machine_zero_here()  # simulated drives: the start position is machine zero
-        res = ctl.load_program(Path(args.program))
+        res = ctl.load_program(Path(args.program), wait=True)
         if not res:
             for e in errors or [res.reason]:
                 print(f"{args.program}: {e}", file=sys.stderr)

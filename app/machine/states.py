@@ -107,6 +107,8 @@ class StateMixin:
             if self._cfg.homing.required and not all(self._homed):
                 missing = [a for a, h in zip(self._cfg.axes, self._homed) if not h]
                 return f"axes not homed: {' '.join(missing)} (home them or set machine zero first)"
+        if action in ("cycle_start", "run_from_line") and self._load_request is not None:
+            return f"the program {self._load_request.name} is still being checked (wait until it is loaded)"
         if action in ("cycle_start", "run_from_line") and self._program_info is None:
             return "no program loaded"
         if action == "feed_hold" and st is not MachineState.RUNNING:

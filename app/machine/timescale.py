@@ -318,6 +318,21 @@ class TimeScaledExecutor:
         self._last = (np.zeros((0, len(machine.axes))), np.zeros(0), np.zeros(0, np.int64))
         self._rapid_move = seg.table.is_rapid if self.n_moves else np.zeros(0, bool)
 
+    # ------------------------------------------------------------------ state (splicing)
+    _STATE = ("tau", "sigma", "sigma_dot", "feed_override", "rapid_override", "hold", "_pause_i", "paused",
+              "finished", "_win_valid_until", "_bounds", "_target_cache", "sigma_start", "_stop", "_stop_k",
+              "_stop_tried", "stops_taken", "_last")
+
+    def save_state(self) -> tuple:
+        """Everything ``generate`` changes (scalars, immutable tuples and arrays it never writes
+        into): with ``restore_state`` the controller rewinds the executor to a pushed chunk and
+        regenerates from any set-point of it (same chunk start: bit-identical samples)."""
+        return tuple(getattr(self, k) for k in self._STATE)
+
+    def restore_state(self, state: tuple) -> None:
+        for k, v in zip(self._STATE, state, strict=True):
+            setattr(self, k, v)
+
     # ------------------------------------------------------------------ commands
     @property
     def time_to_ramp_s(self) -> float:
@@ -454,6 +469,12 @@ class TimeScaledExecutor:
             self.sigma, self.sigma_dot = float(sig[-1]), 0.0
         ch = ScaledChunk(st.q[sl].copy(), st.tau[sl].copy(), sig, st.line[sl].copy(), st.move[sl].copy(),
                          st.s_mm[sl].copy(), None)
+        if self._stop is None:
+            # one more set-point at rest: the stop's last (sampled) jerk and a resume's first
+            # never fall into one third difference (a resume requested during the stop measured
+            # 1.03-1.05 J_max across that junction without it)
+            ch = ScaledChunk(*(np.concatenate([a, a[-1:]]) for a in (ch.q, ch.tau, ch.sigma, ch.line, ch.move,
+                                                                       ch.s_mm)), None)
         self._remember(ch)
         return ch
 

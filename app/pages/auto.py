@@ -13,6 +13,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app import deferred
 from app.context import PanelContext
 from app.format import format_duration, format_speed
 from app.i18n import N_, tr
@@ -40,6 +41,16 @@ class AutoPage(QWidget):
         self.program_label = QLabel()
         self.program_label.setObjectName("programName")
         left.addWidget(self.program_label)
+        self.loading_note = QLabel()  # "Checking NAME …" while the controller checks a program
+        self.loading_note.setObjectName("loadingNote")
+        self.loading_bar = QProgressBar()  # busy indicator (keeps moving: the panel is responsive)
+        self.loading_bar.setRange(0, 0)
+        self.loading_bar.setTextVisible(False)
+        self.loading_bar.setMaximumHeight(8)
+        self.loading_note.hide()
+        self.loading_bar.hide()
+        left.addWidget(self.loading_note)
+        left.addWidget(self.loading_bar)
         self.editor = CodeEditor(read_only=True)
         enable_kinetic_scrolling(self.editor)
         left.addWidget(self.editor, 1)
@@ -98,6 +109,8 @@ class AutoPage(QWidget):
         self._fraction, self._remaining, self._speed, self._line = 0.0, float("nan"), 0.0, 0
         self._refused = ""
         c.programLoaded.connect(self._on_loaded)
+        if hasattr(c, "loadingChanged"):
+            c.loadingChanged.connect(self._on_loading)
         c.lineChanged.connect(self._on_line)
         c.progressChanged.connect(self._on_progress)
         c.speedChanged.connect(self._on_speed)
@@ -111,6 +124,8 @@ class AutoPage(QWidget):
         self._on_modes(c.single_block, c.optional_stop)
         if c.program_info is not None:
             self._on_loaded(c.program_info)
+        if getattr(c, "loading", False):
+            self._on_loading(True, str(getattr(c, "loading_name", "")))
         self._update_buttons()
         self._update_info()
 
@@ -141,16 +156,31 @@ class AutoPage(QWidget):
             ctx.controller.run_from_line(int(line))
 
     # --- controller signals --------------------------------------------------------------
+    def _on_loading(self, loading: bool, name: str) -> None:
+        """The controller is checking a program (parse, soft limits, plan) in its worker thread."""
+        self.loading_note.setText(tr("Checking {0} …").format(name) if loading else "")
+        self.loading_note.setVisible(loading)
+        self.loading_bar.setVisible(loading)
+        self._update_buttons()
+
     def _on_loaded(self, info: object) -> None:
-        text = str(getattr(info, "text", ""))
-        if self.editor.toPlainText() != text:
-            self.editor.load_text(text)
         self.program_label.setText(str(getattr(info, "name", "")))
         self._remaining = float(getattr(info, "cycle_time_s", float("nan")))
         self._fraction = 0.0
         self.progress.setValue(0)
         self._update_info()
         self._update_buttons()
+        if deferred.is_big(info):  # 35,000 lines take ~0.1 s: in an event-loop turn of their own
+            deferred.run_soon("auto-editor", lambda: self._show_text(info))
+        else:
+            self._show_text(info)
+
+    def _show_text(self, info: object) -> None:
+        if self.ctx.controller.program_info is not info:
+            return  # superseded or refused meanwhile
+        text = str(getattr(info, "text", ""))
+        if self.editor.loading or self.editor.toPlainText() != text:
+            self.editor.load_text(text, chunked=True)
 
     def _on_program_model(self) -> None:
         model = self.ctx.program

@@ -9,6 +9,7 @@ from pathlib import Path
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
+from app import deferred
 from app.context import RESOURCES, PanelContext
 from app.i18n import N_, tr
 from app.program_checker import ProgramChecker
@@ -88,16 +89,22 @@ class ProgramPage(QWidget):
         self._update_title()
 
     # --- editing -------------------------------------------------------------------------
-    def set_text(self, text: str) -> None:
+    def set_text(self, text: str, checked: bool = False) -> None:
+        """Show ``text``; ``checked``: the controller has just accepted exactly this text, so
+        it has no errors (no second interpretation in the background)."""
         self._loading = True
-        self.editor.load_text(text)
+        self.editor.load_text(text, chunked=True)  # a big text in pieces (textChanged per piece)
         self._loading = False
         self.doc.text = text
-        self.checker.check_now(text)
+        if checked:
+            self.checker.cancel()
+            self._on_checked({})
+        else:
+            self.checker.check_now(text)
         self._update_title()
 
     def _on_text_changed(self) -> None:
-        if self._loading:
+        if self._loading or self.editor.loading:
             return
         self.doc.text = self.editor.toPlainText()
         self.checker.request(self.doc.text)
@@ -174,7 +181,8 @@ class ProgramPage(QWidget):
         if path:
             self.open_file(Path(path))
 
-    def open_file(self, path: Path) -> None:
+    def open_file(self, path: Path, checked_text: str | None = None) -> None:
+        """Open ``path``; ``checked_text``: the text the controller has just accepted."""
         text = self.doc.open(path)
         recovered = self.doc.recovery_text(path)
         if recovered is not None and self.ctx.dialogs.confirm(
@@ -184,7 +192,7 @@ class ProgramPage(QWidget):
             self.doc.text = recovered
         else:
             self.doc.discard_autosave()
-            self.set_text(text)
+            self.set_text(text, checked=text == checked_text)
         self._update_title()
 
     def save(self) -> bool:
@@ -225,14 +233,23 @@ class ProgramPage(QWidget):
         self.checker.request(self.doc.text)
 
     def _on_program_loaded(self, info: object) -> None:
-        path = str(getattr(info, "path", "") or "")
         text = str(getattr(info, "text", ""))
         if self.doc.modified or text == self.doc.text:
             return
-        if path:
-            self.open_file(Path(path))
+        if deferred.is_big(info):  # 35,000 lines take ~0.1 s: in an event-loop turn of their own
+            deferred.run_soon("program-editor", lambda: self._show_loaded(info))
         else:
-            self.set_text(text)
+            self._show_loaded(info)
+
+    def _show_loaded(self, info: object) -> None:
+        if self.ctx.controller.program_info is not info or self.doc.modified:
+            return  # superseded or refused meanwhile, or the operator started editing
+        path = str(getattr(info, "path", "") or "")
+        text = str(getattr(info, "text", ""))
+        if path:
+            self.open_file(Path(path), checked_text=text)
+        else:
+            self.set_text(text, checked=True)
 
     def _on_program_errors(self, issues: object) -> None:
         errors: dict[int, str] = {}

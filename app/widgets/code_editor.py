@@ -6,7 +6,7 @@ line is tinted. The file handling (open/save/autosave) lives in program_document
 
 from __future__ import annotations
 
-from PySide6.QtCore import QRect, QSize, Qt, Signal
+from PySide6.QtCore import QRect, QSize, Qt, QTimer, Signal
 from PySide6.QtGui import (
     QColor,
     QFont,
@@ -22,6 +22,7 @@ from PySide6.QtWidgets import QPlainTextEdit, QTextEdit, QWidget
 from app.widgets.gcode_highlighter import GCodeHighlighter
 
 HIGHLIGHT_MAX_LINES = 5000  # highlighting costs ~20 us a line in the GUI thread: off beyond this
+CHUNK_LINES = 3000  # a big text goes in in pieces, one per event-loop turn (~30 ms each, measured)
 ERROR_BG = QColor("#5a1020")
 CURRENT_BG = QColor("#1c3550")
 RUN_BG = QColor("#1b5f2a")
@@ -41,6 +42,7 @@ class _LineNumberArea(QWidget):
 
 class CodeEditor(QPlainTextEdit):
     lineActivated = Signal(int)  # 1-based line the cursor moved to
+    textLoaded = Signal()  # the last piece of a ``load_text`` is in
 
     def __init__(self, parent: QWidget | None = None, read_only: bool = False) -> None:
         super().__init__(parent)
@@ -53,6 +55,9 @@ class CodeEditor(QPlainTextEdit):
         self.setReadOnly(read_only)
         self._errors: dict[int, str] = {}
         self._run_line = 0
+        self._load_generation = 0
+        self._loading_text = False
+        self._read_only_before = read_only
         self.highlighter = GCodeHighlighter(self.document())
         self._numbers = _LineNumberArea(self)
         self.blockCountChanged.connect(self._update_margin)
@@ -60,11 +65,55 @@ class CodeEditor(QPlainTextEdit):
         self.cursorPositionChanged.connect(self._on_cursor)
         self._update_margin()
 
-    def load_text(self, text: str) -> None:
-        """Replace the text; syntax highlighting only for programs up to HIGHLIGHT_MAX_LINES."""
+    def load_text(self, text: str, chunked: bool = False) -> None:
+        """Replace the text; syntax highlighting only for programs up to HIGHLIGHT_MAX_LINES.
+
+        ``chunked``: a text over CHUNK_LINES lines goes in CHUNK_LINES at a time, one piece per
+        event-loop turn (35,000 lines at once hold the GUI thread ~0.15-0.2 s); ``loading``
+        is True and ``textChanged`` fires per piece until ``textLoaded``."""
+        self._load_generation += 1
         big = text.count("\n") > HIGHLIGHT_MAX_LINES
         self.highlighter.setDocument(None if big else self.document())  # type: ignore[arg-type]
-        self.setPlainText(text)
+        if self._loading_text:  # a chunked load in progress: stopped above, undo it
+            self._loading_text = False
+            self.setReadOnly(self._read_only_before)
+            self.document().setUndoRedoEnabled(True)
+        if not chunked or text.count("\n") <= CHUNK_LINES:
+            self.setPlainText(text)
+            self.textLoaded.emit()
+            return
+        lines = text.splitlines(keepends=True)
+        generation = self._load_generation
+        self._loading_text = True
+        was_read_only = self._read_only_before = self.isReadOnly()
+        self.setReadOnly(True)  # no typing into a half-loaded text
+        self.document().setUndoRedoEnabled(False)
+        self.setPlainText("".join(lines[:CHUNK_LINES]))
+
+        def more(start: int) -> None:
+            if generation != self._load_generation:
+                return  # a newer text replaced this one
+            try:
+                cursor = QTextCursor(self.document())
+            except RuntimeError:  # the widget was deleted meanwhile
+                return
+            cursor.movePosition(QTextCursor.MoveOperation.End)
+            cursor.insertText("".join(lines[start:start + CHUNK_LINES]))
+            if start + CHUNK_LINES < len(lines):
+                QTimer.singleShot(0, lambda: more(start + CHUNK_LINES))
+                return
+            self._loading_text = False
+            self.setReadOnly(was_read_only)
+            self.document().setUndoRedoEnabled(True)
+            self._refresh_selections()
+            self.textLoaded.emit()
+
+        QTimer.singleShot(0, lambda: more(CHUNK_LINES))
+
+    @property
+    def loading(self) -> bool:
+        """True while a chunked ``load_text`` is still putting its text in."""
+        return self._loading_text
 
     @property
     def highlighting(self) -> bool:

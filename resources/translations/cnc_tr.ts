@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="181" />
+      <location filename="../../app/pages/program.py" line="189" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="156" />
+      <location filename="../../app/pages/program.py" line="163" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -147,6 +147,11 @@
       <location filename="../../app/pages/parameters.py" line="104" />
       <source>Change service password</source>
       <translation>Servis şifresini değiştir</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="138" />
+      <source>Checking {0} …</source>
+      <translation>{0} denetleniyor …</translation>
     </message>
     <message>
       <location filename="../../app/widgets/status_header.py" line="91" />
@@ -169,12 +174,12 @@
       <translation>Sayım/birim</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="24" />
+      <location filename="../../app/pages/auto.py" line="25" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="123" />
+      <location filename="../../app/pages/auto.py" line="138" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -204,7 +209,7 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="156" />
+      <location filename="../../app/pages/program.py" line="163" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
     </message>
@@ -244,12 +249,12 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="25" />
+      <location filename="../../app/pages/auto.py" line="26" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="79" />
+      <location filename="../../app/pages/auto.py" line="90" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -259,7 +264,7 @@
       <translation>{0} içinde dosya adı:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="24" />
       <source>Find</source>
       <translation>Bul</translation>
     </message>
@@ -279,7 +284,7 @@
       <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="24" />
       <source>Go to line</source>
       <translation>Satıra git</translation>
     </message>
@@ -364,7 +369,7 @@
       <translation>Tür</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="187" />
+      <location filename="../../app/pages/auto.py" line="217" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   İlerleme %{1:.0f}
@@ -376,7 +381,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Satır {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="24" />
+      <location filename="../../app/pages/program.py" line="25" />
       <source>Load into machine</source>
       <translation>Makineye yükle</translation>
     </message>
@@ -431,7 +436,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="139" />
+      <location filename="../../app/pages/auto.py" line="154" />
       <source>Move to the start of line {0} and run the program from there?</source>
       <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
     </message>
@@ -446,7 +451,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="22" />
+      <location filename="../../app/pages/program.py" line="23" />
       <source>New</source>
       <translation>Yeni</translation>
     </message>
@@ -486,12 +491,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="22" />
+      <location filename="../../app/pages/program.py" line="23" />
       <source>Open…</source>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="68" />
+      <location filename="../../app/pages/auto.py" line="79" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -561,7 +566,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="138" />
+      <location filename="../../app/main_window.py" line="145" />
+      <source>Program loaded: {0}</source>
+      <translation>Program yüklendi: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="158" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -583,7 +593,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="82" />
+      <location filename="../../app/pages/auto.py" line="93" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -593,12 +603,12 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="181" />
+      <location filename="../../app/pages/program.py" line="189" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="109" />
+      <location filename="../../app/main_window.py" line="110" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
@@ -628,12 +638,12 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="134" />
+      <location filename="../../app/pages/auto.py" line="149" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="73" />
+      <location filename="../../app/pages/auto.py" line="84" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -648,17 +658,17 @@ BIRAK</translation>
       <translation>Örnek sayısı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="22" />
+      <location filename="../../app/pages/program.py" line="23" />
       <source>Save</source>
       <translation>Kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="22" />
+      <location filename="../../app/pages/program.py" line="23" />
       <source>Save as…</source>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="196" />
+      <location filename="../../app/pages/program.py" line="204" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -678,12 +688,12 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="162" />
+      <location filename="../../app/main_window.py" line="182" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="169" />
+      <location filename="../../app/main_window.py" line="189" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -693,7 +703,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="162" />
+      <location filename="../../app/main_window.py" line="182" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -723,7 +733,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="64" />
+      <location filename="../../app/pages/auto.py" line="75" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -753,7 +763,7 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="26" />
+      <location filename="../../app/pages/auto.py" line="27" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
@@ -823,7 +833,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="154" />
+      <location filename="../../app/pages/program.py" line="161" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -843,7 +853,7 @@ BIRAK</translation>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="166" />
+      <location filename="../../app/main_window.py" line="186" />
       <source>Wrong service password</source>
       <translation>Yanlış servis şifresi</translation>
     </message>
@@ -928,12 +938,17 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="113" />
+      <location filename="../../app/main_window.py" line="137" />
+      <source>{0} (checking…)</source>
+      <translation>{0} (denetleniyor…)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="120" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="155" />
+      <location filename="../../app/pages/program.py" line="162" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>

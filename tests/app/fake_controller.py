@@ -36,6 +36,7 @@ class FakeController(QObject):
     positionChanged = Signal(object, object)
     programLoaded = Signal(object)
     programErrors = Signal(object)
+    loadingChanged = Signal(bool, str)
     programFinished = Signal(object)
     lineChanged = Signal(int)
     progressChanged = Signal(float, float)
@@ -108,7 +109,11 @@ class FakeController(QObject):
     def shutdown(self) -> None:
         self.calls.append(("shutdown",))
 
-    def load_program(self, source: str | os.PathLike[str], name: str | None = None) -> CommandResult:
+    loading = False  # the fake checks synchronously (the real controller in a worker thread)
+    loading_name = ""
+
+    def load_program(self, source: str | os.PathLike[str], name: str | None = None, *, wait: bool = False,
+                     timeout_s: float | None = None) -> CommandResult:
         if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
                                                and Path(source).is_file()):
             path, text = str(source), Path(source).read_text()
@@ -128,6 +133,10 @@ class FakeController(QObject):
                                         bounds_min=(0.0,) * n, bounds_max=(0.0,) * n, program=program)
         self.programLoaded.emit(self.program_info)
         return self._ok("load_program", name)
+
+    def wait_loaded(self, timeout_s: float | None = 60.0) -> CommandResult:
+        ok = self.program_info is not None
+        return CommandResult(ok, "load_program", "" if ok else "no program loaded")
 
     def cycle_start(self) -> CommandResult:
         if self.program_info is None:

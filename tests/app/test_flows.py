@@ -26,7 +26,7 @@ def test_demo_starts_connected_homed_with_the_pocket(demo_window, real_controlle
 
 def test_run_program_to_the_end(demo_window, real_controller) -> None:
     c = real_controller
-    assert c.load_program(SHORT, name="short.nc")
+    assert c.load_program(SHORT, name="short.nc", wait=True)
     auto = demo_window.page("auto")
     auto.buttons["start"].click()
     assert state(c) == "running"
@@ -48,7 +48,7 @@ def test_run_program_to_the_end(demo_window, real_controller) -> None:
 
 def test_feed_hold_and_resume(demo_window, real_controller) -> None:
     c = real_controller
-    assert c.load_program(LONG_LINE, name="line.nc")
+    assert c.load_program(LONG_LINE, name="line.nc", wait=True)
     auto = demo_window.page("auto")
     auto.buttons["start"].click()
     c.advance(1.0)
@@ -72,7 +72,8 @@ def test_invalid_program_error_at_its_line_and_start_refused(demo_window, real_c
     c = real_controller
     program = demo_window.page("program")
     program.set_text(BAD)
-    program.load_into_machine()
+    with qtbot.waitSignal(c.programErrors, timeout=20_000):  # checked in the controller's worker thread
+        program.load_into_machine()
     assert set(program.editor.errors) == {3}
     assert "radius" in program.editor.errors[3]
     assert "Line 3" in program.error_label.text() or "line 3" in program.error_label.text()

@@ -41,7 +41,7 @@ def test_every_page_fits_and_has_touch_sized_buttons(fake_window, qtbot, dialogs
 
 
 def test_preview_draws_arcs_turquoise_and_lines_green(fake_window, fake_controller, qtbot) -> None:
-    fake_controller.load_program(DEMO_PROGRAM)
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
     preview = fake_window.page("preview")
     items = preview.plot.items
     assert items[MoveKind.ARC].opts["pen"].color() == ARC_COLOR
@@ -62,7 +62,7 @@ def test_preview_draws_arcs_turquoise_and_lines_green(fake_window, fake_controll
 
 
 def test_preview_live_tool_and_executed_part(fake_window, fake_controller) -> None:
-    fake_controller.load_program(DEMO_PROGRAM)
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
     preview = fake_window.page("preview")
     fake_controller.positionChanged.emit((2.0, 0.0, 0.0), (2.0, 0.0, 0.0))
     x, y = preview.plot.tool_item.getData()
@@ -77,7 +77,7 @@ def test_preview_live_tool_and_executed_part(fake_window, fake_controller) -> No
 
 
 def test_tapped_line_opens_in_the_program_editor(fake_window, fake_controller) -> None:
-    fake_controller.load_program(DEMO_PROGRAM)
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
     preview = fake_window.page("preview")
     fake_window.show_page("preview")
     preview.plot.moveTapped.emit(7, 14)
@@ -127,7 +127,7 @@ def test_program_page_save_and_discard_prompt(fake_window, dialogs, tmp_path: Pa
 
 def test_auto_page_buttons(fake_window, fake_controller, dialogs) -> None:
     auto = fake_window.page("auto")
-    fake_controller.load_program(DEMO_PROGRAM)
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
     assert auto.buttons["start"].isEnabled()
     auto.buttons["start"].click()
     auto.buttons["hold"].click()
@@ -263,7 +263,7 @@ def test_estop_button_and_state(fake_window, fake_controller, dialogs) -> None:
 
 def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> None:
     page = fake_window.page("diagnostics")
-    fake_controller.load_program(DEMO_PROGRAM)
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
     qtbot.waitUntil(lambda: page.profile is not None, timeout=10000)
     p = page.profile
     assert p.cycle_time_s > 1.0 and len(p.t) > 1000
@@ -288,7 +288,7 @@ def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> N
     controller = FakeController(load_config(RESOURCES / "machines" / "paper_yzca.toml"))
     window = make_window(qtbot, qapp, PanelOptions(state_dir=state_dir), dialogs, controller)
     program = "G21 G19 G90\nG00 Y10 Z0\nG02 Y20 Z0 R5 F600\nG01 C90\nM30\n"
-    assert controller.load_program(program, name="yz.nc")
+    assert controller.load_program(program, name="yz.nc", wait=True)
     preview = window.page("preview")
     assert preview.plot.plane == "YZ" and not preview.plane_buttons["XY"].isEnabled()
     _y, z = preview.plot.items[MoveKind.ARC].getData()

@@ -591,3 +591,113 @@ def test_process_mode_timing_target() -> None:
         pytest.skip(f"the worker got no real-time core ({r['realtime']}): other workers held them")
     assert r["jitter_p99_us"] <= 100.0, {k: r[k] for k in ("realtime", "jitter_p99_us", "jitter_max_us")}
     assert r["wkc_errors"] == 0 and r["underruns"] == 0
+
+
+# ---------------------------------------------------------------------- replace (feed hold)
+V_MM_S, A_MM_S2 = 20.0, 1000.0
+
+
+def _ramp(q0: np.ndarray, n: int) -> np.ndarray:
+    """n set-points at constant speed V along (1, -0.5), the first one step after q0."""
+    d = np.array([1.0, -0.5]) / np.hypot(1.0, 0.5)
+    k = np.arange(1, n + 1)[:, None]
+    return q0 + d * V_MM_S * 0.001 * k
+
+
+def _brake(q_last: np.ndarray) -> np.ndarray:
+    """From q_last at speed V: constant deceleration to rest, then 5 set-points at rest."""
+    d = np.array([1.0, -0.5]) / np.hypot(1.0, 0.5)
+    t = np.arange(1, int(V_MM_S / A_MM_S2 / 0.001) + 1) * 0.001
+    s = V_MM_S * t - 0.5 * A_MM_S2 * t * t
+    b = q_last + d * s[:, None]
+    return np.vstack([b, np.repeat(b[-1:], 5, axis=0)])
+
+
+def _splice(w: CyclicWorker, a: np.ndarray, base: int, margin: int) -> tuple[int, np.ndarray]:
+    """Replace from `margin` set-points past the live consumed serial with a brake, retrying
+    from a later serial when the loop was faster. `a[0]` has serial `base`."""
+    for _ in range(50):
+        s = w.samples_consumed() + margin
+        b = _brake(a[s - base - 1])
+        n = w.replace(s, b)
+        if n >= 0:
+            assert n == len(b)
+            return s, b
+        assert n == -1
+    raise AssertionError("replace never in time")
+
+
+def _check_stream(w: CyclicWorker, q0: np.ndarray, expected: np.ndarray) -> None:
+    tr = w.drain_trace()
+    ref = tr.reference
+    moving = np.flatnonzero(np.any(ref != q0, axis=1))
+    assert len(moving), "no motion recorded"
+    got = ref[moving[0]:moving[0] + len(expected)]
+    assert len(got) == len(expected)
+    # every cycle took exactly the next set-point: no gap (held point), no duplicate, no mix
+    np.testing.assert_array_equal(got, expected)
+    assert np.all(np.diff(tr.cycle[moving[0]:moving[0] + len(expected)]) == 1)
+    acc = np.linalg.norm(np.diff(got, 2, axis=0), axis=1) / 1e-6
+    assert acc.max() <= A_MM_S2 * 1.0001           # no velocity jump at the splice
+
+
+@pytest.mark.parametrize("mode", ["manual", "thread", "process"])
+def test_replace_mid_motion_gives_a_continuous_stream(mode: str) -> None:
+    cfg = config(mode=mode, buffer_capacity=2000, wkc_error_limit=10**6 if mode != "manual" else 3)
+    with CyclicWorker(cfg) as w:
+        enable(w)
+        q0 = w.snapshot().actual_position.copy()
+        w.drain_trace()
+        base = w.samples_consumed()
+        a = _ramp(q0, 1500)
+        assert w.push(a) == len(a)
+        if mode == "manual":
+            w.step(300)
+        else:
+            t_end = time.monotonic() + 5.0
+            while w.samples_consumed() - base < 300 and time.monotonic() < t_end:
+                time.sleep(0.01)
+        s, b = _splice(w, a, base, margin=5)
+        rel = s - base
+        assert 300 <= rel < 1500
+        if mode == "manual":
+            assert w.samples_consumed() == s - 5
+            w.step(len(b) + 20)
+        else:
+            time.sleep((len(b) + 100) * 0.001)
+        assert w.samples_consumed() == s + len(b)
+        assert w.buffer_level() == 0
+        _check_stream(w, q0, np.vstack([a[:rel], b]))
+        assert AlarmCode.UNDERRUN not in codes(w)
+
+
+def test_replace_refuses_a_consumed_serial_and_past_the_end(worker: CyclicWorker) -> None:
+    enable(worker)
+    q0 = worker.snapshot().actual_position.copy()
+    base = worker.samples_consumed()
+    a = _ramp(q0, 400)
+    assert worker.push(a) == 400
+    worker.step(100)
+    c = worker.samples_consumed()
+    assert c == base + 100                                   # live, no snapshot needed
+    level = worker.buffer_level()
+    assert worker.replace(c - 1, a[:3]) == -1                # already taken: nothing changed
+    assert worker.replace(c + level + 1, a[:3]) == -2        # past the end: nothing changed
+    assert worker.buffer_level() == level
+    assert worker.replace(c + level, a[:0]) == 0             # at the end: a plain (empty) append
+    assert worker.replace(c, _brake(a[99])) == len(_brake(a[99]))   # the very next one: allowed
+    worker.step(200)
+    tr = worker.drain_trace()
+    assert not np.any(np.all(tr.reference == a[100], axis=1))    # the old tail never ran
+    with pytest.raises(ConfigurationError):
+        worker.replace(c, np.zeros((3, 5)))
+
+
+def test_replace_is_bounded_by_the_ring() -> None:
+    with CyclicWorker(config(buffer_capacity=100)) as w:
+        enable(w)
+        q0 = w.snapshot().actual_position.copy()
+        c = w.samples_consumed()
+        assert w.push(_ramp(q0, 80)) == 80
+        assert w.replace(c + 30, _ramp(q0, 200)) == 70       # 30 kept + 70 fill the 100 slots
+        assert w.buffer_level() == 100 and w.free_space() == 0

@@ -11,15 +11,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from app.machine.config import DEFAULT_LEAD_S
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
 from planner.machine import shipped_machine
 
-# The streaming lead is the feed-hold latency until the worker can replace queued set-points;
-# these tests place holds at given points of short programs, so they pin it to 0.1 s (simulated
-# time has no GIL gaps to cover). The default lead runs in test_run_cli's cnc-run tests and in
-# test_lifecycle's real-time shutdown test.
-TEST_LEAD_S = 0.1
+# The streaming lead no longer delays a feed hold, stop or override (the controller splices the
+# worker's queue a few cycles ahead of the drives), so these tests, which place holds at given
+# points of short programs, run with the default lead (they used to pin it to 0.1 s).
+TEST_LEAD_S = DEFAULT_LEAD_S
 
 
 @pytest.fixture

@@ -26,7 +26,7 @@ def assert_within_limits(limits: dict[str, float]) -> None:
 
 
 def start(ctl: MachineController, text: str = SHORT) -> None:
-    assert ctl.load_program(text), "load refused"
+    assert ctl.load_program(text, wait=True), "load refused"
     assert ctl.cycle_start(), "cycle start refused"
     assert ctl.state is MachineState.RUNNING
 
@@ -47,7 +47,7 @@ def test_refusals_carry_reasons(qapp, config_path: Path, state_dir: Path) -> Non
         assert not r and "disconnected" in r.reason
         assert ctl.connect_bus()
         assert ctl.state is MachineState.IDLE
-        assert ctl.load_program(SHORT)
+        assert ctl.load_program(SHORT, wait=True)
         r = ctl.cycle_start()
         assert not r and "not homed" in r.reason and "X Y Z" in r.reason
         assert not ctl.mdi("G0 X1") and not ctl.run_from_line(2)
@@ -86,7 +86,7 @@ def test_program_runs_to_its_exact_end(ctl: MachineController) -> None:
     ctl.lineChanged.connect(lines.append)
     ctl.progressChanged.connect(lambda f, r: progress.append(f))
     ctl.programFinished.connect(finished.append)
-    assert ctl.load_program(SHORT)
+    assert ctl.load_program(SHORT, wait=True)
     est = ctl.program_info.cycle_time_s
     assert 1.0 < est < 5.0
     assert ctl.cycle_start()
@@ -110,7 +110,7 @@ def test_program_runs_to_its_exact_end(ctl: MachineController) -> None:
 def test_all_program_errors_before_any_motion(ctl: MachineController) -> None:
     errors = []
     ctl.programErrors.connect(errors.append)
-    r = ctl.load_program("G0 X1\nG1 X2 Q5 F100\nG2 X3 Y4\nG1 X1 F100\n")
+    r = ctl.load_program("G0 X1\nG1 X2 Q5 F100\nG2 X3 Y4\nG1 X1 F100\n", wait=True)
     assert not r
     assert [e.line for e in errors[0]] == [2, 3]
     assert not ctl.cycle_start()
@@ -120,7 +120,7 @@ def test_all_program_errors_before_any_motion(ctl: MachineController) -> None:
 def test_soft_limit_in_the_middle_of_an_arc_refused_with_its_line(ctl: MachineController) -> None:
     errors = []
     ctl.programErrors.connect(errors.append)
-    r = ctl.load_program("G0 X200 Y-60\nG3 X200 Y60 R60 F600\nG0 X0 Y0\n")
+    r = ctl.load_program("G0 X200 Y-60\nG3 X200 Y60 R60 F600\nG0 X0 Y0\n", wait=True)
     assert not r and "line 2" in r.reason and "axis X" in r.reason
     (issue,) = errors[0]
     assert issue.line == 2 and issue.axis == "X" and "260" in issue.message
@@ -202,7 +202,7 @@ def test_m00_pauses_and_m01_only_with_optional_stop(ctl: MachineController) -> N
 
 def test_run_from_line_moves_safely_and_restores_the_spindle(ctl: MachineController) -> None:
     text = "G0 Z5\nM3 S1200\nG1 Z-1 F600\nG1 X10 F1800\nM3 S1500 G1 Y10\nG1 X0\nM5\nM30\n"
-    assert ctl.load_program(text)
+    assert ctl.load_program(text, wait=True)
     acts = []
     ctl.activityChanged.connect(acts.append)
     assert ctl.run_from_line(5)
@@ -275,7 +275,7 @@ def test_drive_homing_mode_6(qapp, config_path: Path, state_dir: Path) -> None:
         assert ctl.state is MachineState.HOMING
         assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
         assert ctl.homed == (True, True, True)
-        assert ctl.load_program(SHORT) and ctl.cycle_start()
+        assert ctl.load_program(SHORT, wait=True) and ctl.cycle_start()
     finally:
         ctl.shutdown()
 
@@ -426,7 +426,7 @@ def test_homing_not_required_when_the_configuration_says_so(qapp, config_path: P
     ctl = make_controller(config_path, state_dir, zero=False)
     try:
         assert ctl.homed == (False, False, False)
-        assert ctl.load_program("G1 X2 F1800\nM30\n") and ctl.cycle_start()
+        assert ctl.load_program("G1 X2 F1800\nM30\n", wait=True) and ctl.cycle_start()
         run_to_idle(ctl)
         assert ctl.last_run.completed
     finally:

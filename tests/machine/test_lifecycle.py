@@ -27,17 +27,17 @@ def saved_alarms(state_dir: Path) -> list[dict]:
 
 
 def test_failed_load_unloads_the_previous_program(ctl: MachineController) -> None:
-    assert ctl.load_program(SHORT) and ctl.program_info is not None
+    assert ctl.load_program(SHORT, wait=True) and ctl.program_info is not None
     errors = []
     ctl.programErrors.connect(errors.append)
-    assert not ctl.load_program("G1 X2 Q5 F100\n")
+    assert not ctl.load_program("G1 X2 Q5 F100\n", wait=True)
     assert errors and ctl.program_info is None and ctl.program is None and ctl.plan is None
     r = ctl.cycle_start()
     assert not r and r.reason == "no program loaded"
     assert ctl.refusal("cycle_start") == "no program loaded"
-    assert not ctl.load_program(Path("/nonexistent/dir/prog.nc"))  # unreadable file: same rule
+    assert not ctl.load_program(Path("/nonexistent/dir/prog.nc"), wait=True)  # unreadable file: same rule
     assert ctl.program_info is None
-    assert ctl.load_program(SHORT) and ctl.cycle_start()  # a good load is accepted again
+    assert ctl.load_program(SHORT, wait=True) and ctl.cycle_start()  # a good load is accepted again
 
 
 def test_shutdown_mid_run_stops_along_the_path_first(qapp, config_path: Path, state_dir: Path) -> None:
@@ -45,7 +45,7 @@ def test_shutdown_mid_run_stops_along_the_path_first(qapp, config_path: Path, st
     finished = []
     ctl.programFinished.connect(finished.append)
     try:
-        assert ctl.load_program(SHORT) and ctl.cycle_start()
+        assert ctl.load_program(SHORT, wait=True) and ctl.cycle_start()
         ctl.advance(0.5)  # in line 2 at 30 mm/s
         assert ctl.state is MachineState.RUNNING and ctl._speed > 10.0
         x0 = ctl.reference_position[0]
@@ -70,7 +70,7 @@ def test_realtime_shutdown_mid_run_leaves_no_underrun_alarm(qapp, tmp_path: Path
     assert ctl.config.controller.lead_s == DEFAULT_LEAD_S
     try:
         assert ctl.connect_bus() and ctl.set_machine_zero_here()
-        assert ctl.load_program("G1 X60 F1800\nM30\n") and ctl.cycle_start()
+        assert ctl.load_program("G1 X60 F1800\nM30\n", wait=True) and ctl.cycle_start()
         time.sleep(0.6)
         assert ctl.state is MachineState.RUNNING
     finally:

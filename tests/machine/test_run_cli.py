@@ -55,7 +55,7 @@ def test_realtime_run_in_the_worker_process(qtbot, config_path: Path, state_dir:
         assert ctl.set_machine_zero_here()
         done = []
         ctl.programFinished.connect(done.append)
-        assert ctl.load_program("G1 X10 F1800\nG3 X10 Y10 R5\nG1 X0\nM30\n")
+        assert ctl.load_program("G1 X10 F1800\nG3 X10 Y10 R5\nG1 X0\nM30\n", wait=True)
         assert ctl.cycle_start()
         qtbot.waitUntil(lambda: bool(done), timeout=10_000)
         qtbot.waitUntil(lambda: ctl.state is MachineState.IDLE, timeout=2_000)

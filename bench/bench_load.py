@@ -1,0 +1,154 @@
+"""Program loading benchmark: how long the GUI thread stalls while a large program is loaded.
+
+    QT_QPA_PLATFORM=offscreen python -m bench.bench_load [--program FILE] [--mode controller|panel]
+                                                          [--settle-s 1.5] [--repeat 1]
+
+Loads the paper's 35,000-line sphere finishing program (``bench.gen_programs``; or FILE)
+through ``MachineController.load_program`` while a 10 ms QTimer in the GUI thread records the
+gaps between its ticks. ``controller``: the controller alone (parse, soft-limit check, plan);
+``panel``: the whole panel (main window on the real controller, manual worker clock), so the
+pages' reactions to ``programLoaded`` (editors, tool path, v/a/j profile) count too. Prints one
+JSON object: total load time (call -> ``programLoaded``), time spent inside the call itself,
+the longest GUI-thread gap before ``programLoaded`` and until the panel settled, and the p99 gap.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import tempfile
+import time
+from pathlib import Path
+
+TICK_MS = 10
+
+
+def _program_file(path: str | None) -> Path:
+    if path:
+        return Path(path)
+    from bench.gen_programs import sphere_finishing
+
+    out = Path(tempfile.gettempdir()) / "cnc-bench-load" / "sphere_finishing.nc"
+    if not out.is_file():
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(sphere_finishing(), encoding="utf-8")
+    return out
+
+
+def run(program: Path, mode: str, settle_s: float) -> dict:
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from PySide6.QtCore import QEventLoop, QTimer
+    from PySide6.QtWidgets import QApplication
+
+    from app.machine.controller import MachineController
+
+    app = QApplication.instance() or QApplication([])
+    state_dir = Path(tempfile.mkdtemp(prefix="cnc-bench-load-"))
+    controller = MachineController(None, state_dir=state_dir, worker_mode="manual")
+    window = None
+    if mode == "panel":
+        from app.application import apply_theme
+        from app.context import PanelOptions
+        from app.context_factory import build_context
+        from app.main_window import MainWindow
+
+        apply_theme(app)
+        options = PanelOptions(state_dir=state_dir)
+        window = MainWindow(options, build_context(options, controller=controller))
+        window.resize(1280, 800)
+        window.show()
+    for _ in range(20):  # let the window settle before measuring
+        app.processEvents()
+        time.sleep(0.01)
+
+    gaps: list[float] = []
+    marks: dict[str, float] = {}
+    last = [time.perf_counter()]
+
+    def tick() -> None:
+        now = time.perf_counter()
+        gaps.append(now - last[0])
+        last[0] = now
+
+    def done(kind: str, _payload: object) -> None:
+        marks.setdefault("done", time.perf_counter())
+        marks.setdefault("gaps_at_done", float(len(gaps)))
+        marks["ok"] = 1.0 if kind == "loaded" else 0.0
+
+    controller.programLoaded.connect(lambda info: done("loaded", info))
+    controller.programErrors.connect(lambda issues: done("errors", issues))
+    timer = QTimer()
+    timer.setInterval(TICK_MS)
+    timer.timeout.connect(tick)
+
+    def start_load() -> None:
+        marks["start"] = time.perf_counter()
+        controller.load_program(program)
+        marks["returned"] = time.perf_counter()
+
+    loop = QEventLoop()
+    timer.start()
+    QTimer.singleShot(200, start_load)
+
+    def check_finished() -> None:
+        if "done" in marks and time.perf_counter() - marks["done"] >= settle_s:
+            loop.quit()
+        elif time.perf_counter() - marks.get("start", time.perf_counter()) > 120.0:
+            loop.quit()
+        else:
+            QTimer.singleShot(20, check_finished)
+
+    QTimer.singleShot(250, check_finished)
+    last[0] = time.perf_counter()
+    loop.exec()
+    timer.stop()
+    n_done = int(marks.get("gaps_at_done", len(gaps)))
+    # Gaps from the load call on (the tick the call sits in included).
+    t = marks["start"]
+    times, acc = [], last[0] - sum(gaps)
+    for g in gaps:
+        acc += g
+        times.append(acc)
+    during = [g for g, at in zip(gaps, times) if at >= t]
+    to_done = [g for g, at in zip(gaps[:n_done + 1], times[:n_done + 1]) if at >= t]
+    during_sorted = sorted(during)
+    p99 = during_sorted[min(len(during_sorted) - 1, int(0.99 * len(during_sorted)))] if during else 0.0
+    info = controller.program_info
+    result = {
+        "benchmark": "program_load_gui_stall",
+        "mode": mode,
+        "program": program.name,
+        "lines": info.line_count if info else 0,
+        "moves": info.move_count if info else 0,
+        "loaded": bool(marks.get("ok")),
+        "tick_ms": TICK_MS,
+        "load_total_s": round(marks.get("done", float("nan")) - t, 4),
+        "call_blocked_s": round(marks["returned"] - t, 4),
+        "max_gui_gap_until_loaded_ms": round(1000 * max(to_done, default=0.0), 1),
+        "max_gui_gap_ms": round(1000 * max(during, default=0.0), 1),
+        "p99_gui_gap_ms": round(1000 * p99, 1),
+        "settle_s": settle_s,
+    }
+    if window is not None:
+        window.close()
+    controller.shutdown()
+    return result
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--program", default=None, help="G-code file (default: 35,000-line finishing)")
+    parser.add_argument("--mode", choices=("controller", "panel", "both"), default="both")
+    parser.add_argument("--settle-s", type=float, default=1.5)
+    ns = parser.parse_args(argv)
+    program = _program_file(ns.program)
+    modes = ("controller", "panel") if ns.mode == "both" else (ns.mode,)
+    results = [run(program, m, ns.settle_s) for m in modes]
+    print(json.dumps(results[0] if len(results) == 1 else {"benchmark": "program_load_gui_stall",
+                                                          "runs": results}))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
