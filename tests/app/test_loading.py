@@ -1,0 +1,59 @@
+"""Loading a program from the panel: checked in the controller's worker thread while the panel
+shows it (Auto page note, status bar) and stays responsive; big programs reach the pages in
+pieces (editor text in chunks, one page per event-loop turn)."""
+
+from __future__ import annotations
+
+from tests.machine.test_program_load import big_program
+
+SHORT = "G21 G90 G17\nG00 X1 Y1\nG01 X5 Y2 F1200\nG02 X7 Y4 R2\nM30\n"
+
+
+def test_auto_page_and_status_bar_show_the_check(demo_window, real_controller, qtbot) -> None:
+    c = real_controller
+    auto = demo_window.page("auto")
+    program = demo_window.page("program")
+    program.set_text(SHORT)
+    name = program.doc.name
+    with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+        program.load_into_machine()
+        assert c.loading
+        assert auto.loading_note.isVisible() and name in auto.loading_note.text()
+        assert auto.loading_bar.isVisible()
+        assert not auto.buttons["start"].isEnabled()  # cycle start refused while checking
+        assert "checking" in demo_window._program_label.text()
+        assert name in demo_window._message.text()
+    assert not auto.loading_note.isVisible() and not auto.loading_bar.isVisible()
+    assert demo_window._program_label.text() == name
+    assert auto.buttons["start"].isEnabled() and auto.program_label.text() == name
+
+
+def test_big_program_reaches_every_page(demo_window, real_controller, qtbot) -> None:
+    c = real_controller
+    text = big_program(7000)
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        assert c.load_program(text, name="big.nc")
+    auto = demo_window.page("auto")
+    program = demo_window.page("program")
+    preview = demo_window.page("preview")
+    qtbot.waitUntil(lambda: not auto.editor.loading and not program.editor.loading
+                    and demo_window.context.program.info is c.program_info, timeout=20_000)
+    assert auto.editor.toPlainText() == text and program.editor.toPlainText() == text
+    assert not program.doc.modified and not program.editor.isReadOnly() and auto.editor.isReadOnly()
+    assert not program.editor.errors
+    assert preview.plot.path.all.count == c.program_info.move_count
+    program.editor.undo()  # the chunks are not undo steps: the text stays
+    assert program.editor.toPlainText() == text
+
+
+def test_editor_chunked_load_is_superseded_by_a_newer_text(qapp, qtbot) -> None:
+    from app.widgets.code_editor import CodeEditor
+
+    editor = CodeEditor()
+    qtbot.addWidget(editor)
+    editor.load_text(big_program(7000), chunked=True)
+    assert editor.loading and editor.isReadOnly()
+    editor.load_text("G0 X1\n", chunked=True)  # small: at once, the big one is dropped
+    assert not editor.loading and not editor.isReadOnly()
+    qtbot.wait(100)
+    assert editor.toPlainText() == "G0 X1\n"
