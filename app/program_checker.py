@@ -60,7 +60,10 @@ class ProgramChecker(QObject):
                 errors = errors_by_line(exc)
             except Exception as exc:  # noqa: BLE001 - an interpreter bug must not kill the panel
                 errors = {1: f"internal error while checking: {exc!r}"}
-            self._done.emit(generation, errors)
+            try:
+                self._done.emit(generation, errors)
+            except RuntimeError:  # the checker was deleted meanwhile (window closed)
+                pass
 
         threading.Thread(target=work, name="gcode-check", daemon=True).start()
 

@@ -1,11 +1,14 @@
 """Program loading benchmark: how long the GUI thread stalls while a large program is loaded.
 
     QT_QPA_PLATFORM=offscreen python -m bench.bench_load [--program FILE] [--mode controller|panel]
-                                                          [--settle-s 1.5] [--repeat 1]
+                                                          [--settle-s 1.5]
 
 Loads the paper's 35,000-line sphere finishing program (``bench.gen_programs``; or FILE)
 through ``MachineController.load_program`` while a 10 ms QTimer in the GUI thread records the
-gaps between its ticks. ``controller``: the controller alone (parse, soft-limit check, plan);
+gaps between its ticks. ``sync``: the controller alone, ``load_program(..., wait=True)`` (the
+headless path: all work in the calling thread, as every load was before it moved to a worker
+thread); ``controller``: the controller alone, loading in its worker thread (parse, soft-limit
+check, plan);
 ``panel``: the whole panel (main window on the real controller, manual worker clock), so the
 pages' reactions to ``programLoaded`` (editors, tool path, v/a/j profile) count too. Prints one
 JSON object: total load time (call -> ``programLoaded``), time spent inside the call itself,
@@ -84,7 +87,7 @@ def run(program: Path, mode: str, settle_s: float) -> dict:
 
     def start_load() -> None:
         marks["start"] = time.perf_counter()
-        controller.load_program(program)
+        controller.load_program(program, wait=mode == "sync")
         marks["returned"] = time.perf_counter()
 
     loop = QEventLoop()
@@ -139,11 +142,11 @@ def run(program: Path, mode: str, settle_s: float) -> dict:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--program", default=None, help="G-code file (default: 35,000-line finishing)")
-    parser.add_argument("--mode", choices=("controller", "panel", "both"), default="both")
+    parser.add_argument("--mode", choices=("sync", "controller", "panel", "all"), default="all")
     parser.add_argument("--settle-s", type=float, default=1.5)
     ns = parser.parse_args(argv)
     program = _program_file(ns.program)
-    modes = ("controller", "panel") if ns.mode == "both" else (ns.mode,)
+    modes = ("sync", "controller", "panel") if ns.mode == "all" else (ns.mode,)
     results = [run(program, m, ns.settle_s) for m in modes]
     print(json.dumps(results[0] if len(results) == 1 else {"benchmark": "program_load_gui_stall",
                                                           "runs": results}))

@@ -87,7 +87,6 @@ class LoadRequest:
     done: threading.Event = field(default_factory=threading.Event)
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
     outcome: ProgramInfo | tuple[tuple[ProgramIssue, ...], str] | None = None
-    started_s: float = field(default_factory=time.perf_counter)
     finished: bool = False  # applied in the controller's thread (or dropped)
 
 
@@ -132,7 +131,8 @@ def check_text(req: LoadRequest, machine: MachineSpec, plan_fn: Any
     lo, hi = program_bounds(program, table)
     tab = plan.segment.table
     n = len(tab)
-    line_times = tuple(zip(np.asarray(tab.line[:n]).tolist(), np.asarray(plan.t0[:n], float).tolist()))
+    lines = np.asarray(tab.line[:n], dtype=np.int64).tolist()
+    starts = np.asarray(plan.t0[:n], dtype=float).tolist()
     return ProgramInfo(
         name=name,
         path=req.path,
@@ -143,7 +143,7 @@ def check_text(req: LoadRequest, machine: MachineSpec, plan_fn: Any
         length_mm=float(np.sum(tab.length)) if n else 0.0,
         bounds_min=tuple(float(x) for x in lo),
         bounds_max=tuple(float(x) for x in hi),
-        line_times_s=tuple((int(li), float(t)) for li, t in line_times),
+        line_times_s=tuple(zip(lines, starts)),  # (line, planned start time) per move
         program=program,
         plan=plan,
     )
@@ -196,7 +196,10 @@ class LoadMixin:
             try:
                 data = Path(path).read_bytes()
             except OSError as exc:
-                self._supersede_load()
+                if self._load_request is not None:  # superseded by this failed one
+                    old = self._load_request.name
+                    self._supersede_load()
+                    self.loadingChanged.emit(False, old)
                 return self._load_failed(
                     (ProgramIssue(0, 0, f"cannot read: {exc.strerror or exc}"),),
                     f"{path}: cannot read: {exc.strerror or exc}",
@@ -212,15 +215,14 @@ class LoadMixin:
         if wait:
             return self._load_text(text, name, path)
         self._start_load(text, name, path)
-        self.message.emit(f"checking {name} …")
         if timeout_s is not None:
             return self.wait_loaded(timeout_s)
         return self._ok("load_program")
 
     def wait_loaded(self, timeout_s: float | None = 60.0) -> CommandResult:
-        """Block until the load in flight is finished and applied (``programLoaded`` /
-        ``programErrors`` emitted); without one, the state of the last load. Falsy with the
-        reason when the program was refused or the wait timed out."""
+        """Block (in the controller's thread) until the load in flight is finished and applied
+        (``programLoaded`` / ``programErrors`` emitted); without one, the state of the last
+        load. Falsy with the reason when the program was refused or the wait timed out."""
         deadline = None if timeout_s is None else time.monotonic() + timeout_s
         while (req := self._load_request) is not None:  # a restart after a config change: again
             left = None if deadline is None else max(deadline - time.monotonic(), 0.0)

@@ -90,7 +90,10 @@ class DiagnosticsPage(QWidget):
                 result: object = path_profile(program, machine, plan=plan)
             except Exception as exc:  # noqa: BLE001 - shown on the page, never kills the panel
                 result = f"{type(exc).__name__}: {exc}"
-            self._profileReady.emit(generation, result)
+            try:
+                self._profileReady.emit(generation, result)
+            except RuntimeError:  # the page was deleted meanwhile (window closed)
+                pass
 
         threading.Thread(target=work, name="diag-plan", daemon=True).start()
 

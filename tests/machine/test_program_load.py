@@ -97,8 +97,12 @@ def test_wait_loaded_without_an_event_loop(ctl: MachineController) -> None:
 
 
 def test_unreadable_file_fails_at_once(ctl: MachineController) -> None:
-    r = ctl.load_program(Path("/nonexistent/dir/prog.nc"))
-    assert not r and "cannot read" in r.reason and not ctl.loading
+    loading: list[bool] = []
+    ctl.loadingChanged.connect(lambda on, _name: loading.append(on))
+    assert ctl.load_program(SHORT)
+    r = ctl.load_program(Path("/nonexistent/dir/prog.nc"))  # supersedes the one in flight
+    assert not r and "cannot read" in r.reason and not ctl.loading and ctl.program_info is None
+    assert loading == [True, False]
 
 
 def test_gui_thread_keeps_ticking_during_a_large_load(qtbot, ctl: MachineController) -> None:
@@ -126,3 +130,30 @@ def test_gui_thread_keeps_ticking_during_a_large_load(qtbot, ctl: MachineControl
     assert returned - started < 0.1, f"load_program blocked for {returned - started:.3f} s"
     assert len(during) >= 3, f"only {len(during)} ticks in a {finished - started:.3f} s load"
     assert max_gap < 0.25, f"GUI thread stalled {1000 * max_gap:.0f} ms (load {finished - started:.3f} s)"
+
+
+def test_vectorised_bounds_table_matches_move_bounds() -> None:
+    """The per-move table (NumPy over lines, exact extremes for arcs) equals ``move_bounds``
+    move by move, and the soft-limit check built on it reports what a per-move loop finds."""
+    import numpy as np
+
+    from app.machine.limits import check_program, move_bounds, move_bounds_table, program_bounds
+    from planner.interpreter import parse_program
+    from planner.machine import load_machine, shipped_machine
+
+    machine = load_machine(shipped_machine("xyz_mill"))
+    tail = "G0 X0 Y0\nG2 X0 Y0 I0 J-300 F600\nG1 X400 Y10 Z-700\nG3 X380 Y-10 R30\n"  # 3 beyond travel
+    text = big_program(2500).replace("M30\n", "") + tail
+    program = parse_program(text, "t.nc", machine=machine)
+    lo, hi = move_bounds_table(program, chunk=700)
+    for i, m in enumerate(program.moves):
+        a, b, _ = move_bounds(m)
+        assert np.array_equal(lo[i], a) and np.array_equal(hi[i], b), i
+    plo, phi = program_bounds(program)
+    assert np.array_equal(plo, np.minimum(program.start_position, lo.min(axis=0)))
+    assert np.array_equal(phi, np.maximum(program.start_position, hi.max(axis=0)))
+    violations = check_program(program, machine, max_reports=1000)
+    n = len(program.moves)
+    assert {v.line for v in violations} == {program.moves[k].line for k in range(n - 3, n)}
+    wheres = {v.where for v in violations}
+    assert "arc extreme" in wheres and "end point" in wheres
