@@ -1,7 +1,7 @@
 """Program loading benchmark: how long the GUI thread stalls while a large program is loaded.
 
-    QT_QPA_PLATFORM=offscreen python -m bench.bench_load [--program FILE] [--mode controller|panel]
-                                                          [--settle-s 1.5]
+    QT_QPA_PLATFORM=offscreen python -m bench.bench_load [--program FILE] [--settle-s 1.5]
+        [--mode sync|controller|panel|cycle_start|config|all]
 
 Loads the paper's 35,000-line sphere finishing program (``bench.gen_programs``; or FILE)
 through ``MachineController.load_program`` while a 10 ms QTimer in the GUI thread records the
@@ -9,7 +9,12 @@ gaps between its ticks. ``sync``: the controller alone, ``load_program(..., wait
 headless path: all work in the calling thread, as every load was before it moved to a worker
 thread); ``controller``: the controller alone, loading in its worker thread (parse, soft-limit
 check, plan);
-``panel``: the whole panel (main window on the real controller, manual worker clock), so the
+``cycle_start`` / ``config``: the program is loaded first (``wait=True``) on a connected
+controller (simulated drives, manual clock); then ``cycle_start()`` resp. ``update_config``
+(a small acceleration change: the program is checked again) is called from the GUI thread and
+the longest gap is recorded until cycle start is possible again (the re-check done; for
+``config`` a cycle start follows, so both stalls count); ``panel``: the whole panel (main
+window on the real controller, manual worker clock), so the
 pages' reactions to ``programLoaded`` (editors, tool path, v/a/j profile) count too. Prints one
 JSON object: total load time (call -> ``programLoaded``), time spent inside the call itself,
 the longest GUI-thread gap before ``programLoaded`` and until the panel settled, and the p99 gap.
@@ -139,15 +144,105 @@ def run(program: Path, mode: str, settle_s: float) -> dict:
     return result
 
 
+def run_action(program: Path, action: str, settle_s: float) -> dict:
+    """GUI-thread stall of ``cycle_start()`` (``action="cycle_start"``) or of a configuration
+    change followed by cycle start (``"config"``), on a connected controller (manual clock)."""
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from dataclasses import replace
+
+    from PySide6.QtCore import QEventLoop, QTimer
+    from PySide6.QtWidgets import QApplication
+
+    from app.machine.controller import MachineController
+
+    app = QApplication.instance() or QApplication([])
+    state_dir = Path(tempfile.mkdtemp(prefix="cnc-bench-load-"))
+    controller = MachineController(None, state_dir=state_dir, worker_mode="manual")
+    assert controller.connect_bus(), "connect failed"
+    assert controller.set_machine_zero_here()
+    loaded = controller.load_program(program, wait=True)
+    assert loaded, loaded.reason
+    for _ in range(20):
+        app.processEvents()
+        time.sleep(0.01)
+    gaps: list[tuple[float, float]] = []  # (time of the tick, gap before it)
+    marks: dict[str, float] = {}
+    last = [time.perf_counter()]
+    calls: list[tuple[str, float, bool, str]] = []
+
+    def tick() -> None:
+        now = time.perf_counter()
+        gaps.append((now, now - last[0]))
+        last[0] = now
+
+    def timed(name: str, fn) -> bool:  # noqa: ANN001
+        t0 = time.perf_counter()
+        res = fn()
+        calls.append((name, time.perf_counter() - t0, bool(res), getattr(res, "reason", "")))
+        return bool(res)
+
+    def step() -> None:
+        if "start" not in marks:
+            marks["start"] = time.perf_counter()
+            if action == "config":
+                cfg = controller.config
+                new = replace(cfg, machine=cfg.machine.with_limits(
+                    a_max_mm_s2=cfg.machine.limits.a_max_mm_s2 * 0.9))
+                timed("update_config", lambda: controller.update_config(new))
+        if "started" not in marks:
+            if controller.refusal("cycle_start"):
+                QTimer.singleShot(10, step)
+                return
+            if timed("cycle_start", controller.cycle_start):
+                marks["started"] = time.perf_counter()
+            elif time.perf_counter() - marks["start"] > 60.0:
+                marks["started"] = float("nan")
+            else:
+                QTimer.singleShot(10, step)
+                return
+        QTimer.singleShot(round(settle_s * 1000), loop.quit)
+
+    timer = QTimer()
+    timer.setInterval(TICK_MS)
+    timer.timeout.connect(tick)
+    loop = QEventLoop()
+    timer.start()
+    QTimer.singleShot(200, step)
+    last[0] = time.perf_counter()
+    loop.exec()
+    timer.stop()
+    t = marks["start"]
+    end = marks.get("started", float("nan"))
+    during = [g for at, g in gaps if at >= t]
+    to_start = [g for at, g in gaps if t <= at <= end + 0.05]
+    result = {
+        "benchmark": "program_load_gui_stall",
+        "mode": action,
+        "program": program.name,
+        "lines": controller.program_info.line_count if controller.program_info else 0,
+        "started": end == end,
+        "start_after_s": round(end - t, 4),
+        "calls": [{"call": n, "blocked_s": round(d, 4), "ok": ok, "reason": r} for n, d, ok, r in calls],
+        "max_gui_gap_until_started_ms": round(1000 * max(to_start, default=0.0), 1),
+        "max_gui_gap_ms": round(1000 * max(during, default=0.0), 1),
+        "settle_s": settle_s,
+    }
+    controller.estop("bench done")
+    controller.shutdown()
+    return result
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--program", default=None, help="G-code file (default: 35,000-line finishing)")
-    parser.add_argument("--mode", choices=("sync", "controller", "panel", "all"), default="all")
+    parser.add_argument("--mode", choices=("sync", "controller", "panel", "cycle_start", "config", "all"),
+                        default="all")
     parser.add_argument("--settle-s", type=float, default=1.5)
     ns = parser.parse_args(argv)
     program = _program_file(ns.program)
     modes = ("sync", "controller", "panel") if ns.mode == "all" else (ns.mode,)
-    results = [run(program, m, ns.settle_s) for m in modes]
+    results = [run_action(program, m, ns.settle_s) if m in ("cycle_start", "config")
+               else run(program, m, ns.settle_s) for m in modes]
     print(json.dumps(results[0] if len(results) == 1 else {"benchmark": "program_load_gui_stall",
                                                           "runs": results}))
     return 0

@@ -99,10 +99,12 @@ class ConnectionMixin:
         c = self._cfg.controller
         return Budget(k_a=1.0 - c.accel_reserve, k_j=1.0 - c.jerk_reserve)
 
-    def update_config(self, config: MachineConfig) -> CommandResult:
+    def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
         """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply.
         Refused while moving; bus and drive changes take effect at the next connect; the loaded
-        program is checked again against the new limits.
+        program is checked again against the new limits: in a worker thread like a load (cycle
+        start refused until it is done; ``loadingChanged``), or before returning with ``wait``
+        (headless; the outcome is the same).
         """
         why = self.refusal("update_config")
         if why:
@@ -125,8 +127,14 @@ class ConnectionMixin:
             self.homedChanged.emit(tuple(self._homed))
         self._persist_state()
         self.configChanged.emit(saved)
-        if self._program_info is not None:
-            self._load_text(self._program_text, self._program_info.name, self._program_path)
+        if self._load_request is not None:  # a load in flight restarts with the new configuration
+            req = self._load_request
+            if wait:
+                self._load_text(req.text, req.name, req.path)
+            else:
+                self._start_load(req.text, req.name, req.path)
+        elif self._program_info is not None:
+            self._recheck_program(wait)
         if saved.axes != old_axes and self._worker is not None:
             self.message.emit("axes changed: reconnect the bus to apply")
         return self._ok("update_config")

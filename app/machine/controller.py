@@ -47,7 +47,8 @@ facade's state:
     app.machine.states       state machine: TRANSITIONS, refusals, E-stop, reset
     app.machine.connection   configuration, persistence, worker + feeder life cycle, shutdown
     app.machine.feeder       jobs, set-point streaming (lead_s), pause points, end of a run
-    app.machine.program_load load (parse, soft limits, plan) in a worker thread
+    app.machine.program_load load (parse, soft limits, plan), re-checks, single-block plans:
+                             in a worker thread (cycle start runs the load-time plan)
     app.machine.program_run  cycle start, feed hold, resume, stop, run from line, overrides
     app.machine.manual       jog (continuous, incremental), MDI
     app.machine.homing       machine zero (homing), work offsets, touch-off
@@ -88,7 +89,7 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.persist import StateStore
-from app.machine.program_load import LoadMixin, LoadRequest
+from app.machine.program_load import LoadMixin, LoadRequest, RunPlanRequest
 from app.machine.program_run import ProgramMixin
 from app.machine.spindle import SpindleMixin
 from app.machine.states import TRANSITIONS, StateMixin
@@ -198,6 +199,10 @@ class MachineController(
         self._load_request: LoadRequest | None = None  # the load in flight (program_load)
         self._load_generation = 0
         self._load_reason = ""  # why the last load was refused
+        self._program_cfg: object = None  # configuration and offsets the program was checked with
+        self._program_offsets: dict[str, tuple[float, ...]] = {}
+        self._run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
+        self._run_plan_ready: RunPlanRequest | None = None  # ... and the one made
         self._loadDone.connect(self._on_load_done)
         self._job: Job | None = None
         self._pushed_total = 0

@@ -34,7 +34,7 @@ from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, p
 from planner.plan import Plan, plan_program
 from planner.program import Program
 
-__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "FeederMixin", "SpliceInfo"]
+__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "FeederMixin", "SpliceInfo", "single_block_program"]
 
 SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
 SPLICE_ATTEMPTS = 6
@@ -55,6 +55,11 @@ class SpliceInfo:
     def __repr__(self) -> str:
         return (f"SpliceInfo(serial={self.serial}, consumed={self.consumed}, attempts={self.attempts}, "
                 f"elapsed_s={self.elapsed_s:.4f}, fallback={self.fallback})")
+
+
+def single_block_program(program: Program) -> Program:
+    """The program with an exact stop (G61) at every block end: single block's plan."""
+    return replace(program, moves=tuple(replace(m, exact_stop=True) for m in program.moves))
 
 
 def _set_hold(ex: TimeScaledExecutor) -> None:
@@ -79,6 +84,12 @@ class FeederMixin:
     def _plan(self, program: Program) -> Plan:
         return plan_program(program, reduced_machine(self._machine, self._budget))
 
+    def _planner(self) -> Callable[[Program], Plan]:
+        """``_plan`` bound to the machine and budget of now (for a worker thread: a change of
+        the configuration meanwhile cannot reach into a plan under way)."""
+        machine = reduced_machine(self._machine, self._budget)
+        return lambda program: plan_program(program, machine)
+
     def _make_job(
         self,
         kind: Activity,
@@ -87,10 +98,17 @@ class FeederMixin:
         *,
         overrides: bool = True,
         single_block: bool = False,
+        plan: Plan | None = None,
     ) -> Job:
-        if single_block:
-            program = replace(program, moves=tuple(replace(m, exact_stop=True) for m in program.moves))
-        plan = self._plan(program)
+        """A job for ``program``. ``plan``: a ready plan of exactly this program (already the
+        single-block variant when ``single_block``) with the current machine and budget, e.g.
+        the one made at load time (``ProgramInfo.plan``): then nothing is planned here."""
+        if plan is None:
+            if single_block:
+                program = single_block_program(program)
+            plan = self._plan(program)
+        else:
+            program = plan.program
         pauses = pause_points(plan, single_block, True)
         ex = TimeScaledExecutor(
             plan,

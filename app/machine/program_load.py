@@ -10,6 +10,14 @@ cancelled between its stages and its result dropped. A failed load unloads the p
 program. ``load_program(..., wait=True)`` and ``wait_loaded()`` give the synchronous behaviour
 for headless use (``cnc-run``, tests).
 
+Cycle start runs the plan made here (``ProgramInfo.plan``) as long as it is valid: same
+configuration (limits, budget, planner mode) and work offsets, and the machine where the program
+was interpreted from (``_program_stale``). Otherwise the program is checked again by this same
+path (``_recheck_program``: in the worker thread, or synchronously with ``wait``), as is done at
+once after ``update_config``; with single block on, its plan (exact stop at every block end) is
+made in a worker thread too (``_start_run_plan``). Cycle start is refused meanwhile
+(``refusal``; ``loading`` is True).
+
 The work is pure Python and NumPy: the thread shares the GIL with the GUI thread, which gets
 it back at every switch interval (5 ms) and between the stages, so the panel keeps drawing
 (figures: ``python -m bench.bench_load``). Part of ``MachineController`` (mixed in).
@@ -36,7 +44,7 @@ from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.program import Program
 
-__all__ = ["LoadMixin", "LoadRequest"]
+__all__ = ["LoadMixin", "LoadRequest", "RunPlanRequest"]
 
 
 class _Cancelled(Exception):
@@ -88,6 +96,22 @@ class LoadRequest:
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
     outcome: ProgramInfo | tuple[tuple[ProgramIssue, ...], str] | None = None
     finished: bool = False  # applied in the controller's thread (or dropped)
+
+
+@dataclass(eq=False)
+class RunPlanRequest:
+    """A run plan being made in a worker thread (single block: the program with an exact stop
+    at every block end), for the loaded ``info`` under the configuration ``cfg``."""
+
+    info: ProgramInfo
+    cfg: object
+    program: Program  # the variant to plan
+    single_block: bool
+    cancel: threading.Event = field(default_factory=threading.Event)
+    done: threading.Event = field(default_factory=threading.Event)
+    plan: Any = None  # planner.plan.Plan when done
+    error: str = ""
+    finished: bool = False
 
 
 def _issues_from_limits(program: Program, machine: MachineSpec,
@@ -156,14 +180,18 @@ class LoadMixin:
     # --- public --------------------------------------------------------------------------
     @property
     def loading(self) -> bool:
-        """True while a program is being read, checked and planned (cycle start refused)."""
-        return self._load_request is not None
+        """True while a program is being read, checked and planned, or checked again, or
+        planned for single block (cycle start refused meanwhile)."""
+        return self._load_request is not None or self._run_plan_request is not None
 
     @property
     def loading_name(self) -> str:
         """Name of the program being checked ("" when none)."""
         req = self._load_request
-        return req.name if req is not None else ""
+        if req is not None:
+            return req.name
+        rp = self._run_plan_request
+        return rp.info.name if rp is not None else ""
 
     def load_program(
         self,
@@ -261,7 +289,7 @@ class LoadMixin:
 
     def _start_load(self, text: str, name: str, path: str) -> LoadRequest:
         req = self._new_request(text, name, path)
-        machine, plan_fn = self._machine, self._plan
+        machine, plan_fn = self._machine, self._planner()
         self._load_request = req
         self.loadingChanged.emit(True, name)
 
@@ -287,6 +315,8 @@ class LoadMixin:
     def _on_load_done(self, req: object) -> None:
         if isinstance(req, LoadRequest):
             self._apply_load(req)
+        elif isinstance(req, RunPlanRequest):
+            self._apply_run_plan(req)
 
     def _apply_load(self, req: LoadRequest) -> None:
         """In the controller's thread: publish the outcome of ``req`` unless it was superseded."""
@@ -300,7 +330,7 @@ class LoadMixin:
         outcome = req.outcome
         self.loadingChanged.emit(False, req.name)
         if isinstance(outcome, ProgramInfo):
-            self._program_loaded(outcome)
+            self._program_loaded(outcome, req)
         elif outcome is not None:
             self._load_failed(*outcome)
 
@@ -316,22 +346,28 @@ class LoadMixin:
         except _Cancelled:  # pragma: no cover - nobody cancels a synchronous load
             return CommandResult(False, "load_program", "cancelled")
         if isinstance(outcome, ProgramInfo):
-            return self._program_loaded(outcome)
+            return self._program_loaded(outcome, req)
         return self._load_failed(*outcome)
 
-    def _program_loaded(self, info: ProgramInfo) -> CommandResult:
+    def _program_loaded(self, info: ProgramInfo, req: LoadRequest) -> CommandResult:
+        self._supersede_run_plan()
         self._program_info = info
+        self._program_cfg = req.cfg  # what the program and its plan were made for
+        self._program_offsets = dict(req.offsets)
         self._program_text = info.text
         self._program_path = info.path
         self._resume = None
         self._load_reason = ""
         self.programLoaded.emit(info)
+        if self._single_block and self._job is None:
+            self._start_run_plan(True)  # ready by the time cycle start is pressed
         return self._ok("load_program")
 
     def _load_failed(self, issues: tuple[ProgramIssue, ...], reason: str) -> CommandResult:
         """A failed load unloads the previous program (as LinuxCNC drops the file on a failed
         open): cycle start is then refused with "no program loaded" instead of running the old
         program while the operator looks at the new one's errors."""
+        self._supersede_run_plan()
         self._program_info = None
         self._program_text = ""
         self._program_path = ""
@@ -339,3 +375,112 @@ class LoadMixin:
         self._load_reason = reason
         self.programErrors.emit(issues)
         return self._refuse("load_program", reason)
+
+    # --- run plans (single block) ------------------------------------------------------------
+    def _program_stale(self) -> str:
+        """Why the loaded program (and its load-time plan) no longer fits the machine: the
+        configuration or the work offsets changed, or the machine is not where the program
+        was interpreted from; "" when it is still valid (or none is loaded)."""
+        info = self._program_info
+        if info is None:
+            return ""
+        if self._program_cfg is not self._cfg:
+            return "the machine configuration changed since it was loaded"
+        if self._program_offsets != self._offsets:
+            return "the work offsets changed since it was loaded"
+        start = np.asarray(info.program.start_position)  # type: ignore[attr-defined]
+        if np.max(np.abs(start - self._machine_pos()), initial=0.0) > 1e-6:
+            return "the machine moved since it was loaded"
+        return ""
+
+    def _recheck_program(self, wait: bool) -> CommandResult:
+        """Check the loaded program again (parse, soft limits, plan) with the current machine:
+        synchronously (``wait``) or in the worker thread like a load (cycle start refused
+        until it is done). Same outcome either way (``check_text``)."""
+        info = self._program_info
+        assert info is not None
+        if wait:
+            return self._load_text(self._program_text, info.name, self._program_path)
+        self._start_load(self._program_text, info.name, self._program_path)
+        return self._ok("load_program")
+
+    def _run_plan(self, single_block: bool) -> Any:
+        """The ready plan for a cycle start of the loaded, still valid program: the load-time
+        plan, or the single-block plan made for it; None when it is still to be made."""
+        info = self._program_info
+        if info is None:
+            return None
+        if not single_block:
+            return info.plan
+        ready = self._run_plan_ready
+        if ready is not None and ready.info is info and ready.cfg is self._cfg:
+            return ready.plan
+        return None
+
+    def _start_run_plan(self, single_block: bool = True) -> RunPlanRequest | None:
+        """Plan the loaded program's single-block variant in a worker thread (unless ready or
+        under way); cycle start is refused meanwhile (``refusal``)."""
+        from app.machine.feeder import single_block_program
+
+        info = self._program_info
+        if info is None or self._run_plan(single_block) is not None:
+            return None
+        cur = self._run_plan_request
+        if cur is not None and cur.info is info and cur.cfg is self._cfg and cur.single_block == single_block:
+            return cur
+        self._supersede_run_plan()
+        prog: Program = info.program  # type: ignore[assignment]
+        req = RunPlanRequest(info=info, cfg=self._cfg, program=prog, single_block=single_block)
+        plan_fn = self._planner()
+        self._run_plan_request = req
+        self.loadingChanged.emit(True, info.name)
+
+        def work() -> None:
+            try:
+                with gc_paused():
+                    variant = single_block_program(prog) if single_block else prog
+                    if not req.cancel.is_set():
+                        req.plan = plan_fn(variant)
+            except PlannerError as exc:
+                req.error = f"planner: {exc}"
+            except Exception as exc:  # noqa: BLE001 - a planner bug must not kill the panel
+                req.error = f"internal error while planning: {exc!r}"
+            req.done.set()
+            if not req.cancel.is_set():
+                try:
+                    self._loadDone.emit(req)
+                except RuntimeError:  # the controller was deleted meanwhile
+                    pass
+
+        threading.Thread(target=work, name="program-run-plan", daemon=True).start()
+        return req
+
+    def _supersede_run_plan(self) -> None:
+        req = self._run_plan_request
+        self._run_plan_ready = None
+        if req is not None:
+            req.cancel.set()
+            req.finished = True
+            self._run_plan_request = None
+            self.loadingChanged.emit(False, req.info.name)
+
+    def _apply_run_plan(self, req: RunPlanRequest) -> None:
+        """In the controller's thread: keep the finished run plan (if still wanted)."""
+        if req.finished or req is not self._run_plan_request:
+            return
+        req.finished = True
+        self._run_plan_request = None
+        if req.plan is not None and req.info is self._program_info and req.cfg is self._cfg:
+            self._run_plan_ready = req
+        elif req.error:
+            self.message.emit(f"{req.info.name}: {req.error}")
+        self.loadingChanged.emit(False, req.info.name)
+
+    def wait_run_plan(self, timeout_s: float | None = 60.0) -> bool:
+        """Block until the run plan under way (single block) is done; True when one is ready."""
+        req = self._run_plan_request
+        if req is not None:
+            if not req.done.wait(timeout_s):
+                return False
+            self._apply_run_plan(req)
+        return self._run_plan_ready is not None

@@ -34,37 +34,59 @@ class ProgramMixin:
     Mixed into ``MachineController``, which holds the state.
     """
 
-    def _fresh_program(self) -> Program | None:
-        """The loaded program, re-interpreted if the machine moved since it was loaded."""
+    def _fresh_program(self, action: str, wait: bool) -> Program | str:
+        """The loaded program when it is still valid (same configuration and offsets, the
+        machine where it was interpreted from), else it is checked again: with ``wait`` here
+        (the synchronous path: headless use), otherwise in the worker thread (the caller is
+        refused; cycle start is possible once ``programLoaded`` follows). Returns the program
+        or the reason for refusing ``action``."""
         info = self._program_info
         if info is None:
-            return None
-        prog: Program = info.program  # type: ignore[assignment]
-        if np.max(np.abs(np.asarray(prog.start_position) - self._machine_pos()), initial=0.0) > 1e-6:
-            if not self._load_text(self._program_text, info.name, self._program_path):
-                return None
-            prog = self._program_info.program  # type: ignore[union-attr,assignment]
-        return prog
+            return "no program loaded"
+        stale = self._program_stale()
+        if stale:
+            if not self._recheck_program(wait):
+                return "the program no longer passes its checks (see the errors)"
+            if not wait:
+                verb = "cycle start" if action == "cycle_start" else "run from line"
+                return f"{stale}: {info.name} is being checked again (press {verb} when it is loaded)"
+            info = self._program_info
+            assert info is not None
+        return info.program  # type: ignore[return-value]
 
-    def cycle_start(self) -> CommandResult:
-        """Start the loaded program from its beginning (IDLE; re-interpreted first if the machine
-        moved since loading), or continue (HOLD). Needs homed axes (unless the configuration
-        says otherwise) and no active alarm of severity STOP or above.
+    def cycle_start(self, *, wait: bool = False) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
+        axes (unless the configuration says otherwise) and no active alarm of severity STOP or
+        above. Runs the plan made at load time; when the configuration, the work offsets or
+        the machine position changed since loading, the program is checked again first, and
+        with single block on its single-block plan is made first: both in a worker thread
+        (refused meanwhile with the reason; ``loadingChanged``), or here with ``wait=True``
+        (headless use).
         """
         if self._state is MachineState.HOLD:
             return self.resume()
+        if wait:  # headless: finish a load or a single-block plan under way first
+            if self._load_request is not None:
+                self.wait_loaded(None)
+            self.wait_run_plan(None)
         why = self.refusal("cycle_start")
         if why:
             return self._refuse("cycle_start", why)
         if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
             return self._refuse("cycle_start", "acknowledge the active alarms first")
-        prog = self._fresh_program()
-        if prog is None:
-            return self._refuse("cycle_start", "the program no longer passes its checks (see the errors)")
+        prog = self._fresh_program("cycle_start", wait)
+        if isinstance(prog, str):
+            return self._refuse("cycle_start", prog)
         info = self._program_info
         assert info is not None
+        single = self._single_block
+        plan = self._run_plan(single)
+        if plan is None and not wait:
+            self._start_run_plan(single)
+            return self._refuse("cycle_start", self.refusal("cycle_start")
+                                or f"{info.name} is being planned for single block")
         try:
-            job = self._make_job(Activity.PROGRAM, prog, info.name, single_block=self._single_block)
+            job = self._make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan)
         except PlannerError as exc:
             return self._refuse("cycle_start", f"planner: {exc}")
         job.origin = (prog, 0, 0.0)
@@ -181,6 +203,9 @@ class ProgramMixin:
         Switched while running, it takes effect at the next standstill (feed hold, pause point):
         the rest of the program is planned again from there."""
         self._single_block = bool(on)
+        if self._single_block and self._job is None and self._program_info is not None \
+                and not self._program_stale() and self._load_request is None:
+            self._start_run_plan(True)  # ready by the time cycle start is pressed
         self.modesChanged.emit(self._single_block, self._optional_stop)
         if self._job is not None and self._job.kind is Activity.PROGRAM:
             self.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
@@ -192,18 +217,21 @@ class ProgramMixin:
         self.modesChanged.emit(self._single_block, self._optional_stop)
         return self._ok("set_optional_stop")
 
-    def run_from_line(self, line: int) -> CommandResult:
+    def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         """Start the loaded program at source line ``line``: the spindle as of that line is
         restored, a safe approach (retract Z to the higher of the current and target heights,
         move the other axes, then down) brings the tool to the line's start point, then the
-        program runs on from there.
+        program runs on from there. As cycle start, a program stale since loading is checked
+        again first (in the worker thread, refused meanwhile; here with ``wait=True``).
         """
+        if wait and self._load_request is not None:
+            self.wait_loaded(None)
         why = self.refusal("run_from_line")
         if why:
             return self._refuse("run_from_line", why)
-        prog = self._fresh_program()
-        if prog is None:
-            return self._refuse("run_from_line", "the program no longer passes its checks")
+        prog = self._fresh_program("run_from_line", wait)
+        if isinstance(prog, str):
+            return self._refuse("run_from_line", prog)
         try:
             i = locate(prog, int(line))
         except PlannerError as exc:

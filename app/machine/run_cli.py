@@ -97,7 +97,7 @@ def main(argv: list[str] | None = None) -> int:
         done: list[Any] = []
         ctl.programFinished.connect(done.append)
         started = time.monotonic()
-        res = ctl.cycle_start()
+        res = ctl.cycle_start(wait=True)
         if not res:
             print(f"cnc-run: {res.reason}", file=sys.stderr)
             return 2

@@ -109,6 +109,9 @@ class StateMixin:
                 return f"axes not homed: {' '.join(missing)} (home them or set machine zero first)"
         if action in ("cycle_start", "run_from_line") and self._load_request is not None:
             return f"the program {self._load_request.name} is still being checked (wait until it is loaded)"
+        if action == "cycle_start" and self._run_plan_request is not None:
+            return (f"the program {self._run_plan_request.info.name} is being planned for single block "
+                    "(wait until it is ready)")
         if action in ("cycle_start", "run_from_line") and self._program_info is None:
             return "no program loaded"
         if action == "feed_hold" and st is not MachineState.RUNNING:

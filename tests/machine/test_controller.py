@@ -27,7 +27,7 @@ def assert_within_limits(limits: dict[str, float]) -> None:
 
 def start(ctl: MachineController, text: str = SHORT) -> None:
     assert ctl.load_program(text, wait=True), "load refused"
-    assert ctl.cycle_start(), "cycle start refused"
+    assert ctl.cycle_start(wait=True), "cycle start refused"
     assert ctl.state is MachineState.RUNNING
 
 
@@ -350,7 +350,7 @@ def test_stop_abandons_the_program(ctl: MachineController) -> None:
     run_to_idle(ctl, 3)
     assert not ctl.last_run.completed
     assert ctl.resume_line == 0
-    assert ctl.cycle_start()  # and it can start again from the beginning
+    assert ctl.cycle_start(wait=True)  # and it can start again from the beginning (checked again: moved)
     run_to_idle(ctl)
     assert ctl.last_run.completed
 
