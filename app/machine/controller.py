@@ -199,6 +199,7 @@ class MachineController(
         self._load_request: LoadRequest | None = None  # the load in flight (program_load)
         self._load_generation = 0
         self._load_reason = ""  # why the last load was refused
+        self._start_pending = False  # cycle start pressed while the program is checked again
         self._program_cfg: object = None  # configuration and offsets the program was checked with
         self._program_offsets: dict[str, tuple[float, ...]] = {}
         self._run_plan_request: RunPlanRequest | None = None  # single-block plan in flight

@@ -213,6 +213,7 @@ class LoadMixin:
         select a work offset; the active offset (``select_work_offset``) applies to MDI blocks
         and to the work coordinates shown.
         """
+        self._start_pending = False  # a new program is not the one a waiting start meant
         why = self.refusal("load_program")
         if why:
             return self._refuse("load_program", why)
@@ -361,6 +362,7 @@ class LoadMixin:
         self.programLoaded.emit(info)
         if self._single_block and self._job is None:
             self._start_run_plan(True)  # ready by the time cycle start is pressed
+        self._pending_start()
         return self._ok("load_program")
 
     def _load_failed(self, issues: tuple[ProgramIssue, ...], reason: str) -> CommandResult:
@@ -368,6 +370,7 @@ class LoadMixin:
         open): cycle start is then refused with "no program loaded" instead of running the old
         program while the operator looks at the new one's errors."""
         self._supersede_run_plan()
+        self._start_pending = False
         self._program_info = None
         self._program_text = ""
         self._program_path = ""
@@ -474,7 +477,9 @@ class LoadMixin:
             self._run_plan_ready = req
         elif req.error:
             self.message.emit(f"{req.info.name}: {req.error}")
+            self._start_pending = False
         self.loadingChanged.emit(False, req.info.name)
+        self._pending_start()
 
     def wait_run_plan(self, timeout_s: float | None = 60.0) -> bool:
         """Block until the run plan under way (single block) is done; True when one is ready."""

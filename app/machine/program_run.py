@@ -34,7 +34,7 @@ class ProgramMixin:
     Mixed into ``MachineController``, which holds the state.
     """
 
-    def _fresh_program(self, action: str, wait: bool) -> Program | str:
+    def _fresh_program(self, action: str, wait: bool) -> Program | str | CommandResult:
         """The loaded program when it is still valid (same configuration and offsets, the
         machine where it was interpreted from), else it is checked again: with ``wait`` here
         (the synchronous path: headless use), otherwise in the worker thread (the caller is
@@ -48,11 +48,27 @@ class ProgramMixin:
             if not self._recheck_program(wait):
                 return "the program no longer passes its checks (see the errors)"
             if not wait:
-                verb = "cycle start" if action == "cycle_start" else "run from line"
-                return f"{stale}: {info.name} is being checked again (press {verb} when it is loaded)"
+                if action == "cycle_start":
+                    return self._start_when_ready(f"{stale}: {info.name} is being checked again")
+                return f"{stale}: {info.name} is being checked again (press run from line when it is loaded)"
             info = self._program_info
             assert info is not None
         return info.program  # type: ignore[return-value]
+
+    def _start_when_ready(self, why: str) -> CommandResult:
+        """Cycle start pressed while the program must first be checked or planned again in the
+        worker thread: accept the press and start by itself once that is done (``_pending_start``
+        is cleared by a failed check, a new load, stop, reset, E-stop or any state change).
+        An operator presses cycle start once."""
+        self._start_pending = True
+        self.message.emit(f"{why}; it starts when ready")
+        return self._ok("cycle_start")
+
+    def _pending_start(self) -> None:
+        """Called when a background check or plan has finished: start if a press is waiting."""
+        if self._start_pending and self._load_request is None and self._run_plan_request is None:
+            self._start_pending = False
+            self.cycle_start()
 
     def cycle_start(self, *, wait: bool = False) -> CommandResult:
         """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
@@ -75,6 +91,8 @@ class ProgramMixin:
         if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
             return self._refuse("cycle_start", "acknowledge the active alarms first")
         prog = self._fresh_program("cycle_start", wait)
+        if isinstance(prog, CommandResult):  # accepted: starts once checked again
+            return prog
         if isinstance(prog, str):
             return self._refuse("cycle_start", prog)
         info = self._program_info
@@ -83,8 +101,7 @@ class ProgramMixin:
         plan = self._run_plan(single)
         if plan is None and not wait:
             self._start_run_plan(single)
-            return self._refuse("cycle_start", self.refusal("cycle_start")
-                                or f"{info.name} is being planned for single block")
+            return self._start_when_ready(f"{info.name} is being planned for single block")
         try:
             job = self._make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan)
         except PlannerError as exc:
@@ -179,7 +196,11 @@ class ProgramMixin:
         return new
 
     def stop(self) -> CommandResult:
-        """Jerk-limited stop along the path, then abandon the program (-> IDLE)."""
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it
+        cancels a cycle start that waits for the program to be checked again."""
+        if self._start_pending and self._state is MachineState.IDLE:
+            self._start_pending = False
+            return self._ok("stop")
         if self._state not in (MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
             return self._refuse("stop", f"nothing to stop: machine is {self._state.label.lower()}")
         if self._state is MachineState.HOMING:

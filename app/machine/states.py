@@ -60,6 +60,7 @@ class StateMixin:
             raise MachineError(f"internal error: illegal transition {old.value} -> {new.value}")
         self._state = new
         self._state_reason = reason
+        self._start_pending = False  # a cycle start waiting for a check does not outlive a state change
         if new in (MachineState.IDLE, MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP):
             self._set_activity(Activity.NONE)
             self._persist_state()
@@ -135,8 +136,9 @@ class StateMixin:
     def reset(self) -> CommandResult:
         """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
         fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
-        resume point.
+        resume point. Also cancels a cycle start waiting for a check.
         """
+        self._start_pending = False
         st = self._state
         if st is MachineState.HOLD:
             with self._lock:

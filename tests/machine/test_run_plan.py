@@ -88,14 +88,17 @@ def test_moved_since_loading_rechecks_in_the_background(qtbot, ctl: MachineContr
     assert ctl.mdi("G0 X1 Y2")
     run_to_idle(ctl)
     n = len(plan_calls)  # the MDI block was planned
+    messages: list[str] = []
+    ctl.message.connect(messages.append)
     with qtbot.waitSignal(ctl.programLoaded, timeout=10_000) as blocker:
-        r = ctl.cycle_start()
-        assert not r and "moved since it was loaded" in r.reason and "being checked again" in r.reason
+        assert ctl.cycle_start()  # accepted once: it starts by itself when checked again
+        assert ctl.state is MachineState.IDLE and ctl.loading
         assert "being checked" in ctl.refusal("cycle_start")
+    assert any("moved since it was loaded" in m and "starts when ready" in m for m in messages)
     info = blocker.args[0]
     np.testing.assert_allclose(info.program.start_position, (1.0, 2.0, 0.0), atol=1e-9)
+    assert ctl.state is MachineState.RUNNING  # no second press
     assert len(plan_calls) == n + 1
-    assert ctl.cycle_start() and len(plan_calls) == n + 1
     run_to_idle(ctl)
     np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
 
@@ -115,10 +118,9 @@ def test_offset_change_makes_the_program_stale(qtbot, ctl: MachineController) ->
     assert ctl.load_program(text, wait=True)
     assert ctl.set_work_offset("G54", (2.0, 0.0, 0.0))
     with qtbot.waitSignal(ctl.programLoaded, timeout=10_000) as blocker:
-        r = ctl.cycle_start()
-        assert not r and "work offsets changed" in r.reason
+        assert ctl.cycle_start()
     assert blocker.args[0].bounds_max[0] == pytest.approx(12.0)
-    assert ctl.cycle_start()
+    assert ctl.state is MachineState.RUNNING
     run_to_idle(ctl)
     np.testing.assert_array_equal(ctl.reference_position, (12.0, 0.0, 0.0))
 
@@ -149,6 +151,25 @@ def test_single_block_plan_is_made_in_the_background(qtbot, ctl: MachineControll
             assert ctl.cycle_start()
     assert stops == 3
     assert ctl.set_single_block(False)
-    r = ctl.cycle_start()  # moved: checked again (off-thread) first
-    assert not r and "moved" in r.reason
-    assert ctl.cycle_start(wait=True)  # the headless path waits for that check
+    assert ctl.cycle_start()  # moved: accepted, checked again (off-thread) first ...
+    assert ctl.state is MachineState.IDLE and "being checked" in ctl.refusal("cycle_start")
+    assert ctl.wait_loaded(None)  # ... and started as soon as that check is done
+    assert ctl.state is MachineState.RUNNING
+
+
+def test_a_waiting_cycle_start_is_cancelled_by_stop_and_by_a_failed_check(
+        qtbot, ctl: MachineController) -> None:
+    assert ctl.load_program(SHORT, wait=True)
+    assert ctl.mdi("G0 X1 Y2")
+    run_to_idle(ctl)
+    with qtbot.waitSignal(ctl.programLoaded, timeout=10_000):
+        assert ctl.cycle_start()
+        assert ctl.stop()  # the operator changes their mind while it is checked again
+    assert ctl.state is MachineState.IDLE
+    # a re-check that fails (the move made the program cross a soft limit) starts nothing
+    assert ctl.load_program("G91 G1 X240 F1800\nM30\n", wait=True)
+    with qtbot.waitSignal(ctl.programErrors, timeout=10_000):
+        assert ctl.cycle_start()  # first run from X1: fine, then ...
+        run_to_idle(ctl)
+        assert ctl.cycle_start()  # ... from X241 the same incremental move leaves the travel
+    assert ctl.state is MachineState.IDLE and ctl.program_info is None
