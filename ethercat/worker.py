@@ -487,6 +487,7 @@ class _Loop:
         self.recover_countdown = 0
         self.recovered_mask = 0            # written by the recovery helper thread
         self.recover_calls = 0
+        self.recover_busy = False          # a recover_slaves() attempt is under way
         self._recover_event: threading.Event | None = None
         self._recover_thread: threading.Thread | None = None
 
@@ -722,12 +723,18 @@ class _Loop:
         if bus is None:
             return
         self.recover_calls += 1
+        # While an attempt runs, the cycle may already see the working counter right again:
+        # it waits for the attempt to finish so the event says how the slave came back.
+        self.recover_busy = True
         try:
             got = bus.recover_slaves()  # type: ignore[attr-defined]
         except Exception:  # noqa: BLE001 - a failed attempt is retried at the next interval
             return
-        for pos in got:
-            self.recovered_mask |= 1 << min(int(pos), 62)
+        else:
+            for pos in got:
+                self.recovered_mask |= 1 << min(int(pos), 62)
+        finally:
+            self.recover_busy = False
 
     def _recover_main(self) -> None:
         event = self._recover_event
@@ -826,7 +833,7 @@ class _Loop:
                 self._try_recover()
             return
         self.wkc_bad_run = 0
-        if self.lost_mask:                     # every slave answers again
+        if self.lost_mask and not self.recover_busy:  # every slave answers again
             self._alarm(EventCode.SLAVE_RECOVERED, -1, self.lost_mask, self.recovered_mask)
             self.lost_mask = 0
             self.recovered_mask = 0
