@@ -8,6 +8,7 @@ and for "run from line". Units: mm, deg, s; positions are machine coordinates.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -117,17 +118,23 @@ class ModalState:
     feed_mm_s: float = 0.0  # feed of the first move at or after the line (0 if none)
 
 
-def modal_state_at(program: Program, line: int) -> ModalState:
-    """Spindle, tool and feed in effect when execution reaches source line ``line``."""
+def _spindle_and_tool(events: Iterable[Event], reached: Callable[[Event], bool]) -> tuple[float, int]:
+    """Spindle speed (signed rpm) and tool after the events before the first ``reached`` one."""
     spindle = 0.0
     tool = 0
-    for e in program.events:
-        if e.line >= line:
+    for e in events:
+        if reached(e):
             break
         if e.kind is EventKind.SPINDLE:
             spindle = float(e.value)
         elif e.kind in (EventKind.TOOL, EventKind.TOOL_CHANGE) and e.value:
             tool = int(e.value)
+    return spindle, tool
+
+
+def modal_state_at(program: Program, line: int) -> ModalState:
+    """Spindle, tool and feed in effect when execution reaches source line ``line``."""
+    spindle, tool = _spindle_and_tool(program.events, lambda e: e.line >= line)
     feed = 0.0
     for m in program.moves:
         if m.line >= line and m.kind is not MoveKind.RAPID:
@@ -139,15 +146,7 @@ def modal_state_at(program: Program, line: int) -> ModalState:
 def modal_state_before_move(program: Program, move_index: int) -> ModalState:
     """Spindle, tool and feed in effect when move ``move_index`` starts (events after earlier
     moves, including those written on the move's own line before it, have happened)."""
-    spindle = 0.0
-    tool = 0
-    for e in program.events:
-        if e.after_move >= move_index:
-            break
-        if e.kind is EventKind.SPINDLE:
-            spindle = float(e.value)
-        elif e.kind in (EventKind.TOOL, EventKind.TOOL_CHANGE) and e.value:
-            tool = int(e.value)
+    spindle, tool = _spindle_and_tool(program.events, lambda e: e.after_move >= move_index)
     m = program.moves[move_index] if 0 <= move_index < len(program.moves) else None
     feed = float(m.feed_mm_s) if m is not None and m.kind is not MoveKind.RAPID else 0.0
     return ModalState(spindle_rpm=spindle, tool=tool, feed_mm_s=feed)
