@@ -49,6 +49,12 @@ def enable_all(bus: Bus, max_cycles: int = 200) -> int:
 class BusContractTests:
     """Behaviour seen from above, identical on every backend."""
 
+    # Frames a backend may lose in the 700-cycle motion test, reported by a wrong working
+    # counter (inputs are then kept, as the worker's wkc_error_limit expects). None on the
+    # simulated bus; a real link over a virtual machine loses one when the far end is not
+    # scheduled within the receive timeout.
+    tolerated_lost_frames = 0
+
     def test_open_close_twice_and_context_manager(self, bus: Bus) -> None:
         assert not bus.is_open
         with bus as b:
@@ -92,12 +98,14 @@ class BusContractTests:
             start = bus.position_actual.astype(np.int64)
             goal = start + np.array([20_000 * (i + 1) for i in range(bus.n_drives)])
             n = 400
+            lost = 0
             for k in range(n + 300):
                 u = min(1.0, k / n)
                 bus.target_position[:] = np.rint(start + (goal - start) * (1 - np.cos(np.pi * u)) / 2)
                 bus.controlword[:] = 0x0F
-                assert bus.exchange() == bus.expected_wkc
+                lost += bus.exchange() != bus.expected_wkc
                 assert all(s is Cia402State.OPERATION_ENABLED for s in states_of(bus))
+            assert lost <= self.tolerated_lost_frames, f"{lost} of {n + 300} frames lost"
             np.testing.assert_allclose(bus.position_actual, goal, atol=2)
             assert np.abs(bus.following_error).max() <= 2
 
