@@ -34,13 +34,6 @@ def validate(config: MachineConfig) -> str:
         return str(exc)
     except (ValueError, TypeError, KeyError) as exc:
         return f"{type(exc).__name__}: {exc}"
-    axes = config.machine.axes
-    for a in axes:
-        if a.min_pos >= a.max_pos:
-            return f"axis {a.name}: min {a.min_pos:g} must be below max {a.max_pos:g}"
-    drives = [a.drive_position for a in axes]
-    if len(set(drives)) != len(drives):
-        return f"two axes use the same drive position: {drives}"
     return ""
 
 
@@ -51,7 +44,7 @@ def with_axis(config: MachineConfig, index: int, **changes: Any) -> MachineConfi
 
 
 def with_limits(config: MachineConfig, **changes: float) -> MachineConfig:
-    return replace(config, machine=replace(config.machine, limits=replace(config.machine.limits, **changes)))
+    return replace(config, machine=config.machine.with_limits(**changes))
 
 
 def with_planner(config: MachineConfig, **changes: Any) -> MachineConfig:
