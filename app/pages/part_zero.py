@@ -4,7 +4,6 @@ touch off per axis (the current position becomes a chosen work coordinate)."""
 from __future__ import annotations
 
 from PySide6.QtWidgets import (
-    QButtonGroup,
     QHBoxLayout,
     QHeaderView,
     QLabel,
@@ -17,7 +16,7 @@ from PySide6.QtWidgets import (
 
 from app.context import PanelContext
 from app.i18n import N_, tr
-from app.widgets.touch import touch_rows
+from app.widgets.touch import exclusive_buttons, touch_rows
 from planner.machine import WORK_OFFSET_NAMES
 
 
@@ -34,15 +33,9 @@ class PartZeroPage(QWidget):
         active = QLabel()
         i18n.bind(active, N_("Active:"))
         select.addWidget(active)
-        self.select_group = QButtonGroup(self)
-        self.select_buttons: dict[str, QPushButton] = {}
-        for name in WORK_OFFSET_NAMES:
-            button = QPushButton(name)
-            button.setCheckable(True)
-            button.clicked.connect(lambda _=False, n=name: c.select_work_offset(n))
-            self.select_group.addButton(button)
-            select.addWidget(button)
-            self.select_buttons[name] = button
+        self.select_group, self.select_buttons = exclusive_buttons(
+            self, select, ((name, QPushButton(name)) for name in WORK_OFFSET_NAMES),
+            c.select_work_offset)
         layout.addLayout(select)
         self.table = QTableWidget(len(WORK_OFFSET_NAMES), len(self.axes))
         self.table.setVerticalHeaderLabels(list(WORK_OFFSET_NAMES))

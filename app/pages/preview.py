@@ -5,11 +5,12 @@ from __future__ import annotations
 
 import importlib.util
 
-from PySide6.QtWidgets import QButtonGroup, QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app.context import PanelContext
 from app.i18n import N_, tr
 from app.widgets.preview_plot import PLANES, PreviewPlot
+from app.widgets.touch import exclusive_buttons
 
 
 def opengl_available() -> bool:
@@ -25,15 +26,8 @@ class PreviewPage(QWidget):
         i18n = context.i18n
         layout = QVBoxLayout(self)
         bar = QHBoxLayout()
-        self.plane_group = QButtonGroup(self)
-        self.plane_buttons: dict[str, QPushButton] = {}
-        for plane in PLANES:
-            button = QPushButton(plane)
-            button.setCheckable(True)
-            button.clicked.connect(lambda _=False, p=plane: self.set_plane(p))
-            self.plane_group.addButton(button)
-            bar.addWidget(button)
-            self.plane_buttons[plane] = button
+        self.plane_group, self.plane_buttons = exclusive_buttons(
+            self, bar, ((plane, QPushButton(plane)) for plane in PLANES), self.set_plane)
         self.view3d_button = QPushButton("3-D")
         self.view3d_button.setEnabled(False)  # no 3-D without PyOpenGL (see note)
         bar.addWidget(self.view3d_button)

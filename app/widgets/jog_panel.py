@@ -7,7 +7,6 @@ from collections.abc import Sequence
 
 from PySide6.QtCore import Signal
 from PySide6.QtWidgets import (
-    QButtonGroup,
     QGridLayout,
     QHBoxLayout,
     QLabel,
@@ -18,6 +17,7 @@ from PySide6.QtWidgets import (
 
 from app.i18n import N_, I18n
 from app.widgets.override_control import OverrideControl
+from app.widgets.touch import exclusive_buttons
 
 INCREMENTS: tuple[float, ...] = (0.001, 0.01, 0.1, 1.0)
 
@@ -32,15 +32,10 @@ class JogPanel(QWidget):
         self.axes = tuple(axes)
         layout = QVBoxLayout(self)
         modes = QHBoxLayout()
-        self.mode_group = QButtonGroup(self)
-        self.mode_buttons: dict[float, QPushButton] = {}
         cont = QPushButton()
         i18n.bind(cont, N_("Continuous"))
-        for value, button in [(0.0, cont)] + [(s, QPushButton(f"{s:g}")) for s in INCREMENTS]:
-            button.setCheckable(True)
-            self.mode_group.addButton(button)
-            modes.addWidget(button)
-            self.mode_buttons[value] = button
+        self.mode_group, self.mode_buttons = exclusive_buttons(
+            self, modes, [(0.0, cont)] + [(s, QPushButton(f"{s:g}")) for s in INCREMENTS])
         cont.setChecked(True)
         layout.addLayout(modes)
         grid = QGridLayout()

@@ -2,7 +2,20 @@
 
 from __future__ import annotations
 
-from PySide6.QtWidgets import QAbstractItemView, QAbstractScrollArea, QScroller, QWidget
+from collections.abc import Callable, Iterable
+from typing import TypeVar
+
+from PySide6.QtWidgets import (
+    QAbstractItemView,
+    QAbstractScrollArea,
+    QBoxLayout,
+    QButtonGroup,
+    QPushButton,
+    QScroller,
+    QWidget,
+)
+
+K = TypeVar("K")
 
 
 def enable_kinetic_scrolling(area: QAbstractScrollArea, mouse: bool = True) -> None:
@@ -28,3 +41,23 @@ def touch_rows(view: QAbstractItemView, height_px: int = 48) -> None:
 def set_min_touch(widget: QWidget, size_px: int = 48) -> None:
     widget.setMinimumHeight(max(widget.minimumHeight(), size_px))
     widget.setMinimumWidth(max(widget.minimumWidth(), size_px))
+
+
+def exclusive_buttons(
+    owner: QWidget,
+    layout: QBoxLayout,
+    choices: Iterable[tuple[K, QPushButton]],
+    on_choose: Callable[[K], object] | None = None,
+) -> tuple[QButtonGroup, dict[K, QPushButton]]:
+    """A row of checkable buttons of which one is checked at a time: the touch form of a
+    radio group (plane, work offset, jog increment). Returns the group and the buttons by key."""
+    group = QButtonGroup(owner)
+    buttons: dict[K, QPushButton] = {}
+    for key, button in choices:
+        button.setCheckable(True)
+        if on_choose is not None:
+            button.clicked.connect(lambda _=False, k=key: on_choose(k))
+        group.addButton(button)
+        layout.addWidget(button)
+        buttons[key] = button
+    return group, buttons
