@@ -14,7 +14,6 @@ none (axis words need a G00-G03 first).
 
 from __future__ import annotations
 
-import gc
 import math
 import os
 import re
@@ -30,6 +29,7 @@ from planner.arcs import (
     sweep_angle,
 )
 from planner.errors import PlannerError, ProgramError, SourceError
+from planner.gcpause import gc_paused
 from planner.lexer import LexError, Params, compact, original_column, read_line
 from planner.program import (
     Arc,
@@ -803,15 +803,8 @@ def parse_program(
     ``block_delete``: lines starting with '/' are skipped (switch on) or run (off).
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors)
-    # The parse allocates tens of thousands of small acyclic objects; the cyclic GC would
-    # re-scan them many times over (about 20 % of the time). Paused for the parse only.
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
+    with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         return interp.run(text)
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:

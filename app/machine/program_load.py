@@ -25,12 +25,9 @@ it back at every switch interval (5 ms) and between the stages, so the panel kee
 
 from __future__ import annotations
 
-import gc
 import os
 import threading
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -40,6 +37,7 @@ import numpy as np
 from app.machine.limits import check_program, move_bounds_table, program_bounds
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
 from planner.errors import PlannerError, ProgramError
+from planner.gcpause import gc_paused
 from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.program import Program
@@ -49,35 +47,6 @@ __all__ = ["LoadMixin", "LoadRequest", "RunPlanRequest"]
 
 class _Cancelled(Exception):
     pass
-
-
-_gc_lock = threading.Lock()
-_gc_pausers = 0
-_gc_was_enabled = True
-
-
-@contextmanager
-def gc_paused() -> Iterator[None]:
-    """No cyclic garbage collection while a load builds its objects (~70,000 for 35,000 lines):
-    a collection in the worker thread holds the GIL, measured 20-75 ms (a full one), which is
-    the GUI thread's stall. Afterwards the survivors are frozen (``gc.freeze``: never scanned
-    again), so no later collection in the GUI thread pays for them either. A loaded program
-    holds no reference cycles (measured: 0 unreachable after dropping one), so it is still
-    freed by reference counting when a newer program replaces it."""
-    global _gc_pausers, _gc_was_enabled
-    with _gc_lock:
-        if _gc_pausers == 0:
-            _gc_was_enabled = gc.isenabled()
-        _gc_pausers += 1
-        gc.disable()
-    try:
-        yield
-    finally:
-        with _gc_lock:
-            _gc_pausers -= 1
-            if _gc_pausers == 0 and _gc_was_enabled:
-                gc.freeze()
-                gc.enable()
 
 
 @dataclass(eq=False)
@@ -296,7 +265,7 @@ class LoadMixin:
 
         def work() -> None:
             try:
-                with gc_paused():
+                with gc_paused(freeze=True):
                     req.outcome = check_text(req, machine, plan_fn)
             except _Cancelled:
                 req.outcome = None
@@ -440,7 +409,7 @@ class LoadMixin:
 
         def work() -> None:
             try:
-                with gc_paused():
+                with gc_paused(freeze=True):
                     variant = single_block_program(prog) if single_block else prog
                     if not req.cancel.is_set():
                         req.plan = plan_fn(variant)
