@@ -32,6 +32,7 @@ Per-cycle cost: one small `bytes` per drive for `slave.output` and one from
 
 from __future__ import annotations
 
+import os
 import struct
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -165,11 +166,34 @@ def _import_pysoem() -> Any:
     return pysoem
 
 
+FRAME_TIMEOUT_ENV = "CNC_ETHERCAT_FRAME_TIMEOUT_US"
+
+
+def frame_timeout_us() -> int | None:
+    """SOEM's receive timeout for non-cyclic frames (configuration, SDO; EC_TIMEOUTRET, 2000 us
+    by default) from CNC_ETHERCAT_FRAME_TIMEOUT_US, or None to keep SOEM's. Real slaves answer in
+    microseconds; a software slave on a loaded or virtual machine may need more."""
+    raw = os.environ.get(FRAME_TIMEOUT_ENV, "").strip()
+    if not raw:
+        return None
+    try:
+        value = int(raw)
+    except ValueError:
+        value = 0
+    if not 100 <= value <= 1_000_000:
+        raise ConfigurationError(f"{FRAME_TIMEOUT_ENV} must be a whole number of microseconds "
+                                 f"from 100 to 1000000, got {raw!r}")
+    return value
+
+
 def open_master(adapter: str) -> Any:
     """A pysoem Master opened on `adapter`, releasing the GIL in every call."""
     pysoem = _import_pysoem()
     if not adapter:
         raise AdapterError("no network adapter given for the EtherCAT bus")
+    timeout_us = frame_timeout_us()
+    if timeout_us is not None:
+        pysoem.settings.timeouts.ret = timeout_us  # process-wide in SOEM: one master per process
     master = pysoem.Master()
     master.always_release_gil = True
     try:

@@ -24,7 +24,7 @@ from ethercat.cia402 import Cia402State
 from ethercat.drive_model import DriveParams
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
 from ethercat.errors import AdapterError, AlStateError, SdoAbortError, SlaveIdentityError
-from ethercat.soem_bus import CSP_MAPPING, PdoEntry, PdoMapping, SoemBus
+from ethercat.soem_bus import CSP_MAPPING, FRAME_TIMEOUT_ENV, PdoEntry, PdoMapping, SoemBus
 from ethercat.worker import AlarmCode, CyclicWorker, EventCode, WorkerConfig, WorkerState
 from tests.ethercat.bus_contract import CONTRACT_DRIVES, BusContractTests, enable_all
 
@@ -36,6 +36,19 @@ P = DriveParams()
 DRIVES3 = tuple(DriveSpec(i, "XYZ"[i], counts_per_unit=10_000.0, following_error_window=0.5,
                           vendor_id=P.vendor_id, product_code=P.product_code) for i in range(3))
 W = WorkerState
+
+
+@pytest.fixture(scope="module", autouse=True)
+def slow_far_end() -> Iterator[None]:
+    """The slaves here are a process of the same (virtual) machine: when it is not scheduled
+    for a few ms a configuration or SDO frame outlives SOEM's 2 ms default and the step fails.
+    20 ms for those frames (not the cyclic ones), also for the CLI's subprocesses."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv(FRAME_TIMEOUT_ENV, "20000")
+        yield
+    import pysoem
+
+    pysoem.settings.timeouts.ret = 2000  # SOEM's default, for whatever runs after this module
 
 
 def _link(n_drives: int) -> Iterator[EmulatedLink]:

@@ -115,3 +115,17 @@ def test_link_tests_skip_reasons(monkeypatch: pytest.MonkeyPatch) -> None:
     assert "iproute2" in link.link_unavailable_reason()
     with pytest.raises(ConfigurationError, match="iproute2"):
         link.EmulatedLink(1).start()
+
+
+def test_frame_timeout_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    from ethercat.errors import ConfigurationError
+    from ethercat.soem_bus import FRAME_TIMEOUT_ENV, frame_timeout_us
+
+    monkeypatch.delenv(FRAME_TIMEOUT_ENV, raising=False)
+    assert frame_timeout_us() is None                      # SOEM's own default is kept
+    monkeypatch.setenv(FRAME_TIMEOUT_ENV, "20000")
+    assert frame_timeout_us() == 20000
+    for bad in ("fast", "50", "5000000"):
+        monkeypatch.setenv(FRAME_TIMEOUT_ENV, bad)
+        with pytest.raises(ConfigurationError, match=FRAME_TIMEOUT_ENV):
+            frame_timeout_us()
