@@ -44,8 +44,11 @@ $(VENV)/.installed-test: pyproject.toml | $(VPY)
 demo: sysdeps $(VENV)/.installed
 	$(VPY) -m app --demo $(ARGS)
 
+# ruff, the import-linter layering contracts (pyproject.toml), and the type checker
 lint: $(VENV)/.installed-test
-	$(VENV)/bin/ruff check app planner ethercat tests bench
+	$(VENV)/bin/ruff check app planner ethercat cli resources tools tests bench
+	$(VENV)/bin/lint-imports
+	$(VENV)/bin/mypy
 
 test: sysdeps $(VENV)/.installed-test lint
 	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest

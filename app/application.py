@@ -8,13 +8,14 @@ import time
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QApplication
 
-from app.context import RESOURCES, PanelOptions
+from app.context import PanelOptions
 from app.main_window import MainWindow
+from app.paths import STYLES
 
 
 def apply_theme(app: QApplication) -> None:
     """Fusion style + the dark touch theme; set once (re-setting re-polishes every widget)."""
-    qss = (RESOURCES / "styles" / "dark.qss").read_text(encoding="utf-8")
+    qss = (STYLES / "dark.qss").read_text(encoding="utf-8")
     if app.styleSheet() != qss:
         app.setStyle("Fusion")
         app.setStyleSheet(qss)

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
+
+from app.paths import DEFAULT_STATE_DIR, DEMO_PROGRAM
 
 if TYPE_CHECKING:  # Qt-free at import time: __main__ reads this before Qt may start
     from app.dialogs import Dialogs
@@ -15,10 +16,6 @@ if TYPE_CHECKING:  # Qt-free at import time: __main__ reads this before Qt may s
     from app.program_document import ProgramDocument
     from app.program_model import ProgramModel
 
-RESOURCES = Path(__file__).resolve().parent.parent / "resources"
-DEMO_PROGRAM = RESOURCES / "programs" / "pocket.nc"
-DEFAULT_CONFIG = RESOURCES / "machines" / "xyz_mill.toml"
-DEFAULT_STATE_DIR = Path(os.path.expanduser("~/.local/state/cnc-panel"))
 
 
 @dataclass(frozen=True, slots=True)

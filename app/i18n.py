@@ -18,13 +18,18 @@ from pathlib import Path
 import shiboken6
 from PySide6.QtCore import QCoreApplication, QObject, QTranslator, Signal
 
-from app.context import RESOURCES
-from app.i18n_catalog import N_
+from app.paths import TRANSLATIONS
 
+# One translation context for every string: the catalogue tool (tools/i18n_catalog.py)
+# extracts them by the markers below and writes them under this context.
 CONTEXT = "cnc"
 __all__ = ["CONTEXT", "I18n", "LANGUAGES", "N_", "compile_translations", "tr"]
 LANGUAGES: dict[str, str] = {"en": "English", "tr": "Türkçe"}
-TRANSLATIONS = RESOURCES / "translations"
+
+
+def N_(text: str) -> str:  # noqa: N802 - gettext's name: "mark for translation, translate later"
+    """Mark a string for the catalogue; it is translated where it is shown (``tr``)."""
+    return text
 
 
 def tr(text: str) -> str:

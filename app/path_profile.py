@@ -1,6 +1,7 @@
 """Speed, acceleration and jerk along the path of a planned program against time (Fig. 14).
 
-Derived from the planner's 1 ms samples of the path length s(t) by finite differences; the
+Derived from the planner's 1 ms samples of the path length s(t) by the limit meter's finite
+differences (``planner.meter.path_vaj``, the same as ``cnc-plan --plot``); the
 first ``max_time_s`` seconds only, so a long program never costs unbounded memory.
 """
 
@@ -11,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planner.machine import MachineSpec
+from planner.meter import path_vaj
 from planner.program import Program
 
 MAX_TIME_S = 600.0
@@ -52,8 +54,6 @@ def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX
     if len(t) < 4:
         z = np.zeros(len(t))
         return PathProfile(t, z, z, z, plan.cycle_time_s, False, limits, lim.rapid_mm_s)
-    v = np.gradient(s, ts)
-    a = np.gradient(v, ts)
-    j = np.gradient(a, ts)
+    v, a, j = path_vaj(s, ts)
     return PathProfile(t, v, a, j, plan.cycle_time_s, plan.cycle_time_s > max_time_s, limits,
                        lim.rapid_mm_s)

@@ -66,7 +66,7 @@ def make_gui_load(busy_s: float = 0.05) -> Callable[[], None]:
 
 def probe(seconds: float, cpu: int, rt_priority: int, spin_s: float) -> dict[str, Any]:
     """Wake-up lateness of a bare clock_nanosleep loop, with the cause of each late one."""
-    from ethercat.worker import _AbsoluteSleep, _set_timer_slack_ns
+    from ethercat.worker.realtime import AbsoluteSleep, set_timer_slack_ns
 
     applied = []
     if cpu >= 0:
@@ -77,7 +77,7 @@ def probe(seconds: float, cpu: int, rt_priority: int, spin_s: float) -> dict[str
     if rt_priority > 0:
         os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(rt_priority))
         applied.append(f"fifo{rt_priority}")
-    _set_timer_slack_ns(1)
+    set_timer_slack_ns(1)
     sched = open("/proc/thread-self/schedstat", "rb", buffering=0)   # noqa: SIM115
     status_path = "/proc/thread-self/status"
     stat = open("/proc/stat", "rb", buffering=0)                     # noqa: SIM115
@@ -106,7 +106,7 @@ def probe(seconds: float, cpu: int, rt_priority: int, spin_s: float) -> dict[str
     n = int(seconds * 1000)
     late = np.zeros(n)
     stalls: list[dict[str, float]] = []
-    until = _AbsoluteSleep().until
+    until = AbsoluteSleep().until
     perf = time.perf_counter
     rd0, (st0, irq0), nv0 = run_delay_ns(), cpu_ticks(), nonvoluntary()
     steal_start = st0

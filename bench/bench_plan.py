@@ -22,7 +22,7 @@ import sys
 import time
 
 from bench.gen_programs import PROGRAMS
-from planner.cli import build_machine
+from cli.plan import build_machine
 from planner.interpreter import parse_program
 from planner.plan import plan_program, stream_program
 

@@ -3,9 +3,10 @@
 A `Bus` owns the process data of N CiA 402 drives as preallocated NumPy arrays, one
 element per drive (index = position in `drives`, not necessarily the slave position):
 
-    outputs (RxPDO, master -> drive)   controlword u16, target_position i32, modes_of_operation i8
+    outputs (RxPDO, master -> drive)   controlword u16, target_position i32, modes_of_operation i8,
+                                       digital_outputs u32 (0x60FE:1)
     inputs  (TxPDO, drive -> master)   statusword u16, position_actual i32, following_error i32,
-                                       error_code u16, modes_display i8
+                                       error_code u16, modes_display i8, digital_inputs u32 (0x60FD)
 
 The worker writes the output arrays in place, calls `exchange()` once per cycle (send
 and receive one frame; returns the working counter, -1 when no frame came back) and
@@ -18,11 +19,14 @@ reads the input arrays in place. Inputs are only updated when the frame came bac
 
 Backends implement the transport only (`_open`, `_close`, `_exchange`, `_sdo_upload`,
 `_sdo_download`, and `_slaves`); the base class does state checks, the context manager,
-harmless double close, typed SDO helpers. Backends are chosen by name (`make_bus`) and
+harmless double close, typed SDO helpers. Optional features are methods with a default here
+(as python-can's ``BusABC``): ``lost_slaves`` (none known), ``recover_slaves`` (nothing to
+do), ``digital_outputs_mapped`` (yes), ``inject`` (refused: only a simulation can fake faults).
+Backends are chosen by name (`make_bus`) and
 imported lazily: "sim" -> `ethercat.sim_bus.SimBus`, "soem" -> `ethercat.soem_bus.SoemBus`.
 
-SDO transfers are acyclic and may take milliseconds on a real bus: never call them from
-the cycle except for rare, explicit commands (homing method, digital outputs).
+SDO transfers are acyclic and may take milliseconds on a real bus: the worker never calls
+them from the cycle (its acyclic helper runs them beside it).
 """
 
 from __future__ import annotations
@@ -37,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import BusStateError, ConfigurationError
+from .errors import BusFeatureError, BusStateError, ConfigurationError
 
 
 @dataclass(frozen=True, slots=True)
@@ -118,12 +122,14 @@ class Bus(abc.ABC):
         self.controlword = np.zeros(n, dtype=np.uint16)
         self.target_position = np.zeros(n, dtype=np.int32)
         self.modes_of_operation = np.full(n, 8, dtype=np.int8)
+        self.digital_outputs = np.zeros(n, dtype=np.uint32)
         # inputs (TxPDO)
         self.statusword = np.zeros(n, dtype=np.uint16)
         self.position_actual = np.zeros(n, dtype=np.int32)
         self.following_error = np.zeros(n, dtype=np.int32)
         self.error_code = np.zeros(n, dtype=np.uint16)
         self.modes_display = np.zeros(n, dtype=np.int8)
+        self.digital_inputs = np.zeros(n, dtype=np.uint32)
         self._is_open = False
 
     # ------------------------------------------------------------------ life cycle
@@ -182,12 +188,6 @@ class Bus(abc.ABC):
         -1 if no frame came back; inputs keep their previous values then. No allocation."""
         return self._exchange()
 
-    def set_outputs(self, index: int, controlword: int, target_position: int, mode: int = 8) -> None:
-        """Convenience for tests and tools: write one drive's outputs."""
-        self.controlword[index] = controlword
-        self.target_position[index] = target_position
-        self.modes_of_operation[index] = mode
-
     # ------------------------------------------------------------------ acyclic
     def slaves(self) -> tuple[SlaveInfo, ...]:
         """All slaves found on the bus with identity and AL state, in bus order."""
@@ -212,13 +212,23 @@ class Bus(abc.ABC):
         """Pack with a struct format and download."""
         self.sdo_download(position, index, subindex, struct.pack(fmt, value))
 
-    def set_digital_outputs(self, index: int, value: int) -> None:
-        """Drive's digital outputs 0x60FE:1 (spindle enable/direction), by SDO."""
-        self.sdo_write(self.drives[index].position, 0x60FE, 1, "<I", value)
-
+    # ------------------------------------------------------------------ optional features
     def lost_slaves(self) -> tuple[int, ...]:
         """Positions of slaves known to be lost (diagnosis after a working counter error)."""
         return ()
+
+    def recover_slaves(self) -> tuple[int, ...]:
+        """Bring lost slaves that answer again back to OP; returns their positions. Called
+        beside the cycle, never in it. Default: nothing to do (the bus recovers on its own)."""
+        return ()
+
+    def digital_outputs_mapped(self, index: int) -> bool:
+        """Whether drive `index` receives ``digital_outputs`` (0x60FE:1) in its process data."""
+        return True
+
+    def inject(self, name: str, index: int = 0, value: int = 0) -> None:
+        """Fault injection by name (``sim_bus.INJECTIONS``); only a simulated bus can."""
+        raise BusFeatureError(f"{type(self).__name__} cannot inject faults ({name!r}): use the simulated bus")
 
     # ------------------------------------------------------------------ backend
     @abc.abstractmethod
@@ -258,7 +268,8 @@ def bus_class(kind: str) -> type[Bus]:
         module = importlib.import_module(module_name)
     except ImportError as exc:
         raise ConfigurationError(f"bus backend {kind!r} is not available: {exc}") from exc
-    return getattr(module, cls_name)  # type: ignore[no-any-return]
+    backend: type[Bus] = getattr(module, cls_name)
+    return backend
 
 
 def make_bus(kind: str, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001, **options: Any) -> Bus:

@@ -210,6 +210,7 @@ class DriveModel:
         self.target_position = int(round(p.initial_position_counts))
         self.modes_of_operation = 0
         self.digital_outputs = 0
+        self.digital_inputs = 0          # 0x60FD: limit switches, home switch, probe (bits 0-2, 16+)
         # Parameters (SDO)
         self._rw: dict[tuple[int, int], int] = {
             (0x605A, 0): p.quick_stop_option_code,
@@ -369,7 +370,7 @@ class DriveModel:
             (0x607A, 0): self.target_position,
             (0x6099, 0): 2,
             (0x60F4, 0): self.following_error_actual,
-            (0x60FD, 0): 0,
+            (0x60FD, 0): self.digital_inputs,
             (0x60FE, 0): 1,
             (0x60FE, 1): self.digital_outputs,
         }

@@ -25,6 +25,10 @@ class BusStateError(EtherCATError):
     """The bus is used in the wrong state (not open, closed, not in OP)."""
 
 
+class BusFeatureError(EtherCATError, NotImplementedError):
+    """The bus backend does not have an optional feature (fault injection on real drives)."""
+
+
 class ConfigurationError(EtherCATError, ValueError):
     """Invalid configuration (drive list, cycle time, scale, PDO mapping)."""
 

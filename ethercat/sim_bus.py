@@ -102,6 +102,7 @@ class SimBus(Bus):
         self.following_error[i] = m.following_error_actual
         self.error_code[i] = m.error_code
         self.modes_display[i] = m.modes_of_operation_display
+        self.digital_inputs[i] = m.digital_inputs
 
     def _exchange(self) -> int:
         self._check_open()
@@ -114,6 +115,7 @@ class SimBus(Bus):
         cw = self.controlword
         tp = self.target_position
         mode = self.modes_of_operation
+        dout = self.digital_outputs
         for i, m in enumerate(self.models):
             if lost_frame or self._lost[i] or self._init[i]:
                 self._silent_s[i] += dt
@@ -126,6 +128,7 @@ class SimBus(Bus):
             m.controlword = int(cw[i])
             m.target_position = int(tp[i])
             m.modes_of_operation = int(mode[i])
+            m.digital_outputs = int(dout[i])
             m.step(dt)
             wkc += 3
         return -1 if lost_frame else wkc
@@ -181,9 +184,6 @@ class SimBus(Bus):
                 back.append(d.position)
         self.recoveries += len(back)
         return tuple(back)
-
-    def set_digital_outputs(self, index: int, value: int) -> None:
-        self.models[index].digital_outputs = int(value)
 
     # ------------------------------------------------------------------ fault injection
     def inject_drive_fault(self, index: int, error_code: int = ERROR_OVERCURRENT,

@@ -137,12 +137,15 @@ class PdoMapping:
         return struct.Struct("<" + "".join(e.code for e in self.tx))
 
 
-#: CSP mapping used unless a drive model has its own (issue 5: controlword, target
-#: position, mode; statusword, position actual, following error, error code, mode display)
+#: CSP mapping used unless a drive model has its own: controlword, target position, mode and
+#: digital outputs (spindle enable/direction); statusword, position actual, following error,
+#: error code, mode display and digital inputs (switches, probe). The digital I/O travels in
+#: the process data so that nothing in the cycle needs an SDO.
 CSP_MAPPING = PdoMapping(
-    rx=(PdoEntry(0x6040, 0, 16), PdoEntry(0x607A, 0, 32, True), PdoEntry(0x6060, 0, 8, True)),
+    rx=(PdoEntry(0x6040, 0, 16), PdoEntry(0x607A, 0, 32, True), PdoEntry(0x6060, 0, 8, True),
+        PdoEntry(0x60FE, 1, 32)),
     tx=(PdoEntry(0x6041, 0, 16), PdoEntry(0x6064, 0, 32, True), PdoEntry(0x60F4, 0, 32, True),
-        PdoEntry(0x603F, 0, 16), PdoEntry(0x6061, 0, 8, True)),
+        PdoEntry(0x603F, 0, 16), PdoEntry(0x6061, 0, 8, True), PdoEntry(0x60FD, 0, 32)),
 )
 
 #: drive model (vendor id, product code) -> mapping; extend for real drives. The
@@ -153,9 +156,10 @@ DRIVE_MAPPINGS: dict[tuple[int, int], PdoMapping] = {
 }
 
 # bus array attribute per object (outputs / inputs)
-_RX_ARRAYS = {0x6040: "controlword", 0x607A: "target_position", 0x6060: "modes_of_operation"}
+_RX_ARRAYS = {0x6040: "controlword", 0x607A: "target_position", 0x6060: "modes_of_operation",
+              0x60FE: "digital_outputs"}
 _TX_ARRAYS = {0x6041: "statusword", 0x6064: "position_actual", 0x60F4: "following_error",
-              0x603F: "error_code", 0x6061: "modes_display"}
+              0x603F: "error_code", 0x6061: "modes_display", 0x60FD: "digital_inputs"}
 
 
 def _import_pysoem() -> Any:
@@ -564,6 +568,10 @@ class SoemBus(Bus):
 
     def _sdo_download(self, position: int, index: int, subindex: int, data: bytes) -> None:
         sdo_download(self.master, position, index, subindex, data)
+
+    def digital_outputs_mapped(self, index: int) -> bool:
+        mapping = self.slave_mappings.get(self.drives[index].position)
+        return mapping is not None and any(e.index == 0x60FE for e in mapping.rx)
 
     def lost_slaves(self) -> tuple[int, ...]:
         """Slaves that no longer answer (AL state unreadable), found by one state read."""

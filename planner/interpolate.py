@@ -15,6 +15,12 @@ Sample k is at time t_k = k Ts on one global grid. Three methods (``planner.inte
 Everything is vectorised over chunks of samples spanning many moves: one ``searchsorted``
 finds each sample's move, then the profile and the geometry are evaluated for the whole
 chunk. Memory is bounded by the chunk size.
+
+The machine runs the same evaluator: ``Interpolator.at`` takes planned times that are not on
+the grid (the controller's time scaling for feed hold and override advances planned time by
+sigma Ts per sample) and applies the same method, so what the drives get is what
+``cnc-plan --interp`` shows: exact and classic are the closed form at those times, Taylor
+steps Eq. 16 over the actual increments of planned time.
 """
 
 from __future__ import annotations
@@ -148,6 +154,8 @@ class Interpolator:
         self.interpolation = interpolation
         self.ts = ts
         self._carry: float | None = None  # Taylor: path length S of the next sample
+        # Taylor at arbitrary times: (tau, S, V, A) of the last sample given to ``at``
+        self.at_state: tuple[float, float, float, float] | None = None
 
     def samples(self, seg: Segment, k0: int, k1: int) -> SampleChunk:
         t = np.arange(k0, k1, dtype=float) * self.ts
@@ -161,6 +169,32 @@ class Interpolator:
             m, s = seg.state(t)
         q = seg.table.positions(m, s)
         return SampleChunk(t, q, seg.s0[m] + s, seg.table.line[m], seg.table.index[m].astype(np.int32))
+
+    def at(self, seg: Segment, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(q, row, s) at non-decreasing planned times ``tau`` (not necessarily on the grid):
+        axis positions, the move's row in the segment and the path length within it.
+
+        Taylor: S_{k+1} = S_k + V(tau_k) dtau_k + A(tau_k) dtau_k^2 / 2 with dtau_k the actual
+        increment, carried across calls in ``at_state`` (the first call starts at the exact
+        s(tau_0)); with tau_k = k Ts this is ``samples``' Eq. 16 step for step."""
+        tau = np.asarray(tau, dtype=float)
+        if self.interpolation != "taylor" or tau.shape[0] == 0:
+            row, s = seg.state(tau)
+            return seg.table.positions(row, s), row, s
+        row_e, s_e, v, a = seg.state(tau, need_va=True)
+        st = self.at_state
+        if st is None:
+            st = (float(tau[0]), float(seg.s0[row_e[0]] + s_e[0]), float(v[0]), float(a[0]))
+        t_prev = np.concatenate([[st[0]], tau[:-1]])
+        v_prev = np.concatenate([[st[2]], v[:-1]])
+        a_prev = np.concatenate([[st[3]], a[:-1]])
+        dt = tau - t_prev
+        s_glob = st[1] + np.cumsum(v_prev * dt + 0.5 * a_prev * dt * dt)
+        self.at_state = (float(tau[-1]), float(s_glob[-1]), float(v[-1]), float(a[-1]))
+        row = np.searchsorted(seg.s0, s_glob, side="right") - 1
+        np.clip(row, 0, len(seg.table) - 1, out=row)
+        s = np.clip(s_glob - seg.s0[row], 0.0, seg.table.length[row])
+        return seg.table.positions(row, s), row, s
 
     def _taylor(self, seg: Segment, v: np.ndarray, a: np.ndarray) -> np.ndarray:
         """Eq. 16 (|R'| constant, R'.R'' = 0): S_{k+1} = S_k + V(t_k) Ts + A(t_k) Ts^2 / 2 on the

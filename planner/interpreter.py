@@ -519,6 +519,7 @@ class _Interpreter:
             )
         if g1 == 800 and axis_words and g0 != 280:
             raise _BlockError("cannot use axis values with G80", axis_words[0])
+        motion: int | None
         if g1 is not None:
             motion = g1
         elif g0 != 280 and (

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 
 __all__ = ["LexError", "Params", "read_line", "original_column"]
 
@@ -102,8 +103,9 @@ def read_line(raw: str, params: Params | None) -> tuple[list, list[tuple[object,
     if "#" in code or "[" in code or "O" in code:
         return _Reader(code, params).read()
     m = _LINE_RE.match(code)
-    if m.end() != len(code):
-        raise LexError(_bad_char_message(code, m.end()), m.end())
+    end = m.end() if m is not None else 0
+    if end != len(code):
+        raise LexError(_bad_char_message(code, end), end)
     return _WORD_RE.findall(code), []  # values as text here; the caller applies float()
 
 
@@ -118,7 +120,7 @@ def _bad_char_message(code: str, i: int) -> str:
 
 # ---------------------------------------------------------------- expressions (slow path)
 
-_FUNCS_1 = {
+_FUNCS_1: dict[str, Callable[[float], float]] = {
     "ABS": abs,
     "ACOS": lambda v: math.degrees(math.acos(v)),
     "ASIN": lambda v: math.degrees(math.asin(v)),
@@ -216,7 +218,7 @@ class _Reader:
         s = self.s
         m = _NAME_RE.match(s, self.i)
         name = m.group() if m else ""
-        if name == "ATAN":
+        if m is not None and name == "ATAN":
             self.i = m.end()
             self.expect("[")
             a = self.expr()
@@ -226,7 +228,7 @@ class _Reader:
             b = self.expr()
             self.expect("]")
             return math.degrees(math.atan2(a, b))
-        if name == "EXISTS":
+        if m is not None and name == "EXISTS":
             self.i = m.end()
             self.expect("[")
             key = self.param_key()
@@ -296,7 +298,7 @@ class _Reader:
             }[op]
         )
 
-    def param_key(self) -> object:
+    def param_key(self) -> str | int:
         s = self.s
         self.expect("#")
         if self.i < len(s) and s[self.i] == "<":
@@ -309,18 +311,19 @@ class _Reader:
             self.i = j + 1
             return name
         v = self.value()
-        n = int(round(v))
+        # NaN or infinity (#[1e400-1e400]) is no parameter number: refuse before rounding it
+        n = int(round(v)) if math.isfinite(v) else 0
         if abs(v - n) > 1e-9 or not 1 <= n <= _MAX_NUMBERED:
             raise self.fail(f"parameter number #{v:g} out of range (1-{_MAX_NUMBERED})")
         return n
 
-    def lookup(self, key: object, must: bool = True) -> float | None:
+    def lookup(self, key: str | int, must: bool = True) -> float | None:
         if isinstance(key, str):
             v = self.params.named.get(key)
             if v is None and must:
                 raise self.fail(f"named parameter #<{key.lower()}> is not defined")
             return v
-        return self.params.numbered.get(key, 0.0)  # type: ignore[arg-type]
+        return self.params.numbered.get(key, 0.0)
 
     def param_value(self) -> float:
         return self.lookup(self.param_key())  # type: ignore[return-value]

@@ -210,6 +210,3 @@ def load_machine(path: str | Path) -> MachineSpec:
     return machine_from_dict(data, str(p))
 
 
-def shipped_machine(name: str) -> Path:
-    """Path of a configuration shipped in resources/machines (e.g. 'xyz_mill', 'paper_yzca')."""
-    return Path(__file__).resolve().parent.parent / "resources" / "machines" / f"{name}.toml"

@@ -11,6 +11,7 @@ and fall back to the move's own exact ``evaluate``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -260,7 +261,7 @@ def concat_tables(tables: list[MoveTable]) -> MoveTable:
     """One table of the rows of several (consecutive) tables."""
     if len(tables) == 1:
         return tables[0]
-    vals = {"moves": sum((t.moves for t in tables), ())}
+    vals: dict[str, Any] = {"moves": sum((t.moves for t in tables), ())}
     for name in MoveTable.__slots__:
         if name != "moves":
             vals[name] = np.concatenate([getattr(t, name) for t in tables])

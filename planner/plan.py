@@ -30,6 +30,7 @@ from planner.interpolate import (
 )
 from planner.lookahead import MODES, LimitSet, PlannedBlock, plan_blocks, stop_and_dwell
 from planner.machine import MachineSpec
+from planner.meter import LimitMeter
 from planner.movetable import contour_error
 from planner.program import MoveKind, Program
 
@@ -239,123 +240,45 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
 
 
 # -- the limit report -------------------------------------------------------------------------
-class _Worst:
-    __slots__ = ("count", "ratio", "value", "line")
-
-    def __init__(self):
-        self.count = 0
-        self.ratio = 0.0
-        self.value = 0.0
-        self.line = 0
-
-    def update(self, value: np.ndarray, limit, lines: np.ndarray, tol: float, abs_tol: float) -> None:
-        over = value > limit * (1.0 + tol) + abs_tol
-        if over.any():
-            self.count += int(over.sum())
-            ratio = value / limit
-            ratio = np.broadcast_to(ratio, value.shape)
-            i = int(np.argmax(np.where(over, ratio, -np.inf)))
-            if ratio.flat[i] > self.ratio:
-                self.ratio = float(ratio.flat[i])
-                self.value = float(value.flat[i])
-                self.line = int(np.broadcast_to(lines, value.shape).flat[i])
-
-    def as_dict(self) -> dict[str, float]:
-        return {"count": self.count, "worst": self.value, "worst_ratio": self.ratio, "line": self.line}
-
-
 def _report(plan: Plan, chunk_samples: int, rel_tol: float) -> LimitReport:
+    """Closed-form maxima of the profiles, and the samples measured by the one limit meter
+    (``planner.meter``) against the programmed feed of each move and the machine's limits."""
     seg = plan.segment
     prof = seg.profiles
     machine = plan.machine
     lim = LimitSet.from_machine(machine)
-    ts = plan.ts_s
-    names = machine.axis_names
-    d = len(names)
-    worst = {k: _Worst() for k in ("tangential_v", "tangential_a", "tangential_j",
-                                   "axis_v", "axis_a", "axis_j")}
-    joint = _Worst()
+    n_moves = len(seg.table)
+    classic = plan.interpolation == "classic"
+    meter = LimitMeter(machine, plan.ts_s, seg.v_prog, move_base=int(seg.table.index[0]) if n_moves else 0,
+                       across_joints=True, tangential_accel=not classic)
     # Closed form: the profile never exceeds its own caps; compare with the programmed limits.
     lines = seg.table.line
-    n_moves = len(seg.table)
     tangential = {"v": 0.0, "a": 0.0, "j": 0.0}
-    if n_moves and plan.interpolation != "classic":
+    closed = meter.worst            # one worst-case record per kind for closed form and samples
+    if n_moves and not classic:
         vmax = np.maximum(prof.vp, np.maximum(prof.vs, prof.ve))
         tangential = {"v": float(vmax.max()), "a": float(prof.accel_peak.max()),
                       "j": float(prof.jerk_peak.max())}
-        worst["tangential_v"].update(vmax, seg.v_prog, lines, rel_tol, 1e-12)
-        worst["tangential_a"].update(prof.accel_peak, lim.a_path, lines, rel_tol, 1e-9)
-        worst["tangential_j"].update(prof.jerk_peak, lim.j_path, lines, rel_tol, 1e-9)
-    tan_s = {"v": 0.0, "a": 0.0, "j": 0.0}
-    ax = {n: {"v": 0.0, "a": 0.0, "j": 0.0, "j_joint": 0.0} for n in names}
+        closed["tangential_v"].update(vmax, seg.v_prog, lines, rel_tol, 1e-12)
+        closed["tangential_a"].update(prof.accel_peak, lim.a_path, lines, rel_tol, 1e-9)
+        closed["tangential_j"].update(prof.jerk_peak, lim.j_path, lines, rel_tol, 1e-9)
     contour = 0.0
     nan = False
     increasing = True
-    total = 0
-    tail: SampleChunk | None = None
+    last_t: float | None = None
     last_q = None
-    # Finite differences carry a rounding noise of about |q| eps / Ts^k: a small absolute allowance.
-    scale = max(1.0, float(np.max(np.abs(seg.table.end))) if n_moves else 1.0)
-    eps = np.finfo(float).eps * scale * 16
-    tol_v, tol_a, tol_j = eps / ts, 4 * eps / ts**2, 8 * eps / ts**3
-    interp_chunks = plan.iter_chunks(chunk_samples)
-    for chunk in interp_chunks:
-        total += len(chunk)
+    for chunk in plan.iter_chunks(chunk_samples):
         nan |= bool(np.isnan(chunk.q).any() or np.isnan(chunk.s).any())
         if n_moves:
             row = chunk.move_index - int(seg.table.index[0])
             u = chunk.s - seg.s0[row]
             contour = max(contour, float(contour_error(seg.table, row, chunk.q, u).max()))
-        if tail is not None:
-            buf = SampleChunk.concat([tail, chunk], d)
-            new_from = len(tail)
-        else:
-            buf, new_from = chunk, 0
-        increasing &= bool(np.all(np.diff(buf.t) > 0))
-        q, s, mi, ln = buf.q, buf.s, buf.move_index, buf.line
-        vq = np.abs(np.diff(q, axis=0)) / ts
-        vs_ = np.abs(np.diff(s)) / ts
-        aq = np.abs(np.diff(q, 2, axis=0)) / ts**2
-        as_ = np.abs(np.diff(s, 2)) / ts**2
-        jq = np.abs(np.diff(q, 3, axis=0)) / ts**3
-        js_ = np.abs(np.diff(s, 3)) / ts**3
-        # Only stencils that end in the new chunk (the tail's were counted before).
-        lo1, lo2, lo3 = max(new_from - 1, 0), max(new_from - 2, 0), max(new_from - 3, 0)
-        vq, vs_, aq, as_, jq, js_ = vq[lo1:], vs_[lo1:], aq[lo2:], as_[lo2:], jq[lo3:], js_[lo3:]
-        same4 = ((mi[3:] == mi[:-3]) & (mi[1:-2] == mi[3:]))[lo3:]
-        if n_moves:
-            row = mi - int(seg.table.index[0])
-            vlim = np.maximum(seg.v_prog[row[1:]], seg.v_prog[row[:-1]])[lo1:]
-            worst["tangential_v"].update(vs_, vlim, ln[1:][lo1:], rel_tol, tol_v)
-        if plan.interpolation != "classic":
-            worst["tangential_a"].update(as_, lim.a_path, ln[1:-1][lo2:], 1e-5, tol_a)
-            worst["tangential_j"].update(js_[same4], lim.j_path, ln[1:-2][lo3:][same4], 1e-4, tol_j)
-        if vs_.size:
-            tan_s["v"] = max(tan_s["v"], float(vs_.max()))
-        if as_.size:
-            tan_s["a"] = max(tan_s["a"], float(as_.max()))
-        if js_.size and same4.any():
-            tan_s["j"] = max(tan_s["j"], float(js_[same4].max()))
-        for k, name in enumerate(names):
-            if vq.size:
-                ax[name]["v"] = max(ax[name]["v"], float(vq[:, k].max()))
-                worst["axis_v"].update(vq[:, k], lim.v_axis[k], ln[1:][lo1:], 1e-6, tol_v)
-            if aq.size:
-                ax[name]["a"] = max(ax[name]["a"], float(aq[:, k].max()))
-                worst["axis_a"].update(aq[:, k], lim.a_axis[k], ln[1:-1][lo2:], 1e-5, tol_a)
-            if jq.size:
-                jin = jq[:, k][same4]
-                jout = jq[:, k][~same4]
-                lj = ln[1:-2][lo3:]
-                if jin.size:
-                    ax[name]["j"] = max(ax[name]["j"], float(jin.max()))
-                    worst["axis_j"].update(jin, lim.j_axis[k], lj[same4], 1e-4, tol_j)
-                if jout.size:
-                    ax[name]["j_joint"] = max(ax[name]["j_joint"], float(jout.max()))
-                    joint.update(jout, lim.j_axis[k], lj[~same4], 1e-4, tol_j)
-        tail = SampleChunk(*(getattr(buf, f)[-3:] for f in SampleChunk.__slots__))
-        last_q = chunk.q[-1]
+        t = chunk.t if last_t is None else np.concatenate([[last_t], chunk.t])
+        increasing &= bool(np.all(np.diff(t) > 0))
+        meter.add(chunk.q, chunk.s, chunk.move_index, chunk.line)
+        if len(chunk):
+            last_t = float(chunk.t[-1])
+            last_q = chunk.q[-1]
     end_err = float(np.max(np.abs(last_q - plan.program.end_position))) if last_q is not None else 0.0
-    violations = {k: w.as_dict() for k, w in worst.items() if w.count}
-    return LimitReport(tangential, tan_s, ax, contour, violations, joint.as_dict(), end_err, nan,
-                       increasing, total)
+    return LimitReport(tangential, dict(meter.tangential), meter.axes, contour, meter.violations,
+                       meter.joint.as_dict(), end_err, nan, increasing, meter.samples)

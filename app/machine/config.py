@@ -33,7 +33,8 @@ from typing import Any
 from app.atomic import atomic_write_text
 from app.machine.errors import ConfigError
 from planner.errors import PlannerError
-from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_dict, shipped_machine
+from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_dict
+from resources import shipped_machine
 
 __all__ = [
     "BusSettings",

@@ -24,7 +24,8 @@ from app.machine.config import MachineConfig, load_config, recover_config, save_
 from app.machine.errors import ConfigError
 from app.machine.model import Activity, BusStatus, CommandResult, MachineState, Severity
 from app.machine.timescale import Budget
-from planner.machine import WORK_OFFSET_NAMES, MachineSpec, shipped_machine
+from planner.machine import WORK_OFFSET_NAMES, MachineSpec
+from resources import shipped_machine
 
 __all__ = ["ConnectionMixin", "RAMP_DOWN_TIMEOUT_S"]
 

@@ -55,7 +55,7 @@ facade's state:
     app.machine.spindle      spindle
     app.machine.alarms       alarm list and reactions
     app.machine.status       polling the worker, positions/bus signals
-    app.machine.jobs         Job, ResumePoint, LimitMeter records
+    app.machine.jobs         Job, ResumePoint, SentLimits records
 """
 
 from __future__ import annotations
@@ -63,7 +63,6 @@ from __future__ import annotations
 import os
 import threading
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -74,7 +73,7 @@ from app.machine.config import MachineConfig
 from app.machine.connection import RAMP_DOWN_TIMEOUT_S, ConnectionMixin
 from app.machine.feeder import FeederMixin
 from app.machine.homing import HomingMixin
-from app.machine.jobs import Job, LimitMeter, ResumePoint
+from app.machine.jobs import Job, ResumePoint, SentLimits
 from app.machine.manual import JOG_INCREMENTS, ManualMixin
 from app.machine.model import (
     Activity,
@@ -94,17 +93,17 @@ from app.machine.program_run import ProgramMixin
 from app.machine.spindle import SpindleMixin
 from app.machine.states import TRANSITIONS, StateMixin
 from app.machine.status import StatusMixin
+from app.paths import DEFAULT_STATE_DIR
 
 __all__ = [
     "DEFAULT_STATE_DIR",
     "JOG_INCREMENTS",
     "RAMP_DOWN_TIMEOUT_S",
     "TRANSITIONS",
-    "LimitMeter",
+    "SentLimits",
     "MachineController",
 ]
 
-DEFAULT_STATE_DIR = Path(os.path.expanduser("~/.local/state/cnc-panel"))
 
 
 class MachineController(

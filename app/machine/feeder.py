@@ -31,6 +31,7 @@ from app.machine.errors import MachineError
 from app.machine.jobs import ChunkRecord, Job, merge_max
 from app.machine.model import Activity, MachineState, RunSummary, Severity, SpindleState, TrackingReport
 from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, pause_points, reduced_machine
+from ethercat.worker import ReplaceResult
 from planner.plan import Plan, plan_program
 from planner.program import Program
 
@@ -39,7 +40,6 @@ __all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "FeederMixin", "SpliceInfo", "s
 SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
 SPLICE_ATTEMPTS = 6
 CHUNK = 20  # executor samples per pushed chunk
-REPLACE_TOO_LATE, REPLACE_BEYOND_END = -1, -2  # CyclicWorker.replace refusals (ethercat.worker)
 
 
 class SpliceInfo:
@@ -243,15 +243,15 @@ class FeederMixin:
                 serial = consumed + max(int(round(margin_s / ts)), 1)
                 done = self._splice_at(job, w, serial, consumed, change)
                 dt = self._splice_critical_s
-                if done == REPLACE_BEYOND_END:  # the worker dropped its queue (quick stop, flush)
+                if done is ReplaceResult.BEYOND_END:  # the worker dropped its queue (quick stop, flush)
                     ex.restore_state(current)
                     change(ex)
-                    done = 0
-                if done >= 0:
-                    if done:
+                    done = None
+                if done is None or done is ReplaceResult.DONE:
+                    if done is ReplaceResult.DONE:
                         self._splice_est_s = {**self._splice_est_s, hold: dt}
                     took = time.perf_counter() - t_start
-                    self.last_splice = SpliceInfo(serial, first_consumed, attempt, took, not done)
+                    self.last_splice = SpliceInfo(serial, first_consumed, attempt, took, done is None)
                     return
                 ex.restore_state(current)  # refused: the queue is unchanged, so is the executor
                 margin_s = max(2.0 * margin_s, 1.5 * dt + 0.002)
@@ -267,24 +267,24 @@ class FeederMixin:
             self._change_motion(_set_hold)
 
     def _splice_at(self, job: Job, w: Any, serial: int, consumed: int,
-                   change: Callable[[TimeScaledExecutor], None]) -> int:
-        """One splice attempt at ``serial``: 1 done, 0 applied without a splice (nothing queued
-        there to replace), or the worker's refusal (``REPLACE_TOO_LATE``, ``REPLACE_BEYOND_END``;
-        the executor state is then to be restored by the caller)."""
+                   change: Callable[[TimeScaledExecutor], None]) -> ReplaceResult | None:
+        """One splice attempt at ``serial``: DONE, None when applied without a splice (nothing
+        queued there to replace), or the worker's refusal (TOO_LATE, BEYOND_END; the executor
+        state is then to be restored by the caller)."""
         t0 = time.perf_counter()
         ex = job.executor
         rec = next((r for r in reversed(job.chunks) if r.serial <= serial), None)
         if serial >= self._pushed_total or rec is None or serial >= rec.serial + rec.pushed:
             change(ex)
-            return 0
+            return None
         p = serial - rec.serial
         if rec.pause and p >= rec.samples:
             change(ex)  # in the standstill after a pause point: nothing to decelerate
-            return 0
+            return None
         ex.restore_state(rec.state)
         prefix = ex.generate(p) if p > 0 else None
         if p > 0 and (prefix is None or len(prefix.q) != p):  # pragma: no cover - deterministic
-            return REPLACE_TOO_LATE
+            return ReplaceResult.TOO_LATE
         change(ex)
         new: list[tuple[tuple, ScaledChunk, np.ndarray]] = []
         # only the first set-points go in the replace (the sooner it reaches the loop, the
@@ -294,10 +294,10 @@ class FeederMixin:
         if ch is not None:
             new.append((state, ch, self._chunk_raw(ch)))
         q = np.vstack([r for _, _, r in new]) if new else np.zeros((0, len(self._home_offset)))
-        n = w.replace(serial, q)
+        result, n = w.replace(serial, q)
         self._splice_critical_s = time.perf_counter() - t0
-        if n < 0:
-            return n
+        if result is not ReplaceResult.DONE:
+            return result
         if n < len(q):  # pragma: no cover - lead is far below the ring capacity
             raise MachineError("worker buffer full")
         job.rewind(rec.serial)
@@ -308,7 +308,7 @@ class FeederMixin:
             self._record_chunk(job, ch, state, len(raw))
         # a plain push (no race with the loop) of 0.1 s more now; the feeder thread adds the rest
         self._feed(max_new=int(0.1 / self._cfg.machine.planner.ts_s))
-        return 1
+        return ReplaceResult.DONE
 
     def _consumed(self) -> int:
         snap = self._last_snap

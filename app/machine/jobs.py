@@ -9,12 +9,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.machine.model import Activity, SpindleState
-from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, check_limits
+from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
 from planner.machine import MachineSpec
+from planner.meter import LimitMeter
 from planner.plan import Plan
 from planner.program import Program
 
-__all__ = ["ChunkRecord", "Job", "LimitMeter", "ResumePoint", "merge_max"]
+__all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -81,7 +82,7 @@ class Job:
         self.tau_offset_s = 0.0
         self.time_offset_s = 0.0
         self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-        self.meter = LimitMeter(
+        self.meter = SentLimits(
             machine, plan.ts_s, plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
         )
         # per pushed chunk: serial of its last sample, line, tau, move, u within the move
@@ -147,21 +148,19 @@ def merge_max(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:
     return {k: max(a.get(k, 0.0), b.get(k, 0.0)) for k in set(a) | set(b)}
 
 
-class LimitMeter:
-    """Running maxima of the set-points' velocity/acceleration/jerk ratios (``check_limits``).
+class SentLimits:
+    """The set-points sent to the drives, measured by the planner's limit meter
+    (``planner.meter``) against the machine's limits, as ratios (<= 1 holds).
 
     The newest ``keep`` samples stay unmetered, so a splice of the worker's queue (at most its
     capacity, 2000 set-points) can take them back (``rewind``) before they count."""
 
     def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray, keep: int = 4096) -> None:
-        self.machine = machine
-        self.ts = ts_s
-        self.rapid = rapid_move
+        lim = machine.limits
+        v_path = (np.where(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s) if len(rapid_move)
+                  else np.array([max(lim.v_max_mm_s, lim.rapid_mm_s)]))
+        self._meter = LimitMeter(machine, ts_s, v_path)
         self.keep = keep
-        self.result: dict[str, float] = {}
-        self._q: np.ndarray | None = None
-        self._s: np.ndarray | None = None
-        self._m: np.ndarray | None = None
         self._pending: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
         self._n = 0
 
@@ -197,17 +196,8 @@ class LimitMeter:
         move = np.concatenate([p[2] for p in self._pending])
         self._pending = [(q[count:], s[count:], move[count:])] if count < len(q) else []
         self._n = len(q) - min(count, len(q))
-        q, s, move = q[:count], s[:count], move[:count]
-        if self._q is not None:
-            q = np.concatenate([self._q, q])
-            s = np.concatenate([self._s, s])  # type: ignore[list-item]
-            move = np.concatenate([self._m, move])  # type: ignore[list-item]
-        if len(q) >= 4:
-            r = check_limits(q, s, move, self.machine, self.ts, self.rapid)
-            for k, v in r.items():
-                self.result[k] = max(self.result.get(k, 0.0), v)
-        self._q, self._s, self._m = q[-3:].copy(), s[-3:].copy(), move[-3:].copy()
+        self._meter.add(q[:count], s[:count], move[:count])
 
     def final(self) -> dict[str, float]:
         self.flush()
-        return dict(self.result)
+        return self._meter.ratio_report()

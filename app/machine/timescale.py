@@ -83,7 +83,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from planner.interpolate import Interpolator
 from planner.machine import MachineSpec
+from planner.meter import check_limits
 from planner.plan import Plan
 from planner.stopping import PathStop, plan_path_stop
 
@@ -279,7 +281,12 @@ class TimeScaledExecutor:
         self.budget = budget
         self.ts = plan.ts_s
         self.stats = BlockStats(plan, machine)
+        # the planner's own interpolation (exact, taylor or classic), at the scaled times
+        self.interp = Interpolator(plan.interpolation, plan.ts_s)
         seg = plan.segment
+        if plan.interpolation == "taylor" and len(seg.table):
+            # Eq. 16 starts where the plan does, at rest at planned time 0, as cnc-plan's samples
+            self.interp.at_state = (0.0, float(seg.s0[0]), 0.0, 0.0)
         self.seg = seg
         self.n_moves = len(seg.table)
         self.t_end = float(seg.t_end)
@@ -321,7 +328,15 @@ class TimeScaledExecutor:
     # ------------------------------------------------------------------ state (splicing)
     _STATE = ("tau", "sigma", "sigma_dot", "feed_override", "rapid_override", "hold", "_pause_i", "paused",
               "finished", "_win_valid_until", "_bounds", "_target_cache", "sigma_start", "_stop", "_stop_k",
-              "_stop_tried", "stops_taken", "_last")
+              "_stop_tried", "stops_taken", "_last", "_interp_state")
+
+    @property
+    def _interp_state(self) -> tuple[float, float, float, float] | None:
+        return self.interp.at_state
+
+    @_interp_state.setter
+    def _interp_state(self, value: tuple[float, float, float, float] | None) -> None:
+        self.interp.at_state = value
 
     def save_state(self) -> tuple:
         """Everything ``generate`` changes (scalars, immutable tuples and arrays it never writes
@@ -359,17 +374,18 @@ class TimeScaledExecutor:
 
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Exact plan at arbitrary planned times: (q, line, move index, cumulative s)."""
+        """The plan in closed form at arbitrary planned times: (q, line, move index, cumulative
+        s). No state: for looking up where planned time tau is."""
         seg = self.seg
-        tau = np.asarray(tau, dtype=float)
-        m = np.searchsorted(seg.t0, tau, side="right") - 1
-        np.clip(m, 0, self.n_moves - 1, out=m)
-        local = tau - seg.t0[m]
-        s = seg.profiles.evaluate_s(m, local)
-        # within rounding of a move's end (t0 + duration - t0 may lose an ulp): exactly its end
-        dur = seg.profiles.duration[m]
-        s = np.where(local >= dur * (1.0 - 1e-12) - 1e-12, seg.table.length[m], s)
+        m, s = seg.state(np.asarray(tau, dtype=float))
         q = seg.table.positions(m, s)
+        return q, seg.table.line[m].astype(np.int64), seg.table.index[m].astype(np.int64), seg.s0[m] + s
+
+    def _interpolate(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Set-points at the scaled planned times, by the plan's interpolation (as ``evaluate``,
+        but Taylor carries its state from one set-point to the next)."""
+        seg = self.seg
+        q, m, s = self.interp.at(seg, tau)
         return q, seg.table.line[m].astype(np.int64), seg.table.index[m].astype(np.int64), seg.s0[m] + s
 
     def _local_bounds(self) -> None:
@@ -465,6 +481,8 @@ class TimeScaledExecutor:
             self._stop = None
             self.sigma, self.sigma_dot = 0.0, 0.0
             sig[-1] = 0.0
+            if self.interp.at_state is not None:  # Taylor goes on from where the stop ended, at rest
+                self.interp.at_state = (self.tau, float(st.s_mm[-1]), 0.0, 0.0)
         else:
             self.sigma, self.sigma_dot = float(sig[-1]), 0.0
         ch = ScaledChunk(st.q[sl].copy(), st.tau[sl].copy(), sig, st.line[sl].copy(), st.move[sl].copy(),
@@ -559,7 +577,7 @@ class TimeScaledExecutor:
             sigmas[k] = sigma
             k += 1
         taus = taus[:k]
-        q, line, move, s = self.evaluate(taus)
+        q, line, move, s = self._interpolate(taus)
         ch = ScaledChunk(q, taus, sigmas[:k].copy(), line, move, s, pause)
         self._remember(ch)
         return ch
@@ -601,54 +619,3 @@ def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[Pa
     pts = sorted(extra + list(out.values()), key=lambda p: (p.tau_s, p.line))
     pts.append(PausePoint(float(seg.t_end), "end", int(seg.table.line[-1]), n - 1))
     return pts
-
-
-def check_limits(q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, machine: MachineSpec, ts_s: float,
-                 rapid_move: np.ndarray | None = None) -> dict[str, float]:
-    """Measured maxima of executed set-points, as ratios to the machine's limits (<= 1 holds).
-
-    Like the planner's limit report: per-axis velocity and acceleration everywhere; jerk and
-    the tangential (path-length) quantities inside moves (stencils within one move); joints
-    (tangent breaks, curvature jumps) carry the planner's own joint figures and are excluded
-    from the jerk ratios. Keys: tangential_v/a/j, axis_v/a/j (worst ratio over axes) and the
-    same with ``_max`` for absolute maxima of the tangential values.
-    """
-    out = {"tangential_v": 0.0, "tangential_a": 0.0, "tangential_j": 0.0,
-           "axis_v": 0.0, "axis_a": 0.0, "axis_j": 0.0,
-           "tangential_v_max": 0.0, "tangential_a_max": 0.0, "tangential_j_max": 0.0}
-    if len(q) < 4:
-        return out
-    lim = machine.limits
-    v_ax = np.array([a.v_max for a in machine.axes])
-    a_ax = np.array([a.a_max for a in machine.axes])
-    j_ax = np.array([a.j_max for a in machine.axes])
-    dq = np.abs(np.diff(q, axis=0)) / ts_s
-    aq = np.abs(np.diff(q, 2, axis=0)) / ts_s**2
-    jq = np.abs(np.diff(q, 3, axis=0)) / ts_s**3
-    same2 = move[1:] == move[:-1]
-    same3 = (move[2:] == move[:-2]) & (move[1:-1] == move[2:])
-    same4 = (move[3:] == move[:-3]) & (move[1:-2] == move[3:]) & (move[2:-1] == move[3:])
-    # Rounding noise of finite differences: |q| eps / Ts^k
-    scale = max(1.0, float(np.max(np.abs(q))))
-    eps = np.finfo(float).eps * scale * 16
-    out["axis_v"] = float(np.max((dq - eps / ts_s) / v_ax))
-    out["axis_a"] = float(np.max((aq - 4 * eps / ts_s**2) / a_ax))
-    if same4.any():
-        out["axis_j"] = float(np.max((jq[same4] - 8 * eps / ts_s**3) / j_ax))
-    sv = np.abs(np.diff(s_mm)) / ts_s
-    sa = np.abs(np.diff(s_mm, 2)) / ts_s**2
-    sj = np.abs(np.diff(s_mm, 3)) / ts_s**3
-    if rapid_move is not None and len(rapid_move):
-        vlim = np.where(rapid_move[np.clip(move[1:], 0, len(rapid_move) - 1)], lim.rapid_mm_s, lim.v_max_mm_s)
-    else:
-        vlim = np.full(len(sv), max(lim.v_max_mm_s, lim.rapid_mm_s))
-    if same2.any():
-        out["tangential_v"] = float(np.max(sv[same2] / vlim[same2]))
-        out["tangential_v_max"] = float(sv[same2].max())
-    if same3.any():
-        out["tangential_a"] = float(np.max(sa[same3]) / lim.a_max_mm_s2)
-        out["tangential_a_max"] = float(sa[same3].max())
-    if same4.any():
-        out["tangential_j"] = float(np.max(sj[same4] - 8 * eps / ts_s**3) / lim.j_max_mm_s3)
-        out["tangential_j_max"] = float(sj[same4].max())
-    return out

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from app.i18n_catalog import N_
+from app.i18n import N_
 
 
 @dataclass(frozen=True, slots=True)

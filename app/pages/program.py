@@ -10,8 +10,9 @@ from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app import deferred
-from app.context import RESOURCES, PanelContext
+from app.context import PanelContext
 from app.i18n import N_, tr
+from app.paths import PROGRAMS
 from app.program_checker import ProgramChecker
 from app.widgets.code_editor import CodeEditor
 from app.widgets.find_bar import FindBar
@@ -176,7 +177,7 @@ class ProgramPage(QWidget):
     def open_dialog(self) -> None:
         if not self.can_close():
             return
-        start = str(self.doc.path.parent if self.doc.path else RESOURCES / "programs")
+        start = str(self.doc.path.parent if self.doc.path else PROGRAMS)
         path = self.ctx.dialogs.ask_open_file(self, start)
         if path:
             self.open_file(Path(path))

@@ -12,6 +12,7 @@ plus one pad byte, as SOEM expects), aborts with CiA 301 codes.
 
 from __future__ import annotations
 
+import functools
 import struct
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -155,9 +156,9 @@ class DriveObjects:
         for key in layout.keys:
             attr = _TX_ATTR.get(key)
             if attr is not None:
-                getters.append(lambda a=attr: getattr(model, a))
+                getters.append(functools.partial(getattr, model, attr))
             else:
-                getters.append(lambda k=key: model.read_object(k[0], k[1]))
+                getters.append(functools.partial(model.read_object, key[0], key[1]))
             masks.append((1 << OBJECTS[key].bit_length) - 1)
         pack_into = layout.fmt.pack_into
 

@@ -100,7 +100,7 @@ class EscSlave:
     def _reset_registers(self) -> None:
         r = self.regs
         r[:] = bytes(len(r))
-        r[0x0000] = 0x11                                    # type: ET1100-like
+        r[0x0000] = 0x11                                    # ESC type: ET1100-like
         r[0x0001] = 0x02                                    # revision
         struct.pack_into("<H", r, 0x0002, 0x0001)           # build
         r[0x0004] = 8                                       # FMMUs

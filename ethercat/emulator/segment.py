@@ -69,7 +69,7 @@ class Segment:
         return cls(models)
 
     # ------------------------------------------------------------------ frames
-    def process_frame(self, frame: bytes | bytearray) -> bytearray | None:
+    def process_frame(self, frame: bytes | bytearray | memoryview) -> bytearray | None:
         """The answer to one Ethernet frame, or None if it is not an EtherCAT frame."""
         buf = bytearray(frame)
         if len(buf) < 16 + 12:

@@ -10,7 +10,7 @@ import pytest
 from PySide6.QtCore import QTranslator
 
 from app.i18n import TRANSLATIONS, is_stale, lrelease_path
-from app.i18n_catalog import extract_strings, read_ts
+from tools.i18n_catalog import extract_strings, read_ts
 
 
 def test_every_marked_string_has_a_turkish_translation() -> None:
@@ -18,7 +18,7 @@ def test_every_marked_string_has_a_turkish_translation() -> None:
     assert len(strings) > 150
     translations = read_ts(TRANSLATIONS / "cnc_tr.ts")
     missing = sorted(s for s in strings if s not in translations)
-    assert not missing, f"untranslated (run python -m app.i18n_catalog): {missing}"
+    assert not missing, f"untranslated (run python -m tools.i18n_catalog): {missing}"
     # placeholders survive translation
     for source, target in translations.items():
         for k in range(8):

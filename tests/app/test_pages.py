@@ -8,8 +8,8 @@ import pytest
 from PySide6.QtCore import QRect
 from PySide6.QtWidgets import QAbstractButton
 
-from app.context import DEMO_PROGRAM
 from app.pages import PAGE_NAMES
+from app.paths import DEMO_PROGRAM
 from app.widgets.preview_plot import ARC_COLOR, LINE_COLOR, RAPID_COLOR
 from planner.program import MoveKind
 
@@ -280,12 +280,13 @@ def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> Non
 
 def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> None:
     """Y-Z-C-A machine (paper): the preview starts in the YZ plane; planes without axes are off."""
-    from app.context import RESOURCES, PanelOptions
+    from app.context import PanelOptions
     from app.machine.config import load_config
+    from resources import shipped_machine
     from tests.app.conftest import make_window
     from tests.app.fake_controller import FakeController
 
-    controller = FakeController(load_config(RESOURCES / "machines" / "paper_yzca.toml"))
+    controller = FakeController(load_config(shipped_machine("paper_yzca")))
     window = make_window(qtbot, qapp, PanelOptions(state_dir=state_dir), dialogs, controller)
     program = "G21 G19 G90\nG00 Y10 Z0\nG02 Y20 Z0 R5 F600\nG01 C90\nM30\n"
     assert controller.load_program(program, name="yz.nc", wait=True)

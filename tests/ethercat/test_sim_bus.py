@@ -122,6 +122,12 @@ def test_inject_by_name(bus: SimBus) -> None:
         bus.inject("meteor")
 
 
-def test_digital_outputs(bus: SimBus) -> None:
-    bus.set_digital_outputs(0, 0b101)
+def test_digital_io_in_the_process_data(bus: SimBus) -> None:
+    """0x60FE:1 reaches the drive with the frame; 0x60FD comes back with it."""
+    bus.digital_outputs[0] = 0b101
+    assert bus.sdo_read(0, 0x60FE, 1, "<I") == 0
+    bus.exchange()
     assert bus.sdo_read(0, 0x60FE, 1, "<I") == 0b101
+    bus.models[1].digital_inputs = 0b10
+    bus.exchange()
+    assert list(bus.digital_inputs) == [0, 0b10]

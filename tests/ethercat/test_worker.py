@@ -6,6 +6,7 @@ one runs the real-time thread (no drift), one the separate process.
 
 from __future__ import annotations
 
+import threading
 import time
 import tracemalloc
 from collections.abc import Iterator
@@ -17,7 +18,15 @@ import pytest
 from ethercat.bus import DriveSpec
 from ethercat.cia402 import Cia402State
 from ethercat.errors import ConfigurationError, EtherCATError, WorkerError, WorkerTimeoutError
-from ethercat.worker import AlarmCode, CyclicWorker, EventCode, HomingState, WorkerConfig, WorkerState
+from ethercat.worker import (
+    AlarmCode,
+    CyclicWorker,
+    EventCode,
+    HomingState,
+    ReplaceResult,
+    WorkerConfig,
+    WorkerState,
+)
 
 DRIVES = (
     DriveSpec(0, "X", counts_per_unit=10_000.0, following_error_window=0.5),
@@ -378,10 +387,74 @@ def test_homing_refused_when_not_enabled(worker: CyclicWorker) -> None:
         worker.home("X")
 
 
-def test_digital_output(worker: CyclicWorker) -> None:
+def test_digital_output_travels_in_the_process_data(worker: CyclicWorker) -> None:
+    """0x60FE:1 goes out with the next frame, not by SDO: the drive has it after one cycle."""
+    model = worker._loop.bus.models[0]                           # type: ignore[union-attr]
     worker.set_digital_output("X", 0b11)
     assert worker.snapshot().digital_outputs == (0b11, 0)
-    assert worker._loop.bus.models[0].digital_outputs == 0b11   # type: ignore[union-attr]
+    assert model.digital_outputs == 0
+    worker.step(1)
+    assert model.digital_outputs == 0b11
+
+
+def test_digital_inputs_reach_the_snapshot(worker: CyclicWorker) -> None:
+    worker._loop.bus.models[1].digital_inputs = 0x0001_0004      # type: ignore[union-attr]
+    worker.step(2)
+    assert worker.snapshot().digital_inputs == (0, 0x0001_0004)
+
+
+def test_no_sdo_inside_the_cycle_homing_method_is_written_beside_it() -> None:
+    """Homing writes 0x6098 by SDO; that happens on the acyclic helper thread, never in the
+    1 ms loop's thread, and the digital outputs need no SDO at all."""
+    from ethercat.sim_bus import SimBus
+
+    calls: list[tuple[str, int]] = []
+    real = SimBus._sdo_download
+
+    def spy(self: SimBus, position: int, index: int, subindex: int, data: bytes) -> None:
+        calls.append((threading.current_thread().name, index))
+        real(self, position, index, subindex, data)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(SimBus, "_sdo_download", spy)
+        with CyclicWorker(config(mode="thread")) as w:
+            w.enable()
+            w.wait_for(W.ENABLED, timeout_s=5.0)
+            w.set_digital_output("Y", 1)
+            w.home("X", 35)
+            w.wait_for(W.ENABLED, timeout_s=5.0)
+            assert w.snapshot().homing[0] is HomingState.DONE
+    assert calls == [("ethercat-acyclic", 0x6098)]
+
+
+def test_refused_homing_method_ends_homing_with_an_alarm(worker: CyclicWorker) -> None:
+    from ethercat.errors import SdoAbortError
+
+    bus = worker._loop.bus                                       # type: ignore[union-attr]
+
+    def refuse(position: int, index: int, subindex: int, data: bytes) -> None:
+        raise SdoAbortError(position, index, subindex, SdoAbortError.VALUE_RANGE)
+
+    bus._sdo_download = refuse                                   # type: ignore[method-assign]
+    enable(worker)
+    worker.home("X", 99)
+    worker.wait_for(W.ENABLED)
+    s = worker.snapshot()
+    assert s.homing[0] is HomingState.ERROR and s.homed == (False, False)
+    assert [a.code for a in s.alarms] == [AlarmCode.HOMING_ERROR]
+    assert "refused homing method 99" in s.alarms[0].message
+
+
+def test_process_mode_refused_where_stores_may_be_reordered(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The shared ring relies on total store order; on an ARM panel PC the process mode says
+    why it will not start instead of risking torn set-points. The thread mode still runs."""
+    from ethercat.worker import shared
+
+    monkeypatch.setattr(shared.platform, "machine", lambda: "aarch64")
+    with pytest.raises(WorkerError, match="total store order"):
+        CyclicWorker(config(mode="process")).start()
+    with CyclicWorker(config(mode="thread")) as w:
+        assert w.wait_for(W.DISABLED, timeout_s=5.0) is W.DISABLED
 
 
 def test_cycle_does_not_grow_memory(worker: CyclicWorker) -> None:
@@ -485,17 +558,17 @@ def test_process_mode_end_to_end() -> None:
 def test_core_lock_is_exclusive_and_names_the_holder(tmp_path: Any, monkeypatch: pytest.MonkeyPatch) -> None:
     import os
 
-    from ethercat import worker as wk
+    from ethercat.worker import realtime as wk
 
     monkeypatch.setattr(wk, "CPU_LOCK_DIR", str(tmp_path))
-    fd, holder = wk._try_lock_cpu(1)
+    fd, holder = wk.try_lock_cpu(1)
     assert fd is not None and holder == ""
-    fd2, holder2 = wk._try_lock_cpu(1)                            # another open file: refused
+    fd2, holder2 = wk.try_lock_cpu(1)                            # another open file: refused
     assert fd2 is None and holder2 == str(os.getpid())
-    fd3, _ = wk._try_lock_cpu(0)
+    fd3, _ = wk.try_lock_cpu(0)
     assert fd3 is not None
     os.close(fd)
-    fd4, _ = wk._try_lock_cpu(1)                                  # free again once closed
+    fd4, _ = wk.try_lock_cpu(1)                                  # free again once closed
     assert fd4 is not None
     os.close(fd3)
     os.close(fd4)
@@ -529,18 +602,18 @@ def test_overrunning_loop_still_sleeps_every_cycle(monkeypatch: pytest.MonkeyPat
     after every cycle's work the loop sleeps until at least min_sleep_s later (measured from
     the end of the bus exchange to the wake-up it asks for); the skipped deadlines are
     counted as missed."""
-    from ethercat import worker as wk
+    from ethercat.worker import realtime as wk
 
     naps: list[float] = []
     ends: list[float] = []
-    real_until = wk._AbsoluteSleep.until
+    real_until = wk.AbsoluteSleep.until
 
     def until(self: Any, t: float) -> None:
         if ends:
             naps.append(t - ends[-1])
         real_until(self, t)
 
-    monkeypatch.setattr(wk._AbsoluteSleep, "until", until)
+    monkeypatch.setattr(wk.AbsoluteSleep, "until", until)
     with CyclicWorker(config(mode="thread", min_sleep_s=0.0002, wkc_error_limit=10**6)) as w:
         bus = w._loop.bus                                          # type: ignore[union-attr]
         fast = bus.exchange
@@ -622,11 +695,11 @@ def _splice(w: CyclicWorker, a: np.ndarray, base: int, margin: int) -> tuple[int
     for _ in range(50):
         s = w.samples_consumed() + margin
         b = _brake(a[s - base - 1])
-        n = w.replace(s, b)
-        if n >= 0:
+        result, n = w.replace(s, b)
+        if result is ReplaceResult.DONE:
             assert n == len(b)
             return s, b
-        assert n == -1
+        assert result is ReplaceResult.TOO_LATE
     raise AssertionError("replace never in time")
 
 
@@ -684,11 +757,11 @@ def test_replace_refuses_a_consumed_serial_and_past_the_end(worker: CyclicWorker
     c = worker.samples_consumed()
     assert c == base + 100                                   # live, no snapshot needed
     level = worker.buffer_level()
-    assert worker.replace(c - 1, a[:3]) == -1                # already taken: nothing changed
-    assert worker.replace(c + level + 1, a[:3]) == -2        # past the end: nothing changed
+    assert worker.replace(c - 1, a[:3]) == (ReplaceResult.TOO_LATE, 0)    # already taken: nothing changed
+    assert worker.replace(c + level + 1, a[:3]) == (ReplaceResult.BEYOND_END, 0)   # past the end
     assert worker.buffer_level() == level
-    assert worker.replace(c + level, a[:0]) == 0             # at the end: a plain (empty) append
-    assert worker.replace(c, _brake(a[99])) == len(_brake(a[99]))   # the very next one: allowed
+    assert worker.replace(c + level, a[:0]) == (ReplaceResult.DONE, 0)     # at the end: an empty append
+    assert worker.replace(c, _brake(a[99])) == (ReplaceResult.DONE, len(_brake(a[99])))   # the very next one
     worker.step(200)
     tr = worker.drain_trace()
     assert not np.any(np.all(tr.reference == a[100], axis=1))    # the old tail never ran
@@ -702,5 +775,5 @@ def test_replace_is_bounded_by_the_ring() -> None:
         q0 = w.snapshot().actual_position.copy()
         c = w.samples_consumed()
         assert w.push(_ramp(q0, 80)) == 80
-        assert w.replace(c + 30, _ramp(q0, 200)) == 70       # 30 kept + 70 fill the 100 slots
+        assert w.replace(c + 30, _ramp(q0, 200)) == (ReplaceResult.DONE, 70)   # 30 kept + 70 fill 100 slots
         assert w.buffer_level() == 100 and w.free_space() == 0

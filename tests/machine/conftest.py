@@ -14,7 +14,7 @@ import pytest
 from app.machine.config import DEFAULT_LEAD_S
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
-from planner.machine import shipped_machine
+from resources import shipped_machine
 
 # The streaming lead no longer delays a feed hold, stop or override (the controller splices the
 # worker's queue a few cycles ahead of the drives), so these tests, which place holds at given

@@ -21,7 +21,7 @@ from app.machine.config import (
 from app.machine.controller import MachineController
 from app.machine.errors import ConfigError
 from app.machine.model import Severity
-from planner.machine import shipped_machine
+from resources import shipped_machine
 
 
 @pytest.mark.parametrize("name", ["xyz_mill", "paper_yzca"])

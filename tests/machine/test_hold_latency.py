@@ -162,12 +162,10 @@ def test_hold_latency_thread_mode_a_few_cycles(qapp, config_path: Path, state_di
 def test_a_splice_that_changes_nothing_keeps_the_queue_bit_identical(ctl: MachineController) -> None:
     """The executor is rewound to the pushed chunk holding the splice serial and regenerates
     the part before it exactly: with no change, the new queue equals the old one bit for bit."""
-    from ethercat.worker import C_TAIL
-
     def queue() -> np.ndarray:
         w = ctl.worker
-        v, cap = w._v, w.config.buffer_capacity
-        return v["ring"][(int(v["ctl"][C_TAIL]) + np.arange(w.buffer_level())) % cap].copy()
+        block, cap = w._block, w.config.buffer_capacity
+        return block.ring[(int(block.ctl.tail) + np.arange(w.buffer_level())) % cap].copy()
 
     start(ctl)
     for t in (0.3, 0.437, 0.61, 0.9):                      # lines 2 and 3, various chunk phases

@@ -14,7 +14,7 @@ import numpy as np
 from app.machine.config import DEFAULT_LEAD_S
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
-from planner.machine import shipped_machine
+from resources import shipped_machine
 from tests.machine.conftest import make_controller, trace
 
 SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"

@@ -8,8 +8,8 @@ import pytest
 from app.machine.config import load_config
 from app.machine.limits import check_program, program_bounds
 from planner.interpreter import parse_program
-from planner.machine import shipped_machine
 from planner.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
+from resources import shipped_machine
 
 
 @pytest.fixture(scope="module")

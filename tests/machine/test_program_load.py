@@ -139,7 +139,8 @@ def test_vectorised_bounds_table_matches_move_bounds() -> None:
 
     from app.machine.limits import check_program, move_bounds, move_bounds_table, program_bounds
     from planner.interpreter import parse_program
-    from planner.machine import load_machine, shipped_machine
+    from planner.machine import load_machine
+    from resources import shipped_machine
 
     machine = load_machine(shipped_machine("xyz_mill"))
     tail = "G0 X0 Y0\nG2 X0 Y0 I0 J-300 F600\nG1 X400 Y10 Z-700\nG3 X380 Y-10 R30\n"  # 3 beyond travel

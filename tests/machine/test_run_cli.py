@@ -11,9 +11,10 @@ import pytest
 from app.machine import run_cli
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
-from planner.machine import shipped_machine
-
-PROGRAMS = Path(__file__).resolve().parents[2] / "resources" / "programs"
+from resources import (
+    PROGRAMS,  # noqa: E402
+    shipped_machine,
+)
 
 
 def test_cnc_run_json_fast(qapp, capsys, tmp_path: Path) -> None:

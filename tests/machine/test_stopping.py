@@ -8,12 +8,13 @@ import numpy as np
 import pytest
 
 from app.machine.config import load_config
-from app.machine.timescale import Budget, TimeScaledExecutor, check_limits, pause_points, reduced_machine
+from app.machine.timescale import Budget, TimeScaledExecutor, pause_points, reduced_machine
 from planner.interpreter import parse_program
-from planner.machine import shipped_machine
+from planner.meter import check_limits
 from planner.movetable import contour_error
 from planner.plan import plan_program
 from planner.stopping import stop_profile
+from resources import shipped_machine
 from tests.machine.test_timescale import PROGRAM, assert_within, random_program
 
 

@@ -10,14 +10,14 @@ from app.machine.config import load_config
 from app.machine.timescale import (
     Budget,
     TimeScaledExecutor,
-    check_limits,
     pause_points,
     reduced_machine,
 )
 from planner.interpreter import parse_program
-from planner.machine import shipped_machine
+from planner.meter import check_limits
 from planner.movetable import contour_error
 from planner.plan import plan_program
+from resources import shipped_machine
 
 PROGRAM = """G0 X10 Y0
 G1 X30 F1200

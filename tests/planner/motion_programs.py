@@ -4,16 +4,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 
-from planner.cli import build_machine
+from cli.plan import build_machine
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
-
-ROOT = Path(__file__).resolve().parents[2]
-PROGRAMS = ROOT / "resources" / "programs"
+from resources import PROGRAMS
 
 # Plane -> (first, second, normal) axis columns of X Y Z, and the I/J/K letters of first/second.
 PLANES = {"G17": (0, 1, 2), "G18": (2, 0, 1), "G19": (1, 2, 0)}

@@ -10,7 +10,8 @@ import pytest
 
 from planner.canon import canon_records, write_canon
 from planner.interpreter import parse_program
-from planner.machine import MachineSpec, load_machine, shipped_machine
+from planner.machine import MachineSpec, load_machine
+from resources import shipped_machine
 
 
 def test_schema_and_file(tmp_path):

@@ -10,12 +10,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from planner.cli import build_machine, main
+from cli.plan import build_machine, main
+from resources import shipped_machine, shipped_program
 
 ROOT = Path(__file__).resolve().parents[2]
-FIG7 = ROOT / "resources" / "programs" / "fig7_circle.nc"
-FIG9 = ROOT / "resources" / "programs" / "fig9_helix.nc"
-PAPER_MACHINE = ROOT / "resources" / "machines" / "paper_yzca.toml"
+FIG7 = shipped_program("fig7_circle.nc")
+FIG9 = shipped_program("fig9_helix.nc")
+PAPER_MACHINE = shipped_machine("paper_yzca")
 
 
 def run_json(capsys, *args) -> dict:
@@ -83,7 +84,7 @@ def test_bad_program_exit_2_errors_on_stderr_nothing_written(tmp_path):
     bad.write_text("G21 G90 F600\nG01 X10\nG02 X20 Y0 R2\nG01 Q5\n")
     outs = [tmp_path / n for n in ("s.npz", "s.csv", "c.jsonl", "p.png")]
     result = subprocess.run(
-        [sys.executable, "-m", "planner", str(bad), "--samples", str(outs[0]), "--csv", str(outs[1]),
+        [sys.executable, "-m", "cli", str(bad), "--samples", str(outs[0]), "--csv", str(outs[1]),
          "--canon", str(outs[2]), "--plot", str(outs[3]), "--json"],
         cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert result.returncode == 2

@@ -10,8 +10,9 @@ import pytest
 
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
-from planner.machine import MachineSpec, load_machine, shipped_machine
+from planner.machine import MachineSpec, load_machine
 from planner.program import EventKind, MoveKind
+from resources import shipped_machine
 
 P = parse_program
 

@@ -6,7 +6,8 @@ import pytest
 
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
-from planner.machine import load_machine, shipped_machine
+from planner.machine import load_machine
+from resources import shipped_machine
 
 
 def errors_of(text: str, **kw):
@@ -35,6 +36,8 @@ def errors_of(text: str, **kw):
         ("G1 F60\nG18 G2 Z1 J1", "J word given for arc in the ZX plane (G18)", 2, 11),
         ("G1 F60\nG19 G2 Y1 I1", "I word given for arc in the YZ plane (G19)", 2, 11),
         ("G1 F60\nG90.1 G2 X1 I1", "G90.1 (absolute arc centre) needs both I and J", 2, 1),
+        # parameter numbers that are not numbers: NaN from inf - inf is refused, not rounded
+        ("#[[10**300*10**300]-[10**300*10**300]]=5", "parameter number #nan out of range", 1, 39),
         # turns
         ("G1 F60\nG2 X1 I0.5 P1.5", "whole number >= 1", 2, 12),
         ("G1 F60\nG2 X1 I0.5 P0", "whole number >= 1", 2, 12),

@@ -3,15 +3,13 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from planner.interpreter import parse_file
 from planner.program import EventKind, MoveKind
-
-PROGRAMS = Path(__file__).resolve().parents[2] / "resources" / "programs"
+from resources import PROGRAMS
 
 
 def load(name: str):

@@ -6,7 +6,8 @@ from __future__ import annotations
 import pytest
 
 from planner.errors import PlannerError
-from planner.machine import MachineSpec, load_machine, machine_from_dict, shipped_machine
+from planner.machine import MachineSpec, load_machine, machine_from_dict
+from resources import shipped_machine
 
 
 def test_shipped_xyz_mill_loads() -> None:

@@ -1,8 +1,7 @@
 """Velocity / acceleration / jerk against time as a PNG, like the paper's Fig. 14.
 
-pyqtgraph's ImageExporter on an offscreen scene (no matplotlib, no window). Used by
-``cnc-plan --plot`` (imported lazily by name from planner/cli.py, so that the planner
-package itself never imports Qt) and usable from the panel.
+pyqtgraph's ImageExporter on an offscreen scene (no matplotlib, no window), for
+``cnc-plan --plot``.
 """
 
 from __future__ import annotations

@@ -9,14 +9,13 @@ whose per-axis limits equal the path limits; with --config the file's axes and l
 and --vmax/--amax/--jmax/--ts, when given, replace its path limits and sample period.
 A bad program: exit status 2, the errors on stderr, nothing written.
 
---plot needs the panel's pyqtgraph: it is imported lazily, by name, from ``app.plot_export``
-(the planner package itself never imports Qt or app/).
+--plot draws with pyqtgraph on an offscreen Qt scene (``cli.vaj_png``); the planner itself
+never imports Qt.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import os
 import sys
@@ -28,6 +27,7 @@ import numpy as np
 
 from planner.errors import PlannerError, ProgramError
 from planner.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
+from planner.meter import path_vaj
 
 __all__ = ["build_machine", "main"]
 
@@ -106,22 +106,13 @@ def _write_csv(path: str, plan, axes) -> None:
     _atomic(path, w)
 
 
-def _path_vaj(chunk, ts: float):
-    """Path speed, acceleration and jerk from finite differences of s(t_k) (what the drives get)."""
-    s = chunk.s
-    v = np.gradient(s, ts) if s.size > 1 else np.zeros_like(s)
-    a = np.gradient(v, ts) if s.size > 1 else np.zeros_like(s)
-    j = np.gradient(a, ts) if s.size > 1 else np.zeros_like(s)
-    return v, a, j
-
-
 def _plot(path: str, plan, chunk, title: str) -> None:
-    exporter = importlib.import_module("app.plot_export")  # lazy, by name: planner/ has no Qt
-    v, a, j = _path_vaj(chunk, plan.ts_s)
+    from cli import vaj_png  # Qt starts only when a plot is asked for
+    v, a, j = path_vaj(chunk.s, plan.ts_s)
     lim = plan.machine.limits
 
     def w(tmp):
-        exporter.export_vaj_png(tmp, chunk.t, v, a, j, title=title,
+        vaj_png.export_vaj_png(tmp, chunk.t, v, a, j, title=title,
                                 limits=(lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3))
     _atomic(path, w)
 
@@ -132,7 +123,7 @@ def main(argv: list[str] | None = None) -> int:
     from planner.interpreter import parse_file
     from planner.plan import plan_program
 
-    # --canon alone needs no planning (issue 3's check against LinuxCNC runs it on every file).
+    # --canon alone needs no planning: comparing with LinuxCNC's canonical calls runs it on every file.
     want_plan = bool(args.json or args.samples or args.csv or args.plot or not args.canon)
     plan = None
     try:
@@ -173,7 +164,7 @@ def main(argv: list[str] | None = None) -> int:
             _write_npz(args.samples, collected, axes)
         if args.csv:
             _write_csv(args.csv, plan, axes)
-        if args.plot:
+        if args.plot and plan is not None:
             _plot(args.plot, plan, collected, f"{Path(args.program).name}: {plan.mode}, {plan.interpolation}")
     except OSError as exc:
         print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)

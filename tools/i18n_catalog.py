@@ -1,6 +1,6 @@
 """The translation catalogue, without Qt: mark strings, extract them, update the .ts files.
 
-    python -m app.i18n_catalog          # add new strings to resources/translations/*.ts, compile .qm
+    python -m tools.i18n_catalog        # add new strings to resources/translations/*.ts, compile .qm
 
 Strings are found by reading the sources (``tr("...")`` and ``N_("...")`` calls with literal
 text), so the test suite can check that every one has a translation.
@@ -13,16 +13,12 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-APP = Path(__file__).resolve().parent
-TRANSLATIONS = APP.parent / "resources" / "translations"
-CONTEXT = "cnc"
+from app.i18n import CONTEXT
+from resources import TRANSLATIONS
+
+APP = Path(__file__).resolve().parent.parent / "app"
 MARKERS = ("tr", "N_")
 EXCLUDED = ("machine",)  # the controller package has its own (English) messages
-
-
-def N_(text: str) -> str:  # noqa: N802 - gettext's name: "mark for translation, translate later"
-    """Mark a string for the catalogue; it is translated where it is shown."""
-    return text
 
 
 def extract_strings(root: Path = APP) -> dict[str, list[str]]:

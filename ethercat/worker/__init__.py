@@ -1,0 +1,34 @@
+"""The cyclic worker: one EtherCAT cycle every Ts on absolute deadlines, fed set-points by the
+controller through a bounded ring, with supervision, tracking and timing records.
+
+One file per concern: ``types`` (states, codes, records, configuration), ``shared`` (the one
+shared block and its ordering rules), ``cycle`` (the loop), ``homing`` (drive-side homing),
+``acyclic`` (SDO and recovery beside the cycle), ``realtime`` (core, priority, sleeping),
+``process`` (the worker's own process), ``messages`` (commands and alarm texts) and
+``client`` (``CyclicWorker``, the controller's handle).
+"""
+
+from ..bus import DriveSpec
+from .client import CyclicWorker
+from .messages import error_code_text
+from .realtime import PROCESS_SPIN_S
+from .types import (
+    Alarm,
+    AlarmCode,
+    EventCode,
+    HomingState,
+    ReplaceResult,
+    TimingStats,
+    TraceChunk,
+    TrackingStats,
+    WorkerConfig,
+    WorkerEvent,
+    WorkerSnapshot,
+    WorkerState,
+)
+
+__all__ = [
+    "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HomingState",
+    "ReplaceResult", "TimingStats", "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent",
+    "WorkerSnapshot", "WorkerState", "error_code_text",
+]

@@ -1,0 +1,581 @@
+"""The cycle, run in the worker's process or thread: it owns the bus.
+
+Per cycle (``CycleLoop.cycle``): command mailbox -> outputs (set-point from the ring when
+ENABLED, else target := actual) -> ``bus.exchange()`` -> supervision (working counter, drive
+faults, following error over its window for ``following_error_cycles``) -> tracking
+(e = reference - actual per axis, the paper's Eq. 18) -> at ``snapshot_hz`` and right after a
+cycle that applied a command, a snapshot. Reactions: underrun while moving holds the last
+position (alarm UNDERRUN, not a quick stop); working counter wrong for more than
+``wkc_error_limit`` cycles, a drive fault, a following error or E-stop: quick stop of all
+axes, the set-point ring flushed, an alarm naming the cause. Lost slaves are recovered by the
+bus's ``recover_slaves`` on the acyclic helper; the homing method is written there too.
+Nothing in the cycle allocates arrays, logs or makes an SDO.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from .. import cia402
+from ..bus import Bus, make_bus
+from ..cia402 import Cia402State
+from ..errors import EtherCATError
+from .acyclic import AcyclicHelper
+from .homing import Homing, HomingPhase, HomingResult
+from .messages import INJECT_NAMES, Command, Result
+from .realtime import AbsoluteSleep, set_timer_slack_ns
+from .shared import ALARM_SLOTS, HIST_BIN_S, HIST_BINS, SharedBlock
+from .tracking import Tracker
+from .types import REF_HISTORY, AlarmCode, EventCode, WorkerConfig, WorkerState
+
+__all__ = ["CycleLoop"]
+
+_FAULTED_LUT = np.array([s in (Cia402State.FAULT, Cia402State.FAULT_REACTION_ACTIVE) for s in Cia402State])
+_NOT_ENABLED_LUT = np.array([s is not Cia402State.OPERATION_ENABLED for s in Cia402State])
+_RECOVERY = "recover"
+_HOMING_METHOD = "homing method"
+
+
+class CycleLoop:
+    """The cycle and its state. Owns the bus; reads and writes the shared block."""
+
+    def __init__(self, config: WorkerConfig, block: SharedBlock) -> None:
+        self.cfg = config
+        self.block = block
+        self.ctl = block.ctl
+        self.lv = block.live
+        n = config.n_axes
+        self.n = n
+        self.ring = block.ring
+        self.cap = config.buffer_capacity
+        self.bus: Bus | None = None
+        scales = tuple(cia402.AxisScale(d.counts_per_unit, d.direction) for d in config.drives)
+        self.gain, self.offset = cia402.scale_arrays(scales)
+        self.window = np.array([d.following_error_window for d in config.drives], dtype=np.float64)
+        lv = self.lv
+        self.ref, self.act, self.fe = lv.ref, lv.act, lv.fe
+        self.prev_ref = np.zeros(n)
+        self.ref_hist = np.zeros((REF_HISTORY, n))
+        # row views made once, so the cycle indexes lists instead of creating array views
+        self.ref_rows = [self.ref_hist[i] for i in range(REF_HISTORY)]
+        self.ring_rows = [self.ring[i] for i in range(config.buffer_capacity)]
+        self.tmp = np.zeros(n)
+        self.tmp2 = np.zeros(n)
+        self.states = np.zeros(n, dtype=np.int8)
+        self.scratch_i = np.zeros(n, dtype=np.int64)
+        self.fe_count = np.zeros(n, dtype=np.int64)
+        self.fault_seen = np.zeros(n, dtype=bool)
+        self.bool_tmp = np.zeros(n, dtype=bool)
+        self.tracker = Tracker(lv, n, config.ts_s, config.tracking_window_s)
+        self.eps_units = config.underrun_velocity_units_s * config.ts_s   # per cycle
+        self.snapshot_every = max(1, int(round(1.0 / (config.snapshot_hz * config.ts_s))))
+        self.state = WorkerState.STARTING
+        self.state_cycles = 0
+        self.moving = False
+        self.wkc_bad_run = 0
+        self.wkc_alarmed = False
+        self.cmd_seen = int(self.ctl.cmd_seq)
+        self.homing = Homing(lv.homing, lv.homed, int(config.homing_timeout_s / config.ts_s))
+        self.fault_reset_cycle = 0
+        self.trace_cap = config.trace_capacity
+        self.trace = block.trace
+        self.stop_requested = False
+        self.publish_now = False           # a command was applied: publish after this cycle
+        self.helper = AcyclicHelper(inline=config.mode == "manual")
+        # slave loss and recovery
+        self.lost_mask = 0
+        self.recover_every = max(1, int(round(config.recover_interval_s / config.ts_s)))
+        self.recover_countdown = 0
+        self.recovered_mask = 0
+        self.recover_calls = 0
+
+    # ------------------------------------------------------------------ bus
+    def open_bus(self) -> None:
+        cfg = self.cfg
+        options = dict(cfg.bus_options)
+        if cfg.bus_kind == "soem":
+            options.setdefault("adapter", cfg.adapter)
+        self.bus = make_bus(cfg.bus_kind, cfg.drives, cycle_time_s=cfg.ts_s, **options)
+        self.bus.open()
+        bus = self.bus
+        self.lv.wkc_expected[...] = bus.expected_wkc
+        bus.modes_of_operation[:] = cia402.CSP
+        self._read_actual()
+        np.copyto(self.ref, self.act)
+        np.copyto(self.prev_ref, self.act)
+        self._target_from_actual()
+        self.lv.period_min[...] = math.inf
+        self._set_state(WorkerState.DISABLED)
+
+    def close_bus(self) -> None:
+        bus = self.bus
+        if bus is None:
+            return
+        self.stop_requested = True
+        self.helper.close()
+        try:
+            if bus.is_open:
+                for _ in range(5):          # leave drives disabled (best effort)
+                    np.take(cia402.DISABLE_LUT, self.states, out=bus.controlword)
+                    bus.target_position[:] = bus.position_actual
+                    bus.exchange()
+                    cia402.decode_states(bus.statusword, self.states, self.scratch_i)
+        except Exception:  # noqa: BLE001 - the bus is closed below whatever happened
+            pass
+        finally:
+            bus.close()
+            self.bus = None
+
+    # ------------------------------------------------------------------ helpers
+    def _set_state(self, st: WorkerState) -> None:
+        self.state = st
+        self.state_cycles = 0
+        self.lv.state[...] = int(st)
+
+    def _read_actual(self) -> None:
+        assert self.bus is not None
+        cia402.counts_to_units(self.bus.position_actual, self.gain, self.offset, self.act)
+
+    def _target_from_actual(self) -> None:
+        assert self.bus is not None
+        np.copyto(self.bus.target_position, self.bus.position_actual)
+
+    def _alarm(self, code: AlarmCode | EventCode, axis: int = -1, a: int = 0, b: int = 0,
+               f: float = 0.0) -> None:
+        k = int(self.ctl.alarms)
+        row = self.block.alarm[k % ALARM_SLOTS]
+        row["code"] = int(code)
+        row["axis"] = axis
+        row["cycle"] = int(self.lv.cycle)
+        row["a"] = a
+        row["b"] = b
+        row["command"] = self.cmd_seen     # the command behind it (quick stop reason lookup)
+        row["f"] = f
+        self.ctl.alarms[...] = k + 1
+
+    def _flush(self) -> None:
+        self.ctl.tail[...] = int(self.ctl.head)
+        self.moving = False
+
+    def _hold_actual(self) -> None:
+        np.copyto(self.ref, self.act)
+        np.copyto(self.prev_ref, self.act)
+        self.ref_hist[:] = self.act
+        self._target_from_actual()
+
+    def _reaction(self, code: AlarmCode, axis: int = -1, a: int = 0, b: int = 0, f: float = 0.0,
+                  state: WorkerState = WorkerState.QUICK_STOP) -> None:
+        """Quick stop of all axes, buffer flushed, alarm raised."""
+        self._alarm(code, axis, a, b, f)
+        self._flush()
+        self.homing.cancel()
+        if self.bus is not None:
+            self.bus.modes_of_operation[:] = cia402.CSP
+        self._set_state(state)
+
+    # ------------------------------------------------------------------ commands
+    def poll_command(self) -> None:
+        ctl = self.ctl
+        seq = int(ctl.cmd_seq)
+        if seq == self.cmd_seen:
+            return
+        self.cmd_seen = seq
+        result = self._command(int(ctl.cmd_code), int(ctl.cmd_a), int(ctl.cmd_b))
+        ctl.cmd_result[...] = int(result)
+        self.lv.cmd_applied[...] = seq       # snapshots published from now on show its effect
+        self.publish_now = True
+        ctl.cmd_ack[...] = seq
+
+    def _command(self, code: int, a: int, b: int) -> Result:
+        st = self.state
+        bus = self.bus
+        assert bus is not None
+        if code == Command.ENABLE:
+            if st in (WorkerState.ENABLED, WorkerState.ENABLING):
+                return Result.OK
+            if st not in (WorkerState.DISABLED, WorkerState.QUICK_STOP) or self.fault_seen.any():
+                return Result.REFUSED
+            self._flush()
+            self.fe_count[:] = 0
+            bus.modes_of_operation[:] = cia402.CSP
+            self._set_state(WorkerState.ENABLING)
+        elif code == Command.DISABLE:
+            self._flush()
+            bus.modes_of_operation[:] = cia402.CSP
+            self.homing.cancel()
+            if st not in (WorkerState.FAULT, WorkerState.FAULT_RESET, WorkerState.ERROR):
+                self._set_state(WorkerState.DISABLED)
+        elif code == Command.FAULT_RESET:
+            self._flush()
+            self.fault_reset_cycle = 0
+            self.wkc_bad_run = 0
+            self.wkc_alarmed = False
+            self._set_state(WorkerState.FAULT_RESET)
+        elif code in (Command.QUICK_STOP, Command.ESTOP):
+            self._reaction(AlarmCode.ESTOP if code == Command.ESTOP else AlarmCode.QUICK_STOP,
+                           state=WorkerState.FAULT if st is WorkerState.FAULT else WorkerState.QUICK_STOP)
+        elif code == Command.HOME:
+            if st is not WorkerState.ENABLED or self.moving or not 0 <= a < self.n or self.helper.busy:
+                return Result.REFUSED
+            self._flush()
+            position = self.cfg.drives[a].position
+            self.homing.begin(a, b)
+            self._set_state(WorkerState.HOMING)
+            self.helper.submit(_HOMING_METHOD, lambda: bus.sdo_write(position, 0x6098, 0, "<b", b))
+        elif code == Command.DOUT:
+            if not 0 <= a < self.n or not bus.digital_outputs_mapped(a):
+                return Result.REFUSED
+            bus.digital_outputs[a] = b       # travels in the next frame (0x60FE:1 in the RxPDO)
+            self.lv.dout[a] = b
+        elif code == Command.INJECT:
+            name_index = b & 0xFF
+            if not 0 <= name_index < len(INJECT_NAMES):
+                return Result.REFUSED
+            try:
+                bus.inject(INJECT_NAMES[name_index], a, b >> 8)
+            except EtherCATError:
+                return Result.REFUSED
+        elif code == Command.FLUSH:
+            self._flush()
+        elif code == Command.REPLACE:
+            return self._replace(a, b)
+        elif code == Command.RESET_TRACKING:
+            self.tracker.reset()
+        elif code == Command.STOP:
+            self.stop_requested = True
+        else:
+            return Result.REFUSED
+        return Result.OK
+
+    def _replace(self, from_serial: int, n: int) -> Result:
+        """Applied between two cycles: the queued set-points with serial >= `from_serial` are
+        dropped and the `n` staged ones take their place. Serial k = the k-th set-point taken
+        since start (``live.consumed`` is the serial taken next; it sits at ring index
+        ``tail``). Refused (nothing changed) when that serial was already taken or lies past
+        the queue's end. At most two block copies of the staging area into the ring."""
+        ctl = self.ctl
+        consumed = int(self.lv.consumed)
+        tail = int(ctl.tail)
+        head = int(ctl.head)
+        if from_serial < consumed:
+            return Result.TOO_LATE
+        start = tail + (from_serial - consumed)
+        if start > head:
+            return Result.BEYOND_END
+        cap = self.cap
+        n = max(0, min(n, cap - (start - tail)))
+        i0 = start % cap
+        first = min(n, cap - i0)
+        stage = self.block.stage
+        if first > 0:
+            np.copyto(self.ring[i0:i0 + first], stage[:first])
+        if n > first:
+            np.copyto(self.ring[:n - first], stage[first:n])
+        ctl.head[...] = start + n          # the producer waits for our ack before touching head
+        return Result.OK
+
+    def _axis_of(self, position: int) -> int:
+        for i, d in enumerate(self.cfg.drives):
+            if d.position == position:
+                return i
+        return -1
+
+    # ------------------------------------------------------------------ slave recovery
+    def _try_recover(self) -> None:
+        """Every ``recover_interval_s`` while slaves are lost: the bus's ``recover_slaves()``
+        (find the slave again, check identity, remap, SYNC0, OP) on the acyclic helper, so the
+        cycle goes on for the others (as SOEM's ecatcheck)."""
+        if self.recover_countdown > 0:
+            self.recover_countdown -= 1
+            return
+        self.recover_countdown = self.recover_every
+        bus = self.bus
+        if bus is None:
+            return
+        self._collect_recovery()
+        if self.helper.submit(_RECOVERY, bus.recover_slaves):
+            self.recover_calls += 1
+            self._collect_recovery()       # inline mode: already done
+
+    def _collect_recovery(self) -> None:
+        helper = self.helper
+        if helper.kind == _RECOVERY and not helper.busy and isinstance(helper.value, tuple):
+            for pos in helper.value:
+                self.recovered_mask |= 1 << min(int(pos), 62)
+            helper.value = None
+
+    def _recovery_running(self) -> bool:
+        return self.helper.busy and self.helper.kind == _RECOVERY
+
+    # ------------------------------------------------------------------ the cycle
+    def cycle(self) -> None:
+        """One cycle: commands, outputs, exchange, supervision, tracking. No allocation."""
+        bus = self.bus
+        assert bus is not None
+        self.poll_command()
+        lv = self.lv
+        ctl = self.ctl
+        cycle = int(lv.cycle) + 1
+        lv.cycle[...] = cycle
+        lv.time_s[...] = cycle * self.cfg.ts_s
+        self.state_cycles += 1
+        st = self.state
+        states = self.states
+        # ---- outputs
+        if st is WorkerState.ENABLED:
+            head = int(ctl.head)
+            tail = int(ctl.tail)
+            np.copyto(self.prev_ref, self.ref)
+            if head > tail:
+                np.copyto(self.ref, self.ring_rows[tail % self.cap])
+                ctl.tail[...] = tail + 1
+                lv.consumed[...] = int(lv.consumed) + 1
+                np.subtract(self.ref, self.prev_ref, out=self.tmp)
+                np.abs(self.tmp, out=self.tmp)
+                self.moving = bool(self.tmp.max() > self.eps_units)
+            elif self.moving:
+                # the ring ran dry while moving: hold the last set-point and say so
+                self.moving = False
+                lv.underruns[...] = int(lv.underruns) + 1
+                self._alarm(AlarmCode.UNDERRUN, -1, int(lv.consumed))
+            cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
+            bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
+        elif st is WorkerState.HOMING:
+            cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
+            bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
+            self.homing.outputs(bus)
+        else:
+            self._target_from_actual()
+            if st is WorkerState.ENABLING:
+                np.take(cia402.ENABLE_LUT, states, out=bus.controlword)
+            elif st is WorkerState.DISABLED:
+                np.take(cia402.DISABLE_LUT, states, out=bus.controlword)
+            elif st is WorkerState.FAULT_RESET:
+                self.fault_reset_cycle += 1
+                cw = cia402.fault_reset_controlword(self.fault_reset_cycle)
+                for i in range(self.n):
+                    faulted = states[i] == Cia402State.FAULT
+                    bus.controlword[i] = cw if faulted else cia402.DISABLE_LUT[states[i]]
+            else:  # QUICK_STOP, FAULT, ERROR
+                np.take(cia402.QUICK_STOP_LUT, states, out=bus.controlword)
+        np.copyto(self.ref_rows[cycle % REF_HISTORY], self.ref)
+        # ---- exchange
+        wkc = bus.exchange()
+        lv.wkc[...] = wkc
+        if wkc != int(lv.wkc_expected):
+            self._bad_working_counter(bus, wkc)
+            return
+        self.wkc_bad_run = 0
+        if self.lost_mask and not self._recovery_running():  # every slave answers again
+            self._collect_recovery()
+            self._alarm(EventCode.SLAVE_RECOVERED, -1, self.lost_mask, self.recovered_mask)
+            self.lost_mask = 0
+            self.recovered_mask = 0
+            lv.lost[...] = 0
+        # ---- inputs and supervision
+        cia402.decode_states(bus.statusword, states, self.scratch_i)
+        self._read_actual()
+        np.copyto(lv.statusword, bus.statusword)
+        np.copyto(lv.error_code, bus.error_code)
+        np.copyto(lv.drive_state, states)
+        np.copyto(lv.din, bus.digital_inputs)
+        # following error against the set-point this actual position answers (bus delay)
+        np.subtract(self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY], self.act,
+                    out=self.fe)
+        # drive faults (FAULT or FAULT REACTION ACTIVE)
+        np.take(_FAULTED_LUT, states, out=self.bool_tmp)
+        if self.bool_tmp.any():
+            for i in range(self.n):
+                if self.bool_tmp[i] and not self.fault_seen[i]:
+                    self.fault_seen[i] = True
+                    self._reaction(AlarmCode.DRIVE_FAULT, i, int(bus.error_code[i]), state=WorkerState.FAULT)
+            if self.state is not WorkerState.FAULT and self.state is not WorkerState.FAULT_RESET:
+                self._set_state(WorkerState.FAULT)
+        st = self.state
+        if st is WorkerState.ENABLED or st is WorkerState.HOMING:
+            self._supervise_enabled(bus, st)
+        elif st is WorkerState.ENABLING:
+            np.take(_NOT_ENABLED_LUT, states, out=self.bool_tmp)
+            if not self.bool_tmp.any():
+                self._hold_actual()
+                self.moving = False
+                self._set_state(WorkerState.ENABLED)
+            elif self.state_cycles * self.cfg.ts_s > self.cfg.enable_timeout_s:
+                i = int(np.argmax(self.bool_tmp))
+                self._reaction(AlarmCode.ENABLE_TIMEOUT, i, int(states[i]), state=WorkerState.DISABLED)
+        elif st is WorkerState.FAULT_RESET:
+            np.take(_FAULTED_LUT, states, out=self.bool_tmp)
+            if not self.bool_tmp.any():
+                self.fault_seen[:] = False
+                self._hold_actual()
+                self._set_state(WorkerState.DISABLED)
+            elif self.state_cycles * self.cfg.ts_s > self.cfg.fault_reset_timeout_s:
+                i = int(np.argmax(states == Cia402State.FAULT))
+                self._alarm(AlarmCode.FAULT_RESET_FAILED, i, int(bus.error_code[i]))
+                self._set_state(WorkerState.FAULT)
+        if self.state is not WorkerState.ENABLED and self.state is not WorkerState.HOMING:
+            np.copyto(self.ref, self.act)
+            self.fe.fill(0.0)
+
+    def _bad_working_counter(self, bus: Bus, wkc: int) -> None:
+        lv = self.lv
+        lv.wkc_errors[...] = int(lv.wkc_errors) + 1
+        self.wkc_bad_run += 1
+        if self.wkc_bad_run == 1:
+            self.wkc_alarmed = False       # a new burst may alarm again
+        if self.wkc_bad_run > self.cfg.wkc_error_limit and not self.wkc_alarmed:
+            self.wkc_alarmed = True
+            lost = 0
+            for pos in bus.lost_slaves():
+                lost |= 1 << min(pos, 62)
+            self._reaction(AlarmCode.WORKING_COUNTER, -1, wkc, lost, float(lv.wkc_expected))
+            new = lost & ~self.lost_mask
+            self.lost_mask |= lost
+            lv.lost[...] = self.lost_mask
+            for pos in range(63):
+                if new >> pos & 1:
+                    self._alarm(AlarmCode.SLAVE_LOST, self._axis_of(pos), pos)
+            self.recover_countdown = 0
+        if self.lost_mask:
+            self._try_recover()
+
+    def _supervise_enabled(self, bus: Bus, st: WorkerState) -> None:
+        """Following error over its window, drives leaving OPERATION ENABLED, tracking, homing."""
+        homing = self.homing
+        np.abs(self.fe, out=self.tmp)
+        np.greater(self.tmp, self.window, out=self.bool_tmp)
+        if st is WorkerState.HOMING and homing.active:
+            self.bool_tmp[homing.axis] = False
+        np.add(self.fe_count, 1, out=self.fe_count)
+        np.multiply(self.fe_count, self.bool_tmp, out=self.fe_count)   # reset where within
+        if self.fe_count.max() > self.cfg.following_error_cycles:
+            i = int(self.fe_count.argmax())
+            self._reaction(AlarmCode.FOLLOWING_ERROR, i, f=float(self.fe[i]))
+            return
+        if st is WorkerState.ENABLED:
+            # a drive leaving OPERATION ENABLED on its own (e.g. its quick stop input)
+            np.take(_NOT_ENABLED_LUT, self.states, out=self.bool_tmp)
+            if self.bool_tmp.any():
+                i = int(np.argmax(self.bool_tmp))
+                self._reaction(AlarmCode.DRIVE_FAULT, i, int(bus.error_code[i]), int(self.states[i]) + 1)
+            else:
+                self._track()
+            return
+        if not homing.active:
+            return
+        a = homing.axis
+        self.ref[a] = self.act[a]
+        self.fe[a] = 0.0
+        if homing.phase is HomingPhase.WRITING_METHOD:   # 0x6098 being written outside the cycle
+            if self.helper.busy:
+                return
+            result = homing.method_written(bus, self.helper.error)
+        else:
+            result = homing.inputs(bus)
+        if result is HomingResult.FAILED:
+            self._alarm(AlarmCode.HOMING_ERROR, a, homing.failure, homing.method)
+        if not homing.active:
+            self._hold_actual()
+            self._set_state(WorkerState.ENABLED)
+
+    def _track(self) -> None:
+        """Tracking error per axis against the set-point of ``tracking_delay_cycles`` ago (the
+        following error computed in ``cycle``), and its trace row."""
+        cycle = int(self.lv.cycle)
+        ref_d = self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY]
+        self.tracker.add(self.fe)
+        if self.trace_cap:
+            h = int(self.ctl.trace_head)
+            row = self.trace[h % self.trace_cap]
+            row[0] = cycle
+            row[1:1 + self.n] = ref_d
+            row[1 + self.n:] = self.act
+            self.ctl.trace_head[...] = h + 1
+
+    # ------------------------------------------------------------------ running
+    def publish(self) -> None:
+        self.block.publish()
+
+    def run_manual(self, n_cycles: int) -> None:
+        for _ in range(n_cycles):
+            self.cycle()
+        self.publish()
+
+    def run_realtime(self, default_spin_s: float = 0.0) -> None:
+        """The cyclic loop on absolute deadlines until Command.STOP."""
+        cfg = self.cfg
+        ts = cfg.ts_s
+        spin = cfg.spin_s if cfg.spin_s is not None else default_spin_s
+        min_sleep = cfg.min_sleep_s
+        late_s = cfg.late_threshold_s
+        lv = self.lv
+        hist = lv.hist
+        perf = time.perf_counter
+        sleep_until = AbsoluteSleep().until
+        set_timer_slack_ns(1)                    # normal threads: 50 us slack by default
+        inv_bin = 1.0 / HIST_BIN_S
+        last_bin = HIST_BINS - 1
+        every = self.snapshot_every
+        deadline = perf() + ts
+        prev_start = 0.0
+        k_snap = 0
+        missed = 0
+        self.publish_now = True                  # publish after the first cycle
+        while not self.stop_requested:
+            # sleep to `spin` before the deadline (absolute), and always at least min_sleep,
+            # then busy-wait the rest: bounded by `spin`, none when already late
+            wake = deadline - spin
+            earliest = perf() + min_sleep
+            sleep_until(wake if wake > earliest else earliest)
+            while perf() < deadline:
+                pass
+            start = perf()
+            jitter = start - deadline
+            if missed:
+                lv.missed[...] = int(lv.missed) + missed   # counted when the deadline after them starts
+                missed = 0
+            try:
+                self.cycle()
+            except Exception as exc:  # noqa: BLE001 - any bus failure ends the loop with an alarm
+                self.block.write_msg(f"{type(exc).__name__}: {exc}")
+                self._alarm(AlarmCode.BUS_ERROR)
+                self._set_state(WorkerState.ERROR)
+                self.publish()
+                return
+            end = perf()
+            # timing records
+            if prev_start > 0.0:
+                period = start - prev_start
+                lv.period_sum[...] = float(lv.period_sum) + period
+                if period < lv.period_min:
+                    lv.period_min[...] = period
+                if period > lv.period_max:
+                    lv.period_max[...] = period
+                lv.timed[...] = int(lv.timed) + 1
+                b = int(jitter * inv_bin)
+                hist[b if b < last_bin else last_bin] += 1
+                if jitter > lv.jitter_max:
+                    lv.jitter_max[...] = jitter
+                if jitter > late_s:
+                    lv.late[...] = int(lv.late) + 1
+                ex = end - start
+                lv.exec_sum[...] = float(lv.exec_sum) + ex
+                if ex > lv.exec_max:
+                    lv.exec_max[...] = ex
+            else:
+                lv.first_start[...] = start
+            lv.last_start[...] = start
+            prev_start = start
+            deadline += ts
+            if end - deadline >= ts:              # overran by whole periods: skip them, stay on grid
+                missed = int((end - deadline) / ts)
+                deadline += missed * ts
+            k_snap += 1
+            if k_snap >= every or self.publish_now:
+                k_snap = 0
+                self.publish_now = False
+                self.publish()
+        self.publish()

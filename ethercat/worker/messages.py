@@ -1,0 +1,122 @@
+"""The command mailbox's vocabulary and the texts of alarms and events.
+
+The loop writes only numbers (a code, an axis, a few integers); the controller's handle turns
+them into sentences here, outside the cycle.
+"""
+
+from __future__ import annotations
+
+import enum
+
+from ..cia402 import Cia402State
+from .types import AlarmCode, EventCode, WorkerConfig
+
+__all__ = ["INJECT_NAMES", "Command", "Result", "alarm_message", "error_code_text", "event_message"]
+
+
+class Command(enum.IntEnum):
+    NONE = 0
+    ENABLE = 1
+    DISABLE = 2
+    FAULT_RESET = 3
+    QUICK_STOP = 4
+    ESTOP = 5
+    HOME = 6
+    DOUT = 7
+    INJECT = 8
+    FLUSH = 9
+    RESET_TRACKING = 10
+    STOP = 11
+    REPLACE = 12
+
+
+class Result(enum.IntEnum):
+    PENDING = 0
+    OK = 1
+    REFUSED = 2
+    TOO_LATE = 3
+    BEYOND_END = 4
+
+
+#: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox
+INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
+                "lose_slave", "restore_slave")
+
+_ERROR_TEXT = {
+    0x2310: "continuous over-current",
+    0x3210: "DC link over-voltage",
+    0x4310: "drive temperature",
+    0x7305: "encoder",
+    0x8611: "following error",
+    0x8700: "sync / process data lost",
+}
+
+
+def error_code_text(code: int) -> str:
+    """Short text of a CiA 402 error code (0x603F)."""
+    return _ERROR_TEXT.get(code, "")
+
+
+def slave_text(config: WorkerConfig, position: int) -> str:
+    for d in config.drives:
+        if d.position == position:
+            return f"slave {position} (axis {d.axis_name})"
+    return f"slave {position}"
+
+
+def _bits(mask: int) -> list[int]:
+    return [p for p in range(63) if mask >> p & 1]
+
+
+def event_message(config: WorkerConfig, code: EventCode, a: int, b: int) -> str:
+    if code is EventCode.SLAVE_RECOVERED:
+        back = ", ".join(slave_text(config, p) for p in _bits(a))
+        how = " (re-configured to OP by recover_slaves)" if b else ""
+        return (f"{back} answering again{how}: working counter as expected; "
+                "fault reset and enable to resume")
+    return code.name
+
+
+def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int, a: int, b: int, f: float,
+                  reason: str = "", detail: str = "") -> str:
+    """The operator's sentence for one alarm record. ``detail``: the loop's text channel
+    (bus errors)."""
+    if code is AlarmCode.UNDERRUN:
+        return f"set-point buffer underrun after {a} set-points: holding the last position"
+    if code is AlarmCode.WORKING_COUNTER:
+        lost = _bits(b)
+        tail = f"; slaves not answering: {lost}" if lost else ""
+        return (f"working counter {a} instead of {int(f)} for more than {config.wkc_error_limit} cycles: "
+                f"quick stop of all axes{tail}")
+    if code is AlarmCode.DRIVE_FAULT:
+        pos = config.drives[axis_i].position
+        if b:
+            return (f"drive of axis {axis} (slave {pos}) left OPERATION ENABLED "
+                    f"({Cia402State(b - 1).name}): quick stop of all axes")
+        return (f"drive fault on axis {axis} (slave {pos}): error code 0x{a:04X} {error_code_text(a)}: "
+                "quick stop of all axes")
+    if code is AlarmCode.FOLLOWING_ERROR:
+        w = config.drives[axis_i].following_error_window
+        return (f"following error on axis {axis}: {f:+.4f} exceeds window {w:g} for more than "
+                f"{config.following_error_cycles} cycles: quick stop of all axes")
+    if code is AlarmCode.ESTOP:
+        return f"E-stop: quick stop of all axes ({reason or 'E-stop'})"
+    if code is AlarmCode.QUICK_STOP:
+        return f"quick stop of all axes: {reason or 'requested'}"
+    if code is AlarmCode.ENABLE_TIMEOUT:
+        state = Cia402State(a).name if 0 <= a < len(Cia402State) else str(a)
+        return (f"axis {axis} did not reach OPERATION ENABLED within {config.enable_timeout_s} s "
+                f"(drive state {state})")
+    if code is AlarmCode.HOMING_ERROR:
+        why = {0: "drive reported homing error", 1: "timeout",
+               2: f"the drive refused homing method {b} (0x6098)"}.get(a, "unknown cause")
+        return f"homing of axis {axis} failed ({why})"
+    if code is AlarmCode.FAULT_RESET_FAILED:
+        return (f"fault reset of axis {axis} failed: error code 0x{a:04X} {error_code_text(a)} "
+                "still present")
+    if code is AlarmCode.SLAVE_LOST:
+        return (f"{slave_text(config, a)} lost: not answering process data; "
+                "trying to recover it when it comes back")
+    if code is AlarmCode.BUS_ERROR:
+        return f"bus error in the cyclic loop ({detail}): worker stopped"
+    return code.name

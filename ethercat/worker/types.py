@@ -1,0 +1,289 @@
+"""The worker's vocabulary: states, alarm and event codes, the records it reports, and its
+configuration. Plain data only; nothing here runs."""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..bus import DriveSpec, check_drives
+from ..cia402 import Cia402State
+from ..errors import ConfigurationError
+
+__all__ = [
+    "Alarm", "AlarmCode", "DriveSpec", "EventCode", "HomingState", "ReplaceResult", "TimingStats",
+    "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent", "WorkerSnapshot", "WorkerState",
+    "REF_HISTORY",
+]
+
+#: reference positions kept per axis, so the actual position of cycle k is compared with the
+#: set-point of cycle k - tracking_delay_cycles (the bus's transport delay)
+REF_HISTORY = 8
+
+
+class WorkerState(enum.IntEnum):
+    """State of the worker as a whole (all axes)."""
+
+    STOPPED = 0        # not started / stopped
+    STARTING = 1       # bus being opened
+    DISABLED = 2       # bus in OP, drives not enabled (target := actual)
+    ENABLING = 3       # walking every drive to OPERATION ENABLED
+    ENABLED = 4        # following set-points (or holding the last one)
+    HOMING = 5         # one drive in mode 6 running its homing method
+    QUICK_STOP = 6     # after a quick stop (reaction or request): needs fault_reset/enable
+    FAULT = 7          # a drive is in FAULT: needs fault_reset
+    FAULT_RESET = 8    # fault reset edge being applied
+    ERROR = 9          # the loop failed (bus error): stop() and start again
+
+
+class AlarmCode(enum.IntEnum):
+    UNDERRUN = 1
+    WORKING_COUNTER = 2
+    DRIVE_FAULT = 3
+    FOLLOWING_ERROR = 4
+    ESTOP = 5
+    QUICK_STOP = 6
+    ENABLE_TIMEOUT = 7
+    HOMING_ERROR = 8
+    BUS_ERROR = 9
+    FAULT_RESET_FAILED = 10
+    SLAVE_LOST = 11
+
+
+class EventCode(enum.IntEnum):
+    """Things worth telling the operator that are not alarms (codes share the alarm ring, >= 100)."""
+
+    SLAVE_RECOVERED = 101
+
+
+class HomingState(enum.IntEnum):
+    IDLE = 0
+    RUNNING = 1
+    DONE = 2
+    ERROR = 3
+
+
+@dataclass(frozen=True, slots=True)
+class Alarm:
+    """One alarm raised by the worker. `axis` is the axis name, "" for all axes."""
+
+    code: AlarmCode
+    message: str
+    axis: str
+    cycle: int
+    time_s: float          # worker time (cycle * Ts) when raised
+    wall_time: float       # time.time() when the reader picked it up
+
+
+@dataclass(frozen=True, slots=True)
+class WorkerEvent:
+    """One event reported by the worker (not an alarm: nothing to acknowledge)."""
+
+    code: EventCode
+    message: str
+    axis: str
+    cycle: int
+    time_s: float
+    wall_time: float
+
+
+@dataclass(frozen=True, slots=True)
+class TimingStats:
+    """Cycle timing since start. Jitter = cycle start - its absolute deadline (>= 0)."""
+
+    cycles: int
+    period_mean_s: float
+    period_min_s: float
+    period_max_s: float
+    jitter_p50_s: float
+    jitter_p99_s: float
+    jitter_p999_s: float
+    jitter_max_s: float
+    late_cycles: int                 # start later than `late_threshold_s`
+    missed_cycles: int               # deadlines skipped because a cycle overran
+    exec_mean_s: float               # time from cycle start to the end of its work
+    exec_max_s: float
+    span_s: float                    # last cycle start - first cycle start (wall clock)
+    histogram_bin_s: float
+    jitter_histogram: tuple[int, ...]   # counts per bin, last bin = overflow
+
+    def as_dict(self) -> dict[str, Any]:
+        us = 1e6
+        return {
+            "cycles": self.cycles, "period_mean_us": self.period_mean_s * us,
+            "period_min_us": self.period_min_s * us, "period_max_us": self.period_max_s * us,
+            "jitter_p50_us": self.jitter_p50_s * us, "jitter_p99_us": self.jitter_p99_s * us,
+            "jitter_p999_us": self.jitter_p999_s * us, "jitter_max_us": self.jitter_max_s * us,
+            "late_cycles": self.late_cycles, "missed_cycles": self.missed_cycles,
+            "exec_mean_us": self.exec_mean_s * us, "exec_max_us": self.exec_max_s * us,
+        }
+
+
+@dataclass(frozen=True, slots=True)
+class TrackingStats:
+    """Tracking error e = reference - actual per axis (axis units), paper Eq. 18 / Table 4."""
+
+    samples: int
+    rmse: tuple[float, ...]
+    mse: tuple[float, ...]
+    max_abs: tuple[float, ...]
+    window_samples: int
+    window_rmse: tuple[float, ...]
+    window_mse: tuple[float, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class WorkerSnapshot:
+    """What the panel and the controller read (<= 30 Hz). Arrays are read-only copies."""
+
+    state: WorkerState
+    cycle: int
+    time_s: float
+    axis_names: tuple[str, ...]
+    drive_states: tuple[Cia402State, ...]
+    statuswords: tuple[int, ...]
+    error_codes: tuple[int, ...]
+    actual_position: np.ndarray        # axis units (mm | deg)
+    reference_position: np.ndarray     # axis units, the set-point sent last
+    following_error: np.ndarray        # reference - actual, axis units
+    buffer_level: int
+    buffer_capacity: int
+    samples_consumed: int              # set-points taken from the buffer since start
+    underruns: int
+    wkc: int
+    expected_wkc: int
+    wkc_errors: int
+    homing: tuple[HomingState, ...]
+    homed: tuple[bool, ...]
+    alarms: tuple[Alarm, ...]          # active (not yet cleared by fault_reset)
+    timing: TimingStats
+    tracking: TrackingStats
+    digital_outputs: tuple[int, ...]
+    command_seq: int = 0               # sequence number of the last command the loop applied
+    lost_slaves: tuple[int, ...] = ()  # slave positions lost and not yet back
+    events: tuple[WorkerEvent, ...] = ()   # recent events (e.g. slave recovered), oldest first
+    digital_inputs: tuple[int, ...] = ()   # 0x60FD per drive, from the process data
+
+    @property
+    def enabled(self) -> bool:
+        return self.state is WorkerState.ENABLED
+
+
+@dataclass(frozen=True, slots=True)
+class TraceChunk:
+    """Per-cycle reference and actual positions drained from the worker (axis units).
+
+    `reference[k]` is the set-point the actual position of cycle `cycle[k]` answers
+    (`tracking_delay_cycles` earlier), so `reference - actual` is the tracking error of Eq. 18.
+    """
+
+    cycle: np.ndarray          # (N,) int64
+    reference: np.ndarray      # (N, n_axes)
+    actual: np.ndarray         # (N, n_axes)
+    dropped: int               # cycles overwritten before they were drained
+
+
+@dataclass(frozen=True, slots=True)
+class WorkerConfig:
+    """Configuration of the cyclic worker.
+
+    drives: the machine's drives (axis order = column order of `push`).
+    ts_s: cycle time; bus_kind "sim" | "soem"; adapter: network interface for "soem".
+    wkc_error_limit: working counter may be wrong for this many consecutive cycles.
+    buffer_capacity: set-points the ring holds (2000 = 2 s ahead at 1 ms).
+    following_error_cycles: |ref - actual| over the window for more than this many cycles.
+    mode: "process" | "thread" | "manual".
+    cpu (mode "process"): core to pin the loop to. -1 = automatic: the highest-numbered
+    core no other worker holds (each worker process holds an flock on
+    /dev/shm/cnc-ethercat-cpu<N>.lock while it runs); when every core is held the new
+    worker runs unpinned with normal scheduling, so two workers (parallel tests, a bench
+    beside the demo) never share one core at real-time priority. An explicit core >= 0 is
+    honoured even when held (`realtime_applied` then says which pid shares it).
+    None = no pinning.
+    rt_priority: SCHED_FIFO priority when permitted (0 = normal scheduling). Default 49:
+    below the threaded interrupt handlers of a PREEMPT_RT kernel (50), whose NIC interrupt
+    the cycle waits on; above every normal task.
+    spin_s: the loop sleeps to `spin_s` before each deadline (clock_nanosleep on an
+    absolute CLOCK_MONOTONIC deadline) and busy-waits the rest; never longer, and not at
+    all when the deadline has passed. None = 0.1 ms in mode "process" (measured here:
+    SCHED_FIFO wake-up latency p50 35 us, p99 60 us), 0 in mode "thread" (spinning would
+    hold the GIL against the GUI).
+    min_sleep_s: the loop sleeps at least this long before every cycle, even when late,
+    so an overrunning loop at real-time priority never monopolises its core (a worker
+    that never sleeps starves everything else on that core, including another worker).
+    recover_interval_s: while slaves are lost, the bus's `recover_slaves()` (if it has
+    one) is tried this often (in a helper thread, so the cycle keeps running).
+    tracking_delay_cycles: the actual position read in cycle k answers the set-point of
+    cycle k - d (bus transport: 1 on SimBus, where inputs are latched before outputs apply).
+    underrun_velocity_units_s: the buffer running empty is an underrun only when the last
+    set-points moved faster than this (a jerk-limited stop ends far below it).
+    bus_options: extra keyword arguments for the bus backend, as (name, value) pairs.
+    """
+
+    drives: tuple[DriveSpec, ...]
+    ts_s: float = 0.001
+    bus_kind: str = "sim"
+    adapter: str = ""
+    wkc_error_limit: int = 3
+    buffer_capacity: int = 2000
+    following_error_cycles: int = 3
+    mode: str = "process"
+    cpu: int | None = -1
+    rt_priority: int = 49
+    spin_s: float | None = None
+    min_sleep_s: float = 0.00005
+    recover_interval_s: float = 0.1
+    late_threshold_s: float = 0.001
+    snapshot_hz: float = 30.0
+    tracking_window_s: float = 600.0
+    tracking_delay_cycles: int = 1
+    underrun_velocity_units_s: float = 0.01
+    enable_timeout_s: float = 1.0
+    fault_reset_timeout_s: float = 0.5
+    homing_timeout_s: float = 120.0
+    start_timeout_s: float = 20.0
+    command_timeout_s: float = 2.0
+    trace_capacity: int = 1 << 16
+    bus_options: tuple[tuple[str, Any], ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "drives", check_drives(self.drives))
+        if not 0.0001 <= self.ts_s <= 0.1:
+            raise ConfigurationError(f"ts_s must be within [0.0001, 0.1] s, got {self.ts_s}")
+        if self.mode not in ("process", "thread", "manual"):
+            raise ConfigurationError(f"mode must be 'process', 'thread' or 'manual', got {self.mode!r}")
+        if self.buffer_capacity < 2:
+            raise ConfigurationError(f"buffer_capacity must be >= 2, got {self.buffer_capacity}")
+        if self.wkc_error_limit < 0 or self.following_error_cycles < 0:
+            raise ConfigurationError("wkc_error_limit and following_error_cycles must be >= 0")
+        if not 0 <= self.tracking_delay_cycles < REF_HISTORY:
+            raise ConfigurationError(f"tracking_delay_cycles must be within [0, {REF_HISTORY - 1}]")
+        if not 0.0 < self.snapshot_hz <= 1000.0:
+            raise ConfigurationError(f"snapshot_hz must be within (0, 1000], got {self.snapshot_hz}")
+        if self.spin_s is not None and not 0.0 <= self.spin_s <= 0.5 * self.ts_s:
+            raise ConfigurationError(f"spin_s must be within [0, ts_s / 2], got {self.spin_s}")
+        if not 0.0 <= self.min_sleep_s <= 0.5 * self.ts_s:
+            raise ConfigurationError(f"min_sleep_s must be within [0, ts_s / 2], got {self.min_sleep_s}")
+        if not 0 <= self.rt_priority <= 99:
+            raise ConfigurationError(f"rt_priority must be within [0, 99], got {self.rt_priority}")
+
+    @property
+    def n_axes(self) -> int:
+        return len(self.drives)
+
+    @property
+    def axis_names(self) -> tuple[str, ...]:
+        return tuple(d.axis_name for d in self.drives)
+
+
+class ReplaceResult(enum.Enum):
+    """What ``CyclicWorker.replace`` did. ``TOO_LATE``: the loop had already taken
+    ``from_serial`` (retry from a later serial); ``BEYOND_END``: ``from_serial`` is past the
+    queue's end (the queue was dropped: quick stop, flush). Nothing changed in either case."""
+
+    DONE = "done"
+    TOO_LATE = "too_late"
+    BEYOND_END = "beyond_end"

@@ -1,0 +1,225 @@
+"""The one limit meter: velocity, acceleration and jerk of sampled motion, measured by finite
+differences of the set-points and compared with the machine's limits.
+
+Every place that asks "did this motion stay within its limits?" measures the same way here:
+``Plan.limit_report`` (``cnc-plan --json``), the controller's checks of what it actually sent
+to the drives (feed hold, override, path stops), and the diagnostics page's v/a/j plot.
+
+Stencils. The k-th difference of samples n-k .. n divided by Ts^k. Finite differences over a
+joint between two moves see the joint itself (a tangent break, a curvature jump), whose
+figures the planner reports separately, so jerk stencils that span a joint never count
+against the jerk limits; they are reported as joint jerk. Whether the tangential (path
+length) velocity and acceleration stencils that span a joint count is the caller's choice
+(``across_joints``): a plan's report counts them, the execution check does not (the path
+length's second difference across a tangent break is not an acceleration of any axis).
+
+Rounding. A k-th difference of positions of magnitude |q| carries a rounding noise of about
+|q| eps / Ts^k; that much is allowed on top of each limit (``noise``), and violations are
+judged with a small relative tolerance per order (``REL_TOL``).
+
+The meter streams: ``add`` takes consecutive chunks and keeps the last three samples, so
+stencils across chunk borders are measured once and memory is bounded by the chunk.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.machine import MachineSpec
+
+__all__ = ["KINDS", "REL_TOL", "LimitMeter", "Worst", "check_limits", "path_vaj"]
+
+#: the limit kinds measured, each the worst over time (and over axes for ``axis_*``)
+KINDS = ("tangential_v", "tangential_a", "tangential_j", "axis_v", "axis_a", "axis_j")
+#: relative tolerance of a violation by derivative order (v, a, j)
+REL_TOL = {"v": 1e-6, "a": 1e-5, "j": 1e-4}
+
+
+def path_vaj(s_mm: np.ndarray, ts_s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Path speed, acceleration and jerk along the samples of the path length s(t_k)
+    (central differences, same length as s; zeros when there are fewer than two samples)."""
+    s = np.asarray(s_mm, dtype=float)
+    if s.size < 2:
+        z = np.zeros_like(s)
+        return z, z, z
+    v = np.gradient(s, ts_s)
+    a = np.gradient(v, ts_s)
+    j = np.gradient(a, ts_s)
+    return v, a, j
+
+
+@dataclass
+class Worst:
+    """Samples over a limit: how many, the worst ratio value/limit, its value and line."""
+
+    count: int = 0
+    ratio: float = 0.0
+    value: float = 0.0
+    line: int = 0
+
+    def update(self, value: np.ndarray, limit: np.ndarray | float, lines: np.ndarray, rel_tol: float,
+               noise: float) -> None:
+        over = value > np.asarray(limit) * (1.0 + rel_tol) + noise
+        if not over.any():
+            return
+        self.count += int(over.sum())
+        ratio = np.broadcast_to(value / limit, value.shape)
+        i = int(np.argmax(np.where(over, ratio, -np.inf)))
+        if ratio.flat[i] > self.ratio:
+            self.ratio = float(ratio.flat[i])
+            self.value = float(value.flat[i])
+            self.line = int(np.broadcast_to(lines, value.shape).flat[i])
+
+    def as_dict(self) -> dict[str, float]:
+        return {"count": self.count, "worst": self.value, "worst_ratio": self.ratio, "line": self.line}
+
+
+class LimitMeter:
+    """Streams samples (q, s, move, line) and measures them against the machine's limits.
+
+    ``v_path_per_move``: the path speed limit of each move (indexed by ``move - move_base``):
+    its programmed feed for a plan's report, the machine's feed or rapid limit for what was
+    executed. A stencil spanning two moves takes the larger of the two.
+    ``tangential_accel``: judge tangential acceleration and jerk against the path limits (off
+    for the paper's classic interpolation, whose steps from one cruise speed to the next are
+    not limited by design; their size is still measured).
+    """
+
+    def __init__(self, machine: MachineSpec, ts_s: float, v_path_per_move: np.ndarray, *,
+                 move_base: int = 0, across_joints: bool = False, tangential_accel: bool = True) -> None:
+        self.ts = float(ts_s)
+        self.names = machine.axis_names
+        self.v_axis = np.array([a.v_max for a in machine.axes], dtype=float)
+        self.a_axis = np.array([a.a_max for a in machine.axes], dtype=float)
+        self.j_axis = np.array([a.j_max for a in machine.axes], dtype=float)
+        self.a_path = machine.limits.a_max_mm_s2
+        self.j_path = machine.limits.j_max_mm_s3
+        self.v_path = np.asarray(v_path_per_move, dtype=float)
+        self.move_base = int(move_base)
+        self.across_joints = across_joints
+        self.tangential_accel = tangential_accel
+        #: worst measured ratio per kind, rounding noise removed (<= 1 means within the limit)
+        self.ratios = dict.fromkeys(KINDS, 0.0)
+        #: samples over a limit per kind
+        self.worst = {k: Worst() for k in KINDS}
+        #: jerk of stencils spanning a joint, over the axis jerk limit (reported, not a violation)
+        self.joint = Worst()
+        #: largest measured tangential v/a/j and per-axis v/a/j/j_joint
+        self.tangential = {"v": 0.0, "a": 0.0, "j": 0.0}
+        self.axes = {n: {"v": 0.0, "a": 0.0, "j": 0.0, "j_joint": 0.0} for n in self.names}
+        self.samples = 0
+        self._scale = 1.0
+        self._tail: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    def _v_limit(self, move: np.ndarray) -> np.ndarray:
+        if not len(self.v_path):
+            return np.full(len(move) - 1, np.inf)
+        row = np.clip(move - self.move_base, 0, len(self.v_path) - 1)
+        return np.maximum(self.v_path[row[1:]], self.v_path[row[:-1]])
+
+    def add(self, q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, line: np.ndarray | None = None) -> None:
+        """Measure the next consecutive samples (axis positions (N, n_axes), path length (N,),
+        move index (N,), source line (N,))."""
+        q = np.asarray(q, dtype=float)
+        move = np.asarray(move)
+        line = np.zeros(len(q), np.int64) if line is None else np.asarray(line)
+        self.samples += len(q)
+        if len(q):
+            self._scale = max(self._scale, float(np.max(np.abs(q))))
+        if self._tail is not None:
+            tq, ts_, tm, tl = self._tail
+            new_from = len(tq)
+            q = np.concatenate([tq, q])
+            s_mm = np.concatenate([ts_, s_mm])
+            move = np.concatenate([tm, move])
+            line = np.concatenate([tl, line])
+        else:
+            new_from = 0
+        self._measure(q, np.asarray(s_mm, dtype=float), move, line, new_from)
+        self._tail = (q[-3:].copy(), np.asarray(s_mm[-3:], dtype=float).copy(), move[-3:].copy(),
+                      line[-3:].copy())
+
+    def _measure(self, q: np.ndarray, s: np.ndarray, move: np.ndarray, line: np.ndarray,
+                 new_from: int) -> None:
+        ts = self.ts
+        eps = np.finfo(float).eps * self._scale * 16
+        noise = {"v": eps / ts, "a": 4 * eps / ts**2, "j": 8 * eps / ts**3}
+        # only stencils that end in the new samples (the tail's were measured before)
+        lo = {1: max(new_from - 1, 0), 2: max(new_from - 2, 0), 3: max(new_from - 3, 0)}
+        same = {1: move[1:] == move[:-1],
+                2: (move[2:] == move[:-2]) & (move[1:-1] == move[2:]),
+                3: (move[3:] == move[:-3]) & (move[1:-2] == move[3:]) & (move[2:-1] == move[3:])}
+        order_key = {1: "v", 2: "a", 3: "j"}
+        for k in (1, 2, 3):
+            if len(q) <= k:
+                continue
+            key = order_key[k]
+            dq = np.abs(np.diff(q, k, axis=0))[lo[k]:] / ts**k
+            ds = np.abs(np.diff(s, k))[lo[k]:] / ts**k
+            inside = same[k][lo[k]:]
+            lines = line[k:][lo[k]:]
+            axis_lim = {1: self.v_axis, 2: self.a_axis, 3: self.j_axis}[k]
+            # axes: velocity and acceleration everywhere, jerk inside moves (joints reported)
+            ax_ok = inside if k == 3 else np.ones(len(dq), bool)
+            self._axes(key, dq, ax_ok, inside, axis_lim, lines, noise[key])
+            # along the path
+            path_ok = inside if (k == 3 or not self.across_joints) else np.ones(len(ds), bool)
+            if not path_ok.any():
+                continue
+            if k == 1:
+                limit: np.ndarray | float = self._v_limit(move)[lo[1]:][path_ok]
+            else:
+                limit = self.a_path if k == 2 else self.j_path
+            val = ds[path_ok]
+            self.tangential[key] = max(self.tangential[key], float(val.max()))
+            if k > 1 and not self.tangential_accel:
+                continue
+            self.ratios["tangential_" + key] = max(self.ratios["tangential_" + key],
+                                                   float(np.max((val - noise[key]) / limit)))
+            self.worst["tangential_" + key].update(val, limit, lines[path_ok], REL_TOL[key], noise[key])
+
+    def _axes(self, key: str, dq: np.ndarray, ok: np.ndarray, inside: np.ndarray, limit: np.ndarray,
+              lines: np.ndarray, noise: float) -> None:
+        if ok.any():
+            val = dq[ok]
+            self.ratios["axis_" + key] = max(self.ratios["axis_" + key],
+                                             float(np.max((val - noise) / limit)))
+            for i, name in enumerate(self.names):
+                col = val[:, i]
+                self.axes[name][key] = max(self.axes[name][key], float(col.max()))
+                self.worst["axis_" + key].update(col, limit[i], lines[ok], REL_TOL[key], noise)
+        if key == "j" and (~inside).any():
+            val = dq[~inside]
+            for i, name in enumerate(self.names):
+                self.axes[name]["j_joint"] = max(self.axes[name]["j_joint"], float(val[:, i].max()))
+                self.joint.update(val[:, i], limit[i], lines[~inside], REL_TOL[key], noise)
+
+    @property
+    def violations(self) -> dict[str, dict[str, float]]:
+        return {k: w.as_dict() for k, w in self.worst.items() if w.count}
+
+    def ratio_report(self) -> dict[str, float]:
+        """Worst ratios per kind and the largest tangential values (keys ``tangential_v_max``
+        and so on), the form the controller's checks use."""
+        out = dict(self.ratios)
+        for key in ("v", "a", "j"):
+            out[f"tangential_{key}_max"] = self.tangential[key]
+        return out
+
+
+def check_limits(q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, machine: MachineSpec, ts_s: float,
+            rapid_move: np.ndarray | None = None) -> dict[str, float]:
+    """Measured maxima of executed set-points as ratios to the machine's limits (<= 1 holds):
+    the path speed against the machine's feed limit (rapid limit on rapid moves), joints
+    excluded from the tangential figures. One call of the meter over one buffer."""
+    lim = machine.limits
+    if rapid_move is not None and len(rapid_move):
+        v_path = np.where(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s)
+    else:
+        v_path = np.array([max(lim.v_max_mm_s, lim.rapid_mm_s)])
+    meter = LimitMeter(machine, ts_s, v_path)
+    if len(q) >= 4:
+        meter.add(q, s_mm, move)
+    return meter.ratio_report()
