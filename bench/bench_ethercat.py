@@ -8,7 +8,7 @@ the parent process.
 
 Prints one JSON object: per case (worker mode x load) the period, cycle start jitter
 percentiles (p50/p99/p99.9/max), late cycles (start later than 1 ms), missed cycles,
-working counter errors. Target (issue 5): jitter p99 <= 100 us, no cycle later than 1 ms.
+working counter errors. Target: jitter p99 <= 100 us, no cycle later than 1 ms.
 `--link N` runs on real frames: an `EmulatedLink` of N emulated drives (root, ip netns),
 removed afterwards. The other flags override `WorkerConfig` defaults (for comparisons).
 

@@ -1,4 +1,4 @@
-"""Planner benchmark (issue 4 section 6): the paper's three experiment programs.
+"""Planner benchmark: the paper's three experiment programs.
 
     python -m bench.bench_plan [--only NAME] [--ts 0.001]
 

@@ -1,4 +1,4 @@
-"""Preview benchmark: open and draw a 35,000-line program (issue 7: under one second).
+"""Preview benchmark: open and draw a 35,000-line program (target: under one second).
 
     QT_QPA_PLATFORM=offscreen python -m bench.bench_preview [--lines 35000] [--arc-share 0.3]
 

@@ -59,16 +59,6 @@ class AlStateTimeoutError(AlStateError, EtherCATTimeoutError):
     """AL state change not reached within its timeout."""
 
 
-class WorkingCounterError(EtherCATError):
-    """The working counter differs from the expected value."""
-
-    def __init__(self, wkc: int, expected_wkc: int, cycles: int = 1) -> None:
-        self.wkc = wkc
-        self.expected_wkc = expected_wkc
-        self.cycles = cycles
-        super().__init__(f"working counter {wkc}, expected {expected_wkc}, for {cycles} cycle(s)")
-
-
 class SdoError(EtherCATError):
     """A CoE SDO transfer failed."""
 
@@ -99,23 +89,6 @@ class SdoAbortError(SdoError):
 
 class SdoTimeoutError(SdoError, EtherCATTimeoutError):
     """No SDO answer within the mailbox timeout."""
-
-
-class Cia402Error(EtherCATError):
-    """CiA 402 drive state machine error."""
-
-
-class DriveFaultError(Cia402Error):
-    """A drive is in FAULT (CiA 402 error code 0x603F appended)."""
-
-    def __init__(self, position: int, error_code: int, text: str = "drive fault") -> None:
-        self.position = position
-        self.error_code = error_code
-        super().__init__(f"drive {position}: {text} (error code 0x{error_code:04X})")
-
-
-class StateTransitionTimeoutError(Cia402Error, EtherCATTimeoutError):
-    """A drive did not reach the requested CiA 402 state in time."""
 
 
 class WorkerError(EtherCATError):

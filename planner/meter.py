@@ -14,8 +14,10 @@ length) velocity and acceleration stencils that span a joint count is the caller
 length's second difference across a tangent break is not an acceleration of any axis).
 
 Rounding. A k-th difference of positions of magnitude |q| carries a rounding noise of about
-|q| eps / Ts^k; that much is allowed on top of each limit (``noise``), and violations are
-judged with a small relative tolerance per order (``REL_TOL``).
+|q| eps / Ts^k; that much is allowed on top of each limit (``noise``), with |q| bounded by the
+machine's travel (or a scale the caller gives), so the allowance never depends on how the
+samples were cut into chunks. Violations are judged with a small relative tolerance per order
+(``REL_TOL``).
 
 The meter streams: ``add`` takes consecutive chunks and keeps the last three samples, so
 stencils across chunk borders are measured once and memory is bounded by the chunk.
@@ -82,13 +84,15 @@ class LimitMeter:
     ``v_path_per_move``: the path speed limit of each move (indexed by ``move - move_base``):
     its programmed feed for a plan's report, the machine's feed or rapid limit for what was
     executed. A stencil spanning two moves takes the larger of the two.
+    ``position_scale``: the largest |position| for the rounding allowance (default: the travel).
     ``tangential_accel``: judge tangential acceleration and jerk against the path limits (off
     for the paper's classic interpolation, whose steps from one cruise speed to the next are
     not limited by design; their size is still measured).
     """
 
     def __init__(self, machine: MachineSpec, ts_s: float, v_path_per_move: np.ndarray, *,
-                 move_base: int = 0, across_joints: bool = False, tangential_accel: bool = True) -> None:
+                 move_base: int = 0, across_joints: bool = False, tangential_accel: bool = True,
+                 position_scale: float | None = None) -> None:
         self.ts = float(ts_s)
         self.names = machine.axis_names
         self.v_axis = np.array([a.v_max for a in machine.axes], dtype=float)
@@ -110,7 +114,9 @@ class LimitMeter:
         self.tangential = {"v": 0.0, "a": 0.0, "j": 0.0}
         self.axes = {n: {"v": 0.0, "a": 0.0, "j": 0.0, "j_joint": 0.0} for n in self.names}
         self.samples = 0
-        self._scale = 1.0
+        travel = max((max(abs(a.min_pos), abs(a.max_pos)) for a in machine.axes), default=1.0)
+        scale = travel if position_scale is None else position_scale
+        self._scale = max(1.0, float(scale)) if np.isfinite(scale) else 1.0
         self._tail: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def _v_limit(self, move: np.ndarray) -> np.ndarray:
@@ -126,8 +132,6 @@ class LimitMeter:
         move = np.asarray(move)
         line = np.zeros(len(q), np.int64) if line is None else np.asarray(line)
         self.samples += len(q)
-        if len(q):
-            self._scale = max(self._scale, float(np.max(np.abs(q))))
         if self._tail is not None:
             tq, ts_, tm, tl = self._tail
             new_from = len(tq)

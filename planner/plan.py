@@ -5,7 +5,7 @@
 ``stream_program`` yields the very same samples while planning window by window, so the
 first set-point is out within milliseconds whatever the program length.
 
-``Plan.limit_report()`` checks what issue 4 section 4 demands, from the closed-form
+``Plan.limit_report()`` checks that no limit is exceeded, from the closed-form
 profiles and from finite differences of the samples: tangential v/a/j, per-axis v/a/j
 (jerk inside moves; at joints - tangent breaks and curvature jumps - it is reported
 separately), contour error, end points, NaN, monotonic time.
@@ -249,8 +249,10 @@ def _report(plan: Plan, chunk_samples: int, rel_tol: float) -> LimitReport:
     lim = LimitSet.from_machine(machine)
     n_moves = len(seg.table)
     classic = plan.interpolation == "classic"
+    # a plan is not held to the travel here (cnc-plan without soft limits): its own extent
+    scale = float(np.max(np.abs(seg.table.end))) if n_moves else 1.0
     meter = LimitMeter(machine, plan.ts_s, seg.v_prog, move_base=int(seg.table.index[0]) if n_moves else 0,
-                       across_joints=True, tangential_accel=not classic)
+                       across_joints=True, tangential_accel=not classic, position_scale=scale)
     # Closed form: the profile never exceeds its own caps; compare with the programmed limits.
     lines = seg.table.line
     tangential = {"v": 0.0, "a": 0.0, "j": 0.0}

@@ -121,9 +121,6 @@ class MachineConfig:
         """The shipped 3-axis XYZ mill (resources/machines/xyz_mill.toml)."""
         return load_config(shipped_machine("xyz_mill"))
 
-    def with_offsets(self, offsets: dict[str, tuple[float, ...]]) -> MachineConfig:
-        return replace(self, machine=replace(self.machine, work_offsets=dict(offsets)))
-
 
 # ------------------------------------------------------------------------------ reading
 def _num(table: dict[str, Any], key: str, where: str, default: float, lo: float | None = None,

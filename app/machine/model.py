@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 
 class MachineState(enum.Enum):
-    """Machine states (issue 6). Legal transitions: see ``controller.TRANSITIONS``."""
+    """Machine states. Legal transitions: see ``controller.TRANSITIONS``."""
 
     DISCONNECTED = "disconnected"  # worker not running / bus not in OP
     IDLE = "idle"  # drives enabled, nothing moving (jog, MDI and program start allowed)

@@ -37,12 +37,6 @@ def touch_rows(view: QAbstractItemView, height_px: int = 48) -> None:
         header().setMinimumSectionSize(height_px)
     enable_kinetic_scrolling(view)
 
-
-def set_min_touch(widget: QWidget, size_px: int = 48) -> None:
-    widget.setMinimumHeight(max(widget.minimumHeight(), size_px))
-    widget.setMinimumWidth(max(widget.minimumWidth(), size_px))
-
-
 def exclusive_buttons(
     owner: QWidget,
     layout: QBoxLayout,

@@ -105,10 +105,16 @@ def test_invalid_program_marked_at_its_line_and_start_refused(fake_window, fake_
     assert "radius" in program.editor.errors[3]
     program.load_into_machine()
     assert fake_controller.program_info is None
-    assert fake_window.page("auto").editor.errors.keys() == {3}
-    result = fake_controller.cycle_start()
-    assert not result
-    assert "Refused" in fake_window._message.text()
+    auto = fake_window.page("auto")
+    assert auto.editor.errors.keys() == {3}
+    # the panel's own rule: the program shown has errors, so Cycle start is off and a press
+    # never reaches the controller (which would run whatever it had loaded before)
+    started: list[bool] = []
+    fake_controller.cycle_start = lambda: started.append(True)
+    assert not auto.buttons["start"].isEnabled()
+    auto.cycle_start()
+    assert started == []
+    assert "program has errors (line 3)" in auto.info_label.text()
 
 
 def test_program_page_save_and_discard_prompt(fake_window, dialogs, tmp_path: Path) -> None:

@@ -32,6 +32,7 @@ def test_navigation_reaches_every_page(fake_window, dialogs) -> None:
 
 
 def test_navigation_buttons_are_touch_sized(fake_window) -> None:
+    assert len(fake_window._buttons) == len(PAGES)
     for button in fake_window._buttons.values():
         assert button.height() >= 48 and button.width() >= 48
 

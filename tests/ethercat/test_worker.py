@@ -657,7 +657,7 @@ def test_bus_exception_ends_loop_with_alarm() -> None:
 
 @pytest.mark.slow
 def test_process_mode_timing_target() -> None:
-    """Issue 5 target, 60 s: cycle start jitter p99 <= 100 us (process, pinned, SCHED_FIFO).
+    """Timing target, 60 s: cycle start jitter p99 <= 100 us (process, pinned, SCHED_FIFO).
     `late_cycles` is reported, not asserted: on a VM, host preemption (steal) delays cycles
     by milliseconds whatever the guest does (see bench/bench_ethercat.py)."""
     from ethercat.benchmark import run_bench

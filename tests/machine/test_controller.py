@@ -1,5 +1,5 @@
 """The machine controller on the real CyclicWorker + SimBus ("manual" worker mode: simulated
-time driven by the test). Every behaviour of issue 6 with short programs."""
+time driven by the test). Every state, command and reaction with short programs."""
 
 from __future__ import annotations
 
@@ -360,7 +360,9 @@ def test_stop_class_alarm_stops_along_the_path(ctl: MachineController) -> None:
     assert ctl.run_until(lambda: ctl.current_line == 3, 5)
     ctl._alarm_stop("test: coolant pressure lost", "controller", "test")  # a STOP-severity alarm
     assert ctl.state is MachineState.ALARM
-    assert not ctl.reset() or ctl.state is MachineState.IDLE  # refused until standstill
+    refused = ctl.reset()  # the axes are still braking along the arc: reset waits for standstill
+    assert not refused and "stand" in refused.reason
+    assert ctl.state is MachineState.ALARM
     assert ctl.run_until(lambda: ctl.worker.buffer_level() == 0 and ctl._job is None, 2)
     p = np.array(ctl.reference_position)
     assert np.hypot(p[0] - 20.0, p[1] - 10.0) == pytest.approx(10.0, abs=1e-9)  # stopped on the arc

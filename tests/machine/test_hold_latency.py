@@ -181,17 +181,26 @@ def test_a_splice_that_changes_nothing_keeps_the_queue_bit_identical(ctl: Machin
         np.testing.assert_array_equal(after[:n], before[:n])
 
 
-@pytest.mark.parametrize("at_s", [0.05, 0.55, 1.3, 2.15, 2.6])
-def test_hold_anywhere_then_resume_ends_exactly(ctl: MachineController, at_s: float) -> None:
-    """Holds requested at various points of the program (rapid, line, arc, near the end and
-    its M30 stop point) stop on the path within every limit; resume ends exactly."""
+# where to hold: a fraction of the program's cycle time, or (negative) seconds before its end
+HOLD_POINTS = {"rapid": 0.02, "line": 0.25, "arc": 0.55, "last line": 0.85, "30 ms before M30": -0.03}
+
+
+@pytest.mark.parametrize("where", sorted(HOLD_POINTS))
+def test_hold_anywhere_then_resume_ends_exactly(ctl: MachineController, where: str) -> None:
+    """Holds requested at points of the program (rapid, line, arc, last line, and just before
+    its M30 stop point) stop on the path within every limit; resume ends exactly. Every case
+    holds a running program: the times come from the program's own plan."""
     start(ctl)
+    cycle_s = ctl.plan.cycle_time_s
+    point = HOLD_POINTS[where]
+    at_s = cycle_s + point if point < 0 else point * cycle_s
     ctl.advance(at_s)
-    if ctl.state is MachineState.RUNNING:
-        assert ctl.feed_hold()
-        ctl.advance(0.5)
-        assert ctl.worker.buffer_level() == 0
-        assert ctl.resume()
+    assert ctl.state is MachineState.RUNNING, f"program over before {at_s:.3f} s of {cycle_s:.3f} s"
+    assert ctl.feed_hold()
+    ctl.advance(0.5)
+    assert ctl.state is MachineState.HOLD
+    assert ctl.worker.buffer_level() == 0
+    assert ctl.resume()
     run_to_idle(ctl)
     s = ctl.last_run
     assert s.completed

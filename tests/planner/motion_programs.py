@@ -1,4 +1,5 @@
-"""Random and named G-code programs for the motion tests (fixed seeds, no hypothesis needed)."""
+"""Random and named G-code programs for the motion tests: from fixed seeds, and drawn by
+hypothesis block by block (``programs``) so that a failing program shrinks."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
+from hypothesis import strategies as st
 
 from cli.plan import build_machine
 from planner.interpreter import parse_program
@@ -29,7 +31,7 @@ def machine_with_axes(axes: list[AxisSpec], **limits) -> MachineSpec:
 
 
 def _fmt(x: float) -> str:
-    return f"{x:.6f}"
+    return f"{x:.9f}"
 
 
 def xyza_machine() -> MachineSpec:
@@ -111,3 +113,57 @@ def parse(text: str, machine: MachineSpec | None = None, name: str = "<test>"):
 def sample_program(name: str, machine: MachineSpec | None = None):
     path = PROGRAMS / name
     return parse_program(path.read_text(), str(path), machine or paper_machine())
+
+
+@st.composite
+def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0) -> str:
+    """A G-code program drawn block by block by hypothesis (so a failing one shrinks to the
+    few blocks that matter): lines (long, tiny, nearly collinear), rapids, arcs and helices in
+    the three planes (I/J/K form, both directions, partial and full turns), feeds, dwells,
+    pauses, exact stop and blending. Every length is multiplied by ``scale``."""
+    pos = np.zeros(3)
+    out = ["G21 G90 G94 G17 F1800", "G00 X0 Y0 Z0"]
+    plane = "G17"
+    length = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
+    for _ in range(draw(st.integers(1, max_blocks))):
+        kind = draw(st.sampled_from(["line", "tiny", "collinear", "rapid", "arc", "arc", "event"]))
+        feed = draw(st.sampled_from(["", "", " F300", " F1200", " F3000"]))
+        if kind in ("line", "tiny", "collinear", "rapid"):
+            step = np.array([draw(length), draw(length), draw(length)])
+            if kind == "tiny":
+                step *= 1e-3
+            elif kind == "collinear":
+                step = np.array([5.0, 0.0, 0.0]) + 0.01 * step
+            step *= scale
+            if not np.any(np.abs(step) > 1e-6 * scale):
+                continue
+            pos = pos + step
+            code = "G00" if kind == "rapid" else "G01"
+            out.append(f"{code} X{_fmt(pos[0])} Y{_fmt(pos[1])} Z{_fmt(pos[2])}"
+                       + ("" if kind == "rapid" else feed or " F1800"))
+        elif kind == "arc":
+            plane = draw(st.sampled_from(["G17", "G18", "G19"]))
+            f, s, n = PLANES[plane]
+            # at least 4x LinuxCNC's zero-radius tolerance (0.00127 mm), whatever the scale
+            radius = max(draw(st.floats(0.3, 25.0)) * scale, 0.005)
+            a0 = draw(st.floats(-math.pi, math.pi))
+            sweep = draw(st.floats(0.2, 2 * math.pi - 0.2))
+            full = draw(st.booleans()) and draw(st.booleans())
+            ccw = draw(st.booleans())
+            center = pos.copy()
+            center[f] -= radius * math.cos(a0)
+            center[s] -= radius * math.sin(a0)
+            end = pos.copy()
+            if not full:
+                a1 = a0 + (sweep if ccw else -sweep)
+                end[f] = center[f] + radius * math.cos(a1)
+                end[s] = center[s] + radius * math.sin(a1)
+            end[n] += draw(st.sampled_from([0.0, 0.0, -2.0, 1.5])) * scale
+            words = " ".join(f"{'XYZ'[k]}{_fmt(end[k])}" for k in range(3))
+            offs = " ".join(f"{OFFSET_LETTER[k]}{_fmt(center[k] - pos[k])}" for k in (f, s))
+            out.append(f"{plane} {'G03' if ccw else 'G02'} {words} {offs}{feed}")
+            pos = end
+        else:
+            out.append(draw(st.sampled_from(["G04 P0.05", "M00", "M01", "G61", "G64", "S5000 M03", "M05"])))
+    out.append("M30")
+    return "\n".join(out) + "\n"

@@ -1,4 +1,4 @@
-"""`cnc-plan`: every flag of issue 4 section 5 and issue 3's --canon; bad programs."""
+"""`cnc-plan`: every flag (samples, CSV, plot, canonical calls, JSON report); bad programs."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The paper's figures, reproduced with the sample programs (issue 4 section 7)."""
+"""The paper's figures (Fig. 7, 9, 11, Table 3), reproduced with the sample programs."""
 
 from __future__ import annotations
 
