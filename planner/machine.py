@@ -1,18 +1,19 @@
 """Machine description the planner needs: axes, limits, planner settings, work offsets.
 
-Read from the machine configuration TOML (resources/machines/*.toml). The controller
-(app/machine) reads the same file for the sections the planner does not use ([homing], [bus]).
+Read from the machine configuration TOML (resources/machines/*.toml), declared once in
+``planner.schema``. The controller (app/machine) reads the same file, through the same schema,
+for the sections the planner does not use ([homing], [bus], [controller]).
 """
 
 from __future__ import annotations
 
-import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from planner.errors import PlannerError
+from planner.schema import Locator, validate
 
 WORK_OFFSET_NAMES: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59")
 PLANNER_MODES: tuple[str, ...] = ("lookahead", "paper")
@@ -65,7 +66,6 @@ class MachineSpec:
     limits: PathLimits = field(default_factory=PathLimits)
     planner: PlannerSettings = field(default_factory=PlannerSettings)
     work_offsets: dict[str, tuple[float, ...]] = field(default_factory=dict)
-    raw: dict[str, Any] = field(default_factory=dict)
 
     @property
     def axis_names(self) -> tuple[str, ...]:
@@ -106,20 +106,6 @@ class MachineSpec:
         return new
 
 
-def _number(table: dict[str, Any], key: str, where: str, default: float | None = None,
-            positive: bool = False) -> float:
-    if key not in table:
-        if default is None:
-            raise PlannerError(f"{where}: missing '{key}'")
-        return float(default)
-    value = table[key]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise PlannerError(f"{where}: '{key}' must be a number, got {value!r}")
-    if positive and value <= 0:
-        raise PlannerError(f"{where}: '{key}' must be greater than 0, got {value}")
-    return float(value)
-
-
 def _validate_planner(p: PlannerSettings, where: str) -> None:
     if p.mode not in PLANNER_MODES:
         raise PlannerError(f"{where}: planner mode must be one of {PLANNER_MODES}, got {p.mode!r}")
@@ -130,83 +116,78 @@ def _validate_planner(p: PlannerSettings, where: str) -> None:
         raise PlannerError(f"{where}: ts_s must be between 1e-05 and 0.1 s, got {p.ts_s}")
 
 
-def machine_from_dict(data: dict[str, Any], where: str = "<config>") -> MachineSpec:
-    """Validate a parsed configuration; every message names the file, the key and the value."""
-    axes_raw = data.get("axes")
-    if not isinstance(axes_raw, list) or not axes_raw:
-        raise PlannerError(f"{where}: at least one [[axes]] table is required")
+#: position counts must stay within int32 (CiA 402 0x607A/0x6064) with this margin over the travel
+COUNTS_LIMIT = 2**31 * 0.9
+
+
+def machine_from_dict(data: dict[str, Any], where: str | Locator = "<config>", text: str | None = None
+                      ) -> MachineSpec:
+    """Validate a parsed configuration (``planner.schema``, strict) and build the planner's
+    view of it; every message names the file, the line when ``text`` is given, the key and
+    the value."""
+    loc = where if isinstance(where, Locator) else Locator(where, text)
+    return machine_from_valid(validate(data, loc), loc)
+
+
+def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
+    """The planner's sections of a configuration already checked by ``schema.validate``, with
+    the checks across keys: travel, unique names and drives, offsets per axis, counts."""
     axes: list[AxisSpec] = []
-    for i, a in enumerate(axes_raw):
-        w = f"{where}: axes[{i}]"
-        name = str(a.get("name", "")).upper()
-        if len(name) != 1 or name not in AXIS_LETTERS:
-            raise PlannerError(f"{w}: name must be one of X Y Z A B C, got {a.get('name')!r}")
-        kind = a.get("kind", "rotary" if name in "ABC" else "linear")
-        if kind not in ("linear", "rotary"):
-            raise PlannerError(f"{w} ({name}): kind must be 'linear' or 'rotary', got {kind!r}")
-        direction = int(_number(a, "direction", f"{w} ({name})", 1))
-        if direction not in (1, -1):
-            raise PlannerError(f"{w} ({name}): direction must be 1 or -1, got {direction}")
-        lo = _number(a, "min", f"{w} ({name})")
-        hi = _number(a, "max", f"{w} ({name})")
+    for i, a in enumerate(valid["axes"]):
+        name = a["name"]
+        kind = a["kind"] or ("rotary" if name in "ABC" else "linear")
+        lo, hi = a["min"], a["max"]
         if lo >= hi:
-            raise PlannerError(f"{w} ({name}): min ({lo}) must be below max ({hi})")
+            raise loc.fail(("axes", i, "max"), f"min ({lo}) must be below max ({hi}) (axis {name})")
+        counts = max(abs(lo), abs(hi)) * a["counts_per_unit"]
+        if counts > COUNTS_LIMIT:
+            raise loc.fail(("axes", i, "counts_per_unit"),
+                           f"{a['counts_per_unit']:g} counts per unit over a travel to "
+                           f"{max(abs(lo), abs(hi)):g} "
+                           f"gives {counts:.4g} counts, beyond what the drive's 32-bit position holds "
+                           f"with a 10 % margin ({COUNTS_LIMIT:.4g}) (axis {name})")
         axes.append(AxisSpec(
             name=name, rotary=kind == "rotary",
-            drive_position=int(_number(a, "drive_position", f"{w} ({name})", i)),
-            counts_per_unit=_number(a, "counts_per_unit", f"{w} ({name})", 10_000, positive=True),
-            direction=direction, min_pos=lo, max_pos=hi,
-            v_max=_number(a, "v_max", f"{w} ({name})", positive=True),
-            a_max=_number(a, "a_max", f"{w} ({name})", positive=True),
-            j_max=_number(a, "j_max", f"{w} ({name})", positive=True),
-            following_error_window=_number(a, "following_error_window", f"{w} ({name})", 1.0,
-                                           positive=True),
+            drive_position=a["drive_position"] if a["drive_position"] is not None else i,
+            counts_per_unit=a["counts_per_unit"], direction=a["direction"], min_pos=lo, max_pos=hi,
+            v_max=a["v_max"], a_max=a["a_max"], j_max=a["j_max"],
+            following_error_window=a["following_error_window"],
         ))
     names = [a.name for a in axes]
     if len(set(names)) != len(names):
-        raise PlannerError(f"{where}: axis names must be unique, got {names}")
+        raise loc.fail(("axes",), f"axis names must be unique, got {names}")
     positions = [a.drive_position for a in axes]
     if len(set(positions)) != len(positions):
-        raise PlannerError(f"{where}: drive positions must be unique, got {positions}")
-
-    lim = data.get("limits", {})
-    limits = PathLimits(
-        v_max_mm_s=_number(lim, "v_max_mm_s", f"{where}: [limits]", 30.0, positive=True),
-        a_max_mm_s2=_number(lim, "a_max_mm_s2", f"{where}: [limits]", 1000.0, positive=True),
-        j_max_mm_s3=_number(lim, "j_max_mm_s3", f"{where}: [limits]", 10_000.0, positive=True),
-        rapid_mm_s=_number(lim, "rapid_mm_s", f"{where}: [limits]", 30.0, positive=True),
-    )
-    pl = data.get("planner", {})
-    planner = PlannerSettings(
-        ts_s=_number(pl, "ts_s", f"{where}: [planner]", 0.001, positive=True),
-        mode=str(pl.get("mode", "lookahead")),
-        interpolation=str(pl.get("interpolation", "exact")),
-    )
-    _validate_planner(planner, f"{where}: [planner]")
-
+        raise loc.fail(("axes",), f"drive positions must be unique, got {positions}")
+    lim = valid["limits"]
+    limits = PathLimits(v_max_mm_s=lim["v_max_mm_s"], a_max_mm_s2=lim["a_max_mm_s2"],
+                        j_max_mm_s3=lim["j_max_mm_s3"], rapid_mm_s=lim["rapid_mm_s"])
+    pl = valid["planner"]
+    planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"])
     offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in WORK_OFFSET_NAMES}
-    for key, value in data.get("offsets", {}).items():
-        if key not in WORK_OFFSET_NAMES:
-            raise PlannerError(f"{where}: [offsets]: unknown work offset {key!r} (G54-G59)")
-        if not isinstance(value, list) or len(value) != len(axes):
-            raise PlannerError(
-                f"{where}: [offsets] {key} needs {len(axes)} numbers ({' '.join(names)})")
-        offsets[key] = tuple(_number({"v": v}, "v", f"{where}: [offsets] {key}") for v in value)
-
-    machine = data.get("machine", {})
-    return MachineSpec(name=str(machine.get("name", "machine")), axes=tuple(axes),
-                       limits=limits, planner=planner, work_offsets=offsets, raw=data)
+    for key, value in valid["offsets"].items():
+        if len(value) != len(axes):
+            raise loc.fail(("offsets", key),
+                           f"[offsets] {key} needs {len(axes)} numbers ({' '.join(names)}), got {len(value)}")
+        offsets[key] = tuple(value)
+    return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
+                       work_offsets=offsets)
 
 
 def load_machine(path: str | Path) -> MachineSpec:
     """Read and validate a machine configuration TOML file."""
     p = Path(path)
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
+        text = p.read_text(encoding="utf-8")
+        data = tomllib.loads(text)
     except FileNotFoundError:
         raise PlannerError(f"{p}: machine configuration file not found") from None
+    except IsADirectoryError:
+        raise PlannerError(f"{p}: is a directory, not a machine configuration file") from None
+    except OSError as exc:
+        raise PlannerError(f"{p}: cannot read the machine configuration: {exc.strerror or exc}") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise PlannerError(f"{p}: not a valid TOML file: {exc}") from None
-    return machine_from_dict(data, str(p))
+    return machine_from_dict(data, str(p), text)
 
 

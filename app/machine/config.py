@@ -21,7 +21,6 @@ explicitly (keeping the damaged file as ``<file>.damaged``).
 
 from __future__ import annotations
 
-import math
 import os
 import shutil
 import tempfile
@@ -30,10 +29,15 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+import tomlkit
+import tomlkit.exceptions
+import tomlkit.items
+
 from app.atomic import atomic_write_text
 from app.machine.errors import ConfigError
 from planner.errors import PlannerError
-from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_dict
+from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
+from planner.schema import Locator, validate
 from resources import shipped_machine
 
 __all__ = [
@@ -49,10 +53,8 @@ __all__ = [
     "save_config",
 ]
 
-HOMING_METHODS = ("set_here", "drive")
 HEADER = "# Machine configuration (written by the CNC panel). Units: mm or deg, s."
 END_MARK = "# end of machine configuration"
-BUS_KINDS = ("sim", "soem")
 
 
 @dataclass(frozen=True, slots=True)
@@ -123,80 +125,39 @@ class MachineConfig:
 
 
 # ------------------------------------------------------------------------------ reading
-def _num(table: dict[str, Any], key: str, where: str, default: float, lo: float | None = None,
-         hi: float | None = None) -> float:
-    value = table.get(key, default)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ConfigError(f"{where}: '{key}' must be a number, got {value!r}")
-    if lo is not None and value < lo or hi is not None and value > hi:
-        raise ConfigError(f"{where}: '{key}' must be within [{lo}, {hi}], got {value}")
-    return float(value)
-
-
-def _int(table: dict[str, Any], key: str, where: str, default: int, lo: int = 0) -> int:
-    value = table.get(key, default)
-    if isinstance(value, bool) or not isinstance(value, int) or value < lo:
-        raise ConfigError(f"{where}: '{key}' must be an integer >= {lo}, got {value!r}")
-    return int(value)
-
-
-def config_from_dict(data: dict[str, Any], where: str = "<config>") -> MachineConfig:
-    """Validate a parsed configuration (every message names the file, key and value)."""
+def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | None = None) -> MachineConfig:
+    """Validate a parsed configuration against the one schema (``planner.schema``, strict:
+    unknown keys, wrong types and values out of range are errors naming the file, the line
+    when ``text`` is given, the key and the value) and build it."""
+    loc = Locator(where, text)
     try:
-        machine = machine_from_dict(data, where)
+        valid = validate(data, loc)
+        machine = machine_from_valid(valid, loc)
+        n = len(machine.axes)
+        positions = {a.drive_position for a in machine.axes}
+        b = valid["bus"]
+        for i, d in enumerate(b["drives"]):
+            if d["position"] is None:
+                d["position"] = i
+            if d["position"] not in positions:
+                raise loc.fail(("bus", "drives", i, "position"),
+                               f"{d['position']} is not the drive of any axis ({sorted(positions)})")
+        if b["kind"] == "soem" and not b["adapter"]:
+            raise loc.fail(("bus", "adapter"), 'is required when kind = "soem" (the network interface)')
+        c = valid["controller"]
+        if c["spindle_drive"] >= n:
+            raise loc.fail(("controller", "spindle_drive"),
+                           f"{c['spindle_drive']} must be below the axis count {n}")
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
-    n = len(machine.axes)
-    h = data.get("homing", {})
-    if not isinstance(h, dict):
-        raise ConfigError(f"{where}: [homing] must be a table")
-    method = h.get("method", "set_here")
-    if method not in HOMING_METHODS:
-        raise ConfigError(f"{where}: [homing] method must be one of {HOMING_METHODS}, got {method!r}")
-    required = h.get("required", True)
-    if not isinstance(required, bool):
-        raise ConfigError(f"{where}: [homing] required must be true or false, got {required!r}")
-    homing = HomingSettings(required=required, method=method,
-                            drive_method=_int(h, "drive_method", f"{where}: [homing]", 35, lo=-128),
-                            timeout_s=_num(h, "timeout_s", f"{where}: [homing]", 60.0, 0.1, 3600.0))
-    b = data.get("bus", {})
-    if not isinstance(b, dict):
-        raise ConfigError(f"{where}: [bus] must be a table")
-    kind = b.get("kind", "sim")
-    if kind not in BUS_KINDS:
-        raise ConfigError(f"{where}: [bus] kind must be one of {BUS_KINDS}, got {kind!r}")
-    adapter = b.get("adapter", "")
-    if not isinstance(adapter, str):
-        raise ConfigError(f"{where}: [bus] adapter must be a string, got {adapter!r}")
-    if kind == "soem" and not adapter:
-        raise ConfigError(f"{where}: [bus] adapter is required when kind = \"soem\"")
-    drives = []
-    for i, d in enumerate(b.get("drives", [])):
-        w = f"{where}: bus.drives[{i}]"
-        drives.append(DriveIdentity(position=_int(d, "position", w, i),
-                                    vendor_id=_int(d, "vendor_id", w, 0),
-                                    product_code=_int(d, "product_code", w, 0)))
-    positions = {a.drive_position for a in machine.axes}
-    for d in drives:
-        if d.position not in positions:
-            raise ConfigError(f"{where}: bus.drives position {d.position} is not the drive of any axis")
-    bus = BusSettings(kind=kind, adapter=adapter,
-                      wkc_error_limit=_int(b, "wkc_error_limit", f"{where}: [bus]", 3, lo=1),
-                      drives=tuple(drives))
-    c = data.get("controller", {})
-    w = f"{where}: [controller]"
-    ctl = ControllerSettings(
-        jog_speed_mm_s=_num(c, "jog_speed_mm_s", w, 10.0, 1e-3, 1e4),
-        lead_s=_num(c, "lead_s", w, DEFAULT_LEAD_S, 0.01, 1.0),
-        accel_reserve=_num(c, "accel_reserve", w, 0.15, 0.01, 0.5),
-        jerk_reserve=_num(c, "jerk_reserve", w, 0.3, 0.01, 0.7),
-        spindle_max_rpm=_num(c, "spindle_max_rpm", w, 24000.0, 1.0, 1e6),
-        spindle_drive=_int(c, "spindle_drive", w, 0),
-        position_tolerance=_num(c, "position_tolerance", w, 0.01, 0.0, 100.0),
-    )
-    if ctl.spindle_drive >= n:
-        raise ConfigError(f"{w}: spindle_drive {ctl.spindle_drive} must be below the axis count {n}")
-    return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ctl, path=where)
+    h = valid["homing"]
+    homing = HomingSettings(required=h["required"], method=h["method"], drive_method=h["drive_method"],
+                            timeout_s=h["timeout_s"])
+    drives = tuple(DriveIdentity(d["position"], d["vendor_id"], d["product_code"]) for d in b["drives"])
+    bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
+                      drives=drives)
+    return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
+                         path=where)
 
 
 def _parse(path: Path) -> MachineConfig:
@@ -213,7 +174,7 @@ def _parse(path: Path) -> MachineConfig:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: damaged file, not valid TOML: {exc}", str(path)) from None
-    return config_from_dict(data, str(path))
+    return config_from_dict(data, str(path), text)
 
 
 def backup_path(path: str | os.PathLike[str]) -> Path:
@@ -318,6 +279,54 @@ def config_to_toml(config: MachineConfig) -> str:
     return "\n".join(out)
 
 
+def render_config(config: MachineConfig, existing: str | None = None) -> str:
+    """The configuration as TOML text. With the current file's text, only the values that
+    changed are rewritten there: the integrator's comments, key order, number formats (hex
+    identities, integers) and layout stay; keys the configuration no longer has go. A file
+    that does not parse is replaced by the fresh text."""
+    fresh = config_to_toml(config)
+    if existing is None:
+        return fresh
+    try:
+        doc = tomlkit.parse(existing)
+    except tomlkit.exceptions.ParseError:
+        return fresh
+    _merge(doc, tomlkit.parse(fresh))
+    text = tomlkit.dumps(doc)
+    if not text.startswith(HEADER):      # written by the panel from now on: truncation is detectable
+        text = HEADER + "\n" + text
+    if END_MARK not in text[-200:]:
+        text = text.rstrip("\n") + "\n\n" + END_MARK + "\n"
+    return text
+
+
+def _merge(dst: Any, src: Any) -> None:
+    """Make tomlkit table `dst` hold the values of `src`, touching only what differs."""
+    for key, new in src.items():
+        if key not in dst:
+            dst[key] = new
+            continue
+        old = dst[key]
+        if isinstance(new, dict) and isinstance(old, dict):
+            _merge(old, new)
+        elif isinstance(new, tomlkit.items.AoT) and isinstance(old, tomlkit.items.AoT):
+            for i, table in enumerate(new):
+                if i < len(old):
+                    _merge(old[i], table)
+                else:
+                    old.append(table)
+            while len(old) > len(new):
+                del old[len(old) - 1]
+        elif _plain(old) != _plain(new):
+            dst[key] = _plain(new)
+    for key in [k for k in dst if k not in src]:
+        del dst[key]
+
+
+def _plain(value: Any) -> Any:
+    return value.unwrap() if hasattr(value, "unwrap") else value
+
+
 def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = None) -> MachineConfig:
     """Validate and write atomically; the previous valid file is kept as ``<file>.bak``.
 
@@ -327,7 +336,11 @@ def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = Non
     p = Path(path if path is not None else config.path)
     if not str(p):
         raise ConfigError("no file name to save the machine configuration to")
-    text = config_to_toml(config)
+    try:
+        existing: str | None = p.read_text(encoding="utf-8") if p.is_file() else None
+    except (OSError, UnicodeDecodeError):
+        existing = None
+    text = render_config(config, existing)
     try:
         new = config_from_dict(tomllib.loads(text), str(p))
     except tomllib.TOMLDecodeError as exc:  # pragma: no cover - writer bug

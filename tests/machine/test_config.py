@@ -117,3 +117,34 @@ def test_update_config_is_atomic_and_applied(qapp, config_path: Path, state_dir:
         assert backup_path(config_path).exists()
     finally:
         ctl.shutdown()
+
+
+def test_saving_keeps_the_integrators_comments_order_and_formats(tmp_path: Path) -> None:
+    """A change made on the panel rewrites only that value: every comment, the key order and
+    the hexadecimal drive identities of the integrator's file stay as they were."""
+    p = tmp_path / "machine.toml"
+    original = shipped_machine("xyz_mill").read_text(encoding="utf-8")
+    p.write_text(original, encoding="utf-8")
+    cfg = load_config(p)
+    save_config(replace(cfg, machine=cfg.machine.with_limits(v_max_mm_s=25.0)), p)
+    text = p.read_text(encoding="utf-8")
+    for line in original.splitlines():
+        if line.startswith("v_max_mm_s"):
+            assert "v_max_mm_s = 25.0" in text
+        else:
+            assert line in text, f"lost: {line!r}"
+    kept = [ln for ln in text.splitlines() if ln in original.splitlines() and ln.strip()]
+    assert kept == [ln for ln in original.splitlines() if ln.strip() and not ln.startswith("v_max_mm_s")]
+    assert "vendor_id = 0x00000539" in text
+    assert load_config(p).machine.limits.v_max_mm_s == 25.0
+    assert load_config(p) == replace(cfg, machine=cfg.machine.with_limits(v_max_mm_s=25.0), path=str(p))
+
+
+def test_unknown_keys_in_the_file_are_refused_with_file_and_line(tmp_path: Path) -> None:
+    p = tmp_path / "machine.toml"
+    text = shipped_machine("xyz_mill").read_text(encoding="utf-8").replace("[limits]", "[limitz]")
+    p.write_text(text, encoding="utf-8")
+    line = text.splitlines().index(next(t for t in text.splitlines() if t.startswith("[limitz]"))) + 1
+    with pytest.raises(ConfigError) as exc:
+        load_config(p)
+    assert f"{p}:{line}: limitz: unknown section (did you mean 'limits'?)" in str(exc.value)

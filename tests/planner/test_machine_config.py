@@ -4,6 +4,8 @@ the key and the value in the message (never silently replaced by defaults)."""
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from planner.errors import PlannerError
 from planner.machine import MachineSpec, load_machine, machine_from_dict
@@ -40,12 +42,20 @@ def _axis(**over):
 
 
 @pytest.mark.parametrize("axis, fragment", [
-    (_axis(name="Q"), "name must be one of"),
+    (_axis(name="Q"), "axes[0].name: must be one of 'X', 'Y', 'Z', 'A', 'B', 'C', got 'Q'"),
     (_axis(min=5.0, max=1.0), "min (5.0) must be below max (1.0)"),
-    (_axis(v_max=-1.0), "'v_max' must be greater than 0"),
-    (_axis(a_max="fast"), "'a_max' must be a number"),
-    (_axis(direction=2), "direction must be 1 or -1"),
-    (_axis(kind="spiral"), "kind must be 'linear' or 'rotary'"),
+    (_axis(v_max=-1.0), "axes[0].v_max: must be within [0.001, 100000], got -1.0"),
+    (_axis(a_max="fast"), "axes[0].a_max: must be a number, got 'fast'"),
+    (_axis(direction=2), "axes[0].direction: must be one of 1, -1, got 2"),
+    (_axis(direction=1.5), "axes[0].direction: must be a whole number, got 1.5"),
+    (_axis(drive_position=0.7), "axes[0].drive_position: must be a whole number, got 0.7"),
+    (_axis(kind="spiral"), "axes[0].kind: must be one of 'linear', 'rotary', got 'spiral'"),
+    (_axis(counts_per_unit=1e300), "axes[0].counts_per_unit: must be within [0.001, 1e+09], got 1e+300"),
+    (_axis(j_max=1e-300), "axes[0].j_max: must be within [0.001, 1e+10], got 1e-300"),
+    (_axis(counts_per_unit=10_000_000.0, min=-250.0, max=250.0),
+     "beyond what the drive's 32-bit position holds"),
+    (_axis(following_error_windw=1.0), "axes[0].following_error_windw: unknown key (did you mean "
+                                       "'following_error_window'?)"),
 ])
 def test_bad_axis_values_are_refused(axis, fragment) -> None:
     with pytest.raises(PlannerError, match="m.toml") as info:
@@ -54,7 +64,7 @@ def test_bad_axis_values_are_refused(axis, fragment) -> None:
 
 
 def test_bad_planner_mode_is_refused() -> None:
-    with pytest.raises(PlannerError, match="planner mode must be one of"):
+    with pytest.raises(PlannerError, match="planner.mode: must be one of 'lookahead', 'paper', got 'fast'"):
         machine_from_dict({"axes": [_axis()], "planner": {"mode": "fast"}}, "m.toml")
 
 
@@ -73,3 +83,56 @@ def test_damaged_file_says_so(tmp_path) -> None:
 def test_missing_file_says_so(tmp_path) -> None:
     with pytest.raises(PlannerError, match="not found"):
         load_machine(tmp_path / "nope.toml")
+
+
+@pytest.mark.parametrize("data, fragment", [
+    ({"planner": "fast"}, "planner: must be a table"),
+    ({"limits": 5}, "limits: must be a table"),
+    ({"axes": [1, 2]}, "axes: must be [[axes]] tables"),
+    ({"bus": {"drives": "abc"}}, "bus.drives: must be [[bus.drives]] tables"),
+    ({"limitz": {}}, "limitz: unknown section (did you mean 'limits'?)"),
+    ({"limits": {"vmax_mm_s": 5.0}}, "limits.vmax_mm_s: unknown key (did you mean 'v_max_mm_s'?)"),
+    ({"planner": {"ts": 0.001}}, "planner.ts: unknown key (did you mean 'ts_s'?)"),
+    ({"offsets": {"G60": [0.0]}}, "offsets.G60: unknown key"),
+    ({"planner": {"ts_s": True}}, "planner.ts_s: must be a number, got True"),
+    ({"limits": {"a_max_mm_s2": float("nan")}}, "limits.a_max_mm_s2: must be a finite number"),
+])
+def test_strict_schema_refuses_with_the_key(data, fragment) -> None:
+    """Wrong shapes and misspelled keys are errors naming the key, never a traceback and
+    never silently ignored in favour of a default."""
+    with pytest.raises(PlannerError) as info:
+        machine_from_dict({"axes": [_axis()], **data}, "m.toml")
+    assert fragment in str(info.value)
+
+
+def test_errors_carry_the_line_of_the_key(tmp_path) -> None:
+    path = tmp_path / "m.toml"
+    path.write_text(shipped_machine("xyz_mill").read_text(encoding="utf-8")
+                    .replace("following_error_window = 1.0", "following_error_windw = 1.0", 2)
+                    .replace("following_error_windw = 1.0", "following_error_window = 1.0", 1),
+                    encoding="utf-8")
+    line = [n for n, t in enumerate(path.read_text().splitlines(), 1) if "windw" in t][0]
+    with pytest.raises(PlannerError) as info:
+        load_machine(path)
+    assert str(info.value).startswith(f"{path}:{line}: axes[1].following_error_windw: unknown key")
+
+
+def test_a_directory_or_unreadable_file_is_a_clear_error(tmp_path) -> None:
+    with pytest.raises(PlannerError, match="is a directory"):
+        load_machine(tmp_path)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.recursive(st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=8),
+                    lambda children: st.lists(children, max_size=4)
+                    | st.dictionaries(st.sampled_from(["axes", "limits", "planner", "offsets", "name", "min",
+                                                       "max", "v_max", "a_max", "j_max", "G54", "bus",
+                                                       "drives", "kind", "x"]), children, max_size=5),
+                    max_leaves=25))
+def test_any_parsed_structure_is_accepted_or_refused_with_a_planner_error(data) -> None:
+    """Fuzz: whatever structure a TOML file parses to, reading it gives a machine or a
+    PlannerError, nothing else."""
+    try:
+        machine_from_dict(data if isinstance(data, dict) else {"axes": data}, "f.toml")
+    except PlannerError:
+        pass

@@ -1,0 +1,261 @@
+"""The machine configuration file, declared once: every section, key, type, range and default.
+
+The planner reads its sections from it (``planner.machine``) and the controller the rest
+(``app.machine.config``); both go through ``validate``, so a file is accepted or refused the
+same way by ``cnc-plan``, ``cnc-run`` and the panel. Strict: an unknown section or key is an
+error (with the nearest known name), a value of the wrong type is an error (an integer key
+takes no 1.5, a number no "fast"), and every number has a range. Every message names the
+file, the line when the text is at hand, the key and the value.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from planner.errors import PlannerError
+
+__all__ = ["MACHINE_FILE", "REQUIRED", "Key", "Locator", "Table", "key_lines", "validate"]
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+REQUIRED: Any = _Required()
+
+
+@dataclass(frozen=True, slots=True)
+class Key:
+    """One key: its type ("float", "int", "bool", "str", "floats"), default (``REQUIRED`` when
+    it must be given, None when derived by the reader), inclusive range or choices."""
+
+    name: str
+    kind: str
+    default: Any = REQUIRED
+    lo: float | None = None
+    hi: float | None = None
+    choices: tuple[Any, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class Table:
+    """A table (``[name]``) or an array of tables (``[[name]]``) and its keys; ``pattern``
+    admits further keys by name (work offsets G54..G59)."""
+
+    name: str
+    keys: tuple[Key, ...] = ()
+    array: bool = False
+    required: bool = False
+    tables: tuple[Table, ...] = ()
+    pattern: str = ""
+    pattern_key: Key | None = None
+    doc: str = field(default="", compare=False)
+
+
+_LIN = 1e6        # mm: positions and travel
+MACHINE_FILE = Table("", tables=(
+    Table("machine", (Key("name", "str", "machine"),)),
+    Table("axes", (
+        Key("name", "str", choices=("X", "Y", "Z", "A", "B", "C")),
+        Key("kind", "str", None, choices=("linear", "rotary")),
+        Key("drive_position", "int", None, 0, 65535),
+        Key("counts_per_unit", "float", 10_000.0, 1e-3, 1e9),
+        Key("direction", "int", 1, choices=(1, -1)),
+        Key("min", "float", REQUIRED, -_LIN, _LIN),
+        Key("max", "float", REQUIRED, -_LIN, _LIN),
+        # lower bounds keep planning bounded: a jerk of 1e-300 makes every move take forever
+        Key("v_max", "float", REQUIRED, 1e-3, 1e5),
+        Key("a_max", "float", REQUIRED, 1e-3, 1e7),
+        Key("j_max", "float", REQUIRED, 1e-3, 1e10),
+        Key("following_error_window", "float", 1.0, 1e-6, 1e4),
+    ), array=True, required=True),
+    Table("limits", (
+        Key("v_max_mm_s", "float", 30.0, 1e-3, 1e5),
+        Key("a_max_mm_s2", "float", 1000.0, 1e-3, 1e7),
+        Key("j_max_mm_s3", "float", 10_000.0, 1e-3, 1e10),
+        Key("rapid_mm_s", "float", 30.0, 1e-3, 1e5),
+    )),
+    Table("planner", (
+        Key("ts_s", "float", 0.001, 1e-5, 0.1),
+        Key("mode", "str", "lookahead", choices=("lookahead", "paper")),
+        Key("interpolation", "str", "exact", choices=("exact", "taylor", "classic")),
+    )),
+    Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
+    Table("homing", (
+        Key("required", "bool", True),
+        Key("method", "str", "set_here", choices=("set_here", "drive")),
+        Key("drive_method", "int", 35, -128, 127),
+        Key("timeout_s", "float", 60.0, 0.1, 3600.0),
+    )),
+    Table("bus", (
+        Key("kind", "str", "sim", choices=("sim", "soem")),
+        Key("adapter", "str", ""),
+        Key("wkc_error_limit", "int", 3, 1, 1000),
+    ), tables=(
+        Table("drives", (
+            Key("position", "int", None, 0, 65535),
+            Key("vendor_id", "int", 0, 0, 0xFFFF_FFFF),
+            Key("product_code", "int", 0, 0, 0xFFFF_FFFF),
+        ), array=True),
+    )),
+    Table("controller", (
+        Key("jog_speed_mm_s", "float", 10.0, 1e-3, 1e4),
+        Key("lead_s", "float", 0.5, 0.01, 1.0),
+        Key("accel_reserve", "float", 0.15, 0.01, 0.5),
+        Key("jerk_reserve", "float", 0.3, 0.01, 0.7),
+        Key("spindle_max_rpm", "float", 24000.0, 1.0, 1e6),
+        Key("spindle_drive", "int", 0, 0, 63),
+        Key("position_tolerance", "float", 0.01, 0.0, 100.0),
+    )),
+))
+
+_HEADER_RE = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.-]+)\s*\]\]?")
+_KEY_RE = re.compile(r"^\s*([A-Za-z0-9_-]+)\s*=")
+
+
+def key_lines(text: str) -> dict[tuple[str | int, ...], int]:
+    """Line numbers (1-based) of the tables and keys of a TOML text, by path: ("limits",),
+    ("limits", "v_max_mm_s"), ("axes", 1, "v_max"), ("bus", "drives", 0, "position").
+    Plain headers and ``key = value`` lines only; anything else has no line."""
+    lines: dict[tuple[str | int, ...], int] = {}
+    counters: dict[str, int] = {}
+    current: tuple[str | int, ...] = ()
+    for number, line in enumerate(text.splitlines(), start=1):
+        m = _HEADER_RE.match(line)
+        if m:
+            parts = m.group(2).split(".")
+            path: list[str | int] = []
+            for depth, part in enumerate(parts):
+                path.append(part)
+                dotted = ".".join(parts[:depth + 1])
+                last = depth == len(parts) - 1
+                if m.group(1) == "[[" and last:
+                    counters[dotted] = counters.get(dotted, -1) + 1
+                    path.append(counters[dotted])
+                elif dotted in counters:         # inside the latest element of an array
+                    path.append(counters[dotted])
+            current = tuple(path)
+            lines.setdefault(current, number)
+            continue
+        k = _KEY_RE.match(line)
+        if k:
+            lines.setdefault((*current, k.group(1)), number)
+    return lines
+
+
+class Locator:
+    """Turns a key's path into ``file:line: key.path: message`` errors."""
+
+    def __init__(self, where: str, text: str | None) -> None:
+        self.where = where
+        self.lines = key_lines(text) if text else {}
+
+    def fail(self, path: tuple[str | int, ...], message: str) -> PlannerError:
+        line = 0
+        for n in range(len(path), 0, -1):        # the key's line, else its table's
+            line = self.lines.get(path[:n], 0)
+            if line:
+                break
+        loc = f"{self.where}:{line}" if line else self.where
+        return PlannerError(f"{loc}: {_dotted(path)}: {message}")
+
+
+def _dotted(path: tuple[str | int, ...]) -> str:
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else p)
+    return out or "(top level)"
+
+
+def _suggest(name: str, known: list[str]) -> str:
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+    return f" (did you mean '{close[0]}'?)" if close else f" (known: {', '.join(known)})"
+
+
+def _check_value(ctx: Locator, path: tuple[str | int, ...], key: Key, value: Any) -> Any:
+    kind = key.kind
+    if kind == "bool":
+        if not isinstance(value, bool):
+            raise ctx.fail(path, f"must be true or false, got {value!r}")
+        return value
+    if kind == "str":
+        if not isinstance(value, str):
+            raise ctx.fail(path, f"must be a string, got {value!r}")
+        if key.choices and value not in key.choices:
+            raise ctx.fail(path, f"must be one of {', '.join(map(repr, key.choices))}, got {value!r}")
+        return value
+    if kind == "floats":
+        if not isinstance(value, list):
+            raise ctx.fail(path, f"must be a list of numbers, got {value!r}")
+        return [_number(ctx, (*path, i), key, v, float) for i, v in enumerate(value)]
+    return _number(ctx, path, key, value, int if kind == "int" else float)
+
+
+def _number(ctx: Locator, path: tuple[str | int, ...], key: Key, value: Any, kind: type) -> Any:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        what = "a whole number" if kind is int else "a number"
+        raise ctx.fail(path, f"must be {what}, got {value!r}")
+    if kind is int and not isinstance(value, int):
+        raise ctx.fail(path, f"must be a whole number, got {value!r}")
+    if not math.isfinite(value):
+        raise ctx.fail(path, f"must be a finite number, got {value!r}")
+    if key.choices and value not in key.choices:
+        raise ctx.fail(path, f"must be one of {', '.join(map(str, key.choices))}, got {value!r}")
+    if key.lo is not None and value < key.lo or key.hi is not None and value > key.hi:
+        raise ctx.fail(path, f"must be within [{key.lo:g}, {key.hi:g}], got {value!r}")
+    return kind(value)
+
+
+def _table(ctx: Locator, spec: Table, data: Any, path: tuple[str | int, ...]) -> dict[str, Any]:
+    if not isinstance(data, dict):
+        raise ctx.fail(path, f"must be a table ([{_dotted(path)}]), got {data!r}")
+    keys = {k.name: k for k in spec.keys}
+    subs = {t.name: t for t in spec.tables}
+    out: dict[str, Any] = {}
+    for name, value in data.items():
+        if name in keys:
+            out[name] = _check_value(ctx, (*path, name), keys[name], value)
+        elif name in subs:
+            out[name] = _section(ctx, subs[name], value, (*path, name))
+        elif spec.pattern and spec.pattern_key is not None and re.fullmatch(spec.pattern, name):
+            out[name] = _check_value(ctx, (*path, name), spec.pattern_key, value)
+        else:
+            known = sorted([*keys, *subs])
+            what = "section" if path == () else "key"
+            if spec.pattern:
+                raise ctx.fail((*path, name), f"unknown {what} (allowed: {spec.pattern})")
+            raise ctx.fail((*path, name), f"unknown {what}{_suggest(name, known)}")
+    for name, key in keys.items():
+        if name not in out:
+            if key.default is REQUIRED:
+                raise ctx.fail(path, f"missing '{name}'")
+            out[name] = key.default
+    for name, sub in subs.items():
+        if name not in out:
+            if sub.required:
+                raise ctx.fail(path, f"at least one [[{_dotted((*path, name))}]] table is required")
+            out[name] = [] if sub.array else _table(ctx, sub, {}, (*path, name))
+    return out
+
+
+def _section(ctx: Locator, spec: Table, value: Any, path: tuple[str | int, ...]) -> Any:
+    if spec.array:
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            raise ctx.fail(path, f"must be [[{_dotted(path)}]] tables, got {value!r}")
+        if spec.required and not value:
+            raise ctx.fail(path, f"at least one [[{_dotted(path)}]] table is required")
+        return [_table(ctx, spec, v, (*path, i)) for i, v in enumerate(value)]
+    return _table(ctx, spec, value, path)
+
+
+def validate(data: dict[str, Any], where: str | Locator = "<config>", text: str | None = None,
+             schema: Table = MACHINE_FILE) -> dict[str, Any]:
+    """The configuration checked against the schema, with defaults filled in (derived keys
+    stay None). ``text``: the file's text, for line numbers in the messages."""
+    loc = where if isinstance(where, Locator) else Locator(where, text)
+    return _table(loc, schema, data, ())
