@@ -20,8 +20,8 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from .drive_model import OBJECTS
 from .errors import ConfigurationError, EtherCATError
+from .object_dictionary import OBJECTS
 
 _FORMATS = {"u8": "<B", "i8": "<b", "u16": "<H", "i16": "<h", "u32": "<I", "i32": "<i", "u64": "<Q",
             "i64": "<q"}

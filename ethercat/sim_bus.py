@@ -24,8 +24,9 @@ import math
 from collections.abc import Sequence
 
 from .bus import Bus, DriveSpec, SlaveInfo
-from .drive_model import ERROR_OVERCURRENT, OBJECTS, DriveModel, DriveParams, decode_object, encode_object
+from .drive_model import DriveModel, DriveParams
 from .errors import ConfigurationError, SdoAbortError
+from .object_dictionary import ERROR_OVERCURRENT, OBJECTS, decode_object, encode_object
 
 #: injection names accepted by `SimBus.inject`
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",

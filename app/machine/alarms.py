@@ -1,26 +1,36 @@
 """Alarms: raised with time, source, cause and severity, persisted, acknowledged; the worker's
 alarms mapped to reactions (quick-stop class: keep the resume point; STOP class: a stop along
-the path). Part of ``MachineController`` (mixed in).
+the path). A part of ``MachineController``.
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from app.machine.model import Alarm, AlarmState, CommandResult, MachineState, Severity, SpindleState
 
-__all__ = ["AlarmMixin"]
+if TYPE_CHECKING:
+    from app.machine.controller import MachineController
+
+__all__ = ["AlarmLog"]
 
 
-class AlarmMixin:
+class AlarmLog:
     """Alarm list, acknowledgement and reactions.
 
-    Mixed into ``MachineController``, which holds the state.
+    A part of ``MachineController`` (``controller.alarm_log``): it owns the state set up in
+    ``__init__`` and reaches the other parts through the facade ``m``.
     """
 
-    def _raise_alarm(self, source: str, cause: str, severity: Severity, code: str = "") -> Alarm:
+    def __init__(self, m: MachineController) -> None:
+        self.m = m
+        self.alarms: list[Alarm] = m.conn.store.load_alarms()
+        self._next_alarm_id = max((a.id for a in self.alarms), default=0) + 1
+        self.seen_worker_alarms: set[tuple[int, int, str]] = set()
+
+    def raise_alarm(self, source: str, cause: str, severity: Severity, code: str = "") -> Alarm:
         alarm = Alarm(
             id=self._next_alarm_id,
             time_s=time.time(),
@@ -31,97 +41,102 @@ class AlarmMixin:
             code=code,
         )
         self._next_alarm_id += 1
-        self._alarms.append(alarm)
-        del self._alarms[:-500]
+        self.alarms.append(alarm)
+        del self.alarms[:-500]
         try:
-            self._store.save_alarms(self._alarms)
+            self.m.conn.store.save_alarms(self.alarms)
         except OSError:
             pass
-        self.alarmsChanged.emit(tuple(self._alarms))
-        self.message.emit(f"{source}: {cause}")
+        self.m.alarmsChanged.emit(tuple(self.alarms))
+        self.m.message.emit(f"{source}: {cause}")
         return alarm
 
-    def _ack(self, alarm_id: int) -> bool:
-        for k, a in enumerate(self._alarms):
+    def ack(self, alarm_id: int) -> bool:
+        for k, a in enumerate(self.alarms):
             if a.id == alarm_id and a.active:
-                self._alarms[k] = replace(a, state=AlarmState.ACKNOWLEDGED)
+                self.alarms[k] = replace(a, state=AlarmState.ACKNOWLEDGED)
                 return True
         return False
 
-    def _alarms_changed(self) -> None:
+    def alarms_changed(self) -> None:
         try:
-            self._store.save_alarms(self._alarms)
+            self.m.conn.store.save_alarms(self.alarms)
         except OSError:
             pass
-        self.alarmsChanged.emit(tuple(self._alarms))
+        self.m.alarmsChanged.emit(tuple(self.alarms))
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         """Acknowledge one alarm (all active ones when None); persisted."""
         if alarm_id is None:
-            for a in list(self._alarms):
+            for a in list(self.alarms):
                 if a.active:
-                    self._ack(a.id)
-        elif not self._ack(int(alarm_id)):
-            return self._refuse("acknowledge_alarm", f"no active alarm with id {alarm_id}")
-        self._alarms_changed()
-        return self._ok("acknowledge_alarm")
+                    self.ack(a.id)
+        elif not self.ack(int(alarm_id)):
+            return self.m.states.refuse("acknowledge_alarm", f"no active alarm with id {alarm_id}")
+        self.alarms_changed()
+        return self.m.states.ok("acknowledge_alarm")
 
-    def _handle_worker_alarms(self, snap: Any) -> None:
+    def handle_worker_alarms(self, snap: Any) -> None:
         from ethercat.worker import AlarmCode
 
         for a in snap.alarms:
             key = (int(a.code), int(a.cycle), a.axis)
-            if key in self._seen_worker_alarms:
+            if key in self.seen_worker_alarms:
                 continue
-            self._seen_worker_alarms.add(key)
+            self.seen_worker_alarms.add(key)
             source = f"drive {a.axis}" if a.axis else "worker"
             if a.code is AlarmCode.UNDERRUN:
-                self._raise_alarm(source, a.message, Severity.WARNING, "underrun")
+                self.raise_alarm(source, a.message, Severity.WARNING, "underrun")
             elif a.code is AlarmCode.ESTOP:
-                if self._state is not MachineState.ESTOP:
-                    self._raise_alarm(source, a.message, Severity.ESTOP, "estop")
-                    self._enter_estop(a.message)
-            elif a.code is AlarmCode.QUICK_STOP and self._state is MachineState.ESTOP:
+                if self.m.states.state is not MachineState.ESTOP:
+                    self.raise_alarm(source, a.message, Severity.ESTOP, "estop")
+                    self.m.states.enter_estop(a.message)
+            elif a.code is AlarmCode.QUICK_STOP and self.m.states.state is MachineState.ESTOP:
                 continue
             elif a.code is AlarmCode.HOMING_ERROR:
-                self._raise_alarm(source, a.message, Severity.STOP, "homing_error")
-                self._homing_queue.clear()
-                self._homing_axis = -1
-                if self._state in (MachineState.HOMING, MachineState.IDLE):
-                    self._set_state(MachineState.ALARM, a.message)
+                self.raise_alarm(source, a.message, Severity.STOP, "homing_error")
+                self.m.pos.homing_queue.clear()
+                self.m.pos.homing_axis = -1
+                if self.m.states.state in (MachineState.HOMING, MachineState.IDLE):
+                    self.m.states.set_state(MachineState.ALARM, a.message)
             else:
-                self._fault(a.message, source, a.code.name.lower())
+                self.fault(a.message, source, a.code.name.lower())
 
-    def _fault(self, cause: str, source: str, code: str) -> None:
+    def fault(self, cause: str, source: str, code: str) -> None:
         """A quick-stop class alarm: the worker already stopped the drives; keep the resume point."""
-        self._raise_alarm(source, cause, Severity.QUICK_STOP, code)
-        with self._lock:
-            job = self._job
+        self.raise_alarm(source, cause, Severity.QUICK_STOP, code)
+        with self.m._lock:
+            job = self.m.stream.job
             if job is not None:
-                self._resume = job.resume_point(self._consumed(), cause)
-            self._drop_job(completed=False, reason=cause)
-            if self._worker is not None:
+                self.m.run.resume_point = job.resume_point(self.m.stream.consumed(), cause)
+            self.m.stream.drop_job(completed=False, reason=cause)
+            if self.m.worker is not None:
                 try:
-                    self._worker.flush()
+                    self.m.worker.flush()
                 except Exception:  # noqa: BLE001
                     pass
-        self._homing_queue.clear()
-        self._homing_axis = -1
-        if self._state not in (MachineState.ESTOP, MachineState.DISCONNECTED, MachineState.ALARM):
-            self._set_state(MachineState.ALARM, cause)
-        if self._spindle.on:
-            self._apply_spindle(SpindleState())
+        self.m.pos.homing_queue.clear()
+        self.m.pos.homing_axis = -1
+        if self.m.states.state not in (MachineState.ESTOP, MachineState.DISCONNECTED, MachineState.ALARM):
+            self.m.states.set_state(MachineState.ALARM, cause)
+        if self.m.spindle_ctl.spindle.on:
+            self.m.spindle_ctl.apply_spindle(SpindleState())
 
-    def _alarm_stop(self, cause: str, source: str, code: str) -> None:
+    def alarm_stop(self, cause: str, source: str, code: str) -> None:
         """A STOP-class alarm: jerk-limited stop along the path, program abandoned (its resume
         point kept), state ALARM. Motion ends by itself; the poll drops the job at standstill."""
-        self._raise_alarm(source, cause, Severity.STOP, code)
-        with self._lock:
-            job = self._job
+        self.raise_alarm(source, cause, Severity.STOP, code)
+        with self.m._lock:
+            job = self.m.stream.job
             if job is not None:
-                self._hold_motion()
+                self.m.stream.hold_motion()
                 job.stopping = True
                 job.stop_reason = cause
-                self._resume = job.resume_point(self._consumed(), cause)
-        if self._state in (MachineState.IDLE, MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
-            self._set_state(MachineState.ALARM, cause)
+                self.m.run.resume_point = job.resume_point(self.m.stream.consumed(), cause)
+        if self.m.states.state in (
+            MachineState.IDLE,
+            MachineState.RUNNING,
+            MachineState.HOLD,
+            MachineState.HOMING,
+        ):
+            self.m.states.set_state(MachineState.ALARM, cause)

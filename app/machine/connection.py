@@ -3,7 +3,7 @@
 connect_bus starts the worker (WorkerConfig defaults for core, priority and spin) and the
 feeder thread; disconnect_bus/shutdown first stop any motion along its path, then stop the
 worker (drives disabled) and only then the feeder. ``advance``/``run_until`` drive simulated
-time in worker mode "manual". Part of ``MachineController`` (mixed in).
+time in worker mode "manual". A part of ``MachineController``.
 """
 
 from __future__ import annotations
@@ -16,34 +16,65 @@ import time
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from PySide6.QtCore import QTimer
 
 from app.machine.config import MachineConfig, load_config, recover_config, save_config
 from app.machine.errors import ConfigError
 from app.machine.model import Activity, BusStatus, CommandResult, MachineState, Severity
+from app.machine.persist import StateStore
 from app.machine.timescale import Budget
+from app.paths import DEFAULT_STATE_DIR
 from planner.machine import WORK_OFFSET_NAMES, MachineSpec
 from resources import shipped_machine
 
-__all__ = ["ConnectionMixin", "RAMP_DOWN_TIMEOUT_S"]
+if TYPE_CHECKING:
+    from app.machine.controller import MachineController
+
+__all__ = ["Connection", "RAMP_DOWN_TIMEOUT_S"]
 
 RAMP_DOWN_TIMEOUT_S = 3.0  # disconnect/shutdown mid-run: longest wait for the stop along the path
 
 
-class ConnectionMixin:
+class Connection:
     """Configuration, persistence, worker and feeder life cycle, simulated time.
 
-    Mixed into ``MachineController``, which holds the state.
+    A part of ``MachineController`` (``controller.conn``): it owns the state set up in
+    ``__init__`` and reaches the other parts through the facade ``m``.
     """
+
+    def __init__(
+        self,
+        m: MachineController,
+        config: MachineConfig | str | os.PathLike[str] | None,
+        state_dir: str | os.PathLike[str] | None,
+        worker_factory: Callable[..., object] | None,
+        worker_mode: str,
+        poll_hz: float,
+    ) -> None:
+        self.m = m
+        self.store = StateStore(state_dir if state_dir is not None else DEFAULT_STATE_DIR)
+        self._worker_factory = worker_factory
+        self.worker_mode = worker_mode
+        self.worker: Any = None
+        self.config_notice = ""
+        self._config_path = Path()
+        self.cfg = self._load_initial_config(config)
+        self._feeder: threading.Thread | None = None
+        self._feeder_stop = threading.Event()
+        self.timer = QTimer(m)
+        self.timer.setInterval(max(int(1000.0 / poll_hz), 5))
+        self._shutdown = False
+        self.feeder_error = ""  # set by the feeder thread, reported by the poll
 
     def _load_initial_config(self, config: MachineConfig | str | os.PathLike[str] | None) -> MachineConfig:
         if isinstance(config, MachineConfig):
-            self._config_path = Path(config.path) if config.path else self._store.path("machine.toml")
+            self._config_path = Path(config.path) if config.path else self.store.path("machine.toml")
             return config
         if config is None:
-            path = self._store.path("machine.toml")
+            path = self.store.path("machine.toml")
             if not path.exists():
                 shutil.copyfile(shipped_machine("xyz_mill"), path)
         else:
@@ -55,7 +86,7 @@ class ConnectionMixin:
             if exc.backup is None:
                 raise
             cfg, text = recover_config(path)
-            self._config_notice = f"machine configuration damaged: {text}"
+            self.config_notice = f"machine configuration damaged: {text}"
             return cfg
 
     @property
@@ -63,41 +94,41 @@ class ConnectionMixin:
         """The machine configuration file that ``update_config`` writes."""
         return self._config_path
 
-    def _restore_persisted(self) -> None:
-        axes = self._cfg.axes
-        st = self._store.load_state(axes)
+    def restore_persisted(self) -> None:
+        axes = self.cfg.axes
+        st = self.store.load_state(axes)
         if st is not None:
-            self._raw_pos = np.array(st["raw_position"], dtype=float)
-            self._home_offset = np.array(st["home_offset"], dtype=float)
-            self._homed = list(st["homed"])
+            self.m.pos.raw_pos = np.array(st["raw_position"], dtype=float)
+            self.m.pos.home_offset = np.array(st["home_offset"], dtype=float)
+            self.m.pos.homed = list(st["homed"])
             if st["active_offset"] in WORK_OFFSET_NAMES:
-                self._active_offset = st["active_offset"]
-        offs = self._store.load_offsets(len(axes))
+                self.m.pos.active_offset = st["active_offset"]
+        offs = self.store.load_offsets(len(axes))
         if offs is not None:
-            self._offsets.update({k: v for k, v in offs.items() if k in WORK_OFFSET_NAMES})
-        self._ref_raw = self._raw_pos.copy()
+            self.m.pos.offsets.update({k: v for k, v in offs.items() if k in WORK_OFFSET_NAMES})
+        self.m.pos.ref_raw = self.m.pos.raw_pos.copy()
 
-    def _persist_state(self) -> None:
+    def persist_state(self) -> None:
         try:
-            self._store.save_state(
-                self._cfg.axes,
-                [float(x) for x in self._raw_pos],
-                [float(x) for x in self._home_offset],
-                list(self._homed),
-                self._active_offset,
+            self.store.save_state(
+                self.cfg.axes,
+                [float(x) for x in self.m.pos.raw_pos],
+                [float(x) for x in self.m.pos.home_offset],
+                list(self.m.pos.homed),
+                self.m.pos.active_offset,
             )
         except OSError as exc:
-            self._raise_alarm(
+            self.m.alarm_log.raise_alarm(
                 "persistence", f"cannot save machine state: {exc}", Severity.WARNING, "state_file"
             )
 
     @property
-    def _machine(self) -> MachineSpec:
-        return replace(self._cfg.machine, work_offsets=dict(self._offsets))
+    def machine(self) -> MachineSpec:
+        return replace(self.cfg.machine, work_offsets=dict(self.m.pos.offsets))
 
     @property
-    def _budget(self) -> Budget:
-        c = self._cfg.controller
+    def budget(self) -> Budget:
+        c = self.cfg.controller
         return Budget(k_a=1.0 - c.accel_reserve, k_j=1.0 - c.jerk_reserve)
 
     def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
@@ -107,43 +138,43 @@ class ConnectionMixin:
         start refused until it is done; ``loadingChanged``), or before returning with ``wait``
         (headless; the outcome is the same).
         """
-        why = self.refusal("update_config")
+        why = self.m.states.refusal("update_config")
         if why:
-            return self._refuse("update_config", why)
+            return self.m.states.refuse("update_config", why)
         try:
             saved = save_config(config, self._config_path)
         except ConfigError as exc:
-            return self._refuse("update_config", str(exc))
+            return self.m.states.refuse("update_config", str(exc))
         except OSError as exc:
-            return self._refuse("update_config", f"cannot write {self._config_path}: {exc}")
-        old_axes = self._cfg.axes
-        self._cfg = saved
+            return self.m.states.refuse("update_config", f"cannot write {self._config_path}: {exc}")
+        old_axes = self.cfg.axes
+        self.cfg = saved
         n = len(saved.axes)
         if saved.axes != old_axes:
-            self._raw_pos = np.zeros(n) if self._worker is None else self._raw_pos[:n]
-            self._home_offset = np.zeros(n)
-            self._homed = [False] * n
-            self._offsets = {k: tuple(v) for k, v in saved.machine.work_offsets.items()}
-            self._store.save_offsets(self._offsets)
-            self.homedChanged.emit(tuple(self._homed))
-        self._persist_state()
-        self.configChanged.emit(saved)
-        if self._load_request is not None:  # a load in flight restarts with the new configuration
-            req = self._load_request
+            self.m.pos.raw_pos = np.zeros(n) if self.worker is None else self.m.pos.raw_pos[:n]
+            self.m.pos.home_offset = np.zeros(n)
+            self.m.pos.homed = [False] * n
+            self.m.pos.offsets = {k: tuple(v) for k, v in saved.machine.work_offsets.items()}
+            self.store.save_offsets(self.m.pos.offsets)
+            self.m.homedChanged.emit(tuple(self.m.pos.homed))
+        self.persist_state()
+        self.m.configChanged.emit(saved)
+        if self.m.loader.load_request is not None:  # a load in flight restarts with the new configuration
+            req = self.m.loader.load_request
             if wait:
-                self._load_text(req.text, req.name, req.path)
+                self.m.loader.load_text(req.text, req.name, req.path)
             else:
-                self._start_load(req.text, req.name, req.path)
-        elif self._program_info is not None:
-            self._recheck_program(wait)
-        if saved.axes != old_axes and self._worker is not None:
-            self.message.emit("axes changed: reconnect the bus to apply")
-        return self._ok("update_config")
+                self.m.loader.start_load(req.text, req.name, req.path)
+        elif self.m.loader.program_info is not None:
+            self.m.loader.recheck_program(wait)
+        if saved.axes != old_axes and self.worker is not None:
+            self.m.message.emit("axes changed: reconnect the bus to apply")
+        return self.m.states.ok("update_config")
 
     def _worker_config(self) -> Any:
         from ethercat.worker import DriveSpec, WorkerConfig
 
-        cfg = self._cfg
+        cfg = self.cfg
         ids = {d.position: d for d in cfg.bus.drives}
         drives = tuple(
             DriveSpec(
@@ -160,7 +191,8 @@ class ConnectionMixin:
         options: tuple[tuple[str, Any], ...] = ()
         if cfg.bus.kind == "sim":
             counts = tuple(
-                float(a.direction * a.counts_per_unit * x) for a, x in zip(cfg.machine.axes, self._raw_pos)
+                float(a.direction * a.counts_per_unit * x)
+                for a, x in zip(cfg.machine.axes, self.m.pos.raw_pos)
             )
             options = (("initial_positions_counts", counts),)
         # core, real-time priority and spin: the WorkerConfig defaults (the worker picks a free
@@ -171,7 +203,7 @@ class ConnectionMixin:
             bus_kind=cfg.bus.kind,
             adapter=cfg.bus.adapter,
             wkc_error_limit=cfg.bus.wkc_error_limit,
-            mode=self._worker_mode,
+            mode=self.worker_mode,
             bus_options=options,
             homing_timeout_s=cfg.homing.timeout_s,
         )
@@ -181,8 +213,10 @@ class ConnectionMixin:
         DISCONNECTED -> IDLE. Saved positions are restored (simulated drives start there); an axis
         whose reported position differs from the saved one loses its homed state (warning alarm).
         """
-        if self._state is not MachineState.DISCONNECTED:
-            return self._refuse("connect", f"already connected (machine is {self._state.label.lower()})")
+        if self.m.states.state is not MachineState.DISCONNECTED:
+            return self.m.states.refuse(
+                "connect", f"already connected (machine is {self.m.states.state.label.lower()})"
+            )
         wcfg = self._worker_config()
         try:
             if self._worker_factory is not None:
@@ -193,35 +227,37 @@ class ConnectionMixin:
                 worker = CyclicWorker(wcfg)
             worker.start()
         except Exception as exc:  # noqa: BLE001 - any bus failure is shown to the operator
-            self._raise_alarm("bus", f"cannot start the bus: {exc}", Severity.WARNING, "bus_start")
-            return self._refuse("connect", f"cannot start the bus: {exc}")
-        self._worker = worker
-        self._seen_worker_alarms.clear()
+            self.m.alarm_log.raise_alarm("bus", f"cannot start the bus: {exc}", Severity.WARNING, "bus_start")
+            return self.m.states.refuse("connect", f"cannot start the bus: {exc}")
+        self.worker = worker
+        self.m.alarm_log.seen_worker_alarms.clear()
         try:
-            self._enable_worker()
+            self.enable_worker()
         except Exception as exc:  # noqa: BLE001
             self._stop_worker()
-            self._raise_alarm("bus", f"drives cannot be enabled: {exc}", Severity.WARNING, "enable")
-            return self._refuse("connect", f"drives cannot be enabled: {exc}")
-        snap = self._snapshot_now()
+            self.m.alarm_log.raise_alarm(
+                "bus", f"drives cannot be enabled: {exc}", Severity.WARNING, "enable"
+            )
+            return self.m.states.refuse("connect", f"drives cannot be enabled: {exc}")
+        snap = self.snapshot_now()
         actual = np.asarray(snap.actual_position, dtype=float)
-        tol = self._cfg.controller.position_tolerance
-        moved = np.abs(actual - self._raw_pos) > max(tol, 1e-9)
-        if any(h and m for h, m in zip(self._homed, moved)):
-            names = [a for a, h, m in zip(self._cfg.axes, self._homed, moved) if h and m]
-            self._homed = [h and not m for h, m in zip(self._homed, moved)]
-            self._raise_alarm(
+        tol = self.cfg.controller.position_tolerance
+        moved = np.abs(actual - self.m.pos.raw_pos) > max(tol, 1e-9)
+        if any(h and m for h, m in zip(self.m.pos.homed, moved)):
+            names = [a for a, h, m in zip(self.cfg.axes, self.m.pos.homed, moved) if h and m]
+            self.m.pos.homed = [h and not m for h, m in zip(self.m.pos.homed, moved)]
+            self.m.alarm_log.raise_alarm(
                 "controller",
                 f"axes {' '.join(names)} report another position than saved: homed state cleared, home again",
                 Severity.WARNING,
                 "position_lost",
             )
-            self.homedChanged.emit(tuple(self._homed))
-        self._raw_pos = actual.copy()
-        self._ref_raw = actual.copy()
-        self._pushed_total = 0
-        self._set_state(MachineState.IDLE, "ready")
-        if self._worker_mode != "manual":
+            self.m.homedChanged.emit(tuple(self.m.pos.homed))
+        self.m.pos.raw_pos = actual.copy()
+        self.m.pos.ref_raw = actual.copy()
+        self.m.stream.pushed_total = 0
+        self.m.states.set_state(MachineState.IDLE, "ready")
+        if self.worker_mode != "manual":
             # the feeder thread shares the GIL with the GUI: a short switch interval keeps it on
             # time while the GUI computes (NOTES.md: 5 ms default stretches 1 ms loops to 5 ms)
             if sys.getswitchinterval() > 0.001:
@@ -229,15 +265,15 @@ class ConnectionMixin:
             self._feeder_stop.clear()
             self._feeder = threading.Thread(target=self._feeder_main, name="cnc-feeder", daemon=True)
             self._feeder.start()
-            self._timer.start()
-        self._emit_all()
-        return self._ok("connect")
+            self.timer.start()
+        self.m.poller.emit_all()
+        return self.m.states.ok("connect")
 
-    def _enable_worker(self) -> None:
+    def enable_worker(self) -> None:
         from ethercat.worker import WorkerState
 
-        w = self._worker
-        with self._lock:
+        w = self.worker
+        with self.m._lock:
             st = w.state()
             if st in (WorkerState.FAULT, WorkerState.QUICK_STOP, WorkerState.FAULT_RESET):
                 w.fault_reset()
@@ -246,20 +282,20 @@ class ConnectionMixin:
             w.enable()
             w.wait_for((WorkerState.ENABLED,), timeout_s=3.0)
 
-    def _snapshot_now(self) -> Any:
-        with self._lock:
-            snap = self._worker.snapshot()
-        self._last_snap = snap
+    def snapshot_now(self) -> Any:
+        with self.m._lock:
+            snap = self.worker.snapshot()
+        self.m.poller.last_snap = snap
         return snap
 
     def _stop_worker(self) -> None:
         """Stop the worker (drives disabled, bus closed), then the feeder thread."""
-        self._timer.stop()
-        with self._lock:
-            w, self._worker = self._worker, None  # the feeder sees no worker from here on
+        self.timer.stop()
+        with self.m._lock:
+            w, self.worker = self.worker, None  # the feeder sees no worker from here on
         if w is not None:
             try:
-                with self._lock:
+                with self.m._lock:
                     w.stop()
             except Exception:  # noqa: BLE001 - stopping must not fail
                 pass
@@ -271,20 +307,20 @@ class ConnectionMixin:
     def disconnect_bus(self) -> CommandResult:
         """Stop any motion (a jerk-limited stop along the path, at most ``RAMP_DOWN_TIMEOUT_S``),
         abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED."""
-        if self._state is MachineState.DISCONNECTED:
-            return self._ok("disconnect")
+        if self.m.states.state is MachineState.DISCONNECTED:
+            return self.m.states.ok("disconnect")
         self._ramp_down("disconnected")
-        if self._worker is not None:
+        if self.worker is not None:
             try:
-                self._poll()
+                self.m.poller.poll()
             except Exception:  # noqa: BLE001
                 pass
-        with self._lock:
-            self._drop_job(completed=False, reason="disconnected")
+        with self.m._lock:
+            self.m.stream.drop_job(completed=False, reason="disconnected")
         self._stop_worker()
-        self._set_state(MachineState.DISCONNECTED, "disconnected")
-        self._emit_bus(BusStatus(kind=self._cfg.bus.kind, connected=False, state="disconnected"))
-        return self._ok("disconnect")
+        self.m.states.set_state(MachineState.DISCONNECTED, "disconnected")
+        self.m.poller.emit_bus(BusStatus(kind=self.cfg.bus.kind, connected=False, state="disconnected"))
+        return self.m.states.ok("disconnect")
 
     def _ramp_down(self, reason: str, timeout_s: float = RAMP_DOWN_TIMEOUT_S) -> bool:
         """Bring any motion to a standstill on its path before the worker is stopped: the same
@@ -294,33 +330,33 @@ class ConnectionMixin:
         mid-run) and stopping the worker first cut the drives at speed. True at standstill."""
         from ethercat.worker import WorkerState
 
-        with self._lock:
-            job, w = self._job, self._worker
+        with self.m._lock:
+            job, w = self.m.stream.job, self.worker
             if job is None or w is None:
                 return True
             if w.state() is not WorkerState.ENABLED:
                 return True  # the worker already stopped the drives (quick stop, fault)
-            if job.kind is Activity.PROGRAM and job.origin is not None and self._resume is None:
-                self._resume = job.resume_point(self._consumed(), reason)
-            self._hold_motion()
+            if job.kind is Activity.PROGRAM and job.origin is not None and self.m.run.resume_point is None:
+                self.m.run.resume_point = job.resume_point(self.m.stream.consumed(), reason)
+            self.m.stream.hold_motion()
             job.stopping = True
             job.stop_reason = job.stop_reason or reason
 
         def still() -> bool:
-            with self._lock:
-                if self._worker is None or self._job is not job:
+            with self.m._lock:
+                if self.worker is None or self.m.stream.job is not job:
                     return True
                 standing = job.executor.standing or job.pause is not None or job.executor.finished
-                return standing and self._worker.buffer_level() == 0
+                return standing and self.worker.buffer_level() == 0
 
-        if self._worker_mode == "manual":
+        if self.worker_mode == "manual":
             return self.run_until(still, timeout_s)
         t_end = time.monotonic() + timeout_s
         while not still():
             if time.monotonic() > t_end:
                 return False
             if self._feeder is None or not self._feeder.is_alive():
-                self._feed()
+                self.m.stream.feed()
             time.sleep(0.005)  # the feeder thread keeps the buffer filled meanwhile
         return True
 
@@ -332,45 +368,45 @@ class ConnectionMixin:
         self._shutdown = True
         try:
             self._ramp_down("shutdown")
-            if self._spindle.on:
-                self.spindle_off()
+            if self.m.spindle_ctl.spindle.on:
+                self.m.spindle_ctl.spindle_off()
             self.disconnect_bus()
         finally:
-            self._persist_state()
+            self.persist_state()
 
     def _feeder_main(self) -> None:
         while not self._feeder_stop.wait(0.002):
             try:
-                self._feed()
+                self.m.stream.feed()
             except Exception as exc:  # noqa: BLE001 - never let the feeder die silently
-                with self._lock:
-                    self._feeder_error = f"set-point feeder failed: {exc}"
+                with self.m._lock:
+                    self.feeder_error = f"set-point feeder failed: {exc}"
                 return
 
     def advance(self, seconds: float, step_cycles: int = 10) -> None:
         """Manual worker mode only: run the machine for ``seconds`` of simulated time
         (feed set-points, run the cycles, poll and emit signals). For tests and tools."""
-        if self._worker is None:
+        if self.worker is None:
             return
-        ts = self._cfg.machine.planner.ts_s
+        ts = self.cfg.machine.planner.ts_s
         cycles = int(round(seconds / ts))
         since_poll = 0
         poll_every = max(int(round(1.0 / (30.0 * ts))), 1)
-        while cycles > 0 and self._worker is not None:
+        while cycles > 0 and self.worker is not None:
             k = min(step_cycles, cycles)
-            self._feed()
-            with self._lock:
-                self._worker.step(k)
+            self.m.stream.feed()
+            with self.m._lock:
+                self.worker.step(k)
             cycles -= k
             since_poll += k
             if since_poll >= poll_every or cycles <= 0:
                 since_poll = 0
-                self._poll()
+                self.m.poller.poll()
 
     def run_until(self, predicate: Callable[[], bool], timeout_s: float = 10.0) -> bool:
         """Manual mode: advance until ``predicate()`` is true (True) or ``timeout_s`` of
         simulated time passed (False)."""
-        ts = self._cfg.machine.planner.ts_s
+        ts = self.cfg.machine.planner.ts_s
         step_s = 33 * ts
         steps = int(timeout_s / step_s) + 1
         for _ in range(steps):

@@ -40,22 +40,23 @@ time in ``worker_mode="manual"`` (tests, fast headless runs); read-only ``resume
 
 Units: positions mm / degrees (rotary), speeds mm/s, times s, overrides in percent.
 
-Modules. ``MachineController`` is the one public facade (signals, construction, read-only
-properties); its behaviour is mixed in from one module per responsibility, all sharing the
-facade's state:
+Parts. ``MachineController`` is the one public facade: the signals, the public commands and
+read-only properties (``MachineApi`` in ``app.machine.api`` lists them; the panel's test
+double is checked against it). Behind it, one collaborator per responsibility, each owning
+the state it sets up in its ``__init__`` and reaching the others through the facade:
 
-    app.machine.states       state machine: TRANSITIONS, refusals, E-stop, reset
-    app.machine.connection   configuration, persistence, worker + feeder life cycle, shutdown
-    app.machine.feeder       jobs, set-point streaming (lead_s), pause points, end of a run
-    app.machine.program_load load (parse, soft limits, plan), re-checks, single-block plans:
-                             in a worker thread (cycle start runs the load-time plan)
-    app.machine.program_run  cycle start, feed hold, resume, stop, run from line, overrides
-    app.machine.manual       jog (continuous, incremental), MDI
-    app.machine.homing       machine zero (homing), work offsets, touch-off
-    app.machine.spindle      spindle
-    app.machine.alarms       alarm list and reactions
-    app.machine.status       polling the worker, positions/bus signals
-    app.machine.jobs         Job, ResumePoint, SentLimits records
+    controller.states      StateMachine    state, reason, activity; TRANSITIONS, refusals, E-stop, reset
+    controller.conn        Connection      configuration, persistence, worker + feeder life cycle, shutdown
+    controller.stream      Streamer        jobs, set-point streaming (lead_s), pause points, end of a run
+    controller.loader      ProgramLoader   load (parse, soft limits, plan), re-checks, single-block plans,
+                                           in a worker thread (cycle start runs the load-time plan)
+    controller.run         ProgramRunner   cycle start, feed hold, resume, stop, run from line, overrides
+    controller.manual      ManualMotion    jog (continuous, incremental), MDI
+    controller.pos         Positions       positions, homed flags, machine zero (homing), work offsets
+    controller.spindle_ctl SpindleControl  spindle
+    controller.alarm_log   AlarmLog        alarm list and reactions
+    controller.poller      StatusPoller    polling the worker, positions/bus signals
+    app.machine.jobs       Job, ResumePoint, SentLimits records
 """
 
 from __future__ import annotations
@@ -63,22 +64,23 @@ from __future__ import annotations
 import os
 import threading
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
-import numpy as np
-from PySide6.QtCore import QObject, QTimer, Signal
+from PySide6.QtCore import QObject, Signal
 
-from app.machine.alarms import AlarmMixin
+from app.machine.alarms import AlarmLog
 from app.machine.config import MachineConfig
-from app.machine.connection import RAMP_DOWN_TIMEOUT_S, ConnectionMixin
-from app.machine.feeder import FeederMixin
-from app.machine.homing import HomingMixin
-from app.machine.jobs import Job, ResumePoint, SentLimits
-from app.machine.manual import JOG_INCREMENTS, ManualMixin
+from app.machine.connection import RAMP_DOWN_TIMEOUT_S, Connection
+from app.machine.feeder import Streamer
+from app.machine.homing import Positions
+from app.machine.jobs import SentLimits
+from app.machine.manual import JOG_INCREMENTS, ManualMotion
 from app.machine.model import (
     Activity,
     Alarm,
     BusStatus,
+    CommandResult,
     ControllerSnapshot,
     MachineState,
     ProgramInfo,
@@ -87,12 +89,11 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
-from app.machine.persist import StateStore
-from app.machine.program_load import LoadMixin, LoadRequest, RunPlanRequest
-from app.machine.program_run import ProgramMixin
-from app.machine.spindle import SpindleMixin
-from app.machine.states import TRANSITIONS, StateMixin
-from app.machine.status import StatusMixin
+from app.machine.program_load import ProgramLoader
+from app.machine.program_run import ProgramRunner
+from app.machine.spindle import SpindleControl
+from app.machine.states import TRANSITIONS, StateMachine
+from app.machine.status import StatusPoller
 from app.paths import DEFAULT_STATE_DIR
 
 __all__ = [
@@ -105,20 +106,7 @@ __all__ = [
 ]
 
 
-
-class MachineController(
-    StateMixin,
-    ConnectionMixin,
-    FeederMixin,
-    ProgramMixin,
-    LoadMixin,
-    ManualMixin,
-    HomingMixin,
-    SpindleMixin,
-    AlarmMixin,
-    StatusMixin,
-    QObject,
-):
+class MachineController(QObject):
     """The machine: program run, hold/override, jog, MDI, homing, offsets, limits, alarms.
 
     Construct with a configuration (``MachineConfig``, a TOML path, or None for the state
@@ -135,7 +123,6 @@ class MachineController(
     programLoaded = Signal(object)  # ProgramInfo (checked: no errors, within soft limits)
     programErrors = Signal(object)  # tuple[ProgramIssue, ...] (parse errors, soft limits)
     loadingChanged = Signal(bool, str)  # (a program is being checked, its name)
-    _loadDone = Signal(object)  # LoadRequest finished in its worker thread (queued)
     programFinished = Signal(object)  # RunSummary (completed or not)
     lineChanged = Signal(int)  # current source line (1-based), 0 when none
     progressChanged = Signal(float, float)  # (fraction 0..1, remaining time s at current override)
@@ -165,228 +152,452 @@ class MachineController(
         """``worker_mode``: "process" (default, the real-time worker in its own process),
         "thread", or "manual" (no clock: tests and tools drive time with ``advance``)."""
         super().__init__(parent)
+        # one lock for what the feeder thread and the GUI thread both touch (job, worker)
         self._lock = threading.RLock()
-        self._store = StateStore(state_dir if state_dir is not None else DEFAULT_STATE_DIR)
-        self._worker_factory = worker_factory
-        self._worker_mode = worker_mode
-        self._worker: Any = None
-        self._alarms: list[Alarm] = self._store.load_alarms()
-        self._next_alarm_id = max((a.id for a in self._alarms), default=0) + 1
-        self._config_notice = ""
-        self._cfg = self._load_initial_config(config)
-        self._state = MachineState.DISCONNECTED
-        self._state_reason = "not connected"
-        self._activity = Activity.NONE
-        n = len(self._cfg.axes)
-        self._raw_pos = np.zeros(n)
-        self._ref_raw = np.zeros(n)
-        self._home_offset = np.zeros(n)
-        self._homed = [False] * n
-        self._active_offset = "G54"
-        self._offsets: dict[str, tuple[float, ...]] = {
-            k: tuple(v) for k, v in self._cfg.machine.work_offsets.items()
-        }
-        self._restore_persisted()
-        self._feed_pct = 100.0
-        self._rapid_pct = 100.0
-        self._single_block = False
-        self._optional_stop = False
-        self._spindle = SpindleState()
-        self._program_info: ProgramInfo | None = None
-        self._program_text = ""
-        self._program_path = ""
-        self._load_request: LoadRequest | None = None  # the load in flight (program_load)
-        self._load_generation = 0
-        self._load_reason = ""  # why the last load was refused
-        self._start_pending = False  # cycle start pressed while the program is checked again
-        self._program_cfg: object = None  # configuration and offsets the program was checked with
-        self._program_offsets: dict[str, tuple[float, ...]] = {}
-        self._run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
-        self._run_plan_ready: RunPlanRequest | None = None  # ... and the one made
-        self._loadDone.connect(self._on_load_done)
-        self._job: Job | None = None
-        self._pushed_total = 0
-        self._line = 0
-        self._progress = (0.0, 0.0)
-        self._speed = 0.0
-        self._resume: ResumePoint | None = None
-        self._tracking = TrackingReport(axes=self._cfg.axes)
-        self._bus_status = BusStatus(kind=self._cfg.bus.kind)
-        self._last_snap: Any = None
-        self._seen_worker_alarms: set[tuple[int, int, str]] = set()
-        self._homing_queue: list[int] = []
-        self._homing_axis = -1
-        self._last_emit_pos: tuple[float, ...] = ()
-        self._last_ref_time = 0.0
-        self._last_ref_pos: np.ndarray | None = None
-        self._tracking_emit_t = 0.0
-        self._feeder: threading.Thread | None = None
-        self._feeder_stop = threading.Event()
-        self._timer = QTimer(self)
-        self._timer.setInterval(max(int(1000.0 / poll_hz), 5))
-        self._timer.timeout.connect(self._poll)
-        self._shutdown = False
-        self._feeder_error = ""  # set by the feeder thread, reported by the poll
-        self._last_summary: RunSummary | None = None
-        for text in self._store.problems:
-            self._raise_alarm("persistence", text, Severity.WARNING, "state_file")
-        if self._config_notice:
-            self._raise_alarm("config", self._config_notice, Severity.WARNING, "config_recovered")
+        self.conn = Connection(self, config, state_dir, worker_factory, worker_mode, poll_hz)
+        self.states = StateMachine(self)
+        self.pos = Positions(self)
+        self.alarm_log = AlarmLog(self)
+        self.conn.restore_persisted()
+        self.run = ProgramRunner(self)
+        self.spindle_ctl = SpindleControl(self)
+        self.loader = ProgramLoader(self)
+        self.stream = Streamer(self)
+        self.manual = ManualMotion(self)
+        self.poller = StatusPoller(self)
+        self.conn.timer.timeout.connect(self.poller.poll)
+        for text in self.conn.store.problems:
+            self.alarm_log.raise_alarm("persistence", text, Severity.WARNING, "state_file")
+        if self.conn.config_notice:
+            self.alarm_log.raise_alarm(
+                "config", self.conn.config_notice, Severity.WARNING, "config_recovered"
+            )
 
     @property
     def state(self) -> MachineState:
         """Current machine state."""
-        return self._state
+        return self.states.state
 
     @property
     def state_reason(self) -> str:
         """Why the machine is in its state (text for the panel)."""
-        return self._state_reason
+        return self.states.state_reason
 
     @property
     def activity(self) -> Activity:
         """What the machine is doing while RUNNING / HOLD."""
-        return self._activity
+        return self.states.activity
 
     @property
     def config(self) -> MachineConfig:
         """The applied machine configuration."""
-        return self._cfg
+        return self.conn.cfg
 
     @property
     def axes(self) -> tuple[str, ...]:
         """Axis names, in configuration order."""
-        return self._cfg.axes
+        return self.conn.cfg.axes
 
     @property
     def machine_position(self) -> tuple[float, ...]:
         """Actual position, machine coordinates."""
-        return tuple(float(x) for x in self._machine_pos())
+        return tuple(float(x) for x in self.states.machine_pos())
 
     @property
     def work_position(self) -> tuple[float, ...]:
         """Actual position in the active work offset's coordinates."""
-        return tuple(float(x) for x in self._work_pos())
+        return tuple(float(x) for x in self.states.work_pos())
 
     @property
     def reference_position(self) -> tuple[float, ...]:
         """Last set-point sent to the drives (machine coordinates)."""
-        return tuple(float(x) for x in self._ref_raw - self._home_offset)
+        return tuple(float(x) for x in self.pos.ref_raw - self.pos.home_offset)
 
     @property
     def homed(self) -> tuple[bool, ...]:
         """Homed flag per axis."""
-        return tuple(self._homed)
+        return tuple(self.pos.homed)
 
     @property
     def work_offsets(self) -> dict[str, tuple[float, ...]]:
         """The G54-G59 table."""
-        return dict(self._offsets)
+        return dict(self.pos.offsets)
 
     @property
     def active_offset(self) -> str:
         """Name of the active work offset."""
-        return self._active_offset
+        return self.pos.active_offset
 
     @property
     def program_info(self) -> ProgramInfo | None:
         """The loaded program (None if none)."""
-        return self._program_info
+        return self.loader.program_info
 
     @property
     def program(self) -> object | None:
         """The loaded, checked ``planner.program.Program`` (None if none)."""
-        return self._program_info.program if self._program_info else None
+        return self.loader.program_info.program if self.loader.program_info else None
 
     @property
     def plan(self) -> object | None:
         """The ``planner.plan.Plan`` of the loaded program (planned with the override budget)."""
-        return self._program_info.plan if self._program_info else None
+        return self.loader.program_info.plan if self.loader.program_info else None
 
     @property
     def current_line(self) -> int:
         """Source line the drives are executing (0 when none)."""
-        return self._line
+        return self.stream.line
 
     @property
     def progress(self) -> tuple[float, float]:
         """(fraction 0..1, remaining time s at the current feed override) of the running program."""
-        return self._progress
+        return self.stream.progress
 
     @property
     def feed_override_pct(self) -> float:
         """Feed override in percent."""
-        return self._feed_pct
+        return self.run.feed_pct
 
     @property
     def rapid_override_pct(self) -> float:
         """Rapid override in percent."""
-        return self._rapid_pct
+        return self.run.rapid_pct
 
     @property
     def single_block(self) -> bool:
         """Single-block mode."""
-        return self._single_block
+        return self.run.single_block
 
     @property
     def optional_stop(self) -> bool:
         """Optional stop (M01) honoured."""
-        return self._optional_stop
+        return self.run.optional_stop
 
     @property
     def spindle(self) -> SpindleState:
         """Spindle state."""
-        return self._spindle
+        return self.spindle_ctl.spindle
 
     @property
     def alarms(self) -> tuple[Alarm, ...]:
         """All alarms (active and history), oldest first."""
-        return tuple(self._alarms)
+        return tuple(self.alarm_log.alarms)
 
     @property
     def active_alarms(self) -> tuple[Alarm, ...]:
         """Alarms not yet acknowledged."""
-        return tuple(a for a in self._alarms if a.active)
+        return tuple(a for a in self.alarm_log.alarms if a.active)
 
     @property
     def bus_status(self) -> BusStatus:
         """Bus / worker state."""
-        return self._bus_status
+        return self.poller.bus_status
 
     @property
     def tracking(self) -> TrackingReport:
         """Tracking RMSE/MSE of the last (or current) run."""
-        return self._tracking
+        return self.stream.tracking
 
     @property
     def last_run(self) -> RunSummary | None:
         """Summary of the last program run (None before the first)."""
-        return self._last_summary
+        return self.stream.last_summary
 
     @property
     def worker(self) -> Any:
         """The CyclicWorker (diagnostics and tests; None when disconnected)."""
-        return self._worker
+        return self.conn.worker
 
     def snapshot(self) -> ControllerSnapshot:
         """Everything the panel shows, in one immutable object."""
         return ControllerSnapshot(
-            state=self._state,
-            activity=self._activity,
-            axes=self._cfg.axes,
+            state=self.states.state,
+            activity=self.states.activity,
+            axes=self.conn.cfg.axes,
             machine_pos=self.machine_position,
             work_pos=self.work_position,
             homed=self.homed,
-            active_offset=self._active_offset,
-            line=self._line,
-            progress=self._progress[0],
-            remaining_s=self._progress[1],
-            path_speed_mm_s=self._speed,
-            feed_override_pct=self._feed_pct,
-            rapid_override_pct=self._rapid_pct,
-            single_block=self._single_block,
-            optional_stop=self._optional_stop,
-            spindle=self._spindle,
-            alarms=tuple(self._alarms),
-            bus=self._bus_status,
+            active_offset=self.pos.active_offset,
+            line=self.stream.line,
+            progress=self.stream.progress[0],
+            remaining_s=self.stream.progress[1],
+            path_speed_mm_s=self.stream.speed,
+            feed_override_pct=self.run.feed_pct,
+            rapid_override_pct=self.run.rapid_pct,
+            single_block=self.run.single_block,
+            optional_stop=self.run.optional_stop,
+            spindle=self.spindle_ctl.spindle,
+            alarms=tuple(self.alarm_log.alarms),
+            bus=self.poller.bus_status,
         )
+
+    # ------------------------------------------------------------------ commands (delegated)
+    def refusal(self, action: str) -> str:
+        """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",
+        "resume", "touch_off", "spindle_on", "update_config", ...) would be refused now; "" when
+        allowed (for enabling buttons).
+        """
+        return self.states.refusal(action)
+
+    def reset(self) -> CommandResult:
+        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
+        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
+        resume point. Also cancels a cycle start waiting for a check.
+        """
+        return self.states.reset()
+
+    def estop(self, reason: str = "operator") -> CommandResult:
+        """Emergency stop: the drives' quick stop at once, program abandoned (resume point kept),
+        spindle off, -> ESTOP.
+        """
+        return self.states.estop(reason)
+
+    def estop_release(self) -> CommandResult:
+        """Release the E-stop: fault reset and re-enable the drives, -> IDLE."""
+        return self.states.estop_release()
+
+    # ---- end of states
+
+    @property
+    def config_path(self) -> Path:
+        """The machine configuration file that ``update_config`` writes."""
+        return self.conn.config_path
+
+    def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
+        """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply.
+        Refused while moving; bus and drive changes take effect at the next connect; the loaded
+        program is checked again against the new limits: in a worker thread like a load (cycle
+        start refused until it is done; ``loadingChanged``), or before returning with ``wait``
+        (headless; the outcome is the same).
+        """
+        return self.conn.update_config(config, wait=wait)
+
+    def connect_bus(self) -> CommandResult:
+        """Start the worker (simulated drives when the bus kind is "sim") and enable the drives:
+        DISCONNECTED -> IDLE. Saved positions are restored (simulated drives start there); an axis
+        whose reported position differs from the saved one loses its homed state (warning alarm).
+        """
+        return self.conn.connect_bus()
+
+    def disconnect_bus(self) -> CommandResult:
+        """Stop any motion (a jerk-limited stop along the path, at most ``RAMP_DOWN_TIMEOUT_S``),
+        abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED.
+        """
+        return self.conn.disconnect_bus()
+
+    def shutdown(self) -> None:
+        """Stop any motion (jerk-limited), spindle off, disconnect (worker stopped before the
+        feeder), persist positions and offsets; safe to call twice.
+        """
+        return self.conn.shutdown()
+
+    def advance(self, seconds: float, step_cycles: int = 10) -> None:
+        """Manual worker mode only: run the machine for ``seconds`` of simulated time
+        (feed set-points, run the cycles, poll and emit signals). For tests and tools.
+        """
+        return self.conn.advance(seconds, step_cycles)
+
+    def run_until(self, predicate: Callable[[], bool], timeout_s: float = 10.0) -> bool:
+        """Manual mode: advance until ``predicate()`` is true (True) or ``timeout_s`` of
+        simulated time passed (False).
+        """
+        return self.conn.run_until(predicate, timeout_s)
+
+    # ---- end of conn
+
+    # ---- end of stream
+
+    @property
+    def loading(self) -> bool:
+        """True while a program is being read, checked and planned, or checked again, or
+        planned for single block (cycle start refused meanwhile).
+        """
+        return self.loader.loading
+
+    @property
+    def loading_name(self) -> str:
+        """Name of the program being checked ("" when none)."""
+        return self.loader.loading_name
+
+    def load_program(
+        self,
+        source: str | os.PathLike[str],
+        name: str | None = None,
+        *,
+        wait: bool = False,
+        timeout_s: float | None = None,
+    ) -> CommandResult:
+        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text.
+
+        Parses, checks the whole path against the soft limits (arcs by their exact extremes)
+        and plans it before anything moves, in a worker thread: returns at once (truthy:
+        accepted and being checked), then emits ``programLoaded`` or ``programErrors`` (all
+        errors, with lines and axes) from the controller's thread. ``wait=True`` does the work
+        in the calling thread and returns the outcome (falsy with the reason when refused), as
+        ``wait_loaded`` does for a load already started. A newer load supersedes one in flight.
+        Refused while running. Programs start in the interpreter's reset state (G54) unless they
+        select a work offset; the active offset (``select_work_offset``) applies to MDI blocks
+        and to the work coordinates shown.
+        """
+        return self.loader.load_program(source, name, wait=wait, timeout_s=timeout_s)
+
+    def wait_loaded(self, timeout_s: float | None = 60.0) -> CommandResult:
+        """Block (in the controller's thread) until the load in flight is finished and applied
+        (``programLoaded`` / ``programErrors`` emitted); without one, the state of the last
+        load. Falsy with the reason when the program was refused or the wait timed out.
+        """
+        return self.loader.wait_loaded(timeout_s)
+
+    def wait_run_plan(self, timeout_s: float | None = 60.0) -> bool:
+        """Block until the run plan under way (single block) is done; True when one is ready."""
+        return self.loader.wait_run_plan(timeout_s)
+
+    # ---- end of loader
+
+    def cycle_start(self, *, wait: bool = False) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
+        axes (unless the configuration says otherwise) and no active alarm of severity STOP or
+        above. Runs the plan made at load time; when the configuration, the work offsets or
+        the machine position changed since loading, the program is checked again first, and
+        with single block on its single-block plan is made first: both in a worker thread
+        (refused meanwhile with the reason; ``loadingChanged``), or here with ``wait=True``
+        (headless use).
+        """
+        return self.run.cycle_start(wait=wait)
+
+    def feed_hold(self) -> CommandResult:
+        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
+        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
+        cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
+        beyond that are replaced (``Streamer.change_motion``), not run first.
+        """
+        return self.run.feed_hold()
+
+    def resume(self) -> CommandResult:
+        """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
+        same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
+        program stopped (``resume_line``) and continue from exactly there.
+        """
+        return self.run.resume()
+
+    def stop(self) -> CommandResult:
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it
+        cancels a cycle start that waits for the program to be checked again.
+        """
+        return self.run.stop()
+
+    def set_single_block(self, on: bool) -> CommandResult:
+        """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
+        Switched while running, it takes effect at the next standstill (feed hold, pause point):
+        the rest of the program is planned again from there.
+        """
+        return self.run.set_single_block(on)
+
+    def set_optional_stop(self, on: bool) -> CommandResult:
+        """Honour M01 (optional pause); may change while running."""
+        return self.run.set_optional_stop(on)
+
+    def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
+        """Start the loaded program at source line ``line``: the spindle as of that line is
+        restored, a safe approach (retract Z to the higher of the current and target heights,
+        move the other axes, then down) brings the tool to the line's start point, then the
+        program runs on from there. As cycle start, a program stale since loading is checked
+        again first (in the worker thread, refused meanwhile; here with ``wait=True``).
+        """
+        return self.run.run_from_line(line, wait=wait)
+
+    @property
+    def resume_line(self) -> int:
+        """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
+        return self.run.resume_line
+
+    def set_feed_override(self, percent: float) -> CommandResult:
+        """Feed override 0-150 %, applied while running without a jump and within every limit
+        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
+        """
+        return self.run.set_feed_override(percent)
+
+    def set_rapid_override(self, percent: float) -> CommandResult:
+        """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
+        return self.run.set_rapid_override(percent)
+
+    # ---- end of run
+
+    def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
+        """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog
+        speed. The motion is planned to end at the soft limit, so a lost release stops exactly
+        there; ``jog_stop`` is a jerk-limited stop.
+        """
+        return self.manual.jog_start(axis, direction, speed_fraction)
+
+    def jog_stop(self, axis: str | int | None = None) -> CommandResult:
+        """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
+        return self.manual.jog_stop(axis)
+
+    def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
+        """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
+        when the target is beyond the soft limit.
+        """
+        return self.manual.jog_increment(axis, step, direction)
+
+    def mdi(self, block: str) -> CommandResult:
+        """Execute one G-code block with the active work offset and the same checks as a program
+        (parse, soft limits on the whole path, homed rule).
+        """
+        return self.manual.mdi(block)
+
+    # ---- end of manual
+
+    def home_axis(self, axis: str | int) -> CommandResult:
+        """Home one axis by the configured method: "drive" (CiA 402 homing mode 6 with
+        ``homing.drive_method``, via the worker) or "set_here" (current position = machine zero).
+        """
+        return self.pos.home_axis(axis)
+
+    def home_all(self) -> CommandResult:
+        """Home every axis (Z first) by the configured method."""
+        return self.pos.home_all()
+
+    def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
+        """Declare the current position machine zero for one axis (all when None); homed; persisted."""
+        return self.pos.set_machine_zero_here(axis)
+
+    def set_work_offset(self, name: str, values: dict[str, float] | tuple[float, ...]) -> CommandResult:
+        """Set a G54-G59 offset (machine coordinates of part zero; a dict by axis name or one value
+        per axis); persisted.
+        """
+        return self.pos.set_work_offset(name, values)
+
+    def select_work_offset(self, name: str) -> CommandResult:
+        """Make G54-G59 the active work offset (MDI and work coordinates); persisted."""
+        return self.pos.select_work_offset(name)
+
+    def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
+        """Set part zero here: choose the offset (active unless named) so that the current
+        position reads ``work_value`` in work coordinates on ``axis``.
+        """
+        return self.pos.touch_off(axis, work_value, offset)
+
+    # ---- end of pos
+
+    def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
+        """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
+        return self.spindle_ctl.spindle_on(clockwise, rpm)
+
+    def spindle_off(self) -> CommandResult:
+        """Spindle off (M05); always allowed."""
+        return self.spindle_ctl.spindle_off()
+
+    def spindle_speed(self, rpm: float) -> CommandResult:
+        """Set the spindle speed (applied at once when running)."""
+        return self.spindle_ctl.spindle_speed(rpm)
+
+    # ---- end of spindle_ctl
+
+    def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
+        """Acknowledge one alarm (all active ones when None); persisted."""
+        return self.alarm_log.acknowledge_alarm(alarm_id)
+
+    # ---- end of alarm_log
+
+    # ---- end of poller

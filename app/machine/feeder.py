@@ -3,7 +3,7 @@
 
 Serial numbers: every set-point pushed gets the next serial; the worker's ``samples_consumed``
 says which one the drives reached (line, progress, resume point). Part of
-``MachineController`` (mixed in).
+``MachineController``.
 
 Splicing (feed hold, stop, stop-class alarms, jog release, overrides): the executor's state is
 kept per pushed chunk (``Job.chunks``). A change is applied at serial S = the worker's live
@@ -23,7 +23,7 @@ import os
 import time
 from collections.abc import Callable
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -35,7 +35,10 @@ from ethercat.worker import ReplaceResult
 from planner.plan import Plan, plan_program
 from planner.program import Program
 
-__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "FeederMixin", "SpliceInfo", "single_block_program"]
+if TYPE_CHECKING:
+    from app.machine.controller import MachineController
+
+__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "Streamer", "SpliceInfo", "single_block_program"]
 
 SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
 SPLICE_ATTEMPTS = 6
@@ -53,8 +56,10 @@ class SpliceInfo:
         self.elapsed_s, self.fallback = elapsed_s, fallback
 
     def __repr__(self) -> str:
-        return (f"SpliceInfo(serial={self.serial}, consumed={self.consumed}, attempts={self.attempts}, "
-                f"elapsed_s={self.elapsed_s:.4f}, fallback={self.fallback})")
+        return (
+            f"SpliceInfo(serial={self.serial}, consumed={self.consumed}, attempts={self.attempts}, "
+            f"elapsed_s={self.elapsed_s:.4f}, fallback={self.fallback})"
+        )
 
 
 def single_block_program(program: Program) -> Program:
@@ -66,31 +71,41 @@ def _set_hold(ex: TimeScaledExecutor) -> None:
     ex.hold = True
 
 
-class FeederMixin:
+class Streamer:
     """Jobs, set-point streaming, pause points, end of a run.
 
-    Mixed into ``MachineController``, which holds the state.
+    A part of ``MachineController`` (``controller.stream``): it owns the state set up in
+    ``__init__`` and reaches the other parts through the facade ``m``.
     """
 
-    _splice_est_s: dict[bool, float] = {}  # critical time of the last splice, per kind (hold or not)
-    _splice_critical_s: float = 0.0  # last attempt: from choosing the serial to the replace's ack
-    last_splice: SpliceInfo | None = None
+    def __init__(self, m: MachineController) -> None:
+        self.m = m
+        self.job: Job | None = None
+        self.pushed_total = 0
+        self.line = 0
+        self.progress = (0.0, 0.0)
+        self.speed = 0.0
+        self.tracking = TrackingReport(axes=m.config.axes)
+        self.last_summary: RunSummary | None = None
+        self._splice_est_s: dict[bool, float] = {}
+        self._splice_critical_s = 0.0
+        self.last_splice: SpliceInfo | None = None
 
     @property
     def _lead_samples(self) -> int:
-        ts = self._cfg.machine.planner.ts_s
-        return max(int(self._cfg.controller.lead_s / ts), 10)
+        ts = self.m.config.machine.planner.ts_s
+        return max(int(self.m.config.controller.lead_s / ts), 10)
 
-    def _plan(self, program: Program) -> Plan:
-        return plan_program(program, reduced_machine(self._machine, self._budget))
+    def plan(self, program: Program) -> Plan:
+        return plan_program(program, reduced_machine(self.m.conn.machine, self.m.conn.budget))
 
-    def _planner(self) -> Callable[[Program], Plan]:
+    def planner(self) -> Callable[[Program], Plan]:
         """``_plan`` bound to the machine and budget of now (for a worker thread: a change of
         the configuration meanwhile cannot reach into a plan under way)."""
-        machine = reduced_machine(self._machine, self._budget)
+        machine = reduced_machine(self.m.conn.machine, self.m.conn.budget)
         return lambda program: plan_program(program, machine)
 
-    def _make_job(
+    def make_job(
         self,
         kind: Activity,
         program: Program,
@@ -106,17 +121,17 @@ class FeederMixin:
         if plan is None:
             if single_block:
                 program = single_block_program(program)
-            plan = self._plan(program)
+            plan = self.plan(program)
         else:
             program = plan.program
         pauses = pause_points(plan, single_block, True)
         ex = TimeScaledExecutor(
             plan,
-            self._machine,
-            self._budget,
+            self.m.conn.machine,
+            self.m.conn.budget,
             pauses,
-            feed_override=self._feed_pct / 100.0 if overrides else 1.0,
-            rapid_override=self._rapid_pct / 100.0 if overrides else 1.0,
+            feed_override=self.m.run.feed_pct / 100.0 if overrides else 1.0,
+            rapid_override=self.m.run.rapid_pct / 100.0 if overrides else 1.0,
         )
         job = Job(
             kind=kind,
@@ -126,38 +141,38 @@ class FeederMixin:
             executor=ex,
             overrides=overrides,
             estimated_s=plan.cycle_time_s,
-            machine=self._machine,
+            machine=self.m.conn.machine,
         )
         job.single_block = single_block
         return job
 
-    def _start_job(self, job: Job) -> None:
-        snap = self._snapshot_now()
+    def start_job(self, job: Job) -> None:
+        snap = self.m.conn.snapshot_now()
         job.start_time_s = float(snap.time_s) if job.start_time_s < 0 else job.start_time_s
-        if job.kind is Activity.PROGRAM and self._worker is not None:
-            with self._lock:
-                self._worker.reset_tracking()
-                self._worker.drain_trace()
-        with self._lock:
+        if job.kind is Activity.PROGRAM and self.m.worker is not None:
+            with self.m._lock:
+                self.m.worker.reset_tracking()
+                self.m.worker.drain_trace()
+        with self.m._lock:
             # serial numbers of set-points: the worker's consumed count (+ what is still queued;
             # a stale snapshot still counts the queue, a flushed buffer counts nothing)
-            self._pushed_total = int(snap.samples_consumed) + int(snap.buffer_level)
-            job.serial_base = self._pushed_total
-            self._job = job
-        self._set_activity(job.kind)
-        if self._state is not MachineState.RUNNING:
-            self._set_state(MachineState.RUNNING, job.kind.value)
+            self.pushed_total = int(snap.samples_consumed) + int(snap.buffer_level)
+            job.serial_base = self.pushed_total
+            self.job = job
+        self.m.states.set_activity(job.kind)
+        if self.m.states.state is not MachineState.RUNNING:
+            self.m.states.set_state(MachineState.RUNNING, job.kind.value)
         else:
-            self.stateChanged.emit(self._state, job.kind.value)
-        if self._worker_mode != "manual":
-            self._feed()
+            self.m.stateChanged.emit(self.m.states.state, job.kind.value)
+        if self.m.conn.worker_mode != "manual":
+            self.feed()
 
-    def _feed(self, max_new: int | None = None) -> None:
+    def feed(self, max_new: int | None = None) -> None:
         """Keep the worker's queue ``lead_s`` ahead (at most ``max_new`` set-points now)."""
         from ethercat.worker import WorkerState
 
-        with self._lock:
-            job, w = self._job, self._worker
+        with self.m._lock:
+            job, w = self.job, self.m.worker
             if job is None or w is None or job.aborted:
                 return
             if w.state() is not WorkerState.ENABLED:
@@ -184,20 +199,20 @@ class FeederMixin:
     def _chunk_raw(self, ch: ScaledChunk) -> np.ndarray:
         """Set-points of a chunk in drive units; at a pause point the plan stands still, so the
         point is repeated: the worker sees the motion end before its buffer runs empty."""
-        raw = ch.q + self._home_offset
+        raw = ch.q + self.m.pos.home_offset
         if ch.pause is not None:
             raw = np.vstack([raw, np.repeat(raw[-1:], 2, axis=0)])
         return raw
 
     def _record_chunk(self, job: Job, ch: ScaledChunk, state: tuple, pushed: int) -> None:
         """Bookkeeping of a chunk the worker queued at serial ``_pushed_total`` (under the lock)."""
-        serial = self._pushed_total
+        serial = self.pushed_total
         job.record(ch, serial)
         job.samples += len(ch.q)
         job.chunks.append(ChunkRecord(serial, len(ch.q), pushed, state, ch.pause is not None))
-        self._pushed_total = serial + pushed
+        self.pushed_total = serial + pushed
         if ch.pause is not None:
-            job.pause_serial = self._pushed_total  # before .pause: the poll reads both
+            job.pause_serial = self.pushed_total  # before .pause: the poll reads both
             job.pause = ch.pause
 
     @staticmethod
@@ -213,25 +228,25 @@ class FeederMixin:
         while len(chunks) > 1 and chunks[0].serial + chunks[0].pushed <= consumed:
             chunks.popleft()
 
-    def _change_motion(self, change: Callable[[TimeScaledExecutor], None]) -> None:
+    def change_motion(self, change: Callable[[TimeScaledExecutor], None]) -> None:
         """Apply ``change`` (hold, override) to the running job's executor from a serial a few
         cycles ahead of the drives, replacing the worker's queue from there (module docstring).
         Without a job nothing happens; without a queue (or a worker that cannot replace) the
         change simply applies to the next set-points generated."""
-        with self._lock:
-            job, w = self._job, self._worker
+        with self.m._lock:
+            job, w = self.job, self.m.worker
             if job is None:
                 return
             ex = job.executor
             consumed = self._live_consumed(w) if w is not None and not job.aborted else None
-            if consumed is None or not hasattr(w, "replace") or consumed >= self._pushed_total:
+            if consumed is None or not hasattr(w, "replace") or consumed >= self.pushed_total:
                 change(ex)
                 return
             current = ex.save_state()
-            ts = self._cfg.machine.planner.ts_s
+            ts = self.m.config.machine.planner.ts_s
             hold = change is _set_hold
             margin_s = SPLICE_MARGIN_S
-            if self._worker_mode != "manual":
+            if self.m.conn.worker_mode != "manual":
                 # real time: the loop runs on while we compute (a hold plans the time-optimal
                 # stop, ~6 ms here); the margin covers the last such splice's critical part
                 est = self._splice_est_s.get(hold, 0.008 if hold else 0.003)
@@ -259,22 +274,23 @@ class FeederMixin:
             took = time.perf_counter() - t_start
             self.last_splice = SpliceInfo(-1, first_consumed, SPLICE_ATTEMPTS, took, True)
 
-    def _hold_motion(self) -> None:
+    def hold_motion(self) -> None:
         """The running job's executor to hold (sigma -> 0 / the time-optimal path stop), from a
         few cycles ahead of the drives (feed hold, stop, STOP alarms, jog release)."""
-        job = self._job
+        job = self.job
         if job is not None and not job.executor.hold:
-            self._change_motion(_set_hold)
+            self.change_motion(_set_hold)
 
-    def _splice_at(self, job: Job, w: Any, serial: int, consumed: int,
-                   change: Callable[[TimeScaledExecutor], None]) -> ReplaceResult | None:
+    def _splice_at(
+        self, job: Job, w: Any, serial: int, consumed: int, change: Callable[[TimeScaledExecutor], None]
+    ) -> ReplaceResult | None:
         """One splice attempt at ``serial``: DONE, None when applied without a splice (nothing
         queued there to replace), or the worker's refusal (TOO_LATE, BEYOND_END; the executor
         state is then to be restored by the caller)."""
         t0 = time.perf_counter()
         ex = job.executor
         rec = next((r for r in reversed(job.chunks) if r.serial <= serial), None)
-        if serial >= self._pushed_total or rec is None or serial >= rec.serial + rec.pushed:
+        if serial >= self.pushed_total or rec is None or serial >= rec.serial + rec.pushed:
             change(ex)
             return None
         p = serial - rec.serial
@@ -293,7 +309,7 @@ class FeederMixin:
         ch = ex.generate(CHUNK)
         if ch is not None:
             new.append((state, ch, self._chunk_raw(ch)))
-        q = np.vstack([r for _, _, r in new]) if new else np.zeros((0, len(self._home_offset)))
+        q = np.vstack([r for _, _, r in new]) if new else np.zeros((0, len(self.m.pos.home_offset)))
         result, n = w.replace(serial, q)
         self._splice_critical_s = time.perf_counter() - t0
         if result is not ReplaceResult.DONE:
@@ -301,40 +317,40 @@ class FeederMixin:
         if n < len(q):  # pragma: no cover - lead is far below the ring capacity
             raise MachineError("worker buffer full")
         job.rewind(rec.serial)
-        self._pushed_total = rec.serial
+        self.pushed_total = rec.serial
         if prefix is not None:
             self._record_chunk(job, prefix, rec.state, p)
         for state, ch, raw in new:
             self._record_chunk(job, ch, state, len(raw))
         # a plain push (no race with the loop) of 0.1 s more now; the feeder thread adds the rest
-        self._feed(max_new=int(0.1 / self._cfg.machine.planner.ts_s))
+        self.feed(max_new=int(0.1 / self.m.config.machine.planner.ts_s))
         return ReplaceResult.DONE
 
-    def _consumed(self) -> int:
-        snap = self._last_snap
+    def consumed(self) -> int:
+        snap = self.m.poller.last_snap
         return int(snap.samples_consumed) if snap is not None else 0
 
-    def _poll_job(self, job: Job, snap: Any) -> None:
+    def poll_job(self, job: Job, snap: Any) -> None:
         consumed = int(snap.samples_consumed)
         info = job.info_at(consumed)
         if info is not None:
             line, tau = info
-            if line != self._line and job.kind in (Activity.PROGRAM, Activity.MDI):
-                self._line = line
-                self.lineChanged.emit(line)
+            if line != self.line and job.kind in (Activity.PROGRAM, Activity.MDI):
+                self.line = line
+                self.m.lineChanged.emit(line)
             if job.kind is Activity.PROGRAM:
                 t_end = job.executor.t_end + job.time_offset_s
                 tau_g = tau + job.tau_offset_s
                 frac = min(tau_g / t_end, 1.0) if t_end > 0 else 1.0
-                ovr = max(self._feed_pct / 100.0, 1e-3)
+                ovr = max(self.m.run.feed_pct / 100.0, 1e-3)
                 remaining = max(t_end - tau_g, 0.0) / ovr
-                self._progress = (frac, remaining)
-                self.progressChanged.emit(frac, remaining)
-        if snap.time_s - self._tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
-            self._tracking_emit_t = snap.time_s
-            self._tracking = self._tracking_from(snap, "")
-            self.trackingUpdated.emit(self._tracking)
-        all_done = consumed >= self._pushed_total
+                self.progress = (frac, remaining)
+                self.m.progressChanged.emit(frac, remaining)
+        if snap.time_s - self.m.poller.tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
+            self.m.poller.tracking_emit_t = snap.time_s
+            self.tracking = self._tracking_from(snap, "")
+            self.m.trackingUpdated.emit(self.tracking)
+        all_done = consumed >= self.pushed_total
         # pause points reached by the drives
         if job.pause is not None and consumed >= job.pause_serial:
             self._at_pause(job, job.pause, snap)
@@ -351,7 +367,7 @@ class FeederMixin:
             self._finish_stop(job)
             return
         if kind == "spindle":
-            self._apply_spindle(SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)))
+            self.m.spindle_ctl.apply_spindle(SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)))
             self._release(job)
         elif kind == "dwell":
             if job.dwell_until is None:
@@ -360,7 +376,7 @@ class FeederMixin:
             elif snap.time_s >= job.dwell_until:
                 job.dwell_until = None
                 self._release(job)
-        elif kind == "optional_pause" and not self._optional_stop:
+        elif kind == "optional_pause" and not self.m.run.optional_stop:
             self._release(job)
         elif not job.waiting:
             job.waiting = True
@@ -370,57 +386,57 @@ class FeederMixin:
                 "tool_change": f"tool change (M06 T{int(p.value)}, line {p.line}): press cycle start",
                 "single_block": f"single block: end of line {p.line}",
             }.get(kind, kind)
-            self._set_state(MachineState.HOLD, reason)
+            self.m.states.set_state(MachineState.HOLD, reason)
 
     def _finish_stop(self, job: Job) -> None:
-        resume = self._resume
-        self._drop_job(completed=False, reason=job.stop_reason or "stopped")
-        if self._state is MachineState.ALARM:
-            self._resume = resume  # a STOP alarm keeps the point to resume from
+        resume = self.m.run.resume_point
+        self.drop_job(completed=False, reason=job.stop_reason or "stopped")
+        if self.m.states.state is MachineState.ALARM:
+            self.m.run.resume_point = resume  # a STOP alarm keeps the point to resume from
             return
-        self._set_state(MachineState.IDLE, job.stop_reason or "stopped")
+        self.m.states.set_state(MachineState.IDLE, job.stop_reason or "stopped")
 
     def _release(self, job: Job) -> None:
-        with self._lock:
+        with self.m._lock:
             job.pause = None
             job.waiting = False
             job.executor.release_pause()
 
     def _finish_job(self, job: Job, snap: Any) -> None:
         nxt = job.then
-        completed_summary = self._drop_job(completed=True, reason="completed", snap=snap)
+        completed_summary = self.drop_job(completed=True, reason="completed", snap=snap)
         if nxt is not None:
             if nxt.spindle_before is not None:
-                self._apply_spindle(nxt.spindle_before)
-            self._start_job(nxt)
+                self.m.spindle_ctl.apply_spindle(nxt.spindle_before)
+            self.start_job(nxt)
             return
-        self._set_state(MachineState.IDLE, "program end" if completed_summary else "done")
+        self.m.states.set_state(MachineState.IDLE, "program end" if completed_summary else "done")
 
-    def _drop_job(self, completed: bool, reason: str, snap: Any = None) -> RunSummary | None:
+    def drop_job(self, completed: bool, reason: str, snap: Any = None) -> RunSummary | None:
         """End the current job (under the lock). Emits programFinished for program jobs."""
-        with self._lock:
-            job, self._job = self._job, None
+        with self.m._lock:
+            job, self.job = self.job, None
             if job is None:
                 return None
             job.aborted = True
-            if self._worker is not None and not completed:
+            if self.m.worker is not None and not completed:
                 try:
-                    self._worker.flush()
+                    self.m.worker.flush()
                 except Exception:  # noqa: BLE001
                     pass
         if job.kind is not Activity.PROGRAM:
             return None
-        last_line = self._line
+        last_line = self.line
         if completed and job.then is None:
-            self._resume = None
-            self._line = 0
+            self.m.run.resume_point = None
+            self.line = 0
         if snap is None:
-            snap = self._last_snap
+            snap = self.m.poller.last_snap
         # motion time: set-points sent (holds included) plus dwells; waits for the operator excluded
         measured = job.samples * job.plan.ts_s + job.dwell_total_s
         trace_path = self._save_trace(job)
         tracking = self._tracking_from(snap, trace_path) if snap is not None else TrackingReport()
-        self._tracking = tracking
+        self.tracking = tracking
         summary = RunSummary(
             name=job.name,
             completed=completed,
@@ -431,46 +447,48 @@ class FeederMixin:
             limits=merge_max(job.carried_limits, job.meter.final()),
             reason=reason,
         )
-        self._last_summary = summary
-        self.trackingUpdated.emit(tracking)
+        self.last_summary = summary
+        self.m.trackingUpdated.emit(tracking)
         if completed:
-            self.progressChanged.emit(1.0, 0.0)
-        self.programFinished.emit(summary)
+            self.m.progressChanged.emit(1.0, 0.0)
+        self.m.programFinished.emit(summary)
         return summary
 
     def _tracking_from(self, snap: Any, trace_path: str) -> TrackingReport:
         t = snap.tracking
         return TrackingReport(
-            axes=self._cfg.axes,
+            axes=self.m.config.axes,
             samples=int(t.samples),
             rmse=tuple(t.rmse),
             mse=tuple(t.mse),
             max_abs=tuple(t.max_abs),
-            trace_path=trace_path or self._tracking.trace_path,
+            trace_path=trace_path or self.tracking.trace_path,
         )
 
     def _save_trace(self, job: Job) -> str:
         if not job.trace:
             return ""
         cyc = np.concatenate([c for c, _, _ in job.trace])
-        ref = np.concatenate([r for _, r, _ in job.trace]) - self._home_offset
-        act = np.concatenate([a for _, _, a in job.trace]) - self._home_offset
-        path = self._store.path("last_run.npz")
+        ref = np.concatenate([r for _, r, _ in job.trace]) - self.m.pos.home_offset
+        act = np.concatenate([a for _, _, a in job.trace]) - self.m.pos.home_offset
+        path = self.m.conn.store.path("last_run.npz")
         tmp = path.with_name(".last_run.tmp.npz")
         e = ref - act
-        mse = (e * e).mean(axis=0) if len(e) else np.zeros(len(self._cfg.axes))
+        mse = (e * e).mean(axis=0) if len(e) else np.zeros(len(self.m.config.axes))
         try:
             np.savez_compressed(
                 tmp,
-                t=cyc * self._cfg.machine.planner.ts_s,
+                t=cyc * self.m.config.machine.planner.ts_s,
                 reference=ref,
                 actual=act,
-                axes=np.array(self._cfg.axes),
+                axes=np.array(self.m.config.axes),
                 rmse=np.sqrt(mse),
                 mse=mse,
             )
             os.replace(tmp, path)
         except OSError as exc:
-            self._raise_alarm("persistence", f"cannot save the run trace: {exc}", Severity.WARNING, "trace")
+            self.m.alarm_log.raise_alarm(
+                "persistence", f"cannot save the run trace: {exc}", Severity.WARNING, "trace"
+            )
             return ""
         return str(path)

@@ -1,9 +1,11 @@
 """Manual motion: continuous and incremental jog, MDI. Every motion is planned and checked like a
 program (soft limits on the whole path); a continuous jog is planned to the soft limit, so a
-lost release stops there. Part of ``MachineController`` (mixed in).
+lost release stops there. A part of ``MachineController``.
 """
 
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,22 +15,29 @@ from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
 from planner.program import EventKind, Move, MoveKind, Program
 
-__all__ = ["JOG_INCREMENTS", "ManualMixin"]
+if TYPE_CHECKING:
+    from app.machine.controller import MachineController
+
+__all__ = ["JOG_INCREMENTS", "ManualMotion"]
 
 JOG_INCREMENTS: tuple[float, ...] = (0.001, 0.01, 0.1, 1.0)  # mm or degrees
 
 
-class ManualMixin:
+class ManualMotion:
     """Jog and MDI.
 
-    Mixed into ``MachineController``, which holds the state.
+    A part of ``MachineController`` (``controller.manual``): it owns the state set up in
+    ``__init__`` and reaches the other parts through the facade ``m``.
     """
 
+    def __init__(self, m: MachineController) -> None:
+        self.m = m
+
     def _single_axis_program(self, i: int, target: float, feed_mm_s: float, name: str) -> Program:
-        cur = self._machine_pos()
+        cur = self.m.states.machine_pos()
         end = cur.copy()
         end[i] = target
-        rotary = self._cfg.machine.rotary
+        rotary = self.m.config.machine.rotary
         length = abs(target - cur[i])
         move = Move(
             index=0,
@@ -43,7 +52,7 @@ class ManualMixin:
         )
         return Program(
             name=name,
-            axes=self._cfg.axes,
+            axes=self.m.config.axes,
             rotary=rotary,
             moves=(move,),
             events=(),
@@ -57,97 +66,101 @@ class ManualMixin:
         there; ``jog_stop`` is a jerk-limited stop.
         """
         try:
-            i = self._axis(axis)
+            i = self.m.states.axis(axis)
         except MachineError as exc:
-            return self._refuse("jog", str(exc))
-        why = self.refusal("jog")
+            return self.m.states.refuse("jog", str(exc))
+        why = self.m.states.refusal("jog")
         if why:
-            return self._refuse("jog", why)
+            return self.m.states.refuse("jog", why)
         if direction not in (1, -1):
-            return self._refuse("jog", f"direction must be +1 or -1, got {direction}")
-        ax = self._cfg.machine.axes[i]
-        cur = float(self._machine_pos()[i])
+            return self.m.states.refuse("jog", f"direction must be +1 or -1, got {direction}")
+        ax = self.m.config.machine.axes[i]
+        cur = float(self.m.states.machine_pos()[i])
         limit = ax.max_pos if direction > 0 else ax.min_pos
         if (limit - cur) * direction <= 1e-9:
-            return self._refuse("jog", f"axis {ax.name} is at its soft limit {limit:g}")
+            return self.m.states.refuse("jog", f"axis {ax.name} is at its soft limit {limit:g}")
         frac = min(max(float(speed_fraction), 0.01), 1.0)
-        feed = min(self._cfg.controller.jog_speed_mm_s * frac, ax.v_max)
+        feed = min(self.m.config.controller.jog_speed_mm_s * frac, ax.v_max)
         prog = self._single_axis_program(i, limit, feed, f"jog {ax.name}{'+' if direction > 0 else '-'}")
-        job = self._make_job(Activity.JOG, prog, prog.name, overrides=False)
-        self._start_job(job)
-        return self._ok("jog")
+        job = self.m.stream.make_job(Activity.JOG, prog, prog.name, overrides=False)
+        self.m.stream.start_job(job)
+        return self.m.states.ok("jog")
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:
         """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
-        with self._lock:
-            job = self._job
+        with self.m._lock:
+            job = self.m.stream.job
             if job is None or job.kind is not Activity.JOG:
-                return self._ok("jog_stop")
-            self._hold_motion()
+                return self.m.states.ok("jog_stop")
+            self.m.stream.hold_motion()
             job.stopping = True
             job.stop_reason = "jog released"
-        return self._ok("jog_stop")
+        return self.m.states.ok("jog_stop")
 
     def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
         """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
         when the target is beyond the soft limit.
         """
         try:
-            i = self._axis(axis)
+            i = self.m.states.axis(axis)
         except MachineError as exc:
-            return self._refuse("jog", str(exc))
-        why = self.refusal("jog")
+            return self.m.states.refuse("jog", str(exc))
+        why = self.m.states.refusal("jog")
         if why:
-            return self._refuse("jog", why)
+            return self.m.states.refuse("jog", why)
         step = abs(float(step))
         if not any(abs(step - s) < 1e-12 for s in JOG_INCREMENTS):
-            return self._refuse("jog", f"increment must be one of {JOG_INCREMENTS}, got {step:g}")
-        ax = self._cfg.machine.axes[i]
-        target = float(self._machine_pos()[i]) + (1 if direction > 0 else -1) * step
+            return self.m.states.refuse("jog", f"increment must be one of {JOG_INCREMENTS}, got {step:g}")
+        ax = self.m.config.machine.axes[i]
+        target = float(self.m.states.machine_pos()[i]) + (1 if direction > 0 else -1) * step
         if not ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9:
-            return self._refuse(
+            return self.m.states.refuse(
                 "jog",
                 f"axis {ax.name} would reach {target:.4f}, beyond its soft limit "
                 f"[{ax.min_pos:g}, {ax.max_pos:g}]",
             )
         prog = self._single_axis_program(
-            i, target, min(self._cfg.controller.jog_speed_mm_s, ax.v_max), f"jog {ax.name} {step:g}"
+            i, target, min(self.m.config.controller.jog_speed_mm_s, ax.v_max), f"jog {ax.name} {step:g}"
         )
-        job = self._make_job(Activity.JOG, prog, prog.name, overrides=False)
-        self._start_job(job)
-        return self._ok("jog")
+        job = self.m.stream.make_job(Activity.JOG, prog, prog.name, overrides=False)
+        self.m.stream.start_job(job)
+        return self.m.states.ok("jog")
 
     def mdi(self, block: str) -> CommandResult:
         """Execute one G-code block with the active work offset and the same checks as a program
         (parse, soft limits on the whole path, homed rule).
         """
-        why = self.refusal("mdi")
+        why = self.m.states.refusal("mdi")
         if why:
-            return self._refuse("mdi", why)
+            return self.m.states.refuse("mdi", why)
         text = block.strip()
         if not text:
-            return self._refuse("mdi", "empty block")
+            return self.m.states.refuse("mdi", "empty block")
         if "\n" in text:
-            return self._refuse("mdi", "MDI takes one block (one line)")
-        if self._active_offset != "G54":
-            text = f"{self._active_offset} {text}"
+            return self.m.states.refuse("mdi", "MDI takes one block (one line)")
+        if self.m.pos.active_offset != "G54":
+            text = f"{self.m.pos.active_offset} {text}"
         try:
-            prog = parse_program(text, "MDI", machine=self._machine, start_position=self._machine_pos())
+            prog = parse_program(
+                text, "MDI", machine=self.m.conn.machine, start_position=self.m.states.machine_pos()
+            )
         except ProgramError as exc:
-            return self._refuse("mdi", "; ".join(e.message for e in exc.errors))
+            return self.m.states.refuse("mdi", "; ".join(e.message for e in exc.errors))
         except PlannerError as exc:
-            return self._refuse("mdi", str(exc))
-        issues = self._check_program_limits(prog)
+            return self.m.states.refuse("mdi", str(exc))
+        issues = self.m.loader.check_program_limits(prog)
         if issues:
-            return self._refuse("mdi", f"soft limit: {issues[0].message}")
+            return self.m.states.refuse("mdi", f"soft limit: {issues[0].message}")
         if not prog.moves:
             for ev in prog.events:
                 if ev.kind is EventKind.SPINDLE:
-                    self._apply_spindle(SpindleState(direction=int(np.sign(ev.value)), rpm=abs(ev.value)))
-            return self._ok("mdi")
+                    self.m.spindle_ctl.apply_spindle(
+                        SpindleState(direction=int(np.sign(ev.value)), rpm=abs(ev.value))
+                    )
+            return self.m.states.ok("mdi")
         try:
-            job = self._make_job(Activity.MDI, prog, "MDI")
+            job = self.m.stream.make_job(Activity.MDI, prog, "MDI")
         except PlannerError as exc:
-            return self._refuse("mdi", f"planner: {exc}")
-        self._start_job(job)
-        return self._ok("mdi")
+            return self.m.states.refuse("mdi", f"planner: {exc}")
+        self.m.stream.start_job(job)
+        return self.m.states.ok("mdi")

@@ -20,7 +20,7 @@ made in a worker thread too (``_start_run_plan``). Cycle start is refused meanwh
 
 The work is pure Python and NumPy: the thread shares the GIL with the GUI thread, which gets
 it back at every switch interval (5 ms) and between the stages, so the panel keeps drawing
-(figures: ``python -m bench.bench_load``). Part of ``MachineController`` (mixed in).
+(figures: ``python -m bench.bench_load``). A part of ``MachineController``.
 """
 
 from __future__ import annotations
@@ -30,10 +30,11 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from app.background import Background
 from app.machine.limits import check_program, move_bounds_table, program_bounds
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
 from planner.errors import PlannerError, ProgramError
@@ -42,7 +43,10 @@ from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.program import Program
 
-__all__ = ["LoadMixin", "LoadRequest", "RunPlanRequest"]
+if TYPE_CHECKING:
+    from app.machine.controller import MachineController
+
+__all__ = ["ProgramLoader", "LoadRequest", "RunPlanRequest"]
 
 
 class _Cancelled(Exception):
@@ -83,16 +87,18 @@ class RunPlanRequest:
     finished: bool = False
 
 
-def _issues_from_limits(program: Program, machine: MachineSpec,
-                        table: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[ProgramIssue, ...]:
+def _issues_from_limits(
+    program: Program, machine: MachineSpec, table: tuple[np.ndarray, np.ndarray] | None = None
+) -> tuple[ProgramIssue, ...]:
     return tuple(
         ProgramIssue(v.line, 1, str(v).split(": ", 1)[1], v.axis)
         for v in check_program(program, machine, table=table)
     )
 
 
-def check_text(req: LoadRequest, machine: MachineSpec, plan_fn: Any
-               ) -> ProgramInfo | tuple[tuple[ProgramIssue, ...], str]:
+def check_text(
+    req: LoadRequest, machine: MachineSpec, plan_fn: Any
+) -> ProgramInfo | tuple[tuple[ProgramIssue, ...], str]:
     """The heavy part of a load (any thread): parse, soft limits, plan, tables.
 
     Raises ``_Cancelled`` between stages once ``req.cancel`` is set."""
@@ -142,24 +148,41 @@ def check_text(req: LoadRequest, machine: MachineSpec, plan_fn: Any
     )
 
 
-class LoadMixin:
-    """Asynchronous program loading. Mixed into ``MachineController``, which holds the state
-    (``_load_request``, ``_load_generation``) and the signals (``loadingChanged``, ``_loadDone``)."""
+class ProgramLoader:
+    """Asynchronous program loading: the load and the single-block plan in flight, each run
+    off the controller's thread (``app.background``), announced by ``loadingChanged``. A part
+    of ``MachineController`` (``controller.loader``)."""
+
+    def __init__(self, m: MachineController) -> None:
+        self.m = m
+        self.program_info: ProgramInfo | None = None
+        self._program_text = ""
+        self._program_path = ""
+        self.load_request: LoadRequest | None = None  # the load in flight
+        self._load_generation = 0
+        self._load_reason = ""  # why the last load was refused
+        self._program_cfg: object = None  # configuration and offsets the program was checked with
+        self._program_offsets: dict[str, tuple[float, ...]] = {}
+        self.run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
+        self._run_plan_ready: RunPlanRequest | None = None  # ... and the one made
+        # checks and plans run off the controller's thread; results come back to it
+        self._loads = Background("program-load", self._on_load_done, m)
+        self._run_plans = Background("program-run-plan", self._on_run_plan_done, m)
 
     # --- public --------------------------------------------------------------------------
     @property
     def loading(self) -> bool:
         """True while a program is being read, checked and planned, or checked again, or
         planned for single block (cycle start refused meanwhile)."""
-        return self._load_request is not None or self._run_plan_request is not None
+        return self.load_request is not None or self.run_plan_request is not None
 
     @property
     def loading_name(self) -> str:
         """Name of the program being checked ("" when none)."""
-        req = self._load_request
+        req = self.load_request
         if req is not None:
             return req.name
-        rp = self._run_plan_request
+        rp = self.run_plan_request
         return rp.info.name if rp is not None else ""
 
     def load_program(
@@ -182,10 +205,10 @@ class LoadMixin:
         select a work offset; the active offset (``select_work_offset``) applies to MDI blocks
         and to the work coordinates shown.
         """
-        self._start_pending = False  # a new program is not the one a waiting start meant
-        why = self.refusal("load_program")
+        self.m.run.start_pending = False  # a new program is not the one a waiting start meant
+        why = self.m.states.refusal("load_program")
         if why:
-            return self._refuse("load_program", why)
+            return self.m.states.refuse("load_program", why)
         path = ""
         if isinstance(source, os.PathLike) or (
             "\n" not in source and len(source) < 4096 and Path(source).is_file()
@@ -194,10 +217,10 @@ class LoadMixin:
             try:
                 data = Path(path).read_bytes()
             except OSError as exc:
-                if self._load_request is not None:  # superseded by this failed one
-                    old = self._load_request.name
+                if self.load_request is not None:  # superseded by this failed one
+                    old = self.load_request.name
                     self._supersede_load()
-                    self.loadingChanged.emit(False, old)
+                    self.m.loadingChanged.emit(False, old)
                 return self._load_failed(
                     (ProgramIssue(0, 0, f"cannot read: {exc.strerror or exc}"),),
                     f"{path}: cannot read: {exc.strerror or exc}",
@@ -211,30 +234,30 @@ class LoadMixin:
             text = str(source)
             name = name or "<text>"
         if wait:
-            return self._load_text(text, name, path)
-        self._start_load(text, name, path)
+            return self.load_text(text, name, path)
+        self.start_load(text, name, path)
         if timeout_s is not None:
             return self.wait_loaded(timeout_s)
-        return self._ok("load_program")
+        return self.m.states.ok("load_program")
 
     def wait_loaded(self, timeout_s: float | None = 60.0) -> CommandResult:
         """Block (in the controller's thread) until the load in flight is finished and applied
         (``programLoaded`` / ``programErrors`` emitted); without one, the state of the last
         load. Falsy with the reason when the program was refused or the wait timed out."""
         deadline = None if timeout_s is None else time.monotonic() + timeout_s
-        while (req := self._load_request) is not None:  # a restart after a config change: again
+        while (req := self.load_request) is not None:  # a restart after a config change: again
             left = None if deadline is None else max(deadline - time.monotonic(), 0.0)
             if not req.done.wait(left):
                 return CommandResult(False, "load_program", f"still checking {req.name} after {timeout_s} s")
             self._apply_load(req)
-        if self._program_info is None:
+        if self.program_info is None:
             return CommandResult(False, "load_program", self._load_reason or "no program loaded")
-        return self._ok("load_program")
+        return self.m.states.ok("load_program")
 
     # --- internals -----------------------------------------------------------------------
-    def _check_program_limits(self, program: Program) -> list[ProgramIssue]:
+    def check_program_limits(self, program: Program) -> list[ProgramIssue]:
         """Soft-limit issues of a program's whole path (also used by MDI and run from line)."""
-        return list(_issues_from_limits(program, self._machine))
+        return list(_issues_from_limits(program, self.m.conn.machine))
 
     def _new_request(self, text: str, name: str, path: str) -> LoadRequest:
         self._supersede_load()
@@ -244,75 +267,78 @@ class LoadMixin:
             text=text,
             name=name,
             path=path,
-            start_position=self._machine_pos().copy(),
-            cfg=self._cfg,
-            offsets=dict(self._offsets),
+            start_position=self.m.states.machine_pos().copy(),
+            cfg=self.m.config,
+            offsets=dict(self.m.pos.offsets),
         )
 
     def _supersede_load(self) -> None:
         """Cancel the load in flight (its result, if any, is dropped)."""
-        req = self._load_request
+        req = self.load_request
         if req is not None:
             req.cancel.set()
             req.finished = True
-            self._load_request = None
+            self.load_request = None
 
-    def _start_load(self, text: str, name: str, path: str) -> LoadRequest:
+    def start_load(self, text: str, name: str, path: str) -> LoadRequest:
         req = self._new_request(text, name, path)
-        machine, plan_fn = self._machine, self._planner()
-        self._load_request = req
-        self.loadingChanged.emit(True, name)
+        machine, plan_fn = self.m.conn.machine, self.m.stream.planner()
+        self.load_request = req
+        self.m.loadingChanged.emit(True, name)
 
-        def work() -> None:
+        def work() -> LoadRequest:
             try:
                 with gc_paused(freeze=True):
                     req.outcome = check_text(req, machine, plan_fn)
             except _Cancelled:
                 req.outcome = None
             except Exception as exc:  # noqa: BLE001 - a planner bug must not kill the panel
-                req.outcome = ((ProgramIssue(0, 0, f"internal error while checking: {exc!r}"),),
-                               f"internal error while checking: {exc!r}")
-            req.done.set()
-            if not req.cancel.is_set():
-                try:
-                    self._loadDone.emit(req)  # queued: delivered in the controller's thread
-                except RuntimeError:  # the controller was deleted meanwhile
-                    pass
+                req.outcome = (
+                    (ProgramIssue(0, 0, f"internal error while checking: {exc!r}"),),
+                    f"internal error while checking: {exc!r}",
+                )
+            finally:
+                req.done.set()
+            return req
 
-        threading.Thread(target=work, name=f"program-load-{req.generation}", daemon=True).start()
+        self._loads.submit(work)  # the result comes back in the controller's thread
         return req
 
     def _on_load_done(self, req: object) -> None:
-        if isinstance(req, LoadRequest):
+        if isinstance(req, LoadRequest) and not req.cancel.is_set():
             self._apply_load(req)
-        elif isinstance(req, RunPlanRequest):
+
+    def _on_run_plan_done(self, req: object) -> None:
+        if isinstance(req, RunPlanRequest) and not req.cancel.is_set():
             self._apply_run_plan(req)
 
     def _apply_load(self, req: LoadRequest) -> None:
         """In the controller's thread: publish the outcome of ``req`` unless it was superseded."""
-        if req.finished or req is not self._load_request:
+        if req.finished or req is not self.load_request:
             return
         req.finished = True
-        self._load_request = None
-        if req.cfg is not self._cfg or req.offsets != self._offsets:  # configuration changed meanwhile
-            self._start_load(req.text, req.name, req.path)
+        self.load_request = None
+        if (
+            req.cfg is not self.m.config or req.offsets != self.m.pos.offsets
+        ):  # configuration changed meanwhile
+            self.start_load(req.text, req.name, req.path)
             return
         outcome = req.outcome
-        self.loadingChanged.emit(False, req.name)
+        self.m.loadingChanged.emit(False, req.name)
         if isinstance(outcome, ProgramInfo):
             self._program_loaded(outcome, req)
         elif outcome is not None:
             self._load_failed(*outcome)
 
-    def _load_text(self, text: str, name: str, path: str) -> CommandResult:
+    def load_text(self, text: str, name: str, path: str) -> CommandResult:
         """Synchronous load in the calling thread (``wait=True``, re-checks after a
         configuration change or a move since loading); supersedes a load in flight."""
-        was_loading = self._load_request is not None
+        was_loading = self.load_request is not None
         req = self._new_request(text, name, path)
         if was_loading:
-            self.loadingChanged.emit(False, name)
+            self.m.loadingChanged.emit(False, name)
         try:
-            outcome = check_text(req, self._machine, self._plan)
+            outcome = check_text(req, self.m.conn.machine, self.m.stream.plan)
         except _Cancelled:  # pragma: no cover - nobody cancels a synchronous load
             return CommandResult(False, "load_program", "cancelled")
         if isinstance(outcome, ProgramInfo):
@@ -321,93 +347,98 @@ class LoadMixin:
 
     def _program_loaded(self, info: ProgramInfo, req: LoadRequest) -> CommandResult:
         self._supersede_run_plan()
-        self._program_info = info
+        self.program_info = info
         self._program_cfg = req.cfg  # what the program and its plan were made for
         self._program_offsets = dict(req.offsets)
         self._program_text = info.text
         self._program_path = info.path
-        self._resume = None
+        self.m.run.resume_point = None
         self._load_reason = ""
-        self.programLoaded.emit(info)
-        if self._single_block and self._job is None:
-            self._start_run_plan(True)  # ready by the time cycle start is pressed
-        self._pending_start()
-        return self._ok("load_program")
+        self.m.programLoaded.emit(info)
+        if self.m.run.single_block and self.m.stream.job is None:
+            self.start_run_plan(True)  # ready by the time cycle start is pressed
+        self.m.run.pending_start()
+        return self.m.states.ok("load_program")
 
     def _load_failed(self, issues: tuple[ProgramIssue, ...], reason: str) -> CommandResult:
         """A failed load unloads the previous program (as LinuxCNC drops the file on a failed
         open): cycle start is then refused with "no program loaded" instead of running the old
         program while the operator looks at the new one's errors."""
         self._supersede_run_plan()
-        self._start_pending = False
-        self._program_info = None
+        self.m.run.start_pending = False
+        self.program_info = None
         self._program_text = ""
         self._program_path = ""
-        self._resume = None
+        self.m.run.resume_point = None
         self._load_reason = reason
-        self.programErrors.emit(issues)
-        return self._refuse("load_program", reason)
+        self.m.programErrors.emit(issues)
+        return self.m.states.refuse("load_program", reason)
 
     # --- run plans (single block) ------------------------------------------------------------
-    def _program_stale(self) -> str:
+    def program_stale(self) -> str:
         """Why the loaded program (and its load-time plan) no longer fits the machine: the
         configuration or the work offsets changed, or the machine is not where the program
         was interpreted from; "" when it is still valid (or none is loaded)."""
-        info = self._program_info
+        info = self.program_info
         if info is None:
             return ""
-        if self._program_cfg is not self._cfg:
+        if self._program_cfg is not self.m.config:
             return "the machine configuration changed since it was loaded"
-        if self._program_offsets != self._offsets:
+        if self._program_offsets != self.m.pos.offsets:
             return "the work offsets changed since it was loaded"
         start = np.asarray(info.program.start_position)  # type: ignore[attr-defined]
-        if np.max(np.abs(start - self._machine_pos()), initial=0.0) > 1e-6:
+        if np.max(np.abs(start - self.m.states.machine_pos()), initial=0.0) > 1e-6:
             return "the machine moved since it was loaded"
         return ""
 
-    def _recheck_program(self, wait: bool) -> CommandResult:
+    def recheck_program(self, wait: bool) -> CommandResult:
         """Check the loaded program again (parse, soft limits, plan) with the current machine:
         synchronously (``wait``) or in the worker thread like a load (cycle start refused
         until it is done). Same outcome either way (``check_text``)."""
-        info = self._program_info
+        info = self.program_info
         assert info is not None
         if wait:
-            return self._load_text(self._program_text, info.name, self._program_path)
-        self._start_load(self._program_text, info.name, self._program_path)
-        return self._ok("load_program")
+            return self.load_text(self._program_text, info.name, self._program_path)
+        self.start_load(self._program_text, info.name, self._program_path)
+        return self.m.states.ok("load_program")
 
-    def _run_plan(self, single_block: bool) -> Any:
+    def run_plan(self, single_block: bool) -> Any:
         """The ready plan for a cycle start of the loaded, still valid program: the load-time
         plan, or the single-block plan made for it; None when it is still to be made."""
-        info = self._program_info
+        info = self.program_info
         if info is None:
             return None
         if not single_block:
             return info.plan
         ready = self._run_plan_ready
-        if ready is not None and ready.info is info and ready.cfg is self._cfg:
+        if ready is not None and ready.info is info and ready.cfg is self.m.config:
             return ready.plan
         return None
 
-    def _start_run_plan(self, single_block: bool = True) -> RunPlanRequest | None:
+    def start_run_plan(self, single_block: bool = True) -> RunPlanRequest | None:
         """Plan the loaded program's single-block variant in a worker thread (unless ready or
         under way); cycle start is refused meanwhile (``refusal``)."""
         from app.machine.feeder import single_block_program
 
-        info = self._program_info
-        if info is None or self._run_plan(single_block) is not None:
+        info = self.program_info
+        if info is None or self.run_plan(single_block) is not None:
             return None
-        cur = self._run_plan_request
-        if cur is not None and cur.info is info and cur.cfg is self._cfg and cur.single_block == single_block:
+        cur = self.run_plan_request
+        if (
+            cur is not None
+            and cur.info is info
+            and cur.cfg is self.m.config
+            and cur.single_block == single_block
+        ):
             return cur
         self._supersede_run_plan()
         prog: Program = info.program  # type: ignore[assignment]
-        req = RunPlanRequest(info=info, cfg=self._cfg, program=prog, single_block=single_block)
-        plan_fn = self._planner()
-        self._run_plan_request = req
-        self.loadingChanged.emit(True, info.name)
+        req = RunPlanRequest(info=info, cfg=self.m.config, program=prog, single_block=single_block)
+        plan_fn = self.m.stream.planner()
+        self.run_plan_request = req
+        self.m.loadingChanged.emit(True, info.name)
 
-        def work() -> None:
+        def work() -> RunPlanRequest:
             try:
                 with gc_paused(freeze=True):
                     variant = single_block_program(prog) if single_block else prog
@@ -417,42 +448,39 @@ class LoadMixin:
                 req.error = f"planner: {exc}"
             except Exception as exc:  # noqa: BLE001 - a planner bug must not kill the panel
                 req.error = f"internal error while planning: {exc!r}"
-            req.done.set()
-            if not req.cancel.is_set():
-                try:
-                    self._loadDone.emit(req)
-                except RuntimeError:  # the controller was deleted meanwhile
-                    pass
+            finally:
+                req.done.set()
+            return req
 
-        threading.Thread(target=work, name="program-run-plan", daemon=True).start()
+        self._run_plans.submit(work)
         return req
 
     def _supersede_run_plan(self) -> None:
-        req = self._run_plan_request
+        req = self.run_plan_request
         self._run_plan_ready = None
         if req is not None:
             req.cancel.set()
             req.finished = True
-            self._run_plan_request = None
-            self.loadingChanged.emit(False, req.info.name)
+            self.run_plan_request = None
+            self.m.loadingChanged.emit(False, req.info.name)
 
     def _apply_run_plan(self, req: RunPlanRequest) -> None:
         """In the controller's thread: keep the finished run plan (if still wanted)."""
-        if req.finished or req is not self._run_plan_request:
+        if req.finished or req is not self.run_plan_request:
             return
         req.finished = True
-        self._run_plan_request = None
-        if req.plan is not None and req.info is self._program_info and req.cfg is self._cfg:
+        self.run_plan_request = None
+        if req.plan is not None and req.info is self.program_info and req.cfg is self.m.config:
             self._run_plan_ready = req
         elif req.error:
-            self.message.emit(f"{req.info.name}: {req.error}")
-            self._start_pending = False
-        self.loadingChanged.emit(False, req.info.name)
-        self._pending_start()
+            self.m.message.emit(f"{req.info.name}: {req.error}")
+            self.m.run.start_pending = False
+        self.m.loadingChanged.emit(False, req.info.name)
+        self.m.run.pending_start()
 
     def wait_run_plan(self, timeout_s: float | None = 60.0) -> bool:
         """Block until the run plan under way (single block) is done; True when one is ready."""
-        req = self._run_plan_request
+        req = self.run_plan_request
         if req is not None:
             if not req.done.wait(timeout_s):
                 return False

@@ -1,9 +1,11 @@
 """Program commands: cycle start, feed hold, resume, stop, single block,
 optional stop, run from line, feed and rapid override (loading: ``app.machine.program_load``).
-Part of ``MachineController`` (mixed in).
+A part of ``MachineController``.
 """
 
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,14 +27,27 @@ from planner.resume import (
     remaining_program,
 )
 
-__all__ = ["ProgramMixin"]
+if TYPE_CHECKING:
+    from app.machine.controller import MachineController
+
+__all__ = ["ProgramRunner"]
 
 
-class ProgramMixin:
-    """Start, hold, resume, stop, run from line, overrides (loading: ``LoadMixin``).
+class ProgramRunner:
+    """Start, hold, resume, stop, run from line, overrides (loading: ``ProgramLoader``).
 
-    Mixed into ``MachineController``, which holds the state.
+    A part of ``MachineController`` (``controller.run``): it owns the state set up in
+    ``__init__`` and reaches the other parts through the facade ``m``.
     """
+
+    def __init__(self, m: MachineController) -> None:
+        self.m = m
+        self.feed_pct = 100.0
+        self.rapid_pct = 100.0
+        self.single_block = False
+        self.optional_stop = False
+        self.resume_point: ResumePoint | None = None
+        self.start_pending = False  # cycle start pressed while the program is checked again
 
     def _fresh_program(self, action: str, wait: bool) -> Program | str | CommandResult:
         """The loaded program when it is still valid (same configuration and offsets, the
@@ -40,18 +55,18 @@ class ProgramMixin:
         (the synchronous path: headless use), otherwise in the worker thread (the caller is
         refused; cycle start is possible once ``programLoaded`` follows). Returns the program
         or the reason for refusing ``action``."""
-        info = self._program_info
+        info = self.m.loader.program_info
         if info is None:
             return "no program loaded"
-        stale = self._program_stale()
+        stale = self.m.loader.program_stale()
         if stale:
-            if not self._recheck_program(wait):
+            if not self.m.loader.recheck_program(wait):
                 return "the program no longer passes its checks (see the errors)"
             if not wait:
                 if action == "cycle_start":
                     return self._start_when_ready(f"{stale}: {info.name} is being checked again")
                 return f"{stale}: {info.name} is being checked again (press run from line when it is loaded)"
-            info = self._program_info
+            info = self.m.loader.program_info
             assert info is not None
         return info.program  # type: ignore[return-value]
 
@@ -60,14 +75,18 @@ class ProgramMixin:
         worker thread: accept the press and start by itself once that is done (``_pending_start``
         is cleared by a failed check, a new load, stop, reset, E-stop or any state change).
         An operator presses cycle start once."""
-        self._start_pending = True
-        self.message.emit(f"{why}; it starts when ready")
-        return self._ok("cycle_start")
+        self.start_pending = True
+        self.m.message.emit(f"{why}; it starts when ready")
+        return self.m.states.ok("cycle_start")
 
-    def _pending_start(self) -> None:
+    def pending_start(self) -> None:
         """Called when a background check or plan has finished: start if a press is waiting."""
-        if self._start_pending and self._load_request is None and self._run_plan_request is None:
-            self._start_pending = False
+        if (
+            self.start_pending
+            and self.m.loader.load_request is None
+            and self.m.loader.run_plan_request is None
+        ):
+            self.start_pending = False
             self.cycle_start()
 
     def cycle_start(self, *, wait: bool = False) -> CommandResult:
@@ -79,89 +98,89 @@ class ProgramMixin:
         (refused meanwhile with the reason; ``loadingChanged``), or here with ``wait=True``
         (headless use).
         """
-        if self._state is MachineState.HOLD:
+        if self.m.states.state is MachineState.HOLD:
             return self.resume()
         if wait:  # headless: finish a load or a single-block plan under way first
-            if self._load_request is not None:
-                self.wait_loaded(None)
-            self.wait_run_plan(None)
-        why = self.refusal("cycle_start")
+            if self.m.loader.load_request is not None:
+                self.m.loader.wait_loaded(None)
+            self.m.loader.wait_run_plan(None)
+        why = self.m.states.refusal("cycle_start")
         if why:
-            return self._refuse("cycle_start", why)
-        if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
-            return self._refuse("cycle_start", "acknowledge the active alarms first")
+            return self.m.states.refuse("cycle_start", why)
+        if any(a.active and a.severity >= Severity.STOP for a in self.m.alarm_log.alarms):
+            return self.m.states.refuse("cycle_start", "acknowledge the active alarms first")
         prog = self._fresh_program("cycle_start", wait)
         if isinstance(prog, CommandResult):  # accepted: starts once checked again
             return prog
         if isinstance(prog, str):
-            return self._refuse("cycle_start", prog)
-        info = self._program_info
+            return self.m.states.refuse("cycle_start", prog)
+        info = self.m.loader.program_info
         assert info is not None
-        single = self._single_block
-        plan = self._run_plan(single)
+        single = self.single_block
+        plan = self.m.loader.run_plan(single)
         if plan is None and not wait:
-            self._start_run_plan(single)
+            self.m.loader.start_run_plan(single)
             return self._start_when_ready(f"{info.name} is being planned for single block")
         try:
-            job = self._make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan)
+            job = self.m.stream.make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan)
         except PlannerError as exc:
-            return self._refuse("cycle_start", f"planner: {exc}")
+            return self.m.states.refuse("cycle_start", f"planner: {exc}")
         job.origin = (prog, 0, 0.0)
-        self._resume = None
-        self._line = 0
-        self._start_job(job)
-        return self._ok("cycle_start")
+        self.resume_point = None
+        self.m.stream.line = 0
+        self.m.stream.start_job(job)
+        return self.m.states.ok("cycle_start")
 
     def feed_hold(self) -> CommandResult:
         """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
         scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
         cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
-        beyond that are replaced (``FeederMixin._change_motion``), not run first.
+        beyond that are replaced (``Streamer.change_motion``), not run first.
         """
-        why = self.refusal("feed_hold")
+        why = self.m.states.refusal("feed_hold")
         if why:
-            return self._refuse("feed_hold", why)
-        with self._lock:
-            job = self._job
+            return self.m.states.refuse("feed_hold", why)
+        with self.m._lock:
+            job = self.m.stream.job
             if job is None:
-                return self._refuse("feed_hold", "nothing is moving")
-            self._hold_motion()
-        self._set_state(MachineState.HOLD, "feed hold")
-        return self._ok("feed_hold")
+                return self.m.states.refuse("feed_hold", "nothing is moving")
+            self.m.stream.hold_motion()
+        self.m.states.set_state(MachineState.HOLD, "feed hold")
+        return self.m.states.ok("feed_hold")
 
     def resume(self) -> CommandResult:
         """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
         same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
         program stopped (``resume_line``) and continue from exactly there.
         """
-        why = self.refusal("resume")
+        why = self.m.states.refusal("resume")
         if why:
-            return self._refuse("resume", why)
-        if self._state is MachineState.IDLE and self._resume is not None:
-            return self._resume_from_point(self._resume)
-        with self._lock:
-            job = self._job
+            return self.m.states.refuse("resume", why)
+        if self.m.states.state is MachineState.IDLE and self.resume_point is not None:
+            return self._resume_from_point(self.resume_point)
+        with self.m._lock:
+            job = self.m.stream.job
             if job is None:
-                return self._refuse("resume", "nothing to resume")
+                return self.m.states.refuse("resume", "nothing to resume")
             if job.stopping:
-                return self._refuse("resume", "the program is being stopped")
+                return self.m.states.refuse("resume", "the program is being stopped")
             if (
                 job.kind is Activity.PROGRAM
-                and job.single_block != self._single_block
+                and job.single_block != self.single_block
                 and (job.executor.standing or job.waiting)
-                and self._consumed() >= self._pushed_total
+                and self.m.stream.consumed() >= self.m.stream.pushed_total
             ):
                 replanned = self._replan_here(job)
                 if replanned is not None:
-                    self._set_state(MachineState.RUNNING, "program")
-                    return self._ok("resume")
+                    self.m.states.set_state(MachineState.RUNNING, "program")
+                    return self.m.states.ok("resume")
             job.executor.hold = False
             if job.pause is not None and job.waiting:
                 job.pause = None
                 job.waiting = False
                 job.executor.release_pause()
-        self._set_state(MachineState.RUNNING, job.kind.value)
-        return self._ok("resume")
+        self.m.states.set_state(MachineState.RUNNING, job.kind.value)
+        return self.m.states.ok("resume")
 
     def _replan_here(self, job: Job) -> Job | None:
         """At a standstill on the path (hold or pause point): plan the rest of the program again
@@ -178,10 +197,10 @@ class ProgramMixin:
             return None  # at the very end: nothing to re-plan
         try:
             rest = remaining_program(prog, index, u_orig)
-            new = self._make_job(Activity.PROGRAM, rest, job.name, single_block=self._single_block)
+            new = self.m.stream.make_job(Activity.PROGRAM, rest, job.name, single_block=self.single_block)
         except PlannerError:
             return None
-        full_t = self._program_info.cycle_time_s if self._program_info else new.estimated_s
+        full_t = self.m.loader.program_info.cycle_time_s if self.m.loader.program_info else new.estimated_s
         new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.t_end, 0.0)
         new.origin = (prog, index, u_orig)
         new.start_time_s = job.start_time_s
@@ -190,53 +209,60 @@ class ProgramMixin:
         new.carried_limits = job.meter.final()
         new.estimated_s = job.estimated_s
         new.serial_base = job.serial_base
-        self._job = new
-        if self._worker_mode != "manual":
-            self._feed()
+        self.m.stream.job = new
+        if self.m.conn.worker_mode != "manual":
+            self.m.stream.feed()
         return new
 
     def stop(self) -> CommandResult:
         """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it
         cancels a cycle start that waits for the program to be checked again."""
-        if self._start_pending and self._state is MachineState.IDLE:
-            self._start_pending = False
-            return self._ok("stop")
-        if self._state not in (MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
-            return self._refuse("stop", f"nothing to stop: machine is {self._state.label.lower()}")
-        if self._state is MachineState.HOMING:
-            return self._refuse("stop", "homing cannot be stopped mid-way: use E-stop")
-        with self._lock:
-            job = self._job
+        if self.start_pending and self.m.states.state is MachineState.IDLE:
+            self.start_pending = False
+            return self.m.states.ok("stop")
+        if self.m.states.state not in (MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
+            return self.m.states.refuse(
+                "stop", f"nothing to stop: machine is {self.m.states.state.label.lower()}"
+            )
+        if self.m.states.state is MachineState.HOMING:
+            return self.m.states.refuse("stop", "homing cannot be stopped mid-way: use E-stop")
+        with self.m._lock:
+            job = self.m.stream.job
             if job is not None:
-                self._hold_motion()
+                self.m.stream.hold_motion()
                 job.stopping = True
                 job.stop_reason = "stopped by the operator"
                 if job.kind is Activity.PROGRAM:
-                    self._resume = None
+                    self.resume_point = None
         if job is None:
-            self._set_state(MachineState.IDLE, "stopped")
-        elif self._state is MachineState.RUNNING:
-            self._set_state(MachineState.HOLD, "stopping")
-        return self._ok("stop")
+            self.m.states.set_state(MachineState.IDLE, "stopped")
+        elif self.m.states.state is MachineState.RUNNING:
+            self.m.states.set_state(MachineState.HOLD, "stopping")
+        return self.m.states.ok("stop")
 
     def set_single_block(self, on: bool) -> CommandResult:
         """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
         Switched while running, it takes effect at the next standstill (feed hold, pause point):
         the rest of the program is planned again from there."""
-        self._single_block = bool(on)
-        if self._single_block and self._job is None and self._program_info is not None \
-                and not self._program_stale() and self._load_request is None:
-            self._start_run_plan(True)  # ready by the time cycle start is pressed
-        self.modesChanged.emit(self._single_block, self._optional_stop)
-        if self._job is not None and self._job.kind is Activity.PROGRAM:
-            self.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
-        return self._ok("set_single_block")
+        self.single_block = bool(on)
+        if (
+            self.single_block
+            and self.m.stream.job is None
+            and self.m.loader.program_info is not None
+            and not self.m.loader.program_stale()
+            and self.m.loader.load_request is None
+        ):
+            self.m.loader.start_run_plan(True)  # ready by the time cycle start is pressed
+        self.m.modesChanged.emit(self.single_block, self.optional_stop)
+        if self.m.stream.job is not None and self.m.stream.job.kind is Activity.PROGRAM:
+            self.m.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
+        return self.m.states.ok("set_single_block")
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         """Honour M01 (optional pause); may change while running."""
-        self._optional_stop = bool(on)
-        self.modesChanged.emit(self._single_block, self._optional_stop)
-        return self._ok("set_optional_stop")
+        self.optional_stop = bool(on)
+        self.m.modesChanged.emit(self.single_block, self.optional_stop)
+        return self.m.states.ok("set_optional_stop")
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         """Start the loaded program at source line ``line``: the spindle as of that line is
@@ -245,68 +271,70 @@ class ProgramMixin:
         program runs on from there. As cycle start, a program stale since loading is checked
         again first (in the worker thread, refused meanwhile; here with ``wait=True``).
         """
-        if wait and self._load_request is not None:
-            self.wait_loaded(None)
-        why = self.refusal("run_from_line")
+        if wait and self.m.loader.load_request is not None:
+            self.m.loader.wait_loaded(None)
+        why = self.m.states.refusal("run_from_line")
         if why:
-            return self._refuse("run_from_line", why)
+            return self.m.states.refuse("run_from_line", why)
         prog = self._fresh_program("run_from_line", wait)
         if isinstance(prog, str):
-            return self._refuse("run_from_line", prog)
+            return self.m.states.refuse("run_from_line", prog)
         try:
             i = locate(prog, int(line))
         except PlannerError as exc:
-            return self._refuse("run_from_line", str(exc))
+            return self.m.states.refuse("run_from_line", str(exc))
         point = ResumePoint(
             program=prog, move_index=i, u_mm=0.0, line=prog.moves[i].line, cause=f"run from line {line}"
         )
         return self._resume_from_point(point, action="run_from_line")
 
     def _resume_from_point(self, point: ResumePoint, action: str = "resume") -> CommandResult:
-        if self._cfg.homing.required and not all(self._homed):
-            return self._refuse(action, "axes not homed")
-        if any(a.active and a.severity >= Severity.STOP for a in self._alarms):
-            return self._refuse(action, "acknowledge the active alarms first")
+        if self.m.config.homing.required and not all(self.m.pos.homed):
+            return self.m.states.refuse(action, "axes not homed")
+        if any(a.active and a.severity >= Severity.STOP for a in self.m.alarm_log.alarms):
+            return self.m.states.refuse(action, "acknowledge the active alarms first")
         prog = point.program
         try:
             rest = remaining_program(prog, point.move_index, point.u_mm)
         except PlannerError as exc:
-            return self._refuse(action, str(exc))
+            return self.m.states.refuse(action, str(exc))
         modal = modal_state_before_move(prog, point.move_index)
         spindle = SpindleState(direction=int(np.sign(modal.spindle_rpm)), rpm=abs(modal.spindle_rpm))
-        cur = self._machine_pos()
-        retract = "Z" if "Z" in self._cfg.axes else ""
-        moves = approach_moves(cur, rest.start_position, self._cfg.axes, self._cfg.machine.rotary, retract)
-        name = self._program_info.name if self._program_info else prog.name
+        cur = self.m.states.machine_pos()
+        retract = "Z" if "Z" in self.m.config.axes else ""
+        moves = approach_moves(
+            cur, rest.start_position, self.m.config.axes, self.m.config.machine.rotary, retract
+        )
+        name = self.m.loader.program_info.name if self.m.loader.program_info else prog.name
         try:
-            main = self._make_job(Activity.PROGRAM, rest, name, single_block=self._single_block)
+            main = self.m.stream.make_job(Activity.PROGRAM, rest, name, single_block=self.single_block)
         except PlannerError as exc:
-            return self._refuse(action, f"planner: {exc}")
+            return self.m.states.refuse(action, f"planner: {exc}")
         # progress relative to the whole program
-        full_t = self._program_info.cycle_time_s if self._program_info else main.estimated_s
+        full_t = self.m.loader.program_info.cycle_time_s if self.m.loader.program_info else main.estimated_s
         main.tau_offset_s = max(full_t - main.executor.t_end, 0.0)
         main.time_offset_s = main.tau_offset_s
         main.origin = (prog, point.move_index, point.u_mm)
         main.spindle_before = spindle
-        self._resume = None
-        self._line = point.line
+        self.resume_point = None
+        self.m.stream.line = point.line
         if moves:
             approach = program_from_moves(prog, moves, [], cur, name="approach")
-            issues = self._check_program_limits(approach)
+            issues = self.m.loader.check_program_limits(approach)
             if issues:
-                return self._refuse(action, f"approach move: soft limit: {issues[0]}")
-            job = self._make_job(Activity.APPROACH, approach, "approach", overrides=True)
+                return self.m.states.refuse(action, f"approach move: soft limit: {issues[0]}")
+            job = self.m.stream.make_job(Activity.APPROACH, approach, "approach", overrides=True)
             job.then = main
-            self._start_job(job)
+            self.m.stream.start_job(job)
         else:
-            self._apply_spindle(spindle)
-            self._start_job(main)
-        return self._ok(action)
+            self.m.spindle_ctl.apply_spindle(spindle)
+            self.m.stream.start_job(main)
+        return self.m.states.ok(action)
 
     @property
     def resume_line(self) -> int:
         """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
-        return self._resume.line if self._resume is not None else 0
+        return self.resume_point.line if self.resume_point is not None else 0
 
     def set_feed_override(self, percent: float) -> CommandResult:
         """Feed override 0-150 %, applied while running without a jump and within every limit
@@ -314,28 +342,28 @@ class ProgramMixin:
         """
         p = float(percent)
         if not 0.0 <= p <= 150.0:
-            return self._refuse("set_feed_override", f"feed override must be 0-150 %, got {p:g}")
-        self._feed_pct = p
-        with self._lock:
-            job = self._job
+            return self.m.states.refuse("set_feed_override", f"feed override must be 0-150 %, got {p:g}")
+        self.feed_pct = p
+        with self.m._lock:
+            job = self.m.stream.job
             if job is not None and job.overrides and job.executor.feed_override != min(p / 100.0, 1.5):
-                self._change_motion(lambda ex: ex.set_overrides(feed=p / 100.0))
-            if self._job is not None and self._job.then is not None:
-                self._job.then.executor.set_overrides(feed=p / 100.0)
-        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
-        return self._ok("set_feed_override")
+                self.m.stream.change_motion(lambda ex: ex.set_overrides(feed=p / 100.0))
+            if self.m.stream.job is not None and self.m.stream.job.then is not None:
+                self.m.stream.job.then.executor.set_overrides(feed=p / 100.0)
+        self.m.overridesChanged.emit(self.feed_pct, self.rapid_pct)
+        return self.m.states.ok("set_feed_override")
 
     def set_rapid_override(self, percent: float) -> CommandResult:
         """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
         p = float(percent)
         if not 0.0 <= p <= 100.0:
-            return self._refuse("set_rapid_override", f"rapid override must be 0-100 %, got {p:g}")
-        self._rapid_pct = p
-        with self._lock:
-            job = self._job
+            return self.m.states.refuse("set_rapid_override", f"rapid override must be 0-100 %, got {p:g}")
+        self.rapid_pct = p
+        with self.m._lock:
+            job = self.m.stream.job
             if job is not None and job.overrides and job.executor.rapid_override != min(p / 100.0, 1.0):
-                self._change_motion(lambda ex: ex.set_overrides(rapid=p / 100.0))
+                self.m.stream.change_motion(lambda ex: ex.set_overrides(rapid=p / 100.0))
             if job is not None and job.then is not None and job.then.overrides:
                 job.then.executor.set_overrides(rapid=p / 100.0)
-        self.overridesChanged.emit(self._feed_pct, self._rapid_pct)
-        return self._ok("set_rapid_override")
+        self.m.overridesChanged.emit(self.feed_pct, self.rapid_pct)
+        return self.m.states.ok("set_rapid_override")

@@ -3,11 +3,10 @@ axis with RMSE/MSE (Fig. 17, Table 4), EtherCAT slaves and states, cycle-timing 
 
 from __future__ import annotations
 
-import threading
-
-from PySide6.QtCore import QTimer, Signal
+from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QLabel, QTabWidget, QVBoxLayout, QWidget
 
+from app.background import Background
 from app.context import PanelContext
 from app.format import format_duration
 from app.i18n import N_, tr
@@ -20,7 +19,6 @@ REDRAW_MS = 33  # 30 Hz
 
 
 class DiagnosticsPage(QWidget):
-    _profileReady = Signal(int, object)  # generation, PathProfile | str (error)
 
     def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -46,9 +44,8 @@ class DiagnosticsPage(QWidget):
             i18n.bind(self.tabs, text, lambda t, i=index: self.tabs.setTabText(i, t))
 
         self.profile: PathProfile | None = None
-        self._generation = 0
+        self._planning = Background("diag-plan", self._on_profile, self)
         self._profile_state = N_("No program loaded.")
-        self._profileReady.connect(self._on_profile)
         context.program.changed.connect(self.compute_profile)
         c.trackingSample.connect(self.tracking.add_sample)
         c.trackingUpdated.connect(self.tracking.set_report)
@@ -73,33 +70,22 @@ class DiagnosticsPage(QWidget):
     # --- path profile (computed off the GUI thread) ---------------------------------------
     def compute_profile(self) -> None:
         program = self.ctx.program.program
-        self._generation += 1
+        self._planning.cancel()
         if program is None:
             self.profile = None
             self.profile_plots.set_profile(None)
             self._profile_state = N_("No program loaded.")
             self._show_profile_state()
             return
-        generation, machine = self._generation, self.ctx.controller.config.machine
+        machine = self.ctx.controller.config.machine
         plan = getattr(self.ctx.program.info, "plan", None)
         self._profile_state = N_("Planning…")
         self._show_profile_state()
+        self._planning.submit(lambda: path_profile(program, machine, plan=plan))
 
-        def work() -> None:
-            try:
-                result: object = path_profile(program, machine, plan=plan)
-            except Exception as exc:  # noqa: BLE001 - shown on the page, never kills the panel
-                result = f"{type(exc).__name__}: {exc}"
-            try:
-                self._profileReady.emit(generation, result)
-            except RuntimeError:  # the page was deleted meanwhile (window closed)
-                pass
-
-        threading.Thread(target=work, name="diag-plan", daemon=True).start()
-
-    def _on_profile(self, generation: int, result: object) -> None:
-        if generation != self._generation:
-            return
+    def _on_profile(self, result: object) -> None:
+        if isinstance(result, Exception):  # shown on the page, never kills the panel
+            result = f"{type(result).__name__}: {result}"
         if isinstance(result, PathProfile):
             self.profile = result
             self.profile_plots.set_profile(result)

@@ -17,8 +17,9 @@ import struct
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..drive_model import OBJECTS, DriveModel, ObjectEntry, decode_object, encode_object
+from ..drive_model import DriveModel
 from ..errors import SdoAbortError
+from ..object_dictionary import OBJECTS, ObjectEntry, decode_object, encode_object
 
 # CiA 301 / ETG.1000.6 abort codes used here besides those on SdoAbortError.
 ABORT_TOGGLE = 0x0503_0000

@@ -1,4 +1,5 @@
-"""A test double with the MachineController API (signals + commands), no worker, no threads.
+"""A test double of the controller's public face (``app.machine.api.MachineApi``, checked by
+tests/app/test_api.py): signals and commands, no worker, no threads.
 
 Page tests use it to drive the widgets fast and deterministically; the flow tests use the
 real controller on simulated drives.
@@ -19,9 +20,11 @@ from app.machine.model import (
     AlarmState,
     BusStatus,
     CommandResult,
+    ControllerSnapshot,
     MachineState,
     ProgramInfo,
     ProgramIssue,
+    RunSummary,
     Severity,
     SpindleState,
     TrackingReport,
@@ -77,6 +80,29 @@ class FakeController(QObject):
         self.bus_status = BusStatus(kind="sim", connected=True, state="op",
                                     drive_states=("operation enabled",) * n)
         self.tracking = TrackingReport()
+        self.state_reason = ""
+        self.reference_position = (0.0,) * n
+        self.progress = (0.0, 0.0)
+        self.resume_line = 0
+        self.last_run: RunSummary | None = None
+        self.config_path = Path(self.config.path) if self.config.path else Path("machine.toml")
+
+    @property
+    def program(self) -> object | None:
+        return self.program_info.program if self.program_info else None
+
+    @property
+    def plan(self) -> object | None:
+        return self.program_info.plan if self.program_info else None
+
+    def snapshot(self) -> ControllerSnapshot:
+        return ControllerSnapshot(
+            state=self.state, activity=self.activity, axes=self.axes, machine_pos=self.machine_position,
+            work_pos=self.work_position, homed=self.homed, active_offset=self.active_offset,
+            line=self.current_line, progress=self.progress[0], remaining_s=self.progress[1],
+            path_speed_mm_s=0.0, feed_override_pct=self.feed_override_pct,
+            rapid_override_pct=self.rapid_override_pct, single_block=self.single_block,
+            optional_stop=self.optional_stop, spindle=self.spindle, alarms=self.alarms, bus=self.bus_status)
 
     @property
     def axes(self) -> tuple[str, ...]:
@@ -138,7 +164,7 @@ class FakeController(QObject):
         ok = self.program_info is not None
         return CommandResult(ok, "load_program", "" if ok else "no program loaded")
 
-    def cycle_start(self) -> CommandResult:
+    def cycle_start(self, *, wait: bool = False) -> CommandResult:
         if self.program_info is None:
             self.commandRefused.emit("cycle_start", "no program loaded")
             return CommandResult(False, "cycle_start", "no program loaded")
@@ -178,7 +204,7 @@ class FakeController(QObject):
         self.modesChanged.emit(self.single_block, self.optional_stop)
         return self._ok("set_optional_stop", on)
 
-    def run_from_line(self, line: int) -> CommandResult:
+    def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         return self._ok("run_from_line", line)
 
     def set_feed_override(self, percent: float) -> CommandResult:
@@ -254,7 +280,7 @@ class FakeController(QObject):
         self.alarmsChanged.emit(self.alarms)
         return self._ok("acknowledge_alarm", alarm_id)
 
-    def update_config(self, config: MachineConfig) -> CommandResult:
+    def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
         self.config = config
         self.configChanged.emit(config)
         return self._ok("update_config")

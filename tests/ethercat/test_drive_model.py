@@ -16,16 +16,9 @@ from ethercat.cia402 import (
     Cia402State,
     decode_statusword,
 )
-from ethercat.drive_model import (
-    ERROR_FOLLOWING,
-    ERROR_SYNC,
-    OBJECTS,
-    DriveModel,
-    DriveParams,
-    decode_object,
-    encode_object,
-)
+from ethercat.drive_model import DriveModel, DriveParams
 from ethercat.errors import SdoAbortError
+from ethercat.object_dictionary import ERROR_FOLLOWING, ERROR_SYNC, OBJECTS, decode_object, encode_object
 
 S = Cia402State
 DT = 0.001

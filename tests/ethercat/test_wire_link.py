@@ -24,7 +24,8 @@ from ethercat.cia402 import Cia402State
 from ethercat.drive_model import DriveParams
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
 from ethercat.errors import AdapterError, AlStateError, SdoAbortError, SlaveIdentityError
-from ethercat.soem_bus import CSP_MAPPING, FRAME_TIMEOUT_ENV, PdoEntry, PdoMapping, SoemBus
+from ethercat.pdo import CSP_MAPPING, PdoEntry, PdoMapping
+from ethercat.soem_bus import FRAME_TIMEOUT_ENV, SoemBus
 from ethercat.worker import AlarmCode, CyclicWorker, EventCode, WorkerConfig, WorkerState
 from tests.ethercat.bus_contract import CONTRACT_DRIVES, BusContractTests, enable_all
 

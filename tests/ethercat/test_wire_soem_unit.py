@@ -16,15 +16,8 @@ import pytest
 from ethercat.bus import DriveSpec
 from ethercat.cli import build_parser, main
 from ethercat.errors import ConfigurationError, SdoAbortError
-from ethercat.soem_bus import (
-    CSP_MAPPING,
-    DRIVE_MAPPINGS,
-    PdoEntry,
-    PdoMapping,
-    SoemBus,
-    _DriveIo,
-    al_state_name,
-)
+from ethercat.pdo import CSP_MAPPING, DRIVE_MAPPINGS, DriveIo, PdoEntry, PdoMapping
+from ethercat.soem_bus import SoemBus, al_state_name
 
 ROOT = Path(__file__).resolve().parents[2]
 DRIVES = (DriveSpec(0, "X"), DriveSpec(1, "Y", direction=-1))
@@ -62,7 +55,7 @@ def test_process_data_packed_exactly_in_mapping_order() -> None:
     bus.digital_outputs[:] = [0x0003_0000, 0]
     inputs = struct.pack("<HiiHbI", 0x1237, -5, 3, 0x2310, 8, 0x0001_0004)
     slaves = [FakeSlave(inputs), FakeSlave(bytes(17))]
-    ios = [_DriveIo(bus, i, s, CSP_MAPPING) for i, s in enumerate(slaves)]
+    ios = [DriveIo(bus, i, s, CSP_MAPPING) for i, s in enumerate(slaves)]
     for io in ios:
         io.write()
         io.read()

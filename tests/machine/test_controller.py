@@ -57,7 +57,7 @@ def test_refusals_carry_reasons(qapp, config_path: Path, state_dir: Path) -> Non
         run_to_idle(ctl)
         assert refused and all(reason for _, reason in refused)
         with pytest.raises(MachineError):
-            ctl._set_state(MachineState.HOLD)  # IDLE -> HOLD is not a legal transition
+            ctl.states.set_state(MachineState.HOLD)  # IDLE -> HOLD is not a legal transition
     finally:
         ctl.shutdown()
 
@@ -152,14 +152,14 @@ def test_override_changes_mid_move(ctl: MachineController) -> None:
     ctl.speedChanged.connect(speeds.append)
     start(ctl, "G0 X5 Y0\nG1 X120 F1200\nM30\n")  # 20 mm/s programmed
     ctl.advance(1.2)
-    v100 = ctl._speed
+    v100 = ctl.stream.speed
     assert v100 == pytest.approx(20.0, rel=0.02)
     assert ctl.set_feed_override(150)
     ctl.advance(1.0)
-    assert ctl._speed == pytest.approx(30.0, rel=0.02)  # 150 % of 20, within Vmax 30
+    assert ctl.stream.speed == pytest.approx(30.0, rel=0.02)  # 150 % of 20, within Vmax 30
     assert ctl.set_feed_override(40)
     ctl.advance(1.0)
-    assert ctl._speed == pytest.approx(8.0, rel=0.03)
+    assert ctl.stream.speed == pytest.approx(8.0, rel=0.03)
     assert not ctl.set_feed_override(151)
     assert ctl.set_feed_override(100)
     run_to_idle(ctl)
@@ -358,12 +358,12 @@ def test_stop_abandons_the_program(ctl: MachineController) -> None:
 def test_stop_class_alarm_stops_along_the_path(ctl: MachineController) -> None:
     start(ctl)
     assert ctl.run_until(lambda: ctl.current_line == 3, 5)
-    ctl._alarm_stop("test: coolant pressure lost", "controller", "test")  # a STOP-severity alarm
+    ctl.alarm_log.alarm_stop("test: coolant pressure lost", "controller", "test")  # a STOP-severity alarm
     assert ctl.state is MachineState.ALARM
     refused = ctl.reset()  # the axes are still braking along the arc: reset waits for standstill
     assert not refused and "stand" in refused.reason
     assert ctl.state is MachineState.ALARM
-    assert ctl.run_until(lambda: ctl.worker.buffer_level() == 0 and ctl._job is None, 2)
+    assert ctl.run_until(lambda: ctl.worker.buffer_level() == 0 and ctl.stream.job is None, 2)
     p = np.array(ctl.reference_position)
     assert np.hypot(p[0] - 20.0, p[1] - 10.0) == pytest.approx(10.0, abs=1e-9)  # stopped on the arc
     assert ctl.resume_line == 3
@@ -413,10 +413,10 @@ def test_rapid_override_applies_to_rapids_only(ctl: MachineController) -> None:
     assert ctl.set_rapid_override(25)
     start(ctl, "G0 X100\nG1 X110 F1200\nM30\n")
     ctl.advance(1.5)
-    assert ctl._speed == pytest.approx(12.5, rel=0.03)  # 25 % of the 50 mm/s rapid
+    assert ctl.stream.speed == pytest.approx(12.5, rel=0.03)  # 25 % of the 50 mm/s rapid
     assert ctl.run_until(lambda: ctl.current_line == 2, 10)
     ctl.advance(0.3)
-    assert ctl._speed == pytest.approx(20.0, rel=0.03)  # the feed is not affected
+    assert ctl.stream.speed == pytest.approx(20.0, rel=0.03)  # the feed is not affected
     run_to_idle(ctl)
     assert_within_limits(ctl.last_run.limits)
     assert not ctl.set_rapid_override(120)

@@ -24,7 +24,7 @@ A_AXIS, J_AXIS = 2000.0, 40000.0        # X and Y
 
 def executed(ctl: MachineController) -> tuple[np.ndarray, np.ndarray]:
     """(cycle, reference XY) of every set-point the worker sent during the current job."""
-    job = ctl._job
+    job = ctl.stream.job
     assert job is not None and job.trace
     cyc = np.concatenate([c for c, _, _ in job.trace])
     ref = np.concatenate([r for _, r, _ in job.trace])[:, :2]
@@ -70,7 +70,7 @@ def test_hold_latency_manual_mode_within_10_ms(qapp, config_path: Path, state_di
         request_cycle = w.snapshot().cycle
         consumed = w.samples_consumed()
         assert ctl.feed_hold()
-        sp = ctl.last_splice
+        sp = ctl.stream.last_splice
         assert sp is not None and not sp.fallback and sp.attempts == 1
         assert sp.serial - consumed == 5                    # ... but the stop starts 5 ms ahead
         ctl.advance(0.4)
@@ -100,7 +100,7 @@ def test_stop_and_override_splice_within_limits(ctl: MachineController) -> None:
     w = ctl.worker
     c0 = w.snapshot().cycle
     assert ctl.set_feed_override(150)
-    assert ctl.last_splice is not None and not ctl.last_splice.fallback
+    assert ctl.stream.last_splice is not None and not ctl.stream.last_splice.fallback
     ctl.advance(0.05)
     cyc, ref = executed(ctl)
     v = np.linalg.norm(np.diff(ref, axis=0), axis=1) / TS
@@ -137,7 +137,7 @@ def test_hold_latency_thread_mode_a_few_cycles(qapp, config_path: Path, state_di
         assert w.buffer_level() > 300                       # the lead is queued
         consumed = w.samples_consumed()
         assert ctl.feed_hold()
-        sp = ctl.last_splice
+        sp = ctl.stream.last_splice
         assert sp is not None and not sp.fallback, sp
         # the stop starts a few cycles after the request: the margin covers planning the stop
         # (~6 ms here): measured 11-13 set-points after the consumed serial; when the loop
@@ -148,7 +148,7 @@ def test_hold_latency_thread_mode_a_few_cycles(qapp, config_path: Path, state_di
         while w.buffer_level() > 0 and time.monotonic() < t_end:
             time.sleep(0.01)
             qapp.processEvents()
-        ctl._poll()
+        ctl.poller.poll()
         cyc, ref = executed(ctl)
         assert_continuous(ref, 0, len(ref) - 1)
         held = np.array(ctl.reference_position)
@@ -172,8 +172,8 @@ def test_a_splice_that_changes_nothing_keeps_the_queue_bit_identical(ctl: Machin
         ctl.advance(t)
         before = queue()
         consumed = ctl.worker.samples_consumed()
-        ctl._change_motion(lambda ex: None)
-        sp = ctl.last_splice
+        ctl.stream.change_motion(lambda ex: None)
+        sp = ctl.stream.last_splice
         assert sp is not None and not sp.fallback and sp.serial == consumed + 5
         after = queue()
         n = min(len(before), len(after))

@@ -47,7 +47,7 @@ def test_shutdown_mid_run_stops_along_the_path_first(qapp, config_path: Path, st
     try:
         assert ctl.load_program(SHORT, wait=True) and ctl.cycle_start()
         ctl.advance(0.5)  # in line 2 at 30 mm/s
-        assert ctl.state is MachineState.RUNNING and ctl._speed > 10.0
+        assert ctl.state is MachineState.RUNNING and ctl.stream.speed > 10.0
         x0 = ctl.reference_position[0]
     finally:
         ctl.shutdown()

@@ -43,7 +43,7 @@ def test_cycle_start_reuses_the_load_time_plan(ctl: MachineController, plan_call
     assert len(plan_calls) == 1
     assert ctl.cycle_start()
     assert len(plan_calls) == 1  # nothing planned at cycle start
-    assert ctl._job is not None and ctl._job.plan is ctl.plan
+    assert ctl.stream.job is not None and ctl.stream.job.plan is ctl.plan
     run_to_idle(ctl, 60)
     assert ctl.last_run.completed
 
@@ -65,12 +65,12 @@ def test_config_change_rechecks_in_the_background(qtbot, ctl: MachineController,
     assert not ctl.loading and ctl.program_info is info and info is not old
     assert len(plan_calls) == 2
     # the synchronous path gives the same result
-    assert ctl._load_text(text, "big.nc", "")
+    assert ctl.loader.load_text(text, "big.nc", "")
     sync = ctl.program_info
     assert sync == info and sync is not info
     same_plan(sync.plan, info.plan)
     assert ctl.cycle_start() and len(plan_calls) == 3  # the plan of the check is run
-    assert ctl._job.plan is sync.plan
+    assert ctl.stream.job.plan is sync.plan
 
 
 def test_update_config_wait_rechecks_synchronously(ctl: MachineController, plan_calls: list[int]) -> None:
@@ -110,7 +110,7 @@ def test_moved_since_loading_with_wait_is_synchronous(ctl: MachineController, pl
     n = len(plan_calls)
     assert ctl.cycle_start(wait=True)
     assert not ctl.loading and len(plan_calls) == n + 1  # checked again here, its plan run
-    assert ctl._job.plan is ctl.plan
+    assert ctl.stream.job.plan is ctl.plan
 
 
 def test_offset_change_makes_the_program_stale(qtbot, ctl: MachineController) -> None:
@@ -138,10 +138,10 @@ def test_single_block_plan_is_made_in_the_background(qtbot, ctl: MachineControll
     assert not ctl.loading and loading == [(True, "<text>"), (False, "<text>")]
     assert len(plan_calls) == 2
     assert ctl.cycle_start() and len(plan_calls) == 2
-    job_plan = ctl._job.plan
+    job_plan = ctl.stream.job.plan
     assert all(m.exact_stop for m in job_plan.program.moves)
     sync = feeder.plan_program(feeder.single_block_program(ctl.program_info.program),
-                               feeder.reduced_machine(ctl._machine, ctl._budget))
+                               feeder.reduced_machine(ctl.conn.machine, ctl.conn.budget))
     same_plan(job_plan, sync)
     stops = 0
     while ctl.state is not MachineState.IDLE:

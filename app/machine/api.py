@@ -1,0 +1,423 @@
+"""The controller's public face, as a type: what the panel may use of ``MachineController``.
+
+The pages and widgets talk to the controller through these signals, read-only properties
+and commands only; the panel's tests drive the same pages with a test double, and both the
+controller and the double are checked against this protocol (``tests/app/test_api.py``), so
+a page cannot come to depend on something only one of them has.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Protocol
+
+from PySide6.QtCore import SignalInstance
+
+from app.machine.config import MachineConfig
+from app.machine.model import (
+    Activity,
+    Alarm,
+    BusStatus,
+    CommandResult,
+    ControllerSnapshot,
+    MachineState,
+    ProgramInfo,
+    RunSummary,
+    SpindleState,
+    TrackingReport,
+)
+
+__all__ = ["MachineApi"]
+
+
+class MachineApi(Protocol):
+    """Signals (emitted in the controller's thread), state and commands of the machine. The
+    controller has more for headless use (simulated time: ``advance``, ``run_until``; blocking
+    waits; the worker itself), which the panel never needs.
+    Commands never raise for an operator-level refusal: they return a falsy ``CommandResult``
+    with the reason and emit ``commandRefused``."""
+
+    stateChanged: SignalInstance  # (MachineState, reason text)
+    activityChanged: SignalInstance  # Activity
+    positionChanged: SignalInstance  # (machine pos tuple, work pos tuple), <= 30 Hz
+    trackingSample: SignalInstance  # (time s, reference, actual) machine coords, <= 30 Hz
+    programLoaded: SignalInstance  # ProgramInfo (checked: no errors, within soft limits)
+    programErrors: SignalInstance  # tuple[ProgramIssue, ...] (parse errors, soft limits)
+    loadingChanged: SignalInstance  # (a program is being checked, its name)
+    programFinished: SignalInstance  # RunSummary (completed or not)
+    lineChanged: SignalInstance  # current source line (1-based), 0 when none
+    progressChanged: SignalInstance  # (fraction 0..1, remaining time s at current override)
+    speedChanged: SignalInstance  # commanded path speed mm/s
+    overridesChanged: SignalInstance  # (feed %, rapid %)
+    modesChanged: SignalInstance  # (single block, optional stop)
+    alarmsChanged: SignalInstance  # tuple[Alarm, ...] (active and history)
+    homedChanged: SignalInstance  # tuple[bool, ...] per axis
+    offsetsChanged: SignalInstance  # (dict name -> tuple per axis, active name)
+    spindleChanged: SignalInstance  # SpindleState
+    busStateChanged: SignalInstance  # BusStatus
+    trackingUpdated: SignalInstance  # TrackingReport (during a run ~1 Hz, and at the end)
+    configChanged: SignalInstance  # MachineConfig (after update_config / load)
+    commandRefused: SignalInstance  # (action, reason)
+    message: SignalInstance  # informational text for the status line
+
+    @property
+    def state(self) -> MachineState:
+        """Current machine state."""
+        ...
+
+    @property
+    def state_reason(self) -> str:
+        """Why the machine is in its state (text for the panel)."""
+        ...
+
+    @property
+    def activity(self) -> Activity:
+        """What the machine is doing while RUNNING / HOLD."""
+        ...
+
+    @property
+    def config(self) -> MachineConfig:
+        """The applied machine configuration."""
+        ...
+
+    @property
+    def axes(self) -> tuple[str, ...]:
+        """Axis names, in configuration order."""
+        ...
+
+    @property
+    def machine_position(self) -> tuple[float, ...]:
+        """Actual position, machine coordinates."""
+        ...
+
+    @property
+    def work_position(self) -> tuple[float, ...]:
+        """Actual position in the active work offset's coordinates."""
+        ...
+
+    @property
+    def reference_position(self) -> tuple[float, ...]:
+        """Last set-point sent to the drives (machine coordinates)."""
+        ...
+
+    @property
+    def homed(self) -> tuple[bool, ...]:
+        """Homed flag per axis."""
+        ...
+
+    @property
+    def work_offsets(self) -> dict[str, tuple[float, ...]]:
+        """The G54-G59 table."""
+        ...
+
+    @property
+    def active_offset(self) -> str:
+        """Name of the active work offset."""
+        ...
+
+    @property
+    def program_info(self) -> ProgramInfo | None:
+        """The loaded program (None if none)."""
+        ...
+
+    @property
+    def program(self) -> object | None:
+        """The loaded, checked ``planner.program.Program`` (None if none)."""
+        ...
+
+    @property
+    def plan(self) -> object | None:
+        """The ``planner.plan.Plan`` of the loaded program (planned with the override budget)."""
+        ...
+
+    @property
+    def current_line(self) -> int:
+        """Source line the drives are executing (0 when none)."""
+        ...
+
+    @property
+    def progress(self) -> tuple[float, float]:
+        """(fraction 0..1, remaining time s at the current feed override) of the running program."""
+        ...
+
+    @property
+    def feed_override_pct(self) -> float:
+        """Feed override in percent."""
+        ...
+
+    @property
+    def rapid_override_pct(self) -> float:
+        """Rapid override in percent."""
+        ...
+
+    @property
+    def single_block(self) -> bool:
+        """Single-block mode."""
+        ...
+
+    @property
+    def optional_stop(self) -> bool:
+        """Optional stop (M01) honoured."""
+        ...
+
+    @property
+    def spindle(self) -> SpindleState:
+        """Spindle state."""
+        ...
+
+    @property
+    def alarms(self) -> tuple[Alarm, ...]:
+        """All alarms (active and history), oldest first."""
+        ...
+
+    @property
+    def active_alarms(self) -> tuple[Alarm, ...]:
+        """Alarms not yet acknowledged."""
+        ...
+
+    @property
+    def bus_status(self) -> BusStatus:
+        """Bus / worker state."""
+        ...
+
+    @property
+    def tracking(self) -> TrackingReport:
+        """Tracking RMSE/MSE of the last (or current) run."""
+        ...
+
+    @property
+    def last_run(self) -> RunSummary | None:
+        """Summary of the last program run (None before the first)."""
+        ...
+
+    @property
+    def config_path(self) -> Path:
+        """The machine configuration file that ``update_config`` writes."""
+        ...
+
+    @property
+    def loading(self) -> bool:
+        """True while a program is being read, checked and planned, or checked again, or
+        planned for single block (cycle start refused meanwhile).
+        """
+        ...
+
+    @property
+    def loading_name(self) -> str:
+        """Name of the program being checked ("" when none)."""
+        ...
+
+    @property
+    def resume_line(self) -> int:
+        """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
+        ...
+
+    def snapshot(self) -> ControllerSnapshot:
+        """Everything the panel shows, in one immutable object."""
+        ...
+
+    def refusal(self, action: str) -> str:
+        """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",
+        "resume", "touch_off", "spindle_on", "update_config", ...) would be refused now; "" when
+        allowed (for enabling buttons).
+        """
+        ...
+
+    def reset(self) -> CommandResult:
+        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
+        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
+        resume point. Also cancels a cycle start waiting for a check.
+        """
+        ...
+
+    def estop(self, reason: str = "operator") -> CommandResult:
+        """Emergency stop: the drives' quick stop at once, program abandoned (resume point kept),
+        spindle off, -> ESTOP.
+        """
+        ...
+
+    def estop_release(self) -> CommandResult:
+        """Release the E-stop: fault reset and re-enable the drives, -> IDLE."""
+        ...
+
+    def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
+        """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply.
+        Refused while moving; bus and drive changes take effect at the next connect; the loaded
+        program is checked again against the new limits: in a worker thread like a load (cycle
+        start refused until it is done; ``loadingChanged``), or before returning with ``wait``
+        (headless; the outcome is the same).
+        """
+        ...
+
+    def connect_bus(self) -> CommandResult:
+        """Start the worker (simulated drives when the bus kind is "sim") and enable the drives:
+        DISCONNECTED -> IDLE. Saved positions are restored (simulated drives start there); an axis
+        whose reported position differs from the saved one loses its homed state (warning alarm).
+        """
+        ...
+
+    def disconnect_bus(self) -> CommandResult:
+        """Stop any motion (a jerk-limited stop along the path, at most ``RAMP_DOWN_TIMEOUT_S``),
+        abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED.
+        """
+        ...
+
+    def shutdown(self) -> None:
+        """Stop any motion (jerk-limited), spindle off, disconnect (worker stopped before the
+        feeder), persist positions and offsets; safe to call twice.
+        """
+        ...
+
+    def load_program(
+        self,
+        source: str | os.PathLike[str],
+        name: str | None = None,
+        *,
+        wait: bool = False,
+        timeout_s: float | None = None,
+    ) -> CommandResult:
+        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text.
+
+        Parses, checks the whole path against the soft limits (arcs by their exact extremes)
+        and plans it before anything moves, in a worker thread: returns at once (truthy:
+        accepted and being checked), then emits ``programLoaded`` or ``programErrors`` (all
+        errors, with lines and axes) from the controller's thread. ``wait=True`` does the work
+        in the calling thread and returns the outcome (falsy with the reason when refused), as
+        ``wait_loaded`` does for a load already started. A newer load supersedes one in flight.
+        Refused while running. Programs start in the interpreter's reset state (G54) unless they
+        select a work offset; the active offset (``select_work_offset``) applies to MDI blocks
+        and to the work coordinates shown.
+        """
+        ...
+
+    def cycle_start(self, *, wait: bool = False) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
+        axes (unless the configuration says otherwise) and no active alarm of severity STOP or
+        above. Runs the plan made at load time; when the configuration, the work offsets or
+        the machine position changed since loading, the program is checked again first, and
+        with single block on its single-block plan is made first: both in a worker thread
+        (refused meanwhile with the reason; ``loadingChanged``), or here with ``wait=True``
+        (headless use).
+        """
+        ...
+
+    def feed_hold(self) -> CommandResult:
+        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
+        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
+        cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
+        beyond that are replaced (``Streamer.change_motion``), not run first.
+        """
+        ...
+
+    def resume(self) -> CommandResult:
+        """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
+        same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
+        program stopped (``resume_line``) and continue from exactly there.
+        """
+        ...
+
+    def stop(self) -> CommandResult:
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it
+        cancels a cycle start that waits for the program to be checked again.
+        """
+        ...
+
+    def set_single_block(self, on: bool) -> CommandResult:
+        """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
+        Switched while running, it takes effect at the next standstill (feed hold, pause point):
+        the rest of the program is planned again from there.
+        """
+        ...
+
+    def set_optional_stop(self, on: bool) -> CommandResult:
+        """Honour M01 (optional pause); may change while running."""
+        ...
+
+    def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
+        """Start the loaded program at source line ``line``: the spindle as of that line is
+        restored, a safe approach (retract Z to the higher of the current and target heights,
+        move the other axes, then down) brings the tool to the line's start point, then the
+        program runs on from there. As cycle start, a program stale since loading is checked
+        again first (in the worker thread, refused meanwhile; here with ``wait=True``).
+        """
+        ...
+
+    def set_feed_override(self, percent: float) -> CommandResult:
+        """Feed override 0-150 %, applied while running without a jump and within every limit
+        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
+        """
+        ...
+
+    def set_rapid_override(self, percent: float) -> CommandResult:
+        """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
+        ...
+
+    def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
+        """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog
+        speed. The motion is planned to end at the soft limit, so a lost release stops exactly
+        there; ``jog_stop`` is a jerk-limited stop.
+        """
+        ...
+
+    def jog_stop(self, axis: str | int | None = None) -> CommandResult:
+        """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
+        ...
+
+    def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
+        """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
+        when the target is beyond the soft limit.
+        """
+        ...
+
+    def mdi(self, block: str) -> CommandResult:
+        """Execute one G-code block with the active work offset and the same checks as a program
+        (parse, soft limits on the whole path, homed rule).
+        """
+        ...
+
+    def home_axis(self, axis: str | int) -> CommandResult:
+        """Home one axis by the configured method: "drive" (CiA 402 homing mode 6 with
+        ``homing.drive_method``, via the worker) or "set_here" (current position = machine zero).
+        """
+        ...
+
+    def home_all(self) -> CommandResult:
+        """Home every axis (Z first) by the configured method."""
+        ...
+
+    def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
+        """Declare the current position machine zero for one axis (all when None); homed; persisted."""
+        ...
+
+    def set_work_offset(self, name: str, values: dict[str, float] | tuple[float, ...]) -> CommandResult:
+        """Set a G54-G59 offset (machine coordinates of part zero; a dict by axis name or one value
+        per axis); persisted.
+        """
+        ...
+
+    def select_work_offset(self, name: str) -> CommandResult:
+        """Make G54-G59 the active work offset (MDI and work coordinates); persisted."""
+        ...
+
+    def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
+        """Set part zero here: choose the offset (active unless named) so that the current
+        position reads ``work_value`` in work coordinates on ``axis``.
+        """
+        ...
+
+    def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
+        """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
+        ...
+
+    def spindle_off(self) -> CommandResult:
+        """Spindle off (M05); always allowed."""
+        ...
+
+    def spindle_speed(self, rpm: float) -> CommandResult:
+        """Set the spindle speed (applied at once when running)."""
+        ...
+
+    def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
+        """Acknowledge one alarm (all active ones when None); persisted."""
+        ...
