@@ -173,6 +173,7 @@ class Connection:
 
     def _worker_config(self) -> Any:
         from ethercat.worker import DriveSpec, WorkerConfig
+        from ethercat.worker.shared import ordered_stores
 
         cfg = self.cfg
         ids = {d.position: d for d in cfg.bus.drives}
@@ -197,13 +198,22 @@ class Connection:
             options = (("initial_positions_counts", counts),)
         # core, real-time priority and spin: the WorkerConfig defaults (the worker picks a free
         # core itself and uses SCHED_FIFO 49, below PREEMPT_RT's interrupt threads)
+        mode = self.worker_mode
+        if mode == "process" and not ordered_stores():
+            # the worker's own process shares memory in a way that needs x86's store order;
+            # elsewhere (ARM panel PCs) the same loop runs as a thread of the panel
+            mode = "thread"
+            self.m.alarm_log.raise_alarm(
+                "worker", "this CPU does not keep stores in order: the 1 ms loop runs as a thread "
+                "of the panel, not in its own process (less punctual under GUI load)",
+                Severity.WARNING, "worker_thread_mode")
         return WorkerConfig(
             drives=drives,
             ts_s=cfg.machine.planner.ts_s,
             bus_kind=cfg.bus.kind,
             adapter=cfg.bus.adapter,
             wkc_error_limit=cfg.bus.wkc_error_limit,
-            mode=self.worker_mode,
+            mode=mode,
             bus_options=options,
             homing_timeout_s=cfg.homing.timeout_s,
         )

@@ -82,3 +82,19 @@ def test_realtime_shutdown_mid_run_leaves_no_underrun_alarm(qapp, tmp_path: Path
     assert not any("underrun" in a["cause"] for a in saved_alarms(state_dir))
     x = json.loads((state_dir / "state.json").read_text())["raw_position"][0]
     assert 5.0 < x < 60.0
+
+
+def test_on_a_cpu_without_store_order_the_worker_runs_as_a_thread(qapp, config_path: Path, state_dir: Path,
+                                                                  monkeypatch) -> None:
+    """The worker's own process needs x86's store order; on an ARM panel PC the controller runs
+    the same loop as a thread instead of failing to connect, and says so."""
+    from ethercat.worker import shared
+
+    monkeypatch.setattr(shared.platform, "machine", lambda: "aarch64")
+    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="process")
+    try:
+        assert ctl.connect_bus()
+        assert ctl.worker.config.mode == "thread"
+        assert any(a.code == "worker_thread_mode" for a in ctl.alarms)
+    finally:
+        ctl.shutdown()
