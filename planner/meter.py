@@ -150,55 +150,65 @@ class LimitMeter:
         ts = self.ts
         eps = np.finfo(float).eps * self._scale * 16
         noise = {"v": eps / ts, "a": 4 * eps / ts**2, "j": 8 * eps / ts**3}
-        # only stencils that end in the new samples (the tail's were measured before)
-        lo = {1: max(new_from - 1, 0), 2: max(new_from - 2, 0), 3: max(new_from - 3, 0)}
-        same = {1: move[1:] == move[:-1],
-                2: (move[2:] == move[:-2]) & (move[1:-1] == move[2:]),
-                3: (move[3:] == move[:-3]) & (move[1:-2] == move[3:]) & (move[2:-1] == move[3:])}
-        order_key = {1: "v", 2: "a", 3: "j"}
-        for k in (1, 2, 3):
+        same1 = move[1:] == move[:-1]
+        same = {1: same1, 2: same1[1:] & same1[:-1], 3: same1[2:] & same1[1:-1] & same1[:-2]}
+        dq, ds = q, s
+        for k, key in ((1, "v"), (2, "a"), (3, "j")):
             if len(q) <= k:
-                continue
-            key = order_key[k]
-            dq = np.abs(np.diff(q, k, axis=0))[lo[k]:] / ts**k
-            ds = np.abs(np.diff(s, k))[lo[k]:] / ts**k
-            inside = same[k][lo[k]:]
-            lines = line[k:][lo[k]:]
-            axis_lim = {1: self.v_axis, 2: self.a_axis, 3: self.j_axis}[k]
+                break
+            dq, ds = np.diff(dq, axis=0), np.diff(ds)      # k-th differences, from the (k-1)-th
+            lo = max(new_from - k, 0)                        # only stencils that end in the new samples
+            aq = np.abs(dq[lo:]) / ts**k
+            as_ = np.abs(ds[lo:]) / ts**k
+            inside = same[k][lo:]
+            # a stencil is attributed to the line of its second sample, as the planner reports it
+            lines = line[1:len(line) - k + 1][lo:]
+            axis_lim = (self.v_axis, self.a_axis, self.j_axis)[k - 1]
             # axes: velocity and acceleration everywhere, jerk inside moves (joints reported)
-            ax_ok = inside if k == 3 else np.ones(len(dq), bool)
-            self._axes(key, dq, ax_ok, inside, axis_lim, lines, noise[key])
+            self._axes(key, aq, None if k < 3 else inside, axis_lim, lines, noise[key])
             # along the path
-            path_ok = inside if (k == 3 or not self.across_joints) else np.ones(len(ds), bool)
-            if not path_ok.any():
-                continue
-            if k == 1:
-                limit: np.ndarray | float = self._v_limit(move)[lo[1]:][path_ok]
+            if k == 3 or not self.across_joints:
+                if not inside.any():
+                    continue
+                val, vlines = as_[inside], lines[inside]
+                limit: np.ndarray | float = self._v_limit(move)[lo:][inside] if k == 1 else \
+                    (self.a_path if k == 2 else self.j_path)
             else:
-                limit = self.a_path if k == 2 else self.j_path
-            val = ds[path_ok]
+                val, vlines = as_, lines
+                limit = self._v_limit(move)[lo:] if k == 1 else self.a_path
             self.tangential[key] = max(self.tangential[key], float(val.max()))
             if k > 1 and not self.tangential_accel:
                 continue
             self.ratios["tangential_" + key] = max(self.ratios["tangential_" + key],
                                                    float(np.max((val - noise[key]) / limit)))
-            self.worst["tangential_" + key].update(val, limit, lines[path_ok], REL_TOL[key], noise[key])
+            self.worst["tangential_" + key].update(val, limit, vlines, REL_TOL[key], noise[key])
 
-    def _axes(self, key: str, dq: np.ndarray, ok: np.ndarray, inside: np.ndarray, limit: np.ndarray,
+    def _axes(self, key: str, val: np.ndarray, inside: np.ndarray | None, limit: np.ndarray,
               lines: np.ndarray, noise: float) -> None:
-        if ok.any():
-            val = dq[ok]
-            self.ratios["axis_" + key] = max(self.ratios["axis_" + key],
-                                             float(np.max((val - noise) / limit)))
-            for i, name in enumerate(self.names):
-                col = val[:, i]
-                self.axes[name][key] = max(self.axes[name][key], float(col.max()))
-                self.worst["axis_" + key].update(col, limit[i], lines[ok], REL_TOL[key], noise)
-        if key == "j" and (~inside).any():
-            val = dq[~inside]
-            for i, name in enumerate(self.names):
-                self.axes[name]["j_joint"] = max(self.axes[name]["j_joint"], float(val[:, i].max()))
-                self.joint.update(val[:, i], limit[i], lines[~inside], REL_TOL[key], noise)
+        """Per-axis maxima of one order's stencils (N, n_axes), column by column (a reduction
+        along the first axis of an (N, 3) array is many times slower than three column ones);
+        with ``inside``, the stencils within one move count against the limit and the others
+        are joint jerk. A violation's details are looked up only when a column is over."""
+        tol = REL_TOL[key]
+        joint_lines = lines[~inside] if inside is not None else lines
+        in_lines = lines[inside] if inside is not None else lines
+        for i, name in enumerate(self.names):
+            col = val[:, i]
+            if inside is not None:
+                out = col[~inside]
+                col = col[inside]
+                if out.size:
+                    worst = float(out.max())
+                    self.axes[name]["j_joint"] = max(self.axes[name]["j_joint"], worst)
+                    if worst > limit[i] * (1.0 + tol) + noise:
+                        self.joint.update(out, limit[i], joint_lines, tol, noise)
+            if not col.size:
+                continue
+            worst = float(col.max())
+            self.axes[name][key] = max(self.axes[name][key], worst)
+            self.ratios["axis_" + key] = max(self.ratios["axis_" + key], (worst - noise) / float(limit[i]))
+            if worst > limit[i] * (1.0 + tol) + noise:
+                self.worst["axis_" + key].update(col, limit[i], in_lines, tol, noise)
 
     @property
     def violations(self) -> dict[str, dict[str, float]]:

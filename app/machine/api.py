@@ -198,9 +198,8 @@ class MachineApi(Protocol):
 
     @property
     def loading(self) -> bool:
-        """True while a program is being read, checked and planned, or checked again, or
-        planned for single block (cycle start refused meanwhile).
-        """
+        """True while a program is being read, checked and planned, or checked again, or planned for
+        single block (cycle start refused meanwhile)."""
         ...
 
     @property
@@ -220,21 +219,17 @@ class MachineApi(Protocol):
     def refusal(self, action: str) -> str:
         """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",
         "resume", "touch_off", "spindle_on", "update_config", ...) would be refused now; "" when
-        allowed (for enabling buttons).
-        """
+        allowed (for enabling buttons)."""
         ...
 
     def reset(self) -> CommandResult:
-        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
-        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
-        resume point. Also cancels a cycle start waiting for a check.
-        """
+        """HOLD (at standstill): abandon the program; ALARM: acknowledge, fault reset and re-enable
+        (the resume point is kept); IDLE: forget the resume point. Ends in IDLE."""
         ...
 
     def estop(self, reason: str = "operator") -> CommandResult:
         """Emergency stop: the drives' quick stop at once, program abandoned (resume point kept),
-        spindle off, -> ESTOP.
-        """
+        spindle off, -> ESTOP."""
         ...
 
     def estop_release(self) -> CommandResult:
@@ -242,31 +237,22 @@ class MachineApi(Protocol):
         ...
 
     def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
-        """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply.
-        Refused while moving; bus and drive changes take effect at the next connect; the loaded
-        program is checked again against the new limits: in a worker thread like a load (cycle
-        start refused until it is done; ``loadingChanged``), or before returning with ``wait``
-        (headless; the outcome is the same).
-        """
+        """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply."""
         ...
 
     def connect_bus(self) -> CommandResult:
         """Start the worker (simulated drives when the bus kind is "sim") and enable the drives:
-        DISCONNECTED -> IDLE. Saved positions are restored (simulated drives start there); an axis
-        whose reported position differs from the saved one loses its homed state (warning alarm).
-        """
+        DISCONNECTED -> IDLE."""
         ...
 
     def disconnect_bus(self) -> CommandResult:
         """Stop any motion (a jerk-limited stop along the path, at most ``RAMP_DOWN_TIMEOUT_S``),
-        abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED.
-        """
+        abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED."""
         ...
 
     def shutdown(self) -> None:
         """Stop any motion (jerk-limited), spindle off, disconnect (worker stopped before the
-        feeder), persist positions and offsets; safe to call twice.
-        """
+        feeder), persist positions and offsets; safe to call twice."""
         ...
 
     def load_program(
@@ -277,57 +263,29 @@ class MachineApi(Protocol):
         wait: bool = False,
         timeout_s: float | None = None,
     ) -> CommandResult:
-        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text.
-
-        Parses, checks the whole path against the soft limits (arcs by their exact extremes)
-        and plans it before anything moves, in a worker thread: returns at once (truthy:
-        accepted and being checked), then emits ``programLoaded`` or ``programErrors`` (all
-        errors, with lines and axes) from the controller's thread. ``wait=True`` does the work
-        in the calling thread and returns the outcome (falsy with the reason when refused), as
-        ``wait_loaded`` does for a load already started. A newer load supersedes one in flight.
-        Refused while running. Programs start in the interpreter's reset state (G54) unless they
-        select a work offset; the active offset (``select_work_offset``) applies to MDI blocks
-        and to the work coordinates shown.
-        """
+        """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text."""
         ...
 
     def cycle_start(self, *, wait: bool = False) -> CommandResult:
-        """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
-        axes (unless the configuration says otherwise) and no active alarm of severity STOP or
-        above. Runs the plan made at load time; when the configuration, the work offsets or
-        the machine position changed since loading, the program is checked again first, and
-        with single block on its single-block plan is made first: both in a worker thread
-        (refused meanwhile with the reason; ``loadingChanged``), or here with ``wait=True``
-        (headless use).
-        """
+        """Start the loaded program from its beginning (IDLE), or continue (HOLD)."""
         ...
 
     def feed_hold(self) -> CommandResult:
-        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
-        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
-        cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
-        beyond that are replaced (``Streamer.change_motion``), not run first.
-        """
+        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time scale
+        to 0 where that would exceed a limit): RUNNING -> HOLD."""
         ...
 
     def resume(self) -> CommandResult:
         """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
-        same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
-        program stopped (``resume_line``) and continue from exactly there.
-        """
+        same end."""
         ...
 
     def stop(self) -> CommandResult:
-        """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it
-        cancels a cycle start that waits for the program to be checked again.
-        """
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE)."""
         ...
 
     def set_single_block(self, on: bool) -> CommandResult:
-        """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
-        Switched while running, it takes effect at the next standstill (feed hold, pause point):
-        the rest of the program is planned again from there.
-        """
+        """Single block: the plan stops at every block end (HOLD there; cycle start goes on)."""
         ...
 
     def set_optional_stop(self, on: bool) -> CommandResult:
@@ -338,15 +296,12 @@ class MachineApi(Protocol):
         """Start the loaded program at source line ``line``: the spindle as of that line is
         restored, a safe approach (retract Z to the higher of the current and target heights,
         move the other axes, then down) brings the tool to the line's start point, then the
-        program runs on from there. As cycle start, a program stale since loading is checked
-        again first (in the worker thread, refused meanwhile; here with ``wait=True``).
-        """
+        program runs on from there."""
         ...
 
     def set_feed_override(self, percent: float) -> CommandResult:
         """Feed override 0-150 %, applied while running without a jump and within every limit
-        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
-        """
+        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits."""
         ...
 
     def set_rapid_override(self, percent: float) -> CommandResult:
@@ -354,10 +309,7 @@ class MachineApi(Protocol):
         ...
 
     def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
-        """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog
-        speed. The motion is planned to end at the soft limit, so a lost release stops exactly
-        there; ``jog_stop`` is a jerk-limited stop.
-        """
+        """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog speed."""
         ...
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:
@@ -366,20 +318,17 @@ class MachineApi(Protocol):
 
     def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
         """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
-        when the target is beyond the soft limit.
-        """
+        when the target is beyond the soft limit."""
         ...
 
     def mdi(self, block: str) -> CommandResult:
         """Execute one G-code block with the active work offset and the same checks as a program
-        (parse, soft limits on the whole path, homed rule).
-        """
+        (parse, soft limits on the whole path, homed rule)."""
         ...
 
     def home_axis(self, axis: str | int) -> CommandResult:
         """Home one axis by the configured method: "drive" (CiA 402 homing mode 6 with
-        ``homing.drive_method``, via the worker) or "set_here" (current position = machine zero).
-        """
+        ``homing.drive_method``, via the worker) or "set_here" (current position = machine zero)."""
         ...
 
     def home_all(self) -> CommandResult:
@@ -392,8 +341,7 @@ class MachineApi(Protocol):
 
     def set_work_offset(self, name: str, values: dict[str, float] | tuple[float, ...]) -> CommandResult:
         """Set a G54-G59 offset (machine coordinates of part zero; a dict by axis name or one value
-        per axis); persisted.
-        """
+        per axis); persisted."""
         ...
 
     def select_work_offset(self, name: str) -> CommandResult:
@@ -401,9 +349,8 @@ class MachineApi(Protocol):
         ...
 
     def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
-        """Set part zero here: choose the offset (active unless named) so that the current
-        position reads ``work_value`` in work coordinates on ``axis``.
-        """
+        """Set part zero here: choose the offset (active unless named) so that the current position
+        reads ``work_value`` in work coordinates on ``axis``."""
         ...
 
     def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:

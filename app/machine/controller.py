@@ -331,76 +331,42 @@ class MachineController(QObject):
             bus=self.poller.bus_status,
         )
 
-    # ------------------------------------------------------------------ commands (delegated)
+    # ------------------------------------------------------------------ commands
+    # Each is its part's method; ``app.machine.api.MachineApi`` documents them for the panel.
     def refusal(self, action: str) -> str:
-        """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",
-        "resume", "touch_off", "spindle_on", "update_config", ...) would be refused now; "" when
-        allowed (for enabling buttons).
-        """
         return self.states.refusal(action)
 
     def reset(self) -> CommandResult:
-        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
-        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
-        resume point. Also cancels a cycle start waiting for a check.
-        """
         return self.states.reset()
 
     def estop(self, reason: str = "operator") -> CommandResult:
-        """Emergency stop: the drives' quick stop at once, program abandoned (resume point kept),
-        spindle off, -> ESTOP.
-        """
         return self.states.estop(reason)
 
     def estop_release(self) -> CommandResult:
-        """Release the E-stop: fault reset and re-enable the drives, -> IDLE."""
         return self.states.estop_release()
 
     # ---- end of states
 
     @property
     def config_path(self) -> Path:
-        """The machine configuration file that ``update_config`` writes."""
         return self.conn.config_path
 
     def update_config(self, config: MachineConfig, *, wait: bool = False) -> CommandResult:
-        """Validate, write atomically (temp + os.replace, old file kept as .bak) and apply.
-        Refused while moving; bus and drive changes take effect at the next connect; the loaded
-        program is checked again against the new limits: in a worker thread like a load (cycle
-        start refused until it is done; ``loadingChanged``), or before returning with ``wait``
-        (headless; the outcome is the same).
-        """
         return self.conn.update_config(config, wait=wait)
 
     def connect_bus(self) -> CommandResult:
-        """Start the worker (simulated drives when the bus kind is "sim") and enable the drives:
-        DISCONNECTED -> IDLE. Saved positions are restored (simulated drives start there); an axis
-        whose reported position differs from the saved one loses its homed state (warning alarm).
-        """
         return self.conn.connect_bus()
 
     def disconnect_bus(self) -> CommandResult:
-        """Stop any motion (a jerk-limited stop along the path, at most ``RAMP_DOWN_TIMEOUT_S``),
-        abandon it, disable the drives and stop the worker, then the feeder: -> DISCONNECTED.
-        """
         return self.conn.disconnect_bus()
 
     def shutdown(self) -> None:
-        """Stop any motion (jerk-limited), spindle off, disconnect (worker stopped before the
-        feeder), persist positions and offsets; safe to call twice.
-        """
         return self.conn.shutdown()
 
     def advance(self, seconds: float, step_cycles: int = 10) -> None:
-        """Manual worker mode only: run the machine for ``seconds`` of simulated time
-        (feed set-points, run the cycles, poll and emit signals). For tests and tools.
-        """
         return self.conn.advance(seconds, step_cycles)
 
     def run_until(self, predicate: Callable[[], bool], timeout_s: float = 10.0) -> bool:
-        """Manual mode: advance until ``predicate()`` is true (True) or ``timeout_s`` of
-        simulated time passed (False).
-        """
         return self.conn.run_until(predicate, timeout_s)
 
     # ---- end of conn
@@ -409,14 +375,10 @@ class MachineController(QObject):
 
     @property
     def loading(self) -> bool:
-        """True while a program is being read, checked and planned, or checked again, or
-        planned for single block (cycle start refused meanwhile).
-        """
         return self.loader.loading
 
     @property
     def loading_name(self) -> str:
-        """Name of the program being checked ("" when none)."""
         return self.loader.loading_name
 
     def load_program(
@@ -442,160 +404,92 @@ class MachineController(QObject):
         return self.loader.load_program(source, name, wait=wait, timeout_s=timeout_s)
 
     def wait_loaded(self, timeout_s: float | None = 60.0) -> CommandResult:
-        """Block (in the controller's thread) until the load in flight is finished and applied
-        (``programLoaded`` / ``programErrors`` emitted); without one, the state of the last
-        load. Falsy with the reason when the program was refused or the wait timed out.
-        """
         return self.loader.wait_loaded(timeout_s)
 
     def wait_run_plan(self, timeout_s: float | None = 60.0) -> bool:
-        """Block until the run plan under way (single block) is done; True when one is ready."""
         return self.loader.wait_run_plan(timeout_s)
 
     # ---- end of loader
 
     def cycle_start(self, *, wait: bool = False) -> CommandResult:
-        """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
-        axes (unless the configuration says otherwise) and no active alarm of severity STOP or
-        above. Runs the plan made at load time; when the configuration, the work offsets or
-        the machine position changed since loading, the program is checked again first, and
-        with single block on its single-block plan is made first: both in a worker thread
-        (refused meanwhile with the reason; ``loadingChanged``), or here with ``wait=True``
-        (headless use).
-        """
         return self.run.cycle_start(wait=wait)
 
     def feed_hold(self) -> CommandResult:
-        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
-        scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
-        cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
-        beyond that are replaced (``Streamer.change_motion``), not run first.
-        """
         return self.run.feed_hold()
 
     def resume(self) -> CommandResult:
-        """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
-        same end. In IDLE after a fault or E-stop mid-program: move safely to the point where the
-        program stopped (``resume_line``) and continue from exactly there.
-        """
         return self.run.resume()
 
     def stop(self) -> CommandResult:
-        """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it
-        cancels a cycle start that waits for the program to be checked again.
-        """
         return self.run.stop()
 
     def set_single_block(self, on: bool) -> CommandResult:
-        """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
-        Switched while running, it takes effect at the next standstill (feed hold, pause point):
-        the rest of the program is planned again from there.
-        """
         return self.run.set_single_block(on)
 
     def set_optional_stop(self, on: bool) -> CommandResult:
-        """Honour M01 (optional pause); may change while running."""
         return self.run.set_optional_stop(on)
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
-        """Start the loaded program at source line ``line``: the spindle as of that line is
-        restored, a safe approach (retract Z to the higher of the current and target heights,
-        move the other axes, then down) brings the tool to the line's start point, then the
-        program runs on from there. As cycle start, a program stale since loading is checked
-        again first (in the worker thread, refused meanwhile; here with ``wait=True``).
-        """
         return self.run.run_from_line(line, wait=wait)
 
     @property
     def resume_line(self) -> int:
-        """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
         return self.run.resume_line
 
     def set_feed_override(self, percent: float) -> CommandResult:
-        """Feed override 0-150 %, applied while running without a jump and within every limit
-        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
-        """
         return self.run.set_feed_override(percent)
 
     def set_rapid_override(self, percent: float) -> CommandResult:
-        """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
         return self.run.set_rapid_override(percent)
 
     # ---- end of run
 
     def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
-        """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog
-        speed. The motion is planned to end at the soft limit, so a lost release stops exactly
-        there; ``jog_stop`` is a jerk-limited stop.
-        """
         return self.manual.jog_start(axis, direction, speed_fraction)
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:
-        """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
         return self.manual.jog_stop(axis)
 
     def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
-        """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
-        when the target is beyond the soft limit.
-        """
         return self.manual.jog_increment(axis, step, direction)
 
     def mdi(self, block: str) -> CommandResult:
-        """Execute one G-code block with the active work offset and the same checks as a program
-        (parse, soft limits on the whole path, homed rule).
-        """
         return self.manual.mdi(block)
 
     # ---- end of manual
 
     def home_axis(self, axis: str | int) -> CommandResult:
-        """Home one axis by the configured method: "drive" (CiA 402 homing mode 6 with
-        ``homing.drive_method``, via the worker) or "set_here" (current position = machine zero).
-        """
         return self.pos.home_axis(axis)
 
     def home_all(self) -> CommandResult:
-        """Home every axis (Z first) by the configured method."""
         return self.pos.home_all()
 
     def set_machine_zero_here(self, axis: str | int | None = None) -> CommandResult:
-        """Declare the current position machine zero for one axis (all when None); homed; persisted."""
         return self.pos.set_machine_zero_here(axis)
 
     def set_work_offset(self, name: str, values: dict[str, float] | tuple[float, ...]) -> CommandResult:
-        """Set a G54-G59 offset (machine coordinates of part zero; a dict by axis name or one value
-        per axis); persisted.
-        """
         return self.pos.set_work_offset(name, values)
 
     def select_work_offset(self, name: str) -> CommandResult:
-        """Make G54-G59 the active work offset (MDI and work coordinates); persisted."""
         return self.pos.select_work_offset(name)
 
     def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
-        """Set part zero here: choose the offset (active unless named) so that the current
-        position reads ``work_value`` in work coordinates on ``axis``.
-        """
         return self.pos.touch_off(axis, work_value, offset)
 
     # ---- end of pos
 
     def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
-        """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
         return self.spindle_ctl.spindle_on(clockwise, rpm)
 
     def spindle_off(self) -> CommandResult:
-        """Spindle off (M05); always allowed."""
         return self.spindle_ctl.spindle_off()
 
     def spindle_speed(self, rpm: float) -> CommandResult:
-        """Set the spindle speed (applied at once when running)."""
         return self.spindle_ctl.spindle_speed(rpm)
 
     # ---- end of spindle_ctl
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
-        """Acknowledge one alarm (all active ones when None); persisted."""
         return self.alarm_log.acknowledge_alarm(alarm_id)
 
     # ---- end of alarm_log
