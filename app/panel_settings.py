@@ -11,7 +11,7 @@ import json
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
-from app.atomic import atomic_write_text
+from planner.files import write_text
 
 DEFAULT_SERVICE_PASSWORD = "1234"   # documented in the README; change it on the Parameters page
 
@@ -55,7 +55,7 @@ class SettingsStore:
         self.settings = self.settings.with_changes(**changes)
         data = asdict(self.settings)
         data["mdi_history"] = list(self.settings.mdi_history)
-        atomic_write_text(self.path, json.dumps(data, indent=2))
+        write_text(self.path, json.dumps(data, indent=2))
         return self.settings
 
     def check_password(self, password: str) -> bool:

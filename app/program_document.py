@@ -11,7 +11,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from app.atomic import atomic_write_text
+from planner.files import write_text
 
 
 class ProgramDocument:
@@ -41,7 +41,7 @@ class ProgramDocument:
         target = Path(path) if path is not None else self.path
         if target is None:
             raise ValueError("no file name: use Save as")
-        atomic_write_text(target, self.text)
+        write_text(target, self.text)
         self.discard_autosave()
         self.path, self.saved_text = target.resolve(), self.text
         return self.path
@@ -58,7 +58,7 @@ class ProgramDocument:
         if not self.modified:
             return None
         header = json.dumps({"path": str(self.path) if self.path else ""})
-        atomic_write_text(target, header + "\n" + self.text)
+        write_text(target, header + "\n" + self.text)
         return target
 
     def recovery_text(self, path: Path) -> str | None:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
+import math
 import sys
 import time
 from dataclasses import replace
@@ -26,12 +26,16 @@ from pathlib import Path
 import numpy as np
 
 from planner.errors import PlannerError, ProgramError
+from planner.files import write_output, write_output_via_path
 from planner.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
 from planner.meter import path_vaj
 
 __all__ = ["build_machine", "main"]
 
 PAPER_V, PAPER_A, PAPER_J, PAPER_TS = 30.0, 1000.0, 10_000.0, 0.001
+# A program that runs longer than this is almost always a mistake (a feed of 0.0001, a circle
+# of radius 1e6); interpolating it blindly would take hours and gigabytes for nothing.
+DEFAULT_MAX_CYCLE_H = 24.0
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -50,6 +54,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", help="write a velocity/acceleration/jerk PNG (paper Fig. 14)")
     p.add_argument("--canon", help="write the moves as LinuxCNC canonical calls (JSONL)")
     p.add_argument("--json", action="store_true", help="print a JSON report on stdout")
+    p.add_argument("--max-cycle-h", type=float, default=DEFAULT_MAX_CYCLE_H,
+                   help=f"refuse to interpolate a program whose cycle time exceeds this many hours "
+                        f"(default {DEFAULT_MAX_CYCLE_H:g}); its cycle time is reported instead")
     return p
 
 
@@ -78,32 +85,19 @@ def build_machine(config: str | None, vmax: float | None, amax: float | None, jm
     return machine.with_planner(ts_s=PAPER_TS if ts is None else ts)
 
 
-def _atomic(path: str, write) -> None:
-    tmp = f"{path}.tmp{os.getpid()}{Path(path).suffix}"  # keep the suffix: writers pick the format by it
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
 def _write_npz(path: str, chunk, axes) -> None:
-    def w(tmp):
-        with open(tmp, "wb") as fh:
-            np.savez(fh, t=chunk.t, q=chunk.q, axes=np.array(axes), s=chunk.s, line=chunk.line)
-    _atomic(path, w)
+    write_output(path, lambda fh: np.savez(fh, t=chunk.t, q=chunk.q, axes=np.array(axes), s=chunk.s,
+                                           line=chunk.line))
 
 
 def _write_csv(path: str, plan, axes) -> None:
-    def w(tmp):
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(",".join(["t", *axes, "s", "line"]) + "\n")
-            d = len(axes)
-            for c in plan.iter_chunks():
-                block = np.column_stack([c.t, c.q, c.s, c.line])
-                np.savetxt(fh, block, fmt=["%.6f"] + ["%.9f"] * d + ["%.9f", "%d"], delimiter=",")
-    _atomic(path, w)
+    def w(fh):
+        fh.write((",".join(["t", *axes, "s", "line"]) + "\n").encode("utf-8"))
+        d = len(axes)
+        for c in plan.iter_chunks():
+            block = np.column_stack([c.t, c.q, c.s, c.line])
+            np.savetxt(fh, block, fmt=["%.6f"] + ["%.9f"] * d + ["%.9f", "%d"], delimiter=",")
+    write_output(path, w)
 
 
 def _plot(path: str, plan, chunk, title: str) -> None:
@@ -114,7 +108,7 @@ def _plot(path: str, plan, chunk, title: str) -> None:
     def w(tmp):
         vaj_png.export_vaj_png(tmp, chunk.t, v, a, j, title=title,
                                 limits=(lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3))
-    _atomic(path, w)
+    write_output_via_path(path, w)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -122,15 +116,27 @@ def main(argv: list[str] | None = None) -> int:
     from planner.canon import write_canon
     from planner.interpreter import parse_file
     from planner.plan import plan_program
+    from planner.softlimits import check_program
 
     # --canon alone needs no planning: comparing with LinuxCNC's canonical calls runs it on every file.
     want_plan = bool(args.json or args.samples or args.csv or args.plot or not args.canon)
     plan = None
+    if not (math.isfinite(args.max_cycle_h) and args.max_cycle_h > 0):
+        print(f"cnc-plan: error: --max-cycle-h must be a positive number of hours, got {args.max_cycle_h}",
+              file=sys.stderr)
+        return 2
     try:
         machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
         started = time.perf_counter()
         program = parse_file(args.program, machine)
         parse_s = time.perf_counter() - started
+        if args.config:
+            # the machine's travel, checked on the whole path as the controller does
+            over = check_program(program, machine)
+            if over:
+                for v in over:
+                    print(f"{args.program}:{v.line}: error: {str(v).split(': ', 1)[1]}", file=sys.stderr)
+                return 2
         if want_plan:
             plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
     except ProgramError as exc:
@@ -138,6 +144,16 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except PlannerError as exc:
         print(f"{args.program}: error: {exc}", file=sys.stderr)
+        return 2
+
+    if plan is not None and not plan.cycle_time_s <= args.max_cycle_h * 3600.0:
+        print(f"{args.program}: error: the cycle time is {plan.cycle_time_s / 3600.0:.1f} h, more than "
+              f"--max-cycle-h {args.max_cycle_h:g}: not interpolated (a feed too low or a move too long?)",
+              file=sys.stderr)
+        if args.json:
+            json.dump({"program": str(args.program), "cycle_time_s": plan.cycle_time_s, "ok": False,
+                       "refused": f"cycle time over {args.max_cycle_h:g} h"}, sys.stdout)
+            sys.stdout.write("\n")
         return 2
 
     axes = list(program.axes)

@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any
+from typing import Any, BinaryIO
 
+from planner.files import write_output
 from planner.program import MoveKind, Program
 
 __all__ = ["canon_records", "write_canon"]
@@ -55,10 +56,12 @@ def canon_records(program: Program) -> list[dict[str, Any]]:
 
 
 def write_canon(program: Program, path: str | os.PathLike[str]) -> None:
-    """Write canon_records(program) as JSONL (written to a temporary file, then renamed)."""
-    tmp = f"{os.fspath(path)}.tmp"
-    with open(tmp, "w", encoding="utf-8") as fh:
+    """Write canon_records(program) as JSONL (``planner.files``: atomically for a file, directly
+    to a device, a pipe or ``-``)."""
+
+    def write(fh: BinaryIO) -> None:
         for rec in canon_records(program):
-            fh.write(json.dumps(rec))
-            fh.write("\n")
-    os.replace(tmp, path)
+            fh.write(json.dumps(rec).encode("utf-8"))
+            fh.write(b"\n")
+
+    write_output(path, write)

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from planner.errors import PlannerError
-from planner.schema import Locator, validate
+from planner.schema import Locator, check_complete, validate
 
 WORK_OFFSET_NAMES: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59")
 PLANNER_MODES: tuple[str, ...] = ("lookahead", "paper")
@@ -179,6 +179,7 @@ def load_machine(path: str | Path) -> MachineSpec:
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
+        check_complete(text, str(p))
         data = tomllib.loads(text)
     except FileNotFoundError:
         raise PlannerError(f"{p}: machine configuration file not found") from None

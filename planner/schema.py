@@ -18,7 +18,8 @@ from typing import Any
 
 from planner.errors import PlannerError
 
-__all__ = ["MACHINE_FILE", "REQUIRED", "Key", "Locator", "Table", "key_lines", "validate"]
+__all__ = ["END_MARK", "HEADER", "MACHINE_FILE", "REQUIRED", "Key", "Locator", "Table", "check_complete",
+           "key_lines", "validate"]
 
 
 class _Required:
@@ -113,6 +114,19 @@ MACHINE_FILE = Table("", tables=(
         Key("position_tolerance", "float", 0.01, 0.0, 100.0),
     )),
 ))
+
+#: first and last line of a file the panel wrote: a file that starts with the header but has
+#: no end mark was cut short (a copy or a non-atomic editor interrupted) even if what is left
+#: parses, and every reader refuses it
+HEADER = "# Machine configuration (written by the CNC panel). Units: mm or deg, s."
+END_MARK = "# end of machine configuration"
+
+
+def check_complete(text: str, where: str) -> None:
+    """Refuse a panel-written file whose end mark is missing (truncated)."""
+    if text.startswith(HEADER) and END_MARK not in text[-200:]:
+        raise PlannerError(f"{where}: damaged file, truncated (the end mark is missing)")
+
 
 _HEADER_RE = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.-]+)\s*\]\]?")
 _KEY_RE = re.compile(r"^\s*([A-Za-z0-9_-]+)\s*=")

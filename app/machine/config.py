@@ -22,8 +22,6 @@ explicitly (keeping the damaged file as ``<file>.damaged``).
 from __future__ import annotations
 
 import os
-import shutil
-import tempfile
 import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -33,11 +31,11 @@ import tomlkit
 import tomlkit.exceptions
 import tomlkit.items
 
-from app.atomic import atomic_write_text
 from app.machine.errors import ConfigError
 from planner.errors import PlannerError
+from planner.files import write_output, write_text
 from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
-from planner.schema import Locator, validate
+from planner.schema import END_MARK, HEADER, Locator, check_complete, validate
 from resources import shipped_machine
 
 __all__ = [
@@ -53,8 +51,6 @@ __all__ = [
     "save_config",
 ]
 
-HEADER = "# Machine configuration (written by the CNC panel). Units: mm or deg, s."
-END_MARK = "# end of machine configuration"
 
 
 @dataclass(frozen=True, slots=True)
@@ -167,9 +163,10 @@ def _parse(path: Path) -> MachineConfig:
         raise ConfigError(f"{path}: machine configuration file not found", str(path)) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot read: {exc}", str(path)) from None
-    if text.startswith(HEADER) and END_MARK not in text[-200:]:
-        # written by us, but the end marker is missing: cut short (a truncated write)
-        raise ConfigError(f"{path}: damaged file, truncated (the end marker is missing)", str(path))
+    try:
+        check_complete(text, str(path))
+    except PlannerError as exc:
+        raise ConfigError(str(exc), str(path)) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -219,7 +216,7 @@ def recover_config(path: str | os.PathLike[str]) -> tuple[MachineConfig, str]:
         reason = str(exc)
     if p.exists():
         os.replace(p, p.with_name(p.name + ".damaged"))
-    atomic_write_text(p, bak.read_text(encoding="utf-8"))
+    write_text(p, bak.read_text(encoding="utf-8"))
     cfg = replace(cfg, path=str(p))
     return cfg, f"{reason}; restored from {bak} (damaged file kept as {p.name}.damaged)"
 
@@ -352,10 +349,7 @@ def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = Non
         except ConfigError:
             current_valid = False
         if current_valid:
-            bak = backup_path(p)
-            fd, tmp = tempfile.mkstemp(prefix=f".{bak.name}.", suffix=".tmp", dir=p.parent)
-            os.close(fd)
-            shutil.copy2(p, tmp)
-            os.replace(tmp, bak)
-    atomic_write_text(p, text)
+            current = p.read_bytes()
+            write_output(backup_path(p), lambda fh: fh.write(current))
+    write_text(p, text)
     return new

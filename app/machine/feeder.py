@@ -19,7 +19,6 @@ hold starts decelerating within ~5-10 ms of the request instead of after the lea
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable
 from dataclasses import replace
@@ -32,6 +31,7 @@ from app.machine.jobs import ChunkRecord, Job, merge_max
 from app.machine.model import Activity, MachineState, RunSummary, Severity, SpindleState, TrackingReport
 from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, pause_points, reduced_machine
 from ethercat.worker import ReplaceResult
+from planner.files import write_output
 from planner.plan import Plan, plan_program
 from planner.program import Program
 
@@ -472,20 +472,21 @@ class Streamer:
         ref = np.concatenate([r for _, r, _ in job.trace]) - self.m.pos.home_offset
         act = np.concatenate([a for _, _, a in job.trace]) - self.m.pos.home_offset
         path = self.m.conn.store.path("last_run.npz")
-        tmp = path.with_name(".last_run.tmp.npz")
         e = ref - act
         mse = (e * e).mean(axis=0) if len(e) else np.zeros(len(self.m.config.axes))
         try:
-            np.savez_compressed(
-                tmp,
-                t=cyc * self.m.config.machine.planner.ts_s,
-                reference=ref,
-                actual=act,
-                axes=np.array(self.m.config.axes),
-                rmse=np.sqrt(mse),
-                mse=mse,
+            write_output(
+                path,
+                lambda fh: np.savez_compressed(
+                    fh,
+                    t=cyc * self.m.config.machine.planner.ts_s,
+                    reference=ref,
+                    actual=act,
+                    axes=np.array(self.m.config.axes),
+                    rmse=np.sqrt(mse),
+                    mse=mse,
+                ),
             )
-            os.replace(tmp, path)
         except OSError as exc:
             self.m.alarm_log.raise_alarm(
                 "persistence", f"cannot save the run trace: {exc}", Severity.WARNING, "trace"

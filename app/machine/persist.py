@@ -18,8 +18,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-from app.atomic import atomic_write_text
 from app.machine.model import Alarm, AlarmState, Severity
+from planner.files import remove_stale_temporaries, write_text
 
 __all__ = ["StateStore"]
 
@@ -34,6 +34,8 @@ class StateStore:
         self.dir = Path(state_dir).expanduser()
         self.dir.mkdir(parents=True, exist_ok=True)
         self.problems: list[str] = []
+        # a save interrupted by a power cut or kill -9 leaves its temporary: gone at the next start
+        remove_stale_temporaries(self.dir, whole_folder=True)
 
     def path(self, name: str) -> Path:
         return self.dir / name
@@ -54,7 +56,7 @@ class StateStore:
             return None
 
     def _write_json(self, name: str, data: Any) -> None:
-        atomic_write_text(self.path(name), json.dumps(data, indent=1))
+        write_text(self.path(name), json.dumps(data, indent=1))
 
     # ------------------------------------------------------------------ machine state
     def load_state(self, axes: tuple[str, ...]) -> dict[str, Any] | None:

@@ -35,13 +35,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from app.background import Background
-from app.machine.limits import check_program, move_bounds_table, program_bounds
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
 from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.program import Program
+from planner.softlimits import check_program, move_bounds_table, program_bounds
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from app.atomic import atomic_write_text
 from app.program_document import ProgramDocument
+from planner.files import write_text
 
 
 def test_save_is_atomic_and_clears_modified(tmp_path: Path) -> None:
@@ -32,7 +32,7 @@ def test_failed_write_keeps_the_old_file(tmp_path: Path, monkeypatch) -> None:
 
     monkeypatch.setattr(os, "replace", boom)
     with pytest.raises(OSError):
-        atomic_write_text(target, "new\n")
+        write_text(target, "new\n")
     assert target.read_text() == "old\n"
     assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
 

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from app.machine.config import load_config
-from app.machine.limits import check_program, program_bounds
 from planner.interpreter import parse_program
 from planner.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
+from planner.softlimits import check_program, program_bounds
 from resources import shipped_machine
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -119,3 +120,40 @@ def test_plain_summary_and_canon_alone(tmp_path, capsys):
     out = tmp_path / "c.jsonl"
     assert main([str(FIG9), "--canon", str(out)]) == 0  # no planning needed for --canon alone
     assert len(out.read_text().splitlines()) == 7
+
+
+def test_config_soft_limits_are_checked_on_the_whole_path(tmp_path, capsys) -> None:
+    """With a machine configuration, cnc-plan refuses a program that leaves the travel, as
+    the controller does: an arc bulging past X max is caught at its extreme, not its ends."""
+    prog = tmp_path / "arc.nc"
+    prog.write_text("G0 X245 Y0\nG1 F600\nG3 X245 Y20 I0 J10\nM30\n")   # X max 250; the arc reaches 255
+    assert main([str(prog), "--config", str(shipped_machine("xyz_mill"))]) == 2
+    err = capsys.readouterr().err
+    assert f"{prog}:3: error: axis X reaches 255.0000 (arc extreme), beyond its soft limit max 250" in err
+    assert main([str(prog)]) == 0           # no configuration: no travel to check against
+    inside = tmp_path / "ok.nc"
+    inside.write_text("G0 X235 Y0\nG1 F600\nG3 X235 Y20 I0 J10\nM30\n")
+    assert main([str(inside), "--config", str(shipped_machine("xyz_mill"))]) == 0
+
+
+@pytest.mark.parametrize("text", ["G1 X10 F0.0001\nM30\n", "G1 F600\nG2 X0 Y0 I1000000 J0\nM30\n"])
+def test_a_run_over_the_cycle_bound_is_reported_not_interpolated(tmp_path, capsys, text: str) -> None:
+    prog = tmp_path / "long.nc"
+    prog.write_text(text)
+    out = tmp_path / "s.npz"
+    started = time.perf_counter()
+    assert main([str(prog), "--json", "--samples", str(out)]) == 2
+    assert time.perf_counter() - started < 10
+    captured = capsys.readouterr()
+    report = json.loads(captured.out)
+    assert report["ok"] is False and report["cycle_time_s"] > 24 * 3600
+    assert "more than --max-cycle-h 24: not interpolated" in captured.err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "nan", "inf"])
+def test_max_cycle_bound_must_be_a_positive_number(tmp_path, capsys, value: str) -> None:
+    prog = tmp_path / "p.nc"
+    prog.write_text("G1 X1 F100\n")
+    assert main([str(prog), "--max-cycle-h", value]) == 2
+    assert "--max-cycle-h must be a positive number of hours" in capsys.readouterr().err

@@ -194,3 +194,28 @@ def test_fast_and_general_paths_agree(lines):
         _Interpreter.use_fast = True
     _same(fast, general)
     _same(commented, general)
+
+
+# Numbers at the edges of what a float holds, and expressions that make NaN and infinity:
+# every place a number can stand (word values, parameter numbers, parameter values, indices).
+extreme = st.sampled_from([
+    "1e400", "-1e400", "1e308", "1e-320", "0", "-0", "999999999", "1000000000", "1e9", "0.0000001",
+    "[10**300*10**300]", "[[10**300*10**300]-[10**300*10**300]]", "[0/0]", "[1/0]", "[-1/0]",
+    "[SQRT[-1]]", "[LN[0]]", "[ACOS[2]]", "[10**400]", "[2**1024]", "#1", "#[1e400]", "#<_x>",
+])
+extreme_line = st.one_of(
+    st.builds(lambda w, v: f"G1 {w}{v} F100", st.sampled_from(list("XYZIJKRFSP")), extreme),
+    st.builds(lambda v: f"G2 X1 Y1 R{v} F100", extreme),
+    st.builds(lambda v, w: f"#{v}={w}", extreme, extreme),
+    st.builds(lambda v: f"#<_x>={v}\nG1 X#<_x> F100", extreme),
+    st.builds(lambda v: f"G4 P{v}", extreme),
+    st.builds(lambda v: f"G2 X0 Y0 I5 J0 P{v} F600", extreme),
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(extreme_line, min_size=1, max_size=6))
+def test_nan_infinity_and_huge_numbers_are_located_errors(lines):
+    """A NaN or infinite parameter number once gave a Python traceback; every such input now
+    either reads or is a ProgramError with its line and column."""
+    check("\n".join(lines) + "\n")

@@ -136,3 +136,18 @@ def test_any_parsed_structure_is_accepted_or_refused_with_a_planner_error(data) 
         machine_from_dict(data if isinstance(data, dict) else {"axes": data}, "f.toml")
     except PlannerError:
         pass
+
+
+def test_a_truncated_panel_written_file_is_refused_by_cnc_plan_too(tmp_path) -> None:
+    """The panel marks the end of the files it writes; cut short, the rest may still parse,
+    and then cnc-plan refuses it as the panel does."""
+    from app.machine.config import load_config, save_config
+
+    path = tmp_path / "m.toml"
+    path.write_text(shipped_machine("xyz_mill").read_text(encoding="utf-8"), encoding="utf-8")
+    save_config(load_config(path), path)
+    text = path.read_text(encoding="utf-8")
+    cut = text[: text.index("[controller]")]            # still a valid configuration
+    path.write_text(cut, encoding="utf-8")
+    with pytest.raises(PlannerError, match="damaged file, truncated"):
+        load_machine(path)

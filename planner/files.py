@@ -1,0 +1,179 @@
+"""The one output writer: every file the project writes goes through ``write_output``.
+
+What it does, by what the name points at:
+
+* ``-``: standard output.
+* A character or block device, a FIFO or a socket (``/dev/null``, a pipe to another
+  program): opened and written directly. Never replaced by a regular file, which is what a
+  rename over it would do (as root even ``/dev/null``).
+* A symbolic link: written through to its target; the link stays a link.
+* A regular file, or nothing yet: atomically. The data goes to a temporary file in the same
+  folder with a random name (``.NAME.<pid>.<random>.tmp``), is flushed and fsync'ed, gets the
+  permissions (and, when we may, the owner) of the file it replaces, or 0666 less the umask for
+  a new file, and is renamed over the target; the folder is fsync'ed so the rename survives a
+  power cut. The name always holds either the old or the new complete file. Temporaries left
+  by an earlier writer that was killed (its process is gone) are removed.
+
+Writers that need a file name rather than a stream (an image exporter choosing the format by
+the suffix) use ``write_output_via_path``. Errors are ``OSError`` as from ``open``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import secrets
+import shutil
+import stat
+import sys
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import BinaryIO
+
+__all__ = ["remove_stale_temporaries", "write_output", "write_output_via_path", "write_text"]
+
+STDOUT = "-"
+_TMP_RE = re.compile(r"^\.(?P<name>.+)\.(?P<pid>\d+)\.[0-9a-f]{12}\.tmp(?P<suffix>\.\w+)?$")
+
+
+def write_text(path: str | os.PathLike[str], text: str, encoding: str = "utf-8") -> None:
+    """``write_output`` of a text."""
+    data = text.encode(encoding)
+    write_output(path, lambda fh: fh.write(data))
+
+
+def write_output(path: str | os.PathLike[str], write: Callable[[BinaryIO], object]) -> None:
+    """Call ``write(binary_file)`` to produce the content of ``path`` (see the module docstring
+    for what happens by kind of path)."""
+    name = os.fspath(path)
+    if name == STDOUT:
+        out = sys.stdout.buffer
+        write(out)
+        out.flush()
+        return
+    target = Path(name)
+    if target.is_symlink():
+        target = Path(os.path.realpath(target))
+    if _is_special(target):
+        with open(target, "wb") as fh:
+            write(fh)
+        return
+    _atomic(target, lambda tmp: _write_file(tmp, write))
+
+
+def write_output_via_path(path: str | os.PathLike[str], produce: Callable[[str], object]) -> None:
+    """Call ``produce(file_name)`` to write the content into a temporary file that has the
+    same suffix as ``path``; the result then reaches ``path`` as ``write_output`` would put it."""
+    name = os.fspath(path)
+    target = Path(name)
+    if name != STDOUT and target.is_symlink():
+        target = Path(os.path.realpath(target))
+    if name != STDOUT and not _is_special(target):
+        _atomic(target, lambda tmp: produce(os.fspath(tmp)))
+        return
+    with tempfile.TemporaryDirectory() as scratch:
+        tmp = os.path.join(scratch, "out" + (target.suffix if name != STDOUT else ""))
+        produce(tmp)
+        with open(tmp, "rb") as src:
+            write_output(name if name == STDOUT else target, lambda fh: shutil.copyfileobj(src, fh))
+
+
+def _is_special(path: Path) -> bool:
+    try:
+        mode = path.stat().st_mode
+    except FileNotFoundError:
+        return False
+    return not stat.S_ISREG(mode) and not stat.S_ISDIR(mode)
+
+
+def _write_file(tmp: Path, write: Callable[[BinaryIO], object]) -> None:
+    with open(tmp, "wb") as fh:
+        write(fh)
+
+
+def _temporary_name(target: Path) -> Path:
+    return target.with_name(f".{target.name}.{os.getpid()}.{secrets.token_hex(6)}.tmp{target.suffix}")
+
+
+def _atomic(target: Path, produce: Callable[[Path], object]) -> None:
+    if target.is_dir():
+        raise IsADirectoryError(21, "Is a directory", str(target))
+    target.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(target)
+    tmp = _temporary_name(target)
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    os.close(fd)
+    try:
+        produce(tmp)
+        with open(tmp, "rb+") as fh:
+            fh.flush()
+            os.fsync(fh.fileno())
+        _copy_metadata(target, tmp)
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+    _fsync_dir(target.parent)
+
+
+def _copy_metadata(target: Path, tmp: Path) -> None:
+    try:
+        st = target.stat()
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        return
+    os.chmod(tmp, stat.S_IMODE(st.st_mode))
+    if hasattr(os, "chown"):
+        with contextlib.suppress(OSError):       # only root may give a file away
+            os.chown(tmp, st.st_uid, st.st_gid)
+
+
+def _fsync_dir(folder: Path) -> None:
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def remove_stale_temporaries(target: str | os.PathLike[str], *, whole_folder: bool = False) -> list[Path]:
+    """Remove the temporaries of ``target`` (with ``whole_folder``: of every file in its
+    folder, ``target`` being the folder) left by writers whose process is gone (killed in the
+    middle of a save); returns what was removed."""
+    target = Path(target)
+    folder = target if whole_folder else target.parent
+    removed: list[Path] = []
+    try:
+        entries = list(folder.iterdir())
+    except OSError:
+        return removed
+    for entry in entries:
+        m = _TMP_RE.match(entry.name)
+        if m is None or (not whole_folder and m.group("name") != target.name) or _alive(int(m.group("pid"))):
+            continue
+        with contextlib.suppress(OSError):
+            entry.unlink()
+            removed.append(entry)
+    return removed
