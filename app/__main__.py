@@ -39,6 +39,11 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
                              "(default ~/.local/state/cnc-panel)")
     parser.add_argument("--run-for", type=float, default=0.0, metavar="SECONDS",
                         help="with --demo --screenshot: press cycle start and shoot SECONDS later")
+    parser.add_argument("--programs", type=Path, action="append", default=[], metavar="DIR",
+                        help="another folder the operator may open and save programs in (repeatable)")
+    parser.add_argument("--reset-service-password", action="store_true",
+                        help="integrator's recovery at the panel PC: set the service password back to "
+                             "the default (1234) in the state folder, clear the lockout, and exit")
     ns = parser.parse_args(argv)
     try:
         width, height = (int(v) for v in ns.size.lower().split("x"))
@@ -47,7 +52,8 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
     return PanelOptions(demo=ns.demo, config_path=ns.config, program_path=ns.program,
                         screenshot_path=ns.screenshot, page=ns.page, language=ns.lang,
                         width_px=width, height_px=height, state_dir=ns.state_dir,
-                        run_for_s=ns.run_for)
+                        run_for_s=ns.run_for, reset_service_password=ns.reset_service_password,
+                        program_dirs=tuple(ns.programs))
 
 
 def _has_display() -> bool:
@@ -60,6 +66,14 @@ def _has_display() -> bool:
 
 def main(argv: list[str] | None = None) -> int:
     options = parse_args(argv)
+    if options.reset_service_password:
+        from app.panel_settings import SettingsStore
+        from app.service_access import reset_service_password
+
+        store = SettingsStore(options.effective_state_dir)
+        reset_service_password(store)
+        print(f"service password reset to the default in {store.path}; change it on the Parameters page")
+        return 0
     if not _has_display():
         if options.screenshot_path is None:
             sys.stderr.write(NO_DISPLAY_HELP)

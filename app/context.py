@@ -14,7 +14,9 @@ if TYPE_CHECKING:  # Qt-free at import time: __main__ reads this before Qt may s
     from app.machine.controller import MachineController
     from app.panel_settings import SettingsStore
     from app.program_document import ProgramDocument
+    from app.program_folders import ProgramFolders
     from app.program_model import ProgramModel
+    from app.service_access import ServiceAccess
 
 
 
@@ -30,6 +32,8 @@ class PanelOptions:
     height_px: int = 800
     state_dir: Path | None = None   # where settings, alarms and positions persist
     run_for_s: float = 0.0   # with --screenshot in demo: press cycle start, shoot this much later
+    reset_service_password: bool = False   # the integrator's recovery: reset it and exit
+    program_dirs: tuple[Path, ...] = ()    # more folders the operator may open and save in
 
     @property
     def effective_program(self) -> Path | None:
@@ -54,4 +58,9 @@ class PanelContext:
     dialogs: Dialogs
     document: ProgramDocument
     program: ProgramModel
-    service_unlocked: bool = False
+    access: ServiceAccess | None = None   # the service level's lock (set by build_context)
+    folders: ProgramFolders | None = None  # where Open and Save as may go (set by build_context)
+
+    @property
+    def service_unlocked(self) -> bool:
+        return self.access is not None and self.access.unlocked

@@ -9,7 +9,9 @@ from app.dialogs import Dialogs
 from app.i18n import I18n
 from app.panel_settings import SettingsStore
 from app.program_document import ProgramDocument
+from app.program_folders import ProgramFolders
 from app.program_model import ProgramModel
+from app.service_access import ServiceAccess
 
 
 def build_context(options: PanelOptions, dialogs: Dialogs | None = None,
@@ -24,6 +26,7 @@ def build_context(options: PanelOptions, dialogs: Dialogs | None = None,
     context = PanelContext(
         options=options, state_dir=state_dir, controller=controller,  # type: ignore[arg-type]
         i18n=I18n(), settings=settings, dialogs=dialogs or Dialogs(),
-        document=ProgramDocument(state_dir), program=ProgramModel(),
+        document=ProgramDocument(state_dir), program=ProgramModel(), access=ServiceAccess(settings),
+        folders=ProgramFolders(state_dir, options.program_dirs),
     )
     return context

@@ -12,6 +12,7 @@ from pathlib import Path
 from PySide6.QtWidgets import QMessageBox, QWidget
 
 from app.i18n import tr
+from app.program_folders import ProgramFolders
 from app.widgets.file_picker import FilePicker
 from app.widgets.keypad import ask_number
 from app.widgets.text_dialog import TextDialog
@@ -44,21 +45,18 @@ class Dialogs:
         dialog = TextDialog(title, label, password, text, parent)  # with the on-screen keyboard
         return dialog.text() if dialog.exec() == TextDialog.DialogCode.Accepted else None
 
-    def ask_open_file(self, parent: QWidget | None, directory: str) -> str | None:
-        picker = FilePicker(tr("Open program"), Path(directory), parent)
+    def ask_open_file(self, parent: QWidget | None, directory: str,
+                      folders: ProgramFolders | None = None) -> str | None:
+        picker = FilePicker(tr("Open program"), Path(directory), parent, folders)
         if picker.exec() == FilePicker.DialogCode.Accepted and picker.selected is not None:
             return str(picker.selected)
         return None
 
     def ask_save_file(self, parent: QWidget | None, directory: str) -> str | None:
-        """A file name typed with the on-screen keyboard, saved in ``directory`` (.nc added)."""
+        """A file name typed with the on-screen keyboard, to save in ``directory`` (the caller
+        checks it: ``ProgramFolders.resolve_save``)."""
         name = self.ask_text(parent, tr("Save program as"), tr("File name in {0}:").format(directory))
-        if not name or not name.strip():
-            return None
-        path = Path(name.strip())
-        if not path.is_absolute():
-            path = Path(directory) / path
-        return str(path if path.suffix else path.with_suffix(".nc"))
+        return name.strip() if name and name.strip() else None
 
     def inform(self, parent: QWidget | None, title: str, text: str) -> None:
         QMessageBox.information(parent, title, text)

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import importlib
 
-from PySide6.QtCore import QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, QTimer, Signal
 from PySide6.QtGui import QCloseEvent
 from PySide6.QtWidgets import (
+    QApplication,
     QButtonGroup,
     QHBoxLayout,
     QLabel,
@@ -22,8 +23,11 @@ from app.context import PanelContext, PanelOptions
 from app.i18n import LANGUAGES, tr
 from app.pages import PAGES, PageInfo, page_info
 from app.pages.placeholder import PlaceholderPage
+from app.service_access import IDLE_LOCK_S
 from app.widgets.service_gate import ServiceGate
 from app.widgets.status_header import StatusHeader
+
+_INPUT_EVENTS = frozenset({QEvent.Type.MouseButtonPress, QEvent.Type.KeyPress, QEvent.Type.TouchBegin})
 
 
 def build_page(info: PageInfo, context: PanelContext) -> QWidget:
@@ -118,6 +122,16 @@ class MainWindow(QMainWindow):
         self._on_language(ctx.i18n.language)
         self._current = ""
         self.show_page(options.page, ask_password=False)
+        # the service level locks itself after minutes without input (see app.service_access)
+        app = QApplication.instance()
+        if app is not None:
+            app.installEventFilter(self)
+        self._idle_timer = QTimer(self)
+        self._idle_timer.setInterval(5_000)
+        self._idle_timer.timeout.connect(self._check_idle)
+        self._idle_timer.start()
+        if ctx.access is not None and ctx.access.damaged:
+            self.show_message(ctx.access.unlock("").reason)
         QTimer.singleShot(0, self._start)
 
     # --- start-up ------------------------------------------------------------------------
@@ -164,6 +178,8 @@ class MainWindow(QMainWindow):
         Returns True when the page itself is shown (False: locked)."""
         info = page_info(name)
         unlocked = True
+        if not info.service and self.context.service_unlocked:
+            self.lock_service()     # leaving the service pages ends the service level
         if info.service:
             if not self.context.service_unlocked and ask_password:
                 self.unlock_service()
@@ -179,20 +195,40 @@ class MainWindow(QMainWindow):
 
     def unlock_service(self) -> bool:
         ctx = self.context
+        access = ctx.access
+        assert access is not None
+        refused = access.damaged
+        if refused:       # no point asking: say why and how to recover
+            self.show_message(access.unlock("").reason)
+            return False
         password = ctx.dialogs.ask_text(self, tr("Service level"), tr("Service password:"), password=True)
         if password is None:
             return False
-        if not ctx.settings.check_password(password):
-            self.show_message(tr("Wrong service password"))
+        outcome = access.unlock(password)
+        if not outcome:
+            self.show_message(tr("Service level refused: {0}").format(outcome.reason))
             return False
-        ctx.service_unlocked = True
         self.show_message(tr("Service level unlocked"))
         return True
 
     def lock_service(self) -> None:
-        self.context.service_unlocked = False
+        if self.context.access is not None:
+            self.context.access.lock()
         for gate in self._gates.values():
             gate.set_locked(True)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt override
+        # any touch, click or key press restarts the service level's idle time
+        if event.type() in _INPUT_EVENTS and self.context.access is not None:
+            self.context.access.touch()
+        return False
+
+    def _check_idle(self) -> None:
+        access = self.context.access
+        if access is not None and access.lock_if_idle():
+            self.lock_service()
+            self.show_message(tr("Service level locked after {0} minutes without input").format(
+                int(IDLE_LOCK_S // 60)))
 
     def page(self, name: str) -> QWidget:
         return self._pages[page_info(name).name]

@@ -17,7 +17,7 @@ from PySide6.QtWidgets import (
 from app.config_edit import validate, with_bus, with_homing, with_limits, with_planner
 from app.context import PanelContext
 from app.i18n import N_, tr
-from app.panel_settings import password_hash
+from app.service_access import MIN_LENGTH
 from app.widgets.apply_bar import ApplyBar
 from app.widgets.numeric_field import NumericField
 from app.widgets.touch import enable_kinetic_scrolling
@@ -168,17 +168,27 @@ class ParametersPage(QWidget):
 
     def change_password(self) -> None:
         d = self.ctx.dialogs
-        new = d.ask_text(self, tr("Service password"), tr("New service password:"), password=True)
-        if not new:
+        access = self.ctx.access
+        assert access is not None
+        old = d.ask_text(self, tr("Service password"), tr("Current service password:"), password=True)
+        if old is None:
+            return
+        prompt = tr("New service password (at least {0} characters):").format(MIN_LENGTH)
+        new = d.ask_text(self, tr("Service password"), prompt, password=True)
+        if new is None:
             return
         again = d.ask_text(self, tr("Service password"), tr("Repeat the new password:"), password=True)
-        if again != new:
-            d.inform(self, tr("Service password"), tr("The passwords differ; nothing changed."))
+        if again is None:
             return
-        self.ctx.settings.update(service_password_sha256=password_hash(new))
+        outcome = access.change_password(old, new, again)
+        if outcome:
+            d.inform(self, tr("Service password"), tr("The service password was changed."))
+        else:
+            d.inform(self, tr("Service password"), tr("Nothing changed: {0}").format(outcome.reason))
 
     def lock(self) -> None:
-        self.ctx.service_unlocked = False
+        if self.ctx.access is not None:
+            self.ctx.access.lock()
         window = self.window()
         lock = getattr(window, "lock_service", None)
         if lock is not None:

@@ -12,7 +12,6 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWi
 from app import deferred
 from app.context import PanelContext
 from app.i18n import N_, tr
-from app.paths import PROGRAMS
 from app.program_checker import ProgramChecker
 from app.widgets.code_editor import CodeEditor
 from app.widgets.find_bar import FindBar
@@ -177,10 +176,18 @@ class ProgramPage(QWidget):
     def open_dialog(self) -> None:
         if not self.can_close():
             return
-        start = str(self.doc.path.parent if self.doc.path else PROGRAMS)
-        path = self.ctx.dialogs.ask_open_file(self, start)
-        if path:
-            self.open_file(Path(path))
+        folders = self.ctx.folders
+        assert folders is not None
+        here = self.doc.path.parent if self.doc.path else None
+        start = here if here is not None and folders.may_browse(here) else folders.default
+        path = self.ctx.dialogs.ask_open_file(self, str(start), folders)
+        if not path:
+            return
+        why = folders.check_open(path)
+        if why:
+            self.ctx.dialogs.inform(self, tr("Open program"), why)
+            return
+        self.open_file(Path(path))
 
     def open_file(self, path: Path, checked_text: str | None = None) -> None:
         """Open ``path``; ``checked_text``: the text the controller has just accepted."""
@@ -208,12 +215,20 @@ class ProgramPage(QWidget):
         return True
 
     def save_as(self) -> bool:
-        start = str(self.doc.path.parent if self.doc.path else self.ctx.state_dir)
-        path = self.ctx.dialogs.ask_save_file(self, start)
-        if not path:
+        folders = self.ctx.folders
+        assert folders is not None
+        here = self.doc.path.parent if self.doc.path else None
+        folder = here if here is not None and folders.resolve_save(here, "x.nc") == here / "x.nc" \
+            else folders.default
+        name = self.ctx.dialogs.ask_save_file(self, str(folder))
+        if not name:
+            return False
+        path = folders.resolve_save(folder, name)
+        if isinstance(path, str):
+            self.ctx.dialogs.inform(self, tr("Save failed"), path)
             return False
         try:
-            self.doc.save(Path(path))
+            self.doc.save(path)
         except OSError as exc:
             self.ctx.dialogs.inform(self, tr("Save failed"), str(exc))
             return False

@@ -7,14 +7,18 @@ from pathlib import Path
 from PySide6.QtWidgets import QDialog, QHBoxLayout, QLabel, QListWidget, QPushButton, QVBoxLayout, QWidget
 
 from app.i18n import tr
+from app.program_folders import GCODE_SUFFIXES, ProgramFolders
 from app.widgets.touch import touch_rows
-
-GCODE_SUFFIXES = (".nc", ".ngc", ".gcode", ".tap", ".txt", ".cnc")
 
 
 class FilePicker(QDialog):
-    def __init__(self, title: str, directory: Path, parent: QWidget | None = None) -> None:
+    """Folders and programs, confined to the program folders when given: ``..`` stops at a
+    folder's top, where the list offers the other program folders instead."""
+
+    def __init__(self, title: str, directory: Path, parent: QWidget | None = None,
+                 folders: ProgramFolders | None = None) -> None:
         super().__init__(parent)
+        self.folders = folders
         self.setWindowTitle(title)
         self.setModal(True)
         self.resize(900, 640)
@@ -23,7 +27,7 @@ class FilePicker(QDialog):
         layout = QVBoxLayout(self)
         row = QHBoxLayout()
         self.up_button = QPushButton("⬆ ..")
-        self.up_button.clicked.connect(lambda: self.show_directory(self.directory.parent))
+        self.up_button.clicked.connect(self.go_up)
         self.where = QLabel()
         self.where.setWordWrap(True)
         row.addWidget(self.up_button)
@@ -38,16 +42,31 @@ class FilePicker(QDialog):
         layout.addWidget(cancel)
         self.show_directory(self.directory)
 
+    def go_up(self) -> None:
+        if self.folders is not None and self.folders.root_of(self.directory.parent) is None:
+            return
+        self.show_directory(self.directory.parent)
+
     def entries(self) -> list[str]:
         try:
             children = sorted(self.directory.iterdir(), key=lambda p: (not p.is_dir(), p.name.lower()))
         except OSError:
-            return []
-        return [p.name + "/" if p.is_dir() else p.name for p in children
+            children = []
+        here = [p.name + "/" if p.is_dir() else p.name for p in children
                 if not p.name.startswith(".") and (p.is_dir() or p.suffix.lower() in GCODE_SUFFIXES)]
+        folders = self.folders
+        if folders is None or not any(r.path == self.directory for r in folders.roots):
+            return here
+        # at the top of a program folder: the other program folders, by their full path
+        return [str(r.path) + "/" for r in folders.roots if r.path != self.directory] + here
 
     def show_directory(self, directory: Path) -> None:
-        self.directory = Path(directory).resolve()
+        directory = Path(directory).resolve()
+        if self.folders is not None and not self.folders.may_browse(directory):
+            directory = self.folders.default
+        self.directory = directory
+        if self.folders is not None:
+            self.up_button.setEnabled(self.folders.root_of(directory.parent) is not None)
         self.where.setText(str(self.directory))
         self.list.clear()
         self.list.addItems(self.entries())

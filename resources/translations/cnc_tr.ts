@@ -9,12 +9,12 @@
       <translation> (+{0} tane daha)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="117" />
+      <location filename="../../app/pages/diagnostics.py" line="106" />
       <source> (first {0:.0f} s shown)</source>
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="53" />
+      <location filename="../../app/pages/preview.py" line="47" />
       <source>3-D view off: PyOpenGL is not installed (pip install PyOpenGL).</source>
       <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
     </message>
@@ -34,7 +34,7 @@
       <translation>Tümünü onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="35" />
+      <location filename="../../app/pages/part_zero.py" line="34" />
       <source>Active:</source>
       <translation>Etkin:</translation>
     </message>
@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="189" />
+      <location filename="../../app/pages/program.py" line="197" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -149,7 +149,7 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="138" />
+      <location filename="../../app/main_window.py" line="152" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
@@ -164,7 +164,7 @@
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/jog_panel.py" line="38" />
+      <location filename="../../app/widgets/jog_panel.py" line="36" />
       <source>Continuous</source>
       <translation>Sürekli</translation>
     </message>
@@ -172,6 +172,11 @@
       <location filename="../../app/pages/axes.py" line="15" />
       <source>Counts/unit</source>
       <translation>Sayım/birim</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="173" />
+      <source>Current service password:</source>
+      <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
       <location filename="../../app/pages/auto.py" line="25" />
@@ -189,7 +194,7 @@
       <translation>Çevrim süresi Ts</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="114" />
+      <location filename="../../app/pages/diagnostics.py" line="103" />
       <source>Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</source>
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
@@ -239,7 +244,7 @@
       <translation>Acil stop</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="45" />
+      <location filename="../../app/pages/diagnostics.py" line="43" />
       <source>EtherCAT</source>
       <translation>EtherCAT</translation>
     </message>
@@ -259,7 +264,7 @@
       <translation>İlerleme oranı</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="55" />
+      <location filename="../../app/dialogs.py" line="58" />
       <source>File name in {0}:</source>
       <translation>{0} içinde dosya adı:</translation>
     </message>
@@ -274,7 +279,7 @@
       <translation>Bul…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="41" />
+      <location filename="../../app/pages/preview.py" line="35" />
       <source>Fit</source>
       <translation>Sığdır</translation>
     </message>
@@ -354,7 +359,7 @@
       <translation>Elle hareket</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/jog_panel.py" line="61" />
+      <location filename="../../app/widgets/jog_panel.py" line="56" />
       <source>Jog speed</source>
       <translation>Elle hareket hızı</translation>
     </message>
@@ -376,7 +381,7 @@ Remaining {2}   Path speed {3}</source>
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="100" />
+      <location filename="../../app/pages/preview.py" line="94" />
       <source>Line {0}: {1}</source>
       <translation>Satır {0}: {1}</translation>
     </message>
@@ -456,17 +461,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yeni</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="171" />
-      <source>New service password:</source>
-      <translation>Yeni servis şifresi:</translation>
+      <location filename="../../app/pages/parameters.py" line="176" />
+      <source>New service password (at least {0} characters):</source>
+      <translation>Yeni servis şifresi (en az {0} karakter):</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="25" />
+      <location filename="../../app/dialogs.py" line="26" />
       <source>No</source>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="50" />
+      <location filename="../../app/pages/diagnostics.py" line="48" />
       <source>No program loaded.</source>
       <translation>Yüklü program yok.</translation>
     </message>
@@ -474,6 +479,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <location filename="../../app/widgets/keypad.py" line="96" />
       <source>Not a number</source>
       <translation>Sayı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="187" />
+      <source>Nothing changed: {0}</source>
+      <translation>Hiçbir şey değişmedi: {0}</translation>
     </message>
     <message>
       <location filename="../../app/widgets/keypad.py" line="18" />
@@ -486,7 +496,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Kapalı (M05)</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="48" />
+      <location filename="../../app/dialogs.py" line="50" />
       <source>Open program</source>
       <translation>Program aç</translation>
     </message>
@@ -531,7 +541,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yol hızı Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="45" />
+      <location filename="../../app/pages/diagnostics.py" line="43" />
       <source>Path v / a / j</source>
       <translation>Yol v / a / j</translation>
     </message>
@@ -541,7 +551,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Planlayıcı kipi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="85" />
+      <location filename="../../app/pages/diagnostics.py" line="82" />
       <source>Planning…</source>
       <translation>Planlanıyor…</translation>
     </message>
@@ -566,12 +576,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="145" />
+      <location filename="../../app/main_window.py" line="159" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="158" />
+      <location filename="../../app/main_window.py" line="172" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -603,12 +613,12 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="189" />
+      <location filename="../../app/pages/program.py" line="197" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="110" />
+      <location filename="../../app/main_window.py" line="114" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
@@ -623,7 +633,7 @@ BIRAK</translation>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="174" />
+      <location filename="../../app/pages/parameters.py" line="180" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
     </message>
@@ -668,12 +678,12 @@ BIRAK</translation>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="204" />
+      <location filename="../../app/pages/program.py" line="228" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="55" />
+      <location filename="../../app/dialogs.py" line="58" />
       <source>Save program as</source>
       <translation>Programı farklı kaydet</translation>
     </message>
@@ -688,22 +698,32 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="182" />
+      <location filename="../../app/main_window.py" line="204" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="189" />
+      <location filename="../../app/main_window.py" line="230" />
+      <source>Service level locked after {0} minutes without input</source>
+      <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="209" />
+      <source>Service level refused: {0}</source>
+      <translation>Servis seviyesi reddedildi: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="211" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="171" />
+      <location filename="../../app/pages/parameters.py" line="173" />
       <source>Service password</source>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="182" />
+      <location filename="../../app/main_window.py" line="204" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -728,7 +748,7 @@ BIRAK</translation>
       <translation>Geçmişi göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="44" />
+      <location filename="../../app/pages/preview.py" line="38" />
       <source>Show in program</source>
       <translation>Programda göster</translation>
     </message>
@@ -778,7 +798,7 @@ BIRAK</translation>
       <translation>Değiştirmek için bir değere dokunun. Birimler: doğrusal eksenlerde mm, döner eksenlerde derece. Değişiklikler Uygula'dan sonra geçerli olur (atomik olarak yazılır).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="57" />
+      <location filename="../../app/pages/part_zero.py" line="50" />
       <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
       <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
     </message>
@@ -788,9 +808,9 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="176" />
-      <source>The passwords differ; nothing changed.</source>
-      <translation>Şifreler farklı; hiçbir şey değişmedi.</translation>
+      <location filename="../../app/pages/parameters.py" line="185" />
+      <source>The service password was changed.</source>
+      <translation>Servis şifresi değiştirildi.</translation>
     </message>
     <message>
       <location filename="../../app/widgets/service_gate.py" line="28" />
@@ -808,17 +828,17 @@ BIRAK</translation>
       <translation>Zaman</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="64" />
+      <location filename="../../app/pages/part_zero.py" line="57" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="96" />
+      <location filename="../../app/pages/part_zero.py" line="89" />
       <source>Touch off {0}: work coordinate here</source>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="45" />
+      <location filename="../../app/pages/diagnostics.py" line="43" />
       <source>Tracking</source>
       <translation>Takip</translation>
     </message>
@@ -853,12 +873,7 @@ BIRAK</translation>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="186" />
-      <source>Wrong service password</source>
-      <translation>Yanlış servis şifresi</translation>
-    </message>
-    <message>
-      <location filename="../../app/dialogs.py" line="24" />
+      <location filename="../../app/dialogs.py" line="25" />
       <source>Yes</source>
       <translation>Evet</translation>
     </message>
@@ -938,7 +953,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="137" />
+      <location filename="../../app/main_window.py" line="151" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
@@ -953,7 +968,7 @@ BIRAK</translation>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="89" />
+      <location filename="../../app/pages/part_zero.py" line="82" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>

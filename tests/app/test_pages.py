@@ -10,6 +10,7 @@ from PySide6.QtWidgets import QAbstractButton
 
 from app.pages import PAGE_NAMES
 from app.paths import DEMO_PROGRAM
+from app.service_access import IDLE_LOCK_S
 from app.widgets.preview_plot import ARC_COLOR, LINE_COLOR, RAPID_COLOR
 from planner.program import MoveKind
 
@@ -119,14 +120,14 @@ def test_invalid_program_marked_at_its_line_and_start_refused(fake_window, fake_
 
 def test_program_page_save_and_discard_prompt(fake_window, dialogs, tmp_path: Path) -> None:
     page = fake_window.page("program")
-    target = tmp_path / "new.nc"
+    target = fake_window.context.folders.default / "new.nc"
     page.set_text("G00 X1\n")
     page._on_text_changed()
     assert page.doc.modified
     dialogs.answers.append(-1)  # Cancel
     assert not page.can_close()
     dialogs.answers.append(0)  # Save -> Save as
-    dialogs.answers.append(str(target))
+    dialogs.answers.append("new")   # a name, saved in the program folder
     assert page.can_close()
     assert target.read_text() == "G00 X1\n" and not page.doc.modified
 
@@ -201,15 +202,41 @@ def test_part_zero_table_and_touch_off(fake_window, fake_controller, dialogs) ->
 
 
 def test_service_password_protects_service_pages(fake_window, dialogs) -> None:
+    now = [1_000_000.0]
+    fake_window.context.access.clock = lambda: now[0]
     dialogs.answers.append("wrong")
     assert not fake_window.show_page("parameters")
     assert fake_window._gates["parameters"].locked
-    assert "Wrong" in fake_window._message.text()
+    assert "wrong password; next try in 1 s" in fake_window._message.text()
+    dialogs.answers.append("1234")              # too soon: refused without being checked
+    assert not fake_window.show_page("axes")
+    assert "wait 1 s before the next try" in fake_window._message.text()
+    now[0] += 1.0
     dialogs.answers.append("1234")
     assert fake_window.show_page("axes")
     assert not fake_window._gates["axes"].locked and not fake_window._gates["parameters"].locked
     fake_window.page("parameters").lock()
     assert fake_window._gates["axes"].locked
+
+
+def test_leaving_the_service_pages_or_idling_locks_them(fake_window, dialogs) -> None:
+    now = [1_000_000.0]
+    access = fake_window.context.access
+    access.clock = lambda: now[0]
+    dialogs.answers.append("1234")
+    assert fake_window.show_page("parameters")
+    assert fake_window.show_page("axes")         # between service pages: still unlocked
+    fake_window.show_page("auto")
+    assert not access.unlocked and fake_window._gates["axes"].locked
+    dialogs.answers.append("1234")
+    assert fake_window.show_page("axes")
+    now[0] += IDLE_LOCK_S - 1
+    fake_window._check_idle()
+    assert access.unlocked
+    now[0] += 1
+    fake_window._check_idle()
+    assert not access.unlocked and fake_window._gates["axes"].locked
+    assert "without input" in fake_window._message.text()
 
 
 def test_parameters_apply_goes_through_the_controller(fake_window, fake_controller, dialogs) -> None:
