@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import signal
 import sys
 import time
 
@@ -49,10 +50,28 @@ def run(options: PanelOptions) -> int:
             sys.stderr.write(f"  the previous good file is {exc.backup}; copy it over {exc.path} to use it\n")
         return 2
     app.aboutToQuit.connect(window.context.controller.shutdown)
+    quit_on_signals(app)
     window.show()
     if options.screenshot_path is not None:
         schedule_screenshot(app, window, options)
     return app.exec()
+
+
+def quit_on_signals(app: QApplication) -> None:
+    """SIGTERM (a service manager, ``kill``) and SIGINT (Ctrl+C) end the panel like closing it:
+    motion stopped along the path, the worker stopped and its shared memory released, positions
+    and settings saved. Python runs signal handlers only between bytecodes, so a timer gives
+    the interpreter a turn a few times a second while Qt's loop runs."""
+
+    def request_quit(signum: int, _frame: object) -> None:
+        QTimer.singleShot(0, app.quit)
+
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        signal.signal(sig, request_quit)
+    ticker = QTimer(app)
+    ticker.setInterval(200)
+    ticker.timeout.connect(lambda: None)
+    ticker.start()
 
 
 def schedule_screenshot(app: QApplication, window: MainWindow, options: PanelOptions) -> None:

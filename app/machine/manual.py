@@ -151,12 +151,18 @@ class ManualMotion:
         issues = self.m.loader.check_program_limits(prog)
         if issues:
             return self.m.states.refuse("mdi", f"soft limit: {issues[0].message}")
+        why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm)
+        if why:
+            return self.m.states.refuse("mdi", why)
         if not prog.moves:
             for ev in prog.events:
                 if ev.kind is EventKind.SPINDLE:
                     self.m.spindle_ctl.apply_spindle(
                         SpindleState(direction=int(np.sign(ev.value)), rpm=abs(ev.value))
                     )
+                elif ev.kind is EventKind.END:  # M2/M30: the end of a program: spindle off, reset
+                    self.m.spindle_ctl.apply_spindle(SpindleState(direction=0, rpm=self.m.spindle.rpm))
+                    self.m.states.reset()
             return self.m.states.ok("mdi")
         try:
             job = self.m.stream.make_job(Activity.MDI, prog, "MDI")
@@ -164,3 +170,28 @@ class ManualMotion:
             return self.m.states.refuse("mdi", f"planner: {exc}")
         self.m.stream.start_job(job)
         return self.m.states.ok("mdi")
+
+
+# What an MDI block may not do, and why: every block either does what it says or is refused.
+_NOT_IN_MDI = {
+    EventKind.TOOL_CHANGE: "M6 tool change is not available (no tool table yet): change the tool with the "
+                           "machine stopped and set its length by touch-off",
+    EventKind.PAUSE: "M0 pauses a running program; an MDI block has nothing to pause",
+    EventKind.OPTIONAL_PAUSE: "M1 pauses a running program; an MDI block has nothing to pause",
+    EventKind.TOOL: "T selects the tool for M6, which is not available (no tool table yet)",
+    EventKind.COOLANT: "M7/M8/M9: no coolant output is configured on this machine",
+}
+
+
+def _mdi_refusal(prog: Program, spindle_max_rpm: float) -> str:
+    kinds = {ev.kind for ev in prog.events}
+    for ev in prog.events:
+        if ev.kind is EventKind.SPINDLE and abs(ev.value) > spindle_max_rpm:
+            return (f"S{abs(ev.value):g} is over the spindle's maximum of {spindle_max_rpm:g} rpm "
+                    "([controller] spindle_max_rpm)")
+    for kind, why in _NOT_IN_MDI.items():        # in this order: "M6 T5" is about M6
+        if kind in kinds:
+            return why
+    if EventKind.DWELL in kinds and not prog.moves:
+        return "G4 dwells between the moves of a program; a block without motion has nothing to wait for"
+    return ""

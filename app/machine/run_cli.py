@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import sys
 import tempfile
 import time
@@ -103,7 +104,26 @@ def main(argv: list[str] | None = None) -> int:
             return 2
         last_print = 0.0
         loop = QEventLoop()
+        stop_requested: list[int] = []
+
+        def on_signal(signum: int, _frame: object) -> None:
+            # SIGTERM / Ctrl+C: stop along the path, then the normal end (shutdown releases the worker)
+            stop_requested.append(signum)
+
+        for sig in (signal.SIGTERM, signal.SIGINT):
+            signal.signal(sig, on_signal)
         while not done:
+            if stop_requested:
+                notes.append(f"stopped by signal {signal.Signals(stop_requested[0]).name}")
+                ctl.stop()
+                end = time.monotonic() + 10.0
+                while ctl.state is not MachineState.IDLE and time.monotonic() < end:
+                    if args.worker == "manual":
+                        ctl.advance(0.1)
+                    else:
+                        QTimer.singleShot(50, loop.quit)
+                        loop.exec()
+                break
             if args.worker == "manual":
                 ctl.advance(0.1)
             else:

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import os
+import signal
 import struct
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -68,3 +71,32 @@ def test_no_display_gives_advice_instead_of_crashing() -> None:
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 2
     assert "QT_QPA_PLATFORM=offscreen" in result.stderr and "xvfb-run" in result.stderr
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_a_signal_shuts_the_panel_down_cleanly(tmp_path: Path, sig: signal.Signals) -> None:
+    """kill or Ctrl+C: the worker stops, its shared memory is released, the state is saved,
+    and the panel exits with 0 (it used to leave the shared-memory block behind)."""
+    shm = Path("/dev/shm")
+    if not shm.is_dir():
+        pytest.skip("no /dev/shm on this system")
+    before = set(shm.iterdir())
+    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen"}
+    proc = subprocess.Popen([sys.executable, "-m", "app", "--demo", "--state-dir", str(tmp_path / "state")],
+                            env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 60
+        mine: set[Path] = set()
+        while not mine and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.2)
+            mine = {p for p in set(shm.iterdir()) - before if p.name.startswith("psm_")}
+        assert mine, "the panel's worker never started"
+        time.sleep(1.0)                       # connected, homed, the demo program loaded
+        proc.send_signal(sig)
+        assert proc.wait(timeout=30) == 0, proc.stderr.read() if proc.stderr else ""
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=10)
+    assert not [p for p in mine if p.exists()], "shared memory left behind"
+    assert (tmp_path / "state" / "state.json").is_file()

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from app.machine.config import load_config, save_config
 from app.machine.controller import TRANSITIONS, MachineController
@@ -251,6 +253,35 @@ def test_incremental_jog(ctl: MachineController) -> None:
     assert not r and "soft limit" in r.reason
 
 
+@pytest.mark.parametrize("block, reason", [
+    ("M3 S999999", "S999999 is over the spindle's maximum of 24000 rpm"),
+    ("G4 P2", "G4 dwells between the moves of a program"),
+    ("M0", "M0 pauses a running program"),
+    ("M1", "M1 pauses a running program"),
+    ("M6 T5", "M6 tool change is not available"),
+    ("T5", "T selects the tool for M6"),
+    ("M8", "no coolant output"),
+])
+def test_mdi_refuses_what_it_cannot_do_with_the_reason(ctl: MachineController, block: str,
+                                                       reason: str) -> None:
+    """Every MDI block does what it says or is refused saying why: nothing returns OK and
+    silently does nothing, and a value over a limit names the limit, as the buttons do."""
+    spindle_before = ctl.spindle
+    refused: list[tuple[str, str]] = []
+    ctl.commandRefused.connect(lambda action, why: refused.append((action, why)))
+    r = ctl.mdi(block)
+    assert not r and reason in r.reason
+    assert refused == [("mdi", r.reason)]
+    assert ctl.spindle == spindle_before and ctl.state is MachineState.IDLE
+
+
+def test_mdi_m30_ends_like_a_program_end(ctl: MachineController) -> None:
+    assert ctl.mdi("M3 S8000")
+    assert ctl.spindle.on and ctl.spindle.rpm == 8000
+    assert ctl.mdi("M30")
+    assert not ctl.spindle.on and ctl.state is MachineState.IDLE
+
+
 def test_mdi_with_the_same_checks(ctl: MachineController) -> None:
     assert ctl.mdi("G1 X3 Y4 F600")
     run_to_idle(ctl)
@@ -445,3 +476,23 @@ def test_damaged_state_file_is_reported(qapp, config_path: Path, state_dir: Path
         assert ctl.homed == (False, False, False)
     finally:
         ctl.shutdown()
+
+
+_MDI_TOKENS = st.sampled_from([
+    "G0", "G1", "G2", "G3", "G4", "G17", "G18", "G20", "G21", "G53", "G54", "G90", "G91", "M0", "M3", "M5",
+    "M6", "M30", "T1", "F600", "F0", "S999999", "S-5", "X1", "Y-2", "Z0.5", "X1e400", "X[0/0]", "P2", "P-1",
+    "R5", "I1", "J0", "#1=[10**300*10**300]", "#[[10**300*10**300]-[10**300*10**300]]=1", "(comment)", ";",
+    "%", "Q3", "X9999", "A1", "[", "]", "#<x>", "\0", "\n",
+])
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.lists(_MDI_TOKENS, min_size=1, max_size=8).map(" ".join))
+def test_mdi_fuzz_never_raises_and_says_why(ctl: MachineController, block: str) -> None:
+    """Whatever is typed into MDI is done or refused with a reason; nothing escapes."""
+    r = ctl.mdi(block)
+    assert r or r.reason
+    ctl.run_until(lambda: ctl.state is not MachineState.RUNNING, 5)
+    if ctl.state is MachineState.HOLD:
+        ctl.stop()
+        ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)

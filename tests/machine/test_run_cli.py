@@ -16,6 +16,8 @@ from resources import (
     shipped_machine,
 )
 
+ROOT = Path(__file__).resolve().parents[2]
+
 
 def test_cnc_run_json_fast(qapp, capsys, tmp_path: Path) -> None:
     code = run_cli.main([str(PROGRAMS / "fig7_circle.nc"), "--sim", "--json", "--worker", "manual",
@@ -77,3 +79,40 @@ def test_cnc_run_pocket_in_real_time(qapp, capsys, tmp_path: Path) -> None:
     assert code == 0 and out["completed"] and out["limits_ok"]
     assert out["cycle_time_s"] == pytest.approx(out["estimated_cycle_time_s"], abs=0.05)
     assert out["wall_time_s"] < out["cycle_time_s"] + 2.0  # real time, not slower
+
+
+def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
+    """cnc-run killed politely: the program stops along the path, the worker (its own
+    process) ends, its shared memory is released, and the result says why it stopped."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    shm = Path("/dev/shm")
+    if not shm.is_dir():
+        pytest.skip("no /dev/shm on this system")
+    prog = tmp_path / "long.nc"
+    prog.write_text("G1 X200 F600\nM30\n")          # 20 s at 10 mm/s
+    before = set(shm.iterdir())
+    proc = subprocess.Popen([sys.executable, "-m", "app.machine.run_cli", str(prog), "--sim", "--json",
+                             "--worker", "process"], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        deadline = time.monotonic() + 60
+        mine: set[Path] = set()
+        while not mine and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.2)
+            mine = {p for p in set(shm.iterdir()) - before if p.name.startswith("psm_")}
+        assert mine, "the worker never started"
+        time.sleep(2.0)
+        proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=10)
+    assert proc.returncode == 1, err                 # ran, did not complete
+    result = json.loads(out)
+    assert result["completed"] is False and "stopped by signal SIGTERM" in result["notes"]
+    assert not [p for p in mine if p.exists()], "shared memory left behind"
