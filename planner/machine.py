@@ -169,6 +169,11 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
         if len(value) != len(axes):
             raise loc.fail(("offsets", key),
                            f"[offsets] {key} needs {len(axes)} numbers ({' '.join(names)}), got {len(value)}")
+        for ax, v in zip(axes, value, strict=True):
+            # part zero is a point of the machine: outside the travel it is a typo
+            if not ax.min_pos <= v <= ax.max_pos:
+                raise loc.fail(("offsets", key), f"{ax.name} {v:g} is outside the axis travel "
+                                                 f"[{ax.min_pos:g}, {ax.max_pos:g}]")
         offsets[key] = tuple(value)
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
                        work_offsets=offsets)

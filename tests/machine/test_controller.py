@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
+from datetime import timedelta
 from pathlib import Path
 
 import numpy as np
@@ -486,7 +487,8 @@ _MDI_TOKENS = st.sampled_from([
 ])
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=150, deadline=timedelta(seconds=5),
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(st.lists(_MDI_TOKENS, min_size=1, max_size=8).map(" ".join))
 def test_mdi_fuzz_never_raises_and_says_why(ctl: MachineController, block: str) -> None:
     """Whatever is typed into MDI is done or refused with a reason; nothing escapes."""

@@ -136,7 +136,8 @@ def test_config_soft_limits_are_checked_on_the_whole_path(tmp_path, capsys) -> N
     assert main([str(inside), "--config", str(shipped_machine("xyz_mill"))]) == 0
 
 
-@pytest.mark.parametrize("text", ["G1 X10 F0.0001\nM30\n", "G1 F600\nG2 X0 Y0 I1000000 J0\nM30\n"])
+@pytest.mark.parametrize("text", ["G1 X10 F0.0001\nM30\n", "G1 F600\nG2 X0 Y0 I1000000 J0\nM30\n",
+                                  "G0 X999999999\nM30\n", "G1 F600\nG2 X0 Y0 I50 J0 P10000\nM30\n"])
 def test_a_run_over_the_cycle_bound_is_reported_not_interpolated(tmp_path, capsys, text: str) -> None:
     prog = tmp_path / "long.nc"
     prog.write_text(text)

@@ -5,6 +5,7 @@ else escapes, and whatever parses is geometrically sound (finite, contiguous, ev
 from __future__ import annotations
 
 import math
+from datetime import timedelta
 from pathlib import Path
 
 import numpy as np
@@ -213,7 +214,7 @@ extreme_line = st.one_of(
 )
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=300, deadline=timedelta(seconds=5))
 @given(st.lists(extreme_line, min_size=1, max_size=6))
 def test_nan_infinity_and_huge_numbers_are_located_errors(lines):
     """A NaN or infinite parameter number once gave a Python traceback; every such input now

@@ -38,6 +38,8 @@ def errors_of(text: str, **kw):
         ("G1 F60\nG90.1 G2 X1 I1", "G90.1 (absolute arc centre) needs both I and J", 2, 1),
         # parameter numbers that are not numbers: NaN from inf - inf is refused, not rounded
         ("#[[10**300*10**300]-[10**300*10**300]]=5", "parameter number #nan out of range", 1, 39),
+        ("#[1e400-1e400]=5", "expected ']'", 1, 4),                  # no exponents in G-code numbers
+        ("#1e400=5", "parameter reference without a word letter", 1, 1),
         # turns
         ("G1 F60\nG2 X1 I0.5 P1.5", "whole number >= 1", 2, 12),
         ("G1 F60\nG2 X1 I0.5 P0", "whole number >= 1", 2, 12),

@@ -3,6 +3,8 @@ the key and the value in the message (never silently replaced by defaults)."""
 
 from __future__ import annotations
 
+from datetime import timedelta
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -151,3 +153,101 @@ def test_a_truncated_panel_written_file_is_refused_by_cnc_plan_too(tmp_path) -> 
     path.write_text(cut, encoding="utf-8")
     with pytest.raises(PlannerError, match="damaged file, truncated"):
         load_machine(path)
+
+
+def test_a_work_offset_outside_the_travel_is_refused() -> None:
+    with pytest.raises(PlannerError, match=r"offsets\.G55: X 30 is outside the axis travel \[-10, 10\]"):
+        machine_from_dict({"axes": [_axis()], "offsets": {"G55": [30.0]}}, "m.toml")
+
+
+_SHIPPED = shipped_machine("xyz_mill").read_text(encoding="utf-8")
+
+
+# broken characters, and whole values (a string, an array, an inline table); the structured fuzz
+# below puts values of every kind at every key
+_INSERTS = ["", "0", "1.5", "-", "x", "=", "[", "]", "\"", "\n", "#", "1e400", "nan", "inf", "true", "0x",
+            ".", "[[axes]]\n", "[limits]\n", "é", '"fast"', "[1, 2]", "{ a = 1 }", "[[bus.drives]]\n"]
+
+
+@settings(max_examples=300, deadline=timedelta(seconds=2))
+@given(st.lists(st.tuples(st.integers(0, len(_SHIPPED)), st.integers(0, 8), st.sampled_from(_INSERTS)),
+                max_size=6))
+def test_mutated_configuration_files_read_or_fail_with_the_file_named(tmp_path_factory, edits) -> None:
+    """Fuzz: a configuration file damaged anywhere gives a machine or a PlannerError naming the
+    file (and a ConfigError from the panel's reader), never another exception, in bounded time."""
+    from app.machine.config import load_config
+    from app.machine.errors import ConfigError
+
+    text = _SHIPPED
+    for pos, cut, ins in edits:
+        pos = min(pos, len(text))
+        text = text[:pos] + ins + text[pos + cut:]
+    path = tmp_path_factory.mktemp("fuzz") / "m.toml"
+    path.write_text(text, encoding="utf-8")
+    try:
+        load_machine(path)
+    except PlannerError as exc:
+        assert str(exc).startswith(str(path))
+    try:
+        load_config(path)
+    except ConfigError as exc:
+        assert str(path) in str(exc)
+
+
+
+def _paths(data, prefix=()):
+    """Every (path, value) of a parsed TOML document, tables and arrays of tables descended."""
+    if isinstance(data, dict):
+        for k, v in data.items():
+            yield (*prefix, k), v
+            yield from _paths(v, (*prefix, k))
+    elif isinstance(data, list) and data and all(isinstance(v, dict) for v in data):
+        for i, v in enumerate(data):
+            yield from _paths(v, (*prefix, i))
+
+
+_PARSED = __import__("tomllib").loads(_SHIPPED)
+_KEY_PATHS = [p for p, _ in _paths(_PARSED)]
+_VALUES = st.recursive(
+    st.none().map(lambda _: "x") | st.booleans() | st.integers(-2**40, 2**40)
+    | st.floats(allow_nan=True, allow_infinity=True) | st.text(max_size=6),
+    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.sampled_from(["a", "name", "min"]), inner,
+                                                               max_size=2),
+    max_leaves=6)
+
+
+@settings(max_examples=300, deadline=timedelta(seconds=2))
+@given(st.lists(st.tuples(st.sampled_from(_KEY_PATHS), _VALUES), min_size=1, max_size=3))
+def test_a_value_of_any_kind_at_any_key_is_read_or_refused_with_its_key(tmp_path_factory, changes) -> None:
+    """Structured fuzz: the shipped configuration with values of every kind put at its keys,
+    written as TOML: a machine or an error naming the file, never another exception."""
+    import copy
+
+    import tomlkit
+
+    from app.machine.config import load_config
+    from app.machine.errors import ConfigError
+
+    data = copy.deepcopy(_PARSED)
+    for path, value in changes:
+        node = data
+        try:                          # an earlier change may have replaced a table on this path
+            for part in path[:-1]:
+                node = node[part]
+            node[path[-1]] = value
+        except (KeyError, IndexError, TypeError):
+            continue
+    try:
+        text = tomlkit.dumps(data)
+    except Exception:  # noqa: BLE001 - not expressible as TOML (e.g. a nested None): nothing to read
+        return
+    path = tmp_path_factory.mktemp("fuzz") / "m.toml"
+    path.write_text(text, encoding="utf-8")
+    try:
+        load_machine(path)
+    except PlannerError as exc:
+        assert str(exc).startswith(str(path))
+    try:
+        load_config(path)
+    except ConfigError as exc:
+        assert str(path) in str(exc)
