@@ -121,3 +121,19 @@ def test_parameter_change_persists_across_restart(qtbot, qapp, state_dir, dialog
         assert window.page("parameters").fields["v_max_mm_s"].value() == 22.5
     finally:
         again.shutdown()
+
+
+@pytest.mark.parametrize("block, reason", [
+    ("#[[10**300*10**300]-[10**300*10**300]]=5", "parameter number #nan out of range"),
+    ("M3 S999999", "over the spindle's maximum of 24000 rpm"),
+])
+def test_mdi_line_on_the_real_controller_refuses_with_the_reason(demo_window, real_controller, block: str,
+                                                                 reason: str) -> None:
+    """A NaN parameter number once raised out of the MDI line's send; a speed over the maximum
+    was capped silently. Both are refused, the reason is on screen, the line stays for editing."""
+    page = demo_window.page("manual")
+    page.mdi_line.setText(block)
+    page.send_mdi()
+    assert reason in demo_window._message.text()
+    assert page.mdi_line.text() == block
+    assert real_controller.state.value == "idle" and not real_controller.spindle.on

@@ -158,3 +158,14 @@ def test_vectorised_bounds_table_matches_move_bounds() -> None:
     assert {v.line for v in violations} == {program.moves[k].line for k in range(n - 3, n)}
     wheres = {v.where for v in violations}
     assert "arc extreme" in wheres and "end point" in wheres
+
+
+def test_a_nan_parameter_number_is_a_located_error_not_an_internal_one(ctl: MachineController) -> None:
+    """Loading such a program once reported "line 0: internal error"; it names the line and column."""
+    issues: list[object] = []
+    ctl.programErrors.connect(issues.append)
+    r = ctl.load_program("G0 X1\n#[[10**300*10**300]-[10**300*10**300]]=5\n", wait=True)
+    assert not r
+    (errors,) = issues
+    assert [(e.line, e.col) for e in errors] == [(2, 39)]
+    assert "parameter number #nan out of range" in errors[0].message
