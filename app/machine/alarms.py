@@ -9,7 +9,7 @@ import time
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
-from app.machine.model import Alarm, AlarmState, CommandResult, MachineState, Severity, SpindleState
+from app.machine.model import Alarm, AlarmState, CommandResult, MachineState, Severity
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -119,8 +119,7 @@ class AlarmLog:
         self.m.pos.homing_axis = -1
         if self.m.states.state not in (MachineState.ESTOP, MachineState.DISCONNECTED, MachineState.ALARM):
             self.m.states.set_state(MachineState.ALARM, cause)
-        if self.m.spindle_ctl.spindle.on:
-            self.m.spindle_ctl.apply_spindle(SpindleState())
+        self.m.spindle_ctl.stop_spindle()
 
     def alarm_stop(self, cause: str, source: str, code: str) -> None:
         """A STOP-class alarm: jerk-limited stop along the path, program abandoned (its resume

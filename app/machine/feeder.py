@@ -391,6 +391,9 @@ class Streamer:
     def _finish_stop(self, job: Job) -> None:
         resume = self.m.run.resume_point
         self.drop_job(completed=False, reason=job.stop_reason or "stopped")
+        # the axes stand: now the spindle may stop too (stopping it while the tool still moves
+        # along the path would drag a standing cutter through the material)
+        self.m.spindle_ctl.stop_spindle()
         if self.m.states.state is MachineState.ALARM:
             self.m.run.resume_point = resume  # a STOP alarm keeps the point to resume from
             return
@@ -410,6 +413,8 @@ class Streamer:
                 self.m.spindle_ctl.apply_spindle(nxt.spindle_before)
             self.start_job(nxt)
             return
+        if job.kind is Activity.PROGRAM:
+            self.m.spindle_ctl.stop_spindle()      # program end: spindle off (M2/M30 or the last line)
         self.m.states.set_state(MachineState.IDLE, "program end" if completed_summary else "done")
 
     def drop_job(self, completed: bool, reason: str, snap: Any = None) -> RunSummary | None:

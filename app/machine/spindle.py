@@ -45,6 +45,12 @@ class SpindleControl:
         self.spindle = sp
         self.m.spindleChanged.emit(sp)
 
+    def stop_spindle(self) -> None:
+        """Spindle off if it runs (stop, reset, program end, alarms, E-stop); the speed is kept
+        for the next start."""
+        if self.spindle.on:
+            self.apply_spindle(SpindleState(direction=0, rpm=self.spindle.rpm))
+
     def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
         """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
         why = self.m.states.refusal("spindle_on")

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from app.machine.errors import MachineError
-from app.machine.model import Activity, CommandResult, MachineState, Severity, SpindleState
+from app.machine.model import Activity, CommandResult, MachineState, Severity
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -161,6 +161,7 @@ class StateMachine:
                 return self.m.run.stop()
             self.m.stream.drop_job(completed=False, reason="reset")
             self.m.run.resume_point = None
+            self.m.spindle_ctl.stop_spindle()
             self.set_state(MachineState.IDLE, "reset")
             return self.ok("reset")
         if st is MachineState.ALARM:
@@ -174,12 +175,14 @@ class StateMachine:
             self.m.poller.poll()
             if self.state is not MachineState.ALARM:
                 return self.refuse("reset", f"machine is {self.state.label.lower()}")
+            self.m.spindle_ctl.stop_spindle()
             self.set_state(MachineState.IDLE, "reset")
             return self.ok("reset")
         if st is MachineState.IDLE:
             self.m.run.resume_point = None
             self.m.stream.line = 0
             self.m.lineChanged.emit(0)
+            self.m.spindle_ctl.stop_spindle()      # reset means everything off
             return self.ok("reset")
         return self.refuse("reset", f"reset not possible: machine is {st.label.lower()}")
 
@@ -191,8 +194,7 @@ class StateMachine:
             self.m.stream.drop_job(completed=False, reason=f"E-stop: {reason}")
         self.m.pos.homing_queue.clear()
         self.m.pos.homing_axis = -1
-        if self.m.spindle_ctl.spindle.on:
-            self.m.spindle_ctl.apply_spindle(SpindleState())
+        self.m.spindle_ctl.stop_spindle()
         if self.state is not MachineState.ESTOP:
             self.set_state(MachineState.ESTOP, reason)
 

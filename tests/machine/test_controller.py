@@ -498,3 +498,42 @@ def test_mdi_fuzz_never_raises_and_says_why(ctl: MachineController, block: str) 
     if ctl.state is MachineState.HOLD:
         ctl.stop()
         ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+
+
+SPINDLE_PROGRAM = "G0 X5 Y0\nM3 S8000\nG1 X120 F1200\nM30\n"
+
+
+def _spindle_running(ctl: MachineController) -> None:
+    start(ctl, SPINDLE_PROGRAM)
+    assert ctl.run_until(lambda: ctl.current_line == 3, 5)
+    ctl.advance(0.5)
+    assert ctl.spindle.on and ctl.spindle.rpm == 8000
+
+
+def test_stop_stops_the_spindle_once_the_axes_stand(ctl: MachineController) -> None:
+    """Stop: the axes brake along the path with the spindle still cutting, then it goes off."""
+    _spindle_running(ctl)
+    assert ctl.stop()
+    assert ctl.spindle.on                      # the tool still moves: the spindle keeps turning
+    assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 1.0)
+    assert not ctl.spindle.on and ctl.spindle.rpm == 8000   # off; the speed kept for the next start
+
+
+def test_reset_stops_the_spindle(ctl: MachineController) -> None:
+    assert ctl.spindle_on(True, 6000) and ctl.spindle.on
+    assert ctl.reset() and not ctl.spindle.on
+
+
+def test_program_end_stops_the_spindle(ctl: MachineController) -> None:
+    start(ctl, "G0 X5 Y0\nM3 S8000\nG1 X10 F1200\nM30\n")
+    run_to_idle(ctl)
+    assert ctl.last_run.completed and not ctl.spindle.on
+
+
+def test_estop_and_a_stop_alarm_stop_the_spindle(ctl: MachineController) -> None:
+    _spindle_running(ctl)
+    ctl.alarm_log.alarm_stop("test: coolant pressure lost", "controller", "test")
+    assert ctl.run_until(lambda: ctl.stream.job is None, 1.0)
+    assert not ctl.spindle.on
+    assert ctl.reset() and ctl.spindle_on(True, 5000)
+    assert ctl.estop("test") and not ctl.spindle.on
