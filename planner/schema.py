@@ -92,6 +92,8 @@ MACHINE_FILE = Table("", tables=(
         Key("method", "str", "set_here", choices=("set_here", "drive")),
         Key("drive_method", "int", 35, -128, 127),
         Key("timeout_s", "float", 60.0, 0.1, 3600.0),
+        # drives that keep their position through a power cut stay homed after one
+        Key("absolute_encoders", "bool", False),
     )),
     Table("bus", (
         Key("kind", "str", "sim", choices=("sim", "soem")),

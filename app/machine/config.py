@@ -59,6 +59,7 @@ class HomingSettings:
     method: str = "set_here"  # "set_here" | "drive" (CiA 402 homing mode 6)
     drive_method: int = 35  # 0x6098 homing method for "drive"
     timeout_s: float = 60.0
+    absolute_encoders: bool = False  # positions survive a power cut: homed flags are kept after one
 
 
 @dataclass(frozen=True, slots=True)
@@ -148,7 +149,7 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         raise ConfigError(str(exc), where) from None
     h = valid["homing"]
     homing = HomingSettings(required=h["required"], method=h["method"], drive_method=h["drive_method"],
-                            timeout_s=h["timeout_s"])
+                            timeout_s=h["timeout_s"], absolute_encoders=h["absolute_encoders"])
     drives = tuple(DriveIdentity(d["position"], d["vendor_id"], d["product_code"]) for d in b["drives"])
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
@@ -260,7 +261,8 @@ def config_to_toml(config: MachineConfig) -> str:
         out.append(f"{name} = {_fmt([float(v) for v in m.offset(name)])}")
     h = config.homing
     out += ["", "[homing]", f"required = {_fmt(h.required)}", f"method = {_fmt(h.method)}",
-            f"drive_method = {h.drive_method}", f"timeout_s = {_fmt(float(h.timeout_s))}", ""]
+            f"drive_method = {h.drive_method}", f"timeout_s = {_fmt(float(h.timeout_s))}",
+            f"absolute_encoders = {_fmt(h.absolute_encoders)}", ""]
     b = config.bus
     out += ["[bus]", f"kind = {_fmt(b.kind)}", f"adapter = {_fmt(b.adapter)}",
             f"wkc_error_limit = {b.wkc_error_limit}", ""]

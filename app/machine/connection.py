@@ -59,6 +59,8 @@ class Connection:
         self._worker_factory = worker_factory
         self.worker_mode = worker_mode
         self.worker: Any = None
+        self.unclean_shutdown = False   # the state folder says the last run did not end cleanly
+        self.persisted_at = 0.0         # time.monotonic() of the last save of the machine state
         self.config_notice = ""
         self._config_path = Path()
         self.cfg = self._load_initial_config(config)
@@ -101,6 +103,19 @@ class Connection:
             self.m.pos.raw_pos = np.array(st["raw_position"], dtype=float)
             self.m.pos.home_offset = np.array(st["home_offset"], dtype=float)
             self.m.pos.homed = list(st["homed"])
+            self.unclean_shutdown = st["running"]
+            if st["running"]:
+                # the last run ended without a shutdown (power loss, kill): the drives may have
+                # moved or lost their count since the position was saved
+                if not self.cfg.homing.absolute_encoders and any(self.m.pos.homed):
+                    self.m.pos.homed = [False] * len(axes)
+                    why = "axes are not homed any more: home them before running a program"
+                else:
+                    why = "the drives have absolute encoders: homed flags kept"
+                when = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(st["saved"])) if st["saved"] else "?"
+                cause = (f"the control did not shut down cleanly (power loss or killed; position last "
+                         f"saved {when}): {why}")
+                self.m.alarm_log.raise_alarm("controller", cause, Severity.WARNING, "unclean_shutdown")
             if st["active_offset"] in WORK_OFFSET_NAMES:
                 self.m.pos.active_offset = st["active_offset"]
         offs = self.store.load_offsets(len(axes))
@@ -109,6 +124,7 @@ class Connection:
         self.m.pos.ref_raw = self.m.pos.raw_pos.copy()
 
     def persist_state(self) -> None:
+        self.persisted_at = time.monotonic()
         try:
             self.store.save_state(
                 self.cfg.axes,
@@ -116,6 +132,7 @@ class Connection:
                 [float(x) for x in self.m.pos.home_offset],
                 list(self.m.pos.homed),
                 self.m.pos.active_offset,
+                running=self.worker is not None and not self._shutdown,
             )
         except OSError as exc:
             self.m.alarm_log.raise_alarm(
@@ -277,6 +294,7 @@ class Connection:
             self._feeder.start()
             self.timer.start()
         self.m.poller.emit_all()
+        self.persist_state()            # "running" from now on, until a clean shutdown
         return self.m.states.ok("connect")
 
     def enable_worker(self) -> None:
@@ -328,6 +346,7 @@ class Connection:
         with self.m._lock:
             self.m.stream.drop_job(completed=False, reason="disconnected")
         self._stop_worker()
+        self.persist_state()            # no controller has the drives any more
         self.m.states.set_state(MachineState.DISCONNECTED, "disconnected")
         self.m.poller.emit_bus(BusStatus(kind=self.cfg.bus.kind, connected=False, state="disconnected"))
         return self.m.states.ok("disconnect")

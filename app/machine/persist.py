@@ -1,6 +1,8 @@
 """What survives a restart, in the state directory (default ~/.local/state/cnc-panel):
 
-    state.json    raw drive positions, home offsets, homed flags, active work offset
+    state.json    raw drive positions, home offsets, homed flags, active work offset, and whether
+                  a controller had the drives (``running``: saved at most once a second while
+                  connected, false after a clean shutdown)
     offsets.json  the G54-G59 table (machine coordinates of part zero, per axis)
     alarms.json   the alarm list (active and history, newest last, at most 500)
     machine.toml  the machine configuration when none is given on the command line
@@ -74,6 +76,10 @@ class StateStore:
                 "home_offset": [float(x) for x in data["home_offset"]][:n],
                 "homed": [bool(x) for x in data["homed"]][:n],
                 "active_offset": str(data.get("active_offset", "G54")),
+                # True while a controller had the drives: still True at the next start means
+                # it did not shut down cleanly (power loss, kill -9)
+                "running": bool(data.get("running", False)),
+                "saved": float(data.get("saved", 0.0)),
             }
             if any(len(out[k]) != n for k in ("raw_position", "home_offset", "homed")):
                 raise ValueError("wrong number of values")
@@ -83,10 +89,11 @@ class StateStore:
             return None
 
     def save_state(self, axes: tuple[str, ...], raw_position: list[float], home_offset: list[float],
-                   homed: list[bool], active_offset: str) -> None:
+                   homed: list[bool], active_offset: str, running: bool = False) -> None:
         self._write_json("state.json", {"axes": list(axes), "raw_position": list(raw_position),
                                         "home_offset": list(home_offset), "homed": list(homed),
-                                        "active_offset": active_offset, "saved": time.time()})
+                                        "active_offset": active_offset, "running": running,
+                                        "saved": time.time()})
 
     # ------------------------------------------------------------------ work offsets
     def load_offsets(self, n_axes: int) -> dict[str, tuple[float, ...]] | None:

@@ -28,7 +28,10 @@ __all__ = ["main"]
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="cnc-run", description=__doc__.split("\n\n")[0])
-    p.add_argument("program", help="G-code file")
+    p.add_argument("program", nargs="?", help="G-code file")
+    p.add_argument("--status", action="store_true",
+                   help="print the persisted machine state of --state-dir (position, homed axes, whether the "
+                        "last run ended cleanly) and run nothing")
     p.add_argument("--config", help="machine configuration TOML (default: the shipped 3-axis XYZ mill)")
     p.add_argument("--sim", action="store_true", help="simulated drives whatever the configuration says")
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
@@ -41,8 +44,38 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _status(state_dir: str, as_json: bool) -> int:
+    """The persisted state of a state folder, read without taking it (no controller started)."""
+    from app.machine.persist import StateStore
+
+    raw = StateStore(state_dir)._read_json("state.json")
+    if not isinstance(raw, dict):
+        print(f"cnc-run: no machine state in {state_dir}", file=sys.stderr)
+        return 2
+    out = {
+        "state_dir": str(state_dir), "axes": raw.get("axes"), "position": raw.get("raw_position"),
+        "home_offset": raw.get("home_offset"), "homed": dict(zip(raw.get("axes", []), raw.get("homed", []))),
+        "active_offset": raw.get("active_offset"), "unclean_shutdown": bool(raw.get("running", False)),
+        "saved": raw.get("saved"),
+    }
+    if as_json:
+        print(json.dumps(out, indent=1))
+    else:
+        for k, v in out.items():
+            print(f"{k}: {v}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    if args.status:
+        if not args.state_dir:
+            print("cnc-run: --status needs --state-dir", file=sys.stderr)
+            return 2
+        return _status(args.state_dir, args.json)
+    if not args.program:
+        print("cnc-run: a G-code program is needed (or --status)", file=sys.stderr)
+        return 2
     import os
 
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")

@@ -4,16 +4,20 @@ signals that carry them. A part of ``MachineController``.
 
 from __future__ import annotations
 
+import time
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from app.machine.model import BusStatus
+from app.machine.model import BusStatus, MachineState
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
 
-__all__ = ["StatusPoller"]
+__all__ = ["PERSIST_EVERY_S", "StatusPoller"]
+
+PERSIST_EVERY_S = 1.0  # position and homed flags saved this often while the axes may move
+_MOVING = frozenset({MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING})
 
 
 class StatusPoller:
@@ -53,6 +57,8 @@ class StatusPoller:
         if self.m.conn.feeder_error:
             text, self.m.conn.feeder_error = self.m.conn.feeder_error, ""
             self.m.alarm_log.fault(text, "controller", "feeder")
+        if self.m.states.state in _MOVING and time.monotonic() - self.m.conn.persisted_at >= PERSIST_EVERY_S:
+            self.m.conn.persist_state()     # a power cut loses at most this much of the position
 
     def _emit_positions(self, snap: Any) -> None:
         mpos = tuple(float(x) for x in self.m.states.machine_pos())

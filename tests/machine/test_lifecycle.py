@@ -10,6 +10,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from app.machine.config import DEFAULT_LEAD_S
 from app.machine.controller import MachineController
@@ -98,3 +99,23 @@ def test_on_a_cpu_without_store_order_the_worker_runs_as_a_thread(qapp, config_p
         assert any(a.code == "worker_thread_mode" for a in ctl.alarms)
     finally:
         ctl.shutdown()
+
+
+@pytest.mark.parametrize("absolute", [False, True])
+def test_after_an_unclean_end_axes_need_homing_unless_the_encoders_are_absolute(qapp, config_path: Path,
+                                                                              state_dir: Path,
+                                                                              absolute: bool) -> None:
+    text = config_path.read_text()
+    config_path.write_text(text.replace("drive_method = 35", f"drive_method = 35\nabsolute_encoders = "
+                                                             f"{'true' if absolute else 'false'}"))
+    (state_dir / "state.json").write_text(json.dumps({
+        "axes": ["X", "Y", "Z"], "raw_position": [1.0, 2.0, 3.0], "home_offset": [0.0, 0.0, 0.0],
+        "homed": [True, True, True], "active_offset": "G54", "running": True, "saved": 1.7e9}))
+    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="manual")
+    try:
+        assert ctl.homed == ((True,) * 3 if absolute else (False,) * 3)
+        (alarm,) = [a for a in ctl.alarms if a.code == "unclean_shutdown"]
+        assert ("homed flags kept" in alarm.cause) is absolute
+    finally:
+        ctl.shutdown()
+    assert json.loads((state_dir / "state.json").read_text())["running"] is False

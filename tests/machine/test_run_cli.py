@@ -116,3 +116,51 @@ def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
     result = json.loads(out)
     assert result["completed"] is False and "stopped by signal SIGTERM" in result["notes"]
     assert not [p for p in mine if p.exists()], "shared memory left behind"
+
+
+def test_a_run_killed_by_sigkill_leaves_the_state_unclean_and_no_axis_homed(qapp, tmp_path: Path) -> None:
+    """Power loss, as far as a test can have one: cnc-run killed with SIGKILL mid-program. The
+    state folder then says the last run did not end cleanly, and the next controller on it
+    starts with no axis homed and an alarm saying why."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    state = tmp_path / "state"
+    prog = tmp_path / "long.nc"
+    prog.write_text("G1 X200 F600\nM30\n")
+    cmd = [sys.executable, "-m", "app.machine.run_cli"]
+    run = [*cmd, str(prog), "--sim", "--json", "--worker", "thread", "--state-dir", str(state)]
+    proc = subprocess.Popen(run, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            time.sleep(0.3)
+            status = subprocess.run([*cmd, "--state-dir", str(state), "--status", "--json"], cwd=ROOT,
+                                    capture_output=True, text=True)
+            if status.returncode == 0 and json.loads(status.stdout)["position"][0] > 1.0:
+                break                                    # moving, with the position saved on the way
+        else:
+            raise AssertionError("the run never got under way")
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=10)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=10)
+    status = json.loads(subprocess.run([*cmd, "--state-dir", str(state), "--status", "--json"], cwd=ROOT,
+                                       capture_output=True, text=True, check=True).stdout)
+    assert status["unclean_shutdown"] is True and all(status["homed"].values())
+    ctl = MachineController(None, state_dir=state, worker_mode="manual")
+    try:
+        assert ctl.homed == (False, False, False)
+        unclean = [a for a in ctl.alarms if a.code == "unclean_shutdown"]
+        assert len(unclean) == 1 and "did not shut down cleanly" in unclean[0].cause
+        assert ctl.connect_bus()
+        assert not ctl.cycle_start() and ctl.refusal("cycle_start").startswith("axes not homed")
+    finally:
+        ctl.shutdown()
+    clean = json.loads(subprocess.run([*cmd, "--state-dir", str(state), "--status", "--json"], cwd=ROOT,
+                                      capture_output=True, text=True, check=True).stdout)
+    assert clean["unclean_shutdown"] is False                # that controller shut down cleanly
