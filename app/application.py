@@ -40,7 +40,7 @@ def run(options: PanelOptions) -> int:
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("cnc-panel")
     apply_theme(app)
-    from app.machine.errors import ConfigError
+    from app.machine.errors import ConfigError, StateFolderBusy
 
     try:
         window = create_window(options)
@@ -48,6 +48,9 @@ def run(options: PanelOptions) -> int:
         sys.stderr.write(f"cnc-panel: {exc}\n")
         if exc.backup:
             sys.stderr.write(f"  the previous good file is {exc.backup}; copy it over {exc.path} to use it\n")
+        return 2
+    except StateFolderBusy as exc:  # a second panel on the same machine state: refused, not both
+        sys.stderr.write(f"cnc-panel: {exc}\n")
         return 2
     app.aboutToQuit.connect(window.context.controller.shutdown)
     quit_on_signals(app)

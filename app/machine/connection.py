@@ -55,7 +55,7 @@ class Connection:
         poll_hz: float,
     ) -> None:
         self.m = m
-        self.store = StateStore(state_dir if state_dir is not None else DEFAULT_STATE_DIR)
+        self.store = StateStore(state_dir if state_dir is not None else DEFAULT_STATE_DIR, exclusive=True)
         self._worker_factory = worker_factory
         self.worker_mode = worker_mode
         self.worker: Any = None
@@ -402,6 +402,7 @@ class Connection:
             self.disconnect_bus()
         finally:
             self.persist_state()
+            self.store.release()
 
     def _feeder_main(self) -> None:
         while not self._feeder_stop.wait(0.002):

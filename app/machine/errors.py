@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["ConfigError", "MachineError"]
+__all__ = ["ConfigError", "MachineError", "StateFolderBusy"]
 
 
 class MachineError(RuntimeError):
@@ -21,3 +21,8 @@ class ConfigError(MachineError, ValueError):
         self.backup = backup
         text = message if backup is None else f"{message} (a backup exists: {backup})"
         super().__init__(text)
+
+
+class StateFolderBusy(MachineError):
+    """Another control already uses this state folder: two controls on one folder would each
+    believe their own positions and homed flags and overwrite the other's."""

@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from app.machine.errors import StateFolderBusy
 from app.machine.model import Alarm, AlarmState, Severity
 from planner.files import remove_stale_temporaries, write_text
 
@@ -32,12 +33,40 @@ class StateStore:
     """Reads and writes the state directory. Problems found while reading are collected in
     ``problems`` (the controller raises them as alarms)."""
 
-    def __init__(self, state_dir: str | os.PathLike[str]) -> None:
+    def __init__(self, state_dir: str | os.PathLike[str], *, exclusive: bool = False) -> None:
+        """``exclusive``: take the folder for this control (``StateFolderBusy`` when another
+        has it) until ``release``; reading a folder's state needs no lock."""
         self.dir = Path(state_dir).expanduser()
         self.dir.mkdir(parents=True, exist_ok=True)
         self.problems: list[str] = []
+        self._lock: Any = None      # the open lock file (a file object: closed, and so released, with us)
+        if exclusive:
+            self._take()
         # a save interrupted by a power cut or kill -9 leaves its temporary: gone at the next start
         remove_stale_temporaries(self.dir, whole_folder=True)
+
+    def _take(self) -> None:
+        import fcntl
+
+        lock = open(self.dir / "lock", "a+b")  # noqa: SIM115 - held open for the controller's life
+        try:
+            fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            lock.seek(0)
+            holder = lock.read(64).decode("ascii", "replace").strip() or "?"
+            lock.close()
+            raise StateFolderBusy(f"another control (pid {holder}) uses the state folder {self.dir}: "
+                                  "close it first, or start this one with another --state-dir") from None
+        lock.truncate(0)
+        lock.write(str(os.getpid()).encode())
+        lock.flush()
+        self._lock = lock            # the kernel releases the lock when this process ends
+
+    def release(self) -> None:
+        """Give the folder up (clean shutdown); releasing twice is harmless."""
+        lock, self._lock = self._lock, None
+        if lock is not None:
+            lock.close()
 
     def path(self, name: str) -> Path:
         return self.dir / name

@@ -83,7 +83,7 @@ def main(argv: list[str] | None = None) -> int:
 
     from app.machine.config import MachineConfig, load_config
     from app.machine.controller import MachineController
-    from app.machine.errors import ConfigError
+    from app.machine.errors import ConfigError, StateFolderBusy
     from app.machine.model import MachineState
 
     try:
@@ -105,7 +105,11 @@ def main(argv: list[str] | None = None) -> int:
     if state_dir is None:
         tmp = tempfile.TemporaryDirectory(prefix="cnc-run-")
         state_dir = tmp.name
-    ctl = MachineController(cfg, state_dir=state_dir, worker_mode=args.worker)
+    try:
+        ctl = MachineController(cfg, state_dir=state_dir, worker_mode=args.worker)
+    except StateFolderBusy as exc:
+        print(f"cnc-run: {exc}", file=sys.stderr)
+        return 2
     errors: list[str] = []
     ctl.programErrors.connect(lambda issues: errors.extend(str(i) for i in issues))
     notes: list[str] = []

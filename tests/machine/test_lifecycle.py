@@ -119,3 +119,42 @@ def test_after_an_unclean_end_axes_need_homing_unless_the_encoders_are_absolute(
     finally:
         ctl.shutdown()
     assert json.loads((state_dir / "state.json").read_text())["running"] is False
+
+
+def test_one_control_per_state_folder(qapp, config_path: Path, state_dir: Path) -> None:
+    """Two controls on one state folder would each trust their own positions and homed flags:
+    the second is refused with the first one's pid, and may start once the first has ended."""
+    import os
+
+    from app.machine.errors import StateFolderBusy
+
+    first = MachineController(config_path, state_dir=state_dir, worker_mode="manual")
+    try:
+        busy = f"another control \\(pid {os.getpid()}\\) uses the state folder"
+        with pytest.raises(StateFolderBusy, match=busy):
+            MachineController(config_path, state_dir=state_dir, worker_mode="manual")
+    finally:
+        first.shutdown()
+    second = MachineController(config_path, state_dir=state_dir, worker_mode="manual")
+    second.shutdown()
+
+
+def test_a_second_panel_on_the_same_state_folder_is_refused(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    from app.machine.persist import StateStore
+
+    state = tmp_path / "state"
+    holder = StateStore(state, exclusive=True)            # a first control, as far as the folder knows
+    try:
+        env = {**os.environ, "QT_QPA_PLATFORM": "offscreen"}
+        done = subprocess.run([sys.executable, "-m", "app", "--demo", "--state-dir", str(state),
+                               "--screenshot", str(tmp_path / "x.png")], env=env, capture_output=True,
+                              text=True, timeout=120, cwd=Path(__file__).resolve().parents[2])
+    finally:
+        holder.release()
+    assert done.returncode == 2
+    assert f"another control (pid {os.getpid()}) uses the state folder" in done.stderr
+    assert not (tmp_path / "x.png").exists()
