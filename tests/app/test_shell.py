@@ -15,6 +15,7 @@ import pytest
 from app.context import PanelOptions
 from app.main_window import MainWindow
 from app.pages import PAGE_NAMES, PAGES
+from tests.shm import shm_before, wait_for_new_blocks
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -77,19 +78,12 @@ def test_no_display_gives_advice_instead_of_crashing() -> None:
 def test_a_signal_shuts_the_panel_down_cleanly(tmp_path: Path, sig: signal.Signals) -> None:
     """kill or Ctrl+C: the worker stops, its shared memory is released, the state is saved,
     and the panel exits with 0 (it used to leave the shared-memory block behind)."""
-    shm = Path("/dev/shm")
-    if not shm.is_dir():
-        pytest.skip("no /dev/shm on this system")
-    before = set(shm.iterdir())
+    before = shm_before()
     env = {**os.environ, "QT_QPA_PLATFORM": "offscreen"}
     proc = subprocess.Popen([sys.executable, "-m", "app", "--demo", "--state-dir", str(tmp_path / "state")],
                             env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     try:
-        deadline = time.monotonic() + 60
-        mine: set[Path] = set()
-        while not mine and time.monotonic() < deadline and proc.poll() is None:
-            time.sleep(0.2)
-            mine = {p for p in set(shm.iterdir()) - before if p.name.startswith("psm_")}
+        mine = wait_for_new_blocks(before, proc)
         assert mine, "the panel's worker never started"
         time.sleep(1.0)                       # connected, homed, the demo program loaded
         proc.send_signal(sig)

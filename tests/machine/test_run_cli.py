@@ -15,6 +15,7 @@ from resources import (
     PROGRAMS,  # noqa: E402
     shipped_machine,
 )
+from tests.shm import shm_before, wait_for_new_blocks
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -89,21 +90,14 @@ def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
     import sys
     import time
 
-    shm = Path("/dev/shm")
-    if not shm.is_dir():
-        pytest.skip("no /dev/shm on this system")
     prog = tmp_path / "long.nc"
     prog.write_text("G1 X200 F600\nM30\n")          # 20 s at 10 mm/s
-    before = set(shm.iterdir())
+    before = shm_before()
     proc = subprocess.Popen([sys.executable, "-m", "app.machine.run_cli", str(prog), "--sim", "--json",
                              "--worker", "process"], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     try:
-        deadline = time.monotonic() + 60
-        mine: set[Path] = set()
-        while not mine and time.monotonic() < deadline and proc.poll() is None:
-            time.sleep(0.2)
-            mine = {p for p in set(shm.iterdir()) - before if p.name.startswith("psm_")}
+        mine = wait_for_new_blocks(before, proc)
         assert mine, "the worker never started"
         time.sleep(2.0)
         proc.send_signal(signal.SIGTERM)

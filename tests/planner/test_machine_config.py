@@ -163,6 +163,22 @@ def test_a_work_offset_outside_the_travel_is_refused() -> None:
 _SHIPPED = shipped_machine("xyz_mill").read_text(encoding="utf-8")
 
 
+def _read_or_refused(path, text: str) -> None:
+    """Both readers (cnc-plan's and the panel's) give a machine or their error naming the file."""
+    from app.machine.config import load_config
+    from app.machine.errors import ConfigError
+
+    path.write_text(text, encoding="utf-8")
+    try:
+        load_machine(path)
+    except PlannerError as exc:
+        assert str(exc).startswith(str(path))
+    try:
+        load_config(path)
+    except ConfigError as exc:
+        assert str(path) in str(exc)
+
+
 # broken characters, and whole values (a string, an array, an inline table); the structured fuzz
 # below puts values of every kind at every key
 _INSERTS = ["", "0", "1.5", "-", "x", "=", "[", "]", "\"", "\n", "#", "1e400", "nan", "inf", "true", "0x",
@@ -175,23 +191,12 @@ _INSERTS = ["", "0", "1.5", "-", "x", "=", "[", "]", "\"", "\n", "#", "1e400", "
 def test_mutated_configuration_files_read_or_fail_with_the_file_named(tmp_path_factory, edits) -> None:
     """Fuzz: a configuration file damaged anywhere gives a machine or a PlannerError naming the
     file (and a ConfigError from the panel's reader), never another exception, in bounded time."""
-    from app.machine.config import load_config
-    from app.machine.errors import ConfigError
 
     text = _SHIPPED
     for pos, cut, ins in edits:
         pos = min(pos, len(text))
         text = text[:pos] + ins + text[pos + cut:]
-    path = tmp_path_factory.mktemp("fuzz") / "m.toml"
-    path.write_text(text, encoding="utf-8")
-    try:
-        load_machine(path)
-    except PlannerError as exc:
-        assert str(exc).startswith(str(path))
-    try:
-        load_config(path)
-    except ConfigError as exc:
-        assert str(path) in str(exc)
+    _read_or_refused(tmp_path_factory.mktemp("fuzz") / "m.toml", text)
 
 
 
@@ -225,8 +230,6 @@ def test_a_value_of_any_kind_at_any_key_is_read_or_refused_with_its_key(tmp_path
 
     import tomlkit
 
-    from app.machine.config import load_config
-    from app.machine.errors import ConfigError
 
     data = copy.deepcopy(_PARSED)
     for path, value in changes:
@@ -241,13 +244,4 @@ def test_a_value_of_any_kind_at_any_key_is_read_or_refused_with_its_key(tmp_path
         text = tomlkit.dumps(data)
     except Exception:  # noqa: BLE001 - not expressible as TOML (e.g. a nested None): nothing to read
         return
-    path = tmp_path_factory.mktemp("fuzz") / "m.toml"
-    path.write_text(text, encoding="utf-8")
-    try:
-        load_machine(path)
-    except PlannerError as exc:
-        assert str(exc).startswith(str(path))
-    try:
-        load_config(path)
-    except ConfigError as exc:
-        assert str(path) in str(exc)
+    _read_or_refused(tmp_path_factory.mktemp("fuzz") / "m.toml", text)
