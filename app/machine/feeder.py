@@ -342,10 +342,17 @@ class Streamer:
                 t_end = job.executor.t_end + job.time_offset_s
                 tau_g = tau + job.tau_offset_s
                 frac = min(tau_g / t_end, 1.0) if t_end > 0 else 1.0
-                ovr = max(self.m.run.feed_pct / 100.0, 1e-3)
+                capped = job.executor.capped_to
+                ovr = max(self.m.run.feed_pct / 100.0 if capped is None else capped, 1e-3)
                 remaining = max(t_end - tau_g, 0.0) / ovr
                 self.progress = (frac, remaining)
                 self.m.progressChanged.emit(frac, remaining)
+        capped = job.executor.capped_to
+        if (capped is not None) != job.cap_reported:
+            job.cap_reported = capped is not None
+            if capped is not None:
+                self.m.message.emit(f"feed override {self.m.run.feed_pct:g} % capped at {100 * capped:.0f} % "
+                                    "here: the machine's speed, acceleration or jerk limit")
         if snap.time_s - self.m.poller.tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
             self.m.poller.tracking_emit_t = snap.time_s
             self.tracking = self._tracking_from(snap, "")

@@ -76,6 +76,7 @@ class Job:
         self.aborted = False
         self.then: Job | None = None
         self.spindle_before: SpindleState | None = None
+        self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.origin: tuple[Program, int, float] | None = None
         self.single_block = False
         self.carried_limits: dict[str, float] = {}

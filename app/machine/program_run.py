@@ -17,6 +17,7 @@ from app.machine.model import (
     Severity,
     SpindleState,
 )
+from app.machine.timescale import SIGMA_MAX
 from planner.errors import PlannerError
 from planner.program import Program
 from planner.resume import (
@@ -338,15 +339,17 @@ class ProgramRunner:
 
     def set_feed_override(self, percent: float) -> CommandResult:
         """Feed override 0-150 %, applied while running without a jump and within every limit
-        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits.
+        (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits,
+        and the controller says so (``message``) where they cap it.
         """
         p = float(percent)
-        if not 0.0 <= p <= 150.0:
-            return self.m.states.refuse("set_feed_override", f"feed override must be 0-150 %, got {p:g}")
+        top = 100.0 * SIGMA_MAX
+        if not 0.0 <= p <= top:
+            return self.m.states.refuse("set_feed_override", f"feed override must be 0-{top:g} %, got {p:g}")
         self.feed_pct = p
         with self.m._lock:
             job = self.m.stream.job
-            if job is not None and job.overrides and job.executor.feed_override != min(p / 100.0, 1.5):
+            if job is not None and job.overrides and job.executor.feed_override != min(p / 100.0, SIGMA_MAX):
                 self.m.stream.change_motion(lambda ex: ex.set_overrides(feed=p / 100.0))
             if self.m.stream.job is not None and self.m.stream.job.then is not None:
                 self.m.stream.job.then.executor.set_overrides(feed=p / 100.0)

@@ -92,7 +92,7 @@ from planner.stopping import PathStop, plan_path_stop
 __all__ = ["Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
            "reduced_machine"]
 
-SIGMA_MAX = 1.5
+SIGMA_MAX = 1.5  # the largest feed override; above 1 the machine's limits cap it (3)
 
 
 @dataclass(frozen=True, slots=True)
@@ -181,6 +181,7 @@ class TimeScaledExecutor:
         self._win_valid_until = -1.0
         self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
         self._target_cache = 1.0
+        self.capped_to: float | None = None  # the time scale the limits allow, when below the override
         self.sigma_start = True  # at a standstill of the plan (start or pause point)
         # hold / stop: the time-optimal stop along the path (planner.stopping) when it keeps
         # every limit, else sigma -> 0 by the braking law above
@@ -292,6 +293,10 @@ class TimeScaledExecutor:
         need = sig * (np.maximum(sig - x, 0.0) / self.d1_ref + self.d1_ref / self.d2_ref) * 1.3 + 2 * bt
         binding = (dist <= need) | (dist <= bt)
         self._target_cache = float(x[binding].min()) if binding.any() else float(x[0])
+        # what the operator asked for and the limits refuse here (reported, not an error)
+        asked = self.feed_override if hf[binding].any() or not hr[binding].any() else self.rapid_override
+        self.capped_to = self._target_cache if not self.hold and self._target_cache < asked - 1e-3 \
+            and self._target_cache >= 1.0 else None
 
     def _step_bounds(self, sigma: float) -> tuple[float, float]:
         rv, ra, rj, alpha, beta, gamma = self._bounds

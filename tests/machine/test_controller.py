@@ -537,3 +537,18 @@ def test_estop_and_a_stop_alarm_stop_the_spindle(ctl: MachineController) -> None
     assert not ctl.spindle.on
     assert ctl.reset() and ctl.spindle_on(True, 5000)
     assert ctl.estop("test") and not ctl.spindle.on
+
+
+def test_an_override_the_limits_cap_is_reported(ctl: MachineController) -> None:
+    """F1800 is the path limit (30 mm/s): 150 % cannot go faster, and the operator is told so;
+    the remaining time is not divided by 1.5 either."""
+    messages: list[str] = []
+    ctl.message.connect(messages.append)
+    assert ctl.set_feed_override(150)
+    start(ctl, "G0 X5 Y0\nG1 X125 F1800\nM30\n")
+    ctl.advance(1.5)
+    assert any("feed override 150 % capped at 100 %" in m for m in messages), messages
+    frac, remaining = ctl.progress
+    total = ctl.plan.cycle_time_s
+    assert remaining == pytest.approx(total * (1 - frac), rel=0.05)     # at 100 %, not / 1.5
+    run_to_idle(ctl)

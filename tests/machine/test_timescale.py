@@ -8,6 +8,7 @@ import pytest
 
 from app.machine.config import load_config
 from app.machine.timescale import (
+    SIGMA_MAX,
     Budget,
     TimeScaledExecutor,
     pause_points,
@@ -158,7 +159,7 @@ def test_random_programs_and_override_sequences_stay_within_limits(machine, seed
         k += int(rng.integers(100, 900))
         what = str(rng.choice(["feed", "feed", "rapid", "hold"]))
         if what == "feed":
-            actions[k] = ("feed", float(rng.uniform(0.0, 1.5)))
+            actions[k] = ("feed", float(rng.uniform(0.0, SIGMA_MAX)))
         elif what == "rapid":
             actions[k] = ("rapid", float(rng.uniform(0.05, 1.0)))
         else:
@@ -169,7 +170,7 @@ def test_random_programs_and_override_sequences_stay_within_limits(machine, seed
     actions[k + 501] = ("hold", 0.0)
     prog, plan, ex, q, s, mv, sig, tau = run(machine, text, actions)
     np.testing.assert_array_equal(q[-1], prog.end_position)
-    assert sig.max() <= 1.5 + 1e-12 and np.all(np.diff(tau) >= -1e-15)
+    assert sig.max() <= SIGMA_MAX + 1e-12 and np.all(np.diff(tau) >= -1e-15)
     assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
     seg = plan.segment
     assert float(contour_error(seg.table, mv, q, s - seg.s0[mv]).max()) < 1e-9
