@@ -300,7 +300,7 @@ class MachineApi(Protocol):
         ...
 
     def set_feed_override(self, percent: float) -> CommandResult:
-        """Feed override 0-150 %, applied while running without a jump and within every limit
+        """Feed override 0-200 %, applied while running without a jump and within every limit
         (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits."""
         ...
 

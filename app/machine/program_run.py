@@ -338,7 +338,7 @@ class ProgramRunner:
         return self.resume_point.line if self.resume_point is not None else 0
 
     def set_feed_override(self, percent: float) -> CommandResult:
-        """Feed override 0-150 %, applied while running without a jump and within every limit
+        """Feed override 0-200 %, applied while running without a jump and within every limit
         (``app.machine.timescale``); above 100 % the speed stays capped by the machine limits,
         and the controller says so (``message``) where they cap it.
         """

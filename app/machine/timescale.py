@@ -2,8 +2,8 @@ r"""Feed override, rapid override and feed hold by time-scaling the planned traj
 
 The planner gives q_p(tau) (positions against planned time tau, every axis and the path).
 The executor runs it as q(t) = q_p(tau(t)) with d tau / d t = sigma(t), the time scale:
-sigma = 1 is the plan, 0.5 half speed, 0 standing still on the path (feed hold), up to 1.5
-(150 %). Since only the time axis changes, the tool never leaves the programmed path and
+sigma = 1 is the plan, 0.5 half speed, 0 standing still on the path (feed hold), up to 2
+(200 %). Since only the time axis changes, the tool never leaves the programmed path and
 ends exactly at the programmed end. Differentiating (for every axis and for the path):
 
     dq/dt     = q_p' sigma
@@ -36,8 +36,11 @@ r_a sigma^2 <= k_a and r_j sigma^3 <= k_j, and |q_p'| <= V_k / sigma <= V_k,
 bounds are evaluated over a window that covers the distance tau travels while sigma changes,
 so they hold for every tau the step visits. ``check_limits`` measures it numerically.
 
-**Control of sigma.** sigma follows its target (override, 0 for hold, capped by (3) over the
-braking distance ahead) with a discrete-time braking law: sigma_dot_wanted is the largest
+**Control of sigma.** sigma follows its target (override, 0 for hold, capped by (3) ahead:
+the cap of every block is met by braking along an envelope computed backwards from the caps,
+sigma^2 falling at 2 * 0.7 D1 per unit of planned time with the D1 of the window the steps
+will see there, and entered early by the planned time sigma covers while sigma_dot ramps up)
+with a discrete-time braking law: sigma_dot_wanted is the largest
 value from which steps of sigma_ddot = 0.7 D2_ref stop within the error e (continuous form
 sqrt(1.4 D2_ref |e|)), reached with |sigma_ddot| <= D2 (semi-implicit Euler steps), where
 D2_ref <= D2 is the worst-case bound (so braking is always feasible). A step that would cross
@@ -92,7 +95,7 @@ from planner.stopping import PathStop, plan_path_stop
 __all__ = ["Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
            "reduced_machine"]
 
-SIGMA_MAX = 1.5  # the largest feed override; above 1 the machine's limits cap it (3)
+SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap it (3)
 
 
 @dataclass(frozen=True, slots=True)
@@ -290,9 +293,30 @@ class TimeScaledExecutor:
         start_tau = (np.arange(w2.start, w2.stop) * bt)
         dist = start_tau - self.tau
         sig = max(self.sigma, 1e-3, 0.0 if self.hold else min(float(x.max()), SIGMA_MAX))
-        need = sig * (np.maximum(sig - x, 0.0) / self.d1_ref + self.d1_ref / self.d2_ref) * 1.3 + 2 * bt
-        binding = (dist <= need) | (dist <= bt)
-        self._target_cache = float(x[binding].min()) if binding.any() else float(x[0])
+        # The highest sigma at each block from which every cap ahead can still be met: braking at
+        # the rate D1 the step bounds will allow there (for sigma >= 1 the worst of (1): the
+        # largest |q'|/A and |q''|/J over the 0.25 s window the steps look at), in planned time
+        # d(sigma^2)/d(tau) = -2 D1, with a 0.7 margin. A backward pass as a suffix minimum:
+        # env_j^2 = min over i >= j of (x_i^2 + 2 (C_i - C_j)), C = cumulated 0.7 D1 bt.
+        alpha_b = np.maximum(c["alpha"][w2], 1e-9)
+        beta_b = np.maximum(c["beta"][w2], 1e-9)
+        d1_b = np.minimum((1.0 - k_a) / alpha_b, (1.0 - k_j) / (6.0 * beta_b))
+        span = min(BLOCK + 2, len(d1_b))
+        pad = np.concatenate([d1_b[:1], d1_b, np.repeat(d1_b[-1:], span)])
+        d1_w = np.lib.stride_tricks.sliding_window_view(pad, span + 1).min(axis=1)[:len(d1_b)]
+        cum = np.concatenate([[0.0], np.cumsum(0.7 * d1_w * bt)[:-1]])
+        suffix = np.minimum.accumulate((x * x + 2.0 * cum)[::-1])[::-1]
+        env = np.sqrt(np.maximum(suffix - 2.0 * cum, 0.0))
+        env = np.where(env >= x * (1.0 - 1e-12), x, env)     # its own cap, exactly (no rounding)
+        # braking starts only after sigma_dot has ramped up: at most D1 / (0.7 d2_ref) of real
+        # time, less for a small drop (a triangle: 2 sqrt(drop / (0.7 d2_ref))); the envelope is
+        # honoured over the planned time sigma covers meanwhile
+        dl = 0.7 * self.d2_ref
+        drop = max(sig - float(env.min()), 0.0)
+        lead = sig * min(float(d1_w[0]) / dl, 2.0 * np.sqrt(drop / dl)) * 1.3 + 2 * bt
+        ahead = dist <= lead
+        self._target_cache = float(env[ahead].min()) if ahead.any() else float(env[0])
+        binding = ahead
         # what the operator asked for and the limits refuse here (reported, not an error)
         asked = self.feed_override if hf[binding].any() or not hr[binding].any() else self.rapid_override
         self.capped_to = self._target_cache if not self.hold and self._target_cache < asked - 1e-3 \

@@ -1,4 +1,4 @@
-"""Override 0-150 % for touch: a slider with a large handle plus -10 / 100 % / +10 buttons."""
+"""Override 0-200 % for touch: a slider with a large handle plus -10 / 100 % / +10 buttons."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QSlider, QVBoxLa
 class OverrideControl(QWidget):
     changed = Signal(float)  # percent, emitted when the operator changes it
 
-    def __init__(self, title: str, maximum: int = 150, parent: QWidget | None = None) -> None:
+    def __init__(self, title: str, maximum: int = 200, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setObjectName("overrideControl")
         layout = QVBoxLayout(self)
