@@ -21,6 +21,7 @@ from app.machine.model import (
     BusStatus,
     CommandResult,
     ControllerSnapshot,
+    HoldKind,
     MachineState,
     ProgramInfo,
     RunSummary,
@@ -64,6 +65,11 @@ class MachineApi(Protocol):
     @property
     def state(self) -> MachineState:
         """Current machine state."""
+        ...
+
+    @property
+    def hold_kind(self) -> HoldKind:
+        """Why the machine is in HOLD (``HoldKind.NONE`` otherwise)."""
         ...
 
     @property

@@ -82,6 +82,7 @@ from app.machine.model import (
     BusStatus,
     CommandResult,
     ControllerSnapshot,
+    HoldKind,
     MachineState,
     ProgramInfo,
     RunSummary,
@@ -177,6 +178,11 @@ class MachineController(QObject):
     def state(self) -> MachineState:
         """Current machine state."""
         return self.states.state
+
+    @property
+    def hold_kind(self) -> HoldKind:
+        """Why the machine is in HOLD (``HoldKind.NONE`` otherwise)."""
+        return self.states.hold_kind
 
     @property
     def state_reason(self) -> str:

@@ -28,7 +28,15 @@ import numpy as np
 
 from app.machine.errors import MachineError
 from app.machine.jobs import ChunkRecord, Job, merge_max
-from app.machine.model import Activity, MachineState, RunSummary, Severity, SpindleState, TrackingReport
+from app.machine.model import (
+    Activity,
+    HoldKind,
+    MachineState,
+    RunSummary,
+    Severity,
+    SpindleState,
+    TrackingReport,
+)
 from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, pause_points, reduced_machine
 from ethercat.worker import ReplaceResult
 from planner.files import write_output
@@ -393,7 +401,10 @@ class Streamer:
                 "tool_change": f"tool change (M06 T{int(p.value)}, line {p.line}): press cycle start",
                 "single_block": f"single block: end of line {p.line}",
             }.get(kind, kind)
-            self.m.states.set_state(MachineState.HOLD, reason)
+            hold = {"pause": HoldKind.PROGRAM_STOP, "optional_pause": HoldKind.OPTIONAL_STOP,
+                    "tool_change": HoldKind.TOOL_CHANGE, "single_block": HoldKind.SINGLE_BLOCK}.get(
+                kind, HoldKind.FEED_HOLD)
+            self.m.states.set_state(MachineState.HOLD, reason, hold)
 
     def _finish_stop(self, job: Job) -> None:
         resume = self.m.run.resume_point

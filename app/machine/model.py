@@ -26,6 +26,18 @@ class MachineState(enum.Enum):
         return {"estop": "E-stop"}.get(self.value, self.value.capitalize())
 
 
+class HoldKind(enum.Enum):
+    """Why the machine is in HOLD, so the operator sees the stop named for what it is."""
+
+    NONE = "none"                     # not in HOLD
+    FEED_HOLD = "feed_hold"           # the operator's feed hold
+    SINGLE_BLOCK = "single_block"     # single block: the end of a block
+    PROGRAM_STOP = "program_stop"     # M00
+    OPTIONAL_STOP = "optional_stop"   # M01 with optional stop on
+    TOOL_CHANGE = "tool_change"       # M06
+    STOPPING = "stopping"             # Stop pressed: braking along the path, then IDLE
+
+
 class Activity(enum.Enum):
     """What the machine is doing while RUNNING / HOLD."""
 

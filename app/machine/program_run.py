@@ -13,6 +13,7 @@ from app.machine.jobs import Job, ResumePoint
 from app.machine.model import (
     Activity,
     CommandResult,
+    HoldKind,
     MachineState,
     Severity,
     SpindleState,
@@ -146,7 +147,7 @@ class ProgramRunner:
             if job is None:
                 return self.m.states.refuse("feed_hold", "nothing is moving")
             self.m.stream.hold_motion()
-        self.m.states.set_state(MachineState.HOLD, "feed hold")
+        self.m.states.set_state(MachineState.HOLD, "feed hold", HoldKind.FEED_HOLD)
         return self.m.states.ok("feed_hold")
 
     def resume(self) -> CommandResult:
@@ -238,7 +239,7 @@ class ProgramRunner:
         if job is None:
             self.m.states.set_state(MachineState.IDLE, "stopped")
         elif self.m.states.state is MachineState.RUNNING:
-            self.m.states.set_state(MachineState.HOLD, "stopping")
+            self.m.states.set_state(MachineState.HOLD, "stopping", HoldKind.STOPPING)
         return self.m.states.ok("stop")
 
     def set_single_block(self, on: bool) -> CommandResult:

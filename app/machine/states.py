@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from app.machine.errors import MachineError
-from app.machine.model import Activity, CommandResult, MachineState, Severity
+from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Severity
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -42,6 +42,7 @@ class StateMachine:
         self.m = m
         self.state = MachineState.DISCONNECTED
         self.state_reason = "not connected"
+        self.hold_kind = HoldKind.NONE
         self.activity = Activity.NONE
 
     def refuse(self, action: str, reason: str) -> CommandResult:
@@ -61,17 +62,21 @@ class StateMachine:
             raise MachineError(f"axis index {axis} out of range")
         return int(axis)
 
-    def set_state(self, new: MachineState, reason: str = "") -> None:
+    def set_state(self, new: MachineState, reason: str = "", hold: HoldKind = HoldKind.NONE) -> None:
+        """``hold``: why, when ``new`` is HOLD (the header names the stop after it)."""
         old = self.state
+        hold = hold if new is MachineState.HOLD else HoldKind.NONE
         if new is old:
-            if reason != self.state_reason:
+            if reason != self.state_reason or hold is not self.hold_kind:
                 self.state_reason = reason
+                self.hold_kind = hold
                 self.m.stateChanged.emit(new, reason)
             return
         if new not in TRANSITIONS[old]:
             raise MachineError(f"internal error: illegal transition {old.value} -> {new.value}")
         self.state = new
         self.state_reason = reason
+        self.hold_kind = hold
         self.m.run.start_pending = False  # a cycle start waiting for a check does not outlive a state change
         if new in (MachineState.IDLE, MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP):
             self.set_activity(Activity.NONE)

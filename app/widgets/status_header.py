@@ -13,6 +13,10 @@ STATE_TEXT = {  # MachineState.value -> label (translated when shown)
     "disconnected": N_("Disconnected"), "idle": N_("Idle"), "homing": N_("Homing"),
     "running": N_("Running"), "hold": N_("Feed hold"), "alarm": N_("Alarm"), "estop": N_("E-stop"),
 }
+HOLD_TEXT = {  # HoldKind.value -> label: a stop named for what it is
+    "feed_hold": N_("Feed hold"), "single_block": N_("Single block"), "program_stop": N_("Program stop (M0)"),
+    "optional_stop": N_("Optional stop (M1)"), "tool_change": N_("Tool change"), "stopping": N_("Stopping"),
+}
 STATE_COLOR = {
     "disconnected": "#6b7783", "idle": "#2f6f9f", "homing": "#8f5fbf", "running": "#1b7f3a",
     "hold": "#a86b00", "alarm": "#b00020", "estop": "#b00020",
@@ -105,7 +109,11 @@ class StatusHeader(QWidget):
 
     def refresh(self) -> None:
         value = self._state_value()
-        self.state_label.setText(tr(STATE_TEXT.get(value, value)))
+        text = STATE_TEXT.get(value, value)
+        if value == "hold":
+            hold = str(getattr(getattr(self.ctx.controller, "hold_kind", None), "value", ""))
+            text = HOLD_TEXT.get(hold, text)
+        self.state_label.setText(tr(text))
         self.state_label.setStyleSheet(
             f"background: {STATE_COLOR.get(value, '#26303b')}; color: white; font-size: 22px;"
             "font-weight: 800; padding: 6px; border-radius: 6px;")

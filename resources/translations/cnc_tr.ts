@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="124" />
+      <location filename="../../app/widgets/status_header.py" line="132" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="125" />
+      <location filename="../../app/widgets/status_header.py" line="133" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -109,7 +109,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="115" />
+      <location filename="../../app/widgets/status_header.py" line="123" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -154,12 +154,12 @@
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="91" />
+      <location filename="../../app/widgets/status_header.py" line="95" />
       <source>Connect</source>
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="91" />
+      <location filename="../../app/widgets/status_header.py" line="95" />
       <source>Connect to the drives and enable them?</source>
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
@@ -219,7 +219,7 @@
       <translation>Vazgeç</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="89" />
+      <location filename="../../app/widgets/status_header.py" line="93" />
       <source>Disconnect</source>
       <translation>Bağlantıyı kes</translation>
     </message>
@@ -234,7 +234,7 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="120" />
+      <location filename="../../app/widgets/status_header.py" line="128" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -511,6 +511,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>İsteğe bağlı duruş</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/status_header.py" line="18" />
+      <source>Optional stop (M1)</source>
+      <translation>İsteğe bağlı duruş (M1)</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/keypad.py" line="99" />
       <source>Out of range: {0} to {1}</source>
       <translation>Aralık dışında: {0} ile {1} arası</translation>
@@ -586,7 +591,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="120" />
+      <location filename="../../app/widgets/status_header.py" line="17" />
+      <source>Program stop (M0)</source>
+      <translation>Program duruşu (M0)</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="128" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -623,12 +633,12 @@ BIRAK</translation>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="96" />
+      <location filename="../../app/widgets/status_header.py" line="100" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="97" />
+      <location filename="../../app/widgets/status_header.py" line="101" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -788,9 +798,14 @@ BIRAK</translation>
       <translation>Dur</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="89" />
+      <location filename="../../app/widgets/status_header.py" line="93" />
       <source>Stop and disable the drives?</source>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="18" />
+      <source>Stopping</source>
+      <translation>Duruyor</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="29" />
@@ -826,6 +841,11 @@ BIRAK</translation>
       <location filename="../../app/pages/alarms.py" line="20" />
       <source>Time</source>
       <translation>Zaman</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="18" />
+      <source>Tool change</source>
+      <translation>Takım değişimi</translation>
     </message>
     <message>
       <location filename="../../app/pages/part_zero.py" line="57" />

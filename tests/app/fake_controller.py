@@ -21,6 +21,7 @@ from app.machine.model import (
     BusStatus,
     CommandResult,
     ControllerSnapshot,
+    HoldKind,
     MachineState,
     ProgramInfo,
     ProgramIssue,
@@ -81,6 +82,7 @@ class FakeController(QObject):
                                     drive_states=("operation enabled",) * n)
         self.tracking = TrackingReport()
         self.state_reason = ""
+        self.hold_kind = HoldKind.NONE
         self.reference_position = (0.0,) * n
         self.progress = (0.0, 0.0)
         self.resume_line = 0
@@ -116,8 +118,9 @@ class FakeController(QObject):
         self.calls.append((action, *args))
         return CommandResult(True, action)
 
-    def _set_state(self, state: MachineState, reason: str = "") -> None:
+    def _set_state(self, state: MachineState, reason: str = "", hold: HoldKind = HoldKind.NONE) -> None:
         self.state = state
+        self.hold_kind = hold if state is MachineState.HOLD else HoldKind.NONE
         self.stateChanged.emit(state, reason)
 
     def refusal(self, action: str) -> str:
@@ -172,7 +175,7 @@ class FakeController(QObject):
         return self._ok("cycle_start")
 
     def feed_hold(self) -> CommandResult:
-        self._set_state(MachineState.HOLD)
+        self._set_state(MachineState.HOLD, "feed hold", HoldKind.FEED_HOLD)
         return self._ok("feed_hold")
 
     def resume(self) -> CommandResult:

@@ -159,3 +159,12 @@ def test_file_picker_lists_folders_and_gcode(qtbot, tmp_path) -> None:
     assert picker.entries() == ["part.ngc"]
     picker.choose("part.ngc")
     assert picker.selected == (tmp_path / "jobs" / "part.ngc").resolve()
+
+
+@pytest.mark.parametrize("kind, text", [("single_block", "Single block"), ("tool_change", "Tool change"),
+                                        ("program_stop", "Program stop (M0)"), ("feed_hold", "Feed hold")])
+def test_the_header_names_the_hold(fake_window, fake_controller, kind: str, text: str) -> None:
+    from app.machine.model import HoldKind, MachineState
+
+    fake_controller._set_state(MachineState.HOLD, "", HoldKind(kind))
+    assert fake_window.header.state_label.text() == text

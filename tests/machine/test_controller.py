@@ -571,3 +571,29 @@ def test_an_override_the_limits_cap_is_reported(ctl: MachineController) -> None:
     total = ctl.plan.cycle_time_s
     assert remaining == pytest.approx(total * (1 - frac), rel=0.05)     # at 100 %, not halved
     run_to_idle(ctl)
+
+
+def test_each_hold_is_named_for_what_it_is(ctl: MachineController) -> None:
+    """Single block, M0, M1 and feed hold all stop in HOLD; the operator sees which."""
+    from app.machine.model import HoldKind
+
+    assert ctl.set_single_block(True)
+    start(ctl, "G0 X5 Y0\nG1 X10 F1200\nM30\n")
+    assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)
+    assert ctl.hold_kind is HoldKind.SINGLE_BLOCK
+    assert ctl.stop() and ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+    assert ctl.hold_kind is HoldKind.NONE
+    assert ctl.set_single_block(False) and ctl.set_optional_stop(True)
+    for code, kind in (("M0", HoldKind.PROGRAM_STOP), ("M1", HoldKind.OPTIONAL_STOP)):
+        start(ctl, f"G0 X1 Y0\n{code}\nG0 X2\nM30\n")
+        assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)
+        assert ctl.hold_kind is kind, (code, ctl.hold_kind)
+        assert ctl.resume()
+        run_to_idle(ctl)
+    start(ctl, "G0 X5 Y0\nG1 X100 F1200\nM30\n")
+    ctl.advance(0.5)
+    assert ctl.feed_hold() and ctl.hold_kind is HoldKind.FEED_HOLD
+    assert ctl.resume()
+    ctl.advance(0.5)
+    assert ctl.stop() and ctl.hold_kind is HoldKind.STOPPING     # braking along the path
+    assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
