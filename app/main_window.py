@@ -147,11 +147,16 @@ class MainWindow(QMainWindow):
 
     def _on_loading(self, loading: bool, name: str) -> None:
         """The controller checks a program in its worker thread: say so in the status bar."""
+        checking = tr("Checking {0} …").format(name)
         if loading:
             self._program_label.setText(tr("{0} (checking…)").format(name))
-            self.show_message(tr("Checking {0} …").format(name))
-        elif self.context.program.info is None:
-            self._program_label.setText("")
+            self.show_message(checking)
+            return
+        # done (loaded, refused, or a single-block plan made): no "checking" text may outlive it
+        info = self.context.controller.program_info
+        self._program_label.setText(str(getattr(info, "name", "")) if info is not None else "")
+        if self._message.text() == checking:
+            self.show_message("")
 
     def _on_program_loaded(self, info: object) -> None:
         name = str(getattr(info, "name", ""))

@@ -94,3 +94,14 @@ def test_a_signal_shuts_the_panel_down_cleanly(tmp_path: Path, sig: signal.Signa
             proc.wait(timeout=10)
     assert not [p for p in mine if p.exists()], "shared memory left behind"
     assert (tmp_path / "state" / "state.json").is_file()
+
+
+def test_no_checking_text_outlives_the_check(fake_window, fake_controller) -> None:
+    """A load refused, or a single-block plan made, ends the check: the status bar no longer
+    says the program is being checked."""
+    fake_controller.loadingChanged.emit(True, "part.nc")
+    assert "Checking part.nc" in fake_window._message.text()
+    assert "checking" in fake_window._program_label.text()
+    fake_controller.loadingChanged.emit(False, "part.nc")
+    assert "Checking" not in fake_window._message.text()
+    assert "checking" not in fake_window._program_label.text()
