@@ -12,6 +12,7 @@ from PySide6.QtWidgets import QApplication
 from app.context import PanelOptions
 from app.main_window import MainWindow
 from app.paths import STYLES
+from planner.files import write_output_via_path
 
 
 def apply_theme(app: QApplication) -> None:
@@ -31,9 +32,12 @@ def create_window(options: PanelOptions) -> MainWindow:
 def save_screenshot(window: MainWindow, path) -> None:
     window.resize(window.options.width_px, window.options.height_px)
     pixmap = window.grab()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if not pixmap.save(str(path), "PNG"):
-        raise OSError(f"could not write screenshot to {path}")
+
+    def save(tmp: str) -> None:
+        if not pixmap.save(tmp, "PNG"):
+            raise OSError(f"could not write screenshot to {path}")
+
+    write_output_via_path(path, save)     # the one output writer: atomic, devices and - too
 
 
 def run(options: PanelOptions) -> int:
