@@ -24,6 +24,7 @@ from app.i18n import LANGUAGES, tr
 from app.pages import PAGES, PageInfo, page_info
 from app.pages.placeholder import PlaceholderPage
 from app.service_access import IDLE_LOCK_S
+from app.shortcuts import Shortcuts, parse_bindings
 from app.widgets.service_gate import ServiceGate
 from app.widgets.status_header import StatusHeader
 
@@ -126,10 +127,14 @@ class MainWindow(QMainWindow):
         app = QApplication.instance()
         if app is not None:
             app.installEventFilter(self)
+        bindings = parse_bindings(ctx.settings.settings.shortcuts)
+        self.shortcuts = Shortcuts(ctx.controller, self.header._estop_clicked, bindings)
         self._idle_timer = QTimer(self)
         self._idle_timer.setInterval(5_000)
         self._idle_timer.timeout.connect(self._check_idle)
         self._idle_timer.start()
+        if bindings.problems:
+            self.show_message("; ".join(bindings.problems))
         if ctx.access is not None and ctx.access.damaged:
             self.show_message(ctx.access.unlock("").reason)
         QTimer.singleShot(0, self._start)
@@ -226,6 +231,9 @@ class MainWindow(QMainWindow):
         # any touch, click or key press restarts the service level's idle time
         if event.type() in _INPUT_EVENTS and self.context.access is not None:
             self.context.access.touch()
+        # keys reach the panel's shortcuts only through this window (not a dialog in front)
+        if isinstance(watched, QWidget) and watched.window() is self:
+            return self.shortcuts.handle(event)
         return False
 
     def _check_idle(self) -> None:

@@ -46,6 +46,8 @@ class PanelSettings:
     service_locked_until: float = 0.0    # wall time of the end of a lockout
     mdi_history: tuple[str, ...] = ()
     last_program: str = ""
+    # keyboard shortcuts: action -> key name, over the defaults (``app.shortcuts``)
+    shortcuts: dict[str, str] = field(default_factory=dict)
 
     def with_changes(self, **changes: object) -> PanelSettings:
         return replace(self, **changes)  # type: ignore[arg-type]
@@ -101,6 +103,8 @@ class SettingsStore:
                 raise ValueError(f"{key} is not a number")
         if "mdi_history" in known:
             known["mdi_history"] = tuple(str(x) for x in known["mdi_history"])[-50:]
+        if not isinstance(known.get("shortcuts", {}), dict):
+            raise ValueError("shortcuts is not an object of action: key name")
         if not isinstance(known.get("language", "en"), str):
             raise ValueError("language is not a string")
         return PanelSettings(**known)
