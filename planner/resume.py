@@ -26,8 +26,10 @@ from planner.program import (
 )
 
 __all__ = [
+    "Approach",
     "ModalState",
     "approach_moves",
+    "last_safe_height",
     "locate",
     "modal_state_at",
     "modal_state_before_move",
@@ -160,30 +162,69 @@ def locate(program: Program, line: int) -> int:
     raise PlannerError(f"no motion at or after line {line}")
 
 
+@dataclass(frozen=True, slots=True)
+class Approach:
+    """The way from where the machine stands to a restart point: ``moves`` (machine
+    coordinates) and where the spindle is started: after move ``spindle_after`` (-1: before the
+    first), the last one at the clearance height, so the tool never goes down without it."""
+
+    moves: tuple[Move, ...]
+    spindle_after: int
+
+
+def last_safe_height(program: Program, move_index: int, axis: int) -> float | None:
+    """The height (machine coordinate of ``axis``) of the last rapid move before move
+    ``move_index`` that ended at or above where that move starts: the program's own retract
+    plane there. None when the program made no such move."""
+    if not 0 <= move_index < len(program.moves):
+        return None
+    z_target = float(program.moves[move_index].start[axis])
+    for m in reversed(program.moves[:move_index]):
+        if m.kind is MoveKind.RAPID and float(m.end[axis]) >= z_target:
+            return float(m.end[axis])
+    return None
+
+
 def approach_moves(current: np.ndarray, target: np.ndarray, axes: tuple[str, ...],
-                   rotary: tuple[bool, ...], retract_axis: str = "Z",
-                   retract_to: float | None = None) -> list[Move]:
-    """Rapid moves from ``current`` to ``target`` that stay clear of the part: first the
-    retract axis up to max(current, target, retract_to), then all other axes, then the
-    retract axis down to its target. Without a retract axis: one straight rapid."""
+                   rotary: tuple[bool, ...], *, clearance: float, feed_mm_s: float,
+                   safe_height: float | None = None, retract_axis: str = "Z") -> Approach:
+    """A restart approach that never moves sideways low: rapid up to ``clearance`` (a machine
+    height; not down if the tool is higher already), rapid across at that height, [spindle],
+    rapid down to ``safe_height`` (the program's own retract plane there, if given and above
+    the target), then down to the target at ``feed_mm_s``. Without a retract axis among the
+    axes: one straight rapid, the spindle before it."""
     cur = np.asarray(current, dtype=float).copy()
     tgt = np.asarray(target, dtype=float)
-    pts = [cur.copy()]
+    if not (feed_mm_s > 0.0 and math.isfinite(feed_mm_s)):
+        raise PlannerError(f"approach feed must be a positive number, got {feed_mm_s}")
+    legs: list[tuple[np.ndarray, np.ndarray, bool]] = []   # (from, to, rapid)
+    spindle_after = -1
     if retract_axis in axes:
         k = axes.index(retract_axis)
-        high = max(cur[k], tgt[k], retract_to if retract_to is not None else -math.inf)
-        p = cur.copy()
-        p[k] = high
-        pts.append(p)
-        p2 = tgt.copy()
-        p2[k] = high
-        pts.append(p2)
-    pts.append(tgt.copy())
+        high = max(cur[k], tgt[k], clearance)
+        up, across = cur.copy(), tgt.copy()
+        up[k] = across[k] = high
+        legs += [(cur, up, True), (up, across, True)]
+        spindle_after = 1
+        low = across
+        if safe_height is not None and tgt[k] < safe_height < high:
+            low = tgt.copy()
+            low[k] = safe_height
+            legs.append((across, low, True))
+        legs.append((low, tgt.copy(), False))
+    else:
+        legs.append((cur, tgt.copy(), True))
     moves: list[Move] = []
-    for a, b in zip(pts[:-1], pts[1:]):
-        length = _path_length(a, b, rotary)
+    last_high_leg, spindle_after = spindle_after, -1
+    pos = cur
+    for i, (_, b, rapid) in enumerate(legs):
+        a, length = pos, _path_length(pos, b, rotary)
         if length <= 1e-12:
             continue
-        moves.append(Move(index=len(moves), line=0, kind=MoveKind.RAPID, start=a.copy(), end=b.copy(),
-                          feed_mm_s=math.inf, length_mm=length, arc=None, exact_stop=True))
-    return moves
+        pos = b
+        moves.append(Move(index=len(moves), line=0, kind=MoveKind.RAPID if rapid else MoveKind.LINE,
+                          start=a.copy(), end=b.copy(), feed_mm_s=math.inf if rapid else float(feed_mm_s),
+                          length_mm=length, arc=None, exact_stop=True))
+        if i <= last_high_leg:
+            spindle_after = len(moves) - 1
+    return Approach(tuple(moves), spindle_after)

@@ -114,6 +114,8 @@ MACHINE_FILE = Table("", tables=(
         Key("spindle_max_rpm", "float", 24000.0, 1.0, 1e6),
         Key("spindle_drive", "int", 0, 0, 63),
         Key("position_tolerance", "float", 0.01, 0.0, 100.0),
+        Key("spindle_spinup_s", "float", 2.0, 0.0, 120.0),
+        Key("restart_clearance_mm", "float", None, -1e6, 1e6),
     )),
 ))
 

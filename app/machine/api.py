@@ -24,6 +24,7 @@ from app.machine.model import (
     HoldKind,
     MachineState,
     ProgramInfo,
+    Prompt,
     RunSummary,
     SpindleState,
     TrackingReport,
@@ -65,6 +66,12 @@ class MachineApi(Protocol):
     @property
     def state(self) -> MachineState:
         """Current machine state."""
+        ...
+
+    @property
+    def prompt(self) -> Prompt | None:
+        """What the program stop in force asks of the operator (tool to insert, line), None
+        outside HOLD or in a feed hold."""
         ...
 
     @property

@@ -101,6 +101,12 @@ class ControllerSettings:
     spindle_max_rpm: float = 24000.0
     spindle_drive: int = 0  # index of the drive whose digital outputs switch the spindle
     position_tolerance: float = 0.01  # mm|deg: persisted vs reported position to keep homed
+    # wait after the spindle starts, reverses or speeds up before the next move (the spindle
+    # must cut at speed; the simulated and CSP drives report no at-speed signal)
+    spindle_spinup_s: float = 2.0
+    # machine Z a restart (run from line, resume after a stop) retracts to before it moves
+    # sideways; None: the top of the Z travel
+    restart_clearance_mm: float | None = None
 
 
 @dataclass(frozen=True)
@@ -142,6 +148,11 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         if b["kind"] == "soem" and not b["adapter"]:
             raise loc.fail(("bus", "adapter"), 'is required when kind = "soem" (the network interface)')
         c = valid["controller"]
+        z = [a for a in machine.axes if a.name == "Z"]
+        clearance = c["restart_clearance_mm"]
+        if clearance is not None and z and not z[0].min_pos <= clearance <= z[0].max_pos:
+            raise loc.fail(("controller", "restart_clearance_mm"),
+                           f"{clearance:g} is outside the Z travel [{z[0].min_pos:g}, {z[0].max_pos:g}]")
         if c["spindle_drive"] >= n:
             raise loc.fail(("controller", "spindle_drive"),
                            f"{c['spindle_drive']} must be below the axis count {n}")
@@ -274,7 +285,11 @@ def config_to_toml(config: MachineConfig) -> str:
             f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",
             f"jerk_reserve = {_fmt(float(c.jerk_reserve))}",
             f"spindle_max_rpm = {_fmt(float(c.spindle_max_rpm))}", f"spindle_drive = {c.spindle_drive}",
-            f"position_tolerance = {_fmt(float(c.position_tolerance))}", "", END_MARK, ""]
+            f"position_tolerance = {_fmt(float(c.position_tolerance))}",
+            f"spindle_spinup_s = {_fmt(float(c.spindle_spinup_s))}"]
+    if c.restart_clearance_mm is not None:
+        out.append(f"restart_clearance_mm = {_fmt(float(c.restart_clearance_mm))}")
+    out += ["", END_MARK, ""]
     return "\n".join(out)
 
 

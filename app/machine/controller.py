@@ -85,6 +85,7 @@ from app.machine.model import (
     HoldKind,
     MachineState,
     ProgramInfo,
+    Prompt,
     RunSummary,
     Severity,
     SpindleState,
@@ -178,6 +179,10 @@ class MachineController(QObject):
     def state(self) -> MachineState:
         """Current machine state."""
         return self.states.state
+
+    @property
+    def prompt(self) -> Prompt | None:
+        return self.states.prompt
 
     @property
     def hold_kind(self) -> HoldKind:

@@ -32,6 +32,7 @@ from app.machine.model import (
     Activity,
     HoldKind,
     MachineState,
+    Prompt,
     RunSummary,
     Severity,
     SpindleState,
@@ -381,9 +382,13 @@ class Streamer:
         if job.stopping:
             self._finish_stop(job)
             return
+        if job.spinup_until is not None:      # a spindle started here: on at speed first
+            if snap.time_s >= job.spinup_until:
+                job.spinup_until = None
+                self._release(job)
+            return
         if kind == "spindle":
-            self.m.spindle_ctl.apply_spindle(SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)))
-            self._release(job)
+            self._start_spindle(job, SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)), snap)
         elif kind == "dwell":
             if job.dwell_until is None:
                 job.dwell_until = snap.time_s + p.value
@@ -395,16 +400,36 @@ class Streamer:
             self._release(job)
         elif not job.waiting:
             job.waiting = True
+            if kind == "tool_change" and self.m.spindle_ctl.spindle.on:
+                # hands go near the spindle: it stops, and cycle start brings it back
+                job.spindle_paused = self.m.spindle_ctl.spindle
+                self.m.spindle_ctl.stop_spindle()
+            tool = int(p.value) if kind == "tool_change" else 0
             reason = {
                 "pause": f"program paused (M00, line {p.line}): press cycle start",
                 "optional_pause": f"optional stop (M01, line {p.line}): press cycle start",
-                "tool_change": f"tool change (M06 T{int(p.value)}, line {p.line}): press cycle start",
+                "tool_change": (f"tool change (M06 T{tool}, line {p.line}): insert tool T{tool} and "
+                                "press cycle start"),
                 "single_block": f"single block: end of line {p.line}",
             }.get(kind, kind)
             hold = {"pause": HoldKind.PROGRAM_STOP, "optional_pause": HoldKind.OPTIONAL_STOP,
                     "tool_change": HoldKind.TOOL_CHANGE, "single_block": HoldKind.SINGLE_BLOCK}.get(
                 kind, HoldKind.FEED_HOLD)
-            self.m.states.set_state(MachineState.HOLD, reason, hold)
+            if p.line > 0 and p.line != self.line:   # the line that stopped, not the next one
+                self.line = p.line
+                self.m.lineChanged.emit(p.line)
+            self.m.states.set_state(MachineState.HOLD, reason, hold, Prompt(hold, p.line, tool, reason))
+
+    def _start_spindle(self, job: Job, sp: SpindleState, snap: Any) -> None:
+        """Switch the spindle at a pause point; when it starts, reverses or speeds up, the
+        motion waits ``spindle_spinup_s`` there before it goes on."""
+        wait = self.m.spindle_ctl.spin_up_s(sp)
+        self.m.spindle_ctl.apply_spindle(sp)
+        if wait > 0.0:
+            job.spinup_until = float(snap.time_s) + wait
+            job.dwell_total_s += wait
+        else:
+            self._release(job)
 
     def _finish_stop(self, job: Job) -> None:
         resume = self.m.run.resume_point
@@ -427,8 +452,6 @@ class Streamer:
         nxt = job.then
         completed_summary = self.drop_job(completed=True, reason="completed", snap=snap)
         if nxt is not None:
-            if nxt.spindle_before is not None:
-                self.m.spindle_ctl.apply_spindle(nxt.spindle_before)
             self.start_job(nxt)
             return
         if job.kind is Activity.PROGRAM:

@@ -75,7 +75,9 @@ class Job:
         self.stop_reason = ""
         self.aborted = False
         self.then: Job | None = None
-        self.spindle_before: SpindleState | None = None
+        # the spindle stopped for a tool change, brought back by cycle start
+        self.spindle_paused: SpindleState | None = None
+        self.spinup_until: float | None = None   # worker time the spindle is at speed
         self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.origin: tuple[Program, int, float] | None = None
         self.single_block = False

@@ -38,6 +38,20 @@ class HoldKind(enum.Enum):
     STOPPING = "stopping"             # Stop pressed: braking along the path, then IDLE
 
 
+@dataclass(frozen=True, slots=True)
+class Prompt:
+    """What a program stop asks of the operator (M00, M01, M06, single block): shown until
+    the machine leaves HOLD."""
+
+    kind: HoldKind
+    line: int          # the program line that stopped (the M6 line for a tool change)
+    tool: int = 0      # the tool to insert (tool change)
+    text: str = ""
+
+    def as_dict(self) -> dict[str, object]:
+        return {"line": self.line, "kind": self.kind.value, "tool": self.tool, "text": self.text}
+
+
 class Activity(enum.Enum):
     """What the machine is doing while RUNNING / HOLD."""
 

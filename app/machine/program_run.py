@@ -5,6 +5,8 @@ A part of ``MachineController``.
 
 from __future__ import annotations
 
+import math
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,13 +18,14 @@ from app.machine.model import (
     HoldKind,
     MachineState,
     Severity,
-    SpindleState,
 )
 from app.machine.timescale import SIGMA_MAX
 from planner.errors import PlannerError
-from planner.program import Program
+from planner.program import Event, EventKind, Program
 from planner.resume import (
+    Approach,
     approach_moves,
+    last_safe_height,
     locate,
     modal_state_before_move,
     program_from_moves,
@@ -178,9 +181,18 @@ class ProgramRunner:
                     return self.m.states.ok("resume")
             job.executor.hold = False
             if job.pause is not None and job.waiting:
-                job.pause = None
+                # back from a tool change: the spindle as it was, at speed before moving on
+                paused, job.spindle_paused = job.spindle_paused, None
+                wait = 0.0
+                if paused is not None:
+                    wait = self.m.spindle_ctl.spin_up_s(paused)
+                    self.m.spindle_ctl.apply_spindle(paused)
                 job.waiting = False
-                job.executor.release_pause()
+                if wait > 0.0:
+                    job.spinup_until = float(self.m.conn.snapshot_now().time_s) + wait
+                else:
+                    job.pause = None
+                    job.executor.release_pause()
         self.m.states.set_state(MachineState.RUNNING, job.kind.value)
         return self.m.states.ok("resume")
 
@@ -301,12 +313,22 @@ class ProgramRunner:
         except PlannerError as exc:
             return self.m.states.refuse(action, str(exc))
         modal = modal_state_before_move(prog, point.move_index)
-        spindle = SpindleState(direction=int(np.sign(modal.spindle_rpm)), rpm=abs(modal.spindle_rpm))
-        cur = self.m.states.machine_pos()
-        retract = "Z" if "Z" in self.m.config.axes else ""
-        moves = approach_moves(
-            cur, rest.start_position, self.m.config.axes, self.m.config.machine.rotary, retract
-        )
+        cur = np.asarray(self.m.states.machine_pos(), dtype=float)
+        try:
+            approach = self._approach(prog, point.move_index, cur, rest.start_position, modal.feed_mm_s)
+        except PlannerError as exc:
+            return self.m.states.refuse(action, f"approach move: {exc}")
+        # the spindle as of the restart point, on (and at speed) before the tool goes below the
+        # clearance height: in the approach after its last move at the top, or first thing
+        spindle_event = Event(EventKind.SPINDLE, point.line, approach.spindle_after, float(modal.spindle_rpm))
+        way = None
+        if approach.moves:
+            way = program_from_moves(prog, list(approach.moves), [spindle_event], cur, name="approach")
+            issues = self.m.loader.check_program_limits(way)
+            if issues:
+                return self.m.states.refuse(action, f"approach move: soft limit: {issues[0]}")
+        else:
+            rest = replace(rest, events=(spindle_event, *rest.events))
         name = self.m.loader.program_info.name if self.m.loader.program_info else prog.name
         try:
             main = self.m.stream.make_job(Activity.PROGRAM, rest, name, single_block=self.single_block)
@@ -317,21 +339,31 @@ class ProgramRunner:
         main.tau_offset_s = max(full_t - main.executor.t_end, 0.0)
         main.time_offset_s = main.tau_offset_s
         main.origin = (prog, point.move_index, point.u_mm)
-        main.spindle_before = spindle
         self.resume_point = None
         self.m.stream.line = point.line
-        if moves:
-            approach = program_from_moves(prog, moves, [], cur, name="approach")
-            issues = self.m.loader.check_program_limits(approach)
-            if issues:
-                return self.m.states.refuse(action, f"approach move: soft limit: {issues[0]}")
-            job = self.m.stream.make_job(Activity.APPROACH, approach, "approach", overrides=True)
+        if way is not None:
+            job = self.m.stream.make_job(Activity.APPROACH, way, "approach", overrides=True)
             job.then = main
             self.m.stream.start_job(job)
         else:
-            self.m.spindle_ctl.apply_spindle(spindle)
             self.m.stream.start_job(main)
         return self.m.states.ok(action)
+
+    def _approach(self, prog: Program, move_index: int, cur: np.ndarray, target: np.ndarray,
+                  feed_mm_s: float) -> Approach:
+        """Up to the restart clearance, across, down to the program's own retract plane there,
+        then at the program's feed to the restart point (``planner.resume.approach_moves``)."""
+        axes = self.m.config.axes
+        c = self.m.config.controller
+        clearance, safe = -math.inf, None
+        if "Z" in axes:
+            k = axes.index("Z")
+            z_axis = self.m.config.machine.axes[k]
+            clearance = z_axis.max_pos if c.restart_clearance_mm is None else c.restart_clearance_mm
+            safe = last_safe_height(prog, move_index, k)
+        feed = feed_mm_s if feed_mm_s > 0.0 else c.jog_speed_mm_s
+        return approach_moves(cur, target, axes, self.m.config.machine.rotary, clearance=clearance,
+                              feed_mm_s=feed, safe_height=safe)
 
     @property
     def resume_line(self) -> int:

@@ -45,6 +45,16 @@ class SpindleControl:
         self.spindle = sp
         self.m.spindleChanged.emit(sp)
 
+    def spin_up_s(self, new: SpindleState) -> float:
+        """How long the motion waits after switching to ``new``: the configured spin-up time
+        when the spindle starts, reverses or speeds up, else 0."""
+        old = self.spindle
+        if not new.on:
+            return 0.0
+        if not old.on or old.direction != new.direction or new.rpm > old.rpm:
+            return float(self.m.config.controller.spindle_spinup_s)
+        return 0.0
+
     def stop_spindle(self) -> None:
         """Spindle off if it runs (stop, reset, program end, alarms, E-stop); the speed is kept
         for the next start."""

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from app.machine.errors import MachineError
-from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Severity
+from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Prompt, Severity
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -43,6 +43,7 @@ class StateMachine:
         self.state = MachineState.DISCONNECTED
         self.state_reason = "not connected"
         self.hold_kind = HoldKind.NONE
+        self.prompt: Prompt | None = None
         self.activity = Activity.NONE
 
     def refuse(self, action: str, reason: str) -> CommandResult:
@@ -62,10 +63,13 @@ class StateMachine:
             raise MachineError(f"axis index {axis} out of range")
         return int(axis)
 
-    def set_state(self, new: MachineState, reason: str = "", hold: HoldKind = HoldKind.NONE) -> None:
-        """``hold``: why, when ``new`` is HOLD (the header names the stop after it)."""
+    def set_state(self, new: MachineState, reason: str = "", hold: HoldKind = HoldKind.NONE,
+                  prompt: Prompt | None = None) -> None:
+        """``hold``: why, when ``new`` is HOLD (the header names the stop after it);
+        ``prompt``: what that stop asks of the operator (kept while in HOLD)."""
         old = self.state
         hold = hold if new is MachineState.HOLD else HoldKind.NONE
+        self.prompt = prompt if new is MachineState.HOLD else None
         if new is old:
             if reason != self.state_reason or hold is not self.hold_kind:
                 self.state_reason = reason

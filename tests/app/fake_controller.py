@@ -25,6 +25,7 @@ from app.machine.model import (
     MachineState,
     ProgramInfo,
     ProgramIssue,
+    Prompt,
     RunSummary,
     Severity,
     SpindleState,
@@ -83,6 +84,7 @@ class FakeController(QObject):
         self.tracking = TrackingReport()
         self.state_reason = ""
         self.hold_kind = HoldKind.NONE
+        self.prompt: Prompt | None = None
         self.reference_position = (0.0,) * n
         self.progress = (0.0, 0.0)
         self.resume_line = 0
@@ -121,6 +123,8 @@ class FakeController(QObject):
     def _set_state(self, state: MachineState, reason: str = "", hold: HoldKind = HoldKind.NONE) -> None:
         self.state = state
         self.hold_kind = hold if state is MachineState.HOLD else HoldKind.NONE
+        if state is not MachineState.HOLD:
+            self.prompt = None
         self.stateChanged.emit(state, reason)
 
     def refusal(self, action: str) -> str:

@@ -206,18 +206,72 @@ def test_m00_pauses_and_m01_only_with_optional_stop(ctl: MachineController) -> N
 def test_run_from_line_moves_safely_and_restores_the_spindle(ctl: MachineController) -> None:
     text = "G0 Z5\nM3 S1200\nG1 Z-1 F600\nG1 X10 F1800\nM3 S1500 G1 Y10\nG1 X0\nM5\nM30\n"
     assert ctl.load_program(text, wait=True)
-    acts = []
-    ctl.activityChanged.connect(acts.append)
     assert ctl.run_from_line(5)
     assert ctl.activity is Activity.APPROACH
-    assert ctl.run_until(lambda: ctl.activity is Activity.PROGRAM, 5)
+    assert ctl.run_until(lambda: ctl.activity is Activity.PROGRAM, 20)
     assert ctl.spindle.direction == 1 and ctl.spindle.rpm == 1500.0  # as of line 5 (M3 S1500 on it)
     np.testing.assert_allclose(ctl.reference_position, (10.0, 0.0, -1.0), atol=1e-9)
     run_to_idle(ctl)
     np.testing.assert_array_equal(ctl.reference_position, (0.0, 10.0, -1.0))
     assert not ctl.spindle.on  # M5 at line 7
-    ref = trace(ctl)["reference"]
-    assert ref[:, 2].max() <= 0.0 + 1e-12
+
+
+SAFE_RESTART = ("G0 Z5\nG0 X-20 Y0\nM3 S1200\nG1 Z-1 F600\nG1 X40 F1200\nG1 Y30\nG0 Z5\n"
+                "G0 X60 Y60\nG1 Z-2 F600\nG1 X0 F1200\nG0 Z5\nM5\nM30\n")
+
+
+@pytest.mark.parametrize("after", ["stop", "estop"])
+def test_restart_after_a_stop_while_cutting_never_moves_sideways_low_and_spins_up_first(
+        qapp, config_path: Path, state_dir: Path, after: str) -> None:
+    with config_path.open("a", encoding="utf-8") as f:
+        f.write("restart_clearance_mm = 30.0\nspindle_spinup_s = 1.5\n")   # [controller] is last
+    ctl = make_controller(config_path, state_dir)
+    try:
+        start(ctl, SAFE_RESTART)
+        assert ctl.run_until(lambda: ctl.current_line == 6, 20)             # cutting along Y at Z-1
+        ctl.advance(0.3)
+        if after == "stop":
+            assert ctl.stop()
+            run_to_idle(ctl)
+        else:
+            assert ctl.estop("test")
+            assert ctl.run_until(lambda: not ctl.spindle.on, 1.0)
+            assert ctl.estop_release()
+            assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+        assert not ctl.spindle.on
+        assert ctl.reference_position[2] == pytest.approx(-1.0)
+        assert ctl.run_from_line(10, wait=True), ctl.state_reason         # G1 X0 from (60, 60, -2)
+        samples: list[tuple[float, tuple[float, ...], float]] = []
+
+        def record() -> bool:
+            samples.append((float(ctl.conn.snapshot_now().time_s),
+                            ctl.reference_position, ctl.spindle.direction * ctl.spindle.rpm))
+            return ctl.activity is Activity.PROGRAM
+
+        assert ctl.run_until(record, 30)
+        # the first sample is the last set-point before the stop; after an E-stop the drives
+        # stopped short of it, and the approach starts where they stand
+        del samples[0]
+        t = np.array([s[0] for s in samples])
+        p = np.array([s[1] for s in samples])
+        rpm = np.array([s[2] for s in samples])
+        assert p[:, 2].max() == pytest.approx(30.0)                        # up to the clearance
+        sideways = np.abs(np.diff(p[:, :2], axis=0)).max(axis=1) > 1e-3   # encoder counts: 1e-4
+        low = np.maximum(p[:-1, 2], p[1:, 2]) < 30.0 - 1e-9
+        assert not (sideways & low).any(), f"moved in X or Y below the clearance height: {p[:4]}"
+        top = int(np.argmax(p[:, 2]))
+        going_down = np.arange(len(p)) > top
+        below = going_down & (p[:, 2] < 5.0 - 1e-9)                       # under the retract plane
+        assert below.any() and (rpm[below] == 1200.0).all()
+        first_down = int(np.argmax(going_down & (p[:, 2] < 30.0 - 1e-9)))
+        spun = int(np.argmax(rpm == 1200.0))
+        assert (rpm[:spun] == 0.0).all() and spun > 0                     # retracted with it off
+        assert t[first_down] - t[spun] >= 1.5 - 0.04                        # at speed first
+        np.testing.assert_allclose(ctl.reference_position, (60.0, 60.0, -2.0), atol=1e-9)
+        run_to_idle(ctl, 30)
+        np.testing.assert_allclose(ctl.reference_position, (0.0, 60.0, 5.0), atol=1e-9)
+    finally:
+        ctl.shutdown()
 
 
 # ---------------------------------------------------------------------------- manual
@@ -597,3 +651,43 @@ def test_each_hold_is_named_for_what_it_is(ctl: MachineController) -> None:
     ctl.advance(0.5)
     assert ctl.stop() and ctl.hold_kind is HoldKind.STOPPING     # braking along the path
     assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+
+
+def test_a_tool_change_stops_the_spindle_and_cycle_start_brings_it_back_at_speed(
+        ctl: MachineController) -> None:
+    """M6: the spindle stops while hands are at the spindle; cycle start restores it and the
+    motion waits the spin-up time before the next move."""
+    from app.machine.model import HoldKind
+
+    start(ctl, "M3 S1000\nG0 X10 Y0\nT2 M6\nG1 X20 F600\nM30\n")
+    assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 10)
+    assert ctl.hold_kind is HoldKind.TOOL_CHANGE and "insert tool T2" in ctl.state_reason
+    assert ctl.prompt is not None and (ctl.prompt.kind, ctl.prompt.line, ctl.prompt.tool) == (
+        HoldKind.TOOL_CHANGE, 3, 2)
+    assert ctl.current_line == 3                                   # the M6 line, not the next move
+    assert ctl.run_until(lambda: not ctl.spindle.on, 1.0)
+    ctl.advance(2.0)
+    assert not ctl.spindle.on and ctl.reference_position[0] == 10.0
+    assert ctl.cycle_start()
+    assert ctl.prompt is None
+    assert ctl.spindle.on and ctl.spindle.direction == 1 and ctl.spindle.rpm == 1000.0
+    spinup = ctl.config.controller.spindle_spinup_s
+    assert spinup > 0.5
+    ctl.advance(spinup - 0.2)
+    assert ctl.reference_position[0] == 10.0                       # not yet: spinning up
+    assert ctl.run_until(lambda: ctl.reference_position[0] > 10.0, 1.0)
+    run_to_idle(ctl)
+    assert ctl.reference_position[0] == 20.0 and not ctl.spindle.on
+
+
+def test_a_program_waits_for_the_spindle_to_reach_speed_before_cutting(ctl: MachineController) -> None:
+    start(ctl, "G0 X1 Y0\nM3 S1000\nG1 X5 F600\nS800\nG1 X6\nM30\n")
+    assert ctl.run_until(lambda: ctl.spindle.on, 5)
+    x = ctl.reference_position[0]
+    ctl.advance(ctl.config.controller.spindle_spinup_s - 0.2)
+    assert ctl.reference_position[0] == x == 1.0
+    run_to_idle(ctl)
+    # a slower speed needs no wait: the whole run is the moves and the one spin-up, no more
+    assert ctl.last_run is not None
+    run, spinup = ctl.last_run, ctl.config.controller.spindle_spinup_s
+    assert run.cycle_time_s == pytest.approx(run.estimated_s + spinup, abs=0.05)

@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from app.machine.config import load_config
 from planner.interpreter import parse_program
+from planner.program import MoveKind
 from planner.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
 from planner.softlimits import check_program, program_bounds
 from resources import shipped_machine
@@ -65,7 +68,37 @@ def test_remaining_program_and_modal_state(machine) -> None:
     assert modal_state_at(prog, 7).spindle_rpm == -800.0
 
 
-def test_approach_retracts_first(machine) -> None:
-    moves = approach_moves(np.array([0.0, 0.0, -5.0]), np.array([50.0, 20.0, -2.0]), ("X", "Y", "Z"),
-                           (False, False, False))
-    assert [tuple(m.end) for m in moves] == [(0.0, 0.0, -2.0), (50.0, 20.0, -2.0)]
+def test_approach_goes_up_to_the_clearance_across_then_down_at_feed(machine) -> None:
+    a = approach_moves(np.array([0.0, 0.0, -5.0]), np.array([50.0, 20.0, -2.0]), ("X", "Y", "Z"),
+                       (False, False, False), clearance=80.0, feed_mm_s=10.0, safe_height=5.0)
+    assert [tuple(m.end) for m in a.moves] == [(0.0, 0.0, 80.0), (50.0, 20.0, 80.0), (50.0, 20.0, 5.0),
+                                               (50.0, 20.0, -2.0)]
+    assert [m.kind for m in a.moves] == [MoveKind.RAPID] * 3 + [MoveKind.LINE]
+    assert a.moves[-1].feed_mm_s == 10.0
+    assert a.spindle_after == 1      # the spindle starts before the tool goes below the clearance
+
+
+_coord = st.floats(-100.0, 100.0, allow_nan=False)
+
+
+@settings(max_examples=300, deadline=None)
+@given(cur=st.tuples(_coord, _coord, _coord), tgt=st.tuples(_coord, _coord, _coord),
+       clearance=_coord, safe=st.one_of(st.none(), _coord))
+def test_an_approach_never_moves_sideways_below_the_clearance(machine, cur, tgt, clearance, safe) -> None:
+    a = approach_moves(np.array(cur), np.array(tgt), ("X", "Y", "Z"), (False, False, False),
+                       clearance=clearance, feed_mm_s=5.0, safe_height=safe)
+    high = max(cur[2], tgt[2], clearance)
+    pts = [np.array(cur)] + [m.end for m in a.moves]
+    for m, p0 in zip(a.moves, pts):
+        np.testing.assert_array_equal(m.start, p0)                  # continuous
+        if np.abs(m.start[:2] - m.end[:2]).max() > 1e-12:  # sideways only at the top
+            assert m.start[2] == pytest.approx(high, abs=1e-12) and m.end[2] == high
+            assert m.kind is MoveKind.RAPID
+    np.testing.assert_allclose(pts[-1], tgt, atol=1e-12, rtol=0)   # legs under 1e-12 mm are left out
+    for i, m in enumerate(a.moves):                                 # below the top: spindle on
+        if min(m.start[2], m.end[2]) < high:
+            assert i > a.spindle_after or m.end[2] > m.start[2]
+    rapid_floor = safe if safe is not None and tgt[2] < safe < high else high
+    for m in a.moves:                                               # below the program's own
+        if m.end[2] < rapid_floor - 1e-12:                          # retract plane: at feed
+            assert m.kind is MoveKind.LINE
