@@ -161,7 +161,7 @@ class Streamer:
         if job.kind is Activity.PROGRAM and self.m.worker is not None:
             with self.m._lock:
                 self.m.worker.reset_tracking()
-                self.m.worker.drain_trace()
+                self.m.poller.deliver(self.m.worker.drain_trace())   # not this job's: before it
         with self.m._lock:
             # serial numbers of set-points: the worker's consumed count (+ what is still queued;
             # a stale snapshot still counts the queue, a flushed buffer counts nothing)
@@ -344,7 +344,8 @@ class Streamer:
         info = job.info_at(consumed)
         if info is not None:
             line, tau = info
-            if line != self.line and job.kind in (Activity.PROGRAM, Activity.MDI):
+            # a stop that prompts the operator shows its own line (the M6), not the last move's
+            if line != self.line and job.kind in (Activity.PROGRAM, Activity.MDI) and not job.waiting:
                 self.line = line
                 self.m.lineChanged.emit(line)
             if job.kind is Activity.PROGRAM:

@@ -7,8 +7,13 @@ measured and estimated cycle time, the limit report of the set-points sent to th
 per axis (paper Eq. 18, Table 4). ``--json``: one JSON object on stdout instead.
 Exit status: 0 completed, 1 run aborted (alarm), 2 bad program or configuration.
 
-Program pauses (M00, M01 with --optional-stop, M06) are continued automatically, with a note.
-``--worker manual`` runs simulated time as fast as the computer allows (no real time).
+Program pauses (M00, M01 with --optional-stop, M06) are continued automatically, with a note,
+unless ``--script OPS.jsonl`` gives the operator's actions (``app.machine.scenario``): then the
+script does what the operator would (stop, run from line, tool changed, ...), the run ends when
+every action was tried and the machine stands, and the JSON lists the actions, the prompts
+shown, the alarms and the final state. ``--trace OUT.npz`` records every set-point sent (t,
+reference, actual in machine coordinates, axes, program line, commanded spindle rpm signed by
+direction). ``--worker manual`` runs simulated time as fast as the computer allows.
 """
 
 from __future__ import annotations
@@ -35,12 +40,16 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--config", help="machine configuration TOML (default: the shipped 3-axis XYZ mill)")
     p.add_argument("--sim", action="store_true", help="simulated drives whatever the configuration says")
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
-    p.add_argument("--feed-override", type=float, default=100.0, help="feed override in %% (0-150)")
+    p.add_argument("--feed-override", type=float, default=100.0, help="feed override in %% (0-200)")
     p.add_argument("--optional-stop", action="store_true", help="honour M01")
     p.add_argument("--state-dir", help="state directory (default: a temporary one)")
     p.add_argument("--worker", choices=("process", "thread", "manual"), default="process",
                    help="worker mode (default: its own real-time process)")
-    p.add_argument("--trace", help="also copy the NPZ trace of the run to this file")
+    p.add_argument("--trace", help="write the NPZ trace of every set-point sent to this file")
+    p.add_argument("--script", help="operator actions, one JSON object per line: "
+                                    '{"at_line": N, "op": "stop"} or {"after_s": T, "op": ...}')
+    p.add_argument("--max-s", type=float, default=None,
+                   help="machine-time limit of a scripted run in s (default: 3 x the estimate + 60)")
     return p
 
 
@@ -83,9 +92,15 @@ def main(argv: list[str] | None = None) -> int:
 
     from app.machine.config import MachineConfig, load_config
     from app.machine.controller import MachineController
-    from app.machine.errors import ConfigError, StateFolderBusy
+    from app.machine.errors import ConfigError, MachineError, StateFolderBusy
     from app.machine.model import MachineState
+    from app.machine.scenario import Recorder, ScenarioRunner, read_script
 
+    try:
+        ops = read_script(args.script) if args.script else None
+    except MachineError as exc:
+        print(f"cnc-run: {exc}", file=sys.stderr)
+        return 2
     try:
         cfg = load_config(args.config) if args.config else MachineConfig.default()
     except ConfigError as exc:
@@ -134,6 +149,12 @@ def main(argv: list[str] | None = None) -> int:
                   f"estimated cycle time {info.cycle_time_s:.3f} s", file=sys.stderr)
         done: list[Any] = []
         ctl.programFinished.connect(done.append)
+        recorder = Recorder(ctl) if (args.trace or ops is not None) else None
+        runner = None
+        if ops is not None:
+            runner = ScenarioRunner(ctl, ops, lambda: float(ctl.conn.snapshot_now().time_s))
+            max_s = args.max_s if args.max_s is not None else 3.0 * info.cycle_time_s + 60.0
+            max_s += runner.last_t
         started = time.monotonic()
         res = ctl.cycle_start(wait=True)
         if not res:
@@ -149,23 +170,34 @@ def main(argv: list[str] | None = None) -> int:
 
         for sig in (signal.SIGTERM, signal.SIGINT):
             signal.signal(sig, on_signal)
-        while not done:
+        def tick() -> None:
+            if args.worker == "manual":
+                ctl.advance(0.01 if runner is not None else 0.1)
+            else:
+                QTimer.singleShot(10 if runner is not None else 50, loop.quit)
+                loop.exec()
+
+        while True:
             if stop_requested:
                 notes.append(f"stopped by signal {signal.Signals(stop_requested[0]).name}")
                 ctl.stop()
                 end = time.monotonic() + 10.0
                 while ctl.state is not MachineState.IDLE and time.monotonic() < end:
-                    if args.worker == "manual":
-                        ctl.advance(0.1)
-                    else:
-                        QTimer.singleShot(50, loop.quit)
-                        loop.exec()
+                    tick()
                 break
-            if args.worker == "manual":
-                ctl.advance(0.1)
-            else:
-                QTimer.singleShot(50, loop.quit)
-                loop.exec()
+            tick()
+            if runner is not None:
+                runner.step()
+                standing = ctl.state not in (MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING)
+                if runner.done and standing:
+                    break
+                if runner.now() > max_s:
+                    notes.append(f"time limit of {max_s - runner.start_t:g} s reached; actions not done: "
+                                 + "; ".join(op.describe() for op in runner.ops))
+                    break
+                continue
+            if done:
+                break
             if ctl.state is MachineState.HOLD and ctl.activity.value == "program":
                 notes.append(f"continued after: {ctl.state_reason}")
                 ctl.resume()
@@ -178,18 +210,23 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"  line {ctl.current_line:6d}  {100 * frac:5.1f} %  remaining {remaining:7.2f} s",
                       file=sys.stderr)
         wall = time.monotonic() - started
-        summary = done[0] if done else ctl.last_run
+        summary = done[-1] if done else ctl.last_run
         snap = ctl.worker.snapshot() if ctl.worker is not None else None
         result = _result(ctl, info, summary, wall, snap, notes)
-        if args.trace and summary is not None and summary.tracking.trace_path:
-            import shutil
-
-            shutil.copyfile(summary.tracking.trace_path, args.trace)
+        if runner is not None and recorder is not None:
+            result["actions"] = runner.results
+            result["prompts"] = recorder.prompts
+            result["spindle"] = recorder.spindle
+        result["final_state"] = ctl.state.value
+        if args.trace and recorder is not None:
+            recorder.save(args.trace)
             result["trace"] = args.trace
         if args.json:
             print(json.dumps(result, indent=1))
         else:
             _print_text(result)
+        if runner is not None:      # a script may stop the run on purpose: it is done when it ran
+            return 0 if runner.done and all(r["ok"] for r in runner.results) else 1
         return 0 if result["completed"] else 1
     finally:
         ctl.shutdown()

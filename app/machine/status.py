@@ -5,6 +5,7 @@ signals that carry them. A part of ``MachineController``.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -35,6 +36,9 @@ class StatusPoller:
         self._last_ref_time = 0.0
         self._last_ref_pos: np.ndarray | None = None
         self.tracking_emit_t = 0.0
+        # every drained set-point chunk (cycles, reference, actual) also goes here when set
+        # (``app.machine.scenario.Recorder``)
+        self.sink: Callable[[np.ndarray, np.ndarray, np.ndarray], None] | None = None
 
     def poll(self) -> None:
         w = self.m.worker
@@ -46,6 +50,7 @@ class StatusPoller:
         self.m.alarm_log.handle_worker_alarms(snap)
         with self.m._lock:
             trace = w.drain_trace()
+        self.deliver(trace)
         job = self.m.stream.job
         if job is not None and len(trace.cycle):
             job.trace.append((trace.cycle.copy(), trace.reference.copy(), trace.actual.copy()))
@@ -59,6 +64,11 @@ class StatusPoller:
             self.m.alarm_log.fault(text, "controller", "feeder")
         if self.m.states.state in _MOVING and time.monotonic() - self.m.conn.persisted_at >= PERSIST_EVERY_S:
             self.m.conn.persist_state()     # a power cut loses at most this much of the position
+
+    def deliver(self, trace: Any) -> None:
+        """Hand a drained trace chunk to the sink (if any)."""
+        if self.sink is not None and len(trace.cycle):
+            self.sink(trace.cycle, trace.reference, trace.actual)
 
     def _emit_positions(self, snap: Any) -> None:
         mpos = tuple(float(x) for x in self.m.states.machine_pos())

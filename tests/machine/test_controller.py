@@ -668,6 +668,7 @@ def test_a_tool_change_stops_the_spindle_and_cycle_start_brings_it_back_at_speed
     assert ctl.run_until(lambda: not ctl.spindle.on, 1.0)
     ctl.advance(2.0)
     assert not ctl.spindle.on and ctl.reference_position[0] == 10.0
+    assert ctl.current_line == 3                                   # still, while it waits
     assert ctl.cycle_start()
     assert ctl.prompt is None
     assert ctl.spindle.on and ctl.spindle.direction == 1 and ctl.spindle.rpm == 1000.0

@@ -1,0 +1,233 @@
+"""Operator scenarios for ``cnc-run --script OPS.jsonl``: what an operator does during a run,
+one action per line, and a recording of everything the machine did meanwhile.
+
+A script line is a JSON object with one trigger and one action::
+
+    {"at_line": 6, "op": "stop"}                  when the program reaches line 6
+    {"after_s": 2.5, "op": "run_from_line", "line": 10}   2.5 s (machine time) after the previous action
+    {"after_s": 0, "op": "feed_override", "percent": 150}
+
+Actions run in the order written, each when its trigger comes after the one before it. Ops:
+``feed_hold``, ``resume``, ``stop``, ``reset``, ``estop``, ``estop_release``, ``cycle_start``,
+``run_from_line`` (``line``), ``feed_override`` / ``rapid_override`` (``percent``) and
+``tool_changed`` (the operator has put in the tool: cycle start at a tool-change stop). Blank
+lines and lines starting with ``#`` are skipped. Every mistake is an error naming the file,
+the line and the key.
+
+``Recorder`` keeps every set-point the drives were sent (program, approach, jog and MDI alike)
+with the program line and the commanded spindle speed, every change of the spindle and every
+prompt the operator was shown. All times (trace, spindle changes, actions) are the machine's:
+the worker's clock in s, the same in all three.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from app.machine.errors import MachineError
+from app.machine.model import HoldKind, MachineState
+
+__all__ = ["OPS", "Recorder", "ScenarioOp", "ScenarioRunner", "read_script"]
+
+#: op -> the extra key it needs ("" for none)
+OPS: dict[str, str] = {
+    "feed_hold": "", "resume": "", "stop": "", "reset": "", "estop": "", "estop_release": "",
+    "cycle_start": "", "run_from_line": "line", "feed_override": "percent", "rapid_override": "percent",
+    "tool_changed": "",
+}
+_TRIGGERS = ("at_line", "after_s")
+
+
+@dataclass(frozen=True, slots=True)
+class ScenarioOp:
+    op: str
+    source: str                  # "file:line" of the script line, for messages
+    at_line: int | None = None
+    after_s: float | None = None
+    line: int = 0                # run_from_line
+    percent: float = 100.0       # overrides
+
+    def describe(self) -> str:
+        trigger = f"at line {self.at_line}" if self.at_line is not None else f"after {self.after_s:g} s"
+        extra = {"line": f" {self.line}", "percent": f" {self.percent:g} %", "": ""}[OPS[self.op]]
+        return f"{self.op}{extra} {trigger}"
+
+
+def _number(value: Any, where: str, key: str, integer: bool) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise MachineError(f"{where}: {key} must be a {'whole ' if integer else ''}number, got {value!r}")
+    if integer and value != int(value):
+        raise MachineError(f"{where}: {key} must be a whole number, got {value!r}")
+    if value < 0:
+        raise MachineError(f"{where}: {key} must not be negative, got {value!r}")
+    return float(value)
+
+
+def parse_op(text: str, where: str) -> ScenarioOp:
+    try:
+        data = json.loads(text)
+    except ValueError as exc:
+        raise MachineError(f"{where}: not a JSON object ({exc})") from None
+    if not isinstance(data, dict):
+        raise MachineError(f"{where}: not a JSON object")
+    op = data.get("op")
+    if op not in OPS:
+        raise MachineError(f"{where}: op must be one of {', '.join(OPS)}, got {op!r}")
+    extra = OPS[op]
+    unknown = sorted(set(data) - {"op", *_TRIGGERS} - ({extra} if extra else set()))
+    if unknown:
+        raise MachineError(f"{where}: unknown key {unknown[0]!r} for op {op!r}")
+    triggers = [k for k in _TRIGGERS if k in data]
+    if len(triggers) != 1:
+        raise MachineError(f"{where}: give exactly one of at_line or after_s")
+    kw: dict[str, Any] = {}
+    if triggers[0] == "at_line":
+        kw["at_line"] = int(_number(data["at_line"], where, "at_line", True))
+    else:
+        kw["after_s"] = _number(data["after_s"], where, "after_s", False)
+    if extra == "line":
+        if "line" not in data:
+            raise MachineError(f"{where}: run_from_line needs \"line\"")
+        kw["line"] = int(_number(data["line"], where, "line", True))
+        if kw["line"] < 1:
+            raise MachineError(f"{where}: line must be 1 or more")
+    elif extra == "percent":
+        if "percent" not in data:
+            raise MachineError(f"{where}: {op} needs \"percent\"")
+        kw["percent"] = _number(data["percent"], where, "percent", False)
+    return ScenarioOp(op=op, source=where, **kw)
+
+
+def read_script(path: str | Path) -> tuple[ScenarioOp, ...]:
+    """The operator actions of a script file (MachineError naming file and line if wrong)."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MachineError(f"{p}: cannot read the script: {exc}") from None
+    ops = []
+    for number, line in enumerate(text.splitlines(), 1):
+        stripped = line.strip()
+        if stripped and not stripped.startswith("#"):
+            ops.append(parse_op(stripped, f"{p}:{number}"))
+    return tuple(ops)
+
+
+class Recorder:
+    """Every set-point sent while the drives were enabled, in machine coordinates, with the
+    program line and commanded spindle speed (signed: + CW) of its time, and the prompts."""
+
+    def __init__(self, ctl: Any) -> None:
+        self.ctl = ctl
+        self.ts_s = float(ctl.config.machine.planner.ts_s)
+        self._chunks: list[tuple[np.ndarray, np.ndarray, np.ndarray, int, float]] = []
+        self.prompts: list[dict[str, object]] = []
+        # every change of the commanded spindle, at its machine time (the set-point trace has
+        # no samples while the drives are disabled, after an E-stop for one)
+        self.spindle: list[dict[str, float]] = []
+        self._last_prompt: object = None
+        ctl.poller.sink = self._chunk
+        ctl.stateChanged.connect(self._on_state)
+        ctl.spindleChanged.connect(self._on_spindle)
+
+    def _on_spindle(self, sp: Any) -> None:
+        t = float(self.ctl.conn.snapshot_now().time_s)
+        self.spindle.append({"t_s": round(t, 6), "rpm": float(sp.direction * sp.rpm)})
+
+    def _chunk(self, cycles: np.ndarray, reference: np.ndarray, actual: np.ndarray) -> None:
+        sp = self.ctl.spindle
+        offset = np.asarray(self.ctl.pos.home_offset, dtype=float)
+        self._chunks.append((cycles.copy(), reference - offset, actual - offset, int(self.ctl.current_line),
+                             float(sp.direction * sp.rpm)))
+
+    def _on_state(self, state: MachineState, _reason: str) -> None:
+        prompt = self.ctl.prompt
+        if state is MachineState.HOLD and prompt is not None and prompt is not self._last_prompt:
+            if prompt.kind is not HoldKind.SINGLE_BLOCK:
+                self.prompts.append(prompt.as_dict())
+        self._last_prompt = prompt
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        n = len(self.ctl.axes)
+        if not self._chunks:
+            empty = np.zeros((0, n))
+            return {"t": np.zeros(0), "reference": empty, "actual": empty, "axes": np.array(self.ctl.axes),
+                    "line": np.zeros(0, dtype=np.int64), "spindle_rpm": np.zeros(0)}
+        cyc = np.concatenate([c[0] for c in self._chunks])
+        return {
+            "t": cyc * self.ts_s,
+            "reference": np.concatenate([c[1] for c in self._chunks]),
+            "actual": np.concatenate([c[2] for c in self._chunks]),
+            "axes": np.array(self.ctl.axes),
+            "line": np.concatenate([np.full(len(c[0]), c[3], dtype=np.int64) for c in self._chunks]),
+            "spindle_rpm": np.concatenate([np.full(len(c[0]), c[4]) for c in self._chunks]),
+        }
+
+    def save(self, path: str) -> None:
+        from planner.files import write_output
+
+        data = self.arrays()
+        write_output(path, lambda fh: np.savez_compressed(fh, **data))
+
+
+class ScenarioRunner:
+    """Fires the script's actions in order as their triggers come; ``step()`` after every
+    advance of the machine. ``done`` when every action has been tried."""
+
+    def __init__(self, ctl: Any, ops: tuple[ScenarioOp, ...], now: Callable[[], float]) -> None:
+        self.ctl = ctl
+        self.ops = list(ops)
+        self.now = now
+        self.start_t = self.last_t = now()
+        self.results: list[dict[str, object]] = []
+
+    @property
+    def done(self) -> bool:
+        return not self.ops
+
+    def step(self) -> None:
+        while self.ops and self._due(self.ops[0]):
+            op = self.ops.pop(0)
+            res = self._fire(op)
+            self.last_t = self.now()
+            self.results.append({"op": op.describe(), "source": op.source, "t_s": round(self.last_t, 6),
+                                 "ok": bool(res), "reason": getattr(res, "reason", "")})
+
+    def _due(self, op: ScenarioOp) -> bool:
+        if op.after_s is not None:
+            return self.now() - self.last_t >= op.after_s - 1e-9
+        return self.ctl.current_line >= (op.at_line or 0) and self.ctl.state in (
+            MachineState.RUNNING, MachineState.HOLD)
+
+    def _fire(self, op: ScenarioOp) -> Any:
+        c = self.ctl
+        if op.op == "run_from_line":
+            return c.run_from_line(op.line, wait=True)
+        if op.op == "feed_override":
+            return c.set_feed_override(op.percent)
+        if op.op == "rapid_override":
+            return c.set_rapid_override(op.percent)
+        if op.op == "cycle_start":
+            return c.cycle_start(wait=True)
+        if op.op == "estop":
+            return c.estop("operator (script)")
+        if op.op == "tool_changed":
+            if c.hold_kind is not HoldKind.TOOL_CHANGE:
+                return _Refused(f"no tool change is waiting (machine {c.state.value})")
+            return c.cycle_start()
+        return getattr(c, op.op)()
+
+
+@dataclass(frozen=True, slots=True)
+class _Refused:
+    reason: str
+
+    def __bool__(self) -> bool:
+        return False

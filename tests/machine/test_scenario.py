@@ -1,0 +1,127 @@
+"""The headless scenario runner (``cnc-run --script``) and, through it, what the operator's
+actions do to the machine: safe restart, the spindle after stop/reset/M6/E-stop, the override."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.machine import run_cli
+from app.machine.errors import MachineError
+from app.machine.scenario import read_script
+
+CUT = ("G21 G90 G17\nG0 Z5\nG0 X-20 Y0\nM3 S1200\nG1 Z-1 F600\nG1 X40 F1200\nG1 Y30\nG0 Z5\n"
+       "G0 X60 Y60\nG1 Z-2 F600\nG1 X0 F1200\nG0 Z5\nM5\nM30\n")
+
+
+def run(tmp_path: Path, capsys, program: str, ops: list[dict], *extra: str) -> tuple[int, dict, dict]:
+    prog = tmp_path / "p.nc"
+    prog.write_text(program)
+    script = tmp_path / "ops.jsonl"
+    script.write_text("".join(json.dumps(o) + "\n" for o in ops))
+    trace = tmp_path / "trace.npz"
+    code = run_cli.main([str(prog), "--sim", "--worker", "manual", "--json", "--state-dir",
+                         str(tmp_path / "s"), "--script", str(script), "--trace", str(trace), *extra])
+    out = json.loads(capsys.readouterr().out)
+    with np.load(trace) as z:
+        data = {k: z[k] for k in z.files}
+    return code, out, data
+
+
+def test_run_from_line_after_a_stop_while_cutting(tmp_path: Path, capsys) -> None:
+    code, out, tr = run(tmp_path, capsys, CUT, [
+        {"at_line": 7, "op": "stop"},
+        {"after_s": 1.0, "op": "run_from_line", "line": 11},
+    ])
+    assert code == 0, out
+    assert [a["ok"] for a in out["actions"]] == [True, True]
+    assert out["completed"] and out["final_state"] == "idle"
+    t, ref, rpm, line = tr["t"], tr["reference"], tr["spindle_rpm"], tr["line"]
+    assert set(tr["axes"]) == {"X", "Y", "Z"} and len(t) == len(ref) == len(rpm) == len(line) > 1000
+    stop_at = t[np.argmax(line == 7)]
+    after = t > stop_at + 0.9                                    # the restart, not the first run
+    top = ref[:, 2].max()
+    assert top == pytest.approx(100.0)                           # the top of the Z travel by default
+    sideways = np.abs(np.diff(ref[:, :2], axis=0)).max(axis=1) > 1e-3   # counts: 1e-4 mm
+    low = np.maximum(ref[:-1, 2], ref[1:, 2]) < top - 1e-9
+    # the approach: from the restart until the tool first stands at line 11's start point
+    arrive = int(np.argmax(after & (np.abs(ref - (60.0, 60.0, -2.0)).max(axis=1) < 1e-9)))
+    approach = after & (np.arange(len(t)) <= arrive)
+    assert arrive > 0 and approach.sum() > 1000
+    assert not (sideways & low & approach[1:]).any()
+    # the spindle runs at the programmed speed before Z goes below the program's retract plane
+    going_down = approach & (np.arange(len(t)) > np.argmax(ref[:, 2]))
+    assert (going_down & (ref[:, 2] < 5.0)).any()
+    assert (rpm[going_down & (ref[:, 2] < 5.0)] == 1200.0).all()
+
+
+@pytest.mark.parametrize("op", ["stop", "estop", "reset"])
+def test_the_spindle_is_off_within_a_second(tmp_path: Path, capsys, op: str) -> None:
+    ops = [{"at_line": 7, "op": op}, {"after_s": 1.5, "op": "feed_hold"}] if op != "reset" else [
+        {"at_line": 7, "op": "feed_hold"}, {"after_s": 0.5, "op": "reset"}, {"after_s": 1.5, "op": "stop"}]
+    code, out, tr = run(tmp_path, capsys, CUT, ops)
+    fired = out["actions"][1 if op == "reset" else 0]
+    assert fired["ok"], fired
+    t, rpm = tr["t"], tr["spindle_rpm"]
+    assert (rpm == 1200.0).any()
+    changes = out["spindle"]
+    assert changes[0]["rpm"] == 1200.0 and changes[-1]["rpm"] == 0.0
+    assert fired["t_s"] <= changes[-1]["t_s"] <= fired["t_s"] + 1.0
+    if op != "estop":              # the trace has no samples while the drives are disabled
+        later = t >= fired["t_s"] + 1.0
+        assert later.any() and (rpm[later] == 0.0).all()
+
+
+def test_a_tool_change_prompts_stops_the_spindle_and_continues_when_the_tool_is_in(tmp_path: Path,
+                                                                                   capsys) -> None:
+    program = "G21 G90\nM3 S1000\nG0 X10 Y0\nT2 M6\nM3 S1000\nG1 X20 F600\nM30\n"
+    code, out, tr = run(tmp_path, capsys, program, [{"after_s": 6.0, "op": "tool_changed"}])
+    assert code == 0 and out["completed"], out
+    assert out["prompts"] == [{"line": 4, "kind": "tool_change", "tool": 2,
+                               "text": "tool change (M06 T2, line 4): insert tool T2 and press cycle start"}]
+    t, rpm, line = tr["t"], tr["spindle_rpm"], tr["line"]
+    fired = out["actions"][0]["t_s"]
+    waiting = np.flatnonzero((line == 4) & (t < fired))   # the M6 line stays highlighted meanwhile
+    assert len(waiting) > 3000
+    assert (rpm[waiting[1000:]] == 0.0).all()     # and the spindle is off (after it stopped)
+    assert (rpm[line == 6] == 1000.0).all()       # back on for the cut
+
+
+def test_150_percent_override_ends_a_feed_bound_program_a_quarter_sooner(tmp_path: Path, capsys) -> None:
+    program = "G21 G90\nG1 X100 F600\nG1 Y100\nG1 X0\nG1 Y0\nM30\n"
+    code, base, _ = run(tmp_path, capsys, program, [])
+    assert code == 0
+    code, fast, _ = run(tmp_path, capsys, program, [{"after_s": 0, "op": "feed_override", "percent": 150}])
+    assert code == 0 and fast["completed"]
+    assert fast["cycle_time_s"] <= 0.75 * base["cycle_time_s"], (fast["cycle_time_s"], base["cycle_time_s"])
+
+
+@pytest.mark.parametrize("line, words", [
+    ('{"op": "stop"}', "exactly one of at_line or after_s"),
+    ('{"op": "fly", "after_s": 1}', "op must be one of"),
+    ('{"op": "stop", "after_s": 1, "line": 3}', "unknown key 'line'"),
+    ('{"op": "run_from_line", "after_s": 1}', 'needs "line"'),
+    ('{"op": "run_from_line", "after_s": 1, "line": 2.5}', "whole number"),
+    ('{"op": "feed_override", "at_line": 3, "percent": NaN}', "percent must be a number"),
+    ('{"op": "stop", "after_s": -1}', "must not be negative"),
+    ("[1, 2]", "not a JSON object"),
+    ("stop at 3", "not a JSON object"),
+])
+def test_a_bad_script_line_is_named(tmp_path: Path, line: str, words: str) -> None:
+    script = tmp_path / "ops.jsonl"
+    script.write_text('# the operator\n{"op": "stop", "at_line": 2}\n\n' + line + "\n")
+    with pytest.raises(MachineError) as exc:
+        read_script(script)
+    assert f"{script}:4:" in str(exc.value) and words in str(exc.value)
+
+
+def test_cnc_run_refuses_a_bad_script_before_running(tmp_path: Path, capsys) -> None:
+    prog = tmp_path / "p.nc"
+    prog.write_text("G0 X1\nM30\n")
+    script = tmp_path / "ops.jsonl"
+    script.write_text('{"op": "stop"}\n')
+    assert run_cli.main([str(prog), "--sim", "--worker", "manual", "--script", str(script)]) == 2
+    assert f"{script}:1: give exactly one of at_line or after_s" in capsys.readouterr().err
