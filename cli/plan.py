@@ -49,6 +49,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--mode", choices=PLANNER_MODES, default=None, help="joint speeds (default lookahead)")
     p.add_argument("--interp", choices=INTERPOLATIONS, default=None, help="interpolation (default exact)")
     p.add_argument("--config", help="machine configuration TOML")
+    p.add_argument("--tools", help="tool table in LinuxCNC's .tbl format (T1 P1 Z12.5 D6 ;comment); "
+                                   "without it every tool number is accepted with zero offsets")
+    p.add_argument("--tool", type=int, default=0, help="the tool in the spindle when the program starts")
     p.add_argument("--samples", help="write t, q, axes, s, line to this NPZ file")
     p.add_argument("--csv", help="write the samples to this CSV file")
     p.add_argument("--plot", help="write a velocity/acceleration/jerk PNG (paper Fig. 14)")
@@ -128,7 +131,12 @@ def main(argv: list[str] | None = None) -> int:
     try:
         machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
         started = time.perf_counter()
-        program = parse_file(args.program, machine)
+        tools = None
+        if args.tools:
+            from planner.tools import read_tbl
+
+            tools = read_tbl(args.tools)
+        program = parse_file(args.program, machine, tools=tools, tool_in_spindle=args.tool)
         parse_s = time.perf_counter() - started
         if args.config:
             # the machine's travel, checked on the whole path as the controller does

@@ -4,8 +4,9 @@ Supported (everything else is an error with file:line:col, never skipped):
   G00 G01 G02 G03 (R or I/J/K, P turns), G04 P (s), G17 G18 G19, G20 G21, G90 G91,
   G90.1 G91.1, G94, G54-G59, G53 (one block, with G00/G01), G61 G64 (P/Q accepted),
   G28 (via the programmed point to machine zero of the named axes, or of all axes),
-  G40, G41/G42 (the machine has no tool table: radius 0, the path is the programmed path),
-  G43 H / G49 (tool length 0), G80; F S T; M00 M01 M02 M30 M03 M04 M05 M06 M07 M08 M09;
+  G40, G41/G42 (radius 0: the path is the programmed path), G43 / G43 H / G43.1 / G43.2 / G49
+  tool length offsets from the tool table (``planner.tools``), G80; F S T;
+  M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
   N line numbers, '/' block delete, ( ) and ; comments, % delimiters, Fanuc 'O0001' lines,
   LinuxCNC expressions [..] and #numbered / #<named> parameters.
 Set-up as LinuxCNC's reference run: G21 G17 G40 G49 G54 G80 G90 G94 G91.1 G64, motion mode
@@ -41,6 +42,7 @@ from planner.program import (
     _make_move,
     spiral_length_mm,
 )
+from planner.tools import ToolTable
 
 __all__ = ["parse_program", "parse_file", "MAX_ERRORS"]
 
@@ -59,7 +61,7 @@ _G_GROUP = {
     940: 5,
     200: 6, 210: 6,
     400: 7, 410: 7, 420: 7,
-    430: 8, 490: 8,
+    430: 8, 431: 8, 432: 8, 490: 8,
     540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12,
     610: 13, 640: 13,
 }
@@ -69,7 +71,6 @@ _G_UNSUPPORTED = {
     301: "G30.1", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
     382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
     411: "G41.1 dynamic cutter compensation", 421: "G42.1 dynamic cutter compensation",
-    431: "G43.1 dynamic tool length offset", 432: "G43.2 additional tool length offset",
     520: "G52 local offset", 591: "G59.1 work offset", 592: "G59.2 work offset",
     593: "G59.3 work offset", 611: "G61.1 exact path mode", 730: "G73 canned cycle",
     760: "G76 threading cycle", 810: "G81 canned cycle", 820: "G82 canned cycle",
@@ -81,7 +82,7 @@ _G_UNSUPPORTED = {
     990: "G99 canned return", 150: "G15 polar coordinates", 160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
 }
-_M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
+_M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
 _WORD_LETTERS = set("FSTPQRIJKDH")
 _AXIS_LETTERS = "XYZABC"
 # plane code -> (name, first, second, normal, centre letter of first, of second, letter not allowed)
@@ -120,7 +121,8 @@ def _gname(code10: int) -> str:
 class _Interpreter:
     use_fast = True  # the fast paths (one regex per line; word fast path); tests compare both ways
 
-    def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int):
+    def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
+                 tools: ToolTable | None = None, tool_in_spindle: int = 0):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -160,11 +162,17 @@ class _Interpreter:
         self.absolute = True
         self.arc_absolute = False
         self.feed_mm_s = 0.0
-        self.offset = self.work_offsets[540]
+        self.work = self.work_offsets[540]       # G54-G59
+        self.tlo = (0.0,) * n                      # tool length offset (G43...), machine units
+        self.offset = self.work                    # both: program -> machine coordinates
         self.exact_stop = False
         self.spindle_dir = 0
         self.spindle_rpm = 0.0
-        self.tool = 0
+        # None: no tool table (every tool number known, offsets 0: the reference set-up);
+        # a table: a tool must be in it to be selected, loaded or used for an offset
+        self.tools = tools
+        self.tool = int(tool_in_spindle)   # in the spindle (M6, M61)
+        self.selected = self.tool          # T word: prepared for the next M6
         self.params = Params()
         self.plane_cache: dict[int, tuple] = {}
         self.fast_letters = frozenset(self.axes) | frozenset("IJKRF")
@@ -345,7 +353,53 @@ class _Interpreter:
         i = code.find(letter)
         return original_column(raw, i) if i >= 0 else 1
 
-    def set_offset(self, offset: tuple[float, ...]) -> None:
+    def known_tool(self, number: int, letter: str) -> int:
+        """``number`` if the tool table has it (T0, the empty spindle, always)."""
+        if number and self.tools is not None and number not in self.tools:
+            raise _BlockError(f"tool T{number} is not in the tool table (add it on the Tools page)", letter)
+        return number
+
+    def tool_label(self, number: int) -> str:
+        tool = self.tools.get(number) if self.tools is not None else None
+        return tool.label() if tool is not None else f"T{number}"
+
+    def tool_offsets(self, number: int) -> tuple[float, ...]:
+        tool = self.tools.get(number) if self.tools is not None else None
+        if tool is None:
+            return (0.0,) * self.n
+        return tuple(tool.offset(a) for a in self.axes)
+
+    def tool_length(self, code: int, vals: dict[str, float], axis_words: list[str], scale: float) -> None:
+        """G43 (the tool in the spindle, or H's), G43.1 (the axis words), G43.2 (add H's or the
+        axis words), G49 (none), as LinuxCNC 2.9 applies them."""
+        if code == 490:
+            self.set_offset(tlo=(0.0,) * self.n)
+            return
+        words = [0.0] * self.n
+        for letter in axis_words:
+            i = self.axis_index[letter]
+            words[i] = vals[letter] if self.rotary[i] else vals[letter] * scale
+        h = vals.get("H")
+        if h is not None and (h < 0 or h != int(h)):
+            raise _BlockError(f"tool number H{h:g} must be a whole number >= 0", "H")
+        if code == 430:
+            number = self.known_tool(int(h), "H") if h is not None else self.tool
+            self.set_offset(tlo=self.tool_offsets(number))
+        elif code == 431:
+            self.set_offset(tlo=tuple(words))
+        else:  # 432
+            if h is None and not axis_words:
+                raise _BlockError("G43.2 needs an H word or axis words (the offset to add)", "G43.2")
+            add = self.tool_offsets(self.known_tool(int(h), "H")) if h is not None else tuple(words)
+            self.set_offset(tlo=tuple(t + a for t, a in zip(self.tlo, add)))
+
+    def set_offset(self, work: tuple[float, ...] | None = None, tlo: tuple[float, ...] | None = None) -> None:
+        """Change the work offset and/or the tool length offset; moves from now on use both."""
+        if work is not None:
+            self.work = work
+        if tlo is not None:
+            self.tlo = tlo
+        offset = tuple(w + t for w, t in zip(self.work, self.tlo))
         self.offset = offset
         first = len(self.recs)
         if self.offset_changes[-1][0] == first:
@@ -513,6 +567,15 @@ class _Interpreter:
 
         g0 = groups.get(0)
         g1 = groups.get(1)
+        if groups.get(8) in (431, 432) and axis_words:
+            # the axis words are the offset: no motion in this block
+            if g1 is not None and g1 != 800 or g0 == 280:
+                raise _BlockError("cannot use two G codes that both use axis values "
+                                  f"({_gname(groups[8])} and a motion code)", _gname(groups[8]))
+            axis_words_offset = axis_words
+            axis_words = []
+        else:
+            axis_words_offset = []
         if g0 == 280 and g1 is not None and g1 != 800:
             raise _BlockError(
                 "cannot use two G codes that both use axis values (G28 and a motion code)", "G28"
@@ -541,12 +604,12 @@ class _Interpreter:
                 raise _BlockError(f"{letter} word with no G02/G03 to use it", letter)
         if "P" in vals and not (g0 == 40 or is_arc or groups.get(13) == 640):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64)", "P")
-        if "Q" in vals and groups.get(13) != 640:
-            raise _BlockError("Q word with no G code that uses it (G64)", "Q")
+        if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61:
+            raise _BlockError("Q word with no code that uses it (G64, M61)", "Q")
         if "D" in vals and groups.get(7) not in (410, 420):
             raise _BlockError("D word with no G41/G42 to use it", "D")
-        if "H" in vals and groups.get(8) != 430:
-            raise _BlockError("H word with no G43 to use it", "H")
+        if "H" in vals and groups.get(8) not in (430, 432):
+            raise _BlockError("H word with no G43 or G43.2 to use it", "H")
 
         # ---- execute in RS274/NGC order
         after = len(self.ends) - 1
@@ -572,16 +635,25 @@ class _Interpreter:
             t = vals["T"]
             if t < 0 or t != int(t):
                 raise _BlockError(f"tool number T{t:g} must be a whole number >= 0", "T")
-            self.tool = int(t)
+            self.selected = self.known_tool(int(t), "T")
             ev.append(Event(EventKind.TOOL, line_no, after, float(t), f"tool T{int(t)} selected"))
         if mgroups.get(6) == 6:
+            self.tool = self.selected
             ev.append(
                 Event(
                     EventKind.TOOL_CHANGE, line_no, after, float(self.tool),
-                    f"M06: change to tool T{self.tool} by hand (the machine has no tool changer), "
-                    "then press cycle start",
+                    f"M06: change to tool {self.tool_label(self.tool)} by hand, then press cycle start",
                 )
             )
+        elif mgroups.get(6) == 61:
+            q = vals.get("Q")
+            if q is None:
+                raise _BlockError("M61 needs a Q word (the tool now in the spindle)", "M61")
+            if q < 0 or q != int(q):
+                raise _BlockError(f"tool number Q{q:g} must be a whole number >= 0", "Q")
+            self.tool = self.selected = self.known_tool(int(q), "Q")
+            ev.append(Event(EventKind.TOOL_SET, line_no, after, float(self.tool),
+                            f"M61: tool {self.tool_label(self.tool)} is in the spindle"))
         m7 = mgroups.get(7)
         if m7 is not None:
             self.spindle_dir = {3: 1, 4: -1, 5: 0}[m7]
@@ -599,10 +671,11 @@ class _Interpreter:
             ev.append(Event(EventKind.DWELL, line_no, after, p, f"dwell {p:g} s"))
         if 2 in groups:
             self.plane = groups[2]
-        # group 7 (cutter comp): radius 0 from the (empty) tool table -> the programmed path.
-        # group 8 (tool length): length 0 -> no offset.
+        # group 7 (cutter comp): radius 0 -> the programmed path.
+        if 8 in groups:
+            self.tool_length(groups[8], vals, axis_words_offset, scale)
         if 12 in groups:
-            self.set_offset(self.work_offsets[groups[12]])
+            self.set_offset(work=self.work_offsets[groups[12]])
         if 13 in groups:
             self.exact_stop = groups[13] == 610
         if 3 in groups:
@@ -796,14 +869,18 @@ def parse_program(
     *,
     block_delete: bool = True,
     max_errors: int = MAX_ERRORS,
+    tools: ToolTable | None = None,
+    tool_in_spindle: int = 0,
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
     ``machine``: a planner.machine.MachineSpec (axes, work offsets); default 3-axis XYZ.
     ``start_position``: machine position before the first move (default all zeros).
     ``block_delete``: lines starting with '/' are skipped (switch on) or run (off).
+    ``tools``: the tool table (None: any tool number, all offsets 0, as LinuxCNC's reference
+    runs); ``tool_in_spindle``: the tool loaded when the program starts (G43 without H uses it).
     """
-    interp = _Interpreter(name, machine, start_position, block_delete, max_errors)
+    interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         return interp.run(text)
 

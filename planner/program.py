@@ -230,6 +230,7 @@ class EventKind(enum.Enum):
     SPINDLE = "spindle"  # M03/M04/M05 or S change (value: rpm, + CW, - CCW, 0 off)
     TOOL = "tool"  # T word (value: tool number)
     COOLANT = "coolant"  # addition: M07 mist (value 1), M08 flood (2), M09 off (0); not stopping
+    TOOL_SET = "tool_set"  # M61 Q: the tool now in the spindle, without a change (value: number)
 
 
 STOPPING_EVENTS = frozenset(
@@ -240,6 +241,7 @@ STOPPING_EVENTS = frozenset(
         EventKind.END,
         EventKind.TOOL_CHANGE,
         EventKind.SPINDLE,
+        EventKind.TOOL_SET,
     }
 )
 

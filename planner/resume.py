@@ -129,7 +129,7 @@ def _spindle_and_tool(events: Iterable[Event], reached: Callable[[Event], bool])
             break
         if e.kind is EventKind.SPINDLE:
             spindle = float(e.value)
-        elif e.kind in (EventKind.TOOL, EventKind.TOOL_CHANGE) and e.value:
+        elif e.kind in (EventKind.TOOL_CHANGE, EventKind.TOOL_SET):   # in the spindle (T only selects)
             tool = int(e.value)
     return spindle, tool
 

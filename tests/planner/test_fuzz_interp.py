@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import _Interpreter, parse_program
+from planner.tools import ToolTable, parse_tbl
 
 SAMPLES_DIR = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
 BUILTIN = (
@@ -36,10 +37,13 @@ def samples() -> list[str]:
 SAMPLES = samples()
 
 
-def check(text: str) -> None:
+TOOLS = parse_tbl("T1 P1 Z10.5 D6 ;flat\nT2 P2 X0.25 Z-3 D3 ;ball\n")
+
+
+def check(text: str, tools: ToolTable | None = None) -> None:
     n_lines = text.count("\n") + 1
     try:
-        program = parse_program(text, "fuzz.nc")
+        program = parse_program(text, "fuzz.nc", tools=tools)
     except ProgramError as exc:
         assert isinstance(exc, PlannerError)
         assert exc.errors
@@ -88,6 +92,14 @@ token = st.one_of(
             "#1=",
             "G41",
             "G43",
+            "G43.1",
+            "G43.2",
+            "G49",
+            "M61",
+            "H1",
+            "H2",
+            "Q1",
+            "T2",
             "G80",
             "G4",
         ]
@@ -99,6 +111,7 @@ token = st.one_of(
 @given(st.lists(token, max_size=60))
 def test_gcode_token_soup(tokens):
     check("".join(tokens))
+    check("".join(tokens), TOOLS)   # with a tool table: unknown tools refused, offsets applied
 
 
 @settings(max_examples=150)

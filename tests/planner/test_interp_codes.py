@@ -203,7 +203,7 @@ def test_tool_and_m06_tool_change():
     t, tc, t4 = p.events
     assert t.kind is EventKind.TOOL and t.value == 3
     assert tc.kind is EventKind.TOOL_CHANGE and tc.value == 3 and tc.stops
-    assert "no tool changer" in tc.message and "T3" in tc.message
+    assert "by hand" in tc.message and "T3" in tc.message
     assert t4.after_move == 0 and not t4.stops
 
 

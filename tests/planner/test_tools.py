@@ -1,0 +1,149 @@
+"""The tool table (LinuxCNC's .tbl format) and the tool codes: T, M6, M61 Q, G43, G43 H,
+G43.1, G43.2, G49, read as LinuxCNC 2.9 reads them."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.errors import PlannerError, ProgramError
+from planner.interpreter import parse_program
+from planner.program import EventKind
+from planner.tools import Tool, ToolTable, format_tbl, parse_tbl
+
+TABLE = parse_tbl("T1 P1 Z10 D6 ;6 mm flat\n"
+                  "T2 P5 X0.1 Z-3.5 D3 ;3 mm ball\n"
+                  "; a comment line\n"
+                  "\n"
+                  "T17 P17 Z125.25\n", "tools.tbl")
+
+
+def ends(text: str, **kw) -> list[tuple[int, tuple[float, ...]]]:
+    prog = parse_program(text, "t.nc", tools=kw.pop("tools", TABLE), **kw)
+    return [(m.line, tuple(float(v) for v in m.end)) for m in prog.moves]
+
+
+def test_the_tbl_format_is_read_as_linuxcnc_writes_it() -> None:
+    t2 = TABLE.get(2)
+    assert t2 == Tool(2, 5, (("X", 0.1), ("Z", -3.5)), 3.0, "3 mm ball")
+    assert TABLE.get(17).pocket == 17 and TABLE.get(17).length_mm == 125.25
+    assert [t.number for t in TABLE] == [1, 2, 17]
+    assert TABLE.get(1).label() == "T1 (6 mm flat)" and TABLE.get(17).label() == "T17"
+
+
+@pytest.mark.parametrize("text, where", [
+    ("T1 Z10\nT1 Z3\n", "tools.tbl:2: T1 is given twice"),
+    ("T1 Z10\nP3 Z1\n", "tools.tbl:2:1: a tool line needs a T word"),
+    ("T1 Z1 Z2\n", "tools.tbl:1:7: two Z words"),
+    ("T1 K3\n", "tools.tbl:1:4: K is not a tool table word"),
+    ("T1.5 Z1\n", "tools.tbl:1: T1.5 must be a whole number"),
+    ("T0 Z1\n", "tools.tbl:1: tool number T0 must be"),
+    ("T1 Z1e9\n", "tools.tbl:1: T1 offset Z1e+09 must be a number within"),
+    ("T1 D-2\n", "tools.tbl:1: T1 diameter D-2 must be"),
+    ("T1 Z=3\n", "tools.tbl:1:4: expected a letter and a number"),
+])
+def test_a_bad_tool_table_is_named_by_line_and_word(text: str, where: str) -> None:
+    with pytest.raises(PlannerError) as exc:
+        parse_tbl(text, "tools.tbl")
+    assert where in str(exc.value)
+
+
+_num = st.floats(-1000, 1000, allow_nan=False).map(lambda v: round(v, 4))
+_tool = st.builds(
+    lambda n, p, z, x, d, text: Tool(n, p, tuple(a for a in (("X", x), ("Z", z)) if a[1] is not None),
+                                     d, text),
+    st.integers(1, 99_999), st.integers(0, 999), st.one_of(st.none(), _num), st.one_of(st.none(), _num),
+    st.floats(0, 100, allow_nan=False), st.text(st.characters(blacklist_categories=("Cc", "Cs", "Zl", "Zp")),
+                                                max_size=20).map(str.strip))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(_tool, max_size=8, unique_by=lambda t: t.number))
+def test_writing_and_reading_a_table_gives_it_back(tools: list[Tool]) -> None:
+    table = ToolTable.of(tools)
+    assert parse_tbl(format_tbl(table)) == table
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet="TPDXYZIJQK0123456789.-+e ;\n\t#", max_size=80))
+def test_any_text_is_a_table_or_a_planner_error_naming_its_line(text: str) -> None:
+    try:
+        parse_tbl(text, "f.tbl")
+    except PlannerError as exc:
+        assert str(exc).startswith("f.tbl:")
+
+
+def test_m6_loads_the_selected_tool_and_g43_applies_its_length() -> None:
+    assert ends("T1 M6\nG0 Z5\nG43\nG0 Z5\n") == [(2, (0.0, 0.0, 5.0)), (4, (0.0, 0.0, 15.0))]  # G43 first
+    # T alone only selects; M6 loads; G43 uses what is in the spindle
+    assert ends("T1 M6\nT2\nG43\nG0 Z5\n")[-1] == (4, (0.0, 0.0, 15.0))
+
+
+def test_g43_h_g43_1_g43_2_and_g49() -> None:
+    out = ends("G43 H2\nG0 X1 Z5\nG49\nG0 Z5\nG43.1 Z2\nG0 Z5\nG43.2 H1\nG0 Z5\nG43.2 Z-1\nG0 Z5\n")
+    assert out == [(2, (1.1, 0.0, 1.5)), (4, (1.1, 0.0, 5.0)), (6, (1.1, 0.0, 7.0)),
+                   (8, (1.1, 0.0, 17.0)), (10, (1.1, 0.0, 16.0))]
+
+
+def test_an_inch_program_gives_dynamic_offsets_in_inches_and_table_offsets_in_mm() -> None:
+    out = ends("G20\nG43.1 Z1\nG0 Z0\nG43 H1\nG0 Z0\n")
+    assert out[0][1][2] == pytest.approx(25.4) and out[1][1][2] == pytest.approx(10.0)
+
+
+def test_m61_sets_the_tool_in_the_spindle_without_a_change() -> None:
+    prog = parse_program("M61 Q2\nG43\nG0 Z0\n", "t.nc", tools=TABLE)
+    assert prog.moves[0].end[2] == -3.5
+    (ev,) = [e for e in prog.events if e.kind is EventKind.TOOL_SET]
+    assert ev.value == 2 and ev.stops
+
+
+def test_the_tool_in_the_spindle_at_the_start_is_used_by_g43() -> None:
+    assert ends("G43\nG0 Z0\n", tool_in_spindle=17) == [(2, (0.0, 0.0, 125.25))]
+
+
+def test_the_work_position_subtracts_the_tool_offset_like_linuxcncs_relative_dro() -> None:
+    prog = parse_program("G43 H1\nG0 Z5\n", "t.nc", tools=TABLE)
+    assert prog.move_offsets is None or np.allclose(prog.move_offsets[-1], (0.0, 0.0, 10.0))
+
+
+@pytest.mark.parametrize("text, where", [
+    ("T3\n", "t.nc:1:1: error: tool T3 is not in the tool table"),
+    ("G43 H3\n", "t.nc:1:5: error: tool T3 is not in the tool table"),
+    ("T1 M6\nG43.2 H9\n", "t.nc:2:7: error: tool T9 is not in the tool table"),
+    ("M61\n", "t.nc:1:1: error: M61 needs a Q word"),
+    ("M61 Q4\n", "t.nc:1:5: error: tool T4 is not in the tool table"),
+    ("G1 G43.1 Z1 F100\n", "t.nc:1:4: error: cannot use two G codes that both use axis values"),
+    ("G43.2\n", "t.nc:1:1: error: G43.2 needs an H word or axis words"),
+    ("G43 H1.5\n", "t.nc:1:5: error: tool number H1.5 must be a whole number"),
+    ("H1\n", "t.nc:1:1: error: H word with no G43 or G43.2"),
+    ("Q1\n", "t.nc:1:1: error: Q word with no code that uses it"),
+])
+def test_tool_mistakes_are_refused_at_their_word(text: str, where: str) -> None:
+    with pytest.raises(ProgramError) as exc:
+        parse_program(text, "t.nc", tools=TABLE)
+    assert where in str(exc.value)
+
+
+def test_without_a_table_any_tool_is_known_with_zero_offsets_as_linuxcncs_reference_runs() -> None:
+    assert ends("T7 M6\nG43 H7\nG0 Z5\n", tools=None) == [(3, (0.0, 0.0, 5.0))]
+
+
+def test_cnc_plan_reads_a_tool_table(tmp_path, capsys) -> None:
+    from cli.plan import main
+
+    prog = tmp_path / "p.nc"
+    prog.write_text("G21 G90\nT1 M6\nG43\nG0 Z5\nM30\n")
+    (tmp_path / "t.tbl").write_text("T1 P1 Z10 ;six\n")
+    out = tmp_path / "canon.jsonl"
+    assert main([str(prog), "--tools", str(tmp_path / "t.tbl"), "--samples", str(tmp_path / "s.npz")]) == 0
+    with np.load(tmp_path / "s.npz") as z:
+        assert z["q"][-1, 2] == pytest.approx(15.0)          # machine Z: 5 + the 10 mm tool
+    (tmp_path / "bad.tbl").write_text("T1 P1 Z10\nT1 Z3\n")
+    assert main([str(prog), "--tools", str(tmp_path / "bad.tbl"), "--canon", str(out)]) == 2
+    assert f"{tmp_path / 'bad.tbl'}:2: T1 is given twice" in capsys.readouterr().err
+    assert not out.exists()
+    (tmp_path / "t.tbl").write_text("T2 P2 Z10\n")                 # T1 is not in this table
+    assert main([str(prog), "--tools", str(tmp_path / "t.tbl"), "--canon", str(out)]) == 2
+    assert "p.nc:2:1: error: tool T1 is not in the tool table" in capsys.readouterr().err
