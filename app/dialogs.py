@@ -12,7 +12,7 @@ from pathlib import Path
 from PySide6.QtWidgets import QMessageBox, QWidget
 
 from app.i18n import tr
-from app.program_folders import ProgramFolders
+from app.program_folders import GCODE_SUFFIXES, ProgramFolders
 from app.widgets.file_picker import FilePicker
 from app.widgets.keypad import ask_number
 from app.widgets.text_dialog import TextDialog
@@ -46,8 +46,10 @@ class Dialogs:
         return dialog.text() if dialog.exec() == TextDialog.DialogCode.Accepted else None
 
     def ask_open_file(self, parent: QWidget | None, directory: str,
-                      folders: ProgramFolders | None = None) -> str | None:
-        picker = FilePicker(tr("Open program"), Path(directory), parent, folders)
+                      folders: ProgramFolders | None = None,
+                      suffixes: tuple[str, ...] = GCODE_SUFFIXES) -> str | None:
+        title = tr("Open program") if suffixes == GCODE_SUFFIXES else tr("Open file")
+        picker = FilePicker(title, Path(directory), parent, folders, suffixes)
         if picker.exec() == FilePicker.DialogCode.Accepted and picker.selected is not None:
             return str(picker.selected)
         return None

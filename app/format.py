@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from planner.tools import ToolTable
+
 
 def format_duration(seconds: float) -> str:
     """h:mm:ss, or m:ss under an hour; '--:--' when unknown."""
@@ -31,3 +33,13 @@ def format_value(value: float, digits: int = 4) -> str:
     if 1e-3 <= abs(value) < 1e4:
         return f"{value:.{digits}g}"
     return f"{value:.{max(digits - 1, 1)}e}"
+
+
+def tool_text(table: ToolTable, number: int) -> str:
+    """``T2 (6 mm flat)``, or "none" (translated) for the empty spindle."""
+    from app.i18n import tr
+
+    if not number:
+        return tr("none")
+    tool = table.get(number)
+    return tool.label() if tool is not None else f"T{number}"

@@ -27,6 +27,7 @@ from app.service_access import IDLE_LOCK_S
 from app.shortcuts import Shortcuts, parse_bindings
 from app.widgets.service_gate import ServiceGate
 from app.widgets.status_header import StatusHeader
+from resources import shipped_program
 
 _INPUT_EVENTS = frozenset({QEvent.Type.MouseButtonPress, QEvent.Type.KeyPress, QEvent.Type.TouchBegin})
 
@@ -146,6 +147,9 @@ class MainWindow(QMainWindow):
             ctx.controller.connect_bus()
             if not all(ctx.controller.homed) and ctx.controller.config.homing.method == "set_here":
                 ctx.controller.home_all()
+            if not len(ctx.controller.tool_table):   # a first demo: a few tools to look at
+                ctx.controller.import_tool_table(str(shipped_program("demo_tools.tbl")))
+                ctx.controller.set_tool_in_spindle(1)
         program = self.options.effective_program
         if program is not None and ctx.program.info is None:
             ctx.controller.load_program(program)  # the Program page opens it when it is loaded

@@ -29,6 +29,7 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
+from planner.tools import Tool, ToolTable
 
 __all__ = ["MachineApi"]
 
@@ -57,6 +58,7 @@ class MachineApi(Protocol):
     homedChanged: SignalInstance  # tuple[bool, ...] per axis
     offsetsChanged: SignalInstance  # (dict name -> tuple per axis, active name)
     spindleChanged: SignalInstance  # SpindleState
+    toolsChanged: SignalInstance  # (ToolTable, tool in the spindle; 0: none)
     busStateChanged: SignalInstance  # BusStatus
     trackingUpdated: SignalInstance  # TrackingReport (during a run ~1 Hz, and at the end)
     configChanged: SignalInstance  # MachineConfig (after update_config / load)
@@ -177,6 +179,16 @@ class MachineApi(Protocol):
     @property
     def spindle(self) -> SpindleState:
         """Spindle state."""
+        ...
+
+    @property
+    def tool_table(self) -> ToolTable:
+        """The tool table (persisted in the state folder as ``tools.tbl``)."""
+        ...
+
+    @property
+    def tool_in_spindle(self) -> int:
+        """The tool in the spindle (0: none)."""
         ...
 
     @property
@@ -376,6 +388,26 @@ class MachineApi(Protocol):
 
     def spindle_speed(self, rpm: float) -> CommandResult:
         """Set the spindle speed (applied at once when running)."""
+        ...
+
+    def set_tool(self, tool: Tool) -> CommandResult:
+        """Add or replace a tool in the table (refused while a program runs)."""
+        ...
+
+    def remove_tool(self, number: int) -> CommandResult:
+        """Remove a tool from the table (not the one in the spindle)."""
+        ...
+
+    def set_tool_in_spindle(self, number: int) -> CommandResult:
+        """The tool now in the spindle, without a change (as M61 Q)."""
+        ...
+
+    def touch_off_tool(self, number: int, surface_z_mm: float = 0.0) -> CommandResult:
+        """Set a tool's length so the work Z here reads ``surface_z_mm`` (LinuxCNC G10 L10 Z)."""
+        ...
+
+    def import_tool_table(self, path: str) -> CommandResult:
+        """Replace the table by a LinuxCNC .tbl file (refused whole if a line is wrong)."""
         ...
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:

@@ -54,6 +54,7 @@ the state it sets up in its ``__init__`` and reaching the others through the fac
     controller.manual      ManualMotion    jog (continuous, incremental), MDI
     controller.pos         Positions       positions, homed flags, machine zero (homing), work offsets
     controller.spindle_ctl SpindleControl  spindle
+    controller.tools       ToolControl     tool table, tool in the spindle
     controller.alarm_log   AlarmLog        alarm list and reactions
     controller.poller      StatusPoller    polling the worker, positions/bus signals
     app.machine.jobs       Job, ResumePoint, SentLimits records
@@ -96,7 +97,9 @@ from app.machine.program_run import ProgramRunner
 from app.machine.spindle import SpindleControl
 from app.machine.states import TRANSITIONS, StateMachine
 from app.machine.status import StatusPoller
+from app.machine.tooling import ToolControl
 from app.paths import DEFAULT_STATE_DIR
+from planner.tools import Tool, ToolTable
 
 __all__ = [
     "DEFAULT_STATE_DIR",
@@ -135,6 +138,7 @@ class MachineController(QObject):
     homedChanged = Signal(object)  # tuple[bool, ...] per axis
     offsetsChanged = Signal(object, str)  # (dict name -> tuple per axis, active name)
     spindleChanged = Signal(object)  # SpindleState
+    toolsChanged = Signal(object, int)  # (ToolTable, tool in the spindle; 0: none)
     busStateChanged = Signal(object)  # BusStatus
     trackingUpdated = Signal(object)  # TrackingReport (during a run ~1 Hz, and at the end)
     configChanged = Signal(object)  # MachineConfig (after update_config / load)
@@ -163,6 +167,7 @@ class MachineController(QObject):
         self.conn.restore_persisted()
         self.run = ProgramRunner(self)
         self.spindle_ctl = SpindleControl(self)
+        self.tools = ToolControl(self)
         self.loader = ProgramLoader(self)
         self.stream = Streamer(self)
         self.manual = ManualMotion(self)
@@ -499,6 +504,31 @@ class MachineController(QObject):
         return self.spindle_ctl.spindle_speed(rpm)
 
     # ---- end of spindle_ctl
+
+    @property
+    def tool_table(self) -> ToolTable:
+        return self.tools.table
+
+    @property
+    def tool_in_spindle(self) -> int:
+        return self.tools.in_spindle
+
+    def set_tool(self, tool: Tool) -> CommandResult:
+        return self.tools.set_tool(tool)
+
+    def remove_tool(self, number: int) -> CommandResult:
+        return self.tools.remove_tool(number)
+
+    def set_tool_in_spindle(self, number: int) -> CommandResult:
+        return self.tools.set_tool_in_spindle(number)
+
+    def touch_off_tool(self, number: int, surface_z_mm: float = 0.0) -> CommandResult:
+        return self.tools.touch_off_tool(number, surface_z_mm)
+
+    def import_tool_table(self, path: str) -> CommandResult:
+        return self.tools.import_table(path)
+
+    # ---- end of tools
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         return self.alarm_log.acknowledge_alarm(alarm_id)

@@ -390,6 +390,9 @@ class Streamer:
             return
         if kind == "spindle":
             self._start_spindle(job, SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)), snap)
+        elif kind == "tool_set":                 # M61 Q: the program says which tool is in
+            self.m.tools.loaded_by_program(int(p.value))
+            self._release(job)
         elif kind == "dwell":
             if job.dwell_until is None:
                 job.dwell_until = snap.time_s + p.value
@@ -406,10 +409,12 @@ class Streamer:
                 job.spindle_paused = self.m.spindle_ctl.spindle
                 self.m.spindle_ctl.stop_spindle()
             tool = int(p.value) if kind == "tool_change" else 0
+            known = self.m.tools.table.get(tool)
+            label = known.label() if known is not None else f"T{tool}"
             reason = {
                 "pause": f"program paused (M00, line {p.line}): press cycle start",
                 "optional_pause": f"optional stop (M01, line {p.line}): press cycle start",
-                "tool_change": (f"tool change (M06 T{tool}, line {p.line}): insert tool T{tool} and "
+                "tool_change": (f"tool change (M06, line {p.line}): insert tool {label} and "
                                 "press cycle start"),
                 "single_block": f"single block: end of line {p.line}",
             }.get(kind, kind)

@@ -142,7 +142,8 @@ class ManualMotion:
             text = f"{self.m.pos.active_offset} {text}"
         try:
             prog = parse_program(
-                text, "MDI", machine=self.m.conn.machine, start_position=self.m.states.machine_pos()
+                text, "MDI", machine=self.m.conn.machine, start_position=self.m.states.machine_pos(),
+                tools=self.m.tools.table, tool_in_spindle=self.m.tools.in_spindle,
             )
         except ProgramError as exc:
             return self.m.states.refuse("mdi", "; ".join(e.message for e in exc.errors))
@@ -160,6 +161,10 @@ class ManualMotion:
                     self.m.spindle_ctl.apply_spindle(
                         SpindleState(direction=int(np.sign(ev.value)), rpm=abs(ev.value))
                     )
+                elif ev.kind is EventKind.TOOL_SET:
+                    res = self.m.tools.set_tool_in_spindle(int(ev.value))
+                    if not res:
+                        return self.m.states.refuse("mdi", res.reason)
                 elif ev.kind is EventKind.END:  # M2/M30: the end of a program: spindle off, reset
                     self.m.spindle_ctl.apply_spindle(SpindleState(direction=0, rpm=self.m.spindle.rpm))
                     self.m.states.reset()
@@ -174,11 +179,12 @@ class ManualMotion:
 
 # What an MDI block may not do, and why: every block either does what it says or is refused.
 _NOT_IN_MDI = {
-    EventKind.TOOL_CHANGE: "M6 tool change is not available (no tool table yet): change the tool with the "
-                           "machine stopped and set its length by touch-off",
+    EventKind.TOOL_CHANGE: "M6 runs in a program; in MDI put the tool in by hand and say which it is "
+                           "with M61 Q<n> (or on the Tools page)",
     EventKind.PAUSE: "M0 pauses a running program; an MDI block has nothing to pause",
     EventKind.OPTIONAL_PAUSE: "M1 pauses a running program; an MDI block has nothing to pause",
-    EventKind.TOOL: "T selects the tool for M6, which is not available (no tool table yet)",
+    EventKind.TOOL: "T selects the tool for a program's M6; in MDI say which tool is in the spindle with "
+                    "M61 Q<n>",
     EventKind.COOLANT: "M7/M8/M9: no coolant output is configured on this machine",
 }
 

@@ -22,7 +22,9 @@ from typing import Any
 
 from app.machine.errors import StateFolderBusy
 from app.machine.model import Alarm, AlarmState, Severity
+from planner.errors import PlannerError
 from planner.files import remove_stale_temporaries, write_text
+from planner.tools import ToolTable, format_tbl, read_tbl
 
 __all__ = ["StateStore"]
 
@@ -140,6 +142,40 @@ class StateStore:
 
     def save_offsets(self, offsets: dict[str, tuple[float, ...]]) -> None:
         self._write_json("offsets.json", {k: list(v) for k, v in offsets.items()})
+
+    # ------------------------------------------------------------------ tools
+    def load_tools(self) -> tuple[ToolTable, int]:
+        """The tool table (``tools.tbl``, LinuxCNC's format) and the tool in the spindle. A
+        damaged table is moved aside and named: the table is then empty (G43 of a tool that
+        is not in it is refused), never a guess."""
+        table = ToolTable()
+        p = self.path("tools.tbl")
+        if p.exists():
+            try:
+                table = read_tbl(p)
+            except PlannerError as exc:
+                aside = p.with_name(f"{p.name}.damaged-{int(time.time())}")
+                try:
+                    os.replace(p, aside)
+                except OSError:
+                    pass
+                self.problems.append(f"{exc}; the tool table was moved aside to {aside.name}: enter or "
+                                     "import the tools again")
+        data = self._read_json("tool.json")
+        current = data.get("in_spindle", 0) if isinstance(data, dict) else 0
+        if not isinstance(current, int) or isinstance(current, bool) or current < 0:
+            self.problems.append(f"{self.path('tool.json')}: in_spindle {current!r} is not a tool number; "
+                                 "the spindle counts as empty (T0)")
+            current = 0
+        if current and current not in table:
+            self.problems.append(f"the tool in the spindle, T{current}, is not in the tool table; "
+                                 "the spindle counts as empty (T0)")
+            current = 0
+        return table, current
+
+    def save_tools(self, table: ToolTable, in_spindle: int) -> None:
+        write_text(self.path("tools.tbl"), format_tbl(table))
+        self._write_json("tool.json", {"in_spindle": int(in_spindle)})
 
     # ------------------------------------------------------------------ alarms
     def load_alarms(self) -> list[Alarm]:

@@ -42,6 +42,7 @@ from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.program import Program
 from planner.softlimits import check_program, move_bounds_table, program_bounds
+from planner.tools import ToolTable
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -64,6 +65,8 @@ class LoadRequest:
     start_position: np.ndarray
     cfg: object  # the MachineConfig it is checked against (identity: stale after update_config)
     offsets: dict[str, tuple[float, ...]]
+    tools: ToolTable = field(default_factory=ToolTable)   # the table G43 reads (identity: stale)
+    tool_in_spindle: int = 0
     cancel: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
@@ -110,12 +113,17 @@ def check_text(
 
     text, name = req.text, req.name
     try:
-        program = parse_program(text, name, machine=machine, start_position=req.start_position)
+        program = parse_program(text, name, machine=machine, start_position=req.start_position,
+                                tools=req.tools, tool_in_spindle=req.tool_in_spindle)
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
+    if not program.moves:
+        why = ("the program moves no axis: nothing to run (spindle, tool and coolant codes alone "
+               "are given in MDI, M61 Q for the tool in the spindle)")
+        return (ProgramIssue(0, 0, why),), why
     stage()
     table = move_bounds_table(program)  # per-move extremes, arcs exact: limits and bounds
     limit_issues = _issues_from_limits(program, machine, table)
@@ -163,6 +171,7 @@ class ProgramLoader:
         self._load_reason = ""  # why the last load was refused
         self._program_cfg: object = None  # configuration and offsets the program was checked with
         self._program_offsets: dict[str, tuple[float, ...]] = {}
+        self._program_tools: tuple[ToolTable, int] | None = None
         self.run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
         self._run_plan_ready: RunPlanRequest | None = None  # ... and the one made
         # checks and plans run off the controller's thread; results come back to it
@@ -270,6 +279,8 @@ class ProgramLoader:
             start_position=self.m.states.machine_pos().copy(),
             cfg=self.m.config,
             offsets=dict(self.m.pos.offsets),
+            tools=self.m.tools.table,
+            tool_in_spindle=self.m.tools.in_spindle,
         )
 
     def _supersede_load(self) -> None:
@@ -350,6 +361,7 @@ class ProgramLoader:
         self.program_info = info
         self._program_cfg = req.cfg  # what the program and its plan were made for
         self._program_offsets = dict(req.offsets)
+        self._program_tools = (req.tools, req.tool_in_spindle)
         self._program_text = info.text
         self._program_path = info.path
         self.m.run.resume_point = None
@@ -386,6 +398,10 @@ class ProgramLoader:
             return "the machine configuration changed since it was loaded"
         if self._program_offsets != self.m.pos.offsets:
             return "the work offsets changed since it was loaded"
+        if self._program_tools is None or self._program_tools[0] is not self.m.tools.table:
+            return "the tool table changed since it was loaded"
+        if self._program_tools[1] != self.m.tools.in_spindle:
+            return "another tool is in the spindle since it was loaded"
         start = np.asarray(info.program.start_position)  # type: ignore[attr-defined]
         if np.max(np.abs(start - self.m.states.machine_pos()), initial=0.0) > 1e-6:
             return "the machine moved since it was loaded"

@@ -181,6 +181,8 @@ class ProgramRunner:
                     return self.m.states.ok("resume")
             job.executor.hold = False
             if job.pause is not None and job.waiting:
+                if job.pause.kind == "tool_change":      # the operator has put the tool in
+                    self.m.tools.loaded_by_program(int(job.pause.value))
                 # back from a tool change: the spindle as it was, at speed before moving on
                 paused, job.spindle_paused = job.spindle_paused, None
                 wait = 0.0

@@ -45,6 +45,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--state-dir", help="state directory (default: a temporary one)")
     p.add_argument("--worker", choices=("process", "thread", "manual"), default="process",
                    help="worker mode (default: its own real-time process)")
+    p.add_argument("--tools", help="tool table (LinuxCNC .tbl) to put in the state folder before the run")
+    p.add_argument("--tool", type=int, default=None, help="the tool in the spindle at the start")
     p.add_argument("--trace", help="write the NPZ trace of every set-point sent to this file")
     p.add_argument("--script", help="operator actions, one JSON object per line: "
                                     '{"at_line": N, "op": "stop"} or {"after_s": T, "op": ...}')
@@ -135,6 +137,16 @@ def main(argv: list[str] | None = None) -> int:
             print(f"cnc-run: {res.reason}", file=sys.stderr)
             return 2
         ctl.set_machine_zero_here()  # simulated drives: the start position is machine zero
+        if args.tools:
+            res = ctl.import_tool_table(args.tools)
+            if not res:
+                print(f"cnc-run: {res.reason}", file=sys.stderr)
+                return 2
+        if args.tool is not None:
+            res = ctl.set_tool_in_spindle(args.tool)
+            if not res:
+                print(f"cnc-run: {res.reason}", file=sys.stderr)
+                return 2
         res = ctl.load_program(Path(args.program), wait=True)
         if not res:
             for e in errors or [res.reason]:

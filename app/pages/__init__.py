@@ -27,6 +27,7 @@ PAGES: tuple[PageInfo, ...] = (
     PageInfo("preview", N_("Preview"), "preview"),
     PageInfo("machine_zero", N_("Machine zero"), "machine_zero"),
     PageInfo("part_zero", N_("Part zero"), "part_zero"),
+    PageInfo("tools", N_("Tools"), "tools"),
     PageInfo("axes", N_("Axes"), "axes", service=True),
     PageInfo("parameters", N_("Parameters"), "parameters", service=True),
     PageInfo("diagnostics", N_("Diagnostics"), "diagnostics"),

@@ -16,9 +16,10 @@ class FilePicker(QDialog):
     folder's top, where the list offers the other program folders instead."""
 
     def __init__(self, title: str, directory: Path, parent: QWidget | None = None,
-                 folders: ProgramFolders | None = None) -> None:
+                 folders: ProgramFolders | None = None, suffixes: tuple[str, ...] = GCODE_SUFFIXES) -> None:
         super().__init__(parent)
         self.folders = folders
+        self.suffixes = tuple(suffixes)
         self.setWindowTitle(title)
         self.setModal(True)
         self.resize(900, 640)
@@ -53,7 +54,7 @@ class FilePicker(QDialog):
         except OSError:
             children = []
         here = [p.name + "/" if p.is_dir() else p.name for p in children
-                if not p.name.startswith(".") and (p.is_dir() or p.suffix.lower() in GCODE_SUFFIXES)]
+                if not p.name.startswith(".") and (p.is_dir() or p.suffix.lower() in self.suffixes)]
         folders = self.folders
         if folders is None or not any(r.path == self.directory for r in folders.roots):
             return here

@@ -6,6 +6,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app.context import PanelContext
+from app.format import tool_text
 from app.i18n import N_, tr
 from app.widgets.dro import DroWidget
 
@@ -43,8 +44,13 @@ class StatusHeader(QWidget):
         self.bus_label = QPushButton()  # tap: connect / disconnect the drives (confirmed)
         self.bus_label.setObjectName("busState")
         self.bus_label.clicked.connect(self._bus_clicked)
+        self.tool_label = QLabel()               # the tool in the spindle, always in sight
+        self.tool_label.setObjectName("toolLabel")
+        self.tool_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.tool_label.setFixedWidth(240)      # a long description never widens the header
         status.addWidget(self.state_label)
         status.addWidget(self.bus_label)
+        status.addWidget(self.tool_label)
         row.addLayout(status)
         self.estop_button = QPushButton()
         self.estop_button.setObjectName("estopButton")
@@ -66,6 +72,8 @@ class StatusHeader(QWidget):
         c.homedChanged.connect(self.dro.set_homed)
         c.busStateChanged.connect(self._on_bus)
         c.alarmsChanged.connect(self._on_alarms)
+        self._tools, self._tool = c.tool_table, c.tool_in_spindle
+        c.toolsChanged.connect(self._on_tools)
         context.i18n.languageChanged.connect(lambda _lang: self.refresh())
         self.dro.set_positions(c.machine_position, c.work_position)
         self.dro.set_homed(c.homed)
@@ -103,6 +111,10 @@ class StatusHeader(QWidget):
         else:
             self.ctx.controller.estop("operator")
 
+    def _on_tools(self, table: object, in_spindle: int) -> None:
+        self._tools, self._tool = table, int(in_spindle)
+        self.refresh()
+
     # --- display -------------------------------------------------------------------------
     def _state_value(self) -> str:
         return str(getattr(self._state, "value", self._state))
@@ -126,6 +138,10 @@ class StatusHeader(QWidget):
         self.bus_label.setStyleSheet("color: %s; font-weight: 700; background: transparent; border: 0;"
                                      % ("#7fe0a0" if connected else "#ff9080"))
         self.estop_button.setText(tr("RELEASE\nE-STOP") if value == "estop" else tr("E-STOP"))
+        text = tr("Tool: {0}").format(tool_text(self._tools, self._tool))
+        self.tool_label.setToolTip(text)
+        metrics = self.tool_label.fontMetrics()
+        self.tool_label.setText(metrics.elidedText(text, Qt.TextElideMode.ElideRight, 236))
         alarms = self._alarms
         if alarms:
             last = alarms[-1]

@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="132" />
+      <location filename="../../app/widgets/status_header.py" line="144" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="133" />
+      <location filename="../../app/widgets/status_header.py" line="145" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -39,12 +39,17 @@
       <translation>Etkin:</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="14" />
+      <location filename="../../app/pages/tools.py" line="58" />
+      <source>Add tool</source>
+      <translation>Takım ekle</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="15" />
       <source>Alarm</source>
       <translation>Alarm</translation>
     </message>
     <message>
-      <location filename="../../app/pages/__init__.py" line="33" />
+      <location filename="../../app/pages/__init__.py" line="34" />
       <source>Alarms</source>
       <translation>Alarmlar</translation>
     </message>
@@ -89,7 +94,7 @@
       <translation>Otomatik</translation>
     </message>
     <message>
-      <location filename="../../app/pages/__init__.py" line="30" />
+      <location filename="../../app/pages/__init__.py" line="31" />
       <source>Axes</source>
       <translation>Eksenler</translation>
     </message>
@@ -109,7 +114,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="123" />
+      <location filename="../../app/widgets/status_header.py" line="134" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -149,17 +154,17 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="152" />
+      <location filename="../../app/main_window.py" line="155" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="95" />
+      <location filename="../../app/widgets/status_header.py" line="102" />
       <source>Connect</source>
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="95" />
+      <location filename="../../app/widgets/status_header.py" line="102" />
       <source>Connect to the drives and enable them?</source>
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
@@ -204,9 +209,34 @@
       <translation>Çevrim zamanlaması: başlangıç sapması histogramı (µs)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/__init__.py" line="32" />
+      <location filename="../../app/pages/tools.py" line="145" />
+      <source>Delete</source>
+      <translation>Sil</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="144" />
+      <source>Delete {0} from the tool table?</source>
+      <translation>{0} takım tablosundan silinsin mi?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="28" />
+      <source>Description</source>
+      <translation>Açıklama</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="109" />
+      <source>Description:</source>
+      <translation>Açıklama:</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="33" />
       <source>Diagnostics</source>
       <translation>Tanılama</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="28" />
+      <source>Diameter (mm)</source>
+      <translation>Çap (mm)</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="14" />
@@ -219,12 +249,12 @@
       <translation>Vazgeç</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="93" />
+      <location filename="../../app/widgets/status_header.py" line="100" />
       <source>Disconnect</source>
       <translation>Bağlantıyı kes</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="13" />
+      <location filename="../../app/widgets/status_header.py" line="14" />
       <source>Disconnected</source>
       <translation>Bağlı değil</translation>
     </message>
@@ -234,12 +264,12 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="128" />
+      <location filename="../../app/widgets/status_header.py" line="139" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="14" />
+      <location filename="../../app/widgets/status_header.py" line="15" />
       <source>E-stop</source>
       <translation>Acil stop</translation>
     </message>
@@ -264,7 +294,7 @@
       <translation>İlerleme oranı</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="58" />
+      <location filename="../../app/dialogs.py" line="60" />
       <source>File name in {0}:</source>
       <translation>{0} içinde dosya adı:</translation>
     </message>
@@ -339,9 +369,24 @@
       <translation>Referanslama: {0}; {1}.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="13" />
+      <location filename="../../app/widgets/status_header.py" line="14" />
       <source>Idle</source>
       <translation>Hazır</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="173" />
+      <source>Import .tbl</source>
+      <translation>.tbl içe aktar</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="60" />
+      <source>In the spindle</source>
+      <translation>İş milinde</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="94" />
+      <source>In the spindle: {0}</source>
+      <translation>İş milinde: {0}</translation>
     </message>
     <message>
       <location filename="../../app/pages/parameters.py" line="89" />
@@ -372,6 +417,11 @@
       <location filename="../../app/pages/axes.py" line="14" />
       <source>Kind</source>
       <translation>Tür</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="28" />
+      <source>Length Z (mm)</source>
+      <translation>Boy Z (mm)</translation>
     </message>
     <message>
       <location filename="../../app/pages/auto.py" line="217" />
@@ -466,6 +516,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yeni servis şifresi (en az {0} karakter):</translation>
     </message>
     <message>
+      <location filename="../../app/pages/tools.py" line="131" />
+      <source>New tool number</source>
+      <translation>Yeni takım numarası</translation>
+    </message>
+    <message>
       <location filename="../../app/dialogs.py" line="26" />
       <source>No</source>
       <translation>Hayır</translation>
@@ -496,7 +551,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Kapalı (M05)</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="50" />
+      <location filename="../../app/dialogs.py" line="51" />
+      <source>Open file</source>
+      <translation>Dosya aç</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="51" />
       <source>Open program</source>
       <translation>Program aç</translation>
     </message>
@@ -511,7 +571,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>İsteğe bağlı duruş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="18" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Optional stop (M1)</source>
       <translation>İsteğe bağlı duruş (M1)</translation>
     </message>
@@ -521,7 +581,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Aralık dışında: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/__init__.py" line="31" />
+      <location filename="../../app/pages/__init__.py" line="32" />
       <source>Parameters</source>
       <translation>Parametreler</translation>
     </message>
@@ -561,6 +621,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Planlanıyor…</translation>
     </message>
     <message>
+      <location filename="../../app/pages/tools.py" line="28" />
+      <source>Pocket</source>
+      <translation>Cep</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/bus_view.py" line="11" />
       <source>Position</source>
       <translation>Konum</translation>
@@ -581,22 +646,22 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="159" />
+      <location filename="../../app/main_window.py" line="169" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="172" />
+      <location filename="../../app/main_window.py" line="182" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="17" />
+      <location filename="../../app/widgets/status_header.py" line="18" />
       <source>Program stop (M0)</source>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="128" />
+      <location filename="../../app/widgets/status_header.py" line="139" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -628,17 +693,17 @@ BIRAK</translation>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="114" />
+      <location filename="../../app/main_window.py" line="115" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="100" />
+      <location filename="../../app/widgets/status_header.py" line="107" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="101" />
+      <location filename="../../app/widgets/status_header.py" line="108" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -646,6 +711,11 @@ BIRAK</translation>
       <location filename="../../app/pages/parameters.py" line="180" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="173" />
+      <source>Replace the whole tool table by {0}?</source>
+      <translation>Tüm takım tablosu {0} ile değiştirilsin mi?</translation>
     </message>
     <message>
       <location filename="../../app/pages/alarms.py" line="40" />
@@ -668,7 +738,7 @@ BIRAK</translation>
       <translation>Satırdan çalıştır…</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="14" />
+      <location filename="../../app/widgets/status_header.py" line="15" />
       <source>Running</source>
       <translation>Çalışıyor</translation>
     </message>
@@ -693,7 +763,7 @@ BIRAK</translation>
       <translation>Kaydetme başarısız</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="58" />
+      <location filename="../../app/dialogs.py" line="60" />
       <source>Save program as</source>
       <translation>Programı farklı kaydet</translation>
     </message>
@@ -708,22 +778,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="204" />
+      <location filename="../../app/main_window.py" line="214" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="230" />
+      <location filename="../../app/main_window.py" line="243" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="209" />
+      <location filename="../../app/main_window.py" line="219" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="211" />
+      <location filename="../../app/main_window.py" line="221" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -733,7 +803,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="204" />
+      <location filename="../../app/main_window.py" line="214" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -798,14 +868,19 @@ BIRAK</translation>
       <translation>Dur</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="93" />
+      <location filename="../../app/widgets/status_header.py" line="100" />
       <source>Stop and disable the drives?</source>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="18" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Stopping</source>
       <translation>Duruyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="51" />
+      <source>Tap a value to change it. Lengths are the tool's Z offset, used by G43. Touch off: jog the tool tip onto a surface and enter its height in the active work coordinates.</source>
+      <translation>Değiştirmek için bir değere dokunun. Boy, takımın G43 ile kullanılan Z ofsetidir. Dokunarak ölçme: takım ucunu bir yüzeye getirin ve yüzeyin etkin iş koordinatlarındaki yüksekliğini girin.</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="29" />
@@ -843,14 +918,39 @@ BIRAK</translation>
       <translation>Zaman</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="18" />
+      <location filename="../../app/pages/tools.py" line="28" />
+      <source>Tool</source>
+      <translation>Takım</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Tool change</source>
       <translation>Takım değişimi</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="140" />
+      <source>Tool: {0}</source>
+      <translation>Takım: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/__init__.py" line="30" />
+      <source>Tools</source>
+      <translation>Takımlar</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="61" />
+      <source>Touch off length</source>
+      <translation>Boyu dokunarak ölç</translation>
     </message>
     <message>
       <location filename="../../app/pages/part_zero.py" line="57" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="158" />
+      <source>Touch off {0}: work Z of the surface the tip touches</source>
+      <translation>{0} dokunarak ölç: ucun değdiği yüzeyin iş Z'si</translation>
     </message>
     <message>
       <location filename="../../app/pages/part_zero.py" line="89" />
@@ -866,6 +966,31 @@ BIRAK</translation>
       <location filename="../../app/widgets/tracking_view.py" line="60" />
       <source>Tracking (reference − actual), Eq. 18</source>
       <translation>Takip (referans − gerçek), Denklem 18</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="109" />
+      <source>T{0}</source>
+      <translation>T{0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="136" />
+      <source>T{0} is already in the table.</source>
+      <translation>T{0} tabloda zaten var.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="116" />
+      <source>T{0}: diameter (mm)</source>
+      <translation>T{0}: çap (mm)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="115" />
+      <source>T{0}: length Z (mm)</source>
+      <translation>T{0}: boy Z (mm)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="114" />
+      <source>T{0}: pocket</source>
+      <translation>T{0}: cep</translation>
     </message>
     <message>
       <location filename="../../app/widgets/service_gate.py" line="31" />
@@ -933,6 +1058,11 @@ BIRAK</translation>
       <translation>hayır</translation>
     </message>
     <message>
+      <location filename="../../app/format.py" line="43" />
+      <source>none</source>
+      <translation>yok</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/bus_view.py" line="64" />
       <source>not connected</source>
       <translation>bağlı değil</translation>
@@ -973,7 +1103,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="151" />
+      <location filename="../../app/main_window.py" line="157" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
@@ -986,6 +1116,11 @@ BIRAK</translation>
       <location filename="../../app/pages/program.py" line="162" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="170" />
+      <source>{0} is not a tool table in the program folders</source>
+      <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
       <location filename="../../app/pages/part_zero.py" line="82" />

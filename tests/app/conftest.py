@@ -40,7 +40,7 @@ class ScriptedDialogs(Dialogs):
         self.asked.append(("text", label))
         return self._next(None)
 
-    def ask_open_file(self, parent, directory, folders=None):  # type: ignore[override]
+    def ask_open_file(self, parent, directory, folders=None, suffixes=None):  # type: ignore[override]
         self.asked.append(("open", directory))
         return self._next(None)
 

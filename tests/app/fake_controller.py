@@ -33,6 +33,7 @@ from app.machine.model import (
 )
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
+from planner.tools import Tool, ToolTable
 
 
 class FakeController(QObject):
@@ -52,6 +53,7 @@ class FakeController(QObject):
     homedChanged = Signal(object)
     offsetsChanged = Signal(object, str)
     spindleChanged = Signal(object)
+    toolsChanged = Signal(object, int)
     busStateChanged = Signal(object)
     trackingUpdated = Signal(object)
     trackingSample = Signal(float, object, object)
@@ -78,6 +80,8 @@ class FakeController(QObject):
         self.single_block = False
         self.optional_stop = False
         self.spindle = SpindleState()
+        self.tool_table = ToolTable()
+        self.tool_in_spindle = 0
         self.alarms: tuple[Alarm, ...] = ()
         self.bus_status = BusStatus(kind="sim", connected=True, state="op",
                                     drive_states=("operation enabled",) * n)
@@ -275,6 +279,28 @@ class FakeController(QObject):
         self.spindle = SpindleState(0, self.spindle.rpm)
         self.spindleChanged.emit(self.spindle)
         return self._ok("spindle_off")
+
+    def _tools(self, table: ToolTable, in_spindle: int) -> None:
+        self.tool_table, self.tool_in_spindle = table, in_spindle
+        self.toolsChanged.emit(table, in_spindle)
+
+    def set_tool(self, tool: Tool) -> CommandResult:
+        self._tools(self.tool_table.with_tool(tool), self.tool_in_spindle)
+        return self._ok("set_tool", tool)
+
+    def remove_tool(self, number: int) -> CommandResult:
+        self._tools(self.tool_table.without(number), self.tool_in_spindle)
+        return self._ok("remove_tool", number)
+
+    def set_tool_in_spindle(self, number: int) -> CommandResult:
+        self._tools(self.tool_table, number)
+        return self._ok("set_tool_in_spindle", number)
+
+    def touch_off_tool(self, number: int, surface_z_mm: float = 0.0) -> CommandResult:
+        return self._ok("touch_off_tool", number, surface_z_mm)
+
+    def import_tool_table(self, path: str) -> CommandResult:
+        return self._ok("import_tool_table", path)
 
     def spindle_speed(self, rpm: float) -> CommandResult:
         self.spindle = replace(self.spindle, rpm=rpm)

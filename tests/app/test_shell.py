@@ -32,7 +32,7 @@ def test_navigation_reaches_every_page(fake_window, dialogs) -> None:
         window = fake_window
         window.show_page(info.name)
         assert window.current_page_name == info.name
-    assert len(PAGES) == 10
+    assert len(PAGES) == 11
 
 
 def test_navigation_buttons_are_touch_sized(fake_window) -> None:

@@ -17,6 +17,7 @@ from app.machine.config import load_config, save_config
 from app.machine.controller import TRANSITIONS, MachineController
 from app.machine.errors import MachineError
 from app.machine.model import Activity, MachineState, Severity
+from planner.tools import Tool
 from tests.machine.conftest import make_controller, run_to_idle, trace
 
 SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"
@@ -313,14 +314,17 @@ def test_incremental_jog(ctl: MachineController) -> None:
     ("G4 P2", "G4 dwells between the moves of a program"),
     ("M0", "M0 pauses a running program"),
     ("M1", "M1 pauses a running program"),
-    ("M6 T5", "M6 tool change is not available"),
-    ("T5", "T selects the tool for M6"),
+    ("M6 T5", "M6 runs in a program; in MDI put the tool in by hand"),
+    ("T5", "T selects the tool for a program's M6"),
+    ("M61 Q9", "tool T9 is not in the tool table"),
+    ("G43 H9 G0 Z1", "tool T9 is not in the tool table"),
     ("M8", "no coolant output"),
 ])
 def test_mdi_refuses_what_it_cannot_do_with_the_reason(ctl: MachineController, block: str,
                                                        reason: str) -> None:
     """Every MDI block does what it says or is refused saying why: nothing returns OK and
     silently does nothing, and a value over a limit names the limit, as the buttons do."""
+    assert ctl.set_tool(Tool(5, 5, (("Z", 12.5),), 6.0, "flat"))
     spindle_before = ctl.spindle
     refused: list[tuple[str, str]] = []
     ctl.commandRefused.connect(lambda action, why: refused.append((action, why)))
@@ -659,9 +663,11 @@ def test_a_tool_change_stops_the_spindle_and_cycle_start_brings_it_back_at_speed
     motion waits the spin-up time before the next move."""
     from app.machine.model import HoldKind
 
+    assert ctl.set_tool(Tool(2, 2, (("Z", 0.0),), 6.0, "6 mm flat"))
     start(ctl, "M3 S1000\nG0 X10 Y0\nT2 M6\nG1 X20 F600\nM30\n")
     assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 10)
     assert ctl.hold_kind is HoldKind.TOOL_CHANGE and "insert tool T2" in ctl.state_reason
+    assert ctl.tool_in_spindle == 0                                # not before the operator says so
     assert ctl.prompt is not None and (ctl.prompt.kind, ctl.prompt.line, ctl.prompt.tool) == (
         HoldKind.TOOL_CHANGE, 3, 2)
     assert ctl.current_line == 3                                   # the M6 line, not the next move
@@ -679,6 +685,7 @@ def test_a_tool_change_stops_the_spindle_and_cycle_start_brings_it_back_at_speed
     assert ctl.run_until(lambda: ctl.reference_position[0] > 10.0, 1.0)
     run_to_idle(ctl)
     assert ctl.reference_position[0] == 20.0 and not ctl.spindle.on
+    assert ctl.tool_in_spindle == 2
 
 
 def test_a_program_waits_for_the_spindle_to_reach_speed_before_cutting(ctl: MachineController) -> None:

@@ -78,10 +78,12 @@ def test_the_spindle_is_off_within_a_second(tmp_path: Path, capsys, op: str) -> 
 def test_a_tool_change_prompts_stops_the_spindle_and_continues_when_the_tool_is_in(tmp_path: Path,
                                                                                    capsys) -> None:
     program = "G21 G90\nM3 S1000\nG0 X10 Y0\nT2 M6\nM3 S1000\nG1 X20 F600\nM30\n"
-    code, out, tr = run(tmp_path, capsys, program, [{"after_s": 6.0, "op": "tool_changed"}])
+    (tmp_path / "t.tbl").write_text("T2 P2 Z0 D6 ;6 mm flat\n")
+    code, out, tr = run(tmp_path, capsys, program, [{"after_s": 6.0, "op": "tool_changed"}],
+                        "--tools", str(tmp_path / "t.tbl"))
     assert code == 0 and out["completed"], out
-    assert out["prompts"] == [{"line": 4, "kind": "tool_change", "tool": 2,
-                               "text": "tool change (M06 T2, line 4): insert tool T2 and press cycle start"}]
+    text = "tool change (M06, line 4): insert tool T2 (6 mm flat) and press cycle start"
+    assert out["prompts"] == [{"line": 4, "kind": "tool_change", "tool": 2, "text": text}]
     t, rpm, line = tr["t"], tr["spindle_rpm"], tr["line"]
     fired = out["actions"][0]["t_s"]
     waiting = np.flatnonzero((line == 4) & (t < fired))   # the M6 line stays highlighted meanwhile

@@ -1,0 +1,116 @@
+"""The controller's tool table and tool in the spindle: edited, persisted, read by programs
+(G43 at check time), and safe when its file is damaged."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from app.machine.controller import MachineController
+from app.machine.model import MachineState
+from planner.tools import Tool
+from tests.machine.conftest import make_controller, run_to_idle
+
+T1 = Tool(1, 1, (("Z", 40.0),), 6.0, "6 mm flat")
+
+
+def test_g43_moves_by_the_tools_length_and_a_table_change_rechecks_the_program(
+        ctl: MachineController) -> None:
+    assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+    assert ctl.load_program("G43\nG0 Z5\nM30\n", wait=True)
+    assert ctl.cycle_start(wait=True)
+    run_to_idle(ctl)
+    assert ctl.reference_position[2] == pytest.approx(45.0)          # 5 above the work, 40 mm tool
+    assert ctl.mdi("G0 Z0") and run_to_idle(ctl) is None
+    assert ctl.set_tool(T1.with_offset("Z", 20.0))
+    assert "tool table changed" in ctl.loader.program_stale()
+    assert ctl.cycle_start(wait=True)                               # checked again, then run
+    run_to_idle(ctl)
+    assert ctl.reference_position[2] == pytest.approx(25.0)
+
+
+def test_a_program_with_an_unknown_tool_is_refused_at_its_line(ctl: MachineController) -> None:
+    r = ctl.load_program("G0 Z5\nT3 M6\nM30\n", wait=True)
+    assert not r and "T3 is not in the tool table" in r.reason
+    assert ctl.program_info is None
+
+
+def test_the_table_and_the_tool_in_the_spindle_survive_a_restart(qapp, config_path: Path,
+                                                                state_dir: Path) -> None:
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1) and ctl.set_tool(Tool(7, 3, (("Z", -1.5),), 3.0, "ball"))
+        assert ctl.load_program("T7 M6\nG0 X1\nM30\n", wait=True) and ctl.cycle_start(wait=True)
+        assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 5)
+        assert ctl.cycle_start()                                   # the tool is in
+        run_to_idle(ctl)
+        assert ctl.tool_in_spindle == 7
+    finally:
+        ctl.shutdown()
+    assert (state_dir / "tools.tbl").read_text() == "T1 P1 Z40 D6 ;6 mm flat\nT7 P3 Z-1.5 D3 ;ball\n"
+    again = make_controller(config_path, state_dir)
+    try:
+        assert [t.number for t in again.tool_table] == [1, 7] and again.tool_in_spindle == 7
+    finally:
+        again.shutdown()
+
+
+def test_a_damaged_tool_table_is_set_aside_and_said_never_guessed(qapp, config_path: Path,
+                                                                 state_dir: Path) -> None:
+    (state_dir / "tools.tbl").write_text("T1 P1 Z40\nT1 Z3\n")
+    (state_dir / "tool.json").write_text('{"in_spindle": 1}')
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert len(ctl.tool_table) == 0 and ctl.tool_in_spindle == 0
+        texts = [a.cause for a in ctl.alarms]
+        assert any("tools.tbl:2: T1 is given twice" in t and "moved aside" in t for t in texts), texts
+        assert list(state_dir.glob("tools.tbl.damaged-*"))
+        assert not ctl.load_program("G43 H1\nG0 Z5\n", wait=True)   # no silent zero offset
+    finally:
+        ctl.shutdown()
+
+
+def test_touch_off_sets_the_length_so_the_work_z_reads_the_surface(ctl: MachineController) -> None:
+    assert ctl.set_tool(T1)
+    assert ctl.set_work_offset("G54", (0.0, 0.0, -50.0))
+    assert ctl.mdi("G53 G0 Z-20") and run_to_idle(ctl) is None
+    assert ctl.touch_off_tool(1, 2.0)                               # the tip on a 2 mm block
+    assert ctl.tool_table.get(1).length_mm == pytest.approx(-20.0 + 50.0 - 2.0)   # 28 mm
+    assert not ctl.touch_off_tool(9)
+
+
+def test_the_table_cannot_change_while_a_program_runs(ctl: MachineController) -> None:
+    assert ctl.set_tool(T1)
+    assert ctl.load_program("G1 X50 F600\nM30\n", wait=True) and ctl.cycle_start(wait=True)
+    ctl.advance(0.2)
+    for r in (ctl.set_tool(T1.with_offset("Z", 1.0)), ctl.remove_tool(1), ctl.set_tool_in_spindle(1),
+              ctl.touch_off_tool(1)):
+        assert not r and "while the machine is running" in r.reason
+    assert ctl.tool_table.get(1) == T1
+    run_to_idle(ctl)
+
+
+def test_the_tool_in_the_spindle_cannot_be_removed_and_m61_in_mdi_sets_it(ctl: MachineController) -> None:
+    assert ctl.set_tool(T1)
+    assert ctl.mdi("M61 Q1") and ctl.tool_in_spindle == 1
+    r = ctl.remove_tool(1)
+    assert not r and "in the spindle" in r.reason
+    assert ctl.mdi("M61 Q0") and ctl.remove_tool(1) and len(ctl.tool_table) == 0
+
+
+def test_importing_a_tbl_replaces_the_table_or_nothing(ctl: MachineController, tmp_path: Path) -> None:
+    good, bad = tmp_path / "good.tbl", tmp_path / "bad.tbl"
+    good.write_text("T4 P4 Z12.5 D8 ;8 mm\nT5 P5 Z3 ;drill\n")
+    bad.write_text("T6 P6 Z1\nT7 P7 K2\n")
+    assert ctl.import_tool_table(str(good)) and [t.number for t in ctl.tool_table] == [4, 5]
+    r = ctl.import_tool_table(str(bad))
+    assert not r and "bad.tbl:2:7: K is not a tool table word" in r.reason
+    assert [t.number for t in ctl.tool_table] == [4, 5]
+
+
+def test_a_program_without_motion_is_refused_not_left_running(ctl: MachineController) -> None:
+    assert ctl.set_tool(T1)
+    r = ctl.load_program("T1 M6\nM30\n", wait=True)
+    assert not r and "moves no axis" in r.reason and ctl.program_info is None
+    assert ctl.state is MachineState.IDLE
