@@ -107,6 +107,8 @@ class MainWindow(QMainWindow):
                 self._stack.addWidget(page)
 
         self._message = QLabel()
+        self.statusBar().setFixedHeight(52)
+        self.statusBar().addWidget(self.header.alarm_banner, 2)
         self.statusBar().addWidget(self._message, 1)
         self._program_label = QLabel()
         self._program_label.setMinimumWidth(220)

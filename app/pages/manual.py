@@ -41,6 +41,7 @@ class ManualPage(QWidget):
         self.jog.jogStop.connect(lambda axis: c.jog_stop(axis or None))
         self.jog.jogStep.connect(lambda axis, step, d: c.jog_increment(axis, step, d))
         layout.addWidget(jog_box, 1)
+        self.jog_box = jog_box
 
         right = QVBoxLayout()
         spindle_box = QGroupBox()
@@ -96,7 +97,7 @@ class ManualPage(QWidget):
         self.mdi_send.clicked.connect(self.send_mdi)
         self.mdi_line.returnPressed.connect(self.send_mdi)
         self.history.itemClicked.connect(lambda item: self.mdi_line.setText(item.text()))
-        self.keyboard_button.toggled.connect(self.keyboard.setVisible)
+        self.keyboard_button.toggled.connect(self._show_keyboard)
         c.spindleChanged.connect(self._on_spindle)
         i18n.languageChanged.connect(lambda _l: self._on_spindle(c.spindle))
         self._on_spindle(c.spindle)
@@ -119,6 +120,12 @@ class ManualPage(QWidget):
             self.history.clear()
             self.history.addItems(history)
             self.mdi_line.clear()
+
+    def _show_keyboard(self, on: bool) -> None:
+        """The keyboard takes the jog panel's place while it is open: beside the jog panel it
+        would not fit in 1280 px, and nobody jogs while typing a block."""
+        self.jog_box.setVisible(not on)
+        self.keyboard.setVisible(on)
 
     def _on_spindle(self, spindle: object) -> None:
         direction = int(getattr(spindle, "direction", 0))

@@ -31,6 +31,9 @@ class OnScreenKeyboard(QWidget):
         self.setObjectName("onScreenKeyboard")
         self._target: QWidget | None = None
         self.lower = False  # "Aa" switches the letters to lower case (passwords, file names)
+        # keys without the theme's wide padding: 13 keys a row fit beside the navigation in
+        # 1280 px (with it the keyboard asked for 1600 px and pushed E-STOP off the screen)
+        self.setStyleSheet("QPushButton { padding: 0px 2px; min-width: 48px; }")
         grid = QGridLayout(self)
         grid.setSpacing(4)
         grid.setContentsMargins(0, 0, 0, 0)

@@ -59,10 +59,11 @@ class StatusHeader(QWidget):
         self.estop_button.clicked.connect(self._estop_clicked)
         row.addWidget(self.estop_button)
         outer.addLayout(row)
+        # the window puts the banner in its status bar (fixed height): an alarm appearing never
+        # moves a control, so a tap lands where the operator aimed
         self.alarm_banner = QPushButton()
         self.alarm_banner.setObjectName("alarmBanner")
         self.alarm_banner.setVisible(False)
-        outer.addWidget(self.alarm_banner)
 
         self._state = c.state
         self._bus = c.bus_status
