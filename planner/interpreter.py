@@ -82,6 +82,7 @@ _G_UNSUPPORTED = {
     990: "G99 canned return", 150: "G15 polar coordinates", 160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
 }
+_SHOWN_GROUPS = frozenset({2, 3, 6, 7, 8, 12, 13})  # the modal groups the panel shows
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
 _WORD_LETTERS = set("FSTPQRIJKDH")
 _AXIS_LETTERS = "XYZABC"
@@ -189,6 +190,10 @@ class _Interpreter:
         self.recs: list[tuple] = []
         self.offset_changes: list[tuple[int, tuple[float, ...]]] = [(0, self.offset)]  # (first move, offset)
         self.events: list[Event] = []
+        self.work_code = 540
+        self.comp_code = 400
+        self.tlo_code = 490
+        self.modal_changes: list[tuple[int, str]] = [(0, self.modal_text())]
         self.errors: list[SourceError] = []
         self.truncated = False
         self.ended = False
@@ -353,6 +358,24 @@ class _Interpreter:
         i = code.find(letter)
         return original_column(raw, i) if i >= 0 else 1
 
+    def modal_text(self) -> str:
+        """The modal codes as LinuxCNC's panels list them (motion mode aside)."""
+        return " ".join((
+            _PLANE_G[self.plane], "G20" if self.inch else "G21", "G90" if self.absolute else "G91", "G94",
+            _gname(self.work_code), _gname(self.comp_code), _gname(self.tlo_code),
+            "G61" if self.exact_stop else "G64",
+        ))
+
+    def note_modal(self) -> None:
+        text = self.modal_text()
+        first = len(self.recs)
+        if self.modal_changes[-1][1] == text:
+            return
+        if self.modal_changes[-1][0] == first:
+            self.modal_changes[-1] = (first, text)
+        else:
+            self.modal_changes.append((first, text))
+
     def known_tool(self, number: int, letter: str) -> int:
         """``number`` if the tool table has it (T0, the empty spindle, always)."""
         if number and self.tools is not None and number not in self.tools:
@@ -437,6 +460,7 @@ class _Interpreter:
             start_position=start,
             move_offsets=offsets,
             line_count=line_count,
+            modal=tuple(self.modal_changes),
         )
 
     # ------------------------------------------------------------------ one block
@@ -676,6 +700,11 @@ class _Interpreter:
             self.tool_length(groups[8], vals, axis_words_offset, scale)
         if 12 in groups:
             self.set_offset(work=self.work_offsets[groups[12]])
+            self.work_code = groups[12]
+        if 7 in groups:
+            self.comp_code = groups[7]
+        if 8 in groups:
+            self.tlo_code = groups[8]
         if 13 in groups:
             self.exact_stop = groups[13] == 610
         if 3 in groups:
@@ -684,6 +713,8 @@ class _Interpreter:
             self.arc_absolute = groups[4] == 901
         if g1 is not None:
             self.motion = None if g1 == 800 else g1
+        if not groups.keys().isdisjoint(_SHOWN_GROUPS):
+            self.note_modal()
 
         # ---- motion
         if g0 == 280:

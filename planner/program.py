@@ -274,6 +274,18 @@ class Program:
     # Additions (not in the minimal contract):
     move_offsets: np.ndarray | None = None  # (n_moves, n_axes) work offset active per move
     line_count: int = 0  # number of source lines
+    # the active modal codes as the operator reads them ("G17 G21 G90 G94 G54 G40 G49 G64"),
+    # from move ``first`` on: ((first, text), ...) at each change
+    modal: tuple[tuple[int, str], ...] = ()
+
+    def modal_at_move(self, index: int) -> str:
+        """The modal codes in force for move ``index`` ("" when not recorded)."""
+        text = ""
+        for first, t in self.modal:
+            if first > index:
+                break
+            text = t
+        return text
 
     @property
     def end_position(self) -> np.ndarray:

@@ -3,6 +3,7 @@ run from line, feed and rapid override, current line kept in view, progress and 
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6.QtWidgets import (
     QGridLayout,
     QHBoxLayout,
@@ -15,7 +16,7 @@ from PySide6.QtWidgets import (
 
 from app import deferred
 from app.context import PanelContext
-from app.format import format_duration, format_speed
+from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
 from app.widgets.code_editor import CodeEditor
 from app.widgets.override_control import OverrideControl
@@ -103,11 +104,27 @@ class AutoPage(QWidget):
         self.info_label.setObjectName("runInfo")
         self.info_label.setWordWrap(True)
         right.addWidget(self.info_label)
+        # what the machine does and is set to: spindle, feed, tool, the modal codes in force
+        self.machine_label = QLabel()
+        self.machine_label.setObjectName("machineInfo")
+        self.machine_label.setWordWrap(True)
+        right.addWidget(self.machine_label)
+        # what a program stop asks of the operator (tool change, M0), in words
+        self.prompt_label = QLabel()
+        self.prompt_label.setObjectName("promptLabel")
+        self.prompt_label.setWordWrap(True)
+        self.prompt_label.setStyleSheet("background: #a86b00; color: white; font-weight: 700; padding: 6px;")
+        self.prompt_label.hide()
+        right.addWidget(self.prompt_label)
         right.addStretch(1)
         layout.addLayout(right, 2)
 
         self._fraction, self._remaining, self._speed, self._line = 0.0, float("nan"), 0.0, 0
         self._refused = ""
+        self._finished = ""
+        self._move_lines = np.zeros(0, dtype=np.int64)
+        self._spindle = c.spindle
+        self._tools, self._tool = c.tool_table, c.tool_in_spindle
         c.programLoaded.connect(self._on_loaded)
         if hasattr(c, "loadingChanged"):
             c.loadingChanged.connect(self._on_loading)
@@ -116,6 +133,11 @@ class AutoPage(QWidget):
         c.speedChanged.connect(self._on_speed)
         c.overridesChanged.connect(self._on_overrides)
         c.modesChanged.connect(self._on_modes)
+        c.spindleChanged.connect(self._on_spindle)
+        c.toolsChanged.connect(self._on_tools)
+        c.stateChanged.connect(self._on_state)
+        c.programFinished.connect(self._on_finished)
+        c.programErrors.connect(self._on_errors)
         for signal in (c.stateChanged, c.homedChanged, c.programErrors, c.alarmsChanged):
             signal.connect(lambda *_: self._update_buttons())
         context.program.changed.connect(self._on_program_model)
@@ -167,6 +189,10 @@ class AutoPage(QWidget):
         self.program_label.setText(str(getattr(info, "name", "")))
         self._remaining = float(getattr(info, "cycle_time_s", float("nan")))
         self._fraction = 0.0
+        self._finished = ""
+        program = getattr(info, "program", None)
+        moves = getattr(program, "moves", ())
+        self._move_lines = np.fromiter((m.line for m in moves), dtype=np.int64, count=len(moves))
         self.progress.setValue(0)
         self._update_info()
         self._update_buttons()
@@ -213,12 +239,72 @@ class AutoPage(QWidget):
         self.single_block.setChecked(single_block)
         self.optional_stop.setChecked(optional_stop)
 
+    def _on_spindle(self, spindle: object) -> None:
+        self._spindle = spindle
+        self._update_info()
+
+    def _on_tools(self, table: object, in_spindle: int) -> None:
+        self._tools, self._tool = table, int(in_spindle)
+        self._update_info()
+
+    def _on_state(self, _state: object, _reason: str) -> None:
+        prompt = getattr(self.ctx.controller, "prompt", None)
+        text = str(getattr(prompt, "text", "")) if prompt is not None else ""
+        self.prompt_label.setText(text[:1].upper() + text[1:])
+        self.prompt_label.setVisible(bool(text))
+        if str(getattr(_state, "value", "")) == "running":
+            self._finished = ""
+            self._update_info()
+
+    def _on_finished(self, summary: object) -> None:
+        if getattr(summary, "completed", False):
+            self._finished = tr("Program finished in {0}").format(
+                format_duration(float(getattr(summary, "cycle_time_s", float("nan")))))
+            self._fraction, self._remaining = 1.0, 0.0
+            self.progress.setValue(1000)
+        else:
+            self._finished = tr("Program stopped at line {0}: {1}").format(
+                int(getattr(summary, "last_line", 0)), str(getattr(summary, "reason", "")))
+        self._update_info()
+
+    def _on_errors(self, _issues: object) -> None:
+        """A refused load: the previous program's progress is not this program's."""
+        self._fraction, self._remaining, self._line, self._finished = 0.0, float("nan"), 0, ""
+        self._move_lines = np.zeros(0, dtype=np.int64)
+        self.progress.setValue(0)
+        self._update_info()
+
+    def _programmed_feed_and_modal(self) -> tuple[float, str]:
+        """F (mm/min) and the modal codes of the move at the current line (0, "" if none)."""
+        info = self.ctx.controller.program_info
+        program = getattr(info, "program", None)
+        if program is None or not len(self._move_lines):
+            return 0.0, ""
+        i = int(np.searchsorted(self._move_lines, max(self._line, 1), side="left"))
+        i = min(i, len(self._move_lines) - 1)
+        move = program.moves[i]
+        feed = float(move.feed_mm_s) * 60.0 if np.isfinite(move.feed_mm_s) else 0.0
+        return feed, program.modal_at_move(i)
+
     def _update_info(self) -> None:
         text = tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
             self._line, 100 * self._fraction, format_duration(self._remaining), format_speed(self._speed))
+        if self._finished:
+            text += "\n" + self._finished
         if self._refused:
             text += "\n" + self._refused
         self.info_label.setText(text)
+        sp = self._spindle
+        direction = int(getattr(sp, "direction", 0))
+        rpm = float(getattr(sp, "rpm", 0.0))
+        spindle = (tr("Spindle off") if direction == 0 else
+                   tr("Spindle {0} {1:.0f} rpm").format(tr("CW") if direction > 0 else tr("CCW"), rpm))
+        feed, modal = self._programmed_feed_and_modal()
+        lines = [spindle + "   " + tr("Tool {0}").format(tool_text(self._tools, self._tool)),
+                 tr("Feed F{0:.0f} programmed, {1} now").format(feed, format_speed(self._speed))]
+        if modal:
+            lines.append(modal)
+        self.machine_label.setText("\n".join(lines))
 
     def _update_buttons(self) -> None:
         c = self.ctx.controller

@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="144" />
+      <location filename="../../app/widgets/status_header.py" line="149" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="145" />
+      <location filename="../../app/widgets/status_header.py" line="150" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -114,27 +114,27 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="134" />
+      <location filename="../../app/widgets/status_header.py" line="136" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="126" />
+      <location filename="../../app/pages/auto.py" line="301" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="51" />
+      <location filename="../../app/pages/manual.py" line="52" />
       <source>CCW (M04)</source>
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="126" />
+      <location filename="../../app/pages/auto.py" line="301" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="51" />
+      <location filename="../../app/pages/manual.py" line="52" />
       <source>CW (M03)</source>
       <translation>Sağ (M03)</translation>
     </message>
@@ -154,17 +154,17 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="155" />
+      <location filename="../../app/main_window.py" line="161" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="102" />
+      <location filename="../../app/widgets/status_header.py" line="104" />
       <source>Connect</source>
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="102" />
+      <location filename="../../app/widgets/status_header.py" line="104" />
       <source>Connect to the drives and enable them?</source>
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
@@ -184,12 +184,12 @@
       <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="25" />
+      <location filename="../../app/pages/auto.py" line="26" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="138" />
+      <location filename="../../app/pages/auto.py" line="160" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -249,7 +249,7 @@
       <translation>Vazgeç</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="100" />
+      <location filename="../../app/widgets/status_header.py" line="102" />
       <source>Disconnect</source>
       <translation>Bağlantıyı kes</translation>
     </message>
@@ -264,7 +264,7 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="139" />
+      <location filename="../../app/widgets/status_header.py" line="141" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -284,12 +284,17 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="26" />
+      <location filename="../../app/pages/auto.py" line="304" />
+      <source>Feed F{0:.0f} programmed, {1} now</source>
+      <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="27" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="90" />
+      <location filename="../../app/pages/auto.py" line="91" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -314,7 +319,7 @@
       <translation>Sığdır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="75" />
+      <location filename="../../app/pages/manual.py" line="76" />
       <source>G-code block, e.g. G01 X10 F600</source>
       <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
     </message>
@@ -409,7 +414,7 @@
       <translation>Elle hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="80" />
+      <location filename="../../app/pages/manual.py" line="81" />
       <source>Keyboard</source>
       <translation>Klavye</translation>
     </message>
@@ -424,10 +429,10 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="217" />
+      <location filename="../../app/pages/auto.py" line="290" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
-      <translation>Satır {0}   İlerleme %{1:.0f}
+      <translation>Satır {0}   Tamamlanan %{1:.0f}
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
@@ -446,7 +451,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Servis seviyesini kilitle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="70" />
+      <location filename="../../app/pages/manual.py" line="71" />
       <source>MDI</source>
       <translation>MDI</translation>
     </message>
@@ -491,7 +496,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="154" />
+      <location filename="../../app/pages/auto.py" line="176" />
       <source>Move to the start of line {0} and run the program from there?</source>
       <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
     </message>
@@ -546,7 +551,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Tamam</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="51" />
+      <location filename="../../app/pages/manual.py" line="52" />
       <source>Off (M05)</source>
       <translation>Kapalı (M05)</translation>
     </message>
@@ -566,7 +571,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="79" />
+      <location filename="../../app/pages/auto.py" line="80" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -646,12 +651,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="169" />
+      <location filename="../../app/pages/auto.py" line="261" />
+      <source>Program finished in {0}</source>
+      <translation>Program {0} sürede bitti</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="175" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="182" />
+      <location filename="../../app/main_window.py" line="188" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -661,7 +671,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="139" />
+      <location filename="../../app/pages/auto.py" line="266" />
+      <source>Program stopped at line {0}: {1}</source>
+      <translation>Program {0}. satırda durdu: {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="141" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -678,7 +693,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="93" />
+      <location filename="../../app/pages/auto.py" line="94" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -693,17 +708,17 @@ BIRAK</translation>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="115" />
+      <location filename="../../app/main_window.py" line="118" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="107" />
+      <location filename="../../app/widgets/status_header.py" line="109" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="108" />
+      <location filename="../../app/widgets/status_header.py" line="110" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -728,12 +743,12 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="149" />
+      <location filename="../../app/pages/auto.py" line="171" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="84" />
+      <location filename="../../app/pages/auto.py" line="85" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -768,7 +783,7 @@ BIRAK</translation>
       <translation>Programı farklı kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="77" />
+      <location filename="../../app/pages/manual.py" line="78" />
       <source>Send</source>
       <translation>Gönder</translation>
     </message>
@@ -778,22 +793,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="214" />
+      <location filename="../../app/main_window.py" line="220" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="243" />
+      <location filename="../../app/main_window.py" line="249" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="219" />
+      <location filename="../../app/main_window.py" line="225" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="221" />
+      <location filename="../../app/main_window.py" line="227" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -803,7 +818,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="214" />
+      <location filename="../../app/main_window.py" line="220" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -833,7 +848,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="75" />
+      <location filename="../../app/pages/auto.py" line="76" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -843,17 +858,27 @@ BIRAK</translation>
       <translation>Kaynak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="47" />
+      <location filename="../../app/pages/manual.py" line="48" />
       <source>Spindle</source>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="58" />
+      <location filename="../../app/pages/auto.py" line="300" />
+      <source>Spindle off</source>
+      <translation>İş mili durdu</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="59" />
       <source>Spindle speed</source>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="127" />
+      <location filename="../../app/pages/auto.py" line="301" />
+      <source>Spindle {0} {1:.0f} rpm</source>
+      <translation>İş mili {0} {1:.0f} dev/dk</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/manual.py" line="134" />
       <source>Spindle: {0}, {1:.0f} rpm</source>
       <translation>İş mili: {0}, {1:.0f} dev/dak</translation>
     </message>
@@ -863,12 +888,12 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="27" />
+      <location filename="../../app/pages/auto.py" line="28" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="100" />
+      <location filename="../../app/widgets/status_header.py" line="102" />
       <source>Stop and disable the drives?</source>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
     </message>
@@ -928,7 +953,12 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="140" />
+      <location filename="../../app/pages/auto.py" line="303" />
+      <source>Tool {0}</source>
+      <translation>Takım {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="142" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -1068,7 +1098,7 @@ BIRAK</translation>
       <translation>bağlı değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="126" />
+      <location filename="../../app/pages/manual.py" line="133" />
       <source>off</source>
       <translation>kapalı</translation>
     </message>
@@ -1103,7 +1133,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="157" />
+      <location filename="../../app/main_window.py" line="163" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>

@@ -328,3 +328,33 @@ def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> N
     _y, z = preview.plot.items[MoveKind.ARC].getData()
     assert z.max() == pytest.approx(5.0)
     assert [label.text()[0] for label in window.header.dro.axis_labels] == ["Y", "Z", "C", "A"]
+
+
+def test_auto_page_shows_spindle_feed_tool_modal_codes_and_the_prompt(fake_window, fake_controller) -> None:
+    from app.machine.model import HoldKind, MachineState, Prompt, RunSummary, SpindleState
+    from planner.tools import Tool
+
+    auto = fake_window.page("auto")
+    fake_controller.load_program("G21 G90 G17 G55\nM3 S8000\nG0 X1\nG1 X5 F900\nG91 G1 X1 F300\nM30\n",
+                                 wait=True)
+    fake_controller.set_tool(Tool(2, 2, (("Z", 1.0),), 6.0, "6 mm flat"))
+    fake_controller.set_tool_in_spindle(2)
+    fake_controller.spindle = SpindleState(1, 8000.0)
+    fake_controller.spindleChanged.emit(fake_controller.spindle)
+    fake_controller.lineChanged.emit(4)
+    text = auto.machine_label.text()
+    assert "Spindle CW 8000 rpm" in text and "Tool T2 (6 mm flat)" in text
+    assert "Feed F900 programmed" in text and "G17 G21 G90 G94 G55 G40 G49 G64" in text
+    fake_controller.lineChanged.emit(5)
+    assert "Feed F300 programmed" in auto.machine_label.text() and "G91" in auto.machine_label.text()
+    fake_controller.prompt = Prompt(HoldKind.TOOL_CHANGE, 3, 2, "tool change (M06, line 3): insert tool T2 "
+                                    "(6 mm flat) and press cycle start")
+    fake_controller._set_state(MachineState.HOLD, "tool change", HoldKind.TOOL_CHANGE)
+    assert auto.prompt_label.isVisibleTo(fake_window)
+    assert auto.prompt_label.text().startswith("Tool change (M06, line 3): insert tool T2 (6 mm flat)")
+    fake_controller._set_state(MachineState.IDLE)
+    assert not auto.prompt_label.isVisibleTo(fake_window)
+    fake_controller.programFinished.emit(RunSummary("p", True, 754.0, 750.0, 6))
+    assert "Program finished in 12:34" in auto.info_label.text() and auto.progress.value() == 1000
+    fake_controller.programErrors.emit(())                      # a refused load: no stale progress
+    assert auto.progress.value() == 0 and "finished" not in auto.info_label.text()
