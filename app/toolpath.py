@@ -38,6 +38,9 @@ class ToolPath:
     move_lines: np.ndarray  # int32 (n_moves,), source line per move
     move_first_point: np.ndarray  # int (n_moves,), index of each move's first point in ``all``
     bounds: tuple[np.ndarray, np.ndarray]  # (min, max) per axis
+    # (n_moves, n_axes) offset subtracted from machine positions to draw each move in the
+    # program's (work) coordinates: work offset and tool length offset of that move
+    move_offsets: np.ndarray | None = None
 
     def column(self, name: str) -> int | None:
         return self.axes.index(name) if name in self.axes else None
@@ -124,23 +127,39 @@ def build_toolpath(program: Program) -> ToolPath:
         else:
             result[kind] = _empty(n_axes)
     result[MoveKind.ARC] = _arcs(program, np.flatnonzero(kinds == MoveKind.ARC))
+    offsets = program.move_offsets
+    if offsets is not None and len(moves):
+        # drawn in work coordinates (what the program says, where the operator set part zero)
+        offsets = np.asarray(offsets, dtype=float)
+        for kind, pl in list(result.items()):
+            if len(pl.points):
+                work = pl.points - offsets[pl.move_index]
+                result[kind] = Polylines(work, pl.connect, pl.move_index, pl.count)
     everything = _merge([result[k] for k in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)], n_axes)
     first_point = np.searchsorted(everything.move_index, np.arange(len(moves)))
     if len(everything.points):
         lo, hi = everything.points.min(axis=0), everything.points.max(axis=0)
     else:
         lo = hi = np.asarray(program.start_position, float)
-    return ToolPath(tuple(program.axes), result, everything, lines, first_point, (lo, hi))
+    return ToolPath(tuple(program.axes), result, everything, lines, first_point, (lo, hi), offsets)
 
 
 def nearest_move(path: ToolPath, cols: tuple[int | None, int | None], x: float,
                  y: float) -> tuple[int, float]:
     """Move index nearest to (x, y) in the projection on ``cols`` and its distance (-1 if none)."""
     pl = path.all
-    if len(pl.points) < 2:
-        return -1, math.inf
     px = pl.points[:, cols[0]] if cols[0] is not None else np.zeros(len(pl.points))
     py = pl.points[:, cols[1]] if cols[1] is not None else np.zeros(len(pl.points))
+    return nearest_projected(path, px, py, x, y)
+
+
+def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,
+                      y: float) -> tuple[int, float]:
+    """Move index nearest to (x, y) where ``px, py`` are the drawn coordinates of every point
+    (any projection: a plane or the 3-D view), and its distance (-1 if none)."""
+    pl = path.all
+    if len(pl.points) < 2:
+        return -1, math.inf
     seg = np.flatnonzero(pl.connect[:-1])
     ax, ay, bx, by = px[seg], py[seg], px[seg + 1], py[seg + 1]
     dx, dy = bx - ax, by - ay

@@ -20,6 +20,7 @@ from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
 from app.widgets.code_editor import CodeEditor
 from app.widgets.override_control import OverrideControl
+from app.widgets.preview_plot import PreviewPlot
 from app.widgets.touch import enable_kinetic_scrolling
 
 BUTTONS = (  # (key, label, object name, controller action for refusal())
@@ -54,7 +55,12 @@ class AutoPage(QWidget):
         left.addWidget(self.loading_bar)
         self.editor = CodeEditor(read_only=True)
         enable_kinetic_scrolling(self.editor)
-        left.addWidget(self.editor, 1)
+        left.addWidget(self.editor, 3)
+        # the backplot: the path (XY, work coordinates), what has been cut, where the tool is
+        self.backplot = PreviewPlot()
+        self.backplot.setObjectName("autoBackplot")
+        self.backplot.setMinimumHeight(160)
+        left.addWidget(self.backplot, 2)
         layout.addLayout(left, 3)
 
         right = QVBoxLayout()
@@ -137,6 +143,8 @@ class AutoPage(QWidget):
         c.toolsChanged.connect(self._on_tools)
         c.stateChanged.connect(self._on_state)
         c.programFinished.connect(self._on_finished)
+        c.positionChanged.connect(lambda _machine, work: self.backplot.set_tool_position(work))
+        context.program.changed.connect(lambda: self.backplot.set_toolpath(context.program.toolpath))
         c.programErrors.connect(self._on_errors)
         for signal in (c.stateChanged, c.homedChanged, c.programErrors, c.alarmsChanged):
             signal.connect(lambda *_: self._update_buttons())
@@ -144,6 +152,7 @@ class AutoPage(QWidget):
         i18n.languageChanged.connect(lambda _l: self._update_info())
         self._on_overrides(c.feed_override_pct, c.rapid_override_pct)
         self._on_modes(c.single_block, c.optional_stop)
+        self.backplot.set_toolpath(context.program.toolpath)
         if c.program_info is not None:
             self._on_loaded(c.program_info)
         if getattr(c, "loading", False):
@@ -220,6 +229,8 @@ class AutoPage(QWidget):
     def _on_line(self, line: int) -> None:
         self._line = line
         self.editor.set_run_line(line)
+        if line > 0 and self.ctx.program.toolpath is not None:
+            self.backplot.set_executed(self.ctx.program.move_at_line(line))
         self._update_info()
 
     def _on_progress(self, fraction: float, remaining_s: float) -> None:

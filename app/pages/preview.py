@@ -1,21 +1,16 @@
-"""Preview: the tool path drawn (arcs turquoise, lines green, rapids dashed), plane views,
-3-D where OpenGL is available, fit, live tool position and executed part, tap to pick a line."""
+"""Preview: the tool path drawn (arcs turquoise, lines green, rapids dashed) in work
+coordinates with the work zero and the machine's travel, plane views and a 3-D view (turned by
+touch buttons), fit, live tool position and executed part (Clear empties it), tap to pick a line."""
 
 from __future__ import annotations
 
-import importlib.util
-
+import numpy as np
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app.context import PanelContext
 from app.i18n import N_, tr
-from app.widgets.preview_plot import PLANES, PreviewPlot
+from app.widgets.preview_plot import PLANES, VIEW_3D, PreviewPlot
 from app.widgets.touch import exclusive_buttons
-
-
-def opengl_available() -> bool:
-    """pyqtgraph's 3-D view needs PyOpenGL; without it the 3-D button says why it is off."""
-    return importlib.util.find_spec("OpenGL") is not None
 
 
 class PreviewPage(QWidget):
@@ -27,10 +22,15 @@ class PreviewPage(QWidget):
         layout = QVBoxLayout(self)
         bar = QHBoxLayout()
         self.plane_group, self.plane_buttons = exclusive_buttons(
-            self, bar, ((plane, QPushButton(plane)) for plane in PLANES), self.set_plane)
-        self.view3d_button = QPushButton("3-D")
-        self.view3d_button.setEnabled(False)  # no 3-D without PyOpenGL (see note)
-        bar.addWidget(self.view3d_button)
+            self, bar, ((plane, QPushButton(plane)) for plane in (*PLANES, VIEW_3D)), self.set_plane)
+        self.view3d_button = self.plane_buttons[VIEW_3D]
+        self.turn_button = QPushButton("⟳ 45°")       # turn the 3-D view about Z
+        self.turn_button.clicked.connect(lambda: self.plot.rotate(45.0))
+        self.tilt_button = QPushButton("⤒ 15°")       # look from higher up (to the top view)
+        self.tilt_button.clicked.connect(lambda: self.plot.rotate(0.0, 15.0 if self.plot.elevation_deg < 90
+                                                                  else -90.0))
+        bar.addWidget(self.turn_button)
+        bar.addWidget(self.tilt_button)
         self.fit_button = QPushButton()
         i18n.bind(self.fit_button, N_("Fit"))
         bar.addWidget(self.fit_button)
@@ -38,13 +38,14 @@ class PreviewPage(QWidget):
         i18n.bind(self.show_line_button, N_("Show in program"))
         self.show_line_button.setEnabled(False)
         bar.addWidget(self.show_line_button)
+        self.clear_button = QPushButton()
+        i18n.bind(self.clear_button, N_("Clear"))
+        bar.addWidget(self.clear_button)
         bar.addStretch(1)
         layout.addLayout(bar)
         self.note = QLabel()
         self.note.setObjectName("previewNote")
         self.note.setWordWrap(True)
-        if not opengl_available():
-            i18n.bind(self.note, N_("3-D view off: PyOpenGL is not installed (pip install PyOpenGL)."))
         layout.addWidget(self.note)
         self.plot = PreviewPlot()
         layout.addWidget(self.plot, 1)
@@ -54,28 +55,58 @@ class PreviewPage(QWidget):
 
         self._picked_line = 0
         self.fit_button.clicked.connect(self.plot.fit)
+        self.clear_button.clicked.connect(self.plot.clear_backplot)
         self.show_line_button.clicked.connect(
             lambda: context.program.lineRequested.emit(self._picked_line))
         self.plot.moveTapped.connect(self._on_tapped)
         context.program.changed.connect(self._on_program)
-        context.controller.positionChanged.connect(
-            lambda machine, _work: self.plot.set_tool_position(machine))
+        context.controller.positionChanged.connect(self._on_position)
+        context.controller.offsetsChanged.connect(lambda *_: self._update_frame())
         context.controller.lineChanged.connect(self._on_line)
         context.controller.programFinished.connect(self._on_finished)
         axes = set(context.controller.axes)
         usable = [p for p, (a, b) in PLANES.items() if a in axes and b in axes]
         for plane, button in self.plane_buttons.items():
-            button.setEnabled(plane in usable or not usable)
+            button.setEnabled(plane in usable or not usable or plane == VIEW_3D)
+        i18n.languageChanged.connect(lambda _l: self._update_frame())
         self.set_plane(usable[0] if usable else "XY")  # e.g. YZ on the paper's Y-Z-C-A machine
         self._on_program()
 
     def set_plane(self, plane: str) -> None:
         self.plane_buttons[plane].setChecked(True)
         self.plot.set_plane(plane)
+        self.turn_button.setEnabled(plane == VIEW_3D)
+        self.tilt_button.setEnabled(plane == VIEW_3D)
+
+    def _work_offset(self) -> np.ndarray:
+        """What is subtracted from the machine position to draw the tool: the offsets of the
+        move being run (work and tool length, as the path), else the active work offset."""
+        c = self.ctx.controller
+        path = self.plot.path
+        k = self.plot._done_move
+        if path is not None and path.move_offsets is not None and 0 <= k < len(path.move_offsets):
+            return np.asarray(path.move_offsets[k], float)
+        return np.asarray(c.work_offsets.get(c.active_offset, (0.0,) * len(c.axes)), float)
+
+    def _on_position(self, machine: object, _work: object) -> None:
+        pos = np.asarray(machine, float)
+        self.plot.set_tool_position(pos - self._work_offset()[: len(pos)])
+
+    def _update_frame(self) -> None:
+        """The machine's travel in the active work coordinates, and the note saying so."""
+        c = self.ctx.controller
+        axes = c.config.machine.axes
+        offset = np.asarray(c.work_offsets.get(c.active_offset, (0.0,) * len(axes)), float)
+        lo = np.array([a.min_pos for a in axes]) - offset
+        hi = np.array([a.max_pos for a in axes]) - offset
+        self.plot.set_envelope(lo, hi)
+        self.note.setText(tr("Work coordinates ({0}): the cross is the work zero, the dashed box the "
+                             "machine's travel.").format(c.active_offset))
 
     def _on_program(self) -> None:
         self.plot.set_toolpath(self.ctx.program.toolpath)
-        self.plot.set_tool_position(self.ctx.controller.machine_position)
+        self._update_frame()
+        self._on_position(self.ctx.controller.machine_position, None)
         self.line_label.setText("")
         self.show_line_button.setEnabled(False)
 

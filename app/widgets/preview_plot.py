@@ -1,11 +1,16 @@
 """Tool path plot (pyqtgraph): arcs turquoise, lines green (paper Fig. 13a), rapids dashed.
 
 One PlotDataItem per move kind with a ``connect`` array, so a 35,000-line program is a few
-items. Plane views XY / XZ / YZ; pinch and drag to zoom and pan; tap a segment to pick its
-program line; the live tool position and the executed part drawn on top.
+items. Drawn in work coordinates (the program's), with the work zero marked and the machine's
+travel dashed. Plane views XY / XZ / YZ and a 3-D view (an orthographic projection turned by
+azimuth and elevation: no OpenGL needed); pinch and drag to zoom and pan; tap a segment to
+pick its program line; the live tool position and the executed part drawn on top (Clear
+empties the executed part).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pyqtgraph as pg
@@ -13,7 +18,7 @@ from PySide6.QtCore import QEvent, QPointF, Qt, Signal
 from PySide6.QtGui import QColor, QPen
 from PySide6.QtWidgets import QGestureEvent, QPinchGesture, QWidget
 
-from app.toolpath import ToolPath, nearest_move
+from app.toolpath import ToolPath, nearest_projected
 from planner.program import MoveKind
 
 ARC_COLOR = QColor(64, 224, 208)     # turquoise
@@ -23,6 +28,9 @@ DONE_COLOR = QColor(255, 240, 90)    # executed part
 TOOL_COLOR = QColor(255, 60, 90)
 
 PLANES: dict[str, tuple[str, str]] = {"XY": ("X", "Y"), "XZ": ("X", "Z"), "YZ": ("Y", "Z")}
+VIEW_3D = "3-D"
+ENVELOPE_COLOR = QColor(140, 150, 165)
+ZERO_COLOR = QColor(255, 255, 255)
 PICK_RADIUS_PX = 24.0
 
 
@@ -64,24 +72,58 @@ class PreviewPlot(pg.PlotWidget):
         self.selected_item = pg.PlotDataItem(pen=pg.mkPen("#ffffff", width=5), skipFiniteCheck=True)
         self.selected_item.setZValue(6)
         self.addItem(self.selected_item)
+        dashed = pg.mkPen(ENVELOPE_COLOR, width=1, style=Qt.PenStyle.DashLine)
+        self.envelope_item = pg.PlotDataItem(pen=dashed, skipFiniteCheck=True)
+        self.envelope_item.setZValue(-1)
+        self.addItem(self.envelope_item)
+        self.zero_item = pg.PlotDataItem(pen=pg.mkPen(ZERO_COLOR, width=2), skipFiniteCheck=True)
+        self.zero_item.setZValue(4)
+        self.addItem(self.zero_item)
         self._done_move = -1
         self._tool = np.zeros(0)
+        self._envelope: tuple[np.ndarray, np.ndarray] | None = None   # (lo, hi) in work coordinates
+        self.azimuth_deg, self.elevation_deg = -60.0, 30.0
         self.grabGesture(Qt.GestureType.PinchGesture)
         self.scene().sigMouseClicked.connect(self._on_click)
 
     # --- data ----------------------------------------------------------------------------
     def _cols(self) -> tuple[int | None, int | None]:
-        if self.path is None:
+        if self.path is None or self.plane == VIEW_3D:
             return None, None
         a, b = PLANES[self.plane]
         return self.path.column(a), self.path.column(b)
 
+    def _axis_cols(self) -> tuple[int | None, int | None, int | None]:
+        if self.path is None:
+            return None, None, None
+        return self.path.column("X"), self.path.column("Y"), self.path.column("Z")
+
     def _xy(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        c0, c1 = self._cols()
         n = len(points)
+        if self.plane == VIEW_3D:
+            return self.project(points)
+        c0, c1 = self._cols()
         x = points[:, c0] if c0 is not None else np.zeros(n)
         y = points[:, c1] if c1 is not None else np.zeros(n)
         return x, y
+
+    def project(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The 3-D view: turned by the azimuth about Z, seen from the elevation above the XY
+        plane (90 degrees: from the top; 0: from the side)."""
+        n = len(points)
+        cols = self._axis_cols()
+        x, y, z = (points[:, c] if c is not None and c < points.shape[1] else np.zeros(n) for c in cols)
+        az, el = math.radians(self.azimuth_deg), math.radians(self.elevation_deg)
+        u = x * math.cos(az) - y * math.sin(az)
+        depth = x * math.sin(az) + y * math.cos(az)
+        return u, depth * math.sin(el) + z * math.cos(el)
+
+    def rotate(self, d_azimuth_deg: float = 0.0, d_elevation_deg: float = 0.0) -> None:
+        """Turn the 3-D view (elevation kept within 0..90 degrees)."""
+        self.azimuth_deg = (self.azimuth_deg + d_azimuth_deg + 180.0) % 360.0 - 180.0
+        self.elevation_deg = min(max(self.elevation_deg + d_elevation_deg, 0.0), 90.0)
+        if self.plane == VIEW_3D:
+            self._refresh_view()
 
     def set_toolpath(self, path: ToolPath | None) -> None:
         self.path = path
@@ -93,16 +135,71 @@ class PreviewPlot(pg.PlotWidget):
         self.fit()
 
     def set_plane(self, plane: str) -> None:
-        if plane not in PLANES:
+        if plane not in PLANES and plane != VIEW_3D:
             raise ValueError(f"unknown plane {plane!r}")
         self.plane = plane
-        a, b = PLANES[plane]
-        self.setLabel("bottom", a, units="mm")
-        self.setLabel("left", b, units="mm")
+        a, b = PLANES.get(plane, ("", ""))
+        self.setLabel("bottom", a, units="mm" if a else None)
+        self.setLabel("left", b, units="mm" if b else None)
+        self._refresh_view()
+        self.fit()
+
+    def _refresh_view(self) -> None:
         self._redraw()
         done, self._done_move = self._done_move, -1
         self.set_executed(done)
-        self.fit()
+        selected = getattr(self, "_selected", -1)
+        self.highlight_move(selected)
+        self._draw_envelope()
+
+    def set_envelope(self, lo: np.ndarray | None, hi: np.ndarray | None) -> None:
+        """The machine's travel in work coordinates (per axis of the tool path), dashed."""
+        self._envelope = None if lo is None or hi is None else (np.asarray(lo, float), np.asarray(hi, float))
+        self._draw_envelope()
+
+    def _draw_envelope(self) -> None:
+        n = len(self.path.axes) if self.path is not None else 0
+        if self._envelope is None or n == 0:
+            self.envelope_item.setData([], [])
+            self.zero_item.setData([], [])
+            return
+        lo, hi = self._envelope[0][:n], self._envelope[1][:n]
+        # the 12 edges of the travel box (rotary axes at 0), as pairs of points
+        box = []
+        cols = [c for c in self._axis_cols() if c is not None]
+        for corner in range(1 << len(cols)):
+            for bit in range(len(cols)):
+                if corner & (1 << bit):
+                    continue
+                a, b = np.zeros(n), np.zeros(n)
+                for k, c in enumerate(cols):
+                    a[c] = b[c] = hi[c] if corner & (1 << k) else lo[c]
+                b[cols[bit]] = hi[cols[bit]]
+                box += [a, b]
+        pts = np.array(box) if box else np.zeros((0, n))
+        x, y = self._xy(pts)
+        connect = np.zeros(len(pts), bool)
+        connect[0::2] = True
+        self.envelope_item.setData(x, y, connect=connect)
+        # work zero: a short cross of the axes through 0 (a tenth of the path's size)
+        span = self.path.bounds[1] - self.path.bounds[0] if self.path is not None else np.ones(n)
+        size = 0.1 * float(max(np.max(span), 1.0))
+        marks = []
+        for c in cols:
+            a, b = np.zeros(n), np.zeros(n)
+            a[c], b[c] = -size, size
+            marks += [a, b]
+        mpts = np.array(marks) if marks else np.zeros((0, n))
+        mx, my = self._xy(mpts)
+        mconnect = np.zeros(len(mpts), bool)
+        mconnect[0::2] = True
+        self.zero_item.setData(mx, my, connect=mconnect)
+
+    def clear_backplot(self) -> None:
+        """Forget the executed part drawn so far (the next line reached draws it again)."""
+        self._done_move = -1
+        self.done_item.setData([], [])
+        self.current_item.setData([], [])
 
     def _redraw(self) -> None:
         for kind, item in self.items.items():
@@ -125,8 +222,9 @@ class PreviewPlot(pg.PlotWidget):
                                    yRange=(y.min() - pad, y.max() + pad), padding=0)
 
     # --- live ----------------------------------------------------------------------------
-    def set_tool_position(self, machine_pos: np.ndarray) -> None:
-        self._tool = np.asarray(machine_pos, float)
+    def set_tool_position(self, work_pos: np.ndarray) -> None:
+        """The tool, in the same (work) coordinates as the path."""
+        self._tool = np.asarray(work_pos, float)
         if self.path is None:
             self.tool_item.setData([], [])
             return
@@ -173,6 +271,7 @@ class PreviewPlot(pg.PlotWidget):
         self.done_item.setData(x, y, connect=connect)
 
     def highlight_move(self, move_index: int) -> None:
+        self._selected = move_index
         if self.path is None or move_index < 0:
             self.selected_item.setData([], [])
             return
@@ -186,7 +285,8 @@ class PreviewPlot(pg.PlotWidget):
         """Move index within ``radius`` (data units) of (x, y), else -1."""
         if self.path is None:
             return -1
-        index, dist = nearest_move(self.path, self._cols(), x, y)
+        px, py = self._xy(self.path.all.points)
+        index, dist = nearest_projected(self.path, px, py, x, y)
         return index if dist <= radius else -1
 
     def _on_click(self, event) -> None:  # pyqtgraph MouseClickEvent

@@ -14,11 +14,6 @@
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="47" />
-      <source>3-D view off: PyOpenGL is not installed (pip install PyOpenGL).</source>
-      <translation>3B görünüm kapalı: PyOpenGL kurulu değil (pip install PyOpenGL).</translation>
-    </message>
-    <message>
       <location filename="../../app/widgets/status_header.py" line="150" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
@@ -157,6 +152,11 @@
       <location filename="../../app/main_window.py" line="161" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="42" />
+      <source>Clear</source>
+      <translation>Temizle</translation>
     </message>
     <message>
       <location filename="../../app/widgets/status_header.py" line="104" />
@@ -436,7 +436,7 @@ Remaining {2}   Path speed {3}</source>
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="94" />
+      <location filename="../../app/pages/preview.py" line="125" />
       <source>Line {0}: {1}</source>
       <translation>Satır {0}: {1}</translation>
     </message>
@@ -1046,6 +1046,11 @@ BIRAK</translation>
       <location filename="../../app/widgets/dro.py" line="34" />
       <source>Work</source>
       <translation>İş</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="103" />
+      <source>Work coordinates ({0}): the cross is the work zero, the dashed box the machine's travel.</source>
+      <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
     <message>
       <location filename="../../app/dialogs.py" line="25" />

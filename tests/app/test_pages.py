@@ -358,3 +358,15 @@ def test_auto_page_shows_spindle_feed_tool_modal_codes_and_the_prompt(fake_windo
     assert "Program finished in 12:34" in auto.info_label.text() and auto.progress.value() == 1000
     fake_controller.programErrors.emit(())                      # a refused load: no stale progress
     assert auto.progress.value() == 0 and "finished" not in auto.info_label.text()
+
+
+def test_auto_page_backplot_follows_the_run(fake_window, fake_controller) -> None:
+    auto = fake_window.page("auto")
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
+    assert auto.backplot.path is not None and auto.backplot.path is fake_window.context.program.toolpath
+    fake_controller.lineChanged.emit(14)
+    x, _ = auto.backplot.done_item.getData()
+    assert x is not None and len(x) > 0
+    fake_controller.positionChanged.emit((9.0, 9.0, 9.0), (2.0, 3.0, -1.0))
+    tx, ty = auto.backplot.tool_item.getData()
+    assert (tx[0], ty[0]) == (2.0, 3.0)                     # work coordinates, like the path
