@@ -123,7 +123,8 @@ class _Interpreter:
     use_fast = True  # the fast paths (one regex per line; word fast path); tests compare both ways
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
-                 tools: ToolTable | None = None, tool_in_spindle: int = 0):
+                 tools: ToolTable | None = None, tool_in_spindle: int = 0,
+                 spindle: tuple[int, float] = (0, 0.0)):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -167,8 +168,8 @@ class _Interpreter:
         self.tlo = (0.0,) * n                      # tool length offset (G43...), machine units
         self.offset = self.work                    # both: program -> machine coordinates
         self.exact_stop = False
-        self.spindle_dir = 0
-        self.spindle_rpm = 0.0
+        self.spindle_dir = int(spindle[0])   # as the spindle is when the program starts
+        self.spindle_rpm = float(spindle[1])
         # None: no tool table (every tool number known, offsets 0: the reference set-up);
         # a table: a tool must be in it to be selected, loaded or used for an offset
         self.tools = tools
@@ -902,6 +903,7 @@ def parse_program(
     max_errors: int = MAX_ERRORS,
     tools: ToolTable | None = None,
     tool_in_spindle: int = 0,
+    spindle: tuple[int, float] = (0, 0.0),
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -909,9 +911,11 @@ def parse_program(
     ``start_position``: machine position before the first move (default all zeros).
     ``block_delete``: lines starting with '/' are skipped (switch on) or run (off).
     ``tools``: the tool table (None: any tool number, all offsets 0, as LinuxCNC's reference
-    runs); ``tool_in_spindle``: the tool loaded when the program starts (G43 without H uses it).
+    runs); ``tool_in_spindle``: the tool loaded when the program starts (G43 without H uses it);
+    ``spindle``: (direction, rpm) when it starts (an S word alone then changes a running spindle).
     """
-    interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle)
+    interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
+                          spindle)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         return interp.run(text)
 

@@ -390,6 +390,10 @@ class MachineApi(Protocol):
         """Set the spindle speed (applied at once when running)."""
         ...
 
+    def set_spindle_override(self, percent: float) -> CommandResult:
+        """Spindle override 50-150 % (S times it, capped at the spindle's maximum)."""
+        ...
+
     def set_tool(self, tool: Tool) -> CommandResult:
         """Add or replace a tool in the table (refused while a program runs)."""
         ...

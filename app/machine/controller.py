@@ -503,6 +503,9 @@ class MachineController(QObject):
     def spindle_speed(self, rpm: float) -> CommandResult:
         return self.spindle_ctl.spindle_speed(rpm)
 
+    def set_spindle_override(self, percent: float) -> CommandResult:
+        return self.spindle_ctl.set_override(percent)
+
     # ---- end of spindle_ctl
 
     @property

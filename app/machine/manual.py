@@ -144,6 +144,7 @@ class ManualMotion:
             prog = parse_program(
                 text, "MDI", machine=self.m.conn.machine, start_position=self.m.states.machine_pos(),
                 tools=self.m.tools.table, tool_in_spindle=self.m.tools.in_spindle,
+                spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
             )
         except ProgramError as exc:
             return self.m.states.refuse("mdi", "; ".join(e.message for e in exc.errors))

@@ -113,10 +113,17 @@ class CommandResult:
 
 @dataclass(frozen=True, slots=True)
 class SpindleState:
-    """Spindle: ``direction`` +1 CW (M03), -1 CCW (M04), 0 off; ``rpm`` the commanded speed."""
+    """Spindle: ``direction`` +1 CW (M03), -1 CCW (M04), 0 off; ``rpm`` the programmed speed
+    (S), ``override_pct`` the operator's spindle override."""
 
     direction: int = 0
     rpm: float = 0.0
+    override_pct: float = 100.0
+
+    @property
+    def commanded_rpm(self) -> float:
+        """The speed the spindle is asked to turn at: S times the override."""
+        return self.rpm * self.override_pct / 100.0
 
     @property
     def on(self) -> bool:

@@ -53,6 +53,7 @@ class ProgramRunner:
         self.optional_stop = False
         self.resume_point: ResumePoint | None = None
         self.start_pending = False  # cycle start pressed while the program is checked again
+        self.pending_line = 0       # ... or run from this line
 
     def _fresh_program(self, action: str, wait: bool) -> Program | str | CommandResult:
         """The loaded program when it is still valid (same configuration and offsets, the
@@ -68,21 +69,22 @@ class ProgramRunner:
             if not self.m.loader.recheck_program(wait):
                 return "the program no longer passes its checks (see the errors)"
             if not wait:
-                if action == "cycle_start":
-                    return self._start_when_ready(f"{stale}: {info.name} is being checked again")
-                return f"{stale}: {info.name} is being checked again (press run from line when it is loaded)"
+                return self._start_when_ready(f"{stale}: {info.name} is being checked again",
+                                              action)
             info = self.m.loader.program_info
             assert info is not None
         return info.program  # type: ignore[return-value]
 
-    def _start_when_ready(self, why: str) -> CommandResult:
-        """Cycle start pressed while the program must first be checked or planned again in the
-        worker thread: accept the press and start by itself once that is done (``_pending_start``
-        is cleared by a failed check, a new load, stop, reset, E-stop or any state change).
-        An operator presses cycle start once."""
+    def _start_when_ready(self, why: str, action: str = "cycle_start") -> CommandResult:
+        """Cycle start or run from line pressed while the program must first be checked or
+        planned again in the worker thread: accept the press and start by itself once that is
+        done (``start_pending`` is cleared by a failed check, a new load, stop, reset, E-stop or
+        any state change). An operator presses once."""
         self.start_pending = True
+        if action != "run_from_line":
+            self.pending_line = 0
         self.m.message.emit(f"{why}; it starts when ready")
-        return self.m.states.ok("cycle_start")
+        return self.m.states.ok(action)
 
     def pending_start(self) -> None:
         """Called when a background check or plan has finished: start if a press is waiting."""
@@ -92,7 +94,11 @@ class ProgramRunner:
             and self.m.loader.run_plan_request is None
         ):
             self.start_pending = False
-            self.cycle_start()
+            line, self.pending_line = self.pending_line, 0
+            if line:
+                self.run_from_line(line)
+            else:
+                self.cycle_start()
 
     def cycle_start(self, *, wait: bool = False) -> CommandResult:
         """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
@@ -281,18 +287,22 @@ class ProgramRunner:
         return self.m.states.ok("set_optional_stop")
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
-        """Start the loaded program at source line ``line``: the spindle as of that line is
-        restored, a safe approach (retract Z to the higher of the current and target heights,
-        move the other axes, then down) brings the tool to the line's start point, then the
-        program runs on from there. As cycle start, a program stale since loading is checked
-        again first (in the worker thread, refused meanwhile; here with ``wait=True``).
+        """Start the loaded program at source line ``line``: a safe approach (up to the restart
+        clearance, across, the spindle as of that line started and at speed, down to the
+        program's retract plane, then at feed to the line's start point) and the program runs
+        on from there. As cycle start, a program stale since loading is checked again first: in
+        the worker thread, and the run starts by itself when it passes (here with ``wait=True``).
         """
         if wait and self.m.loader.load_request is not None:
             self.m.loader.wait_loaded(None)
         why = self.m.states.refusal("run_from_line")
         if why:
             return self.m.states.refuse("run_from_line", why)
+        self.pending_line = int(line)
         prog = self._fresh_program("run_from_line", wait)
+        if isinstance(prog, CommandResult):
+            return prog          # checked again first; it starts from the line when ready
+        self.pending_line = 0
         if isinstance(prog, str):
             return self.m.states.refuse("run_from_line", prog)
         try:

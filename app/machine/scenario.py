@@ -9,7 +9,8 @@ A script line is a JSON object with one trigger and one action::
 
 Actions run in the order written, each when its trigger comes after the one before it. Ops:
 ``feed_hold``, ``resume``, ``stop``, ``reset``, ``estop``, ``estop_release``, ``cycle_start``,
-``run_from_line`` (``line``), ``feed_override`` / ``rapid_override`` (``percent``) and
+``run_from_line`` (``line``), ``feed_override`` / ``rapid_override`` / ``spindle_override``
+(``percent``) and
 ``tool_changed`` (the operator has put in the tool: cycle start at a tool-change stop). Blank
 lines and lines starting with ``#`` are skipped. Every mistake is an error naming the file,
 the line and the key.
@@ -40,7 +41,7 @@ __all__ = ["OPS", "Recorder", "ScenarioOp", "ScenarioRunner", "read_script"]
 OPS: dict[str, str] = {
     "feed_hold": "", "resume": "", "stop": "", "reset": "", "estop": "", "estop_release": "",
     "cycle_start": "", "run_from_line": "line", "feed_override": "percent", "rapid_override": "percent",
-    "tool_changed": "",
+    "spindle_override": "percent", "tool_changed": "",
 }
 _TRIGGERS = ("at_line", "after_s")
 
@@ -214,6 +215,8 @@ class ScenarioRunner:
             return c.set_feed_override(op.percent)
         if op.op == "rapid_override":
             return c.set_rapid_override(op.percent)
+        if op.op == "spindle_override":
+            return c.set_spindle_override(op.percent)
         if op.op == "cycle_start":
             return c.cycle_start(wait=True)
         if op.op == "estop":

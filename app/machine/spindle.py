@@ -13,7 +13,11 @@ from app.machine.model import CommandResult, Severity, SpindleState
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
 
-__all__ = ["SpindleControl"]
+__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl"]
+
+# never below half: a slowed spindle under the same feed overloads the cutter
+OVERRIDE_MIN_PCT = 50.0
+OVERRIDE_MAX_PCT = 150.0
 
 
 class SpindleControl:
@@ -26,10 +30,14 @@ class SpindleControl:
     def __init__(self, m: MachineController) -> None:
         self.m = m
         self.spindle = SpindleState()
+        self.override_pct = 100.0
 
     def apply_spindle(self, sp: SpindleState) -> None:
         rpm = min(abs(sp.rpm), self.m.config.controller.spindle_max_rpm)
-        sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm)  # rpm capped by the config
+        # rpm capped by the configuration, the override too (S x override never over the maximum)
+        top = 100.0 * self.m.config.controller.spindle_max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
+        sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm,
+                          override_pct=min(self.override_pct, top))
         if self.m.worker is not None:
             bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
             try:
@@ -54,6 +62,21 @@ class SpindleControl:
         if not old.on or old.direction != new.direction or new.rpm > old.rpm:
             return float(self.m.config.controller.spindle_spinup_s)
         return 0.0
+
+    def set_override(self, percent: float) -> CommandResult:
+        """Spindle override 50-150 %: the speed the program asks for times this, at once
+        (capped at the spindle's maximum speed, and the operator told so)."""
+        p = float(percent)
+        if not OVERRIDE_MIN_PCT <= p <= OVERRIDE_MAX_PCT:
+            return self.m.states.refuse(
+                "set_spindle_override",
+                f"spindle override must be {OVERRIDE_MIN_PCT:g}-{OVERRIDE_MAX_PCT:g} %, got {p:g}")
+        self.override_pct = p
+        self.apply_spindle(self.spindle)
+        if self.spindle.override_pct < p:
+            self.m.message.emit(f"spindle override {p:g} % capped at {self.spindle.override_pct:.0f} %: "
+                                f"the spindle's maximum is {self.m.config.controller.spindle_max_rpm:g} rpm")
+        return self.m.states.ok("set_spindle_override")
 
     def stop_spindle(self) -> None:
         """Spindle off if it runs (stop, reset, program end, alarms, E-stop); the speed is kept

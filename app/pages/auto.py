@@ -42,7 +42,13 @@ class AutoPage(QWidget):
         left = QVBoxLayout()
         self.program_label = QLabel()
         self.program_label.setObjectName("programName")
-        left.addWidget(self.program_label)
+        title = QHBoxLayout()
+        self._title_row = title
+        title.addWidget(self.program_label)
+        self.modal_label = QLabel()              # the modal codes in force at the current line
+        self.modal_label.setObjectName("modalCodes")
+        title.addWidget(self.modal_label, 1)
+        left.addLayout(title)
         self.loading_note = QLabel()  # "Checking NAME …" while the controller checks a program
         self.loading_note.setObjectName("loadingNote")
         self.loading_bar = QProgressBar()  # busy indicator (keeps moving: the panel is responsive)
@@ -69,7 +75,7 @@ class AutoPage(QWidget):
         for i, (key, label, obj, _action) in enumerate(BUTTONS):
             button = QPushButton()
             button.setObjectName(obj)
-            button.setMinimumHeight(72)
+            button.setMinimumHeight(64)
             i18n.bind(button, label)
             grid.addWidget(button, i // 2, i % 2)
             self.buttons[key] = button
@@ -90,7 +96,7 @@ class AutoPage(QWidget):
         self.run_from = QPushButton()
         i18n.bind(self.run_from, N_("Run from line…"))
         self.run_from.clicked.connect(self.run_from_line)
-        grid.addWidget(self.run_from, 3, 0, 1, 2)
+        self._title_row.addWidget(self.run_from)   # beside the program: it starts at an editor line
         right.addLayout(grid)
 
         self.feed = OverrideControl("")
@@ -99,8 +105,12 @@ class AutoPage(QWidget):
         self.rapid = OverrideControl("", maximum=100)
         i18n.bind(self.rapid.title, N_("Rapid override"))
         self.rapid.changed.connect(lambda v: c.set_rapid_override(v))
+        self.spindle_override = OverrideControl("", maximum=150, minimum=50)
+        i18n.bind(self.spindle_override.title, N_("Spindle override"))
+        self.spindle_override.changed.connect(lambda v: c.set_spindle_override(v))
         right.addWidget(self.feed)
         right.addWidget(self.rapid)
+        right.addWidget(self.spindle_override)
         self.progress = QProgressBar()
         self.progress.setRange(0, 1000)
         self.progress.setTextVisible(False)
@@ -121,7 +131,7 @@ class AutoPage(QWidget):
         self.prompt_label.setWordWrap(True)
         self.prompt_label.setStyleSheet("background: #a86b00; color: white; font-weight: 700; padding: 6px;")
         self.prompt_label.hide()
-        right.addWidget(self.prompt_label)
+        left.insertWidget(1, self.prompt_label)   # under the title: the editor gives it room
         right.addStretch(1)
         layout.addLayout(right, 2)
 
@@ -252,6 +262,7 @@ class AutoPage(QWidget):
 
     def _on_spindle(self, spindle: object) -> None:
         self._spindle = spindle
+        self.spindle_override.set_value(float(getattr(spindle, "override_pct", 100.0)))
         self._update_info()
 
     def _on_tools(self, table: object, in_spindle: int) -> None:
@@ -300,21 +311,20 @@ class AutoPage(QWidget):
     def _update_info(self) -> None:
         text = tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
             self._line, 100 * self._fraction, format_duration(self._remaining), format_speed(self._speed))
-        if self._finished:
-            text += "\n" + self._finished
-        if self._refused:
-            text += "\n" + self._refused
+        # the end of a run or a refusal takes the second line's place: the page never grows
+        note = self._refused or self._finished
+        if note:
+            text = text.split("\n")[0] + "\n" + note
         self.info_label.setText(text)
         sp = self._spindle
         direction = int(getattr(sp, "direction", 0))
-        rpm = float(getattr(sp, "rpm", 0.0))
+        rpm = float(getattr(sp, "commanded_rpm", 0.0))
         spindle = (tr("Spindle off") if direction == 0 else
                    tr("Spindle {0} {1:.0f} rpm").format(tr("CW") if direction > 0 else tr("CCW"), rpm))
         feed, modal = self._programmed_feed_and_modal()
         lines = [spindle + "   " + tr("Tool {0}").format(tool_text(self._tools, self._tool)),
                  tr("Feed F{0:.0f} programmed, {1} now").format(feed, format_speed(self._speed))]
-        if modal:
-            lines.append(modal)
+        self.modal_label.setText(modal)
         self.machine_label.setText("\n".join(lines))
 
     def _update_buttons(self) -> None:

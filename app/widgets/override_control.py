@@ -9,23 +9,26 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QSlider, QVBoxLa
 class OverrideControl(QWidget):
     changed = Signal(float)  # percent, emitted when the operator changes it
 
-    def __init__(self, title: str, maximum: int = 200, parent: QWidget | None = None) -> None:
+    def __init__(self, title: str, maximum: int = 200, parent: QWidget | None = None,
+                 minimum: int = 0) -> None:
         super().__init__(parent)
         self.setObjectName("overrideControl")
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        layout.setSpacing(2)
+        layout.setSpacing(0)
         top = QHBoxLayout()
         self.title = QLabel(title)
         self.value_label = QLabel("100 %")
         self.value_label.setObjectName("overrideValue")
         self.value_label.setAlignment(Qt.AlignmentFlag.AlignRight)
+        for label in (self.title, self.value_label):   # a compact title: three fit the Auto page
+            label.setFixedHeight(22)
         top.addWidget(self.title)
         top.addWidget(self.value_label)
         layout.addLayout(top)
         row = QHBoxLayout()
         self.slider = QSlider(Qt.Orientation.Horizontal)
-        self.slider.setRange(0, maximum)
+        self.slider.setRange(minimum, maximum)
         self.slider.setValue(100)
         self.slider.setMinimumHeight(48)
         self.slider.setPageStep(10)

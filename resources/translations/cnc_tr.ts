@@ -114,7 +114,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="301" />
+      <location filename="../../app/pages/auto.py" line="317" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="301" />
+      <location filename="../../app/pages/auto.py" line="317" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -184,12 +184,12 @@
       <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="26" />
+      <location filename="../../app/pages/auto.py" line="27" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="160" />
+      <location filename="../../app/pages/auto.py" line="173" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -284,17 +284,17 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="304" />
+      <location filename="../../app/pages/auto.py" line="320" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="27" />
+      <location filename="../../app/pages/auto.py" line="28" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="91" />
+      <location filename="../../app/pages/auto.py" line="97" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -429,7 +429,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="290" />
+      <location filename="../../app/pages/auto.py" line="306" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -496,7 +496,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="176" />
+      <location filename="../../app/pages/auto.py" line="189" />
       <source>Move to the start of line {0} and run the program from there?</source>
       <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
     </message>
@@ -571,7 +571,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="80" />
+      <location filename="../../app/pages/auto.py" line="86" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -651,7 +651,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="261" />
+      <location filename="../../app/pages/auto.py" line="277" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -671,7 +671,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="266" />
+      <location filename="../../app/pages/auto.py" line="282" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -693,7 +693,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="94" />
+      <location filename="../../app/pages/auto.py" line="100" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -743,12 +743,12 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="171" />
+      <location filename="../../app/pages/auto.py" line="184" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="85" />
+      <location filename="../../app/pages/auto.py" line="91" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -848,7 +848,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="76" />
+      <location filename="../../app/pages/auto.py" line="82" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -863,9 +863,14 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="300" />
+      <location filename="../../app/pages/auto.py" line="316" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="103" />
+      <source>Spindle override</source>
+      <translation>İş mili oranı</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="59" />
@@ -873,7 +878,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="301" />
+      <location filename="../../app/pages/auto.py" line="317" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -888,7 +893,7 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="28" />
+      <location filename="../../app/pages/auto.py" line="29" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
@@ -953,7 +958,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="303" />
+      <location filename="../../app/pages/auto.py" line="319" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>

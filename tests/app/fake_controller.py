@@ -280,6 +280,11 @@ class FakeController(QObject):
         self.spindleChanged.emit(self.spindle)
         return self._ok("spindle_off")
 
+    def set_spindle_override(self, percent: float) -> CommandResult:
+        self.spindle = replace(self.spindle, override_pct=percent)
+        self.spindleChanged.emit(self.spindle)
+        return self._ok("set_spindle_override", percent)
+
     def _tools(self, table: ToolTable, in_spindle: int) -> None:
         self.tool_table, self.tool_in_spindle = table, in_spindle
         self.toolsChanged.emit(table, in_spindle)

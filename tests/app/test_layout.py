@@ -38,3 +38,16 @@ def test_an_alarm_does_not_move_the_controls(fake_window, fake_controller, qtbot
     assert fake_window.header.alarm_banner.isVisibleTo(fake_window)
     assert _geometry(fake_window, nav) == before
     assert _geometry(fake_window, fake_window._stack) == page_before
+
+
+def test_the_end_of_a_run_and_a_prompt_do_not_grow_the_auto_page(fake_window, fake_controller, qtbot) -> None:
+    from app.machine.model import HoldKind, MachineState, Prompt, RunSummary
+
+    fake_window.show_page("auto")
+    fake_controller.prompt = Prompt(HoldKind.TOOL_CHANGE, 3, 2, "tool change (M06, line 3): insert tool T2 "
+                                    "(6 mm flat end mill, a rather long description) and press cycle start")
+    fake_controller._set_state(MachineState.HOLD, "tool change", HoldKind.TOOL_CHANGE)
+    fake_controller.programFinished.emit(RunSummary("p", False, 754.0, 750.0, 6, reason="stopped by the "
+                                                    "operator after a long and winding explanation"))
+    qtbot.wait(10)
+    assert (fake_window.width(), fake_window.height()) == (1280, 800)

@@ -699,3 +699,19 @@ def test_a_program_waits_for_the_spindle_to_reach_speed_before_cutting(ctl: Mach
     assert ctl.last_run is not None
     run, spinup = ctl.last_run, ctl.config.controller.spindle_spinup_s
     assert run.cycle_time_s == pytest.approx(run.estimated_s + spinup, abs=0.05)
+
+
+def test_spindle_override_scales_the_commanded_speed_within_the_maximum(ctl: MachineController) -> None:
+    messages: list[str] = []
+    ctl.message.connect(messages.append)
+    assert ctl.mdi("M3 S10000")
+    assert ctl.set_spindle_override(120)
+    assert ctl.spindle.commanded_rpm == pytest.approx(12000.0) and ctl.spindle.rpm == 10000.0
+    assert ctl.mdi("S20000")                             # S alone changes the running spindle
+    assert ctl.spindle.rpm == 20000.0 and ctl.spindle.direction == 1
+    assert ctl.set_spindle_override(150)                 # 30,000 > 24,000 rpm: capped, and said
+    assert ctl.spindle.commanded_rpm == pytest.approx(24000.0)
+    assert any("capped at 120 %" in m for m in messages)
+    for bad in (40, 151, float("nan")):
+        r = ctl.set_spindle_override(bad)
+        assert not r and "50-150 %" in r.reason

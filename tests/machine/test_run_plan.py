@@ -11,7 +11,7 @@ import pytest
 
 import app.machine.feeder as feeder
 from app.machine.controller import MachineController
-from app.machine.model import MachineState
+from app.machine.model import Activity, MachineState
 from tests.machine.conftest import run_to_idle
 from tests.machine.test_program_load import big_program
 
@@ -173,3 +173,20 @@ def test_a_waiting_cycle_start_is_cancelled_by_stop_and_by_a_failed_check(
         run_to_idle(ctl)
         assert ctl.cycle_start()  # ... from X241 the same incremental move leaves the travel
     assert ctl.state is MachineState.IDLE and ctl.program_info is None
+
+
+def test_run_from_line_after_a_move_is_pressed_once(qtbot, ctl: MachineController) -> None:
+    """After a stop the machine has moved: run from line checks the program again and then
+    starts from that line by itself (it used to fail silently until pressed again)."""
+    assert ctl.load_program("G0 X5 Y0\nG1 X10 F600\nG1 Y10\nM30\n", wait=True)
+    assert ctl.mdi("G0 X1 Y2")
+    run_to_idle(ctl)
+    messages: list[str] = []
+    ctl.message.connect(messages.append)
+    with qtbot.waitSignal(ctl.programLoaded, timeout=10_000):
+        assert ctl.run_from_line(3)
+        assert ctl.state is MachineState.IDLE and ctl.loading
+    assert any("starts when ready" in m for m in messages)
+    assert ctl.state is MachineState.RUNNING and ctl.activity is Activity.APPROACH   # no second press
+    run_to_idle(ctl, 30)
+    np.testing.assert_allclose(ctl.reference_position, (10.0, 10.0, 0.0), atol=1e-9)
