@@ -20,6 +20,7 @@ from PySide6.QtWidgets import (
 
 from app import deferred
 from app.context import PanelContext, PanelOptions
+from app.controller_text import localize
 from app.i18n import LANGUAGES, tr
 from app.pages import PAGES, PageInfo, page_info
 from app.pages.placeholder import PlaceholderPage
@@ -113,9 +114,9 @@ class MainWindow(QMainWindow):
         self._program_label = QLabel()
         self._program_label.setMinimumWidth(220)
         self.statusBar().addPermanentWidget(self._program_label)
-        ctx.controller.message.connect(self.show_message)
+        ctx.controller.message.connect(lambda text: self.show_message(localize(text)))
         ctx.controller.commandRefused.connect(
-            lambda action, reason: self.show_message(tr("Refused: {0}").format(reason)))
+            lambda action, reason: self.show_message(tr("Refused: {0}").format(localize(reason))))
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
         if hasattr(ctx.controller, "loadingChanged"):
@@ -281,4 +282,7 @@ class MainWindow(QMainWindow):
                 event.ignore()
                 return
         self.context.controller.shutdown()
+        app = QApplication.instance()
+        if app is not None:      # a closed window no longer sees the application's events
+            app.removeEventFilter(self)
         super().closeEvent(event)

@@ -14,6 +14,7 @@ from PySide6.QtWidgets import (
 )
 
 from app.context import PanelContext
+from app.controller_text import localize
 from app.i18n import N_, tr
 from app.widgets.touch import touch_rows
 
@@ -76,7 +77,7 @@ class AlarmsPage(QWidget):
         for row, a in enumerate(alarms):
             when = time.strftime("%H:%M:%S", time.localtime(a.time_s)) if a.time_s else "--:--:--"
             state = tr("active") if a.active else tr("acknowledged")
-            values = (when, a.source, a.cause, a.severity.name.replace("_", " ").lower(), state)
+            values = (when, a.source, localize(a.cause), a.severity.name.replace("_", " ").lower(), state)
             for col, value in enumerate(values):
                 item = QTableWidgetItem(str(value))
                 item.setData(256, a.id)  # Qt.UserRole

@@ -16,6 +16,7 @@ from PySide6.QtWidgets import (
 
 from app import deferred
 from app.context import PanelContext
+from app.controller_text import localize
 from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
 from app.widgets.code_editor import CodeEditor
@@ -271,7 +272,7 @@ class AutoPage(QWidget):
 
     def _on_state(self, _state: object, _reason: str) -> None:
         prompt = getattr(self.ctx.controller, "prompt", None)
-        text = str(getattr(prompt, "text", "")) if prompt is not None else ""
+        text = localize(str(getattr(prompt, "text", ""))) if prompt is not None else ""
         self.prompt_label.setText(text[:1].upper() + text[1:])
         self.prompt_label.setVisible(bool(text))
         if str(getattr(_state, "value", "")) == "running":

@@ -6,6 +6,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app.context import PanelContext
+from app.controller_text import localize
 from app.format import tool_text
 from app.i18n import N_, tr
 from app.widgets.dro import DroWidget
@@ -147,5 +148,5 @@ class StatusHeader(QWidget):
         if alarms:
             last = alarms[-1]
             more = tr(" (+{0} more)").format(len(alarms) - 1) if len(alarms) > 1 else ""
-            self.alarm_banner.setText(tr("ALARM: {0}: {1}").format(last.source, last.cause) + more)
+            self.alarm_banner.setText(tr("ALARM: {0}: {1}").format(last.source, localize(last.cause)) + more)
         self.alarm_banner.setVisible(bool(alarms))

@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="149" />
+      <location filename="../../app/widgets/status_header.py" line="150" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -14,17 +14,17 @@
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="150" />
+      <location filename="../../app/widgets/status_header.py" line="151" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="36" />
+      <location filename="../../app/pages/alarms.py" line="37" />
       <source>Acknowledge</source>
       <translation>Onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="38" />
+      <location filename="../../app/pages/alarms.py" line="39" />
       <source>Acknowledge all</source>
       <translation>Tümünü onayla</translation>
     </message>
@@ -39,7 +39,7 @@
       <translation>Takım ekle</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="15" />
+      <location filename="../../app/widgets/status_header.py" line="16" />
       <source>Alarm</source>
       <translation>Alarm</translation>
     </message>
@@ -109,12 +109,12 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="136" />
+      <location filename="../../app/widgets/status_header.py" line="137" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="317" />
+      <location filename="../../app/pages/auto.py" line="324" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="317" />
+      <location filename="../../app/pages/auto.py" line="324" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -139,7 +139,7 @@
       <translation>İptal</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="20" />
+      <location filename="../../app/pages/alarms.py" line="21" />
       <source>Cause</source>
       <translation>Neden</translation>
     </message>
@@ -149,7 +149,7 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="161" />
+      <location filename="../../app/main_window.py" line="162" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
@@ -159,12 +159,12 @@
       <translation>Temizle</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="104" />
+      <location filename="../../app/widgets/status_header.py" line="105" />
       <source>Connect</source>
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="104" />
+      <location filename="../../app/widgets/status_header.py" line="105" />
       <source>Connect to the drives and enable them?</source>
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
@@ -184,12 +184,12 @@
       <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="27" />
+      <location filename="../../app/pages/auto.py" line="28" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="173" />
+      <location filename="../../app/pages/auto.py" line="180" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -249,12 +249,12 @@
       <translation>Vazgeç</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="102" />
+      <location filename="../../app/widgets/status_header.py" line="103" />
       <source>Disconnect</source>
       <translation>Bağlantıyı kes</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="14" />
+      <location filename="../../app/widgets/status_header.py" line="15" />
       <source>Disconnected</source>
       <translation>Bağlı değil</translation>
     </message>
@@ -264,14 +264,19 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="141" />
+      <location filename="../../app/widgets/status_header.py" line="142" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="15" />
+      <location filename="../../app/widgets/status_header.py" line="16" />
       <source>E-stop</source>
       <translation>Acil stop</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="59" />
+      <source>E-stop: quick stop of all axes ({0})</source>
+      <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
       <location filename="../../app/pages/diagnostics.py" line="43" />
@@ -284,17 +289,17 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="320" />
+      <location filename="../../app/pages/auto.py" line="327" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="28" />
+      <location filename="../../app/pages/auto.py" line="29" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="97" />
+      <location filename="../../app/pages/auto.py" line="104" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -374,7 +379,7 @@
       <translation>Referanslama: {0}; {1}.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="14" />
+      <location filename="../../app/widgets/status_header.py" line="15" />
       <source>Idle</source>
       <translation>Hazır</translation>
     </message>
@@ -429,7 +434,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="306" />
+      <location filename="../../app/pages/auto.py" line="313" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -496,7 +501,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="189" />
+      <location filename="../../app/pages/auto.py" line="196" />
       <source>Move to the start of line {0} and run the program from there?</source>
       <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
     </message>
@@ -571,12 +576,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="86" />
+      <location filename="../../app/pages/auto.py" line="93" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/widgets/status_header.py" line="20" />
       <source>Optional stop (M1)</source>
       <translation>İsteğe bağlı duruş (M1)</translation>
     </message>
@@ -651,32 +656,32 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="277" />
+      <location filename="../../app/pages/auto.py" line="284" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="175" />
+      <location filename="../../app/main_window.py" line="176" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="188" />
+      <location filename="../../app/main_window.py" line="189" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="18" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Program stop (M0)</source>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="282" />
+      <location filename="../../app/pages/auto.py" line="289" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="141" />
+      <location filename="../../app/widgets/status_header.py" line="142" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -693,7 +698,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="100" />
+      <location filename="../../app/pages/auto.py" line="107" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -708,17 +713,17 @@ BIRAK</translation>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="118" />
+      <location filename="../../app/main_window.py" line="119" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="109" />
+      <location filename="../../app/widgets/status_header.py" line="110" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="110" />
+      <location filename="../../app/widgets/status_header.py" line="111" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -733,7 +738,7 @@ BIRAK</translation>
       <translation>Tüm takım tablosu {0} ile değiştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="40" />
+      <location filename="../../app/pages/alarms.py" line="41" />
       <source>Reset</source>
       <translation>Sıfırla</translation>
     </message>
@@ -743,17 +748,17 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="184" />
+      <location filename="../../app/pages/auto.py" line="191" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="91" />
+      <location filename="../../app/pages/auto.py" line="98" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="15" />
+      <location filename="../../app/widgets/status_header.py" line="16" />
       <source>Running</source>
       <translation>Çalışıyor</translation>
     </message>
@@ -793,22 +798,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="220" />
+      <location filename="../../app/main_window.py" line="221" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="249" />
+      <location filename="../../app/main_window.py" line="250" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="225" />
+      <location filename="../../app/main_window.py" line="226" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="227" />
+      <location filename="../../app/main_window.py" line="228" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -818,7 +823,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="220" />
+      <location filename="../../app/main_window.py" line="221" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -833,12 +838,12 @@ BIRAK</translation>
       <translation>Makine sıfırını ayarla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="20" />
+      <location filename="../../app/pages/alarms.py" line="21" />
       <source>Severity</source>
       <translation>Önem</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="34" />
+      <location filename="../../app/pages/alarms.py" line="35" />
       <source>Show history</source>
       <translation>Geçmişi göster</translation>
     </message>
@@ -848,12 +853,12 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="82" />
+      <location filename="../../app/pages/auto.py" line="89" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="20" />
+      <location filename="../../app/pages/alarms.py" line="21" />
       <source>Source</source>
       <translation>Kaynak</translation>
     </message>
@@ -863,12 +868,12 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="316" />
+      <location filename="../../app/pages/auto.py" line="323" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="103" />
+      <location filename="../../app/pages/auto.py" line="110" />
       <source>Spindle override</source>
       <translation>İş mili oranı</translation>
     </message>
@@ -878,7 +883,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="317" />
+      <location filename="../../app/pages/auto.py" line="324" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -888,22 +893,22 @@ BIRAK</translation>
       <translation>İş mili: {0}, {1:.0f} dev/dak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="20" />
+      <location filename="../../app/pages/alarms.py" line="21" />
       <source>State</source>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="29" />
+      <location filename="../../app/pages/auto.py" line="30" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="102" />
+      <location filename="../../app/widgets/status_header.py" line="103" />
       <source>Stop and disable the drives?</source>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/widgets/status_header.py" line="20" />
       <source>Stopping</source>
       <translation>Duruyor</translation>
     </message>
@@ -943,7 +948,7 @@ BIRAK</translation>
       <translation>Bu sayfa henüz hazır değil.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="20" />
+      <location filename="../../app/pages/alarms.py" line="21" />
       <source>Time</source>
       <translation>Zaman</translation>
     </message>
@@ -953,17 +958,17 @@ BIRAK</translation>
       <translation>Takım</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/widgets/status_header.py" line="20" />
       <source>Tool change</source>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="319" />
+      <location filename="../../app/pages/auto.py" line="326" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="142" />
+      <location filename="../../app/widgets/status_header.py" line="143" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -1011,6 +1016,16 @@ BIRAK</translation>
       <location filename="../../app/pages/tools.py" line="136" />
       <source>T{0} is already in the table.</source>
       <translation>T{0} tabloda zaten var.</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="51" />
+      <source>T{0} is in the spindle: set another tool first</source>
+      <translation>T{0} iş milinde: önce başka bir takım seçin</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="50" />
+      <source>T{0} is not in the tool table</source>
+      <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
       <location filename="../../app/pages/tools.py" line="116" />
@@ -1063,14 +1078,49 @@ BIRAK</translation>
       <translation>Evet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="78" />
+      <location filename="../../app/controller_text.py" line="36" />
+      <source>acknowledge the active alarms first</source>
+      <translation>önce etkin alarmları onaylayın</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="79" />
       <source>acknowledged</source>
       <translation>onaylandı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="78" />
+      <location filename="../../app/pages/alarms.py" line="79" />
       <source>active</source>
       <translation>etkin</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>alarm</source>
+      <translation>alarm</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="43" />
+      <source>another tool is in the spindle since it was loaded</source>
+      <translation>program yüklendiğinden beri iş milinde başka bir takım var</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="66" />
+      <source>axes are not homed any more: home them before running a program</source>
+      <translation>eksenler artık referanslı değil: program çalıştırmadan önce referanslayın</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="34" />
+      <source>axes not homed</source>
+      <translation>eksenler referanslanmadı</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="33" />
+      <source>axes not homed: {0} (home them or set machine zero first)</source>
+      <translation>eksenler referanslanmadı: {0} (önce referanslayın ya da makine sıfırını ayarlayın)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="64" />
+      <source>axis {0} did not reach OPERATION ENABLED within {1} s (drive state {2})</source>
+      <translation>{0} ekseni {1} s içinde OPERATION ENABLED durumuna geçmedi (sürücü durumu {2})</translation>
     </message>
     <message>
       <location filename="../../app/widgets/bus_view.py" line="64" />
@@ -1078,14 +1128,74 @@ BIRAK</translation>
       <translation>bağlı</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>disconnected</source>
+      <translation>bağlı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="57" />
+      <source>drive fault on axis {0} (slave {1}): error code {2}: quick stop of all axes</source>
+      <translation>{0} ekseninde sürücü hatası (bağımlı {1}): hata kodu {2}: tüm eksenler hızlı durduruldu</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/machine_zero.py" line="83" />
       <source>drive homing method {0}</source>
       <translation>sürücü referanslama yöntemi {0}</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>e-stop</source>
+      <translation>acil stop</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="26" />
+      <source>feed hold</source>
+      <translation>ilerleme durduruldu</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="44" />
+      <source>feed override must be 0-{0} %, got {1}</source>
+      <translation>ilerleme oranı %0-{0} olmalı, {1} verildi</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="46" />
+      <source>feed override {0} % capped at {1} % here: the machine's speed, acceleration or jerk limit</source>
+      <translation>ilerleme oranı %{0} burada %{1} ile sınırlandı: makinenin hız, ivme ya da sarsıntı sınırı</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="55" />
+      <source>following error on axis {0}: {1} exceeds window {2} for more than {3} cycles: quick stop of all axes</source>
+      <translation>{0} ekseninde takip hatası: {1}, {2} penceresini {3} çevrimden uzun aştı: tüm eksenler hızlı durduruldu</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>hold</source>
+      <translation>beklemede</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>homing</source>
+      <translation>referanslanıyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="61" />
+      <source>homing of axis {0} failed ({1})</source>
+      <translation>{0} ekseninin referanslanması başarısız ({1})</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>idle</source>
+      <translation>boşta</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/axes.py" line="56" />
       <source>linear</source>
       <translation>doğrusal</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="31" />
+      <source>machine is {0}</source>
+      <translation>makine {0} durumunda</translation>
     </message>
     <message>
       <location filename="../../app/widgets/tracking_view.py" line="104" />
@@ -1098,6 +1208,11 @@ BIRAK</translation>
       <translation>hayır</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="35" />
+      <source>no program loaded</source>
+      <translation>yüklü program yok</translation>
+    </message>
+    <message>
       <location filename="../../app/format.py" line="43" />
       <source>none</source>
       <translation>yok</translation>
@@ -1106,6 +1221,11 @@ BIRAK</translation>
       <location filename="../../app/widgets/bus_view.py" line="64" />
       <source>not connected</source>
       <translation>bağlı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="32" />
+      <source>nothing to hold: machine is {0}</source>
+      <translation>durdurulacak bir şey yok: makine {0} durumunda</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="133" />
@@ -1118,6 +1238,26 @@ BIRAK</translation>
       <translation>isteğe bağlı</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="23" />
+      <source>optional stop (M01, line {0}): press cycle start</source>
+      <translation>isteğe bağlı duruş (M01, satır {0}): çevrim başlata basın</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="29" />
+      <source>program end</source>
+      <translation>program sonu</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="22" />
+      <source>program paused (M00, line {0}): press cycle start</source>
+      <translation>program duraklatıldı (M00, satır {0}): çevrim başlata basın</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="60" />
+      <source>quick stop of all axes: {0}</source>
+      <translation>tüm eksenler hızlı durduruldu: {0}</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/machine_zero.py" line="85" />
       <source>required before a program may start</source>
       <translation>program başlamadan önce gerekli</translation>
@@ -1128,9 +1268,89 @@ BIRAK</translation>
       <translation>döner</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="53" />
+      <source>running</source>
+      <translation>çalışıyor</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/machine_zero.py" line="84" />
       <source>set current position as zero</source>
       <translation>şu anki konumu sıfır yap</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="63" />
+      <source>set-point buffer underrun after {0} set-points: holding the last position</source>
+      <translation>{0} hedef noktadan sonra hedef tamponu boşaldı: son konum tutuluyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="25" />
+      <source>single block: end of line {0}</source>
+      <translation>tek blok: {0}. satırın sonu</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="45" />
+      <source>spindle override must be 50-150 %, got {0}</source>
+      <translation>iş mili oranı %50-150 olmalı, {0} verildi</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="47" />
+      <source>spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm</source>
+      <translation>iş mili oranı %{0}, %{1} ile sınırlandı: iş milinin en yüksek hızı {2} dev/dk</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="28" />
+      <source>stopped by the operator</source>
+      <translation>operatör tarafından durduruldu</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="27" />
+      <source>stopping</source>
+      <translation>duruyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="65" />
+      <source>the control did not shut down cleanly (power loss or killed; position last saved {0}): {1}</source>
+      <translation>kontrol düzgün kapanmadı (elektrik kesintisi ya da zorla sonlandırma; konum en son {0} tarihinde kaydedildi): {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="67" />
+      <source>the drives have absolute encoders: homed flags kept</source>
+      <translation>sürücülerde mutlak enkoder var: referans bilgisi korundu</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="41" />
+      <source>the machine configuration changed since it was loaded</source>
+      <translation>makine ayarları, program yüklendiğinden beri değişti</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="39" />
+      <source>the machine moved since it was loaded</source>
+      <translation>makine, program yüklendiğinden beri hareket etti</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="37" />
+      <source>the program {0} is still being checked (wait until it is loaded)</source>
+      <translation>{0} programı hâlâ denetleniyor (yüklenene kadar bekleyin)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="48" />
+      <source>the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked</source>
+      <translation>makine {0} durumundayken takım tablosu değiştirilemez: program, ofsetleri denetlenirken okur</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="42" />
+      <source>the tool table changed since it was loaded</source>
+      <translation>takım tablosu, program yüklendiğinden beri değişti</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="40" />
+      <source>the work offsets changed since it was loaded</source>
+      <translation>iş ofsetleri, program yüklendiğinden beri değişti</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="24" />
+      <source>tool change (M06, line {0}): insert tool {1} and press cycle start</source>
+      <translation>takım değişimi (M06, satır {0}): {1} takımını takın ve çevrim başlata basın</translation>
     </message>
     <message>
       <location filename="../../app/widgets/bus_view.py" line="60" />
@@ -1138,12 +1358,17 @@ BIRAK</translation>
       <translation>bilinmiyor</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="58" />
+      <source>working counter {0} instead of {1} for more than {2} cycles: quick stop of all axes{3}</source>
+      <translation>çalışma sayacı {2} çevrimden uzun süre {1} yerine {0}: tüm eksenler hızlı durduruldu{3}</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/machine_zero.py" line="81" />
       <source>yes</source>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="163" />
+      <location filename="../../app/main_window.py" line="164" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
@@ -1163,9 +1388,19 @@ BIRAK</translation>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="62" />
+      <source>{0} lost: not answering process data; trying to recover it when it comes back</source>
+      <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/part_zero.py" line="82" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="38" />
+      <source>{0}: {1} is being checked again; it starts when ready</source>
+      <translation>{0}: {1} yeniden denetleniyor; hazır olunca başlayacak</translation>
     </message>
   </context>
 </TS>

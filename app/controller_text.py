@@ -1,0 +1,94 @@
+"""The controller's sentences in the panel's language.
+
+The controller (``app.machine``) and the worker speak English: their messages are built with
+values in them ("following error on axis X: +1.2000 exceeds window 1 ..."). The panel shows
+them translated by matching each against the templates below: a template is the English
+sentence with ``{0}``, ``{1}`` ... where the values go; its translation (in the ``.ts``, like
+every other string) takes the same values. Values that are themselves known sentences (a state,
+a reason) are translated too. A sentence no template matches is shown as it is.
+"""
+
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+
+from app.i18n import N_, tr
+
+__all__ = ["TEMPLATES", "localize"]
+
+TEMPLATES: tuple[str, ...] = (
+    # program stops and what they ask
+    N_("program paused (M00, line {0}): press cycle start"),
+    N_("optional stop (M01, line {0}): press cycle start"),
+    N_("tool change (M06, line {0}): insert tool {1} and press cycle start"),
+    N_("single block: end of line {0}"),
+    N_("feed hold"),
+    N_("stopping"),
+    N_("stopped by the operator"),
+    N_("program end"),
+    # refusals
+    N_("machine is {0}"),
+    N_("nothing to hold: machine is {0}"),
+    N_("axes not homed: {0} (home them or set machine zero first)"),
+    N_("axes not homed"),
+    N_("no program loaded"),
+    N_("acknowledge the active alarms first"),
+    N_("the program {0} is still being checked (wait until it is loaded)"),
+    N_("{0}: {1} is being checked again; it starts when ready"),
+    N_("the machine moved since it was loaded"),
+    N_("the work offsets changed since it was loaded"),
+    N_("the machine configuration changed since it was loaded"),
+    N_("the tool table changed since it was loaded"),
+    N_("another tool is in the spindle since it was loaded"),
+    N_("feed override must be 0-{0} %, got {1}"),
+    N_("spindle override must be 50-150 %, got {0}"),
+    N_("feed override {0} % capped at {1} % here: the machine's speed, acceleration or jerk limit"),
+    N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
+    N_("the tool table cannot change while the machine is {0}: a program reads the offsets when it is "
+       "checked"),
+    N_("T{0} is not in the tool table"),
+    N_("T{0} is in the spindle: set another tool first"),
+    # the machine states as the refusals name them
+    N_("idle"), N_("running"), N_("hold"), N_("alarm"), N_("e-stop"), N_("homing"), N_("disconnected"),
+    # alarms
+    N_("following error on axis {0}: {1} exceeds window {2} for more than {3} cycles: quick stop of all "
+       "axes"),
+    N_("drive fault on axis {0} (slave {1}): error code {2}: quick stop of all axes"),
+    N_("working counter {0} instead of {1} for more than {2} cycles: quick stop of all axes{3}"),
+    N_("E-stop: quick stop of all axes ({0})"),
+    N_("quick stop of all axes: {0}"),
+    N_("homing of axis {0} failed ({1})"),
+    N_("{0} lost: not answering process data; trying to recover it when it comes back"),
+    N_("set-point buffer underrun after {0} set-points: holding the last position"),
+    N_("axis {0} did not reach OPERATION ENABLED within {1} s (drive state {2})"),
+    N_("the control did not shut down cleanly (power loss or killed; position last saved {0}): {1}"),
+    N_("axes are not homed any more: home them before running a program"),
+    N_("the drives have absolute encoders: homed flags kept"),
+)
+
+
+@lru_cache(maxsize=1)
+def _compiled() -> tuple[tuple[re.Pattern[str], str], ...]:
+    out = []
+    for template in TEMPLATES:
+        parts = re.split(r"(\{\d\})", template)
+        pattern = "".join("(.*?)" if re.fullmatch(r"\{\d\}", p) else re.escape(p) for p in parts)
+        out.append((re.compile(pattern + r"\Z", re.DOTALL), template))
+    return tuple(out)
+
+
+def localize(text: str, _depth: int = 0) -> str:
+    """``text`` from the controller in the panel's language (as it is when no template fits)."""
+    if not text or _depth > 3:
+        return text
+    for pattern, template in _compiled():
+        m = pattern.match(text)
+        if m is None:
+            continue
+        translated = tr(template)
+        if translated == template:
+            return text                  # English, or no translation: the original sentence
+        values = [localize(v, _depth + 1) for v in m.groups()]
+        return translated.format(*values)
+    return text
