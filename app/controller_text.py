@@ -49,6 +49,8 @@ TEMPLATES: tuple[str, ...] = (
        "checked"),
     N_("T{0} is not in the tool table"),
     N_("T{0} is in the spindle: set another tool first"),
+    N_("line {0} needs T{1} in the spindle (T{2} is in it): put it in and set it on the Tools page, or run "
+       "from the M6 line {3}"),
     # the machine states as the refusals name them
     N_("idle"), N_("running"), N_("hold"), N_("alarm"), N_("e-stop"), N_("homing"), N_("disconnected"),
     # alarms

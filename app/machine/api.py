@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Protocol
+from typing import Any, Protocol
 
 from PySide6.QtCore import SignalInstance
 
@@ -315,6 +315,11 @@ class MachineApi(Protocol):
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         """Honour M01 (optional pause); may change while running."""
+        ...
+
+    def approach_preview(self, line: int) -> Any:
+        """The way a run from ``line`` would take (machine coordinates, an array of corners),
+        or a string saying why there is none: shown before the operator confirms."""
         ...
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:

@@ -445,6 +445,9 @@ class MachineController(QObject):
     def set_optional_stop(self, on: bool) -> CommandResult:
         return self.run.set_optional_stop(on)
 
+    def approach_preview(self, line: int) -> Any:
+        return self.run.approach_preview(line)
+
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         return self.run.run_from_line(line, wait=wait)
 

@@ -325,6 +325,14 @@ class ProgramRunner:
         except PlannerError as exc:
             return self.m.states.refuse(action, str(exc))
         modal = modal_state_before_move(prog, point.move_index)
+        loads = (EventKind.TOOL_CHANGE, EventKind.TOOL_SET)
+        changes = [e for e in prog.events if e.kind in loads and e.after_move < point.move_index]
+        if changes and int(changes[-1].value) != self.m.tools.in_spindle:
+            # the program from here was checked with that tool's length: never cut with another
+            need, have = int(changes[-1].value), self.m.tools.in_spindle
+            return self.m.states.refuse(
+                action, f"line {point.line} needs T{need} in the spindle (T{have} is in it): put it in and "
+                        f"set it on the Tools page, or run from the M6 line {changes[-1].line}")
         cur = np.asarray(self.m.states.machine_pos(), dtype=float)
         try:
             approach = self._approach(prog, point.move_index, cur, rest.start_position, modal.feed_mm_s)
@@ -376,6 +384,24 @@ class ProgramRunner:
         feed = feed_mm_s if feed_mm_s > 0.0 else c.jog_speed_mm_s
         return approach_moves(cur, target, axes, self.m.config.machine.rotary, clearance=clearance,
                               feed_mm_s=feed, safe_height=safe)
+
+    def approach_preview(self, line: int) -> np.ndarray | str:
+        """The way a run from ``line`` would take to its start point (machine coordinates,
+        one row per corner, from where the machine stands), for the operator to see before
+        confirming; or why there is none."""
+        info = self.m.loader.program_info
+        if info is None:
+            return "no program loaded"
+        prog = info.program
+        try:
+            i = locate(prog, int(line))
+            target = remaining_program(prog, i, 0.0).start_position
+            modal = modal_state_before_move(prog, i)
+            cur = np.asarray(self.m.states.machine_pos(), dtype=float)
+            approach = self._approach(prog, i, cur, target, modal.feed_mm_s)
+        except PlannerError as exc:
+            return str(exc)
+        return np.array([cur, *(m.end for m in approach.moves)])
 
     @property
     def resume_line(self) -> int:

@@ -192,10 +192,23 @@ class AutoPage(QWidget):
                                       1, float(info.line_count), 0)
         if line is None:
             return
-        if ctx.dialogs.confirm(self, tr("Run from line"),
-                               tr("Move to the start of line {0} and run the program from there?")
-                               .format(int(line))):
-            ctx.controller.run_from_line(int(line))
+        c = ctx.controller
+        way = c.approach_preview(int(line))
+        if isinstance(way, str):
+            self._refused = tr("Run from line refused: {0}").format(localize(way))
+            self._update_info()
+            return
+        # the way there, drawn on the backplot (work coordinates) while the operator decides
+        offset = np.asarray(c.work_offsets.get(c.active_offset, (0.0,) * len(c.axes)), float)
+        self.backplot.set_approach(np.asarray(way, float) - offset[: np.asarray(way).shape[1]])
+        try:
+            if ctx.dialogs.confirm(self, tr("Run from line"),
+                                   tr("Move to the start of line {0} the way drawn (up to the clearance "
+                                      "height, across, spindle on, down) and run the program from there?")
+                                   .format(int(line))):
+                c.run_from_line(int(line))
+        finally:
+            self.backplot.set_approach(None)
 
     # --- controller signals --------------------------------------------------------------
     def _on_loading(self, loading: bool, name: str) -> None:

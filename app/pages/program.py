@@ -188,6 +188,9 @@ class ProgramPage(QWidget):
             self.ctx.dialogs.inform(self, tr("Open program"), why)
             return
         self.open_file(Path(path))
+        # what the editor shows is what the machine has: opening a program loads it (the
+        # controller checks it, or refuses while a program runs and says why)
+        self.load_into_machine()
 
     def open_file(self, path: Path, checked_text: str | None = None) -> None:
         """Open ``path``; ``checked_text``: the text the controller has just accepted."""

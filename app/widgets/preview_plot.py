@@ -79,6 +79,13 @@ class PreviewPlot(pg.PlotWidget):
         self.zero_item = pg.PlotDataItem(pen=pg.mkPen(ZERO_COLOR, width=2), skipFiniteCheck=True)
         self.zero_item.setZValue(4)
         self.addItem(self.zero_item)
+        # the way a run from a line would take (shown before the operator confirms it)
+        self.approach_item = pg.PlotDataItem(pen=pg.mkPen(TOOL_COLOR, width=3, style=Qt.PenStyle.DotLine),
+                                             symbol="o", symbolSize=8, symbolBrush=pg.mkBrush(TOOL_COLOR),
+                                             skipFiniteCheck=True)
+        self.approach_item.setZValue(8)
+        self.addItem(self.approach_item)
+        self._approach: np.ndarray | None = None
         self._done_move = -1
         self._tool = np.zeros(0)
         self._envelope: tuple[np.ndarray, np.ndarray] | None = None   # (lo, hi) in work coordinates
@@ -151,6 +158,7 @@ class PreviewPlot(pg.PlotWidget):
         selected = getattr(self, "_selected", -1)
         self.highlight_move(selected)
         self._draw_envelope()
+        self.set_approach(self._approach)
 
     def set_envelope(self, lo: np.ndarray | None, hi: np.ndarray | None) -> None:
         """The machine's travel in work coordinates (per axis of the tool path), dashed."""
@@ -194,6 +202,15 @@ class PreviewPlot(pg.PlotWidget):
         mconnect = np.zeros(len(mpts), bool)
         mconnect[0::2] = True
         self.zero_item.setData(mx, my, connect=mconnect)
+
+    def set_approach(self, points: np.ndarray | None) -> None:
+        """Draw (or, with None, remove) the way to a restart point, in work coordinates."""
+        self._approach = None if points is None else np.asarray(points, float)
+        if self._approach is None or not len(self._approach):
+            self.approach_item.setData([], [])
+            return
+        x, y = self._xy(self._approach)
+        self.approach_item.setData(x, y)
 
     def clear_backplot(self) -> None:
         """Forget the executed part drawn so far (the next line reached draws it again)."""

@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="197" />
+      <location filename="../../app/pages/program.py" line="200" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -114,7 +114,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="324" />
+      <location filename="../../app/pages/auto.py" line="337" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="324" />
+      <location filename="../../app/pages/auto.py" line="337" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -274,7 +274,7 @@
       <translation>Acil stop</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="59" />
+      <location filename="../../app/controller_text.py" line="61" />
       <source>E-stop: quick stop of all axes ({0})</source>
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
@@ -289,7 +289,7 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="327" />
+      <location filename="../../app/pages/auto.py" line="340" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
@@ -434,7 +434,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="313" />
+      <location filename="../../app/pages/auto.py" line="326" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -501,9 +501,9 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="196" />
-      <source>Move to the start of line {0} and run the program from there?</source>
-      <translation>{0}. satırın başına gidilip program oradan çalıştırılsın mı?</translation>
+      <location filename="../../app/pages/auto.py" line="206" />
+      <source>Move to the start of line {0} the way drawn (up to the clearance height, across, spindle on, down) and run the program from there?</source>
+      <translation>{0}. satırın başına çizilen yoldan gidilsin (güvenli yüksekliğe çık, yana git, iş milini çalıştır, in) ve program oradan çalıştırılsın mı?</translation>
     </message>
     <message>
       <location filename="../../app/pages/parameters.py" line="163" />
@@ -656,7 +656,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="284" />
+      <location filename="../../app/pages/auto.py" line="297" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -676,7 +676,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="289" />
+      <location filename="../../app/pages/auto.py" line="302" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -708,7 +708,7 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="197" />
+      <location filename="../../app/pages/program.py" line="200" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
@@ -753,6 +753,11 @@ BIRAK</translation>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
+      <location filename="../../app/pages/auto.py" line="198" />
+      <source>Run from line refused: {0}</source>
+      <translation>Satırdan çalıştırma reddedildi: {0}</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/auto.py" line="98" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
@@ -778,7 +783,7 @@ BIRAK</translation>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="228" />
+      <location filename="../../app/pages/program.py" line="231" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -868,7 +873,7 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="323" />
+      <location filename="../../app/pages/auto.py" line="336" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
@@ -883,7 +888,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="324" />
+      <location filename="../../app/pages/auto.py" line="337" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -963,7 +968,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="326" />
+      <location filename="../../app/pages/auto.py" line="339" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -1093,7 +1098,7 @@ BIRAK</translation>
       <translation>etkin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>alarm</source>
       <translation>alarm</translation>
     </message>
@@ -1103,7 +1108,7 @@ BIRAK</translation>
       <translation>program yüklendiğinden beri iş milinde başka bir takım var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="66" />
+      <location filename="../../app/controller_text.py" line="68" />
       <source>axes are not homed any more: home them before running a program</source>
       <translation>eksenler artık referanslı değil: program çalıştırmadan önce referanslayın</translation>
     </message>
@@ -1118,7 +1123,7 @@ BIRAK</translation>
       <translation>eksenler referanslanmadı: {0} (önce referanslayın ya da makine sıfırını ayarlayın)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="64" />
+      <location filename="../../app/controller_text.py" line="66" />
       <source>axis {0} did not reach OPERATION ENABLED within {1} s (drive state {2})</source>
       <translation>{0} ekseni {1} s içinde OPERATION ENABLED durumuna geçmedi (sürücü durumu {2})</translation>
     </message>
@@ -1128,12 +1133,12 @@ BIRAK</translation>
       <translation>bağlı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>disconnected</source>
       <translation>bağlı değil</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="57" />
+      <location filename="../../app/controller_text.py" line="59" />
       <source>drive fault on axis {0} (slave {1}): error code {2}: quick stop of all axes</source>
       <translation>{0} ekseninde sürücü hatası (bağımlı {1}): hata kodu {2}: tüm eksenler hızlı durduruldu</translation>
     </message>
@@ -1143,7 +1148,7 @@ BIRAK</translation>
       <translation>sürücü referanslama yöntemi {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>e-stop</source>
       <translation>acil stop</translation>
     </message>
@@ -1163,29 +1168,34 @@ BIRAK</translation>
       <translation>ilerleme oranı %{0} burada %{1} ile sınırlandı: makinenin hız, ivme ya da sarsıntı sınırı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="55" />
+      <location filename="../../app/controller_text.py" line="57" />
       <source>following error on axis {0}: {1} exceeds window {2} for more than {3} cycles: quick stop of all axes</source>
       <translation>{0} ekseninde takip hatası: {1}, {2} penceresini {3} çevrimden uzun aştı: tüm eksenler hızlı durduruldu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>hold</source>
       <translation>beklemede</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>homing</source>
       <translation>referanslanıyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="61" />
+      <location filename="../../app/controller_text.py" line="63" />
       <source>homing of axis {0} failed ({1})</source>
       <translation>{0} ekseninin referanslanması başarısız ({1})</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>idle</source>
       <translation>boşta</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="52" />
+      <source>line {0} needs T{1} in the spindle (T{2} is in it): put it in and set it on the Tools page, or run from the M6 line {3}</source>
+      <translation>{0}. satır için iş milinde T{1} gerekli (şu an T{2} takılı): takın ve Takımlar sayfasında seçin ya da {3}. satırdaki M6 satırından çalıştırın</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="56" />
@@ -1253,7 +1263,7 @@ BIRAK</translation>
       <translation>program duraklatıldı (M00, satır {0}): çevrim başlata basın</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="60" />
+      <location filename="../../app/controller_text.py" line="62" />
       <source>quick stop of all axes: {0}</source>
       <translation>tüm eksenler hızlı durduruldu: {0}</translation>
     </message>
@@ -1268,7 +1278,7 @@ BIRAK</translation>
       <translation>döner</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="53" />
+      <location filename="../../app/controller_text.py" line="55" />
       <source>running</source>
       <translation>çalışıyor</translation>
     </message>
@@ -1278,7 +1288,7 @@ BIRAK</translation>
       <translation>şu anki konumu sıfır yap</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="63" />
+      <location filename="../../app/controller_text.py" line="65" />
       <source>set-point buffer underrun after {0} set-points: holding the last position</source>
       <translation>{0} hedef noktadan sonra hedef tamponu boşaldı: son konum tutuluyor</translation>
     </message>
@@ -1308,12 +1318,12 @@ BIRAK</translation>
       <translation>duruyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="65" />
+      <location filename="../../app/controller_text.py" line="67" />
       <source>the control did not shut down cleanly (power loss or killed; position last saved {0}): {1}</source>
       <translation>kontrol düzgün kapanmadı (elektrik kesintisi ya da zorla sonlandırma; konum en son {0} tarihinde kaydedildi): {1}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="67" />
+      <location filename="../../app/controller_text.py" line="69" />
       <source>the drives have absolute encoders: homed flags kept</source>
       <translation>sürücülerde mutlak enkoder var: referans bilgisi korundu</translation>
     </message>
@@ -1358,7 +1368,7 @@ BIRAK</translation>
       <translation>bilinmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="58" />
+      <location filename="../../app/controller_text.py" line="60" />
       <source>working counter {0} instead of {1} for more than {2} cycles: quick stop of all axes{3}</source>
       <translation>çalışma sayacı {2} çevrimden uzun süre {1} yerine {0}: tüm eksenler hızlı durduruldu{3}</translation>
     </message>
@@ -1388,7 +1398,7 @@ BIRAK</translation>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="62" />
+      <location filename="../../app/controller_text.py" line="64" />
       <source>{0} lost: not answering process data; trying to recover it when it comes back</source>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
     </message>

@@ -11,6 +11,7 @@ import os
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 from PySide6.QtCore import QObject, Signal
 
 from app.machine.config import MachineConfig
@@ -214,6 +215,13 @@ class FakeController(QObject):
         self.optional_stop = on
         self.modesChanged.emit(self.single_block, self.optional_stop)
         return self._ok("set_optional_stop", on)
+
+    def approach_preview(self, line: int):
+        self.calls.append(("approach_preview", line))
+        start = np.asarray(self.machine_position, float)
+        top = start.copy()
+        top[-1] = 100.0
+        return np.array([start, top])
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         return self._ok("run_from_line", line)

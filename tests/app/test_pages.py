@@ -144,8 +144,8 @@ def test_auto_page_buttons(fake_window, fake_controller, dialogs) -> None:
     dialogs.answers.extend([9.0, True])
     auto.run_from.click()
     names = [c[0] for c in fake_controller.calls]
-    assert names[-6:] == ["cycle_start", "feed_hold", "resume", "set_feed_override", "set_single_block",
-                          "run_from_line"]
+    assert names[-7:] == ["cycle_start", "feed_hold", "resume", "set_feed_override", "set_single_block",
+                          "approach_preview", "run_from_line"]
     assert fake_controller.calls[-1] == ("run_from_line", 9)
     fake_controller.lineChanged.emit(12)
     assert auto.editor.run_line == 12
@@ -371,3 +371,35 @@ def test_auto_page_backplot_follows_the_run(fake_window, fake_controller) -> Non
     fake_controller.positionChanged.emit((9.0, 9.0, 9.0), (2.0, 3.0, -1.0))
     tx, ty = auto.backplot.tool_item.getData()
     assert (tx[0], ty[0]) == (2.0, 3.0)                     # work coordinates, like the path
+
+
+def test_open_loads_the_program_into_the_machine(fake_window, fake_controller, dialogs) -> None:
+    """What the editor shows after Open is what the machine has, not the previous program."""
+    folder = Path(fake_window.context.folders.default)
+    prog = folder / "part.nc"
+    prog.write_text("G21 G90\nG0 X1\nG1 X2 F100\nM30\n")
+    page = fake_window.page("program")
+    dialogs.answers.append(str(prog))
+    page.buttons["open"].click()
+    assert fake_controller.calls[-1][0] == "load_program"
+    assert fake_controller.program_info is not None and fake_controller.program_info.name == "part.nc"
+
+
+def test_run_from_line_shows_the_way_before_asking(fake_window, fake_controller, dialogs,
+                                                   monkeypatch) -> None:
+    auto = fake_window.page("auto")
+    fake_controller.load_program(DEMO_PROGRAM, wait=True)
+    seen: list[object] = []
+
+    def confirm(parent, title, text) -> bool:
+        seen.append(auto.backplot.approach_item.getData())
+        return False                                         # the operator says no
+
+    monkeypatch.setattr(dialogs, "confirm", confirm)
+    dialogs.answers.append(9.0)
+    auto.run_from.click()
+    (x, _y), = seen
+    assert x is not None and len(x) == 2                     # drawn while the question is asked
+    assert fake_controller.calls[-1] == ("approach_preview", 9)   # not run
+    x, _ = auto.backplot.approach_item.getData()
+    assert x is None or len(x) == 0                          # and removed afterwards

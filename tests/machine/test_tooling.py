@@ -114,3 +114,27 @@ def test_a_program_without_motion_is_refused_not_left_running(ctl: MachineContro
     r = ctl.load_program("T1 M6\nM30\n", wait=True)
     assert not r and "moves no axis" in r.reason and ctl.program_info is None
     assert ctl.state is MachineState.IDLE
+
+
+def test_run_from_line_needs_the_tool_the_program_has_there(ctl: MachineController) -> None:
+    assert ctl.set_tool(T1) and ctl.set_tool(Tool(2, 2, (("Z", 10.0),), 3.0, "ball"))
+    assert ctl.set_tool_in_spindle(1)
+    assert ctl.load_program("G0 X1\nT2 M6\nG43\nG1 X5 F600\nG1 Y5\nM30\n", wait=True)
+    r = ctl.run_from_line(5, wait=True)
+    assert not r and "line 5 needs T2 in the spindle (T1 is in it)" in r.reason and "M6 line 2" in r.reason
+    assert ctl.state is MachineState.IDLE
+    assert ctl.set_tool_in_spindle(2)
+    assert ctl.run_from_line(5, wait=True)
+    run_to_idle(ctl, 40)
+    assert ctl.reference_position[:2] == pytest.approx((5.0, 5.0))
+
+
+def test_the_approach_preview_is_the_way_run_from_line_takes(ctl: MachineController) -> None:
+    assert ctl.load_program("G0 Z5\nG0 X10 Y0\nG1 Z-1 F300\nG1 X20\nM30\n", wait=True)
+    assert ctl.mdi("G0 X30 Y30 Z-1") and run_to_idle(ctl) is None
+    way = ctl.approach_preview(4)
+    assert not isinstance(way, str)
+    top = ctl.config.machine.axes[2].max_pos
+    assert [tuple(p) for p in way] == [(30.0, 30.0, -1.0), (30.0, 30.0, top), (10.0, 0.0, top),
+                                       (10.0, 0.0, 5.0), (10.0, 0.0, -1.0)]
+    assert isinstance(ctl.approach_preview(99), str)
