@@ -184,11 +184,7 @@ class PreviewPlot(pg.PlotWidget):
                     a[c] = b[c] = hi[c] if corner & (1 << k) else lo[c]
                 b[cols[bit]] = hi[cols[bit]]
                 box += [a, b]
-        pts = np.array(box) if box else np.zeros((0, n))
-        x, y = self._xy(pts)
-        connect = np.zeros(len(pts), bool)
-        connect[0::2] = True
-        self.envelope_item.setData(x, y, connect=connect)
+        self._draw_segments(self.envelope_item, box, n)
         # work zero: a short cross of the axes through 0 (a tenth of the path's size)
         span = self.path.bounds[1] - self.path.bounds[0] if self.path is not None else np.ones(n)
         size = 0.1 * float(max(np.max(span), 1.0))
@@ -197,11 +193,15 @@ class PreviewPlot(pg.PlotWidget):
             a, b = np.zeros(n), np.zeros(n)
             a[c], b[c] = -size, size
             marks += [a, b]
-        mpts = np.array(marks) if marks else np.zeros((0, n))
-        mx, my = self._xy(mpts)
-        mconnect = np.zeros(len(mpts), bool)
-        mconnect[0::2] = True
-        self.zero_item.setData(mx, my, connect=mconnect)
+        self._draw_segments(self.zero_item, marks, n)
+
+    def _draw_segments(self, item: pg.PlotDataItem, ends: list[np.ndarray], n: int) -> None:
+        """Separate segments, given as consecutive (start, end) points, in the current view."""
+        pts = np.array(ends) if ends else np.zeros((0, n))
+        x, y = self._xy(pts)
+        connect = np.zeros(len(pts), bool)
+        connect[0::2] = True
+        item.setData(x, y, connect=connect)
 
     def set_approach(self, points: np.ndarray | None) -> None:
         """Draw (or, with None, remove) the way to a restart point, in work coordinates."""
