@@ -75,14 +75,15 @@ class SdoAbortError(SdoError):
     VALUE_RANGE = 0x0609_0030
     GENERAL = 0x0800_0000
 
-    def __init__(self, position: int, index: int, subindex: int, abort_code: int, text: str = "") -> None:
+    def __init__(self, position: int, index: int, subindex: int, abort_code: int, text: str = "",
+                 label: str = "") -> None:
         self.position = position
         self.index = index
         self.subindex = subindex
         self.abort_code = abort_code
         detail = f": {text}" if text else ""
         super().__init__(
-            f"SDO 0x{index:04X}:{subindex} on slave {position} aborted{detail} "
+            f"SDO 0x{index:04X}:{subindex} on {label or f'slave {position}'} aborted{detail} "
             f"(abort code 0x{abort_code:08X})"
         )
 

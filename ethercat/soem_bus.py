@@ -133,14 +133,55 @@ def config_init(master: Any, adapter: str) -> int:
     return n
 
 
-def _map_sdo_error(exc: Exception, position: int, index: int, subindex: int) -> EtherCATError:
+#: SOEM's packet errors (``ecx_packeterror``): the slave's answer was not what the request asked
+PACKET_ERRORS = {
+    1: "unexpected frame returned: the slave answered with another mailbox service than the "
+       "SDO asked for (it may not support this transfer, e.g. complete access, or the object)",
+    3: "data container too small for the object's type",
+}
+#: Mailbox error replies (ETG.1000.4 mailbox error detail codes, SOEM ``ecx_mbxerror``)
+MAILBOX_ERRORS = {
+    1: "syntax of the 6-byte mailbox header is wrong",
+    2: "the mailbox protocol is not supported by the slave",
+    3: "channel field contains a wrong value",
+    4: "the mailbox service is not supported by the slave",
+    5: "the header of the mailbox protocol is wrong",
+    6: "the received mailbox data is too short",
+    7: "no more memory in the slave",
+    8: "the length of the mailbox data is inconsistent",
+}
+
+
+def slave_label(master: Any, position: int) -> str:
+    """``slave 1 (KickCAT drive, vendor 0x..., product 0x...)``: what an integrator can find."""
+    try:
+        s = master.slaves[position]
+        name = str(getattr(s, "name", "") or "?")
+        return f"slave {position} ({name}, vendor 0x{int(s.man):08X}, product 0x{int(s.id):08X})"
+    except (AttributeError, IndexError, TypeError, ValueError):
+        return f"slave {position}"
+
+
+def _map_sdo_error(exc: Exception, position: int, index: int, subindex: int,
+                   master: Any = None) -> EtherCATError:
+    """A pysoem/SOEM error of one SDO transfer as an error an integrator can act on: the slave
+    by position, name and identity, the object, and what the failure means."""
     pysoem = _import_pysoem()
+    label = slave_label(master, position) if master is not None else f"slave {position}"
+    where = f"SDO 0x{index:04X}:{subindex} on {label}"
     if isinstance(exc, pysoem.SdoError):
-        return SdoAbortError(position, index, subindex, int(exc.abort_code), str(exc.desc))
+        return SdoAbortError(position, index, subindex, int(exc.abort_code), str(exc.desc), label=label)
     if isinstance(exc, pysoem.WkcError):
-        return SdoTimeoutError(f"SDO 0x{index:04X}:{subindex} on slave {position}: no answer "
-                               f"(working counter {getattr(exc, 'wkc', '?')})")
-    return SdoError(f"SDO 0x{index:04X}:{subindex} on slave {position}: {exc}")
+        return SdoTimeoutError(f"{where}: no answer (working counter {getattr(exc, 'wkc', '?')})")
+    if isinstance(exc, pysoem.PacketError):
+        code = int(getattr(exc, "error_code", 0))
+        text = PACKET_ERRORS.get(code, "the answer did not fit the request")
+        return SdoError(f"{where}: {text} (SOEM packet error {code})")
+    if isinstance(exc, pysoem.MailboxError):
+        code = int(getattr(exc, "error_code", 0))
+        text = MAILBOX_ERRORS.get(code) or str(getattr(exc, "desc", "")) or "mailbox error"
+        return SdoError(f"{where}: mailbox error: {text} (detail code {code})")
+    return SdoError(f"{where}: {exc}")
 
 
 def sdo_upload(master: Any, position: int, index: int, subindex: int, size: int = 256,
@@ -153,7 +194,7 @@ def sdo_upload(master: Any, position: int, index: int, subindex: int, size: int 
     try:
         return bytes(slaves[position].sdo_read(index, subindex, size, complete_access, release_gil=True))
     except (pysoem.SdoError, pysoem.WkcError, pysoem.MailboxError, pysoem.PacketError) as exc:
-        raise _map_sdo_error(exc, position, index, subindex) from exc
+        raise _map_sdo_error(exc, position, index, subindex, master) from exc
 
 
 def sdo_download(master: Any, position: int, index: int, subindex: int, data: bytes,
@@ -166,7 +207,7 @@ def sdo_download(master: Any, position: int, index: int, subindex: int, data: by
     try:
         slaves[position].sdo_write(index, subindex, bytes(data), complete_access, release_gil=True)
     except (pysoem.SdoError, pysoem.WkcError, pysoem.MailboxError, pysoem.PacketError) as exc:
-        raise _map_sdo_error(exc, position, index, subindex) from exc
+        raise _map_sdo_error(exc, position, index, subindex, master) from exc
 
 
 def write_mapping(master: Any, position: int, mapping: PdoMapping) -> None:

@@ -125,3 +125,29 @@ def test_frame_timeout_comes_from_the_environment(monkeypatch: pytest.MonkeyPatc
         monkeypatch.setenv(FRAME_TIMEOUT_ENV, bad)
         with pytest.raises(ConfigurationError, match=FRAME_TIMEOUT_ENV):
             frame_timeout_us()
+
+
+def test_sdo_failures_are_named_so_an_integrator_can_act() -> None:
+    """SOEM's errors of one SDO transfer, decoded: the slave by position, name and identity,
+    the object, and what the code means (it used to say "(1, 1)")."""
+    import pysoem
+
+    from ethercat.errors import SdoError, SdoTimeoutError
+    from ethercat.soem_bus import _map_sdo_error
+
+    master = SimpleNamespace(slaves=[None, SimpleNamespace(name="KickCAT drive", man=0x6A5, id=0xB0CAD0)])
+    packet = _map_sdo_error(pysoem.PacketError(1, 1), 1, 0x1C12, 0, master)
+    assert isinstance(packet, SdoError)
+    assert str(packet).startswith("SDO 0x1C12:0 on slave 1 (KickCAT drive, vendor 0x000006A5, product "
+                                  "0x00B0CAD0): unexpected frame returned")
+    assert "(SOEM packet error 1)" in str(packet)
+    mailbox = _map_sdo_error(pysoem.MailboxError(1, 2, "x"), 1, 0x1C12, 0, master)
+    assert "mailbox error: the mailbox protocol is not supported by the slave (detail code 2)" in str(mailbox)
+    abort = _map_sdo_error(pysoem.SdoError(1, 0x1C12, 0, 0x06010002, "Attempt to write a read only object"),
+                           1, 0x1C12, 0, master)
+    assert isinstance(abort, SdoAbortError) and abort.abort_code == 0x06010002
+    assert "on slave 1 (KickCAT drive" in str(abort) and "read only" in str(abort)
+    wkc = _map_sdo_error(pysoem.WkcError(1, 0), 1, 0x6041, 0, master)
+    assert isinstance(wkc, SdoTimeoutError) and "no answer" in str(wkc)
+    unknown = _map_sdo_error(pysoem.PacketError(1, 9), 1, 0x1C12, 0, None)
+    assert str(unknown) == "SDO 0x1C12:0 on slave 1: the answer did not fit the request (SOEM packet error 9)"
