@@ -386,22 +386,23 @@ class Streamer:
         if job.spinup_until is not None:      # a spindle started here: on at speed first
             if snap.time_s >= job.spinup_until:
                 job.spinup_until = None
-                self._release(job)
+                self.release(job)
             return
         if kind == "spindle":
-            self._start_spindle(job, SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)), snap)
+            self.start_spindle(job, SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)),
+                               float(snap.time_s))
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))
-            self._release(job)
+            self.release(job)
         elif kind == "dwell":
             if job.dwell_until is None:
                 job.dwell_until = snap.time_s + p.value
                 job.dwell_total_s += p.value
             elif snap.time_s >= job.dwell_until:
                 job.dwell_until = None
-                self._release(job)
+                self.release(job)
         elif kind == "optional_pause" and not self.m.run.optional_stop:
-            self._release(job)
+            self.release(job)
         elif not job.waiting:
             job.waiting = True
             if kind == "tool_change" and self.m.spindle_ctl.spindle.on:
@@ -409,8 +410,7 @@ class Streamer:
                 job.spindle_paused = self.m.spindle_ctl.spindle
                 self.m.spindle_ctl.stop_spindle()
             tool = int(p.value) if kind == "tool_change" else 0
-            known = self.m.tools.table.get(tool)
-            label = known.label() if known is not None else f"T{tool}"
+            label = self.m.tools.table.label(tool)
             reason = {
                 "pause": f"program paused (M00, line {p.line}): press cycle start",
                 "optional_pause": f"optional stop (M01, line {p.line}): press cycle start",
@@ -426,16 +426,18 @@ class Streamer:
                 self.m.lineChanged.emit(p.line)
             self.m.states.set_state(MachineState.HOLD, reason, hold, Prompt(hold, p.line, tool, reason))
 
-    def _start_spindle(self, job: Job, sp: SpindleState, snap: Any) -> None:
-        """Switch the spindle at a pause point; when it starts, reverses or speeds up, the
-        motion waits ``spindle_spinup_s`` there before it goes on."""
+    def start_spindle(self, job: Job, sp: SpindleState, now_s: float) -> None:
+        """Switch the spindle at a pause point (a program's M3/M4/M5/S, or back after a tool
+        change); when it starts, reverses or speeds up, the motion waits ``spindle_spinup_s``
+        there before it goes on, else it goes on at once."""
         wait = self.m.spindle_ctl.spin_up_s(sp)
         self.m.spindle_ctl.apply_spindle(sp)
+        job.waiting = False
         if wait > 0.0:
-            job.spinup_until = float(snap.time_s) + wait
+            job.spinup_until = now_s + wait
             job.dwell_total_s += wait
         else:
-            self._release(job)
+            self.release(job)
 
     def _finish_stop(self, job: Job) -> None:
         resume = self.m.run.resume_point
@@ -448,7 +450,7 @@ class Streamer:
             return
         self.m.states.set_state(MachineState.IDLE, job.stop_reason or "stopped")
 
-    def _release(self, job: Job) -> None:
+    def release(self, job: Job) -> None:
         with self.m._lock:
             job.pause = None
             job.waiting = False

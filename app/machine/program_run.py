@@ -191,16 +191,10 @@ class ProgramRunner:
                     self.m.tools.loaded_by_program(int(job.pause.value))
                 # back from a tool change: the spindle as it was, at speed before moving on
                 paused, job.spindle_paused = job.spindle_paused, None
-                wait = 0.0
                 if paused is not None:
-                    wait = self.m.spindle_ctl.spin_up_s(paused)
-                    self.m.spindle_ctl.apply_spindle(paused)
-                job.waiting = False
-                if wait > 0.0:
-                    job.spinup_until = float(self.m.conn.snapshot_now().time_s) + wait
+                    self.m.stream.start_spindle(job, paused, float(self.m.conn.snapshot_now().time_s))
                 else:
-                    job.pause = None
-                    job.executor.release_pause()
+                    self.m.stream.release(job)
         self.m.states.set_state(MachineState.RUNNING, job.kind.value)
         return self.m.states.ok("resume")
 
