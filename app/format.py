@@ -39,7 +39,4 @@ def tool_text(table: ToolTable, number: int) -> str:
     """``T2 (6 mm flat)``, or "none" (translated) for the empty spindle."""
     from app.i18n import tr
 
-    if not number:
-        return tr("none")
-    tool = table.get(number)
-    return tool.label() if tool is not None else f"T{number}"
+    return table.label(number) if number else tr("none")

@@ -384,8 +384,7 @@ class _Interpreter:
         return number
 
     def tool_label(self, number: int) -> str:
-        tool = self.tools.get(number) if self.tools is not None else None
-        return tool.label() if tool is not None else f"T{number}"
+        return self.tools.label(number) if self.tools is not None else f"T{number}"
 
     def tool_offsets(self, number: int) -> tuple[float, ...]:
         tool = self.tools.get(number) if self.tools is not None else None

@@ -82,6 +82,11 @@ class ToolTable:
     def get(self, number: int) -> Tool | None:
         return self.tools.get(number)
 
+    def label(self, number: int) -> str:
+        """``T2 (6 mm flat)`` for a tool in the table, ``T9`` for one that is not."""
+        tool = self.tools.get(number)
+        return tool.label() if tool is not None else f"T{number}"
+
     def with_tool(self, tool: Tool) -> ToolTable:
         _check_tool(tool, "tool table")
         tools = dict(self.tools)
