@@ -139,7 +139,6 @@ class AutoPage(QWidget):
         self._fraction, self._remaining, self._speed, self._line = 0.0, float("nan"), 0.0, 0
         self._refused = ""
         self._finished = ""
-        self._move_lines = np.zeros(0, dtype=np.int64)
         self._spindle = c.spindle
         self._tools, self._tool = c.tool_table, c.tool_in_spindle
         c.programLoaded.connect(self._on_loaded)
@@ -223,9 +222,6 @@ class AutoPage(QWidget):
         self._remaining = float(getattr(info, "cycle_time_s", float("nan")))
         self._fraction = 0.0
         self._finished = ""
-        program = getattr(info, "program", None)
-        moves = getattr(program, "moves", ())
-        self._move_lines = np.fromiter((m.line for m in moves), dtype=np.int64, count=len(moves))
         self.progress.setValue(0)
         self._update_info()
         self._update_buttons()
@@ -244,6 +240,7 @@ class AutoPage(QWidget):
     def _on_program_model(self) -> None:
         model = self.ctx.program
         self._refused = ""
+        self._update_info()       # the feed and modal codes come from the loaded program
         if model.info is None and model.text and self.editor.toPlainText() != model.text:
             self.editor.load_text(model.text)
             self.program_label.setText(model.name)
@@ -306,18 +303,16 @@ class AutoPage(QWidget):
     def _on_errors(self, _issues: object) -> None:
         """A refused load: the previous program's progress is not this program's."""
         self._fraction, self._remaining, self._line, self._finished = 0.0, float("nan"), 0, ""
-        self._move_lines = np.zeros(0, dtype=np.int64)
         self.progress.setValue(0)
         self._update_info()
 
     def _programmed_feed_and_modal(self) -> tuple[float, str]:
         """F (mm/min) and the modal codes of the move at the current line (0, "" if none)."""
-        info = self.ctx.controller.program_info
-        program = getattr(info, "program", None)
-        if program is None or not len(self._move_lines):
+        model = self.ctx.program
+        program = model.program
+        if program is None or not program.moves:
             return 0.0, ""
-        i = int(np.searchsorted(self._move_lines, max(self._line, 1), side="left"))
-        i = min(i, len(self._move_lines) - 1)
+        i = min(model.move_at_line(max(self._line, 1)), len(program.moves) - 1)
         move = program.moves[i]
         feed = float(move.feed_mm_s) * 60.0 if np.isfinite(move.feed_mm_s) else 0.0
         return feed, program.modal_at_move(i)
