@@ -144,15 +144,6 @@ def build_toolpath(program: Program) -> ToolPath:
     return ToolPath(tuple(program.axes), result, everything, lines, first_point, (lo, hi), offsets)
 
 
-def nearest_move(path: ToolPath, cols: tuple[int | None, int | None], x: float,
-                 y: float) -> tuple[int, float]:
-    """Move index nearest to (x, y) in the projection on ``cols`` and its distance (-1 if none)."""
-    pl = path.all
-    px = pl.points[:, cols[0]] if cols[0] is not None else np.zeros(len(pl.points))
-    py = pl.points[:, cols[1]] if cols[1] is not None else np.zeros(len(pl.points))
-    return nearest_projected(path, px, py, x, y)
-
-
 def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,
                       y: float) -> tuple[int, float]:
     """Move index nearest to (x, y) where ``px, py`` are the drawn coordinates of every point

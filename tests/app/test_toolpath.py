@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.toolpath import build_toolpath, nearest_move
+from app.toolpath import build_toolpath, nearest_projected
 from planner.interpreter import parse_program
 from planner.program import MoveKind
 
@@ -62,9 +62,10 @@ def test_helix_descends_linearly(path) -> None:
 
 
 def test_pick_nearest_segment(path) -> None:
-    index, dist = nearest_move(path, (0, 1), 5.0, 0.2)   # middle of G01 X10 (line 4)
+    px, py = path.all.points[:, 0], path.all.points[:, 1]            # the XY view
+    index, dist = nearest_projected(path, px, py, 5.0, 0.2)   # middle of G01 X10 (line 4)
     assert int(path.move_lines[index]) == 4 and dist == pytest.approx(0.2)
-    index, _ = nearest_move(path, (0, 1), 15.0, 5.0)      # top of the G02 R5 arc (line 5)
+    index, _ = nearest_projected(path, px, py, 15.0, 5.0)      # top of the G02 R5 arc (line 5)
     assert int(path.move_lines[index]) == 5
 
 
