@@ -68,6 +68,7 @@ def run_bench(bus_kind: str = "sim", ifname: str = "", seconds: float = 10.0, *,
         "spin_us": (cfg.spin_s if cfg.spin_s is not None else
                     (PROCESS_SPIN_S if mode == "process" else 0.0)) * 1e6,
         "min_sleep_us": cfg.min_sleep_s * 1e6,
+        "bus_notes": list(worker.bus_notes),
     }
     out.update(snap.timing.as_dict())
     out.update({

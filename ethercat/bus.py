@@ -114,6 +114,8 @@ class Bus(abc.ABC):
 
     def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001) -> None:
         self.drives = check_drives(drives)
+        #: what the start-up adapted to (a drive's own mapping, objects it lacks), one line each
+        self.notes: list[str] = []
         if not 0.000_1 <= cycle_time_s <= 0.1:
             raise ConfigurationError(f"cycle_time_s must be within [0.0001, 0.1] s, got {cycle_time_s}")
         self.cycle_time_s = float(cycle_time_s)

@@ -156,7 +156,11 @@ def cmd_bench(args: argparse.Namespace) -> int:
         print(json.dumps(result))
     else:
         for key, value in result.items():
+            if key == "bus_notes":
+                continue
             print(f"{key:28s} {value}")
+        for note in result.get("bus_notes", ()):
+            print(f"note: {note}")
     return 0
 
 

@@ -10,7 +10,10 @@ from __future__ import annotations
 
 
 class EtherCATError(RuntimeError):
-    """Base of all errors raised by the `ethercat` package."""
+    """Base of all errors raised by the `ethercat` package. ``step``: the bus start-up step it
+    happened in (a ``StartupStep``), None outside the start-up."""
+
+    step: object = None
 
 
 class EtherCATTimeoutError(EtherCATError, TimeoutError):

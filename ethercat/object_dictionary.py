@@ -89,6 +89,28 @@ OBJECTS: dict[tuple[int, int], ObjectEntry] = _entries(
 
 OBJECT_INDICES = frozenset(i for i, _ in OBJECTS)
 
+#: Further CiA 402 objects a third-party drive may map or need at start-up, for naming and
+#: typing what is found on a drive; the project's drive model does not have them.
+CIA402_EXTRA: dict[tuple[int, int], ObjectEntry] = _entries(
+    (0x6063, 0, "position actual internal value", "i32", "ro", True),
+    (0x606B, 0, "velocity demand value", "i32", "ro", True),
+    (0x6071, 0, "target torque", "i16", "rw", True),
+    (0x6072, 0, "max torque", "u16", "rw", True),
+    (0x6077, 0, "torque actual value", "i16", "ro", True),
+    (0x6078, 0, "current actual value", "i16", "ro", True),
+    (0x60B0, 0, "position offset", "i32", "rw", True),
+    (0x60B1, 0, "velocity offset", "i32", "rw", True),
+    (0x60B2, 0, "torque offset", "i16", "rw", True),
+    (0x60B8, 0, "touch probe function", "u16", "rw", True),
+    (0x60B9, 0, "touch probe status", "u16", "ro", True),
+    (0x60BA, 0, "touch probe position 1 positive value", "i32", "ro", True),
+    (0x60FF, 0, "target velocity", "i32", "rw", True),
+    (0x6502, 0, "supported drive modes", "u32", "ro", False),
+)
+
+#: every object this package can name: the model's and the further CiA 402 ones
+KNOWN_OBJECTS: dict[tuple[int, int], ObjectEntry] = {**CIA402_EXTRA, **OBJECTS}
+
 
 def encode_object(entry: ObjectEntry, value: int) -> bytes:
     """Little-endian bytes of `value` in the object's type."""

@@ -5,22 +5,39 @@ and the packing of one drive's outputs and inputs into its slice of the frame.""
 from __future__ import annotations
 
 import struct
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
 from .bus import Bus
 from .errors import ConfigurationError
+from .object_dictionary import KNOWN_OBJECTS
 
-__all__ = ["CSP_MAPPING", "DRIVE_MAPPINGS", "DriveIo", "PdoEntry", "PdoMapping"]
+__all__ = ["CSP_MAPPING", "DRIVE_MAPPINGS", "MANDATORY_RX", "MANDATORY_TX", "OPTIONAL_OBJECTS", "DriveIo",
+           "PdoEntry", "PdoMapping", "parse_entry"]
 
-_TYPES = {8: "b", 16: "h", 32: "i"}
+_TYPES = {8: "b", 16: "h", 32: "i", 64: "q"}
+
+#: objects a CSP drive must have in its process data; everything else is optional and is
+#: obtained another way when the drive does not have it (see `OPTIONAL_OBJECTS`)
+MANDATORY_RX = frozenset({0x6040, 0x607A})
+MANDATORY_TX = frozenset({0x6041, 0x6064})
+#: what the master does without each optional object in the process data
+OPTIONAL_OBJECTS = {
+    0x6060: "modes of operation written once by SDO before OP",
+    0x60FE: "no digital outputs (spindle enable/direction) through this drive",
+    0x60F4: "following error computed by the master (set-point minus position actual)",
+    0x603F: "error code read by SDO when the drive reports a fault",
+    0x6061: "mode display read by SDO at start-up",
+    0x60FD: "no limit, home or probe inputs through this drive",
+}
 
 
 @dataclass(frozen=True, slots=True)
 class PdoEntry:
-    """One mapped object: index, subindex, bit length (8, 16 or 32), signed."""
+    """One mapped object: index, subindex, bit length (8, 16, 32 or 64), signed. Index 0 is
+    padding (gap of `bits` bits, whole bytes)."""
 
     index: int
     subindex: int
@@ -33,14 +50,57 @@ class PdoEntry:
         return (self.index << 16) | (self.subindex << 8) | self.bits
 
     @property
+    def is_padding(self) -> bool:
+        return self.index == 0
+
+    @property
     def code(self) -> str:
+        if self.is_padding:
+            return f"{self.bits // 8}x"
         c = _TYPES[self.bits]
         return c if self.signed else c.upper()
+
+    @classmethod
+    def from_value(cls, value: int) -> PdoEntry:
+        """The entry of a raw mapping value, typed from the objects this package knows
+        (an unknown object is read as unsigned)."""
+        index, sub, bits = value >> 16, (value >> 8) & 0xFF, value & 0xFF
+        known = KNOWN_OBJECTS.get((index, sub))
+        return cls(index, sub, bits, bool(known is not None and known.signed))
+
+    def text(self) -> str:
+        if self.is_padding:
+            return f"padding {self.bits} bit"
+        known = KNOWN_OBJECTS.get((self.index, self.subindex))
+        name = f" {known.name}" if known is not None else ""
+        return f"0x{self.index:04X}:{self.subindex:02X} {self.bits} bit{name}"
+
+
+def parse_entry(text: str) -> PdoEntry:
+    """``"0x6040:0:16"`` (index:subindex:bits, numbers in any base) as a `PdoEntry`, for the
+    machine configuration's mapping lists; an ``s`` after the bits marks a signed value of an
+    object this package does not know (``"0x2010:1:32s"``)."""
+    parts = text.strip().split(":")
+    signed_mark = parts[-1].lower().endswith("s") if parts else False
+    if signed_mark:
+        parts[-1] = parts[-1][:-1]
+    try:
+        index, sub, bits = (int(x, 0) for x in parts)
+    except ValueError:
+        raise ConfigurationError(f"PDO entry {text!r}: write index:subindex:bits, "
+                                 "e.g. '0x6040:0:16'") from None
+    if not 0 <= index <= 0xFFFF or not 0 <= sub <= 0xFF or not 0 < bits <= 64:
+        raise ConfigurationError(f"PDO entry {text!r}: index 0..0xFFFF, subindex 0..255, bits 1..64")
+    known = KNOWN_OBJECTS.get((index, sub))
+    if known is not None and index and known.bit_length != bits:
+        raise ConfigurationError(f"PDO entry {text!r}: 0x{index:04X}:{sub} ({known.name}) has "
+                                 f"{known.bit_length} bits, not {bits}")
+    return PdoEntry(index, sub, bits, signed_mark or bool(known is not None and known.signed))
 
 
 @dataclass(frozen=True, slots=True)
 class PdoMapping:
-    """Process data layout of one drive model, written by SDO in PRE-OP.
+    """Process data layout of one drive, written by SDO in PRE-OP or found on the drive.
 
     rx: RxPDO entries (master -> drive) in `rx_pdo`, assigned to SM2 via 0x1C12;
     tx: TxPDO entries (drive -> master) in `tx_pdo`, assigned to SM3 via 0x1C13.
@@ -59,15 +119,40 @@ class PdoMapping:
     def __post_init__(self) -> None:
         rx_objects = {e.index for e in self.rx}
         tx_objects = {e.index for e in self.tx}
-        if not {0x6040, 0x607A} <= rx_objects:
+        if not MANDATORY_RX <= rx_objects:
             raise ConfigurationError("RxPDO mapping must contain controlword 0x6040 and target "
                                      "position 0x607A")
-        if not {0x6041, 0x6064} <= tx_objects:
+        if not MANDATORY_TX <= tx_objects:
             raise ConfigurationError("TxPDO mapping must contain statusword 0x6041 and position "
                                      "actual 0x6064")
         for e in self.rx + self.tx:
-            if e.bits not in _TYPES:
-                raise ConfigurationError(f"PDO entry 0x{e.index:04X}:{e.subindex}: {e.bits} bits unsupported")
+            if e.is_padding:
+                if e.bits % 8 or not e.bits:
+                    raise ConfigurationError(f"PDO padding of {e.bits} bits: only whole bytes are supported")
+            elif e.bits not in _TYPES:
+                raise ConfigurationError(f"PDO entry 0x{e.index:04X}:{e.subindex}: {e.bits} bits unsupported "
+                                         "(8, 16, 32 or 64)")
+
+    @classmethod
+    def from_values(cls, rx: list[int] | tuple[int, ...], tx: list[int] | tuple[int, ...],
+                    rx_pdo: int = 0x1600, tx_pdo: int = 0x1A00) -> PdoMapping:
+        """A mapping from raw entry values as read from a drive (0x16xx/0x1Axx sub-indices)."""
+        return cls(tuple(PdoEntry.from_value(v) for v in rx), tuple(PdoEntry.from_value(v) for v in tx),
+                   rx_pdo, tx_pdo)
+
+    @property
+    def objects(self) -> frozenset[int]:
+        """Indices of every mapped object (both directions)."""
+        return frozenset(e.index for e in self.rx + self.tx if not e.is_padding)
+
+    def without(self, indices: frozenset[int] | set[int]) -> PdoMapping:
+        """This mapping without the entries of `indices` (optional objects a drive lacks)."""
+        return replace(self, rx=tuple(e for e in self.rx if e.index not in indices),
+                       tx=tuple(e for e in self.tx if e.index not in indices))
+
+    def same_entries(self, other: PdoMapping) -> bool:
+        return ([e.value for e in self.rx] == [e.value for e in other.rx]
+                and [e.value for e in self.tx] == [e.value for e in other.tx])
 
     @property
     def rx_struct(self) -> struct.Struct:
@@ -119,10 +204,11 @@ class DriveIo:
     def __post_init__(self) -> None:
         self.rx = self.mapping.rx_struct
         self.tx = self.mapping.tx_struct
+        # padding takes no value; objects the bus has no array for are written as 0 and not read
         self.out_arrays = tuple(getattr(self.bus, _RX_ARRAYS[e.index]) if e.index in _RX_ARRAYS else None
-                                for e in self.mapping.rx)
+                                for e in self.mapping.rx if not e.is_padding)
         self.in_arrays = tuple(getattr(self.bus, _TX_ARRAYS[e.index]) if e.index in _TX_ARRAYS else None
-                               for e in self.mapping.tx)
+                               for e in self.mapping.tx if not e.is_padding)
 
     def write(self) -> None:
         i = self.i

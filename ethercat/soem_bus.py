@@ -32,15 +32,18 @@ Per-cycle cost: one small `bytes` per drive for `slave.output` and one from
 
 from __future__ import annotations
 
+import contextlib
 import os
 import struct
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from .bus import Bus, DriveSpec, SlaveInfo
+from .drive_setup import DriveSetup, MappingPolicy, StartupStep
 from .errors import (
     AdapterError,
     AlStateError,
@@ -53,7 +56,17 @@ from .errors import (
     SdoTimeoutError,
     SlaveIdentityError,
 )
-from .pdo import CSP_MAPPING, DRIVE_MAPPINGS, DriveIo, PdoMapping
+from .pdo import (
+    CSP_MAPPING,
+    DRIVE_MAPPINGS,
+    MANDATORY_RX,
+    MANDATORY_TX,
+    OPTIONAL_OBJECTS,
+    DriveIo,
+    PdoMapping,
+)
+
+DEFAULT_SETUP = DriveSetup()
 
 AL_INIT, AL_PREOP, AL_BOOT, AL_SAFEOP, AL_OP = 1, 2, 3, 4, 8
 AL_STATE_NAMES = {0: "NONE", AL_INIT: "INIT", AL_PREOP: "PRE-OP", AL_BOOT: "BOOT",
@@ -210,35 +223,50 @@ def sdo_download(master: Any, position: int, index: int, subindex: int, data: by
         raise _map_sdo_error(exc, position, index, subindex, master) from exc
 
 
-def write_mapping(master: Any, position: int, mapping: PdoMapping) -> None:
-    """Write `mapping` into the drive at `position` (must be in PRE-OP), CiA 301 order:
-    assignment off, mapping off, entries, mapping count, assignment, assignment count."""
+def write_assignment(master: Any, position: int, assign: int, pdos: Sequence[tuple[int, Sequence[int]]],
+                     complete_access: bool = False) -> None:
+    """Assign `pdos` (PDO index and its entry values) to the sync manager of `assign` (0x1C12
+    or 0x1C13), in the order CoE requires (ETG.1000.6, CiA 301): assignment off, for each PDO
+    mapping off, entries, entry count, then the PDO indices and the assignment count."""
 
     def w(index: int, sub: int, fmt: str, value: int) -> None:
         sdo_download(master, position, index, sub, struct.pack(fmt, value))
 
-    for assign, pdo, entries in ((0x1C12, mapping.rx_pdo, mapping.rx), (0x1C13, mapping.tx_pdo, mapping.tx)):
-        if mapping.complete_access:
-            sdo_download(master, position, assign, 0, struct.pack("<Bx", 0), complete_access=True)
-            sdo_download(master, position, pdo, 0,
-                         struct.pack(f"<Bx{len(entries)}I", len(entries), *(e.value for e in entries)),
+    if complete_access:
+        sdo_download(master, position, assign, 0, struct.pack("<Bx", 0), complete_access=True)
+        for pdo, entries in pdos:
+            sdo_download(master, position, pdo, 0, struct.pack(f"<Bx{len(entries)}I", len(entries), *entries),
                          complete_access=True)
-            sdo_download(master, position, assign, 0, struct.pack("<BxH", 1, pdo), complete_access=True)
-            continue
-        w(assign, 0, "<B", 0)
+        sdo_download(master, position, assign, 0,
+                     struct.pack(f"<Bx{len(pdos)}H", len(pdos), *(p for p, _ in pdos)), complete_access=True)
+        return
+    w(assign, 0, "<B", 0)
+    for pdo, entries in pdos:
         w(pdo, 0, "<B", 0)
-        for k, e in enumerate(entries, start=1):
-            w(pdo, k, "<I", e.value)
+        for k, value in enumerate(entries, start=1):
+            w(pdo, k, "<I", value)
         w(pdo, 0, "<B", len(entries))
-        w(assign, 1, "<H", pdo)
-        w(assign, 0, "<B", 1)
+    for k, (pdo, _) in enumerate(pdos, start=1):
+        w(assign, k, "<H", pdo)
+    w(assign, 0, "<B", len(pdos))
+
+
+def write_mapping(master: Any, position: int, mapping: PdoMapping,
+                  complete_access: bool | None = None) -> None:
+    """Write `mapping` into the drive at `position` (must be in PRE-OP), RxPDO then TxPDO."""
+    ca = mapping.complete_access if complete_access is None else complete_access
+    write_assignment(master, position, 0x1C12, [(mapping.rx_pdo, [e.value for e in mapping.rx])], ca)
+    write_assignment(master, position, 0x1C13, [(mapping.tx_pdo, [e.value for e in mapping.tx])], ca)
     if mapping.dc_sync_mode:
-        w(0x1C32, 1, "<H", 2)
+        sdo_download(master, position, 0x1C32, 1, struct.pack("<H", 2))
 
 
-def read_mapping(master: Any, position: int) -> dict[str, list[tuple[int, list[int]]]]:
+Found = dict[str, list[tuple[int, list[int]]]]
+
+
+def read_mapping(master: Any, position: int) -> Found:
     """The slave's PDO assignment and mapping: {"rx": [(pdo, [entry values])], "tx": [...]}."""
-    out: dict[str, list[tuple[int, list[int]]]] = {"rx": [], "tx": []}
+    out: Found = {"rx": [], "tx": []}
     for key, assign in (("rx", 0x1C12), ("tx", 0x1C13)):
         n = sdo_upload(master, position, assign, 0)[0]
         for k in range(1, n + 1):
@@ -248,6 +276,64 @@ def read_mapping(master: Any, position: int) -> dict[str, list[tuple[int, list[i
                        for j in range(1, m + 1)]
             out[key].append((pdo, entries))
     return out
+
+
+def mapping_from_found(found: Found) -> PdoMapping:
+    """The mapping a drive has (every assigned PDO in order) as a `PdoMapping`; raises
+    `ConfigurationError` naming what is missing or unusable."""
+    rx = [v for _, entries in found["rx"] for v in entries]
+    tx = [v for _, entries in found["tx"] for v in entries]
+    rx_pdo = found["rx"][0][0] if found["rx"] else 0x1600
+    tx_pdo = found["tx"][0][0] if found["tx"] else 0x1A00
+    return PdoMapping.from_values(rx, tx, rx_pdo, tx_pdo)
+
+
+def found_matches(found: Found, mapping: PdoMapping) -> bool:
+    """Whether the drive already has exactly `mapping` (one PDO each way, same entries)."""
+    return (found["rx"] == [(mapping.rx_pdo, [e.value for e in mapping.rx])]
+            and found["tx"] == [(mapping.tx_pdo, [e.value for e in mapping.tx])])
+
+
+def has_object(master: Any, position: int, index: int, subindex: int) -> bool:
+    """Whether the drive has the object (an SDO upload not aborted as 'does not exist')."""
+    try:
+        sdo_upload(master, position, index, subindex)
+    except SdoAbortError as exc:
+        return exc.abort_code not in (SdoAbortError.OBJECT_DOES_NOT_EXIST,
+                                      SdoAbortError.SUBINDEX_DOES_NOT_EXIST)
+    return True
+
+
+def complete_access_fault(master: Any, position: int) -> str:
+    """Why complete access cannot be used with this slave ('' when it works): its answer to a
+    complete-access upload of the RxPDO assignment 0x1C12 must be sub-index 0 as 8 bits, one
+    pad byte and the 16-bit entries (ETG.1000.6), the same values as read one by one."""
+    pysoem = _import_pysoem()
+    n = sdo_upload(master, position, 0x1C12, 0)[0]
+    entries = [struct.unpack("<H", sdo_upload(master, position, 0x1C12, k)[:2])[0] for k in range(1, n + 1)]
+    want = struct.pack(f"<Bx{n}H", n, *entries)
+    try:
+        got = bytes(master.slaves[position].sdo_read(0x1C12, 0, 256, True, release_gil=True))
+    except (pysoem.SdoError, pysoem.WkcError, pysoem.MailboxError, pysoem.PacketError) as exc:
+        return (f"a complete-access upload of 0x1C12 failed "
+                f"({_map_sdo_error(exc, position, 0x1C12, 0, master)})")
+    finally:
+        _resync_mailbox(master, position)
+    if got[:len(want)] != want:
+        return (f"its complete-access answer for 0x1C12 is {got.hex(' ')}, expected {want.hex(' ')} "
+                "(sub-index 0, one pad byte, the entries)")
+    return ""
+
+
+def _resync_mailbox(master: Any, position: int) -> None:
+    """After a failed or odd mailbox exchange, read the device type until an answer matches,
+    so that a late answer is not taken for the next request's."""
+    for _ in range(3):
+        try:
+            sdo_upload(master, position, 0x1000, 0)
+            return
+        except SdoError:
+            continue
 
 
 def slave_infos(master: Any) -> tuple[SlaveInfo, ...]:
@@ -286,6 +372,8 @@ class SoemBus(Bus):
     dc: use distributed clocks (SYNC0 = cycle time on every slave).
     safeop_timeout_s / op_timeout_s / init_timeout_s: AL state change timeouts.
     receive_timeout_us: how long `exchange()` waits for the frame (SOEM's EC_TIMEOUTRET).
+    setups: slave position -> `DriveSetup` (mapping policy, start-up SDOs, DC settings).
+    mode_timeout_s: how long a drive may take to show CSP in 0x6061 after OP.
     """
 
     kind = "soem"
@@ -294,7 +382,8 @@ class SoemBus(Bus):
                  mappings: Mapping[tuple[int, int], PdoMapping] | None = None,
                  default_mapping: PdoMapping = CSP_MAPPING, dc: bool = True,
                  safeop_timeout_s: float = 2.0, op_timeout_s: float = 3.0, init_timeout_s: float = 2.0,
-                 receive_timeout_us: int = 2000, **_ignored: object) -> None:
+                 receive_timeout_us: int = 2000, setups: Mapping[int, DriveSetup] | None = None,
+                 mode_timeout_s: float = 1.0, **_ignored: object) -> None:
         super().__init__(drives, cycle_time_s)
         self.adapter = adapter
         self.mappings: dict[tuple[int, int], PdoMapping] = {**DRIVE_MAPPINGS, **(mappings or {})}
@@ -307,7 +396,12 @@ class SoemBus(Bus):
         self.master: Any = None
         self.n_slaves = 0
         self.warnings: list[str] = []       # SOEM error list entries judged harmless
-        self.slave_mappings: dict[int, PdoMapping] = {}
+        self.slave_mappings: dict[int, PdoMapping] = {}      # by slave position: what runs
+        self.written_mappings: dict[int, PdoMapping] = {}    # what this master wrote
+        self.setups: dict[int, DriveSetup] = dict(setups or {})
+        self.mode_timeout_s = mode_timeout_s
+        self.complete_access: dict[int, bool] = {}
+        self.step: StartupStep | None = None
         self._expected_wkc = 0
         self.wkc_errors = 0                 # cycles whose working counter was not the expected one
         self._io: list[DriveIo] = []
@@ -322,9 +416,26 @@ class SoemBus(Bus):
     def mapping_for(self, vendor_id: int, product_code: int) -> PdoMapping:
         return self.mappings.get((vendor_id, product_code), self.default_mapping)
 
+    def setup_for(self, position: int) -> DriveSetup:
+        return self.setups.get(position, DEFAULT_SETUP)
+
+    @contextlib.contextmanager
+    def _step(self, step: StartupStep) -> Iterator[None]:
+        """Name the start-up step in any error raised inside it (once, innermost wins)."""
+        self.step = step
+        try:
+            yield
+        except EtherCATError as exc:
+            if exc.step is None:
+                exc.step = step
+                if exc.args:
+                    exc.args = (f"{step.value}: {exc.args[0]}", *exc.args[1:])
+            raise
+
     def _open(self) -> None:
         pysoem = _import_pysoem()
-        self.master = open_master(self.adapter)
+        with self._step(StartupStep.ADAPTER):
+            self.master = open_master(self.adapter)
         try:
             self._configure(pysoem)
         except BaseException:
@@ -333,59 +444,208 @@ class SoemBus(Bus):
 
     def _configure(self, pysoem: Any) -> None:
         master = self.master
-        self.n_slaves = n = config_init(master, self.adapter)
-        for d in self.drives:
-            if d.position >= n:
-                raise ConfigurationError(f"drive {d.axis_name} is configured at slave position {d.position}, "
-                                         f"but only {n} slave(s) answered on {self.adapter!r}")
+        with self._step(StartupStep.SCAN):
+            self.n_slaves = n = config_init(master, self.adapter)
+            for d in self.drives:
+                if d.position >= n:
+                    raise ConfigurationError(f"drive {d.axis_name} is configured at slave position "
+                                             f"{d.position}, but only {n} slave(s) answered on "
+                                             f"{self.adapter!r}")
+            self._wait_state(AL_PREOP, self.safeop_timeout_s, "PRE-OP")
         # identity check (0 in the configuration = do not check that field)
-        for d in self.drives:
-            s = master.slaves[d.position]
-            found = (int(s.man), int(s.id))
-            if (d.vendor_id and d.vendor_id != found[0]) or (d.product_code and d.product_code != found[1]):
-                raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
-        # PDO mapping in the PRE-OP -> SAFE-OP hook of each drive
-        hook_errors: list[EtherCATError] = []
-        for d in self.drives:
-            s = master.slaves[d.position]
-            mapping = self.mapping_for(int(s.man), int(s.id))
-            self.slave_mappings[d.position] = mapping
-            s.setup_func = self._make_hook(d.position, mapping, hook_errors)
-        try:
-            master.config_map()
-        except pysoem.ConfigMapError as exc:
-            self._judge_config_map_errors(list(getattr(exc, "error_list", []) or []))
-        if hook_errors:
-            raise hook_errors[0]
-        self._build_io()
-        # distributed clocks: SYNC0 = Ts on every slave
-        if self.dc:
-            if not master.config_dc():
-                self.warnings.append("no slave supports distributed clocks; running without SYNC0")
-            else:
-                cycle_ns = int(round(self.cycle_time_s * 1e9))
-                for s in master.slaves:
-                    s.dc_sync(True, cycle_ns)
-                self._dc_active = True
-        self._wait_state(AL_SAFEOP, self.safeop_timeout_s, "SAFE-OP")
-        # process data in SAFE-OP: inputs become valid, outputs safe (controlword 0)
-        self.controlword[:] = 0
-        self.modes_of_operation[:] = 8
-        for _ in range(3):
-            self._cycle()
-            time.sleep(self.cycle_time_s)
+        with self._step(StartupStep.IDENTITY):
+            for d in self.drives:
+                s = master.slaves[d.position]
+                found = (int(s.man), int(s.id))
+                if ((d.vendor_id and d.vendor_id != found[0])
+                        or (d.product_code and d.product_code != found[1])):
+                    raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
+        with self._step(StartupStep.MAILBOX):
+            for d in self.drives:
+                self._check_complete_access(d.position)
+        with self._step(StartupStep.MAPPING):
+            for d in self.drives:
+                self.slave_mappings[d.position] = self._choose_mapping(d.position)
+        with self._step(StartupStep.STARTUP_SDO):
+            for d in self.drives:
+                self._startup_sdos(d.position)
+        with self._step(StartupStep.PROCESS_DATA):
+            try:
+                master.config_map()
+            except pysoem.ConfigMapError as exc:
+                self._judge_config_map_errors(list(getattr(exc, "error_list", []) or []))
+            self._build_io()
+            # a slave that lost its settings (power cycle) gets them again when it is recovered
+            for d in self.drives:
+                master.slaves[d.position].setup_func = self._make_hook(d.position)
+        # distributed clocks: SYNC0 = Ts on every slave (unless a drive's setup turns it off)
+        with self._step(StartupStep.DC):
+            if self.dc:
+                if not master.config_dc():
+                    self.warnings.append("no slave supports distributed clocks; running without SYNC0")
+                else:
+                    cycle_ns = int(round(self.cycle_time_s * 1e9))
+                    for pos, s in enumerate(master.slaves):
+                        setup = self.setup_for(pos)
+                        if setup.dc:
+                            s.dc_sync(True, cycle_ns, setup.sync0_shift_ns)
+                    self._dc_active = True
+        with self._step(StartupStep.SAFEOP):
+            self._wait_state(AL_SAFEOP, self.safeop_timeout_s, "SAFE-OP")
+            # process data in SAFE-OP: inputs become valid, outputs safe (controlword 0)
+            self.controlword[:] = 0
+            self.modes_of_operation[:] = 8
+            for _ in range(3):
+                self._cycle()
+                time.sleep(self.cycle_time_s)
+            # the target follows the actual position from the first frame on: a drive that
+            # takes the target when it is enabled must not see 0 (or a stale value)
+            np.copyto(self.target_position, self.position_actual)
+        with self._step(StartupStep.OP):
+            self._request_op()
         np.copyto(self.target_position, self.position_actual)
-        self._request_op()
-        np.copyto(self.target_position, self.position_actual)
+        with self._step(StartupStep.MODE):
+            self._wait_csp_mode()
         self._io_ready = True
 
-    def _make_hook(self, position: int, mapping: PdoMapping,
-                   errors: list[EtherCATError]) -> Callable[[Any], int]:
+    def _check_complete_access(self, position: int) -> None:
+        """SOEM reads a drive's PDO mapping with complete access when the drive's SII says it
+        can; a drive that says so but answers wrongly derails the whole mapping. Tried once
+        here (unless the drive's setup decides), and turned off for SOEM when it fails."""
+        setup = self.setup_for(position)
+        slave = self.master.slaves[position]
+        if setup.complete_access is None:
+            why = complete_access_fault(self.master, position)
+            self.complete_access[position] = not why
+            if why:
+                self.notes.append(f"{slave_label(self.master, position)}: SDO complete access not used: "
+                                  f"{why}")
+        else:
+            self.complete_access[position] = setup.complete_access
+        if not self.complete_access[position] and hasattr(slave, "_disable_complete_access"):
+            slave._disable_complete_access()
+
+    def _choose_mapping(self, position: int) -> PdoMapping:
+        """The mapping this drive runs with (see `MappingPolicy`); notes say what was done."""
+        master = self.master
+        setup = self.setup_for(position)
+        label = slave_label(master, position)
+        found = read_mapping(master, position)
+        try:
+            own: PdoMapping | None = mapping_from_found(found)
+            own_problem = ""
+        except ConfigurationError as exc:
+            own, own_problem = None, str(exc)
+        if setup.policy is MappingPolicy.KEEP:
+            if own is None:
+                raise ConfigurationError(f"{label}: the drive's own PDO mapping cannot be used: "
+                                         f"{own_problem}")
+            self.notes.append(f"{label}: using the drive's own PDO mapping (kept by configuration)")
+            return own
+        s = master.slaves[position]
+        wanted = setup.mapping or self.mapping_for(int(s.man), int(s.id))
+        if setup.policy is MappingPolicy.ADAPT:
+            optional = {(e.index, e.subindex) for e in wanted.rx + wanted.tx
+                        if not e.is_padding and e.index not in MANDATORY_RX | MANDATORY_TX}
+            missing = {index for index, sub in sorted(optional)
+                       if not has_object(master, position, index, sub)}
+            if missing:
+                wanted = wanted.without(missing)
+                for index in sorted(missing):
+                    self.notes.append(f"{label}: no object 0x{index:04X}: "
+                                      f"{OPTIONAL_OBJECTS.get(index, 'not mapped')}")
+        if found_matches(found, wanted):
+            return replace(wanted, complete_access=self.complete_access.get(position, False))
+        ca = wanted.complete_access and self.complete_access.get(position, False)
+        try:
+            write_mapping(master, position, wanted, complete_access=ca)
+            self.written_mappings[position] = wanted
+            return wanted
+        except EtherCATError as exc:
+            refused = exc
+        # restore what the drive had, so a half-written mapping is not left behind
+        try:
+            write_assignment(master, position, 0x1C12, found["rx"])
+            write_assignment(master, position, 0x1C13, found["tx"])
+            restored = read_mapping(master, position) == found
+        except EtherCATError:
+            restored = False                  # a drive that refused writing may refuse this too
+        if setup.policy is MappingPolicy.WRITE or own is None:
+            if own is None:
+                refused.args = (f"{refused.args[0]}; the drive's own mapping cannot be used either: "
+                                f"{own_problem}",)
+            raise refused
+        if not restored:
+            raise ConfigurationError(f"{label}: the drive refused the PDO mapping ({refused}) and its own "
+                                     "mapping could not be restored")
+        self.notes.append(f"{label}: the drive refused the PDO mapping ({refused}); using its own: "
+                          + ", ".join(e.text() for e in own.rx + own.tx))
+        return own
+
+    def _startup_sdos(self, position: int) -> None:
+        """The drive's configured start-up SDOs, then what the mapping leaves out: the mode
+        (0x6060 = 8 when it is not in the process data) and the SM2 sync mode (0x1C32:1)."""
+        setup = self.setup_for(position)
+        for sdo in setup.startup_sdos:
+            sdo_download(self.master, position, sdo.index, sdo.subindex, sdo.data)
+        mapping = self.slave_mappings[position]
+        if 0x6060 not in mapping.objects:
+            sdo_download(self.master, position, 0x6060, 0, struct.pack("<b", 8))
+        if setup.sync_mode is not None:
+            sdo_download(self.master, position, 0x1C32, 1, struct.pack("<H", setup.sync_mode))
+
+    def _wait_csp_mode(self) -> None:
+        """Each drive must show cyclic synchronous position (0x6061 = 8). Some drives report it
+        late: keep the process data running and look again until `mode_timeout_s` (in the
+        process data every cycle, by SDO every 20 ms when the drive does not map 0x6061)."""
+        deadline = time.monotonic() + self.mode_timeout_s
+        pending = set(range(len(self.drives)))
+        shown: dict[int, int | None] = dict.fromkeys(pending)
+        next_sdo = 0.0
+        while pending:
+            t0 = time.monotonic()
+            self._cycle()
+            ask = t0 >= next_sdo
+            if ask:
+                next_sdo = t0 + 0.02
+            for i in sorted(pending):
+                position = self.drives[i].position
+                if 0x6061 in self.slave_mappings[position].objects:
+                    shown[i] = int(self.modes_display[i])
+                elif ask:
+                    try:
+                        shown[i] = struct.unpack("<b", sdo_upload(self.master, position, 0x6061, 0)[:1])[0]
+                    except SdoAbortError as exc:
+                        if exc.abort_code != SdoAbortError.OBJECT_DOES_NOT_EXIST:
+                            raise
+                        self.notes.append(f"{slave_label(self.master, position)}: no mode display 0x6061; "
+                                          "cyclic synchronous position assumed")
+                        pending.discard(i)
+                        continue
+                if shown[i] == 8:
+                    self.modes_display[i] = 8
+                    pending.discard(i)
+            if pending and t0 > deadline:
+                i = min(pending)
+                position = self.drives[i].position
+                raise ConfigurationError(
+                    f"{slave_label(self.master, position)} (axis {self.drives[i].axis_name}) shows mode "
+                    f"{shown[i]} in 0x6061 after {self.mode_timeout_s:.1f} s, not 8 (cyclic synchronous "
+                    "position): the drive may not support CSP, or needs a start-up SDO")
+            time.sleep(max(0.0, self.cycle_time_s - (time.monotonic() - t0)))
+
+    def _make_hook(self, position: int) -> Callable[[Any], int]:
+        """Run by SOEM when it re-configures a slave that came back: the mapping written at
+        start-up and the start-up SDOs, again (errors end up in SOEM's list)."""
         def hook(_slave: Any) -> int:
             try:
-                write_mapping(self.master, position, mapping)
+                mapping = self.written_mappings.get(position)
+                if mapping is not None:
+                    ca = mapping.complete_access and self.complete_access.get(position, False)
+                    write_mapping(self.master, position, mapping, complete_access=ca)
+                self._startup_sdos(position)
             except EtherCATError as exc:
-                errors.append(exc)
+                self.warnings.append(f"re-configuring {slave_label(self.master, position)}: {exc}")
             return 0
 
         return hook

@@ -84,6 +84,8 @@ class CyclicWorker:
         self._trace_read = 0
         self._started = False
         self.realtime_applied = ""
+        #: what the bus start-up adapted to (a drive's own PDO mapping, objects it lacks, ...)
+        self.bus_notes: tuple[str, ...] = ()
 
     # ------------------------------------------------------------------ life cycle
     @property
@@ -119,10 +121,12 @@ class CyclicWorker:
                                             name="ethercat-worker", daemon=True)
                 start_without_main(self._process)
                 self._wait_status(cfg.start_timeout_s)
-                self.realtime_applied = self._block.read_msg()
+                self.realtime_applied, *notes = self._block.read_msg().split("\n")
+                self.bus_notes = tuple(notes)
             else:
                 self._loop = CycleLoop(cfg, self._block)
                 self._loop.open_bus()
+                self.bus_notes = tuple(self._loop.bus.notes) if self._loop.bus is not None else ()
                 self._loop.publish()
                 if cfg.mode == "thread":
                     self._thread = threading.Thread(target=self._thread_main, name="ethercat-worker",
@@ -152,6 +156,8 @@ class CyclicWorker:
             if status == Status.FAILED:
                 raise WorkerError(f"worker failed to start: {block.read_msg()}")
             if self._process is not None and not self._process.is_alive():
+                if int(block.ctl.status) == Status.FAILED:   # it wrote why just before it ended
+                    raise WorkerError(f"worker failed to start: {block.read_msg()}")
                 raise WorkerError(f"worker process exited with code {self._process.exitcode}")
             time.sleep(0.005)
         raise WorkerTimeoutError(f"worker did not start within {timeout_s} s")

@@ -35,7 +35,8 @@ def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int])
             block.write_msg(f"{type(exc).__name__}: {exc}")
             block.ctl.status[...] = Status.FAILED
             return
-        block.write_msg(applied)
+        # first line: the real-time settings applied; then what the bus start-up adapted to
+        block.write_msg("\n".join([applied, *(loop.bus.notes if loop.bus is not None else [])]))
         block.ctl.pid[...] = os.getpid()
         loop.publish()
         block.ctl.status[...] = Status.RUNNING

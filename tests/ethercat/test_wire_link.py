@@ -22,6 +22,7 @@ import pytest
 from ethercat.bus import DriveSpec, make_bus
 from ethercat.cia402 import Cia402State
 from ethercat.drive_model import DriveParams
+from ethercat.drive_setup import DriveSetup, MappingPolicy, StartupStep
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
 from ethercat.errors import AdapterError, AlStateError, SdoAbortError, SlaveIdentityError
 from ethercat.pdo import CSP_MAPPING, PdoEntry, PdoMapping
@@ -116,14 +117,32 @@ def test_identity_mismatch_names_position_and_both_identities(link3: EmulatedLin
     assert not bus.is_open
 
 
-def test_pdo_mapping_refused_by_the_drive_is_a_clear_error(link3: EmulatedLink) -> None:
+def test_pdo_mapping_refused_with_policy_write_is_a_clear_error(link3: EmulatedLink) -> None:
     bad = PdoMapping(CSP_MAPPING.rx + (PdoEntry(0x6041, 0, 16),), CSP_MAPPING.tx)   # statusword is ro
-    bus = SoemBus(DRIVES3, adapter=link3.master_ifname, mappings={(P.vendor_id, P.product_code): bad})
+    setups = {p: DriveSetup(mapping=bad, policy=MappingPolicy.WRITE) for p in range(3)}
+    bus = SoemBus(DRIVES3, adapter=link3.master_ifname, setups=setups)
     with pytest.raises(SdoAbortError) as exc:
         bus.open()
     assert exc.value.position == 0 and exc.value.index == 0x1600
     assert exc.value.abort_code == 0x06040041, str(exc.value)
+    assert str(exc.value).startswith("configuring the PDO mapping: SDO 0x1600:0 on slave 0 (CNC-Servo-402, "
+                                     "vendor 0x00000A5E, product 0x04020001) aborted")
+    assert exc.value.step is StartupStep.MAPPING
     assert not bus.is_open
+
+
+def test_pdo_mapping_refused_falls_back_to_the_drives_own(link3: EmulatedLink) -> None:
+    """Adapting (the default): the refused mapping is undone and the drive runs with what it had,
+    which carries the mandatory objects; the note names the refusal and the mapping used."""
+    bad = PdoMapping(CSP_MAPPING.rx + (PdoEntry(0x6041, 0, 16),), CSP_MAPPING.tx)
+    bus = SoemBus(DRIVES3, adapter=link3.master_ifname, mappings={(P.vendor_id, P.product_code): bad})
+    with bus:
+        assert [m.objects for m in bus.slave_mappings.values()] == [{0x6040, 0x607A, 0x6041, 0x6064}] * 3
+        notes = [n for n in bus.notes if "refused the PDO mapping" in n]
+        assert len(notes) == 3 and "0x06040041" in notes[0] and "using its own" in notes[0]
+        assert [s["rx_mapping"] for s in emulator_slaves(link3)] == [["0x60400010", "0x607A0020"]] * 3
+        enable_all(bus)
+        assert bus.exchange() == bus.expected_wkc
 
 
 def test_op_refused_without_sync0_names_slave_and_al_status_code(link3: EmulatedLink) -> None:
