@@ -228,6 +228,11 @@ class Bus(abc.ABC):
         """Whether drive `index` receives ``digital_outputs`` (0x60FE:1) in its process data."""
         return True
 
+    def maps_object(self, index: int, obj: int) -> bool:
+        """Whether drive `index` has object `obj` (e.g. 0x603F error code) in its process data;
+        when not, its array here is not updated and the value must be read by SDO."""
+        return True
+
     def inject(self, name: str, index: int = 0, value: int = 0) -> None:
         """Fault injection by name (``sim_bus.INJECTIONS``); only a simulated bus can."""
         raise BusFeatureError(f"{type(self).__name__} cannot inject faults ({name!r}): use the simulated bus")

@@ -20,6 +20,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
+from .emulator.variants import VARIANTS
 from .errors import ConfigurationError, EtherCATError
 from .object_dictionary import OBJECTS
 
@@ -137,7 +138,7 @@ def cmd_emulate(args: argparse.Namespace) -> int:
     from .emulator import run
 
     return run(args.ifname, args.drives, control_path=args.control, realtime=args.realtime,
-               counts_per_unit=args.counts_per_unit)
+               counts_per_unit=args.counts_per_unit, variant=args.variant)
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
@@ -198,6 +199,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--control", default=None, help="UNIX socket path for fault injection (JSON)")
     s.add_argument("--realtime", action="store_true", help="SCHED_FIFO if permitted")
     s.add_argument("--counts-per-unit", type=float, default=10_000.0)
+    s.add_argument("--variant", choices=tuple(VARIANTS), default="standard",
+                   help="how the drives differ from the project's own (see ethercat.emulator.variants)")
     s.set_defaults(func=cmd_emulate)
     s = sub.add_parser("bench", help="cycle timing of the worker (simulated drives or a real link)")
     s.add_argument("ifname", nargs="?", default="")

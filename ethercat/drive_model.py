@@ -98,6 +98,11 @@ class DriveParams:
     home_switch_counts: float = 0.0        # where the home switch edge is (motor counts)
     homing_max_travel_counts: float = 1e9  # homing error when the switch is not found
     substep_s: float = 0.001               # largest integration step
+    # behaviours of third-party drives the master must cope with (off by default)
+    fault_at_power_up: int = 0             # error code the drive starts in FAULT with (0: none)
+    mode_display_delay_s: float = 0.0      # 0x6061 follows 0x6060 this long after it changed
+    enable_target_window_counts: int = 0   # >0: enabling with |target - actual| above it is a
+                                           # following error fault (drives that jump to a stale target)
 
     @classmethod
     def for_axis(cls, counts_per_unit: float, v_max_units_s: float = 300.0,
@@ -148,8 +153,10 @@ class DriveModel:
         self._prev_demand_counts = self._motor_counts
         self._csp_start_counts = self._motor_counts
         self._fe_time_s = 0.0
-        self._fault_pending = 0
+        self._fault_pending = p.fault_at_power_up
         self._persistent_fault = 0
+        self._mode_requested = 0
+        self._mode_since_s = 0.0
         self._jammed = False
         self._fra_time_s = 0.0
         self._prev_fault_reset_bit = False
@@ -395,6 +402,10 @@ class DriveModel:
                 self._enter_operation_enabled()              # 16
 
     def _enter_operation_enabled(self) -> None:
+        window = self.params.enable_target_window_counts
+        if window and abs(self.target_position - self.position_actual) > window:
+            self._trip(ERROR_FOLLOWING)
+            return
         self.state = S.OPERATION_ENABLED
         self._demand_counts = self._motor_counts
         self._prev_demand_counts = self._motor_counts
@@ -416,7 +427,11 @@ class DriveModel:
         targets are interpolated linearly over the cycle, as drives do)."""
         p = self.params
         st = self.state
-        self.modes_of_operation_display = self.modes_of_operation
+        if self.modes_of_operation != self._mode_requested:
+            self._mode_requested = self.modes_of_operation
+            self._mode_since_s = self.time_s
+        if self.time_s - self._mode_since_s >= p.mode_display_delay_s:
+            self.modes_of_operation_display = self.modes_of_operation
         self._internal_limit = False
         if self._jammed:
             self._velocity_counts_s = 0.0

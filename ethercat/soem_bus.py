@@ -784,6 +784,10 @@ class SoemBus(Bus):
     def _sdo_download(self, position: int, index: int, subindex: int, data: bytes) -> None:
         sdo_download(self.master, position, index, subindex, data)
 
+    def maps_object(self, index: int, obj: int) -> bool:
+        mapping = self.slave_mappings.get(self.drives[index].position)
+        return mapping is not None and obj in mapping.objects
+
     def digital_outputs_mapped(self, index: int) -> bool:
         mapping = self.slave_mappings.get(self.drives[index].position)
         return mapping is not None and any(e.index == 0x60FE for e in mapping.rx)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from ..drive_model import DriveModel
 from ..errors import SdoAbortError
 from ..object_dictionary import OBJECTS, ObjectEntry, decode_object, encode_object
+from .variants import VARIANTS, DriveVariant
 
 # CiA 301 / ETG.1000.6 abort codes used here besides those on SdoAbortError.
 ABORT_TOGGLE = 0x0503_0000
@@ -35,10 +36,6 @@ TX_MAPPING = (0x1A00, 0x1A01)
 MAX_MAPPED_ENTRIES = 8
 MAX_PDO_BYTES = 32
 
-#: default mapping the emulated drive starts with (deliberately smaller than what
-#: SoemBus configures, so the test proves the mapping by SDO works)
-DEFAULT_RX = ((0x6040, 0, 16), (0x607A, 0, 32))
-DEFAULT_TX = ((0x6041, 0, 16), (0x6064, 0, 32))
 
 # Hot-path attribute names of the drive model for PDO entries.
 _RX_ATTR = {(0x6040, 0): "controlword", (0x607A, 0): "target_position",
@@ -74,19 +71,24 @@ class DriveObjects:
     8 OP): PDO mapping and assignment objects are writable in PRE-OP only.
     """
 
-    def __init__(self, model: DriveModel, name: str, al_state: Callable[[], int]) -> None:
+    def __init__(self, model: DriveModel, name: str, al_state: Callable[[], int],
+                 variant: DriveVariant = VARIANTS["standard"]) -> None:
         self.model = model
+        self.variant = variant
         self.name = name
         self._al_state = al_state
         # mapping objects: all 8 entry values (kept while sub-index 0 is 0) and the count
         all_maps = RX_MAPPING + TX_MAPPING
         self.map_entries: dict[int, list[int]] = {i: [0] * MAX_MAPPED_ENTRIES for i in all_maps}
         self.map_count: dict[int, int] = dict.fromkeys(RX_MAPPING + TX_MAPPING, 0)
-        for index, default in ((0x1600, DEFAULT_RX), (0x1A00, DEFAULT_TX)):
+        (rx_pdo, rx_default), (tx_pdo, tx_default) = variant.rx_default, variant.tx_default
+        for index, default in ((rx_pdo, rx_default), (tx_pdo, tx_default)):
             for k, e in enumerate(default):
                 self.map_entries[index][k] = pack_mapping_entry(*e)
             self.map_count[index] = len(default)
-        self.assign_entries: dict[int, list[int]] = {0x1C12: [0x1600, 0x1601], 0x1C13: [0x1A00, 0x1A01]}
+        self.assign_entries: dict[int, list[int]] = {
+            0x1C12: [rx_pdo] + [p for p in RX_MAPPING if p != rx_pdo],
+            0x1C13: [tx_pdo] + [p for p in TX_MAPPING if p != tx_pdo]}
         self.assign_count: dict[int, int] = {0x1C12: 1, 0x1C13: 1}
         # 0x1C32 / 0x1C33 sub 1 sync mode (2 = DC SYNC0), sub 2 cycle time ns
         self.sync_mode = {0x1C32: 2, 0x1C33: 2}
@@ -205,6 +207,8 @@ class DriveObjects:
     def read(self, index: int, sub: int) -> bytes:
         """SDO upload of one sub-index as bytes (raises SdoAbortError)."""
         entries = self._entries_of(index)
+        if index in self.variant.missing:
+            raise _abort(index, sub, SdoAbortError.OBJECT_DOES_NOT_EXIST)
         if entries is None:
             value = self.model.read_object(index, sub)
             return encode_object(self.model.object_entry(index, sub), value)
@@ -219,6 +223,8 @@ class DriveObjects:
     def write(self, index: int, sub: int, data: bytes) -> None:
         """SDO download of one sub-index (raises SdoAbortError)."""
         entries = self._entries_of(index)
+        if index in self.variant.missing:
+            raise _abort(index, sub, SdoAbortError.OBJECT_DOES_NOT_EXIST)
         if entries is None:
             entry = self.model.object_entry(index, sub)
             self.model.write_object(index, sub, decode_object(entry, data))
@@ -244,6 +250,8 @@ class DriveObjects:
             else:
                 raise _abort(index, sub, SdoAbortError.READ_ONLY)
             return
+        if self.variant.fixed_mapping:
+            raise _abort(index, sub, SdoAbortError.READ_ONLY, "this drive's PDO mapping is fixed")
         if self._al_state() != 2:
             raise _abort(index, sub, ABORT_STATE, "PDO configuration only in PRE-OP")
         if index in self.map_count:
@@ -270,7 +278,7 @@ class DriveObjects:
                 if bits % 8:
                     raise _abort(index, sub, ABORT_NOT_MAPPABLE, "padding must be whole bytes")
                 continue
-            entry = OBJECTS.get((obj, osub))
+            entry = OBJECTS.get((obj, osub)) if obj not in self.variant.missing else None
             if entry is None or not entry.pdo_mappable or entry.bit_length != bits:
                 raise _abort(index, sub, ABORT_NOT_MAPPABLE, f"0x{obj:04X}:{osub} ({bits} bits)")
             if is_rx and entry.access != "rw":
@@ -310,7 +318,8 @@ class DriveObjects:
         n = int(self.read(index, 0)[0])
         out = bytearray()
         if sub == 0:
-            out += self.read(index, 0) + b"\x00"
+            # the pad byte after sub-index 0 is what ETG.1000.6 asks; some drives leave it out
+            out += self.read(index, 0) + (b"" if self.variant.ca_without_pad else b"\x00")
         types = dict(subs)
         for s in range(1, n + 1):
             if s in types:

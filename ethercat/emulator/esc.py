@@ -26,6 +26,7 @@ from ..drive_model import DriveModel
 from ..errors import SdoAbortError
 from .coe import DriveObjects
 from .sii import SiiLayout, build_sii
+from .variants import VARIANTS, DriveVariant
 
 INIT, PREOP, BOOT, SAFEOP, OP = 1, 2, 3, 4, 8
 STATE_NAMES = {INIT: "INIT", PREOP: "PRE-OP", BOOT: "BOOT", SAFEOP: "SAFE-OP", OP: "OP"}
@@ -80,12 +81,12 @@ class EscSlave:
     """One slave: registers, SII, AL state machine, mailbox, FMMU, DC, watchdog, drive."""
 
     def __init__(self, position: int, model: DriveModel, layout: SiiLayout, last_in_line: bool,
-                 clock_ns: Callable[[], int]) -> None:
+                 clock_ns: Callable[[], int], variant: DriveVariant = VARIANTS["standard"]) -> None:
         self.position = position
         self.model = model
         self.layout = layout
         self.sii = build_sii(layout)
-        self.objects = DriveObjects(model, layout.name, lambda: self.al_state)
+        self.objects = DriveObjects(model, layout.name, lambda: self.al_state, variant)
         self.clock_ns = clock_ns
         self.last_in_line = last_in_line
         self.n_after = 0          # slaves behind this one in the line (DC delay latches)

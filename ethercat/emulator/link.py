@@ -52,13 +52,15 @@ def _ip(*args: str, check: bool = True) -> subprocess.CompletedProcess[str]:
 class EmulatedLink:
     """Namespace + veth pair + `python -m ethercat emulate s0 --drives N` on the far end."""
 
-    def __init__(self, n_drives: int = 3, realtime: bool = False, start_timeout_s: float = 15.0) -> None:
+    def __init__(self, n_drives: int = 3, realtime: bool = False, start_timeout_s: float = 15.0,
+                 variant: str = "standard") -> None:
         k = next(_counter)
         pid = os.getpid()
         self.netns = f"cncec{pid}x{k}"
         self.master_ifname = f"cem{pid}x{k}"[:15]
         self.slave_ifname = "s0"
         self.n_drives = n_drives
+        self.variant = variant
         self.realtime = realtime
         self.start_timeout_s = start_timeout_s
         self.control_path = os.path.join(tempfile.gettempdir(), f"{self.netns}.sock")
@@ -90,6 +92,7 @@ class EmulatedLink:
                self.slave_ifname, "--drives", str(self.n_drives), "--control", self.control_path]
         if self.realtime:
             cmd.append("--realtime")
+        cmd += ["--variant", self.variant]
         self._log = tempfile.NamedTemporaryFile(prefix=f"{self.netns}-", suffix=".log", delete=False)
         self.log_path = self._log.name
         env = dict(os.environ)

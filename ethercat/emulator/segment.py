@@ -26,6 +26,7 @@ from collections.abc import Callable, Sequence
 from ..drive_model import DriveModel, DriveParams
 from .esc import EscSlave
 from .sii import SiiLayout
+from .variants import VARIANTS, DriveVariant
 
 ETHERTYPE_ECAT = 0x88A4
 
@@ -46,13 +47,15 @@ class Segment:
     """N emulated CiA 402 drives in a line. `models` are the shared drive models."""
 
     def __init__(self, models: Sequence[DriveModel], layouts: Sequence[SiiLayout] | None = None,
-                 clock_ns: Callable[[], int] | None = None) -> None:
+                 clock_ns: Callable[[], int] | None = None,
+                 variant: DriveVariant = VARIANTS["standard"]) -> None:
         t0 = time.monotonic_ns()
         self.clock_ns = clock_ns if clock_ns is not None else (lambda: time.monotonic_ns() - t0)
         n = len(models)
         if layouts is None:
             layouts = [default_layout(m.params, i) for i, m in enumerate(models)]
-        self.slaves = [EscSlave(i, m, lay, last_in_line=(i == n - 1), clock_ns=self.clock_ns)
+        self.variant = variant
+        self.slaves = [EscSlave(i, m, lay, last_in_line=(i == n - 1), clock_ns=self.clock_ns, variant=variant)
                        for i, (m, lay) in enumerate(zip(models, layouts))]
         for i, s in enumerate(self.slaves):
             s.n_after = n - 1 - i
@@ -61,12 +64,17 @@ class Segment:
         self.unknown_commands = 0
 
     @classmethod
-    def of_drives(cls, n_drives: int, params: DriveParams | None = None) -> Segment:
-        """`n_drives` drives with the default drive parameters (serial = position)."""
+    def of_drives(cls, n_drives: int, params: DriveParams | None = None,
+                  variant: DriveVariant = VARIANTS["standard"]) -> Segment:
+        """`n_drives` drives with the default drive parameters (serial = position), each
+        behaving as `variant` says."""
         p = params if params is not None else DriveParams.for_axis(10_000.0)
         from dataclasses import replace
+        p = replace(p, fault_at_power_up=variant.fault_at_power_up,
+                    mode_display_delay_s=variant.mode_display_delay_s,
+                    enable_target_window_counts=variant.enable_target_window_counts)
         models = [DriveModel(replace(p, serial=i + 1), position=i) for i in range(n_drives)]
-        return cls(models)
+        return cls(models, variant=variant)
 
     # ------------------------------------------------------------------ frames
     def process_frame(self, frame: bytes | bytearray | memoryview) -> bytearray | None:

@@ -180,13 +180,17 @@ def control(path: str, op: str, timeout_s: float = 2.0, **kwargs: Any) -> dict[s
 
 
 def run(ifname: str, n_drives: int, control_path: str | None = None, realtime: bool = False,
-        counts_per_unit: float = 10_000.0, quiet: bool = False) -> int:
+        counts_per_unit: float = 10_000.0, quiet: bool = False, variant: str = "standard") -> int:
     """Entry point of `cnc-ethercat emulate`: serve until SIGINT/SIGTERM."""
     from ..drive_model import DriveParams
 
     if n_drives < 1:
         raise ConfigurationError(f"--drives must be >= 1, got {n_drives}")
-    segment = Segment.of_drives(n_drives, DriveParams.for_axis(counts_per_unit))
+    from .variants import VARIANTS
+
+    if variant not in VARIANTS:
+        raise ConfigurationError(f"--variant must be one of {', '.join(VARIANTS)}, got {variant!r}")
+    segment = Segment.of_drives(n_drives, DriveParams.for_axis(counts_per_unit), VARIANTS[variant])
     server = EmulatorServer(segment, ifname, control_path)
     if realtime:
         try:
@@ -200,6 +204,7 @@ def run(ifname: str, n_drives: int, control_path: str | None = None, realtime: b
     gc.freeze()
     gc.disable()
     if not quiet:
-        print(f"emulating {n_drives} CiA 402 drive(s) on {ifname} (pid {os.getpid()})", flush=True)
+        print(f"emulating {n_drives} CiA 402 drive(s) on {ifname} (pid {os.getpid()}, variant {variant})",
+              flush=True)
     server.serve_forever()
     return 0

@@ -467,8 +467,8 @@ class CyclicWorker:
             axis = names[axis_i] if 0 <= axis_i < len(names) else ""
             if code_i >= 100:
                 ecode = EventCode(code_i)
-                self._events.append(WorkerEvent(ecode, event_message(self.config, ecode, a, b), axis, cycle,
-                                                cycle * ts, time.time()))
+                text = event_message(self.config, ecode, a, b, axis)
+                self._events.append(WorkerEvent(ecode, text, axis, cycle, cycle * ts, time.time()))
                 continue
             code = AlarmCode(code_i)
             commanded = code in (AlarmCode.ESTOP, AlarmCode.QUICK_STOP)

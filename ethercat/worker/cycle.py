@@ -37,6 +37,10 @@ _FAULTED_LUT = np.array([s in (Cia402State.FAULT, Cia402State.FAULT_REACTION_ACT
 _NOT_ENABLED_LUT = np.array([s is not Cia402State.OPERATION_ENABLED for s in Cia402State])
 _RECOVERY = "recover"
 _HOMING_METHOD = "homing method"
+_ERROR_CODE = "error code"
+#: a drive found in FAULT this soon after the bus came up gets one fault reset by itself
+#: (drives that power up faulted, e.g. after an under-voltage while the bus was down)
+STARTUP_RESET_WINDOW_S = 0.5
 
 
 class CycleLoop:
@@ -91,6 +95,11 @@ class CycleLoop:
         self.recover_countdown = 0
         self.recovered_mask = 0
         self.recover_calls = 0
+        # drives without 0x603F in their process data: read by SDO after a fault
+        self.error_code_by_sdo: list[bool] = [False] * n
+        self.error_code_pending: list[int] = []
+        self.startup_reset_tried = False
+        self.error_code_axis = -1
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -102,6 +111,7 @@ class CycleLoop:
         self.bus.open()
         bus = self.bus
         self.lv.wkc_expected[...] = bus.expected_wkc
+        self.error_code_by_sdo = [not bus.maps_object(i, 0x603F) for i in range(self.n)]
         bus.modes_of_operation[:] = cia402.CSP
         self._read_actual()
         np.copyto(self.ref, self.act)
@@ -388,12 +398,22 @@ class CycleLoop:
         # drive faults (FAULT or FAULT REACTION ACTIVE)
         np.take(_FAULTED_LUT, states, out=self.bool_tmp)
         if self.bool_tmp.any():
+            if (not self.startup_reset_tried and self.state is WorkerState.DISABLED
+                    and cycle * self.cfg.ts_s < STARTUP_RESET_WINDOW_S):
+                self._startup_fault_reset(bus)
             for i in range(self.n):
                 if self.bool_tmp[i] and not self.fault_seen[i]:
                     self.fault_seen[i] = True
-                    self._reaction(AlarmCode.DRIVE_FAULT, i, int(bus.error_code[i]), state=WorkerState.FAULT)
+                    if self.error_code_by_sdo[i]:
+                        self._reaction(AlarmCode.DRIVE_FAULT, i, 0, 0, -1.0, state=WorkerState.FAULT)
+                        self.error_code_pending.append(i)
+                    else:
+                        self._reaction(AlarmCode.DRIVE_FAULT, i, int(bus.error_code[i]),
+                                       state=WorkerState.FAULT)
             if self.state is not WorkerState.FAULT and self.state is not WorkerState.FAULT_RESET:
                 self._set_state(WorkerState.FAULT)
+        if self.error_code_pending or self.helper.kind == _ERROR_CODE:
+            self._read_error_codes(bus)
         st = self.state
         if st is WorkerState.ENABLED or st is WorkerState.HOMING:
             self._supervise_enabled(bus, st)
@@ -419,6 +439,41 @@ class CycleLoop:
         if self.state is not WorkerState.ENABLED and self.state is not WorkerState.HOMING:
             np.copyto(self.ref, self.act)
             self.fe.fill(0.0)
+
+    def _startup_fault_reset(self, bus: Bus) -> None:
+        """Drives in FAULT as the bus comes up (before anything was commanded) get one fault
+        reset, told as an event; a fault that stays is then an alarm as any other."""
+        self.startup_reset_tried = True
+        for i in range(self.n):
+            if self.bool_tmp[i]:
+                known = not self.error_code_by_sdo[i]
+                code = int(bus.error_code[i]) if known else 0
+                self._alarm(EventCode.STARTUP_FAULT_RESET, i, code, int(known))
+                self.fault_seen[i] = True
+        self.bool_tmp.fill(False)
+        self.fault_reset_cycle = 0
+        self._set_state(WorkerState.FAULT_RESET)
+
+    def _read_error_codes(self, bus: Bus) -> None:
+        """0x603F of faulted drives that do not map it, one SDO at a time beside the cycle."""
+        helper = self.helper
+        if helper.busy:
+            return
+        if helper.kind == _ERROR_CODE:
+            axis = self.error_code_axis
+            if helper.error:
+                self._alarm(EventCode.DRIVE_ERROR_CODE, axis, 0, 0)
+            else:
+                code = int(helper.value) if isinstance(helper.value, int) else 0
+                self.lv.error_code[axis] = code
+                bus.error_code[axis] = code
+                self._alarm(EventCode.DRIVE_ERROR_CODE, axis, code, 1)
+            helper.kind = ""
+        if self.error_code_pending:
+            axis = self.error_code_pending.pop(0)
+            position = self.cfg.drives[axis].position
+            self.error_code_axis = axis
+            helper.submit(_ERROR_CODE, lambda: bus.sdo_read(position, 0x603F, 0, "<H"))
 
     def _bad_working_counter(self, bus: Bus, wkc: int) -> None:
         lv = self.lv

@@ -68,7 +68,15 @@ def _bits(mask: int) -> list[int]:
     return [p for p in range(63) if mask >> p & 1]
 
 
-def event_message(config: WorkerConfig, code: EventCode, a: int, b: int) -> str:
+def event_message(config: WorkerConfig, code: EventCode, a: int, b: int, axis: str = "") -> str:
+    if code is EventCode.STARTUP_FAULT_RESET:
+        what = f"error code 0x{a:04X} {error_code_text(a)}" if b else "error code not in its process data"
+        return (f"drive of axis {axis} was in FAULT when the bus came up ({what}): "
+                "fault reset sent once")
+    if code is EventCode.DRIVE_ERROR_CODE:
+        if b:
+            return f"drive fault on axis {axis}: error code 0x{a:04X} {error_code_text(a)} (read from 0x603F)"
+        return f"drive fault on axis {axis}: its error code 0x603F could not be read"
     if code is EventCode.SLAVE_RECOVERED:
         back = ", ".join(slave_text(config, p) for p in _bits(a))
         how = " (re-configured to OP by recover_slaves)" if b else ""
@@ -93,6 +101,9 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
         if b:
             return (f"drive of axis {axis} (slave {pos}) left OPERATION ENABLED "
                     f"({Cia402State(b - 1).name}): quick stop of all axes")
+        if b == 0 and f < 0:                 # 0x603F is not in this drive's process data
+            return (f"drive fault on axis {axis} (slave {pos}): quick stop of all axes; its error code "
+                    "is being read from 0x603F")
         return (f"drive fault on axis {axis} (slave {pos}): error code 0x{a:04X} {error_code_text(a)}: "
                 "quick stop of all axes")
     if code is AlarmCode.FOLLOWING_ERROR:

@@ -57,6 +57,8 @@ class EventCode(enum.IntEnum):
     """Things worth telling the operator that are not alarms (codes share the alarm ring, >= 100)."""
 
     SLAVE_RECOVERED = 101
+    STARTUP_FAULT_RESET = 102      # a drive was in FAULT when the bus came up: reset once
+    DRIVE_ERROR_CODE = 103         # a faulted drive's 0x603F, read by SDO (not in its PDO)
 
 
 class HomingState(enum.IntEnum):
