@@ -60,6 +60,7 @@ def run_bench(bus_kind: str = "sim", ifname: str = "", seconds: float = 10.0, *,
                 on_tick()
             time.sleep(0.02)
         snap = worker.snapshot()
+        worker.events()                    # collected while the worker still runs
     finally:
         worker.stop()
     out: dict[str, Any] = {
@@ -74,6 +75,7 @@ def run_bench(bus_kind: str = "sim", ifname: str = "", seconds: float = 10.0, *,
     out.update({
         "wkc_errors": snap.wkc_errors, "expected_wkc": snap.expected_wkc, "underruns": snap.underruns,
         "alarms": [a.message for a in snap.alarms],
+        "events": [e.message for e in worker.events()],
         "tracking_rmse_max_units": max(snap.tracking.rmse) if snap.tracking.rmse else 0.0,
     })
     return out

@@ -565,11 +565,12 @@ class SoemBus(Bus):
             refused = exc
         # restore what the drive had, so a half-written mapping is not left behind
         try:
-            write_assignment(master, position, 0x1C12, found["rx"])
-            write_assignment(master, position, 0x1C13, found["tx"])
+            if read_mapping(master, position) != found:
+                write_assignment(master, position, 0x1C12, found["rx"])
+                write_assignment(master, position, 0x1C13, found["tx"])
             restored = read_mapping(master, position) == found
         except EtherCATError:
-            restored = False                  # a drive that refused writing may refuse this too
+            restored = False
         if setup.policy is MappingPolicy.WRITE or own is None:
             if own is None:
                 refused.args = (f"{refused.args[0]}; the drive's own mapping cannot be used either: "

@@ -100,6 +100,8 @@ class CycleLoop:
         self.error_code_pending: list[int] = []
         self.startup_reset_tried = False
         self.error_code_axis = -1
+        self.enable_after_reset = False
+        self.enable_confirmed = 0
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -211,6 +213,7 @@ class CycleLoop:
             self._flush()
             self.fe_count[:] = 0
             bus.modes_of_operation[:] = cia402.CSP
+            self.enable_confirmed = 0
             self._set_state(WorkerState.ENABLING)
         elif code == Command.DISABLE:
             self._flush()
@@ -398,8 +401,8 @@ class CycleLoop:
         # drive faults (FAULT or FAULT REACTION ACTIVE)
         np.take(_FAULTED_LUT, states, out=self.bool_tmp)
         if self.bool_tmp.any():
-            if (not self.startup_reset_tried and self.state is WorkerState.DISABLED
-                    and cycle * self.cfg.ts_s < STARTUP_RESET_WINDOW_S):
+            if (not self.startup_reset_tried and cycle * self.cfg.ts_s < STARTUP_RESET_WINDOW_S
+                    and (self.state is WorkerState.DISABLED or self.state is WorkerState.ENABLING)):
                 self._startup_fault_reset(bus)
             for i in range(self.n):
                 if self.bool_tmp[i] and not self.fault_seen[i]:
@@ -419,7 +422,11 @@ class CycleLoop:
             self._supervise_enabled(bus, st)
         elif st is WorkerState.ENABLING:
             np.take(_NOT_ENABLED_LUT, states, out=self.bool_tmp)
-            if not self.bool_tmp.any():
+            # a drive answers a controlword a cycle or more later: OPERATION ENABLED seen right
+            # after a disable may be the state from before it. Enabled means seen so for
+            # enable_confirm_cycles in a row while enable operation is being sent.
+            self.enable_confirmed = 0 if self.bool_tmp.any() else self.enable_confirmed + 1
+            if self.enable_confirmed >= self.cfg.enable_confirm_cycles:
                 self._hold_actual()
                 self.moving = False
                 self._set_state(WorkerState.ENABLED)
@@ -431,7 +438,9 @@ class CycleLoop:
             if not self.bool_tmp.any():
                 self.fault_seen[:] = False
                 self._hold_actual()
-                self._set_state(WorkerState.DISABLED)
+                self.enable_confirmed = 0
+                self._set_state(WorkerState.ENABLING if self.enable_after_reset else WorkerState.DISABLED)
+                self.enable_after_reset = False
             elif self.state_cycles * self.cfg.ts_s > self.cfg.fault_reset_timeout_s:
                 i = int(np.argmax(states == Cia402State.FAULT))
                 self._alarm(AlarmCode.FAULT_RESET_FAILED, i, int(bus.error_code[i]))
@@ -444,6 +453,8 @@ class CycleLoop:
         """Drives in FAULT as the bus comes up (before anything was commanded) get one fault
         reset, told as an event; a fault that stays is then an alarm as any other."""
         self.startup_reset_tried = True
+        # an enable asked for before the fault showed is carried out once the reset worked
+        self.enable_after_reset = self.state is WorkerState.ENABLING
         for i in range(self.n):
             if self.bool_tmp[i]:
                 known = not self.error_code_by_sdo[i]

@@ -52,7 +52,8 @@ def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int])
     finally:
         with contextlib.suppress(Exception):
             loop.close_bus()
-        block.ctl.status[...] = Status.STOPPED
+        if int(block.ctl.status) != Status.FAILED:     # the parent reads why it failed
+            block.ctl.status[...] = Status.STOPPED
         del block, loop
         shm.close()
         if lock_fd is not None:

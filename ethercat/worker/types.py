@@ -197,6 +197,8 @@ class WorkerConfig:
     wkc_error_limit: working counter may be wrong for this many consecutive cycles.
     buffer_capacity: set-points the ring holds (2000 = 2 s ahead at 1 ms).
     following_error_cycles: |ref - actual| over the window for more than this many cycles.
+    enable_confirm_cycles: a drive counts as enabled after showing OPERATION ENABLED this many
+    cycles in a row (its statusword lags the controlword by a cycle or more).
     mode: "process" | "thread" | "manual".
     cpu (mode "process"): core to pin the loop to. -1 = automatic: the highest-numbered
     core no other worker holds (each worker process holds an flock on
@@ -244,6 +246,7 @@ class WorkerConfig:
     tracking_delay_cycles: int = 1
     underrun_velocity_units_s: float = 0.01
     enable_timeout_s: float = 1.0
+    enable_confirm_cycles: int = 5
     fault_reset_timeout_s: float = 0.5
     homing_timeout_s: float = 120.0
     start_timeout_s: float = 20.0
