@@ -1,7 +1,9 @@
 """`cnc-ethercat`: the integrator's command line tool (in the spirit of IgH's `ethercat`).
 
     cnc-ethercat slaves IFNAME                       position, AL state, vendor, product, name
-    cnc-ethercat pdos IFNAME                         PDO assignment and mapping per slave
+    cnc-ethercat pdos IFNAME [--esi FILE]            PDO assignment and mapping per slave
+    cnc-ethercat esi FILE.xml [--positions P ...]    [[bus.drives]] tables from a drive's ESI file
+    cnc-ethercat esi FILE.xml --check IFNAME         live slaves compared with their ESI
     cnc-ethercat upload IFNAME POS INDEX SUB         SDO read (value by the object's type)
     cnc-ethercat download IFNAME POS INDEX SUB VALUE SDO write
     cnc-ethercat emulate IFNAME --drives N           software slaves on IFNAME (see ethercat.emulator)
@@ -18,11 +20,14 @@ import json
 import struct
 import sys
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .emulator.variants import VARIANTS
 from .errors import ConfigurationError, EtherCATError
-from .object_dictionary import OBJECTS
+from .object_dictionary import KNOWN_OBJECTS, OBJECTS
+
+if TYPE_CHECKING:
+    from .esi import EsiDevice
 
 _FORMATS = {"u8": "<B", "i8": "<b", "u16": "<H", "i16": "<h", "u32": "<I", "i32": "<i", "u64": "<Q",
             "i64": "<q"}
@@ -65,26 +70,38 @@ def cmd_slaves(args: argparse.Namespace) -> int:
     return 0
 
 
-def _entry_text(value: int) -> str:
+def _entry_text(value: int, esi: EsiDevice | None = None) -> str:
     index, sub, bits = value >> 16, (value >> 8) & 0xFF, value & 0xFF
-    entry = OBJECTS.get((index, sub))
+    entry = KNOWN_OBJECTS.get((index, sub))
     name = entry.name if entry is not None else ("padding" if index == 0 else "")
+    if esi is not None and esi.object_name(index, sub):
+        name = esi.object_name(index, sub)
     return f"0x{index:04X}:{sub:02X}  {bits:2d} bit  {name}"
+
+
+def _esi_devices(path: str | None) -> dict[tuple[int, int], EsiDevice]:
+    if not path:
+        return {}
+    from .esi import read_esi
+
+    return {(d.vendor_id, d.product_code): d for d in read_esi(path)}
 
 
 def cmd_pdos(args: argparse.Namespace) -> int:
     from .soem_bus import read_mapping
 
+    described = _esi_devices(args.esi)
     master = _scan(args.ifname)
     try:
         for pos, s in enumerate(master.slaves):
             print(f"slave {pos}: {s.name}")
+            esi = described.get((int(s.man), int(s.id)))
             mapping = read_mapping(master, pos)
             for key, sm, label in (("rx", 2, "RxPDO (outputs)"), ("tx", 3, "TxPDO (inputs)")):
                 for pdo, entries in mapping[key]:
                     print(f"  SM{sm} {label} 0x{pdo:04X}")
                     for e in entries:
-                        print(f"    {_entry_text(e)}")
+                        print(f"    {_entry_text(e, esi)}")
     finally:
         master.close()
     return 0
@@ -131,6 +148,44 @@ def cmd_download(args: argparse.Namespace) -> int:
         sdo_download(master, args.position, args.index, args.subindex, data)
     finally:
         master.close()
+    return 0
+
+
+def cmd_esi(args: argparse.Namespace) -> int:
+    """The ``[[bus.drives]]`` tables for the devices of an ESI file, or with --check, the
+    live slaves compared with it."""
+    from .esi import check_slave, propose_drive_block, read_esi
+
+    devices = read_esi(args.file)
+    if args.check:
+        from .soem_bus import read_mapping
+
+        described = {(d.vendor_id, d.product_code): d for d in devices}
+        master = _scan(args.check)
+        bad = 0
+        try:
+            for pos, s in enumerate(master.slaves):
+                identity = (int(s.man), int(s.id), int(s.rev))
+                device = described.get(identity[:2])
+                if device is None:
+                    print(f"slave {pos} ({s.name}): not described in {args.file}")
+                    continue
+                problems = check_slave(device, identity, read_mapping(master, pos))
+                bad += bool(problems)
+                verdict = "; ".join(problems) if problems else "matches its ESI"
+                print(f"slave {pos} ({s.name}): {verdict}")
+        finally:
+            master.close()
+        return 1 if bad else 0
+    if args.product is not None:
+        devices = tuple(d for d in devices if d.product_code == args.product)
+        if not devices:
+            raise ConfigurationError(f"{args.file}: no device with product code 0x{args.product:08X}")
+    device = devices[0]
+    if len(devices) > 1:
+        print(f"# {args.file} describes {len(devices)} devices; this is the first (choose with --product)")
+    for pos in args.positions:
+        print(propose_drive_block(device, pos))
     return 0
 
 
@@ -182,7 +237,15 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=cmd_slaves)
     s = sub.add_parser("pdos", help="PDO assignment and mapping of every slave")
     s.add_argument("ifname")
+    s.add_argument("--esi", default=None, help="ESI file naming the objects")
     s.set_defaults(func=cmd_pdos)
+    s = sub.add_parser("esi", help="[[bus.drives]] tables from a drive's ESI file, or --check live slaves")
+    s.add_argument("file", help="the drive's ESI XML file")
+    s.add_argument("--positions", type=_int, nargs="+", default=[0], help="slave positions (default 0)")
+    s.add_argument("--product", type=_int, default=None, help="product code, when the file has several")
+    s.add_argument("--check", metavar="IFNAME", default=None,
+                   help="compare the slaves on IFNAME with the file instead")
+    s.set_defaults(func=cmd_esi)
     for name, helptext in (("upload", "SDO upload (read)"), ("download", "SDO download (write)")):
         s = sub.add_parser(name, help=helptext)
         s.add_argument("ifname")

@@ -382,7 +382,8 @@ class SoemBus(Bus):
                  mappings: Mapping[tuple[int, int], PdoMapping] | None = None,
                  default_mapping: PdoMapping = CSP_MAPPING, dc: bool = True,
                  safeop_timeout_s: float = 2.0, op_timeout_s: float = 3.0, init_timeout_s: float = 2.0,
-                 receive_timeout_us: int = 2000, setups: Mapping[int, DriveSetup] | None = None,
+                 receive_timeout_us: int = 2000,
+                 setups: Mapping[int, DriveSetup] | Sequence[tuple[int, DriveSetup]] | None = None,
                  mode_timeout_s: float = 1.0, **_ignored: object) -> None:
         super().__init__(drives, cycle_time_s)
         self.adapter = adapter

@@ -32,7 +32,7 @@ REQUIRED: Any = _Required()
 
 @dataclass(frozen=True, slots=True)
 class Key:
-    """One key: its type ("float", "int", "bool", "str", "floats"), default (``REQUIRED`` when
+    """One key: its type ("float", "int", "bool", "str", "floats", "strs"), default (``REQUIRED`` when
     it must be given, None when derived by the reader), inclusive range or choices."""
 
     name: str
@@ -104,7 +104,25 @@ MACHINE_FILE = Table("", tables=(
             Key("position", "int", None, 0, 65535),
             Key("vendor_id", "int", 0, 0, 0xFFFF_FFFF),
             Key("product_code", "int", 0, 0, 0xFFFF_FFFF),
-        ), array=True),
+            # how the drive is brought up (ethercat.drive_setup): PDO mapping policy and
+            # entries ("0x6040:0:16"), complete access, distributed clocks, 0x1C32:1
+            Key("mapping", "str", "adapt", choices=("adapt", "write", "keep")),
+            Key("rx_pdo", "int", 0x1600, 0x1600, 0x17FF),
+            Key("rx", "strs", []),
+            Key("tx_pdo", "int", 0x1A00, 0x1A00, 0x1BFF),
+            Key("tx", "strs", []),
+            Key("complete_access", "str", "auto", choices=("auto", "on", "off")),
+            Key("dc", "bool", True),
+            Key("sync0_shift_ns", "int", 0, -999_999_999, 999_999_999),
+            Key("sync_mode", "int", None, 0, 3),
+        ), array=True, tables=(
+            Table("sdo", (
+                Key("index", "int", REQUIRED, 0, 0xFFFF),
+                Key("subindex", "int", 0, 0, 255),
+                Key("value", "int", REQUIRED, -(1 << 63), (1 << 64) - 1),
+                Key("size", "int", REQUIRED, choices=(1, 2, 4, 8)),
+            ), array=True),
+        )),
     )),
     Table("controller", (
         Key("jog_speed_mm_s", "float", 10.0, 1e-3, 1e4),
@@ -155,6 +173,8 @@ def key_lines(text: str) -> dict[tuple[str | int, ...], int]:
                 if m.group(1) == "[[" and last:
                     counters[dotted] = counters.get(dotted, -1) + 1
                     path.append(counters[dotted])
+                    for inner in [k for k in counters if k.startswith(dotted + ".")]:
+                        del counters[inner]        # a new element starts its own sub-arrays
                 elif dotted in counters:         # inside the latest element of an array
                     path.append(counters[dotted])
             current = tuple(path)
@@ -207,6 +227,10 @@ def _check_value(ctx: Locator, path: tuple[str | int, ...], key: Key, value: Any
         if key.choices and value not in key.choices:
             raise ctx.fail(path, f"must be one of {', '.join(map(repr, key.choices))}, got {value!r}")
         return value
+    if kind == "strs":
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise ctx.fail(path, f"must be a list of strings, got {value!r}")
+        return list(value)
     if kind == "floats":
         if not isinstance(value, list):
             raise ctx.fail(path, f"must be a list of numbers, got {value!r}")

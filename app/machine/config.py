@@ -25,18 +25,22 @@ import os
 import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import tomlkit
 import tomlkit.exceptions
 import tomlkit.items
 
 from app.machine.errors import ConfigError
+from ethercat.errors import EtherCATError
 from planner.errors import PlannerError
 from planner.files import write_output, write_text
 from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
 from planner.schema import END_MARK, HEADER, Locator, check_complete, validate
 from resources import shipped_machine
+
+if TYPE_CHECKING:
+    from ethercat.drive_setup import DriveSetup
 
 __all__ = [
     "BusSettings",
@@ -63,10 +67,49 @@ class HomingSettings:
 
 
 @dataclass(frozen=True, slots=True)
+class StartupSdoSetting:
+    """One ``[[bus.drives.sdo]]``: written in PRE-OP before the process data is mapped."""
+
+    index: int
+    subindex: int
+    value: int
+    size: int
+
+
+@dataclass(frozen=True, slots=True)
 class DriveIdentity:
+    """One ``[[bus.drives]]``: the identity a slave must have and how it is brought up
+    (mapping policy and entries, complete access, distributed clocks, start-up SDOs)."""
+
     position: int
     vendor_id: int = 0
     product_code: int = 0
+    mapping: str = "adapt"                 # "adapt" | "write" | "keep"
+    rx_pdo: int = 0x1600
+    rx: tuple[str, ...] = ()               # "0x6040:0:16" entries; empty: the default mapping
+    tx_pdo: int = 0x1A00
+    tx: tuple[str, ...] = ()
+    complete_access: str = "auto"          # "auto" | "on" | "off"
+    dc: bool = True
+    sync0_shift_ns: int = 0
+    sync_mode: int | None = None           # 0x1C32:1, written when set
+    sdos: tuple[StartupSdoSetting, ...] = ()
+
+    def setup(self) -> DriveSetup:
+        """The ``ethercat`` package's start-up settings of this drive."""
+        from ethercat.drive_setup import DriveSetup, MappingPolicy, StartupSdo
+        from ethercat.pdo import PdoMapping, parse_entry
+
+        mapping = None
+        if self.rx or self.tx:
+            mapping = PdoMapping(tuple(parse_entry(e) for e in self.rx),
+                                 tuple(parse_entry(e) for e in self.tx), self.rx_pdo, self.tx_pdo)
+        ca = {"auto": None, "on": True, "off": False}[self.complete_access]
+        return DriveSetup(mapping=mapping, policy=MappingPolicy(self.mapping),
+                          startup_sdos=tuple(StartupSdo(x.index, x.subindex, x.value, x.size)
+                                             for x in self.sdos),
+                          dc=self.dc, sync0_shift_ns=self.sync0_shift_ns, sync_mode=self.sync_mode,
+                          complete_access=ca)
 
 
 @dataclass(frozen=True, slots=True)
@@ -145,6 +188,15 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
             if d["position"] not in positions:
                 raise loc.fail(("bus", "drives", i, "position"),
                                f"{d['position']} is not the drive of any axis ({sorted(positions)})")
+        for i, d in enumerate(b["drives"]):
+            if bool(d["rx"]) != bool(d["tx"]):
+                raise loc.fail(("bus", "drives", i, "rx" if not d["rx"] else "tx"),
+                               "rx and tx are given together (the whole mapping) or not at all")
+            try:
+                _drive(d).setup()
+            except EtherCATError as exc:
+                key = "sdo" if "start-up SDO" in str(exc) else ("rx" if d["rx"] else "mapping")
+                raise loc.fail(("bus", "drives", i, key), str(exc)) from None
         if b["kind"] == "soem" and not b["adapter"]:
             raise loc.fail(("bus", "adapter"), 'is required when kind = "soem" (the network interface)')
         c = valid["controller"]
@@ -161,7 +213,7 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     h = valid["homing"]
     homing = HomingSettings(required=h["required"], method=h["method"], drive_method=h["drive_method"],
                             timeout_s=h["timeout_s"], absolute_encoders=h["absolute_encoders"])
-    drives = tuple(DriveIdentity(d["position"], d["vendor_id"], d["product_code"]) for d in b["drives"])
+    drives = tuple(_drive(d) for d in b["drives"])
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
@@ -278,8 +330,7 @@ def config_to_toml(config: MachineConfig) -> str:
     out += ["[bus]", f"kind = {_fmt(b.kind)}", f"adapter = {_fmt(b.adapter)}",
             f"wkc_error_limit = {b.wkc_error_limit}", ""]
     for d in b.drives:
-        out += ["[[bus.drives]]", f"position = {d.position}", f"vendor_id = 0x{d.vendor_id:08X}",
-                f"product_code = 0x{d.product_code:08X}"]
+        out += drive_lines(d)
     c = config.controller
     out += ["", "[controller]", f"jog_speed_mm_s = {_fmt(float(c.jog_speed_mm_s))}",
             f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",
@@ -339,6 +390,31 @@ def _merge(dst: Any, src: Any) -> None:
 
 def _plain(value: Any) -> Any:
     return value.unwrap() if hasattr(value, "unwrap") else value
+
+
+def _drive(d: dict[str, Any]) -> DriveIdentity:
+    return DriveIdentity(
+        d["position"], d["vendor_id"], d["product_code"], mapping=d["mapping"], rx_pdo=d["rx_pdo"],
+        rx=tuple(d["rx"]), tx_pdo=d["tx_pdo"], tx=tuple(d["tx"]), complete_access=d["complete_access"],
+        dc=d["dc"], sync0_shift_ns=d["sync0_shift_ns"], sync_mode=d["sync_mode"],
+        sdos=tuple(StartupSdoSetting(x["index"], x["subindex"], x["value"], x["size"]) for x in d["sdo"]))
+
+
+def drive_lines(d: DriveIdentity) -> list[str]:
+    """The ``[[bus.drives]]`` table of one drive (every key, so nothing is lost on a save)."""
+    out = ["[[bus.drives]]", f"position = {d.position}", f"vendor_id = 0x{d.vendor_id:08X}",
+           f"product_code = 0x{d.product_code:08X}", f"mapping = {_fmt(d.mapping)}"]
+    if d.rx or d.tx:
+        out += [f"rx_pdo = 0x{d.rx_pdo:04X}", "rx = [" + ", ".join(_fmt(e) for e in d.rx) + "]",
+                f"tx_pdo = 0x{d.tx_pdo:04X}", "tx = [" + ", ".join(_fmt(e) for e in d.tx) + "]"]
+    out += [f"complete_access = {_fmt(d.complete_access)}", f"dc = {_fmt(d.dc)}",
+            f"sync0_shift_ns = {d.sync0_shift_ns}"]
+    if d.sync_mode is not None:
+        out.append(f"sync_mode = {d.sync_mode}")
+    for x in d.sdos:
+        out += ["[[bus.drives.sdo]]", f"index = 0x{x.index:04X}", f"subindex = {x.subindex}",
+                f"value = {x.value}", f"size = {x.size}"]
+    return out
 
 
 def save_config(config: MachineConfig, path: str | os.PathLike[str] | None = None) -> MachineConfig:

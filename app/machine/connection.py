@@ -207,6 +207,8 @@ class Connection:
             for a in cfg.machine.axes
         )
         options: tuple[tuple[str, Any], ...] = ()
+        if cfg.bus.kind == "soem":
+            options = (("setups", tuple((d.position, d.setup()) for d in cfg.bus.drives)),)
         if cfg.bus.kind == "sim":
             counts = tuple(
                 float(a.direction * a.counts_per_unit * x)
