@@ -26,6 +26,12 @@ sysdeps:
 	    exit 1; \
 	  fi; \
 	fi
+	@# the third-party slave of the EtherCAT link tests (../shared/thirdparty/kickcat) needs
+	@# libtinyxml2; those tests need root anyway, so only root installs it (others skip them)
+	@if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && ! ldconfig -p 2>/dev/null | grep -q libtinyxml2.so.9; then \
+	  echo "installing Debian's libtinyxml2-9 for the EtherCAT link tests"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtinyxml2-9 >/dev/null; \
+	fi
 
 $(VPY):
 	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \

@@ -158,6 +158,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--cpu", type=int, default=-1)
     ap.add_argument("--probe", type=float, default=0.0, metavar="SECONDS",
                     help="no worker: attribute the late wake-ups of a bare clock_nanosleep loop")
+    ap.add_argument("--versus-probe", action="store_true",
+                    help="with --link/--ifname: the worker in its process beside the bare loop, "
+                         "measured in the same run (half the probe before, half after)")
     args = ap.parse_args(argv)
     if args.probe:
         prio = 49 if args.rt_priority is None else args.rt_priority
@@ -173,7 +176,37 @@ def main(argv: list[str] | None = None) -> int:
             bus, ifname, args.drives = "soem", link.master_ifname, args.link
         elif args.ifname:
             bus, ifname = "soem", args.ifname
+        if args.versus_probe:
+            return _versus_probe(args, bus, ifname)
         return _run(args, bus, ifname)
+
+
+def _versus_probe(args: argparse.Namespace, bus: str, ifname: str) -> int:
+    """Late cycles of the worker (1 ms loop on the link) against late wake-ups of a bare
+    SCHED_FIFO clock_nanosleep loop on the same machine in the same run: what the machine
+    allows, next to what the worker achieves. Same priority and spin as the worker's defaults."""
+    half = args.seconds / 2.0
+    before = probe(half, args.cpu, 49, 0.0001)
+    worker = run_bench(bus, ifname, args.seconds, n_drives=args.drives, mode="process", cpu=args.cpu)
+    after = probe(half, args.cpu, 49, 0.0001)
+    bare_cycles = before["cycles"] + after["cycles"]
+    bare_late = before["over_1ms"] + after["over_1ms"]
+    out = {
+        "bench": "ethercat-versus-probe", "seconds": args.seconds, "bus": bus,
+        "worker": {k: worker[k] for k in ("cycles", "late_cycles", "missed_cycles", "wkc_errors",
+                                          "jitter_p50_us", "jitter_p99_us", "jitter_p999_us", "jitter_max_us",
+                                          "realtime")},
+        "bare_loop": {"cycles": bare_cycles, "late_over_1ms": bare_late,
+                      "p99_us": max(before["p99_us"], after["p99_us"]),
+                      "max_us": max(before["max_us"], after["max_us"]),
+                      "steal_ms_total": before["steal_ms_total"] + after["steal_ms_total"]},
+    }
+    rate_w = worker["late_cycles"] / max(1, worker["cycles"])
+    rate_b = bare_late / max(1, bare_cycles)
+    out["late_per_1e6_worker"] = round(rate_w * 1e6, 1)
+    out["late_per_1e6_bare_loop"] = round(rate_b * 1e6, 1)
+    print(json.dumps(out, indent=None if args.json else 1))
+    return 0
 
 
 def _run(args: argparse.Namespace, bus: str, ifname: str) -> int:

@@ -102,6 +102,17 @@ class AlarmLog:
             else:
                 self.fault(a.message, source, a.code.name.lower())
 
+    def handle_worker_events(self, events: Any) -> None:
+        """The worker's events (a slave answering again, a drive reset at start-up, an error
+        code read by SDO), recorded for the operator once each."""
+        for e in events:
+            key = (int(e.code), int(e.cycle), e.axis)
+            if key in self.seen_worker_alarms:
+                continue
+            self.seen_worker_alarms.add(key)
+            source = f"drive {e.axis}" if e.axis else "bus"
+            self.raise_alarm(source, e.message, Severity.INFO, e.code.name.lower())
+
     def fault(self, cause: str, source: str, code: str) -> None:
         """A quick-stop class alarm: the worker already stopped the drives; keep the resume point."""
         self.raise_alarm(source, cause, Severity.QUICK_STOP, code)

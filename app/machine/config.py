@@ -192,11 +192,7 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
             if bool(d["rx"]) != bool(d["tx"]):
                 raise loc.fail(("bus", "drives", i, "rx" if not d["rx"] else "tx"),
                                "rx and tx are given together (the whole mapping) or not at all")
-            try:
-                _drive(d).setup()
-            except EtherCATError as exc:
-                key = "sdo" if "start-up SDO" in str(exc) else ("rx" if d["rx"] else "mapping")
-                raise loc.fail(("bus", "drives", i, key), str(exc)) from None
+            _check_drive_setup(loc, i, d)
         if b["kind"] == "soem" and not b["adapter"]:
             raise loc.fail(("bus", "adapter"), 'is required when kind = "soem" (the network interface)')
         c = valid["controller"]
@@ -390,6 +386,30 @@ def _merge(dst: Any, src: Any) -> None:
 
 def _plain(value: Any) -> Any:
     return value.unwrap() if hasattr(value, "unwrap") else value
+
+
+def _check_drive_setup(loc: Locator, i: int, d: dict[str, Any]) -> None:
+    """The drive's start-up settings as the ``ethercat`` package reads them; a refusal names
+    the entry or SDO table at fault."""
+    from ethercat.drive_setup import StartupSdo
+    from ethercat.pdo import parse_entry
+
+    for key in ("rx", "tx"):
+        for k, text in enumerate(d[key]):
+            try:
+                parse_entry(text)
+            except EtherCATError as exc:
+                raise loc.fail(("bus", "drives", i, key, k), str(exc)) from None
+    for k, x in enumerate(d["sdo"]):
+        try:
+            StartupSdo(x["index"], x["subindex"], x["value"], x["size"])
+        except EtherCATError as exc:
+            raise loc.fail(("bus", "drives", i, "sdo", k), str(exc)) from None
+    try:
+        _drive(d).setup()
+    except EtherCATError as exc:
+        key = "tx" if "TxPDO" in str(exc) else "rx"
+        raise loc.fail(("bus", "drives", i, key), str(exc)) from None
 
 
 def _drive(d: dict[str, Any]) -> DriveIdentity:

@@ -260,6 +260,10 @@ class Connection:
             return self.m.states.refuse("connect", f"cannot start the bus: {exc}")
         self.worker = worker
         self.m.alarm_log.seen_worker_alarms.clear()
+        # what the bus start-up adapted to (a drive's own mapping, objects it lacks): recorded
+        # for the integrator, nothing to acknowledge
+        for k, note in enumerate(getattr(worker, "bus_notes", ())):
+            self.m.alarm_log.raise_alarm("bus", note, Severity.INFO, f"bus_note_{k}")
         try:
             self.enable_worker()
         except Exception as exc:  # noqa: BLE001

@@ -39,6 +39,9 @@ def _parser() -> argparse.ArgumentParser:
                         "last run ended cleanly) and run nothing")
     p.add_argument("--config", help="machine configuration TOML (default: the shipped 3-axis XYZ mill)")
     p.add_argument("--sim", action="store_true", help="simulated drives whatever the configuration says")
+    p.add_argument("--hardware", action="store_true",
+                   help="run on the configuration's EtherCAT drives (commissioning, at the machine: "
+                        "the axes move)")
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     p.add_argument("--feed-override", type=float, default=100.0, help="feed override in %% (0-200)")
     p.add_argument("--optional-stop", action="store_true", help="honour M01")
@@ -110,9 +113,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.sim:
         cfg = replace(cfg, bus=replace(cfg.bus, kind="sim", adapter=""))
-    if cfg.bus.kind != "sim":
+    if cfg.bus.kind != "sim" and not args.hardware:
         print("cnc-run: the configuration drives real hardware; run real machines from the panel, "
-              "or pass --sim", file=sys.stderr)
+              "pass --sim to simulate, or --hardware at the machine to move its axes", file=sys.stderr)
         return 2
     # in-memory configuration: the state directory's machine.toml is never written by a run
     cfg = replace(cfg, path="")

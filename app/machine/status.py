@@ -48,6 +48,9 @@ class StatusPoller:
         self.m.pos.raw_pos = np.asarray(snap.actual_position, dtype=float).copy()
         self.m.pos.ref_raw = np.asarray(snap.reference_position, dtype=float).copy()
         self.m.alarm_log.handle_worker_alarms(snap)
+        events = getattr(w, "events", None)
+        if events is not None:
+            self.m.alarm_log.handle_worker_events(events())
         with self.m._lock:
             trace = w.drain_trace()
         self.deliver(trace)

@@ -188,3 +188,65 @@ def test_kickcat_drives_run_bench_and_motion(kickcat: KickcatLink) -> None:
         w.stop()
     # and to OP once more after the way back, as after a reconnect
     bench_over(kickcat.master_ifname)
+
+
+XY_MACHINE = """[machine]
+name = "XY table on KickCAT drives"
+
+[[axes]]
+name = "X"
+kind = "linear"
+drive_position = 0
+min = -100.0
+max = 100.0
+v_max = 50.0
+a_max = 500.0
+j_max = 10000.0
+following_error_window = 2.0
+
+[[axes]]
+name = "Y"
+kind = "linear"
+drive_position = 1
+min = -100.0
+max = 100.0
+v_max = 50.0
+a_max = 500.0
+j_max = 10000.0
+following_error_window = 2.0
+
+[homing]
+required = false
+
+[bus]
+kind = "soem"
+adapter = "{adapter}"
+
+"""
+
+
+def test_kickcat_configuration_from_its_esi_runs_a_program(kickcat: KickcatLink, tmp_path: Path) -> None:
+    """`cnc-ethercat esi` on KickCAT's ESI file, pasted as it is into a machine configuration:
+    `cnc-run` runs a program moving both axes through the whole controller on these drives."""
+    from tests.ethercat.third_party import KICKCAT_ESI
+
+    res = cli("esi", str(KICKCAT_ESI), "--positions", "0", "1")
+    assert res.returncode == 0, res.stderr
+    config = tmp_path / "machine.toml"
+    config.write_text(XY_MACHINE.format(adapter=kickcat.master_ifname) + res.stdout, encoding="utf-8")
+    program = tmp_path / "square.ngc"
+    program.write_text("G21 G90\nG1 X2 Y-1.5 F600\nG1 X4 Y0\nG0 X3 Y1\nM2\n", encoding="utf-8")
+    run = subprocess.run([sys.executable, "-m", "app.machine.run_cli", str(program), "--config", str(config),
+                          "--hardware", "--json", "--state-dir", str(tmp_path / "state")],
+                         capture_output=True, text=True, cwd=ROOT, timeout=120,
+                         env={**os.environ, FRAME_TIMEOUT_ENV: "20000"})
+    assert run.returncode == 0, run.stderr + run.stdout
+    result = json.loads(run.stdout)
+    assert result["completed"] and result["final_state"] == "idle", result
+    np.testing.assert_allclose(result["end_position"], [3.0, 1.0], atol=0.01)
+    assert result["limits_ok"], result["limits"]
+    bus_lines = [a for a in result["alarms"] if a.startswith("bus: ")]
+    assert any("SDO complete access not used" in a for a in bus_lines), result["alarms"]
+    # and the live slaves match their description
+    check = cli("esi", str(KICKCAT_ESI), "--check", kickcat.master_ifname)
+    assert check.returncode == 0 and check.stdout.count("matches its ESI") == 2, check.stdout + check.stderr

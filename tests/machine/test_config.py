@@ -148,3 +148,75 @@ def test_unknown_keys_in_the_file_are_refused_with_file_and_line(tmp_path: Path)
     with pytest.raises(ConfigError) as exc:
         load_config(p)
     assert f"{p}:{line}: limitz: unknown section (did you mean 'limits'?)" in str(exc.value)
+
+
+DRIVE_TABLES = """
+[[bus.drives]]
+position = 0
+vendor_id = 0x0000029C
+product_code = 0x03B11002
+mapping = "write"
+rx_pdo = 0x1601
+rx = ["0x6040:0:16", "0x607A:0:32", "0x2010:1:32s"]
+tx_pdo = 0x1A01
+tx = ["0x6041:0:16", "0x6064:0:32", "0x0000:0:8"]
+complete_access = "off"
+dc = false
+sync0_shift_ns = -250000
+sync_mode = 2
+[[bus.drives.sdo]]
+index = 0x6060
+value = 8
+size = 1
+[[bus.drives.sdo]]
+index = 0x2002
+subindex = 3
+value = -5
+size = 4
+[[bus.drives]]
+position = 1
+"""
+
+
+def _with_drives(tables: str) -> str:
+    head = shipped_machine("xyz_mill").read_text(encoding="utf-8").split("[bus]")[0]
+    return f'{head}[bus]\nkind = "soem"\nadapter = "eth1"\n{tables}'
+
+
+def test_drive_start_up_settings_are_read_and_kept_on_save(tmp_path: Path) -> None:
+    from ethercat.drive_setup import MappingPolicy, StartupSdo
+
+    p = tmp_path / "machine.toml"
+    p.write_text(_with_drives(DRIVE_TABLES), encoding="utf-8")
+    cfg = load_config(p)
+    setup = cfg.bus.drives[0].setup()
+    assert setup.policy is MappingPolicy.WRITE and setup.complete_access is False and not setup.dc
+    assert setup.sync0_shift_ns == -250_000 and setup.sync_mode == 2
+    assert setup.mapping is not None and setup.mapping.rx_pdo == 0x1601
+    assert [(e.index, e.subindex, e.bits, e.signed) for e in setup.mapping.rx] == [
+        (0x6040, 0, 16, False), (0x607A, 0, 32, True), (0x2010, 1, 32, True)]
+    assert setup.startup_sdos == (StartupSdo(0x6060, 0, 8, 1), StartupSdo(0x2002, 3, -5, 4))
+    assert setup.startup_sdos[1].data == b"\xfb\xff\xff\xff"
+    default = cfg.bus.drives[1].setup()
+    assert default.mapping is None and default.policy is MappingPolicy.ADAPT
+    assert default.complete_access is None
+    again = load_config(save_config(cfg, tmp_path / "saved.toml").path)
+    assert again.bus.drives == cfg.bus.drives
+
+
+@pytest.mark.parametrize("edit, key, words", [
+    ('rx = ["0x6040:0:16", "0x607A:0:32", "0x2010:1:32s"]', "rx",
+     'rx = ["0x6040:0:16", "0x607A:0:31"]'),
+    ('tx = ["0x6041:0:16", "0x6064:0:32", "0x0000:0:8"]', "tx", 'tx = ["0x6041:0:16"]'),
+    ("size = 1", "sdo", "size = 3"),
+    ("value = -5", "sdo", "value = 5000000000"),
+    ('mapping = "write"', "mapping", 'mapping = "fixed"'),
+])
+def test_bad_drive_settings_name_the_key_and_line(tmp_path: Path, edit: str, key: str, words: str) -> None:
+    p = tmp_path / "machine.toml"
+    text = _with_drives(DRIVE_TABLES.replace(edit, words, 1))
+    p.write_text(text, encoding="utf-8")
+    with pytest.raises(ConfigError) as exc:
+        load_config(p)
+    msg = str(exc.value)
+    assert re.search(rf"{re.escape(str(p))}:\d+: bus\.drives\[0\]\.{key}", msg), msg

@@ -42,6 +42,23 @@ def test_cnc_run_bad_program_exit_2(qapp, capsys, tmp_path: Path) -> None:
     assert "line 2" in err and "Q" in err
 
 
+def test_cnc_run_moves_real_drives_only_when_told(qapp, capsys, tmp_path: Path) -> None:
+    """A configuration on EtherCAT drives is refused unless --hardware says the operator is at
+    the machine (with --hardware the bus is opened: here its adapter does not exist)."""
+    head = shipped_machine("xyz_mill").read_text(encoding="utf-8").split("[bus]")[0]
+    config = tmp_path / "machine.toml"
+    config.write_text(head + '[bus]\nkind = "soem"\nadapter = "nosuchif0"\n', encoding="utf-8")
+    program = tmp_path / "p.nc"
+    program.write_text("G1 X1 F100\n")
+    code = run_cli.main([str(program), "--config", str(config), "--state-dir", str(tmp_path / "s")])
+    err = capsys.readouterr().err
+    assert code == 2 and "drives real hardware" in err and "--hardware" in err
+    code = run_cli.main([str(program), "--config", str(config), "--hardware", "--worker", "thread",
+                         "--state-dir", str(tmp_path / "s2")])
+    captured = capsys.readouterr()
+    assert code != 0 and "nosuchif0" in captured.err + captured.out
+
+
 def test_cnc_run_text_report(qapp, capsys, tmp_path: Path) -> None:
     prog = tmp_path / "p.nc"
     prog.write_text("G1 X10 F1800\nG2 X20 Y0 R5\nM30\n")
