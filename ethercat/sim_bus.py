@@ -43,8 +43,12 @@ class SimBus(Bus):
     def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001,
                  drive_params: DriveParams | Sequence[DriveParams] | None = None,
                  initial_positions_counts: Sequence[float] | None = None,
-                 watchdog_s: float = 0.1, **_ignored: object) -> None:
+                 watchdog_s: float = 0.1, unmapped_objects: Sequence[int] = (),
+                 **_ignored: object) -> None:
         super().__init__(drives, cycle_time_s)
+        # objects left out of the simulated process data, as a drive that cannot map them
+        self.unmapped_objects = frozenset(unmapped_objects)
+        self._map_error_code = 0x603F not in self.unmapped_objects
         n = self.n_drives
         if drive_params is None:
             params = [DriveParams.for_axis(d.counts_per_unit,
@@ -101,7 +105,8 @@ class SimBus(Bus):
         self.statusword[i] = m.statusword
         self.position_actual[i] = m.position_actual
         self.following_error[i] = m.following_error_actual
-        self.error_code[i] = m.error_code
+        if self._map_error_code:
+            self.error_code[i] = m.error_code
         self.modes_display[i] = m.modes_of_operation_display
         self.digital_inputs[i] = m.digital_inputs
 
@@ -187,6 +192,9 @@ class SimBus(Bus):
         return tuple(back)
 
     # ------------------------------------------------------------------ fault injection
+    def maps_object(self, index: int, obj: int) -> bool:
+        return obj not in self.unmapped_objects
+
     def inject_drive_fault(self, index: int, error_code: int = ERROR_OVERCURRENT,
                            persistent: bool = False) -> None:
         """Drive `index` trips a fault (see `DriveModel.inject_fault`)."""

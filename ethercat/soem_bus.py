@@ -356,7 +356,7 @@ def state_report(master: Any, wanted: int) -> tuple[str, int, int]:
         st = int(s.state)
         if st & 0x0F != wanted or st & 0x10:
             code = int(s.al_status)
-            parts.append(f"slave {i} ({s.name}) in {al_state_name(st)}, AL status code 0x{code:04X} "
+            parts.append(f"{slave_label(master, i)} in {al_state_name(st)}, AL status code 0x{code:04X} "
                          f"{al_status_text(code)}")
             if first_pos < 0:
                 first_pos, first_code = i, code

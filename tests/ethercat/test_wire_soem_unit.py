@@ -151,3 +151,59 @@ def test_sdo_failures_are_named_so_an_integrator_can_act() -> None:
     assert isinstance(wkc, SdoTimeoutError) and "no answer" in str(wkc)
     unknown = _map_sdo_error(pysoem.PacketError(1, 9), 1, 0x1C12, 0, None)
     assert str(unknown) == "SDO 0x1C12:0 on slave 1: the answer did not fit the request (SOEM packet error 9)"
+
+
+# ---------------------------------------------------------------------- mapping pieces
+def test_mapping_entries_from_text_and_from_drives() -> None:
+    from ethercat.pdo import parse_entry
+
+    assert parse_entry("0x607A:0:32") == PdoEntry(0x607A, 0, 32, True)        # typed from CiA 402
+    assert parse_entry(" 0x2010:1:32s ") == PdoEntry(0x2010, 1, 32, True)    # unknown, marked signed
+    assert parse_entry("0x0:0:8").is_padding
+    for bad, words in (("0x6040:0", "index:subindex:bits"), ("0x6040:0:32", "has 16 bits"),
+                       ("0x10000:0:8", "0..0xFFFF")):
+        with pytest.raises(ConfigurationError, match=words):
+            parse_entry(bad)
+    m = PdoMapping.from_values([0x607A0020, 0x60400010, 0x00000008], [0x60640020, 0x60410010, 0x606C0020],
+                               0x1601, 0x1A01)
+    assert m.objects == {0x607A, 0x6040, 0x6064, 0x6041, 0x606C} and m.rx_struct.size == 7
+    assert m.without({0x606C}).tx_struct.size == 6
+
+
+def test_padding_and_unknown_objects_are_packed_in_place() -> None:
+    """A drive's own mapping may order objects differently, pad, and carry objects the bus has no
+    array for: written as 0, skipped when read."""
+    mapping = PdoMapping.from_values([0x607A0020, 0x60400010, 0x00000008, 0x60FF0020],
+                                     [0x60640020, 0x60410010, 0x00000008, 0x606C0020])
+    bus = SoemBus(DRIVES, adapter="unused")
+    bus.controlword[:] = [0x0F, 0]
+    bus.target_position[:] = [-7, 0]
+    slave = FakeSlave(struct.pack("<iHxi", 123, 0x1237, 999))
+    io = DriveIo(bus, 0, slave, mapping)
+    io.write()
+    io.read()
+    assert slave.output == struct.pack("<iHxi", -7, 0x0F, 0)
+    assert bus.position_actual[0] == 123 and bus.statusword[0] == 0x1237
+
+
+def test_emulated_drive_variants_at_the_object_level() -> None:
+    from ethercat.drive_model import DriveModel
+    from ethercat.emulator.coe import DriveObjects
+    from ethercat.emulator.variants import VARIANTS
+
+    def objects(name: str) -> DriveObjects:
+        return DriveObjects(DriveModel(), "drive", lambda: 2, VARIANTS[name])
+
+    fixed = objects("fixed")
+    assert fixed.assignment(0x1C12) == [0x1601] and fixed.mapping(0x1601)[0] == 0x607A0020
+    with pytest.raises(SdoAbortError) as exc:
+        fixed.write(0x1C12, 0, b"\x00")
+    assert exc.value.abort_code == SdoAbortError.READ_ONLY
+    assert fixed.tx_layout().size_bytes == 4 + 2 + 1 + 1 + 4
+    minimal = objects("minimal")
+    for index in (0x60F4, 0x603F, 0x60FD):
+        with pytest.raises(SdoAbortError) as exc:
+            minimal.read(index, 0)
+        assert exc.value.abort_code == SdoAbortError.OBJECT_DOES_NOT_EXIST
+    assert objects("standard").read_complete(0x1C12, 0) == b"\x01\x00\x00\x16"
+    assert objects("picky").read_complete(0x1C12, 0) == b"\x01\x00\x16"      # no pad byte, as KickCAT

@@ -17,6 +17,7 @@ import pytest
 
 from ethercat.bus import DriveSpec
 from ethercat.cia402 import Cia402State
+from ethercat.drive_model import DriveParams
 from ethercat.errors import ConfigurationError, EtherCATError, WorkerError, WorkerTimeoutError
 from ethercat.worker import (
     AlarmCode,
@@ -308,6 +309,64 @@ def test_drive_fault_quick_stops_all_then_reset(worker: CyclicWorker) -> None:
     assert worker.alarms() == ()
     enable(worker)
     np.testing.assert_allclose(worker.snapshot().reference_position, worker.snapshot().actual_position)
+
+
+def test_error_code_not_in_the_process_data_is_read_by_sdo() -> None:
+    """A drive that cannot map 0x603F: the fault is an alarm at once (quick stop), and its error
+    code follows as an event from an SDO read beside the cycle."""
+    w = CyclicWorker(config(bus_options=(("unmapped_objects", (0x603F,)),)))
+    w.start()
+    try:
+        enable(w)
+        w.inject("drive_fault", "Y", 0x2310)
+        w.step(30)
+        s = w.snapshot()
+        assert s.state is W.FAULT and codes(w) == [AlarmCode.DRIVE_FAULT]
+        assert "being read from 0x603F" in s.alarms[0].message and "0x2310" not in s.alarms[0].message
+        (event,) = [e for e in w.events() if e.code is EventCode.DRIVE_ERROR_CODE]
+        assert event.axis == "Y" and "0x2310" in event.message and "over-current" in event.message
+        assert w.snapshot().error_codes[1] == 0x2310
+    finally:
+        w.stop()
+
+
+@pytest.mark.parametrize("enable_at_once", [False, True])
+def test_drive_faulted_at_power_up_is_reset_once(enable_at_once: bool) -> None:
+    """A drive already in FAULT when the bus comes up gets one fault reset (an event says so);
+    an enable asked for before the fault showed is carried out after it."""
+    params = DriveParams.for_axis(10_000.0, fault_at_power_up=0x7500)
+    w = CyclicWorker(config(bus_options=(("drive_params", params),)))
+    w.start()
+    try:
+        if enable_at_once:
+            w.enable()
+        w.step(100)
+        events = [e for e in w.events() if e.code is EventCode.STARTUP_FAULT_RESET]
+        assert len(events) == 2 and all("0x7500" in e.message for e in events), events
+        assert w.snapshot().alarms == ()
+        assert w.state() is (W.ENABLED if enable_at_once else W.DISABLED)
+        if not enable_at_once:
+            enable(w)
+        # a later fault is an alarm as before: the reset happens once, at start-up only
+        w.inject("drive_fault", "X", 0x2310)
+        w.step(30)
+        assert w.state() is W.FAULT and codes(w) == [AlarmCode.DRIVE_FAULT]
+    finally:
+        w.stop()
+
+
+def test_enabled_only_after_operation_enabled_holds() -> None:
+    """A drive's statusword lags: OPERATION ENABLED must show for enable_confirm_cycles in a row."""
+    w = CyclicWorker(config(enable_confirm_cycles=20))
+    w.start()
+    try:
+        w.enable()
+        w.step(19)
+        assert w.state() is W.ENABLING
+        w.step(10)
+        assert w.state() is W.ENABLED
+    finally:
+        w.stop()
 
 
 def test_persistent_fault_reset_fails(worker: CyclicWorker) -> None:
