@@ -5,11 +5,13 @@ Supported (everything else is an error with file:line:col, never skipped):
   G90.1 G91.1, G94, G54-G59, G53 (one block, with G00/G01), G61 G64 (P/Q accepted),
   G28 (via the programmed point to machine zero of the named axes, or of all axes),
   G40, G41/G42 (radius 0: the path is the programmed path), G43 / G43 H / G43.1 / G43.2 / G49
-  tool length offsets from the tool table (``planner.tools``), G80; F S T;
+  tool length offsets from the tool table (``planner.tools``), G80 (also beside another motion
+  code, which then counts); canned cycles G73 G74 G81 G82 G83 G84 G85 G86 G89 with G98/G99,
+  R, L, P, Q, D (``canned_cycle``); F S T;
   M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
   N line numbers, '/' block delete, ( ) and ; comments, % delimiters, Fanuc 'O0001' lines,
   LinuxCNC expressions [..] and #numbered / #<named> parameters.
-Set-up as LinuxCNC's reference run: G21 G17 G40 G49 G54 G80 G90 G94 G91.1 G64, motion mode
+Set-up as LinuxCNC's reference run: G21 G17 G40 G49 G54 G80 G90 G94 G91.1 G64 G99, motion mode
 none (axis words need a G00-G03 first).
 """
 
@@ -64,7 +66,17 @@ _G_GROUP = {
     430: 8, 431: 8, 432: 8, 490: 8,
     540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12,
     610: 13, 640: 13,
+    730: 1, 740: 1, 810: 1, 820: 1, 830: 1, 840: 1, 850: 1, 860: 1, 890: 1,
+    980: 10, 990: 10,
 }
+#: canned cycles (motion group 1), as LinuxCNC 2.9 runs them (interp_cycles.cc)
+_CYCLES = frozenset({730, 740, 810, 820, 830, 840, 850, 860, 890})
+_CYCLE_NEEDS_P = frozenset({820, 860, 890})
+_CYCLE_NEEDS_Q = frozenset({730, 830})
+_CYCLE_TAKES_P = _CYCLE_NEEDS_P | {740, 840}
+#: pecks or repeats of one block above this are refused (a typo such as Q0.0001 on a deep
+#: hole would otherwise make millions of moves)
+_MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
     50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
     80: "G08 lathe radius mode", 100: "G10 data setting", 281: "G28.1", 300: "G30 second home",
@@ -72,19 +84,21 @@ _G_UNSUPPORTED = {
     382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
     411: "G41.1 dynamic cutter compensation", 421: "G42.1 dynamic cutter compensation",
     520: "G52 local offset", 591: "G59.1 work offset", 592: "G59.2 work offset",
-    593: "G59.3 work offset", 611: "G61.1 exact path mode", 730: "G73 canned cycle",
-    760: "G76 threading cycle", 810: "G81 canned cycle", 820: "G82 canned cycle",
-    830: "G83 canned cycle", 840: "G84 canned cycle", 850: "G85 canned cycle",
-    860: "G86 canned cycle", 870: "G87 canned cycle", 880: "G88 canned cycle",
-    890: "G89 canned cycle", 920: "G92 coordinate offset", 921: "G92.1", 922: "G92.2",
+    593: "G59.3 work offset", 611: "G61.1 exact path mode",
+    760: "G76 threading cycle",
+    870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
+         "does not have",
+    880: "G88 boring with a manual retract: the operator would jog the spindle out during a "
+         "program stop; use G86 or G89",
+    920: "G92 coordinate offset", 921: "G92.1", 922: "G92.2",
     923: "G92.3", 930: "G93 inverse time feed", 950: "G95 feed per revolution",
-    960: "G96 constant surface speed", 970: "G97 spindle rpm mode", 980: "G98 canned return",
-    990: "G99 canned return", 150: "G15 polar coordinates", 160: "G16 polar coordinates",
+    960: "G96 constant surface speed", 970: "G97 spindle rpm mode", 150: "G15 polar coordinates",
+    160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
 }
 _SHOWN_GROUPS = frozenset({2, 3, 6, 7, 8, 12, 13})  # the modal groups the panel shows
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
-_WORD_LETTERS = set("FSTPQRIJKDH")
+_WORD_LETTERS = set("FSTPQRIJKDHL")
 _AXIS_LETTERS = "XYZABC"
 # plane code -> (name, first, second, normal, centre letter of first, of second, letter not allowed)
 _PLANES = {
@@ -168,6 +182,14 @@ class _Interpreter:
         self.tlo = (0.0,) * n                      # tool length offset (G43...), machine units
         self.offset = self.work                    # both: program -> machine coordinates
         self.exact_stop = False
+        # canned cycles: retract mode (LinuxCNC starts in G99, retract to the R plane), the
+        # level the cycles started from (G98 returns there), the sticky R, bottom, P and Q
+        self.retract_r_plane = True
+        self.cycle_il: float | None = None
+        self.cycle_r_word = 0.0
+        self.cycle_z_word = 0.0
+        self.cycle_p = 0.0
+        self.cycle_q = 0.0
         self.spindle_dir = int(spindle[0])   # as the spindle is when the program starts
         self.spindle_rpm = float(spindle[1])
         # None: no tool table (every tool number known, offsets 0: the reference set-up);
@@ -281,13 +303,14 @@ class _Interpreter:
                 return True
             return False
         motion = int(gtxt) * 10 if gtxt is not None else self.motion
-        if motion is None or motion == 800 or (ctr and motion < 20):
+        if motion is None or motion > 30 or (ctr and motion < 20):
             return False
         scale = self.scale
         if f_t is not None:
             self.feed_mm_s = float(f_t) * scale / 60.0
         if gtxt is not None:
             self.motion = motion
+            self.cycle_il = None
         pos = self.pos
         target = pos.copy()
         rot = self.rotary
@@ -500,7 +523,7 @@ class _Interpreter:
                 return True
             return False
         motion = g if g >= 0 else self.motion
-        if motion is None or motion == 800 or (ctr and motion < 20):
+        if motion is None or motion > 30 or (ctr and motion < 20):
             return False
         if "F" in vals:
             f = vals["F"]
@@ -509,6 +532,7 @@ class _Interpreter:
             self.feed_mm_s = f * self.scale / 60.0
         if g >= 0:
             self.motion = g
+            self.cycle_il = None
         target = self.target(vals, axis_words, self.scale, False)
         if motion < 20:
             self.straight(target, motion == 0, line_no)
@@ -557,6 +581,10 @@ class _Interpreter:
                 if what:
                     raise _BlockError(f"{_gname(c)} is not supported ({what})", _gname(c))
                 raise _BlockError(f"unknown G code {_gname(c)}", _gname(c))
+            if g == 1 and g in groups and 800 in (c, groups[g]):
+                # LinuxCNC reads G80 beside another motion code as nothing: the other one counts
+                groups[g] = groups[g] if c == 800 else c
+                continue
             if g in groups:
                 raise _BlockError(
                     f"{_gname(groups[g])} and {_gname(c)} are in the same modal group (one per block)",
@@ -623,15 +651,24 @@ class _Interpreter:
                 "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
             )
         is_arc = motion in (20, 30)
+        is_cycle = motion in _CYCLES
         for letter in ("I", "J", "K", "R"):
-            if letter in vals and not is_arc:
-                raise _BlockError(f"{letter} word with no G02/G03 to use it", letter)
-        if "P" in vals and not (g0 == 40 or is_arc or groups.get(13) == 640):
-            raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64)", "P")
-        if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61:
-            raise _BlockError("Q word with no code that uses it (G64, M61)", "Q")
-        if "D" in vals and groups.get(7) not in (410, 420):
-            raise _BlockError("D word with no G41/G42 to use it", "D")
+            if letter in vals and not is_arc and not (letter == "R" and is_cycle):
+                users = "G02/G03 or canned cycle" if letter == "R" else "G02/G03"
+                raise _BlockError(f"{letter} word with no {users} to use it", letter)
+        if "P" in vals and not (g0 == 40 or is_arc or groups.get(13) == 640 or motion in _CYCLE_TAKES_P):
+            raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64, G82, G84, G86, G89)",
+                              "P")
+        if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q:
+            raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83)", "Q")
+        if "D" in vals and groups.get(7) not in (410, 420) and motion not in _CYCLE_NEEDS_Q:
+            raise _BlockError("D word with no G41/G42, G73 or G83 to use it", "D")
+        if "L" in vals and not is_cycle:
+            raise _BlockError("L word (repeats) with no canned cycle to use it", "L")
+        if is_cycle:
+            for letter in axis_words:
+                if self.rotary[self.axis_index[letter]]:
+                    raise _BlockError(f"cannot put an {letter} word in a canned cycle", letter)
         if "H" in vals and groups.get(8) not in (430, 432):
             raise _BlockError("H word with no G43 or G43.2 to use it", "H")
 
@@ -711,14 +748,23 @@ class _Interpreter:
             self.absolute = groups[3] == 900
         if 4 in groups:
             self.arc_absolute = groups[4] == 901
+        if 10 in groups:
+            self.retract_r_plane = groups[10] == 990
+        previous_motion = self.motion      # a cycle's words are required when it was not the mode
         if g1 is not None:
             self.motion = None if g1 == 800 else g1
         if not groups.keys().isdisjoint(_SHOWN_GROUPS):
             self.note_modal()
 
         # ---- motion
+        if g1 == 800 or (motion is not None and motion not in _CYCLES):
+            self.cycle_il = None            # a cycle sequence ends: G98's level is taken anew
         if g0 == 280:
             self.g28(vals, axis_words, scale, line_no)
+        elif motion in _CYCLES:
+            if g0 == 530:
+                raise _BlockError("G53 needs G00 or G01", "G53")
+            self.canned_cycle(motion, previous_motion != motion, vals, axis_words, scale, line_no)
         elif motion is not None:
             if g0 == 530:
                 if motion not in (0, 10):
@@ -797,6 +843,157 @@ class _Interpreter:
         self.ends.append(target)
         self.recs.append((line_no, kind, feed, length, arc, self.exact_stop))
         self.pos = target
+
+    def canned_cycle(self, motion: int, first: bool, vals: dict[str, float], axis_words: list[str],
+                     scale: float, line_no: int) -> None:
+        """G73, G74, G81-G86, G89 as LinuxCNC 2.9 runs them (interp_cycles.cc): in the selected
+        plane, the hole axis is the plane's normal; R, the bottom, P and Q are sticky while the
+        same cycle stays the motion mode; L repeats (incremental G91 steps the position each
+        time); G98 returns to the level the cycles started from (or R if that is higher), G99 to
+        R. Every move of the cycle is an exact stop, as LinuxCNC's exact path mode. ``first``: the
+        cycle was not the motion mode before this block, so R, the bottom, P and Q must be given."""
+        name = _gname(motion)
+        if self.feed_mm_s <= 0.0:
+            raise _BlockError(_ZERO_FEED, name)
+        if self.comp_code != 400:
+            raise _BlockError("cannot use canned cycles with cutter compensation on "
+                              f"({_gname(self.comp_code)})", name)
+        pname, fa, sa, na, *_ = self.plane_axes()
+        plane_g = _PLANE_G[self.plane]
+        normal = _PLANES[self.plane][3]
+        if na < 0:
+            raise _BlockError(f"{plane_g} canned cycle is not possible on a machine without {normal} axis",
+                              name)
+        first_l, second_l = _PLANES[self.plane][1], _PLANES[self.plane][2]
+        if "R" in vals:
+            self.cycle_r_word = vals["R"] * scale
+        elif first:
+            raise _BlockError(f"{name} needs an R word (the retract plane) the first time", name)
+        if normal in vals:
+            self.cycle_z_word = vals[normal] * scale
+        elif first:
+            raise _BlockError(f"{name} needs a {normal} word (the bottom of the hole) the first time "
+                              f"in {plane_g}", name)
+        repeats = vals.get("L", 1.0)
+        if repeats != int(repeats) or repeats < 1:
+            raise _BlockError(f"L{repeats:g}: the repeats of a cycle are a whole number of 1 or more", "L")
+        if repeats > _MAX_CYCLE_MOVES:
+            raise _BlockError(f"L{repeats:g}: more than {_MAX_CYCLE_MOVES} repeats in one block", "L")
+        if motion in _CYCLE_TAKES_P:
+            if "P" in vals:
+                if vals["P"] < 0.0:
+                    raise _BlockError(f"negative dwell time P{vals['P']:g}", "P")
+                self.cycle_p = vals["P"]
+            elif first and motion in _CYCLE_NEEDS_P:
+                raise _BlockError(f"{name} needs a P word (the dwell at the bottom, s) the first time", name)
+        if motion in _CYCLE_NEEDS_Q:
+            if "Q" in vals:
+                self.cycle_q = vals["Q"] * scale
+            elif first:
+                raise _BlockError(f"{name} needs a Q word (the peck depth) the first time", name)
+            if self.cycle_q <= 0.0:
+                raise _BlockError(f"{name}: negative or zero Q (peck depth)", "Q")
+        if motion in (740, 840):
+            want = -1 if motion == 740 else 1
+            if self.spindle_dir == 0:
+                raise _BlockError(f"spindle not turning in {name} (tapping needs M0{3 if want > 0 else 4})",
+                                  name)
+            if self.spindle_dir != want:
+                raise _BlockError(f"spindle turning {'clockwise' if want < 0 else 'counterclockwise'} in "
+                                  f"{name}", name)
+        if motion == 860 and self.spindle_dir == 0:
+            raise _BlockError("spindle not turning in G86", name)
+        off = self.offset
+        pos = self.pos
+        current_cc = pos[na] - off[na]
+        if self.cycle_il is None:
+            self.cycle_il = current_cc
+        old_cc = self.cycle_il
+        if self.absolute:
+            aa_inc = bb_inc = 0.0
+            r = self.cycle_r_word
+            cc = self.cycle_z_word
+            aa = vals[first_l] * scale if first_l in vals else pos[fa] - off[fa]
+            bb = vals[second_l] * scale if second_l in vals else pos[sa] - off[sa]
+        else:
+            aa_inc = vals.get(first_l, 0.0) * scale
+            bb_inc = vals.get(second_l, 0.0) * scale
+            r = self.cycle_r_word + old_cc
+            cc = r + self.cycle_z_word
+            aa = pos[fa] - off[fa]
+            bb = pos[sa] - off[sa]
+        if r < cc:
+            raise _BlockError(f"R ({r / scale:g}) below the bottom {normal} ({cc / scale:g}) of the canned "
+                              f"cycle in {plane_g}", "R" if "R" in vals else name)
+        delta = self.cycle_q
+        rapid_delta = vals["D"] * scale if "D" in vals else 1.0 * scale
+        if motion in _CYCLE_NEEDS_Q and repeats * (r - cc) / delta > _MAX_CYCLE_MOVES:
+            raise _BlockError(f"{name}: Q{delta / scale:g} over a depth of {(r - cc) / scale:g} makes more "
+                              f"than {_MAX_CYCLE_MOVES} pecks", "Q")
+
+        def go(a: float, b: float, c: float, rapid: bool) -> None:
+            target = self.pos.copy()
+            target[fa] = a + off[fa]
+            target[sa] = b + off[sa]
+            target[na] = c + off[na]
+            self.straight(target, rapid, line_no)
+
+        def event(kind: EventKind, value: float, text: str) -> None:
+            self.events.append(Event(kind, line_no, len(self.ends) - 1, value, text))
+
+        if old_cc < r:                         # below the R plane: straight up to it first
+            go(pos[fa] - off[fa], pos[sa] - off[sa], r, True)
+            old_cc = current_cc = r
+        clear_cc = r if self.retract_r_plane else old_cc
+        saved_stop = self.exact_stop
+        self.exact_stop = True
+        rpm = self.spindle_dir * self.spindle_rpm
+        try:
+            for k in range(int(repeats)):
+                aa += aa_inc
+                bb += bb_inc
+                if k == 0 and current_cc > r:
+                    go(aa, bb, current_cc, True)
+                    go(aa, bb, r, True)
+                else:
+                    go(aa, bb, clear_cc, True)
+                    if clear_cc > r:
+                        go(aa, bb, r, True)
+                if motion in (730, 830):
+                    depth = r - delta
+                    while depth > cc:
+                        go(aa, bb, depth, False)
+                        if motion == 830:
+                            go(aa, bb, r, True)
+                        go(aa, bb, depth + rapid_delta, True)
+                        depth -= delta
+                    go(aa, bb, cc, False)
+                    go(aa, bb, clear_cc, True)
+                elif motion in (740, 840):
+                    go(aa, bb, cc, False)
+                    event(EventKind.SPINDLE, -rpm, f"{name}: spindle reversed to back the tap out (tapping "
+                          "as feed moves at F, not synchronised with the spindle: use a floating tap holder)")
+                    if self.cycle_p > 0.0:
+                        event(EventKind.DWELL, self.cycle_p, f"dwell {self.cycle_p:g} s")
+                    go(aa, bb, clear_cc, False)
+                    event(EventKind.SPINDLE, rpm, f"{name}: spindle turning forward again")
+                else:
+                    go(aa, bb, cc, False)
+                    if motion in (820, 860, 890) and self.cycle_p > 0.0:
+                        event(EventKind.DWELL, self.cycle_p, f"dwell {self.cycle_p:g} s")
+                    if motion == 850:
+                        go(aa, bb, r, False)
+                        go(aa, bb, clear_cc, True)
+                    elif motion == 860:
+                        event(EventKind.SPINDLE, 0.0, "G86: spindle stopped to retract")
+                        go(aa, bb, clear_cc, True)
+                        event(EventKind.SPINDLE, rpm, "G86: spindle restarted")
+                    elif motion == 890:
+                        go(aa, bb, clear_cc, False)
+                    else:                      # G81, G82
+                        go(aa, bb, clear_cc, True)
+        finally:
+            self.exact_stop = saved_stop
 
     def g28(self, vals: dict[str, float], axis_words: list[str], scale: float, line_no: int) -> None:
         """G28: rapid to the programmed point (if any), then to machine zero of those axes.

@@ -98,7 +98,9 @@ def test_named_cases_match_ruckig_and_hold_limits(name, args):
     length, vs, ve, vc, a, j = args
     prof = build_profiles(length, vs, ve, vc, a, j)
     ref = ruckig_duration(length, vs, ve, vc, a, j)
-    assert abs(prof.duration[0] - ref) <= 1e-6 * ref, name
+    # relative 1e-6, and 0.1 us absolute: on nanometre moves the two solvers' round-off differs by
+    # tens of nanoseconds, 10,000 times below the 1 ms sample period
+    assert abs(prof.duration[0] - ref) <= 1e-6 * ref + 1e-7, name
     check_invariants(prof)
 
 
@@ -217,4 +219,6 @@ def test_hypothesis_profiles_match_ruckig_and_hold_limits(vc, fs, fe, a, j, extr
         ref = ruckig_duration(length, vs, ve, vc, a, j)
     except ruckig.RuckigError:  # the oracle's own numerical failure at a tight start state
         assume(False)
-    assert abs(prof.duration[0] - ref) <= 1e-6 * ref
+    # relative 1e-6, and 0.1 us absolute: on nanometre moves the two solvers' round-off differs by
+    # tens of nanoseconds, 10,000 times below the 1 ms sample period
+    assert abs(prof.duration[0] - ref) <= 1e-6 * ref + 1e-7
