@@ -33,7 +33,8 @@ from planner.arcs import (
 )
 from planner.errors import PlannerError, ProgramError, SourceError
 from planner.gcpause import gc_paused
-from planner.lexer import LexError, Params, compact, original_column, read_line
+from planner.lexer import LexError, Params, compact, evaluate_brackets, original_column, read_line
+from planner.oword import Statement, Structure, StructureError, has_control_flow, scan
 from planner.program import (
     Arc,
     Event,
@@ -114,6 +115,38 @@ _FAST_G = {"0": 0, "00": 0, "1": 10, "01": 10, "2": 20, "02": 20, "3": 30, "03":
 _STOP_EVENTS = {0: EventKind.PAUSE, 1: EventKind.OPTIONAL_PAUSE, 2: EventKind.END, 30: EventKind.END}
 
 
+_MESSAGE_RE = re.compile(r"\(\s*(MSG|DEBUG|PRINT)\s*,([^)]*)\)", re.IGNORECASE)
+_PARAM_TEXT_RE = re.compile(r"#<([^>]*)>|#(\d+)")
+_MAX_EXECUTED = 10_000_000   # blocks run by one program with O-word loops
+_MAX_CALL_DEPTH = 50
+_RETURN = -2
+
+
+class _Frame:
+    """One level of the O-word call stack."""
+
+    __slots__ = ("file", "lines", "structure", "return_pc", "call_line", "entry", "repeats", "saved_numbered",
+                 "saved_named")
+
+    def __init__(self, file: str, lines: list[str], structure: Structure, return_pc: int, call_line: int):
+        self.file = file
+        self.lines = lines
+        self.structure = structure
+        self.return_pc = return_pc
+        self.call_line = call_line      # line of the call in the program (0 in the program itself)
+        self.entry = 0
+        self.repeats: dict[int, int] = {}
+        self.saved_numbered: dict[int, float] = {}
+        self.saved_named: dict[str, float] = {}
+
+    def line_of(self, pc: int) -> int:
+        return pc + 1
+
+
+def _statement_col(raw: str, index: int) -> int:
+    return original_column(raw, index) if index else 1
+
+
 class _BlockError(Exception):
     def __init__(self, message: str, letter: str | None = None, col: int | None = None):
         super().__init__(message)
@@ -138,7 +171,7 @@ class _Interpreter:
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
-                 spindle: tuple[int, float] = (0, 0.0)):
+                 spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = ()):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -220,69 +253,315 @@ class _Interpreter:
         self.errors: list[SourceError] = []
         self.truncated = False
         self.ended = False
+        self.started = False
+        self.current_line = 0
+        self.params.system = self.system_parameter
+        self.subroutine_dirs: tuple[str, ...] = tuple(subroutine_dirs)
+        self.sub_files: dict[str, tuple[str, list[str], Structure]] = {}
 
     # ------------------------------------------------------------------ driver
     def run(self, text: str) -> Program:
-        started = False  # saw content or an opening '%'
-        line_no = 0
-        fast_match = self.fast_re.match
-        fast = self.fast_line
-        use_fast = self.use_fast
         if "\r\n" in text:
             text = text.replace("\r\n", "\n")  # Windows line ends, once for the whole text
-        for line_no, raw in enumerate(text.split("\n"), 1):
-            # Fast path: one compiled-regex match of the usual CAM block. The regex admits only
-            # N, G00-G03, axis and I J K R F words, so a comment, '%', '/', '[', '#', an O-word,
-            # a tab or a CR never matches: such lines take the general path below.
-            if use_fast:
-                code = raw.replace(" ", "").upper()
-                if not code:
-                    continue
-                m = fast_match(code)
-                if m is not None:
-                    started = True
-                    try:
-                        if fast(m.groups(), line_no):
-                            continue
-                    except _BlockError as e:
-                        self.error(line_no, self.column(raw, e.letter), e.message)
-                        if self.truncated:
-                            break
-                        continue
-            if raw.endswith("\r"):
-                raw = raw[:-1]
-            s = raw.strip()
-            if not s:
-                continue
-            if s[0] == "%":
-                if s != "%" and _compact_or_none(s) != "%":
-                    self.error(line_no, raw.index("%") + 1, "'%' must be alone on its line")
-                    continue
-                if started:
-                    break  # closing '%': the rest of the file is not part of the program
-                started = True
-                continue
-            if not started and _compact_or_none(s) != "":
-                started = True  # comment-only lines before an opening '%' do not count
-            if s[0] == "/":
-                if self.block_delete:
-                    continue
-                raw = raw.replace("/", " ", 1)
-            try:
-                self.block(raw, line_no)
-            except _BlockError as e:
-                col = e.col if e.col is not None else self.column(raw, e.letter)
-                self.error(line_no, col, e.message)
-            except LexError as e:
-                col = e.raw_col if e.raw_col is not None else original_column(raw, e.index)
-                self.error(line_no, col, e.message)
-            except RecursionError:
-                self.error(line_no, 1, "expression nested too deeply")
-            if self.ended or self.truncated:
-                break
+        lines = text.split("\n")
+        self.started = False  # saw content or an opening '%'
+        if has_control_flow(text):
+            self.run_structured(lines)
+        else:
+            line = self.line
+            for line_no, raw in enumerate(lines, 1):
+                if line(raw, line_no):
+                    break
         if self.errors:
             raise ProgramError(self.errors, self.truncated)
         return self.build(text.count("\n") + 1 if text else 0)
+
+    def line(self, raw: str, line_no: int) -> bool:
+        """Read one line; True when the program ends here (closing '%', M2/M30, too many errors)."""
+        # Fast path: one compiled-regex match of the usual CAM block. The regex admits only
+        # N, G00-G03, axis and I J K R F words, so a comment, '%', '/', '[', '#', an O-word,
+        # a tab or a CR never matches: such lines take the general path below.
+        if self.use_fast:
+            code = raw.replace(" ", "").upper()
+            if not code:
+                return False
+            m = self.fast_re.match(code)
+            if m is not None:
+                self.started = True
+                try:
+                    if self.fast_line(m.groups(), line_no):
+                        return False
+                except _BlockError as e:
+                    self.error(line_no, self.column(raw, e.letter), e.message)
+                    return self.truncated
+        if raw.endswith("\r"):
+            raw = raw[:-1]
+        s = raw.strip()
+        if not s:
+            return False
+        if s[0] == "%":
+            if s != "%" and _compact_or_none(s) != "%":
+                self.error(line_no, raw.index("%") + 1, "'%' must be alone on its line")
+                return False
+            if self.started:
+                return True  # closing '%': the rest of the file is not part of the program
+            self.started = True
+            return False
+        if not self.started and _compact_or_none(s) != "":
+            self.started = True  # comment-only lines before an opening '%' do not count
+        if s[0] == "/":
+            if self.block_delete:
+                return False
+            raw = raw.replace("/", " ", 1)
+        try:
+            self.block(raw, line_no)
+        except _BlockError as e:
+            col = e.col if e.col is not None else self.column(raw, e.letter)
+            self.error(line_no, col, e.message)
+        except LexError as e:
+            col = e.raw_col if e.raw_col is not None else original_column(raw, e.index)
+            self.error(line_no, col, e.message)
+        except RecursionError:
+            self.error(line_no, 1, "expression nested too deeply")
+        return self.ended or self.truncated
+
+    # ------------------------------------------------------------------ O-words
+    def run_structured(self, lines: list[str]) -> None:
+        """Run a program with O-word subroutines and control flow (``planner.oword``): a
+        program counter over the lines, a call stack of frames (the file's lines and structure,
+        where to return, the caller's #1-#30 and local named parameters). A subroutine not in
+        the file is read from ``<name>.ngc`` in the subroutine folders. Moves made in another
+        file carry the line of the call in the program, so the panel shows where it is."""
+        try:
+            main = scan(lines)
+        except StructureError as e:
+            self.error(e.index + 1, e.col, e.message)
+            return
+        frame = _Frame(self.name, lines, main, return_pc=-1, call_line=0)
+        frames: list[_Frame] = []
+        pc = 0
+        executed = 0
+        while 0 <= pc < len(frame.lines):
+            executed += 1
+            if executed > _MAX_EXECUTED:
+                self.error(frame.line_of(pc), 1, f"more than {_MAX_EXECUTED:,} blocks run (an endless loop?)")
+                return
+            stmt = frame.structure.statements.get(pc)
+            raw = frame.lines[pc]
+            line_no = pc + 1
+            self.current_line = line_no
+            if stmt is None:
+                if frame.file != self.name:
+                    stop = self.line_in_file(raw, line_no, frame)
+                else:
+                    stop = self.line(raw, line_no)
+                if stop:
+                    return
+                pc += 1
+                continue
+            try:
+                result = self.statement(stmt, frame, frames)
+            except _BlockError as e:
+                self.error_in(frame, line_no, e.col or 1, e.message)
+                return
+            except LexError as e:
+                col = e.raw_col if e.raw_col is not None else _statement_col(raw, e.index)
+                self.error_in(frame, line_no, col, e.message)
+                return
+            except RecursionError:
+                self.error_in(frame, line_no, 1, "expression nested too deeply")
+                return
+            if isinstance(result, _Frame):    # a call: run the subroutine
+                frames.append(frame)
+                frame = result
+                pc = frame.entry
+            elif result == _RETURN:
+                if not frames:
+                    return
+                pc = frame.return_pc
+                self.restore(frame)
+                frame = frames.pop()
+            else:
+                pc = result
+
+    def statement(self, st: Statement, frame: _Frame, frames: list[_Frame]) -> int | _Frame:
+        """Run one control statement; returns the next line index, a frame to call, or _RETURN."""
+        kw = st.keyword
+        i = st.index
+        if kw == "SUB":
+            return st.end + 1                 # a definition in the flow: skipped
+        if kw in ("IF", "ELSEIF", "ELSE"):
+            if kw != "IF":                    # reached by finishing the branch before it
+                return st.end + 1
+            branch = st
+            while True:
+                if branch.keyword == "ELSE" or self.condition(branch, frame):
+                    return branch.index + 1
+                if branch.target == branch.end:
+                    return branch.end + 1
+                branch = frame.structure.statements[branch.target]
+        if kw == "ENDIF" or kw == "DO":
+            return i + 1
+        if kw == "WHILE":
+            return i + 1 if self.condition(st, frame) else st.end + 1
+        if kw == "ENDWHILE":
+            return st.target
+        if kw == "DOWHILE":
+            return st.target + 1 if self.condition(st, frame) else i + 1
+        if kw == "REPEAT":
+            values = evaluate_brackets(st.rest, self.params, 0)
+            if len(values) != 1:
+                raise _BlockError(f"o{st.label} repeat needs one count in brackets", col=1)
+            count = int(round(values[0]))
+            if count <= 0:
+                return st.end + 1
+            frame.repeats[i] = count
+            return i + 1
+        if kw == "ENDREPEAT":
+            left = frame.repeats.get(st.target, 1) - 1
+            if left > 0:
+                frame.repeats[st.target] = left
+                return st.target + 1
+            frame.repeats.pop(st.target, None)
+            return i + 1
+        if kw in ("BREAK", "CONTINUE"):
+            loop = frame.structure.statements[st.loop]
+            if kw == "BREAK":
+                frame.repeats.pop(loop.index, None)
+                return loop.end + 1
+            if loop.keyword == "WHILE":
+                return loop.index
+            return loop.end                   # the do's closing while, or the endrepeat
+        if kw in ("RETURN", "ENDSUB"):
+            values = evaluate_brackets(st.rest, self.params, 0) if st.rest else []
+            if frames or frame.return_pc >= 0:
+                self.params.globals["_VALUE"] = values[0] if values else 0.0
+                self.params.globals["_VALUE_RETURNED"] = 1.0 if values else 0.0
+            return _RETURN
+        if kw == "CALL":
+            return self.call(st, frame, frames)
+        raise _BlockError(f"o{st.label} {kw.lower()} is not supported", col=1)
+
+    def condition(self, st: Statement, frame: _Frame) -> bool:
+        values = evaluate_brackets(st.rest, self.params, 0)
+        if len(values) != 1:
+            word = "while" if st.keyword == "DOWHILE" else st.keyword.lower()
+            raise _BlockError(f"o{st.label} {word} needs one condition "
+                              "in brackets", col=1)
+        return values[0] != 0.0
+
+    def call(self, st: Statement, frame: _Frame, frames: list[_Frame]) -> _Frame:
+        if len(frames) >= _MAX_CALL_DEPTH:
+            raise _BlockError(f"subroutine calls nested deeper than {_MAX_CALL_DEPTH} (endless recursion?)",
+                              col=1)
+        args = evaluate_brackets(st.rest, self.params, 0)
+        if len(args) > 30:
+            raise _BlockError(f"o{st.label} call with {len(args)} arguments (at most 30: #1-#30)", col=1)
+        target = frame.structure.subs.get(st.label)
+        file, lines, structure = frame.file, frame.lines, frame.structure
+        if target is None and st.label.startswith("<"):
+            file, lines, structure = self.subroutine_file(st.label[1:-1])
+            target = structure.subs.get(st.label)
+            if target is None:
+                raise _BlockError(f"{file} does not define o{st.label} sub", col=1)
+        if target is None:
+            raise _BlockError(f"o{st.label} call: no o{st.label} sub in this program", col=1)
+        callee = _Frame(file, lines, structure, return_pc=st.index + 1,
+                        call_line=frame.call_line or st.index + 1)
+        callee.entry = target[0] + 1
+        # the caller's #1-#30 and local named parameters come back when the subroutine returns
+        numbered = self.params.numbered
+        callee.saved_numbered = {k: numbered[k] for k in range(1, 31) if k in numbered}
+        callee.saved_named = self.params.named
+        for k in range(1, 31):
+            self.params.numbered.pop(k, None)
+        for k, v in enumerate(args, start=1):
+            self.params.numbered[k] = v
+        self.params.named = {}
+        self.params.globals["_VALUE"] = 0.0
+        self.params.globals["_VALUE_RETURNED"] = 0.0
+        return callee
+
+    def restore(self, frame: _Frame) -> None:
+        for k in range(1, 31):
+            self.params.numbered.pop(k, None)
+        self.params.numbered.update(frame.saved_numbered)
+        self.params.named = frame.saved_named
+
+    def subroutine_file(self, name: str) -> tuple[str, list[str], Structure]:
+        """``<name>.ngc`` from the subroutine folders, read and scanned once."""
+        cached = self.sub_files.get(name)
+        if cached is not None:
+            return cached
+        for folder in self.subroutine_dirs:
+            path = os.path.join(folder, f"{name}.ngc")
+            if os.path.isfile(path):
+                try:
+                    with open(path, "rb") as fh:
+                        data = fh.read()
+                except OSError as exc:
+                    raise _BlockError(f"cannot read subroutine file {path}: {exc.strerror}", col=1) from None
+                try:
+                    text = data.decode("utf-8")
+                except UnicodeDecodeError:
+                    text = data.decode("latin-1")
+                lines = text.replace("\r\n", "\n").split("\n")
+                try:
+                    structure = scan(lines)
+                except StructureError as e:
+                    raise _BlockError(f"{path}:{e.index + 1}:{e.col}: {e.message}", col=1) from None
+                self.sub_files[name] = (path, lines, structure)
+                return self.sub_files[name]
+        where = (", ".join(self.subroutine_dirs) if self.subroutine_dirs
+                 else "no subroutine folder is configured")
+        raise _BlockError(f"o<{name}> call: no o<{name}> sub in this program and no {name}.ngc in the "
+                          f"subroutine folders ({where})", col=1)
+
+    def line_in_file(self, raw: str, line_no: int, frame: _Frame) -> bool:
+        """A line of a subroutine file: errors name that file; moves carry the call's line."""
+        name, errors_before = self.name, len(self.errors)
+        self.name = frame.file
+        try:
+            return self.line(raw, frame.call_line)
+        finally:
+            self.name = name
+            for k in range(errors_before, len(self.errors)):
+                e = self.errors[k]
+                self.errors[k] = SourceError(frame.file, line_no, e.col, e.message)
+
+    def error_in(self, frame: _Frame, line: int, col: int, message: str) -> None:
+        name = self.name
+        self.name = frame.file
+        try:
+            self.error(line, col, message)
+        finally:
+            self.name = name
+
+    def system_parameter(self, name: str) -> float | None:
+        """LinuxCNC's predefined named parameters the interpreter knows."""
+        axis = name[1:]
+        if axis in self.axis_index:
+            i = self.axis_index[axis]
+            value = self.pos[i] - self.offset[i]
+            return value if self.rotary[i] else value / self.scale
+        return {
+            "_LINE": float(self.current_line),
+            "_METRIC": 0.0 if self.inch else 1.0,
+            "_IMPERIAL": 1.0 if self.inch else 0.0,
+            "_ABSOLUTE": 1.0 if self.absolute else 0.0,
+            "_INCREMENTAL": 0.0 if self.absolute else 1.0,
+            "_FEED": self.feed_mm_s * 60.0 / self.scale,
+            "_RPM": self.spindle_rpm,
+            "_CURRENT_TOOL": float(self.tool),
+            "_SELECTED_TOOL": float(self.selected),
+            "_MOTION_MODE": float(self.motion if self.motion is not None else 800),
+            "_PLANE": float(self.plane),
+            "_RETRACT_R_PLANE": 1.0 if self.retract_r_plane else 0.0,
+            "_RETRACT_OLD_Z": 0.0 if self.retract_r_plane else 1.0,
+            "_TASK": 1.0,
+            "_VALUE": 0.0,
+            "_VALUE_RETURNED": 0.0,
+        }.get(name)
 
     def fast_line(self, groups: tuple, line_no: int) -> bool:
         """A block matched by fast_re: [N] [G00-G03] axis words (machine order) [I J K R] [F].
@@ -488,6 +767,9 @@ class _Interpreter:
 
     # ------------------------------------------------------------------ one block
     def block(self, raw: str, line_no: int) -> None:
+        self.current_line = line_no
+        if "(" in raw:
+            self.messages(raw, line_no)
         words, assigns = read_line(raw, self.params)
         if not words:
             self.assign(assigns)
@@ -787,10 +1069,28 @@ class _Interpreter:
                 self.ended = True
         self.assign(assigns)
 
+    def messages(self, raw: str, line_no: int) -> None:
+        """(MSG,text), (DEBUG,text) and (PRINT,text) comments as MESSAGE events; DEBUG and PRINT
+        show parameter values (#123, #<name>) as LinuxCNC does, with six decimals."""
+        for m in _MESSAGE_RE.finditer(raw):
+            kind, text = m.group(1).upper(), m.group(2)
+            if kind != "MSG":
+                text = _PARAM_TEXT_RE.sub(self.param_text, text)
+            self.events.append(Event(EventKind.MESSAGE, line_no, len(self.ends) - 1, 0.0, text.strip()
+                                     if kind == "MSG" else text))
+
+    def param_text(self, m: re.Match[str]) -> str:
+        if m.group(1) is not None:
+            v = self.params.get_named(m.group(1).upper())
+        else:
+            n = int(m.group(2))
+            v = self.params.numbered.get(n, 0.0) if 1 <= n <= 5399 else None
+        return "######" if v is None else f"{v:f}"
+
     def assign(self, assigns: Sequence[tuple[object, float]]) -> None:
         for key, value in assigns:
             if isinstance(key, str):
-                self.params.named[key] = value
+                self.params.set_named(key, value)
             else:
                 self.params.numbered[key] = value  # type: ignore[index]
 
@@ -1100,6 +1400,7 @@ def parse_program(
     tools: ToolTable | None = None,
     tool_in_spindle: int = 0,
     spindle: tuple[int, float] = (0, 0.0),
+    subroutine_dirs: Sequence[str] = (),
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -1109,9 +1410,11 @@ def parse_program(
     ``tools``: the tool table (None: any tool number, all offsets 0, as LinuxCNC's reference
     runs); ``tool_in_spindle``: the tool loaded when the program starts (G43 without H uses it);
     ``spindle``: (direction, rpm) when it starts (an S word alone then changes a running spindle).
+    ``subroutine_dirs``: folders where ``o<name> call`` finds ``<name>.ngc`` when the program
+    does not define the subroutine itself.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
-                          spindle)
+                          spindle, subroutine_dirs)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         return interp.run(text)
 

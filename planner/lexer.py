@@ -12,7 +12,7 @@ import math
 import re
 from collections.abc import Callable
 
-__all__ = ["LexError", "Params", "read_line", "original_column"]
+__all__ = ["LexError", "Params", "compact", "evaluate_brackets", "original_column", "read_line"]
 
 # A word: letter + number with optional sign, digits with optional dot, or a leading dot.
 _NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
@@ -32,11 +32,26 @@ class LexError(Exception):
 
 
 class Params:
-    """Numbered (#1-#5399) and named (#<name>) parameters; unset numbered ones read as 0."""
+    """Numbered (#1-#5399) and named (#<name>) parameters; unset numbered ones read as 0.
+
+    Named parameters are local to the subroutine that sets them (``named``: the current
+    scope's), except those starting with ``_``, which are global (``globals``); ``system``
+    answers LinuxCNC's predefined read-only ones (``#<_x>``, ``#<_line>``, ...) or None."""
 
     def __init__(self) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {}
+        self.globals: dict[str, float] = {}
+        self.system: Callable[[str], float | None] = lambda name: None
+
+    def get_named(self, name: str) -> float | None:
+        if name.startswith("_"):
+            v = self.globals.get(name)
+            return self.system(name) if v is None else v
+        return self.named.get(name)
+
+    def set_named(self, name: str, value: float) -> None:
+        (self.globals if name.startswith("_") else self.named)[name] = value
 
 
 def _strip_comments(raw: str) -> str:
@@ -163,7 +178,8 @@ class _Reader:
             if re.fullmatch(r"O\d+", s):  # Fanuc-style program number line: "O0001"
                 return [("O", float(s[1:]))], []
             self.i = 0
-            raise self.fail("O-word subroutines and control flow (o-codes) are not supported")
+            raise self.fail("unknown O-word statement (o-codes are sub, endsub, call, return, if, elseif, "
+                            "else, endif, while, endwhile, do, repeat, endrepeat, break, continue)")
         while self.i < len(s):
             ch = s[self.i]
             if ch == "#":
@@ -177,7 +193,7 @@ class _Reader:
                     raise self.fail("parameter reference without a word letter (expected '#...=value')")
             elif "A" <= ch <= "Z":
                 if ch == "O":
-                    raise self.fail("O-word subroutines and control flow (o-codes) are not supported")
+                    raise self.fail("an O-word must begin its line")
                 self.i += 1
                 words.append((ch, self.value()))
             else:
@@ -229,11 +245,19 @@ class _Reader:
             self.expect("]")
             return math.degrees(math.atan2(a, b))
         if m is not None and name == "EXISTS":
+            # a named parameter that is set, or a numbered one in range (those always exist)
             self.i = m.end()
             self.expect("[")
-            key = self.param_key()
+            self.expect("#")
+            if self.i < len(s) and s[self.i] == "<":
+                self.i -= 1
+                key = self.param_key()
+                found = self.lookup(key, must=False) is not None
+            else:
+                v = self.value()
+                found = math.isfinite(v) and v == round(v) and 1 <= v <= _MAX_NUMBERED
             self.expect("]")
-            return 1.0 if self.lookup(key, must=False) is not None else 0.0
+            return 1.0 if found else 0.0
         for fname, fn in _FUNCS_1.items():
             if name.startswith(fname) and s.startswith(fname + "[", self.i):
                 self.i += len(fname) + 1
@@ -319,7 +343,7 @@ class _Reader:
 
     def lookup(self, key: str | int, must: bool = True) -> float | None:
         if isinstance(key, str):
-            v = self.params.named.get(key)
+            v = self.params.get_named(key)
             if v is None and must:
                 raise self.fail(f"named parameter #<{key.lower()}> is not defined")
             return v
@@ -327,3 +351,20 @@ class _Reader:
 
     def param_value(self) -> float:
         return self.lookup(self.param_key())  # type: ignore[return-value]
+
+
+def evaluate_brackets(code: str, params: Params | None, offset: int = 0) -> list[float]:
+    """The values of a sequence of bracketed expressions (``[1][#2+3]``), as O-word calls,
+    conditions and returns carry them; LexError indices count from ``offset``."""
+    reader = _Reader(code, params)
+    out: list[float] = []
+    try:
+        while reader.i < len(code):
+            if code[reader.i] != "[":
+                found = code[reader.i:reader.i + 8]
+                raise reader.fail(f"expected '[' (an expression in brackets), found '{found}'")
+            out.append(reader.value())
+    except LexError as exc:
+        exc.index += offset
+        raise
+    return out

@@ -231,6 +231,7 @@ class EventKind(enum.Enum):
     TOOL = "tool"  # T word (value: tool number)
     COOLANT = "coolant"  # addition: M07 mist (value 1), M08 flood (2), M09 off (0); not stopping
     TOOL_SET = "tool_set"  # M61 Q: the tool now in the spindle, without a change (value: number)
+    MESSAGE = "message"  # (MSG,...), (DEBUG,...), (PRINT,...): text for the operator; not stopping
 
 
 STOPPING_EVENTS = frozenset(

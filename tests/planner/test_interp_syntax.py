@@ -107,7 +107,7 @@ def test_error_limit():
         ("G1 E5 F1", "word E is not supported", 4),
         ("G0 X1e5", "word E is not supported", 6),
         ("G0 X99999999999", "out of range", 4),
-        ("o100 sub", "O-word", 1),
+        ("o100 sub", "o100 sub without its o100 endsub", 1),
         ("G0 % X1", "unexpected character '%'", 4),
         ("% X1", "'%' must be alone", 1),
     ],

@@ -1,0 +1,162 @@
+"""The O-word language of LinuxCNC 2.9 (subroutines and control flow), its static part: which
+lines are control statements, and where each one leads. ``scan`` reads a program's lines once
+and matches every ``sub``/``endsub``, ``if``/``elseif``/``else``/``endif``, ``while``/``endwhile``,
+``do``/``while``, ``repeat``/``endrepeat`` by their label (``o100`` or ``o<name>``), and resolves
+``break``/``continue`` to their loop. The interpreter (``planner.interpreter``) runs the program
+with these jump tables; a mismatch is an error naming the line and what is missing.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from planner.lexer import LexError, compact
+
+__all__ = ["KEYWORDS", "Statement", "Structure", "StructureError", "has_control_flow", "scan"]
+
+KEYWORDS = ("SUB", "ENDSUB", "CALL", "RETURN", "IF", "ELSEIF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "DO",
+            "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE")
+_KEYWORDS_RE = "|".join(sorted(KEYWORDS, key=len, reverse=True))
+_STMT_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+|<[^>]*>)(" + _KEYWORDS_RE + r")(.*)\Z")
+# a quick look for any control statement, so that programs without one keep the plain path
+_ANY_RE = re.compile(r"(?im)^[ \t]*(?:/[ \t]*)?(?:n[ \t\d.]*)?o[ \t]*(?:\d+|<[^>\n]*>)[ \t]*"
+                     r"(?:sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|endrepeat|break"
+                     r"|continue)\b")
+
+
+def has_control_flow(text: str) -> bool:
+    return _ANY_RE.search(text) is not None
+
+
+class StructureError(Exception):
+    def __init__(self, index: int, col: int, message: str) -> None:
+        super().__init__(message)
+        self.index = index      # 0-based line index
+        self.col = col
+        self.message = message
+
+
+@dataclass(slots=True)
+class Statement:
+    index: int                  # 0-based line index
+    label: str                  # "100" or "<name>" (lower case inside the brackets)
+    keyword: str
+    rest: str                   # the compact text after the keyword (conditions, arguments)
+    # where it leads (line indices), filled by scan
+    target: int = -1            # if/elseif: next branch; while: its endwhile; do-while's while: its do;
+    #                             repeat: endrepeat; break/continue: the loop's statement; sub: endsub
+    end: int = -1               # if-chain: its endif; loops: the closing statement
+    loop: int = -1              # break/continue: the loop's opening statement
+
+
+@dataclass(slots=True)
+class Structure:
+    statements: dict[int, Statement] = field(default_factory=dict)
+    subs: dict[str, tuple[int, int]] = field(default_factory=dict)    # label -> (sub, endsub)
+
+
+def _label(text: str) -> str:
+    return text.lower() if text.startswith("<") else str(int(text))
+
+
+def _name(label: str) -> str:
+    return f"o{label}"
+
+
+def scan(lines: list[str]) -> Structure:
+    """Control statements of ``lines`` and their matching; raises StructureError."""
+    st = Structure()
+    stack: list[Statement] = []
+    for index, raw in enumerate(lines):
+        if "o" not in raw and "O" not in raw:
+            continue
+        try:
+            code = compact(raw)
+        except LexError:
+            continue                       # the line's own error is reported when it runs
+        if code.startswith("/"):
+            code = code[1:]
+        m = _STMT_RE.match(code)
+        if m is None:
+            continue
+        col = raw.upper().find("O") + 1
+        s = Statement(index, _label(m.group(1)), m.group(2), m.group(3))
+        st.statements[index] = s
+        kw, label = s.keyword, s.label
+        if kw == "SUB":
+            if any(x.keyword == "SUB" for x in stack):
+                raise StructureError(index, col, f"{_name(label)} sub inside another sub definition")
+            if stack:
+                raise StructureError(index, col, f"{_name(label)} sub inside {_name(stack[-1].label)} "
+                                     f"{stack[-1].keyword.lower()}")
+            if label in st.subs:
+                raise StructureError(index, col, f"{_name(label)} sub is defined twice")
+            stack.append(s)
+        elif kw in ("IF", "DO", "REPEAT"):
+            stack.append(s)
+        elif kw == "WHILE":
+            if stack and stack[-1].keyword == "DO" and stack[-1].label == label:
+                do = stack.pop()           # the closing while of a do-while
+                s.target = do.index
+                do.end = index
+                s.keyword = "DOWHILE"
+            else:
+                stack.append(s)
+        elif kw in ("ELSEIF", "ELSE"):
+            top = _top(stack, "IF", label, index, col, kw)
+            previous = _last_branch(st, top)
+            if previous.keyword == "ELSE":
+                raise StructureError(index, col, f"{_name(label)} {kw.lower()} after {_name(label)} else")
+            previous.target = index
+        elif kw == "ENDIF":
+            top = _top(stack, "IF", label, index, col, kw)
+            stack.pop()
+            _last_branch(st, top).target = index
+            k = top.index
+            while True:                    # every branch of the chain knows the endif
+                branch = st.statements[k]
+                branch.end = index
+                if branch.target in (index, -1):
+                    break
+                k = branch.target
+        elif kw in ("ENDWHILE", "ENDREPEAT", "ENDSUB"):
+            opening = {"ENDWHILE": "WHILE", "ENDREPEAT": "REPEAT", "ENDSUB": "SUB"}[kw]
+            top = _top(stack, opening, label, index, col, kw)
+            stack.pop()
+            top.end = index
+            s.target = top.index
+            if kw == "ENDSUB":
+                st.subs[label] = (top.index, index)
+        elif kw in ("BREAK", "CONTINUE"):
+            loop = next((x for x in reversed(stack)
+                         if x.label == label and x.keyword in ("WHILE", "DO", "REPEAT")), None)
+            if loop is None:
+                raise StructureError(index, col, f"{_name(label)} {kw.lower()} outside a loop labelled "
+                                     f"{_name(label)}")
+            s.loop = loop.index
+        elif kw == "RETURN":
+            # LinuxCNC returns from the subroutine it is in, whatever the label (often an if's)
+            if not any(x.keyword == "SUB" for x in stack):
+                raise StructureError(index, col, f"{_name(label)} return outside a subroutine")
+    if stack:
+        s = stack[-1]
+        closing = {"SUB": "endsub", "IF": "endif", "WHILE": "endwhile", "DO": "while", "REPEAT": "endrepeat"}
+        raise StructureError(s.index, 1, f"{_name(s.label)} {s.keyword.lower()} without its "
+                             f"{_name(s.label)} {closing[s.keyword]}")
+    return st
+
+
+def _top(stack: list[Statement], keyword: str, label: str, index: int, col: int, kw: str) -> Statement:
+    if not stack or stack[-1].keyword != keyword or stack[-1].label != label:
+        inside = f" (inside {_name(stack[-1].label)} {stack[-1].keyword.lower()})" if stack else ""
+        raise StructureError(index, col, f"{_name(label)} {kw.lower()} without {_name(label)} "
+                             f"{keyword.lower()}{inside}")
+    return stack[-1]
+
+
+def _last_branch(st: Structure, opening: Statement) -> Statement:
+    s = opening
+    while s.target != -1:
+        s = st.statements[s.target]
+    return s

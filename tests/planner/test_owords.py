@@ -1,0 +1,214 @@
+"""The O-word language (subroutines, if/elseif/else, while, do-while, repeat, break, continue,
+return values, subroutine files, parameter scopes) read as LinuxCNC 2.9 reads it: LinuxCNC's own
+interpreter tests (tests/data/linuxcnc_interp) message by message and move by move, the
+refusals with file:line:col, and mutated programs that may only fail with ProgramError."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import planner.interpreter as interpreter
+from planner.canon import canon_records
+from planner.errors import ProgramError
+from planner.interpreter import parse_program
+from planner.machine import AxisSpec, MachineSpec
+from planner.program import EventKind, Program
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
+_MESSAGE = re.compile(r'^\s*N\.+\s+MESSAGE\("(.*)"\)\s*$')
+_MOVE = re.compile(r"^\s*N\.+\s+STRAIGHT_(TRAVERSE|FEED)\((.*)\)\s*$")
+
+
+def messages(program: Program) -> list[str]:
+    return [e.message for e in program.events if e.kind is EventKind.MESSAGE]
+
+
+def read(text: str, **kw: object) -> Program:
+    return parse_program(text, name="t.ngc", **kw)
+
+
+# ---------------------------------------------------------------------- LinuxCNC's own tests
+@pytest.mark.parametrize("name", ["do-while-break", "oword-bug315", "return-value"])
+def test_linuxcnc_debug_messages_in_the_same_order(name: str) -> None:
+    """Control flow seen through (DEBUG,...) messages, parameters shown as LinuxCNC shows them."""
+    folder = DATA / name
+    want = [m.group(1) for line in (folder / "expected").read_text().splitlines()
+            if (m := _MESSAGE.match(line))]
+    assert want, "the reference has messages"
+    got = messages(parse_program((folder / "test.ngc").read_text(), name="test.ngc"))
+    assert got == want
+
+
+@pytest.mark.parametrize("name, files", [("sub-call-from-sub", "subs"), ("subs-follow-main", None)])
+def test_linuxcnc_subroutine_files_and_subs_after_the_main_program(name: str, files: str | None) -> None:
+    """(PRINT,...) lines; LinuxCNC's test script drops the first word of each."""
+    folder = DATA / name
+    canon = re.compile(r"^\s*(\d+\s+)?N\.")
+    want = [line.strip() for line in (folder / "expected").read_text().splitlines()
+            if line.strip() and not canon.match(line)]
+    dirs = (str(folder / files),) if files else ()
+    got = messages(parse_program((folder / "test.ngc").read_text(), name="test.ngc", subroutine_dirs=dirs))
+    assert [" ".join(m.split()[1:]) for m in got] == want
+
+
+def _linuxcnc_moves(expected: Path, inch: bool) -> list[tuple[str, tuple[float, ...]]]:
+    scale = 25.4 if inch else 1.0
+    out = []
+    for line in expected.read_text().splitlines():
+        m = _MOVE.match(line)
+        if m:
+            values = [float(v) for v in m.group(2).split(",")[:3]]
+            out.append((m.group(1).lower(), tuple(round(v * scale, 2) for v in values)))
+    return out
+
+
+def _moves(program: Program) -> list[tuple[str, tuple[float, ...]]]:
+    return [(r["call"][9:], tuple(round(v, 2) for v in r["args"][:3])) for r in canon_records(program)]
+
+
+def test_linuxcnc_flowsnake_recursive_subroutines_move_for_move() -> None:
+    """Three recursion levels of a named subroutine with local named parameters: 192 moves."""
+    folder = DATA / "flowsnake"
+    program = parse_program((folder / "flowsnake.ngc").read_text(), name="flowsnake.ngc")
+    want = _linuxcnc_moves(folder / "expected", inch=False)
+    assert len(want) > 150 and _moves(program) == want
+
+
+def test_linuxcnc_parameters_set_by_expression_numbers() -> None:
+    folder = DATA / "namedparam-bug424"
+    program = parse_program((folder / "test.ngc").read_text(), name="test.ngc")
+    assert _moves(program) == _linuxcnc_moves(folder / "expected", inch=True)
+
+
+def test_linuxcnc_exists_of_named_numbered_and_indirect_parameters() -> None:
+    folder = DATA / "exists"
+    axes = tuple(AxisSpec(n, drive_position=i) for i, n in enumerate("XYZ"))
+    spec = MachineSpec("XYZA", axes + (AxisSpec("A", rotary=True, drive_position=3),))
+    program = parse_program((folder / "test.ngc").read_text(), name="test.ngc", machine=spec)
+    assert _moves(program) == _linuxcnc_moves(folder / "expected", inch=False)
+
+
+def test_linuxcnc_nested_sub_definition_in_a_file_is_an_error_naming_that_file() -> None:
+    folder = DATA / "nested-sub-error"
+    with pytest.raises(ProgramError) as exc:
+        parse_program((folder / "test.ngc").read_text(), name="test.ngc",
+                      subroutine_dirs=(str(folder / "subs"),))
+    (err,) = exc.value.errors
+    assert err.line == 2 and "nested.ngc:2:1" in err.message and "sub inside another sub" in err.message
+
+
+# ---------------------------------------------------------------------- semantics
+def test_repeat_continue_and_parameter_scopes() -> None:
+    p = read("""G21 G90 F100
+#<_g> = 5
+#<local> = 7
+o10 sub
+  (debug,in sub: g=#<_g> local=#<local> arg=#1)
+  #<local> = 1
+  #<_g> = [#<_g> + 1]
+o10 endsub
+#1 = 42
+o10 call [3]
+(debug,after: g=#<_g> local=#<local> #1)
+#<k> = 0
+o20 repeat [4]
+  #<k> = [#<k> + 1]
+  o30 if [#<k> EQ 2]
+    o20 continue
+  o30 endif
+  G1 X#<k>
+o20 endrepeat
+M2
+""")
+    assert messages(p) == ["in sub: g=5.000000 local=###### arg=3.000000",
+                           "after: g=6.000000 local=7.000000 42.000000"]
+    assert [m.end[0] for m in p.moves] == [1.0, 3.0, 4.0]
+
+
+def test_moves_of_a_subroutine_file_carry_the_line_of_the_call(tmp_path: Path) -> None:
+    (tmp_path / "hole.ngc").write_text("o<hole> sub\nG0 X#1 Y#2\nG1 Z-1\nG0 Z1\no<hole> endsub\nM2\n")
+    p = read("G21 G90 F100\nG0 Z1\no<hole> call [5] [6]\no<hole> call [7] [8]\nM2\n",
+             subroutine_dirs=(str(tmp_path),))
+    assert [m.line for m in p.moves] == [2, 3, 3, 3, 4, 4, 4]
+    np.testing.assert_allclose(p.moves[-1].end, [7, 8, 1])
+
+
+def test_an_error_in_a_subroutine_file_names_that_file_and_its_line(tmp_path: Path) -> None:
+    (tmp_path / "bad.ngc").write_text("o<bad> sub\nG1 X1 Q3\no<bad> endsub\n")
+    with pytest.raises(ProgramError) as exc:
+        read("G21 F100\no<bad> call\n", subroutine_dirs=(str(tmp_path),))
+    (err,) = exc.value.errors
+    assert (err.file, err.line) == (str(tmp_path / "bad.ngc"), 2) and "Q word" in err.message
+
+
+@pytest.mark.parametrize("text, line, words", [
+    ("o1 if [1]\nG0 X1\n", 1, "o1 if without its o1 endif"),
+    ("o1 while [1]\no2 endwhile\n", 2, "o2 endwhile without o2 while"),
+    ("o1 break\n", 1, "o1 break outside a loop labelled o1"),
+    ("o1 return\n", 1, "return outside a subroutine"),
+    ("o1 sub\no1 endsub\no1 sub\no1 endsub\n", 3, "o1 sub is defined twice"),
+    ("o1 if [1]\no1 else\no1 elseif [1]\no1 endif\n", 3, "elseif after o1 else"),
+    ("o7 call\n", 1, "no o7 sub in this program"),
+    ("o<nothere> call\n", 1, "no nothere.ngc in the subroutine folders (no subroutine folder is configured)"),
+    ("o1 if [1 +]\no1 endif\n", 1, "expected a number"),
+    ("o1 while 1\no1 endwhile\n", 1, "expected '['"),
+    ("o1 sub\no1 call\no1 endsub\no1 call\n", 2, "nested deeper than 50"),
+    ("o1 repeat [2] [3]\no1 endrepeat\n", 1, "needs one count in brackets"),
+])
+def test_refusals_name_the_line_and_what_is_wrong(text: str, line: int, words: str) -> None:
+    with pytest.raises(ProgramError) as exc:
+        read(text)
+    (err,) = exc.value.errors
+    assert err.line == line and words in err.message, err
+
+
+def test_an_endless_loop_is_stopped_with_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(interpreter, "_MAX_EXECUTED", 10_000)
+    with pytest.raises(ProgramError) as exc:
+        read("#<a> = 0\no1 while [1]\n#<a> = [#<a> + 1]\no1 endwhile\n")
+    assert "more than 10,000 blocks run (an endless loop?)" in exc.value.errors[0].message
+
+
+def test_programs_without_o_words_take_the_plain_path_and_read_the_same() -> None:
+    text = "G21 G90 F100\nG1 X1 Y2\nG2 X3 Y2 R1\nO0001\nM2\n"
+    plain = read(text)
+    with_sub = read("o99 sub\no99 endsub\n" + text)
+    assert _moves(plain) == _moves(with_sub) and len(plain.moves) == 2
+
+
+# ---------------------------------------------------------------------- fuzz
+_PROGRAMS = [p.read_text() for p in sorted(DATA.glob("*/test.ngc")) + [DATA / "flowsnake" / "flowsnake.ngc"]
+             if "o" in p.read_text().lower()]
+
+
+@settings(max_examples=120, deadline=None)
+@given(which=st.integers(0, len(_PROGRAMS) - 1),
+       edits=st.lists(st.tuples(st.sampled_from(["drop", "dup", "relabel", "swap"]), st.integers(0, 200)),
+                      min_size=1, max_size=3))
+def test_mutated_o_word_programs_fail_only_with_program_errors(which: int,
+                                                                edits: list[tuple[str, int]]) -> None:
+    lines = _PROGRAMS[which].splitlines()
+    for op, k in edits:
+        if not lines:
+            break
+        k %= len(lines)
+        if op == "drop":
+            del lines[k]
+        elif op == "dup":
+            lines.insert(k, lines[k])
+        elif op == "swap" and k + 1 < len(lines):
+            lines[k], lines[k + 1] = lines[k + 1], lines[k]
+        else:
+            lines[k] = re.sub(r"o(\d+)", lambda m: f"o{int(m.group(1)) + 1}", lines[k], count=1, flags=re.I)
+    try:
+        program = read("\n".join(lines), max_errors=5)
+    except ProgramError as exc:
+        assert all(e.line >= 1 and e.col >= 1 for e in exc.errors)
+        return
+    assert all(np.isfinite(m.end).all() for m in program.moves)
