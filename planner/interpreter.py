@@ -256,7 +256,7 @@ class _Interpreter:
         self.started = False
         self.current_line = 0
         self.params.system = self.system_parameter
-        self.subroutine_dirs: tuple[str, ...] = tuple(subroutine_dirs)
+        self.subroutine_dirs: tuple[str, ...] = tuple(subroutine_dirs) or machine.subroutine_paths()
         self.sub_files: dict[str, tuple[str, list[str], Structure]] = {}
 
     # ------------------------------------------------------------------ driver

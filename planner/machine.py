@@ -7,6 +7,7 @@ for the sections the planner does not use ([homing], [bus], [controller]).
 
 from __future__ import annotations
 
+import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -57,6 +58,7 @@ class PlannerSettings:
     ts_s: float = 0.001
     mode: str = "lookahead"
     interpolation: str = "exact"
+    subroutine_dirs: tuple[str, ...] = ()    # as written; relative ones to MachineSpec.config_dir
 
 
 @dataclass(frozen=True)
@@ -66,6 +68,12 @@ class MachineSpec:
     limits: PathLimits = field(default_factory=PathLimits)
     planner: PlannerSettings = field(default_factory=PlannerSettings)
     work_offsets: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    config_dir: str = ""        # folder of the configuration file ("" when not read from a file)
+
+    def subroutine_paths(self) -> tuple[str, ...]:
+        """The subroutine folders, relative ones taken from the configuration file's folder."""
+        return tuple(d if os.path.isabs(d) or not self.config_dir else os.path.join(self.config_dir, d)
+                     for d in self.planner.subroutine_dirs)
 
     @property
     def axis_names(self) -> tuple[str, ...]:
@@ -163,7 +171,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
     limits = PathLimits(v_max_mm_s=lim["v_max_mm_s"], a_max_mm_s2=lim["a_max_mm_s2"],
                         j_max_mm_s3=lim["j_max_mm_s3"], rapid_mm_s=lim["rapid_mm_s"])
     pl = valid["planner"]
-    planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"])
+    planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"],
+                              subroutine_dirs=tuple(pl["subroutine_dirs"]))
     offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in WORK_OFFSET_NAMES}
     for key, value in valid["offsets"].items():
         if len(value) != len(axes):
@@ -175,8 +184,10 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
                 raise loc.fail(("offsets", key), f"{ax.name} {v:g} is outside the axis travel "
                                                  f"[{ax.min_pos:g}, {ax.max_pos:g}]")
         offsets[key] = tuple(value)
+    where = loc.where
+    config_dir = os.path.dirname(os.path.abspath(where)) if where and not where.startswith("<") else ""
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
-                       work_offsets=offsets)
+                       work_offsets=offsets, config_dir=config_dir)
 
 
 def load_machine(path: str | Path) -> MachineSpec:

@@ -85,6 +85,8 @@ MACHINE_FILE = Table("", tables=(
         Key("ts_s", "float", 0.001, 1e-5, 0.1),
         Key("mode", "str", "lookahead", choices=("lookahead", "paper")),
         Key("interpolation", "str", "exact", choices=("exact", "taylor", "classic")),
+        # folders where "o<name> call" finds <name>.ngc (relative: to this file's folder)
+        Key("subroutine_dirs", "strs", []),
     )),
     Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
     Table("homing", (

@@ -315,7 +315,10 @@ def config_to_toml(config: MachineConfig) -> str:
             f"a_max_mm_s2 = {_fmt(float(lim.a_max_mm_s2))}", f"j_max_mm_s3 = {_fmt(float(lim.j_max_mm_s3))}",
             f"rapid_mm_s = {_fmt(float(lim.rapid_mm_s))}", "",
             "[planner]", f"ts_s = {_fmt(float(m.planner.ts_s))}", f"mode = {_fmt(m.planner.mode)}",
-            f"interpolation = {_fmt(m.planner.interpolation)}", "", "[offsets]"]
+            f"interpolation = {_fmt(m.planner.interpolation)}"]
+    if m.planner.subroutine_dirs:
+        out.append(f"subroutine_dirs = {_fmt(list(m.planner.subroutine_dirs))}")
+    out += ["", "[offsets]"]
     for name in WORK_OFFSET_NAMES:
         out.append(f"{name} = {_fmt([float(v) for v in m.offset(name)])}")
     h = config.homing

@@ -212,3 +212,35 @@ def test_mutated_o_word_programs_fail_only_with_program_errors(which: int,
         assert all(e.line >= 1 and e.col >= 1 for e in exc.errors)
         return
     assert all(np.isfinite(m.end).all() for m in program.moves)
+
+
+def test_subroutine_folders_of_the_machine_configuration(tmp_path: Path) -> None:
+    """[planner] subroutine_dirs, relative to the configuration file: cnc-plan and the panel's
+    reading (through the machine) find o<name> there; saving the configuration keeps them."""
+    import subprocess
+    import sys
+
+    from app.machine.config import load_config, save_config
+    from resources import shipped_machine
+
+    (tmp_path / "subs").mkdir()
+    (tmp_path / "subs" / "square.ngc").write_text(
+        "o<square> sub\nG1 X#1 Y0\nG1 Y#1\nG1 X0\nG1 Y0\no<square> endsub\n")
+    text = shipped_machine("xyz_mill").read_text(encoding="utf-8")
+    text = text.replace('interpolation = "exact"', 'interpolation = "exact"\nsubroutine_dirs = ["subs"]')
+    assert 'subroutine_dirs = ["subs"]' in text
+    config = tmp_path / "machine.toml"
+    config.write_text(text, encoding="utf-8")
+    program = tmp_path / "p.ngc"
+    program.write_text("G21 G90 F600\no<square> call [5]\nM2\n")
+    from planner.machine import load_machine
+
+    machine = load_machine(config)
+    assert machine.subroutine_paths() == (str(tmp_path / "subs"),)
+    assert len(parse_program(program.read_text(), machine=machine).moves) == 4     # the square
+    run = subprocess.run([sys.executable, "-m", "cli.plan", str(program), "--config", str(config), "--json"],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    saved = save_config(load_config(config), tmp_path / "saved.toml")
+    assert saved.machine.planner.subroutine_dirs == ("subs",)
+    assert 'subroutine_dirs = ["subs"]' in (tmp_path / "saved.toml").read_text()
