@@ -61,12 +61,13 @@ _G_GROUP = {
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
     901: 4, 911: 4,
-    940: 5,
+    930: 5, 940: 5, 950: 5,
+    970: 14,
     200: 6, 210: 6,
     400: 7, 410: 7, 420: 7,
     430: 8, 431: 8, 432: 8, 490: 8,
     540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12,
-    610: 13, 640: 13,
+    610: 13, 611: 13, 640: 13,
     730: 1, 740: 1, 810: 1, 820: 1, 830: 1, 840: 1, 850: 1, 860: 1, 890: 1,
     980: 10, 990: 10,
 }
@@ -85,15 +86,17 @@ _G_UNSUPPORTED = {
     382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
     411: "G41.1 dynamic cutter compensation", 421: "G42.1 dynamic cutter compensation",
     520: "G52 local offset", 591: "G59.1 work offset", 592: "G59.2 work offset",
-    593: "G59.3 work offset", 611: "G61.1 exact path mode",
+    593: "G59.3 work offset",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
     880: "G88 boring with a manual retract: the operator would jog the spindle out during a "
          "program stop; use G86 or G89",
     920: "G92 coordinate offset", 921: "G92.1", 922: "G92.2",
-    923: "G92.3", 930: "G93 inverse time feed", 950: "G95 feed per revolution",
-    960: "G96 constant surface speed", 970: "G97 spindle rpm mode", 150: "G15 polar coordinates",
+    923: "G92.3",
+    960: "G96 constant surface speed: it sets the spindle speed from a lathe's X radius; on this "
+         "mill use G97 and an S in rpm",
+    150: "G15 polar coordinates",
     160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
 }
@@ -215,6 +218,12 @@ class _Interpreter:
         self.tlo = (0.0,) * n                      # tool length offset (G43...), machine units
         self.offset = self.work                    # both: program -> machine coordinates
         self.exact_stop = False
+        self.exact_path = False
+        # feed mode: G94 units per minute, G93 inverse time (an F on every feed move: its duration
+        # is 1/F minutes), G95 units per revolution of the programmed spindle speed
+        self.feed_mode = 940
+        self.feed_per_rev = 0.0      # G95: mm per revolution
+        self.inverse_f = 0.0         # G93: the block's F (1/min)
         # canned cycles: retract mode (LinuxCNC starts in G99, retract to the R plane), the
         # level the cycles started from (G98 returns there), the sticky R, bottom, P and Q
         self.retract_r_plane = True
@@ -576,13 +585,13 @@ class _Interpreter:
         if f_t is not None and f_t[0] == "-":
             return False  # negative feed: diagnosed by the general path
         if axis_vals.count(None) == n:  # no axis words
-            if gtxt is None and not ctr:
+            if gtxt is None and not ctr and self.feed_mode == 940:
                 if f_t is not None:
                     self.feed_mm_s = float(f_t) * self.scale / 60.0
                 return True
             return False
         motion = int(gtxt) * 10 if gtxt is not None else self.motion
-        if motion is None or motion > 30 or (ctr and motion < 20):
+        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940:
             return False
         scale = self.scale
         if f_t is not None:
@@ -664,9 +673,10 @@ class _Interpreter:
     def modal_text(self) -> str:
         """The modal codes as LinuxCNC's panels list them (motion mode aside)."""
         return " ".join((
-            _PLANE_G[self.plane], "G20" if self.inch else "G21", "G90" if self.absolute else "G91", "G94",
+            _PLANE_G[self.plane], "G20" if self.inch else "G21", "G90" if self.absolute else "G91",
+            _gname(self.feed_mode),
             _gname(self.work_code), _gname(self.comp_code), _gname(self.tlo_code),
-            "G61" if self.exact_stop else "G64",
+            "G61" if self.exact_stop else ("G61.1" if self.exact_path else "G64"),
         ))
 
     def note_modal(self) -> None:
@@ -800,12 +810,12 @@ class _Interpreter:
         axis_words = [letter for letter in vals if letter in axis_index]
         ctr = "I" in vals or "J" in vals or "K" in vals or "R" in vals
         if not axis_words:
-            if g < 0 and not ctr and "F" in vals and vals["F"] >= 0.0:
+            if g < 0 and not ctr and "F" in vals and vals["F"] >= 0.0 and self.feed_mode == 940:
                 self.feed_mm_s = vals["F"] * self.scale / 60.0
                 return True
             return False
         motion = g if g >= 0 else self.motion
-        if motion is None or motion > 30 or (ctr and motion < 20):
+        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940:
             return False
         if "F" in vals:
             f = vals["F"]
@@ -961,17 +971,30 @@ class _Interpreter:
             self.inch = groups[6] == 200
             self.scale = MM_PER_INCH if self.inch else 1.0
         scale = self.scale
+        if 5 in groups:                 # LinuxCNC: G94 and G95 clear the feed rate, G93 does not
+            self.feed_mode = groups[5]
+            if self.feed_mode != 930:
+                self.feed_mm_s = self.feed_per_rev = 0.0
         if "F" in vals:
             f = vals["F"]
             if f < 0.0:
                 raise _BlockError(f"negative feed F{f:g}", "F")
-            self.feed_mm_s = f * scale / 60.0
+            if self.feed_mode == 930:
+                self.inverse_f = f
+                self.feed_mm_s = 1.0 if f > 0.0 else 0.0   # the move's own feed comes in emit()
+            elif self.feed_mode == 950:
+                self.feed_per_rev = f * scale
+                self.feed_mm_s = self.feed_per_rev * self.spindle_rpm / 60.0
+            else:
+                self.feed_mm_s = f * scale / 60.0
         if "S" in vals:
             s = vals["S"]
             if s < 0.0:
                 raise _BlockError(f"negative spindle speed S{s:g}", "S")
             changed = s != self.spindle_rpm
             self.spindle_rpm = s
+            if self.feed_mode == 950:
+                self.feed_mm_s = self.feed_per_rev * s / 60.0
             if changed and self.spindle_dir != 0 and mgroups.get(7) is None:
                 ev.append(Event(EventKind.SPINDLE, line_no, after, self.spindle_dir * s))
         if "T" in vals:
@@ -1026,6 +1049,9 @@ class _Interpreter:
             self.tlo_code = groups[8]
         if 13 in groups:
             self.exact_stop = groups[13] == 610
+            # G61.1 keeps the programmed path without stopping at the joints: what the planner
+            # does in G64 today too (it does not blend corners); kept apart for the display
+            self.exact_path = groups[13] == 611
         if 3 in groups:
             self.absolute = groups[3] == 900
         if 4 in groups:
@@ -1039,6 +1065,15 @@ class _Interpreter:
             self.note_modal()
 
         # ---- motion
+        if motion is not None and motion != 0 and g0 != 280:
+            if self.feed_mode == 930:
+                if motion in _CYCLES:
+                    raise _BlockError("cannot use inverse time feed (G93) with canned cycles", "G93")
+                if "F" not in vals:
+                    raise _BlockError("G93 inverse time: every feed move needs its F word (1/F minutes)", "G")
+            elif self.feed_mode == 950 and self.spindle_rpm <= 0.0:
+                raise _BlockError("G95 feed per revolution needs a spindle speed: S is 0", "G95"
+                                  if 5 in groups else "G")
         if g1 == 800 or (motion is not None and motion not in _CYCLES):
             self.cycle_il = None            # a cycle sequence ends: G98's level is taken anew
         if g0 == 280:
@@ -1140,6 +1175,8 @@ class _Interpreter:
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
              line_no: int) -> None:
+        if self.feed_mode == 930 and kind is not _RAPID:
+            feed = length * self.inverse_f / 60.0      # the move takes 1/F minutes
         self.ends.append(target)
         self.recs.append((line_no, kind, feed, length, arc, self.exact_stop))
         self.pos = target
@@ -1384,9 +1421,7 @@ class _Interpreter:
         rise = target[na] - pos[na] if na >= 0 else 0.0
         arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, rise, turns)
         length = math.hypot(r0 * sweep, rise) if r0 == r1 else spiral_length_mm(r0, r1, sweep, rise)
-        self.ends.append(target)
-        self.recs.append((line_no, _ARC, feed, length, arc, self.exact_stop))
-        self.pos = target
+        self.emit(target, _ARC, feed, length, arc, line_no)
 
 
 def parse_program(

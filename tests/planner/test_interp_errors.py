@@ -49,7 +49,7 @@ def errors_of(text: str, **kw):
         ("G76 X1 Z-1", "G76 is not supported (G76 threading cycle)", 1, 1),
         ("G81 X1 Z-1 R1", "feed rate is zero", 1, 1),
         ("G92 X0", "G92 is not supported", 1, 1),
-        ("G93", "G93 is not supported (G93 inverse time feed)", 1, 1),
+        ("G33 X1 K1", "G33 is not supported (G33 spindle-synchronised motion)", 1, 1),
         ("G59.1", "G59.1 is not supported", 1, 1),
         ("G1.5 X1", "unknown G code G1.5", 1, 1),
         ("M99", "M99 is not supported", 1, 1),
