@@ -56,7 +56,7 @@ _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dro
 
 # Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
 _G_GROUP = {
-    40: 0, 280: 0, 530: 0,
+    40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0, 921: 0, 922: 0, 923: 0,
     0: 1, 10: 1, 20: 1, 30: 1, 800: 1,
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
@@ -66,7 +66,7 @@ _G_GROUP = {
     200: 6, 210: 6,
     400: 7, 410: 7, 420: 7,
     430: 8, 431: 8, 432: 8, 490: 8,
-    540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12,
+    540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12, 591: 12, 592: 12, 593: 12,
     610: 13, 611: 13, 640: 13,
     730: 1, 740: 1, 810: 1, 820: 1, 830: 1, 840: 1, 850: 1, 860: 1, 890: 1,
     980: 10, 990: 10,
@@ -81,19 +81,14 @@ _CYCLE_TAKES_P = _CYCLE_NEEDS_P | {740, 840}
 _MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
     50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
-    80: "G08 lathe radius mode", 100: "G10 data setting", 281: "G28.1", 300: "G30 second home",
-    301: "G30.1", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
+    80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
     382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
     411: "G41.1 dynamic cutter compensation", 421: "G42.1 dynamic cutter compensation",
-    520: "G52 local offset", 591: "G59.1 work offset", 592: "G59.2 work offset",
-    593: "G59.3 work offset",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
     880: "G88 boring with a manual retract: the operator would jog the spindle out during a "
          "program stop; use G86 or G89",
-    920: "G92 coordinate offset", 921: "G92.1", 922: "G92.2",
-    923: "G92.3",
     960: "G96 constant surface speed: it sets the spindle speed from a lathe's X radius; on this "
          "mill use G97 and an S in rpm",
     150: "G15 polar coordinates",
@@ -101,6 +96,23 @@ _G_UNSUPPORTED = {
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
 }
 _SHOWN_GROUPS = frozenset({2, 3, 6, 7, 8, 12, 13})  # the modal groups the panel shows
+#: group 0 codes whose axis words are data, not a motion target
+_AXIS_USERS = frozenset({100, 280, 300, 520, 920})
+#: coordinate systems 1-9 (G54 ... G59.3) and LinuxCNC's parameters for them: each system has
+#: 20 numbers from #5221 (X Y Z A B C U V W, then the XY rotation); G92 #5211-#5219 (#5210: on);
+#: the G28 and G30 positions #5161- and #5181-; #5220 the system in use
+_SYSTEMS = (540, 550, 560, 570, 580, 590, 591, 592, 593)
+_PARAM_AXES = "XYZABCUVW"
+_P_G28, _P_G30, _P_G92_ON, _P_G92, _P_SYSTEM = 5161, 5181, 5210, 5211, 5220
+#: parameters a program leaves for the next one (LinuxCNC keeps them in its var file)
+PERSISTENT_PARAMETERS = (frozenset(range(5161, 5170)) | frozenset(range(5181, 5190))
+                         | frozenset(range(5210, 5221))
+                         | frozenset(p for k in range(9) for p in range(5221 + 20 * k, 5231 + 20 * k)))
+
+
+def system_base(code: int) -> int:
+    """#5221 for G54, #5241 for G55 ... #5381 for G59.3."""
+    return 5221 + 20 * _SYSTEMS.index(code)
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
 _WORD_LETTERS = set("FSTPQRIJKDHL")
 _AXIS_LETTERS = "XYZABC"
@@ -174,7 +186,8 @@ class _Interpreter:
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
-                 spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = ()):
+                 spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = (),
+                 parameters: dict[int, float] | None = None):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -189,13 +202,31 @@ class _Interpreter:
         self.rotary_idx = tuple(i for i in range(n) if self.rotary[i])
         self.all_linear = not self.rotary_idx
         offsets = getattr(machine, "work_offsets", None) or {}
+        self.params = Params()
+        # the persistent parameters the machine kept from earlier programs (G92, G28/G30
+        # positions, G59.1-G59.3), then the work offsets as the machine has them now
+        for number, value in (parameters or {}).items():
+            if int(number) in PERSISTENT_PARAMETERS:
+                self.params.numbered[int(number)] = float(value)
+        self.axis_param = [_PARAM_AXES.index(a) for a in self.axes]
         self.work_offsets: dict[int, tuple[float, ...]] = {}
-        for k in range(6):
-            key = f"G5{4 + k}"
-            val = tuple(float(v) for v in offsets.get(key, (0.0,) * n))
-            if len(val) != n:
-                raise PlannerError(f"machine work offset {key} has {len(val)} values for {n} axes")
-            self.work_offsets[540 + 10 * k] = val
+        for code in _SYSTEMS:
+            key = _gname(code)
+            base = system_base(code)
+            if key in offsets:
+                val = tuple(float(v) for v in offsets[key])
+                if len(val) != n:
+                    raise PlannerError(f"machine work offset {key} has {len(val)} values for {n} axes")
+                for i, v in enumerate(val):
+                    self.params.numbered[base + self.axis_param[i]] = v
+            else:
+                val = tuple(self.params.numbered.get(base + p, 0.0) for p in self.axis_param)
+            self.work_offsets[code] = val
+        on = self.params.numbered.get(_P_G92_ON, 0.0) != 0.0
+        self.g92 = tuple(self.params.numbered.get(_P_G92 + p, 0.0) if on else 0.0 for p in self.axis_param)
+        self.params.numbered[_P_SYSTEM] = 1.0
+        # parameter sets to hand to the machine when the program passes them (G10, G92, G28.1 ...)
+        self.parameter_sets: list[dict[int, float]] = []
         if start_position is None:
             start = [0.0] * n
         else:
@@ -216,7 +247,7 @@ class _Interpreter:
         self.feed_mm_s = 0.0
         self.work = self.work_offsets[540]       # G54-G59
         self.tlo = (0.0,) * n                      # tool length offset (G43...), machine units
-        self.offset = self.work                    # both: program -> machine coordinates
+        self.offset = tuple(w + g for w, g in zip(self.work, self.g92))   # program -> machine
         self.exact_stop = False
         self.exact_path = False
         # feed mode: G94 units per minute, G93 inverse time (an F on every feed move: its duration
@@ -239,7 +270,6 @@ class _Interpreter:
         self.tools = tools
         self.tool = int(tool_in_spindle)   # in the spindle (M6, M61)
         self.selected = self.tool          # T word: prepared for the next M6
-        self.params = Params()
         self.plane_cache: dict[int, tuple] = {}
         self.fast_letters = frozenset(self.axes) | frozenset("IJKRF")
         # The usual CAM block, in the usual word order, as one regex; numbers below 1e9.
@@ -734,7 +764,7 @@ class _Interpreter:
             self.work = work
         if tlo is not None:
             self.tlo = tlo
-        offset = tuple(w + t for w, t in zip(self.work, self.tlo))
+        offset = tuple(w + g + t for w, g, t in zip(self.work, self.g92, self.tlo))
         self.offset = offset
         first = len(self.recs)
         if self.offset_changes[-1][0] == first:
@@ -773,6 +803,7 @@ class _Interpreter:
             move_offsets=offsets,
             line_count=line_count,
             modal=tuple(self.modal_changes),
+            parameter_sets=tuple(self.parameter_sets),
         )
 
     # ------------------------------------------------------------------ one block
@@ -920,16 +951,17 @@ class _Interpreter:
             axis_words = []
         else:
             axis_words_offset = []
-        if g0 == 280 and g1 is not None and g1 != 800:
+        axis_data = g0 in _AXIS_USERS       # G10, G28, G30, G52, G92: the axis words are data
+        if g0 is not None and axis_data and g1 is not None and g1 != 800 and axis_words:
             raise _BlockError(
-                "cannot use two G codes that both use axis values (G28 and a motion code)", "G28"
-            )
-        if g1 == 800 and axis_words and g0 != 280:
+                f"cannot use two G codes that both use axis values ({_gname(g0)} and a motion code)",
+                _gname(g0))
+        if g1 == 800 and axis_words and not axis_data:
             raise _BlockError("cannot use axis values with G80", axis_words[0])
         motion: int | None
         if g1 is not None:
             motion = g1
-        elif g0 != 280 and (
+        elif not axis_data and (
             axis_words
             or (self.motion in (20, 30) and ("I" in vals or "J" in vals or "K" in vals or "R" in vals))
         ):
@@ -938,25 +970,26 @@ class _Interpreter:
             motion = None
         if motion == 800:
             motion = None
-        if axis_words and motion is None and g0 != 280:
+        if axis_words and motion is None and not axis_data:
             raise _BlockError(
                 "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
             )
         is_arc = motion in (20, 30)
         is_cycle = motion in _CYCLES
         for letter in ("I", "J", "K", "R"):
-            if letter in vals and not is_arc and not (letter == "R" and is_cycle):
+            if letter in vals and not is_arc and not (letter == "R" and (is_cycle or g0 == 100)):
                 users = "G02/G03 or canned cycle" if letter == "R" else "G02/G03"
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
-        if "P" in vals and not (g0 == 40 or is_arc or groups.get(13) == 640 or motion in _CYCLE_TAKES_P):
+        if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640
+                                or motion in _CYCLE_TAKES_P):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64, G82, G84, G86, G89)",
                               "P")
         if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q:
             raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83)", "Q")
         if "D" in vals and groups.get(7) not in (410, 420) and motion not in _CYCLE_NEEDS_Q:
             raise _BlockError("D word with no G41/G42, G73 or G83 to use it", "D")
-        if "L" in vals and not is_cycle:
-            raise _BlockError("L word (repeats) with no canned cycle to use it", "L")
+        if "L" in vals and not is_cycle and g0 != 100:
+            raise _BlockError("L word with no canned cycle or G10 to use it", "L")
         if is_cycle:
             for letter in axis_words:
                 if self.rotary[self.axis_index[letter]]:
@@ -1043,6 +1076,7 @@ class _Interpreter:
         if 12 in groups:
             self.set_offset(work=self.work_offsets[groups[12]])
             self.work_code = groups[12]
+            self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(groups[12]) + 1)
         if 7 in groups:
             self.comp_code = groups[7]
         if 8 in groups:
@@ -1064,8 +1098,11 @@ class _Interpreter:
         if not groups.keys().isdisjoint(_SHOWN_GROUPS):
             self.note_modal()
 
+        # ---- offsets and stored positions (RS274/NGC order: after the modes, before motion)
+        if g0 in (100, 281, 301, 520, 920, 921, 922, 923):
+            self.data_code(g0, vals, axis_words, scale, line_no)
         # ---- motion
-        if motion is not None and motion != 0 and g0 != 280:
+        if motion is not None and motion != 0 and not axis_data:
             if self.feed_mode == 930:
                 if motion in _CYCLES:
                     raise _BlockError("cannot use inverse time feed (G93) with canned cycles", "G93")
@@ -1076,8 +1113,8 @@ class _Interpreter:
                                   if 5 in groups else "G")
         if g1 == 800 or (motion is not None and motion not in _CYCLES):
             self.cycle_il = None            # a cycle sequence ends: G98's level is taken anew
-        if g0 == 280:
-            self.g28(vals, axis_words, scale, line_no)
+        if g0 in (280, 300):
+            self.g28(vals, axis_words, scale, line_no, _P_G28 if g0 == 280 else _P_G30)
         elif motion in _CYCLES:
             if g0 == 530:
                 raise _BlockError("G53 needs G00 or G01", "G53")
@@ -1119,7 +1156,7 @@ class _Interpreter:
             v = self.params.get_named(m.group(1).upper())
         else:
             n = int(m.group(2))
-            v = self.params.numbered.get(n, 0.0) if 1 <= n <= 5399 else None
+            v = self.params.numbered.get(n, 0.0) if 1 <= n <= 5602 else None
         return "######" if v is None else f"{v:f}"
 
     def assign(self, assigns: Sequence[tuple[object, float]]) -> None:
@@ -1332,21 +1369,110 @@ class _Interpreter:
         finally:
             self.exact_stop = saved_stop
 
-    def g28(self, vals: dict[str, float], axis_words: list[str], scale: float, line_no: int) -> None:
-        """G28: rapid to the programmed point (if any), then to machine zero of those axes.
-
-        LinuxCNC's G28 position (#5161-#5166) is machine zero in the reference set-up; this
-        machine has no stored G28 position, so machine zero it is. No axis words: all axes.
-        """
+    def g28(self, vals: dict[str, float], axis_words: list[str], scale: float, line_no: int,
+            base: int = _P_G28) -> None:
+        """G28 / G30: rapid to the programmed point (if any), then to the stored position of
+        those axes (#5161- for G28, #5181- for G30, machine coordinates, set by G28.1 / G30.1;
+        machine zero until then). No axis words: every axis goes there."""
+        stored = [self.params.numbered.get(base + p, 0.0) for p in self.axis_param]
         if axis_words:
             mid = self.target(vals, axis_words, scale, False)
             self.straight(mid, True, line_no)
             home = self.pos.copy()
             for letter in axis_words:
-                home[self.axis_index[letter]] = 0.0
+                i = self.axis_index[letter]
+                home[i] = stored[i]
         else:
-            home = [0.0] * self.n
+            home = stored
         self.straight(home, True, line_no)
+
+    def data_code(self, code: int, vals: dict[str, float], axis_words: list[str], scale: float,
+                  line_no: int) -> None:
+        """G10 L2/L20 (coordinate system data), G28.1/G30.1 (store the position), G52 and G92
+        (axis offsets), G92.1/.2/.3, as LinuxCNC 2.9 sets its parameters."""
+        num = self.params.numbered
+
+        def value(letter: str) -> float:
+            i = self.axis_index[letter]
+            return vals[letter] if self.rotary[i] else vals[letter] * scale
+
+        if code == 100:
+            l_word = vals.get("L")
+            if l_word is None:
+                raise _BlockError("G10 needs an L word (L2 or L20: coordinate system; L1, L10, L11: tool "
+                                  "table)", "G10")
+            if l_word in (1, 10, 11):
+                raise _BlockError(f"G10 L{l_word:g} (tool table data from the program) is not supported: set "
+                                  "tools on the Tools page", "L")
+            if l_word not in (2, 20):
+                raise _BlockError(f"G10 L{l_word:g} is not a G10 this control knows (L2, L20)", "L")
+            p = vals.get("P")
+            if p is None or p != int(p) or not 0 <= p <= 9:
+                raise _BlockError("G10 L2/L20 needs P0-P9 (0: the system in use, 1: G54 ... 9: G59.3)", "P")
+            if vals.get("R", 0.0) != 0.0:
+                raise _BlockError("coordinate system rotation (G10 L2 R) is not supported: give R0 or no R",
+                                  "R")
+            system = self.work_code if p == 0 else _SYSTEMS[int(p) - 1]
+            base = system_base(system)
+            if self.comp_code != 400 and system == self.work_code:
+                raise _BlockError("cannot change the offsets of the coordinate system in use with cutter "
+                                  "compensation on", "G10")
+            new = list(self.work_offsets[system])
+            for letter in axis_words:
+                i = self.axis_index[letter]
+                if l_word == 2:
+                    new[i] = value(letter)
+                else:                   # L20: the current position reads the given value in that system
+                    new[i] = self.pos[i] - self.g92[i] - self.tlo[i] - value(letter)
+                num[base + self.axis_param[i]] = new[i]
+            self.work_offsets[system] = tuple(new)
+            if system == self.work_code:
+                self.set_offset(work=tuple(new))
+            self.parameters_changed(line_no, f"G10 L{l_word:g}: {_gname(system)} offsets set")
+        elif code in (281, 301):
+            base = _P_G28 if code == 281 else _P_G30
+            for i, p in enumerate(self.axis_param):
+                num[base + p] = self.pos[i]
+            self.parameters_changed(line_no, f"{_gname(code)}: position stored for {_gname(code - 1)}")
+        elif code in (520, 920):
+            g92 = list(self.g92)
+            for letter in axis_words:
+                i = self.axis_index[letter]
+                if code == 520:         # G52: the offset itself
+                    g92[i] = value(letter)
+                else:                   # G92: the current position reads the given value
+                    g92[i] = self.pos[i] - self.work[i] - self.tlo[i] - value(letter)
+            self.set_g92(tuple(g92), True)
+            self.parameters_changed(line_no, f"{_gname(code)}: axis offsets set")
+        elif code == 921:               # G92.1: offsets and their parameters to zero
+            self.set_g92((0.0,) * self.n, False)
+            self.parameters_changed(line_no, "G92.1: axis offsets cleared")
+        elif code == 922:               # G92.2: offsets off, parameters kept
+            self.g92 = (0.0,) * self.n
+            num[_P_G92_ON] = 0.0
+            self.set_offset()
+            self.parameters_changed(line_no, "G92.2: axis offsets suspended")
+        else:                           # G92.3: back from the parameters
+            self.g92 = tuple(num.get(_P_G92 + p, 0.0) for p in self.axis_param)
+            num[_P_G92_ON] = 1.0
+            self.set_offset()
+            self.parameters_changed(line_no, "G92.3: axis offsets restored")
+
+    def set_g92(self, g92: tuple[float, ...], on: bool) -> None:
+        self.g92 = g92
+        num = self.params.numbered
+        for i, p in enumerate(self.axis_param):
+            num[_P_G92 + p] = g92[i]
+        num[_P_G92_ON] = 1.0 if on else 0.0
+        self.set_offset()
+
+    def parameters_changed(self, line_no: int, text: str) -> None:
+        """An OFFSETS event: the machine takes the persistent parameters as they are now when
+        the program passes this point (LinuxCNC keeps them in its var file)."""
+        num = self.params.numbered
+        self.parameter_sets.append({p: num.get(p, 0.0) for p in sorted(PERSISTENT_PARAMETERS)})
+        self.events.append(Event(EventKind.OFFSETS, line_no, len(self.ends) - 1,
+                                 float(len(self.parameter_sets) - 1), text))
 
     def plane_axes(self) -> tuple:
         """(name, first, second, normal column, centre letters, forbidden letter, axis letters) of the
@@ -1436,6 +1562,7 @@ def parse_program(
     tool_in_spindle: int = 0,
     spindle: tuple[int, float] = (0, 0.0),
     subroutine_dirs: Sequence[str] = (),
+    parameters: dict[int, float] | None = None,
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -1447,9 +1574,11 @@ def parse_program(
     ``spindle``: (direction, rpm) when it starts (an S word alone then changes a running spindle).
     ``subroutine_dirs``: folders where ``o<name> call`` finds ``<name>.ngc`` when the program
     does not define the subroutine itself.
+    ``parameters``: the persistent parameters the machine kept (``PERSISTENT_PARAMETERS``: G92,
+    G28/G30 positions, coordinate systems); the machine's work offsets take precedence for G54-G59.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
-                          spindle, subroutine_dirs)
+                          spindle, subroutine_dirs, parameters)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         return interp.run(text)
 

@@ -32,7 +32,7 @@ class LexError(Exception):
 
 
 class Params:
-    """Numbered (#1-#5399) and named (#<name>) parameters; unset numbered ones read as 0.
+    """Numbered (#1-#5602) and named (#<name>) parameters; unset numbered ones read as 0.
 
     Named parameters are local to the subroutine that sets them (``named``: the current
     scope's), except those starting with ``_``, which are global (``globals``); ``system``
@@ -158,7 +158,7 @@ _OPS = [
 _OPS_BY_LENGTH = sorted(_OPS, key=lambda o: -len(o[0]))
 _NUM_RE = re.compile(_NUM)
 _NAME_RE = re.compile(r"[A-Z]+")
-_MAX_NUMBERED = 5399
+_MAX_NUMBERED = 5602   # LinuxCNC RS274NGC_MAX_PARAMETERS - 1
 
 
 class _Reader:

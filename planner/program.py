@@ -232,6 +232,7 @@ class EventKind(enum.Enum):
     COOLANT = "coolant"  # addition: M07 mist (value 1), M08 flood (2), M09 off (0); not stopping
     TOOL_SET = "tool_set"  # M61 Q: the tool now in the spindle, without a change (value: number)
     MESSAGE = "message"  # (MSG,...), (DEBUG,...), (PRINT,...): text for the operator; not stopping
+    OFFSETS = "offsets"  # G10, G92, G52, G28.1 ...: Program.parameter_sets[value] is what the machine keeps
 
 
 STOPPING_EVENTS = frozenset(
@@ -243,6 +244,7 @@ STOPPING_EVENTS = frozenset(
         EventKind.TOOL_CHANGE,
         EventKind.SPINDLE,
         EventKind.TOOL_SET,
+        EventKind.OFFSETS,     # LinuxCNC synchronises the motion on G10 and G92 too
     }
 )
 
@@ -278,6 +280,9 @@ class Program:
     # the active modal codes as the operator reads them ("G17 G21 G90 G94 G54 G40 G49 G64"),
     # from move ``first`` on: ((first, text), ...) at each change
     modal: tuple[tuple[int, str], ...] = ()
+    # the persistent parameters (planner.interpreter.PERSISTENT_PARAMETERS) after each OFFSETS
+    # event, by the event's value
+    parameter_sets: tuple[dict[int, float], ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

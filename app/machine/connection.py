@@ -121,6 +121,7 @@ class Connection:
         offs = self.store.load_offsets(len(axes))
         if offs is not None:
             self.m.pos.offsets.update({k: v for k, v in offs.items() if k in WORK_OFFSET_NAMES})
+        self.m.pos.parameters = self.store.load_parameters()
         self.m.pos.ref_raw = self.m.pos.raw_pos.copy()
 
     def persist_state(self) -> None:

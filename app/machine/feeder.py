@@ -394,6 +394,11 @@ class Streamer:
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))
             self.release(job)
+        elif kind == "offsets":                  # G10, G92, G52, G28.1 ...: the machine keeps them
+            sets = job.plan.program.parameter_sets
+            if 0 <= int(p.value) < len(sets):
+                self.m.pos.apply_parameters(sets[int(p.value)])
+            self.release(job)
         elif kind == "dwell":
             if job.dwell_until is None:
                 job.dwell_until = snap.time_s + p.value

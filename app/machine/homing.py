@@ -40,6 +40,9 @@ class Positions:
         }
         self.homing_queue: list[int] = []
         self.homing_axis = -1
+        # the persistent G-code parameters (G92, G28/G30 positions, G59.1-G59.3): programs start
+        # from them and leave theirs (G10, G92, G28.1 ...) here; G54-G59 live in ``offsets``
+        self.parameters: dict[int, float] = {}
 
     def home_axis(self, axis: str | int) -> CommandResult:
         """Home one axis by the configured method: "drive" (CiA 402 homing mode 6 with
@@ -156,6 +159,29 @@ class Positions:
         self.offsets[name] = tuple(cur)
         self._offsets_changed()
         return self.m.states.ok("set_work_offset")
+
+    def apply_parameters(self, values: dict[int, float]) -> None:
+        """A program's G10/G92/G52/G28.1/G30.1 reached by the motion (or an MDI block): the
+        parameters are kept, G54-G59 become the work offsets. Persisted at once, as LinuxCNC
+        writes its var file."""
+        from planner.interpreter import system_base
+
+        self.parameters = dict(values)
+        names = self.m.config.axes
+        for k, name in enumerate(WORK_OFFSET_NAMES):
+            base = system_base(540 + 10 * k)
+            cur = list(self.offsets.get(name, (0.0,) * len(names)))
+            for i, axis in enumerate(names):
+                key = base + "XYZABCUVW".index(axis)
+                if key in values:
+                    cur[i] = float(values[key])
+            self.offsets[name] = tuple(cur)
+        try:
+            self.m.conn.store.save_parameters(self.parameters)
+        except OSError as exc:
+            self.m.alarm_log.raise_alarm(
+                "persistence", f"cannot save the G-code parameters: {exc}", Severity.WARNING, "state_file")
+        self._offsets_changed()
 
     def _offsets_changed(self) -> None:
         try:

@@ -145,6 +145,7 @@ class ManualMotion:
                 text, "MDI", machine=self.m.conn.machine, start_position=self.m.states.machine_pos(),
                 tools=self.m.tools.table, tool_in_spindle=self.m.tools.in_spindle,
                 spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
+                parameters=self.m.pos.parameters,
             )
         except ProgramError as exc:
             return self.m.states.refuse("mdi", "; ".join(e.message for e in exc.errors))
@@ -166,6 +167,8 @@ class ManualMotion:
                     res = self.m.tools.set_tool_in_spindle(int(ev.value))
                     if not res:
                         return self.m.states.refuse("mdi", res.reason)
+                elif ev.kind is EventKind.OFFSETS:     # G10, G92, G52, G28.1 ... typed in MDI
+                    self.m.pos.apply_parameters(prog.parameter_sets[int(ev.value)])
                 elif ev.kind is EventKind.END:  # M2/M30: the end of a program: spindle off, reset
                     self.m.spindle_ctl.apply_spindle(SpindleState(direction=0, rpm=self.m.spindle.rpm))
                     self.m.states.reset()

@@ -15,6 +15,7 @@ reported (``MachineError`` text for the alarm list) and moved aside, never silen
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 from pathlib import Path
@@ -142,6 +143,28 @@ class StateStore:
 
     def save_offsets(self, offsets: dict[str, tuple[float, ...]]) -> None:
         self._write_json("offsets.json", {k: list(v) for k, v in offsets.items()})
+
+    # ------------------------------------------------------------------ parameters (var file)
+    def load_parameters(self) -> dict[int, float]:
+        """The persistent G-code parameters (G92, G28/G30 positions, G59.1-G59.3 ...), as
+        LinuxCNC's var file keeps them; a damaged file is named and its values not used."""
+        data = self._read_json("parameters.json")
+        if not isinstance(data, dict):
+            return {}
+        try:
+            values = {int(k): float(v) for k, v in data.items()}
+        except (TypeError, ValueError):
+            self.problems.append(f"{self.path('parameters.json')}: not a table of parameter numbers and "
+                                 "values; G92, G28 and G30 start at zero")
+            return {}
+        if not all(math.isfinite(v) for v in values.values()):
+            self.problems.append(f"{self.path('parameters.json')}: a value is not a finite number; G92, "
+                                 "G28 and G30 start at zero")
+            return {}
+        return values
+
+    def save_parameters(self, values: dict[int, float]) -> None:
+        self._write_json("parameters.json", {str(k): v for k, v in sorted(values.items())})
 
     # ------------------------------------------------------------------ tools
     def load_tools(self) -> tuple[ToolTable, int]:

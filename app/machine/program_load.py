@@ -67,6 +67,7 @@ class LoadRequest:
     offsets: dict[str, tuple[float, ...]]
     tools: ToolTable = field(default_factory=ToolTable)   # the table G43 reads (identity: stale)
     tool_in_spindle: int = 0
+    parameters: dict[int, float] = field(default_factory=dict)   # G92, G28/G30 ... (var file)
     cancel: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
@@ -114,7 +115,8 @@ def check_text(
     text, name = req.text, req.name
     try:
         program = parse_program(text, name, machine=machine, start_position=req.start_position,
-                                tools=req.tools, tool_in_spindle=req.tool_in_spindle)
+                                tools=req.tools, tool_in_spindle=req.tool_in_spindle,
+                                parameters=req.parameters)
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
@@ -171,6 +173,7 @@ class ProgramLoader:
         self._load_reason = ""  # why the last load was refused
         self._program_cfg: object = None  # configuration and offsets the program was checked with
         self._program_offsets: dict[str, tuple[float, ...]] = {}
+        self._program_parameters: dict[int, float] = {}
         self._program_tools: tuple[ToolTable, int] | None = None
         self.run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
         self._run_plan_ready: RunPlanRequest | None = None  # ... and the one made
@@ -281,6 +284,7 @@ class ProgramLoader:
             offsets=dict(self.m.pos.offsets),
             tools=self.m.tools.table,
             tool_in_spindle=self.m.tools.in_spindle,
+            parameters=dict(self.m.pos.parameters),
         )
 
     def _supersede_load(self) -> None:
@@ -361,6 +365,7 @@ class ProgramLoader:
         self.program_info = info
         self._program_cfg = req.cfg  # what the program and its plan were made for
         self._program_offsets = dict(req.offsets)
+        self._program_parameters = dict(req.parameters)
         self._program_tools = (req.tools, req.tool_in_spindle)
         self._program_text = info.text
         self._program_path = info.path
@@ -398,6 +403,8 @@ class ProgramLoader:
             return "the machine configuration changed since it was loaded"
         if self._program_offsets != self.m.pos.offsets:
             return "the work offsets changed since it was loaded"
+        if self._program_parameters != self.m.pos.parameters:
+            return "G92, G28/G30 or other G-code parameters changed since it was loaded"
         if self._program_tools is None or self._program_tools[0] is not self.m.tools.table:
             return "the tool table changed since it was loaded"
         if self._program_tools[1] != self.m.tools.in_spindle:

@@ -1,0 +1,107 @@
+"""Coordinate systems and offsets as LinuxCNC 2.9 keeps them: G10 L2/L20, G54-G59.3, G92,
+G92.1/.2/.3, G52, G28/G28.1, G30/G30.1, the parameters behind them (#5161-, #5181-, #5210-#5220,
+#5221-...), what a program starts from (the machine's parameters) and what it leaves (OFFSETS
+events with the parameter sets the machine keeps)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.errors import ProgramError
+from planner.interpreter import PERSISTENT_PARAMETERS, parse_program
+from planner.machine import MachineSpec
+from planner.program import EventKind, Program
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
+
+
+def ends(p: Program) -> list[list[float]]:
+    return [[round(v, 6) for v in m.end.tolist()] for m in p.moves]
+
+
+def test_linuxcnc_g52_g92_interaction_parameters() -> None:
+    """LinuxCNC's test prints #5210-#5219 after each code. Its harness keeps parameters in inch
+    user units; read in G21 here, the machine's units are millimetres and the numbers are the same."""
+    folder = DATA / "g52-g92-interaction"
+    text = (folder / "test.ngc").read_text().replace("G20", "G21")
+    got = [e.message for e in parse_program(text).events if e.kind is EventKind.MESSAGE]
+    want = [line.strip() for line in (folder / "expected").read_text().splitlines()
+            if line.strip() and "N....." not in line]
+    assert len(want) == 18 and got == want
+
+
+def test_g10_l2_and_l20_set_systems_and_moves_follow() -> None:
+    p = parse_program("G21 G90\nG10 L2 P1 X100 Y50 Z-10\nG0 X0 Y0 Z0\nG10 L20 P2 X0 Y0\nG55 G0 X1 Y1\n"
+                      "G10 L2 P0 Z5\nG0 Z0\nM2\n")
+    assert ends(p) == [[100, 50, -10], [101, 51, -10], [101, 51, 5]]
+    last = p.parameter_sets[-1]
+    assert (last[5221], last[5222], last[5223]) == (100, 50, -10)            # G54
+    assert (last[5241], last[5242], last[5243], last[5220]) == (100, 50, 5, 2)   # G55, in use
+
+
+def test_g92_g52_and_their_cancels_move_the_program_zero() -> None:
+    p = parse_program("G21 G90\nG0 X10\nG92 X0\nG0 X5\nG92.2\nG0 X5\nG92.3\nG0 X1\nG92.1\nG52 X100\nG0 X0\n"
+                      "M2\n")
+    assert [e[0] for e in ends(p)] == [10, 15, 5, 11, 100]
+
+
+def test_g28_g30_go_to_their_stored_positions_and_g28_1_stores() -> None:
+    p = parse_program("G21 G90\nG0 X10 Y20 Z30\nG28.1\nG0 X0 Y0 Z0\nG28 Z5\nG0 X1 Y1 Z1\nG28\n"
+                      "G30.1\nG0 X0 Y0 Z0\nG30 X3\n", parameters={5181: 1.0, 5182: 2.0, 5183: 3.0})
+    # G28 Z5: through Z5 to the stored Z only; G28 alone: every axis; G30 X3: through X3 to G30's X
+    assert ends(p) == [[10, 20, 30], [0, 0, 0], [0, 0, 5], [0, 0, 30], [1, 1, 1], [10, 20, 30],
+                       [0, 0, 0], [3, 0, 0], [10, 0, 0]]
+
+
+def test_a_program_starts_from_the_machines_parameters() -> None:
+    params = {5210: 1.0, 5211: -5.0, 5161: 7.0, 5381: 300.0}     # G92 X-5 on, G28 X7, G59.3 X300
+    p = parse_program("G21 G90\nG0 X0\nG28 X0\nG59.3 G0 X0\n#1 = #5381\nG54 G0 X#1\nM2\n", parameters=params)
+    assert [e[0] for e in ends(p)] == [-5.0, 7.0, 295.0]
+    machine = replace(MachineSpec.default(), work_offsets={"G54": (1.0, 0.0, 0.0)})
+    p = parse_program("G21 G90\nG0 X0\nM2\n", machine=machine, parameters={5221: 99.0})
+    assert ends(p)[0][0] == 1.0                                      # the machine's G54 counts
+
+
+def test_offsets_events_stop_the_motion_and_carry_every_persistent_parameter() -> None:
+    p = parse_program("G21 G90 F100\nG1 X1\nG10 L2 P3 X7\nG1 X2\nM2\n")
+    (ev,) = [e for e in p.events if e.kind is EventKind.OFFSETS]
+    assert ev.after_move == 0 and ev.stops and "G56" in ev.message
+    assert set(p.parameter_sets[0]) == PERSISTENT_PARAMETERS and p.parameter_sets[0][5261] == 7.0
+
+
+@pytest.mark.parametrize("text, col, words", [
+    ("G10 P1 X1\n", 1, "G10 needs an L word"),
+    ("G10 L1 P1 Z1\n", 5, "G10 L1 (tool table data from the program) is not supported"),
+    ("G10 L2 P10 X1\n", 8, "needs P0-P9"),
+    ("G10 L2 P1 R30\n", 11, "rotation (G10 L2 R) is not supported"),
+    ("G10 L3 P1 X1\n", 5, "not a G10 this control knows"),
+    ("G92 G1 X1 F10\n", 1, "cannot use two G codes that both use axis values (G92 and a motion code)"),
+    ("G21 G41 F10\nG10 L2 P0 X1\n", 1, "with cutter compensation on"),
+])
+def test_refusals(text: str, col: int, words: str) -> None:
+    with pytest.raises(ProgramError) as exc:
+        parse_program(text)
+    (err,) = exc.value.errors
+    assert words in err.message and err.col == col, err
+
+
+@settings(max_examples=80, deadline=None)
+@given(x=st.floats(-100, 100), y=st.floats(-100, 100), gx=st.floats(-50, 50), system=st.integers(1, 9),
+       inch=st.booleans())
+def test_g10_l20_then_the_current_position_reads_the_value(x: float, y: float, gx: float, system: int,
+                                                           inch: bool) -> None:
+    """Whatever the G92 offset, the units and the system: after G10 L20 Pn X.. the position read in
+    that system (#<_x> after selecting it) is the value given."""
+    units = "G20" if inch else "G21"
+    code = ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"][system - 1]
+    text = (f"{units} G90\nG0 X{x:.4f} Y{y:.4f}\nG92 X{gx:.4f}\nG10 L20 P{system} X1.5\n{code}\n"
+            "(debug,#<_x>)\nM2\n")
+    (msg,) = [e.message for e in parse_program(text).events if e.kind is EventKind.MESSAGE]
+    assert float(msg) == pytest.approx(1.5, abs=1e-6)
+    np.testing.assert_allclose(1.5, float(msg), atol=1e-6)
