@@ -160,6 +160,14 @@ class Positions:
         self._offsets_changed()
         return self.m.states.ok("set_work_offset")
 
+    def g92_offset(self) -> np.ndarray:
+        """The G92/G52 offset per axis (#5211-, machine units) when #5210 says it is on."""
+        n = len(self.raw_pos)
+        p = self.parameters
+        if not p.get(5210, 0.0):
+            return np.zeros(n)
+        return np.array([p.get(5211 + "XYZABCUVW".index(a), 0.0) for a in self.m.config.axes])
+
     def apply_parameters(self, values: dict[int, float]) -> None:
         """A program's G10/G92/G52/G28.1/G30.1 reached by the motion (or an MDI block): the
         parameters are kept, G54-G59 become the work offsets. Persisted at once, as LinuxCNC

@@ -96,9 +96,11 @@ class StateMachine:
         return self.m.pos.raw_pos - self.m.pos.home_offset
 
     def work_pos(self) -> np.ndarray:
+        """Machine position minus the active work offset and, when it is on, the G92 offset
+        (what a program reads as its position, as LinuxCNC's display)."""
         return self.machine_pos() - np.asarray(
             self.m.pos.offsets.get(self.m.pos.active_offset, (0.0,) * len(self.m.pos.raw_pos))
-        )
+        ) - self.m.pos.g92_offset()
 
     def refusal(self, action: str) -> str:
         """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",

@@ -715,3 +715,33 @@ def test_spindle_override_scales_the_commanded_speed_within_the_maximum(ctl: Mac
     for bad in (40, 151, float("nan")):
         r = ctl.set_spindle_override(bad)
         assert not r and "50-150 %" in r.reason
+
+
+def test_a_program_leaves_its_offsets_and_parameters_with_the_machine(qapp, config_path: Path,
+                                                                       state_dir: Path) -> None:
+    """G10 L2, G92 and G28.1 take effect where the motion reaches them, are kept in the state
+    folder (the next controller starts from them), and make the loaded program stale."""
+    ctl = make_controller(config_path, state_dir)
+    try:
+        text = "G21 G90 F600\nG0 X1 Y1\nG10 L2 P2 X10 Y20\nG92 X5\nG28.1\nG0 X2\nM2\n"
+        assert ctl.load_program(text, "offsets.ngc", wait=True)
+        assert ctl.cycle_start()
+        run_to_idle(ctl)
+        assert ctl.pos.offsets["G55"][:2] == (10.0, 20.0)
+        params = ctl.pos.parameters
+        assert params[5210] == 1.0 and params[5211] == -4.0 and (params[5161], params[5162]) == (1.0, 1.0)
+        assert "changed since it was loaded" in ctl.loader.program_stale()
+        np.testing.assert_allclose(ctl.reference_position[:2], (-2.0, 1.0))    # X2 with G92: 2 - 4
+        ctl.advance(0.1)
+        assert ctl.work_position[0] == pytest.approx(2.0, abs=1e-3)            # as the program reads it
+        saved = json.loads((state_dir / "parameters.json").read_text())
+        assert saved["5211"] == -4.0
+    finally:
+        ctl.shutdown()
+    again = make_controller(config_path, state_dir, zero=False)
+    try:
+        assert again.pos.parameters[5211] == -4.0 and again.pos.offsets["G55"][:2] == (10.0, 20.0)
+        assert again.mdi("G92.1")
+        assert again.pos.parameters[5210] == 0.0 and again.pos.parameters[5211] == 0.0
+    finally:
+        again.shutdown()
