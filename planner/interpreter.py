@@ -1,16 +1,19 @@
 """G-code interpreter: RS274/NGC text -> Program of exact moves, read the way LinuxCNC 2.9 does.
 
 Supported (everything else is an error with file:line:col, never skipped):
-  G00 G01 G02 G03 (R or I/J/K, P turns), G04 P (s), G17 G18 G19, G20 G21, G90 G91,
-  G90.1 G91.1, G94, G54-G59, G53 (one block, with G00/G01), G61 G64 (P/Q accepted),
-  G28 (via the programmed point to machine zero of the named axes, or of all axes),
-  G40, G41/G42 (radius 0: the path is the programmed path), G43 / G43 H / G43.1 / G43.2 / G49
-  tool length offsets from the tool table (``planner.tools``), G80 (also beside another motion
-  code, which then counts); canned cycles G73 G74 G81 G82 G83 G84 G85 G86 G89 with G98/G99,
-  R, L, P, Q, D (``canned_cycle``); F S T;
-  M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
-  N line numbers, '/' block delete, ( ) and ; comments, % delimiters, Fanuc 'O0001' lines,
-  LinuxCNC expressions [..] and #numbered / #<named> parameters.
+  motion G00 G01 G02 G03 (R or I/J/K, P turns) in G17 G18 G19, G04 P (s), G20 G21, G90 G91,
+  G90.1 G91.1, G53 (one block, with G00/G01), G61 G61.1 G64 (P/Q accepted);
+  feed modes G93 (inverse time) G94 G95 (per revolution), G97;
+  canned cycles G73 G74 G81-G86 G89, G98/G99, G80 (also beside another motion code);
+  coordinate systems G54-G59.3, G10 L2/L20, G92 G92.1 G92.2 G92.3, G52, G28/G28.1, G30/G30.1
+  with LinuxCNC's parameters (``PERSISTENT_PARAMETERS``, OFFSETS events);
+  G40, G41/G42 (radius 0: the programmed path; a tool with a diameter is refused);
+  G43 / G43 H / G43.1 / G43.2 / G49 tool length offsets from the tool table (``planner.tools``);
+  F S T; M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
+  O-words (``planner.oword``: subroutines, subroutine files, if, while, do, repeat, break,
+  continue, return values), expressions, #numbered / #<named> / #<_global> parameters,
+  (MSG,) (DEBUG,) (PRINT,) messages;
+  N line numbers, '/' block delete, ( ) and ; comments, % delimiters, Fanuc 'O0001' lines.
 Set-up as LinuxCNC's reference run: G21 G17 G40 G49 G54 G80 G90 G94 G91.1 G64 G99, motion mode
 none (axis words need a G00-G03 first).
 """
@@ -758,6 +761,21 @@ class _Interpreter:
             add = self.tool_offsets(self.known_tool(int(h), "H")) if h is not None else tuple(words)
             self.set_offset(tlo=tuple(t + a for t, a in zip(self.tlo, add)))
 
+    def check_radius_zero(self, code: int, vals: dict[str, float]) -> None:
+        """G41/G42 run the programmed path, which is what compensation does with a zero-diameter
+        tool (LinuxCNC's reference set-up). A tool with a diameter would be cut a radius off
+        its path: refused until compensation offsets the path."""
+        d = vals.get("D")
+        if d is not None and (d < 0 or d != int(d)):
+            raise _BlockError(f"tool number D{d:g} must be a whole number >= 0", "D")
+        number = int(d) if d is not None else self.tool
+        tool = self.tools.get(number) if self.tools is not None else None
+        if tool is not None and tool.diameter_mm > 0.0:
+            raise _BlockError(
+                f"{_gname(code)} with tool {self.tool_label(number)} of diameter {tool.diameter_mm:g} mm: "
+                "cutter radius compensation that offsets the path is not supported yet; program the tool "
+                "centre path (G40) or set the diameter to 0", "D" if d is not None else _gname(code))
+
     def set_offset(self, work: tuple[float, ...] | None = None, tlo: tuple[float, ...] | None = None) -> None:
         """Change the work offset and/or the tool length offset; moves from now on use both."""
         if work is not None:
@@ -1078,6 +1096,8 @@ class _Interpreter:
             self.work_code = groups[12]
             self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(groups[12]) + 1)
         if 7 in groups:
+            if groups[7] in (410, 420):
+                self.check_radius_zero(groups[7], vals)
             self.comp_code = groups[7]
         if 8 in groups:
             self.tlo_code = groups[8]
