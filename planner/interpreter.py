@@ -9,7 +9,7 @@ Supported (everything else is an error with file:line:col, never skipped):
   with LinuxCNC's parameters (``PERSISTENT_PARAMETERS``, OFFSETS events);
   G40, G41/G42 (radius 0: the programmed path; a tool with a diameter is refused);
   G43 / G43 H / G43.1 / G43.2 / G49 tool length offsets from the tool table (``planner.tools``);
-  F S T; M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
+  polar coordinates @ (distance) ^ (angle) in G17; F S T; M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
   O-words (``planner.oword``: subroutines, subroutine files, if, while, do, repeat, break,
   continue, return values), expressions, #numbered / #<named> / #<_global> parameters,
   (MSG,) (DEBUG,) (PRINT,) messages;
@@ -761,6 +761,29 @@ class _Interpreter:
             add = self.tool_offsets(self.known_tool(int(h), "H")) if h is not None else tuple(words)
             self.set_offset(tlo=tuple(t + a for t, a in zip(self.tlo, add)))
 
+    def polar(self, vals: dict[str, float]) -> None:
+        """LinuxCNC's polar words: @ radius and ^ angle (degrees) about the origin of the
+        program's coordinates in the XY plane, turned into X and Y here. A missing one keeps the
+        current radius or angle; in G91 both are added to the current ones."""
+        if self.plane != 170:
+            raise _BlockError("polar coordinates (@ ^) only in the XY plane (G17)",
+                              "@" if "@" in vals else "^")
+        ix, iy = self.axis_index["X"], self.axis_index["Y"]
+        x = (self.pos[ix] - self.offset[ix]) / self.scale
+        y = (self.pos[iy] - self.offset[iy]) / self.scale
+        radius, theta = math.hypot(x, y), math.atan2(y, x)
+        if self.absolute:
+            radius = vals.pop("@", radius)
+            theta = math.radians(vals.pop("^")) if "^" in vals else theta
+        else:
+            if radius == 0.0:
+                raise _BlockError("incremental motion with polar coordinates is indeterminate at the origin",
+                                  "@" if "@" in vals else "^")
+            radius += vals.pop("@", 0.0)
+            theta += math.radians(vals.pop("^", 0.0))
+        px, py = radius * math.cos(theta), radius * math.sin(theta)
+        vals["X"], vals["Y"] = (px, py) if self.absolute else (px - x, py - y)
+
     def check_radius_zero(self, code: int, vals: dict[str, float]) -> None:
         """G41/G42 run the programmed path, which is what compensation does with a zero-diameter
         tool (LinuxCNC's reference set-up). A tool with a diameter would be cut a radius off
@@ -943,8 +966,18 @@ class _Interpreter:
                 )
             mgroups[g] = c
 
+        polar = "@" in vals or "^" in vals
         axis_words = []
+        if polar:                         # X and Y come from them once the block's modes are set
+            which = "@" if "@" in vals else "^"
+            if "X" in vals or "Y" in vals:
+                raise _BlockError("cannot use polar coordinates (@ ^) with X or Y words", which)
+            if "X" not in self.axis_index or "Y" not in self.axis_index:
+                raise _BlockError("polar coordinates (@ ^) need X and Y axes", which)
+            axis_words = ["X", "Y"]
         for letter in vals:
+            if letter in "@^":
+                continue
             if letter in _AXIS_LETTERS:
                 if letter not in self.axis_index:
                     raise _BlockError(
@@ -1138,6 +1171,8 @@ class _Interpreter:
         elif motion in _CYCLES:
             if g0 == 530:
                 raise _BlockError("G53 needs G00 or G01", "G53")
+            if polar:
+                self.polar(vals)
             self.canned_cycle(motion, previous_motion != motion, vals, axis_words, scale, line_no)
         elif motion is not None:
             if g0 == 530:
@@ -1145,6 +1180,8 @@ class _Interpreter:
                     raise _BlockError("G53 needs G00 or G01", "G53")
                 if not self.absolute:
                     raise _BlockError("G53 cannot be used in incremental mode (G91)", "G53")
+            if polar:
+                self.polar(vals)
             target = self.target(vals, axis_words, scale, g0 == 530)
             if motion in (0, 10):
                 self.straight(target, motion == 0, line_no)

@@ -16,8 +16,9 @@ __all__ = ["LexError", "Params", "compact", "evaluate_brackets", "original_colum
 
 # A word: letter + number with optional sign, digits with optional dot, or a leading dot.
 _NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
-_WORD_RE = re.compile(r"([A-Z])(" + _NUM + r")")
-_LINE_RE = re.compile(r"(?:[A-Z]" + _NUM + r")*")
+# '@' and '^' are LinuxCNC's polar words (radius and angle in the XY plane)
+_WORD_RE = re.compile(r"([A-Z@^])(" + _NUM + r")")
+_LINE_RE = re.compile(r"(?:[A-Z@^]" + _NUM + r")*")
 _COMMENT_RE = re.compile(r"\([^()]*\)")
 
 
@@ -191,7 +192,7 @@ class _Reader:
                 else:
                     self.i = start
                     raise self.fail("parameter reference without a word letter (expected '#...=value')")
-            elif "A" <= ch <= "Z":
+            elif "A" <= ch <= "Z" or ch in "@^":
                 if ch == "O":
                     raise self.fail("an O-word must begin its line")
                 self.i += 1

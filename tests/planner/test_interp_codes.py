@@ -313,3 +313,20 @@ def test_each_work_offset(k):
     m = replace(m, work_offsets=offs)
     p = P(f"G5{4 + k} G0 X1 Y1 Z1", machine=m)
     np.testing.assert_array_equal(p.moves[0].end, [1 + k, 1 + 10 * k, 1 - k])
+
+
+def test_polar_coordinates_as_linuxcnc_documents_them():
+    """@ distance and ^ angle from the XY zero; in G91 both are added to the current ones
+    (LinuxCNC's manual: '@.5 ^90' then 'G91 ^90' three times makes a square)."""
+    assert P("G21 F100\nG1 @1 ^90\n").moves[0].end.tolist() == pytest.approx([0, 1, 0])
+    square = P("G21 F100 G1 @.5 ^90\nG91 ^90\n^90\n^90\n^90\n")
+    np.testing.assert_allclose([m.end[:2] for m in square.moves],
+                               [[0, 0.5], [-0.5, 0], [0, -0.5], [0.5, 0], [0, 0.5]], atol=1e-12)
+    spiral = P("G21 F100 G1 @.5 ^90\nG91 @.5 ^90\n@.5 ^90\n")
+    np.testing.assert_allclose([np.hypot(*m.end[:2]) for m in spiral.moves], [0.5, 1.0, 1.5])
+    offset = P("G21 F100\nG92 X-10\nG1 @2 ^0\n")                       # from the program's zero
+    np.testing.assert_allclose(offset.moves[0].end[:2], [12, 0])
+    for text, words in (("G21 F100\nG1 X1 @2\n", "with X or Y"), ("G21 F100 G91\nG1 ^30\n", "at the origin"),
+                        ("G21 F100 G18\nG1 @1 ^30\n", "only in the XY plane")):
+        with pytest.raises(ProgramError, match=words):
+            P(text)
