@@ -9,7 +9,9 @@ Supported (everything else is an error with file:line:col, never skipped):
   with LinuxCNC's parameters (``PERSISTENT_PARAMETERS``, OFFSETS events);
   G40, G41/G42 (radius 0: the programmed path; a tool with a diameter is refused);
   G43 / G43 H / G43.1 / G43.2 / G49 tool length offsets from the tool table (``planner.tools``);
-  polar coordinates @ (distance) ^ (angle) in G17; F S T; M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09;
+  polar coordinates @ (distance) ^ (angle) in G17; F S T;
+  M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09; M62-M65 and user M100-M199 as the machine
+  configuration defines them ([[outputs]], [[mcodes]]);
   O-words (``planner.oword``: subroutines, subroutine files, if, while, do, repeat, break,
   continue, return values), expressions, #numbered / #<named> / #<_global> parameters,
   (MSG,) (DEBUG,) (PRINT,) messages;
@@ -116,7 +118,12 @@ PERSISTENT_PARAMETERS = (frozenset(range(5161, 5170)) | frozenset(range(5181, 51
 def system_base(code: int) -> int:
     """#5221 for G54, #5241 for G55 ... #5381 for G59.3."""
     return 5221 + 20 * _SYSTEMS.index(code)
-_M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8}
+_M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8,
+            62: 5, 63: 5, 64: 5, 65: 5, **dict.fromkeys(range(100, 200), 10)}
+_M_UNSUPPORTED = {66: "M66 waits on a digital or analog input, which this control does not read yet",
+                  19: "M19 orients the spindle, which this machine's spindle cannot",
+                  67: "M67 sets an analog output synchronised with motion; there are no analog outputs",
+                  68: "M68 sets an analog output; there are no analog outputs"}
 _WORD_LETTERS = set("FSTPQRIJKDHL")
 _AXIS_LETTERS = "XYZABC"
 # plane code -> (name, first, second, normal, centre letter of first, of second, letter not allowed)
@@ -299,6 +306,9 @@ class _Interpreter:
         self.current_line = 0
         self.params.system = self.system_parameter
         self.subroutine_dirs: tuple[str, ...] = tuple(subroutine_dirs) or machine.subroutine_paths()
+        # digital outputs (M62-M65 P) and user M-codes M100-M199 the machine configuration defines
+        self.outputs: frozenset[int] = frozenset(getattr(machine, "outputs", ()) or ())
+        self.mcodes: dict[int, tuple[str, str, int, bool]] = dict(getattr(machine, "mcodes", {}) or {})
         self.sub_files: dict[str, tuple[str, list[str], Structure]] = {}
 
     # ------------------------------------------------------------------ driver
@@ -761,6 +771,11 @@ class _Interpreter:
             add = self.tool_offsets(self.known_tool(int(h), "H")) if h is not None else tuple(words)
             self.set_offset(tlo=tuple(t + a for t, a in zip(self.tlo, add)))
 
+    def output_event(self, number: int, on: bool, line_no: int, after: int, text: str) -> None:
+        """An OUTPUT event: value = number for on, -(number + 1) for off."""
+        self.events.append(Event(EventKind.OUTPUT, line_no, after, float(number if on else -(number + 1)),
+                                 f"{text}: output {number} {'on' if on else 'off'}"))
+
     def polar(self, vals: dict[str, float]) -> None:
         """LinuxCNC's polar words: @ radius and ^ angle (degrees) about the origin of the
         program's coordinates in the XY plane, turned into X and Y here. A missing one keeps the
@@ -959,7 +974,12 @@ class _Interpreter:
         for c in mcodes:
             g = _M_GROUP.get(c)
             if g is None:
-                raise _BlockError(f"M{c} is not supported", f"M{c}")
+                why = _M_UNSUPPORTED.get(c)
+                raise _BlockError(f"M{c} is not supported" + (f" ({why})" if why else ""), f"M{c}")
+            if g == 10 and c not in self.mcodes:
+                raise _BlockError(f"M{c} is a user M-code this machine does not define (add it to "
+                                  "[[mcodes]] in the machine configuration: a pause with a message, an "
+                                  "output or nothing)", f"M{c}")
             if g in mgroups and not (g == 8 and {mgroups[g], c} == {7, 8}):
                 raise _BlockError(
                     f"M{mgroups[g]} and M{c} are in the same modal group (one per block)", f"M{c}"
@@ -1032,7 +1052,7 @@ class _Interpreter:
                 users = "G02/G03 or canned cycle" if letter == "R" else "G02/G03"
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
         if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640
-                                or motion in _CYCLE_TAKES_P):
+                                or motion in _CYCLE_TAKES_P or 5 in mgroups):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64, G82, G84, G86, G89)",
                               "P")
         if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q:
@@ -1112,6 +1132,25 @@ class _Interpreter:
         m8 = [c for c in mcodes if c in (7, 8, 9)]
         for c in m8:
             ev.append(Event(EventKind.COOLANT, line_no, after, {7: 1.0, 8: 2.0, 9: 0.0}[c], f"M0{c}"))
+        m5 = mgroups.get(5)
+        if m5 is not None:            # M62/M64 on, M63/M65 off (all at this point of the path)
+            p = vals.get("P")
+            if p is None or p != int(p) or int(p) not in self.outputs:
+                known = ", ".join(f"P{k}" for k in sorted(self.outputs)) or "none: add [[outputs]]"
+                raise _BlockError(f"M{m5} needs P with a configured output number ({known})",
+                                  "P" if p is not None else f"M{m5}")
+            self.output_event(int(p), m5 in (62, 64), line_no, after, f"M{m5}")
+        user = mgroups.get(10)
+        if user is not None:
+            action, message, output, on = self.mcodes[user]
+            text = f"M{user}" + (f": {message}" if message else "")
+            if action == "pause":
+                ev.append(Event(EventKind.PAUSE, line_no, after, 0.0, text))
+            elif action == "output":
+                self.output_event(output, on, line_no, after, text)
+            else:
+                ev.append(Event(EventKind.MESSAGE, line_no, after, 0.0,
+                                f"{text} (does nothing on this machine)"))
         if g0 == 40:
             p = vals.get("P")
             if p is None:

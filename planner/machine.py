@@ -69,6 +69,14 @@ class MachineSpec:
     planner: PlannerSettings = field(default_factory=PlannerSettings)
     work_offsets: dict[str, tuple[float, ...]] = field(default_factory=dict)
     config_dir: str = ""        # folder of the configuration file ("" when not read from a file)
+    # digital outputs: number -> (drive index, bit, name); user M-codes: code -> (action,
+    # message, output number, on)
+    output_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
+    mcodes: dict[int, tuple[str, str, int, bool]] = field(default_factory=dict)
+
+    @property
+    def outputs(self) -> tuple[int, ...]:
+        return tuple(sorted(self.output_bits))
 
     def subroutine_paths(self) -> tuple[str, ...]:
         """The subroutine folders, relative ones taken from the configuration file's folder."""
@@ -186,8 +194,28 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
         offsets[key] = tuple(value)
     where = loc.where
     config_dir = os.path.dirname(os.path.abspath(where)) if where and not where.startswith("<") else ""
+    output_bits: dict[int, tuple[int, int, str]] = {}
+    for i, o in enumerate(valid["outputs"]):
+        if o["number"] in output_bits:
+            raise loc.fail(("outputs", i, "number"), f"output {o['number']} is defined twice")
+        if o["drive"] >= len(axes):
+            raise loc.fail(("outputs", i, "drive"),
+                           f"{o['drive']} must be below the axis count {len(axes)}")
+        if any((d, b) == (o["drive"], o["bit"]) for d, b, _ in output_bits.values()):
+            raise loc.fail(("outputs", i, "bit"),
+                           f"bit {o['bit']} of drive {o['drive']} is already an output")
+        output_bits[o["number"]] = (o["drive"], o["bit"], o["name"])
+    mcodes: dict[int, tuple[str, str, int, bool]] = {}
+    for i, mc in enumerate(valid["mcodes"]):
+        if mc["code"] in mcodes:
+            raise loc.fail(("mcodes", i, "code"), f"M{mc['code']} is defined twice")
+        out = mc["output"]
+        if mc["action"] == "output" and out not in output_bits:
+            raise loc.fail(("mcodes", i, "output"), f"action \"output\" needs the number of an [[outputs]] "
+                           f"table ({', '.join(map(str, sorted(output_bits))) or 'none defined'})")
+        mcodes[mc["code"]] = (mc["action"], mc["message"], -1 if out is None else out, mc["on"])
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
-                       work_offsets=offsets, config_dir=config_dir)
+                       work_offsets=offsets, config_dir=config_dir, output_bits=output_bits, mcodes=mcodes)
 
 
 def load_machine(path: str | Path) -> MachineSpec:

@@ -233,6 +233,7 @@ class EventKind(enum.Enum):
     TOOL_SET = "tool_set"  # M61 Q: the tool now in the spindle, without a change (value: number)
     MESSAGE = "message"  # (MSG,...), (DEBUG,...), (PRINT,...): text for the operator; not stopping
     OFFSETS = "offsets"  # G10, G92, G52, G28.1 ...: Program.parameter_sets[value] is what the machine keeps
+    OUTPUT = "output"  # M62-M65, a user M-code: value = output number (on) or -(number + 1) (off)
 
 
 STOPPING_EVENTS = frozenset(
@@ -245,6 +246,7 @@ STOPPING_EVENTS = frozenset(
         EventKind.SPINDLE,
         EventKind.TOOL_SET,
         EventKind.OFFSETS,     # LinuxCNC synchronises the motion on G10 and G92 too
+        EventKind.OUTPUT,      # the output switches where the path is (M62/M63 as M64/M65)
     }
 )
 

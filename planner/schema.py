@@ -89,6 +89,22 @@ MACHINE_FILE = Table("", tables=(
         Key("subroutine_dirs", "strs", []),
     )),
     Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
+    # digital outputs a program switches (M62-M65 P<number>): a bit of a drive's 0x60FE:1
+    # (bits 0 and 1 of the spindle drive switch the spindle)
+    Table("outputs", (
+        Key("number", "int", REQUIRED, 0, 63),
+        Key("drive", "int", REQUIRED, 0, 63),
+        Key("bit", "int", REQUIRED, 0, 31),
+        Key("name", "str", ""),
+    ), array=True),
+    # user M-codes M100-M199: what each does on this machine
+    Table("mcodes", (
+        Key("code", "int", REQUIRED, 100, 199),
+        Key("action", "str", REQUIRED, choices=("pause", "output", "ignore")),
+        Key("message", "str", ""),
+        Key("output", "int", None, 0, 63),
+        Key("on", "bool", True),
+    ), array=True),
     Table("homing", (
         Key("required", "bool", True),
         Key("method", "str", "set_here", choices=("set_here", "drive")),

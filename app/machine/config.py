@@ -204,6 +204,10 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         if c["spindle_drive"] >= n:
             raise loc.fail(("controller", "spindle_drive"),
                            f"{c['spindle_drive']} must be below the axis count {n}")
+        for i, o in enumerate(valid["outputs"]):
+            if o["drive"] == c["spindle_drive"] and o["bit"] in (0, 1):
+                raise loc.fail(("outputs", i, "bit"), f"bits 0 and 1 of drive {o['drive']} switch the "
+                               "spindle ([controller] spindle_drive): use bit 2 or above")
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
     h = valid["homing"]
@@ -318,7 +322,16 @@ def config_to_toml(config: MachineConfig) -> str:
             f"interpolation = {_fmt(m.planner.interpolation)}"]
     if m.planner.subroutine_dirs:
         out.append(f"subroutine_dirs = {_fmt(list(m.planner.subroutine_dirs))}")
-    out += ["", "[offsets]"]
+    out += [""]
+    for number, (drive, bit, name) in sorted(m.output_bits.items()):
+        out += ["[[outputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",
+                f"name = {_fmt(name)}", ""]
+    for code, (action, message, output, on) in sorted(m.mcodes.items()):
+        out += ["[[mcodes]]", f"code = {code}", f"action = {_fmt(action)}", f"message = {_fmt(message)}"]
+        if output >= 0:
+            out.append(f"output = {output}")
+        out += [f"on = {_fmt(on)}", ""]
+    out += ["[offsets]"]
     for name in WORK_OFFSET_NAMES:
         out.append(f"{name} = {_fmt([float(v) for v in m.offset(name)])}")
     h = config.homing

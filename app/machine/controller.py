@@ -92,6 +92,7 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
+from app.machine.outputs import DigitalOutputs
 from app.machine.program_load import ProgramLoader
 from app.machine.program_run import ProgramRunner
 from app.machine.spindle import SpindleControl
@@ -167,6 +168,7 @@ class MachineController(QObject):
         self.conn.restore_persisted()
         self.run = ProgramRunner(self)
         self.spindle_ctl = SpindleControl(self)
+        self.outputs = DigitalOutputs(self)
         self.tools = ToolControl(self)
         self.loader = ProgramLoader(self)
         self.stream = Streamer(self)

@@ -394,6 +394,10 @@ class Streamer:
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))
             self.release(job)
+        elif kind == "output":                   # M62-M65, a user M-code: the output switches here
+            number = int(p.value) if p.value >= 0 else -int(p.value) - 1
+            if not self.m.outputs.set_output(number, p.value >= 0):
+                self.release(job)
         elif kind == "offsets":                  # G10, G92, G52, G28.1 ...: the machine keeps them
             sets = job.plan.program.parameter_sets
             if 0 <= int(p.value) < len(sets):

@@ -167,6 +167,11 @@ class ManualMotion:
                     res = self.m.tools.set_tool_in_spindle(int(ev.value))
                     if not res:
                         return self.m.states.refuse("mdi", res.reason)
+                elif ev.kind is EventKind.OUTPUT:      # M64 P1 ... typed in MDI
+                    number = int(ev.value) if ev.value >= 0 else -int(ev.value) - 1
+                    why = self.m.outputs.set_output(number, ev.value >= 0)
+                    if why:
+                        return self.m.states.refuse("mdi", why)
                 elif ev.kind is EventKind.OFFSETS:     # G10, G92, G52, G28.1 ... typed in MDI
                     self.m.pos.apply_parameters(prog.parameter_sets[int(ev.value)])
                 elif ev.kind is EventKind.END:  # M2/M30: the end of a program: spindle off, reset

@@ -41,8 +41,7 @@ class SpindleControl:
         if self.m.worker is not None:
             bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
             try:
-                with self.m._lock:
-                    self.m.worker.set_digital_output(self.m.config.controller.spindle_drive, bits)
+                self.m.outputs.set_bits(self.m.config.controller.spindle_drive, 0b11, bits)
             except Exception as exc:  # noqa: BLE001
                 if self.m.stream.job is not None and sp.on:
                     self.m.alarm_log.alarm_stop(f"spindle output failed: {exc}", "spindle", "spindle")

@@ -187,6 +187,7 @@ class StateMachine:
             if self.state is not MachineState.ALARM:
                 return self.refuse("reset", f"machine is {self.state.label.lower()}")
             self.m.spindle_ctl.stop_spindle()
+            self.m.outputs.all_off()
             self.set_state(MachineState.IDLE, "reset")
             return self.ok("reset")
         if st is MachineState.IDLE:
@@ -194,6 +195,7 @@ class StateMachine:
             self.m.stream.line = 0
             self.m.lineChanged.emit(0)
             self.m.spindle_ctl.stop_spindle()      # reset means everything off
+            self.m.outputs.all_off()
             return self.ok("reset")
         return self.refuse("reset", f"reset not possible: machine is {st.label.lower()}")
 
@@ -206,6 +208,7 @@ class StateMachine:
         self.m.pos.homing_queue.clear()
         self.m.pos.homing_axis = -1
         self.m.spindle_ctl.stop_spindle()
+        self.m.outputs.all_off()
         if self.state is not MachineState.ESTOP:
             self.set_state(MachineState.ESTOP, reason)
 

@@ -745,3 +745,33 @@ def test_a_program_leaves_its_offsets_and_parameters_with_the_machine(qapp, conf
         assert again.pos.parameters[5210] == 0.0 and again.pos.parameters[5211] == 0.0
     finally:
         again.shutdown()
+
+
+def test_program_outputs_share_the_drive_word_with_the_spindle_and_go_off_on_estop(
+        qapp, tmp_path: Path, state_dir: Path) -> None:
+    """M64/M65 and a user M-code switch their bit of 0x60FE:1 where the motion reaches them,
+    next to the spindle's bits of the same drive; E-stop switches them off."""
+    from resources import shipped_machine
+
+    config = tmp_path / "outputs.toml"
+    config.write_text(shipped_machine("xyz_mill").read_text(encoding="utf-8") +
+                      '\n[[outputs]]\nnumber = 1\ndrive = 0\nbit = 4\nname = "vacuum"\n'
+                      '[[mcodes]]\ncode = 110\naction = "output"\noutput = 1\non = false\n', encoding="utf-8")
+    ctl = make_controller(config, state_dir)
+    try:
+        def word() -> int:
+            ctl.advance(0.01)
+            return ctl.worker.snapshot().digital_outputs[0]
+
+        assert ctl.mdi("M3 S1000") and word() == 0b00001
+        assert ctl.load_program("G21 G90 F600\nG1 X1\nM64 P1\nG1 X2\nM2\n", "out.ngc", wait=True)
+        assert ctl.cycle_start()
+        run_to_idle(ctl)
+        assert word() == 0b10000                    # program end: spindle off, the vacuum stays on
+        assert ctl.mdi("M3 S1000") and word() == 0b10001
+        assert ctl.mdi("M110") and word() == 0b00001   # the user M-code switches it off
+        assert ctl.mdi("M64 P1") and word() == 0b10001
+        ctl.estop("test")
+        assert word() == 0b00000
+    finally:
+        ctl.shutdown()

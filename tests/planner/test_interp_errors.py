@@ -53,7 +53,7 @@ def errors_of(text: str, **kw):
         ("G41.1 D1", "G41.1 is not supported (G41.1 dynamic cutter compensation)", 1, 1),
         ("G1.5 X1", "unknown G code G1.5", 1, 1),
         ("M99", "M99 is not supported", 1, 1),
-        ("M62 P1", "M62 is not supported", 1, 1),
+        ("M66 P1 L0", "M66 is not supported", 1, 1),
         ("M1.5", "unknown M code", 1, 1),
         ("M3 M5", "M3 and M5 are in the same modal group", 1, 4),
         ("M0 M2", "M0 and M2 are in the same modal group", 1, 4),
