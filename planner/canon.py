@@ -7,7 +7,13 @@ Schema of ../shared/gcode/README.md, one JSON object per line:
 Millimetres and degrees, coordinates in the work coordinate system active for the move
 (machine position minus the work offset), arc centre absolute, rotation = +/- turns
 (+ counter-clockwise, G03). LinuxCNC names the G18 plane "XZ" (first axis Z).
-Only motion is written: zero-length moves do not exist in a Program (they are dropped).
+Zero-length moves do not exist in a Program (they are dropped). ``cnc-plan --canon`` also writes
+LinuxCNC's offset calls, where the offsets change:
+    {"line": 12, "call": "set_g5x_offset", "args": [system 1-9, x, y, z, a, b, c, u, v, w]}
+    {"line": 13, "call": "set_g92_offset", "args": [x, y, z, a, b, c, u, v, w]}
+    {"line": 0,  "call": "set_xy_rotation", "args": [0.0]}
+    {"line": 14, "call": "tool_offset", "args": [x, y, z, a, b, c, u, v, w]}
+in machine units; the motion stays in program coordinates (the offsets taken off), as LinuxCNC's.
 """
 
 from __future__ import annotations
@@ -25,14 +31,41 @@ _CANON_AXES = ("X", "Y", "Z", "A", "B", "C", "U", "V", "W")
 _PLANE_NAMES = {"XY": "XY", "ZX": "XZ", "YZ": "YZ"}
 
 
-def canon_records(program: Program) -> list[dict[str, Any]]:
-    """The program's moves as canonical-call dicts, in order."""
+def _offset_records(program: Program, cols: list[int]) -> dict[int, list[dict[str, Any]]]:
+    """LinuxCNC's offset calls by the move they come before: set_g5x_offset (system 1-9 and
+    nine values), set_g92_offset, tool_offset, each when it changes (all of them at the start,
+    with set_xy_rotation 0)."""
+    out: dict[int, list[dict[str, Any]]] = {}
+    last: tuple[Any, ...] | None = None
+
+    def nine(values: tuple[float, ...]) -> list[float]:
+        return [float(values[c]) if c >= 0 else 0.0 for c in cols]
+
+    for first, line, system, work, g92, tlo in program.offset_parts:
+        recs = out.setdefault(first, [])
+        if last is None or (system, work) != (last[0], last[1]):
+            recs.append({"line": line, "call": "set_g5x_offset", "args": [system, *nine(work)]})
+        if last is None or g92 != last[2]:
+            recs.append({"line": line, "call": "set_g92_offset", "args": nine(g92)})
+        if last is None:
+            recs.append({"line": line, "call": "set_xy_rotation", "args": [0.0]})
+        if last is None or tlo != last[3]:
+            recs.append({"line": line, "call": "tool_offset", "args": nine(tlo)})
+        last = (system, work, g92, tlo)
+    return out
+
+
+def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any]]:
+    """The program's moves as canonical-call dicts, in order; with ``offsets`` also LinuxCNC's
+    offset calls (set_g5x_offset, set_g92_offset, set_xy_rotation, tool_offset) where they change."""
     cols = [program.axes.index(a) if a in program.axes else -1 for a in _CANON_AXES]
-    offsets = program.move_offsets
+    offsets_before = _offset_records(program, cols) if offsets else {}
+    move_offsets = program.move_offsets
     records: list[dict[str, Any]] = []
     for i, move in enumerate(program.moves):
+        records.extend(offsets_before.pop(i, ()))
         end = move.end.tolist()
-        off = offsets[i].tolist() if offsets is not None else [0.0] * len(end)
+        off = move_offsets[i].tolist() if move_offsets is not None else [0.0] * len(end)
         wcs = [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
         arc = move.arc
         if arc is None:
@@ -52,15 +85,17 @@ def canon_records(program: Program) -> list[dict[str, Any]]:
         ]
         records.append({"line": move.line, "call": "arc_feed", "args": args,
                         "plane": _PLANE_NAMES[arc.plane]})
+    for rest in offsets_before.values():       # changes after the last move
+        records.extend(rest)
     return records
 
 
-def write_canon(program: Program, path: str | os.PathLike[str]) -> None:
-    """Write canon_records(program) as JSONL (``planner.files``: atomically for a file, directly
-    to a device, a pipe or ``-``)."""
+def write_canon(program: Program, path: str | os.PathLike[str], offsets: bool = True) -> None:
+    """Write canon_records(program, offsets) as JSONL (``planner.files``: atomically for a file,
+    directly to a device, a pipe or ``-``)."""
 
     def write(fh: BinaryIO) -> None:
-        for rec in canon_records(program):
+        for rec in canon_records(program, offsets):
             fh.write(json.dumps(rec).encode("utf-8"))
             fh.write(b"\n")
 

@@ -296,6 +296,9 @@ class _Interpreter:
         self.offset_changes: list[tuple[int, tuple[float, ...]]] = [(0, self.offset)]  # (first move, offset)
         self.events: list[Event] = []
         self.work_code = 540
+        # each change of an offset part, for --canon: (first move, line, system 1-9, G5x, G92, tool)
+        self.offset_parts: list[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
+                                      tuple[float, ...]]] = [(0, 0, 1, self.work, self.g92, self.tlo)]
         self.comp_code = 400
         self.tlo_code = 490
         self.modal_changes: list[tuple[int, str]] = [(0, self.modal_text())]
@@ -823,6 +826,8 @@ class _Interpreter:
         offset = tuple(w + g + t for w, g, t in zip(self.work, self.g92, self.tlo))
         self.offset = offset
         first = len(self.recs)
+        self.offset_parts.append((first, self.current_line, _SYSTEMS.index(self.work_code) + 1, self.work,
+                                  self.g92, self.tlo))
         if self.offset_changes[-1][0] == first:
             self.offset_changes[-1] = (first, offset)
         else:
@@ -860,6 +865,7 @@ class _Interpreter:
             line_count=line_count,
             modal=tuple(self.modal_changes),
             parameter_sets=tuple(self.parameter_sets),
+            offset_parts=tuple(self.offset_parts),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1164,8 +1170,8 @@ class _Interpreter:
         if 8 in groups:
             self.tool_length(groups[8], vals, axis_words_offset, scale)
         if 12 in groups:
-            self.set_offset(work=self.work_offsets[groups[12]])
             self.work_code = groups[12]
+            self.set_offset(work=self.work_offsets[groups[12]])
             self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(groups[12]) + 1)
         if 7 in groups:
             if groups[7] in (410, 420):

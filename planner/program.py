@@ -285,6 +285,10 @@ class Program:
     # the persistent parameters (planner.interpreter.PERSISTENT_PARAMETERS) after each OFFSETS
     # event, by the event's value
     parameter_sets: tuple[dict[int, float], ...] = ()
+    # the offsets in parts, as LinuxCNC's canonical calls set them: (first move, line,
+    # coordinate system 1-9, G5x offset, G92 offset, tool length offset), machine units
+    offset_parts: tuple[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
+                              tuple[float, ...]], ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

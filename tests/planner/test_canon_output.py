@@ -20,7 +20,10 @@ def test_schema_and_file(tmp_path):
     write_canon(p, out)
     lines = out.read_text().splitlines()
     recs = [json.loads(line) for line in lines]
-    assert recs == canon_records(p)
+    assert recs == canon_records(p, offsets=True)
+    assert [r["call"] for r in recs[:4]] == ["set_g5x_offset", "set_g92_offset", "set_xy_rotation",
+                                             "tool_offset"]
+    recs = recs[4:]                  # the offsets at the start; the motion follows
     assert not list(tmp_path.glob("*.tmp"))
     assert [r["call"] for r in recs] == ["straight_traverse", "straight_feed", "arc_feed", "arc_feed"]
     assert [r["line"] for r in recs] == [1, 2, 3, 4]
@@ -62,3 +65,20 @@ def test_rotary_axes_columns():
     assert r0["args"] == [0.0, 1.0, 2.0, -10.0, 0.0, 30.0, 0.0, 0.0, 0.0]
     assert r1["plane"] == "YZ" and r1["args"][5] == 0.0  # normal axis X does not exist
     assert r1["args"][6:] == [-10.0, 0.0, 60.0, 0.0, 0.0, 0.0]
+
+
+def test_offset_calls_where_the_offsets_change_motion_in_program_coordinates():
+    p = parse_program("G21 G90\nG10 L2 P2 X100 Y5\nG55 G0 X1\nG92 X0\nG0 X2\nG43.1 Z5\nG0 Z1\nG54 G0 X0\n")
+    recs = [(r["line"], r["call"], r["args"][:4]) for r in canon_records(p, offsets=True) if r["line"]]
+    assert recs == [
+        (3, "set_g5x_offset", [2, 100.0, 5.0, 0.0]),
+        (3, "straight_traverse", [1.0, -5.0, 0.0, 0.0]),     # Y stays where the machine is
+        (4, "set_g92_offset", [1.0, 0.0, 0.0, 0.0]),
+        (5, "straight_traverse", [2.0, -5.0, 0.0, 0.0]),
+        (6, "tool_offset", [0.0, 0.0, 5.0, 0.0]),
+        (7, "straight_traverse", [2.0, -5.0, 1.0, 0.0]),
+        (8, "set_g5x_offset", [1, 0.0, 0.0, 0.0]),
+        (8, "straight_traverse", [0.0, 0.0, 1.0, 0.0]),
+    ]
+    machine = [m.end.tolist() for m in p.moves]
+    assert machine == [[101.0, 0.0, 0.0], [103.0, 0.0, 0.0], [103.0, 0.0, 6.0], [1.0, 0.0, 6.0]]

@@ -74,7 +74,8 @@ def test_samples_csv_canon_and_plot_files(tmp_path):
     rows = csv.read_text().splitlines()
     assert rows[0] == "t,X,Y,Z,s,line" and len(rows) == n + 1
     calls = [json.loads(x) for x in canon.read_text().splitlines()]
-    assert [c["call"] for c in calls] == ["straight_traverse"] + ["arc_feed"] * 6
+    offsets = ["set_g5x_offset", "set_g92_offset", "set_xy_rotation", "tool_offset"]   # at the start
+    assert [c["call"] for c in calls] == offsets + ["straight_traverse"] + ["arc_feed"] * 6
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert png.stat().st_size > 10_000
     assert not list(tmp_path.glob("*.tmp*"))
@@ -119,7 +120,7 @@ def test_plain_summary_and_canon_alone(tmp_path, capsys):
     assert "7 moves" in capsys.readouterr().out
     out = tmp_path / "c.jsonl"
     assert main([str(FIG9), "--canon", str(out)]) == 0  # no planning needed for --canon alone
-    assert len(out.read_text().splitlines()) == 7
+    assert len(out.read_text().splitlines()) == 4 + 7        # the offsets at the start, the moves
 
 
 def test_config_soft_limits_are_checked_on_the_whole_path(tmp_path, capsys) -> None:
