@@ -5,6 +5,7 @@ Supported (everything else is an error with file:line:col, never skipped):
   G90.1 G91.1, G53 (one block, with G00/G01), G61 G61.1 G64 (P/Q accepted);
   feed modes G93 (inverse time) G94 G95 (per revolution), G97;
   canned cycles G73 G74 G81-G86 G89, G98/G99, G80 (also beside another motion code);
+  tool data G10 L1/L10/L11 (TOOL_DATA events);
   coordinate systems G54-G59.3, G10 L2/L20, G92 G92.1 G92.2 G92.3, G52, G28/G28.1, G30/G30.1
   with LinuxCNC's parameters (``PERSISTENT_PARAMETERS``, OFFSETS events);
   G40, G41/G42 (radius 0: the programmed path; a tool with a diameter is refused);
@@ -26,6 +27,7 @@ import math
 import os
 import re
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -50,7 +52,7 @@ from planner.program import (
     _make_move,
     spiral_length_mm,
 )
-from planner.tools import ToolTable
+from planner.tools import Tool, ToolTable
 
 __all__ = ["parse_program", "parse_file", "MAX_ERRORS"]
 
@@ -237,6 +239,7 @@ class _Interpreter:
         self.params.numbered[_P_SYSTEM] = 1.0
         # parameter sets to hand to the machine when the program passes them (G10, G92, G28.1 ...)
         self.parameter_sets: list[dict[int, float]] = []
+        self.tool_sets: list[Tool] = []      # tools changed by G10 L1/L10/L11, by TOOL_DATA event
         if start_position is None:
             start = [0.0] * n
         else:
@@ -866,6 +869,7 @@ class _Interpreter:
             modal=tuple(self.modal_changes),
             parameter_sets=tuple(self.parameter_sets),
             offset_parts=tuple(self.offset_parts),
+            tool_sets=tuple(self.tool_sets),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1504,8 +1508,8 @@ class _Interpreter:
                 raise _BlockError("G10 needs an L word (L2 or L20: coordinate system; L1, L10, L11: tool "
                                   "table)", "G10")
             if l_word in (1, 10, 11):
-                raise _BlockError(f"G10 L{l_word:g} (tool table data from the program) is not supported: set "
-                                  "tools on the Tools page", "L")
+                self.g10_tool(int(l_word), vals, axis_words, scale, line_no)
+                return
             if l_word not in (2, 20):
                 raise _BlockError(f"G10 L{l_word:g} is not a G10 this control knows (L2, L20)", "L")
             p = vals.get("P")
@@ -1559,6 +1563,43 @@ class _Interpreter:
             num[_P_G92_ON] = 1.0
             self.set_offset()
             self.parameters_changed(line_no, "G92.3: axis offsets restored")
+
+    def g10_tool(self, l_word: int, vals: dict[str, float], axis_words: list[str], scale: float,
+                 line_no: int) -> None:
+        """G10 L1 (tool data as given: offsets, R = radius), L10 (offsets so that the current
+        position reads the given values with that tool), L11 (the same in G59.3, without G92),
+        as LinuxCNC 2.9; later G43s use them, and the machine keeps them (TOOL_DATA events)."""
+        p = vals.get("P")
+        if p is None or p != int(p) or p < 1:
+            raise _BlockError(f"G10 L{l_word} needs P with the tool number (1 or more)", "P")
+        number = int(p)
+        if self.tools is None:
+            self.tools = ToolTable()
+        tool = self.tools.get(number)
+        if tool is None:
+            raise _BlockError(f"G10 L{l_word} P{number}: tool T{number} is not in the tool table (add it "
+                              "on the Tools page first)", "P")
+        if l_word == 11:
+            work, g92 = self.work_offsets[593], (0.0,) * self.n
+        else:
+            work, g92 = self.work, self.g92
+        for letter in axis_words:
+            i = self.axis_index[letter]
+            given = vals[letter] if self.rotary[i] else vals[letter] * scale
+            value = given if l_word == 1 else self.pos[i] - work[i] - g92[i] - given
+            tool = tool.with_offset(letter, value)
+        if "R" in vals:
+            if vals["R"] < 0:
+                raise _BlockError(f"G10 L{l_word} R{vals['R']:g}: the tool radius cannot be negative", "R")
+            tool = replace(tool, diameter_mm=2.0 * vals["R"] * scale)
+        try:
+            self.tools = self.tools.with_tool(tool)
+        except PlannerError as exc:
+            raise _BlockError(str(exc).split(": ", 1)[-1], "P") from None
+        self.tool_sets.append(tool)
+        text = f"G10 L{l_word}: {tool.label()} offsets set"
+        self.events.append(Event(EventKind.TOOL_DATA, line_no, len(self.ends) - 1,
+                                 float(len(self.tool_sets) - 1), text))
 
     def set_g92(self, g92: tuple[float, ...], on: bool) -> None:
         self.g92 = g92

@@ -16,6 +16,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -234,6 +235,7 @@ class EventKind(enum.Enum):
     MESSAGE = "message"  # (MSG,...), (DEBUG,...), (PRINT,...): text for the operator; not stopping
     OFFSETS = "offsets"  # G10, G92, G52, G28.1 ...: Program.parameter_sets[value] is what the machine keeps
     OUTPUT = "output"  # M62-M65, a user M-code: value = output number (on) or -(number + 1) (off)
+    TOOL_DATA = "tool_data"  # G10 L1/L10/L11: Program.tool_sets[value] is the tool as it is now
 
 
 STOPPING_EVENTS = frozenset(
@@ -247,6 +249,7 @@ STOPPING_EVENTS = frozenset(
         EventKind.TOOL_SET,
         EventKind.OFFSETS,     # LinuxCNC synchronises the motion on G10 and G92 too
         EventKind.OUTPUT,      # the output switches where the path is (M62/M63 as M64/M65)
+        EventKind.TOOL_DATA,
     }
 )
 
@@ -289,6 +292,8 @@ class Program:
     # coordinate system 1-9, G5x offset, G92 offset, tool length offset), machine units
     offset_parts: tuple[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
                               tuple[float, ...]], ...] = ()
+    # tools changed by G10 L1/L10/L11, by the TOOL_DATA event's value (planner.tools.Tool)
+    tool_sets: tuple[Any, ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

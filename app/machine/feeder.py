@@ -398,6 +398,11 @@ class Streamer:
             number = int(p.value) if p.value >= 0 else -int(p.value) - 1
             if not self.m.outputs.set_output(number, p.value >= 0):
                 self.release(job)
+        elif kind == "tool_data":                # G10 L1/L10/L11: the tool table takes the tool
+            tools = job.plan.program.tool_sets
+            if 0 <= int(p.value) < len(tools):
+                self.m.tools.set_by_program(tools[int(p.value)])
+            self.release(job)
         elif kind == "offsets":                  # G10, G92, G52, G28.1 ...: the machine keeps them
             sets = job.plan.program.parameter_sets
             if 0 <= int(p.value) < len(sets):

@@ -118,6 +118,16 @@ class ToolControl:
         in_spindle = self.in_spindle if self.in_spindle in table else 0
         return self._commit(table, in_spindle, "import_tool_table")
 
+    def set_by_program(self, tool: Tool) -> None:
+        """G10 L1/L10/L11 reached by the motion (or typed in MDI): the table takes the tool as
+        the program set it, and keeps it (tools.tbl), as LinuxCNC writes its tool table."""
+        try:
+            table = self.table.with_tool(tool)
+        except PlannerError as exc:
+            self.m.alarm_log.raise_alarm("tools", f"G10: {exc}", Severity.WARNING, "tools")
+            return
+        self._commit(table, self.in_spindle, "g10_tool")
+
     def loaded_by_program(self, number: int) -> None:
         """M6 done or M61 reached: the program put ``number`` in the spindle."""
         if number != self.in_spindle:

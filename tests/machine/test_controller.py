@@ -775,3 +775,17 @@ def test_program_outputs_share_the_drive_word_with_the_spindle_and_go_off_on_est
         assert word() == 0b00000
     finally:
         ctl.shutdown()
+
+
+def test_g10_tool_data_reaches_the_tool_table(ctl: MachineController, state_dir: Path) -> None:
+    """G10 L10 in a program sets the tool's length where the motion reaches it; the table is saved
+    and the loaded program is checked again before the next start."""
+    from planner.tools import Tool
+
+    assert ctl.tools.set_tool(Tool(1, 1, (("Z", 10.0),), 6.0, "end mill"))
+    assert ctl.load_program("G21 G90 F600\nG0 Z30\nG10 L10 P1 Z5\nG0 Z31\nM2\n", "g10.ngc", wait=True)
+    assert ctl.cycle_start()
+    run_to_idle(ctl)
+    assert ctl.tools.table.get(1).length_mm == 25.0
+    assert "T1 P1 Z25" in (state_dir / "tools.tbl").read_text()
+    assert "tool table changed" in ctl.loader.program_stale()

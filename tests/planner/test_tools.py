@@ -164,3 +164,33 @@ def test_cutter_compensation_with_a_tool_diameter_is_refused_not_ignored() -> No
     with pytest.raises(ProgramError, match="G42 with tool T1"):
         parse_program("G21 F100\nG42 G1 X10\n", tools=table, tool_in_spindle=1)
     assert len(parse_program("G21 F100\nG41 D2 G1 X10\nG40\n", tools=table).moves) == 1   # diameter 0
+
+
+def test_g10_tool_data_from_the_program() -> None:
+    """G10 L1 sets a tool's data as given (R is the radius), L10 so that the current position
+    reads the given value with that tool, L11 the same in G59.3 without G92; a later G43 uses it,
+    and the program carries the changed tools for the machine to keep."""
+    from dataclasses import replace
+
+    from planner.interpreter import parse_program
+    from planner.machine import MachineSpec
+    from planner.program import EventKind
+    from planner.tools import parse_tbl
+
+    table = parse_tbl("T1 P1 Z20 D6 ;end mill\n")
+    machine = replace(MachineSpec.default(),
+                      work_offsets={"G54": (0.0, 0.0, -30.0), "G59.3": (0.0, 0.0, -100.0)})
+    p = parse_program("G21 G90 F100\nG0 Z50\nG92 Z40\nG10 L10 P1 Z0\nG43 H1\nG0 Z1\nG10 L1 P1 Z7 R3\nG43 H1\n"
+                      "G0 Z1\nG10 L11 P1 Z0\nM2\n", machine=machine, tools=table)
+    # Z50 in G54 (-30) is machine 20; G92 Z40 there is a G92 offset of 10; L10 Z0 makes T1's
+    # length 20 + 30 - 10 = 40, so Z1 is machine 1 - 30 + 10 + 40 = 21; L1 Z7: Z1 is -12;
+    # L11 Z0 there, in G59.3 (-100) without G92: -12 + 100 = 88
+    assert [round(m.end[2], 6) for m in p.moves] == [20.0, 21.0, -12.0]
+    tools = p.tool_sets
+    assert [t.length_mm for t in tools] == [40.0, 7.0, 88.0] and tools[1].diameter_mm == 6.0
+    assert [e.kind for e in p.events if e.kind is EventKind.TOOL_DATA] == [EventKind.TOOL_DATA] * 3
+    for text, words in (("G10 L1 Z1\n", "needs P with the tool number"),
+                        ("G10 L1 P9 Z1\n", "tool T9 is not in the tool table"),
+                        ("G10 L1 P1 R-1\n", "radius cannot be negative")):
+        with pytest.raises(ProgramError, match=words):
+            parse_program(text, tools=table)
