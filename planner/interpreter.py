@@ -15,7 +15,7 @@ Supported (everything else is an error with file:line:col, never skipped):
   configuration defines them ([[outputs]], [[mcodes]]);
   O-words (``planner.oword``: subroutines, subroutine files, if, while, do, repeat, break,
   continue, return values), expressions, #numbered / #<named> / #<_global> parameters,
-  (MSG,) (DEBUG,) (PRINT,) messages;
+  (MSG,) (DEBUG,) (PRINT,) messages, M70-M73 modal state save/restore;
   N line numbers, '/' block delete, ( ) and ; comments, % delimiters, Fanuc 'O0001' lines.
 Set-up as LinuxCNC's reference run: G21 G17 G40 G49 G54 G80 G90 G94 G91.1 G64 G99, motion mode
 none (axis words need a G00-G03 first).
@@ -121,7 +121,7 @@ def system_base(code: int) -> int:
     """#5221 for G54, #5241 for G55 ... #5381 for G59.3."""
     return 5221 + 20 * _SYSTEMS.index(code)
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8,
-            62: 5, 63: 5, 64: 5, 65: 5, **dict.fromkeys(range(100, 200), 10)}
+            62: 5, 63: 5, 64: 5, 65: 5, 70: 11, 71: 11, 72: 11, 73: 11, **dict.fromkeys(range(100, 200), 10)}
 _M_UNSUPPORTED = {66: "M66 waits on a digital or analog input, which this control does not read yet",
                   19: "M19 orients the spindle, which this machine's spindle cannot",
                   67: "M67 sets an analog output synchronised with motion; there are no analog outputs",
@@ -240,6 +240,10 @@ class _Interpreter:
         # parameter sets to hand to the machine when the program passes them (G10, G92, G28.1 ...)
         self.parameter_sets: list[dict[int, float]] = []
         self.tool_sets: list[Tool] = []      # tools changed by G10 L1/L10/L11, by TOOL_DATA event
+        # M70-M73: the saved modal state by call level (0: the program), with M73's autorestore
+        self.saved_modal: dict[int, tuple[dict[str, object], bool]] = {}
+        self.call_level = 0
+        self.coolant = 0                     # bits: 1 mist (M7), 2 flood (M8); M9 both off
         if start_position is None:
             start = [0.0] * n
         else:
@@ -433,11 +437,16 @@ class _Interpreter:
                 frames.append(frame)
                 frame = result
                 pc = frame.entry
+                self.call_level += 1
             elif result == _RETURN:
                 if not frames:
                     return
                 pc = frame.return_pc
                 self.restore(frame)
+                saved = self.saved_modal.pop(self.call_level, None)
+                self.call_level -= 1
+                if saved is not None and saved[1]:          # M73: back as it was at the call
+                    self.restore_modal(saved[0], frame.return_pc)
                 frame = frames.pop()
             else:
                 pc = result
@@ -777,6 +786,48 @@ class _Interpreter:
             add = self.tool_offsets(self.known_tool(int(h), "H")) if h is not None else tuple(words)
             self.set_offset(tlo=tuple(t + a for t, a in zip(self.tlo, add)))
 
+    _MODAL_FIELDS = ("inch", "scale", "plane", "comp_code", "absolute", "arc_absolute", "feed_mode",
+                     "feed_mm_s", "feed_per_rev", "inverse_f", "work_code", "work", "tlo_code", "tlo",
+                     "retract_r_plane", "exact_stop", "exact_path", "spindle_rpm", "spindle_dir", "coolant")
+
+    def modal_memory(self, code: int, line_no: int) -> None:
+        """M70 save the modal state at this call level, M71 forget it, M72 restore it, M73 save it
+        to be restored when the subroutine returns (LinuxCNC 2.9; the motion mode is not part)."""
+        level = self.call_level
+        if code in (70, 73):
+            if code == 73 and level == 0:
+                raise _BlockError("M73 saves the state for the return of a subroutine: use M70 in the "
+                                  "main program", "M73")
+            self.saved_modal[level] = ({f: getattr(self, f) for f in self._MODAL_FIELDS}, code == 73)
+        elif code == 71:
+            self.saved_modal.pop(level, None)
+        else:
+            saved = self.saved_modal.get(level)
+            if saved is None:
+                raise _BlockError("M72: no modal state saved at this level (M70 or M73 first)", "M72")
+            self.restore_modal(saved[0], line_no)
+
+    def restore_modal(self, state: dict[str, object], line_no: int) -> None:
+        spindle_before = (self.spindle_dir, self.spindle_rpm)
+        coolant_before = self.coolant
+        for f, v in state.items():
+            setattr(self, f, v)
+        self.set_offset()
+        self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(self.work_code) + 1)
+        after = len(self.ends) - 1
+        if (self.spindle_dir, self.spindle_rpm) != spindle_before:
+            self.events.append(Event(EventKind.SPINDLE, line_no, after, self.spindle_dir * self.spindle_rpm,
+                                     "M72: spindle as saved"))
+        if self.coolant != coolant_before:
+            if coolant_before & ~self.coolant:    # something to switch off: all off, then back on
+                self.events.append(Event(EventKind.COOLANT, line_no, after, 0.0, "M72: coolant as saved"))
+                coolant_before = 0
+            for bit in (1, 2):
+                if self.coolant & bit and not coolant_before & bit:
+                    self.events.append(Event(EventKind.COOLANT, line_no, after, float(bit),
+                                             "M72: coolant as saved"))
+        self.note_modal()
+
     def output_event(self, number: int, on: bool, line_no: int, after: int, text: str) -> None:
         """An OUTPUT event: value = number for on, -(number + 1) for off."""
         self.events.append(Event(EventKind.OUTPUT, line_no, after, float(number if on else -(number + 1)),
@@ -1081,6 +1132,9 @@ class _Interpreter:
         # ---- execute in RS274/NGC order
         after = len(self.ends) - 1
         ev = self.events
+        m11 = mgroups.get(11)
+        if m11 is not None:              # M70-M73 before the block's own changes
+            self.modal_memory(m11, line_no)
         if 6 in groups:  # units before anything that reads a length
             self.inch = groups[6] == 200
             self.scale = MM_PER_INCH if self.inch else 1.0
@@ -1142,6 +1196,7 @@ class _Interpreter:
         m8 = [c for c in mcodes if c in (7, 8, 9)]
         for c in m8:
             ev.append(Event(EventKind.COOLANT, line_no, after, {7: 1.0, 8: 2.0, 9: 0.0}[c], f"M0{c}"))
+            self.coolant = 0 if c == 9 else self.coolant | (1 if c == 7 else 2)
         m5 = mgroups.get(5)
         if m5 is not None:            # M62/M64 on, M63/M65 off (all at this point of the path)
             p = vals.get("P")

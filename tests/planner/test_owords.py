@@ -244,3 +244,41 @@ def test_subroutine_folders_of_the_machine_configuration(tmp_path: Path) -> None
     saved = save_config(load_config(config), tmp_path / "saved.toml")
     assert saved.machine.planner.subroutine_dirs == ("subs",)
     assert 'subroutine_dirs = ["subs"]' in (tmp_path / "saved.toml").read_text()
+
+
+@pytest.mark.parametrize("name", ["m70m72-restore.0", "m73-flood-mist-restore.0", "m73autorestore.0"])
+def test_linuxcnc_m70_m73_modal_state_save_and_restore(name: str) -> None:
+    """LinuxCNC's tests/m70-m73: the moves and the (DEBUG,...) messages after M70/M72/M73."""
+    folder = DATA / "m70-m73" / name
+    program = parse_program((folder / "test.ngc").read_text(), name="test.ngc")
+    want_messages = [m.group(1) for line in (folder / "expected").read_text().splitlines()
+                     if (m := _MESSAGE.match(line))]
+    assert messages(program) == want_messages
+    inch = "USE_LENGTH_UNITS(CANON_UNITS_INCHES)" in (folder / "expected").read_text().split("MESSAGE")[0]
+    # LinuxCNC writes zero-length moves (a G53 G0 X0 Y0 Z0 at the origin); a Program has none
+    want, last = [], (0.0, 0.0, 0.0)
+    for kind, end in _linuxcnc_moves(folder / "expected", inch=inch):
+        if end != last:
+            want.append((kind, end))
+        last = end
+    assert _moves(program) == want
+    # coolant: LinuxCNC's MIST_ON / FLOOD_ON / *_OFF before the program end, as the events' 1 / 2 / 0
+    lc_coolant: list[float] = []
+    text = (folder / "expected").read_text()
+    # M2's reset (from its SET_FEED_MODE on) switches the coolant off; programs ending with '%' have none
+    before_end = text[:text.rindex("SET_FEED_MODE(0, 0)")] if "PROGRAM_END" in text else text
+    for line in before_end.splitlines():
+        call = line.split()[-1] if line.strip() else ""
+        value = {"MIST_ON()": 1.0, "FLOOD_ON()": 2.0, "MIST_OFF()": 0.0, "FLOOD_OFF()": 0.0}.get(call)
+        if value is not None and not (value == 0.0 and lc_coolant[-1:] == [0.0]):
+            lc_coolant.append(value)
+    assert [e.value for e in program.events if e.kind is EventKind.COOLANT] == lc_coolant
+    if name == "m73-flood-mist-restore.0":      # this one is about coolant only
+        assert lc_coolant == [1.0, 2.0, 0.0, 1.0, 2.0]
+
+
+def test_m72_without_a_saved_state_and_m73_in_the_program_are_refused() -> None:
+    with pytest.raises(ProgramError, match="M72: no modal state saved"):
+        read("M72\n")
+    with pytest.raises(ProgramError, match="M73 saves the state for the return of a subroutine"):
+        read("M73\n")
