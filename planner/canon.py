@@ -19,6 +19,7 @@ in machine units; the motion stays in program coordinates (the offsets taken off
 from __future__ import annotations
 
 import json
+import math
 import os
 from typing import Any, BinaryIO
 
@@ -33,40 +34,71 @@ _PLANE_NAMES = {"XY": "XY", "ZX": "XZ", "YZ": "YZ"}
 
 def _offset_records(program: Program, cols: list[int]) -> dict[int, list[dict[str, Any]]]:
     """LinuxCNC's offset calls by the move they come before: set_g5x_offset (system 1-9 and
-    nine values), set_g92_offset, tool_offset, each when it changes (all of them at the start,
-    with set_xy_rotation 0)."""
+    nine values), set_g92_offset, set_xy_rotation, tool_offset, each when it changes (all of
+    them at the start)."""
     out: dict[int, list[dict[str, Any]]] = {}
     last: tuple[Any, ...] | None = None
 
     def nine(values: tuple[float, ...]) -> list[float]:
         return [float(values[c]) if c >= 0 else 0.0 for c in cols]
 
-    for first, line, system, work, g92, tlo in program.offset_parts:
+    for first, line, system, work, g92, tlo, rotation in program.offset_parts:
         recs = out.setdefault(first, [])
         if last is None or (system, work) != (last[0], last[1]):
             recs.append({"line": line, "call": "set_g5x_offset", "args": [system, *nine(work)]})
         if last is None or g92 != last[2]:
             recs.append({"line": line, "call": "set_g92_offset", "args": nine(g92)})
-        if last is None:
-            recs.append({"line": line, "call": "set_xy_rotation", "args": [0.0]})
+        if last is None or rotation != last[4]:
+            recs.append({"line": line, "call": "set_xy_rotation", "args": [float(rotation)]})
         if last is None or tlo != last[3]:
             recs.append({"line": line, "call": "tool_offset", "args": nine(tlo)})
-        last = (system, work, g92, tlo)
+        last = (system, work, g92, tlo, rotation)
+    return out
+
+
+def _unrotate(program: Program, cols: list[int]) -> list[tuple[float, tuple[float, ...], tuple[float, ...],
+                                                                    tuple[float, ...]] | None]:
+    """Per move: (rotation, G5x, G92, tool) when the XY plane is rotated there, else None."""
+    out: list[Any] = [None] * len(program.moves)
+    parts = sorted(program.offset_parts, key=lambda p: p[0])
+    current = None
+    k = 0
+    for i in range(len(program.moves)):
+        while k < len(parts) and parts[k][0] <= i:
+            current = parts[k]
+            k += 1
+        if current is not None and current[6] != 0.0:
+            out[i] = (current[6], current[3], current[4], current[5])
+    return out
+
+
+def _to_program(pos: list[float], cols: list[int], spec: tuple[Any, ...]) -> list[float]:
+    """Program coordinates of a machine position in the canonical axis order, the XY rotation
+    undone: R(-rotation) (machine - G5x - tool) - G92 for X and Y, the offsets off the rest."""
+    rotation, work, g92, tlo = spec
+    out = [pos[c] - work[c] - g92[c] - tlo[c] if c >= 0 else 0.0 for c in cols]
+    ix, iy = cols[0], cols[1]
+    dx, dy = pos[ix] - work[ix] - tlo[ix], pos[iy] - work[iy] - tlo[iy]
+    c, s = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
+    out[0], out[1] = c * dx + s * dy - g92[ix], -s * dx + c * dy - g92[iy]
     return out
 
 
 def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any]]:
     """The program's moves as canonical-call dicts, in order; with ``offsets`` also LinuxCNC's
-    offset calls (set_g5x_offset, set_g92_offset, set_xy_rotation, tool_offset) where they change."""
+    offset calls (set_g5x_offset, set_g92_offset, set_xy_rotation, tool_offset) where they change.
+    Motion in program coordinates: the offsets taken off and an XY rotation undone."""
     cols = [program.axes.index(a) if a in program.axes else -1 for a in _CANON_AXES]
     offsets_before = _offset_records(program, cols) if offsets else {}
+    rotated = _unrotate(program, cols) if any(p[6] for p in program.offset_parts) else None
     move_offsets = program.move_offsets
     records: list[dict[str, Any]] = []
     for i, move in enumerate(program.moves):
         records.extend(offsets_before.pop(i, ()))
         end = move.end.tolist()
         off = move_offsets[i].tolist() if move_offsets is not None else [0.0] * len(end)
-        wcs = [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
+        spec = rotated[i] if rotated is not None else None
+        wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
         arc = move.arc
         if arc is None:
             call = "straight_traverse" if move.kind == MoveKind.RAPID else "straight_feed"
@@ -74,11 +106,20 @@ def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any
             continue
         f, s, n = arc.first_axis, arc.second_axis, arc.normal_axis
         rotation = arc.turns if arc.sweep_rad > 0 else -arc.turns
+        if spec:                         # XY arcs only turn with the system: centre the same way
+            centre = list(end)
+            centre[f], centre[s] = arc.center[0], arc.center[1]
+            cprog = _to_program(centre, cols, spec)
+            first_c, second_c = cprog[0], cprog[1]
+            first_e, second_e = wcs[0], wcs[1]
+        else:
+            first_c, second_c = arc.center[0] - off[f], arc.center[1] - off[s]
+            first_e, second_e = end[f] - off[f], end[s] - off[s]
         args = [
-            end[f] - off[f],
-            end[s] - off[s],
-            arc.center[0] - off[f],
-            arc.center[1] - off[s],
+            first_e,
+            second_e,
+            first_c,
+            second_c,
             rotation,
             end[n] - off[n] if n >= 0 else 0.0,
             *wcs[3:],

@@ -6,7 +6,8 @@ Supported (everything else is an error with file:line:col, never skipped):
   feed modes G93 (inverse time) G94 G95 (per revolution), G97;
   canned cycles G73 G74 G81-G86 G89, G98/G99, G80 (also beside another motion code);
   tool data G10 L1/L10/L11 (TOOL_DATA events);
-  coordinate systems G54-G59.3, G10 L2/L20, G92 G92.1 G92.2 G92.3, G52, G28/G28.1, G30/G30.1
+  coordinate systems G54-G59.3, G10 L2 (with R: XY rotation)/L20, G92 G92.1 G92.2 G92.3, G52,
+  G28/G28.1, G30/G30.1
   with LinuxCNC's parameters (``PERSISTENT_PARAMETERS``, OFFSETS events);
   G40, G41/G42 (radius 0: the programmed path; a tool with a diameter is refused);
   G43 / G43 H / G43.1 / G43.2 / G49 tool length offsets from the tool table (``planner.tools``);
@@ -263,6 +264,8 @@ class _Interpreter:
         self.arc_absolute = False
         self.feed_mm_s = 0.0
         self.work = self.work_offsets[540]       # G54-G59
+        # XY rotation of the coordinate system in use (G10 L2 R, degrees, about its origin)
+        self.rotation = self.params.numbered.get(system_base(540) + 9, 0.0)
         self.tlo = (0.0,) * n                      # tool length offset (G43...), machine units
         self.offset = tuple(w + g for w, g in zip(self.work, self.g92))   # program -> machine
         self.exact_stop = False
@@ -303,9 +306,11 @@ class _Interpreter:
         self.offset_changes: list[tuple[int, tuple[float, ...]]] = [(0, self.offset)]  # (first move, offset)
         self.events: list[Event] = []
         self.work_code = 540
-        # each change of an offset part, for --canon: (first move, line, system 1-9, G5x, G92, tool)
+        # each change of an offset part, for --canon: (first move, line, system 1-9, G5x, G92, tool,
+        # XY rotation in degrees)
         self.offset_parts: list[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
-                                      tuple[float, ...]]] = [(0, 0, 1, self.work, self.g92, self.tlo)]
+                                      tuple[float, ...], float]] = [
+            (0, 0, 1, self.work, self.g92, self.tlo, self.rotation)]
         self.comp_code = 400
         self.tlo_code = 490
         self.modal_changes: list[tuple[int, str]] = [(0, self.modal_text())]
@@ -315,6 +320,7 @@ class _Interpreter:
         self.started = False
         self.current_line = 0
         self.params.system = self.system_parameter
+        self.params.system_numbered = self.position_parameter
         self.subroutine_dirs: tuple[str, ...] = tuple(subroutine_dirs) or machine.subroutine_paths()
         # digital outputs (M62-M65 P) and user M-codes M100-M199 the machine configuration defines
         self.outputs: frozenset[int] = frozenset(getattr(machine, "outputs", ()) or ())
@@ -604,12 +610,19 @@ class _Interpreter:
         finally:
             self.name = name
 
+    def position_parameter(self, number: int) -> float | None:
+        """#5420-#5428: the current position in program coordinates (X Y Z A B C U V W)."""
+        letter = _PARAM_AXES[number - 5420]
+        return self.system_parameter("_" + letter)
+
     def system_parameter(self, name: str) -> float | None:
         """LinuxCNC's predefined named parameters the interpreter knows."""
         axis = name[1:]
         if axis in self.axis_index:
             i = self.axis_index[axis]
             value = self.pos[i] - self.offset[i]
+            if axis in "XY" and self.rotation != 0.0:
+                value = self.prog_xy(self.pos)["XY".index(axis)]
             return value if self.rotary[i] else value / self.scale
         return {
             "_LINE": float(self.current_line),
@@ -649,7 +662,7 @@ class _Interpreter:
                 return True
             return False
         motion = int(gtxt) * 10 if gtxt is not None else self.motion
-        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940:
+        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation:
             return False
         scale = self.scale
         if f_t is not None:
@@ -788,7 +801,8 @@ class _Interpreter:
 
     _MODAL_FIELDS = ("inch", "scale", "plane", "comp_code", "absolute", "arc_absolute", "feed_mode",
                      "feed_mm_s", "feed_per_rev", "inverse_f", "work_code", "work", "tlo_code", "tlo",
-                     "retract_r_plane", "exact_stop", "exact_path", "spindle_rpm", "spindle_dir", "coolant")
+                     "retract_r_plane", "exact_stop", "exact_path", "spindle_rpm", "spindle_dir", "coolant",
+                     "rotation")
 
     def modal_memory(self, code: int, line_no: int) -> None:
         """M70 save the modal state at this call level, M71 forget it, M72 restore it, M73 save it
@@ -840,9 +854,8 @@ class _Interpreter:
         if self.plane != 170:
             raise _BlockError("polar coordinates (@ ^) only in the XY plane (G17)",
                               "@" if "@" in vals else "^")
-        ix, iy = self.axis_index["X"], self.axis_index["Y"]
-        x = (self.pos[ix] - self.offset[ix]) / self.scale
-        y = (self.pos[iy] - self.offset[iy]) / self.scale
+        px, py = self.prog_xy(self.pos)
+        x, y = px / self.scale, py / self.scale
         radius, theta = math.hypot(x, y), math.atan2(y, x)
         if self.absolute:
             radius = vals.pop("@", radius)
@@ -855,6 +868,26 @@ class _Interpreter:
             theta += math.radians(vals.pop("^", 0.0))
         px, py = radius * math.cos(theta), radius * math.sin(theta)
         vals["X"], vals["Y"] = (px, py) if self.absolute else (px - x, py - y)
+
+    def prog_xy(self, pos: Sequence[float], work: Sequence[float] | None = None,
+                rotation: float | None = None, g92: Sequence[float] | None = None) -> tuple[float, float]:
+        """X and Y of a machine position in program coordinates (mm), the XY rotation undone:
+        R(-rotation) (machine - G5x - tool) - G92, as LinuxCNC's canon composes them."""
+        ix, iy = self.axis_index["X"], self.axis_index["Y"]
+        work = self.work if work is None else work
+        g92 = self.g92 if g92 is None else g92
+        theta = math.radians(self.rotation if rotation is None else rotation)
+        dx, dy = pos[ix] - work[ix] - self.tlo[ix], pos[iy] - work[iy] - self.tlo[iy]
+        c, s = math.cos(theta), math.sin(theta)
+        return c * dx + s * dy - g92[ix], -s * dx + c * dy - g92[iy]
+
+    def machine_xy(self, x: float, y: float) -> tuple[float, float]:
+        """Machine X and Y of program X and Y (mm): R(rotation) (program + G92) + G5x + tool."""
+        ix, iy = self.axis_index["X"], self.axis_index["Y"]
+        u, v = x + self.g92[ix], y + self.g92[iy]
+        theta = math.radians(self.rotation)
+        c, s = math.cos(theta), math.sin(theta)
+        return (c * u - s * v + self.work[ix] + self.tlo[ix], s * u + c * v + self.work[iy] + self.tlo[iy])
 
     def check_radius_zero(self, code: int, vals: dict[str, float]) -> None:
         """G41/G42 run the programmed path, which is what compensation does with a zero-diameter
@@ -881,7 +914,7 @@ class _Interpreter:
         self.offset = offset
         first = len(self.recs)
         self.offset_parts.append((first, self.current_line, _SYSTEMS.index(self.work_code) + 1, self.work,
-                                  self.g92, self.tlo))
+                                  self.g92, self.tlo, self.rotation))
         if self.offset_changes[-1][0] == first:
             self.offset_changes[-1] = (first, offset)
         else:
@@ -963,7 +996,7 @@ class _Interpreter:
                 return True
             return False
         motion = g if g >= 0 else self.motion
-        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940:
+        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation:
             return False
         if "F" in vals:
             f = vals["F"]
@@ -1230,6 +1263,7 @@ class _Interpreter:
             self.tool_length(groups[8], vals, axis_words_offset, scale)
         if 12 in groups:
             self.work_code = groups[12]
+            self.rotation = self.params.numbered.get(system_base(groups[12]) + 9, 0.0)
             self.set_offset(work=self.work_offsets[groups[12]])
             self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(groups[12]) + 1)
         if 7 in groups:
@@ -1317,7 +1351,9 @@ class _Interpreter:
             v = self.params.get_named(m.group(1).upper())
         else:
             n = int(m.group(2))
-            v = self.params.numbered.get(n, 0.0) if 1 <= n <= 5602 else None
+            v = self.params.get_numbered(n) if 1 <= n <= 5602 else None
+        if v is not None and abs(v) < 5e-7:
+            v = 0.0                        # round-off of a rotation must not print as -0.000000
         return "######" if v is None else f"{v:f}"
 
     def assign(self, assigns: Sequence[tuple[object, float]]) -> None:
@@ -1337,7 +1373,10 @@ class _Interpreter:
         rot = self.rotary
         off = self.offset
         absolute = self.absolute
+        rotated = self.rotation != 0.0 and not machine and ("X" in axis_words or "Y" in axis_words)
         for letter in axis_words:
+            if rotated and letter in "XY":
+                continue
             i = idx[letter]
             v = vals[letter] if rot[i] else vals[letter] * scale
             if machine:
@@ -1346,6 +1385,16 @@ class _Interpreter:
                 tgt[i] = v + off[i]
             else:
                 tgt[i] = pos[i] + v
+        if rotated:                      # X and Y in the rotated system, then to the machine
+            px, py = self.prog_xy(pos)
+            for letter in ("X", "Y"):
+                if letter in axis_words:
+                    v = vals[letter] * scale
+                    if letter == "X":
+                        px = v if absolute else px + v
+                    else:
+                        py = v if absolute else py + v
+            tgt[idx["X"]], tgt[idx["Y"]] = self.machine_xy(px, py)
         return tgt
 
     def path_length(self, a: Sequence[float], b: Sequence[float]) -> float:
@@ -1440,6 +1489,10 @@ class _Interpreter:
             raise _BlockError("spindle not turning in G86", name)
         off = self.offset
         pos = self.pos
+        rotated = self.rotation != 0.0
+        if rotated and self.plane != 170:
+            raise _BlockError(f"{name} in {plane_g} with the XY plane rotated (G10 L2 R) is not supported",
+                              name)
         current_cc = pos[na] - off[na]
         if self.cycle_il is None:
             self.cycle_il = current_cc
@@ -1448,15 +1501,15 @@ class _Interpreter:
             aa_inc = bb_inc = 0.0
             r = self.cycle_r_word
             cc = self.cycle_z_word
-            aa = vals[first_l] * scale if first_l in vals else pos[fa] - off[fa]
-            bb = vals[second_l] * scale if second_l in vals else pos[sa] - off[sa]
+            cur_a, cur_b = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
+            aa = vals[first_l] * scale if first_l in vals else cur_a
+            bb = vals[second_l] * scale if second_l in vals else cur_b
         else:
             aa_inc = vals.get(first_l, 0.0) * scale
             bb_inc = vals.get(second_l, 0.0) * scale
             r = self.cycle_r_word + old_cc
             cc = r + self.cycle_z_word
-            aa = pos[fa] - off[fa]
-            bb = pos[sa] - off[sa]
+            aa, bb = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
         if r < cc:
             raise _BlockError(f"R ({r / scale:g}) below the bottom {normal} ({cc / scale:g}) of the canned "
                               f"cycle in {plane_g}", "R" if "R" in vals else name)
@@ -1468,8 +1521,11 @@ class _Interpreter:
 
         def go(a: float, b: float, c: float, rapid: bool) -> None:
             target = self.pos.copy()
-            target[fa] = a + off[fa]
-            target[sa] = b + off[sa]
+            if rotated:
+                target[fa], target[sa] = self.machine_xy(a, b)
+            else:
+                target[fa] = a + off[fa]
+                target[sa] = b + off[sa]
             target[na] = c + off[na]
             self.straight(target, rapid, line_no)
 
@@ -1477,7 +1533,8 @@ class _Interpreter:
             self.events.append(Event(kind, line_no, len(self.ends) - 1, value, text))
 
         if old_cc < r:                         # below the R plane: straight up to it first
-            go(pos[fa] - off[fa], pos[sa] - off[sa], r, True)
+            here = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
+            go(here[0], here[1], r, True)
             old_cc = current_cc = r
         clear_cc = r if self.retract_r_plane else old_cc
         saved_stop = self.exact_stop
@@ -1570,24 +1627,42 @@ class _Interpreter:
             p = vals.get("P")
             if p is None or p != int(p) or not 0 <= p <= 9:
                 raise _BlockError("G10 L2/L20 needs P0-P9 (0: the system in use, 1: G54 ... 9: G59.3)", "P")
-            if vals.get("R", 0.0) != 0.0:
-                raise _BlockError("coordinate system rotation (G10 L2 R) is not supported: give R0 or no R",
-                                  "R")
             system = self.work_code if p == 0 else _SYSTEMS[int(p) - 1]
             base = system_base(system)
+            if "R" in vals:
+                if l_word == 20:
+                    raise _BlockError("R not allowed in G10 L20 (the rotation is set with G10 L2 R)", "R")
+                if "X" not in self.axis_index or "Y" not in self.axis_index:
+                    raise _BlockError("G10 L2 R rotates the XY plane: this machine has no X and Y", "R")
+                num[base + 9] = vals["R"]
             if self.comp_code != 400 and system == self.work_code:
                 raise _BlockError("cannot change the offsets of the coordinate system in use with cutter "
                                   "compensation on", "G10")
             new = list(self.work_offsets[system])
+            theta = num.get(base + 9, 0.0)
             for letter in axis_words:
                 i = self.axis_index[letter]
                 if l_word == 2:
                     new[i] = value(letter)
-                else:                   # L20: the current position reads the given value in that system
+                elif theta == 0.0 or letter not in "XY":
+                    # L20: the current position reads the given value in that system
                     new[i] = self.pos[i] - self.g92[i] - self.tlo[i] - value(letter)
-                num[base + self.axis_param[i]] = new[i]
+            if l_word == 20 and theta != 0.0 and ("X" in axis_words or "Y" in axis_words):
+                # in a rotated system X and Y go together: the position read there keeps the
+                # axis not given, and the origin moves so that both read as wanted
+                ix, iy = self.axis_index["X"], self.axis_index["Y"]
+                px, py = self.prog_xy(self.pos, work=self.work_offsets[system], rotation=theta)
+                px = value("X") if "X" in axis_words else px
+                py = value("Y") if "Y" in axis_words else py
+                u, v = px + self.g92[ix], py + self.g92[iy]
+                c, s = math.cos(math.radians(theta)), math.sin(math.radians(theta))
+                new[ix] = self.pos[ix] - self.tlo[ix] - (c * u - s * v)
+                new[iy] = self.pos[iy] - self.tlo[iy] - (s * u + c * v)
+            for i, p_index in enumerate(self.axis_param):
+                num[base + p_index] = new[i]
             self.work_offsets[system] = tuple(new)
             if system == self.work_code:
+                self.rotation = theta
                 self.set_offset(work=tuple(new))
             self.parameters_changed(line_no, f"G10 L{l_word:g}: {_gname(system)} offsets set")
         elif code in (281, 301):
@@ -1597,10 +1672,13 @@ class _Interpreter:
             self.parameters_changed(line_no, f"{_gname(code)}: position stored for {_gname(code - 1)}")
         elif code in (520, 920):
             g92 = list(self.g92)
+            unrotated = self.prog_xy(self.pos, g92=(0.0,) * self.n) if self.rotation != 0.0 else None
             for letter in axis_words:
                 i = self.axis_index[letter]
                 if code == 520:         # G52: the offset itself
                     g92[i] = value(letter)
+                elif unrotated is not None and letter in "XY":
+                    g92[i] = unrotated["XY".index(letter)] - value(letter)
                 else:                   # G92: the current position reads the given value
                     g92[i] = self.pos[i] - self.work[i] - self.tlo[i] - value(letter)
             self.set_g92(tuple(g92), True)
@@ -1692,6 +1770,10 @@ class _Interpreter:
 
     def arc(self, target: list[float], vals: dict[str, float], cw: bool, scale: float, line_no: int) -> None:
         pname, fa, sa, na, fc, sc, bad, letters = self.plane_axes()
+        if self.rotation != 0.0 and self.plane != 170:
+            raise _BlockError(f"arc in {_PLANE_G[self.plane]} with the XY plane rotated (G10 L2 R): the "
+                              "arc's plane would not be a machine plane; only G17 arcs turn with the "
+                              "coordinate system", "G")
         feed = self.feed_mm_s
         if feed <= 0.0:
             raise _BlockError(_ZERO_FEED, "G")
@@ -1731,11 +1813,20 @@ class _Interpreter:
                     if ci is None or cj is None:
                         raise _BlockError(f"G90.1 (absolute arc centre) needs both {fc} and {sc}",
                                           fc if ci is None else sc)
-                    cx = ci * scale + self.offset[fa]
-                    cy = cj * scale + self.offset[sa]
+                    if self.rotation != 0.0:
+                        cx, cy = self.machine_xy(ci * scale, cj * scale)
+                    else:
+                        cx = ci * scale + self.offset[fa]
+                        cy = cj * scale + self.offset[sa]
                 else:
-                    cx = x0 + ci * scale if ci is not None else x0
-                    cy = y0 + cj * scale if cj is not None else y0
+                    di = ci * scale if ci is not None else 0.0
+                    dj = cj * scale if cj is not None else 0.0
+                    if self.rotation != 0.0:     # the centre offset turns with the system
+                        theta = math.radians(self.rotation)
+                        di, dj = (di * math.cos(theta) - dj * math.sin(theta),
+                                  di * math.sin(theta) + dj * math.cos(theta))
+                    cx = x0 + di
+                    cy = y0 + dj
                 r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.inch, letters)
                 if abs(r1 - r0) <= 1e-12 * r0:
                     r1 = r0

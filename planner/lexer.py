@@ -44,6 +44,12 @@ class Params:
         self.named: dict[str, float] = {}
         self.globals: dict[str, float] = {}
         self.system: Callable[[str], float | None] = lambda name: None
+        # read-only numbered ones computed when read (#5420-#5428: the current position)
+        self.system_numbered: Callable[[int], float | None] = lambda number: None
+
+    def get_numbered(self, number: int) -> float:
+        v = self.system_numbered(number) if 5420 <= number <= 5428 else None
+        return self.numbered.get(number, 0.0) if v is None else v
 
     def get_named(self, name: str) -> float | None:
         if name.startswith("_"):
@@ -348,7 +354,7 @@ class _Reader:
             if v is None and must:
                 raise self.fail(f"named parameter #<{key.lower()}> is not defined")
             return v
-        return self.params.numbered.get(key, 0.0)
+        return self.params.get_numbered(key)
 
     def param_value(self) -> float:
         return self.lookup(self.param_key())  # type: ignore[return-value]

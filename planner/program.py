@@ -289,9 +289,10 @@ class Program:
     # event, by the event's value
     parameter_sets: tuple[dict[int, float], ...] = ()
     # the offsets in parts, as LinuxCNC's canonical calls set them: (first move, line,
-    # coordinate system 1-9, G5x offset, G92 offset, tool length offset), machine units
+    # coordinate system 1-9, G5x offset, G92 offset, tool length offset, XY rotation in degrees),
+    # machine units
     offset_parts: tuple[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
-                              tuple[float, ...]], ...] = ()
+                              tuple[float, ...], float], ...] = ()
     # tools changed by G10 L1/L10/L11, by the TOOL_DATA event's value (planner.tools.Tool)
     tool_sets: tuple[Any, ...] = ()
 

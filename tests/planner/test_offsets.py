@@ -79,7 +79,7 @@ def test_offsets_events_stop_the_motion_and_carry_every_persistent_parameter() -
     ("G10 P1 X1\n", 1, "G10 needs an L word"),
     ("G10 L1 P1 Z1\n", 8, "tool T1 is not in the tool table"),
     ("G10 L2 P10 X1\n", 8, "needs P0-P9"),
-    ("G10 L2 P1 R30\n", 11, "rotation (G10 L2 R) is not supported"),
+    ("G10 L20 P1 X0 R30\n", 15, "R not allowed in G10 L20"),
     ("G10 L3 P1 X1\n", 5, "not a G10 this control knows"),
     ("G92 G1 X1 F10\n", 1, "cannot use two G codes that both use axis values (G92 and a motion code)"),
     ("G21 G41 F10\nG10 L2 P0 X1\n", 1, "with cutter compensation on"),
@@ -105,3 +105,62 @@ def test_g10_l20_then_the_current_position_reads_the_value(x: float, y: float, g
     (msg,) = [e.message for e in parse_program(text).events if e.kind is EventKind.MESSAGE]
     assert float(msg) == pytest.approx(1.5, abs=1e-6)
     np.testing.assert_allclose(1.5, float(msg), atol=1e-6)
+
+
+@pytest.mark.parametrize("name", ["g10-l2-while-active", "g10-l20-while-active"])
+def test_linuxcnc_rotated_coordinate_system(name: str) -> None:
+    """LinuxCNC's tests/interp/g10: G10 L2 R and L20 on the system in use, read through the
+    position parameters #5420/#5421, and the moves in program coordinates (--canon)."""
+    import re
+
+    from planner.canon import canon_records
+
+    folder = DATA / name
+    program = parse_program((folder / "test.ngc").read_text())
+    text = (folder / "expected").read_text()
+    want = re.findall(r'MESSAGE\("(.*)"\)', text)
+    assert len(want) == {"g10-l2-while-active": 10, "g10-l20-while-active": 8}[name]
+    assert [e.message for e in program.events if e.kind is EventKind.MESSAGE] == want
+    # LinuxCNC's moves (inch, 4 decimals); the first goes from the start point to itself, which
+    # a Program drops (the later ones to the same program point move the machine: offsets changed)
+    lc_moves = [[float(v) * 25.4 for v in m.split(",")[:3]]
+                for m in re.findall(r"STRAIGHT_(?:FEED|TRAVERSE)\((.*)\)", text)]
+    assert lc_moves[0] == [0.0, 0.0, 0.0]
+    lc_moves = lc_moves[1:]
+    ours = [r["args"][:3] for r in canon_records(program) if r["call"].startswith("straight")]
+    assert len(ours) == len(lc_moves)
+    np.testing.assert_allclose(ours, lc_moves, atol=0.5e-4 * 25.4)
+
+
+def test_rotated_system_turns_lines_arcs_cycles_and_polar_words() -> None:
+    from planner.canon import canon_records
+
+    text = ("G21 G90 F100\nG10 L2 P1 X10 Y0 R90\nG54 G0 X0 Y0\nG1 X5\nG2 X5 Y0 I-2.5 J0\nG91 G1 Y1\n"
+            "G90 G81 X1 Y1 Z-1 R1\nG80\nG0 @2 ^0\nG10 L20 P1 X0\nG0 X1\nM2\n")
+    p = parse_program(text)
+    assert ends(p) == [[10, 0, 0], [10, 5, 0], [10, 5, 0], [9, 5, 0], [9, 5, 1], [9, 1, 1], [9, 1, -1],
+                       [9, 1, 1], [10, 2, 1], [10, 3, 1]]
+    arc = next(r for r in canon_records(p) if r["call"] == "arc_feed")
+    assert [round(v, 9) for v in arc["args"][:4]] == [5.0, 0.0, 2.5, 0.0]        # program coordinates
+    with pytest.raises(ProgramError, match="arc in G18 with the XY plane rotated"):
+        parse_program("G21 F100\nG10 L2 P1 R30\nG18 G2 X1 Z0 R1\n")
+    with pytest.raises(ProgramError, match="R not allowed in G10 L20"):
+        parse_program("G10 L20 P1 X0 R10\n")
+
+
+@settings(max_examples=60, deadline=None)
+@given(r=st.floats(-360, 360), x=st.floats(-50, 50), y=st.floats(-50, 50), ox=st.floats(-100, 100),
+       oy=st.floats(-100, 100))
+def test_rotation_keeps_distances_and_reads_back(r: float, x: float, y: float, ox: float, oy: float) -> None:
+    """A rotated system moves the tool to a point at the same distance from its origin, and the
+    position read back (#5420, #5421) is the one programmed."""
+    text = (f"G21 G90\nG10 L2 P1 X{ox:.4f} Y{oy:.4f} R{r:.4f}\nG0 X{x:.4f} Y{y:.4f}\n"
+            "(debug,#5420 #5421)\nM2\n")
+    p = parse_program(text)
+    end = p.moves[-1].end if p.moves else np.array([float(f"{ox:.4f}"), float(f"{oy:.4f}"), 0.0])
+    dist = float(np.hypot(end[0] - float(f"{ox:.4f}"), end[1] - float(f"{oy:.4f}")))
+    assert dist == pytest.approx(float(np.hypot(float(f"{x:.4f}"), float(f"{y:.4f}"))), abs=1e-6)
+    (msg,) = [e.message for e in p.events if e.kind is EventKind.MESSAGE]
+    rx, ry = (float(v) for v in msg.split())
+    assert rx == pytest.approx(float(f"{x:.4f}"), abs=1e-6)
+    assert ry == pytest.approx(float(f"{y:.4f}"), abs=1e-6)
