@@ -160,6 +160,14 @@ class Positions:
         self._offsets_changed()
         return self.m.states.ok("set_work_offset")
 
+    def rotation(self) -> float:
+        """The XY rotation (degrees, G10 L2 R) of the work offset in use, from the parameters."""
+        from planner.interpreter import system_base
+
+        names = WORK_OFFSET_NAMES
+        code = 540 + 10 * names.index(self.active_offset) if self.active_offset in names else 540
+        return float(self.parameters.get(system_base(code) + 9, 0.0))
+
     def g92_offset(self) -> np.ndarray:
         """The G92/G52 offset per axis (#5211-, machine units) when #5210 says it is on."""
         n = len(self.raw_pos)

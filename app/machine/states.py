@@ -96,11 +96,18 @@ class StateMachine:
         return self.m.pos.raw_pos - self.m.pos.home_offset
 
     def work_pos(self) -> np.ndarray:
-        """Machine position minus the active work offset and, when it is on, the G92 offset
-        (what a program reads as its position, as LinuxCNC's display)."""
-        return self.machine_pos() - np.asarray(
-            self.m.pos.offsets.get(self.m.pos.active_offset, (0.0,) * len(self.m.pos.raw_pos))
-        ) - self.m.pos.g92_offset()
+        """Machine position minus the active work offset, turned back by the system's XY rotation
+        (G10 L2 R) and minus the G92 offset when it is on: what a program reads as its position,
+        as LinuxCNC's display."""
+        rel = self.machine_pos() - np.asarray(
+            self.m.pos.offsets.get(self.m.pos.active_offset, (0.0,) * len(self.m.pos.raw_pos)))
+        rotation = self.m.pos.rotation()
+        axes = self.m.config.axes
+        if rotation and "X" in axes and "Y" in axes:
+            ix, iy = axes.index("X"), axes.index("Y")
+            c, s = np.cos(np.radians(rotation)), np.sin(np.radians(rotation))
+            rel[ix], rel[iy] = c * rel[ix] + s * rel[iy], -s * rel[ix] + c * rel[iy]
+        return rel - self.m.pos.g92_offset()
 
     def refusal(self, action: str) -> str:
         """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",

@@ -789,3 +789,13 @@ def test_g10_tool_data_reaches_the_tool_table(ctl: MachineController, state_dir:
     assert ctl.tools.table.get(1).length_mm == 25.0
     assert "T1 P1 Z25" in (state_dir / "tools.tbl").read_text()
     assert "tool table changed" in ctl.loader.program_stale()
+
+
+def test_work_position_reads_as_the_program_in_a_rotated_system(ctl: MachineController) -> None:
+    """After a program rotates G54 (G10 L2 R90), the displayed work position is the program's."""
+    assert ctl.load_program("G21 G90 F600\nG10 L2 P1 X10 Y0 R90\nG1 X3 Y1\nM2\n", "rot.ngc", wait=True)
+    assert ctl.cycle_start()
+    run_to_idle(ctl)
+    ctl.advance(0.1)
+    np.testing.assert_allclose(ctl.machine_position[:2], (9.0, 3.0), atol=1e-3)
+    np.testing.assert_allclose(ctl.work_position[:2], (3.0, 1.0), atol=1e-3)
