@@ -233,3 +233,40 @@ def test_nan_infinity_and_huge_numbers_are_located_errors(lines):
     """A NaN or infinite parameter number once gave a Python traceback; every such input now
     either reads or is a ProgramError with its line and column."""
     check("\n".join(lines) + "\n")
+
+
+# Programs built from every feature the interpreter reads (cycles, offsets, tool data, feed
+# modes, polar words, modal memory, O-words, outputs), then mutated: they parse or fail with
+# ProgramError naming a valid line and column, at any scale.
+_FEATURE_BLOCKS = [
+    "G81 X{a} Y{b} Z{z} R{p} F{f}", "G83 X{a} Y{b} Z{n} R{p} Q{q} F{f}", "G73 X{a} Z{n} R{p} Q{q} F{f}",
+    "G82 X{a} Z{n} R{p} P0.1 F{f}", "G85 Y{b} Z{z} R{p} F{f}", "G91 G81 X{a} Z{n} R{p} L3 F{f}", "G80",
+    "G98", "G99", "G10 L2 P{k} X{a} Y{b} R{r}", "G10 L20 P{k} X{a}", "G10 L1 P1 Z{a} R1", "G10 L10 P2 Z{b}",
+    "G92 X{a} Y{b}", "G92.1", "G92.2", "G92.3", "G52 X{a}", "G28.1", "G30.1", "G28 Z{p}", "G30",
+    "G55", "G59.3", "G54", "G93 G1 X{a} F{f}", "G94 F{f}", "G95 F0.1", "S1000 M3", "G1 @{p} ^{r} F{f}",
+    "G91 G0 ^{r}", "G90", "M70", "M72", "M7", "M8", "M9", "G0 X{a} Y{b} Z{p}", "G2 X{a} Y{b} R{p} F{f}",
+    "#<v> = [{a} + 1]", "G1 X#<v> F{f}", "G17", "G18", "G19", "G20", "G21",
+]
+_O_WRAPPERS = [("o10 if [{a} GT 0]", "o10 endif"), ("o20 repeat [2]", "o20 endrepeat"),
+               ("o30 while [#<w> LT 2]\n#<w> = [#<w> + 1]", "o30 endwhile")]
+
+
+@settings(max_examples=200, deadline=timedelta(seconds=5))
+@given(blocks=st.lists(st.sampled_from(_FEATURE_BLOCKS), min_size=1, max_size=14),
+       wrap=st.sampled_from([None, *_O_WRAPPERS]),
+       values=st.lists(st.floats(-50, 50), min_size=8, max_size=8),
+       scale=st.sampled_from([0.001, 1.0, 1000.0]), drop=st.integers(0, 20),
+       junk=st.sampled_from(["", "Q", "[", "o", "L-1", "P99"]))
+def test_feature_programs_and_their_mutations(blocks, wrap, values, scale, drop, junk) -> None:
+    a, b, n, p, q, f, r, k = values
+    words = {"a": f"{a * scale:.4f}", "b": f"{b * scale:.4f}", "n": f"{-abs(n) * scale:.4f}",
+             "p": f"{abs(p) * scale + 0.01:.4f}", "q": f"{abs(q) * scale + 0.001:.4f}",
+             "f": f"{abs(f) * 20 + 1:.1f}", "r": f"{r * 7:.2f}", "k": str(int(abs(k)) % 10),
+             "z": f"{n * scale:.4f}"}
+    body = [blk.format(**words) for blk in blocks]
+    if wrap is not None:
+        body = ["#<w> = 0", wrap[0].format(**words), *body, wrap[1]]
+    if body and junk:
+        body[drop % len(body)] += " " + junk
+    text = "G21 G90 F100\n" + "\n".join(body) + "\nM2\n"
+    check(text, tools=TOOLS)
