@@ -348,6 +348,8 @@ class Streamer:
             if line != self.line and job.kind in (Activity.PROGRAM, Activity.MDI) and not job.waiting:
                 self.line = line
                 self.m.lineChanged.emit(line)
+            while job.messages and job.messages[0][0] <= line:
+                self.show_message(job.messages.popleft()[1])
             if job.kind is Activity.PROGRAM:
                 t_end = job.executor.t_end + job.time_offset_s
                 tau_g = tau + job.tau_offset_s
@@ -470,7 +472,14 @@ class Streamer:
             job.waiting = False
             job.executor.release_pause()
 
+    def show_message(self, text: str) -> None:
+        """A program's message for the operator: the status line and the alarm log (information)."""
+        self.m.message.emit(text)
+        self.m.alarm_log.raise_alarm("program", text, Severity.INFO, "program_message")
+
     def _finish_job(self, job: Job, snap: Any) -> None:
+        while job.messages:                      # messages after the last move (before M2)
+            self.show_message(job.messages.popleft()[1])
         nxt = job.then
         completed_summary = self.drop_job(completed=True, reason="completed", snap=snap)
         if nxt is not None:

@@ -13,7 +13,7 @@ from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
 from planner.machine import MachineSpec
 from planner.meter import LimitMeter
 from planner.plan import Plan
-from planner.program import Program
+from planner.program import EventKind, Program
 
 __all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
 
@@ -59,6 +59,9 @@ class Job:
         self.kind = kind
         self.name = name
         self.program = program
+        # (MSG,...), (DEBUG,...) and user M-code texts, shown when the motion reaches their line
+        self.messages: collections.deque[tuple[int, str]] = collections.deque(
+            (e.line, e.message) for e in program.events if e.kind is EventKind.MESSAGE)
         self.plan = plan
         self.executor = executor
         self.overrides = overrides

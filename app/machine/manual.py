@@ -172,6 +172,8 @@ class ManualMotion:
                     why = self.m.outputs.set_output(number, ev.value >= 0)
                     if why:
                         return self.m.states.refuse("mdi", why)
+                elif ev.kind is EventKind.MESSAGE:     # (MSG,...) typed in MDI
+                    self.m.stream.show_message(ev.message)
                 elif ev.kind is EventKind.TOOL_DATA:   # G10 L1/L10/L11 typed in MDI
                     self.m.tools.set_by_program(prog.tool_sets[int(ev.value)])
                 elif ev.kind is EventKind.OFFSETS:     # G10, G92, G52, G28.1 ... typed in MDI

@@ -799,3 +799,18 @@ def test_work_position_reads_as_the_program_in_a_rotated_system(ctl: MachineCont
     ctl.advance(0.1)
     np.testing.assert_allclose(ctl.machine_position[:2], (9.0, 3.0), atol=1e-3)
     np.testing.assert_allclose(ctl.work_position[:2], (3.0, 1.0), atol=1e-3)
+
+
+def test_program_messages_reach_the_operator_where_the_motion_is(ctl: MachineController) -> None:
+    """(MSG,...) and (DEBUG,...) texts appear on the status line and in the alarm log when the
+    motion reaches their line, in program order; the rest at the end; MDI's at once."""
+    shown: list[str] = []
+    ctl.message.connect(shown.append)
+    text = "G21 G90 F600\n(MSG, roughing)\nG1 X2\n#<n> = 3\n(DEBUG, passes #<n>)\nG1 X4\n(MSG, done)\nM2\n"
+    assert ctl.load_program(text, "msg.ngc", wait=True)
+    assert ctl.cycle_start()
+    run_to_idle(ctl)
+    program_texts = [s for s in shown if s in ("roughing", " passes 3.000000", "done")]
+    assert program_texts == ["roughing", " passes 3.000000", "done"]
+    assert [a.cause for a in ctl.alarms if a.source == "program"][-3:] == program_texts
+    assert ctl.mdi("(MSG, hello)") and "hello" in shown[-2:]
