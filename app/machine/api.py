@@ -132,6 +132,20 @@ class MachineApi(Protocol):
         ...
 
     @property
+    def g92_offset(self) -> tuple[float, ...] | None:
+        """The G92/G52 offset per axis when it is on, else None."""
+        ...
+
+    @property
+    def xy_rotation_deg(self) -> float:
+        """The XY rotation (G10 L2 R) of the active work offset, degrees."""
+        ...
+
+    def clear_g92(self) -> CommandResult:
+        """Switch the G92/G52 offset off and zero its parameters (G92.1)."""
+        ...
+
+    @property
     def program_info(self) -> ProgramInfo | None:
         """The loaded program (None if none)."""
         ...

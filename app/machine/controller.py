@@ -247,6 +247,22 @@ class MachineController(QObject):
         return self.pos.active_offset
 
     @property
+    def g92_offset(self) -> tuple[float, ...] | None:
+        """The G92/G52 offset per axis when it is on (a program left it), else None."""
+        if not self.pos.parameters.get(5210, 0.0):
+            return None
+        return tuple(float(v) for v in self.pos.g92_offset())
+
+    @property
+    def xy_rotation_deg(self) -> float:
+        """The XY rotation (G10 L2 R) of the active work offset, degrees."""
+        return self.pos.rotation()
+
+    def clear_g92(self) -> CommandResult:
+        """Switch the G92/G52 offset off and zero its parameters (G92.1)."""
+        return self.pos.clear_g92()
+
+    @property
     def program_info(self) -> ProgramInfo | None:
         """The loaded program (None if none)."""
         return self.loader.program_info

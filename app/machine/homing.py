@@ -176,6 +176,18 @@ class Positions:
             return np.zeros(n)
         return np.array([p.get(5211 + "XYZABCUVW".index(a), 0.0) for a in self.m.config.axes])
 
+    def clear_g92(self) -> CommandResult:
+        """G92.1 from the panel: the G92/G52 offset off and its parameters zero (what an earlier
+        program left), persisted."""
+        why = self.m.states.refusal("set_work_offset")
+        if why:
+            return self.m.states.refuse("clear_g92", why)
+        values = dict(self.parameters)
+        for k in range(5210, 5220):
+            values[k] = 0.0
+        self.apply_parameters(values)
+        return self.m.states.ok("clear_g92")
+
     def apply_parameters(self, values: dict[int, float]) -> None:
         """A program's G10/G92/G52/G28.1/G30.1 reached by the motion (or an MDI block): the
         parameters are kept, G54-G59 become the work offsets. Persisted at once, as LinuxCNC

@@ -50,6 +50,17 @@ class PartZeroPage(QWidget):
         i18n.bind(hint, N_("Tap a value to type it. Touch off: the current position becomes the "
                            "work coordinate you enter, in the selected offset."))
         layout.addWidget(hint)
+        # what a program left on top of the table: the G92/G52 offset and the XY rotation
+        extra = QHBoxLayout()
+        self.extra_label = QLabel()
+        self.extra_label.setWordWrap(True)
+        extra.addWidget(self.extra_label, 1)
+        self.clear_g92_button = QPushButton()
+        i18n.bind(self.clear_g92_button, N_("Clear G92"))
+        self.clear_g92_button.clicked.connect(lambda: self.ctx.controller.clear_g92())
+        extra.addWidget(self.clear_g92_button)
+        layout.addLayout(extra)
+        i18n.languageChanged.connect(lambda *_: self._show_extra())
         touch = QHBoxLayout()
         self.touch_buttons: dict[str, QPushButton] = {}
         for axis in self.axes:
@@ -75,6 +86,21 @@ class PartZeroPage(QWidget):
         if active in self.select_buttons:
             self.select_buttons[active].setChecked(True)
             self.table.selectRow(WORK_OFFSET_NAMES.index(active))
+        self._show_extra()
+
+    def _show_extra(self) -> None:
+        c = self.ctx.controller
+        g92 = c.g92_offset
+        if g92 is None:
+            text = tr("G92 offset: off")
+        else:
+            values = " ".join(f"{a}{v:+.3f}" for a, v in zip(self.axes, g92))
+            text = tr("G92 offset: {0} (on: every work position is shifted by it)").format(values)
+        rotation = c.xy_rotation_deg
+        if rotation:
+            text += "\n" + tr("XY rotation of {0}: {1} degrees").format(self._active, f"{rotation:g}")
+        self.extra_label.setText(text)
+        self.clear_g92_button.setEnabled(g92 is not None)
 
     def edit_cell(self, row: int, col: int) -> None:
         name = WORK_OFFSET_NAMES[row]

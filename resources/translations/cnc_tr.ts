@@ -114,7 +114,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="337" />
+      <location filename="../../app/pages/auto.py" line="332" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="337" />
+      <location filename="../../app/pages/auto.py" line="332" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -159,6 +159,11 @@
       <translation>Temizle</translation>
     </message>
     <message>
+      <location filename="../../app/pages/part_zero.py" line="59" />
+      <source>Clear G92</source>
+      <translation>G92'yi sil</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/status_header.py" line="105" />
       <source>Connect</source>
       <translation>Bağlan</translation>
@@ -189,7 +194,7 @@
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="180" />
+      <location filename="../../app/pages/auto.py" line="179" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -289,7 +294,7 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="340" />
+      <location filename="../../app/pages/auto.py" line="335" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
@@ -327,6 +332,16 @@
       <location filename="../../app/pages/manual.py" line="76" />
       <source>G-code block, e.g. G01 X10 F600</source>
       <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="95" />
+      <source>G92 offset: off</source>
+      <translation>G92 ofseti: kapalı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="98" />
+      <source>G92 offset: {0} (on: every work position is shifted by it)</source>
+      <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
     <message>
       <location filename="../../app/pages/program.py" line="24" />
@@ -434,7 +449,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="326" />
+      <location filename="../../app/pages/auto.py" line="321" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -501,7 +516,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="206" />
+      <location filename="../../app/pages/auto.py" line="205" />
       <source>Move to the start of line {0} the way drawn (up to the clearance height, across, spindle on, down) and run the program from there?</source>
       <translation>{0}. satırın başına çizilen yoldan gidilsin (güvenli yüksekliğe çık, yana git, iş milini çalıştır, in) ve program oradan çalıştırılsın mı?</translation>
     </message>
@@ -656,7 +671,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="297" />
+      <location filename="../../app/pages/auto.py" line="294" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -676,7 +691,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="302" />
+      <location filename="../../app/pages/auto.py" line="299" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -748,12 +763,12 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="191" />
+      <location filename="../../app/pages/auto.py" line="190" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="198" />
+      <location filename="../../app/pages/auto.py" line="197" />
       <source>Run from line refused: {0}</source>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
@@ -873,7 +888,7 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="336" />
+      <location filename="../../app/pages/auto.py" line="331" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
@@ -888,7 +903,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="337" />
+      <location filename="../../app/pages/auto.py" line="332" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -968,7 +983,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="339" />
+      <location filename="../../app/pages/auto.py" line="334" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -988,7 +1003,7 @@ BIRAK</translation>
       <translation>Boyu dokunarak ölç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="57" />
+      <location filename="../../app/pages/part_zero.py" line="68" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
@@ -998,7 +1013,7 @@ BIRAK</translation>
       <translation>{0} dokunarak ölç: ucun değdiği yüzeyin iş Z'si</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="89" />
+      <location filename="../../app/pages/part_zero.py" line="115" />
       <source>Touch off {0}: work coordinate here</source>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
@@ -1076,6 +1091,11 @@ BIRAK</translation>
       <location filename="../../app/pages/preview.py" line="103" />
       <source>Work coordinates ({0}): the cross is the work zero, the dashed box the machine's travel.</source>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="101" />
+      <source>XY rotation of {0}: {1} degrees</source>
+      <translation>{0} XY döndürmesi: {1} derece</translation>
     </message>
     <message>
       <location filename="../../app/dialogs.py" line="25" />
@@ -1223,7 +1243,7 @@ BIRAK</translation>
       <translation>yüklü program yok</translation>
     </message>
     <message>
-      <location filename="../../app/format.py" line="43" />
+      <location filename="../../app/format.py" line="42" />
       <source>none</source>
       <translation>yok</translation>
     </message>
@@ -1403,7 +1423,7 @@ BIRAK</translation>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="82" />
+      <location filename="../../app/pages/part_zero.py" line="108" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>

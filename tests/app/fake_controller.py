@@ -74,6 +74,8 @@ class FakeController(QObject):
         self.homed = (False,) * n
         self.work_offsets = dict(self.config.machine.work_offsets)
         self.active_offset = "G54"
+        self.g92_offset: tuple[float, ...] | None = None
+        self.xy_rotation_deg = 0.0
         self.program_info: ProgramInfo | None = None
         self.current_line = 0
         self.feed_override_pct = 100.0
@@ -274,6 +276,11 @@ class FakeController(QObject):
         self.active_offset = name
         self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
         return self._ok("select_work_offset", name)
+
+    def clear_g92(self) -> CommandResult:
+        self.g92_offset = None
+        self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
+        return self._ok("clear_g92")
 
     def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:
         return self._ok("touch_off", axis, work_value, offset)

@@ -201,6 +201,19 @@ def test_part_zero_table_and_touch_off(fake_window, fake_controller, dialogs) ->
     assert fake_controller.calls[-1] == ("touch_off", "Z", 0.0, "G55")
 
 
+def test_part_zero_shows_what_a_program_left_and_clears_g92(fake_window, fake_controller) -> None:
+    page = fake_window.page("part_zero")
+    assert page.extra_label.text() == "G92 offset: off" and not page.clear_g92_button.isEnabled()
+    fake_controller.g92_offset = (1.5, -2.0, 0.0)
+    fake_controller.xy_rotation_deg = 30.0
+    fake_controller.offsetsChanged.emit(dict(fake_controller.work_offsets), "G54")
+    assert "X+1.500 Y-2.000 Z+0.000" in page.extra_label.text()
+    assert "XY rotation of G54: 30 degrees" in page.extra_label.text()
+    page.clear_g92_button.click()
+    assert fake_controller.calls[-1] == ("clear_g92",)
+    assert page.extra_label.text().startswith("G92 offset: off")
+
+
 def test_service_password_protects_service_pages(fake_window, dialogs) -> None:
     now = [1_000_000.0]
     fake_window.context.access.clock = lambda: now[0]

@@ -741,6 +741,10 @@ def test_a_program_leaves_its_offsets_and_parameters_with_the_machine(qapp, conf
     again = make_controller(config_path, state_dir, zero=False)
     try:
         assert again.pos.parameters[5211] == -4.0 and again.pos.offsets["G55"][:2] == (10.0, 20.0)
+        assert again.g92_offset is not None and again.g92_offset[0] == -4.0
+        assert again.clear_g92()
+        assert again.g92_offset is None and again.pos.parameters[5211] == 0.0
+        assert again.mdi("G92 X1") and again.pos.parameters[5210] == 1.0
         assert again.mdi("G92.1")
         assert again.pos.parameters[5210] == 0.0 and again.pos.parameters[5211] == 0.0
     finally:
