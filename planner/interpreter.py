@@ -611,13 +611,35 @@ class _Interpreter:
             self.name = name
 
     def position_parameter(self, number: int) -> float | None:
-        """#5420-#5428: the current position in program coordinates (X Y Z A B C U V W)."""
-        letter = _PARAM_AXES[number - 5420]
-        return self.system_parameter("_" + letter)
+        """#5420-#5428 the current position in program coordinates, #5021-#5029 the machine
+        position (X Y Z A B C U V W), #5400 the tool in the spindle, #5401-#5409 its offsets in
+        the tool table, #5410 its diameter; 0 for an axis the machine does not have."""
+        if number >= 5420:
+            return self.system_parameter("_" + _PARAM_AXES[number - 5420])
+        if number <= 5029:
+            letter = _PARAM_AXES[number - 5021]
+            i = self.axis_index.get(letter)
+            if i is None:
+                return 0.0
+            return self.pos[i] if self.rotary[i] else self.pos[i] / self.scale
+        if number == 5400:
+            return float(self.tool)
+        tool = self.tools.get(self.tool) if self.tools is not None else None
+        if tool is None:
+            return 0.0
+        if number == 5410:
+            return tool.diameter_mm / self.scale
+        letter = _PARAM_AXES[number - 5401]
+        value = tool.offset(letter)
+        return value if letter in "ABC" else value / self.scale
 
     def system_parameter(self, name: str) -> float | None:
         """LinuxCNC's predefined named parameters the interpreter knows."""
         axis = name[1:]
+        if name.startswith("_ABS_") and len(name) == 6 and name[5] in _PARAM_AXES:
+            return self.position_parameter(5021 + _PARAM_AXES.index(name[5]))   # machine position
+        if axis not in self.axis_index and len(axis) == 1 and axis in _PARAM_AXES:
+            return 0.0                     # an axis this machine does not have reads 0, as LinuxCNC's
         if axis in self.axis_index:
             i = self.axis_index[axis]
             value = self.pos[i] - self.offset[i]
@@ -1714,13 +1736,33 @@ class _Interpreter:
                               "on the Tools page first)", "P")
         if l_word == 11:
             work, g92 = self.work_offsets[593], (0.0,) * self.n
+            rotation = self.params.numbered.get(system_base(593) + 9, 0.0)
         else:
             work, g92 = self.work, self.g92
+            rotation = self.rotation
+        xy = l_word != 1 and ("X" in axis_words or "Y" in axis_words) and "X" in self.axis_index \
+            and "Y" in self.axis_index
         for letter in axis_words:
+            if xy and letter in "XY":
+                continue
             i = self.axis_index[letter]
             given = vals[letter] if self.rotary[i] else vals[letter] * scale
+            # L10/L11: the position in that system without any tool offset, minus the value
             value = given if l_word == 1 else self.pos[i] - work[i] - g92[i] - given
             tool = tool.with_offset(letter, value)
+        if xy:
+            # X and Y as LinuxCNC's convert_setup_tool: the position read in the (possibly
+            # rotated) system without tool offset, minus the values, turned back to the machine's
+            # frame; an axis not given keeps the old offset's component along it
+            ix, iy = self.axis_index["X"], self.axis_index["Y"]
+            c, s = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
+            dx, dy = self.pos[ix] - work[ix], self.pos[iy] - work[iy]
+            tx, ty = c * dx + s * dy - g92[ix], -s * dx + c * dy - g92[iy]
+            ox, oy = tool.offset("X"), tool.offset("Y")
+            old_u, old_v = c * ox + s * oy, -s * ox + c * oy          # the old offset, system frame
+            u = tx - vals["X"] * scale if "X" in axis_words else old_u
+            v = ty - vals["Y"] * scale if "Y" in axis_words else old_v
+            tool = tool.with_offset("X", c * u - s * v).with_offset("Y", s * u + c * v)
         if "R" in vals:
             if vals["R"] < 0:
                 raise _BlockError(f"G10 L{l_word} R{vals['R']:g}: the tool radius cannot be negative", "R")

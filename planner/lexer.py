@@ -44,11 +44,13 @@ class Params:
         self.named: dict[str, float] = {}
         self.globals: dict[str, float] = {}
         self.system: Callable[[str], float | None] = lambda name: None
-        # read-only numbered ones computed when read (#5420-#5428: the current position)
+        # read-only numbered ones computed when read (#5420-#5428 the current position, #5021-
+        # #5029 the machine position, #5400-#5410 the tool in the spindle and its table data)
         self.system_numbered: Callable[[int], float | None] = lambda number: None
 
     def get_numbered(self, number: int) -> float:
-        v = self.system_numbered(number) if 5420 <= number <= 5428 else None
+        computed = 5420 <= number <= 5428 or 5021 <= number <= 5029 or 5400 <= number <= 5410
+        v = self.system_numbered(number) if computed else None
         return self.numbered.get(number, 0.0) if v is None else v
 
     def get_named(self, name: str) -> float | None:

@@ -164,3 +164,23 @@ def test_rotation_keeps_distances_and_reads_back(r: float, x: float, y: float, o
     rx, ry = (float(v) for v in msg.split())
     assert rx == pytest.approx(float(f"{x:.4f}"), abs=1e-6)
     assert ry == pytest.approx(float(f"{y:.4f}"), abs=1e-6)
+
+
+@pytest.mark.parametrize("name, count", [("g10-l1-l10", 34), ("g10-l11", 4), ("g10-with-g92", 18),
+                                         ("machine-coord-params", 13)])
+def test_linuxcnc_tool_data_offsets_and_position_parameters(name: str, count: int) -> None:
+    """LinuxCNC's G10 L1/L10/L11 (rotated systems and G92 included), G92 with every system and
+    the position parameters #5021-, #5401-, #5420-, message by message. Its test harness keeps
+    parameters in inch user units and its output went through awk (runs of spaces collapsed):
+    read in G21 on this millimetre machine, the numbers are the same."""
+    import re
+
+    from planner.tools import parse_tbl
+
+    folder = DATA / name
+    text = (folder / "test.ngc").read_text().replace("g20", "g21").replace("G20", "G21")
+    program = parse_program(text, tools=parse_tbl((folder / "test.tbl").read_text()))
+    want = re.findall(r'MESSAGE\("(.*)"\)', (folder / "expected").read_text())
+    assert len(want) == count
+    got = [re.sub(" {2,}", " ", e.message) for e in program.events if e.kind is EventKind.MESSAGE]
+    assert got == want
