@@ -11,6 +11,18 @@ class PlannerError(ValueError):
     """Any error raised by the planner package (bad program, bad settings, bad request)."""
 
 
+class BlockError(Exception):
+    """A refusal inside one block of a program. The interpreter turns it into a SourceError
+    with the file, the line and the column of ``letter``'s word (or ``col``); it never leaves
+    the interpreter."""
+
+    def __init__(self, message: str, letter: str | None = None, col: int | None = None):
+        super().__init__(message)
+        self.message = message
+        self.letter = letter
+        self.col = col
+
+
 @dataclass(frozen=True, slots=True)
 class SourceError:
     """One error located in a source file: rendered as ``file:line:col: error: message``."""

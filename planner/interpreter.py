@@ -39,6 +39,8 @@ from planner.arcs import (
     check_center_radii,
     sweep_angle,
 )
+from planner.cutter_comp import LEFT, RIGHT, CutterComp
+from planner.errors import BlockError as _BlockError
 from planner.errors import PlannerError, ProgramError, SourceError
 from planner.gcpause import gc_paused
 from planner.lexer import LexError, Params, compact, evaluate_brackets, original_column, read_line
@@ -72,7 +74,7 @@ _G_GROUP = {
     930: 5, 940: 5, 950: 5,
     970: 14,
     200: 6, 210: 6,
-    400: 7, 410: 7, 420: 7,
+    400: 7, 410: 7, 420: 7, 411: 7, 421: 7,
     430: 8, 431: 8, 432: 8, 490: 8,
     540: 12, 550: 12, 560: 12, 570: 12, 580: 12, 590: 12, 591: 12, 592: 12, 593: 12,
     610: 13, 611: 13, 640: 13,
@@ -91,7 +93,6 @@ _G_UNSUPPORTED = {
     50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
     80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
     382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
-    411: "G41.1 dynamic cutter compensation", 421: "G42.1 dynamic cutter compensation",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
@@ -173,14 +174,6 @@ class _Frame:
 
 def _statement_col(raw: str, index: int) -> int:
     return original_column(raw, index) if index else 1
-
-
-class _BlockError(Exception):
-    def __init__(self, message: str, letter: str | None = None, col: int | None = None):
-        super().__init__(message)
-        self.message = message
-        self.letter = letter  # locate the error at this word's column
-        self.col = col
 
 
 def _compact_or_none(raw: str) -> str | None:
@@ -312,6 +305,8 @@ class _Interpreter:
                                       tuple[float, ...], float]] = [
             (0, 0, 1, self.work, self.g92, self.tlo, self.rotation)]
         self.comp_code = 400
+        self.comp = CutterComp()
+        self.zero_length = _ZERO_LEN
         self.tlo_code = 490
         self.modal_changes: list[tuple[int, str]] = [(0, self.modal_text())]
         self.errors: list[SourceError] = []
@@ -684,7 +679,8 @@ class _Interpreter:
                 return True
             return False
         motion = int(gtxt) * 10 if gtxt is not None else self.motion
-        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation:
+        if (motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation
+                or self.comp.busy):
             return False
         scale = self.scale
         if f_t is not None:
@@ -911,20 +907,44 @@ class _Interpreter:
         c, s = math.cos(theta), math.sin(theta)
         return (c * u - s * v + self.work[ix] + self.tlo[ix], s * u + c * v + self.work[iy] + self.tlo[iy])
 
-    def check_radius_zero(self, code: int, vals: dict[str, float]) -> None:
-        """G41/G42 run the programmed path, which is what compensation does with a zero-diameter
-        tool (LinuxCNC's reference set-up). A tool with a diameter would be cut a radius off
-        its path: refused until compensation offsets the path."""
+    def comp_request(self, code: int, vals: dict[str, float], scale: float) -> None:
+        """G41/G42 (radius from the tool table: D's tool, or the tool in the spindle without D
+        or with D0) and G41.1/G42.1 (D is the diameter), as LinuxCNC 2.9 reads them."""
+        name = _gname(code)
+        if self.comp.side != 0:
+            raise _BlockError(f"cannot turn cutter compensation on with {name} while it is on "
+                              f"({_gname(self.comp_code)}): program G40 first", name)
+        if self.plane not in (170, 180):
+            raise _BlockError(f"cutter compensation works in the XY (G17) or XZ (G18) plane, not in "
+                              f"{_PLANE_G[self.plane]}", name)
+        if self.plane == 180 and self.rotation != 0.0:
+            raise _BlockError("cutter compensation in G18 with the XY plane rotated (G10 L2 R): the offset "
+                              "would not lie in a machine plane", name)
         d = vals.get("D")
-        if d is not None and (d < 0 or d != int(d)):
-            raise _BlockError(f"tool number D{d:g} must be a whole number >= 0", "D")
-        number = int(d) if d is not None else self.tool
-        tool = self.tools.get(number) if self.tools is not None else None
-        if tool is not None and tool.diameter_mm > 0.0:
-            raise _BlockError(
-                f"{_gname(code)} with tool {self.tool_label(number)} of diameter {tool.diameter_mm:g} mm: "
-                "cutter radius compensation that offsets the path is not supported yet; program the tool "
-                "centre path (G40) or set the diameter to 0", "D" if d is not None else _gname(code))
+        if code in (411, 421):
+            if d is None:
+                raise _BlockError(f"{name} needs a D word (the tool diameter)", name)
+            if "L" in vals and vals["L"] not in (0, 9):
+                raise _BlockError(f"{name} L{vals['L']:g}: lathe tool orientations are not supported on "
+                                  "this machine (L0 or L9: the centre of the tool)", "L")
+            radius = d * scale / 2.0
+        else:
+            if d is not None and (d < 0 or d != int(d)):
+                raise _BlockError(f"{name} needs D to be a tool number (a whole number >= 0), got D{d:g}",
+                                  "D")
+            number = int(d) if d else self.tool
+            if d:
+                self.known_tool(number, "D")
+            tool = self.tools.get(number) if self.tools is not None else None
+            radius = tool.diameter_mm / 2.0 if tool is not None else 0.0
+        _pname, fa, sa, *_ = self.plane_axes()
+        self.comp.turn_on(LEFT if code in (410, 411) else RIGHT, radius, (fa, sa))
+
+    def comp_refuses(self, what: str, letter: str) -> None:
+        """LinuxCNC refuses these while compensation is on (whatever the radius)."""
+        if self.comp.side != 0:
+            raise _BlockError(f"cannot {what} with cutter compensation on ({_gname(self.comp_code)}): "
+                              "program G40 first", letter)
 
     def set_offset(self, work: tuple[float, ...] | None = None, tlo: tuple[float, ...] | None = None) -> None:
         """Change the work offset and/or the tool length offset; moves from now on use both."""
@@ -1018,7 +1038,8 @@ class _Interpreter:
                 return True
             return False
         motion = g if g >= 0 else self.motion
-        if motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation:
+        if (motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation
+                or self.comp.busy):
             return False
         if "F" in vals:
             f = vals["F"]
@@ -1173,9 +1194,9 @@ class _Interpreter:
                               "P")
         if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q:
             raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83)", "Q")
-        if "D" in vals and groups.get(7) not in (410, 420) and motion not in _CYCLE_NEEDS_Q:
-            raise _BlockError("D word with no G41/G42, G73 or G83 to use it", "D")
-        if "L" in vals and not is_cycle and g0 != 100:
+        if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and motion not in _CYCLE_NEEDS_Q:
+            raise _BlockError("D word with no G41/G42, G41.1/G42.1, G73 or G83 to use it", "D")
+        if "L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421):
             raise _BlockError("L word with no canned cycle or G10 to use it", "L")
         if is_cycle:
             for letter in axis_words:
@@ -1227,6 +1248,7 @@ class _Interpreter:
             self.selected = self.known_tool(int(t), "T")
             ev.append(Event(EventKind.TOOL, line_no, after, float(t), f"tool T{int(t)} selected"))
         if mgroups.get(6) == 6:
+            self.comp_refuses("change tools", "M6")
             self.tool = self.selected
             ev.append(
                 Event(
@@ -1254,6 +1276,7 @@ class _Interpreter:
             self.coolant = 0 if c == 9 else self.coolant | (1 if c == 7 else 2)
         m5 = mgroups.get(5)
         if m5 is not None:            # M62/M64 on, M63/M65 off (all at this point of the path)
+            self.comp_refuses("set a digital output", f"M{m5}")
             p = vals.get("P")
             if p is None or p != int(p) or int(p) not in self.outputs:
                 known = ", ".join(f"P{k}" for k in sorted(self.outputs)) or "none: add [[outputs]]"
@@ -1279,22 +1302,28 @@ class _Interpreter:
                 raise _BlockError(f"negative dwell time P{p:g}", "P")
             ev.append(Event(EventKind.DWELL, line_no, after, p, f"dwell {p:g} s"))
         if 2 in groups:
+            if groups[2] != self.plane:
+                self.comp_refuses("change the plane", _gname(groups[2]))
             self.plane = groups[2]
-        # group 7 (cutter comp): radius 0 -> the programmed path.
+        if 7 in groups:                 # cutter compensation, then what it forbids to change
+            if groups[7] == 400:
+                self.comp.turn_off(self)
+            else:
+                self.comp_request(groups[7], vals, scale)
+            self.comp_code = groups[7]
         if 8 in groups:
+            self.comp_refuses("change the tool length offset", _gname(groups[8]))
             self.tool_length(groups[8], vals, axis_words_offset, scale)
         if 12 in groups:
+            self.comp_refuses("change the coordinate system", _gname(groups[12]))
             self.work_code = groups[12]
             self.rotation = self.params.numbered.get(system_base(groups[12]) + 9, 0.0)
             self.set_offset(work=self.work_offsets[groups[12]])
             self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(groups[12]) + 1)
-        if 7 in groups:
-            if groups[7] in (410, 420):
-                self.check_radius_zero(groups[7], vals)
-            self.comp_code = groups[7]
         if 8 in groups:
             self.tlo_code = groups[8]
         if 13 in groups:
+            self.comp_refuses("change the path control mode", _gname(groups[13]))
             self.exact_stop = groups[13] == 610
             # G61.1 keeps the programmed path without stopping at the joints: what the planner
             # does in G64 today too (it does not blend corners); kept apart for the display
@@ -1304,6 +1333,7 @@ class _Interpreter:
         if 4 in groups:
             self.arc_absolute = groups[4] == 901
         if 10 in groups:
+            self.comp_refuses("change the canned cycle retract mode", _gname(groups[10]))
             self.retract_r_plane = groups[10] == 990
         previous_motion = self.motion      # a cycle's words are required when it was not the mode
         if g1 is not None:
@@ -1312,6 +1342,12 @@ class _Interpreter:
             self.note_modal()
 
         # ---- offsets and stored positions (RS274/NGC order: after the modes, before motion)
+        if g0 in (281, 301):
+            self.comp_refuses("store the G28/G30 position", _gname(g0))
+        elif g0 in (520, 920, 921, 922, 923):
+            self.comp_refuses("change the axis offsets (G52, G92)", _gname(g0))
+        elif g0 in (280, 300):
+            self.comp_refuses(f"use {_gname(g0)}", _gname(g0))
         if g0 in (100, 281, 301, 520, 920, 921, 922, 923):
             self.data_code(g0, vals, axis_words, scale, line_no)
         # ---- motion
@@ -1338,6 +1374,8 @@ class _Interpreter:
             if g0 == 530:
                 if motion not in (0, 10):
                     raise _BlockError("G53 needs G00 or G01", "G53")
+                if self.comp.radius > 0.0:
+                    raise _BlockError("cannot use G53 with cutter compensation on: program G40 first", "G53")
                 if not self.absolute:
                     raise _BlockError("G53 cannot be used in incremental mode (G91)", "G53")
             if polar:
@@ -1352,6 +1390,7 @@ class _Interpreter:
 
         m4 = mgroups.get(4)
         if m4 is not None:
+            self.comp.stop(self)
             kind = _STOP_EVENTS[m4]
             ev.append(Event(kind, line_no, len(self.ends) - 1, 0.0, f"M{m4:02d}"))
             if kind is EventKind.END:
@@ -1389,7 +1428,7 @@ class _Interpreter:
     def target(
         self, vals: dict[str, float], axis_words: list[str], scale: float, machine: bool
     ) -> list[float]:
-        pos = self.pos
+        pos = self.comp.base(self.pos)
         tgt = pos.copy()
         idx = self.axis_index
         rot = self.rotary
@@ -1431,6 +1470,14 @@ class _Interpreter:
         return rot_len if rot_len > _ZERO_LEN else length
 
     def straight(self, target: list[float], rapid: bool, line_no: int) -> None:
+        comp = self.comp
+        if comp.busy:
+            if comp.radius > 0.0:
+                if not rapid and self.feed_mm_s <= 0.0:
+                    raise _BlockError(_ZERO_FEED, "G")
+                comp.straight(self, target, rapid, line_no)
+                return
+            comp.straight_done()
         length = self.path_length(self.pos, target)
         if length <= _ZERO_LEN:
             return  # zero-length move: dropped (position unchanged)
@@ -1443,12 +1490,24 @@ class _Interpreter:
         self.emit(target, _RAPID if rapid else _LINE, feed, length, None, line_no)
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
-             line_no: int) -> None:
-        if self.feed_mode == 930 and kind is not _RAPID:
+             line_no: int, fixed_feed: bool = False) -> None:
+        if self.feed_mode == 930 and kind is not _RAPID and not fixed_feed:
             feed = length * self.inverse_f / 60.0      # the move takes 1/F minutes
         self.ends.append(target)
         self.recs.append((line_no, kind, feed, length, arc, self.exact_stop))
         self.pos = target
+
+    def drop_move(self, i: int) -> None:
+        """Remove move ``i`` (cutter compensation cut it to nothing); what refers to later moves
+        by index moves down one."""
+        del self.ends[i]
+        del self.recs[i]
+        self.pos = self.ends[-1] if self.ends else list(self.start)
+        self.events[:] = [replace(e, after_move=e.after_move - 1) if e.after_move >= i else e
+                          for e in self.events]
+        self.offset_changes[:] = [(f - 1 if f > i else f, o) for f, o in self.offset_changes]
+        self.offset_parts[:] = [(p[0] - 1 if p[0] > i else p[0], *p[1:]) for p in self.offset_parts]
+        self.modal_changes[:] = [(f - 1 if f > i else f, t) for f, t in self.modal_changes]
 
     def canned_cycle(self, motion: int, first: bool, vals: dict[str, float], axis_words: list[str],
                      scale: float, line_no: int) -> None:
@@ -1810,6 +1869,63 @@ class _Interpreter:
             self.plane_cache[self.plane] = info
         return info
 
+    def arc_turns(self, vals: dict[str, float]) -> int:
+        """The P word of an arc: whole turns, 1 without it."""
+        if "P" not in vals:
+            return 1
+        p = vals["P"]
+        if p != int(p) or p < 1:
+            raise _BlockError(f"P (number of turns) must be a whole number >= 1, got P{p:g}", "P")
+        if p > _MAX_TURNS:
+            raise _BlockError(f"P{p:g}: more than {_MAX_TURNS} turns", "P")
+        return int(p)
+
+    def arc_center(self, x0: float, y0: float, x1: float, y1: float, vals: dict[str, float], cw: bool,
+                   scale: float) -> tuple[float, float, float, float]:
+        """Centre and (start, end) radius of the arc from (x0, y0) to (x1, y1) in the plane's
+        machine coordinates, from R or the centre words, checked as LinuxCNC checks them."""
+        pname, fa, sa, na, fc, sc, bad, letters = self.plane_axes()
+        try:
+            r_val = vals.get("R")
+            if r_val is not None:
+                if "I" in vals or "J" in vals or "K" in vals:
+                    raise _BlockError("mixed radius (R) and centre (I/J/K) format for arc", "R")
+                cx, cy = center_from_radius(x0, y0, x1, y1, r_val * scale, cw)
+                r0 = r1 = math.hypot(x0 - cx, y0 - cy)
+                return cx, cy, r0, r1
+            if bad in vals:
+                raise _BlockError(
+                    f"{bad} word given for arc in the {pname} plane ({_PLANE_G[self.plane]})", bad
+                )
+            ci = vals.get(fc)
+            cj = vals.get(sc)
+            if ci is None and cj is None:
+                raise _BlockError("arc needs R or a centre: R, I, J and K words all missing", "G")
+            if self.arc_absolute:
+                if ci is None or cj is None:
+                    raise _BlockError(f"G90.1 (absolute arc centre) needs both {fc} and {sc}",
+                                      fc if ci is None else sc)
+                if self.rotation != 0.0:
+                    cx, cy = self.machine_xy(ci * scale, cj * scale)
+                else:
+                    cx = ci * scale + self.offset[fa]
+                    cy = cj * scale + self.offset[sa]
+            else:
+                di = ci * scale if ci is not None else 0.0
+                dj = cj * scale if cj is not None else 0.0
+                if self.rotation != 0.0:     # the centre offset turns with the system
+                    theta = math.radians(self.rotation)
+                    di, dj = (di * math.cos(theta) - dj * math.sin(theta),
+                              di * math.sin(theta) + dj * math.cos(theta))
+                cx = x0 + di
+                cy = y0 + dj
+            r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.inch, letters)
+            if abs(r1 - r0) <= 1e-12 * r0:
+                r1 = r0
+            return cx, cy, r0, r1
+        except ArcError as e:
+            raise _BlockError(str(e), "R" if "R" in vals else "G") from None
+
     def arc(self, target: list[float], vals: dict[str, float], cw: bool, scale: float, line_no: int) -> None:
         pname, fa, sa, na, fc, sc, bad, letters = self.plane_axes()
         if self.rotation != 0.0 and self.plane != 170:
@@ -1819,59 +1935,25 @@ class _Interpreter:
         feed = self.feed_mm_s
         if feed <= 0.0:
             raise _BlockError(_ZERO_FEED, "G")
-        turns = 1
-        if "P" in vals:
-            p = vals["P"]
-            if p != int(p) or p < 1:
-                raise _BlockError(f"P (number of turns) must be a whole number >= 1, got P{p:g}", "P")
-            if p > _MAX_TURNS:
-                raise _BlockError(f"P{p:g}: more than {_MAX_TURNS} turns", "P")
-            turns = int(p)
+        turns = self.arc_turns(vals)
+        if self.comp.arc_banned:
+            raise _BlockError("the move just after turning cutter compensation off (G40) must be a "
+                              "straight line, not an arc", "G")
+        if self.comp.radius > 0.0:
+            self.comp.arc(self, target, vals, cw, turns, scale, line_no)
+            return
         pos = self.pos
         x0 = pos[fa]
         y0 = pos[sa]
         x1 = target[fa]
         y1 = target[sa]
+        if "R" in vals and ("I" in vals or "J" in vals or "K" in vals):
+            raise _BlockError("mixed radius (R) and centre (I/J/K) format for arc", "R")
+        if ("R" in vals and (x0 != x1 or y0 != y1) and vals["R"] > 0.0
+                and self.path_length(pos, target) <= _ZERO_LEN):
+            return  # a short R arc between points within 1e-9 mm: a zero-length move
+        cx, cy, r0, r1 = self.arc_center(x0, y0, x1, y1, vals, cw, scale)
         try:
-            r_val = vals.get("R")
-            if r_val is not None:
-                if "I" in vals or "J" in vals or "K" in vals:
-                    raise _BlockError("mixed radius (R) and centre (I/J/K) format for arc", "R")
-                r_val *= scale
-                if (x0 != x1 or y0 != y1) and r_val > 0.0 and self.path_length(pos, target) <= _ZERO_LEN:
-                    return  # a short R arc between points within 1e-9 mm: a zero-length move
-                cx, cy = center_from_radius(x0, y0, x1, y1, r_val, cw)
-                r0 = r1 = math.hypot(x0 - cx, y0 - cy)
-            else:
-                if bad in vals:
-                    raise _BlockError(
-                        f"{bad} word given for arc in the {pname} plane ({_PLANE_G[self.plane]})", bad
-                    )
-                ci = vals.get(fc)
-                cj = vals.get(sc)
-                if ci is None and cj is None:
-                    raise _BlockError("arc needs R or a centre: R, I, J and K words all missing", "G")
-                if self.arc_absolute:
-                    if ci is None or cj is None:
-                        raise _BlockError(f"G90.1 (absolute arc centre) needs both {fc} and {sc}",
-                                          fc if ci is None else sc)
-                    if self.rotation != 0.0:
-                        cx, cy = self.machine_xy(ci * scale, cj * scale)
-                    else:
-                        cx = ci * scale + self.offset[fa]
-                        cy = cj * scale + self.offset[sa]
-                else:
-                    di = ci * scale if ci is not None else 0.0
-                    dj = cj * scale if cj is not None else 0.0
-                    if self.rotation != 0.0:     # the centre offset turns with the system
-                        theta = math.radians(self.rotation)
-                        di, dj = (di * math.cos(theta) - dj * math.sin(theta),
-                                  di * math.sin(theta) + dj * math.cos(theta))
-                    cx = x0 + di
-                    cy = y0 + dj
-                r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.inch, letters)
-                if abs(r1 - r0) <= 1e-12 * r0:
-                    r1 = r0
             a0, sweep = sweep_angle(x0, y0, x1, y1, cx, cy, cw, turns)
         except ArcError as e:
             raise _BlockError(str(e), "R" if "R" in vals else "G") from None

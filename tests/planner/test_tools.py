@@ -149,21 +149,24 @@ def test_cnc_plan_reads_a_tool_table(tmp_path, capsys) -> None:
     assert "p.nc:2:1: error: tool T1 is not in the tool table" in capsys.readouterr().err
 
 
-def test_cutter_compensation_with_a_tool_diameter_is_refused_not_ignored() -> None:
-    """G41/G42 run the programmed path (compensation with a zero diameter). With a tool of some
-    diameter that would cut a radius off the intended path: refused at its line, naming the tool."""
-    from planner.errors import ProgramError
+def test_cutter_compensation_takes_the_radius_from_the_tool_table() -> None:
+    """G41/G42 offset the path by half the diameter of D's tool, or of the tool in the spindle
+    without D or with D0 (LinuxCNC's rule); a tool with no diameter runs the programmed path."""
     from planner.interpreter import parse_program
     from planner.tools import parse_tbl
 
     table = parse_tbl("T1 P1 Z10 D6 ;end mill\nT2 P2 Z5 ;probe\n")
-    with pytest.raises(ProgramError) as exc:
-        parse_program("G21 F100 T1 M6\nG41 D1 G1 X10\n", tools=table)
-    (err,) = exc.value.errors
-    assert err.line == 2 and err.col == 5 and "diameter 6 mm" in err.message and "T1" in err.message
-    with pytest.raises(ProgramError, match="G42 with tool T1"):
-        parse_program("G21 F100\nG42 G1 X10\n", tools=table, tool_in_spindle=1)
-    assert len(parse_program("G21 F100\nG41 D2 G1 X10\nG40\n", tools=table).moves) == 1   # diameter 0
+
+    def last_y(text: str, **kw: object) -> float:
+        return float(parse_program(text, tools=table, **kw).moves[-1].end[1])
+
+    # along +X with the tool on the left (G41): 3 mm to +Y; on the right (G42): 3 mm to -Y
+    assert last_y("G21 F100 T1 M6\nG41 D1 G1 X10\n") == pytest.approx(3.0)
+    assert last_y("G21 F100\nG42 G1 X10\n", tool_in_spindle=1) == pytest.approx(-3.0)
+    assert last_y("G21 F100\nG41 D0 G1 X10\n", tool_in_spindle=1) == pytest.approx(3.0)
+    assert last_y("G21 F100\nG41 D2 G1 X10\nG40\n", tool_in_spindle=1) == 0.0          # diameter 0
+    with pytest.raises(ProgramError, match="tool T7 is not in the tool table"):
+        parse_program("G21 F100\nG41 D7 G1 X10\n", tools=table)
 
 
 def test_g10_tool_data_from_the_program() -> None:
