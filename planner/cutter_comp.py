@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from planner.arcs import FULL_CIRCLE_MM
 from planner.errors import BlockError
 from planner.program import MoveKind, _make_arc, spiral_length_mm
 
@@ -212,15 +213,22 @@ class CutterComp:
         if q.center is None:
             host.recs[i] = (line_no, kind, feed, host.path_length(start, end), None, stop)
         else:
-            arc, length = self._arc_record(host, start, end, q.center, q.turn)
+            arc, length = self._arc_record(host, start, end, q.center, q.turn, q.sweep0)
             host.recs[i] = (line_no, kind, feed, length, arc, stop)
 
     def _arc_record(self, host: _Interpreter, start: list[float], end: list[float],
-                    center: tuple[float, float], turn: int) -> tuple:
+                    center: tuple[float, float], turn: int, sweep0: float = 0.0) -> tuple:
+        """The arc and its length; ``sweep0`` the programmed sweep, which decides whether an
+        arc that ends where it starts (to rounding) is a whole turn or nothing."""
         pname, fa, sa, na, *_ = host.plane_axes()
         x0, y0, x1, y1 = start[fa], start[sa], end[fa], end[sa]
         cx, cy = center
-        sweep = find_turn(x0, y0, cx, cy, turn, x1, y1)
+        if abs(x1 - x0) <= FULL_CIRCLE_MM and abs(y1 - y0) <= FULL_CIRCLE_MM:
+            # rounding must not turn a programmed full circle into nothing, nor the reverse
+            whole = abs(turn) if abs(sweep0) > math.pi else abs(turn) - 1
+            sweep = math.copysign(whole * _TWO_PI, turn)
+        else:
+            sweep = find_turn(x0, y0, cx, cy, turn, x1, y1)
         r0 = math.hypot(x0 - cx, y0 - cy)
         r1 = math.hypot(x1 - cx, y1 - cy)
         if abs(r1 - r0) <= 1e-9 * max(1.0, r0):
@@ -244,7 +252,7 @@ class CutterComp:
 
     def _arc(self, host: _Interpreter, end: list[float], center: tuple[float, float], turn: int,
              feed: float, line_no: int, sweep0: float, queued: bool = True) -> None:
-        arc, length = self._arc_record(host, host.pos, end, center, turn)
+        arc, length = self._arc_record(host, host.pos, end, center, turn, sweep0)
         if sweep0 != 0.0 and abs(arc.sweep_rad) > abs(sweep0) + math.pi:
             raise BlockError("with cutter compensation this arc would turn a whole circle more than "
                              "programmed: the arc is too short for the tool's radius", "G")

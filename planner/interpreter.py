@@ -9,7 +9,7 @@ Supported (everything else is an error with file:line:col, never skipped):
   coordinate systems G54-G59.3, G10 L2 (with R: XY rotation)/L20, G92 G92.1 G92.2 G92.3, G52,
   G28/G28.1, G30/G30.1
   with LinuxCNC's parameters (``PERSISTENT_PARAMETERS``, OFFSETS events);
-  G40, G41/G42 (radius 0: the programmed path; a tool with a diameter is refused);
+  cutter radius compensation G40, G41/G42 (tool table), G41.1/G42.1 (``planner.cutter_comp``);
   G43 / G43 H / G43.1 / G43.2 / G49 tool length offsets from the tool table (``planner.tools``);
   polar coordinates @ (distance) ^ (angle) in G17; F S T;
   M00 M01 M02 M30 M03 M04 M05 M06 M61 M07 M08 M09; M62-M65 and user M100-M199 as the machine

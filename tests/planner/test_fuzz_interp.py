@@ -91,6 +91,8 @@ token = st.one_of(
             "#<x>",
             "#1=",
             "G41",
+            "G42.1 D2",
+            "G40",
             "G43",
             "G43.1",
             "G43.2",
@@ -236,8 +238,8 @@ def test_nan_infinity_and_huge_numbers_are_located_errors(lines):
 
 
 # Programs built from every feature the interpreter reads (cycles, offsets, tool data, feed
-# modes, polar words, modal memory, O-words, outputs), then mutated: they parse or fail with
-# ProgramError naming a valid line and column, at any scale.
+# modes, polar words, modal memory, O-words, outputs, cutter compensation), then mutated: they
+# parse or fail with ProgramError naming a valid line and column, at any scale.
 _FEATURE_BLOCKS = [
     "G81 X{a} Y{b} Z{z} R{p} F{f}", "G83 X{a} Y{b} Z{n} R{p} Q{q} F{f}", "G73 X{a} Z{n} R{p} Q{q} F{f}",
     "G82 X{a} Z{n} R{p} P0.1 F{f}", "G85 Y{b} Z{z} R{p} F{f}", "G91 G81 X{a} Z{n} R{p} L3 F{f}", "G80",
@@ -246,6 +248,8 @@ _FEATURE_BLOCKS = [
     "G55", "G59.3", "G54", "G93 G1 X{a} F{f}", "G94 F{f}", "G95 F0.1", "S1000 M3", "G1 @{p} ^{r} F{f}",
     "G91 G0 ^{r}", "G90", "M70", "M72", "M7", "M8", "M9", "G0 X{a} Y{b} Z{p}", "G2 X{a} Y{b} R{p} F{f}",
     "#<v> = [{a} + 1]", "G1 X#<v> F{f}", "G17", "G18", "G19", "G20", "G21",
+    "G41.1 D{p} G1 X{a} Y{b} F{f}", "G42.1 D{q}", "G41 D1", "G42", "G40", "G40 G1 X{a}",
+    "G3 X{a} Y{b} I{p}", "G1 Y{b}", "G2 X{b} Y{a} R{n}", "G1 Z{z}", "G0 X{b}",
 ]
 _O_WRAPPERS = [("o10 if [{a} GT 0]", "o10 endif"), ("o20 repeat [2]", "o20 endrepeat"),
                ("o30 while [#<w> LT 2]\n#<w> = [#<w> + 1]", "o30 endwhile")]

@@ -134,6 +134,17 @@ def test_half_micrometre_line_after_a_full_circle():
                   "G01 X0.0005 Y0 Z1 F1800\nM30\n")
 
 
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="known: a quarter-micrometre rapid before a sharp corner between rapids makes "
+                          "the look-ahead plan exceed the X acceleration limit by 42 % (the same "
+                          "tangent-break rule); strict, so this fails once the planner is fixed")
+def test_quarter_micrometre_rapid_before_a_corner():
+    """Found by a stress run of cutter compensation at scale 0.001 (a rapid round a convex corner
+    is a short straight to the corner arc's end); the same without compensation."""
+    check_program("G21 G17 G90 F1200\nG1 X-0.0384592 Y-0.0231729\nG0 X-0.0383931 Y-0.0234205\n"
+                  "X0.0177309 Y-0.0247405\nG1 X0.0177745 Y-0.0244798\nM2\n")
+
+
 @settings(max_examples=6, deadline=None)
 @given(text=programs(max_blocks=4, scale=1000.0))
 def test_drawn_metre_scale_programs_hold_every_limit(text):
