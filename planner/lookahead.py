@@ -33,7 +33,10 @@ Two modes (``planner.mode``):
   - tangent break at a joint: the velocity change v |t2 - t1| happens within one sample Ts;
     for every axis k: v |dt_k| / Ts + kappa v^2 + 2 Ts J_k <= A_k (the arcs' centripetal
     acceleration and the jerk-limited tangential acceleration one sample either side share
-    the budget) - solved exactly as a quadratic in v.
+    the budget) - solved exactly as a quadratic in v. Joints closer together than two
+    samples' travel (2 v Ts) fall in the same or neighbouring samples, where their velocity
+    changes add up: each run of up to GROUP_JOINTS + 1 joints either keeps that distance or
+    holds the rule for the sum of its direction changes.
   - curvature jump at a joint: the normal acceleration v^2 |d(kappa n)_k| changes within one
     sample: v^2 |d(kappa n)_k| <= J_k Ts for every axis.
   - full stop at stopping events (M00 M01 M02 M30 G04 M06 M03/M04/M05/S), under G61, at the
@@ -207,6 +210,45 @@ def _paper_joint_caps(table: MoveTable, vc: np.ndarray, lim: LimitSet) -> np.nda
     return np.minimum(cap, np.minimum(vc[cur], vc[nxt]))
 
 
+#: joints closer together than two samples' travel share the tangent-break budget: up to this
+#: many following joints are added to each joint's group
+GROUP_JOINTS = 6
+
+
+def _grouped_breaks(cap: np.ndarray, dt: np.ndarray, length: np.ndarray, kappa: np.ndarray,
+                    c: np.ndarray, ts: float) -> np.ndarray:
+    """Breaks at joints less than 2 v Ts apart land in the same or neighbouring samples, where
+    their velocity changes add up (a quarter-micrometre move between two corners is one corner
+    of twice the turn at any useful speed). For each run of joints j..j+k (k <= GROUP_JOINTS)
+    with D the path between the first and the last: either v <= D / (2 Ts) (the breaks are two
+    samples apart or more, each joint's own cap holds) or v obeys the tangent-break rule for
+    the sum of their per-axis direction changes. Every joint of the run gets the larger of the
+    two as a cap."""
+    m = dt.shape[0]
+    if m < 2:
+        return cap
+    cap = cap.copy()
+    inner = length[1:m]                      # the move between joint j and joint j + 1
+    total = dt.copy()
+    dist = np.zeros(m)
+    kap = np.maximum(kappa[:m], kappa[1:m + 1])
+    for k in range(1, min(GROUP_JOINTS, m - 1) + 1):
+        rows = m - k
+        total = total[:rows] + dt[k:k + rows]
+        dist = dist[:rows] + inner[k - 1:k - 1 + rows]
+        kap = np.maximum(kap[:rows], kappa[k + 1:k + 1 + rows])
+        b = total / ts
+        kk = kap[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            v_g = np.where(b > 0.0, 2.0 * c / (b + np.sqrt(b * b + 4.0 * kk * c)), np.inf).min(axis=1)
+        group_cap = np.maximum(dist / (2.0 * ts), v_g)
+        if np.all(group_cap >= cap.max()):
+            continue
+        for i in range(k + 1):              # every joint of the run
+            np.minimum(cap[i:i + rows], group_cap, out=cap[i:i + rows])
+    return cap
+
+
 def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np.ndarray:
     """Speed caps at the n-1 joints between consecutive moves of ``table`` (no stops)."""
     n = len(table)
@@ -230,6 +272,7 @@ def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np
     with np.errstate(divide="ignore", invalid="ignore"):
         v_break = np.where(b > 0.0, 2.0 * c / (b + np.sqrt(b * b + 4.0 * kap * c)), np.inf)
     cap = np.minimum(cap, v_break.min(axis=1))
+    cap = _grouped_breaks(cap, dt, table.length, kappa, c, ts)
     # Curvature jump: v^2 |d(kappa n)_k| <= J_k Ts.
     dk = np.abs(c_start[nxt] - c_end[cur])
     dk = np.where(dk > 1e-12, dk, 0.0)
@@ -300,10 +343,21 @@ class PlannedBlock:
 
 
 def _window(program: Program, lim: LimitSet, mode: str, a: int, b: int, stop: np.ndarray):
-    table = MoveTable.from_moves(program.moves[a:b], len(program.axes))
-    ml = move_limits(table, lim, mode)
     caps = np.empty(b - a + 1)
-    caps[1:-1] = joint_caps(table, ml, lim, mode)
+    if mode == "paper" or b - a < 2:
+        table = MoveTable.from_moves(program.moves[a:b], len(program.axes))
+        ml = move_limits(table, lim, mode)
+        caps[1:-1] = joint_caps(table, ml, lim, mode)
+    else:
+        # the joints' groups reach GROUP_JOINTS moves either side: compute them with that
+        # context, so that a window's caps are the whole program's
+        lo, hi = max(0, a - GROUP_JOINTS), min(len(program.moves), b + GROUP_JOINTS)
+        wide = MoveTable.from_moves(program.moves[lo:hi], len(program.axes))
+        wide_ml = move_limits(wide, lim, mode)
+        caps[1:-1] = joint_caps(wide, wide_ml, lim, mode)[a - lo:a - lo + b - a - 1]
+        rows = slice(a - lo, b - lo)
+        table = wide if (lo, hi) == (a, b) else take_rows(wide, rows)
+        ml = MoveLimits(wide_ml.vc[rows], wide_ml.a_t[rows], wide_ml.j_t[rows], wide_ml.v_prog[rows])
     caps[1:] = np.where(stop[a:b] | table.exact_stop, 0.0, caps[1:])
     caps[-1] = 0.0  # assumed stop at the window's end (exact at the program's end)
     r0 = reachable_speed_lower_bound(table.length, ml.a_t, ml.j_t)

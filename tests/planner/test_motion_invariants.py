@@ -112,37 +112,34 @@ def test_drawn_micrometre_programs_hold_every_limit(text):
     check_program(text)
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="known: at micrometre-scale corners between tiny lines the look-ahead plan "
-                          "exceeds an axis acceleration limit by up to 8 % (the tangent-break rule); "
-                          "strict, so this fails once the planner is fixed and the mark must go")
 def test_micrometre_corner_between_tiny_lines():
-    """The program hypothesis shrank the failure to: four lines of 1-19 um with a 90-degree
-    corner; the X acceleration reaches 1.075 Amax there."""
+    """The program hypothesis shrank a failure to: four lines of 1-19 um with a 90-degree
+    corner; the X acceleration reached 1.075 Amax there, until joints closer than two samples'
+    travel shared one tangent-break budget."""
     check_program("G21 G90 G94 G17 F1800\nG00 X0 Y0 Z0\nG01 X0.005 Y0 Z0 F1800\nG01 X-0.014 Y0 Z0\n"
                   "G01 X-0.014 Y0 Z0.000001\nG01 X-0.009 Y0 Z0.000001\nM30\n")
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="known: a half-micrometre line between a full YZ circle and a 1 mm line makes "
-                          "the look-ahead plan exceed the X acceleration limit by 3.4 % (the same "
-                          "tangent-break rule); strict, so this fails once the planner is fixed")
 def test_half_micrometre_line_after_a_full_circle():
-    """Found by a random (not derandomized) run of ``test_drawn_programs_hold_every_limit``."""
+    """Found by a random (not derandomized) run of ``test_drawn_programs_hold_every_limit``: the
+    X acceleration reached 1.034 Amax (two joints half a micrometre apart)."""
     check_program("G21 G90 G94 G17 F1800\nG00 X0 Y0 Z0\nG04 P0.05\n"
                   "G19 G03 X0 Y0 Z0 J0.416146837 K-0.909297427\nG01 X0.0005 Y0 Z0 F1800\n"
                   "G01 X0.0005 Y0 Z1 F1800\nM30\n")
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="known: a quarter-micrometre rapid before a sharp corner between rapids makes "
-                          "the look-ahead plan exceed the X acceleration limit by 42 % (the same "
-                          "tangent-break rule); strict, so this fails once the planner is fixed")
 def test_quarter_micrometre_rapid_before_a_corner():
     """Found by a stress run of cutter compensation at scale 0.001 (a rapid round a convex corner
-    is a short straight to the corner arc's end); the same without compensation."""
+    is a short straight to the corner arc's end), the same without compensation: the X
+    acceleration reached 1.42 Amax (two corners a quarter micrometre apart)."""
     check_program("G21 G17 G90 F1200\nG1 X-0.0384592 Y-0.0231729\nG0 X-0.0383931 Y-0.0234205\n"
                   "X0.0177309 Y-0.0247405\nG1 X0.0177745 Y-0.0244798\nM2\n")
+
+
+def test_five_line_program_of_the_motion_issue():
+    """A fuzzed program that made the plan exceed the Z acceleration limit 1.8 times."""
+    check_program("G21 G90 G17\nG1 X-0.042160 Y-0.024135 F1200\nG0 Z0.020000\n"
+                  "G0 X-0.042181 Y-0.024197\nG1 Z-0.001949 F400\n")
 
 
 @settings(max_examples=6, deadline=None)
