@@ -247,13 +247,26 @@ class MoveTable:
 
         Circle/helix: rho = R |omega|, kappa = R omega^2 (= R / (R^2 + c^2) for a helix),
         in-plane jerk at constant speed v^3 kappa |omega| (= v^3 / R^2 for a circle).
-        Spirals use their larger radius (a conservative bound on all three).
+        Spirals: the bounds of their small end (the curvature grows as the radius shrinks).
         """
         with np.errstate(divide="ignore", invalid="ignore"):
             omega = np.where(self.is_arc, np.abs(self.sweep) / self.length, 0.0)
         rmax = np.maximum(self.r0, self.r1)
         rho = np.where(self.is_arc, np.minimum(rmax * omega, 1.0), 0.0)
         kappa = np.where(self.is_arc, rmax * omega * omega, 0.0)
+        sp = np.nonzero(self.spiral)[0]
+        if sp.size:
+            # r = r0 + c theta: the curvature (r^2 + 2 c^2) / (r^2 + c^2)^1.5 and the turn rate
+            # 1 / sqrt(r^2 + c^2 + h^2) are largest at the small end (the rise h per radian only
+            # lowers the curvature): bound both there, and the in-plane share by 1
+            sweep = np.abs(self.sweep[sp])
+            c = (self.r1[sp] - self.r0[sp]) / sweep
+            h = self.rise[sp] / sweep
+            r = np.minimum(self.r0[sp], self.r1[sp])
+            q = r * r + c * c
+            kappa[sp] = np.maximum(kappa[sp], (q + c * c) / (q * np.sqrt(q)))
+            omega[sp] = np.maximum(omega[sp], 1.0 / np.sqrt(q + h * h))
+            rho[sp] = 1.0
         return rho, kappa, omega
 
 
