@@ -30,6 +30,8 @@ Two modes (``planner.mode``):
     the cross term 3 kappa v a_t gets <= 0.6 J_plane (a_t is lowered if needed), the
     centripetal jerk <= 0.5 J_plane, and j_t gets the rest (>= 0.3 J_plane), so
     |jerk vector| <= J_plane. A_plane, J_plane: the smaller limit of the two plane axes.
+    Spirals take the curvature and turn rate of their small end, and the jerk of their
+    changing curvature, v^3 |dkappa/ds|, shares the cross term's part (at most half of it).
   - tangent break at a joint: the velocity change v |t2 - t1| happens within one sample Ts;
     for every axis k: v |dt_k| / Ts + kappa v^2 + 2 Ts J_k <= A_k (the arcs' centripetal
     acceleration and the jerk-limited tangential acceleration one sample either side share
@@ -164,11 +166,16 @@ def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
         v = np.minimum(vc[k], _safe_div(v_pl, rho))
         v = np.minimum(v, np.sqrt(ACCEL_NORMAL_SHARE * a_pl / kappa))
         v = np.minimum(v, np.cbrt(JERK_NORMAL_SHARE * j_pl / (kappa * omega)))
+        # spirals: the changing curvature adds v^3 dkappa/ds along the normal, where the
+        # cross term is; it takes at most half of that share
+        dk = table.curvature_rate()[k]
+        v = np.minimum(v, _safe_div(1.0, np.cbrt(_safe_div(dk, 0.5 * JERK_CROSS_SHARE * j_pl))))
+        j_dk = dk * v**3
         a_n = kappa * v * v
         at = np.minimum(a_t[k], _safe_div(np.sqrt(np.maximum(a_pl * a_pl - a_n * a_n, 0.0)), rho))
-        at = np.minimum(at, _safe_div(JERK_CROSS_SHARE * j_pl, 3.0 * kappa * v))
+        at = np.minimum(at, _safe_div(JERK_CROSS_SHARE * j_pl - j_dk, 3.0 * kappa * v))
         j_n = kappa * omega * v**3
-        cross = 3.0 * kappa * v * at
+        cross = 3.0 * kappa * v * at + j_dk
         jt = np.minimum(j_t[k], _safe_div(np.sqrt(np.maximum(j_pl * j_pl - cross * cross, 0.0)) - j_n, rho))
         vc[k], a_t[k], j_t[k] = v, at, jt
     if np.any(~(vc > 0)) or np.any(~(a_t > 0)) or np.any(~(j_t > 0)):

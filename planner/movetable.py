@@ -269,6 +269,22 @@ class MoveTable:
             rho[sp] = 1.0
         return rho, kappa, omega
 
+    def curvature_rate(self) -> np.ndarray:
+        """A bound of |d kappa / ds| (1/mm^2) on every move: 0 on lines and circles; on
+        spirals r = r0 + c theta, |dkappa/dr| = r (r^2 + 4 c^2) / (r^2 + c^2)^2.5 <= 4 / (r^2 + c^2)
+        at the small end, times |c| dtheta/ds <= |c| / sqrt(r^2 + c^2 + h^2). The jerk of the
+        changing curvature, v^3 dkappa/ds, is what a circle does not have."""
+        out = np.zeros(len(self))
+        sp = np.nonzero(self.spiral)[0]
+        if sp.size:
+            sweep = np.abs(self.sweep[sp])
+            c = (self.r1[sp] - self.r0[sp]) / sweep
+            h = self.rise[sp] / sweep
+            r = np.minimum(self.r0[sp], self.r1[sp])
+            q = r * r + c * c
+            out[sp] = 4.0 * np.abs(c) / (q * np.sqrt(q + h * h))
+        return out
+
 
 def concat_tables(tables: list[MoveTable]) -> MoveTable:
     """One table of the rows of several (consecutive) tables."""

@@ -15,6 +15,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from planner.arcs import SPIRAL_ABS_TOLERANCE_MM
 from planner.errors import ProgramError
 from planner.interpreter import parse_file, parse_program
 from planner.plan import plan_program
@@ -135,14 +136,11 @@ def test_degenerate_spiral_keeps_the_path() -> None:
                   "G1 X0.000000002 Y0.000000002 Z0.000000002\nG2 X0 Y0 Z-20 I-20 J0\nM2\n")
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="known: on a spiral whose radius changes by a large part of itself (2.8 to "
-                          "about 10 um, within LinuxCNC's absolute centre tolerance) the jerk of the "
-                          "changing curvature (v^3 dkappa/ds) is not in the arc limits: Y jerk 1.06 Jmax; "
-                          "strict, so this fails once the spiral limits include it")
 def test_spiral_with_a_large_radius_change_holds_the_jerk_limit() -> None:
     """Found by the window fuzz above (linuxcnc_tp/Pasta.ngc at scale 0.001, a move left out
-    before an arc, so the arc starts off its circle)."""
+    before an arc, so the arc starts off its circle): a spiral from 2.8 to about 10 um, within
+    LinuxCNC's absolute centre tolerance. The jerk of its changing curvature (v^3 dkappa/ds)
+    reached 1.06 Jmax on Y until the arc limits counted it."""
     check_program("G21 G90 G91.1 G64 G0 X-0.060020 Y-0.019354 Z0.020000\n"
                   "G0 X-0.028766 Y-0.024899 Z0.020000\nG1 X-0.028766 Y-0.024899 Z-0.001949 F400\n"
                   "G17 G2 X-0.025958 Y-0.035312 Z-0.001949 I-0.002795475 J-0.000092343 F1200\nM2\n")
@@ -157,3 +155,27 @@ def test_spiral_limits_come_from_its_small_end() -> None:
                   "G17 G3 X-0.003225271 Y0.001293340 Z-0.001 I0.001197368 J-0.001197367 F70\n"
                   "G17 G3 X-0.002873604 Y0.000075133 Z-0.001 I0.002285827 J0 F70\n"
                   "G17 G2 X0.001089662 Y-0.001731848 Z-0.001 I0.005317665 J-0.003517210 F70\nM2\n")
+
+
+@settings(max_examples=40, deadline=None)
+@given(r0=st.floats(0.002, 50.0), grow=st.floats(-0.95, 0.95), sweep=st.floats(0.2, 6.0),
+       rise=st.floats(-2.0, 2.0), ccw=st.booleans(), feed=st.sampled_from([60.0, 600.0, 3000.0]))
+def test_spirals_of_any_radius_change_hold_every_limit(r0: float, grow: float, sweep: float, rise: float,
+                                                       ccw: bool, feed: float) -> None:
+    """A centre-form arc whose end radius differs from its start radius by up to LinuxCNC's
+    absolute tolerance (0.028 mm: most of a small arc's radius, a rounding on a large one),
+    between two lines, from micrometre to 50 mm radii."""
+    r1 = max(r0 + grow * SPIRAL_ABS_TOLERANCE_MM, 0.001)
+    sign = 1.0 if ccw else -1.0
+    x1, y1 = r1 * math.cos(sign * sweep), r1 * math.sin(sign * sweep)
+    text = (f"G21 G90 G17 G0 X{r0:.9f} Y{-5 * r0:.9f} Z0\nG1 Y0 F{feed}\n"
+            f"G{3 if ccw else 2} X{x1:.9f} Y{y1:.9f} Z{rise * r0:.9f} I{-r0:.9f} J0\n"
+            f"G1 X{x1 + 5 * r0:.9f}\nM2\n")
+    try:
+        program = parse_program(text, machine=paper_machine())
+    except ProgramError:
+        assume(False)                 # just beyond LinuxCNC's centre tolerance
+    assume(any(m.arc is not None and m.arc.radius_start_mm != m.arc.radius_end_mm for m in program.moves))
+    m = paper_machine()
+    assume(plan_program(program, m).cycle_time_s < 120.0)
+    check_program(text, m)
