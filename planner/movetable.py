@@ -330,6 +330,11 @@ def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarra
         nominal = table.theta0[r] + sweep * np.clip(u[k] / table.length[r], 0.0, 1.0)
         ang = nominal + np.remainder(ang - nominal + np.pi, 2.0 * np.pi) - np.pi
         frac = np.clip((ang - table.theta0[r]) / sweep, 0.0, 1.0)
+        # an arc that hardly turns (a helix step whose start is a hair off its full circle):
+        # the angle cannot place a point along it (an angle's rounding over that sweep is a
+        # visible length), the projection on its chord can
+        flat = np.maximum(table.r0[r], table.r1[r]) * np.abs(sweep) < 1e-6 * table.length[r]
+        frac = np.where(flat, proj[k], frac)
         radius = table.r0[r] + (table.r1[r] - table.r0[r]) * frac
         other = q[k] - (start[k] + frac[:, None] * delta[k])
         other[np.arange(k.size), f] = 0.0
