@@ -65,10 +65,7 @@ def window_text(program: Program, first: int, count: int, scale: float, skip: se
         end = m.end * scale
         words = []
         if m.arc is None:
-            after = moves[k + 1] if k + 1 < len(moves) else None
-            # an arc after a nudged end would start off its circle: a different path (see the
-            # degenerate spiral test below), so only ends followed by a line are nudged
-            if nudge and k % 2 and (after is None or after.arc is None):
+            if nudge and k % 2:       # an arc after it starts off its circle: a spiral
                 end = end + nudge * scale * (1.0 + k % 3)
             code = "G0" if m.kind is MoveKind.RAPID else "G1"
             words = [code] + [f"{a}{v:.9f}" for a, v in zip(axes, end)]
