@@ -937,6 +937,13 @@ class _Interpreter:
                 self.known_tool(number, "D")
             tool = self.tools.get(number) if self.tools is not None else None
             radius = tool.diameter_mm / 2.0 if tool is not None else 0.0
+            orientation = dict(tool.lathe).get("Q", 0.0) if tool is not None else 0.0
+            if orientation not in (0.0, 9.0) and radius > 0.0:
+                # a lathe tool's controlled point is not its centre (LinuxCNC moves the path by
+                # the orientation); offsetting the centre would cut a radius off
+                raise _BlockError(f"{name} with the lathe tool {self.tool_label(number)} (orientation "
+                                  f"Q{orientation:g}): lathe tool orientations are not supported on this "
+                                  "machine", "D" if d else name)
         _pname, fa, sa, *_ = self.plane_axes()
         self.comp.turn_on(LEFT if code in (410, 411) else RIGHT, radius, (fa, sa))
 

@@ -336,3 +336,25 @@ def test_a_circle_is_cut_at_its_radius_plus_or_minus_the_tool_radius(scale: floa
     entry = pocket.moves[0]
     assert math.hypot(*entry.end[:2]) == pytest.approx(big - tool / 2.0, rel=1e-12)   # on the circle
     assert entry.end[1] == pytest.approx(tool / 2.0)                                    # beside its line
+
+
+def test_lathe_tool_orientation_is_refused_not_ignored() -> None:
+    table = parse_tbl("T2 P2 Z0 X0 D0.2 I85 J25 Q2\nT9 P9 Z0 X0 D0.2 Q9\n")
+    with pytest.raises(ProgramError, match=r"lathe tool T2 .*\(orientation Q2\)"):
+        parse_program("G21 G18 F600\nG41 D2 G1 Z10\n", tools=table)
+    assert parse_program("G21 G18 F600\nG41 D9 G1 Z10\n", tools=table).moves   # Q9: the centre
+
+
+def test_g18_compensation_is_g17_compensation_with_z_and_x_for_x_and_y() -> None:
+    """In G18 the plane's first axis is Z and its second X (LinuxCNC's XZ plane): the same
+    profile written with Z for X and X for Y is offset the same way."""
+    g17 = ("G21 G17 F600\nG0 X-10 Y-10\nG41.1 D6 G1 X0 Y0\nX40\nG3 X40 Y20 R10\nG1 X20 Y10\n"
+           "X0 Y20\nG2 X0 Y0 R10\nG40 G1 X-10 Y-10\n")
+    swap = str.maketrans({"X": "Z", "Y": "X"})
+    lines = g17.splitlines()
+    g18 = "\n".join([lines[0].replace("G17", "G18")] + [ln.translate(swap) for ln in lines[1:]]) + "\n"
+    a, b = parse_program(g17), parse_program(g18)
+    assert len(a.moves) == len(b.moves) == 11          # with four corner arcs
+    for m17, m18 in zip(a.moves, b.moves):
+        assert m18.end[[2, 0]].tolist() == pytest.approx(m17.end[[0, 1]].tolist(), abs=1e-9)
+        assert (m17.arc is None) == (m18.arc is None)
