@@ -13,6 +13,7 @@ from app.machine.errors import MachineError
 from app.machine.model import Activity, CommandResult, SpindleState
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
+from planner.lexer import LexError, compact
 from planner.program import EventKind, Move, MoveKind, Program
 
 if TYPE_CHECKING:
@@ -154,7 +155,7 @@ class ManualMotion:
         issues = self.m.loader.check_program_limits(prog)
         if issues:
             return self.m.states.refuse("mdi", f"soft limit: {issues[0].message}")
-        why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm)
+        why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm) or _mdi_stands_alone(prog, block)
         if why:
             return self.m.states.refuse("mdi", why)
         if not prog.moves:
@@ -200,6 +201,26 @@ _NOT_IN_MDI = {
                     "M61 Q<n>",
     EventKind.COOLANT: "M7/M8/M9: no coolant output is configured on this machine",
 }
+
+
+def _mdi_stands_alone(prog: Program, block: str) -> str:
+    """An MDI block is read on its own: its modes, F, S and parameters end with it. A block
+    that would only set them would return OK and change nothing, and cutter compensation would
+    end without its exit move: both are refused with the way to say it in one block."""
+    if any(tok in ("G41", "G42", "G41.1", "G42.1") for _, text in prog.modal for tok in text.split()):
+        return ("cutter radius compensation (G41/G42) works across the moves of a program; an MDI "
+                "block stands alone, so it would end without its exit move: run it in a program")
+    if prog.moves or prog.events:
+        return ""
+    try:
+        code = compact(block)
+    except LexError:
+        code = block.strip()
+    if not code:
+        return ""                                # a comment: it says nothing, and does nothing
+    return ("this block moves nothing and changes nothing that lasts: an MDI block stands alone (its "
+            "modes, F, S and parameters end with it); put them in the block with the move, e.g. "
+            "G91 G1 X10 F500")
 
 
 def _mdi_refusal(prog: Program, spindle_max_rpm: float) -> str:

@@ -334,6 +334,25 @@ def test_mdi_refuses_what_it_cannot_do_with_the_reason(ctl: MachineController, b
     assert ctl.spindle == spindle_before and ctl.state is MachineState.IDLE
 
 
+@pytest.mark.parametrize("block", ["G91", "G20", "F500", "S1000", "G43 H0", "#1=5", "G61", "G18", "G1"])
+def test_mdi_block_that_only_sets_modes_is_refused_not_forgotten(ctl: MachineController, block: str) -> None:
+    """An MDI block is read on its own. G91 typed alone used to return OK and be forgotten, so
+    the next "G1 X10" went to X10 absolute: now it is refused, saying how to write it."""
+    r = ctl.mdi(block)
+    assert not r and "an MDI block stands alone" in r.reason and "G91 G1 X10 F500" in r.reason
+    assert ctl.mdi("(only a comment)")            # says nothing and does nothing
+    assert ctl.mdi("G91 G1 X10 F500")
+    run_to_idle(ctl)
+    assert ctl.reference_position[0] == pytest.approx(10.0)
+
+
+@pytest.mark.parametrize("block", ["G41.1 D4", "G42.1 D4 G1 X20 Y5 F600", "G41 G1 X20 F600"])
+def test_mdi_refuses_cutter_compensation(ctl: MachineController, block: str) -> None:
+    r = ctl.mdi(block)
+    assert not r and "cutter radius compensation (G41/G42) works across the moves of a program" in r.reason
+    assert ctl.state is MachineState.IDLE
+
+
 def test_mdi_m30_ends_like_a_program_end(ctl: MachineController) -> None:
     assert ctl.mdi("M3 S8000")
     assert ctl.spindle.on and ctl.spindle.rpm == 8000
