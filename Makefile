@@ -32,6 +32,13 @@ sysdeps:
 	  echo "installing Debian's libtinyxml2-9 for the EtherCAT link tests"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtinyxml2-9 >/dev/null; \
 	fi
+	@# LinuxCNC's own interpreter (rs274) reads the random programs of the G-code tests beside
+	@# ours; only root installs it (others skip those tests, saying how to install it)
+	@if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && ! command -v rs274 >/dev/null; then \
+	  echo "installing Debian's linuxcnc-uspace for LinuxCNC's rs274 (G-code reference)"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+	    linuxcnc-uspace >/dev/null || echo "linuxcnc-uspace not installed: the tests against rs274 skip"; \
+	fi
 
 $(VPY):
 	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \

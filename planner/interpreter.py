@@ -86,6 +86,9 @@ _CYCLES = frozenset({730, 740, 810, 820, 830, 840, 850, 860, 890})
 _CYCLE_NEEDS_P = frozenset({820, 860, 890})
 _CYCLE_NEEDS_Q = frozenset({730, 830})
 _CYCLE_TAKES_P = _CYCLE_NEEDS_P | {740, 840}
+#: G73 backs off and G83 comes back down to this far above the last peck: LinuxCNC 2.9's
+#: G83_RAPID_DELTA, 0.010 inch in every unit (later versions read it from their INI file)
+_PECK_CLEARANCE_MM = 0.254
 #: pecks or repeats of one block above this are refused (a typo such as Q0.0001 on a deep
 #: hole would otherwise make millions of moves)
 _MAX_CYCLE_MOVES = 100_000
@@ -1201,8 +1204,8 @@ class _Interpreter:
                               "P")
         if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q:
             raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83)", "Q")
-        if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and motion not in _CYCLE_NEEDS_Q:
-            raise _BlockError("D word with no G41/G42, G41.1/G42.1, G73 or G83 to use it", "D")
+        if "D" in vals and groups.get(7) not in (410, 420, 411, 421):
+            raise _BlockError("D word with no G41, G41.1, G42 or G42.1 to use it", "D")
         if "L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421):
             raise _BlockError("L word with no canned cycle or G10 to use it", "L")
         if is_cycle:
@@ -1602,7 +1605,7 @@ class _Interpreter:
             raise _BlockError(f"R ({r / scale:g}) below the bottom {normal} ({cc / scale:g}) of the canned "
                               f"cycle in {plane_g}", "R" if "R" in vals else name)
         delta = self.cycle_q
-        rapid_delta = vals["D"] * scale if "D" in vals else 1.0 * scale
+        rapid_delta = _PECK_CLEARANCE_MM
         if motion in _CYCLE_NEEDS_Q and repeats * (r - cc) / delta > _MAX_CYCLE_MOVES:
             raise _BlockError(f"{name}: Q{delta / scale:g} over a depth of {(r - cc) / scale:g} makes more "
                               f"than {_MAX_CYCLE_MOVES} pecks", "Q")

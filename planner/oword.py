@@ -68,6 +68,9 @@ def scan(lines: list[str]) -> Structure:
     """Control statements of ``lines`` and their matching; raises StructureError."""
     st = Structure()
     stack: list[Statement] = []
+    # LinuxCNC keeps one offset per label for subs, do, repeat and while: a repeat or a while
+    # whose label another of them already holds is "duplicate O-word label"
+    holders: dict[str, Statement] = {}
     for index, raw in enumerate(lines):
         if "o" not in raw and "O" not in raw:
             continue
@@ -84,6 +87,12 @@ def scan(lines: list[str]) -> Structure:
         s = Statement(index, _label(m.group(1)), m.group(2), m.group(3))
         st.statements[index] = s
         kw, label = s.keyword, s.label
+        held = holders.get(label)
+        if (held is not None and (kw == "REPEAT" or (kw == "WHILE" and held.keyword != "DO"))):
+            raise StructureError(index, col, f"duplicate O-word label: {_name(label)} {kw.lower()} uses "
+                                 f"the label of the {held.keyword.lower()} at line {held.index + 1}")
+        if kw in ("SUB", "DO", "REPEAT", "WHILE") and held is None:
+            holders[label] = s
         if kw == "SUB":
             if any(x.keyword == "SUB" for x in stack):
                 raise StructureError(index, col, f"{_name(label)} sub inside another sub definition")

@@ -123,25 +123,29 @@ def moves(program: Program) -> list[tuple[str, tuple[float, ...]]]:
     return [(r["call"][9:13], tuple(round(v, 4) for v in r["args"][:3])) for r in canon_records(program)]
 
 
-def test_g83_pecks_back_to_r_and_down_to_a_millimetre_above_the_last_depth() -> None:
+def test_g83_pecks_back_to_r_and_down_to_a_quarter_millimetre_above_the_last_depth() -> None:
+    """LinuxCNC 2.9 comes back down to 0.010 inch (0.254 mm) above the last peck."""
     p = read("G21 G90 G99 F100\nG0 X0 Y0 Z10\nG83 X5 Y0 Z-7 R2 Q3\nM2\n")
     assert moves(p) == [
         ("trav", (0, 0, 10)), ("trav", (5, 0, 10)), ("trav", (5, 0, 2)),
-        ("feed", (5, 0, -1)), ("trav", (5, 0, 2)), ("trav", (5, 0, 0)),
-        ("feed", (5, 0, -4)), ("trav", (5, 0, 2)), ("trav", (5, 0, -3)),
+        ("feed", (5, 0, -1)), ("trav", (5, 0, 2)), ("trav", (5, 0, -0.746)),
+        ("feed", (5, 0, -4)), ("trav", (5, 0, 2)), ("trav", (5, 0, -3.746)),
         ("feed", (5, 0, -7)), ("trav", (5, 0, 2)),
     ]
     assert all(m.exact_stop for m in p.moves[1:])
 
 
-def test_g73_breaks_chips_with_a_small_retract_and_d_sets_it() -> None:
-    p = read("G21 G90 G98 F100\nG0 X0 Y0 Z10\nG73 X0 Y0 Z-5 R1 Q2 D0.5\nM2\n")
+def test_g73_breaks_chips_with_a_small_retract() -> None:
+    """LinuxCNC 2.9 backs off 0.010 inch (0.254 mm) and takes no D word with a cycle."""
+    p = read("G21 G90 G98 F100\nG0 X0 Y0 Z10\nG73 X0 Y0 Z-5 R1 Q2\nM2\n")
     assert moves(p) == [
         ("trav", (0, 0, 10)), ("trav", (0, 0, 1)),
-        ("feed", (0, 0, -1)), ("trav", (0, 0, -0.5)),
-        ("feed", (0, 0, -3)), ("trav", (0, 0, -2.5)),
+        ("feed", (0, 0, -1)), ("trav", (0, 0, -0.746)),
+        ("feed", (0, 0, -3)), ("trav", (0, 0, -2.746)),
         ("feed", (0, 0, -5)), ("trav", (0, 0, 10)),          # G98: back to the initial level
     ]
+    with pytest.raises(ProgramError, match="D word with no G41, G41.1, G42 or G42.1 to use it"):
+        read("G21 G90 G98 F100\nG73 X0 Y0 Z-5 R1 Q2 D0.5\nM2\n")
 
 
 @pytest.mark.parametrize("code, tail", [

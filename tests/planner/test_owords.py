@@ -282,3 +282,17 @@ def test_m72_without_a_saved_state_and_m73_in_the_program_are_refused() -> None:
         read("M72\n")
     with pytest.raises(ProgramError, match="M73 saves the state for the return of a subroutine"):
         read("M73\n")
+
+
+def test_a_reused_loop_label_is_refused_as_linuxcnc_does() -> None:
+    """LinuxCNC keeps one place per label for subs, do, repeat and while: a second repeat with
+    the same label stops it with "duplicate O-word label" (it used to run here)."""
+    text = ("G21 F600\no200 repeat [2]\nG91 G1 X1\nG90\no200 endrepeat\n"
+            "o200 repeat [3]\nG91 G1 Y1\nG90\no200 endrepeat\nM2\n")
+    with pytest.raises(ProgramError) as ei:
+        parse_program(text)
+    (err,) = ei.value.errors
+    assert err.line == 6 and "duplicate O-word label" in err.message and "line 2" in err.message
+    # the same label on an if, and a do closed by its while, are not duplicates
+    assert parse_program("G21 F600\no1 if [1]\nG1 X1\no1 endif\no1 if [1]\nG1 X2\no1 endif\n"
+                         "o2 do\nG91 G1 X1\nG90\no2 while [0]\nM2\n").moves

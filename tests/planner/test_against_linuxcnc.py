@@ -1,0 +1,150 @@
+"""Random programs mixing tools, offsets, rotation, cycles, subroutines, loops, cutter
+compensation, inverse time, polar words and inch blocks, read by LinuxCNC's own interpreter
+(``rs274`` of Debian's linuxcnc-uspace 2.9.0~pre1) and by this one: every motion call equal
+(end points, arc centres and turns, in program coordinates), or both refuse the program."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.errors import ProgramError
+from planner.interpreter import parse_program
+from planner.tools import parse_tbl
+from tests.planner.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
+
+pytestmark = pytest.mark.skipif(
+    RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs Debian's linuxcnc-uspace "
+                          "as root; or: apt-get install --no-install-recommends linuxcnc-uspace)")
+
+TOOLS = parse_tbl("T1 P1 Z10 D6\nT2 P2 Z25.5 D3\nT3 P3 Z-4 D10\n")
+SUB = "o100 sub\nG91 G1 X#1 Y#2\nG90\no100 endsub\n"
+
+
+def _n(v: float) -> str:
+    return f"{v:.3f}"
+
+
+@st.composite
+def programs(draw) -> str:
+    """A program of feature blocks; the generator keeps the program position (x, y, z) it left,
+    so arcs and incremental words stay valid."""
+    val = st.integers(-400, 400).map(lambda k: k / 10.0)
+    x, y, z = 0.0, 0.0, 10.0
+    out = [SUB, "G21 G17 G90 G94 G40 G49 G54 F600", f"G0 X0 Y0 Z{_n(z)}"]
+
+    def goto() -> None:
+        nonlocal x, y, z
+        x, y, z = draw(val), draw(val), draw(st.integers(5, 30).map(float))
+        out.append(f"G0 X{_n(x)} Y{_n(y)} Z{_n(z)}")
+
+    kinds = draw(st.lists(st.sampled_from(
+        ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
+         "inverse", "polar", "inch"]), min_size=1, max_size=10))
+    for kind in kinds:
+        if kind in ("line", "rapid"):
+            x, y = draw(val), draw(val)
+            z = draw(st.integers(-5, 20).map(float))
+            out.append(f"{'G1' if kind == 'line' else 'G0'} X{_n(x)} Y{_n(y)} Z{_n(z)}")
+        elif kind == "arc":
+            ex, ey = draw(val), draw(val)
+            half = math.hypot(ex - x, ey - y) / 2.0
+            if half < 0.5:
+                continue
+            r = half * draw(st.floats(1.05, 3.0)) * draw(st.sampled_from([1.0, -1.0]))
+            out.append(f"{draw(st.sampled_from(['G2', 'G3']))} X{_n(ex)} Y{_n(ey)} R{r:.4f}")
+            x, y = ex, ey
+        elif kind == "inc":
+            dx, dy = draw(val), draw(val)
+            out.append(f"G91 G1 X{_n(dx)} Y{_n(dy)}\nG90")
+            x, y = x + dx, y + dy
+        elif kind == "tool":
+            t = draw(st.integers(1, 3))
+            out.append(f"T{t} M6\n{draw(st.sampled_from(['G43', f'G43 H{t}', 'G49']))}")
+            goto()
+        elif kind == "offset":
+            rot = draw(st.sampled_from([0, 0, 30, -45, 90]))
+            out.append(f"G10 L2 P2 X{_n(draw(val))} Y{_n(draw(val))} Z{_n(draw(val))} R{rot}")
+            out.append(draw(st.sampled_from(["G55", "G54"])))
+            goto()
+        elif kind == "g92":
+            if draw(st.booleans()):
+                x, y = draw(val), draw(val)
+                out.append(f"G92 X{_n(x)} Y{_n(y)}")
+            else:
+                out.append("G92.1")
+                goto()
+        elif kind == "cycle":
+            out.append(f"G0 Z{_n(max(z, 5.0))}")
+            z = max(z, 5.0)
+            code = draw(st.sampled_from(["G81", "G82 P0.2", "G83 Q1.5", "G73 Q1", "G85", "G89 P0.1"]))
+            retract = draw(st.sampled_from(["G98", "G99"]))
+            x, y = draw(val), draw(val)
+            out.append(f"{retract} {code} X{_n(x)} Y{_n(y)} Z-3 R2 F300")
+            x2, y2 = draw(val), draw(val)
+            out.append(f"X{_n(x2)} Y{_n(y2)}\nG80\nF600")
+            x, y = x2, y2
+            z = z if retract == "G98" else 2.0
+        elif kind == "sub":
+            a, b = draw(val), draw(val)
+            out.append(f"o100 call [{_n(a)}] [{_n(b)}]")
+            x, y = x + a, y + b
+        elif kind == "repeat":
+            k = draw(st.integers(1, 4))
+            label = 200 + len(out)          # a label of its own (LinuxCNC refuses a reused one)
+            out.append(f"o{label} repeat [{k}]\nG91 G1 X1 Y-0.5\nG90\no{label} endrepeat")
+            x, y = x + k, y - 0.5 * k
+        elif kind == "comp":
+            w, h = draw(st.integers(20, 60).map(float)), draw(st.integers(20, 60).map(float))
+            d = draw(st.sampled_from([2.0, 4.0, 6.0]))
+            code = draw(st.sampled_from(["G41.1", "G42.1"]))
+            out.append(f"G0 X{_n(x - 10)} Y{_n(y - 10)}")
+            out.append(f"{code} D{d:g} G1 X{_n(x)} Y{_n(y)}")
+            out.append(f"X{_n(x + w)}\nG3 X{_n(x + w)} Y{_n(y + h)} R{h / 2:.3f}\nG1 X{_n(x)}\nY{_n(y)}")
+            out.append(f"G40 G1 X{_n(x - 10)} Y{_n(y - 10)}")
+            x, y = x - 10, y - 10
+        elif kind == "inverse":
+            x, y = draw(val), draw(val)
+            out.append(f"G93 G1 X{_n(x)} Y{_n(y)} F{draw(st.integers(1, 50))}\nG94 F600")
+        elif kind == "polar":
+            r, ang = draw(st.integers(1, 40).map(float)), draw(st.integers(-180, 180))
+            out.append(f"G1 @{r:g} ^{ang}")
+            x, y = r * math.cos(math.radians(ang)), r * math.sin(math.radians(ang))
+        elif kind == "inch":
+            xi, yi = draw(st.integers(-15, 15)) / 10.0, draw(st.integers(-15, 15)) / 10.0
+            out.append(f"G20 G1 X{xi:g} Y{yi:g}\nG21")
+            x, y = xi * 25.4, yi * 25.4
+    out.append("M2")
+    return "\n".join(out) + "\n"
+
+
+def _close(a: tuple, b: tuple) -> bool:
+    # LinuxCNC prints four decimals of the program's unit (0.0001 in = 0.00254 mm)
+    return a[0] == b[0] and all(abs(u - v) <= 0.003 for u, v in zip(a[1], b[1]))
+
+
+@settings(max_examples=80, deadline=None)
+@given(programs())
+def test_random_programs_read_as_linuxcnc_reads_them(text: str) -> None:
+    theirs = run_linuxcnc(text, TOOLS)
+    try:
+        ours = project_motion(parse_program(text, name="p.ngc", tools=TOOLS))
+    except ProgramError as exc:
+        assert theirs.error, f"only this interpreter refuses: {exc}\n{text}"
+        return
+    assert not theirs.error, f"only LinuxCNC refuses: {theirs.error} at {theirs.error_block!r}\n{text}"
+    mismatch = [(k, a, b) for k, (a, b) in enumerate(zip(ours, theirs.motion)) if not _close(a, b)]
+    assert len(ours) == len(theirs.motion), (len(ours), len(theirs.motion), text)
+    assert not mismatch, (mismatch[:3], text)
+
+
+def test_the_oracle_sees_what_it_should() -> None:
+    """The harness itself: a known program gives LinuxCNC's known calls, an error is caught."""
+    res = run_linuxcnc("G21 F600\nG1 X10\nG2 X20 R5\nM2\n")
+    assert [c for c, _ in res.motion] == ["straight_feed", "arc_feed"] and not res.error
+    assert res.motion[1][1][:4] == pytest.approx((20.0, 0.0, 15.0, 0.0))
+    bad = run_linuxcnc("G21\nG1 X10\nM2\n")
+    assert "zero feed rate" in bad.error and bad.error_block == "G1 X10"
