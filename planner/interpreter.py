@@ -1691,6 +1691,14 @@ class _Interpreter:
             for letter in axis_words:
                 i = self.axis_index[letter]
                 home[i] = stored[i]
+            if self.rotation != 0.0 and ("X" in axis_words) != ("Y" in axis_words):
+                # LinuxCNC keeps the other axis's program coordinate, which a rotated system
+                # couples to both machine axes: X (or Y) of the stored point, the rest as it is
+                sx, sy = self.prog_xy(stored)
+                cx, cy = self.prog_xy(self.pos)
+                px, py = (sx, cy) if "X" in axis_words else (cx, sy)
+                ix, iy = self.axis_index["X"], self.axis_index["Y"]
+                home[ix], home[iy] = self.machine_xy(px, py)
         else:
             home = stored
         self.straight(home, True, line_no)

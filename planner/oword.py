@@ -68,8 +68,8 @@ def scan(lines: list[str]) -> Structure:
     """Control statements of ``lines`` and their matching; raises StructureError."""
     st = Structure()
     stack: list[Statement] = []
-    # LinuxCNC keeps one offset per label for subs, do, repeat and while: a repeat or a while
-    # whose label another of them already holds is "duplicate O-word label"
+    # LinuxCNC 2.9 keeps one place per label for sub, do, if, repeat and while: an if, a repeat,
+    # a while (not a do's) or a sub whose label an earlier one holds is refused
     holders: dict[str, Statement] = {}
     for index, raw in enumerate(lines):
         if "o" not in raw and "O" not in raw:
@@ -88,10 +88,11 @@ def scan(lines: list[str]) -> Structure:
         st.statements[index] = s
         kw, label = s.keyword, s.label
         held = holders.get(label)
-        if (held is not None and (kw == "REPEAT" or (kw == "WHILE" and held.keyword != "DO"))):
+        if held is not None and (kw in ("IF", "REPEAT") or (kw == "WHILE" and held.keyword != "DO")
+                                 or (kw == "SUB" and held.keyword != "SUB")):
             raise StructureError(index, col, f"duplicate O-word label: {_name(label)} {kw.lower()} uses "
                                  f"the label of the {held.keyword.lower()} at line {held.index + 1}")
-        if kw in ("SUB", "DO", "REPEAT", "WHILE") and held is None:
+        if kw in ("SUB", "DO", "IF", "REPEAT", "WHILE") and held is None:
             holders[label] = s
         if kw == "SUB":
             if any(x.keyword == "SUB" for x in stack):

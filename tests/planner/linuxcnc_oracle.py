@@ -4,6 +4,7 @@ turns the calls into comparable motion records (millimetres)."""
 
 from __future__ import annotations
 
+import math
 import re
 import shutil
 import subprocess
@@ -51,8 +52,20 @@ def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
         out = subprocess.run(args + [str(prog)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                              timeout=60, cwd=tmp, stdin=subprocess.DEVNULL).stdout
     motion: list[tuple] = []
+    machine: list[tuple] = []    # each motion call's end in machine coordinates (zero moves)
     scale = 1.0
+    g5x = g92 = tool = (0.0, 0.0, 0.0)
+    rotation = 0.0
+    plane = "XY"
     error = block = ""
+
+    def to_machine(p: tuple) -> tuple:
+        """LinuxCNC's canon: G92 added, turned by the XY rotation, then G5x and tool offsets."""
+        x, y, z = (p[i] + g92[i] for i in range(3))
+        c, s_ = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
+        x, y = c * x - s_ * y, s_ * x + c * y
+        return (x + g5x[0] + tool[0], y + g5x[1] + tool[1], z + g5x[2] + tool[2])
+
     lines = out.splitlines()
     for k, line in enumerate(lines):
         m = _CALL.match(line)
@@ -66,31 +79,43 @@ def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
         name, args_t = m.group(1), [a.strip() for a in m.group(2).split(",")] if m.group(2) else []
         if name == "USE_LENGTH_UNITS":
             scale = 25.4 if "INCHES" in args_t[0] else 1.0
+        elif name == "SET_G5X_OFFSET":
+            g5x = tuple(float(v) * scale for v in args_t[1:4])
+        elif name == "SET_G92_OFFSET":
+            g92 = tuple(float(v) * scale for v in args_t[0:3])
+        elif name == "SELECT_PLANE":
+            plane = args_t[0].rsplit("_", 1)[-1]
+        elif name == "SET_XY_ROTATION":
+            rotation = float(args_t[0])
+        elif name == "USE_TOOL_LENGTH_OFFSET":
+            tool = tuple(float(v) * scale for v in args_t[0].split()[:3])
         elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
-            motion.append((name.lower(), tuple(float(v) * scale for v in args_t[:3])))
+            end = tuple(float(v) * scale for v in args_t[:3])
+            motion.append((name.lower(), end))
+            machine.append(to_machine(end))
         elif name == "ARC_FEED":
             v = [float(a) for a in args_t[:6]]
             motion.append(("arc_feed", (v[0] * scale, v[1] * scale, v[2] * scale, v[3] * scale, v[4],
                                         v[5] * scale)))
-    return OracleResult(_without_zero_moves(motion), error, block)
+            first, second, normal = v[0] * scale, v[1] * scale, v[5] * scale
+            xyz = {"XY": (first, second, normal), "YZ": (normal, first, second),
+                   "XZ": (second, normal, first)}[plane]
+            machine.append(to_machine(xyz))
+    return OracleResult(_without_zero_moves(motion, machine), error, block)
 
 
-def _without_zero_moves(motion: list[tuple]) -> list[tuple]:
-    """LinuxCNC writes moves to where the tool already is; a Program has none. (The generated
-    programs move on a 0.1 mm grid, so no real move is this short.)"""
+def _without_zero_moves(motion: list[tuple], machine: list[tuple]) -> list[tuple]:
+    """LinuxCNC writes moves to where the tool already is; a Program has none. Compared in
+    machine coordinates (an offset change moves the program's point, not the tool), within
+    what LinuxCNC prints (four decimals of an inch in G20); the generated programs move on a
+    0.1 mm grid, so no real move is this short."""
     out = []
-    last: tuple | None = (0.0, 0.0, 0.0)       # both start at the origin
-    for call, args in motion:
-        if call == "arc_feed":
-            out.append((call, args))
-            last = (args[0], args[1], args[5])        # the end of a G17 arc (the oracle's plane)
+    last = (0.0, 0.0, 0.0)                      # both start at the origin
+    for call, here in zip(motion, machine):
+        if call[0] != "arc_feed" and max(abs(a - b) for a, b in zip(here, last)) < 0.003:
             continue
-        end = args[:3]
-        # within what LinuxCNC prints (four decimals of an inch in G20): the same point
-        if last is not None and max(abs(a - b) for a, b in zip(end, last)) < 0.003:
-            continue
-        out.append((call, args))
-        last = end
+        out.append(call)
+        last = here
     return out
 
 

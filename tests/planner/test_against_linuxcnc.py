@@ -1,6 +1,9 @@
-"""Random programs mixing tools, offsets, rotation, cycles, subroutines, loops, cutter
-compensation, inverse time, polar words and inch blocks, read by LinuxCNC's own interpreter
-(``rs274`` of Debian's linuxcnc-uspace 2.9.0~pre1) and by this one: every motion call equal
+"""Random programs mixing tools (G43, G43.1, G10 L1/L10), offsets (G10 L2 with rotation, G54/G55,
+G92, G52, G53, G28/G30), cycles, subroutines, loops, conditions, parameters and expressions,
+modal memory (M70/M72), cutter compensation (G41.1/G42.1 and G41/G42 from the table), arcs in
+every plane with turns and absolute centres, inverse time, polar words and inch blocks, read by
+LinuxCNC's own interpreter (``rs274`` of Debian's linuxcnc-uspace 2.9.0~pre1) and by this one:
+every motion call equal
 (end points, arc centres and turns, in program coordinates), or both refuse the program."""
 
 from __future__ import annotations
@@ -43,11 +46,16 @@ def programs(draw) -> str:
 
     kinds = draw(st.lists(st.sampled_from(
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
-         "inverse", "polar", "inch"]), min_size=1, max_size=10))
+         "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
+         "modal", "g43_1", "comp_tool", "g10_tool", "absarc"]), min_size=1, max_size=10))
     for kind in kinds:
+        # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
+        # its program coordinates differ from the last call's, so the oracle cannot drop it
         if kind in ("line", "rapid"):
-            x, y = draw(val), draw(val)
-            z = draw(st.integers(-5, 20).map(float))
+            nx, ny, nz = draw(val), draw(val), draw(st.integers(-5, 20).map(float))
+            if (nx, ny, nz) == (x, y, z):
+                continue
+            x, y, z = nx, ny, nz
             out.append(f"{'G1' if kind == 'line' else 'G0'} X{_n(x)} Y{_n(y)} Z{_n(z)}")
         elif kind == "arc":
             ex, ey = draw(val), draw(val)
@@ -59,6 +67,8 @@ def programs(draw) -> str:
             x, y = ex, ey
         elif kind == "inc":
             dx, dy = draw(val), draw(val)
+            if dx == dy == 0.0:
+                continue
             out.append(f"G91 G1 X{_n(dx)} Y{_n(dy)}\nG90")
             x, y = x + dx, y + dy
         elif kind == "tool":
@@ -90,11 +100,13 @@ def programs(draw) -> str:
             z = z if retract == "G98" else 2.0
         elif kind == "sub":
             a, b = draw(val), draw(val)
+            if a == b == 0.0:
+                continue
             out.append(f"o100 call [{_n(a)}] [{_n(b)}]")
             x, y = x + a, y + b
         elif kind == "repeat":
             k = draw(st.integers(1, 4))
-            label = 200 + len(out)          # a label of its own (LinuxCNC refuses a reused one)
+            label = 200 + 2 * len(out)      # a label of its own (LinuxCNC refuses a reused one)
             out.append(f"o{label} repeat [{k}]\nG91 G1 X1 Y-0.5\nG90\no{label} endrepeat")
             x, y = x + k, y - 0.5 * k
         elif kind == "comp":
@@ -107,16 +119,103 @@ def programs(draw) -> str:
             out.append(f"G40 G1 X{_n(x - 10)} Y{_n(y - 10)}")
             x, y = x - 10, y - 10
         elif kind == "inverse":
-            x, y = draw(val), draw(val)
+            nx, ny = draw(val), draw(val)
+            if (nx, ny) == (x, y):
+                continue
+            x, y = nx, ny
             out.append(f"G93 G1 X{_n(x)} Y{_n(y)} F{draw(st.integers(1, 50))}\nG94 F600")
         elif kind == "polar":
             r, ang = draw(st.integers(1, 40).map(float)), draw(st.integers(-180, 180))
+            nx, ny = r * math.cos(math.radians(ang)), r * math.sin(math.radians(ang))
+            if math.hypot(nx - x, ny - y) < 0.01:
+                continue
             out.append(f"G1 @{r:g} ^{ang}")
-            x, y = r * math.cos(math.radians(ang)), r * math.sin(math.radians(ang))
+            x, y = nx, ny
         elif kind == "inch":
             xi, yi = draw(st.integers(-15, 15)) / 10.0, draw(st.integers(-15, 15)) / 10.0
+            if math.hypot(xi * 25.4 - x, yi * 25.4 - y) < 0.01:
+                continue
             out.append(f"G20 G1 X{xi:g} Y{yi:g}\nG21")
             x, y = xi * 25.4, yi * 25.4
+        elif kind == "helix":
+            # a full circle (or P turns) about a centre off the current point, going down
+            i, j = draw(val), draw(val)
+            if math.hypot(i, j) < 1.0:
+                continue
+            turns = draw(st.integers(1, 3))
+            dz = draw(st.integers(-10, 10).map(float))
+            out.append(f"{draw(st.sampled_from(['G2', 'G3']))} X{_n(x)} Y{_n(y)} Z{_n(z + dz)} I{_n(i)} "
+                       f"J{_n(j)} P{turns}")
+            z += dz
+        elif kind == "plane_arc":
+            # a half circle in G18 or G19 from the current point, back to G17
+            d = draw(st.integers(5, 100).map(lambda k: k / 10.0))
+            if draw(st.booleans()):
+                out.append(f"G18 G2 X{_n(x + 2 * d)} Z{_n(z)} I{_n(d)} K0\nG17")
+                x += 2 * d
+            else:
+                out.append(f"G19 G3 Y{_n(y + 2 * d)} Z{_n(z)} J{_n(d)} K0\nG17")
+                y += 2 * d
+        elif kind == "g53":
+            out.append(f"G53 G0 Z{_n(draw(st.integers(0, 50).map(float)))}")
+            goto()
+        elif kind == "g28":
+            out.append(f"G28.1\n{draw(st.sampled_from(['G28', 'G28 Z30', 'G30', 'G30 X5']))}")
+            goto()
+        elif kind == "g52":
+            out.append(f"G52 X{_n(draw(val))} Y{_n(draw(val))}")
+            goto()
+            out.append("G52 X0 Y0")
+            goto()
+        elif kind == "params":
+            a, b = draw(val), draw(val)
+            out.append(f"#<dx> = {_n(a)}\n#7 = [{_n(b)} * 2 + SQRT[16] - 4]\n"
+                       f"G1 X[{_n(x)} + #<dx>] Y[#7 / 2 + {_n(y)}]")
+            x, y = x + a, y + b
+            if a == b == 0.0:
+                out.append("G1 Z[#<_z> + 1]")       # LinuxCNC's predefined position parameter
+                z += 1.0
+        elif kind == "ifwhile":
+            k = draw(st.integers(1, 3))
+            label = 1000 + 2 * len(out)
+            out.append(f"#<n> = 0\no{label} while [#<n> LT {k}]\n"
+                       f"o{label + 1} if [#<n> EQ 1]\nG91 G1 X2\no{label + 1} else\nG91 G1 Y2\n"
+                       f"o{label + 1} endif\nG90\n#<n> = [#<n> + 1]\no{label} endwhile")
+            x, y = x + 2 * (k >= 2), y + 2 * (k - (k >= 2))
+        elif kind == "modal":
+            out.append("M70\nG91 G20\nG1 X0.1\nM72")
+            x += 2.54
+        elif kind == "g43_1":
+            out.append(f"G43.1 Z{_n(draw(val))}")
+            goto()
+            out.append("G49")
+            goto()
+        elif kind == "comp_tool":
+            t = draw(st.integers(1, 3))
+            out.append(f"T{t} M6\nG43 H{t}")
+            goto()
+            w = draw(st.integers(30, 60).map(float))
+            code = draw(st.sampled_from(["G41", "G42"]))
+            out.append(f"G0 X{_n(x - 15)} Y{_n(y - 15)}\n{code} D{t} G1 X{_n(x)} Y{_n(y)}\n"
+                       f"X{_n(x + w)}\nY{_n(y + w)}\nG2 X{_n(x)} Y{_n(y + w)} R{w / 2 + 5:.3f}\nG1 Y{_n(y)}\n"
+                       f"G40 G1 X{_n(x - 15)} Y{_n(y - 15)}\nG49")
+            goto()
+        elif kind == "g10_tool":
+            t = draw(st.integers(1, 3))
+            out.append(f"G10 L1 P{t} Z{_n(draw(val))} R{draw(st.integers(1, 5))}\nT{t} M6\nG43")
+            goto()
+            out.append(f"G10 L10 P{t} Z{_n(draw(val))}\nG43")
+            goto()
+            out.append("G49")
+            goto()
+        elif kind == "absarc":
+            ex, ey = draw(val), draw(val)
+            cx, cy = (x + ex) / 2.0, (y + ey) / 2.0
+            if math.hypot(ex - x, ey - y) < 1.0:
+                continue
+            out.append(f"G90.1 {draw(st.sampled_from(['G2', 'G3']))} X{_n(ex)} Y{_n(ey)} I{cx:.4f} J{cy:.4f}"
+                       "\nG91.1")
+            x, y = ex, ey
     out.append("M2")
     return "\n".join(out) + "\n"
 

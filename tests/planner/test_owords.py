@@ -293,6 +293,13 @@ def test_a_reused_loop_label_is_refused_as_linuxcnc_does() -> None:
         parse_program(text)
     (err,) = ei.value.errors
     assert err.line == 6 and "duplicate O-word label" in err.message and "line 2" in err.message
-    # the same label on an if, and a do closed by its while, are not duplicates
-    assert parse_program("G21 F600\no1 if [1]\nG1 X1\no1 endif\no1 if [1]\nG1 X2\no1 endif\n"
-                         "o2 do\nG91 G1 X1\nG90\no2 while [0]\nM2\n").moves
+    # LinuxCNC 2.9 holds if labels too; a do closed by its while is one loop
+    with pytest.raises(ProgramError, match="label: o1 if uses the label of the if at line 2"):
+        parse_program("G21 F600\no1 if [1]\nG1 X1\no1 endif\no1 if [1]\nG1 X2\no1 endif\nM2\n")
+    with pytest.raises(ProgramError, match="duplicate O-word label: o1 while"):
+        parse_program("G21 F600\n#1=0\no1 if [1]\nG1 X1\no1 endif\no1 while [#1 LT 1]\n#1=1\n"
+                      "o1 endwhile\nM2\n")
+    assert parse_program("G21 F600\no2 do\nG91 G1 X1\nG90\no2 while [0]\nM2\n").moves
+    # a subroutine called twice runs its own if twice: one place, no duplicate
+    assert len(parse_program("o5 sub\no6 if [1]\nG91 G1 X1\nG90\no6 endif\no5 endsub\nG21 F600\n"
+                             "o5 call\no5 call\nM2\n").moves) == 2
