@@ -101,6 +101,20 @@ def _arcs(program: Program, idx: np.ndarray) -> Polylines:
     return Polylines(pts, connect, idx[owner].astype(np.int32), len(idx))
 
 
+BLEND_POINTS = 9
+
+
+def _blends(program: Program, idx: np.ndarray) -> Polylines:
+    """Corner blends sampled at BLEND_POINTS points each from their exact geometry."""
+    n_axes = len(program.axes)
+    if not len(idx):
+        return _empty(n_axes)
+    pts = np.concatenate([program.moves[i].evaluate(np.linspace(0.0, program.moves[i].length_mm,
+                                                                 BLEND_POINTS))[0] for i in idx])
+    connect = np.tile(np.r_[np.ones(BLEND_POINTS - 1, bool), False], len(idx))
+    return Polylines(pts, connect, np.repeat(idx, BLEND_POINTS).astype(np.int32), len(idx))
+
+
 def _merge(parts: list[Polylines], n_axes: int) -> Polylines:
     """Concatenate polylines and reorder their points by move index (stable within a move)."""
     if not parts:
@@ -126,7 +140,9 @@ def build_toolpath(program: Program) -> ToolPath:
             result[kind] = _straight(starts, ends, idx)
         else:
             result[kind] = _empty(n_axes)
-    result[MoveKind.ARC] = _arcs(program, np.flatnonzero(kinds == MoveKind.ARC))
+    # corner blends (G64 P) are drawn with the arcs: curved feed moves
+    result[MoveKind.ARC] = _merge([_arcs(program, np.flatnonzero(kinds == MoveKind.ARC)),
+                                   _blends(program, np.flatnonzero(kinds == MoveKind.BLEND))], n_axes)
     offsets = program.move_offsets
     if offsets is not None and len(moves):
         # drawn in work coordinates (what the program says, where the operator set part zero)

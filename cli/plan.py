@@ -116,6 +116,7 @@ def _plot(path: str, plan, chunk, title: str) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    from planner.blend import blend_program, blend_report
     from planner.canon import write_canon
     from planner.interpreter import parse_file
     from planner.plan import plan_program
@@ -145,6 +146,11 @@ def main(argv: list[str] | None = None) -> int:
                 for v in over:
                     print(f"{args.program}:{v.line}: error: {str(v).split(': ', 1)[1]}", file=sys.stderr)
                 return 2
+        programmed = program  # --canon writes the programmed path, as LinuxCNC's canon does
+        if want_plan and (args.mode or machine.planner.mode) == "lookahead":
+            # G64 P: sharp line corners become clothoid blends within the tolerance (the paper's
+            # mode keeps the path as programmed, so its figures can still be reproduced)
+            program = blend_program(program, machine)
         if want_plan:
             plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
     except ProgramError as exc:
@@ -183,7 +189,7 @@ def main(argv: list[str] | None = None) -> int:
         collected = SampleChunk.concat(chunks, len(axes)) if need_samples else None
     try:
         if args.canon:
-            write_canon(program, args.canon)
+            write_canon(programmed, args.canon)
         if args.samples:
             _write_npz(args.samples, collected, axes)
         if args.csv:
@@ -198,6 +204,7 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.json:
         report = plan.limit_report()
+        blends = blend_report(program)
         out = {
             "program": str(args.program),
             "lines": int(program.line_count),
@@ -217,6 +224,10 @@ def main(argv: list[str] | None = None) -> int:
             "end_error_mm": report.end_error_mm,
             "violations": report.violations,
             "joint_jerk": report.joint_jerk,
+            # how far the path leaves the programmed one: only corner blends do (G64 P)
+            "blends": blends.blends,
+            "path_deviation_mm": blends.max_corner_deviation_mm,
+            "path_deviation_line": blends.line,
             "ok": report.ok,
             "move_list": plan.moves_summary(),
         }

@@ -266,6 +266,11 @@ class _Interpreter:
         self.offset = tuple(w + g for w, g in zip(self.work, self.g92))   # program -> machine
         self.exact_stop = False
         self.exact_path = False
+        # G64 path tolerance (mm): the machine's default until G64 P, G61 or G61.1 change it
+        planner_settings = getattr(machine, "planner", None)
+        self.blend_default_mm = float(getattr(planner_settings, "blend_tolerance_mm", 0.0) or 0.0)
+        self.blend_tol_mm = self.blend_default_mm
+        self.blend_changes: list[tuple[int, float]] = [(0, self.blend_tol_mm)]
         # feed mode: G94 units per minute, G93 inverse time (an F on every feed move: its duration
         # is 1/F minutes), G95 units per revolution of the programmed spindle speed
         self.feed_mode = 940
@@ -822,8 +827,17 @@ class _Interpreter:
 
     _MODAL_FIELDS = ("inch", "scale", "plane", "comp_code", "absolute", "arc_absolute", "feed_mode",
                      "feed_mm_s", "feed_per_rev", "inverse_f", "work_code", "work", "tlo_code", "tlo",
-                     "retract_r_plane", "exact_stop", "exact_path", "spindle_rpm", "spindle_dir", "coolant",
-                     "rotation")
+                     "retract_r_plane", "exact_stop", "exact_path", "blend_tol_mm", "spindle_rpm",
+                     "spindle_dir", "coolant", "rotation")
+
+    def note_blend_tolerance(self) -> None:
+        first = len(self.recs)
+        if self.blend_changes[-1][1] == self.blend_tol_mm:
+            return
+        if self.blend_changes[-1][0] == first:
+            self.blend_changes[-1] = (first, self.blend_tol_mm)
+        else:
+            self.blend_changes.append((first, self.blend_tol_mm))
 
     def modal_memory(self, code: int, line_no: int) -> None:
         """M70 save the modal state at this call level, M71 forget it, M72 restore it, M73 save it
@@ -848,6 +862,7 @@ class _Interpreter:
         for f, v in state.items():
             setattr(self, f, v)
         self.set_offset()
+        self.note_blend_tolerance()
         self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(self.work_code) + 1)
         after = len(self.ends) - 1
         if (self.spindle_dir, self.spindle_rpm) != spindle_before:
@@ -1006,6 +1021,7 @@ class _Interpreter:
             parameter_sets=tuple(self.parameter_sets),
             offset_parts=tuple(self.offset_parts),
             tool_sets=tuple(self.tool_sets),
+            blend_tolerance=tuple(self.blend_changes),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1338,6 +1354,14 @@ class _Interpreter:
             # G61.1 keeps the programmed path without stopping at the joints: what the planner
             # does in G64 today too (it does not blend corners); kept apart for the display
             self.exact_path = groups[13] == 611
+            if groups[13] == 640:
+                # G64 P: the tolerance of the corner blends; G64 alone: the machine's default;
+                # G64 P0: the programmed path (no blends)
+                p_tol = vals.get("P")
+                self.blend_tol_mm = self.blend_default_mm if p_tol is None else max(p_tol, 0.0) * scale
+            else:
+                self.blend_tol_mm = 0.0
+            self.note_blend_tolerance()
         if 3 in groups:
             self.absolute = groups[3] == 900
         if 4 in groups:

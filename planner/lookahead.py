@@ -32,6 +32,10 @@ Two modes (``planner.mode``):
     |jerk vector| <= J_plane. A_plane, J_plane: the smaller limit of the two plane axes.
     Spirals take the curvature and turn rate of their small end, and the jerk of their
     changing curvature, v^3 |dkappa/ds|, shares the cross term's part (at most half of it).
+    Corner blends (``planner.blend``, clothoid pairs in the plane of their two lines, every
+    axis of that plane counted) take kappa and dkappa/ds of the pair and other shares: the
+    changing curvature up to 0.8 J_plane and the cross term the rest of 0.9 J_plane, the
+    centripetal jerk up to 0.3 J_plane, j_t the rest of sqrt(1 - 0.9^2) J_plane.
   - tangent break at a joint: the velocity change v |t2 - t1| happens within one sample Ts;
     for every axis k: v |dt_k| / Ts + kappa v^2 + 2 Ts J_k <= A_k (the arcs' centripetal
     acceleration and the jerk-limited tangential acceleration one sample either side share
@@ -88,6 +92,12 @@ __all__ = [
 ACCEL_NORMAL_SHARE = math.cos(math.radians(30.0))  # LinuxCNC's BLEND_ACC_RATIO_NORMAL
 JERK_NORMAL_SHARE = 0.5
 JERK_CROSS_SHARE = 0.6
+# corner blends (clothoid pairs): normal-direction jerk (cross term + v^3 dkappa/ds) <= 0.9 J,
+# of which the changing curvature up to 0.8 J; the tangential part then has
+# sqrt(1 - 0.9^2) = 0.436 J, of which kappa^2 v^3 takes up to 0.3 J
+BLEND_CROSS_SHARE = 0.9
+BLEND_DK_SHARE = 0.8
+BLEND_NORMAL_SHARE = 0.3
 MODES = ("lookahead", "paper")
 
 
@@ -153,27 +163,44 @@ def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
         tc[sp] = np.abs(table.end[sp] - table.start[sp]) / speed_min[:, None]
     tc[k, table.first[k]] = 0.0
     tc[k, table.second[k]] = 0.0
+    bl = np.nonzero(table.is_blend)[0]
+    # a blend turns in the plane of its two lines: every axis of that plane changes speed
+    bl_plane = (np.abs(table.bl_u1[bl]) + np.abs(table.bl_n1[bl])) > 1e-12
+    tc[bl] = 0.0
     vc = np.minimum(v_prog, np.min(_safe_div(lim.v_axis[None, :], tc), axis=1))
     a_t = np.minimum(lim.a_path, np.min(_safe_div(lim.a_axis[None, :], tc), axis=1))
     j_t = np.minimum(lim.j_path, np.min(_safe_div(lim.j_axis[None, :], tc), axis=1))
-    if k.size:
+    if bl.size:
+        vc[bl] = np.minimum(vc[bl], np.where(bl_plane, lim.v_axis[None, :], np.inf).min(axis=1))
+    if k.size or bl.size:
         rho, kappa, omega = table.arc_terms()
-        rho, kappa, omega = rho[k], kappa[k], omega[k]
         f, s = table.first[k], table.second[k]
-        v_pl = np.minimum(lim.v_axis[f], lim.v_axis[s])
-        a_pl = np.minimum(lim.a_axis[f], lim.a_axis[s])
-        j_pl = np.minimum(lim.j_axis[f], lim.j_axis[s])
+        v_pl = np.concatenate([np.minimum(lim.v_axis[f], lim.v_axis[s]),
+                               np.where(bl_plane, lim.v_axis[None, :], np.inf).min(axis=1)])
+        a_pl = np.concatenate([np.minimum(lim.a_axis[f], lim.a_axis[s]),
+                               np.where(bl_plane, lim.a_axis[None, :], np.inf).min(axis=1)])
+        j_pl = np.concatenate([np.minimum(lim.j_axis[f], lim.j_axis[s]),
+                               np.where(bl_plane, lim.j_axis[None, :], np.inf).min(axis=1)])
+        # shares of the in-plane jerk (see the module docstring): arcs keep most of the cross
+        # budget for the tangential acceleration they need along their length; a blend is short
+        # and crossed at about one speed, so its changing curvature takes most of it
+        is_bl = np.concatenate([np.zeros(k.size, dtype=bool), np.ones(bl.size, dtype=bool)])
+        cross_share = np.where(is_bl, BLEND_CROSS_SHARE, JERK_CROSS_SHARE)
+        dk_share = np.where(is_bl, BLEND_DK_SHARE, 0.5 * JERK_CROSS_SHARE)
+        normal_share = np.where(is_bl, BLEND_NORMAL_SHARE, JERK_NORMAL_SHARE)
+        k = np.concatenate([k, bl])
+        rho, kappa, omega = rho[k], kappa[k], omega[k]
         v = np.minimum(vc[k], _safe_div(v_pl, rho))
         v = np.minimum(v, np.sqrt(ACCEL_NORMAL_SHARE * a_pl / kappa))
-        v = np.minimum(v, np.cbrt(JERK_NORMAL_SHARE * j_pl / (kappa * omega)))
-        # spirals: the changing curvature adds v^3 dkappa/ds along the normal, where the
-        # cross term is; it takes at most half of that share
+        v = np.minimum(v, np.cbrt(normal_share * j_pl / (kappa * omega)))
+        # spirals and blends: the changing curvature adds v^3 dkappa/ds along the normal, where
+        # the cross term is
         dk = table.curvature_rate()[k]
-        v = np.minimum(v, _safe_div(1.0, np.cbrt(_safe_div(dk, 0.5 * JERK_CROSS_SHARE * j_pl))))
+        v = np.minimum(v, _safe_div(1.0, np.cbrt(_safe_div(dk, dk_share * j_pl))))
         j_dk = dk * v**3
         a_n = kappa * v * v
         at = np.minimum(a_t[k], _safe_div(np.sqrt(np.maximum(a_pl * a_pl - a_n * a_n, 0.0)), rho))
-        at = np.minimum(at, _safe_div(JERK_CROSS_SHARE * j_pl - j_dk, 3.0 * kappa * v))
+        at = np.minimum(at, _safe_div(cross_share * j_pl - j_dk, 3.0 * kappa * v))
         j_n = kappa * omega * v**3
         cross = 3.0 * kappa * v * at + j_dk
         jt = np.minimum(j_t[k], _safe_div(np.sqrt(np.maximum(j_pl * j_pl - cross * cross, 0.0)) - j_n, rho))

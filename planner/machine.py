@@ -59,6 +59,7 @@ class PlannerSettings:
     mode: str = "lookahead"
     interpolation: str = "exact"
     subroutine_dirs: tuple[str, ...] = ()    # as written; relative ones to MachineSpec.config_dir
+    blend_tolerance_mm: float = 0.0  # G64 without P: corner blend tolerance (0: programmed path)
 
 
 @dataclass(frozen=True)
@@ -130,6 +131,9 @@ def _validate_planner(p: PlannerSettings, where: str) -> None:
             f"{where}: interpolation must be one of {INTERPOLATIONS}, got {p.interpolation!r}")
     if not 1e-5 <= p.ts_s <= 0.1:
         raise PlannerError(f"{where}: ts_s must be between 1e-05 and 0.1 s, got {p.ts_s}")
+    if not 0.0 <= p.blend_tolerance_mm <= 10.0:
+        raise PlannerError(f"{where}: blend_tolerance_mm must be between 0 and 10 mm, "
+                           f"got {p.blend_tolerance_mm}")
 
 
 #: position counts must stay within int32 (CiA 402 0x607A/0x6064) with this margin over the travel
@@ -180,7 +184,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
                         j_max_mm_s3=lim["j_max_mm_s3"], rapid_mm_s=lim["rapid_mm_s"])
     pl = valid["planner"]
     planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"],
-                              subroutine_dirs=tuple(pl["subroutine_dirs"]))
+                              subroutine_dirs=tuple(pl["subroutine_dirs"]),
+                              blend_tolerance_mm=pl["blend_tolerance_mm"])
     offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in WORK_OFFSET_NAMES}
     for key, value in valid["offsets"].items():
         if len(value) != len(axes):

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from planner.blend import pair_frames, pair_positions
 from planner.program import Move, MoveKind
 
 __all__ = ["MoveTable", "concat_tables", "contour_error", "take_rows"]
@@ -82,6 +83,15 @@ class MoveTable:
     rise: np.ndarray
     spiral_poly: np.ndarray  # (n, 8) t(x) - x coefficients (x = u / L), spirals only
     spiral_poly_ok: np.ndarray  # (n,) bool: polynomial exact to rounding for this spiral
+    # corner blends (planner.blend): pair start A, unit direction and inside normal (n, d),
+    # half length, turn and where the move starts along the pair (n,)
+    is_blend: np.ndarray
+    bl_a: np.ndarray
+    bl_u1: np.ndarray
+    bl_n1: np.ndarray
+    bl_half: np.ndarray
+    bl_turn: np.ndarray
+    bl_s0: np.ndarray
 
     @staticmethod
     def from_moves(moves: tuple[Move, ...] | list[Move], n_axes: int) -> MoveTable:
@@ -118,6 +128,15 @@ class MoveTable:
             t = _spiral_newton(r0[kk], r1[kk], arc_vals[kk, 8], arc_vals[kk, 9], length[kk], u)
             dev = (t - np.tile(_CHEB_X, k.size)).reshape(k.size, 8)
             poly[k] = dev @ _CHEB_INV.T
+        is_blend = np.zeros(n, dtype=bool)
+        bl_vec = np.zeros((3, n, n_axes))
+        bl_val = np.zeros((3, n))
+        for i, m in enumerate(moves):
+            b = m.blend
+            if b is not None:
+                is_blend[i] = True
+                bl_vec[0, i], bl_vec[1, i], bl_vec[2, i] = b.origin, b.u1, b.n1
+                bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm)
         return MoveTable(
             moves=moves,
             index=np.asarray(cols[0], dtype=np.int64),
@@ -134,6 +153,8 @@ class MoveTable:
             cx=arc_vals[:, 3], cy=arc_vals[:, 4], r0=r0, r1=r1,
             theta0=arc_vals[:, 7], sweep=arc_vals[:, 8], rise=arc_vals[:, 9],
             spiral_poly=poly, spiral_poly_ok=poly_ok,
+            is_blend=is_blend, bl_a=bl_vec[0], bl_u1=bl_vec[1], bl_n1=bl_vec[2],
+            bl_half=bl_val[0], bl_turn=bl_val[1], bl_s0=bl_val[2],
         )
 
     def __len__(self) -> int:
@@ -175,10 +196,24 @@ class MoveTable:
             else:
                 q[k, f] = x
                 q[k, s] = y
+        bl = self.is_blend[row]
+        if bl.any():
+            k = np.nonzero(bl)[0]
+            r = row[k]
+            q[k] = pair_positions(self.bl_a[r], self.bl_u1[r], self.bl_n1[r], self.end[r], self.bl_half[r],
+                                  self.bl_turn[r], self.bl_s0[r] + u[k])
         done = frac >= 1.0
         if done.any():
             q[done] = self.end[row[done]]
         return q
+
+    def _blend_frames(self, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(rows, unit tangents, curvature vectors) of the blends at their start or end."""
+        k = np.nonzero(self.is_blend)[0]
+        s = 2.0 * self.bl_half[k] if at_end else self.bl_s0[k]
+        t, c = pair_frames(self.bl_a[k], self.bl_u1[k], self.bl_n1[k], self.end[k], self.bl_half[k],
+                           self.bl_turn[k], s)
+        return k, t, c
 
     def _spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Angle parameter t in [0, 1] at path length u on spirals.
@@ -225,6 +260,10 @@ class MoveTable:
                 out[k] = (self.end[k] - self.start[k]) / speed[:, None]
                 out[k, self.first[k]] = d1f / speed
                 out[k, self.second[k]] = d1s / speed
+        if self.is_blend.any():
+            for at_end, out in ((False, t_start), (True, t_end)):
+                k, t, _ = self._blend_frames(at_end)
+                out[k] = t
         del n, d
         return t_start, t_end
 
@@ -240,6 +279,10 @@ class MoveTable:
                 rad = self.r0[k] + (self.r1[k] - self.r0[k]) * frac
                 out[k, self.first[k]] = -rad * omega * omega * np.cos(theta)
                 out[k, self.second[k]] = -rad * omega * omega * np.sin(theta)
+        if self.is_blend.any():
+            for at_end, out in ((False, c_start), (True, c_end)):
+                k, _, c = self._blend_frames(at_end)
+                out[k] = c
         return c_start, c_end
 
     def arc_terms(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -267,6 +310,11 @@ class MoveTable:
             kappa[sp] = np.maximum(kappa[sp], (q + c * c) / (q * np.sqrt(q)))
             omega[sp] = np.maximum(omega[sp], 1.0 / np.sqrt(q + h * h))
             rho[sp] = 1.0
+        bl = np.nonzero(self.is_blend)[0]
+        if bl.size:
+            # a planar curve: the whole tangent is in its plane; the curvature peaks mid-pair
+            kb = self.bl_turn[bl] / self.bl_half[bl]
+            rho[bl], kappa[bl], omega[bl] = 1.0, kb, kb
         return rho, kappa, omega
 
     def curvature_rate(self) -> np.ndarray:
@@ -283,6 +331,9 @@ class MoveTable:
             r = np.minimum(self.r0[sp], self.r1[sp])
             q = r * r + c * c
             out[sp] = 4.0 * np.abs(c) / (q * np.sqrt(q + h * h))
+        bl = np.nonzero(self.is_blend)[0]
+        if bl.size:  # clothoids: dkappa/ds = theta / L_s^2 on both halves
+            out[bl] = self.bl_turn[bl] / (self.bl_half[bl] * self.bl_half[bl])
         return out
 
 
@@ -317,6 +368,19 @@ def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarra
         proj = np.clip((rel * delta).sum(axis=1) / (delta * delta).sum(axis=1), 0.0, 1.0)
     proj = np.nan_to_num(proj)
     err = rel - proj[:, None] * delta
+    bl = table.is_blend[row]
+    if bl.any():
+        # distance from the pair: one Newton step along the tangent from the sample's own
+        # parameter (second order in the along-path offset)
+        k = np.nonzero(bl)[0]
+        r = row[k]
+        args = (table.bl_a[r], table.bl_u1[r], table.bl_n1[r], table.end[r], table.bl_half[r],
+                table.bl_turn[r])
+        s_k = table.bl_s0[r] + np.clip(u[k], 0.0, table.length[r])
+        t_k, _ = pair_frames(*args, s_k)
+        p_k = pair_positions(*args, s_k)
+        s_k = np.clip(s_k + ((q[k] - p_k) * t_k).sum(axis=1), table.bl_s0[r], 2.0 * table.bl_half[r])
+        err[k] = q[k] - pair_positions(*args, s_k)
     arc = table.is_arc[row]
     if arc.any():
         k = np.nonzero(arc)[0]

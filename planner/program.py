@@ -38,6 +38,7 @@ class MoveKind(enum.IntEnum):
     RAPID = 0
     LINE = 1
     ARC = 2
+    BLEND = 3  # a corner blend under G64 P (planner.blend): a pair of clothoids between two lines
 
 
 @dataclass(frozen=True, slots=True)
@@ -143,7 +144,7 @@ def arc_param_at_length(arc: Arc, u_mm: np.ndarray, length_mm: float) -> np.ndar
 
 @dataclass(frozen=True, slots=True, eq=False)
 class Move:
-    """One motion block: a rapid, a straight feed or an arc/helix/spiral."""
+    """One motion block: a rapid, a straight feed or an arc/helix/spiral, or a corner blend."""
 
     index: int
     line: int  # 1-based source line
@@ -154,6 +155,7 @@ class Move:
     length_mm: float  # u runs over [0, length_mm]; linear-axis length, rotary degrees if none
     arc: Arc | None
     exact_stop: bool  # G61 active -> full stop at the end of this move
+    blend: Any = None  # planner.blend.Blend for kind BLEND, else None
 
     def evaluate(self, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position (N, n_axes), unit tangent dq/du (N, n_axes) and curvature 1/mm (N,) at u.
@@ -168,6 +170,10 @@ class Move:
         start = self.start
         delta = self.end - start
         arc = self.arc
+        if self.blend is not None:
+            from planner.blend import blend_eval
+
+            return blend_eval(self, u)
         if arc is None:
             if length > 0.0:
                 t = np.clip(u, 0.0, length) / length
@@ -295,6 +301,9 @@ class Program:
                               tuple[float, ...], float], ...] = ()
     # tools changed by G10 L1/L10/L11, by the TOOL_DATA event's value (planner.tools.Tool)
     tool_sets: tuple[Any, ...] = ()
+    # the G64 P path tolerance (mm) from move ``first`` on: ((first, tolerance), ...) at each
+    # change; 0 keeps the programmed path (G61, G61.1, G64 without a tolerance)
+    blend_tolerance: tuple[tuple[int, float], ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""
@@ -322,7 +331,8 @@ _ARC_SET = tuple(getattr(Arc, f).__set__ for f in Arc.__dataclass_fields__)
 
 def _make_move(index, line, kind, start, end, feed_mm_s, length_mm, arc, exact_stop, _new=_new, _cls=Move,
                _s0=_MOVE_SET[0], _s1=_MOVE_SET[1], _s2=_MOVE_SET[2], _s3=_MOVE_SET[3], _s4=_MOVE_SET[4],
-               _s5=_MOVE_SET[5], _s6=_MOVE_SET[6], _s7=_MOVE_SET[7], _s8=_MOVE_SET[8]) -> Move:
+               _s5=_MOVE_SET[5], _s6=_MOVE_SET[6], _s7=_MOVE_SET[7], _s8=_MOVE_SET[8],
+               _s9=_MOVE_SET[9]) -> Move:
     m = _new(_cls)
     _s0(m, index)
     _s1(m, line)
@@ -333,6 +343,7 @@ def _make_move(index, line, kind, start, end, feed_mm_s, length_mm, arc, exact_s
     _s6(m, length_mm)
     _s7(m, arc)
     _s8(m, exact_stop)
+    _s9(m, None)
     return m
 
 

@@ -62,6 +62,10 @@ def split_move(move: Move, u_mm: float) -> Move:
     if u >= length:
         start = move.end.copy()
     rest = max(length - u, 0.0)
+    if move.blend is not None:
+        # the same pair, entered further along
+        return replace(move, start=start, length_mm=rest,
+                       blend=replace(move.blend, s0_mm=move.blend.s0_mm + u))
     if move.arc is None:
         return replace(move, start=start, length_mm=rest)
     arc = move.arc

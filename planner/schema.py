@@ -87,6 +87,9 @@ MACHINE_FILE = Table("", tables=(
         Key("interpolation", "str", "exact", choices=("exact", "taylor", "classic")),
         # folders where "o<name> call" finds <name>.ngc (relative: to this file's folder)
         Key("subroutine_dirs", "strs", []),
+        # G64 without P: how far (mm) a corner blend may leave the programmed corner; 0 keeps
+        # the programmed path (G64 P<tol> in a program sets its own)
+        Key("blend_tolerance_mm", "float", 0.0, 0.0, 10.0),
     )),
     Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
     # digital outputs a program switches (M62-M65 P<number>): a bit of a drive's 0x60FE:1

@@ -41,6 +41,10 @@ class LimitViolation:
 def move_bounds(move: Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(min per axis, max per axis, points where they occur (2, n_axes) unused) of one move."""
     pts = [move.start, move.end]
+    if move.blend is not None:
+        # a blend turns less than half a circle, so it stays inside the triangle of its ends
+        # and the programmed corner: the corner bounds it (the programmed path reached it)
+        pts.append(move.blend.corner)
     arc = move.arc
     if arc is not None:
         if arc.radius_end_mm == arc.radius_start_mm:
@@ -80,7 +84,7 @@ def move_bounds_table(program: Program, chunk: int = 2048) -> tuple[np.ndarray, 
         np.minimum(starts, ends, out=lo[k:k + len(part)])
         np.maximum(starts, ends, out=hi[k:k + len(part)])
         for i, m in enumerate(part):
-            if m.arc is not None:
+            if m.arc is not None or m.blend is not None:
                 lo[k + i], hi[k + i], _ = move_bounds(m)
     return lo, hi
 

@@ -322,6 +322,7 @@ def config_to_toml(config: MachineConfig) -> str:
             f"interpolation = {_fmt(m.planner.interpolation)}"]
     if m.planner.subroutine_dirs:
         out.append(f"subroutine_dirs = {_fmt(list(m.planner.subroutine_dirs))}")
+    out.append(f"blend_tolerance_mm = {_fmt(float(m.planner.blend_tolerance_mm))}")
     out += [""]
     for number, (drive, bit, name) in sorted(m.output_bits.items()):
         out += ["[[outputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",

@@ -36,6 +36,7 @@ import numpy as np
 
 from app.background import Background
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
+from planner.blend import blend_program
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
 from planner.interpreter import parse_program
@@ -122,6 +123,10 @@ def check_text(
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
+    if machine.planner.mode == "lookahead":
+        # G64 P: the program of record is the blended one (preview, progress, resume and the
+        # plan all count its moves)
+        program = blend_program(program, machine)
     if not program.moves:
         why = ("the program moves no axis: nothing to run (spindle, tool and coolant codes alone "
                "are given in MDI, M61 Q for the tool in the spindle)")

@@ -72,3 +72,27 @@ def test_pick_nearest_segment(path) -> None:
 def test_empty_program() -> None:
     path = build_toolpath(parse_program("G21\n", name="e.nc"))
     assert path.all.count == 0 and len(path.all.points) == 0
+
+
+def test_corner_blends_are_drawn_on_their_curve() -> None:
+    """G64 P blends (planner.blend) are drawn with the curved moves, on their exact points,
+    and the drawing stays continuous through them."""
+    from planner.blend import blend_program
+    from planner.machine import MachineSpec
+
+    machine = MachineSpec.default()
+    text = "G21 G90 G64 P0.05\nG0 X1 Y1\nG1 F3000 X21\nX41 Y2\nX61 Y1\nM2\n"
+    program = blend_program(parse_program(text, name="b.nc", machine=machine), machine,
+                            only_where_quicker=False)
+    blends = [i for i, m in enumerate(program.moves) if m.kind is MoveKind.BLEND]
+    assert len(blends) == 2
+    path = build_toolpath(program)
+    curved = path.kinds[MoveKind.ARC]
+    assert curved.count == 2
+    for i in blends:
+        pts = curved.points[curved.move_index == i]
+        move = program.moves[i]
+        exact = move.evaluate(np.linspace(0.0, move.length_mm, len(pts)))[0]
+        np.testing.assert_allclose(pts, exact, atol=1e-12)
+        np.testing.assert_allclose(pts[0], program.moves[i - 1].end, atol=1e-12)
+        np.testing.assert_allclose(pts[-1], program.moves[i + 1].start, atol=1e-12)

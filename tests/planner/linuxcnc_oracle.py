@@ -4,6 +4,7 @@ turns the calls into comparable motion records (millimetres)."""
 
 from __future__ import annotations
 
+import fcntl
 import math
 import re
 import shutil
@@ -48,9 +49,14 @@ def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
         if tools is not None:
             (Path(tmp) / "t.tbl").write_text(_tbl_for_rs274(tools))
             args += ["-t", str(Path(tmp) / "t.tbl")]
-        # errors go to stderr: one stream keeps them where they happened
-        out = subprocess.run(args + [str(prog)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                             timeout=60, cwd=tmp, stdin=subprocess.DEVNULL).stdout
+        # errors go to stderr: one stream keeps them where they happened. Two rs274 at once
+        # (two test processes) sometimes print nothing at all (measured: 1 run in 10 with three
+        # in parallel, none alone), so runs are serialised across processes by a lock file.
+        with open(Path(tempfile.gettempdir()) / "cnc-panel-rs274.lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            out = subprocess.run(args + [str(prog)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                 text=True, timeout=60, cwd=tmp, stdin=subprocess.DEVNULL).stdout
+        assert out.strip() not in ("", "executing"), f"rs274 printed nothing for:\n{text}"
     motion: list[tuple] = []
     machine: list[tuple] = []    # each motion call's end in machine coordinates (zero moves)
     scale = 1.0

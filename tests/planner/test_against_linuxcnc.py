@@ -37,6 +37,7 @@ def programs(draw) -> str:
     so arcs and incremental words stay valid."""
     val = st.integers(-400, 400).map(lambda k: k / 10.0)
     x, y, z = 0.0, 0.0, 10.0
+    rotated = False  # in G55 with a G10 L2 R rotation
     out = [SUB, "G21 G17 G90 G94 G40 G49 G54 F600", f"G0 X0 Y0 Z{_n(z)}"]
 
     def goto() -> None:
@@ -78,7 +79,9 @@ def programs(draw) -> str:
         elif kind == "offset":
             rot = draw(st.sampled_from([0, 0, 30, -45, 90]))
             out.append(f"G10 L2 P2 X{_n(draw(val))} Y{_n(draw(val))} Z{_n(draw(val))} R{rot}")
-            out.append(draw(st.sampled_from(["G55", "G54"])))
+            system = draw(st.sampled_from(["G55", "G54"]))
+            out.append(system)
+            rotated = system == "G55" and rot != 0
             goto()
         elif kind == "g92":
             if draw(st.booleans()):
@@ -148,7 +151,10 @@ def programs(draw) -> str:
                        f"J{_n(j)} P{turns}")
             z += dz
         elif kind == "plane_arc":
-            # a half circle in G18 or G19 from the current point, back to G17
+            # a half circle in G18 or G19 from the current point, back to G17 (not in a rotated
+            # system: this interpreter refuses those arcs, a documented limit)
+            if rotated:
+                continue
             d = draw(st.integers(5, 100).map(lambda k: k / 10.0))
             if draw(st.booleans()):
                 out.append(f"G18 G2 X{_n(x + 2 * d)} Z{_n(z)} I{_n(d)} K0\nG17")

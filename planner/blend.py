@@ -1,0 +1,375 @@
+"""Corner blending under G64 P: a clothoid pair replaces each sharp joint between two lines.
+
+Under ``G64 P<tol>`` a joint between two straight feed moves that turns by theta is not
+crossed with a velocity step: the last part of the incoming line and the first part of the
+outgoing one are replaced by a symmetric pair of clothoids (Euler spirals) in the plane of
+the two lines. Along each half the curvature grows linearly with path length, from 0 at the
+line to kappa_max = theta / L_s in the middle and back to 0, so position, tangent and
+curvature are continuous everywhere: the normal acceleration v^2 kappa rises at a finite
+rate and the jerk limit can be held through the corner (a circular blend would step the
+curvature, and with it the acceleration, at both ends).
+
+Geometry of a pair of half length L_s (arc length s from the pair's start A, sharpness
+c = theta / L_s^2, heading phi(s) = c s^2 / 2 on the first half):
+
+    p(s) = A + X(s) u1 + Y(s) n1                       0 <= s <= L_s
+    p(s) = B - X(2 L_s - s) u2 + Y(2 L_s - s) n2         L_s <= s <= 2 L_s
+
+with X, Y the Fresnel-type integrals of cos and sin of the heading (16-point Gauss-Legendre,
+exact to rounding for headings up to pi / 2), u1, u2 the lines' unit directions, n1, n2 the
+unit normals towards the inside of the turn, A and B the trim points on the two lines, both
+at the tangent length T = X(L_s) + Y(L_s) tan(theta / 2) from the corner C. The pair's middle
+lies on the corner's bisector at D = Y(L_s) / cos(theta / 2) from C: that is the deviation
+from the programmed corner, and the distance from the programmed lines is Y(L_s) <= D.
+
+Size: L_s is the largest that keeps D <= P and T <= half of each line (LinuxCNC's rule for its
+blend arcs; the other half is left for the blend at the line's other end). A blend is only
+made where it is quicker: its speed (the planner's limits on kappa_max and on the jerk of the
+changing curvature) must beat the sharp corner's tangent-break speed and what the sharp
+corner's own plan reaches a tangent length away from it. Sharp corners held within a tight
+tolerance are no quicker jerk-limited than by a one-sample velocity step (a 90 degree corner
+within 0.01 mm at J = 10,000 mm/s^3: about 1 mm/s either way; no curve does much better, as
+turning the velocity at speed v with jerk J takes about 2 sqrt(v / J) and strays about
+v^1.5 / (2 sqrt(J)) from the corner, 0.01 mm at 1.6 mm/s), so those stay sharp; small turns
+between long lines (a few degrees) gain most.
+
+Blends are made between feed lines only (G01, not rapids, arcs or moves with rotary motion),
+where both lines are in G64 with a tolerance, the incoming one has no exact stop and no
+event (dwell, output, message, spindle...) sits at the joint.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from planner.machine import MachineSpec
+from planner.program import Move, MoveKind, Program
+
+__all__ = ["Blend", "BlendReport", "blend_eval", "blend_program", "blend_report", "unit_pair"]
+
+_GX, _GW = np.polynomial.legendre.leggauss(16)
+_GX = (_GX + 1.0) * 0.5
+_GW = _GW * 0.5
+
+#: joints turning less than this are tangent for the planner already (no break to remove)
+MIN_TURN_RAD = 1e-7
+#: joints turning more than this (nearly a reversal) are not blended: the pair would need a
+#: tangent length far beyond its deviation
+MAX_TURN_RAD = math.radians(175.0)
+#: what is left of a line shorter than this after both its ends were blended is dropped
+MIN_LINE_MM = 1e-9
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Blend:
+    """Exact geometry of one clothoid-pair blend (or of its tail from ``s0_mm`` on)."""
+
+    origin: np.ndarray  # A: start of the pair on the incoming line (n_axes,), machine coords
+    u1: np.ndarray  # unit direction of the incoming line (n_axes,)
+    n1: np.ndarray  # unit normal in the corner's plane, towards the inside of the turn
+    half_mm: float  # L_s, the length of each clothoid
+    turn_rad: float  # theta, the direction change of the corner
+    corner: np.ndarray  # C: the programmed corner (n_axes,)
+    s0_mm: float = 0.0  # where this move starts along the pair (a resumed tail: > 0)
+
+    @property
+    def kappa_max(self) -> float:
+        return self.turn_rad / self.half_mm
+
+    @property
+    def sharpness(self) -> float:
+        """dkappa/ds (1/mm^2) on both halves."""
+        return self.turn_rad / (self.half_mm * self.half_mm)
+
+    @property
+    def deviation_mm(self) -> float:
+        """Distance of the pair's middle from the programmed corner (its largest)."""
+        _, y1, _, d1 = unit_pair(np.array([self.turn_rad]))
+        return float(d1[0] * self.half_mm)
+
+
+def _fresnel(theta: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """X, Y of the unit pair (L_s = 1, c = theta) at x in [0, 1], element-wise."""
+    xs = x[..., None] * _GX
+    phase = 0.5 * theta[..., None] * xs * xs
+    return x * (np.cos(phase) @ _GW), x * (np.sin(phase) @ _GW)
+
+
+def unit_pair(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(X(1), Y(1), tangent length T, corner deviation D) of the pair of half length 1."""
+    theta = np.asarray(theta, dtype=float)
+    x1, y1 = _fresnel(theta, np.ones_like(theta))
+    half = 0.5 * theta
+    return x1, y1, x1 + y1 * np.tan(half), y1 / np.cos(half)
+
+
+def _pair_eval(origin, u1, n1, end, half, theta, s):
+    """Positions, unit tangents and curvature vectors of pairs at arc length s from A.
+
+    Row-wise arrays: origin, u1, n1, end (B) (N, d); half, theta, s (N,)."""
+    s = np.clip(s, 0.0, 2.0 * half)
+    first = s <= half
+    x = np.where(first, s, 2.0 * half - s) / half
+    xf, yf = _fresnel(theta, x)
+    xf = xf * half
+    yf = yf * half
+    ct, st = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    u2 = ct * u1 + st * n1
+    n2 = -st * u1 + ct * n1
+    f = first[:, None]
+    pos = np.where(f, origin + xf[:, None] * u1 + yf[:, None] * n1,
+                   end - xf[:, None] * u2 + yf[:, None] * n2)
+    phi = (0.5 * theta * x * x)[:, None]
+    cp, sp = np.cos(phi), np.sin(phi)
+    tangent = np.where(f, cp * u1 + sp * n1, cp * u2 - sp * n2)
+    normal = np.where(f, -sp * u1 + cp * n1, sp * u2 + cp * n2)
+    kappa = (theta / half) * x
+    return pos, tangent, kappa[:, None] * normal
+
+
+def blend_eval(move: Move, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``Move.evaluate`` for a blend: position, unit tangent and curvature at u."""
+    b = move.blend
+    assert b is not None
+    u = np.clip(np.atleast_1d(np.asarray(u_mm, dtype=float)).ravel(), 0.0, move.length_mm)
+    n = u.shape[0]
+    rep = (n, 1)
+    pos, tangent, curv = _pair_eval(np.tile(b.origin, rep), np.tile(b.u1, rep), np.tile(b.n1, rep),
+                                    np.tile(move.end, rep), np.full(n, b.half_mm),
+                                    np.full(n, b.turn_rad), b.s0_mm + u)
+    pos[u >= move.length_mm] = move.end
+    return pos, tangent, np.sqrt((curv * curv).sum(axis=1))
+
+
+def pair_positions(origin, u1, n1, end, half, theta, s) -> np.ndarray:
+    """Positions only (row-wise arrays, see ``_pair_eval``)."""
+    return _pair_eval(origin, u1, n1, end, half, theta, s)[0]
+
+
+def pair_frames(origin, u1, n1, end, half, theta, s) -> tuple[np.ndarray, np.ndarray]:
+    """(unit tangents, curvature vectors) at s (row-wise arrays)."""
+    _, t, k = _pair_eval(origin, u1, n1, end, half, theta, s)
+    return t, k
+
+
+def _blend_caps(theta: np.ndarray, half: np.ndarray, a_pl: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
+    """The speed a blend allows (the planner's in-plane rules in ``lookahead.move_limits``)."""
+    from planner.lookahead import ACCEL_NORMAL_SHARE, BLEND_DK_SHARE, BLEND_NORMAL_SHARE
+
+    kappa = theta / half
+    dk = theta / (half * half)
+    v = np.sqrt(ACCEL_NORMAL_SHARE * a_pl / kappa)
+    v = np.minimum(v, np.cbrt(BLEND_NORMAL_SHARE * j_pl / (kappa * kappa)))
+    return np.minimum(v, np.cbrt(BLEND_DK_SHARE * j_pl / dk))
+
+
+def _blend_not_slower(program: Program, machine: MachineSpec, jj: np.ndarray, v_blend: np.ndarray,
+                      tangent_len: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
+    """True where the blend cannot make the corner slower than the sharp corner's plan.
+
+    The program is planned as it is; a blend holds about one speed over the lines' last and
+    first T (its tangent length). Where that speed is at least what the sharp plan reaches T
+    from the joint on both sides (bounded above: a ramp at full jerk from the joint's speed, as
+    each move's profile starts with zero acceleration, and the lines' peak speeds), the blended
+    corner is crossed at least as fast everywhere, provided the corner is where the sharp plan
+    is slowest."""
+    from planner.plan import plan_program
+
+    plan = plan_program(program, machine)
+    v_joint = np.asarray(plan.ve)[jj]
+    j = np.minimum(j_pl, machine.limits.j_max_mm_s3)
+    # time to cover T from the joint starting at v_joint with zero acceleration and full jerk:
+    # J t^3 / 6 + v_joint t = T (Newton from above converges monotonically on this convex cubic)
+    t = np.cbrt(6.0 * tangent_len / j)
+    for _ in range(30):
+        f = j * t**3 / 6.0 + v_joint * t - tangent_len
+        t = t - f / (0.5 * j * t * t + v_joint)
+    v_ramp = v_joint + 0.5 * j * t * t
+    peak = np.asarray(plan.vpeak)
+    # each side on its own: the incoming line may run far faster than the outgoing one
+    quicker = (v_blend >= np.minimum(v_ramp, peak[jj])) & (v_blend >= np.minimum(v_ramp, peak[jj + 1]))
+    # and only where the sharp corner is what slows the motion (its speed is the lowest of the
+    # two lines'): a plan that brakes through the joint for something further on would have to
+    # brake on the blend, whose tangential acceleration is small (its budget goes to the turn)
+    slowest = (v_joint <= np.asarray(plan.vs)[jj]) & (v_joint <= np.asarray(plan.ve)[jj + 1])
+    return quicker & slowest
+
+
+def tolerance_per_move(program: Program) -> np.ndarray:
+    """The G64 P tolerance (mm) in force for each move (0: no blending)."""
+    n = len(program.moves)
+    tol = np.zeros(n)
+    changes = list(program.blend_tolerance) + [(n, 0.0)]
+    for (first, value), (nxt, _) in zip(changes[:-1], changes[1:]):
+        tol[first:nxt] = value
+    return tol
+
+
+def blend_program(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
+    """The program with its sharp line-line joints under G64 P replaced by clothoid pairs.
+
+    Returns ``program`` itself when nothing is blended. Move indices change: events, modal
+    texts and offset changes are moved to the new indices (each keeps its place in the path).
+    ``only_where_quicker=False`` blends every eligible corner (smoothest motion: no velocity
+    step at those joints, even where the sharp corner would be crossed sooner).
+    """
+    moves = program.moves
+    n = len(moves)
+    if n < 2 or not program.blend_tolerance or not any(v > 0 for _, v in program.blend_tolerance):
+        return program
+    tol = tolerance_per_move(program)
+    d = len(program.axes)
+    start = np.array([m.start for m in moves], dtype=float).reshape(n, d)
+    end = np.array([m.end for m in moves], dtype=float).reshape(n, d)
+    kind = np.array([int(m.kind) for m in moves])
+    stop = np.array([m.exact_stop for m in moves])
+    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(d, bool)
+    delta = end - start
+    lin_len = np.sqrt((delta[:, ~rotary] ** 2).sum(axis=1))
+    line_ok = (kind == int(MoveKind.LINE)) & (lin_len > 0.0) & ~np.any(delta[:, rotary] != 0.0, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        direction = np.where(line_ok[:, None], delta / np.where(lin_len > 0, lin_len, 1.0)[:, None], 0.0)
+
+    event_after = np.zeros(n, dtype=bool)
+    for ev in program.events:
+        if 0 <= ev.after_move < n:
+            event_after[ev.after_move] = True
+
+    j = np.arange(n - 1)
+    cand = line_ok[j] & line_ok[j + 1] & ~stop[j] & ~event_after[j]
+    p_tol = np.minimum(tol[j], tol[j + 1])
+    cand &= p_tol > 0.0
+    # the joint must be one point (moves are continuous; guard against rounding of offsets)
+    cand &= np.all(np.abs(end[j] - start[j + 1]) <= 1e-9 * (1.0 + np.abs(end[j])), axis=1)
+    if not cand.any():
+        return program
+    jj = j[cand]
+    u1 = direction[jj]
+    u2 = direction[jj + 1]
+    cos_t = np.clip((u1 * u2).sum(axis=1), -1.0, 1.0)
+    theta = np.arccos(cos_t)
+    keep = (theta > MIN_TURN_RAD) & (theta < MAX_TURN_RAD)
+    jj, u1, u2, theta = jj[keep], u1[keep], u2[keep], theta[keep]
+    if not jj.size:
+        return program
+    # inside normal: the part of u2 across u1, normalised
+    perp = u2 - cos_t[keep][:, None] * u1
+    n1 = perp / np.sqrt((perp * perp).sum(axis=1))[:, None]
+    _, _, t1, d1 = unit_pair(theta)
+    half = np.minimum(p_tol[cand][keep] / d1,
+                      np.minimum(0.5 * lin_len[jj], 0.5 * lin_len[jj + 1]) / t1)
+
+    # Worth it only where the blend is faster than the sharp corner (tangent-break rule).
+    lim_a = np.array([a.a_max for a in machine.axes], dtype=float)
+    lim_j = np.array([a.j_max for a in machine.axes], dtype=float)
+    ts = machine.planner.ts_s
+    in_plane = (np.abs(u1) + np.abs(n1)) > 1e-12
+    a_pl = np.where(in_plane, lim_a[None, :], np.inf).min(axis=1)
+    j_pl = np.where(in_plane, lim_j[None, :], np.inf).min(axis=1)
+    v_blend = _blend_caps(theta, half, np.minimum(a_pl, machine.limits.a_max_mm_s2),
+                          np.minimum(j_pl, machine.limits.j_max_mm_s3))
+    c_brk = np.maximum(lim_a - 2.0 * ts * lim_j, 0.1 * lim_a)[None, :]
+    dt = np.abs(u2 - u1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v_break = np.where(dt > 1e-12, c_brk * ts / dt, np.inf).min(axis=1)
+    good = v_blend > v_break if only_where_quicker else np.ones(v_blend.shape, dtype=bool)
+    if only_where_quicker and good.any():
+        # the pair is crossed at no more than the slower line's feed, over both halves
+        feeds = np.array([min(moves[i].feed_mm_s, moves[i + 1].feed_mm_s) for i in jj])
+        v_cross = np.minimum(v_blend, np.minimum(feeds, machine.limits.v_max_mm_s))
+        good &= _blend_not_slower(program, machine, jj, v_cross, half * t1, j_pl)
+    jj, u1, n1, theta, half = jj[good], u1[good], n1[good], theta[good], half[good]
+    t1 = t1[good]
+    if not jj.size:
+        return program
+
+    tangent_len = half * t1
+    corner = end[jj]
+    a_pts = corner - tangent_len[:, None] * u1
+    b_pts = corner + tangent_len[:, None] * direction[jj + 1]
+    return _rebuild(program, jj, a_pts, b_pts, u1, n1, half, theta, corner)
+
+
+def _rebuild(program: Program, joints: np.ndarray, a_pts: np.ndarray, b_pts: np.ndarray,
+             u1: np.ndarray, n1: np.ndarray, half: np.ndarray, theta: np.ndarray,
+             corner: np.ndarray) -> Program:
+    moves = program.moves
+    n = len(moves)
+    at_joint = {int(k): i for i, k in enumerate(joints)}
+    new: list[Move] = []
+    origin: list[int] = []  # the old move each new move belongs to (a blend: its incoming move)
+    first_new = np.zeros(n, dtype=np.int64)
+    last_new = np.zeros(n, dtype=np.int64)
+    offsets = program.move_offsets
+    new_offsets: list[int] = []
+    prev_b: np.ndarray | None = None  # where the previous blend ended (the trimmed start)
+    for i, m in enumerate(moves):
+        b_i = at_joint.get(i)
+        st = m.start if prev_b is None else prev_b
+        en = m.end if b_i is None else a_pts[b_i]
+        first_new[i] = len(new)
+        if prev_b is None and b_i is None:
+            new.append(replace(m, index=len(new)))
+            origin.append(i)
+        else:
+            rest = float(np.sqrt(((en - st) ** 2).sum()))
+            if rest > MIN_LINE_MM:
+                st_c = np.array(st, dtype=float)
+                en_c = np.array(en, dtype=float) if b_i is not None else m.end
+                new.append(replace(m, index=len(new), start=st_c, end=en_c, length_mm=rest))
+                origin.append(i)
+        if b_i is not None:
+            bl = Blend(origin=np.array(a_pts[b_i]), u1=np.array(u1[b_i]), n1=np.array(n1[b_i]),
+                       half_mm=float(half[b_i]), turn_rad=float(theta[b_i]), corner=np.array(corner[b_i]))
+            nxt = moves[i + 1]
+            b_start = new[-1].end if new and origin[-1] == i else np.array(a_pts[b_i])
+            b_end = np.array(b_pts[b_i])
+            new.append(Move(index=len(new), line=m.line, kind=MoveKind.BLEND, start=b_start, end=b_end,
+                            feed_mm_s=min(m.feed_mm_s, nxt.feed_mm_s), length_mm=2.0 * float(half[b_i]),
+                            arc=None, exact_stop=False, blend=bl))
+            origin.append(i)
+            prev_b = b_end
+        else:
+            prev_b = None
+        last_new[i] = len(new) - 1
+    # a line dropped whole (both ends blended, nothing left): its first move is the next blend
+    for i in range(n):
+        if first_new[i] > last_new[i]:
+            first_new[i] = last_new[i]
+    for k in range(len(new)):
+        new_offsets.append(origin[k])
+    events = tuple(replace(e, after_move=int(last_new[e.after_move]) if e.after_move >= 0 else e.after_move)
+                   for e in program.events)
+    modal = tuple((int(first_new[f]) if f < n else len(new), t) for f, t in program.modal)
+    parts = tuple((int(first_new[p[0]]) if p[0] < n else len(new), *p[1:]) for p in program.offset_parts)
+    tol = tuple((int(first_new[f]) if f < n else len(new), v) for f, v in program.blend_tolerance)
+    move_offsets = None
+    if offsets is not None:
+        move_offsets = np.asarray(offsets)[np.array(new_offsets, dtype=np.int64)]
+        move_offsets.setflags(write=False)
+    return replace(program, moves=tuple(new), events=events, modal=modal, offset_parts=parts,
+                   move_offsets=move_offsets, blend_tolerance=tol)
+
+
+@dataclass(frozen=True, slots=True)
+class BlendReport:
+    """How far the blended path leaves the programmed one."""
+
+    blends: int
+    max_corner_deviation_mm: float  # largest distance of a blend from its programmed corner
+    line: int  # where it is (0 when no blend)
+
+
+def blend_report(program: Program) -> BlendReport:
+    best, line, count = 0.0, 0, 0
+    turns = [(m.blend.turn_rad, m.blend.half_mm, m.line) for m in program.moves if m.blend is not None]
+    if turns:
+        arr = np.array([(t, h) for t, h, _ in turns])
+        _, _, _, d1 = unit_pair(arr[:, 0])
+        dev = d1 * arr[:, 1]
+        k = int(np.argmax(dev))
+        best, line, count = float(dev[k]), turns[k][2], len(turns)
+    return BlendReport(count, best, line)

@@ -1,0 +1,313 @@
+"""Corner blending under G64 P: clothoid pairs between lines, within the tolerance and every limit.
+
+What is specified here: a blend leaves the programmed path by at most P (measured on the
+samples, against the programmed polyline); position, tangent and curvature are continuous
+where it meets its lines, so the per-axis jerk holds through the corner (closed form and
+finite differences); it takes at most half of each line; the rest of the path is exact; the
+default rule blends only where the corner gets quicker; G61, G61.1, G64 P0 and events at the
+joint keep the corner sharp; events, modal texts and resume points keep their place.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.blend import blend_program, blend_report, pair_frames, unit_pair
+from planner.errors import PlannerError
+from planner.interpreter import parse_program
+from planner.lookahead import LimitSet
+from planner.machine import MachineSpec, load_machine
+from planner.plan import plan_program
+from planner.program import EventKind, MoveKind
+from planner.resume import remaining_program, split_move
+from planner.softlimits import check_program
+from tests.planner.motion_programs import paper_machine
+
+
+def fast_machine() -> MachineSpec:
+    """100 mm/s, 1000 mm/s^2, 10,000 mm/s^3 per axis and path (LinuxCNC comparison runs)."""
+    base = paper_machine()
+    axes = tuple(replace(a, v_max=100.0, a_max=1000.0, j_max=10_000.0) for a in base.axes)
+    return replace(base, axes=axes).with_limits(v_max_mm_s=100.0, a_max_mm_s2=1000.0, j_max_mm_s3=10_000.0,
+                                                rapid_mm_s=100.0)
+
+
+def polyline_text(points, tol: float, feed: float = 6000.0, mode: str | None = None) -> str:
+    head = mode if mode is not None else f"G64 P{tol:.12f}"
+    out = [f"G21 G90 {head}", f"G0 X{points[0][0]:.9f} Y{points[0][1]:.9f} Z{points[0][2]:.9f}",
+           f"G1 F{feed:g}"]
+    out += [f"X{p[0]:.9f} Y{p[1]:.9f} Z{p[2]:.9f}" for p in points[1:]]
+    return "\n".join(out + ["M2"]) + "\n"
+
+
+def corner(deg: float, leg: float = 10.0):
+    a = math.radians(deg)
+    x0, y0 = 1.0, 2.0  # away from the start position, so the rapid to it is a move
+    return [(x0, y0, 0.0), (x0 + leg, y0, 0.0), (x0 + leg + leg * math.cos(a), y0 + leg * math.sin(a), 0.0)]
+
+
+def distance_to_polyline(q: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    a, b = pts[:-1], pts[1:]
+    d = b - a
+    rel = q[:, None, :] - a[None, :, :]
+    t = np.clip((rel * d).sum(axis=2) / np.maximum((d * d).sum(axis=1), 1e-300), 0.0, 1.0)
+    return np.sqrt(((rel - t[..., None] * d) ** 2).sum(axis=2)).min(axis=1)
+
+
+def blend_axis_derivatives(plan, n_per_move: int = 96):
+    """Per-axis velocity, acceleration and jerk on the blends, in closed form: q' = T v,
+    q'' = K v^2 + T a, q''' = K' v^3 + 3 K v a + T j with K = kappa N, K' = kappa' N - kappa^2 T."""
+    seg = plan.segment
+    tab, prof = seg.table, seg.profiles
+    rows = np.nonzero(tab.is_blend)[0]
+    move = np.repeat(rows, n_per_move)
+    tau = np.tile(np.linspace(0.0, 1.0, n_per_move), rows.size) * prof.duration[move]
+    s, v, a, j = prof.evaluate(move, tau)
+    arc_s = tab.bl_s0[move] + s
+    half, theta = tab.bl_half[move], tab.bl_turn[move]
+    t_vec, k_vec = pair_frames(tab.bl_a[move], tab.bl_u1[move], tab.bl_n1[move], tab.end[move], half, theta,
+                               arc_s)
+    u1, n1 = tab.bl_u1[move], tab.bl_n1[move]
+    cos_psi = (t_vec * u1).sum(axis=1)[:, None]
+    sin_psi = (t_vec * n1).sum(axis=1)[:, None]
+    normal = -sin_psi * u1 + cos_psi * n1
+    kappa = np.sqrt((k_vec * k_vec).sum(axis=1))[:, None]
+    dkappa = np.where(arc_s <= half, 1.0, -1.0)[:, None] * (theta / (half * half))[:, None]
+    k_prime = dkappa * normal - kappa * kappa * t_vec
+    vv, aa, jj = v[:, None], a[:, None], j[:, None]
+    return t_vec * vv, k_vec * vv**2 + t_vec * aa, k_prime * vv**3 + 3.0 * k_vec * vv * aa + t_vec * jj
+
+
+def test_unit_pair_matches_its_definition() -> None:
+    """X, Y of the unit pair against a fine trapezoid sum; T and D from the symmetry."""
+    for theta in (1e-6, 0.1, 1.0, math.pi / 2, 3.0):
+        x = np.linspace(0.0, 1.0, 200_001)
+        phase = 0.5 * theta * x * x
+        xr = np.trapezoid(np.cos(phase), x)
+        yr = np.trapezoid(np.sin(phase), x)
+        x1, y1, t1, d1 = unit_pair(np.array([theta]))
+        assert abs(x1[0] - xr) < 1e-10 and abs(y1[0] - yr) < 1e-10
+        assert t1[0] == pytest.approx(xr + yr * math.tan(theta / 2), rel=1e-9)
+        assert d1[0] == pytest.approx(yr / math.cos(theta / 2), rel=1e-9)
+
+
+@pytest.mark.parametrize("deg", [0.5, 5.0, 30.0, 90.0, 150.0])
+def test_a_blend_meets_its_lines_smoothly_and_stays_within_the_tolerance(deg: float) -> None:
+    m = fast_machine()
+    tol = 0.01
+    pts = corner(deg)
+    prog = blend_program(parse_program(polyline_text(pts, tol), "c.ngc", m), m, only_where_quicker=False)
+    kinds = [mv.kind for mv in prog.moves]
+    assert kinds == [MoveKind.RAPID, MoveKind.LINE, MoveKind.BLEND, MoveKind.LINE]
+    line_in, bl, line_out = prog.moves[1:]
+    # continuous position (exactly: the same points), tangent and curvature
+    np.testing.assert_array_equal(line_in.end, bl.start)
+    np.testing.assert_array_equal(bl.end, line_out.start)
+    p, t, k = bl.evaluate(np.array([0.0, bl.length_mm]))
+    np.testing.assert_allclose(p[0], line_in.end, atol=1e-12)
+    np.testing.assert_allclose(p[1], line_out.start, atol=1e-12)
+    np.testing.assert_allclose(t[0], (line_in.end - line_in.start) / line_in.length_mm, atol=1e-12)
+    np.testing.assert_allclose(t[1], (line_out.end - line_out.start) / line_out.length_mm, atol=1e-12)
+    assert np.all(k < 1e-9)
+    # within P of the corner and of the programmed lines, at most half of each line
+    u = np.linspace(0.0, bl.length_mm, 4001)
+    q, tq, kq = bl.evaluate(u)
+    corner_pt = np.array(pts[1])
+    dist_corner = np.sqrt(((q - corner_pt) ** 2).sum(axis=1)).min()
+    assert dist_corner <= tol * (1 + 1e-9)
+    assert distance_to_polyline(q, np.array(pts)).max() <= tol * (1 + 1e-9)
+    assert line_in.length_mm >= 5.0 - 1e-9 and line_out.length_mm >= 5.0 - 1e-9
+    # the curve is parametrised by its length, its curvature peaks in the middle at theta / L_s
+    chord = np.sqrt((np.diff(q, axis=0) ** 2).sum(axis=1)).sum()
+    assert chord == pytest.approx(bl.length_mm, rel=1e-6)
+    np.testing.assert_allclose(np.sqrt((tq * tq).sum(axis=1)), 1.0, atol=1e-12)
+    assert kq.max() == pytest.approx(math.radians(deg) / bl.blend.half_mm, rel=1e-6)
+    assert blend_report(prog).max_corner_deviation_mm == pytest.approx(dist_corner, rel=1e-6, abs=1e-12)
+
+
+def test_every_blended_corner_holds_every_axis_limit_without_a_velocity_step() -> None:
+    """A zigzag, all corners blended: per-axis v, a, j in closed form on the blends, the limit
+    report on the samples, and no jerk at the joints beyond the limit (no velocity step)."""
+    m = fast_machine()
+    pts = [(i * 4.0, (i % 2) * 0.7, 0.1 * i) for i in range(12)]
+    sharp = parse_program(polyline_text(pts, 0.02), "z.ngc", m)
+    prog = blend_program(sharp, m, only_where_quicker=False)
+    assert blend_report(prog).blends == 10
+    plan = plan_program(prog, m)
+    qv, qa, qj = blend_axis_derivatives(plan)
+    lim = LimitSet.from_machine(m)
+    assert np.all(np.abs(qv) <= lim.v_axis * (1 + 1e-9))
+    assert np.all(np.abs(qa) <= lim.a_axis * (1 + 1e-9))
+    assert np.all(np.abs(qj) <= lim.j_axis * (1 + 1e-9))
+    rep = plan.limit_report()
+    assert rep.violations == {}
+    assert rep.joint_jerk["worst_ratio"] <= 1.0 + 1e-6
+    assert rep.contour_error_mm < 1e-9
+    sharp_rep = plan_program(sharp, m).limit_report()
+    assert sharp_rep.joint_jerk["worst_ratio"] > 10.0  # what the blends remove
+
+
+def test_small_turns_between_long_lines_get_quicker() -> None:
+    """5 degree corners between 10 mm lines at 100 mm/s: the blend is crossed at about 35 mm/s
+    where the sharp corner's one-sample velocity step allows 11 mm/s."""
+    m = fast_machine()
+    rise = 10.0 * math.tan(math.radians(2.5))  # segments at +-2.5 degrees: 5 degree turns
+    pts = [(1.0 + 10.0 * i, rise * (i % 2), 0.0) for i in range(8)]
+    sharp = parse_program(polyline_text(pts, 0.01), "s.ngc", m)
+    blended = blend_program(sharp, m)
+    # the last corner lies on the braking ramp to the program's end (the sharp plan is not
+    # slowest there): a blend would have to brake, so it stays sharp
+    assert blend_report(blended).blends == 5
+    t_sharp = plan_program(sharp, m).cycle_time_s
+    t_blend = plan_program(blended, m).cycle_time_s
+    assert t_blend < 0.95 * t_sharp, (t_blend, t_sharp)
+
+
+def test_the_default_rule_keeps_a_tight_right_angle_sharp() -> None:
+    """A 90 degree corner within 0.01 mm at J = 10,000 mm/s^3: the jerk-limited blend is about
+    as slow as the velocity step (1 mm/s) and longer, so the quicker sharp corner stays."""
+    m = fast_machine()
+    sharp = parse_program(polyline_text(corner(90.0), 0.01, feed=1000.0), "r.ngc", m)
+    assert blend_program(sharp, m) is sharp
+
+
+@pytest.mark.parametrize("mode", ["G61", "G61.1", "G64 P0", "G64"])
+def test_other_path_modes_keep_the_corner(mode: str) -> None:
+    m = fast_machine()  # its default tolerance is 0: G64 alone keeps the path too
+    prog = parse_program(polyline_text(corner(5.0), 0.01, mode=mode), "k.ngc", m)
+    assert blend_program(prog, m, only_where_quicker=False) is prog
+
+
+def test_g64_alone_takes_the_machine_default_and_m72_restores_the_tolerance() -> None:
+    m = fast_machine().with_planner(blend_tolerance_mm=0.05)
+    text = ("G21 G90 G64\nG0 X1 Y0\nG1 F6000 X10\nX20 Y1\nM70\nG64 P0.001\nX30 Y1\nX40 Y2\nM72\n"
+            "X50 Y2\nX60 Y3\nG61.1\nX70 Y3\nX80 Y4\nM2\n")
+    prog = parse_program(text, "d.ngc", m)
+    assert prog.blend_tolerance == ((0, 0.05), (3, 0.001), (5, 0.05), (7, 0.0))
+    bl = blend_program(prog, m, only_where_quicker=False)
+    devs = [mv.blend.deviation_mm for mv in bl.moves if mv.blend is not None]
+    # joints 1-2 (0.05), 2-3 (0.05 / 0.001: the smaller), 3-4 (0.001), 4-5 (0.001 / 0.05), 5-6 (0.05)
+    assert len(devs) == 5
+    assert devs[0] == pytest.approx(0.05, rel=1e-9) and devs[4] == pytest.approx(0.05, rel=1e-6)
+    assert max(devs[1:4]) <= 0.001 * (1 + 1e-9)
+
+
+def test_inch_tolerance_is_converted() -> None:
+    m = fast_machine()
+    prog = parse_program("G20 G90 G64 P0.001\nG0 X0 Y0\nG1 F100 X1\nX2 Y0.1\nM2\n", "i.ngc", m)
+    assert prog.blend_tolerance[-1] == (0, pytest.approx(0.0254))
+
+
+def test_events_at_a_joint_keep_it_sharp_and_keep_their_place() -> None:
+    m = fast_machine()
+    text = ("G21 G90 G64 P0.01\nG0 X1 Y0\nG1 F6000 X10\n(MSG, here)\nX20 Y0.9\nX30 Y0\nG91 X10 Y0.9\nG90\n"
+            "X50 Y0\nM2\n")
+    prog = parse_program(text, "e.ngc", m)
+    bl = blend_program(prog, m, only_where_quicker=False)
+    assert blend_report(bl).blends == 3  # not at the message
+    msg = next(e for e in bl.events if e.kind is EventKind.MESSAGE)
+    np.testing.assert_array_equal(bl.moves[msg.after_move].end, [10.0, 0.0, 0.0])
+    # the modal change (G91 on line 7) starts at that line's move, after the blend into it
+    first_g91 = next(first for first, modal in bl.modal if "G91" in modal)
+    assert bl.moves[first_g91].line == 7 and bl.moves[first_g91].kind is MoveKind.LINE
+    assert bl.moves[first_g91 - 1].kind is MoveKind.BLEND
+    assert len(bl.move_offsets) == len(bl.moves)
+
+
+def test_a_resume_inside_a_blend_follows_the_same_curve() -> None:
+    m = fast_machine()
+    prog = blend_program(parse_program(polyline_text(corner(30.0), 0.05), "r.ngc", m), m,
+                         only_where_quicker=False)
+    i = next(k for k, mv in enumerate(prog.moves) if mv.kind is MoveKind.BLEND)
+    bl = prog.moves[i]
+    u = 0.37 * bl.length_mm
+    tail = split_move(bl, u)
+    w = np.linspace(0.0, tail.length_mm, 50)
+    np.testing.assert_allclose(tail.evaluate(w)[0], bl.evaluate(u + w)[0], atol=1e-12)
+    np.testing.assert_array_equal(tail.end, bl.end)
+    rest = remaining_program(prog, i, u)
+    np.testing.assert_allclose(rest.start_position, bl.evaluate(np.array([u]))[0][0], atol=1e-12)
+    rep = plan_program(rest, m).limit_report()
+    assert rep.violations == {}
+
+
+def test_soft_limits_still_see_the_programmed_corner() -> None:
+    m = fast_machine()
+    axes = tuple(replace(a, max_pos=10.0) if a.name == "X" else a for a in m.axes)
+    m = replace(m, axes=axes)
+    text = polyline_text([(0.0, 0.0, 0.0), (10.005, 0.0, 0.0), (0.0, 1.0, 0.0)], 0.01)
+    prog = blend_program(parse_program(text, "l.ngc", m), m, only_where_quicker=False)
+    assert blend_report(prog).blends == 1
+    over = check_program(prog, m)
+    assert over and over[0].axis == "X"
+
+
+def test_the_configuration_key_is_checked(tmp_path) -> None:
+    base = ("[[axes]]\nname = \"X\"\ndrive_position = 0\nmin = -10.0\nmax = 10.0\nv_max = 10.0\n"
+            "a_max = 100.0\nj_max = 1000.0\n[planner]\n")
+    path = tmp_path / "m.toml"
+    path.write_text(base + "blend_tolerance_mm = 0.02\n", encoding="utf-8")
+    assert load_machine(path).planner.blend_tolerance_mm == 0.02
+    path.write_text(base + "blend_tolerance_mm = -1\n", encoding="utf-8")
+    with pytest.raises(PlannerError, match="blend_tolerance_mm"):
+        load_machine(path)
+
+
+def test_cnc_plan_reports_the_largest_deviation(tmp_path) -> None:
+    path = tmp_path / "p.ngc"
+    rise = 10.0 * math.tan(math.radians(2.5))
+    path.write_text(polyline_text([(1.0 + 10.0 * i, rise * (i % 2), 0.0) for i in range(6)], 0.01))
+    out = subprocess.run([sys.executable, "-m", "cli.plan", str(path), "--json", "--vmax", "100"],
+                         capture_output=True, text=True, check=True).stdout
+    rep = json.loads(out)
+    assert rep["blends"] >= 1
+    assert 0.0 < rep["path_deviation_mm"] <= 0.01 * (1 + 1e-9)
+    assert rep["path_deviation_line"] >= 4
+    assert rep["ok"]
+
+
+_coord = st.floats(-1.0, 1.0, allow_nan=False)
+
+
+@settings(max_examples=40, deadline=None)
+@given(pts=st.lists(st.tuples(_coord, _coord, _coord), min_size=3, max_size=9),
+       tol=st.floats(0.001, 0.3), scale=st.sampled_from([0.001, 1.0, 1000.0]),
+       feed=st.sampled_from([300.0, 3000.0, 6000.0]), every=st.booleans())
+def test_random_polylines_blend_within_the_tolerance_and_the_limits(pts, tol, scale, feed, every) -> None:
+    """Random 3-D polylines at 0.001x, 1x and 1000x: every sample within P of the programmed
+    polyline, every limit held (finite differences of the samples), blends exact end points."""
+    m = fast_machine()
+    axes = tuple(replace(a, min_pos=-5000.0, max_pos=5000.0) for a in m.axes)
+    m = replace(m, axes=axes)
+    p = np.array(pts) * 10.0 * scale
+    keep = [p[0]]
+    for q in p[1:]:
+        if np.abs(q - keep[-1]).max() > 1e-3 * scale:
+            keep.append(q)
+    if len(keep) < 3:
+        return
+    p = np.array(keep)
+    # metre-long paths at full speed, so that a case stays a few seconds of samples
+    text = polyline_text(p, tol * scale, feed=6000.0 if scale > 1.0 else feed)
+    prog = blend_program(parse_program(text, "f.ngc", m), m, only_where_quicker=not every)
+    plan = plan_program(prog, m)
+    rep = plan.limit_report()
+    assert rep.violations == {}, rep.violations
+    assert rep.end_error_mm == 0.0
+    # the programmed path: the rapid from the origin, then the polyline
+    prog_pts = np.vstack([np.zeros((1, 3)), p])
+    q = plan.collect().q
+    # printed with 9 decimals: the programmed points are those of the text
+    assert distance_to_polyline(q, prog_pts).max() <= tol * scale * (1 + 1e-6) + 1e-12
+    for mv in prog.moves:
+        if mv.blend is not None:
+            assert mv.blend.deviation_mm <= tol * scale * (1 + 1e-9) + 1e-12  # P printed to 1e-12
