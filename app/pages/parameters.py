@@ -1,5 +1,5 @@
-"""Parameters (service level): path limits, Ts, planner mode and interpolation, homing, bus,
-service password. Changes are checked, confirmed and applied atomically by the controller."""
+"""Parameters (service level): path limits, Ts, corner tolerance, planner mode and interpolation,
+homing, bus, service password. Changes are checked, confirmed and applied atomically by the controller."""
 
 from __future__ import annotations
 
@@ -78,6 +78,12 @@ class ParametersPage(QWidget):
                                      ask=context.dialogs.ask_number)
         self.ts_field.valueChanged.connect(lambda v: self._set(with_planner(self.pending, ts_s=v / 1000.0)))
         form.addRow(label(N_("Cycle time Ts")), self.ts_field)
+        # G64 without P: how far a corner blend may leave the programmed corner (0: exact path)
+        self.blend_field = NumericField(tr("Corner tolerance (G64)"), 0.0, 0.0, 10.0, 3, "mm",
+                                        ask=context.dialogs.ask_number)
+        self.blend_field.valueChanged.connect(
+            lambda v: self._set(with_planner(self.pending, blend_tolerance_mm=v)))
+        form.addRow(label(N_("Corner tolerance (G64)")), self.blend_field)
         box, _g, self.mode_buttons = _choice_row(PLANNER_MODES)
         for mode, b in self.mode_buttons.items():
             b.clicked.connect(lambda _=False, m=mode: self._set(with_planner(self.pending, mode=m)))
@@ -131,6 +137,7 @@ class ParametersPage(QWidget):
         for attr, field in self.fields.items():
             field.setValue(getattr(m.limits, attr))
         self.ts_field.setValue(m.planner.ts_s * 1000.0)
+        self.blend_field.setValue(m.planner.blend_tolerance_mm)
         for mode, b in self.mode_buttons.items():
             b.setChecked(mode == m.planner.mode)
         for interp, b in self.interp_buttons.items():

@@ -69,7 +69,7 @@
       <translation>Eksenleri uygula</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="154" />
+      <location filename="../../app/pages/parameters.py" line="161" />
       <source>Apply parameters</source>
       <translation>Parametreleri uygula</translation>
     </message>
@@ -79,7 +79,7 @@
       <translation>Değiştirilen eksen tanımları uygulansın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="151" />
+      <location filename="../../app/pages/parameters.py" line="158" />
       <source>Apply the changed parameters?</source>
       <translation>Değiştirilen parametreler uygulansın mı?</translation>
     </message>
@@ -99,7 +99,7 @@
       <translation>Eksen</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="98" />
+      <location filename="../../app/pages/parameters.py" line="104" />
       <source>Bus</source>
       <translation>Veri yolu</translation>
     </message>
@@ -144,7 +144,7 @@
       <translation>Neden</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="104" />
+      <location filename="../../app/pages/parameters.py" line="110" />
       <source>Change service password</source>
       <translation>Servis şifresini değiştir</translation>
     </message>
@@ -179,12 +179,17 @@
       <translation>Sürekli</translation>
     </message>
     <message>
+      <location filename="../../app/pages/parameters.py" line="82" />
+      <source>Corner tolerance (G64)</source>
+      <translation>Köşe toleransı (G64)</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/axes.py" line="15" />
       <source>Counts/unit</source>
       <translation>Sayım/birim</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="173" />
+      <location filename="../../app/pages/parameters.py" line="180" />
       <source>Current service password:</source>
       <translation>Mevcut servis şifresi:</translation>
     </message>
@@ -379,12 +384,12 @@
       <translation>Referanslı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="94" />
+      <location filename="../../app/pages/parameters.py" line="100" />
       <source>Homing</source>
       <translation>Referanslama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="92" />
+      <location filename="../../app/pages/parameters.py" line="98" />
       <source>Homing required before a program</source>
       <translation>Programdan önce referanslama gerekli</translation>
     </message>
@@ -414,7 +419,7 @@
       <translation>İş milinde: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="89" />
+      <location filename="../../app/pages/parameters.py" line="95" />
       <source>Interpolation</source>
       <translation>İnterpolasyon</translation>
     </message>
@@ -466,7 +471,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Makineye yükle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="107" />
+      <location filename="../../app/pages/parameters.py" line="113" />
       <source>Lock service level</source>
       <translation>Servis seviyesini kilitle</translation>
     </message>
@@ -521,12 +526,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>{0}. satırın başına çizilen yoldan gidilsin (güvenli yüksekliğe çık, yana git, iş milini çalıştır, in) ve program oradan çalıştırılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="163" />
+      <location filename="../../app/pages/parameters.py" line="170" />
       <source>Network adapter</source>
       <translation>Ağ bağdaştırıcısı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="164" />
+      <location filename="../../app/pages/parameters.py" line="171" />
       <source>Network interface of the EtherCAT bus:</source>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
@@ -536,7 +541,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yeni</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="176" />
+      <location filename="../../app/pages/parameters.py" line="183" />
       <source>New service password (at least {0} characters):</source>
       <translation>Yeni servis şifresi (en az {0} karakter):</translation>
     </message>
@@ -561,7 +566,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="187" />
+      <location filename="../../app/pages/parameters.py" line="194" />
       <source>Nothing changed: {0}</source>
       <translation>Hiçbir şey değişmedi: {0}</translation>
     </message>
@@ -636,7 +641,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yol v / a / j</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="84" />
+      <location filename="../../app/pages/parameters.py" line="90" />
       <source>Planner mode</source>
       <translation>Planlayıcı kipi</translation>
     </message>
@@ -743,7 +748,7 @@ BIRAK</translation>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="180" />
+      <location filename="../../app/pages/parameters.py" line="187" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
     </message>
@@ -813,7 +818,7 @@ BIRAK</translation>
       <translation>Gönder</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="111" />
+      <location filename="../../app/pages/parameters.py" line="117" />
       <source>Service</source>
       <translation>Servis</translation>
     </message>
@@ -838,7 +843,7 @@ BIRAK</translation>
       <translation>Servis seviyesi açıldı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="173" />
+      <location filename="../../app/pages/parameters.py" line="180" />
       <source>Service password</source>
       <translation>Servis şifresi</translation>
     </message>
@@ -953,7 +958,7 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="185" />
+      <location filename="../../app/pages/parameters.py" line="192" />
       <source>The service password was changed.</source>
       <translation>Servis şifresi değiştirildi.</translation>
     </message>

@@ -267,6 +267,17 @@ def test_parameters_apply_goes_through_the_controller(fake_window, fake_controll
     assert "a_max_mm_s2" in page.apply_bar.message.text() and not page.apply_bar.apply_button.isEnabled()
 
 
+def test_parameters_page_sets_the_corner_tolerance(fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("parameters")
+    assert page.blend_field.value() == fake_controller.config.machine.planner.blend_tolerance_mm
+    page.blend_field.setValue(0.02, emit=True)
+    assert page.apply_bar.apply_button.isEnabled()
+    assert page.apply()
+    assert fake_controller.config.machine.planner.blend_tolerance_mm == 0.02
+    page.revert()
+    assert page.blend_field.value() == 0.02
+
+
 def test_axes_page_edits_and_validates(fake_window, fake_controller, dialogs) -> None:
     page = fake_window.page("axes")
     dialogs.answers.append(-300.0)

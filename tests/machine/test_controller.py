@@ -837,3 +837,38 @@ def test_program_messages_reach_the_operator_where_the_motion_is(ctl: MachineCon
     assert program_texts == ["roughing", " passes 3.000000", "done"]
     assert [a.cause for a in ctl.alarms if a.source == "program"][-3:] == program_texts
     assert ctl.mdi("(MSG, hello)") and "hello" in shown[-2:]
+
+
+def test_g64_p_corners_are_blended_and_run_to_the_exact_end(ctl: MachineController) -> None:
+    """A zigzag of 4 degree turns under G64 P0.02: the loaded program is the blended one (what
+    the preview, progress and a resume count), it runs within every limit to its exact end,
+    sooner than the same path with G61.1, and a hold inside it resumes on the same curve."""
+    zigzag = "".join(f"X{5 + 10 * i} Y{0.35 * (i % 2):.2f}\n" for i in range(1, 9))
+    text = "G0 X5 Y0\nG64 P0.02\nG1 F1800\n" + zigzag + "M30\n"
+    assert ctl.load_program(text.replace("G64 P0.02", "G61.1"), wait=True)
+    sharp_s = ctl.program_info.cycle_time_s
+    assert ctl.load_program(text, wait=True)
+    info = ctl.program_info
+    kinds = [m.kind.name for m in info.program.moves]
+    assert kinds.count("BLEND") >= 5
+    assert info.move_count == len(kinds)
+    assert info.cycle_time_s < 0.99 * sharp_s  # measured: 2.96 s against 3.04 s
+    first = kinds.index("BLEND")
+    blend = info.program.moves[first]
+    assert ctl.cycle_start()
+    ctl.advance(info.line_times_s[first][1] + 0.01)   # the hold ramp ends on the blend
+    assert ctl.feed_hold()
+    ctl.advance(0.6)
+    held = np.array(ctl.reference_position)
+    on_curve = blend.evaluate(np.linspace(0.0, blend.length_mm, 20001))[0]
+    assert np.sqrt(((on_curve - held) ** 2).sum(axis=1)).min() < 1e-3   # on the blend,
+    corner = np.array([15.0, 0.35, 0.0])
+    off = min(float(np.linalg.norm(np.cross(held - corner, d))) / float(np.linalg.norm(d))
+              for d in (corner - (5.0, 0.0, 0.0), (25.0, 0.0, 0.0) - corner))
+    assert 1e-4 < off <= 0.02                                            # off the programmed lines
+    assert ctl.resume()
+    run_to_idle(ctl)
+    s = ctl.last_run
+    assert s.completed
+    np.testing.assert_array_equal(ctl.reference_position, (85.0, 0.35 * (8 % 2), 0.0))
+    assert_within_limits(s.limits)
