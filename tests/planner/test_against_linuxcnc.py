@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -226,6 +227,20 @@ def programs(draw) -> str:
     return "\n".join(out) + "\n"
 
 
+def _without_short_moves(motion: list[tuple], program) -> list[tuple]:
+    """The oracle's rule on this side too: a straight move ending within 0.003 mm of where the
+    tool is (machine coordinates) is not compared; polar words end off the 0.1 mm grid, so a
+    following grid move can be that short."""
+    out, last = [], np.zeros(3)
+    for call, move in zip(motion, program.moves, strict=True):
+        end = np.asarray(move.end[:3], dtype=float)
+        if call[0] != "arc_feed" and np.max(np.abs(end - last)) < 0.003:
+            continue
+        out.append(call)
+        last = end
+    return out
+
+
 def _close(a: tuple, b: tuple) -> bool:
     # LinuxCNC prints four decimals of the program's unit (0.0001 in = 0.00254 mm)
     return a[0] == b[0] and all(abs(u - v) <= 0.003 for u, v in zip(a[1], b[1]))
@@ -236,7 +251,8 @@ def _close(a: tuple, b: tuple) -> bool:
 def test_random_programs_read_as_linuxcnc_reads_them(text: str) -> None:
     theirs = run_linuxcnc(text, TOOLS)
     try:
-        ours = project_motion(parse_program(text, name="p.ngc", tools=TOOLS))
+        program = parse_program(text, name="p.ngc", tools=TOOLS)
+        ours = _without_short_moves(project_motion(program), program)
     except ProgramError as exc:
         assert theirs.error, f"only this interpreter refuses: {exc}\n{text}"
         return
