@@ -7,7 +7,8 @@ jerk --jmax (mm/s^3) per axis and path, 1 ms samples. Each program from ``../sha
 is read once per mode with the mode's line put before its first move (the program's own G61 /
 G64 words are replaced by it, so the mode holds throughout). Printed per program: cycle time
 in each mode, the feed bound (each move at its programmed feed, no acceleration), the number
-of corner blends, the largest deviation of a blend from its programmed corner, and whether
+of corner blends, the moves before and after G64 Q joined lines (blends not counted), the
+largest deviation of a blend from its programmed corner, and whether
 the limit report (closed form and finite differences of every sample) found a violation -
 including the jerk at joints, which G61.1 exceeds by its velocity steps and G64 P does not
 where it blends. The last line printed is the JSON result.
@@ -73,6 +74,7 @@ def run_one(path: Path, machine: MachineSpec, tol: float) -> dict:
         except (ProgramError, PlannerError) as exc:
             row[label] = f"not read: {str(exc).splitlines()[0]}"
             continue
+        row[f"{label} moves"] = len(program.moves)
         if label.startswith("G64"):
             t = time.perf_counter()
             program = blend_program(program, machine)
@@ -80,6 +82,7 @@ def run_one(path: Path, machine: MachineSpec, tol: float) -> dict:
             rep = blend_report(program)
             row["blends"] = rep.blends
             row["max_deviation_mm"] = rep.max_corner_deviation_mm
+            row["moves_after"] = len(program.moves) - rep.blends  # G64 Q joins lines
         else:
             row["feed_bound_s"] = feed_bound_s(program)
         plan = plan_program(program, machine)
@@ -116,7 +119,8 @@ def main(argv: list[str] | None = None) -> int:
 
         print(f"{row['program'][:40]:40} G61 {fmt(row.get('G61'))} G61.1 {fmt(row.get('G61.1'))} "
               f"{g64} {fmt(row.get(g64))} feed bound {fmt(row.get('feed_bound_s'))} "
-              f"blends {row.get('blends', 0):6d} dev {row.get('max_deviation_mm', 0.0):.4f} "
+              f"blends {row.get('blends', 0):6d} moves {row.get('G61.1 moves', 0):6d}->"
+              f"{row.get('moves_after', 0):6d} dev {row.get('max_deviation_mm', 0.0):.4f} "
               f"ok {row.get('G61 ok')}/{row.get('G61.1 ok')}/{row.get(f'{g64} ok')} joint jerk x "
               f"{fmt(row.get('G61.1 joint jerk x'))}/{fmt(row.get(f'{g64} joint jerk x'))}", flush=True)
     print(json.dumps({"tol_mm": args.tol, "jmax": args.jmax, "rows": rows}))

@@ -271,6 +271,10 @@ class _Interpreter:
         self.blend_default_mm = float(getattr(planner_settings, "blend_tolerance_mm", 0.0) or 0.0)
         self.blend_tol_mm = self.blend_default_mm
         self.blend_changes: list[tuple[int, float]] = [(0, self.blend_tol_mm)]
+        # G64 Q (LinuxCNC's naive CAM tolerance: runs of G01 within Q of one line are one line);
+        # without Q it is P's, as in LinuxCNC
+        self.naive_cam_mm = self.blend_default_mm
+        self.naive_changes: list[tuple[int, float]] = [(0, self.naive_cam_mm)]
         # feed mode: G94 units per minute, G93 inverse time (an F on every feed move: its duration
         # is 1/F minutes), G95 units per revolution of the programmed spindle speed
         self.feed_mode = 940
@@ -773,8 +777,17 @@ class _Interpreter:
             _PLANE_G[self.plane], "G20" if self.inch else "G21", "G90" if self.absolute else "G91",
             _gname(self.feed_mode),
             _gname(self.work_code), _gname(self.comp_code), _gname(self.tlo_code),
-            "G61" if self.exact_stop else ("G61.1" if self.exact_path else "G64"),
+            "G61" if self.exact_stop else ("G61.1" if self.exact_path else self.g64_text()),
         ))
+
+    def g64_text(self) -> str:
+        """G64 with the tolerances in force, in the program's units (as the operator wrote them)."""
+        if self.blend_tol_mm <= 0.0 and self.naive_cam_mm <= 0.0:
+            return "G64"
+        text = f"G64 P{self.blend_tol_mm / self.scale:g}"
+        if self.naive_cam_mm != self.blend_tol_mm:
+            text += f" Q{self.naive_cam_mm / self.scale:g}"
+        return text
 
     def note_modal(self) -> None:
         text = self.modal_text()
@@ -827,17 +840,19 @@ class _Interpreter:
 
     _MODAL_FIELDS = ("inch", "scale", "plane", "comp_code", "absolute", "arc_absolute", "feed_mode",
                      "feed_mm_s", "feed_per_rev", "inverse_f", "work_code", "work", "tlo_code", "tlo",
-                     "retract_r_plane", "exact_stop", "exact_path", "blend_tol_mm", "spindle_rpm",
-                     "spindle_dir", "coolant", "rotation")
+                     "retract_r_plane", "exact_stop", "exact_path", "blend_tol_mm", "naive_cam_mm",
+                     "spindle_rpm", "spindle_dir", "coolant", "rotation")
 
     def note_blend_tolerance(self) -> None:
         first = len(self.recs)
-        if self.blend_changes[-1][1] == self.blend_tol_mm:
-            return
-        if self.blend_changes[-1][0] == first:
-            self.blend_changes[-1] = (first, self.blend_tol_mm)
-        else:
-            self.blend_changes.append((first, self.blend_tol_mm))
+        for changes, value in ((self.blend_changes, self.blend_tol_mm),
+                               (self.naive_changes, self.naive_cam_mm)):
+            if changes[-1][1] == value:
+                continue
+            if changes[-1][0] == first:
+                changes[-1] = (first, value)
+            else:
+                changes.append((first, value))
 
     def modal_memory(self, code: int, line_no: int) -> None:
         """M70 save the modal state at this call level, M71 forget it, M72 restore it, M73 save it
@@ -1022,6 +1037,7 @@ class _Interpreter:
             offset_parts=tuple(self.offset_parts),
             tool_sets=tuple(self.tool_sets),
             blend_tolerance=tuple(self.blend_changes),
+            naive_cam_tolerance=tuple(self.naive_changes),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1351,16 +1367,19 @@ class _Interpreter:
         if 13 in groups:
             self.comp_refuses("change the path control mode", _gname(groups[13]))
             self.exact_stop = groups[13] == 610
-            # G61.1 keeps the programmed path without stopping at the joints: what the planner
-            # does in G64 today too (it does not blend corners); kept apart for the display
+            # G61.1 keeps the programmed path without stopping at the joints; so does G64 unless
+            # a tolerance lets the planner blend corners or join lines (planner.blend)
             self.exact_path = groups[13] == 611
             if groups[13] == 640:
                 # G64 P: the tolerance of the corner blends; G64 alone: the machine's default;
                 # G64 P0: the programmed path (no blends)
                 p_tol = vals.get("P")
                 self.blend_tol_mm = self.blend_default_mm if p_tol is None else max(p_tol, 0.0) * scale
+                q_tol = vals.get("Q")
+                self.naive_cam_mm = self.blend_tol_mm if q_tol is None or q_tol < 0.0 else q_tol * scale
             else:
                 self.blend_tol_mm = 0.0
+                self.naive_cam_mm = 0.0
             self.note_blend_tolerance()
         if 3 in groups:
             self.absolute = groups[3] == 900

@@ -304,6 +304,9 @@ class Program:
     # the G64 P path tolerance (mm) from move ``first`` on: ((first, tolerance), ...) at each
     # change; 0 keeps the programmed path (G61, G61.1, G64 without a tolerance)
     blend_tolerance: tuple[tuple[int, float], ...] = ()
+    # G64 Q, LinuxCNC's naive CAM tolerance (mm), the same way: G01 runs within it of one line
+    # are run as that line (Q defaults to P)
+    naive_cam_tolerance: tuple[tuple[int, float], ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

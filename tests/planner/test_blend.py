@@ -21,7 +21,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.blend import blend_program, blend_report, pair_frames, unit_pair
+from planner.blend import blend_program, blend_report, merge_naive_cam, pair_frames, unit_pair
 from planner.errors import PlannerError
 from planner.interpreter import parse_program
 from planner.lookahead import LimitSet
@@ -42,7 +42,8 @@ def fast_machine() -> MachineSpec:
 
 
 def polyline_text(points, tol: float, feed: float = 6000.0, mode: str | None = None) -> str:
-    head = mode if mode is not None else f"G64 P{tol:.12f}"
+    # Q0: corners only (G64 Q, joining lines, is checked on its own below)
+    head = mode if mode is not None else f"G64 P{tol:.12f} Q0"
     out = [f"G21 G90 {head}", f"G0 X{points[0][0]:.9f} Y{points[0][1]:.9f} Z{points[0][2]:.9f}",
            f"G1 F{feed:g}"]
     out += [f"X{p[0]:.9f} Y{p[1]:.9f} Z{p[2]:.9f}" for p in points[1:]]
@@ -311,3 +312,75 @@ def test_random_polylines_blend_within_the_tolerance_and_the_limits(pts, tol, sc
     for mv in prog.moves:
         if mv.blend is not None:
             assert mv.blend.deviation_mm <= tol * scale * (1 + 1e-9) + 1e-12  # P printed to 1e-12
+
+
+# -- G64 Q: LinuxCNC's naive CAM tolerance -----------------------------------------------------
+def lines_text(points, head: str, feed: float = 3000.0) -> str:
+    out = [f"G21 G90 {head}", f"G0 X{points[0][0]:.6f} Y{points[0][1]:.6f}", f"G1 F{feed:g}"]
+    out += [f"X{p[0]:.6f} Y{p[1]:.6f}" for p in points[1:]]
+    return "\n".join(out + ["M2"]) + "\n"
+
+
+def test_nearly_collinear_lines_within_q_run_as_one_line() -> None:
+    m = fast_machine()
+    pts = [(1.0 + i, 0.004 * (i % 2)) for i in range(11)]  # 10 segments, 4 um off a line
+    prog = parse_program(lines_text(pts, "G64 P0 Q0.005"), "q.ngc", m)
+    assert prog.naive_cam_tolerance[-1] == (0, 0.005)
+    merged = merge_naive_cam(prog)
+    lines = [mv for mv in merged.moves if mv.kind is MoveKind.LINE]
+    assert len(lines) == 1
+    np.testing.assert_array_equal(lines[0].start[:2], pts[0])
+    np.testing.assert_array_equal(lines[0].end[:2], pts[-1])
+    assert lines[0].line == 13 and lines[0].length_mm == pytest.approx(10.0)
+    # a point that takes an earlier one further than Q from the chain's line ends the chain
+    # before it: (3, 0) is 0.0067 from the line (1, 0)-(7, 0.02)
+    pts[6] = (7.0, 0.02)
+    split = merge_naive_cam(parse_program(lines_text(pts, "G64 P0 Q0.005"), "q.ngc", m))
+    assert [mv.end[0] for mv in split.moves if mv.kind is MoveKind.LINE][0] == 6.0
+
+
+def test_q_follows_linuxcnc_defaults_and_chain_limit() -> None:
+    m = fast_machine()
+    pts = [(1.0 + 0.1 * i, 0.0) for i in range(151)]  # 150 collinear segments
+    for head, expected in (("G64 P0.01", 2), ("G64 P0.01 Q0", 150), ("G61.1", 150), ("G64", 150)):
+        prog = merge_naive_cam(parse_program(lines_text(pts, head), "c.ngc", m))
+        # at most 101 points per chain (LinuxCNC's limit): 101 + 49 segments; Q defaults to P
+        assert sum(mv.kind is MoveKind.LINE for mv in prog.moves) == expected, head
+    assert merge_naive_cam(parse_program(lines_text(pts, "G64 P0.01"), "c.ngc", m)).moves[1].end[0] == \
+        pytest.approx(1.0 + 10.1)
+
+
+@pytest.mark.parametrize("between", ["F1000", "(MSG, x)", "G0 X4 Y1\nX4 Y0\nG1", "M8", "G4 P0",
+                                     "G91 X1\nG90"])
+def test_a_chain_stops_at_a_feed_change_an_event_a_rapid_or_a_mode(between: str) -> None:
+    m = fast_machine()
+    text = "G21 G90 G64 P0.01\nG0 X1 Y0\nG1 F3000 X2\nX3\nX4\n" + between + "\nX6\nX7\nM2\n"
+    prog = parse_program(text, "s.ngc", m)
+    merged = merge_naive_cam(prog)
+    ends = [round(float(mv.end[0]), 6) for mv in merged.moves if mv.kind is MoveKind.LINE]
+    # the G91 block is its own move: the mode changes at it and again after it
+    assert ends[0] == 4.0 and ends[-1] == 7.0 and len(ends) == (3 if "G91" in between else 2)
+    for ev in merged.events:
+        if ev.after_move >= 0 and ev.kind is not EventKind.END:
+            assert merged.moves[ev.after_move].end[0] == 4.0
+
+
+@settings(max_examples=40, deadline=None)
+@given(noise=st.lists(st.floats(-1.0, 1.0), min_size=3, max_size=60), q=st.floats(0.001, 0.1),
+       scale=st.sampled_from([0.001, 1.0, 1000.0]), step=st.floats(0.01, 2.0))
+def test_merged_paths_pass_within_q_of_every_programmed_point(noise, q, scale, step) -> None:
+    """Noisy straight runs at 0.001x, 1x and 1000x: the merged path goes through points of the
+    program only, leaves no programmed point further than Q away, and plans within limits."""
+    m = fast_machine()
+    m = replace(m, axes=tuple(replace(a, min_pos=-1e6, max_pos=1e6) for a in m.axes))
+    pts = [((1.0 + step * i) * scale, 0.8 * q * n * scale) for i, n in enumerate(noise)]
+    prog = parse_program(lines_text(pts, f"G64 P0 Q{q * scale:.12f}", feed=6000.0), "n.ngc", m)
+    merged = merge_naive_cam(prog)
+    assert len(merged.moves) <= len(prog.moves)
+    programmed = np.array([mv.end[:2] for mv in prog.moves])
+    ends = np.array([mv.end[:2] for mv in merged.moves])
+    assert all(np.any(np.all(programmed == e, axis=1)) for e in ends)  # a program point each
+    path = np.vstack([np.zeros((1, 3)), np.array([mv.end for mv in merged.moves])])
+    far = distance_to_polyline(np.column_stack([programmed, np.zeros(len(programmed))]), path)
+    assert far.max() <= q * scale * (1 + 1e-9) + 1e-12
+    assert plan_program(merged, m).limit_report().violations == {}

@@ -178,6 +178,15 @@ def test_g61_g64_exact_stop():
     assert [m.exact_stop for m in p.moves] == [False, True, True, False]
 
 
+def test_g64_tolerances_are_kept_and_shown():
+    p = P("G20 G1 X1 F60\nG64 P0.001 X2\nG64 P0.002 Q0.0005 X3\nG61.1 X4\n")
+    assert p.blend_tolerance == ((0, 0.0), (1, pytest.approx(0.0254)), (2, pytest.approx(0.0508)), (3, 0.0))
+    assert p.naive_cam_tolerance == ((0, 0.0), (1, pytest.approx(0.0254)), (2, pytest.approx(0.0127)),
+                                     (3, 0.0))
+    assert [p.modal_at_move(i).split(" G49 ")[1] for i in range(4)] == [
+        "G64", "G64 P0.001", "G64 P0.002 Q0.0005", "G61.1"]
+
+
 def test_g04_dwell_event():
     p = P("G1 X1 F60\nG4 P0.5\nG1 X2\n")
     (ev,) = p.events

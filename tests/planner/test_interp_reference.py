@@ -73,7 +73,8 @@ CAM_NOTES = {
     "fusion360_ledfloor/1057_utab_265bit_norm_pocket_inner_contour.nc": "complete.",
     "grbl/SO2_helloworld.nc": "inch program converted to mm; no M2 (EOF note).",
     "linuxcnc_tp/51MeanderAve.ngc": (
-        "G64 P/Q path tolerance is accepted and not used (the planner has its own joint rule); S "
+        "G64 P/Q path tolerance is kept for the planner (corner blends and joined lines come after "
+        "the interpretation compared here); S "
         "changes while the spindle runs are SPINDLE events; M05 G28 M30 homes all axes."
     ),
     "linuxcnc_tp/Pasta.ngc": "G53 machine-coordinate moves; G43 H1 length 0.",

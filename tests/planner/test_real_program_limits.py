@@ -11,16 +11,20 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from planner.arcs import SPIRAL_ABS_TOLERANCE_MM
+from planner.blend import blend_program
 from planner.errors import ProgramError
 from planner.interpreter import parse_file, parse_program
+from planner.lookahead import LimitSet
 from planner.plan import plan_program
 from planner.program import MoveKind, Program
 from tests.planner.motion_programs import paper_machine
+from tests.planner.test_blend import blend_axis_derivatives
 from tests.planner.test_motion_invariants import check_program
 
 CAM = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
@@ -175,3 +179,36 @@ def test_spirals_of_any_radius_change_hold_every_limit(r0: float, grow: float, s
     m = paper_machine()
     assume(plan_program(program, m).cycle_time_s < 120.0)
     check_program(text, m)
+
+
+@pytest.mark.skipif(not PROGRAMS, reason="no plannable CAM program in ../shared/gcode/cam")
+@settings(max_examples=30, deadline=None)
+@given(data=st.data(), scale=st.sampled_from([0.001, 1.0, 1000.0]), tol=st.sampled_from([0.001, 0.01, 0.1]),
+       every=st.booleans())
+def test_blended_windows_of_real_programs_hold_every_limit(data, scale: float, tol: float,
+                                                           every: bool) -> None:
+    """The same windows under G64 P (Q = P: lines joined too), every corner blended or only the
+    quicker ones: no limit exceeded on the samples, exact end, and every axis' velocity,
+    acceleration and jerk on the blends in closed form within its limit."""
+    program = data.draw(st.sampled_from(PROGRAMS))
+    count = data.draw(st.integers(4, min(24, len(program.moves))))
+    first = data.draw(st.integers(0, len(program.moves) - count))
+    text = window_text(program, first, count, scale, set(), 0.0)
+    text = text.replace("G64 ", f"G64 P{tol * scale:.9f} ", 1)
+    m = paper_machine()
+    try:
+        parsed = parse_program(text, machine=m)
+    except ProgramError:
+        assume(False)              # an arc too small once scaled: not a program
+    blended = blend_program(parsed, m, only_where_quicker=not every)
+    plan = plan_program(blended, m)
+    assume(plan.cycle_time_s < 120.0)
+    rep = plan.limit_report()
+    assert rep.violations == {}, rep.violations
+    assert rep.end_error_mm == 0.0 and not rep.nan and rep.time_increasing
+    if any(mv.blend is not None for mv in blended.moves):
+        qv, qa, qj = blend_axis_derivatives(plan)
+        lim = LimitSet.from_machine(m)
+        assert np.all(np.abs(qv) <= lim.v_axis * (1 + 1e-9))
+        assert np.all(np.abs(qa) <= lim.a_axis * (1 + 1e-9))
+        assert np.all(np.abs(qj) <= lim.j_axis * (1 + 1e-6))
