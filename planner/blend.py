@@ -388,7 +388,10 @@ def merge_naive_cam(program: Program) -> Program:
     One difference, on purpose: LinuxCNC also runs a G17 arc whose sagitta is below Q as two
     chords through its middle. That turns a tangent path into corners; measured here on the
     shared CAM programs it made them slower (ugs arc_rword_test 58.7 s to 73.2 s in inch Q), so
-    arcs stay arcs."""
+    arcs stay arcs.
+
+    Speed: whether a chain's first point can take a second is decided for all moves at once;
+    longer chains are grown in blocks (all candidate ends of a block checked in one array)."""
     moves = program.moves
     n = len(moves)
     if n < 2 or not any(v > 0 for _, v in program.naive_cam_tolerance):
@@ -397,78 +400,93 @@ def merge_naive_cam(program: Program) -> Program:
     changes = list(program.naive_cam_tolerance) + [(n, 0.0)]
     for (first, value), (nxt, _) in zip(changes[:-1], changes[1:]):
         q_tol[first:nxt] = value
-    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(len(program.axes), bool)
-    event_after = np.zeros(n, dtype=bool)
+    d = len(program.axes)
+    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(d, bool)
+    start = np.array([m.start for m in moves], dtype=float).reshape(n, d)
+    end = np.array([m.end for m in moves], dtype=float).reshape(n, d)
+    feed = np.array([m.feed_mm_s for m in moves])
+    chainable = np.array([m.kind == MoveKind.LINE and m.blend is None for m in moves])
+    chainable &= (q_tol > 0.0) & ~np.any((end - start)[:, rotary] != 0.0, axis=1)
+    # cont[i]: move i may continue a chain that holds move i - 1
+    cont = np.zeros(n, dtype=bool)
+    cont[1:] = chainable[1:] & chainable[:-1] & (feed[1:] == feed[:-1]) & (q_tol[1:] == q_tol[:-1])
+    cont[1:] &= ~np.array([m.exact_stop for m in moves[:-1]])
     for ev in program.events:
-        if 0 <= ev.after_move < n:
-            event_after[ev.after_move] = True
-    change_at = _changes_at(program)
-
+        if 0 <= ev.after_move < n - 1:
+            cont[ev.after_move + 1] = False
+    for i in _changes_at(program):
+        if 0 <= i < n:
+            cont[i] = False
+    lin = end[:, ~rotary]
+    b_lin = start[:, ~rotary]
+    # a chain whose first point is move i's end (it starts at move i's start) takes move i + 1's
+    # end if move i's end lies within Q of the line from its start to that end
+    pair_ok = np.zeros(n, dtype=bool)
+    if n > 1:
+        pair_ok[:-1] = cont[1:] & (_seg_dist(lin[:-1], b_lin[:-1], lin[1:]) <= q_tol[:-1])
+        pair_ok[:-1] &= np.any(lin[1:] != b_lin[:-1], axis=1)
+    # run[i]: how many moves after i continue a chain holding i (cont run length)
+    run = np.zeros(n + 1, dtype=np.int64)
+    for i in range(n - 1, -1, -1):
+        run[i] = run[i + 1] + 1 if i + 1 < n and cont[i + 1] else 0
     new: list[Move] = []
     spans: list[tuple[int, int]] = []
-    chain: list[tuple[np.ndarray, int, int]] = []  # (point, line, old move) after the chain's start
-    chain_start = np.asarray(program.start_position, dtype=float)
-    chain_whole = False  # the chain is one whole line of the program: keep that move
-    feed = math.nan
     joined = False
-
-    def flush() -> None:
-        nonlocal chain_start, joined
-        if not chain:
-            return
-        end, line, last = chain[-1]
-        lo = chain[0][2]
-        if len(chain) == 1 and chain_whole:
-            new.append(moves[last])
-        else:
-            joined = joined or len(chain) > 1 or not chain_whole
-            length = float(np.sqrt(((end - chain_start)[~rotary] ** 2).sum()))
-            new.append(Move(index=len(new), line=line, kind=MoveKind.LINE, start=chain_start.copy(),
-                            end=np.array(end, dtype=float), feed_mm_s=feed, length_mm=length, arc=None,
-                            exact_stop=moves[last].exact_stop))
-        spans.append((lo, last))
-        chain_start = np.array(end, dtype=float)
-        chain.clear()
-
-    def linkable(p: np.ndarray, q: float) -> bool:
-        if len(chain) >= NAIVE_CAM_MAX_POINTS or np.array_equal(p, chain_start):
-            return False
-        m_vec = (p - chain_start)[~rotary]
-        mm = float(m_vec @ m_vec)
-        pts = np.array([c[0] for c in chain])[:, ~rotary] - chain_start[~rotary]
-        t0 = np.clip(pts @ m_vec / mm, 0.0, 1.0)
-        dist = np.sqrt(((pts - t0[:, None] * m_vec) ** 2).sum(axis=1))
-        return bool(np.all(dist <= q))
-
-    for i, m in enumerate(moves):
-        q = q_tol[i]
-        points: list[np.ndarray] | None = None
-        if q > 0.0 and not np.any((m.end - m.start)[rotary] != 0.0):
-            if m.kind == MoveKind.LINE and m.blend is None:
-                points = [m.end]
-        stop = i > 0 and (bool(event_after[i - 1]) or i in change_at or moves[i - 1].exact_stop
-                          or m.feed_mm_s != feed)
-        if points is None or stop:
-            flush()
-        if points is None:
-            new.append(m)
+    i = 0
+    while i < n:
+        if not pair_ok[i]:
+            new.append(moves[i])
             spans.append((i, i))
-            chain_start = np.array(m.end, dtype=float)
-            feed = math.nan
+            i += 1
             continue
-        feed = m.feed_mm_s
-        for p in points:
-            if chain and linkable(p, q):
-                chain.append((p, m.line, i))
-                chain_whole = False
-            else:
-                flush()
-                chain.append((p, m.line, i))
-                chain_whole = m.kind == MoveKind.LINE and np.array_equal(chain_start, m.start)
-    flush()
+        last = i + min(int(run[i]), NAIVE_CAM_MAX_POINTS - 1)
+        k_end = _chain_end(lin, b_lin[i], i, last, q_tol[i])
+        b = start[i]
+        length = float(np.sqrt(((end[k_end] - b)[~rotary] ** 2).sum()))
+        new.append(Move(index=len(new), line=moves[k_end].line, kind=MoveKind.LINE, start=b.copy(),
+                        end=end[k_end].copy(), feed_mm_s=float(feed[i]), length_mm=length, arc=None,
+                        exact_stop=moves[k_end].exact_stop))
+        spans.append((i, k_end))
+        joined = True
+        i = k_end + 1
     if not joined:
         return program
     return _remap(program, new, spans)
+
+
+def _seg_dist(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance of points p from segments a-b, row by row (LinuxCNC's clamped projection)."""
+    m = b - a
+    rel = p - a
+    mm = (m * m).sum(axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.clip(np.where(mm > 0.0, (rel * m).sum(axis=-1) / np.where(mm > 0.0, mm, 1.0), 0.0), 0.0, 1.0)
+    return np.sqrt(((rel - t[..., None] * m) ** 2).sum(axis=-1))
+
+
+def _chain_end(lin: np.ndarray, b: np.ndarray, i: int, last: int, q: float) -> int:
+    """The last move of the chain whose first point is lin[i] (starting at b), at most ``last``:
+    the chain takes end k while every point i .. k-1 lies within q of the segment b - lin[k]."""
+    hi_done = i + 1                        # pair_ok: the chain reaches i + 1
+    for width in (8, 32, NAIVE_CAM_MAX_POINTS):
+        hi = min(i + width - 1, last)
+        if hi <= hi_done:
+            if hi == last:
+                return hi_done
+            continue
+        ends = lin[hi_done + 1:hi + 1]                 # candidate ends k = hi_done+1 .. hi
+        pts = lin[i:hi]                                # chain points i .. hi-1
+        k_idx = np.arange(hi_done + 1, hi + 1)
+        dist = _seg_dist(pts[None, :, :], b[None, None, :], ends[:, None, :])
+        inside = (dist <= q) | (np.arange(i, hi)[None, :] >= k_idx[:, None])
+        ok = inside.all(axis=1) & np.any(ends != b, axis=1)
+        bad = np.flatnonzero(~ok)
+        if bad.size:
+            return int(k_idx[bad[0]]) - 1
+        hi_done = hi
+        if hi == last:
+            return hi
+    return hi_done
 
 
 @dataclass(frozen=True, slots=True)
