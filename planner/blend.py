@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -73,21 +74,35 @@ class Blend:
     n1: np.ndarray  # unit normal in the corner's plane, towards the inside of the turn
     half_mm: float  # L_s, the length of each clothoid
     turn_rad: float  # theta, the direction change of the corner
-    corner: np.ndarray  # C: the programmed corner (n_axes,)
-    s0_mm: float = 0.0  # where this move starts along the pair (a resumed tail: > 0)
+    corner: np.ndarray  # C: the programmed corner (n_axes,); a fillet's: where its lines meet
+    s0_mm: float = 0.0  # where this move starts along the blend (a resumed tail: > 0)
+    arc_mm: float = 0.0  # length of the arc between the clothoids (a rounded fillet), 0 for a pair
+    fillet_deviation_mm: float = math.nan  # a fillet's largest distance from its programmed path
+
+    @property
+    def radius_mm(self) -> float:
+        """Radius in the middle (the smallest)."""
+        return (self.half_mm + self.arc_mm) / self.turn_rad
 
     @property
     def kappa_max(self) -> float:
-        return self.turn_rad / self.half_mm
+        return 1.0 / self.radius_mm
 
     @property
     def sharpness(self) -> float:
-        """dkappa/ds (1/mm^2) on both halves."""
-        return self.turn_rad / (self.half_mm * self.half_mm)
+        """|dkappa/ds| (1/mm^2) on the clothoids."""
+        return 1.0 / (self.radius_mm * self.half_mm)
+
+    @property
+    def length_mm(self) -> float:
+        return 2.0 * self.half_mm + self.arc_mm
 
     @property
     def deviation_mm(self) -> float:
-        """Distance of the pair's middle from the programmed corner (its largest)."""
+        """Largest distance from the programmed path: a pair's middle from its corner, or a
+        fillet's, measured when it was made."""
+        if not math.isnan(self.fillet_deviation_mm):
+            return self.fillet_deviation_mm
         _, y1, _, d1 = unit_pair(np.array([self.turn_rad]))
         return float(d1[0] * self.half_mm)
 
@@ -107,27 +122,49 @@ def unit_pair(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     return x1, y1, x1 + y1 * np.tan(half), y1 / np.cos(half)
 
 
-def _pair_eval(origin, u1, n1, end, half, theta, s):
-    """Positions, unit tangents and curvature vectors of pairs at arc length s from A.
+def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None):
+    """Positions, unit tangents and curvature vectors of blends at arc length s from A.
 
-    Row-wise arrays: origin, u1, n1, end (B) (N, d); half, theta, s (N,)."""
-    s = np.clip(s, 0.0, 2.0 * half)
+    A blend is a clothoid of length L_c (``half``) from A, an arc of length L_a (``arc``, 0 for
+    a clothoid pair) and the mirror clothoid into B (``end``), turning by theta in all: the
+    middle radius is R_c = (L_c + L_a) / theta, the clothoids' heading at x = s / L_c is
+    (L_c / R_c) x^2 / 2. Row-wise arrays: origin, u1, n1, end (N, d); half, theta, s, arc (N,)."""
+    if arc is None:
+        arc = np.zeros_like(half)
+    total = 2.0 * half + arc
+    s = np.clip(s, 0.0, total)
+    rc = (half + arc) / theta
+    vt = half / rc
     first = s <= half
-    x = np.where(first, s, 2.0 * half - s) / half
-    xf, yf = _fresnel(theta, x)
-    xf = xf * half
-    yf = yf * half
+    third = s >= half + arc
+    x = np.where(first, s, np.where(third, total - s, half)) / half
+    xf, yf = _fresnel(vt, x)
+    xf = (xf * half)[:, None]
+    yf = (yf * half)[:, None]
     ct, st = np.cos(theta)[:, None], np.sin(theta)[:, None]
     u2 = ct * u1 + st * n1
     n2 = -st * u1 + ct * n1
     f = first[:, None]
-    pos = np.where(f, origin + xf[:, None] * u1 + yf[:, None] * n1,
-                   end - xf[:, None] * u2 + yf[:, None] * n2)
-    phi = (0.5 * theta * x * x)[:, None]
+    pos = np.where(f, origin + xf * u1 + yf * n1, end - xf * u2 + yf * n2)
+    phi = (0.5 * vt * x * x)[:, None]
     cp, sp = np.cos(phi), np.sin(phi)
     tangent = np.where(f, cp * u1 + sp * n1, cp * u2 - sp * n2)
     normal = np.where(f, -sp * u1 + cp * n1, sp * u2 + cp * n2)
-    kappa = (theta / half) * x
+    kappa = x / rc
+    mid = ~(first | third)
+    if mid.any():
+        # the arc: from the first clothoid's end Q1 (heading vt / 2) about its centre
+        k = np.nonzero(mid)[0]
+        x1, y1 = _fresnel(vt[k], np.ones(k.size))
+        q1 = origin[k] + (x1 * half[k])[:, None] * u1[k] + (y1 * half[k])[:, None] * n1[k]
+        ph0 = 0.5 * vt[k]
+        psi = ph0 + (s[k] - half[k]) / rc[k]
+        r = rc[k][:, None]
+        pos[k] = q1 + r * ((np.sin(psi) - np.sin(ph0))[:, None] * u1[k]
+                           + (np.cos(ph0) - np.cos(psi))[:, None] * n1[k])
+        tangent[k] = np.cos(psi)[:, None] * u1[k] + np.sin(psi)[:, None] * n1[k]
+        normal[k] = -np.sin(psi)[:, None] * u1[k] + np.cos(psi)[:, None] * n1[k]
+        kappa[k] = 1.0 / rc[k]
     return pos, tangent, kappa[:, None] * normal
 
 
@@ -140,31 +177,35 @@ def blend_eval(move: Move, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np
     rep = (n, 1)
     pos, tangent, curv = _pair_eval(np.tile(b.origin, rep), np.tile(b.u1, rep), np.tile(b.n1, rep),
                                     np.tile(move.end, rep), np.full(n, b.half_mm),
-                                    np.full(n, b.turn_rad), b.s0_mm + u)
+                                    np.full(n, b.turn_rad), b.s0_mm + u, np.full(n, b.arc_mm))
     pos[u >= move.length_mm] = move.end
     return pos, tangent, np.sqrt((curv * curv).sum(axis=1))
 
 
-def pair_positions(origin, u1, n1, end, half, theta, s) -> np.ndarray:
+def pair_positions(origin, u1, n1, end, half, theta, s, arc=None) -> np.ndarray:
     """Positions only (row-wise arrays, see ``_pair_eval``)."""
-    return _pair_eval(origin, u1, n1, end, half, theta, s)[0]
+    return _pair_eval(origin, u1, n1, end, half, theta, s, arc)[0]
 
 
-def pair_frames(origin, u1, n1, end, half, theta, s) -> tuple[np.ndarray, np.ndarray]:
+def pair_frames(origin, u1, n1, end, half, theta, s, arc=None) -> tuple[np.ndarray, np.ndarray]:
     """(unit tangents, curvature vectors) at s (row-wise arrays)."""
-    _, t, k = _pair_eval(origin, u1, n1, end, half, theta, s)
+    _, t, k = _pair_eval(origin, u1, n1, end, half, theta, s, arc)
     return t, k
 
 
-def _blend_caps(theta: np.ndarray, half: np.ndarray, a_pl: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
-    """The speed a blend allows (the planner's in-plane rules in ``lookahead.move_limits``)."""
+def _blend_caps_k(kappa: np.ndarray, dk: np.ndarray, a_pl: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
+    """The speed a blend allows from its largest curvature and curvature rate (the planner's
+    in-plane rules for blends in ``lookahead.move_limits``)."""
     from planner.lookahead import ACCEL_NORMAL_SHARE, BLEND_DK_SHARE, BLEND_NORMAL_SHARE
 
-    kappa = theta / half
-    dk = theta / (half * half)
     v = np.sqrt(ACCEL_NORMAL_SHARE * a_pl / kappa)
     v = np.minimum(v, np.cbrt(BLEND_NORMAL_SHARE * j_pl / (kappa * kappa)))
     return np.minimum(v, np.cbrt(BLEND_DK_SHARE * j_pl / dk))
+
+
+def _blend_caps(theta: np.ndarray, half: np.ndarray, a_pl: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
+    """``_blend_caps_k`` of clothoid pairs (kappa_max = theta / L_s, dkappa/ds = theta / L_s^2)."""
+    return _blend_caps_k(theta / half, theta / (half * half), a_pl, j_pl)
 
 
 def _blend_not_slower(program: Program, machine: MachineSpec, jj: np.ndarray, v_blend: np.ndarray,
@@ -182,13 +223,7 @@ def _blend_not_slower(program: Program, machine: MachineSpec, jj: np.ndarray, v_
     plan = plan_program(program, machine)
     v_joint = np.asarray(plan.ve)[jj]
     j = np.minimum(j_pl, machine.limits.j_max_mm_s3)
-    # time to cover T from the joint starting at v_joint with zero acceleration and full jerk:
-    # J t^3 / 6 + v_joint t = T (Newton from above converges monotonically on this convex cubic)
-    t = np.cbrt(6.0 * tangent_len / j)
-    for _ in range(30):
-        f = j * t**3 / 6.0 + v_joint * t - tangent_len
-        t = t - f / (0.5 * j * t * t + v_joint)
-    v_ramp = v_joint + 0.5 * j * t * t
+    v_ramp = _ramp_speed(v_joint, tangent_len, j)
     peak = np.asarray(plan.vpeak)
     # each side on its own: the incoming line may run far faster than the outgoing one
     quicker = (v_blend >= np.minimum(v_ramp, peak[jj])) & (v_blend >= np.minimum(v_ramp, peak[jj + 1]))
@@ -209,15 +244,258 @@ def tolerance_per_move(program: Program) -> np.ndarray:
     return tol
 
 
+def _settle(lc: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(R_c, p, c_x) for clothoids of length L_c onto a circle about the fillet's centre:
+    R_c + p = R, p = Y(L_c) - R_c (1 - cos(L_c / 2 R_c)) (the fixed point converges by about
+    p / R per step, so 12 steps reach rounding)."""
+    rc = radius.copy()
+    for _ in range(12):
+        vt = lc / rc
+        x1, y1 = _fresnel(vt, np.ones_like(vt))
+        rc = radius - (lc * y1 - rc * (1.0 - np.cos(0.5 * vt)))
+    vt = lc / rc
+    x1, y1 = _fresnel(vt, np.ones_like(vt))
+    p = lc * y1 - rc * (1.0 - np.cos(0.5 * vt))
+    return rc, p, lc * x1 - rc * np.sin(0.5 * vt)
+
+
+def _fillet_sizes(radius: np.ndarray, theta: np.ndarray, tol: np.ndarray, room: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Clothoid length L_c, middle radius R_c, arc length L_a, the distance c_x from where the
+    blend leaves each line to the foot of the centre, and the radius reduction p, for fillets of
+    radius R turning theta about the same centre: R_c + p = R (the clothoids ease onto a circle
+    p inside the programmed one), p <= 0.9 P, L_c <= theta R_c (the arc keeps a sweep >= 0),
+    c_x <= room (what the lines leave)."""
+    lc = np.minimum(np.sqrt(24.0 * radius * 0.9 * tol),
+                    np.minimum(2.0 * 0.95 * room, 0.999 * theta * radius))
+    for _ in range(4):
+        rc, p, cx = _settle(lc, radius)
+        shrink = np.minimum.reduce([np.ones_like(lc), 0.98 * room / np.maximum(cx, 1e-300),
+                                    np.sqrt(0.9 * tol / np.maximum(p, 1e-300)),
+                                    0.999 * theta * rc / np.maximum(lc, 1e-300)])
+        if np.all(shrink >= 1.0):
+            break
+        lc = lc * np.minimum(shrink, 1.0)
+    rc, p, cx = _settle(lc, radius)
+    return lc, rc, rc * theta - lc, cx, p
+
+
+def _arc_distance(q: np.ndarray, move: Move) -> np.ndarray:
+    """Distance of points q from a circular arc move (its angular range, else its ends)."""
+    arc = move.arc
+    assert arc is not None
+    f, s = arc.first_axis, arc.second_axis
+    dx, dy = q[:, f] - arc.center[0], q[:, s] - arc.center[1]
+    ang = np.arctan2(dy, dx)
+    rel = np.remainder((ang - arc.start_angle_rad) * np.sign(arc.sweep_rad), 2.0 * np.pi)
+    inside = rel <= abs(arc.sweep_rad)
+    frac = np.clip(rel / abs(arc.sweep_rad), 0.0, 1.0)   # a spiral's radius changes with the angle
+    r_at = arc.radius_start_mm + (arc.radius_end_mm - arc.radius_start_mm) * frac
+    radial = np.abs(np.hypot(dx, dy) - r_at)
+    other = np.ones(q.shape[1], dtype=bool)
+    other[[f, s]] = False
+    off_plane = np.sqrt(((q[:, other] - move.start[other]) ** 2).sum(axis=1))
+    ends = np.minimum(np.sqrt(((q - move.start) ** 2).sum(axis=1)),
+                      np.sqrt(((q - move.end) ** 2).sum(axis=1)))
+    return np.where(inside, np.hypot(radial, off_plane), ends)
+
+
+def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
+    """Under G64 P, a fillet - a circular arc tangent to a line on each side, CAM's rounded
+    corner - is run as clothoid, arc, clothoid: the curvature eases from 0 onto a circle about
+    the same centre, p <= 0.9 P smaller in radius, and back, instead of stepping to 1/R where
+    the arc meets each line (where the jerk limit allows only sqrt(J Ts R): 4.5 mm/s on a 2 mm
+    fillet at 10,000 mm/s^3). The new path stays within P of the programmed one (checked on
+    samples). Made only where it cannot be slower, as corner blends."""
+    moves = program.moves
+    n = len(moves)
+    if n < 3 or not any(v > 0 for _, v in program.blend_tolerance):
+        return program
+    tol = tolerance_per_move(program)
+    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(len(program.axes), bool)
+    event_after = np.zeros(n, dtype=bool)
+    for ev in program.events:
+        if 0 <= ev.after_move < n:
+            event_after[ev.after_move] = True
+    cands: list[tuple[Any, ...]] = []
+    for k in range(1, n - 1):
+        arc, l1, l2 = moves[k].arc, moves[k - 1], moves[k + 1]
+        p_tol = min(tol[k - 1], tol[k], tol[k + 1])
+        # a circle, or CAM's rounding of one (start and end radius a hair apart)
+        if (arc is None or l1.kind != MoveKind.LINE or l2.kind != MoveKind.LINE or l1.blend is not None
+                or l2.blend is not None or arc.rise_mm != 0.0 or p_tol <= 0.0
+                or abs(arc.radius_end_mm - arc.radius_start_mm) > 0.25 * p_tol
+                or abs(arc.sweep_rad) >= math.pi - 1e-6 or event_after[k - 1] or event_after[k]
+                or l1.exact_stop or moves[k].exact_stop):
+            continue
+        if any(np.any((m.end - m.start)[rotary] != 0.0) for m in (l1, moves[k], l2)):
+            continue
+        f, s = arc.first_axis, arc.second_axis
+        plane = np.zeros(len(program.axes), dtype=bool)
+        plane[[f, s]] = True
+        if np.any((l1.end - l1.start)[~plane] != 0.0) or np.any((l2.end - l2.start)[~plane] != 0.0):
+            continue
+        u1 = (l1.end - l1.start) / l1.length_mm
+        u2 = (l2.end - l2.start) / l2.length_mm
+        cos_t = float(np.clip(u1 @ u2, -1.0, 1.0))
+        turn = math.acos(cos_t)
+        perp = u2 - cos_t * u1
+        if turn < 1e-6 or np.linalg.norm(perp) == 0.0 or abs(abs(arc.sweep_rad) - turn) > 1e-3:
+            continue
+        n1 = perp / np.linalg.norm(perp)
+        n2 = -math.sin(turn) * u1 + cos_t * n1
+        # the circle of the arc's mean radius tangent to both lines (CAM's rounding moves the
+        # programmed centre a hair off it): its centre C = P1 + a u1 + R n1 with (C - P2).n2 = R
+        r = 0.5 * (arc.radius_start_mm + arc.radius_end_mm)
+        a_u = (r * (1.0 - cos_t) - float((l1.end - l2.start) @ n2)) / -math.sin(turn)
+        centre = l1.end + a_u * u1 + r * n1
+        foot1 = l1.end + a_u * u1
+        foot2 = centre - r * n2
+        # tangent where the arc meets its lines, to CAM's rounding, and turning about that centre
+        arc_centre = l1.end.copy()
+        arc_centre[f], arc_centre[s] = arc.center
+        if (np.linalg.norm(foot1 - l1.end) > 1e-3 or np.linalg.norm(foot2 - l2.start) > 1e-3
+                or np.linalg.norm(centre - arc_centre) > 0.25 * p_tol
+                or (arc.sweep_rad > 0.0) != (float(u1[f] * u2[s] - u1[s] * u2[f]) > 0.0)):
+            continue
+        cands.append((k, u1, n1, foot1, foot2, turn, r, p_tol))
+    if not cands:
+        return program
+    ks = np.array([c[0] for c in cands])
+    theta = np.array([c[5] for c in cands])
+    radius = np.array([c[6] for c in cands])
+    ptol = np.array([c[7] for c in cands])
+    room = np.array([min(0.5 * moves[k - 1].length_mm, 0.5 * moves[k + 1].length_mm) for k in ks])
+    lc, rc, la, cx, p = _fillet_sizes(radius, theta, ptol, room)
+    ok = (lc > 0.0) & (la >= 0.0) & (cx <= room) & (p <= 0.9 * ptol * (1 + 1e-9)) & (cx > 0.0)
+    blends: dict[int, Move] = {}
+    for i in (int(x) for x in np.flatnonzero(ok)):
+        k, u1, n1, foot1, foot2 = cands[i][0], cands[i][1], cands[i][2], cands[i][3], cands[i][4]
+        a_pt = foot1 - cx[i] * u1
+        cs_t, sn_t = math.cos(theta[i]), math.sin(theta[i])
+        u2, n2 = cs_t * u1 + sn_t * n1, -sn_t * u1 + cs_t * n1
+        # B along the forward path: first clothoid, arc, then back along the last clothoid
+        x1, y1 = _fresnel(np.array([lc[i] / rc[i]]), np.ones(1))
+        x1, y1 = float(x1[0]) * lc[i], float(y1[0]) * lc[i]
+        ph0 = 0.5 * lc[i] / rc[i]
+        sweep = la[i] / rc[i]
+        q1 = a_pt + x1 * u1 + y1 * n1
+        q2 = q1 + rc[i] * ((math.sin(ph0 + sweep) - math.sin(ph0)) * u1
+                           + (math.cos(ph0) - math.cos(ph0 + sweep)) * n1)
+        b_pt = q2 + x1 * u2 - y1 * n2
+        if np.linalg.norm(b_pt - (foot2 + cx[i] * u2)) > 1e-9 * (1.0 + np.abs(b_pt).max()):
+            continue
+        corner = moves[k - 1].end + 0.0
+        # the lines' meeting point, for the soft-limit bound (the blend lies in the triangle A V B)
+        w = float(u1 @ u2)
+        den = 1.0 - w * w
+        if den > 1e-12:
+            rel = foot2 - foot1
+            t1 = float((rel @ u1 - w * (rel @ u2)) / den)
+            corner = foot1 + t1 * u1
+        bl = Blend(origin=a_pt, u1=u1.copy(), n1=n1.copy(), half_mm=float(lc[i]), turn_rad=float(theta[i]),
+                   corner=corner, arc_mm=float(la[i]))
+        mv = Move(index=k, line=moves[k].line, kind=MoveKind.BLEND, start=a_pt.copy(), end=b_pt,
+                  feed_mm_s=min(moves[k - 1].feed_mm_s, moves[k].feed_mm_s, moves[k + 1].feed_mm_s),
+                  length_mm=bl.length_mm, arc=None, exact_stop=False, blend=bl)
+        # within P of the programmed line, arc, line: checked on samples
+        q = mv.evaluate(np.linspace(0.0, mv.length_mm, 65))[0]
+        dist = np.minimum.reduce([_arc_distance(q, moves[k]),
+                                  _seg_dist(q, moves[k - 1].start[None, :], moves[k - 1].end[None, :]),
+                                  _seg_dist(q, moves[k + 1].start[None, :], moves[k + 1].end[None, :])])
+        dev = float(dist.max())
+        if dev > ptol[i]:
+            continue
+        blends[k] = replace(mv, blend=replace(bl, fillet_deviation_mm=dev))
+    if not blends:
+        return program
+    if only_where_quicker:
+        blends = _fillets_not_slower(program, machine, blends)
+        if not blends:
+            return program
+    # each fillet's lines were given at most half (room): two fillets never share a line's part
+    new: list[Move] = []
+    spans: list[tuple[int, int]] = []
+    start_at: dict[int, np.ndarray] = {}
+    for k, mv in blends.items():
+        start_at[k + 1] = mv.end
+    for i, m in enumerate(moves):
+        if i + 1 in blends and m.kind == MoveKind.LINE:
+            first_pt = start_at.get(i, m.start)
+            en = blends[i + 1].start
+            length = float(np.linalg.norm((en - first_pt)[~rotary]))
+            if length > MIN_LINE_MM:
+                new.append(replace(m, start=np.array(first_pt, dtype=float), end=np.array(en, dtype=float),
+                                   length_mm=length))
+                spans.append((i, i))
+            continue
+        if i in blends:
+            new.append(blends[i])
+            spans.append((i, i))
+            continue
+        if i in start_at:
+            first_pt = start_at[i]
+            length = float(np.linalg.norm((m.end - first_pt)[~rotary]))
+            if length > MIN_LINE_MM:
+                new.append(replace(m, start=np.array(first_pt, dtype=float), length_mm=length))
+                spans.append((i, i))
+            continue
+        new.append(m)
+        spans.append((i, i))
+    return _remap(program, new, spans)
+
+
+def _fillets_not_slower(program: Program, machine: MachineSpec, blends: dict[int, Move]) -> dict[int, Move]:
+    """The fillets whose speed is at least what the sharp plan reaches on their arc."""
+    from planner.lookahead import LimitSet
+    from planner.plan import plan_program
+
+    plan = plan_program(program, machine)
+    ve, vpeak = np.asarray(plan.ve), np.asarray(plan.vpeak)
+    lim = LimitSet.from_machine(machine)
+    keep: dict[int, Move] = {}
+    for k, mv in blends.items():
+        b = mv.blend
+        assert b is not None
+        in_plane = (np.abs(b.u1) + np.abs(b.n1)) > 1e-12
+        a_pl = min(float(lim.a_axis[in_plane].min()), lim.a_path)
+        j_pl = min(float(lim.j_axis[in_plane].min()), lim.j_path)
+        v_b = float(_blend_caps_k(np.array([b.kappa_max]), np.array([b.sharpness]), np.array([a_pl]),
+                                  np.array([j_pl]))[0])
+        v_b = min(v_b, mv.feed_mm_s, lim.v_path)
+        # the sharp plan crosses the fillet's joints at no more than sqrt(J Ts R) (the curvature
+        # step) and its arc at up to its peak; the blend holds v_b over the arc and the short
+        # stretches c_x of the lines beside it: kept where v_b is at least the arc's peak
+        if v_b >= max(vpeak[k], ve[k - 1], ve[k]):
+            keep[k] = mv
+    return keep
+
+
+def moves_end(program: Program, i: int) -> np.ndarray:
+    return np.asarray(program.moves[i].end, dtype=float)
+
+
+def _ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray) -> np.ndarray:
+    """Upper bound of the speed a distance ``dist`` from a joint crossed at v_joint: each move's
+    profile starts with zero acceleration, so at most a full-jerk ramp, J t^3 / 6 + v t = dist
+    (Newton from above converges monotonically on this convex cubic)."""
+    t = np.cbrt(6.0 * dist / j)
+    for _ in range(30):
+        f = j * t**3 / 6.0 + v_joint * t - dist
+        t = t - f / (0.5 * j * t * t + v_joint)
+    return v_joint + 0.5 * j * t * t
+
+
 def blend_program(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
-    """The program with its sharp line-line joints under G64 P replaced by clothoid pairs.
+    """The program under G64 P/Q: runs of lines joined by Q (``merge_naive_cam``), fillets eased
+    by clothoids (``round_fillets``), then sharp line-line joints replaced by clothoid pairs.
 
     Returns ``program`` itself when nothing is blended. Move indices change: events, modal
     texts and offset changes are moved to the new indices (each keeps its place in the path).
     ``only_where_quicker=False`` blends every eligible corner (smoothest motion: no velocity
     step at those joints, even where the sharp corner would be crossed sooner).
     """
-    program = merge_naive_cam(program)
+    program = round_fillets(merge_naive_cam(program), machine, only_where_quicker)
     moves = program.moves
     n = len(moves)
     if n < 2 or not program.blend_tolerance or not any(v > 0 for _, v in program.blend_tolerance):
@@ -500,11 +778,10 @@ class BlendReport:
 
 def blend_report(program: Program) -> BlendReport:
     best, line, count = 0.0, 0, 0
-    turns = [(m.blend.turn_rad, m.blend.half_mm, m.line) for m in program.moves if m.blend is not None]
-    if turns:
-        arr = np.array([(t, h) for t, h, _ in turns])
-        _, _, _, d1 = unit_pair(arr[:, 0])
-        dev = d1 * arr[:, 1]
-        k = int(np.argmax(dev))
-        best, line, count = float(dev[k]), turns[k][2], len(turns)
+    for m in program.moves:
+        if m.blend is not None:
+            count += 1
+            dev = m.blend.deviation_mm
+            if dev > best:
+                best, line = dev, m.line
     return BlendReport(count, best, line)

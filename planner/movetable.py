@@ -92,6 +92,7 @@ class MoveTable:
     bl_half: np.ndarray
     bl_turn: np.ndarray
     bl_s0: np.ndarray
+    bl_arc: np.ndarray  # length of a fillet's middle arc (0 for a clothoid pair)
 
     @staticmethod
     def from_moves(moves: tuple[Move, ...] | list[Move], n_axes: int) -> MoveTable:
@@ -130,13 +131,13 @@ class MoveTable:
             poly[k] = dev @ _CHEB_INV.T
         is_blend = np.zeros(n, dtype=bool)
         bl_vec = np.zeros((3, n, n_axes))
-        bl_val = np.zeros((3, n))
+        bl_val = np.zeros((4, n))
         for i, m in enumerate(moves):
             b = m.blend
             if b is not None:
                 is_blend[i] = True
                 bl_vec[0, i], bl_vec[1, i], bl_vec[2, i] = b.origin, b.u1, b.n1
-                bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm)
+                bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm, b.arc_mm)
         return MoveTable(
             moves=moves,
             index=np.asarray(cols[0], dtype=np.int64),
@@ -154,7 +155,7 @@ class MoveTable:
             theta0=arc_vals[:, 7], sweep=arc_vals[:, 8], rise=arc_vals[:, 9],
             spiral_poly=poly, spiral_poly_ok=poly_ok,
             is_blend=is_blend, bl_a=bl_vec[0], bl_u1=bl_vec[1], bl_n1=bl_vec[2],
-            bl_half=bl_val[0], bl_turn=bl_val[1], bl_s0=bl_val[2],
+            bl_half=bl_val[0], bl_turn=bl_val[1], bl_s0=bl_val[2], bl_arc=bl_val[3],
         )
 
     def __len__(self) -> int:
@@ -201,7 +202,7 @@ class MoveTable:
             k = np.nonzero(bl)[0]
             r = row[k]
             q[k] = pair_positions(self.bl_a[r], self.bl_u1[r], self.bl_n1[r], self.end[r], self.bl_half[r],
-                                  self.bl_turn[r], self.bl_s0[r] + u[k])
+                                  self.bl_turn[r], self.bl_s0[r] + u[k], self.bl_arc[r])
         done = frac >= 1.0
         if done.any():
             q[done] = self.end[row[done]]
@@ -210,9 +211,9 @@ class MoveTable:
     def _blend_frames(self, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(rows, unit tangents, curvature vectors) of the blends at their start or end."""
         k = np.nonzero(self.is_blend)[0]
-        s = 2.0 * self.bl_half[k] if at_end else self.bl_s0[k]
+        s = 2.0 * self.bl_half[k] + self.bl_arc[k] if at_end else self.bl_s0[k]
         t, c = pair_frames(self.bl_a[k], self.bl_u1[k], self.bl_n1[k], self.end[k], self.bl_half[k],
-                           self.bl_turn[k], s)
+                           self.bl_turn[k], s, self.bl_arc[k])
         return k, t, c
 
     def _spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
@@ -313,7 +314,7 @@ class MoveTable:
         bl = np.nonzero(self.is_blend)[0]
         if bl.size:
             # a planar curve: the whole tangent is in its plane; the curvature peaks mid-pair
-            kb = self.bl_turn[bl] / self.bl_half[bl]
+            kb = self.bl_turn[bl] / (self.bl_half[bl] + self.bl_arc[bl])
             rho[bl], kappa[bl], omega[bl] = 1.0, kb, kb
         return rho, kappa, omega
 
@@ -332,8 +333,8 @@ class MoveTable:
             q = r * r + c * c
             out[sp] = 4.0 * np.abs(c) / (q * np.sqrt(q + h * h))
         bl = np.nonzero(self.is_blend)[0]
-        if bl.size:  # clothoids: dkappa/ds = theta / L_s^2 on both halves
-            out[bl] = self.bl_turn[bl] / (self.bl_half[bl] * self.bl_half[bl])
+        if bl.size:  # clothoids: dkappa/ds = 1 / (R_c L_c) = theta / (L_c (L_c + L_a))
+            out[bl] = self.bl_turn[bl] / (self.bl_half[bl] * (self.bl_half[bl] + self.bl_arc[bl]))
         return out
 
 
@@ -376,11 +377,13 @@ def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarra
         r = row[k]
         args = (table.bl_a[r], table.bl_u1[r], table.bl_n1[r], table.end[r], table.bl_half[r],
                 table.bl_turn[r])
+        arc_len = table.bl_arc[r]
         s_k = table.bl_s0[r] + np.clip(u[k], 0.0, table.length[r])
-        t_k, _ = pair_frames(*args, s_k)
-        p_k = pair_positions(*args, s_k)
-        s_k = np.clip(s_k + ((q[k] - p_k) * t_k).sum(axis=1), table.bl_s0[r], 2.0 * table.bl_half[r])
-        err[k] = q[k] - pair_positions(*args, s_k)
+        t_k, _ = pair_frames(*args, s_k, arc_len)
+        p_k = pair_positions(*args, s_k, arc_len)
+        s_k = np.clip(s_k + ((q[k] - p_k) * t_k).sum(axis=1), table.bl_s0[r],
+                      2.0 * table.bl_half[r] + arc_len)
+        err[k] = q[k] - pair_positions(*args, s_k, arc_len)
     arc = table.is_arc[row]
     if arc.any():
         k = np.nonzero(arc)[0]

@@ -18,10 +18,10 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from planner.blend import blend_program, blend_report, merge_naive_cam, pair_frames, unit_pair
+from planner.blend import blend_program, blend_report, merge_naive_cam, pair_frames, round_fillets, unit_pair
 from planner.errors import PlannerError
 from planner.interpreter import parse_program
 from planner.lookahead import LimitSet
@@ -76,13 +76,16 @@ def blend_axis_derivatives(plan, n_per_move: int = 96):
     arc_s = tab.bl_s0[move] + s
     half, theta = tab.bl_half[move], tab.bl_turn[move]
     t_vec, k_vec = pair_frames(tab.bl_a[move], tab.bl_u1[move], tab.bl_n1[move], tab.end[move], half, theta,
-                               arc_s)
+                               arc_s, tab.bl_arc[move])
     u1, n1 = tab.bl_u1[move], tab.bl_n1[move]
     cos_psi = (t_vec * u1).sum(axis=1)[:, None]
     sin_psi = (t_vec * n1).sum(axis=1)[:, None]
     normal = -sin_psi * u1 + cos_psi * n1
     kappa = np.sqrt((k_vec * k_vec).sum(axis=1))[:, None]
-    dkappa = np.where(arc_s <= half, 1.0, -1.0)[:, None] * (theta / (half * half))[:, None]
+    arc_len = tab.bl_arc[move]
+    # dkappa/ds: + 1 / (R_c L_c) on the first clothoid, 0 on a fillet's arc, - on the last one
+    sign = np.where(arc_s <= half, 1.0, np.where(arc_s >= half + arc_len, -1.0, 0.0))
+    dkappa = (sign * theta / (half * (half + arc_len)))[:, None]
     k_prime = dkappa * normal - kappa * kappa * t_vec
     vv, aa, jj = v[:, None], a[:, None], j[:, None]
     return t_vec * vv, k_vec * vv**2 + t_vec * aa, k_prime * vv**3 + 3.0 * k_vec * vv * aa + t_vec * jj
@@ -384,3 +387,125 @@ def test_merged_paths_pass_within_q_of_every_programmed_point(noise, q, scale, s
     far = distance_to_polyline(np.column_stack([programmed, np.zeros(len(programmed))]), path)
     assert far.max() <= q * scale * (1 + 1e-9) + 1e-12
     assert plan_program(merged, m).limit_report().violations == {}
+
+
+# -- fillets: a tangent arc between two lines eased by clothoids ------------------------------
+RECTANGLE = """G21 G90 G64 P{tol} Q0
+G1 F{feed} X40
+G3 X42 Y0 R2
+G1 Y20
+G3 X40 Y22 R2
+G1 X0
+G3 X-2 Y20 R2
+G1 Y0
+G3 X0 Y-2 R2
+G1 X20
+M2
+"""
+
+
+def rectangle(m, tol: float = 0.01, feed: float = 3000.0):
+    return parse_program(RECTANGLE.format(tol=tol, feed=feed), "rect.ngc", m,
+                         start_position=np.array([0.0, -2.0, 0.0]))
+
+
+def distance_to_program(q: np.ndarray, program) -> np.ndarray:
+    """Distance of points from the programmed path (lines as segments, arcs exactly)."""
+    best = np.full(len(q), np.inf)
+    for mv in program.moves:
+        if mv.arc is None:
+            best = np.minimum(best, distance_to_polyline(q, np.array([mv.start, mv.end])))
+        else:
+            a = mv.arc
+            ang = np.arctan2(q[:, 1] - a.center[1], q[:, 0] - a.center[0])
+            rel = np.remainder((ang - a.start_angle_rad) * np.sign(a.sweep_rad), 2 * np.pi)
+            radial = np.abs(np.hypot(q[:, 0] - a.center[0], q[:, 1] - a.center[1]) - a.radius_start_mm)
+            ends = np.minimum(np.linalg.norm(q - mv.start, axis=1), np.linalg.norm(q - mv.end, axis=1))
+            best = np.minimum(best, np.where(rel <= abs(a.sweep_rad), np.hypot(radial, q[:, 2] - mv.start[2]),
+                                             ends))
+    return best
+
+
+def test_fillets_ease_onto_a_smaller_circle_within_the_tolerance() -> None:
+    m = fast_machine()
+    sharp = rectangle(m)
+    prog = round_fillets(sharp, m, only_where_quicker=False)
+    kinds = [mv.kind.name for mv in prog.moves]
+    assert kinds == ["LINE", "BLEND"] * 4 + ["LINE"]
+    for a, b in zip(prog.moves[:-1], prog.moves[1:]):
+        np.testing.assert_array_equal(a.end, b.start)
+        ta = a.evaluate(np.array([a.length_mm]))
+        tb = b.evaluate(np.array([0.0]))
+        np.testing.assert_allclose(ta[1], tb[1], atol=1e-9)      # tangent
+        assert ta[2][0] < 1e-9 and tb[2][0] < 1e-9                 # curvature 0 where they meet
+    for mv in prog.moves:
+        if mv.blend is None:
+            continue
+        bl = mv.blend
+        assert bl.turn_rad == pytest.approx(math.pi / 2, abs=1e-12)
+        assert bl.arc_mm > 0.0 and 2.0 - 0.009 * (1 + 1e-9) <= bl.radius_mm < 2.0   # p <= 0.9 P
+        u = np.linspace(0.0, mv.length_mm, 3001)
+        q, t, k = mv.evaluate(u)
+        assert k.max() == pytest.approx(1.0 / bl.radius_mm, rel=1e-9)
+        dev = distance_to_program(q, sharp).max()
+        assert dev <= 0.01 and dev == pytest.approx(bl.deviation_mm, rel=1e-3)
+        chord = np.sqrt((np.diff(q, axis=0) ** 2).sum(axis=1)).sum()
+        assert chord == pytest.approx(mv.length_mm, rel=1e-6)
+
+
+def test_fillets_hold_every_limit_and_run_sooner() -> None:
+    """The rectangle's corners step the curvature at 8 joints, crossed at sqrt(J Ts R) = 4.5 mm/s
+    to keep the jerk of that step within J; eased, every joint is continuous in curvature and
+    the plan is quicker."""
+    m = fast_machine()
+    sharp = rectangle(m)
+    prog = round_fillets(sharp, m)
+    assert blend_report(prog).blends == 4
+    plan = plan_program(prog, m)
+    rep = plan.limit_report()
+    assert rep.violations == {} and rep.joint_jerk["worst_ratio"] <= 1.0 + 1e-6
+    qv, qa, qj = blend_axis_derivatives(plan)
+    lim = LimitSet.from_machine(m)
+    assert np.all(np.abs(qa) <= lim.a_axis * (1 + 1e-9)) and np.all(np.abs(qj) <= lim.j_axis * (1 + 1e-6))
+    sharp_plan = plan_program(sharp, m)
+    assert plan.cycle_time_s < 0.9 * sharp_plan.cycle_time_s
+
+
+def test_an_arc_that_is_not_tangent_stays() -> None:
+    m = fast_machine()
+    text = "G21 G90 G64 P0.01 Q0\nG1 F3000 X40 Y0.5\nG3 X42 Y2 R2\nG1 Y20\nM2\n"
+    prog = parse_program(text, "k.ngc", m)
+    assert round_fillets(prog, m, only_where_quicker=False) is prog
+
+
+@settings(max_examples=40, deadline=None)
+@given(turn=st.floats(5.0, 175.0), radius=st.floats(0.05, 20.0), legs=st.tuples(st.floats(0.2, 50.0),
+       st.floats(0.2, 50.0)), tol=st.floats(0.001, 0.1), scale=st.sampled_from([0.001, 1.0, 1000.0]),
+       rounding=st.sampled_from([0.0, 0.1, -0.2]))
+def test_random_fillets_stay_within_the_tolerance_and_the_limits(turn, radius, legs, tol, scale,
+                                                                rounding) -> None:
+    """Fillets of any turn, radius and scale, also with the end radius a little off as CAM's
+    rounding leaves it (a spiral, the radius up to 0.0008 mm off): within P of the programmed
+    path, every limit."""
+    m = fast_machine()
+    m = replace(m, axes=tuple(replace(a, min_pos=-1e6, max_pos=1e6) for a in m.axes))
+    th = math.radians(turn)
+    r, l1, l2 = radius * scale, legs[0] * scale, legs[1] * scale
+    assume(r >= 0.01)             # the interpreter's smallest arc
+    t1 = np.array([l1, 0.0])                                  # the arc from here, centre (l1, r)
+    c = np.array([l1, r])
+    r_end = r + rounding * min(tol * scale, 0.004)   # at most what CAM's 3-4 decimals leave
+    t2 = c + r_end * np.array([math.sin(th), -math.cos(th)])
+    end = t2 + l2 * np.array([math.cos(th), math.sin(th)])
+    text = (f"G21 G90 G64 P{tol * scale:.12f} Q0\nG1 F6000 X{t1[0]:.12f} Y0\n"
+            f"G3 X{t2[0]:.12f} Y{t2[1]:.12f} I0 J{r:.12f}\nG1 X{end[0]:.12f} Y{end[1]:.12f}\nM2\n")
+    sharp = parse_program(text, "r.ngc", m)
+    prog = round_fillets(sharp, m, only_where_quicker=False)
+    plan = plan_program(prog, m)
+    assume(plan.cycle_time_s < 30.0)   # the sample checks cost time in proportion
+    assert plan.limit_report().violations == {}
+    q = plan.collect().q
+    assert distance_to_program(q, sharp).max() <= tol * scale * (1 + 1e-6) + 1e-12
+    for mv in prog.moves:
+        if mv.blend is not None:
+            assert mv.blend.deviation_mm <= tol * scale * (1 + 1e-9) + 1e-12
