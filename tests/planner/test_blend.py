@@ -509,3 +509,28 @@ def test_random_fillets_stay_within_the_tolerance_and_the_limits(turn, radius, l
     for mv in prog.moves:
         if mv.blend is not None:
             assert mv.blend.deviation_mm <= tol * scale * (1 + 1e-9) + 1e-12
+
+
+@pytest.mark.parametrize("interp, tol", [("exact", 0.0), ("classic", 0.0), ("taylor", 1e-5)])
+def test_a_blended_program_streams_as_it_plans(interp: str, tol: float) -> None:
+    """Windows of the blended path (pairs, fillets, joined lines) give the whole plan's samples
+    in every interpolation; the exact one keeps every limit on them (Taylor's Eq. 16 drifts and
+    classic ignores the profile, by design, blended or not)."""
+    from planner.interpolate import SampleChunk
+    from planner.plan import stream_program
+
+    m = fast_machine()
+    rise = 10.0 * math.tan(math.radians(2.5))
+    zig = "".join(f"X{41 + 10 * i} Y{rise * (i % 2):.6f}\n" for i in range(1, 8))
+    text = RECTANGLE.format(tol=0.01, feed=6000.0).replace("G1 X20\nM2\n", "G1 X40\n" + zig + "M2\n")
+    prog = blend_program(parse_program(text, "s.ngc", m, start_position=np.array([0.0, -2.0, 0.0])), m)
+    assert blend_report(prog).blends >= 8
+    plan = plan_program(prog, m, interpolation=interp)
+    whole = plan.collect()
+    chunks = list(stream_program(prog, m, interpolation=interp, chunk_samples=2000, window=3))
+    got = SampleChunk.concat(chunks, 3)
+    assert len(got) == len(whole)
+    np.testing.assert_array_equal(got.t, whole.t)
+    np.testing.assert_allclose(got.q, whole.q, rtol=0, atol=max(tol, 1e-12))
+    if interp == "exact":
+        assert plan.limit_report().violations == {}
