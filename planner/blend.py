@@ -33,9 +33,10 @@ turning the velocity at speed v with jerk J takes about 2 sqrt(v / J) and strays
 v^1.5 / (2 sqrt(J)) from the corner, 0.01 mm at 1.6 mm/s), so those stay sharp; small turns
 between long lines (a few degrees) gain most.
 
-Blends are made between feed lines only (G01, not rapids, arcs or moves with rotary motion),
-where both lines are in G64 with a tolerance, the incoming one has no exact stop and no
-event (dwell, output, message, spindle...) sits at the joint.
+Blends are made between feed lines only (G01, not arcs or moves with rotary motion, and not
+rapids: a blend is a feed move, so the operator's rapid override would no longer slow that
+corner), where both lines are in G64 with a tolerance, the incoming one has no exact stop and
+no event (dwell, output, message, spindle...) sits at the joint.
 """
 
 from __future__ import annotations
