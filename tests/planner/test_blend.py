@@ -419,7 +419,10 @@ def distance_to_program(q: np.ndarray, program) -> np.ndarray:
             a = mv.arc
             ang = np.arctan2(q[:, 1] - a.center[1], q[:, 0] - a.center[0])
             rel = np.remainder((ang - a.start_angle_rad) * np.sign(a.sweep_rad), 2 * np.pi)
-            radial = np.abs(np.hypot(q[:, 0] - a.center[0], q[:, 1] - a.center[1]) - a.radius_start_mm)
+            # a spiral (CAM's rounding) changes its radius in proportion to the angle
+            r_at = a.radius_start_mm + (a.radius_end_mm - a.radius_start_mm) * np.clip(
+                rel / abs(a.sweep_rad), 0.0, 1.0)
+            radial = np.abs(np.hypot(q[:, 0] - a.center[0], q[:, 1] - a.center[1]) - r_at)
             ends = np.minimum(np.linalg.norm(q - mv.start, axis=1), np.linalg.norm(q - mv.end, axis=1))
             best = np.minimum(best, np.where(rel <= abs(a.sweep_rad), np.hypot(radial, q[:, 2] - mv.start[2]),
                                              ends))
