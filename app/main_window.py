@@ -173,7 +173,14 @@ class MainWindow(QMainWindow):
     def _on_program_loaded(self, info: object) -> None:
         name = str(getattr(info, "name", ""))
         self._program_label.setText(name)
-        self.show_message(tr("Program loaded: {0}").format(name))
+        blends = int(getattr(info, "blends", 0) or 0)
+        if blends:
+            # the operator sees that the path is not exactly the programmed one, and by how much
+            self.show_message(tr("Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm "
+                                 "from the programmed path").format(
+                name, blends, float(getattr(info, "path_deviation_mm", 0.0))))
+        else:
+            self.show_message(tr("Program loaded: {0}").format(name))
         if deferred.is_big(info):  # the tool path of a big program: in its own event-loop turn
             deferred.run_soon("program-model", lambda: self._apply_program(info))
         else:

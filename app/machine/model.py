@@ -190,6 +190,9 @@ class ProgramInfo:
     line_times_s: tuple[tuple[int, float], ...] = ()  # (line, planned start time) per move
     program: object = field(default=None, repr=False, compare=False)  # planner.program.Program
     plan: object = field(default=None, repr=False, compare=False)  # planner.plan.Plan (reduced limits)
+    # G64 P: corners blended and fillets eased, and the largest distance from the programmed path
+    blends: int = 0
+    path_deviation_mm: float = 0.0
 
 
 @dataclass(frozen=True, slots=True)

@@ -36,7 +36,7 @@ import numpy as np
 
 from app.background import Background
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
-from planner.blend import blend_program
+from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
 from planner.interpreter import parse_program
@@ -132,6 +132,7 @@ def check_text(
                "are given in MDI, M61 Q for the tool in the spindle)")
         return (ProgramIssue(0, 0, why),), why
     stage()
+    blended = blend_report(program)
     table = move_bounds_table(program)  # per-move extremes, arcs exact: limits and bounds
     limit_issues = _issues_from_limits(program, machine, table)
     if limit_issues:
@@ -160,6 +161,8 @@ def check_text(
         line_times_s=tuple(zip(lines, starts)),  # (line, planned start time) per move
         program=program,
         plan=plan,
+        blends=blended.blends,
+        path_deviation_mm=blended.max_corner_deviation_mm,
     )
 
 

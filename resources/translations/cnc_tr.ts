@@ -681,12 +681,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="176" />
+      <location filename="../../app/main_window.py" line="183" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="189" />
+      <location filename="../../app/main_window.py" line="179" />
+      <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
+      <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="196" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -823,22 +828,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="221" />
+      <location filename="../../app/main_window.py" line="228" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="250" />
+      <location filename="../../app/main_window.py" line="257" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="226" />
+      <location filename="../../app/main_window.py" line="233" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="228" />
+      <location filename="../../app/main_window.py" line="235" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -848,7 +853,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="221" />
+      <location filename="../../app/main_window.py" line="228" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>

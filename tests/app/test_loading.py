@@ -58,3 +58,22 @@ def test_editor_chunked_load_is_superseded_by_a_newer_text(qapp, qtbot) -> None:
     assert not editor.loading and not editor.isReadOnly()
     qtbot.wait(100)
     assert editor.toPlainText() == "G0 X1\n"
+
+
+def test_the_status_bar_says_when_corners_are_smoothed(demo_window, real_controller, qtbot) -> None:
+    """Under G64 P the path is not exactly the programmed one: the operator reads how many
+    corners were smoothed and by how much at most, when the program is loaded."""
+    c = real_controller
+    rise = 10.0 * 0.04366
+    text = "G21 G90 G64 P0.02\nG0 X5 Y0\nG1 F1800\n" + "".join(
+        f"X{5 + 10 * i} Y{rise * (i % 2):.4f}\n" for i in range(1, 8)) + "M30\n"
+    with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+        assert c.load_program(text, name="zig.nc")
+    info = c.program_info
+    assert info.blends >= 5 and 0.0 < info.path_deviation_mm <= 0.02
+    message = demo_window._message.text()
+    assert "zig.nc" in message and f"{info.blends} corners smoothed" in message
+    assert f"{info.path_deviation_mm:.3f} mm" in message
+    with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+        assert c.load_program(text.replace("G64 P0.02", "G61.1"), name="sharp.nc")
+    assert c.program_info.blends == 0 and "smoothed" not in demo_window._message.text()
