@@ -78,20 +78,29 @@ class Blend:
     corner: np.ndarray  # C: the programmed corner (n_axes,); a fillet's: where its lines meet
     s0_mm: float = 0.0  # where this move starts along the blend (a resumed tail: > 0)
     arc_mm: float = 0.0  # length of the arc between the clothoids (a rounded fillet), 0 for a pair
-    fillet_deviation_mm: float = math.nan  # a fillet's largest distance from its programmed path
+    measured_deviation_mm: float = math.nan  # a fillet's or transition's distance from its path
+    # a transition (planner.transition): signed curvature kappa(s) = c0 + c1 s + c2 s^2 + c3 s^3
+    # towards n1, heading from u1, over the whole length 2 * half_mm; None for pairs and fillets
+    poly: tuple[float, float, float, float] | None = None
 
     @property
     def radius_mm(self) -> float:
         """Radius in the middle (the smallest)."""
+        if self.poly is not None:
+            return 1.0 / self.kappa_max
         return (self.half_mm + self.arc_mm) / self.turn_rad
 
     @property
     def kappa_max(self) -> float:
+        if self.poly is not None:
+            return poly_bounds(self.poly, 2.0 * self.half_mm)[0]
         return 1.0 / self.radius_mm
 
     @property
     def sharpness(self) -> float:
-        """|dkappa/ds| (1/mm^2) on the clothoids."""
+        """|dkappa/ds| (1/mm^2) on the clothoids (a transition: its largest)."""
+        if self.poly is not None:
+            return poly_bounds(self.poly, 2.0 * self.half_mm)[1]
         return 1.0 / (self.radius_mm * self.half_mm)
 
     @property
@@ -102,8 +111,8 @@ class Blend:
     def deviation_mm(self) -> float:
         """Largest distance from the programmed path: a pair's middle from its corner, or a
         fillet's, measured when it was made."""
-        if not math.isnan(self.fillet_deviation_mm):
-            return self.fillet_deviation_mm
+        if not math.isnan(self.measured_deviation_mm):
+            return self.measured_deviation_mm
         _, y1, _, d1 = unit_pair(np.array([self.turn_rad]))
         return float(d1[0] * self.half_mm)
 
@@ -123,7 +132,55 @@ def unit_pair(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     return x1, y1, x1 + y1 * np.tan(half), y1 / np.cos(half)
 
 
-def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None):
+_PX, _PW = np.polynomial.legendre.leggauss(24)
+_PX = (_PX + 1.0) * 0.5
+_PW = _PW * 0.5
+
+
+def poly_bounds(c: tuple[float, float, float, float], length: float) -> tuple[float, float]:
+    """(max |kappa|, max |dkappa/ds|) of kappa(s) = c0 + c1 s + c2 s^2 + c3 s^3 on [0, length],
+    exactly: at the ends and where the derivative (a quadratic) and its derivative vanish."""
+    c0, c1, c2, c3 = c
+    cand = [0.0, length]
+    disc = 4.0 * c2 * c2 - 12.0 * c3 * c1
+    if c3 != 0.0 and disc >= 0.0:
+        r = math.sqrt(disc)
+        cand += [(-2.0 * c2 + r) / (6.0 * c3), (-2.0 * c2 - r) / (6.0 * c3)]
+    elif c3 == 0.0 and c2 != 0.0:
+        cand.append(-c1 / (2.0 * c2))
+    if c3 != 0.0:
+        cand.append(-c2 / (3.0 * c3))
+    pts = np.clip(np.array(cand), 0.0, length)
+    k = c0 + pts * (c1 + pts * (c2 + pts * c3))
+    dk = c1 + pts * (2.0 * c2 + pts * 3.0 * c3)
+    return float(np.abs(k).max()), float(np.abs(dk).max())
+
+
+def _poly_heading(c: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Heading psi(s) = integral of kappa (row-wise coefficients c (N, 4), s (N,) or (N, m))."""
+    if s.ndim == 2:
+        c = c[:, None, :]
+    return s * (c[..., 0] + s * (c[..., 1] / 2.0 + s * (c[..., 2] / 3.0 + s * c[..., 3] / 4.0)))
+
+
+def _poly_eval(origin, u1, n1, c, s):
+    """Positions, unit tangents and curvature vectors of transitions at arc length s (row-wise):
+    p(s) = A + integral_0^s (cos psi u1 + sin psi n1), by 24-point Gauss-Legendre (psi is a
+    polynomial of degree 4 turning a fraction of a radian: exact to rounding)."""
+    sg = s[:, None] * _PX[None, :]
+    ps = _poly_heading(c, sg)
+    x = s * (np.cos(ps) @ _PW)
+    y = s * (np.sin(ps) @ _PW)
+    pos = origin + x[:, None] * u1 + y[:, None] * n1
+    psi = _poly_heading(c, s)
+    cp, sp = np.cos(psi)[:, None], np.sin(psi)[:, None]
+    tangent = cp * u1 + sp * n1
+    normal = -sp * u1 + cp * n1
+    kappa = c[:, 0] + s * (c[:, 1] + s * (c[:, 2] + s * c[:, 3]))
+    return pos, tangent, kappa[:, None] * normal
+
+
+def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None, poly=None):
     """Positions, unit tangents and curvature vectors of blends at arc length s from A.
 
     A blend is a clothoid of length L_c (``half``) from A, an arc of length L_a (``arc``, 0 for
@@ -134,7 +191,8 @@ def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None):
         arc = np.zeros_like(half)
     total = 2.0 * half + arc
     s = np.clip(s, 0.0, total)
-    rc = (half + arc) / theta
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rc = np.where(theta != 0.0, (half + arc) / np.where(theta != 0.0, theta, 1.0), np.inf)
     vt = half / rc
     first = s <= half
     third = s >= half + arc
@@ -166,7 +224,13 @@ def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None):
         tangent[k] = np.cos(psi)[:, None] * u1[k] + np.sin(psi)[:, None] * n1[k]
         normal[k] = -np.sin(psi)[:, None] * u1[k] + np.cos(psi)[:, None] * n1[k]
         kappa[k] = 1.0 / rc[k]
-    return pos, tangent, kappa[:, None] * normal
+    curv = kappa[:, None] * normal
+    if poly is not None:
+        is_poly = ~np.isnan(poly[:, 0])
+        if is_poly.any():
+            k = np.nonzero(is_poly)[0]
+            pos[k], tangent[k], curv[k] = _poly_eval(origin[k], u1[k], n1[k], poly[k], s[k])
+    return pos, tangent, curv
 
 
 def blend_eval(move: Move, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -176,21 +240,22 @@ def blend_eval(move: Move, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np
     u = np.clip(np.atleast_1d(np.asarray(u_mm, dtype=float)).ravel(), 0.0, move.length_mm)
     n = u.shape[0]
     rep = (n, 1)
+    poly = np.tile(np.array(b.poly if b.poly is not None else (math.nan,) * 4), rep)
     pos, tangent, curv = _pair_eval(np.tile(b.origin, rep), np.tile(b.u1, rep), np.tile(b.n1, rep),
                                     np.tile(move.end, rep), np.full(n, b.half_mm),
-                                    np.full(n, b.turn_rad), b.s0_mm + u, np.full(n, b.arc_mm))
+                                    np.full(n, b.turn_rad), b.s0_mm + u, np.full(n, b.arc_mm), poly)
     pos[u >= move.length_mm] = move.end
     return pos, tangent, np.sqrt((curv * curv).sum(axis=1))
 
 
-def pair_positions(origin, u1, n1, end, half, theta, s, arc=None) -> np.ndarray:
+def pair_positions(origin, u1, n1, end, half, theta, s, arc=None, poly=None) -> np.ndarray:
     """Positions only (row-wise arrays, see ``_pair_eval``)."""
-    return _pair_eval(origin, u1, n1, end, half, theta, s, arc)[0]
+    return _pair_eval(origin, u1, n1, end, half, theta, s, arc, poly)[0]
 
 
-def pair_frames(origin, u1, n1, end, half, theta, s, arc=None) -> tuple[np.ndarray, np.ndarray]:
+def pair_frames(origin, u1, n1, end, half, theta, s, arc=None, poly=None) -> tuple[np.ndarray, np.ndarray]:
     """(unit tangents, curvature vectors) at s (row-wise arrays)."""
-    _, t, k = _pair_eval(origin, u1, n1, end, half, theta, s, arc)
+    _, t, k = _pair_eval(origin, u1, n1, end, half, theta, s, arc, poly)
     return t, k
 
 
@@ -407,7 +472,7 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
         dev = float(dist.max())
         if dev > ptol[i]:
             continue
-        blends[k] = replace(mv, blend=replace(bl, fillet_deviation_mm=dev))
+        blends[k] = replace(mv, blend=replace(bl, measured_deviation_mm=dev))
     if not blends:
         return program
     if only_where_quicker:
@@ -489,14 +554,18 @@ def _ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray) ->
 
 def blend_program(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
     """The program under G64 P/Q: runs of lines joined by Q (``merge_naive_cam``), fillets eased
-    by clothoids (``round_fillets``), then sharp line-line joints replaced by clothoid pairs.
+    by clothoids (``round_fillets``), joints of arcs eased by cubic-curvature transitions
+    (``planner.transition``), then sharp line-line joints replaced by clothoid pairs.
 
     Returns ``program`` itself when nothing is blended. Move indices change: events, modal
     texts and offset changes are moved to the new indices (each keeps its place in the path).
     ``only_where_quicker=False`` blends every eligible corner (smoothest motion: no velocity
     step at those joints, even where the sharp corner would be crossed sooner).
     """
+    from planner.transition import ease_joints
+
     program = round_fillets(merge_naive_cam(program), machine, only_where_quicker)
+    program = ease_joints(program, machine, only_where_quicker)
     moves = program.moves
     n = len(moves)
     if n < 2 or not program.blend_tolerance or not any(v > 0 for _, v in program.blend_tolerance):

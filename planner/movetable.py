@@ -93,6 +93,9 @@ class MoveTable:
     bl_turn: np.ndarray
     bl_s0: np.ndarray
     bl_arc: np.ndarray  # length of a fillet's middle arc (0 for a clothoid pair)
+    bl_poly: np.ndarray  # (n, 4) a transition's curvature polynomial (NaN for the others)
+    bl_kmax: np.ndarray  # largest curvature of a blend (1/mm)
+    bl_dk: np.ndarray  # largest |dkappa/ds| of a blend (1/mm^2)
 
     @staticmethod
     def from_moves(moves: tuple[Move, ...] | list[Move], n_axes: int) -> MoveTable:
@@ -131,13 +134,16 @@ class MoveTable:
             poly[k] = dev @ _CHEB_INV.T
         is_blend = np.zeros(n, dtype=bool)
         bl_vec = np.zeros((3, n, n_axes))
-        bl_val = np.zeros((4, n))
+        bl_val = np.zeros((6, n))
+        bl_poly = np.full((n, 4), np.nan)
         for i, m in enumerate(moves):
             b = m.blend
             if b is not None:
                 is_blend[i] = True
                 bl_vec[0, i], bl_vec[1, i], bl_vec[2, i] = b.origin, b.u1, b.n1
-                bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm, b.arc_mm)
+                bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm, b.arc_mm, b.kappa_max, b.sharpness)
+                if b.poly is not None:
+                    bl_poly[i] = b.poly
         return MoveTable(
             moves=moves,
             index=np.asarray(cols[0], dtype=np.int64),
@@ -156,6 +162,7 @@ class MoveTable:
             spiral_poly=poly, spiral_poly_ok=poly_ok,
             is_blend=is_blend, bl_a=bl_vec[0], bl_u1=bl_vec[1], bl_n1=bl_vec[2],
             bl_half=bl_val[0], bl_turn=bl_val[1], bl_s0=bl_val[2], bl_arc=bl_val[3],
+            bl_poly=bl_poly, bl_kmax=bl_val[4], bl_dk=bl_val[5],
         )
 
     def __len__(self) -> int:
@@ -202,7 +209,7 @@ class MoveTable:
             k = np.nonzero(bl)[0]
             r = row[k]
             q[k] = pair_positions(self.bl_a[r], self.bl_u1[r], self.bl_n1[r], self.end[r], self.bl_half[r],
-                                  self.bl_turn[r], self.bl_s0[r] + u[k], self.bl_arc[r])
+                                  self.bl_turn[r], self.bl_s0[r] + u[k], self.bl_arc[r], self.bl_poly[r])
         done = frac >= 1.0
         if done.any():
             q[done] = self.end[row[done]]
@@ -213,7 +220,7 @@ class MoveTable:
         k = np.nonzero(self.is_blend)[0]
         s = 2.0 * self.bl_half[k] + self.bl_arc[k] if at_end else self.bl_s0[k]
         t, c = pair_frames(self.bl_a[k], self.bl_u1[k], self.bl_n1[k], self.end[k], self.bl_half[k],
-                           self.bl_turn[k], s, self.bl_arc[k])
+                           self.bl_turn[k], s, self.bl_arc[k], self.bl_poly[k])
         return k, t, c
 
     def _spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
@@ -314,7 +321,7 @@ class MoveTable:
         bl = np.nonzero(self.is_blend)[0]
         if bl.size:
             # a planar curve: the whole tangent is in its plane; the curvature peaks mid-pair
-            kb = self.bl_turn[bl] / (self.bl_half[bl] + self.bl_arc[bl])
+            kb = self.bl_kmax[bl]
             rho[bl], kappa[bl], omega[bl] = 1.0, kb, kb
         return rho, kappa, omega
 
@@ -333,8 +340,8 @@ class MoveTable:
             q = r * r + c * c
             out[sp] = 4.0 * np.abs(c) / (q * np.sqrt(q + h * h))
         bl = np.nonzero(self.is_blend)[0]
-        if bl.size:  # clothoids: dkappa/ds = 1 / (R_c L_c) = theta / (L_c (L_c + L_a))
-            out[bl] = self.bl_turn[bl] / (self.bl_half[bl] * (self.bl_half[bl] + self.bl_arc[bl]))
+        if bl.size:  # clothoids: 1 / (R_c L_c) = theta / (L_c (L_c + L_a)); transitions: their largest
+            out[bl] = self.bl_dk[bl]
         return out
 
 
@@ -377,13 +384,13 @@ def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarra
         r = row[k]
         args = (table.bl_a[r], table.bl_u1[r], table.bl_n1[r], table.end[r], table.bl_half[r],
                 table.bl_turn[r])
-        arc_len = table.bl_arc[r]
+        arc_len, poly = table.bl_arc[r], table.bl_poly[r]
         s_k = table.bl_s0[r] + np.clip(u[k], 0.0, table.length[r])
-        t_k, _ = pair_frames(*args, s_k, arc_len)
-        p_k = pair_positions(*args, s_k, arc_len)
+        t_k, _ = pair_frames(*args, s_k, arc_len, poly)
+        p_k = pair_positions(*args, s_k, arc_len, poly)
         s_k = np.clip(s_k + ((q[k] - p_k) * t_k).sum(axis=1), table.bl_s0[r],
                       2.0 * table.bl_half[r] + arc_len)
-        err[k] = q[k] - pair_positions(*args, s_k, arc_len)
+        err[k] = q[k] - pair_positions(*args, s_k, arc_len, poly)
     arc = table.is_arc[row]
     if arc.any():
         k = np.nonzero(arc)[0]

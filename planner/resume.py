@@ -83,6 +83,28 @@ def split_move(move: Move, u_mm: float) -> Move:
     return replace(move, start=start, arc=new_arc, length_mm=new_len)
 
 
+def head_move(move: Move, u_mm: float) -> Move:
+    """The part of ``move`` from its start to path length ``u_mm`` (same start exactly):
+    lines end at the point at u; arcs keep their circle with the sweep, rise and (spiral) end
+    radius reduced."""
+    length = move.length_mm
+    u = min(max(float(u_mm), 0.0), length)
+    end = move.evaluate(np.array([u]))[0][0]
+    if move.arc is None:
+        return replace(move, end=end, length_mm=u)
+    arc = move.arc
+    t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 0.0
+    dr = arc.radius_end_mm - arc.radius_start_mm
+    new_arc: Arc = replace(
+        arc,
+        radius_end_mm=arc.radius_start_mm + dr * t,
+        sweep_rad=arc.sweep_rad * t,
+        rise_mm=arc.rise_mm * t,
+        turns=max(1, math.ceil(abs(arc.sweep_rad * t) / (2.0 * math.pi) - 1e-12)),
+    )
+    return replace(move, end=end, arc=new_arc, length_mm=arc_length_mm(new_arc))
+
+
 def program_from_moves(template: Program, moves: list[Move], events: list[Event],
                        start_position: np.ndarray, name: str | None = None) -> Program:
     """A Program with ``moves`` re-indexed 0..n-1 (events' ``after_move`` must already refer

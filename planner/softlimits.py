@@ -41,10 +41,18 @@ class LimitViolation:
 def move_bounds(move: Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(min per axis, max per axis, points where they occur (2, n_axes) unused) of one move."""
     pts = [move.start, move.end]
-    if move.blend is not None:
+    if move.blend is not None and move.blend.poly is None:
         # a blend turns less than half a circle, so it stays inside the triangle of its ends
         # and the programmed corner: the corner bounds it (the programmed path reached it)
         pts.append(move.blend.corner)
+    elif move.blend is not None:
+        # a transition: its points 1/64 of its length apart, widened by what the curve can
+        # bulge between two of them (kappa h^2 / 8)
+        h = move.length_mm / 64.0
+        q = move.evaluate(np.linspace(0.0, move.length_mm, 65))[0]
+        bulge = move.blend.kappa_max * h * h / 8.0
+        pts.extend(q - bulge)
+        pts.extend(q + bulge)
     arc = move.arc
     if arc is not None:
         if arc.radius_end_mm == arc.radius_start_mm:

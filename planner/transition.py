@@ -1,0 +1,291 @@
+"""Curvature-continuous transitions at the joints of arcs under G64 P.
+
+Where an arc meets a line or another arc, the curvature steps: from 0 to 1/R, or from 1/R1 to
+1/R2, and often the tangent has a small kink too (CAM's fitted arcs). The planner crosses a
+curvature step at no more than sqrt(J Ts / |dkappa|) (the normal acceleration may change by
+J Ts in one sample): 4.5 mm/s into a 2 mm arc at 10,000 mm/s^3. Such a joint is replaced by a
+transition: the last stretch d of the incoming move and the first stretch d of the outgoing
+one give way to a plane curve whose curvature is a cubic in its arc length,
+
+    kappa(s) = c0 + c1 s + c2 s^2 + c3 s^3,   c0 = kappa_A,
+
+solved (length L and c1..c3, Newton on two unknowns, the other two linear) so that it ends at
+B with B's heading and curvature: position, tangent and curvature are continuous at both
+ends, so the jerk limit holds through the joint. The transition keeps within P of the
+programmed moves (checked on samples; d shrinks until it does) and takes at most half of each
+move. Its largest curvature and curvature rate (exact, ``blend.poly_bounds``) set its speed.
+Made only where it cannot be slower than the sharp joint, as corner blends.
+
+Joints handled: line-arc, arc-line and arc-arc (not line-line: ``planner.blend``'s corners),
+both moves in one machine plane (the arc's; no helix), no rotary motion, G64 P on both, no
+exact stop or event at the joint, and at most 30 degrees of kink.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from planner.blend import (
+    MIN_LINE_MM,
+    Blend,
+    _arc_distance,
+    _blend_caps_k,
+    _poly_heading,
+    _ramp_speed,
+    _remap,
+    _seg_dist,
+    poly_bounds,
+    tolerance_per_move,
+)
+from planner.machine import MachineSpec
+from planner.program import Move, MoveKind, Program
+from planner.resume import head_move, split_move
+
+__all__ = ["ease_joints", "solve_transition"]
+
+_GX, _GW = np.polynomial.legendre.leggauss(24)
+_GX = (_GX + 1.0) * 0.5
+_GW = _GW * 0.5
+
+#: kinks larger than this are corners, not transitions
+MAX_KINK_RAD = math.radians(30.0)
+
+
+def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tuple[float, float, float, float]:
+    """c1, c2 (given c3) so that kappa(L) = k1 and the heading turns by dpsi over L."""
+    a = np.array([[length, length * length], [length * length / 2.0, length ** 3 / 3.0]])
+    b = np.array([k1 - k0 - c3 * length ** 3, dpsi - k0 * length - c3 * length ** 4 / 4.0])
+    c1, c2 = np.linalg.solve(a, b)
+    return (k0, float(c1), float(c2), c3)
+
+
+def _end(c: tuple[float, float, float, float], length: float) -> np.ndarray:
+    ps = _poly_heading(np.array([c]), np.array([length * _GX]))[0]
+    return length * np.array([np.cos(ps) @ _GW, np.sin(ps) @ _GW])
+
+
+def solve_transition(k0: float, k1: float, dpsi: float, bx: float, by: float
+                     ) -> tuple[float, tuple[float, float, float, float]] | None:
+    """(L, coefficients) of the cubic-curvature curve from (0, 0) heading 0 with curvature k0
+    to (bx, by) with heading dpsi and curvature k1; None when Newton does not find it."""
+    chord = math.hypot(bx, by)
+    if chord <= 0.0:
+        return None
+    length, c3 = chord, 0.0
+    target = np.array([bx, by])
+
+    def residual(length: float, c3: float) -> np.ndarray:
+        return _end(_coeffs(length, c3, k0, k1, dpsi), length) - target
+
+    f = residual(length, c3)
+    for _ in range(30):
+        if np.abs(f).max() <= 1e-13 * (1.0 + chord):
+            return length, _coeffs(length, c3, k0, k1, dpsi)
+        h1 = 1e-7 * length
+        h2 = 1e-7 * (abs(c3) + 1.0 / length ** 3)
+        jac = np.column_stack([(residual(length + h1, c3) - f) / h1, (residual(length, c3 + h2) - f) / h2])
+        try:
+            step = np.linalg.solve(jac, -f)
+        except np.linalg.LinAlgError:
+            return None
+        scale = 1.0
+        while scale > 1e-4:
+            l2, c32 = length + scale * step[0], c3 + scale * step[1]
+            if l2 > 0.0:
+                f2 = residual(l2, c32)
+                if np.abs(f2).max() < np.abs(f).max():
+                    length, c3, f = l2, c32, f2
+                    break
+            scale *= 0.5
+        else:
+            return None
+    return None
+
+
+def _plane(a: Move, b: Move, n_axes: int) -> tuple[int, int] | None:
+    """The machine plane (first, second axis) both moves lie in, from their arcs."""
+    planes = {(m.arc.first_axis, m.arc.second_axis) for m in (a, b) if m.arc is not None}
+    if len(planes) != 1:
+        return None
+    f, s = planes.pop()
+    other = np.ones(n_axes, dtype=bool)
+    other[[f, s]] = False
+    for m in (a, b):
+        if np.any((m.end - m.start)[other] != 0.0):     # a helix, or a line leaving the plane
+            return None
+    return f, s
+
+
+def _kappa_at(m: Move, u: float) -> float:
+    """Curvature at path length u, positive turning left in the (first, second) frame."""
+    if m.arc is None:
+        return 0.0
+    _, _, k = m.evaluate(np.array([u]))
+    return float(k[0]) * (1.0 if m.arc.sweep_rad > 0.0 else -1.0)
+
+
+def _distance_to(q: np.ndarray, m: Move) -> np.ndarray:
+    if m.arc is None:
+        return _seg_dist(q, m.start[None, :], m.end[None, :])
+    return _arc_distance(q, m)
+
+
+def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float) -> tuple[Move, Move, Move] | None:
+    """(a's head, transition, b's tail) with d taken from each, or None if none fits in tol."""
+    n_axes = a.start.shape[0]
+    u_a = a.length_mm - d
+    pa, ta, _ = a.evaluate(np.array([u_a]))
+    pb, tb, _ = b.evaluate(np.array([d]))
+    pa, ta, pb, tb = pa[0], ta[0], pb[0], tb[0]
+    u1 = np.zeros(n_axes)
+    u1[[f, s]] = ta[[f, s]] / math.hypot(ta[f], ta[s])
+    n1 = np.zeros(n_axes)
+    n1[f], n1[s] = -u1[s], u1[f]                         # left of u1 in the plane
+    cos_t = float(np.clip(tb @ u1, -1.0, 1.0))
+    dpsi = math.atan2(float(tb @ n1), cos_t)
+    rel = pb - pa
+    sol = solve_transition(_kappa_at(a, u_a), _kappa_at(b, d), dpsi, float(rel @ u1), float(rel @ n1))
+    if sol is None:
+        return None
+    length, c = sol
+    if not 0.5 * math.hypot(*rel[[f, s]]) < length < 3.0 * math.hypot(*rel[[f, s]]):
+        return None                                       # a loop or a detour, not a transition
+    bl = Blend(origin=pa.copy(), u1=u1, n1=n1, half_mm=0.5 * length, turn_rad=max(abs(dpsi), 1e-12),
+               corner=a.end.copy(), poly=c)
+    mv = Move(index=0, line=a.line, kind=MoveKind.BLEND, start=pa.copy(), end=pb.copy(),
+              feed_mm_s=min(a.feed_mm_s, b.feed_mm_s), length_mm=length, arc=None, exact_stop=False, blend=bl)
+    q = mv.evaluate(np.linspace(0.0, length, 49))[0]
+    if np.linalg.norm(q[-1] - pb) > 1e-9 * (1.0 + np.abs(pb).max()):
+        return None
+    dev = float(np.minimum(_distance_to(q, a), _distance_to(q, b)).max())
+    if dev > tol:
+        return None
+    mv = replace(mv, blend=replace(bl, measured_deviation_mm=dev))
+    head = _head(a, u_a, pa)
+    tail = split_move(b, d)
+    if head is None or tail.length_mm <= MIN_LINE_MM:
+        return None
+    return head, mv, tail
+
+
+def _head(m: Move, u: float, end: np.ndarray) -> Move | None:
+    if u <= MIN_LINE_MM:
+        return None
+    if m.arc is None:
+        return replace(m, end=end.copy(), length_mm=float(np.linalg.norm(end - m.start)))
+    return head_move(m, u)
+
+
+def ease_joints(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
+    """The program with its line-arc, arc-line and arc-arc joints under G64 P eased (see the
+    module's text); ``program`` itself when none is."""
+    moves = program.moves
+    n = len(moves)
+    if n < 2 or not any(v > 0 for _, v in program.blend_tolerance):
+        return program
+    tol = tolerance_per_move(program)
+    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(len(program.axes), bool)
+    event_after = np.zeros(n, dtype=bool)
+    for ev in program.events:
+        if 0 <= ev.after_move < n:
+            event_after[ev.after_move] = True
+    made: dict[int, tuple[Move, Move, Move]] = {}
+    for j in range(n - 1):
+        a, b = moves[j], moves[j + 1]
+        p_tol = min(tol[j], tol[j + 1])
+        curve = (MoveKind.LINE, MoveKind.ARC)
+        if (p_tol <= 0.0 or a.kind not in curve or b.kind not in curve
+                or (a.arc is None and b.arc is None) or a.blend is not None or b.blend is not None
+                or a.exact_stop or event_after[j]
+                or any(np.any((m.end - m.start)[rotary] != 0.0) for m in (a, b))
+                or np.abs(a.end - b.start).max() > 1e-9 * (1.0 + np.abs(a.end).max())):
+            continue
+        if any(m.arc is not None and abs(m.arc.sweep_rad) > 2.0 * math.pi for m in (a, b)):
+            continue
+        plane = _plane(a, b, len(program.axes))
+        if plane is None:
+            continue
+        f, s = plane
+        ta = a.evaluate(np.array([a.length_mm]))[1][0]
+        tb = b.evaluate(np.array([0.0]))[1][0]
+        if math.acos(float(np.clip(ta @ tb, -1.0, 1.0))) > MAX_KINK_RAD:
+            continue
+        room = min(0.45 * a.length_mm, 0.45 * b.length_mm)   # the rest is for the other ends
+        d = min(room, 50.0 * p_tol)
+        trio = None
+        for _ in range(10):
+            if d <= 1e-9 * (1.0 + abs(a.end).max()):
+                break
+            trio = _make(a, b, f, s, d, 0.9 * p_tol)
+            if trio is not None:
+                break
+            d *= 0.6
+        if trio is None:
+            continue
+        made[j] = trio
+    if not made:
+        return program
+    if only_where_quicker:
+        made = _quicker(program, machine, made)
+        if not made:
+            return program
+    return _apply(program, made)
+
+
+def _quicker(program: Program, machine: MachineSpec, made: dict[int, tuple[Move, Move, Move]]
+             ) -> dict[int, tuple[Move, Move, Move]]:
+    """The transitions whose speed beats the sharp joint's and what the sharp plan reaches over
+    the stretches they replace (a full-jerk ramp from the joint's speed, bounded by the moves'
+    peaks)."""
+    from planner.lookahead import LimitSet
+    from planner.plan import plan_program
+
+    plan = plan_program(program, machine)
+    ve, vpeak = np.asarray(plan.ve), np.asarray(plan.vpeak)
+    lim = LimitSet.from_machine(machine)
+    keep = {}
+    for j, (head, mv, tail) in made.items():
+        b = mv.blend
+        assert b is not None
+        in_plane = (np.abs(b.u1) + np.abs(b.n1)) > 1e-12
+        a_pl = min(float(lim.a_axis[in_plane].min()), lim.a_path)
+        j_pl = min(float(lim.j_axis[in_plane].min()), lim.j_path)
+        kmax, dkmax = poly_bounds(b.poly, mv.length_mm) if b.poly is not None else (b.kappa_max, b.sharpness)
+        v_b = float(_blend_caps_k(np.array([max(kmax, 1e-12)]), np.array([max(dkmax, 1e-12)]),
+                                  np.array([a_pl]), np.array([j_pl]))[0])
+        v_b = min(v_b, mv.feed_mm_s, lim.v_path)
+        d = float(mv.length_mm) * 0.5
+        ramp = float(_ramp_speed(np.array([ve[j]]), np.array([d]), j_pl)[0])
+        if v_b > ve[j] and v_b >= min(ramp, vpeak[j]) and v_b >= min(ramp, vpeak[j + 1]):
+            keep[j] = (head, mv, tail)
+    return keep
+
+
+def _apply(program: Program, made: dict[int, tuple[Move, Move, Move]]) -> Program:
+    """Replace each eased joint's moves by head, transition, tail (a move between two eased
+    joints loses both ends)."""
+    moves = program.moves
+    new: list[Move] = []
+    spans: list[tuple[int, int]] = []
+    tail_of: dict[int, Move] = {}
+    for i, m in enumerate(moves):
+        cur = tail_of.get(i, m)
+        if i in made:
+            head, mv, tail = made[i]
+            if i in tail_of:                    # both ends eased: cut the tail at this head's end
+                cur_head = _head(cur, cur.length_mm - (m.length_mm - head.length_mm), head.end)
+                if cur_head is None:
+                    continue
+                head = cur_head
+            new.append(head)
+            spans.append((i, i))
+            new.append(mv)
+            spans.append((i, i))
+            tail_of[i + 1] = tail
+            continue
+        new.append(cur)
+        spans.append((i, i))
+    return _remap(program, new, spans)
