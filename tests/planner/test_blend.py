@@ -232,21 +232,26 @@ def test_events_at_a_joint_keep_it_sharp_and_keep_their_place() -> None:
     assert len(bl.move_offsets) == len(bl.moves)
 
 
-def test_a_resume_inside_a_blend_follows_the_same_curve() -> None:
-    m = fast_machine()
-    prog = blend_program(parse_program(polyline_text(corner(30.0), 0.05), "r.ngc", m), m,
-                         only_where_quicker=False)
+def assert_resume_follows(prog, m, fraction: float) -> None:
+    """A stop at ``fraction`` of the program's first blend resumes on the same curve, within
+    every limit."""
     i = next(k for k, mv in enumerate(prog.moves) if mv.kind is MoveKind.BLEND)
     bl = prog.moves[i]
-    u = 0.37 * bl.length_mm
+    u = fraction * bl.length_mm
     tail = split_move(bl, u)
     w = np.linspace(0.0, tail.length_mm, 50)
     np.testing.assert_allclose(tail.evaluate(w)[0], bl.evaluate(u + w)[0], atol=1e-12)
     np.testing.assert_array_equal(tail.end, bl.end)
     rest = remaining_program(prog, i, u)
     np.testing.assert_allclose(rest.start_position, bl.evaluate(np.array([u]))[0][0], atol=1e-12)
-    rep = plan_program(rest, m).limit_report()
-    assert rep.violations == {}
+    assert plan_program(rest, m).limit_report().violations == {}
+
+
+def test_a_resume_inside_a_blend_follows_the_same_curve() -> None:
+    m = fast_machine()
+    prog = blend_program(parse_program(polyline_text(corner(30.0), 0.05), "r.ngc", m), m,
+                         only_where_quicker=False)
+    assert_resume_follows(prog, m, 0.37)
 
 
 def test_soft_limits_still_see_the_programmed_corner() -> None:
@@ -660,3 +665,12 @@ def test_random_arc_chains_ease_within_the_tolerance_and_the_limits(spec, tol, s
     for mv in prog.moves:
         if mv.blend is not None:
             assert mv.blend.deviation_mm <= 0.9 * tol * scale * (1 + 1e-9) + 1e-12
+
+
+def test_a_resume_inside_a_transition_follows_the_same_curve() -> None:
+    from planner.transition import ease_joints
+
+    m = fast_machine()
+    prog = ease_joints(parse_program(ARCS.format(tol=0.05), "arcs.ngc", m), m, only_where_quicker=False)
+    assert prog.moves[1].blend is not None and prog.moves[1].blend.poly is not None
+    assert_resume_follows(prog, m, 0.61)
