@@ -231,7 +231,9 @@ def main(argv: list[str] | None = None) -> int:
             "ok": report.ok,
             "move_list": plan.moves_summary(),
         }
-        json.dump(out, sys.stdout)
+        # one string through the C encoder: json.dump writes piece by piece in Python (1.7 s
+        # for the 35,000 moves of the sphere finishing program against 0.1 s)
+        sys.stdout.write(json.dumps(out))
         sys.stdout.write("\n")
     else:
         print(f"{program.name}: {len(program.moves)} moves, cycle time {plan.cycle_time_s:.3f} s, "
