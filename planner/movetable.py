@@ -132,18 +132,25 @@ class MoveTable:
             t = _spiral_newton(r0[kk], r1[kk], arc_vals[kk, 8], arc_vals[kk, 9], length[kk], u)
             dev = (t - np.tile(_CHEB_X, k.size)).reshape(k.size, 8)
             poly[k] = dev @ _CHEB_INV.T
+        blend_rows = [i for i, m in enumerate(moves) if m.blend is not None]
         is_blend = np.zeros(n, dtype=bool)
-        bl_vec = np.zeros((3, n, n_axes))
-        bl_val = np.zeros((6, n))
-        bl_poly = np.full((n, 4), np.nan)
-        for i, m in enumerate(moves):
-            b = m.blend
-            if b is not None:
+        if blend_rows:
+            bl_vec = np.zeros((3, n, n_axes))
+            bl_val = np.zeros((6, n))
+            bl_poly = np.full((n, 4), np.nan)
+            for i in blend_rows:
+                b = moves[i].blend
                 is_blend[i] = True
                 bl_vec[0, i], bl_vec[1, i], bl_vec[2, i] = b.origin, b.u1, b.n1
                 bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm, b.arc_mm, b.kappa_max, b.sharpness)
                 if b.poly is not None:
                     bl_poly[i] = b.poly
+        else:
+            # no blend: the blend columns take no memory (read-only views of one row, stride 0;
+            # 150 bytes a move otherwise, 300 MB on a 2-million-line program)
+            bl_vec = np.broadcast_to(np.zeros((3, 1, n_axes)), (3, n, n_axes))
+            bl_val = np.broadcast_to(np.zeros((6, 1)), (6, n))
+            bl_poly = np.broadcast_to(np.full((1, 4), np.nan), (n, 4))
         return MoveTable(
             moves=moves,
             index=np.asarray(cols[0], dtype=np.int64),
@@ -352,8 +359,19 @@ def concat_tables(tables: list[MoveTable]) -> MoveTable:
     vals: dict[str, Any] = {"moves": sum((t.moves for t in tables), ())}
     for name in MoveTable.__slots__:
         if name != "moves":
-            vals[name] = np.concatenate([getattr(t, name) for t in tables])
+            vals[name] = _concat([getattr(t, name) for t in tables])
     return MoveTable(**vals)
+
+
+def _concat(parts: list[np.ndarray]) -> np.ndarray:
+    """Concatenated rows; columns that are one row repeated (stride 0, the blend columns of
+    tables without blends) stay so when all parts repeat the same row."""
+    first = parts[0]
+    if (first.ndim and first.strides[0] == 0 and all(p.strides[0] == 0 for p in parts)
+            and all(np.array_equal(p[:1], first[:1], equal_nan=True) for p in parts if p.shape[0])):
+        total = sum(p.shape[0] for p in parts)
+        return np.broadcast_to(first[:1], (total, *first.shape[1:]))
+    return np.concatenate(parts)
 
 
 def take_rows(table: MoveTable, sl: slice) -> MoveTable:
