@@ -300,6 +300,18 @@ def _blend_not_slower(program: Program, machine: MachineSpec, jj: np.ndarray, v_
     return quicker & slowest
 
 
+def joint_context(program: Program) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(G64 P per move, the rotary axes, whether an event follows each move): what every
+    pass here checks before it touches a joint."""
+    n = len(program.moves)
+    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(len(program.axes), bool)
+    event_after = np.zeros(n, dtype=bool)
+    for ev in program.events:
+        if 0 <= ev.after_move < n:
+            event_after[ev.after_move] = True
+    return tolerance_per_move(program), rotary, event_after
+
+
 def tolerance_per_move(program: Program) -> np.ndarray:
     """The G64 P tolerance (mm) in force for each move (0: no blending)."""
     n = len(program.moves)
@@ -377,12 +389,7 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
     n = len(moves)
     if n < 3 or not any(v > 0 for _, v in program.blend_tolerance):
         return program
-    tol = tolerance_per_move(program)
-    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(len(program.axes), bool)
-    event_after = np.zeros(n, dtype=bool)
-    for ev in program.events:
-        if 0 <= ev.after_move < n:
-            event_after[ev.after_move] = True
+    tol, rotary, event_after = joint_context(program)
     cands: list[tuple[Any, ...]] = []
     for k in range(1, n - 1):
         arc, l1, l2 = moves[k].arc, moves[k - 1], moves[k + 1]
@@ -570,23 +577,17 @@ def blend_program(program: Program, machine: MachineSpec, only_where_quicker: bo
     n = len(moves)
     if n < 2 or not program.blend_tolerance or not any(v > 0 for _, v in program.blend_tolerance):
         return program
-    tol = tolerance_per_move(program)
+    tol, rotary, event_after = joint_context(program)
     d = len(program.axes)
     start = np.array([m.start for m in moves], dtype=float).reshape(n, d)
     end = np.array([m.end for m in moves], dtype=float).reshape(n, d)
     kind = np.array([int(m.kind) for m in moves])
     stop = np.array([m.exact_stop for m in moves])
-    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(d, bool)
     delta = end - start
     lin_len = np.sqrt((delta[:, ~rotary] ** 2).sum(axis=1))
     line_ok = (kind == int(MoveKind.LINE)) & (lin_len > 0.0) & ~np.any(delta[:, rotary] != 0.0, axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         direction = np.where(line_ok[:, None], delta / np.where(lin_len > 0, lin_len, 1.0)[:, None], 0.0)
-
-    event_after = np.zeros(n, dtype=bool)
-    for ev in program.events:
-        if 0 <= ev.after_move < n:
-            event_after[ev.after_move] = True
 
     j = np.arange(n - 1)
     cand = line_ok[j] & line_ok[j + 1] & ~stop[j] & ~event_after[j]

@@ -317,11 +317,7 @@ class MoveTable:
             # r = r0 + c theta: the curvature (r^2 + 2 c^2) / (r^2 + c^2)^1.5 and the turn rate
             # 1 / sqrt(r^2 + c^2 + h^2) are largest at the small end (the rise h per radian only
             # lowers the curvature): bound both there, and the in-plane share by 1
-            sweep = np.abs(self.sweep[sp])
-            c = (self.r1[sp] - self.r0[sp]) / sweep
-            h = self.rise[sp] / sweep
-            r = np.minimum(self.r0[sp], self.r1[sp])
-            q = r * r + c * c
+            c, h, q = self._spiral_small_end(sp)
             kappa[sp] = np.maximum(kappa[sp], (q + c * c) / (q * np.sqrt(q)))
             omega[sp] = np.maximum(omega[sp], 1.0 / np.sqrt(q + h * h))
             rho[sp] = 1.0
@@ -332,6 +328,13 @@ class MoveTable:
             rho[bl], kappa[bl], omega[bl] = 1.0, kb, kb
         return rho, kappa, omega
 
+    def _spiral_small_end(self, sp: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Spirals r = r0 + c theta (rise h per radian): (c, h, r^2 + c^2 at the small end)."""
+        sweep = np.abs(self.sweep[sp])
+        c = (self.r1[sp] - self.r0[sp]) / sweep
+        r = np.minimum(self.r0[sp], self.r1[sp])
+        return c, self.rise[sp] / sweep, r * r + c * c
+
     def curvature_rate(self) -> np.ndarray:
         """A bound of |d kappa / ds| (1/mm^2) on every move: 0 on lines and circles; on
         spirals r = r0 + c theta, |dkappa/dr| = r (r^2 + 4 c^2) / (r^2 + c^2)^2.5 <= 4 / (r^2 + c^2)
@@ -340,11 +343,7 @@ class MoveTable:
         out = np.zeros(len(self))
         sp = np.nonzero(self.spiral)[0]
         if sp.size:
-            sweep = np.abs(self.sweep[sp])
-            c = (self.r1[sp] - self.r0[sp]) / sweep
-            h = self.rise[sp] / sweep
-            r = np.minimum(self.r0[sp], self.r1[sp])
-            q = r * r + c * c
+            c, h, q = self._spiral_small_end(sp)
             out[sp] = 4.0 * np.abs(c) / (q * np.sqrt(q + h * h))
         bl = np.nonzero(self.is_blend)[0]
         if bl.size:  # clothoids: 1 / (R_c L_c) = theta / (L_c (L_c + L_a)); transitions: their largest

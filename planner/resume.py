@@ -70,17 +70,24 @@ def split_move(move: Move, u_mm: float) -> Move:
         return replace(move, start=start, length_mm=rest)
     arc = move.arc
     t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 1.0
-    dr = arc.radius_end_mm - arc.radius_start_mm
-    new_arc: Arc = replace(
-        arc,
-        radius_start_mm=arc.radius_start_mm + dr * t,
-        start_angle_rad=arc.start_angle_rad + arc.sweep_rad * t,
-        sweep_rad=arc.sweep_rad * (1.0 - t),
-        rise_mm=arc.rise_mm * (1.0 - t),
-        turns=max(1, math.ceil(abs(arc.sweep_rad * (1.0 - t)) / (2.0 * math.pi) - 1e-12)),
-    )
+    new_arc = arc_part(arc, t, 1.0)
     new_len = arc_length_mm(new_arc) if rest > 0.0 else 0.0
     return replace(move, start=start, arc=new_arc, length_mm=new_len)
+
+
+def arc_part(arc: Arc, t0: float, t1: float) -> Arc:
+    """The same circle (or spiral, or helix) from angle fraction t0 to t1 of ``arc``."""
+    dr = arc.radius_end_mm - arc.radius_start_mm
+    sweep = arc.sweep_rad * (t1 - t0)
+    return replace(
+        arc,
+        radius_start_mm=arc.radius_start_mm + dr * t0,
+        radius_end_mm=arc.radius_start_mm + dr * t1,
+        start_angle_rad=arc.start_angle_rad + arc.sweep_rad * t0,
+        sweep_rad=sweep,
+        rise_mm=arc.rise_mm * (t1 - t0),
+        turns=max(1, math.ceil(abs(sweep) / (2.0 * math.pi) - 1e-12)),
+    )
 
 
 def head_move(move: Move, u_mm: float) -> Move:
@@ -94,14 +101,7 @@ def head_move(move: Move, u_mm: float) -> Move:
         return replace(move, end=end, length_mm=u)
     arc = move.arc
     t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 0.0
-    dr = arc.radius_end_mm - arc.radius_start_mm
-    new_arc: Arc = replace(
-        arc,
-        radius_end_mm=arc.radius_start_mm + dr * t,
-        sweep_rad=arc.sweep_rad * t,
-        rise_mm=arc.rise_mm * t,
-        turns=max(1, math.ceil(abs(arc.sweep_rad * t) / (2.0 * math.pi) - 1e-12)),
-    )
+    new_arc = arc_part(arc, 0.0, t)
     return replace(move, end=end, arc=new_arc, length_mm=arc_length_mm(new_arc))
 
 

@@ -36,8 +36,8 @@ from planner.blend import (
     _poly_heading,
     _remap,
     _seg_dist,
+    joint_context,
     poly_bounds,
-    tolerance_per_move,
 )
 from planner.machine import MachineSpec
 from planner.program import Move, MoveKind, Program
@@ -186,12 +186,7 @@ def ease_joints(program: Program, machine: MachineSpec, only_where_quicker: bool
     n = len(moves)
     if n < 2 or not any(v > 0 for _, v in program.blend_tolerance):
         return program
-    tol = tolerance_per_move(program)
-    rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(len(program.axes), bool)
-    event_after = np.zeros(n, dtype=bool)
-    for ev in program.events:
-        if 0 <= ev.after_move < n:
-            event_after[ev.after_move] = True
+    tol, rotary, event_after = joint_context(program)
     made: dict[int, tuple[Move, Move, Move]] = {}
     for j in range(n - 1):
         a, b = moves[j], moves[j + 1]

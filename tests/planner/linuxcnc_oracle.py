@@ -10,12 +10,12 @@ import re
 import shutil
 import subprocess
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from planner.canon import canon_records
 from planner.program import Program
-from planner.tools import ToolTable
+from planner.tools import ToolTable, format_tbl
 
 RS274 = shutil.which("rs274")
 _CALL = re.compile(r"^\s*\d+\s+N\.+\s+([A-Z_0-9]+)\((.*)\)\s*$")
@@ -30,14 +30,9 @@ class OracleResult:
 
 def _tbl_for_rs274(tools: ToolTable) -> str:
     """The stand-alone rs274 reads its tool table in inches: millimetre tools are written so."""
-    lines = []
-    for t in tools:
-        words = [f"T{t.number}", f"P{t.pocket}"]
-        words += [f"{a}{v / 25.4:.9f}" for a, v in t.offsets_mm]
-        if t.diameter_mm:
-            words.append(f"D{t.diameter_mm / 25.4:.9f}")
-        lines.append(" ".join(words))
-    return "\n".join(lines) + "\n"
+    return format_tbl(ToolTable({t.number: replace(t, diameter_mm=t.diameter_mm / 25.4,
+                                                   offsets_mm=tuple((a, v / 25.4) for a, v in t.offsets_mm))
+                                 for t in tools}))
 
 
 def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:

@@ -21,6 +21,7 @@ from planner.interpreter import parse_program
 from planner.plan import plan_program
 from planner.program import MoveKind, Program
 from planner.tools import ToolTable, parse_tbl, read_tbl
+from tests.planner.linuxcnc_oracle import project_motion
 from tests.planner.motion_programs import paper_machine
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
@@ -50,17 +51,6 @@ def linuxcnc_motion(expected: Path) -> list[tuple]:
             out.append(("arc_feed", (v[0] * scale, v[1] * scale, v[2] * scale, v[3] * scale, v[4],
                                      v[5] * scale)))
             last = (v[0] * scale, v[1] * scale, v[5] * scale)
-    return out
-
-
-def project_motion(program: Program) -> list[tuple]:
-    out = []
-    for rec in canon_records(program):
-        a = rec["args"]
-        if rec["call"] == "arc_feed":
-            out.append(("arc_feed", (a[0], a[1], a[2], a[3], float(a[4]), a[5])))
-        else:
-            out.append((rec["call"], tuple(a[:3])))
     return out
 
 
