@@ -10,6 +10,7 @@ import re
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -26,6 +27,25 @@ class OracleResult:
     motion: list[tuple]          # ("straight_traverse" | "straight_feed", (x, y, z)) or arcs
     error: str                   # LinuxCNC's error text, "" when the program ran to its end
     error_block: str             # the block LinuxCNC printed after the error
+
+
+_EXPECTED_CALL = re.compile(r"^\s*(?:N\.+\s+)?([A-Z_]+)\((.*)\)\s*$")
+
+
+def canon_calls(text: str, stop_at: str | None = None) -> Iterator[tuple[str, list[str], float]]:
+    """(call, its arguments, mm per program unit) for each canonical call of LinuxCNC's output
+    (an ``expected`` file of its interpreter tests), up to a line holding ``stop_at``."""
+    scale = 1.0
+    for line in text.splitlines():
+        if stop_at is not None and stop_at in line:
+            return
+        m = _EXPECTED_CALL.match(line)
+        if not m:
+            continue
+        name, args = m.group(1), [a.strip() for a in m.group(2).split(",")] if m.group(2) else []
+        if name == "USE_LENGTH_UNITS":
+            scale = 25.4 if "INCHES" in args[0] else 1.0
+        yield name, args, scale
 
 
 def _tbl_for_rs274(tools: ToolTable) -> str:

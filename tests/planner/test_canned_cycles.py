@@ -5,7 +5,6 @@ refusal with its line, column and reason."""
 
 from __future__ import annotations
 
-import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -19,27 +18,19 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import EventKind, Program
+from tests.planner.linuxcnc_oracle import canon_calls
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 REFERENCES = sorted(p.parent for p in DATA.glob("g8*/*/*/expected"))
-_CALL = re.compile(r"^\s*(?:N\.+\s+)?([A-Z_]+)\((.*)\)\s*$")
 
 
 def linuxcnc_calls(expected: Path) -> list[tuple]:
     """Motion, dwell and spindle direction from LinuxCNC's canonical output, in mm; a spindle
     stop followed by a start is one change of direction, as the project writes it."""
-    scale = 1.0
     out: list[tuple] = []
-    for line in expected.read_text().splitlines():
-        if 'COMMENT("done")' in line:
-            break                    # what follows is M2's reset (LinuxCNC stops the spindle there)
-        m = _CALL.match(line)
-        if not m:
-            continue
-        name, args = m.group(1), [a.strip() for a in m.group(2).split(",")] if m.group(2) else []
-        if name == "USE_LENGTH_UNITS":
-            scale = 25.4 if "INCHES" in args[0] else 1.0
-        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
+    # what follows COMMENT("done") is M2's reset (LinuxCNC stops the spindle there)
+    for name, args, scale in canon_calls(expected.read_text(), stop_at='COMMENT("done")'):
+        if name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
             out.append((name.lower(), tuple(round(float(v) * scale, 3) for v in args[:3])))
         elif name == "DWELL":
             out.append(("dwell", float(args[0])))

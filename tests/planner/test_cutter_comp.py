@@ -6,7 +6,6 @@ the tool radius, touching it at every programmed end) at scales 0.001 to 1000.""
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -21,27 +20,19 @@ from planner.interpreter import parse_program
 from planner.plan import plan_program
 from planner.program import MoveKind, Program
 from planner.tools import ToolTable, parse_tbl, read_tbl
-from tests.planner.linuxcnc_oracle import project_motion
+from tests.planner.linuxcnc_oracle import canon_calls, project_motion
 from tests.planner.motion_programs import paper_machine
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
-_CALL = re.compile(r"^\s*(?:N\.+\s+)?([A-Z_]+)\((.*)\)\s*$")
 
 
 def linuxcnc_motion(expected: Path) -> list[tuple]:
     """LinuxCNC's traverses, feeds and arcs (end, centre, turn, normal end) in mm, without the
     zero-length moves it writes (a Program has none)."""
-    scale = 1.0
     out: list[tuple] = []
     last: tuple | None = (0.0, 0.0, 0.0)
-    for line in expected.read_text().splitlines():
-        m = _CALL.match(line)
-        if not m:
-            continue
-        name, args = m.group(1), [a.strip() for a in m.group(2).split(",")] if m.group(2) else []
-        if name == "USE_LENGTH_UNITS":
-            scale = 25.4 if "INCHES" in args[0] else 1.0
-        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
+    for name, args, scale in canon_calls(expected.read_text()):
+        if name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
             end = tuple(float(v) * scale for v in args[:3])
             if end != last:
                 out.append((name.lower(), end))
