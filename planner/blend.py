@@ -384,7 +384,7 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
     the same centre, p <= 0.9 P smaller in radius, and back, instead of stepping to 1/R where
     the arc meets each line (where the jerk limit allows only sqrt(J Ts R): 4.5 mm/s on a 2 mm
     fillet at 10,000 mm/s^3). The new path stays within P of the programmed one (checked on
-    samples). Made only where it cannot be slower, as corner blends."""
+    samples). Made only where its speed is at least what the sharp plan reaches on the arc."""
     moves = program.moves
     n = len(moves)
     if n < 3 or not any(v > 0 for _, v in program.blend_tolerance):
@@ -518,6 +518,19 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
     return _remap(program, new, spans)
 
 
+def blend_speed(move: Move, lim: Any) -> float:
+    """The speed a blend, fillet or transition allows (``lookahead.move_limits``' in-plane rules
+    for blends, every axis of its plane counted), its feed and the path limit (a LimitSet)."""
+    b = move.blend
+    assert b is not None
+    in_plane = (np.abs(b.u1) + np.abs(b.n1)) > 1e-12
+    a_pl = min(float(lim.a_axis[in_plane].min()), lim.a_path)
+    j_pl = min(float(lim.j_axis[in_plane].min()), lim.j_path)
+    v_b = float(_blend_caps_k(np.array([max(b.kappa_max, 1e-12)]), np.array([max(b.sharpness, 1e-12)]),
+                              np.array([a_pl]), np.array([j_pl]))[0])
+    return min(v_b, move.feed_mm_s, lim.v_path)
+
+
 def _fillets_not_slower(program: Program, machine: MachineSpec, blends: dict[int, Move]) -> dict[int, Move]:
     """The fillets whose speed is at least what the sharp plan reaches on their arc."""
     from planner.lookahead import LimitSet
@@ -526,26 +539,10 @@ def _fillets_not_slower(program: Program, machine: MachineSpec, blends: dict[int
     plan = plan_program(program, machine)
     ve, vpeak = np.asarray(plan.ve), np.asarray(plan.vpeak)
     lim = LimitSet.from_machine(machine)
-    keep: dict[int, Move] = {}
-    for k, mv in blends.items():
-        b = mv.blend
-        assert b is not None
-        in_plane = (np.abs(b.u1) + np.abs(b.n1)) > 1e-12
-        a_pl = min(float(lim.a_axis[in_plane].min()), lim.a_path)
-        j_pl = min(float(lim.j_axis[in_plane].min()), lim.j_path)
-        v_b = float(_blend_caps_k(np.array([b.kappa_max]), np.array([b.sharpness]), np.array([a_pl]),
-                                  np.array([j_pl]))[0])
-        v_b = min(v_b, mv.feed_mm_s, lim.v_path)
-        # the sharp plan crosses the fillet's joints at no more than sqrt(J Ts R) (the curvature
-        # step) and its arc at up to its peak; the blend holds v_b over the arc and the short
-        # stretches c_x of the lines beside it: kept where v_b is at least the arc's peak
-        if v_b >= max(vpeak[k], ve[k - 1], ve[k]):
-            keep[k] = mv
-    return keep
-
-
-def moves_end(program: Program, i: int) -> np.ndarray:
-    return np.asarray(program.moves[i].end, dtype=float)
+    # the sharp plan crosses a fillet's joints at no more than sqrt(J Ts R) (the curvature step)
+    # and its arc at up to its peak; the blend holds one speed over the arc and the short
+    # stretches c_x of the lines beside it: kept where that speed is at least the arc's peak
+    return {k: mv for k, mv in blends.items() if blend_speed(mv, lim) >= max(vpeak[k], ve[k - 1], ve[k])}
 
 
 def _ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray) -> np.ndarray:

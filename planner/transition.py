@@ -32,12 +32,11 @@ from planner.blend import (
     MIN_LINE_MM,
     Blend,
     _arc_distance,
-    _blend_caps_k,
     _poly_heading,
     _remap,
     _seg_dist,
+    blend_speed,
     joint_context,
-    poly_bounds,
 )
 from planner.machine import MachineSpec
 from planner.program import Move, MoveKind, Program
@@ -243,19 +242,7 @@ def _quicker(program: Program, machine: MachineSpec, made: dict[int, tuple[Move,
     plan = plan_program(program, machine)
     ve = np.asarray(plan.ve)
     lim = LimitSet.from_machine(machine)
-    keep = {}
-    for j, (head, mv, tail) in made.items():
-        b = mv.blend
-        assert b is not None and b.poly is not None
-        in_plane = (np.abs(b.u1) + np.abs(b.n1)) > 1e-12
-        a_pl = min(float(lim.a_axis[in_plane].min()), lim.a_path)
-        j_pl = min(float(lim.j_axis[in_plane].min()), lim.j_path)
-        kmax, dkmax = poly_bounds(b.poly, mv.length_mm)
-        v_b = float(_blend_caps_k(np.array([max(kmax, 1e-12)]), np.array([max(dkmax, 1e-12)]),
-                                  np.array([a_pl]), np.array([j_pl]))[0])
-        if min(v_b, mv.feed_mm_s, lim.v_path) > ve[j]:
-            keep[j] = (head, mv, tail)
-    return keep
+    return {j: trio for j, trio in made.items() if blend_speed(trio[1], lim) > ve[j]}
 
 
 def _apply(program: Program, made: dict[int, tuple[Move, Move, Move]]) -> Program:
