@@ -164,16 +164,16 @@ class CutterComp:
             self.dequeue()       # the queued moves stay as they are; no second error from them
             raise
         fa, sa = self.axes
-        ends = host.ends
+        out = host.out
         for q in self.queue:
-            moved = ends[q.index].copy()
+            moved = out.end(q.index).copy()
             moved[fa], moved[sa] = x, y
-            ends[q.index] = moved
+            out.replace(q.index, moved, out.record(q.index)[3], out.arcs.get(q.index))
         for q in self.queue:
             self._rebuild(host, q)
-        host.pos = ends[-1]
+        host.pos = out.last_end()
         for q in reversed(self.queue):
-            if host.recs[q.index][3] <= host.zero_length:
+            if out.record(q.index)[3] <= host.zero_length:
                 host.drop_move(q.index)
         self.queue.clear()
         self.endpoint = (x, y)
@@ -181,12 +181,11 @@ class CutterComp:
     def _check_moved_ends(self, host: _Interpreter, x: float, y: float) -> None:
         """LinuxCNC's gouge checks: a line must not turn back, an arc must not grow."""
         fa, sa = self.axes
-        ends = host.ends
         ep = self.endpoint
         # LinuxCNC adds this to the sweep (rad) as it is: 0.0254 in mm programs, 0.001 in inch
         tol = 0.001 if host.inch else _ARC_BACK_MM
         for q in self.queue:
-            end = ends[q.index]
+            end = host.out.end(q.index)
             if q.center is not None:
                 cx, cy = q.center
                 r1 = math.hypot(end[fa] - cx, end[sa] - cy)
@@ -201,20 +200,20 @@ class CutterComp:
                         raise BlockError("arc move in a concave corner cannot be reached by the tool "
                                          "without gouging (the tool is too big for this corner)", "G")
             elif ep is not None and q.dx * (x - ep[0]) + q.dy * (y - ep[1]) < 0.0:
-                what = "rapid" if host.recs[q.index][1] is MoveKind.RAPID else "straight feed"
+                what = "rapid" if host.out.record(q.index)[1] is MoveKind.RAPID else "straight feed"
                 raise BlockError(f"{what} in a concave corner cannot be reached by the tool without "
                                  "gouging (the corner's sides are shorter than the tool needs)", "G")
 
     def _rebuild(self, host: _Interpreter, q: _Queued) -> None:
         i = q.index
-        start = host.ends[i - 1] if i else list(host.start)
-        end = host.ends[i]
-        line_no, kind, feed, _length, _arc, stop = host.recs[i]
+        out = host.out
+        start = out.end(i - 1) if i else list(host.start)
+        end = out.end(i)
         if q.center is None:
-            host.recs[i] = (line_no, kind, feed, host.path_length(start, end), None, stop)
+            out.replace(i, end, host.path_length(start, end), None)
         else:
             arc, length = self._arc_record(host, start, end, q.center, q.turn, q.sweep0)
-            host.recs[i] = (line_no, kind, feed, length, arc, stop)
+            out.replace(i, end, length, arc)
 
     def _arc_record(self, host: _Interpreter, start: list[float], end: list[float],
                     center: tuple[float, float], turn: int, sweep0: float = 0.0) -> tuple:
@@ -248,7 +247,7 @@ class CutterComp:
         host.emit(end, MoveKind.RAPID if rapid else MoveKind.LINE, math.inf if rapid else feed, length,
                   None, line_no, fixed_feed=True)
         if queued:
-            self.queue.append(_Queued(len(host.ends) - 1, dx, dy))
+            self.queue.append(_Queued(len(host.out) - 1, dx, dy))
 
     def _arc(self, host: _Interpreter, end: list[float], center: tuple[float, float], turn: int,
              feed: float, line_no: int, sweep0: float, queued: bool = True) -> None:
@@ -260,7 +259,7 @@ class CutterComp:
             return
         host.emit(end, MoveKind.ARC, feed, length, arc, line_no, fixed_feed=True)
         if queued:
-            self.queue.append(_Queued(len(host.ends) - 1, 0.0, 0.0, center, turn, sweep0))
+            self.queue.append(_Queued(len(host.out) - 1, 0.0, 0.0, center, turn, sweep0))
 
     def _feed(self, host: _Interpreter, rapid: bool, programmed_mm: float) -> float:
         if rapid:

@@ -44,6 +44,7 @@ from planner.errors import BlockError as _BlockError
 from planner.errors import PlannerError, ProgramError, SourceError
 from planner.gcpause import gc_paused
 from planner.lexer import LexError, Params, compact, evaluate_brackets, original_column, read_line
+from planner.movestore import MoveBuffer
 from planner.oword import Statement, Structure, StructureError, has_control_flow, scan
 from planner.program import (
     Arc,
@@ -52,7 +53,6 @@ from planner.program import (
     MoveKind,
     Program,
     _make_arc,
-    _make_move,
     spiral_length_mm,
 )
 from planner.tools import Tool, ToolTable
@@ -304,10 +304,8 @@ class _Interpreter:
             + "".join(f"(?:{a}({_FAST_NUM}))?" for a in "IJKRF")
             + r"\Z"
         )
-        # Output, as flat lists (Move objects are built once at the end).
-        self.ends: list[list[float]] = []  # end position of each move (never mutated after emit)
-        # per move: (line, kind, feed_mm_s, length_mm, arc, exact_stop)
-        self.recs: list[tuple] = []
+        # Output: columns, packed as they come (planner.movestore)
+        self.out = MoveBuffer(self.start)
         self.offset_changes: list[tuple[int, tuple[float, ...]]] = [(0, self.offset)]  # (first move, offset)
         self.events: list[Event] = []
         self.work_code = 540
@@ -728,9 +726,8 @@ class _Interpreter:
                     feed = self.feed_mm_s
                     if feed <= 0.0:
                         raise _BlockError(_ZERO_FEED, "G")
-                self.ends.append(target)
-                self.recs.append((line_no, _RAPID if motion == 0 else _LINE, feed, length, None,
-                                  self.exact_stop))
+                self.out.append(target, line_no, 0 if motion == 0 else 1, feed, length, None,
+                                self.exact_stop)
                 self.pos = target
             else:
                 self.straight(target, motion == 0, line_no)
@@ -791,7 +788,7 @@ class _Interpreter:
 
     def note_modal(self) -> None:
         text = self.modal_text()
-        first = len(self.recs)
+        first = len(self.out)
         if self.modal_changes[-1][1] == text:
             return
         if self.modal_changes[-1][0] == first:
@@ -844,7 +841,7 @@ class _Interpreter:
                      "spindle_rpm", "spindle_dir", "coolant", "rotation")
 
     def note_blend_tolerance(self) -> None:
-        first = len(self.recs)
+        first = len(self.out)
         for changes, value in ((self.blend_changes, self.blend_tol_mm),
                                (self.naive_changes, self.naive_cam_mm)):
             if changes[-1][1] == value:
@@ -879,7 +876,7 @@ class _Interpreter:
         self.set_offset()
         self.note_blend_tolerance()
         self.params.numbered[_P_SYSTEM] = float(_SYSTEMS.index(self.work_code) + 1)
-        after = len(self.ends) - 1
+        after = len(self.out) - 1
         if (self.spindle_dir, self.spindle_rpm) != spindle_before:
             self.events.append(Event(EventKind.SPINDLE, line_no, after, self.spindle_dir * self.spindle_rpm,
                                      "M72: spindle as saved"))
@@ -994,7 +991,7 @@ class _Interpreter:
             self.tlo = tlo
         offset = tuple(w + g + t for w, g, t in zip(self.work, self.g92, self.tlo))
         self.offset = offset
-        first = len(self.recs)
+        first = len(self.out)
         self.offset_parts.append((first, self.current_line, _SYSTEMS.index(self.work_code) + 1, self.work,
                                   self.g92, self.tlo, self.rotation))
         if self.offset_changes[-1][0] == first:
@@ -1003,25 +1000,14 @@ class _Interpreter:
             self.offset_changes.append((first, offset))
 
     def build(self, line_count: int) -> Program:
-        n_moves = len(self.ends)
-        positions = np.empty((n_moves + 1, self.n))
-        positions[0] = self.start
-        if n_moves:
-            positions[1:] = self.ends
-        positions.setflags(write=False)
-        rows = list(positions)  # read-only row views: move i runs rows[i] -> rows[i + 1]
-        if n_moves:
-            lines, kinds, feeds, lengths, arcs, stops = zip(*self.recs)
-            moves = tuple(map(_make_move, range(n_moves), lines, kinds, rows[:-1], rows[1:], feeds, lengths,
-                              arcs, stops))
-        else:
-            moves = ()
+        moves = self.out.store()
+        n_moves = len(moves)
         offsets = np.empty((n_moves, self.n))
         changes = self.offset_changes + [(n_moves, None)]
         for (first, off), (nxt, _) in zip(changes[:-1], changes[1:]):
             offsets[first:nxt] = off
         offsets.setflags(write=False)
-        start = positions[0].copy()
+        start = np.array(self.start, dtype=float)
         start.setflags(write=False)
         return Program(
             name=self.name,
@@ -1248,7 +1234,7 @@ class _Interpreter:
             raise _BlockError("H word with no G43 or G43.2 to use it", "H")
 
         # ---- execute in RS274/NGC order
-        after = len(self.ends) - 1
+        after = len(self.out) - 1
         ev = self.events
         m11 = mgroups.get(11)
         if m11 is not None:              # M70-M73 before the block's own changes
@@ -1445,7 +1431,7 @@ class _Interpreter:
         if m4 is not None:
             self.comp.stop(self)
             kind = _STOP_EVENTS[m4]
-            ev.append(Event(kind, line_no, len(self.ends) - 1, 0.0, f"M{m4:02d}"))
+            ev.append(Event(kind, line_no, len(self.out) - 1, 0.0, f"M{m4:02d}"))
             if kind is EventKind.END:
                 self.ended = True
         self.assign(assigns)
@@ -1457,7 +1443,7 @@ class _Interpreter:
             kind, text = m.group(1).upper(), m.group(2)
             if kind != "MSG":
                 text = _PARAM_TEXT_RE.sub(self.param_text, text)
-            self.events.append(Event(EventKind.MESSAGE, line_no, len(self.ends) - 1, 0.0, text.strip()
+            self.events.append(Event(EventKind.MESSAGE, line_no, len(self.out) - 1, 0.0, text.strip()
                                      if kind == "MSG" else text))
 
     def param_text(self, m: re.Match[str]) -> str:
@@ -1546,16 +1532,14 @@ class _Interpreter:
              line_no: int, fixed_feed: bool = False) -> None:
         if self.feed_mode == 930 and kind is not _RAPID and not fixed_feed:
             feed = length * self.inverse_f / 60.0      # the move takes 1/F minutes
-        self.ends.append(target)
-        self.recs.append((line_no, kind, feed, length, arc, self.exact_stop))
+        self.out.append(target, line_no, kind, feed, length, arc, self.exact_stop)
         self.pos = target
 
     def drop_move(self, i: int) -> None:
         """Remove move ``i`` (cutter compensation cut it to nothing); what refers to later moves
         by index moves down one."""
-        del self.ends[i]
-        del self.recs[i]
-        self.pos = self.ends[-1] if self.ends else list(self.start)
+        self.out.delete(i)
+        self.pos = self.out.last_end()
         self.events[:] = [replace(e, after_move=e.after_move - 1) if e.after_move >= i else e
                           for e in self.events]
         self.offset_changes[:] = [(f - 1 if f > i else f, o) for f, o in self.offset_changes]
@@ -1664,7 +1648,7 @@ class _Interpreter:
             self.straight(target, rapid, line_no)
 
         def event(kind: EventKind, value: float, text: str) -> None:
-            self.events.append(Event(kind, line_no, len(self.ends) - 1, value, text))
+            self.events.append(Event(kind, line_no, len(self.out) - 1, value, text))
 
         if old_cc < r:                         # below the R plane: straight up to it first
             here = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
@@ -1893,7 +1877,7 @@ class _Interpreter:
             raise _BlockError(str(exc).split(": ", 1)[-1], "P") from None
         self.tool_sets.append(tool)
         text = f"G10 L{l_word}: {tool.label()} offsets set"
-        self.events.append(Event(EventKind.TOOL_DATA, line_no, len(self.ends) - 1,
+        self.events.append(Event(EventKind.TOOL_DATA, line_no, len(self.out) - 1,
                                  float(len(self.tool_sets) - 1), text))
 
     def set_g92(self, g92: tuple[float, ...], on: bool) -> None:
@@ -1909,7 +1893,7 @@ class _Interpreter:
         the program passes this point (LinuxCNC keeps them in its var file)."""
         num = self.params.numbered
         self.parameter_sets.append({p: num.get(p, 0.0) for p in sorted(PERSISTENT_PARAMETERS)})
-        self.events.append(Event(EventKind.OFFSETS, line_no, len(self.ends) - 1,
+        self.events.append(Event(EventKind.OFFSETS, line_no, len(self.out) - 1,
                                  float(len(self.parameter_sets) - 1), text))
 
     def plane_axes(self) -> tuple:

@@ -175,6 +175,6 @@ def test_missing_program_end_is_accepted():
 
 def test_empty_program():
     p = parse_program("")
-    assert p.moves == () and p.events == ()
+    assert len(p.moves) == 0 and p.events == ()
     np.testing.assert_array_equal(p.end_position, [0, 0, 0])
     assert math.isclose(len(p.move_offsets), 0)

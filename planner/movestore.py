@@ -1,0 +1,304 @@
+"""The moves of a program as columns: about 50 bytes a move instead of a Python object each.
+
+A CAM finishing program has millions of short G01 lines; one ``Move`` object per line costs
+about 700 bytes and a microsecond to make. ``MoveStore`` keeps the joint positions as one
+(n + 1, d) array (move i runs from row i to row i + 1, as a path does) and line, kind, feed,
+length and exact stop as one column each; the few arcs and corner blends sit in dictionaries
+by move index. It is a read-only ``Sequence[Move]``: indexing and iteration make ``Move``
+objects on demand (equal, field for field, to the ones the interpreter used to keep), and a
+slice is a view that keeps the moves' own indices, as a slice of a tuple of moves does.
+Code that needs speed reads the columns (``columns``) instead.
+
+``MoveBuffer`` is where the interpreter writes them: one move at a time into short lists,
+or a block of moves at a time as arrays (the vectorised reading of plain coordinate lines),
+packed into array chunks as it goes so that its memory is the columns' too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any, overload
+
+import numpy as np
+
+from planner.program import Arc, Move, MoveKind, _make_move
+
+__all__ = ["MoveBuffer", "MoveColumns", "MoveStore"]
+
+_KINDS = tuple(MoveKind)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class MoveColumns:
+    """Rows ``index[0] ..`` of a store as arrays (read-only views, no copies)."""
+
+    first: int  # global index of row 0
+    start: np.ndarray  # (n, d)
+    end: np.ndarray  # (n, d)
+    line: np.ndarray  # (n,) int32
+    kind: np.ndarray  # (n,) int8
+    feed: np.ndarray  # (n,) mm/s, inf for rapids
+    length: np.ndarray  # (n,) mm
+    exact_stop: np.ndarray  # (n,) bool
+    arc_rows: np.ndarray  # local rows that are arcs, ascending
+    arcs: tuple[Arc, ...]  # their arcs
+    blend_rows: np.ndarray  # local rows that are corner blends, ascending
+    blends: tuple[Any, ...]  # their planner.blend.Blend
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
+class MoveStore(Sequence[Move]):
+    """Moves ``base .. base + n - 1`` over shared columns (see the module docstring)."""
+
+    __slots__ = ("_pos", "_line", "_kind", "_feed", "_length", "_stop", "_arcs", "_arc_keys",
+                 "_blends", "_blend_keys", "_base", "_n")
+
+    def __init__(self, positions: np.ndarray, line: np.ndarray, kind: np.ndarray, feed: np.ndarray,
+                 length: np.ndarray, exact_stop: np.ndarray, arcs: dict[int, Arc] | None = None,
+                 blends: dict[int, Any] | None = None, base: int = 0) -> None:
+        n = int(line.shape[0])
+        if positions.shape[0] != n + 1:
+            raise ValueError(f"{n} moves need {n + 1} positions, got {positions.shape[0]}")
+        self._pos = _readonly(positions)
+        self._line = _readonly(line)
+        self._kind = _readonly(kind)
+        self._feed = _readonly(feed)
+        self._length = _readonly(length)
+        self._stop = _readonly(exact_stop)
+        self._arcs = arcs or {}
+        self._arc_keys = np.array(sorted(self._arcs), dtype=np.int64)
+        self._blends = blends or {}
+        self._blend_keys = np.array(sorted(self._blends), dtype=np.int64)
+        self._base = base
+        self._n = n
+
+    @staticmethod
+    def from_moves(moves: Sequence[Move], start_position: np.ndarray) -> MoveStore:
+        """A store of moves made one by one (each move starting where the one before ends)."""
+        n = len(moves)
+        d = int(np.asarray(start_position).shape[0])
+        pos = np.empty((n + 1, d))
+        pos[0] = moves[0].start if n else start_position
+        if n:
+            pos[1:] = [m.end for m in moves]
+        return MoveStore(
+            pos,
+            np.fromiter((m.line for m in moves), np.int32, n),
+            np.fromiter((int(m.kind) for m in moves), np.int8, n),
+            np.fromiter((m.feed_mm_s for m in moves), float, n),
+            np.fromiter((m.length_mm for m in moves), float, n),
+            np.fromiter((m.exact_stop for m in moves), bool, n),
+            {i: m.arc for i, m in enumerate(moves) if m.arc is not None},
+            {i: m.blend for i, m in enumerate(moves) if m.blend is not None},
+        )
+
+    def __len__(self) -> int:
+        return self._n
+
+    def _view(self, a: int, b: int) -> MoveStore:
+        view = object.__new__(MoveStore)
+        view._pos = self._pos[a:b + 1]
+        view._line = self._line[a:b]
+        view._kind = self._kind[a:b]
+        view._feed = self._feed[a:b]
+        view._length = self._length[a:b]
+        view._stop = self._stop[a:b]
+        view._arcs, view._arc_keys = self._arcs, self._arc_keys
+        view._blends, view._blend_keys = self._blends, self._blend_keys
+        view._base = self._base + a
+        view._n = max(0, b - a)
+        return view
+
+    @overload
+    def __getitem__(self, i: int) -> Move: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> MoveStore: ...
+
+    def __getitem__(self, i: int | slice) -> Move | MoveStore:
+        if isinstance(i, slice):
+            a, b, step = i.indices(self._n)
+            if step != 1:
+                raise ValueError("a slice of moves takes every move (step 1)")
+            return self._view(a, max(a, b))
+        n = self._n
+        if i < 0:
+            i += n
+        if not 0 <= i < n:
+            raise IndexError("move index out of range")
+        return self._make(i)
+
+    def _make(self, i: int) -> Move:
+        g = self._base + i
+        m = _make_move(g, int(self._line[i]), _KINDS[self._kind[i]], self._pos[i], self._pos[i + 1],
+                       float(self._feed[i]), float(self._length[i]), self._arcs.get(g), bool(self._stop[i]))
+        if self._blends:
+            blend = self._blends.get(g)
+            if blend is not None:
+                object.__setattr__(m, "blend", blend)
+        return m
+
+    def __iter__(self) -> Iterator[Move]:
+        pos = self._pos
+        arcs, blends = self._arcs, self._blends
+        base = self._base
+        kinds = _KINDS
+        for i, (line, kind, feed, length, stop) in enumerate(zip(
+                self._line.tolist(), self._kind.tolist(), self._feed.tolist(), self._length.tolist(),
+                self._stop.tolist())):
+            g = base + i
+            m = _make_move(g, line, kinds[kind], pos[i], pos[i + 1], feed, length, arcs.get(g), stop)
+            if blends:
+                blend = blends.get(g)
+                if blend is not None:
+                    object.__setattr__(m, "blend", blend)
+            yield m
+
+    def __repr__(self) -> str:
+        return f"MoveStore({self._n} moves from {self._base})"
+
+    @property
+    def positions(self) -> np.ndarray:
+        """(n + 1, d): where each move starts, then where the last one ends."""
+        return self._pos
+
+    def columns(self) -> MoveColumns:
+        """This store's rows as arrays (no Move objects)."""
+        lo, hi = self._base, self._base + self._n
+        ka = self._arc_keys[np.searchsorted(self._arc_keys, lo):np.searchsorted(self._arc_keys, hi)]
+        kb = self._blend_keys[np.searchsorted(self._blend_keys, lo):np.searchsorted(self._blend_keys, hi)]
+        return MoveColumns(lo, self._pos[:-1], self._pos[1:], self._line, self._kind, self._feed,
+                           self._length, self._stop, ka - lo, tuple(self._arcs[k] for k in ka.tolist()),
+                           kb - lo, tuple(self._blends[k] for k in kb.tolist()))
+
+
+class MoveBuffer:
+    """Moves as the interpreter makes them, packed into array chunks as it goes."""
+
+    CHUNK = 4096  # moves kept as Python lists before they are packed
+
+    def __init__(self, start: Sequence[float]) -> None:
+        self.start = [float(v) for v in start]
+        self._chunks: list[tuple[np.ndarray, ...]] = []  # (ends, line, kind, feed, length, stop)
+        self._packed = 0
+        self._ends: list[list[float]] = []
+        self._recs: list[tuple[int, int, float, float, bool]] = []
+        self.arcs: dict[int, Arc] = {}
+
+    def __len__(self) -> int:
+        return self._packed + len(self._ends)
+
+    def append(self, target: list[float], line: int, kind: int, feed: float, length: float,
+               arc: Arc | None, exact_stop: bool) -> None:
+        if arc is not None:
+            self.arcs[len(self)] = arc
+        self._ends.append(target)
+        self._recs.append((line, kind, feed, length, exact_stop))
+        if len(self._ends) >= self.CHUNK:
+            self._pack()
+
+    def extend(self, ends: np.ndarray, line: np.ndarray, kind: int, feed: np.ndarray,
+               length: np.ndarray, exact_stop: bool) -> None:
+        """A block of straight moves (no arcs) at once."""
+        self._pack()
+        k = int(ends.shape[0])
+        if k:
+            self._chunks.append((np.asarray(ends, float), line.astype(np.int32, copy=False),
+                                 np.full(k, kind, np.int8), np.asarray(feed, float),
+                                 np.asarray(length, float), np.full(k, exact_stop, bool)))
+            self._packed += k
+
+    def _pack(self) -> None:
+        if not self._ends:
+            return
+        line, kind, feed, length, stop = zip(*self._recs)
+        self._chunks.append((np.array(self._ends, float).reshape(len(self._ends), len(self.start)),
+                             np.array(line, np.int32), np.array(kind, np.int8), np.array(feed, float),
+                             np.array(length, float), np.array(stop, bool)))
+        self._packed += len(self._ends)
+        self._ends, self._recs = [], []
+
+    def _locate(self, i: int) -> tuple[tuple[np.ndarray, ...], int]:
+        """The packed chunk holding move ``i`` (< the packed count) and its row there."""
+        first = 0
+        for chunk in self._chunks:
+            k = chunk[1].shape[0]
+            if i < first + k:
+                return chunk, i - first
+            first += k
+        raise IndexError(i)
+
+    def end(self, i: int) -> list[float]:
+        """Where move ``i`` ends."""
+        if i >= self._packed:
+            return self._ends[i - self._packed]
+        chunk, row = self._locate(i)
+        return chunk[0][row].tolist()
+
+    def record(self, i: int) -> tuple[int, MoveKind, float, float, Arc | None, bool]:
+        """(line, kind, feed, length, arc, exact stop) of move ``i``."""
+        if i >= self._packed:
+            line, kind, feed, length, stop = self._recs[i - self._packed]
+        else:
+            chunk, row = self._locate(i)
+            line, kind, feed, length, stop = (c[row].item() for c in chunk[1:])
+        return line, _KINDS[kind], feed, length, self.arcs.get(i), stop
+
+    def replace(self, i: int, end: list[float], length: float, arc: Arc | None) -> None:
+        """Move ``i`` ends elsewhere (cutter compensation moved its end point)."""
+        if arc is None:
+            self.arcs.pop(i, None)
+        else:
+            self.arcs[i] = arc
+        if i >= self._packed:
+            k = i - self._packed
+            self._ends[k] = end
+            line, kind, feed, _, stop = self._recs[k]
+            self._recs[k] = (line, kind, feed, length, stop)
+        else:
+            chunk, row = self._locate(i)
+            chunk[0][row] = end
+            chunk[4][row] = length
+
+    def last_end(self) -> list[float]:
+        """Where the last move ends (the start when there is none)."""
+        if self._ends:
+            return self._ends[-1]
+        if self._chunks:
+            return self._chunks[-1][0][-1].tolist()
+        return list(self.start)
+
+    def delete(self, i: int) -> None:
+        """Remove move ``i``; the moves after it move down one."""
+        if i >= self._packed:
+            del self._ends[i - self._packed]
+            del self._recs[i - self._packed]
+        else:
+            cols = self._columns()
+            self._chunks = [tuple(np.delete(c, i, axis=0) for c in cols)]
+            self._packed -= 1
+        self.arcs = {(k - 1 if k > i else k): a for k, a in self.arcs.items() if k != i}
+
+    def _columns(self) -> tuple[np.ndarray, ...]:
+        self._pack()
+        d = len(self.start)
+        if not self._chunks:
+            return (np.zeros((0, d)), np.zeros(0, np.int32), np.zeros(0, np.int8), np.zeros(0),
+                    np.zeros(0), np.zeros(0, bool))
+        if len(self._chunks) == 1:
+            return self._chunks[0]
+        return tuple(np.concatenate(parts) for parts in zip(*self._chunks))
+
+    def store(self) -> MoveStore:
+        """The moves as a store (the buffer is emptied)."""
+        ends, line, kind, feed, length, stop = self._columns()
+        self._chunks = []
+        pos = np.empty((ends.shape[0] + 1, len(self.start)))
+        pos[0] = self.start
+        pos[1:] = ends
+        return MoveStore(pos, line, kind, feed, length, stop, self.arcs)
