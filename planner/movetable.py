@@ -10,13 +10,15 @@ and fall back to the move's own exact ``evaluate``.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from planner.blend import pair_frames, pair_positions
-from planner.program import Move, MoveKind
+from planner.movestore import MoveStore
+from planner.program import Arc, Move, MoveKind
 
 __all__ = ["MoveTable", "concat_tables", "contour_error", "take_rows"]
 
@@ -59,7 +61,6 @@ SPIRAL_POLY_MAX_RATIO = 1e-2  # |dr| / r up to which the polynomial is exact to 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class MoveTable:
-    moves: tuple[Move, ...]
     index: np.ndarray  # (n,) int64 global move index
     line: np.ndarray  # (n,) int32
     kind: np.ndarray  # (n,) int8 MoveKind
@@ -98,7 +99,13 @@ class MoveTable:
     bl_dk: np.ndarray  # largest |dkappa/ds| of a blend (1/mm^2)
 
     @staticmethod
-    def from_moves(moves: tuple[Move, ...] | list[Move], n_axes: int) -> MoveTable:
+    def from_moves(moves: Sequence[Move], n_axes: int) -> MoveTable:
+        if isinstance(moves, MoveStore):
+            c = moves.columns()
+            n = len(moves)
+            return MoveTable._build(np.arange(c.first, c.first + n, dtype=np.int64), c.line, c.kind,
+                                    c.start, c.end, c.length, c.feed, c.exact_stop, c.arc_rows, c.arcs,
+                                    c.blend_rows, c.blends, n_axes)
         moves = tuple(moves)
         n = len(moves)
         if n:
@@ -109,22 +116,42 @@ class MoveTable:
             end = np.zeros((0, n_axes))
         rows = [(m.index, m.line, int(m.kind), m.length_mm, m.feed_mm_s, m.exact_stop) for m in moves]
         cols = list(zip(*rows)) if rows else [()] * 6
-        arc_vals = np.zeros((n, 10))
+        arc_rows = [i for i, m in enumerate(moves) if m.arc is not None]
+        blend_rows = [i for i, m in enumerate(moves) if m.blend is not None]
+        return MoveTable._build(np.asarray(cols[0], dtype=np.int64), np.asarray(cols[1], dtype=np.int32),
+                                np.asarray(cols[2], dtype=np.int8), start, end,
+                                np.asarray(cols[3], dtype=float), np.asarray(cols[4], dtype=float),
+                                np.asarray(cols[5], dtype=bool), np.asarray(arc_rows, dtype=np.int64),
+                                tuple(moves[i].arc for i in arc_rows), np.asarray(blend_rows, dtype=np.int64),
+                                tuple(moves[i].blend for i in blend_rows), n_axes)
+
+    @staticmethod
+    def _build(index: np.ndarray, line: np.ndarray, kind: np.ndarray, start: np.ndarray, end: np.ndarray,
+               length: np.ndarray, feed: np.ndarray, exact_stop: np.ndarray, arc_rows: np.ndarray,
+               arcs: tuple[Arc | None, ...], blend_rows: np.ndarray, blends: tuple[Any, ...],
+               n_axes: int) -> MoveTable:
+        n = int(length.shape[0])
         is_arc = np.zeros(n, dtype=bool)
-        for i, m in enumerate(moves):
-            a = m.arc
-            if a is not None:
-                is_arc[i] = True
-                arc_vals[i] = (a.first_axis, a.second_axis, a.normal_axis, a.center[0], a.center[1],
-                               a.radius_start_mm, a.radius_end_mm, a.start_angle_rad, a.sweep_rad,
-                               a.rise_mm)
+        if arc_rows.size:
+            arc_vals = np.zeros((n, 10))
+            is_arc[arc_rows] = True
+            arc_vals[arc_rows] = [(a.first_axis, a.second_axis, a.normal_axis, a.center[0], a.center[1],
+                                   a.radius_start_mm, a.radius_end_mm, a.start_angle_rad, a.sweep_rad,
+                                   a.rise_mm) for a in arcs if a is not None]
+            first = arc_vals[:, 0].astype(np.int64)
+            second = arc_vals[:, 1].astype(np.int64)
+            normal = np.where(is_arc, arc_vals[:, 2], -1).astype(np.int64)
+        else:
+            # no arc: the arc columns take no memory (one row repeated, stride 0), as below
+            arc_vals = np.broadcast_to(np.zeros((1, 10)), (n, 10))
+            first = second = np.broadcast_to(np.zeros(1, np.int64), (n,))
+            normal = np.broadcast_to(np.full(1, -1, np.int64), (n,))
         r0, r1 = arc_vals[:, 5], arc_vals[:, 6]
-        length = np.asarray(cols[3], dtype=float)
         spiral = is_arc & (r0 != r1)
-        poly = np.zeros((n, 8))
-        poly_ok = np.zeros(n, dtype=bool)
         k = np.nonzero(spiral)[0]
         if k.size:
+            poly = np.zeros((n, 8))
+            poly_ok = np.zeros(n, dtype=bool)
             ratio = np.abs(r1[k] - r0[k]) / np.minimum(r0[k], r1[k])
             poly_ok[k] = ratio <= SPIRAL_POLY_MAX_RATIO
             kk = np.repeat(k, 8)
@@ -132,14 +159,15 @@ class MoveTable:
             t = _spiral_newton(r0[kk], r1[kk], arc_vals[kk, 8], arc_vals[kk, 9], length[kk], u)
             dev = (t - np.tile(_CHEB_X, k.size)).reshape(k.size, 8)
             poly[k] = dev @ _CHEB_INV.T
-        blend_rows = [i for i, m in enumerate(moves) if m.blend is not None]
+        else:
+            poly = np.broadcast_to(np.zeros((1, 8)), (n, 8))
+            poly_ok = np.broadcast_to(np.zeros(1, bool), (n,))
         is_blend = np.zeros(n, dtype=bool)
-        if blend_rows:
+        if blend_rows.size:
             bl_vec = np.zeros((3, n, n_axes))
             bl_val = np.zeros((6, n))
             bl_poly = np.full((n, 4), np.nan)
-            for i in blend_rows:
-                b = moves[i].blend
+            for i, b in zip(blend_rows.tolist(), blends):
                 is_blend[i] = True
                 bl_vec[0, i], bl_vec[1, i], bl_vec[2, i] = b.origin, b.u1, b.n1
                 bl_val[:, i] = (b.half_mm, b.turn_rad, b.s0_mm, b.arc_mm, b.kappa_max, b.sharpness)
@@ -152,18 +180,12 @@ class MoveTable:
             bl_val = np.broadcast_to(np.zeros((6, 1)), (6, n))
             bl_poly = np.broadcast_to(np.full((1, 4), np.nan), (n, 4))
         return MoveTable(
-            moves=moves,
-            index=np.asarray(cols[0], dtype=np.int64),
-            line=np.asarray(cols[1], dtype=np.int32),
-            kind=np.asarray(cols[2], dtype=np.int8),
+            index=index, line=line, kind=kind,
             start=start, end=end, delta=end - start,
-            length=length,
-            feed=np.asarray(cols[4], dtype=float),
-            exact_stop=np.asarray(cols[5], dtype=bool),
+            length=length, feed=feed, exact_stop=exact_stop,
             is_arc=is_arc,
             spiral=spiral,
-            first=arc_vals[:, 0].astype(np.int64), second=arc_vals[:, 1].astype(np.int64),
-            normal=np.where(is_arc, arc_vals[:, 2], -1).astype(np.int64),
+            first=first, second=second, normal=normal,
             cx=arc_vals[:, 3], cy=arc_vals[:, 4], r0=r0, r1=r1,
             theta0=arc_vals[:, 7], sweep=arc_vals[:, 8], rise=arc_vals[:, 9],
             spiral_poly=poly, spiral_poly_ok=poly_ok,
@@ -355,10 +377,7 @@ def concat_tables(tables: list[MoveTable]) -> MoveTable:
     """One table of the rows of several (consecutive) tables."""
     if len(tables) == 1:
         return tables[0]
-    vals: dict[str, Any] = {"moves": sum((t.moves for t in tables), ())}
-    for name in MoveTable.__slots__:
-        if name != "moves":
-            vals[name] = _concat([getattr(t, name) for t in tables])
+    vals: dict[str, Any] = {name: _concat([getattr(t, name) for t in tables]) for name in MoveTable.__slots__}
     return MoveTable(**vals)
 
 

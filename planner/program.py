@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -282,7 +283,7 @@ class Program:
     name: str
     axes: tuple[str, ...]
     rotary: tuple[bool, ...]
-    moves: tuple[Move, ...]
+    moves: Sequence[Move]  # a tuple, or planner.movestore.MoveStore (columns)
     events: tuple[Event, ...]
     start_position: np.ndarray  # machine position before the first move
     # Additions (not in the minimal contract):
