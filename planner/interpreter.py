@@ -39,6 +39,7 @@ from planner.arcs import (
     check_center_radii,
     sweep_angle,
 )
+from planner.bulk import scan_plain
 from planner.cutter_comp import LEFT, RIGHT, CutterComp
 from planner.errors import BlockError as _BlockError
 from planner.errors import PlannerError, ProgramError, SourceError
@@ -192,6 +193,9 @@ def _gname(code10: int) -> str:
 
 class _Interpreter:
     use_fast = True  # the fast paths (one regex per line; word fast path); tests compare both ways
+    use_bulk = True  # plain coordinate lines read many at a time (planner.bulk); tests compare too
+    BULK_LINES = 65_536  # lines scanned at once by the bulk reader
+    BULK_MIN_RUN = 24  # shorter runs of plain lines are read one by one (cheaper than the arrays)
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
@@ -336,13 +340,12 @@ class _Interpreter:
     def run(self, text: str) -> Program:
         if "\r\n" in text:
             text = text.replace("\r\n", "\n")  # Windows line ends, once for the whole text
-        lines = text.split("\n")
         self.started = False  # saw content or an opening '%'
         if has_control_flow(text):
-            self.run_structured(lines)
-        else:
+            self.run_structured(text.split("\n"))
+        elif not (self.use_bulk and self.use_fast and self.run_bulk(text)):
             line = self.line
-            for line_no, raw in enumerate(lines, 1):
+            for line_no, raw in enumerate(text.split("\n"), 1):
                 if line(raw, line_no):
                     break
         if self.errors:
@@ -669,6 +672,106 @@ class _Interpreter:
             "_VALUE": 0.0,
             "_VALUE_RETURNED": 0.0,
         }.get(name)
+
+    def run_bulk(self, text: str) -> bool:
+        """Read the program, plain coordinate lines in runs (``planner.bulk``), every other
+        line by ``line``. False (nothing read) when the text is not plain UTF-8."""
+        try:
+            data = np.frombuffer(text.encode("utf-8"), np.uint8)
+        except UnicodeEncodeError:
+            return False
+        nl = np.flatnonzero(data == 10)
+        starts = np.concatenate(([0], nl + 1))
+        ends = np.concatenate((nl, [data.shape[0]]))
+        n_lines = int(starts.shape[0])
+        letters = "".join(a for a, rot in zip(self.axes, self.rotary) if not rot) + "FGN"
+        cols = [self.axis_index[a] for a in letters[:-3]]
+        for b0 in range(0, n_lines, self.BULK_LINES):
+            b1 = min(n_lines, b0 + self.BULK_LINES)
+            base = int(starts[b0])
+            block = scan_plain(data[base:int(ends[b1 - 1])], starts[b0:b1] - base, ends[b0:b1] - base,
+                               letters)
+            not_plain = np.flatnonzero(~block.plain)
+            i = b0
+            while i < b1:
+                if block.plain[i - b0]:
+                    k = int(np.searchsorted(not_plain, i - b0))
+                    j = b0 + int(not_plain[k]) if k < not_plain.shape[0] else b1
+                    if j - i >= self.BULK_MIN_RUN:
+                        i += self.bulk_lines(block.values[i - b0:j - b0], block.words[i - b0:j - b0], i + 1,
+                                             cols)
+                        if i == j:
+                            continue
+                raw = data[int(starts[i]):int(ends[i])].tobytes().decode("utf-8")
+                if self.line(raw, i + 1):
+                    return True
+                i += 1
+        return True
+
+    def bulk_lines(self, values: np.ndarray, words: np.ndarray, first_line: int, cols: list[int]) -> int:
+        """Run plain lines (``planner.bulk``: values of the linear axes' words in ``cols``
+        order, then F, G, N) as ``fast_line`` runs them one by one, from the first; stops before
+        a line whose reading needs more (a state the fast path leaves to the general one, a zero
+        feed, a move too short to keep) and returns how many lines it ran."""
+        n_lines = values.shape[0]
+        if (not n_lines or self.feed_mode != 940 or self.rotation or self.comp.busy):
+            return 0
+        n_ax = len(cols)
+        ax = values[:, :n_ax]
+        f_val, g_val = values[:, n_ax], values[:, n_ax + 1]
+        has_axes = ~np.isnan(ax).all(axis=1)
+        has_g = ~np.isnan(g_val)
+        # where the line path must take over: a G without axis words, a negative F
+        stop = (has_g & ~has_axes) | (f_val < 0.0)
+        motion = self._ffill(g_val * 10.0, -1.0 if self.motion is None else float(self.motion))
+        scale = self.scale
+        feed = self._ffill(f_val * scale / 60.0, self.feed_mm_s)
+        stop |= has_axes & ~((motion == 0.0) | ((motion == 10.0) & (feed > 0.0)))
+        cut = int(np.argmax(stop)) if stop.any() else n_lines
+        # targets: absent words keep the axis where the last line put it
+        pos = self.pos
+        targets = np.empty((cut + 1, self.n))
+        targets[:] = pos
+        if self.absolute:
+            for c, i in enumerate(cols):
+                given = ax[:cut, c] * scale + self.offset[i]
+                targets[1:, i] = self._ffill(given, pos[i])
+        else:
+            for c, i in enumerate(cols):
+                step = np.nan_to_num(ax[:cut, c] * scale, nan=0.0)
+                targets[0, i] = pos[i]
+                targets[1:, i] = step
+                np.cumsum(targets[:, i], out=targets[:, i])
+        lin = list(self.linear_idx)
+        delta = np.diff(targets[:, lin], axis=0)
+        length = np.sqrt(np.einsum("ij,ij->i", delta, delta))
+        short = has_axes[:cut] & (length <= _ZERO_LEN)
+        if short.any():
+            cut = int(np.argmax(short))
+        if cut == 0:
+            return 0
+        moving = np.flatnonzero(has_axes[:cut])
+        if words[:cut].any():
+            self.started = True
+        if has_g[:cut].any():
+            self.cycle_il = None
+        self.motion = None if motion[cut - 1] < 0.0 else int(motion[cut - 1])
+        self.feed_mm_s = float(feed[cut - 1])
+        if moving.size:
+            rapid = motion[moving] == 0.0
+            self.out.extend(targets[1:][moving], moving + first_line, np.where(rapid, 0, 1),
+                            np.where(rapid, math.inf, feed[moving]), length[moving], self.exact_stop)
+            self.pos = targets[moving[-1] + 1].tolist()
+        return cut
+
+    @staticmethod
+    def _ffill(values: np.ndarray, before: float) -> np.ndarray:
+        """``values`` with each NaN replaced by the last value before it (``before`` at first)."""
+        given = ~np.isnan(values)
+        idx = np.where(given, np.arange(values.shape[0]), -1)
+        np.maximum.accumulate(idx, out=idx)
+        out = np.where(idx >= 0, values[np.maximum(idx, 0)], before)
+        return out
 
     def fast_line(self, groups: tuple, line_no: int) -> bool:
         """A block matched by fast_re: [N] [G00-G03] axis words (machine order) [I J K R] [F].

@@ -202,14 +202,14 @@ class MoveBuffer:
         if len(self._ends) >= self.CHUNK:
             self._pack()
 
-    def extend(self, ends: np.ndarray, line: np.ndarray, kind: int, feed: np.ndarray,
+    def extend(self, ends: np.ndarray, line: np.ndarray, kind: np.ndarray, feed: np.ndarray,
                length: np.ndarray, exact_stop: bool) -> None:
-        """A block of straight moves (no arcs) at once."""
+        """A block of straight moves (rapids and lines, no arcs) at once."""
         self._pack()
         k = int(ends.shape[0])
         if k:
             self._chunks.append((np.asarray(ends, float), line.astype(np.int32, copy=False),
-                                 np.full(k, kind, np.int8), np.asarray(feed, float),
+                                 kind.astype(np.int8, copy=False), np.asarray(feed, float),
                                  np.asarray(length, float), np.full(k, exact_stop, bool)))
             self._packed += k
 

@@ -1,0 +1,167 @@
+"""Plain coordinate lines read many at a time (planner.bulk) read exactly as one at a time.
+
+The line-by-line interpreter is the reference: the same moves (positions bit for bit, line,
+kind, feed, exact stop; lengths to the last bit of a double), events, modal record, offsets and
+errors, on generated programs that mix plain runs with every line that ends a run, at the
+scales of a watch part and of a ship's propeller, and on the shared CAM programs.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planner.bulk import scan_plain
+from planner.errors import ProgramError
+from planner.interpreter import _Interpreter, parse_program
+from tests.planner.motion_programs import xyza_machine
+
+SHARED_CAM = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
+
+
+def _scan(text: str, letters: str = "XYZFGN"):
+    data = np.frombuffer(text.encode(), np.uint8)
+    nl = np.flatnonzero(data == 10)
+    starts = np.concatenate(([0], nl + 1))
+    ends = np.concatenate((nl, [data.shape[0]]))
+    return scan_plain(data, starts, ends, letters)
+
+
+decimal = st.builds(
+    lambda sign, whole, frac, point: f"{sign}{whole}{'.' if point or frac else ''}{frac}",
+    st.sampled_from(["", "-", "+"]),
+    st.text("0123456789", min_size=0, max_size=9),
+    st.text("0123456789", min_size=0, max_size=6),
+    st.booleans(),
+).filter(lambda s: any(c.isdigit() for c in s))
+
+
+@settings(max_examples=400)
+@given(st.lists(decimal, min_size=1, max_size=30))
+def test_numbers_read_to_the_same_double_as_float(numbers):
+    block = _scan("\n".join(f"X{v}" for v in numbers))
+    assert block.plain.all()
+    for v, got in zip(numbers, block.values[:, 0]):
+        assert got == float(v) and np.signbit(got) == np.signbit(float(v)), v
+
+
+@pytest.mark.parametrize("line, plain", [
+    ("X1.5 Y-2 Z.25", True), ("N10 G1 X1 F800", True), ("", True), ("   ", True),
+    ("x-0.000y3.", True), ("G01 Y2", True), ("X+5 Y-.5", True), ("N5", True),
+    ("(comment)", False), ("X 1", False), ("X1X2", False), ("G2 X1", False), ("1.5", False),
+    ("X1.2.3", False), ("G1N5", False), ("X1234567890", False), ("X0.1234567890123456", False),
+    ("X1e3", False), ("X1\tY2", False), ("X-", False), ("X.", False), ("X1-", False), ("G1.0 X1", False),
+    ("#1=2", False), ("A5", False), ("M3", False), ("X[1]", False), ("%", False), ("/X1", False),
+    ("X1;c", False), ("G0 X1 G1", False),
+])
+def test_what_is_a_plain_line(line, plain):
+    assert bool(_scan(line).plain[0]) is plain
+
+
+def _read(text: str, bulk: bool, machine=None, start=None):
+    old_bulk, old_run = _Interpreter.use_bulk, _Interpreter.BULK_MIN_RUN
+    _Interpreter.use_bulk = bulk
+    _Interpreter.BULK_MIN_RUN = 1  # every run in bulk, however short
+    try:
+        return parse_program(text, "p.ngc", machine, start)
+    except ProgramError as e:
+        return e
+    finally:
+        _Interpreter.use_bulk, _Interpreter.BULK_MIN_RUN = old_bulk, old_run
+
+
+def assert_same_reading(a, b) -> None:
+    assert type(a) is type(b)
+    if isinstance(a, ProgramError):
+        where = [(e.line, e.col, e.message) for e in a.errors]
+        assert where == [(e.line, e.col, e.message) for e in b.errors]
+        return
+    assert len(a.moves) == len(b.moves)
+    np.testing.assert_array_equal(a.moves.positions, b.moves.positions)
+    ca, cb = a.moves.columns(), b.moves.columns()
+    for name in ("line", "kind", "feed", "exact_stop", "arc_rows"):
+        np.testing.assert_array_equal(getattr(ca, name), getattr(cb, name), err_msg=name)
+    np.testing.assert_allclose(ca.length, cb.length, rtol=4.5e-16, atol=0)  # one rounding (math.dist vs sqrt)
+    assert ca.arcs == cb.arcs
+    assert a.events == b.events
+    assert a.modal == b.modal and a.offset_parts == b.offset_parts
+    np.testing.assert_array_equal(a.move_offsets, b.move_offsets)
+    assert a.line_count == b.line_count
+
+
+def _coord(scale: float):
+    return st.floats(-200.0, 200.0, allow_nan=False).map(lambda v: f"{v * scale:.4f}".rstrip("0"))
+
+
+def plain_line(scale: float):
+    word = st.tuples(st.sampled_from("XYZxyz"), _coord(scale)).map(lambda t: f"{t[0]}{t[1]}")
+    def join(n, g, ws, f):  # one word per letter: a letter twice is no plain line
+        return " ".join(p for p in (n, g, *dict((w[0].upper(), w) for w in ws).values(), f) if p)
+
+    return st.builds(
+        join,
+        st.sampled_from(["", "N10", "n7"]), st.sampled_from(["", "", "G1", "G0", "G01", "g00"]),
+        st.lists(word, max_size=3), st.sampled_from(["", "", "", "F600", "F0", "F-5", "f1200.5"]),
+    )
+
+
+# lines that end a run or change what the next run means
+OTHER = ["G91", "G90", "G20", "G21", "G10 L2 P1 X5 Y-3 Z1", "G92 X1 Y2", "G92.1", "G55", "G54",
+         "G2 X1 Y1 I1 J0 F100", "(a comment)", "G4 P0.1", "M0", "G1", "G0", "G93", "G94", "G61", "G64 P0.01",
+         "G10 L2 P1 R30", "G10 L2 P1 R0", "%", "X1 Y1 ; remark", "G41 D1", "G40", "M3 S1000", "M5",
+         "#<a>=3", "X#<a>", "G80", "X 1.5", "X1.5  Y 2", "G17", "G18", "G1 X1 X2", "A5"]
+
+
+def program(scale: float):
+    return st.lists(st.one_of(plain_line(scale), plain_line(scale), plain_line(scale),
+                              st.sampled_from(OTHER)), min_size=1, max_size=60)
+
+
+@settings(max_examples=300, deadline=None)
+@given(program(1.0), st.sampled_from(["", "G1 F300\n", "G0\n", "G91 G1 F100\n", "G20 F10\n"]))
+def test_bulk_reads_generated_programs_as_the_line_reader(lines, head):
+    text = head + "\n".join(lines) + "\n"
+    assert_same_reading(_read(text, True), _read(text, False))
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.sampled_from([0.001, 1000.0]).flatmap(lambda s: program(s)))
+def test_bulk_reads_scaled_programs_as_the_line_reader(lines):
+    text = "G1 F300\n" + "\n".join(lines) + "\n"
+    assert_same_reading(_read(text, True), _read(text, False))
+
+
+def test_a_rotary_machine_and_a_start_position_read_the_same():
+    machine = xyza_machine()
+    body = "\n".join(f"X{i * 0.1:.3f} Y{(i % 7) * 0.2:.3f}" for i in range(200))
+    text = "G1 F300\n" + body + "\nA5\nX1 Y1\n"
+    a = _read(text, True, machine, [1.0, 2.0, 3.0, 4.0])
+    assert_same_reading(a, _read(text, False, machine, [1.0, 2.0, 3.0, 4.0]))
+    assert not isinstance(a, ProgramError) and len(a.moves) > 150
+
+
+def test_zero_length_lines_inside_a_run_are_dropped_as_one_by_one():
+    text = "G1 F300\n" + "X1\nX1\nX1.0000000001\nX2\nX2\n" * 30
+    a = _read(text, True)
+    assert_same_reading(a, _read(text, False))
+    assert len(a.moves) == 60
+
+
+def test_an_error_inside_a_run_has_its_line():
+    text = "G1 F0\n" + "".join(f"X{i}\n" for i in range(1, 40))
+    a = _read(text, True)
+    assert isinstance(a, ProgramError) and a.errors[0].line == 2
+    assert_same_reading(a, _read(text, False))
+
+
+@pytest.mark.skipif(not SHARED_CAM.is_dir(), reason="../shared/gcode/cam is not here (CI has it)")
+def test_shared_cam_programs_read_the_same_in_bulk():
+    files = sorted(p for p in SHARED_CAM.glob("*/*") if p.suffix.lower() in (".ngc", ".nc", ".gcode"))
+    assert len(files) >= 10
+    for path in files:
+        text = path.read_bytes().decode("latin-1")
+        assert_same_reading(_read(text, True), _read(text, False))
