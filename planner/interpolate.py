@@ -75,26 +75,24 @@ class Segment:
     t_end: float  # end of the segment's time span (after the last move's dwell)
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
-    # Flat phase table (7 phases per move, in time order): absolute start time, duration and
-    # state (s, v, a, jerk / 6) at the phase start. One searchsorted finds move and phase.
+    # Absolute start time of each phase (7 per move, in time order): one searchsorted finds
+    # move and phase; the state there is read from the profiles' own (n, 8) tables
     ph_t: np.ndarray
-    ph_d: np.ndarray
-    ph_s: np.ndarray
-    ph_v: np.ndarray
-    ph_a: np.ndarray
-    ph_j6: np.ndarray
     t_stop: np.ndarray  # (n,) time each move reaches its end (before any dwell)
 
     def state(self, t: np.ndarray, need_va: bool = False):
         """(row, s) or (row, s, v, a) at global times t (closed form, vectorised)."""
         idx = np.searchsorted(self.ph_t, t, side="right") - 1
         np.clip(idx, 0, None, out=idx)
-        dt = np.clip(t - self.ph_t[idx], 0.0, self.ph_d[idx])
-        a0 = self.ph_a[idx]
-        j6 = self.ph_j6[idx]
-        v0 = self.ph_v[idx]
-        s = self.ph_s[idx] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
         row = idx // 7
+        prof = self.profiles
+        flat = idx + row  # the same phase in the (n, 8) tables
+        t_b = prof.t_b.ravel()
+        dt = np.clip(t - self.ph_t[idx], 0.0, t_b[flat + 1] - t_b[flat])
+        a0 = prof.a_b.ravel()[flat]
+        j6 = prof.jerk.ravel()[idx] / 6.0
+        v0 = prof.v_b.ravel()[flat]
+        s = prof.s_b.ravel()[flat] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
         length = self.table.length[row]
         s = np.where(t >= self.t_stop[row], length, np.minimum(s, length))
         if not need_va:
@@ -140,9 +138,7 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
     t0 = bounds[:-1]
     ph_t = (t0[:, None] + prof.t_b[:, :7]).ravel()
     return Segment(table, prof, vs, ve, v_prog, t0, float(bounds[-1]), s_bounds[:-1],
-                   float(s_bounds[-1]), ph_t, np.diff(prof.t_b, axis=1).ravel(),
-                   prof.s_b[:, :7].ravel(), prof.v_b[:, :7].ravel(), prof.a_b[:, :7].ravel(),
-                   (prof.jerk / 6.0).ravel(), t0 + prof.duration)
+                   float(s_bounds[-1]), ph_t, t0 + prof.duration)
 
 
 class Interpolator:
