@@ -186,26 +186,35 @@ def _solve_peak(length, vs, ve, vc, a_max, j_max):
     both = (vq - vs) * j_max > a_max * a_max
     both &= (vq - ve) * j_max > a_max * a_max
     both &= vq <= vc
-    x = np.where(both, vq - vlo, 0.5 * hi)
+    # Elsewhere Newton's method on y = sqrt(x): the length is convex in y (a cubic in y where
+    # the S-curves are triangular), so from y = sqrt(hi), where the length is too long, every
+    # step lands between the root and the last y, and it converges in a handful of steps
+    # (in x the length is concave near 0 and Newton's step leaves the bracket, which made
+    # bisection take 50 steps). The bracket stays as a guard against rounding.
+    x = np.where(both, vq - vlo, hi)
+    y = np.sqrt(x)
+    ylo = np.sqrt(lo)
+    yhi = y.copy()
     todo = ~both
     for _ in range(200):
         if not todo.any():
             break
         idx = np.nonzero(todo)[0]
-        xi = x[idx]
-        f, df = _two_sided_length(xi, d1[idx], d2[idx], vlo[idx], a_max[idx], j_max[idx])
+        yi = y[idx]
+        f, df = _two_sided_length(yi * yi, d1[idx], d2[idx], vlo[idx], a_max[idx], j_max[idx])
         f -= length[idx]
-        # Keep the bracket and take Newton's step when it stays inside, else bisect.
-        lo[idx] = np.where(f < 0.0, xi, lo[idx])
-        hi[idx] = np.where(f >= 0.0, xi, hi[idx])
+        df *= 2.0 * yi
+        ylo[idx] = np.where(f < 0.0, yi, ylo[idx])
+        yhi[idx] = np.where(f >= 0.0, yi, yhi[idx])
         with np.errstate(divide="ignore", invalid="ignore"):
-            xn = xi - f / df
-        inside = np.isfinite(xn) & (xn > lo[idx]) & (xn < hi[idx])
-        xn = np.where(inside, xn, 0.5 * (lo[idx] + hi[idx]))
-        xn = np.where(f == 0.0, xi, xn)
-        done = (np.abs(xn - xi) <= 1e-15 * np.abs(xi)) | (hi[idx] - lo[idx] <= 1e-15 * hi[idx])
-        x[idx] = xn
+            yn = yi - f / df
+        inside = np.isfinite(yn) & (yn > ylo[idx]) & (yn < yhi[idx])
+        yn = np.where(inside, yn, 0.5 * (ylo[idx] + yhi[idx]))
+        yn = np.where(f == 0.0, yi, yn)
+        done = (np.abs(yn - yi) <= 1e-15 * np.abs(yi)) | (yhi[idx] - ylo[idx] <= 1e-15 * yhi[idx])
+        y[idx] = yn
         todo[idx[done]] = False
+    x = np.where(both, x, y * y)
     return vlo + x, x + d1, x + d2
 
 
