@@ -20,7 +20,7 @@ import json
 import math
 import sys
 import time
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +29,7 @@ from planner.errors import PlannerError, ProgramError
 from planner.files import write_output, write_output_via_path
 from planner.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
 from planner.meter import path_vaj
+from planner.plan import LimitReport
 
 __all__ = ["build_machine", "main"]
 
@@ -114,6 +115,114 @@ def _plot(path: str, plan, chunk, title: str) -> None:
     write_output_via_path(path, w)
 
 
+@dataclass(eq=False)
+class _Summary:
+    """A plan as cnc-plan reports it, without the plan: cycle time, and with --json the limit
+    report and each move's figures in compact columns."""
+
+    mode: str
+    interpolation: str
+    ts_s: float
+    cycle_time_s: float
+    n_samples: int
+    plan_s: float
+    interp_s: float = 0.0
+    report: LimitReport | None = None
+    moves: list[tuple[np.ndarray, ...]] = field(default_factory=list)  # per segment: line, kind, ...
+
+
+def _summarise(program, machine: MachineSpec, args) -> _Summary:
+    """Plan segment by segment for the cycle time; with --json, plan again and interpolate and
+    measure segment by segment (the cycle time comes first: a program of days is refused
+    before any sample is made)."""
+    from planner.interpolate import first_sample_at
+    from planner.plan import plan_segments, report_segments, resolve_settings
+
+    mode, interpolation = resolve_settings(machine, args.mode, args.interp)
+    ts = machine.planner.ts_s
+    started = time.perf_counter()
+    cycle = 0.0
+    for seg in plan_segments(program, machine, mode, interpolation):
+        cycle = seg.t_end
+    n_samples = first_sample_at(cycle, ts) + 1 if len(program.moves) else 1
+    out = _Summary(mode, interpolation, ts, cycle, n_samples, time.perf_counter() - started)
+    if not args.json or not cycle <= args.max_cycle_h * 3600.0:
+        return out
+
+    def keep(seg) -> None:
+        tab, prof = seg.table, seg.profiles
+        out.moves.append((tab.line, tab.kind, tab.length, prof.vs, prof.ve, prof.vp, seg.t0,
+                          seg.t0 + prof.duration))
+
+    started = time.perf_counter()
+    out.report = report_segments(program, machine, interpolation,
+                                 plan_segments(program, machine, mode, interpolation), on_segment=keep)
+    out.interp_s = time.perf_counter() - started
+    return out
+
+
+def _move_list_json(moves: list[tuple[np.ndarray, ...]]):
+    """The JSON text of the move list, piece by piece (a few thousand moves each)."""
+    from planner.program import MoveKind
+
+    kinds = {int(k): k.name.lower() for k in MoveKind}
+    first = True
+    for cols in moves:
+        line, kind, length, vs, ve, vp, t0, t1 = (c.tolist() for c in cols)
+        rows = [{"line": r[0], "kind": kinds[r[1]], "length": r[2], "vs": r[3], "ve": r[4], "vpeak": r[5],
+                 "t0": r[6], "t1": r[7]} for r in zip(line, kind, length, vs, ve, vp, t0, t1)]
+        if rows:
+            text = json.dumps(rows)[1:-1]
+            yield text if first else ", " + text
+            first = False
+
+
+def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
+    from planner.blend import blend_report
+
+    if not args.json:
+        print(f"{program.name}: {len(program.moves)} moves, cycle time {summary.cycle_time_s:.3f} s, "
+              f"{summary.n_samples} samples, plan {summary.plan_s * 1e3:.1f} ms")
+        return 0
+    report = summary.report
+    assert report is not None
+    blends = blend_report(program)
+    out = {
+        "program": str(args.program),
+        "lines": int(program.line_count),
+        "moves": len(program.moves),
+        "mode": summary.mode,
+        "interpolation": summary.interpolation,
+        "ts_s": summary.ts_s,
+        "cycle_time_s": summary.cycle_time_s,
+        "samples": report.samples,
+        "parse_s": parse_s,
+        "plan_s": summary.plan_s,
+        "interp_s": summary.interp_s,
+        "tangential": report.tangential,
+        "tangential_samples": report.tangential_samples,
+        "axes": report.axes,
+        "contour_error_mm": report.contour_error_mm,
+        "end_error_mm": report.end_error_mm,
+        "violations": report.violations,
+        "joint_jerk": report.joint_jerk,
+        # how far the path leaves the programmed one: only corner blends do (G64 P)
+        "blends": blends.blends,
+        "path_deviation_mm": blends.max_corner_deviation_mm,
+        "path_deviation_line": blends.line,
+        "ok": report.ok,
+    }
+    # one string through the C encoder per piece: json.dump writes piece by piece in Python
+    # (1.7 s for the 35,000 moves of the sphere finishing program against 0.1 s); the move
+    # list goes out a segment at a time, never as one string
+    head = json.dumps(out)
+    sys.stdout.write(head[:-1] + ', "move_list": [')
+    for piece in _move_list_json(summary.moves):
+        sys.stdout.write(piece)
+    sys.stdout.write("]}\n")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     from planner.blend import blend_program, blend_report
@@ -124,7 +233,12 @@ def main(argv: list[str] | None = None) -> int:
 
     # --canon alone needs no planning: comparing with LinuxCNC's canonical calls runs it on every file.
     want_plan = bool(args.json or args.samples or args.csv or args.plot or not args.canon)
+    # the cycle time and the limit report need no whole plan in memory: it is planned and
+    # measured segment by segment (memory bounded by a segment); samples written out still
+    # take the whole plan
+    streamed = not (args.samples or args.csv or args.plot)
     plan = None
+    summary: _Summary | None = None
     if not (math.isfinite(args.max_cycle_h) and args.max_cycle_h > 0):
         print(f"cnc-plan: error: --max-cycle-h must be a positive number of hours, got {args.max_cycle_h}",
               file=sys.stderr)
@@ -151,7 +265,9 @@ def main(argv: list[str] | None = None) -> int:
             # G64 P: sharp line corners become clothoid blends within the tolerance (the paper's
             # mode keeps the path as programmed, so its figures can still be reproduced)
             program = blend_program(program, machine)
-        if want_plan:
+        if want_plan and streamed:
+            summary = _summarise(program, machine, args)
+        elif want_plan:
             plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
     except ProgramError as exc:
         print(str(exc), file=sys.stderr)
@@ -160,15 +276,24 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{args.program}: error: {exc}", file=sys.stderr)
         return 2
 
-    if plan is not None and not plan.cycle_time_s <= args.max_cycle_h * 3600.0:
-        print(f"{args.program}: error: the cycle time is {plan.cycle_time_s / 3600.0:.1f} h, more than "
+    cycle_time_s = plan.cycle_time_s if plan is not None else summary.cycle_time_s if summary else None
+    if cycle_time_s is not None and not cycle_time_s <= args.max_cycle_h * 3600.0:
+        print(f"{args.program}: error: the cycle time is {cycle_time_s / 3600.0:.1f} h, more than "
               f"--max-cycle-h {args.max_cycle_h:g}: not interpolated (a feed too low or a move too long?)",
               file=sys.stderr)
         if args.json:
-            json.dump({"program": str(args.program), "cycle_time_s": plan.cycle_time_s, "ok": False,
+            json.dump({"program": str(args.program), "cycle_time_s": cycle_time_s, "ok": False,
                        "refused": f"cycle time over {args.max_cycle_h:g} h"}, sys.stdout)
             sys.stdout.write("\n")
         return 2
+    if summary is not None:
+        if args.canon:
+            try:
+                write_canon(programmed, args.canon)
+            except OSError as exc:
+                print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
+                return 1
+        return _print_summary(args, program, parse_s, summary)
 
     axes = list(program.axes)
     need_samples = bool(args.samples or args.plot)

@@ -63,7 +63,7 @@ def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: 
     if size == 0:
         return PlainBlock(np.ones(n_lines, bool), values, np.zeros(n_lines, np.int64))
     is_nl = arr == _NL
-    line_of = np.cumsum(is_nl)  # line of each byte (a newline belongs to the next line)
+    line_of = np.cumsum(is_nl, dtype=np.int32)  # line of each byte (a newline belongs to the next line)
     lut = np.full(256, -1, np.int8)
     for code, letter in enumerate(letters):
         lut[ord(letter)] = code
@@ -90,7 +90,7 @@ def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: 
     # the token a number byte belongs to: the last letter before it, which is on its own line
     # when that line is good (a number byte follows a letter or a number byte); the bytes of
     # bad lines are left out
-    tok_of = np.cumsum(is_letter) - 1
+    tok_of = np.cumsum(is_letter, dtype=np.int32) - 1
     in_good = ~bad_line[line_of]
     is_digit &= in_good
     is_dot &= in_good
@@ -112,7 +112,7 @@ def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: 
     tok_bad = ((n_digit == 0) | (n_digit > MAX_DIGITS) | (n_digit - n_frac > MAX_INT_DIGITS)
                | (n_dot > 1) | (n_sign > 1) | sign_misplaced)
     # digit j of a token (0 = first) weighs 10**(n_digit - 1 - j)
-    counted = np.cumsum(is_digit)
+    counted = np.cumsum(is_digit, dtype=np.int32)
     digit_ordinal = counted[digits] - 1
     first_ordinal = counted[pos]  # digits before the token's letter
     place = n_digit[d_tok] - 1 - (digit_ordinal - first_ordinal[d_tok])

@@ -194,7 +194,7 @@ def _gname(code10: int) -> str:
 class _Interpreter:
     use_fast = True  # the fast paths (one regex per line; word fast path); tests compare both ways
     use_bulk = True  # plain coordinate lines read many at a time (planner.bulk); tests compare too
-    BULK_LINES = 65_536  # lines scanned at once by the bulk reader
+    BULK_LINES = 16_384  # lines scanned at once by the bulk reader (its arrays: ~40 MB)
     BULK_MIN_RUN = 24  # shorter runs of plain lines are read one by one (cheaper than the arrays)
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
@@ -337,13 +337,15 @@ class _Interpreter:
         self.sub_files: dict[str, tuple[str, list[str], Structure]] = {}
 
     # ------------------------------------------------------------------ driver
-    def run(self, text: str) -> Program:
+    def run(self, text: str, utf8: bytes | None = None) -> Program:
+        """Interpret ``text`` (``utf8``: the same text encoded, when the caller has it)."""
         if "\r\n" in text:
             text = text.replace("\r\n", "\n")  # Windows line ends, once for the whole text
+            utf8 = None
         self.started = False  # saw content or an opening '%'
         if has_control_flow(text):
             self.run_structured(text.split("\n"))
-        elif not (self.use_bulk and self.use_fast and self.run_bulk(text)):
+        elif not (self.use_bulk and self.use_fast and self.run_bulk(text, utf8)):
             line = self.line
             for line_no, raw in enumerate(text.split("\n"), 1):
                 if line(raw, line_no):
@@ -673,11 +675,11 @@ class _Interpreter:
             "_VALUE_RETURNED": 0.0,
         }.get(name)
 
-    def run_bulk(self, text: str) -> bool:
+    def run_bulk(self, text: str, utf8: bytes | None = None) -> bool:
         """Read the program, plain coordinate lines in runs (``planner.bulk``), every other
         line by ``line``. False (nothing read) when the text is not plain UTF-8."""
         try:
-            data = np.frombuffer(text.encode("utf-8"), np.uint8)
+            data = np.frombuffer(text.encode("utf-8") if utf8 is None else utf8, np.uint8)
         except UnicodeEncodeError:
             return False
         nl = np.flatnonzero(data == 10)
@@ -2124,6 +2126,7 @@ def parse_program(
     spindle: tuple[int, float] = (0, 0.0),
     subroutine_dirs: Sequence[str] = (),
     parameters: dict[int, float] | None = None,
+    _utf8: bytes | None = None,
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -2141,7 +2144,7 @@ def parse_program(
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
                           spindle, subroutine_dirs, parameters)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
-        return interp.run(text)
+        return interp.run(text, _utf8)
 
 
 def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
@@ -2152,6 +2155,9 @@ def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
         raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
     try:
         text = data.decode("utf-8")
+        utf8: bytes | None = data  # the bulk reader scans these bytes instead of encoding again
     except UnicodeDecodeError:
         text = data.decode("latin-1")
-    return parse_program(text, str(path), machine, **kwargs)
+        utf8 = None
+    del data
+    return parse_program(text, str(path), machine, _utf8=utf8, **kwargs)

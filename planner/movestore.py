@@ -295,10 +295,24 @@ class MoveBuffer:
         return tuple(np.concatenate(parts) for parts in zip(*self._chunks))
 
     def store(self) -> MoveStore:
-        """The moves as a store (the buffer is emptied)."""
-        ends, line, kind, feed, length, stop = self._columns()
-        self._chunks = []
-        pos = np.empty((ends.shape[0] + 1, len(self.start)))
+        """The moves as a store (the buffer is emptied). Each chunk is copied into the
+        columns and let go at once, so that the moves are never held twice."""
+        self._pack()
+        chunks, self._chunks = self._chunks, []
+        chunks.reverse()  # popped from the end, first chunk first
+        n = sum(c[1].shape[0] for c in chunks)
+        pos = np.empty((n + 1, len(self.start)))
         pos[0] = self.start
-        pos[1:] = ends
-        return MoveStore(pos, line, kind, feed, length, stop, self.arcs)
+        cols = (np.empty(n, np.int32), np.empty(n, np.int8), np.empty(n), np.empty(n), np.empty(n, bool))
+        k = 0
+        while chunks:
+            chunk = chunks.pop()
+            m = chunk[1].shape[0]
+            pos[1 + k:1 + k + m] = chunk[0]
+            for col, part in zip(cols, chunk[1:]):
+                col[k:k + m] = part
+            k += m
+            del chunk
+        self._packed = 0
+        arcs, self.arcs = self.arcs, {}
+        return MoveStore(pos, *cols, arcs)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 from planner.bulk import scan_plain
 from planner.errors import ProgramError
-from planner.interpreter import _Interpreter, parse_program
+from planner.interpreter import _Interpreter, parse_file, parse_program
 from tests.planner.motion_programs import xyza_machine
 
 SHARED_CAM = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
@@ -165,3 +165,15 @@ def test_shared_cam_programs_read_the_same_in_bulk():
     for path in files:
         text = path.read_bytes().decode("latin-1")
         assert_same_reading(_read(text, True), _read(text, False))
+
+
+@pytest.mark.parametrize("encoding, newline", [("utf-8", "\n"), ("utf-8", "\r\n"), ("latin-1", "\n")])
+def test_a_file_reads_as_its_text(tmp_path, encoding, newline):
+    """parse_file hands the bulk reader the file's own bytes when they are UTF-8 with plain line
+    ends, and the text otherwise: the same program either way."""
+    body = "(Überfräsen, ø6)\nG1 F300\n" + "".join(f"X{i * 0.1:.2f} Y{i % 3}\n" for i in range(100)) + "M2\n"
+    path = tmp_path / "p.ngc"
+    path.write_bytes(body.replace("\n", newline).encode(encoding))
+    read = parse_file(path)
+    assert len(read.moves) == 99
+    assert_same_reading(read, parse_program(body, str(path)))

@@ -1,0 +1,113 @@
+"""A plan taken segment by segment is the whole plan: the same timeline, the same limit report
+and the same figures per move, so that cnc-plan can report on a program of millions of moves
+in memory bounded by a segment.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+
+from cli.plan import main
+from planner.interpreter import parse_file, parse_program
+from planner.plan import plan_program, plan_segments, report_segments
+from tests.planner.motion_programs import paper_machine, programs, random_program, xyza_machine
+
+
+def _reports_equal(a: dict, b: dict) -> None:
+    assert a.keys() == b.keys()
+    for key, value in a.items():
+        if isinstance(value, dict):
+            _reports_equal(value, b[key])
+        elif isinstance(value, float):
+            assert value == pytest.approx(b[key], rel=1e-9, abs=1e-12), key
+        else:
+            assert value == b[key], key
+
+
+def _check(program, machine, segment_moves: int) -> None:
+    whole = plan_program(program, machine)
+    segs = list(plan_segments(program, machine, window=4, segment_moves=segment_moves))
+    assert sum(len(s.table) for s in segs) == len(program.moves)
+    if segs:
+        assert len(segs) >= len(program.moves) // (4 * segment_moves)
+        np.testing.assert_array_equal(np.concatenate([s.t0 for s in segs]), whole.t0)
+        assert segs[-1].t_end == whole.cycle_time_s
+    streamed = report_segments(program, machine, whole.interpolation, iter(segs))
+    _reports_equal(streamed.to_dict(), whole.limit_report().to_dict())
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("segment_moves", [1, 3, 17])
+def test_segments_are_the_whole_plan(seed, segment_moves):
+    machine = xyza_machine() if seed % 2 else paper_machine()
+    program = parse_program(random_program(seed, n_blocks=40, rotary=bool(seed % 2)), "r.ngc", machine)
+    assert len(program.moves) > 20
+    _check(program, machine, segment_moves)
+
+
+@settings(max_examples=40, deadline=None)
+@given(programs(max_blocks=14))
+def test_generated_programs_report_the_same_in_segments(text):
+    machine = paper_machine()
+    _check(parse_program(text, "g.ngc", machine), machine, 2)
+
+
+def test_violations_are_found_in_segments_as_in_the_whole_plan():
+    # planned for a fast machine, measured against a slow one: the meter must find every
+    # violation and its worst line in whichever segment it falls
+    fast = paper_machine()
+    slow = fast.with_limits(v_max_mm_s=10.0, a_max_mm_s2=300.0, j_max_mm_s3=3000.0)
+    zigzag = "".join(f"X{i * 0.5:.1f} Y{(i % 2) * 0.5:.1f}\n" for i in range(1, 80))
+    program = parse_program("G1 F1800\n" + zigzag + "G0 X0 Y0\n", "v.ngc", fast)
+    whole = replace(plan_program(program, fast), machine=slow).limit_report()
+    assert whole.violations
+    segments = plan_segments(program, fast, window=4, segment_moves=5)
+    streamed = report_segments(program, slow, "exact", segments)
+    _reports_equal(streamed.to_dict(), whole.to_dict())
+
+
+def test_empty_program_reports_one_still_sample():
+    machine = paper_machine()
+    program = parse_program("M2\n", "e.ngc", machine)
+    rep = report_segments(program, machine, "exact", plan_segments(program, machine))
+    assert rep.samples == 1 and rep.ok
+
+
+def test_cli_json_is_the_whole_plans(tmp_path, capsys):
+    """cnc-plan --json plans and measures segment by segment; its figures are the whole plan's."""
+    path = tmp_path / "p.ngc"
+    path.write_text(random_program(3, n_blocks=60))
+    assert main([str(path), "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    machine_program = parse_file(path)
+    from cli.plan import build_machine
+
+    machine = build_machine(None, None, None, None, None)
+    from planner.blend import blend_program
+
+    plan = plan_program(blend_program(parse_file(path, machine), machine), machine)
+    assert got["moves"] == len(plan.program.moves) and len(machine_program.moves) > 30
+    assert got["cycle_time_s"] == plan.cycle_time_s
+    assert got["samples"] == plan.n_samples
+    assert got["move_list"] == plan.moves_summary()
+    _reports_equal({k: got[k] for k in ("tangential", "axes", "violations", "contour_error_mm")},
+                   {k: plan.limit_report().to_dict()[k] for k in ("tangential", "axes", "violations",
+                                                                  "contour_error_mm")})
+
+
+def test_feed_changes_at_every_segment_joint_report_as_the_whole_plan():
+    # a sample pair across a segment's first joint is measured against the new move's feed
+    # only: the joint's speed is within it and the acceleration zero there
+    machine = paper_machine()
+    lines = "".join(f"G1 X{i * 2.0:.1f} Y{(i % 2) * 0.3:.1f} F{(600, 1800)[i % 2]}\n" for i in range(1, 60))
+    program = parse_program(lines, "f.ngc", machine)
+    whole = plan_program(program, machine).limit_report()
+    assert whole.ok
+    segments = plan_segments(program, machine, window=2, segment_moves=1)
+    streamed = report_segments(program, machine, "exact", segments)
+    _reports_equal(streamed.to_dict(), whole.to_dict())
