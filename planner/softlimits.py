@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planner.machine import MachineSpec
+from planner.movestore import MoveStore
 from planner.program import Move, Program
 
 __all__ = [
@@ -83,6 +84,15 @@ def move_bounds_table(program: Program, chunk: int = 2048) -> tuple[np.ndarray, 
     worker thread never holds the GIL for long."""
     moves = program.moves
     n = len(program.axes) if program.axes else len(program.start_position)
+    if isinstance(moves, MoveStore):
+        # columns: straight moves by their end points at once, only arcs and blends one by one
+        pos = moves.positions
+        lo = np.minimum(pos[:-1], pos[1:])
+        hi = np.maximum(pos[:-1], pos[1:])
+        cols = moves.columns()
+        for k in np.union1d(cols.arc_rows, cols.blend_rows).tolist():
+            lo[k], hi[k], _ = move_bounds(moves[k])
+        return lo, hi
     lo = np.empty((len(moves), n))
     hi = np.empty((len(moves), n))
     for k in range(0, len(moves), chunk):
