@@ -48,6 +48,7 @@ from typing import Any
 import numpy as np
 
 from planner.machine import MachineSpec
+from planner.movestore import MoveStore
 from planner.program import Move, MoveKind, Program
 
 __all__ = ["Blend", "BlendReport", "blend_eval", "blend_program", "blend_report", "merge_naive_cam",
@@ -748,15 +749,22 @@ def merge_naive_cam(program: Program) -> Program:
         q_tol[first:nxt] = value
     d = len(program.axes)
     rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(d, bool)
-    start = np.array([m.start for m in moves], dtype=float).reshape(n, d)
-    end = np.array([m.end for m in moves], dtype=float).reshape(n, d)
-    feed = np.array([m.feed_mm_s for m in moves])
-    chainable = np.array([m.kind == MoveKind.LINE and m.blend is None for m in moves])
+    if isinstance(moves, MoveStore):  # columns: no Move object for the moves that stay
+        cols = moves.columns()
+        start, end, feed, exact_stop = cols.start, cols.end, cols.feed, cols.exact_stop
+        chainable = cols.kind == int(MoveKind.LINE)
+        chainable[cols.blend_rows] = False
+    else:
+        start = np.array([m.start for m in moves], dtype=float).reshape(n, d)
+        end = np.array([m.end for m in moves], dtype=float).reshape(n, d)
+        feed = np.array([m.feed_mm_s for m in moves])
+        exact_stop = np.array([m.exact_stop for m in moves])
+        chainable = np.array([m.kind == MoveKind.LINE and m.blend is None for m in moves])
     chainable &= (q_tol > 0.0) & ~np.any((end - start)[:, rotary] != 0.0, axis=1)
     # cont[i]: move i may continue a chain that holds move i - 1
     cont = np.zeros(n, dtype=bool)
     cont[1:] = chainable[1:] & chainable[:-1] & (feed[1:] == feed[:-1]) & (q_tol[1:] == q_tol[:-1])
-    cont[1:] &= ~np.array([m.exact_stop for m in moves[:-1]])
+    cont[1:] &= ~exact_stop[:-1]
     for ev in program.events:
         if 0 <= ev.after_move < n - 1:
             cont[ev.after_move + 1] = False
@@ -772,9 +780,9 @@ def merge_naive_cam(program: Program) -> Program:
         pair_ok[:-1] = cont[1:] & (_seg_dist(lin[:-1], b_lin[:-1], lin[1:]) <= q_tol[:-1])
         pair_ok[:-1] &= np.any(lin[1:] != b_lin[:-1], axis=1)
     # run[i]: how many moves after i continue a chain holding i (cont run length)
-    run = np.zeros(n + 1, dtype=np.int64)
-    for i in range(n - 1, -1, -1):
-        run[i] = run[i + 1] + 1 if i + 1 < n and cont[i + 1] else 0
+    follows = np.append(cont[1:], False)  # follows[i]: move i + 1 continues
+    stop_at = np.where(follows, n, np.arange(n))
+    run = np.minimum.accumulate(stop_at[::-1])[::-1] - np.arange(n)
     new: list[Move] = []
     spans: list[tuple[int, int]] = []
     joined = False
@@ -791,7 +799,7 @@ def merge_naive_cam(program: Program) -> Program:
         length = float(np.sqrt(((end[k_end] - b)[~rotary] ** 2).sum()))
         new.append(Move(index=len(new), line=moves[k_end].line, kind=MoveKind.LINE, start=b.copy(),
                         end=end[k_end].copy(), feed_mm_s=float(feed[i]), length_mm=length, arc=None,
-                        exact_stop=moves[k_end].exact_stop))
+                        exact_stop=bool(exact_stop[k_end])))
         spans.append((i, k_end))
         joined = True
         i = k_end + 1

@@ -397,6 +397,10 @@ def test_merged_paths_pass_within_q_of_every_programmed_point(noise, q, scale, s
     far = distance_to_polyline(np.column_stack([programmed, np.zeros(len(programmed))]), path)
     assert far.max() <= q * scale * (1 + 1e-9) + 1e-12
     assert plan_program(merged, m).limit_report().violations == {}
+    # the program's moves as columns and as Move objects merge alike
+    objects = merge_naive_cam(replace(prog, moves=tuple(prog.moves)))
+    assert [(mv.line, mv.end.tolist(), mv.length_mm, mv.exact_stop) for mv in objects.moves] == \
+        [(mv.line, mv.end.tolist(), mv.length_mm, mv.exact_stop) for mv in merged.moves]
 
 
 # -- fillets: a tangent arc between two lines eased by clothoids ------------------------------
