@@ -196,6 +196,7 @@ class _Interpreter:
     use_bulk = True  # plain coordinate lines read many at a time (planner.bulk); tests compare too
     BULK_LINES = 16_384  # lines scanned at once by the bulk reader (its arrays: ~40 MB)
     BULK_MIN_RUN = 24  # shorter runs of plain lines are read one by one (cheaper than the arrays)
+    BULK_SKIP_BLOCKS = 4  # blocks read line by line after a scan that found few long runs
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
@@ -688,26 +689,56 @@ class _Interpreter:
         n_lines = int(starts.shape[0])
         letters = "".join(a for a, rot in zip(self.axes, self.rotary) if not rot) + "FGN"
         cols = [self.axis_index[a] for a in letters[:-3]]
-        for b0 in range(0, n_lines, self.BULK_LINES):
-            b1 = min(n_lines, b0 + self.BULK_LINES)
+        line = self.line
+        min_run = self.BULK_MIN_RUN
+
+        def by_line(a: int, b: int) -> bool:
+            """Lines a .. b - 1 by ``line`` (True when the program ends there)."""
+            if a >= b:
+                return False
+            text = data[int(starts[a]):int(ends[b - 1])].tobytes().decode("utf-8")
+            for line_no, raw in enumerate(text.split("\n"), a + 1):
+                if line(raw, line_no):
+                    return True
+            return False
+
+        skip = 0  # blocks left to read line by line: the last scan found few long runs
+        b1 = 0
+        while b1 < n_lines:
+            # a small first block tells cheaply whether the program is made of long runs
+            b0, b1 = b1, min(n_lines, b1 + (self.BULK_LINES if b1 else self.BULK_LINES // 8))
+            if skip:
+                skip -= 1
+                if by_line(b0, b1):
+                    return True
+                continue
             base = int(starts[b0])
             block = scan_plain(data[base:int(ends[b1 - 1])], starts[b0:b1] - base, ends[b0:b1] - base,
                                letters)
-            not_plain = np.flatnonzero(~block.plain)
-            i = b0
-            while i < b1:
-                if block.plain[i - b0]:
-                    k = int(np.searchsorted(not_plain, i - b0))
-                    j = b0 + int(not_plain[k]) if k < not_plain.shape[0] else b1
-                    if j - i >= self.BULK_MIN_RUN:
-                        i += self.bulk_lines(block.values[i - b0:j - b0], block.words[i - b0:j - b0], i + 1,
-                                             cols)
-                        if i == j:
-                            continue
-                raw = data[int(starts[i]):int(ends[i])].tobytes().decode("utf-8")
-                if self.line(raw, i + 1):
+            # runs of plain lines long enough to pay for the arrays; the lines between them
+            # are read one by one, as a text of their own
+            edges = np.flatnonzero(np.diff(np.concatenate(([0], block.plain.view(np.int8), [0]))))
+            runs = [(b0 + int(r0), b0 + int(r1)) for r0, r1 in zip(edges[::2], edges[1::2])
+                    if r1 - r0 >= min_run]
+            if sum(r1 - r0 for r0, r1 in runs) < 0.25 * (b1 - b0):
+                # a program of short runs (arcs between few lines): scanning costs more than it
+                # saves; look again every few blocks, where the program may change its kind
+                skip = self.BULK_SKIP_BLOCKS
+            cursor = b0
+            for r0, r1 in runs:
+                if by_line(cursor, r0):
                     return True
-                i += 1
+                i = r0
+                while i < r1:
+                    i += self.bulk_lines(block.values[i - b0:r1 - b0], block.words[i - b0:r1 - b0], i + 1,
+                                         cols)
+                    if i < r1:  # a line the run cannot take: the line reader's
+                        if by_line(i, i + 1):
+                            return True
+                        i += 1
+                cursor = r1
+            if by_line(cursor, b1):
+                return True
         return True
 
     def bulk_lines(self, values: np.ndarray, words: np.ndarray, first_line: int, cols: list[int]) -> int:

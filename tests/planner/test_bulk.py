@@ -177,3 +177,23 @@ def test_a_file_reads_as_its_text(tmp_path, encoding, newline):
     read = parse_file(path)
     assert len(read.moves) == 99
     assert_same_reading(read, parse_program(body, str(path)))
+
+
+def test_blocks_of_short_runs_then_long_runs_read_the_same(monkeypatch):
+    """A program that starts with arcs between few lines (the reader stops scanning for some
+    blocks) and goes on with long plain runs reads as line by line, across small blocks."""
+    monkeypatch.setattr(_Interpreter, "BULK_LINES", 32)
+    def arcs(n: int) -> str:
+        return "".join(f"G1 X{i % 5} Y{i % 3}\nG2 X{i % 5 + 2} Y{i % 3} I1 J0\n" for i in range(n))
+
+    raster = "G1\n" + "".join(f"X{i * 0.1:.1f} Y{(i // 50) * 0.2:.1f}\n" for i in range(400))
+    text = "G1 F600\n" + arcs(150) + raster + arcs(20) + raster
+    old = _Interpreter.use_bulk
+    try:
+        a = parse_program(text, "m.ngc")
+        _Interpreter.use_bulk = False
+        b = parse_program(text, "m.ngc")
+    finally:
+        _Interpreter.use_bulk = old
+    assert len(a.moves) > 1000
+    assert_same_reading(a, b)
