@@ -225,7 +225,7 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    from planner.blend import blend_program, blend_report
+    from planner.blend import blend_program
     from planner.canon import write_canon
     from planner.interpreter import parse_file
     from planner.plan import plan_program
@@ -327,44 +327,12 @@ def main(argv: list[str] | None = None) -> int:
     if plan is None:
         return 0
 
-    if args.json:
-        report = plan.limit_report()
-        blends = blend_report(program)
-        out = {
-            "program": str(args.program),
-            "lines": int(program.line_count),
-            "moves": len(program.moves),
-            "mode": plan.mode,
-            "interpolation": plan.interpolation,
-            "ts_s": plan.ts_s,
-            "cycle_time_s": plan.cycle_time_s,
-            "samples": n_samples,
-            "parse_s": parse_s,
-            "plan_s": plan.plan_s,
-            "interp_s": interp_s,
-            "tangential": report.tangential,
-            "tangential_samples": report.tangential_samples,
-            "axes": report.axes,
-            "contour_error_mm": report.contour_error_mm,
-            "end_error_mm": report.end_error_mm,
-            "violations": report.violations,
-            "joint_jerk": report.joint_jerk,
-            # how far the path leaves the programmed one: only corner blends do (G64 P)
-            "blends": blends.blends,
-            "path_deviation_mm": blends.max_corner_deviation_mm,
-            "path_deviation_line": blends.line,
-            "ok": report.ok,
-            "move_list": plan.moves_summary(),
-        }
-        # one string through the C encoder: json.dump writes piece by piece in Python (1.7 s
-        # for the 35,000 moves of the sphere finishing program against 0.1 s)
-        sys.stdout.write(json.dumps(out))
-        sys.stdout.write("\n")
-    else:
-        print(f"{program.name}: {len(program.moves)} moves, cycle time {plan.cycle_time_s:.3f} s, "
-              f"{n_samples} samples, plan {plan.plan_s * 1e3:.1f} ms")
-    return 0
-
+    seg, prof = plan.segment, plan.segment.profiles
+    whole = _Summary(plan.mode, plan.interpolation, plan.ts_s, plan.cycle_time_s, n_samples, plan.plan_s,
+                     interp_s, plan.limit_report() if args.json else None,
+                     [(seg.table.line, seg.table.kind, seg.table.length, prof.vs, prof.ve, prof.vp, seg.t0,
+                       seg.t0 + prof.duration)])
+    return _print_summary(args, program, parse_s, whole)
 
 if __name__ == "__main__":
     sys.exit(main())

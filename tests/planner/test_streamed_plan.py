@@ -111,3 +111,17 @@ def test_feed_changes_at_every_segment_joint_report_as_the_whole_plan():
     segments = plan_segments(program, machine, window=2, segment_moves=1)
     streamed = report_segments(program, machine, "exact", segments)
     _reports_equal(streamed.to_dict(), whole.to_dict())
+
+
+def test_cli_json_with_samples_written_reports_the_same(tmp_path, capsys):
+    """With --csv the whole plan is kept (its samples are written); the JSON is the same."""
+    path = tmp_path / "p.ngc"
+    path.write_text(random_program(5, n_blocks=30))
+    assert main([str(path), "--json"]) == 0
+    streamed = json.loads(capsys.readouterr().out)
+    assert main([str(path), "--json", "--csv", str(tmp_path / "s.csv")]) == 0
+    whole = json.loads(capsys.readouterr().out)
+    for key in ("moves", "cycle_time_s", "samples", "move_list", "violations", "ok", "blends"):
+        assert streamed[key] == whole[key], key
+    _reports_equal(streamed["axes"], whole["axes"])
+    assert (tmp_path / "s.csv").read_text().count("\n") == whole["samples"] + 1
