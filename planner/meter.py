@@ -125,6 +125,10 @@ class LimitMeter:
         row = np.clip(move - self.move_base, 0, len(self.v_path) - 1)
         return np.maximum(self.v_path[row[1:]], self.v_path[row[:-1]])
 
+    def kept_moves(self) -> np.ndarray:
+        """Move indices of the last samples kept to measure across the next ``add``."""
+        return self._tail[2] if self._tail is not None else np.zeros(0, np.int64)
+
     def add(self, q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, line: np.ndarray | None = None) -> None:
         """Measure the next consecutive samples (axis positions (N, n_axes), path length (N,),
         move index (N,), source line (N,))."""

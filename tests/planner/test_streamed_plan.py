@@ -10,7 +10,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 
 from cli.plan import main
 from planner.interpreter import parse_file, parse_program
@@ -50,7 +50,13 @@ def test_segments_are_the_whole_plan(seed, segment_moves):
     _check(program, machine, segment_moves)
 
 
+GO_SLOWER_AT_A_SEGMENT_JOINT = (
+    "G21 G90 G94 G17 F1800\nG00 X0 Y0 Z0\nG04 P0.05\nG01 X0 Y0 Z1 F1800\nG01 X0 Y0 Z2 F1800\n"
+    "G01 X1 Y0 Z2 F1800\nG01 X6 Y0 Z2 F300\nG01 X6 Y0 Z3 F1800\nM30\n")
+
+
 @settings(max_examples=40, deadline=None)
+@example(GO_SLOWER_AT_A_SEGMENT_JOINT)  # once reported a speed violation the whole plan has not
 @given(programs(max_blocks=14))
 def test_generated_programs_report_the_same_in_segments(text):
     machine = paper_machine()
@@ -101,8 +107,8 @@ def test_cli_json_is_the_whole_plans(tmp_path, capsys):
 
 
 def test_feed_changes_at_every_segment_joint_report_as_the_whole_plan():
-    # a sample pair across a segment's first joint is measured against the new move's feed
-    # only: the joint's speed is within it and the acceleration zero there
+    # a sample pair across a segment's first joint belongs to two moves and is held to the
+    # faster one's feed, which only the segment before knows
     machine = paper_machine()
     lines = "".join(f"G1 X{i * 2.0:.1f} Y{(i % 2) * 0.3:.1f} F{(600, 1800)[i % 2]}\n" for i in range(1, 60))
     program = parse_program(lines, "f.ngc", machine)
