@@ -18,8 +18,11 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import shutil
 import sys
+import tempfile
 import time
+import zipfile
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -89,30 +92,92 @@ def build_machine(config: str | None, vmax: float | None, amax: float | None, jm
     return machine.with_planner(ts_s=PAPER_TS if ts is None else ts)
 
 
-def _write_npz(path: str, chunk, axes) -> None:
-    write_output(path, lambda fh: np.savez(fh, t=chunk.t, q=chunk.q, axes=np.array(axes), s=chunk.s,
-                                           line=chunk.line))
+class _Sinks:
+    """The sample files (--samples, --csv, --plot), filled chunk by chunk as the samples are
+    made, in a scratch folder (the NPZ's arrays as memory-mapped .npy files); ``deliver`` puts
+    each where it was asked for. Memory: a chunk, and for --plot the path length of every
+    sample (8 bytes each)."""
 
+    def __init__(self, args, axes: list[str], n_samples: int, scratch: Path) -> None:
+        self.args = args
+        self.axes = axes
+        self.n = n_samples
+        self.k = 0
+        self.csv = None
+        if args.csv:
+            self.csv = open(scratch / "samples.csv", "wb")  # noqa: SIM115  (closed in deliver)
+            self.csv.write((",".join(["t", *axes, "s", "line"]) + "\n").encode("utf-8"))
+        self.npz: dict[str, np.ndarray] = {}
+        if args.samples:
+            open_memmap = np.lib.format.open_memmap
+            d = len(axes)
+            self.npz = {"t": open_memmap(scratch / "t.npy", "w+", float, (n_samples,)),
+                        "q": open_memmap(scratch / "q.npy", "w+", float, (n_samples, d)),
+                        "s": open_memmap(scratch / "s.npy", "w+", float, (n_samples,)),
+                        "line": open_memmap(scratch / "line.npy", "w+", np.int32, (n_samples,))}
+        self.plot_s = np.empty(n_samples) if args.plot else None
+        self.scratch = scratch
 
-def _write_csv(path: str, plan, axes) -> None:
-    def w(fh):
-        fh.write((",".join(["t", *axes, "s", "line"]) + "\n").encode("utf-8"))
-        d = len(axes)
-        for c in plan.iter_chunks():
+    @property
+    def wanted(self) -> bool:
+        return bool(self.csv or self.npz or self.plot_s is not None)
+
+    def add(self, c) -> None:
+        m = len(c)
+        if self.k + m > self.n:
+            raise PlannerError(f"more samples than planned ({self.k + m} > {self.n}): an error of this "
+                               "control, please report the program")
+        sl = slice(self.k, self.k + m)
+        if self.csv is not None:
             block = np.column_stack([c.t, c.q, c.s, c.line])
-            np.savetxt(fh, block, fmt=["%.6f"] + ["%.9f"] * d + ["%.9f", "%d"], delimiter=",")
-    write_output(path, w)
+            np.savetxt(self.csv, block, fmt=["%.6f"] + ["%.9f"] * len(self.axes) + ["%.9f", "%d"],
+                       delimiter=",")
+        if self.npz:
+            for name in ("t", "q", "s", "line"):
+                self.npz[name][sl] = getattr(c, name)
+        if self.plot_s is not None:
+            self.plot_s[sl] = c.s
+        self.k += m
 
+    def deliver(self, machine: MachineSpec, ts: float, title: str) -> None:
+        if self.k != self.n:
+            raise PlannerError(f"{self.k} samples made, {self.n} planned: an error of this control, "
+                               "please report the program")
+        if self.csv is not None:
+            self.csv.close()
+            with open(self.scratch / "samples.csv", "rb") as src:
+                write_output(self.args.csv, lambda fh: shutil.copyfileobj(src, fh))
+        if self.npz:
+            for arr in self.npz.values():
+                arr.flush()  # type: ignore[attr-defined]
+            self.npz = {}
+            # the zip is made in the scratch folder (zipfile seeks back to write its headers,
+            # which a pipe or /dev/null cannot), then goes where it was asked for
+            with open(self.scratch / "samples.npz", "wb") as zfh:
+                self._write_npz(zfh)
+            with open(self.scratch / "samples.npz", "rb") as src:
+                write_output(self.args.samples, lambda fh: shutil.copyfileobj(src, fh))
+        if self.plot_s is not None:
+            from cli import vaj_png  # Qt starts only when a plot is asked for
 
-def _plot(path: str, plan, chunk, title: str) -> None:
-    from cli import vaj_png  # Qt starts only when a plot is asked for
-    v, a, j = path_vaj(chunk.s, plan.ts_s)
-    lim = plan.machine.limits
+            v, a, j = path_vaj(self.plot_s, ts)
+            t = np.arange(self.n) * ts
+            lim = machine.limits
 
-    def w(tmp):
-        vaj_png.export_vaj_png(tmp, chunk.t, v, a, j, title=title,
-                                limits=(lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3))
-    write_output_via_path(path, w)
+            def w(tmp: str) -> None:
+                vaj_png.export_vaj_png(tmp, t, v, a, j, title=title,
+                                        limits=(lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3))
+            write_output_via_path(self.args.plot, w)
+
+    def _write_npz(self, fh) -> None:
+        """np.savez's layout (a zip of .npy files, stored), from the files on disk."""
+        with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
+            for name in ("t", "q"):
+                zf.write(self.scratch / f"{name}.npy", arcname=f"{name}.npy")
+            with zf.open("axes.npy", "w") as entry:
+                np.lib.format.write_array(entry, np.array(self.axes))
+            for name in ("s", "line"):
+                zf.write(self.scratch / f"{name}.npy", arcname=f"{name}.npy")
 
 
 @dataclass(eq=False)
@@ -131,12 +196,12 @@ class _Summary:
     moves: list[tuple[np.ndarray, ...]] = field(default_factory=list)  # per segment: line, kind, ...
 
 
-def _summarise(program, machine: MachineSpec, args) -> _Summary:
-    """Plan segment by segment for the cycle time; with --json, plan again and interpolate and
-    measure segment by segment (the cycle time comes first: a program of days is refused
-    before any sample is made)."""
+def _summarise(program, machine: MachineSpec, args, scratch: Path) -> _Summary:
+    """Plan segment by segment for the cycle time; with --json or sample files, plan again and
+    interpolate (and measure) segment by segment, the files filled as the samples come (the
+    cycle time comes first: a program of days is refused before any sample is made)."""
     from planner.interpolate import first_sample_at
-    from planner.plan import plan_segments, report_segments, resolve_settings
+    from planner.plan import plan_segments, report_segments, resolve_settings, stream_program
 
     mode, interpolation = resolve_settings(machine, args.mode, args.interp)
     ts = machine.planner.ts_s
@@ -146,7 +211,16 @@ def _summarise(program, machine: MachineSpec, args) -> _Summary:
         cycle = seg.t_end
     n_samples = first_sample_at(cycle, ts) + 1 if len(program.moves) else 1
     out = _Summary(mode, interpolation, ts, cycle, n_samples, time.perf_counter() - started)
-    if not args.json or not cycle <= args.max_cycle_h * 3600.0:
+    if not cycle <= args.max_cycle_h * 3600.0:
+        return out
+    sinks = _Sinks(args, list(program.axes), n_samples, scratch)
+    if not args.json:
+        if sinks.wanted:
+            started = time.perf_counter()
+            for chunk in stream_program(program, machine, mode, interpolation):
+                sinks.add(chunk)
+            out.interp_s = time.perf_counter() - started
+            sinks.deliver(machine, ts, f"{Path(args.program).name}: {mode}, {interpolation}")
         return out
 
     def keep(seg) -> None:
@@ -156,8 +230,11 @@ def _summarise(program, machine: MachineSpec, args) -> _Summary:
 
     started = time.perf_counter()
     out.report = report_segments(program, machine, interpolation,
-                                 plan_segments(program, machine, mode, interpolation), on_segment=keep)
+                                 plan_segments(program, machine, mode, interpolation), on_segment=keep,
+                                 on_chunk=sinks.add if sinks.wanted else None)
     out.interp_s = time.perf_counter() - started
+    if sinks.wanted:
+        sinks.deliver(machine, ts, f"{Path(args.program).name}: {mode}, {interpolation}")
     return out
 
 
@@ -228,111 +305,70 @@ def main(argv: list[str] | None = None) -> int:
     from planner.blend import blend_program
     from planner.canon import write_canon
     from planner.interpreter import parse_file
-    from planner.plan import plan_program
     from planner.softlimits import check_program
 
     # --canon alone needs no planning: comparing with LinuxCNC's canonical calls runs it on every file.
     want_plan = bool(args.json or args.samples or args.csv or args.plot or not args.canon)
-    # the cycle time and the limit report need no whole plan in memory: it is planned and
-    # measured segment by segment (memory bounded by a segment); samples written out still
-    # take the whole plan
-    streamed = not (args.samples or args.csv or args.plot)
-    plan = None
     summary: _Summary | None = None
     if not (math.isfinite(args.max_cycle_h) and args.max_cycle_h > 0):
         print(f"cnc-plan: error: --max-cycle-h must be a positive number of hours, got {args.max_cycle_h}",
               file=sys.stderr)
         return 2
-    try:
-        machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
-        started = time.perf_counter()
-        tools = None
-        if args.tools:
-            from planner.tools import read_tbl
+    with tempfile.TemporaryDirectory(prefix="cnc-plan-") as scratch:
+        try:
+            machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
+            started = time.perf_counter()
+            tools = None
+            if args.tools:
+                from planner.tools import read_tbl
 
-            tools = read_tbl(args.tools)
-        program = parse_file(args.program, machine, tools=tools, tool_in_spindle=args.tool)
-        parse_s = time.perf_counter() - started
-        if args.config:
-            # the machine's travel, checked on the whole path as the controller does
-            over = check_program(program, machine)
-            if over:
-                for v in over:
-                    print(f"{args.program}:{v.line}: error: {str(v).split(': ', 1)[1]}", file=sys.stderr)
-                return 2
-        programmed = program  # --canon writes the programmed path, as LinuxCNC's canon does
-        if want_plan and (args.mode or machine.planner.mode) == "lookahead":
-            # G64 P: sharp line corners become clothoid blends within the tolerance (the paper's
-            # mode keeps the path as programmed, so its figures can still be reproduced)
-            program = blend_program(program, machine)
-        if want_plan and streamed:
-            summary = _summarise(program, machine, args)
-        elif want_plan:
-            plan = plan_program(program, machine, mode=args.mode, interpolation=args.interp)
-    except ProgramError as exc:
-        print(str(exc), file=sys.stderr)
-        return 2
-    except PlannerError as exc:
-        print(f"{args.program}: error: {exc}", file=sys.stderr)
-        return 2
+                tools = read_tbl(args.tools)
+            program = parse_file(args.program, machine, tools=tools, tool_in_spindle=args.tool)
+            parse_s = time.perf_counter() - started
+            if args.config:
+                # the machine's travel, checked on the whole path as the controller does
+                over = check_program(program, machine)
+                if over:
+                    for v in over:
+                        print(f"{args.program}:{v.line}: error: {str(v).split(': ', 1)[1]}", file=sys.stderr)
+                    return 2
+            programmed = program  # --canon writes the programmed path, as LinuxCNC's canon does
+            if want_plan and (args.mode or machine.planner.mode) == "lookahead":
+                # G64 P: sharp line corners become clothoid blends within the tolerance (the paper's
+                # mode keeps the path as programmed, so its figures can still be reproduced)
+                program = blend_program(program, machine)
+            if want_plan:
+                # planned (and interpolated and measured) segment by segment: memory bounded by a
+                # segment, whatever the length of the program
+                summary = _summarise(program, machine, args, Path(scratch))
+        except ProgramError as exc:
+            print(str(exc), file=sys.stderr)
+            return 2
+        except PlannerError as exc:
+            print(f"{args.program}: error: {exc}", file=sys.stderr)
+            return 2
+        except OSError as exc:
+            print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
+            return 1
 
-    cycle_time_s = plan.cycle_time_s if plan is not None else summary.cycle_time_s if summary else None
-    if cycle_time_s is not None and not cycle_time_s <= args.max_cycle_h * 3600.0:
-        print(f"{args.program}: error: the cycle time is {cycle_time_s / 3600.0:.1f} h, more than "
+    if summary is not None and not summary.cycle_time_s <= args.max_cycle_h * 3600.0:
+        print(f"{args.program}: error: the cycle time is {summary.cycle_time_s / 3600.0:.1f} h, more than "
               f"--max-cycle-h {args.max_cycle_h:g}: not interpolated (a feed too low or a move too long?)",
               file=sys.stderr)
         if args.json:
-            json.dump({"program": str(args.program), "cycle_time_s": cycle_time_s, "ok": False,
+            json.dump({"program": str(args.program), "cycle_time_s": summary.cycle_time_s, "ok": False,
                        "refused": f"cycle time over {args.max_cycle_h:g} h"}, sys.stdout)
             sys.stdout.write("\n")
         return 2
-    if summary is not None:
-        if args.canon:
-            try:
-                write_canon(programmed, args.canon)
-            except OSError as exc:
-                print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
-                return 1
-        return _print_summary(args, program, parse_s, summary)
-
-    axes = list(program.axes)
-    need_samples = bool(args.samples or args.plot)
-    interp_s = 0.0
-    n_samples = plan.n_samples if plan is not None else 0
-    collected = None
-    if plan is not None and (need_samples or args.json):
-        from planner.interpolate import SampleChunk
-
-        started = time.perf_counter()
-        chunks = []
-        n_samples = 0
-        for c in plan.iter_chunks():
-            n_samples += len(c)
-            if need_samples:
-                chunks.append(c)
-        interp_s = time.perf_counter() - started
-        collected = SampleChunk.concat(chunks, len(axes)) if need_samples else None
-    try:
-        if args.canon:
+    if args.canon:
+        try:
             write_canon(programmed, args.canon)
-        if args.samples:
-            _write_npz(args.samples, collected, axes)
-        if args.csv:
-            _write_csv(args.csv, plan, axes)
-        if args.plot and plan is not None:
-            _plot(args.plot, plan, collected, f"{Path(args.program).name}: {plan.mode}, {plan.interpolation}")
-    except OSError as exc:
-        print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
-        return 1
-    if plan is None:
+        except OSError as exc:
+            print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
+            return 1
+    if summary is None:
         return 0
-
-    seg, prof = plan.segment, plan.segment.profiles
-    whole = _Summary(plan.mode, plan.interpolation, plan.ts_s, plan.cycle_time_s, n_samples, plan.plan_s,
-                     interp_s, plan.limit_report() if args.json else None,
-                     [(seg.table.line, seg.table.kind, seg.table.length, prof.vs, prof.ve, prof.vp, seg.t0,
-                       seg.t0 + prof.duration)])
-    return _print_summary(args, program, parse_s, whole)
+    return _print_summary(args, program, parse_s, summary)
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -277,11 +277,13 @@ def _extent(program: Program) -> float:
 
 def report_segments(program: Program, machine: MachineSpec, interpolation: str, segments: Iterable[Segment],
                     chunk_samples: int = DEFAULT_CHUNK, rel_tol: float = 1e-6,
-                    on_segment: Callable[[Segment], None] | None = None) -> LimitReport:
+                    on_segment: Callable[[Segment], None] | None = None,
+                    on_chunk: Callable[[SampleChunk], None] | None = None) -> LimitReport:
     """The limit report of a plan given as consecutive segments (``plan_segments``, or the
     whole plan's one): closed-form maxima of the profiles, and the samples measured by the one
     limit meter (``planner.meter``) against the programmed feed of each move and the machine's
-    limits. ``on_segment`` sees each segment once it is measured (a streamed summary)."""
+    limits. ``on_segment`` sees each segment once it is measured (a streamed summary),
+    ``on_chunk`` each chunk of samples (files written as the samples are made)."""
     ts = machine.planner.ts_s
     lim = LimitSet.from_machine(machine)
     n_total = len(program.moves)
@@ -299,6 +301,8 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
     if not n_total:
         still = _still(program, 0.0)
         meter.add(still.q, still.s, still.move_index, still.line)
+        if on_chunk is not None:
+            on_chunk(still)
         return LimitReport(tangential, dict(meter.tangential), meter.axes, 0.0, meter.violations,
                            meter.joint.as_dict(), 0.0, False, True, meter.samples)
     interp = Interpolator(interpolation, ts)
@@ -330,6 +334,8 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
             t = chunk.t if last_t is None else np.concatenate([[last_t], chunk.t])
             increasing &= bool(np.all(np.diff(t) > 0))
             meter.add(chunk.q, chunk.s, chunk.move_index, chunk.line)
+            if on_chunk is not None:
+                on_chunk(chunk)
             if len(chunk):
                 last_t = float(chunk.t[-1])
                 last_q = chunk.q[-1]

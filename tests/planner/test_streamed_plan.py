@@ -131,3 +131,26 @@ def test_cli_json_with_samples_written_reports_the_same(tmp_path, capsys):
         assert streamed[key] == whole[key], key
     _reports_equal(streamed["axes"], whole["axes"])
     assert (tmp_path / "s.csv").read_text().count("\n") == whole["samples"] + 1
+
+
+@pytest.mark.parametrize("with_json", [False, True])
+def test_sample_files_hold_the_whole_plans_samples(tmp_path, capsys, with_json):
+    """--samples and --csv are written chunk by chunk as the samples are made (with --json, by
+    the limit report's own pass); they hold exactly the whole plan's samples."""
+    from cli.plan import build_machine
+    from planner.blend import blend_program
+
+    path = tmp_path / "p.ngc"
+    path.write_text(random_program(11, n_blocks=40))
+    npz, csv = tmp_path / "s.npz", tmp_path / "s.csv"
+    extra = ["--json"] if with_json else []
+    assert main([str(path), "--samples", str(npz), "--csv", str(csv), *extra]) == 0
+    capsys.readouterr()
+    machine = build_machine(None, None, None, None, None)
+    want = plan_program(blend_program(parse_file(path, machine), machine), machine).collect()
+    got = np.load(npz)
+    for name in ("t", "q", "s", "line"):
+        np.testing.assert_array_equal(got[name], getattr(want, name), err_msg=name)
+    rows = csv.read_text().splitlines()
+    assert len(rows) == len(want) + 1 > 1000
+    assert rows[-1].split(",")[-1] == str(int(want.line[-1]))
