@@ -12,6 +12,9 @@ import numpy as np
 
 __all__ = ["export_vaj_png", "peak_decimate"]
 
+# the default of peak_decimate; a PNG draws a min and a max per pixel column (2 x its width),
+# all it can show: more points only cost drawing time (20,000 points of a dense saw-tooth took
+# 4.5 s to antialias, 2,400 take 0.4 s)
 MAX_POINTS = 20_000
 
 
@@ -56,7 +59,7 @@ def export_vaj_png(path: str, t: np.ndarray, v: np.ndarray, a: np.ndarray, j: np
         p.setLabel("left", f"{name} [{unit}]")
         p.getAxis("left").enableAutoSIPrefix(False)
         p.getAxis("left").setWidth(80)
-        tt, yy = peak_decimate(np.asarray(t, float), np.asarray(y, float))
+        tt, yy = peak_decimate(np.asarray(t, float), np.asarray(y, float), max_points=2 * width)
         p.plot(tt, yy, pen=pg.mkPen(colour, width=1.5))
         if limits is not None:
             lim = limits[k]
