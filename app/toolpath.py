@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from planner.movestore import MoveColumns, MoveStore
 from planner.program import MoveKind, Program
 
 ARC_STEP_RAD = math.radians(6.0)
@@ -59,15 +60,19 @@ def _straight(starts: np.ndarray, ends: np.ndarray, idx: np.ndarray) -> Polyline
     return Polylines(pts, connect, np.repeat(idx, 2).astype(np.int32), n)
 
 
-def _arcs(program: Program, idx: np.ndarray) -> Polylines:
+def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polylines:
     """Sample every arc at once: per-arc point counts, then one vectorised evaluation."""
     moves = program.moves
     n_axes = len(program.axes)
     if len(idx) == 0:
         return _empty(n_axes)
-    arcs = [moves[i].arc for i in idx]
-    start = np.array([moves[i].start for i in idx])
-    end = np.array([moves[i].end for i in idx])
+    if cols is not None and np.array_equal(cols.arc_rows, idx):  # the program's columns
+        arcs = list(cols.arcs)
+        start, end = cols.start[idx], cols.end[idx]
+    else:
+        arcs = [moves[i].arc for i in idx]
+        start = np.array([moves[i].start for i in idx])
+        end = np.array([moves[i].end for i in idx])
     sweep = np.array([a.sweep_rad for a in arcs])
     a0 = np.array([a.start_angle_rad for a in arcs])
     r0 = np.array([a.radius_start_mm for a in arcs])
@@ -129,19 +134,26 @@ def _merge(parts: list[Polylines], n_axes: int) -> Polylines:
 def build_toolpath(program: Program) -> ToolPath:
     n_axes = len(program.axes)
     moves = program.moves
-    kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=len(moves))
-    lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=len(moves))
+    # a program read from G-code keeps its moves as columns: no Move object is made here
+    cols = moves.columns() if isinstance(moves, MoveStore) else None
+    if cols is not None:
+        kinds, lines = cols.kind, cols.line.astype(np.int32)
+    else:
+        kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=len(moves))
+        lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=len(moves))
     result: dict[MoveKind, Polylines] = {}
     for kind in (MoveKind.RAPID, MoveKind.LINE):
         idx = np.flatnonzero(kinds == kind)
-        if len(idx):
+        if len(idx) and cols is not None:
+            result[kind] = _straight(cols.start[idx], cols.end[idx], idx)
+        elif len(idx):
             starts = np.array([moves[i].start for i in idx])
             ends = np.array([moves[i].end for i in idx])
             result[kind] = _straight(starts, ends, idx)
         else:
             result[kind] = _empty(n_axes)
     # corner blends (G64 P) are drawn with the arcs: curved feed moves
-    result[MoveKind.ARC] = _merge([_arcs(program, np.flatnonzero(kinds == MoveKind.ARC)),
+    result[MoveKind.ARC] = _merge([_arcs(program, np.flatnonzero(kinds == MoveKind.ARC), cols),
                                    _blends(program, np.flatnonzero(kinds == MoveKind.BLEND))], n_axes)
     offsets = program.move_offsets
     if offsets is not None and len(moves):

@@ -96,3 +96,24 @@ def test_corner_blends_are_drawn_on_their_curve() -> None:
         np.testing.assert_allclose(pts, exact, atol=1e-12)
         np.testing.assert_allclose(pts[0], program.moves[i - 1].end, atol=1e-12)
         np.testing.assert_allclose(pts[-1], program.moves[i + 1].start, atol=1e-12)
+
+
+def test_a_program_of_columns_draws_as_one_of_move_objects() -> None:
+    """A program read from G-code keeps its moves as columns; drawn from them or from the
+    Move objects they stand for, the tool path is the same, point for point."""
+    from dataclasses import replace
+
+    from planner.movestore import MoveStore
+
+    text = "G21 G90 G0 X1 Y1 Z5\nG1 Z-1 F300\n" + "".join(
+        f"G1 X{i % 9} Y{i % 4}\nG2 X{i % 9 + 2} Y{i % 4} I1 J0\nG0 Z{1 + i % 3}\n" for i in range(40))
+    program = parse_program(text)
+    assert isinstance(program.moves, MoveStore)
+    a = build_toolpath(program)
+    b = build_toolpath(replace(program, moves=tuple(program.moves)))
+    for kind in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC):
+        np.testing.assert_array_equal(a.kinds[kind].points, b.kinds[kind].points)
+        np.testing.assert_array_equal(a.kinds[kind].move_index, b.kinds[kind].move_index)
+    np.testing.assert_array_equal(a.all.points, b.all.points)
+    np.testing.assert_array_equal(a.move_lines, b.move_lines)
+    assert a.kinds[MoveKind.ARC].count == 40
