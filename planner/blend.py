@@ -853,11 +853,14 @@ class BlendReport:
 
 
 def blend_report(program: Program) -> BlendReport:
-    best, line, count = 0.0, 0, 0
-    for m in program.moves:
-        if m.blend is not None:
-            count += 1
-            dev = m.blend.deviation_mm
-            if dev > best:
-                best, line = dev, m.line
-    return BlendReport(count, best, line)
+    moves = program.moves
+    if isinstance(moves, MoveStore):  # columns: only the blends are looked at
+        cols = moves.columns()
+        found = [(b, int(cols.line[r])) for r, b in zip(cols.blend_rows.tolist(), cols.blends)]
+    else:
+        found = [(m.blend, m.line) for m in moves if m.blend is not None]
+    best, line = 0.0, 0
+    for blend, at in found:
+        if blend.deviation_mm > best:
+            best, line = blend.deviation_mm, at
+    return BlendReport(len(found), best, line)

@@ -32,7 +32,7 @@ import numpy as np
 
 from planner.errors import PlannerError
 from planner.lookahead import PlannedBlock
-from planner.movetable import MoveTable, concat_tables
+from planner.movetable import MoveTable, concat_tables, join_rows
 from planner.profile import Profiles, build_profiles
 
 __all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "first_sample_at", "make_segment"]
@@ -90,7 +90,7 @@ class Segment:
         t_b = prof.t_b.ravel()
         dt = np.clip(t - self.ph_t[idx], 0.0, t_b[flat + 1] - t_b[flat])
         a0 = prof.a_b.ravel()[flat]
-        j6 = prof.jerk.ravel()[idx] / 6.0
+        j6 = prof.phase_jerk(row, idx - 7 * row) / 6.0
         v0 = prof.v_b.ravel()[flat]
         s = prof.s_b.ravel()[flat] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
         length = self.table.length[row]
@@ -139,6 +139,26 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
     ph_t = (t0[:, None] + prof.t_b[:, :7]).ravel()
     return Segment(table, prof, vs, ve, v_prog, t0, float(bounds[-1]), s_bounds[:-1],
                    float(s_bounds[-1]), ph_t, t0 + prof.duration)
+
+
+def concat_segments(segments: list[Segment]) -> Segment:
+    """One segment of consecutive ones (each starting where the one before ends): the same as
+    ``make_segment`` of all their blocks at once, built in pieces (profiles of a few thousand
+    moves at a time need far smaller temporaries than those of millions). Empties the list:
+    each column's pieces are let go once joined, so that the plan is not held twice."""
+    if len(segments) == 1:
+        return segments[0]
+    last = segments[-1]
+    table_parts = {name: [getattr(s.table, name) for s in segments] for name in MoveTable.__slots__}
+    prof_parts = {name: [getattr(s.profiles, name) for s in segments] for name in Profiles.__slots__}
+    own = ("vs", "ve", "v_prog", "t0", "s0", "ph_t", "t_stop")
+    seg_parts = {name: [getattr(s, name) for s in segments] for name in own}
+    segments.clear()
+    table = MoveTable(**{name: join_rows(table_parts.pop(name)) for name in MoveTable.__slots__})
+    profiles = Profiles(*(np.concatenate(prof_parts.pop(name)) for name in Profiles.__slots__))
+    cols = {name: np.concatenate(seg_parts.pop(name)) for name in own}
+    return Segment(table, profiles, cols["vs"], cols["ve"], cols["v_prog"], cols["t0"], last.t_end,
+                   cols["s0"], last.s_end, cols["ph_t"], cols["t_stop"])
 
 
 class Interpolator:

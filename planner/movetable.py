@@ -20,7 +20,7 @@ from planner.blend import pair_frames, pair_positions
 from planner.movestore import MoveStore
 from planner.program import Arc, Move, MoveKind
 
-__all__ = ["MoveTable", "concat_tables", "contour_error", "take_rows"]
+__all__ = ["MoveTable", "concat_tables", "contour_error", "join_rows", "take_rows"]
 
 _GL8_X, _GL8_W = np.polynomial.legendre.leggauss(8)
 _GL8_X = (_GL8_X + 1.0) * 0.5
@@ -377,11 +377,10 @@ def concat_tables(tables: list[MoveTable]) -> MoveTable:
     """One table of the rows of several (consecutive) tables."""
     if len(tables) == 1:
         return tables[0]
-    vals: dict[str, Any] = {name: _concat([getattr(t, name) for t in tables]) for name in MoveTable.__slots__}
-    return MoveTable(**vals)
+    return MoveTable(**{name: join_rows([getattr(t, name) for t in tables]) for name in MoveTable.__slots__})
 
 
-def _concat(parts: list[np.ndarray]) -> np.ndarray:
+def join_rows(parts: list[np.ndarray]) -> np.ndarray:
     """Concatenated rows; columns that are one row repeated (stride 0, the blend columns of
     tables without blends) stay so when all parts repeat the same row."""
     first = parts[0]

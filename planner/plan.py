@@ -25,6 +25,7 @@ from planner.interpolate import (
     Interpolator,
     SampleChunk,
     Segment,
+    concat_segments,
     first_sample_at,
     make_segment,
 )
@@ -244,11 +245,10 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
     started = time.perf_counter()
     _check_axes(program, machine)
     mode, interpolation = resolve_settings(machine, mode, interpolation)
-    lim = LimitSet.from_machine(machine)
-    blocks = list(plan_blocks(program, lim, mode, window))
-    _, _, t_start = stop_and_dwell(program)
-    if blocks:
-        seg = make_segment(blocks, interpolation, machine.planner.ts_s, t_start, 0.0)
+    # planned in segments and joined: the same plan, with the temporaries of a segment
+    segments = list(plan_segments(program, machine, mode, interpolation, window))
+    if segments:
+        seg = concat_segments(segments)
     else:
         from planner.movetable import MoveTable
         from planner.profile import build_profiles

@@ -223,7 +223,8 @@ class Profiles:
     """Closed-form jerk-limited profiles of n moves (arrays of shape (n,) or (n, 8)).
 
     ``t_b``, ``s_b``, ``v_b``, ``a_b``: time, length, speed, acceleration at the 8 phase
-    boundaries (t_b[:, 0] = 0, t_b[:, 7] = duration); ``jerk``: (n, 7) jerk of each phase.
+    boundaries (t_b[:, 0] = 0, t_b[:, 7] = duration); ``jerk``: (n, 7) jerk of each phase
+    (made from ``j_max`` on demand).
     """
 
     length_mm: np.ndarray
@@ -237,10 +238,18 @@ class Profiles:
     s_b: np.ndarray
     v_b: np.ndarray
     a_b: np.ndarray
-    jerk: np.ndarray
 
     def __len__(self) -> int:
         return int(self.length_mm.shape[0])
+
+    @property
+    def jerk(self) -> np.ndarray:
+        """(n, 7) jerk of each phase (made on demand: it is +-J or 0 by phase, 56 bytes a move)."""
+        return _PHASE_JERK[None, :] * self.j_max[:, None]
+
+    def phase_jerk(self, move: np.ndarray, phase: np.ndarray) -> np.ndarray:
+        """Jerk of phase ``phase[k]`` of move ``move[k]``."""
+        return _PHASE_JERK[phase] * self.j_max[move]
 
     @property
     def duration(self) -> np.ndarray:
@@ -272,7 +281,7 @@ class Profiles:
         s0 = self.s_b[move, phase]
         v0 = self.v_b[move, phase]
         a0 = self.a_b[move, phase]
-        j = self.jerk[move, phase]
+        j = self.phase_jerk(move, phase)
         s = s0 + dt * (v0 + dt * (0.5 * a0 + dt * (j / 6.0)))
         v = v0 + dt * (a0 + 0.5 * j * dt)
         a = a0 + j * dt
@@ -289,7 +298,7 @@ class Profiles:
         flat = move * 8 + phase
         dt = tau - tb.ravel()[np.arange(move.shape[0]) * 8 + phase]
         s = self.s_b.ravel()[flat] + dt * (self.v_b.ravel()[flat] + dt * (
-            0.5 * self.a_b.ravel()[flat] + dt * (self.jerk.ravel()[move * 7 + phase] / 6.0)))
+            0.5 * self.a_b.ravel()[flat] + dt * (self.phase_jerk(move, phase) / 6.0)))
         length = self.length_mm[move]
         return np.where(tau >= tb[:, 7], length, np.clip(s, 0.0, length))
 
@@ -372,4 +381,4 @@ def build_profiles(length_mm, vs, ve, vc, a_max, j_max, tolerance: float = 1e-6)
             s_b[:, 4] = d_up + vp * t_cruise
         elif k == 6:  # end of the move: exactly (L, ve, 0)
             s_b[:, 7], v_b[:, 7], a_b[:, 7] = length, ve, 0.0
-    return Profiles(length, vs, ve, vc, vp, a_max, j_max, t_b, s_b, v_b, a_b, jerk)
+    return Profiles(length, vs, ve, vc, vp, a_max, j_max, t_b, s_b, v_b, a_b)

@@ -187,7 +187,6 @@ class ProgramInfo:
     length_mm: float
     bounds_min: tuple[float, ...]  # machine coordinates, per axis, whole path (arcs included)
     bounds_max: tuple[float, ...]
-    line_times_s: tuple[tuple[int, float], ...] = ()  # (line, planned start time) per move
     program: object = field(default=None, repr=False, compare=False)  # planner.program.Program
     plan: object = field(default=None, repr=False, compare=False)  # planner.plan.Plan (reduced limits)
     # G64 P: corners blended and fillets eased, and the largest distance from the programmed path

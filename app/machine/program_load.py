@@ -146,8 +146,6 @@ def check_text(
     lo, hi = program_bounds(program, table)
     tab = plan.segment.table
     n = len(tab)
-    lines = np.asarray(tab.line[:n], dtype=np.int64).tolist()
-    starts = np.asarray(plan.t0[:n], dtype=float).tolist()
     return ProgramInfo(
         name=name,
         path=req.path,
@@ -158,7 +156,6 @@ def check_text(
         length_mm=float(np.sum(tab.length)) if n else 0.0,
         bounds_min=tuple(float(x) for x in lo),
         bounds_max=tuple(float(x) for x in hi),
-        line_times_s=tuple(zip(lines, starts)),  # (line, planned start time) per move
         program=program,
         plan=plan,
         blends=blended.blends,

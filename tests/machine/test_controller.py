@@ -856,7 +856,7 @@ def test_g64_p_corners_are_blended_and_run_to_the_exact_end(ctl: MachineControll
     first = kinds.index("BLEND")
     blend = info.program.moves[first]
     assert ctl.cycle_start()
-    ctl.advance(info.line_times_s[first][1] + 0.01)   # the hold ramp ends on the blend
+    ctl.advance(float(info.plan.t0[first]) + 0.01)   # the hold ramp ends on the blend
     assert ctl.feed_hold()
     ctl.advance(0.6)
     held = np.array(ctl.reference_position)

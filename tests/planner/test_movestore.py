@@ -79,3 +79,15 @@ def test_the_buffer_moves_an_end_and_drops_a_move_packed_or_not():
     store = buf.store()
     assert [m.line for m in store] == [1, 2, 3, 4, 6, 7, 8, 10]
     assert store[2].length_mm == 1.5 and store[1].end.tolist() == [2.0, 0.0, 0.0]
+
+
+def test_blend_report_reads_columns_as_move_objects():
+    from planner.blend import blend_program, blend_report
+    from tests.planner.motion_programs import paper_machine
+
+    text = "G64 P0.05\nG1 F6000\n" + "".join(f"X{i * 3} Y{(i % 2) * 0.5}\n" for i in range(1, 30))
+    machine = paper_machine()
+    blended = blend_program(parse(text, machine), machine, only_where_quicker=False)
+    store = replace(blended, moves=MoveStore.from_moves(tuple(blended.moves), blended.start_position))
+    a, b = blend_report(blended), blend_report(store)
+    assert a.blends > 10 and a == b
