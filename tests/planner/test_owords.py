@@ -303,3 +303,16 @@ def test_a_reused_loop_label_is_refused_as_linuxcnc_does() -> None:
     # a subroutine called twice runs its own if twice: one place, no duplicate
     assert len(parse_program("o5 sub\no6 if [1]\nG91 G1 X1\nG90\no6 endif\no5 endsub\nG21 F600\n"
                              "o5 call\no5 call\nM2\n").moves) == 2
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.sampled_from(["G1 X1", "(o100 sub)", "o100 sub", "  O<x> call", "N10 o2 while [1]",
+                                 "/o3 if [1]", "X0 Y1 ; o5 endsub", "", "o", "O12", "%"]), max_size=30),
+       st.integers(1, 40))
+def test_control_flow_is_found_whichever_piece_holds_it(lines, piece_chars):
+    """The look for O-word statements, piece by piece, finds what one search of the whole text
+    finds (a statement never spans two pieces: pieces end at line ends)."""
+    from planner.oword import _ANY_RE, has_control_flow
+
+    text = "\n".join(lines)
+    assert has_control_flow(text, piece_chars) == (_ANY_RE.search(text) is not None)
