@@ -172,6 +172,44 @@ def build_toolpath(program: Program) -> ToolPath:
     return ToolPath(tuple(program.axes), result, everything, lines, first_point, (lo, hi), offsets)
 
 
+def _joined(pl: Polylines) -> Polylines:
+    """Runs that start where the run before them ends, as one run (lines and rapids are drawn
+    as point pairs: a chain of moves becomes one polyline, which ``thin`` can thin)."""
+    pts = pl.points
+    if len(pts) < 2:
+        return pl
+    again = ~pl.connect[:-1] & np.all(pts[1:] == pts[:-1], axis=1)  # point i + 1 repeats point i
+    if not again.any():
+        return pl
+    keep = np.ones(len(pts), bool)
+    keep[1:] = ~again
+    connect = pl.connect.copy()
+    connect[:-1] |= again  # the run's end now continues into the next run
+    idx = np.flatnonzero(keep)
+    return Polylines(pts[idx], connect[idx], pl.move_index[idx], pl.count)
+
+
+def thin(pl: Polylines, cell_mm: float) -> Polylines:
+    """The polylines at a level of detail: a point inside a drawn run (connected on both
+    sides) that lies in the same cube of ``cell_mm`` as the point before it is left out, so
+    the line drawn through the points kept never leaves the path by more than a cube's
+    diagonal. The first and last point of every run stay. Drawn at a pixel per cube, it looks
+    the same as the full path, with as many points as the path crosses cubes."""
+    pl = _joined(pl)
+    pts = pl.points
+    n = len(pts)
+    if n < 3 or not cell_mm > 0.0:
+        return pl
+    same = np.ones(n - 1, bool)  # point i + 1 lies in the cube of point i
+    for k in range(pts.shape[1]):
+        c = np.floor(pts[:, k] / cell_mm)
+        same &= c[1:] == c[:-1]
+    keep = np.ones(n, bool)
+    keep[1:-1] = ~(same[:-1] & pl.connect[:-2] & pl.connect[1:-1])
+    idx = np.flatnonzero(keep)
+    return Polylines(pts[idx], pl.connect[idx], pl.move_index[idx], pl.count)
+
+
 def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,
                       y: float) -> tuple[int, float]:
     """Move index nearest to (x, y) where ``px, py`` are the drawn coordinates of every point

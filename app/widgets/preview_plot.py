@@ -14,10 +14,12 @@ import math
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import QEvent, QPointF, Qt, Signal
+from PySide6.QtCore import QEvent, QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QColor, QPen
 from PySide6.QtWidgets import QGestureEvent, QPinchGesture, QWidget
 
+from app.background import Background
+from app.path_lod import Detail, LodLevels, ViewSpec, build_levels, detail
 from app.toolpath import ToolPath, nearest_projected
 from planner.program import MoveKind
 
@@ -32,6 +34,7 @@ VIEW_3D = "3-D"
 ENVELOPE_COLOR = QColor(140, 150, 165)
 ZERO_COLOR = QColor(255, 255, 255)
 PICK_RADIUS_PX = 24.0
+LOD_REDRAW_MS = 40  # the view settles this long before the detail follows it (app.path_lod)
 
 
 def kind_pen(kind: MoveKind) -> QPen:
@@ -40,6 +43,22 @@ def kind_pen(kind: MoveKind) -> QPen:
     if kind is MoveKind.LINE:
         return pg.mkPen(LINE_COLOR, width=2)
     return pg.mkPen(RAPID_COLOR, width=2, style=Qt.PenStyle.DashLine)
+
+
+def _project(points: np.ndarray, plane: str, cols: tuple[int | None, int | None],
+             axis_cols: tuple[int | None, int | None, int | None], az: float,
+             el: float) -> tuple[np.ndarray, np.ndarray]:
+    """View coordinates of points: a plane's two axes, or the 3-D view turned by the azimuth
+    ``az`` about Z and seen from the elevation ``el`` (rad) above the XY plane."""
+    n = len(points)
+    if plane != VIEW_3D:
+        c0, c1 = cols
+        return (points[:, c0] if c0 is not None else np.zeros(n),
+                points[:, c1] if c1 is not None else np.zeros(n))
+    x, y, z = (points[:, c] if c is not None and c < points.shape[1] else np.zeros(n) for c in axis_cols)
+    u = x * math.cos(az) - y * math.sin(az)
+    depth = x * math.sin(az) + y * math.cos(az)
+    return u, depth * math.sin(el) + z * math.cos(el)
 
 
 class PreviewPlot(pg.PlotWidget):
@@ -54,11 +73,25 @@ class PreviewPlot(pg.PlotWidget):
         self.setAspectLocked(True)
         self.getPlotItem().hideButtons()  # no hover-only controls
         self.items: dict[MoveKind, pg.PlotDataItem] = {}
+        # a big path's thinned copies (app.path_lod); a new view's detail is made off the GUI
+        # thread once the view settles, the old one shown meanwhile
+        self._lod: LodLevels = {}
+        self._lod_timer = QTimer(self)
+        self._lod_timer.setSingleShot(True)
+        self._lod_timer.setInterval(LOD_REDRAW_MS)
+        self._lod_timer.timeout.connect(lambda: self._draw_paths(wait=False))
+        self._detail_work = Background("preview-detail", self._show_detail, self)
+        self.getViewBox().sigRangeChanged.connect(self._on_range)
         for kind in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC):
             item = pg.PlotDataItem(pen=kind_pen(kind), antialias=False, skipFiniteCheck=True)
             item.setZValue(int(kind))
             self.addItem(item)
             self.items[kind] = item
+        # the far level of detail: the whole path as an image of the view (app.path_raster)
+        self.raster_item = pg.ImageItem()
+        self.raster_item.setZValue(3)
+        self.raster_item.setVisible(False)
+        self.addItem(self.raster_item)
         self.done_item = pg.PlotDataItem(pen=pg.mkPen(DONE_COLOR, width=4), skipFiniteCheck=True)
         self.done_item.setZValue(5)
         self.addItem(self.done_item)
@@ -106,24 +139,14 @@ class PreviewPlot(pg.PlotWidget):
         return self.path.column("X"), self.path.column("Y"), self.path.column("Z")
 
     def _xy(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        n = len(points)
-        if self.plane == VIEW_3D:
-            return self.project(points)
-        c0, c1 = self._cols()
-        x = points[:, c0] if c0 is not None else np.zeros(n)
-        y = points[:, c1] if c1 is not None else np.zeros(n)
-        return x, y
+        return _project(points, self.plane, self._cols(), self._axis_cols(), math.radians(self.azimuth_deg),
+                        math.radians(self.elevation_deg))
 
     def project(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The 3-D view: turned by the azimuth about Z, seen from the elevation above the XY
         plane (90 degrees: from the top; 0: from the side)."""
-        n = len(points)
-        cols = self._axis_cols()
-        x, y, z = (points[:, c] if c is not None and c < points.shape[1] else np.zeros(n) for c in cols)
-        az, el = math.radians(self.azimuth_deg), math.radians(self.elevation_deg)
-        u = x * math.cos(az) - y * math.sin(az)
-        depth = x * math.sin(az) + y * math.cos(az)
-        return u, depth * math.sin(el) + z * math.cos(el)
+        return _project(points, VIEW_3D, (None, None), self._axis_cols(), math.radians(self.azimuth_deg),
+                        math.radians(self.elevation_deg))
 
     def rotate(self, d_azimuth_deg: float = 0.0, d_elevation_deg: float = 0.0) -> None:
         """Turn the 3-D view (elevation kept within 0..90 degrees)."""
@@ -138,8 +161,9 @@ class PreviewPlot(pg.PlotWidget):
         self.done_item.setData([], [])
         self.current_item.setData([], [])
         self.selected_item.setData([], [])
+        self._lod = build_levels(path)
+        self.fit()  # first: what is drawn depends on the view (level of detail)
         self._redraw()
-        self.fit()
 
     def set_plane(self, plane: str) -> None:
         if plane not in PLANES and plane != VIEW_3D:
@@ -148,8 +172,8 @@ class PreviewPlot(pg.PlotWidget):
         a, b = PLANES.get(plane, ("", ""))
         self.setLabel("bottom", a, units="mm" if a else None)
         self.setLabel("left", b, units="mm" if b else None)
-        self._refresh_view()
         self.fit()
+        self._refresh_view()
 
     def _refresh_view(self) -> None:
         self._redraw()
@@ -219,15 +243,65 @@ class PreviewPlot(pg.PlotWidget):
         self.current_item.setData([], [])
 
     def _redraw(self) -> None:
-        for kind, item in self.items.items():
-            if self.path is None or self.path.kinds[kind].count == 0:
-                item.setData([], [])
-                continue
-            pl = self.path.kinds[kind]
-            x, y = self._xy(pl.points)
-            item.setData(x, y, connect=pl.connect)
+        self._draw_paths()
         if len(self._tool):
             self.set_tool_position(self._tool)
+
+    def _view_spec(self) -> ViewSpec:
+        """The view as it is now (the projection's settings copied: the detail may be made in
+        another thread while the operator turns the view)."""
+        plane, cols, axis_cols = self.plane, self._cols(), self._axis_cols()
+        az, el = math.radians(self.azimuth_deg), math.radians(self.elevation_deg)
+
+        def project(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return _project(points, plane, cols, axis_cols, az, el)
+
+        vb = self.getViewBox()
+        (x0, x1), (y0, y1) = vb.viewRange()
+        pixel = float(np.max(np.abs(np.asarray(vb.viewPixelSize(), float))))
+        colours = {kind: kind_pen(kind).color().getRgb() for kind in self.items}
+        return ViewSpec(project, float(x0), float(x1), float(y0), float(y1), pixel, colours)
+
+    def _draw_paths(self, wait: bool = True) -> None:
+        """The path for the view: at once, or for a big path after a view change off the GUI
+        thread (``wait=False``)."""
+        if self.path is None:
+            self._detail_work.cancel()
+            self._show_detail(Detail({}))
+            return
+        path, levels, view = self.path, self._lod, self._view_spec()
+        if wait or not levels:
+            self._detail_work.cancel()
+            self._show_detail(detail(path, levels, view))
+        else:
+            self._detail_work.submit(lambda: detail(path, levels, view))
+
+    @property
+    def detail_pending(self) -> bool:
+        """A view's detail is being made off the GUI thread."""
+        return self._detail_work.busy or self._lod_timer.isActive()
+
+    def _show_detail(self, drawn: object) -> None:
+        if not isinstance(drawn, Detail):  # an exception of the work: keep what is shown
+            return
+        for kind, item in self.items.items():
+            if kind in drawn.vectors:
+                x, y, connect = drawn.vectors[kind]
+                item.setData(x, y, connect=connect)
+            else:
+                item.setData([], [])
+        self.raster_item.setVisible(drawn.image is not None)
+        if drawn.image is not None:
+            self.raster_item.setImage(drawn.image, autoLevels=False)
+            self.raster_item.setRect(QRectF(*drawn.rect))
+
+    def _on_range(self, *_args: object) -> None:
+        if self._lod:
+            self._lod_timer.start()  # the detail follows once the view settles
+
+    def drawn_points(self) -> int:
+        """How many points the path's vector items hold now (0 while it is drawn as an image)."""
+        return sum(len(item.xData) if item.xData is not None else 0 for item in self.items.values())
 
     def fit(self) -> None:
         if self.path is None or len(self.path.all.points) == 0:

@@ -1,0 +1,107 @@
+"""Level of detail of the preview: thinned copies stay within a cube of the path, an image of
+the view shows the pixels the path passes, and the preview draws a big program as an image
+when seen whole and as its exact vectors when zoomed in."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from app.path_lod import ViewSpec, build_levels, detail
+from app.path_raster import Layer, rasterize
+from app.toolpath import Polylines, build_toolpath, thin
+from planner.interpreter import parse_program
+from planner.program import MoveKind
+
+
+def _polyline(steps: list[tuple[float, float]], breaks: list[bool]) -> Polylines:
+    pts = np.cumsum(np.array([(0.0, 0.0)] + steps), axis=0)
+    pts = np.column_stack([pts, np.zeros(len(pts))])
+    connect = np.ones(len(pts), bool)
+    for i, b in enumerate(breaks[: len(pts)]):
+        connect[i] = not b
+    connect[-1] = False
+    return Polylines(pts, connect, np.arange(len(pts), dtype=np.int32), len(pts))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.floats(-3, 3), st.floats(-3, 3)), min_size=2, max_size=80),
+       st.lists(st.booleans(), max_size=80), st.sampled_from([0.01, 0.5, 2.0]))
+def test_thinning_keeps_run_ends_and_every_dropped_point_near_the_one_before(steps, breaks, cell):
+    pl = _polyline(steps, [b and i % 7 == 0 for i, b in enumerate(breaks)])
+    out = thin(pl, cell)
+    assert len(out.points) <= len(pl.points)
+    # every run's first and last point is drawn (the runs, joined where they touch)
+    starts = np.flatnonzero(np.r_[True, ~pl.connect[:-1]])
+    ends = np.flatnonzero(~pl.connect)
+    kept = {tuple(p) for p in out.points}
+    for i in np.r_[starts, ends]:
+        assert tuple(pl.points[i]) in kept
+    # a dropped point lies within a cube's diagonal of a kept point of its own run before it
+    diag = cell * np.sqrt(3.0) * (1 + 1e-12)
+    for i, p in enumerate(pl.points):
+        if tuple(p) not in kept:
+            before = [q for q in pl.points[:i] if tuple(q) in kept]
+            assert before and min(np.linalg.norm(before - p, axis=1)) <= diag
+
+
+def test_a_raster_image_shows_the_pixels_a_segment_passes():
+    layer = Layer(np.array([0.5, 9.5]), np.array([2.5, 2.5]), np.array([True, False]), (0, 255, 0, 255))
+    img = rasterize([layer], 0.0, 0.0, 1.0, 12, 6)
+    assert img.shape == (12, 6, 4)
+    lit = img[:, :, 3] > 0
+    assert lit[0:11, 2].all() and lit[0:10, 3].all()  # two pixels wide
+    assert not lit[:, 0:2].any() and not lit[11, 2] and not lit[:, 4:].any()
+    top = Layer(np.array([4.5, 4.5]), np.array([0.5, 5.5]), np.array([True, False]), (255, 0, 0, 255))
+    both = rasterize([layer, top], 0.0, 0.0, 1.0, 12, 6)
+    assert tuple(both[4, 2]) == (255, 0, 0, 255)  # the later layer covers the earlier one
+
+
+@pytest.fixture(scope="module")
+def big_path():
+    rows = []
+    for r in range(200):
+        xs = np.arange(0, 2001) * 0.05
+        rows.append("\n".join(f"X{x:.2f} Y{r * 0.5:.1f}" for x in (xs if r % 2 == 0 else xs[::-1])))
+    text = "G1 F600\n" + "\n".join(rows) + "\n"
+    path = build_toolpath(parse_program(text, "raster.ngc"))
+    assert len(path.kinds[MoveKind.LINE].points) > 400_000
+    return path
+
+
+def _view(x0, x1, y0, y1, pixel):
+    return ViewSpec(lambda p: (p[:, 0], p[:, 1]), x0, x1, y0, y1, pixel,
+                    {k: (0, 255, 0, 255) for k in MoveKind})
+
+
+def test_a_big_path_seen_whole_is_an_image_and_zoomed_in_its_own_points(big_path):
+    levels = build_levels(big_path)
+    assert MoveKind.LINE in levels and MoveKind.RAPID not in levels
+    whole = detail(big_path, levels, _view(-5, 105, -5, 100, 0.1))
+    assert whole.image is not None and not whole.vectors
+    assert (whole.image[:, :, 3] > 0).mean() > 0.05
+    near = detail(big_path, levels, _view(10, 12, 10, 12, 0.002))
+    assert near.image is None
+    x, y, connect = near.vectors[MoveKind.LINE]
+    assert 0 < len(x) < 10_000
+    pts = big_path.kinds[MoveKind.LINE].points
+    inside = (pts[:, 0] >= 10) & (pts[:, 0] <= 12) & (pts[:, 1] >= 10) & (pts[:, 1] <= 12)
+    drawn = set(zip(x.tolist(), y.tolist()))
+    assert all((px, py) in drawn for px, py in pts[inside, :2].tolist())  # every point in view
+
+
+def test_the_preview_draws_a_big_path_as_an_image_then_zoomed_in_as_vectors(qtbot, big_path):
+    from app.widgets.preview_plot import PreviewPlot
+
+    plot = PreviewPlot()
+    qtbot.addWidget(plot)
+    plot.resize(900, 600)
+    plot.show()
+    plot.set_toolpath(big_path)
+    assert plot.raster_item.isVisible() and plot.drawn_points() == 0
+    plot.getViewBox().setRange(xRange=(10, 12), yRange=(10, 12), padding=0)
+    qtbot.waitUntil(lambda: not plot.detail_pending, timeout=10_000)
+    assert not plot.raster_item.isVisible()
+    assert 0 < plot.drawn_points() < 10_000
