@@ -22,7 +22,7 @@ from app.path_raster import Layer, rasterize
 from app.toolpath import Polylines, ToolPath, thin
 from planner.program import MoveKind
 
-__all__ = ["Detail", "LodLevels", "ViewSpec", "build_levels", "detail"]
+__all__ = ["Detail", "LodLevels", "ViewSpec", "build_levels", "detail", "needs_levels"]
 
 LOD_MIN_POINTS = 200_000
 BASE_CELLS = 65_536  # the finest copy: the path's extent in this many cubes
@@ -55,6 +55,11 @@ class Detail:
     vectors: dict[MoveKind, tuple[np.ndarray, np.ndarray, np.ndarray]]
     image: np.ndarray | None = None  # (width, height, 4) uint8, column-major
     rect: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)  # x, y, width, height
+
+
+def needs_levels(path: ToolPath | None) -> bool:
+    """Whether ``path`` has a kind of move big enough for thinned copies."""
+    return path is not None and any(len(pl.points) > LOD_MIN_POINTS for pl in path.kinds.values())
 
 
 def build_levels(path: ToolPath | None) -> LodLevels:

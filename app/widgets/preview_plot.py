@@ -19,7 +19,7 @@ from PySide6.QtGui import QColor, QPen
 from PySide6.QtWidgets import QGestureEvent, QPinchGesture, QWidget
 
 from app.background import Background
-from app.path_lod import Detail, LodLevels, ViewSpec, build_levels, detail
+from app.path_lod import Detail, LodLevels, ViewSpec, build_levels, detail, needs_levels
 from app.toolpath import ToolPath, nearest_projected
 from planner.program import MoveKind
 
@@ -81,6 +81,8 @@ class PreviewPlot(pg.PlotWidget):
         self._lod_timer.setInterval(LOD_REDRAW_MS)
         self._lod_timer.timeout.connect(lambda: self._draw_paths(wait=False))
         self._detail_work = Background("preview-detail", self._show_detail, self)
+        self._levels_work = Background("preview-levels", self._levels_made, self)
+        self._levels_pending = False
         self.getViewBox().sigRangeChanged.connect(self._on_range)
         for kind in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC):
             item = pg.PlotDataItem(pen=kind_pen(kind), antialias=False, skipFiniteCheck=True)
@@ -161,9 +163,21 @@ class PreviewPlot(pg.PlotWidget):
         self.done_item.setData([], [])
         self.current_item.setData([], [])
         self.selected_item.setData([], [])
-        self._lod = build_levels(path)
+        self._lod = {}
         self.fit()  # first: what is drawn depends on the view (level of detail)
+        self._levels_work.cancel()
+        self._levels_pending = needs_levels(path)
+        if self._levels_pending:
+            # a big path: its thinned copies are made off the GUI thread (seconds for
+            # millions of segments); it is drawn once they are there
+            self._levels_work.submit(lambda: build_levels(path))
         self._redraw()
+
+    def _levels_made(self, levels: object) -> None:
+        self._levels_pending = False
+        # an exception of the work leaves no copies: the path is then drawn whole, at once
+        self._lod = levels if isinstance(levels, dict) else {}
+        self._draw_paths(wait=not self._lod)
 
     def set_plane(self, plane: str) -> None:
         if plane not in PLANES and plane != VIEW_3D:
@@ -265,7 +279,7 @@ class PreviewPlot(pg.PlotWidget):
     def _draw_paths(self, wait: bool = True) -> None:
         """The path for the view: at once, or for a big path after a view change off the GUI
         thread (``wait=False``)."""
-        if self.path is None:
+        if self.path is None or self._levels_pending:  # nothing yet while a big path is prepared
             self._detail_work.cancel()
             self._show_detail(Detail({}))
             return
@@ -279,7 +293,7 @@ class PreviewPlot(pg.PlotWidget):
     @property
     def detail_pending(self) -> bool:
         """A view's detail is being made off the GUI thread."""
-        return self._detail_work.busy or self._lod_timer.isActive()
+        return self._levels_pending or self._detail_work.busy or self._lod_timer.isActive()
 
     def _show_detail(self, drawn: object) -> None:
         if not isinstance(drawn, Detail):  # an exception of the work: keep what is shown

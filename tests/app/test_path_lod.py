@@ -99,7 +99,9 @@ def test_the_preview_draws_a_big_path_as_an_image_then_zoomed_in_as_vectors(qtbo
     qtbot.addWidget(plot)
     plot.resize(900, 600)
     plot.show()
-    plot.set_toolpath(big_path)
+    plot.set_toolpath(big_path)  # its thinned copies are made off the GUI thread
+    assert plot.detail_pending
+    qtbot.waitUntil(lambda: not plot.detail_pending, timeout=10_000)
     assert plot.raster_item.isVisible() and plot.drawn_points() == 0
     plot.getViewBox().setRange(xRange=(10, 12), yRange=(10, 12), padding=0)
     qtbot.waitUntil(lambda: not plot.detail_pending, timeout=10_000)
