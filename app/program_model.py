@@ -71,7 +71,8 @@ class ProgramModel(QObject):
             if not isinstance(program, Program):
                 program = interpret(self.text, self.name or "<program>", machine)
             self.program = program
-            self.toolpath = build_toolpath(program)
+            made = getattr(info, "toolpath", None)  # made with the check, off the GUI thread
+            self.toolpath = made if isinstance(made, ToolPath) else build_toolpath(program)
             self.errors = {}
         except PlannerError as exc:  # the controller accepted it: should not happen
             self.program, self.toolpath = None, None

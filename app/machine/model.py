@@ -189,6 +189,9 @@ class ProgramInfo:
     bounds_max: tuple[float, ...]
     program: object = field(default=None, repr=False, compare=False)  # planner.program.Program
     plan: object = field(default=None, repr=False, compare=False)  # planner.plan.Plan (reduced limits)
+    # app.toolpath.ToolPath of ``program``, made with the check off the GUI thread (seconds for
+    # millions of moves): the preview draws it
+    toolpath: object = field(default=None, repr=False, compare=False)
     # G64 P: corners blended and fillets eased, and the largest distance from the programmed path
     blends: int = 0
     path_deviation_mm: float = 0.0

@@ -36,6 +36,7 @@ import numpy as np
 
 from app.background import Background
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
+from app.toolpath import build_toolpath
 from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
@@ -158,6 +159,7 @@ def check_text(
         bounds_max=tuple(float(x) for x in hi),
         program=program,
         plan=plan,
+        toolpath=build_toolpath(program),
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
     )

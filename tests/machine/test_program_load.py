@@ -169,3 +169,18 @@ def test_a_nan_parameter_number_is_a_located_error_not_an_internal_one(ctl: Mach
     (errors,) = issues
     assert [(e.line, e.col) for e in errors] == [(2, 39)]
     assert "parameter number #nan out of range" in errors[0].message
+
+
+def test_the_tool_path_is_made_with_the_check_not_by_the_pages(ctl: MachineController) -> None:
+    """The preview's tool path comes with the loaded program (made off the GUI thread, seconds
+    for millions of moves); the panel's program model takes it as it is."""
+    from app.program_model import ProgramModel
+    from app.toolpath import ToolPath
+
+    assert ctl.load_program(big_program(3000), wait=True)
+    info = ctl.program_info
+    assert isinstance(info.toolpath, ToolPath)
+    assert len(info.toolpath.move_lines) == info.move_count
+    model = ProgramModel()
+    model.set_loaded(info, ctl.conn.machine)
+    assert model.toolpath is info.toolpath
