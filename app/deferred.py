@@ -15,6 +15,7 @@ from collections.abc import Callable
 from PySide6.QtCore import QTimer
 
 BIG_PROGRAM_LINES = 5000  # below this the pages react at once (a few ms)
+LOAD_PROGRESS_MS = 250  # how often the pages show how far a program's check is
 
 _queue: OrderedDict[str, Callable[[], None]] = OrderedDict()
 _armed = False

@@ -119,6 +119,9 @@ class MainWindow(QMainWindow):
             lambda action, reason: self.show_message(tr("Refused: {0}").format(localize(reason))))
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
+        self._progress_timer = QTimer(self)
+        self._progress_timer.setInterval(deferred.LOAD_PROGRESS_MS)
+        self._progress_timer.timeout.connect(self._show_progress)
         if hasattr(ctx.controller, "loadingChanged"):
             ctx.controller.loadingChanged.connect(self._on_loading)
         ctx.program.lineRequested.connect(lambda _line: self.show_page("program"))
@@ -158,17 +161,30 @@ class MainWindow(QMainWindow):
             ctx.controller.load_program(program)  # the Program page opens it when it is loaded
 
     def _on_loading(self, loading: bool, name: str) -> None:
-        """The controller checks a program in its worker thread: say so in the status bar."""
+        """The controller checks a program in its worker thread: say so in the status bar, with
+        how far it is (a program of millions of lines takes seconds)."""
         checking = tr("Checking {0} …").format(name)
         if loading:
             self._program_label.setText(tr("{0} (checking…)").format(name))
             self.show_message(checking)
+            self._checking = (name, checking)
+            self._progress_timer.start()
             return
+        self._progress_timer.stop()
+        checking = getattr(self, "_checking", ("", checking))[1]
         # done (loaded, refused, or a single-block plan made): no "checking" text may outlive it
         info = self.context.controller.program_info
         self._program_label.setText(str(getattr(info, "name", "")) if info is not None else "")
         if self._message.text() == checking:
             self.show_message("")
+
+    def _show_progress(self) -> None:
+        name, shown = getattr(self, "_checking", ("", ""))
+        fraction = float(getattr(self.context.controller, "loading_progress", 0.0) or 0.0)
+        if fraction > 0.0 and self._message.text() == shown:
+            text = tr("Checking {0} … {1} %").format(name, int(100 * fraction))
+            self.show_message(text)
+            self._checking = (name, text)
 
     def _on_program_loaded(self, info: object) -> None:
         name = str(getattr(info, "name", ""))

@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 import os
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -197,6 +197,8 @@ class _Interpreter:
     BULK_LINES = 16_384  # lines scanned at once by the bulk reader (its arrays: ~40 MB)
     BULK_MIN_RUN = 24  # shorter runs of plain lines are read one by one (cheaper than the arrays)
     BULK_SKIP_BLOCKS = 4  # blocks read line by line after a scan that found few long runs
+    PROGRESS_LINES = 16_384  # the line reader reports its progress this often
+    progress: Callable[[int, int], None] | None = None
 
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
@@ -348,9 +350,13 @@ class _Interpreter:
             self.run_structured(text.split("\n"))
         elif not (self.use_bulk and self.use_fast and self.run_bulk(text, utf8)):
             line = self.line
-            for line_no, raw in enumerate(text.split("\n"), 1):
+            lines = text.split("\n")
+            report, every = self.progress, self.PROGRESS_LINES
+            for line_no, raw in enumerate(lines, 1):
                 if line(raw, line_no):
                     break
+                if report is not None and line_no % every == 0:
+                    report(line_no, len(lines))
         if self.errors:
             raise ProgramError(self.errors, self.truncated)
         return self.build(text.count("\n") + 1 if text else 0)
@@ -711,6 +717,8 @@ class _Interpreter:
                 skip -= 1
                 if by_line(b0, b1):
                     return True
+                if self.progress is not None:
+                    self.progress(b1, n_lines)
                 continue
             base = int(starts[b0])
             block = scan_plain(data[base:int(ends[b1 - 1])], starts[b0:b1] - base, ends[b0:b1] - base,
@@ -739,6 +747,8 @@ class _Interpreter:
                 cursor = r1
             if by_line(cursor, b1):
                 return True
+            if self.progress is not None:
+                self.progress(b1, n_lines)
         return True
 
     def bulk_lines(self, values: np.ndarray, words: np.ndarray, first_line: int, cols: list[int]) -> int:
@@ -2157,6 +2167,7 @@ def parse_program(
     spindle: tuple[int, float] = (0, 0.0),
     subroutine_dirs: Sequence[str] = (),
     parameters: dict[int, float] | None = None,
+    progress: Callable[[int, int], None] | None = None,
     _utf8: bytes | None = None,
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
@@ -2171,10 +2182,12 @@ def parse_program(
     does not define the subroutine itself.
     ``parameters``: the persistent parameters the machine kept (``PERSISTENT_PARAMETERS``: G92,
     G28/G30 positions, coordinate systems); the machine's work offsets take precedence for G54-G59.
+    ``progress(lines read, lines in all)`` is called now and then while a long program is read.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
                           spindle, subroutine_dirs, parameters)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
+        interp.progress = progress
         return interp.run(text, _utf8)
 
 

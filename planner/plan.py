@@ -240,13 +240,20 @@ class Plan:
 
 
 def plan_program(program: Program, machine: MachineSpec, mode: str | None = None,
-                 interpolation: str | None = None, window: int = DEFAULT_WINDOW) -> Plan:
-    """Plan the whole program (speeds at every joint, profiles, timeline)."""
+                 interpolation: str | None = None, window: int = DEFAULT_WINDOW,
+                 progress: Callable[[int, int], None] | None = None) -> Plan:
+    """Plan the whole program (speeds at every joint, profiles, timeline); ``progress(moves
+    planned, moves in all)`` is called after each segment."""
     started = time.perf_counter()
     _check_axes(program, machine)
     mode, interpolation = resolve_settings(machine, mode, interpolation)
     # planned in segments and joined: the same plan, with the temporaries of a segment
-    segments = list(plan_segments(program, machine, mode, interpolation, window))
+    segments = []
+    # segments of 16,384 moves: the progress moves often enough to be seen on a long program
+    for seg in plan_segments(program, machine, mode, interpolation, window, segment_moves=16_384):
+        segments.append(seg)
+        if progress is not None:
+            progress(int(seg.table.index[-1]) + 1, len(program.moves))
     if segments:
         seg = concat_segments(segments)
     else:

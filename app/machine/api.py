@@ -247,6 +247,11 @@ class MachineApi(Protocol):
         ...
 
     @property
+    def loading_progress(self) -> float:
+        """How far the program being checked is, 0 .. 1 (0 when none)."""
+        ...
+
+    @property
     def resume_line(self) -> int:
         """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
         ...

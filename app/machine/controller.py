@@ -415,6 +415,10 @@ class MachineController(QObject):
     def loading_name(self) -> str:
         return self.loader.loading_name
 
+    @property
+    def loading_progress(self) -> float:
+        return self.loader.loading_progress
+
     def load_program(
         self,
         source: str | os.PathLike[str],

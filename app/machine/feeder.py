@@ -105,14 +105,16 @@ class Streamer:
         ts = self.m.config.machine.planner.ts_s
         return max(int(self.m.config.controller.lead_s / ts), 10)
 
-    def plan(self, program: Program) -> Plan:
-        return plan_program(program, reduced_machine(self.m.conn.machine, self.m.conn.budget))
-
-    def planner(self) -> Callable[[Program], Plan]:
-        """``_plan`` bound to the machine and budget of now (for a worker thread: a change of
-        the configuration meanwhile cannot reach into a plan under way)."""
+    def plan(self, program: Program, progress: Callable[[int, int], None] | None = None) -> Plan:
         machine = reduced_machine(self.m.conn.machine, self.m.conn.budget)
-        return lambda program: plan_program(program, machine)
+        return plan_program(program, machine, progress=progress)
+
+    def planner(self) -> Callable[..., Plan]:
+        """``_plan`` bound to the machine and budget of now (for a worker thread: a change of
+        the configuration meanwhile cannot reach into a plan under way); it takes the program
+        and, as ``plan_program`` does, a ``progress`` callback."""
+        machine = reduced_machine(self.m.conn.machine, self.m.conn.budget)
+        return lambda program, progress=None: plan_program(program, machine, progress=progress)
 
     def make_job(
         self,

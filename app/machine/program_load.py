@@ -72,6 +72,7 @@ class LoadRequest:
     parameters: dict[int, float] = field(default_factory=dict)   # G92, G28/G30 ... (var file)
     cancel: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
+    progress: float = 0.0  # 0..1, written by the worker as it reads, checks and plans
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
     outcome: ProgramInfo | tuple[tuple[ProgramIssue, ...], str] | None = None
     finished: bool = False  # applied in the controller's thread (or dropped)
@@ -102,6 +103,16 @@ def _issues_from_limits(
     )
 
 
+# the parts of a load's time (read, soft limits, plan; the tool path the rest), as measured
+# on a 2,000,000-line raster: the progress shown moves evenly
+LOAD_SHARES = (0.25, 0.05, 0.55)
+
+
+def _toolpath(program: Program, req: LoadRequest) -> object:
+    req.progress = sum(LOAD_SHARES)
+    return build_toolpath(program)
+
+
 def check_text(
     req: LoadRequest, machine: MachineSpec, plan_fn: Any
 ) -> ProgramInfo | tuple[tuple[ProgramIssue, ...], str]:
@@ -114,11 +125,17 @@ def check_text(
             raise _Cancelled
         time.sleep(0)  # hand the GIL to the GUI thread between stages
 
+    def stage_progress(first: float, share: float):
+        """A progress callback for one stage: its part of the load, ``first`` .. + ``share``."""
+        def report(done: int, total: int) -> None:
+            req.progress = first + share * min(1.0, done / max(total, 1))
+        return report
+
     text, name = req.text, req.name
     try:
         program = parse_program(text, name, machine=machine, start_position=req.start_position,
                                 tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                                parameters=req.parameters)
+                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]))
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
@@ -139,8 +156,9 @@ def check_text(
     if limit_issues:
         return limit_issues, f"soft limit: {limit_issues[0]}"
     stage()
+    req.progress = LOAD_SHARES[0] + LOAD_SHARES[1]
     try:
-        plan = plan_fn(program)
+        plan = plan_fn(program, progress=stage_progress(req.progress, LOAD_SHARES[2]))
     except PlannerError as exc:
         return (ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}"
     stage()
@@ -159,7 +177,7 @@ def check_text(
         bounds_max=tuple(float(x) for x in hi),
         program=program,
         plan=plan,
-        toolpath=build_toolpath(program),
+        toolpath=_toolpath(program, req),
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
     )
@@ -194,6 +212,12 @@ class ProgramLoader:
         """True while a program is being read, checked and planned, or checked again, or
         planned for single block (cycle start refused meanwhile)."""
         return self.load_request is not None or self.run_plan_request is not None
+
+    @property
+    def loading_progress(self) -> float:
+        """How far the program being checked is, 0 .. 1 (0 when none)."""
+        req = self.load_request
+        return req.progress if req is not None else 0.0
 
     @property
     def loading_name(self) -> str:

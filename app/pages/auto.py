@@ -4,6 +4,7 @@ run from line, feed and rapid override, current line kept in view, progress and 
 from __future__ import annotations
 
 import numpy as np
+from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import (
     QGridLayout,
     QHBoxLayout,
@@ -58,6 +59,9 @@ class AutoPage(QWidget):
         self.loading_bar.setMaximumHeight(8)
         self.loading_note.hide()
         self.loading_bar.hide()
+        self._loading_timer = QTimer(self)  # the bar shows how far the check is, once known
+        self._loading_timer.setInterval(deferred.LOAD_PROGRESS_MS)
+        self._loading_timer.timeout.connect(self._show_loading_progress)
         left.addWidget(self.loading_note)
         left.addWidget(self.loading_bar)
         self.editor = CodeEditor(read_only=True)
@@ -214,8 +218,19 @@ class AutoPage(QWidget):
         """The controller is checking a program (parse, soft limits, plan) in its worker thread."""
         self.loading_note.setText(tr("Checking {0} …").format(name) if loading else "")
         self.loading_note.setVisible(loading)
+        self.loading_bar.setRange(0, 0)  # busy until the controller tells how far it is
         self.loading_bar.setVisible(loading)
+        if loading:
+            self._loading_timer.start()
+        else:
+            self._loading_timer.stop()
         self._update_buttons()
+
+    def _show_loading_progress(self) -> None:
+        fraction = float(getattr(self.ctx.controller, "loading_progress", 0.0) or 0.0)
+        if fraction > 0.0:
+            self.loading_bar.setRange(0, 100)
+            self.loading_bar.setValue(int(100 * fraction))
 
     def _on_loaded(self, info: object) -> None:
         self.program_label.setText(str(getattr(info, "name", "")))

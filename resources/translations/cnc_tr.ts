@@ -114,7 +114,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="332" />
+      <location filename="../../app/pages/auto.py" line="347" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="332" />
+      <location filename="../../app/pages/auto.py" line="347" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -149,9 +149,14 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="162" />
+      <location filename="../../app/main_window.py" line="166" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="185" />
+      <source>Checking {0} … {1} %</source>
+      <translation>{0} denetleniyor … %{1}</translation>
     </message>
     <message>
       <location filename="../../app/pages/preview.py" line="42" />
@@ -194,12 +199,12 @@
       <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="28" />
+      <location filename="../../app/pages/auto.py" line="29" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="179" />
+      <location filename="../../app/pages/auto.py" line="183" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -299,17 +304,17 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="335" />
+      <location filename="../../app/pages/auto.py" line="350" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="29" />
+      <location filename="../../app/pages/auto.py" line="30" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="104" />
+      <location filename="../../app/pages/auto.py" line="108" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -454,7 +459,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="321" />
+      <location filename="../../app/pages/auto.py" line="336" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -521,7 +526,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="205" />
+      <location filename="../../app/pages/auto.py" line="209" />
       <source>Move to the start of line {0} the way drawn (up to the clearance height, across, spindle on, down) and run the program from there?</source>
       <translation>{0}. satırın başına çizilen yoldan gidilsin (güvenli yüksekliğe çık, yana git, iş milini çalıştır, in) ve program oradan çalıştırılsın mı?</translation>
     </message>
@@ -596,7 +601,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="93" />
+      <location filename="../../app/pages/auto.py" line="97" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -676,22 +681,22 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="294" />
+      <location filename="../../app/pages/auto.py" line="309" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="183" />
+      <location filename="../../app/main_window.py" line="199" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="179" />
+      <location filename="../../app/main_window.py" line="195" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="196" />
+      <location filename="../../app/main_window.py" line="212" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -701,7 +706,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="299" />
+      <location filename="../../app/pages/auto.py" line="314" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -723,7 +728,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="107" />
+      <location filename="../../app/pages/auto.py" line="111" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -773,17 +778,17 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="190" />
+      <location filename="../../app/pages/auto.py" line="194" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="197" />
+      <location filename="../../app/pages/auto.py" line="201" />
       <source>Run from line refused: {0}</source>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="98" />
+      <location filename="../../app/pages/auto.py" line="102" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -828,22 +833,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="228" />
+      <location filename="../../app/main_window.py" line="244" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="257" />
+      <location filename="../../app/main_window.py" line="273" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="233" />
+      <location filename="../../app/main_window.py" line="249" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="235" />
+      <location filename="../../app/main_window.py" line="251" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -853,7 +858,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="228" />
+      <location filename="../../app/main_window.py" line="244" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -883,7 +888,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="89" />
+      <location filename="../../app/pages/auto.py" line="93" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -898,12 +903,12 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="331" />
+      <location filename="../../app/pages/auto.py" line="346" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="110" />
+      <location filename="../../app/pages/auto.py" line="114" />
       <source>Spindle override</source>
       <translation>İş mili oranı</translation>
     </message>
@@ -913,7 +918,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="332" />
+      <location filename="../../app/pages/auto.py" line="347" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -928,7 +933,7 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="30" />
+      <location filename="../../app/pages/auto.py" line="31" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
@@ -993,7 +998,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="334" />
+      <location filename="../../app/pages/auto.py" line="349" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -1408,7 +1413,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="164" />
+      <location filename="../../app/main_window.py" line="168" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>

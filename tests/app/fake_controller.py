@@ -151,6 +151,7 @@ class FakeController(QObject):
 
     loading = False  # the fake checks synchronously (the real controller in a worker thread)
     loading_name = ""
+    loading_progress = 0.0
 
     def load_program(self, source: str | os.PathLike[str], name: str | None = None, *, wait: bool = False,
                      timeout_s: float | None = None) -> CommandResult:

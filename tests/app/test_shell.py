@@ -105,3 +105,16 @@ def test_no_checking_text_outlives_the_check(fake_window, fake_controller) -> No
     fake_controller.loadingChanged.emit(False, "part.nc")
     assert "Checking" not in fake_window._message.text()
     assert "checking" not in fake_window._program_label.text()
+
+
+def test_the_status_bar_shows_how_far_a_check_is(fake_window, fake_controller, qtbot) -> None:
+    fake_controller.loadingChanged.emit(True, "part.nc")
+    fake_controller.loading_progress = 0.42
+    qtbot.waitUntil(lambda: "42 %" in fake_window._message.text(), timeout=2_000)
+    assert "part.nc" in fake_window._message.text()
+    auto = fake_window.page("auto")
+    qtbot.waitUntil(lambda: auto.loading_bar.maximum() == 100 and auto.loading_bar.value() == 42,
+                    timeout=2_000)
+    fake_controller.loadingChanged.emit(False, "part.nc")
+    assert "part.nc" not in fake_window._message.text()
+    fake_controller.loading_progress = 0.0

@@ -184,3 +184,21 @@ def test_the_tool_path_is_made_with_the_check_not_by_the_pages(ctl: MachineContr
     model = ProgramModel()
     model.set_loaded(info, ctl.conn.machine)
     assert model.toolpath is info.toolpath
+
+
+def test_a_check_in_the_background_tells_how_far_it_is(qtbot, ctl: MachineController) -> None:
+    seen: list[float] = []
+    timer = QTimer()
+    timer.timeout.connect(lambda: seen.append(ctl.loading_progress))
+    timer.start(5)
+    with qtbot.waitSignal(ctl.programLoaded, timeout=60_000):
+        assert ctl.load_program(big_program(60_000), name="big.nc")
+    timer.stop()
+    from app.machine.program_load import LOAD_SHARES
+
+    moving = [p for p in seen if p > 0.0]
+    assert moving and moving == sorted(moving) and max(moving) <= 1.0
+    read, planned = LOAD_SHARES[0], LOAD_SHARES[0] + LOAD_SHARES[1]
+    assert any(0.0 < p < read for p in moving)  # seen while the program was read
+    assert any(planned < p < planned + LOAD_SHARES[2] for p in moving)  # ... and while planned
+    assert ctl.loading_progress == 0.0  # nothing is being checked any more

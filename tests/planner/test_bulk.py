@@ -197,3 +197,17 @@ def test_blocks_of_short_runs_then_long_runs_read_the_same(monkeypatch):
         _Interpreter.use_bulk = old
     assert len(a.moves) > 1000
     assert_same_reading(a, b)
+
+
+@pytest.mark.parametrize("bulk", [True, False])
+def test_a_long_program_reports_how_far_it_is_read(monkeypatch, bulk):
+    monkeypatch.setattr(_Interpreter, "use_bulk", bulk)
+    monkeypatch.setattr(_Interpreter, "BULK_LINES", 1000)
+    monkeypatch.setattr(_Interpreter, "PROGRESS_LINES", 1000)
+    text = "G1 F600\n" + "".join(f"X{i * 0.01:.2f} Y{i % 7}\n" for i in range(5000))
+    seen: list[tuple[int, int]] = []
+    parse_program(text, "p.ngc", progress=lambda done, total: seen.append((done, total)))
+    assert len(seen) >= 4
+    assert all(total == 5002 for _, total in seen)
+    done = [d for d, _ in seen]
+    assert done == sorted(done) and done[-1] >= 5000 and done[0] <= 1000

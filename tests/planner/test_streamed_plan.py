@@ -154,3 +154,14 @@ def test_sample_files_hold_the_whole_plans_samples(tmp_path, capsys, with_json):
     rows = csv.read_text().splitlines()
     assert len(rows) == len(want) + 1 > 1000
     assert rows[-1].split(",")[-1] == str(int(want.line[-1]))
+
+
+def test_plan_program_reports_the_moves_planned():
+    machine = paper_machine()
+    raster = "".join(f"X{(i % 500) * 0.1:.1f} Y{(i // 500) * 0.2:.1f}\n" for i in range(150_000))
+    program = parse_program("G1 F600\n" + raster, "r.ngc", machine)
+    seen: list[tuple[int, int]] = []
+    plan_program(program, machine, progress=lambda done, total: seen.append((done, total)))
+    n = len(program.moves)
+    assert seen[-1] == (n, n) and len(seen) >= 2
+    assert [d for d, _ in seen] == sorted(d for d, _ in seen)
