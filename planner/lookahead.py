@@ -439,7 +439,9 @@ def plan_blocks(program: Program, lim: LimitSet, mode: str = "lookahead",
                            va[:-1].copy(), va[1:].copy(), dwell[a:a + k].copy())
         a += k
         v_a = v[k]
-        w = max(int(window), 2)
+        # the window that found a final joint is kept for the next one (a raster of tiny moves
+        # has one every row: starting again small would plan each row's window three times)
+        w = max(int(window), 2, w)
 
 
 def plan_whole(program: Program, lim: LimitSet, mode: str = "lookahead") -> tuple[np.ndarray, MoveLimits]:
