@@ -15,14 +15,15 @@ sysdeps:
 	for lib in libEGL.so.1 libGL.so.1 libxkbcommon.so.0 libfontconfig.so.1 libdbus-1.so.3; do \
 	  ldconfig -p 2>/dev/null | grep -q "$$lib" || missing="$$missing $$lib"; done; \
 	command -v ip >/dev/null 2>&1 || missing="$$missing ip"; \
+	command -v gcc >/dev/null 2>&1 || missing="$$missing gcc"; \
 	if [ -n "$$missing" ]; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	    echo "installing Debian packages for:$$missing"; \
 	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
-	      libegl1 libgl1 libxkbcommon0 libfontconfig1 libdbus-1-3 iproute2 >/dev/null; \
+	      libegl1 libgl1 libxkbcommon0 libfontconfig1 libdbus-1-3 iproute2 gcc >/dev/null; \
 	  else \
 	    echo "missing system libraries:$$missing"; \
-	    echo "install them with: sudo apt-get install libegl1 libgl1 libxkbcommon0 libfontconfig1 libdbus-1-3 iproute2"; \
+	    echo "install them with: sudo apt-get install libegl1 libgl1 libxkbcommon0 libfontconfig1 libdbus-1-3 iproute2 gcc"; \
 	    exit 1; \
 	  fi; \
 	fi
@@ -46,11 +47,11 @@ $(VPY):
 	  apt-get update -qq && apt-get install -y -qq python3-venv >/dev/null && $(PYTHON) -m venv $(VENV); }
 	@$(VPY) -m pip install -q --upgrade pip
 
-$(VENV)/.installed: pyproject.toml | $(VPY)
+$(VENV)/.installed: pyproject.toml planner/_passes.c | $(VPY)
 	$(VPY) -m pip install -q -e .
 	@touch $@
 
-$(VENV)/.installed-test: pyproject.toml | $(VPY)
+$(VENV)/.installed-test: pyproject.toml planner/_passes.c | $(VPY)
 	$(VPY) -m pip install -q -e '.[test]'
 	@touch $@ $(VENV)/.installed
 

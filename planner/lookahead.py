@@ -73,6 +73,12 @@ from planner.movetable import MoveTable, take_rows
 from planner.profile import reachable_speed_lower_bound, reachable_speed_scalar
 from planner.program import EventKind, Program
 
+try:  # the passes in C (planner/_passes.c), built by `pip install -e .`; the Python ones else
+    import planner._passes as _passes
+    COMPILED = True  # tests compare both ways
+except ImportError:  # pragma: no cover - a machine without a compiler
+    COMPILED = False
+
 __all__ = [
     "ACCEL_NORMAL_SHARE",
     "JERK_CROSS_SHARE",
@@ -364,6 +370,26 @@ def forward_pass(v: list[float], length, a_t, j_t, r0, lo: int = 0, hi: int | No
             v[j + 1] = r
 
 
+def _passes_on(caps: np.ndarray, v_start: float, length: np.ndarray, a_t: np.ndarray, j_t: np.ndarray,
+               r0: np.ndarray, k: int) -> np.ndarray:
+    """The joint speeds 0 .. k of a window: the backward pass over all of it from its caps,
+    then the forward pass from ``v_start`` up to joint k (compiled where built)."""
+    if COMPILED:
+        v = np.array(caps, dtype=float)
+        v[0] = v_start
+        f64 = np.ascontiguousarray
+        length, a_t, j_t, r0 = f64(length, float), f64(a_t, float), f64(j_t, float), f64(r0, float)
+        _passes.backward_pass(v, f64(caps, float), length, a_t, j_t, r0, 0)
+        _passes.forward_pass(v, length, a_t, j_t, r0, 0, k)
+        return v[: k + 1]
+    vl = caps.tolist()
+    vl[0] = v_start
+    ll, al, jl, rl = length.tolist(), a_t.tolist(), j_t.tolist(), r0.tolist()
+    backward_pass(vl, caps.tolist(), ll, al, jl, rl)
+    forward_pass(vl, ll, al, jl, rl, 0, k)
+    return np.asarray(vl[: k + 1])
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class PlannedBlock:
     """Consecutive moves with final speeds: ``table`` rows are moves first..first+n-1."""
@@ -412,33 +438,23 @@ def plan_blocks(program: Program, lim: LimitSet, mode: str = "lookahead",
     while a < n:
         b = min(n, a + w)
         table, ml, caps, r0 = _window(program, lim, mode, a, b, stop)
-        length, at, jt = table.length.tolist(), ml.a_t.tolist(), ml.j_t.tolist()
-        r0l = r0.tolist()
-        v = caps.tolist()
-        v[0] = v_a
-        capl = caps.tolist()
-        backward_pass(v, capl, length, at, jt, r0l)
         if b == n:
             k = b - a
         else:
             # Final: a joint whose cap holds whatever comes after it (cap <= the least speed
             # reachable over the move after it, from any speed).
-            k = 0
-            for j in range(b - a - 1, 0, -1):
-                if capl[j] <= r0l[j]:
-                    k = j
-                    break
+            final = np.flatnonzero(caps[1:b - a] <= r0[1:b - a])
+            k = int(final[-1]) + 1 if final.size else 0
             if k == 0:  # nothing final yet: look further ahead
                 w *= 2
                 continue
-        forward_pass(v, length, at, jt, r0l, 0, k)
-        va = np.asarray(v[: k + 1])
+        va = _passes_on(caps, v_a, table.length, ml.a_t, ml.j_t, r0, k)
         sl = slice(0, k)
         sub = table if k == len(table) else take_rows(table, sl)
         yield PlannedBlock(a, sub, MoveLimits(ml.vc[sl], ml.a_t[sl], ml.j_t[sl], ml.v_prog[sl]),
                            va[:-1].copy(), va[1:].copy(), dwell[a:a + k].copy())
         a += k
-        v_a = v[k]
+        v_a = float(va[k])
         # the window that found a final joint is kept for the next one (a raster of tiny moves
         # has one every row: starting again small would plan each row's window three times)
         w = max(int(window), 2, w)
