@@ -21,12 +21,13 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Iterator
 from typing import Any, BinaryIO
 
 from planner.files import write_output
 from planner.program import MoveKind, Program
 
-__all__ = ["canon_records", "write_canon"]
+__all__ = ["canon_records", "iter_canon_records", "write_canon"]
 
 _CANON_AXES = ("X", "Y", "Z", "A", "B", "C", "U", "V", "W")
 _PLANE_NAMES = {"XY": "XY", "ZX": "XZ", "YZ": "YZ"}
@@ -88,13 +89,17 @@ def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any
     """The program's moves as canonical-call dicts, in order; with ``offsets`` also LinuxCNC's
     offset calls (set_g5x_offset, set_g92_offset, set_xy_rotation, tool_offset) where they change.
     Motion in program coordinates: the offsets taken off and an XY rotation undone."""
+    return list(iter_canon_records(program, offsets))
+
+
+def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict[str, Any]]:
+    """``canon_records`` one by one (a program of millions of moves is never held as dicts)."""
     cols = [program.axes.index(a) if a in program.axes else -1 for a in _CANON_AXES]
     offsets_before = _offset_records(program, cols) if offsets else {}
     rotated = _unrotate(program, cols) if any(p[6] for p in program.offset_parts) else None
     move_offsets = program.move_offsets
-    records: list[dict[str, Any]] = []
     for i, move in enumerate(program.moves):
-        records.extend(offsets_before.pop(i, ()))
+        yield from offsets_before.pop(i, ())
         end = move.end.tolist()
         off = move_offsets[i].tolist() if move_offsets is not None else [0.0] * len(end)
         spec = rotated[i] if rotated is not None else None
@@ -102,7 +107,7 @@ def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any
         arc = move.arc
         if arc is None:
             call = "straight_traverse" if move.kind == MoveKind.RAPID else "straight_feed"
-            records.append({"line": move.line, "call": call, "args": wcs})
+            yield {"line": move.line, "call": call, "args": wcs}
             continue
         f, s, n = arc.first_axis, arc.second_axis, arc.normal_axis
         rotation = arc.turns if arc.sweep_rad > 0 else -arc.turns
@@ -124,11 +129,9 @@ def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any
             end[n] - off[n] if n >= 0 else 0.0,
             *wcs[3:],
         ]
-        records.append({"line": move.line, "call": "arc_feed", "args": args,
-                        "plane": _PLANE_NAMES[arc.plane]})
+        yield {"line": move.line, "call": "arc_feed", "args": args, "plane": _PLANE_NAMES[arc.plane]}
     for rest in offsets_before.values():       # changes after the last move
-        records.extend(rest)
-    return records
+        yield from rest
 
 
 def write_canon(program: Program, path: str | os.PathLike[str], offsets: bool = True) -> None:
@@ -136,8 +139,13 @@ def write_canon(program: Program, path: str | os.PathLike[str], offsets: bool = 
     directly to a device, a pipe or ``-``)."""
 
     def write(fh: BinaryIO) -> None:
-        for rec in canon_records(program, offsets):
-            fh.write(json.dumps(rec).encode("utf-8"))
-            fh.write(b"\n")
+        batch: list[str] = []
+        for rec in iter_canon_records(program, offsets):
+            batch.append(json.dumps(rec))
+            if len(batch) >= 4096:  # a few thousand lines a write: memory bounded, few calls
+                fh.write(("\n".join(batch) + "\n").encode("utf-8"))
+                batch = []
+        if batch:
+            fh.write(("\n".join(batch) + "\n").encode("utf-8"))
 
     write_output(path, write)

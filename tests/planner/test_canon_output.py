@@ -82,3 +82,23 @@ def test_offset_calls_where_the_offsets_change_motion_in_program_coordinates():
     ]
     machine = [m.end.tolist() for m in p.moves]
     assert machine == [[101.0, 0.0, 0.0], [103.0, 0.0, 0.0], [103.0, 0.0, 6.0], [1.0, 0.0, 6.0]]
+
+
+def test_a_long_program_is_written_in_batches_line_for_line(tmp_path):
+    """write_canon streams the calls a few thousand at a time: the file holds exactly the calls
+    of canon_records, one per line, across the batches' seams."""
+    lines, x = ["G10 L2 P1 X1 Y2", "G1 F600"], 0.0
+    for i in range(1, 9000):
+        x += 0.01
+        lines.append(f"X{x:.2f} Y{i % 5}")
+        if i % 97 == 0:  # a half circle to the right now and then
+            x += 1.0
+            lines.append(f"G2 X{x:.2f} Y{i % 5} I0.5 J0\nG1")
+    text = "\n".join(lines) + "\n"
+    program = parse_program(text, "long.nc")
+    out = tmp_path / "c.jsonl"
+    write_canon(program, out)
+    rows = out.read_text().splitlines()
+    want = canon_records(program, offsets=True)
+    assert len(rows) == len(want) > 8192
+    assert [json.loads(r) for r in rows] == want
