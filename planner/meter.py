@@ -125,9 +125,18 @@ class LimitMeter:
         row = np.clip(move - self.move_base, 0, len(self.v_path) - 1)
         return np.maximum(self.v_path[row[1:]], self.v_path[row[:-1]])
 
-    def kept_moves(self) -> np.ndarray:
-        """Move indices of the last samples kept to measure across the next ``add``."""
-        return self._tail[2] if self._tail is not None else np.zeros(0, np.int64)
+    def next_moves(self, v_path_per_move: np.ndarray, move_base: int) -> None:
+        """The path speed limits of the next moves, from ``move_base`` on (a plan measured
+        segment by segment). The limits of the moves of the samples kept from before stay, so
+        that a pair across the joint is held to the faster of its two moves, as in one piece."""
+        new = np.asarray(v_path_per_move, dtype=float)
+        if self._tail is not None and len(self.v_path):
+            lo = max(0, int(self._tail[2].min()) - self.move_base)
+            hi = min(len(self.v_path), max(lo, move_base - self.move_base))
+            new = np.concatenate([self.v_path[lo:hi], new])
+            move_base -= hi - lo
+        self.v_path = new
+        self.move_base = int(move_base)
 
     def add(self, q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, line: np.ndarray | None = None) -> None:
         """Measure the next consecutive samples (axis positions (N, n_axes), path length (N,),

@@ -314,15 +314,11 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
                            meter.joint.as_dict(), 0.0, False, True, meter.samples)
     interp = Interpolator(interpolation, ts)
     k_lo = 0
-    v_before = np.zeros(0)  # programmed speeds of the moves of the samples the meter keeps
     for seg in segments:
         prof = seg.profiles
         lines = seg.table.line
         first = int(seg.table.index[0])
-        # the meter's stencils reach back into the moves of the samples it keeps from before:
-        # their programmed speeds come along (a pair across the joint is held to the faster)
-        meter.v_path = np.concatenate([v_before, seg.v_prog])
-        meter.move_base = first - v_before.shape[0]
+        meter.next_moves(seg.v_prog, first)
         if not classic:
             # closed form: the profile never exceeds its own caps; compare with the programmed limits
             vmax = np.maximum(prof.vp, np.maximum(prof.vs, prof.ve))
@@ -347,9 +343,6 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
                 last_t = float(chunk.t[-1])
                 last_q = chunk.q[-1]
         k_lo = first_sample_at(seg.t_end, ts)
-        kept = meter.kept_moves()
-        back = end - int(kept.min()) if kept.size else 0
-        v_before = meter.v_path[max(0, meter.v_path.shape[0] - back):].copy()
         if on_segment is not None:
             on_segment(seg)
     end_err = float(np.max(np.abs(last_q - program.end_position))) if last_q is not None else 0.0
