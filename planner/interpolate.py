@@ -141,11 +141,14 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
                    float(s_bounds[-1]), ph_t, t0 + prof.duration)
 
 
-def concat_segments(segments: list[Segment]) -> Segment:
+def concat_segments(segments: list[Segment], positions: np.ndarray | None = None) -> Segment:
     """One segment of consecutive ones (each starting where the one before ends): the same as
     ``make_segment`` of all their blocks at once, built in pieces (profiles of a few thousand
     moves at a time need far smaller temporaries than those of millions). Empties the list:
-    each column's pieces are let go once joined, so that the plan is not held twice."""
+    each column's pieces are let go once joined, so that the plan is not held twice.
+
+    ``positions``: the program's (n + 1, d) joint positions, when the segments hold all its
+    moves: the table's start and end are then views of them (48 bytes a move not copied)."""
     if len(segments) == 1:
         return segments[0]
     last = segments[-1]
@@ -154,8 +157,13 @@ def concat_segments(segments: list[Segment]) -> Segment:
     own = ("vs", "ve", "v_prog", "t0", "s0", "ph_t", "t_stop")
     seg_parts = {name: [getattr(s, name) for s in segments] for name in own}
     segments.clear()
-    table = MoveTable(**{name: join_rows(table_parts.pop(name)) for name in MoveTable.__slots__})
-    profiles = Profiles(*(np.concatenate(prof_parts.pop(name)) for name in Profiles.__slots__))
+    shared = {} if positions is None else {"start": positions[:-1], "end": positions[1:]}
+    table = MoveTable(**{name: shared[name] if name in shared else join_rows(table_parts[name])
+                         for name in MoveTable.__slots__})
+    table_parts.clear()
+    # a profile's length is its move's (build_profiles keeps the very array)
+    profiles = Profiles(*(np.concatenate(prof_parts.pop(name)) if name != "length_mm" else table.length
+                          for name in Profiles.__slots__))
     cols = {name: np.concatenate(seg_parts.pop(name)) for name in own}
     return Segment(table, profiles, cols["vs"], cols["ve"], cols["v_prog"], cols["t0"], last.t_end,
                    cols["s0"], last.s_end, cols["ph_t"], cols["t_stop"])

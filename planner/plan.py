@@ -255,7 +255,9 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
         if progress is not None:
             progress(int(seg.table.index[-1]) + 1, len(program.moves))
     if segments:
-        seg = concat_segments(segments)
+        moves = program.moves
+        positions = moves.positions if isinstance(moves, MoveStore) else None
+        seg = concat_segments(segments, positions)
     else:
         from planner.movetable import MoveTable
         from planner.profile import build_profiles

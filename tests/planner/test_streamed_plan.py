@@ -165,3 +165,22 @@ def test_plan_program_reports_the_moves_planned():
     n = len(program.moves)
     assert seen[-1] == (n, n) and len(seen) >= 2
     assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+
+
+def test_a_plan_of_many_segments_joined_is_the_streamed_one():
+    """plan_program joins segments of 16,384 moves, its table's ends views of the program's own
+    positions: its samples are the stream's, one by one."""
+    from planner.plan import stream_program
+
+    machine = paper_machine()
+    raster = "".join(f"X{(i % 400) * 0.1:.1f} Y{(i // 400) * 0.2:.1f}\n" for i in range(40_000))
+    program = parse_program("G1 F1800\n" + raster, "r.ngc", machine)
+    plan = plan_program(program, machine)
+    table = plan.segment.table
+    np.testing.assert_array_equal(table.end, program.moves.positions[1:])
+    np.testing.assert_array_equal(table.start, program.moves.positions[:-1])
+    whole = plan.collect()
+    streamed = [c for c in stream_program(program, machine)]
+    q = np.concatenate([c.q for c in streamed])
+    assert len(whole) == len(q) > 100_000
+    np.testing.assert_array_equal(whole.q, q)
