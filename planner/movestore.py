@@ -134,9 +134,14 @@ class MoveStore(Sequence[Move]):
         return self._make(i)
 
     def _make(self, i: int) -> Move:
+        return self._move(i, int(self._line[i]), int(self._kind[i]), float(self._feed[i]),
+                          float(self._length[i]), bool(self._stop[i]))
+
+    def _move(self, i: int, line: int, kind: int, feed: float, length: float, stop: bool) -> Move:
+        """Move ``i`` of this store from its column values (Python scalars)."""
         g = self._base + i
-        m = _make_move(g, int(self._line[i]), _KINDS[self._kind[i]], self._pos[i], self._pos[i + 1],
-                       float(self._feed[i]), float(self._length[i]), self._arcs.get(g), bool(self._stop[i]))
+        m = _make_move(g, line, _KINDS[kind], self._pos[i], self._pos[i + 1], feed, length, self._arcs.get(g),
+                       stop)
         if self._blends:
             blend = self._blends.get(g)
             if blend is not None:
@@ -144,20 +149,10 @@ class MoveStore(Sequence[Move]):
         return m
 
     def __iter__(self) -> Iterator[Move]:
-        pos = self._pos
-        arcs, blends = self._arcs, self._blends
-        base = self._base
-        kinds = _KINDS
-        for i, (line, kind, feed, length, stop) in enumerate(zip(
-                self._line.tolist(), self._kind.tolist(), self._feed.tolist(), self._length.tolist(),
-                self._stop.tolist())):
-            g = base + i
-            m = _make_move(g, line, kinds[kind], pos[i], pos[i + 1], feed, length, arcs.get(g), stop)
-            if blends:
-                blend = blends.get(g)
-                if blend is not None:
-                    object.__setattr__(m, "blend", blend)
-            yield m
+        move = self._move
+        for i, values in enumerate(zip(self._line.tolist(), self._kind.tolist(), self._feed.tolist(),
+                                       self._length.tolist(), self._stop.tolist())):
+            yield move(i, *values)
 
     def __repr__(self) -> str:
         return f"MoveStore({self._n} moves from {self._base})"
