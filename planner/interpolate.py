@@ -35,7 +35,7 @@ from planner.lookahead import PlannedBlock
 from planner.movetable import MoveTable, concat_tables, join_rows
 from planner.profile import Profiles, build_profiles
 
-__all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "first_sample_at", "make_segment"]
+__all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "SegmentJoin", "first_sample_at", "make_segment"]
 
 INTERPOLATIONS = ("exact", "taylor", "classic")
 
@@ -141,32 +141,92 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
                    float(s_bounds[-1]), ph_t, t0 + prof.duration)
 
 
-def concat_segments(segments: list[Segment], positions: np.ndarray | None = None) -> Segment:
-    """One segment of consecutive ones (each starting where the one before ends): the same as
-    ``make_segment`` of all their blocks at once, built in pieces (profiles of a few thousand
-    moves at a time need far smaller temporaries than those of millions). Empties the list:
-    each column's pieces are let go once joined, so that the plan is not held twice.
+class _Column:
+    """One column of a joined plan, filled part by part into an array made once at its full
+    length (joining a list of parts needs the parts and the whole at once, and the parts'
+    freed memory lies between the columns kept, where the heap cannot give it back). A column
+    whose parts all repeat one row (stride 0: the arc and blend columns of a program without
+    them) stays one row repeated."""
 
-    ``positions``: the program's (n + 1, d) joint positions, when the segments hold all its
-    moves: the table's start and end are then views of them (48 bytes a move not copied)."""
-    if len(segments) == 1:
-        return segments[0]
-    last = segments[-1]
-    table_parts = {name: [getattr(s.table, name) for s in segments] for name in MoveTable.__slots__}
-    prof_parts = {name: [getattr(s.profiles, name) for s in segments] for name in Profiles.__slots__}
-    own = ("vs", "ve", "v_prog", "t0", "s0", "ph_t", "t_stop")
-    seg_parts = {name: [getattr(s, name) for s in segments] for name in own}
-    segments.clear()
-    shared = {} if positions is None else {"start": positions[:-1], "end": positions[1:]}
-    table = MoveTable(**{name: shared[name] if name in shared else join_rows(table_parts[name])
-                         for name in MoveTable.__slots__})
-    table_parts.clear()
-    # a profile's length is its move's (build_profiles keeps the very array)
-    profiles = Profiles(*(np.concatenate(prof_parts.pop(name)) if name != "length_mm" else table.length
-                          for name in Profiles.__slots__))
-    cols = {name: np.concatenate(seg_parts.pop(name)) for name in own}
-    return Segment(table, profiles, cols["vs"], cols["ve"], cols["v_prog"], cols["t0"], last.t_end,
-                   cols["s0"], last.s_end, cols["ph_t"], cols["t_stop"])
+    __slots__ = ("total", "out", "rep", "filled")
+
+    def __init__(self, total: int) -> None:
+        self.total = total
+        self.out: np.ndarray | None = None
+        self.rep: np.ndarray | None = None
+        self.filled = 0
+
+    def add(self, part: np.ndarray) -> None:
+        k = part.shape[0]
+        if k == 0:
+            return
+        if self.out is None:
+            if part.strides[0] == 0 and (self.rep is None or np.array_equal(part[:1], self.rep, equal_nan=True)):
+                self.rep = part[:1] if self.rep is None else self.rep
+                self.filled += k
+                return
+            self.out = np.empty((self.total, *part.shape[1:]), dtype=part.dtype)
+            if self.filled:
+                self.out[: self.filled] = self.rep
+        elif part.dtype != self.out.dtype:
+            self.out = self.out.astype(np.result_type(self.out, part))
+        self.out[self.filled: self.filled + k] = part
+        self.filled += k
+
+    def result(self) -> np.ndarray:
+        if self.filled != self.total:
+            raise ValueError(f"a joined column has {self.filled} rows of {self.total}")
+        if self.out is not None:
+            return self.out
+        assert self.rep is not None
+        return np.broadcast_to(self.rep, (self.total, *self.rep.shape[1:]))
+
+
+_OWN_COLUMNS = ("vs", "ve", "v_prog", "t0", "s0", "ph_t", "t_stop")
+
+
+class SegmentJoin:
+    """Consecutive segments (each starting where the one before ends) joined into one as they
+    come, each let go once added: the same as ``make_segment`` of all their blocks at once,
+    built in pieces (profiles of a few thousand moves need far smaller temporaries than those
+    of millions), in the memory of the whole plan plus one segment.
+
+    ``moves``: how many moves the segments hold in all. ``positions``: the program's
+    (n + 1, d) joint positions, when the segments hold all its moves: the table's start and
+    end are then views of them (48 bytes a move not copied)."""
+
+    def __init__(self, moves: int, positions: np.ndarray | None = None) -> None:
+        self._shared = {} if positions is None else {"start": positions[:-1], "end": positions[1:]}
+        self._table = {name: _Column(moves) for name in MoveTable.__slots__ if name not in self._shared}
+        # a profile's length is its move's (build_profiles keeps the very array)
+        self._prof = {name: _Column(moves) for name in Profiles.__slots__ if name != "length_mm"}
+        self._own = {name: _Column(7 * moves if name == "ph_t" else moves) for name in _OWN_COLUMNS}
+        self._last: Segment | None = None
+        self._count = 0
+
+    def add(self, seg: Segment) -> None:
+        for name, col in self._table.items():
+            col.add(getattr(seg.table, name))
+        for name, col in self._prof.items():
+            col.add(getattr(seg.profiles, name))
+        for name, col in self._own.items():
+            col.add(getattr(seg, name))
+        self._last = seg
+        self._count += 1
+
+    def result(self) -> Segment:
+        last = self._last
+        if last is None:
+            raise ValueError("no segment to join")
+        if self._count == 1:
+            return last
+        table = MoveTable(**{name: self._shared[name] if name in self._shared else self._table[name].result()
+                             for name in MoveTable.__slots__})
+        profiles = Profiles(*(self._prof[name].result() if name != "length_mm" else table.length
+                              for name in Profiles.__slots__))
+        cols = {name: col.result() for name, col in self._own.items()}
+        return Segment(table, profiles, cols["vs"], cols["ve"], cols["v_prog"], cols["t0"], last.t_end,
+                       cols["s0"], last.s_end, cols["ph_t"], cols["t_stop"])
 
 
 class Interpolator:

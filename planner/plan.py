@@ -25,7 +25,7 @@ from planner.interpolate import (
     Interpolator,
     SampleChunk,
     Segment,
-    concat_segments,
+    SegmentJoin,
     first_sample_at,
     make_segment,
 )
@@ -247,17 +247,16 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
     started = time.perf_counter()
     _check_axes(program, machine)
     mode, interpolation = resolve_settings(machine, mode, interpolation)
-    # planned in segments and joined: the same plan, with the temporaries of a segment
-    segments = []
-    # segments of 16,384 moves: the progress moves often enough to be seen on a long program
+    # planned in segments and joined as they come: the same plan, with the temporaries of a
+    # segment; segments of 16,384 moves: the progress moves often enough to be seen
+    moves = program.moves
+    join = SegmentJoin(len(moves), moves.positions if isinstance(moves, MoveStore) else None)
     for seg in plan_segments(program, machine, mode, interpolation, window, segment_moves=16_384):
-        segments.append(seg)
+        join.add(seg)
         if progress is not None:
-            progress(int(seg.table.index[-1]) + 1, len(program.moves))
-    if segments:
-        moves = program.moves
-        positions = moves.positions if isinstance(moves, MoveStore) else None
-        seg = concat_segments(segments, positions)
+            progress(int(seg.table.index[-1]) + 1, len(moves))
+    if len(moves):
+        seg = join.result()
     else:
         from planner.movetable import MoveTable
         from planner.profile import build_profiles

@@ -40,6 +40,7 @@ from app.toolpath import build_toolpath
 from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
+from planner.heap import trim_heap
 from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.program import Program
@@ -110,7 +111,9 @@ LOAD_SHARES = (0.25, 0.05, 0.55)
 
 def _toolpath(program: Program, req: LoadRequest) -> object:
     req.progress = sum(LOAD_SHARES)
-    return build_toolpath(program)
+    toolpath = build_toolpath(program)
+    trim_heap()  # the check's freed temporaries back to the system (planner.heap)
+    return toolpath
 
 
 def check_text(

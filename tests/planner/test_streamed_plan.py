@@ -184,3 +184,39 @@ def test_a_plan_of_many_segments_joined_is_the_streamed_one():
     q = np.concatenate([c.q for c in streamed])
     assert len(whole) == len(q) > 100_000
     np.testing.assert_array_equal(whole.q, q)
+
+
+def _fields_equal(a, b, path: str) -> None:
+    for name in type(a).__slots__:
+        x, y = getattr(a, name), getattr(b, name)
+        if hasattr(x, "__slots__"):
+            _fields_equal(x, y, f"{path}.{name}")
+        elif isinstance(x, np.ndarray):
+            np.testing.assert_array_equal(x, y, err_msg=f"{path}.{name}")
+            assert x.dtype == y.dtype, f"{path}.{name}"
+            repeated = bool(y.ndim and y.shape[0] > 1 and y.strides[0] == 0)
+            assert (x.ndim and x.shape[0] > 1 and x.strides[0] == 0) == repeated, f"{path}.{name}"
+        else:
+            assert x == y, f"{path}.{name}"
+
+
+@pytest.mark.parametrize("segment_moves", [1, 4, 9])
+def test_segments_joined_as_they_come_are_the_segment_of_all_blocks(segment_moves):
+    """A plan joined segment by segment (each let go once added) is the one segment made of all
+    blocks at once, column by column: columns of one repeated row (no arcs yet) filled in once
+    the first arc comes, and stay one repeated row where no segment has any."""
+    from planner.interpolate import SegmentJoin
+
+    machine = paper_machine()
+    lines = "".join(f"G1 X{i % 5} Y{i // 5 * 0.5:.1f}\n" for i in range(12))
+    text = "G21 G90 G17 F900\n" + lines + "G2 X3 Y1 I1 J0\nG1 X0 Y0\nG3 X2 Y0 I1 J0\n"
+    program = parse_program(text, "a.ngc", machine)
+    whole = next(iter(plan_segments(program, machine, window=4, segment_moves=10**9)))
+    assert len(whole.table) == len(program.moves)
+    assert bool(whole.table.is_arc.any()) and not bool(whole.table.is_arc[: segment_moves + 1].any())
+    parts = list(plan_segments(program, machine, window=4, segment_moves=segment_moves))
+    assert len(parts) >= 2
+    join = SegmentJoin(len(program.moves))
+    for seg in parts:
+        join.add(seg)
+    _fields_equal(join.result(), whole, "segment")
