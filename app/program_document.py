@@ -32,8 +32,11 @@ class ProgramDocument:
     def new(self) -> None:
         self.path, self.saved_text, self.text = None, "", ""
 
-    def open(self, path: Path) -> str:
-        text = Path(path).read_text(encoding="utf-8", errors="replace")
+    def open(self, path: Path, text: str | None = None) -> str:
+        """Open ``path``; ``text``: its text as just read by the controller's load (a program of
+        millions of lines is then not read and held a second time)."""
+        if text is None:
+            text = Path(path).read_text(encoding="utf-8", errors="replace")
         self.path, self.saved_text, self.text = Path(path).resolve(), text, text
         return text
 

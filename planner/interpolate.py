@@ -32,10 +32,11 @@ import numpy as np
 
 from planner.errors import PlannerError
 from planner.lookahead import PlannedBlock
-from planner.movetable import MoveTable, concat_tables, join_rows
+from planner.movetable import MoveTable, concat_tables
 from planner.profile import Profiles, build_profiles
 
-__all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "SegmentJoin", "first_sample_at", "make_segment"]
+__all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "SegmentJoin", "first_sample_at",
+           "make_segment"]
 
 INTERPOLATIONS = ("exact", "taylor", "classic")
 
@@ -161,7 +162,8 @@ class _Column:
         if k == 0:
             return
         if self.out is None:
-            if part.strides[0] == 0 and (self.rep is None or np.array_equal(part[:1], self.rep, equal_nan=True)):
+            same = self.rep is None or np.array_equal(part[:1], self.rep, equal_nan=True)
+            if part.strides[0] == 0 and same:
                 self.rep = part[:1] if self.rep is None else self.rep
                 self.filled += k
                 return

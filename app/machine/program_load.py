@@ -36,6 +36,7 @@ import numpy as np
 
 from app.background import Background
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
+from app.program_lines import line_starts
 from app.toolpath import build_toolpath
 from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
@@ -181,6 +182,7 @@ def check_text(
         program=program,
         plan=plan,
         toolpath=_toolpath(program, req),
+        line_starts=line_starts(text),
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
     )

@@ -20,9 +20,9 @@ from app.context import PanelContext
 from app.controller_text import localize
 from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
-from app.widgets.code_editor import CodeEditor
 from app.widgets.override_control import OverrideControl
 from app.widgets.preview_plot import PreviewPlot
+from app.widgets.program_view import ProgramView
 from app.widgets.touch import enable_kinetic_scrolling
 
 BUTTONS = (  # (key, label, object name, controller action for refusal())
@@ -64,7 +64,9 @@ class AutoPage(QWidget):
         self._loading_timer.timeout.connect(self._show_loading_progress)
         left.addWidget(self.loading_note)
         left.addWidget(self.loading_bar)
-        self.editor = CodeEditor(read_only=True)
+        # a view over the loaded text, not a copy of it in a text widget: millions of lines
+        # show at once
+        self.editor = ProgramView()
         enable_kinetic_scrolling(self.editor)
         left.addWidget(self.editor, 3)
         # the backplot: the path (XY, work coordinates), what has been cut, where the tool is
@@ -249,8 +251,8 @@ class AutoPage(QWidget):
         if self.ctx.controller.program_info is not info:
             return  # superseded or refused meanwhile
         text = str(getattr(info, "text", ""))
-        if self.editor.loading or self.editor.toPlainText() != text:
-            self.editor.load_text(text, chunked=True)
+        if self.editor.toPlainText() is not text:
+            self.editor.load_text(text, starts=getattr(info, "line_starts", None))
 
     def _on_program_model(self) -> None:
         model = self.ctx.program

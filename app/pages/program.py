@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from PySide6.QtCore import QTimer
-from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QStackedWidget, QVBoxLayout, QWidget
 
 from app import deferred
 from app.context import PanelContext
@@ -16,9 +16,14 @@ from app.program_checker import ProgramChecker
 from app.widgets.code_editor import CodeEditor
 from app.widgets.find_bar import FindBar
 from app.widgets.keyboard import OnScreenKeyboard
+from app.widgets.program_view import ProgramView
 from app.widgets.touch import enable_kinetic_scrolling
 
 AUTOSAVE_MS = 5000
+# Above this many lines a program is shown read-only, through a view over its text: a text
+# widget holds about 350 bytes a line and fills at ~100,000 lines a second in the GUI thread,
+# so 2,000,000 lines took 700 MB and 20 s; such programs come from CAM and are edited there
+EDIT_MAX_LINES = 100_000
 TOOLBAR = (
     ("new", N_("New")), ("open", N_("Open…")), ("save", N_("Save")), ("save_as", N_("Save as…")),
     ("find", N_("Find")), ("goto", N_("Go to line")), ("keyboard", N_("Keyboard")),
@@ -52,7 +57,17 @@ class ProgramPage(QWidget):
         layout.addWidget(self.find_bar)
         self.editor = CodeEditor()
         enable_kinetic_scrolling(self.editor, mouse=False)
-        layout.addWidget(self.editor, 1)
+        self.viewer = ProgramView()  # big programs, read-only
+        enable_kinetic_scrolling(self.viewer)
+        self._stack = QStackedWidget()
+        self._stack.addWidget(self.editor)
+        self._stack.addWidget(self.viewer)
+        layout.addWidget(self._stack, 1)
+        self.read_only_note = QLabel()
+        self.read_only_note.setObjectName("readOnlyNote")
+        self.read_only_note.setWordWrap(True)
+        self.read_only_note.hide()
+        layout.addWidget(self.read_only_note)
         self.error_label = QLabel()
         self.error_label.setObjectName("errorLine")
         self.error_label.setWordWrap(True)
@@ -78,27 +93,56 @@ class ProgramPage(QWidget):
         self.buttons["goto"].clicked.connect(self.go_to_line_dialog)
         self.buttons["keyboard"].toggled.connect(self.keyboard.setVisible)
         self.buttons["load"].clicked.connect(self.load_into_machine)
-        self.find_bar.findNext.connect(self.editor.find_text)
+        self.find_bar.findNext.connect(lambda text, back: self.shown.find_text(text, back))
         self.find_bar.field.installEventFilter(self)
         self.editor.textChanged.connect(self._on_text_changed)
         self.editor.lineActivated.connect(self._show_line_error)
-        context.program.lineRequested.connect(self.editor.go_to_line)
+        self.viewer.lineActivated.connect(self._show_line_error)
+        context.program.lineRequested.connect(lambda line: self.shown.go_to_line(line))
         context.controller.configChanged.connect(self._on_config)
         context.controller.programLoaded.connect(self._on_program_loaded)
         context.controller.programErrors.connect(self._on_program_errors)
         self._update_title()
 
     # --- editing -------------------------------------------------------------------------
-    def set_text(self, text: str, checked: bool = False) -> None:
+    @property
+    def shown(self) -> CodeEditor | ProgramView:
+        """The editor, or the read-only view of a program over ``EDIT_MAX_LINES`` lines."""
+        return self.viewer if self._stack.currentWidget() is self.viewer else self.editor
+
+    @property
+    def read_only(self) -> bool:
+        return self.shown is self.viewer
+
+    def set_text(self, text: str, checked: bool = False, starts: object = None) -> None:
         """Show ``text``; ``checked``: the controller has just accepted exactly this text, so
-        it has no errors (no second interpretation in the background)."""
+        it has no errors (no second interpretation in the background). ``starts``: its line
+        index when known (``ProgramInfo.line_starts``)."""
         self._loading = True
-        self.editor.load_text(text, chunked=True)  # a big text in pieces (textChanged per piece)
+        lines = len(starts) - 1 if starts is not None else text.count("\n") + 1  # type: ignore[arg-type]
+        big = lines > EDIT_MAX_LINES
+        if big:
+            self.editor.load_text("")  # the last small program's document goes
+            self.viewer.load_text(text, starts=starts)  # type: ignore[arg-type]
+            self._stack.setCurrentWidget(self.viewer)
+            self.read_only_note.setText(tr(
+                "{0} lines: shown read-only (edit programs of over {1} lines in CAM or on a PC)").format(
+                self.viewer.line_count(), EDIT_MAX_LINES))
+        else:
+            self.viewer.load_text("")
+            self._stack.setCurrentWidget(self.editor)
+            self.editor.load_text(text, chunked=True)  # a big text in pieces (textChanged per piece)
+        self.read_only_note.setVisible(big)
+        self.buttons["keyboard"].setEnabled(not big)
+        if big:
+            self.buttons["keyboard"].setChecked(False)
         self._loading = False
         self.doc.text = text
         if checked:
             self.checker.cancel()
             self._on_checked({})
+        elif big:  # the controller's check marks its errors (programErrors): not read twice
+            self.checker.cancel()
         else:
             self.checker.check_now(text)
         self._update_title()
@@ -112,8 +156,8 @@ class ProgramPage(QWidget):
         self._update_title()
 
     def _on_checked(self, errors: object) -> None:
-        self.editor.set_errors(errors)  # type: ignore[arg-type]
-        self._show_line_error(self.editor.current_line())
+        self.shown.set_errors(errors)  # type: ignore[arg-type]
+        self._show_line_error(self.shown.current_line())
         n = len(errors)  # type: ignore[arg-type]
         if n and self.error_label.text() == "":
             first = min(errors)  # type: ignore[type-var]
@@ -121,7 +165,7 @@ class ProgramPage(QWidget):
                 n, first, errors[first]))  # type: ignore[index]
 
     def _show_line_error(self, line: int) -> None:
-        errors = self.editor.errors
+        errors = self.shown.errors
         if line in errors:
             self.error_label.setText(tr("Line {0}: {1}").format(line, errors[line]))
         elif errors:
@@ -148,10 +192,11 @@ class ProgramPage(QWidget):
         return super().eventFilter(obj, event)
 
     def go_to_line_dialog(self) -> None:
-        line = self.ctx.dialogs.ask_number(self, tr("Go to line"), float(self.editor.current_line()), 1,
-                                           float(max(1, self.editor.blockCount())), 0)
+        view = self.shown
+        line = self.ctx.dialogs.ask_number(self, tr("Go to line"), float(view.current_line()), 1,
+                                           float(max(1, view.blockCount())), 0)
         if line is not None:
-            self.editor.go_to_line(int(line))
+            view.go_to_line(int(line))
 
     # --- files ---------------------------------------------------------------------------
     def can_close(self) -> bool:
@@ -192,9 +237,10 @@ class ProgramPage(QWidget):
         # controller checks it, or refuses while a program runs and says why)
         self.load_into_machine()
 
-    def open_file(self, path: Path, checked_text: str | None = None) -> None:
-        """Open ``path``; ``checked_text``: the text the controller has just accepted."""
-        text = self.doc.open(path)
+    def open_file(self, path: Path, checked_text: str | None = None, starts: object = None) -> None:
+        """Open ``path``; ``checked_text``: the text the controller has just read from it and
+        accepted (with its line index ``starts``)."""
+        text = self.doc.open(path, checked_text)
         recovered = self.doc.recovery_text(path)
         if recovered is not None and self.ctx.dialogs.confirm(
                 self, tr("Recover"), tr("An autosave of {0} with unsaved changes exists. Recover it?")
@@ -203,7 +249,7 @@ class ProgramPage(QWidget):
             self.doc.text = recovered
         else:
             self.doc.discard_autosave()
-            self.set_text(text, checked=text == checked_text)
+            self.set_text(text, checked=text == checked_text, starts=starts)
         self._update_title()
 
     def save(self) -> bool:
@@ -265,17 +311,18 @@ class ProgramPage(QWidget):
             return  # superseded or refused meanwhile, or the operator started editing
         path = str(getattr(info, "path", "") or "")
         text = str(getattr(info, "text", ""))
+        starts = getattr(info, "line_starts", None)
         if path:
-            self.open_file(Path(path), checked_text=text)
+            self.open_file(Path(path), checked_text=text, starts=starts)
         else:
-            self.set_text(text, checked=True)
+            self.set_text(text, checked=True, starts=starts)
 
     def _on_program_errors(self, issues: object) -> None:
         errors: dict[int, str] = {}
         for issue in issues:  # type: ignore[attr-defined]
             errors.setdefault(int(issue.line), str(issue.message))
-        self.editor.set_errors(errors)
-        self._show_line_error(self.editor.current_line())
+        self.shown.set_errors(errors)
+        self._show_line_error(self.shown.current_line())
 
 
 def create_page(context: PanelContext) -> QWidget:

@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="200" />
+      <location filename="../../app/pages/program.py" line="246" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -114,7 +114,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="347" />
+      <location filename="../../app/pages/auto.py" line="349" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="347" />
+      <location filename="../../app/pages/auto.py" line="349" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="163" />
+      <location filename="../../app/pages/program.py" line="208" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -204,7 +204,7 @@
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="183" />
+      <location filename="../../app/pages/auto.py" line="185" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -259,7 +259,7 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="163" />
+      <location filename="../../app/pages/program.py" line="208" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
     </message>
@@ -304,7 +304,7 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="350" />
+      <location filename="../../app/pages/auto.py" line="352" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
@@ -314,7 +314,7 @@
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="108" />
+      <location filename="../../app/pages/auto.py" line="110" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -324,7 +324,7 @@
       <translation>{0} içinde dosya adı:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="24" />
+      <location filename="../../app/pages/program.py" line="29" />
       <source>Find</source>
       <translation>Bul</translation>
     </message>
@@ -354,7 +354,7 @@
       <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="24" />
+      <location filename="../../app/pages/program.py" line="29" />
       <source>Go to line</source>
       <translation>Satıra git</translation>
     </message>
@@ -459,7 +459,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="336" />
+      <location filename="../../app/pages/auto.py" line="338" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -471,7 +471,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Satır {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="25" />
+      <location filename="../../app/pages/program.py" line="30" />
       <source>Load into machine</source>
       <translation>Makineye yükle</translation>
     </message>
@@ -526,7 +526,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="209" />
+      <location filename="../../app/pages/auto.py" line="211" />
       <source>Move to the start of line {0} the way drawn (up to the clearance height, across, spindle on, down) and run the program from there?</source>
       <translation>{0}. satırın başına çizilen yoldan gidilsin (güvenli yüksekliğe çık, yana git, iş milini çalıştır, in) ve program oradan çalıştırılsın mı?</translation>
     </message>
@@ -541,7 +541,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="28" />
       <source>New</source>
       <translation>Yeni</translation>
     </message>
@@ -596,12 +596,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="28" />
       <source>Open…</source>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="97" />
+      <location filename="../../app/pages/auto.py" line="99" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -681,7 +681,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="309" />
+      <location filename="../../app/pages/auto.py" line="311" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -706,7 +706,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="314" />
+      <location filename="../../app/pages/auto.py" line="316" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -728,7 +728,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="111" />
+      <location filename="../../app/pages/auto.py" line="113" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -738,7 +738,7 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="200" />
+      <location filename="../../app/pages/program.py" line="246" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
@@ -778,17 +778,17 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="194" />
+      <location filename="../../app/pages/auto.py" line="196" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="201" />
+      <location filename="../../app/pages/auto.py" line="203" />
       <source>Run from line refused: {0}</source>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="102" />
+      <location filename="../../app/pages/auto.py" line="104" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -803,17 +803,17 @@ BIRAK</translation>
       <translation>Örnek sayısı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="28" />
       <source>Save</source>
       <translation>Kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="23" />
+      <location filename="../../app/pages/program.py" line="28" />
       <source>Save as…</source>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="231" />
+      <location filename="../../app/pages/program.py" line="277" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -888,7 +888,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="93" />
+      <location filename="../../app/pages/auto.py" line="95" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -903,12 +903,12 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="346" />
+      <location filename="../../app/pages/auto.py" line="348" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="114" />
+      <location filename="../../app/pages/auto.py" line="116" />
       <source>Spindle override</source>
       <translation>İş mili oranı</translation>
     </message>
@@ -918,7 +918,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="347" />
+      <location filename="../../app/pages/auto.py" line="349" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -998,7 +998,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="349" />
+      <location filename="../../app/pages/auto.py" line="351" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -1083,7 +1083,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="161" />
+      <location filename="../../app/pages/program.py" line="206" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -1418,12 +1418,12 @@ BIRAK</translation>
       <translation>{0} (denetleniyor…)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="120" />
+      <location filename="../../app/pages/program.py" line="164" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="162" />
+      <location filename="../../app/pages/program.py" line="207" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>
@@ -1431,6 +1431,11 @@ BIRAK</translation>
       <location filename="../../app/pages/tools.py" line="170" />
       <source>{0} is not a tool table in the program folders</source>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="128" />
+      <source>{0} lines: shown read-only (edit programs of over {1} lines in CAM or on a PC)</source>
+      <translation>{0} satır: yalnızca okunur gösteriliyor ({1} satırdan uzun programları CAM'de ya da bir bilgisayarda düzenleyin)</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="64" />

@@ -77,3 +77,35 @@ def test_the_status_bar_says_when_corners_are_smoothed(demo_window, real_control
     with qtbot.waitSignal(c.programLoaded, timeout=20_000):
         assert c.load_program(text.replace("G64 P0.02", "G61.1"), name="sharp.nc")
     assert c.program_info.blends == 0 and "smoothed" not in demo_window._message.text()
+
+
+def test_a_program_over_the_edit_limit_is_shown_read_only_through_a_view(
+        demo_window, real_controller, qtbot, monkeypatch, tmp_path) -> None:
+    """Over EDIT_MAX_LINES a program goes into no text widget: both pages show it through the
+    loader's own text and line index, the Program page says why it cannot be edited there, the
+    controller's errors are marked on it, and a small program is editable again."""
+    import app.pages.program as program_page
+
+    monkeypatch.setattr(program_page, "EDIT_MAX_LINES", 500)
+    c = real_controller
+    path = tmp_path / "big.nc"
+    path.write_text(big_program(700), encoding="utf-8")
+    program = demo_window.page("program")
+    auto = demo_window.page("auto")
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        assert c.load_program(path)
+    qtbot.waitUntil(lambda: program.doc.path is not None and auto.editor.toPlainText() != "", timeout=20_000)
+    info = c.program_info
+    assert program.read_only and program.shown is program.viewer
+    assert program.viewer.toPlainText() is info.text and auto.editor.toPlainText() is info.text
+    assert program.doc.text is info.text and not program.doc.modified  # the file is not read again
+    assert program.editor.toPlainText() == ""
+    assert program.read_only_note.isVisibleTo(program) and "500" in program.read_only_note.text()
+    assert not program.buttons["keyboard"].isEnabled()
+    demo_window.context.program.lineRequested.emit(600)
+    assert program.viewer.current_line() == 600
+    program._on_program_errors([type("Issue", (), {"line": 640, "message": "radius"})()])
+    assert program.viewer.errors == {640: "radius"} and not program.editor.errors
+    program.set_text(SHORT)
+    assert not program.read_only and program.editor.toPlainText() == SHORT
+    assert not program.read_only_note.isVisibleTo(program) and program.buttons["keyboard"].isEnabled()
