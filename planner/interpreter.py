@@ -39,7 +39,7 @@ from planner.arcs import (
     check_center_radii,
     sweep_angle,
 )
-from planner.bulk import scan_plain
+from planner.bulk import newline_offsets, scan_plain
 from planner.cutter_comp import LEFT, RIGHT, CutterComp
 from planner.errors import BlockError as _BlockError
 from planner.errors import PlannerError, ProgramError, SourceError
@@ -58,7 +58,7 @@ from planner.program import (
 )
 from planner.tools import Tool, ToolTable
 
-__all__ = ["parse_program", "parse_file", "MAX_ERRORS"]
+__all__ = ["parse_program", "parse_file", "read_program", "MAX_ERRORS"]
 
 MAX_ERRORS = 100
 _VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
@@ -689,7 +689,7 @@ class _Interpreter:
             data = np.frombuffer(text.encode("utf-8") if utf8 is None else utf8, np.uint8)
         except UnicodeEncodeError:
             return False
-        nl = np.flatnonzero(data == 10)
+        nl = newline_offsets(data)
         starts = np.concatenate(([0], nl + 1))
         ends = np.concatenate((nl, [data.shape[0]]))
         n_lines = int(starts.shape[0])
@@ -2168,7 +2168,7 @@ def parse_program(
     subroutine_dirs: Sequence[str] = (),
     parameters: dict[int, float] | None = None,
     progress: Callable[[int, int], None] | None = None,
-    _utf8: bytes | None = None,
+    utf8: bytes | None = None,
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -2183,25 +2183,31 @@ def parse_program(
     ``parameters``: the persistent parameters the machine kept (``PERSISTENT_PARAMETERS``: G92,
     G28/G30 positions, coordinate systems); the machine's work offsets take precedence for G54-G59.
     ``progress(lines read, lines in all)`` is called now and then while a long program is read.
+    ``utf8``: the text's own UTF-8 bytes when at hand (``read_program``): the bulk reader scans
+    them instead of encoding the text again.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
                           spindle, subroutine_dirs, parameters)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         interp.progress = progress
-        return interp.run(text, _utf8)
+        return interp.run(text, utf8)
+
+
+def read_program(path: str | os.PathLike[str]) -> tuple[str, bytes | None]:
+    """A G-code file's text (UTF-8, falling back to Latin-1) and, when it is UTF-8, its bytes
+    (for ``parse_program(..., utf8=)``). Raises PlannerError naming the file and why."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as exc:
+        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    try:
+        return data.decode("utf-8"), data
+    except UnicodeDecodeError:
+        return data.decode("latin-1"), None
 
 
 def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
     """Read and interpret a G-code file (UTF-8, falling back to Latin-1)."""
-    try:
-        data = open(path, "rb").read()  # noqa: SIM115
-    except OSError as exc:
-        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    try:
-        text = data.decode("utf-8")
-        utf8: bytes | None = data  # the bulk reader scans these bytes instead of encoding again
-    except UnicodeDecodeError:
-        text = data.decode("latin-1")
-        utf8 = None
-    del data
-    return parse_program(text, str(path), machine, _utf8=utf8, **kwargs)
+    text, utf8 = read_program(path)
+    return parse_program(text, str(path), machine, utf8=utf8, **kwargs)

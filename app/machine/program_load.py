@@ -42,7 +42,7 @@ from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
 from planner.heap import trim_heap
-from planner.interpreter import parse_program
+from planner.interpreter import parse_program, read_program
 from planner.machine import MachineSpec
 from planner.program import Program
 from planner.softlimits import check_program, move_bounds_table, program_bounds
@@ -75,6 +75,9 @@ class LoadRequest:
     cancel: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
     progress: float = 0.0  # 0..1, written by the worker as it reads, checks and plans
+    # the text is read from ``path`` by the worker (``text`` is "" until then): a file of
+    # 250 MB takes half a second to read and decode, which the GUI thread must not wait for
+    read_file: bool = False
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
     outcome: ProgramInfo | tuple[tuple[ProgramIssue, ...], str] | None = None
     finished: bool = False  # applied in the controller's thread (or dropped)
@@ -135,11 +138,20 @@ def check_text(
             req.progress = first + share * min(1.0, done / max(total, 1))
         return report
 
+    utf8: bytes | None = None
+    if req.read_file:
+        try:
+            req.text, utf8 = read_program(req.path)
+        except PlannerError as exc:
+            why = str(exc).split(": ", 1)[1] if ": " in str(exc) else str(exc)
+            return (ProgramIssue(0, 0, why),), str(exc)
+        req.read_file = False
     text, name = req.text, req.name
     try:
         program = parse_program(text, name, machine=machine, start_position=req.start_position,
                                 tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]))
+                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]),
+                                utf8=utf8)
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
@@ -262,8 +274,9 @@ class ProgramLoader:
             "\n" not in source and len(source) < 4096 and Path(source).is_file()
         ):
             path = str(source)
-            try:
-                data = Path(path).read_bytes()
+            try:  # can it be read at all (the worker reads it): refused at once if not
+                with open(path, "rb"):
+                    pass
             except OSError as exc:
                 if self.load_request is not None:  # superseded by this failed one
                     old = self.load_request.name
@@ -273,17 +286,14 @@ class ProgramLoader:
                     (ProgramIssue(0, 0, f"cannot read: {exc.strerror or exc}"),),
                     f"{path}: cannot read: {exc.strerror or exc}",
                 )
-            try:
-                text = data.decode("utf-8")
-            except UnicodeDecodeError:
-                text = data.decode("latin-1")
+            text = ""
             name = name or Path(path).name
         else:
             text = str(source)
             name = name or "<text>"
         if wait:
-            return self.load_text(text, name, path)
-        self.start_load(text, name, path)
+            return self.load_text(text, name, path, read_file=bool(path))
+        self.start_load(text, name, path, read_file=bool(path))
         if timeout_s is not None:
             return self.wait_loaded(timeout_s)
         return self.m.states.ok("load_program")
@@ -307,7 +317,7 @@ class ProgramLoader:
         """Soft-limit issues of a program's whole path (also used by MDI and run from line)."""
         return list(_issues_from_limits(program, self.m.conn.machine))
 
-    def _new_request(self, text: str, name: str, path: str) -> LoadRequest:
+    def _new_request(self, text: str, name: str, path: str, read_file: bool = False) -> LoadRequest:
         self._supersede_load()
         self._load_generation += 1
         return LoadRequest(
@@ -315,6 +325,7 @@ class ProgramLoader:
             text=text,
             name=name,
             path=path,
+            read_file=read_file,
             start_position=self.m.states.machine_pos().copy(),
             cfg=self.m.config,
             offsets=dict(self.m.pos.offsets),
@@ -331,8 +342,9 @@ class ProgramLoader:
             req.finished = True
             self.load_request = None
 
-    def start_load(self, text: str, name: str, path: str) -> LoadRequest:
-        req = self._new_request(text, name, path)
+    def start_load(self, text: str, name: str, path: str, read_file: bool = False) -> LoadRequest:
+        """Check ``text`` (or, ``read_file``, the file ``path``) in a worker thread."""
+        req = self._new_request(text, name, path, read_file)
         machine, plan_fn = self.m.conn.machine, self.m.stream.planner()
         self.load_request = req
         self.m.loadingChanged.emit(True, name)
@@ -372,7 +384,7 @@ class ProgramLoader:
         if (
             req.cfg is not self.m.config or req.offsets != self.m.pos.offsets
         ):  # configuration changed meanwhile
-            self.start_load(req.text, req.name, req.path)
+            self.start_load(req.text, req.name, req.path, read_file=req.read_file)
             return
         outcome = req.outcome
         self.m.loadingChanged.emit(False, req.name)
@@ -381,11 +393,11 @@ class ProgramLoader:
         elif outcome is not None:
             self._load_failed(*outcome)
 
-    def load_text(self, text: str, name: str, path: str) -> CommandResult:
+    def load_text(self, text: str, name: str, path: str, read_file: bool = False) -> CommandResult:
         """Synchronous load in the calling thread (``wait=True``, re-checks after a
         configuration change or a move since loading); supersedes a load in flight."""
         was_loading = self.load_request is not None
-        req = self._new_request(text, name, path)
+        req = self._new_request(text, name, path, read_file)
         if was_loading:
             self.m.loadingChanged.emit(False, name)
         try:

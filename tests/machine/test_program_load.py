@@ -202,3 +202,36 @@ def test_a_check_in_the_background_tells_how_far_it_is(qtbot, ctl: MachineContro
     assert any(0.0 < p < read for p in moving)  # seen while the program was read
     assert any(planned < p < planned + LOAD_SHARES[2] for p in moving)  # ... and while planned
     assert ctl.loading_progress == 0.0  # nothing is being checked any more
+
+
+def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: MachineController, tmp_path,
+                                                            monkeypatch) -> None:
+    """The call only looks whether the file opens; the worker reads it (a 250 MB file took the
+    GUI thread half a second), and a file that cannot be read by then is refused with why."""
+    import app.machine.program_load as program_load
+
+    path = tmp_path / "prog.nc"
+    path.write_text(SHORT, encoding="utf-8")
+    readers: list[str] = []
+    real_read = program_load.read_program
+
+    def read(p):
+        import threading
+
+        readers.append(threading.current_thread().name)
+        return real_read(p)
+
+    monkeypatch.setattr(program_load, "read_program", read)
+    with qtbot.waitSignal(ctl.programLoaded, timeout=10_000) as blocker:
+        assert ctl.load_program(path)
+        assert ctl.loading
+    assert blocker.args[0].text == SHORT and blocker.args[0].path == str(path)
+    assert len(readers) == 1 and readers[0] != "MainThread"
+
+    def gone(p):
+        raise program_load.PlannerError(f"{p}: cannot read: No such file or directory")
+
+    monkeypatch.setattr(program_load, "read_program", gone)
+    with qtbot.waitSignal(ctl.programErrors, timeout=10_000) as failed:
+        assert ctl.load_program(path)
+    assert "cannot read" in failed.args[0][0].message and ctl.program_info is None
