@@ -76,24 +76,35 @@ class Segment:
     t_end: float  # end of the segment's time span (after the last move's dwell)
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
-    # Absolute start time of each phase (7 per move, in time order): one searchsorted finds
-    # move and phase; the state there is read from the profiles' own (n, 8) tables
-    ph_t: np.ndarray
     t_stop: np.ndarray  # (n,) time each move reaches its end (before any dwell)
 
     def state(self, t: np.ndarray, need_va: bool = False):
         """(row, s) or (row, s, v, a) at global times t (closed form, vectorised)."""
-        idx = np.searchsorted(self.ph_t, t, side="right") - 1
-        np.clip(idx, 0, None, out=idx)
-        row = idx // 7
+        if t.shape[0] > 1 and t[0] <= t[-1] and np.all(t[1:] >= t[:-1]):
+            # times in order (the usual case): the moves from the first time's to the last's
+            r0, r1 = np.searchsorted(self.t0, t[[0, -1]], side="right") - 1
+            uniq = np.arange(max(int(r0), 0), max(int(r1), 0) + 1)
+        else:
+            row = np.searchsorted(self.t0, t, side="right") - 1
+            uniq = np.unique(np.clip(row, 0, None))
+        # the boundary tables of the moves these times fall in, each made once, and the
+        # absolute start of each of their phases (in time order): one search finds move and
+        # phase, the last phase started by t
         prof = self.profiles
-        flat = idx + row  # the same phase in the (n, 8) tables
-        t_b = prof.t_b.ravel()
-        dt = np.clip(t - self.ph_t[idx], 0.0, t_b[flat + 1] - t_b[flat])
-        a0 = prof.a_b.ravel()[flat]
-        j6 = prof.phase_jerk(row, idx - 7 * row) / 6.0
-        v0 = prof.v_b.ravel()[flat]
-        s = prof.s_b.ravel()[flat] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
+        t_b, s_b, v_b, a_b = prof.tables(uniq)
+        ph = (self.t0[uniq][:, None] + t_b[:, :7]).ravel()
+        idx = np.searchsorted(ph, t, side="right") - 1
+        np.clip(idx, 0, None, out=idx)
+        local = idx // 7
+        phase = idx - 7 * local
+        row = uniq[local]
+        flat = idx + local  # the same phase in the (u, 8) tables
+        t_b = t_b.ravel()
+        dt = np.clip(t - ph[idx], 0.0, t_b[flat + 1] - t_b[flat])
+        a0 = a_b.ravel()[flat]
+        j6 = prof.phase_jerk(row, phase) / 6.0
+        v0 = v_b.ravel()[flat]
+        s = s_b.ravel()[flat] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
         length = self.table.length[row]
         s = np.where(t >= self.t_stop[row], length, np.minimum(s, length))
         if not need_va:
@@ -137,9 +148,8 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
     bounds = np.cumsum(np.concatenate([[t_start], prof.duration + dwell]))
     s_bounds = np.cumsum(np.concatenate([[s_start], table.length]))
     t0 = bounds[:-1]
-    ph_t = (t0[:, None] + prof.t_b[:, :7]).ravel()
     return Segment(table, prof, vs, ve, v_prog, t0, float(bounds[-1]), s_bounds[:-1],
-                   float(s_bounds[-1]), ph_t, t0 + prof.duration)
+                   float(s_bounds[-1]), t0 + prof.duration)
 
 
 class _Column:
@@ -184,7 +194,7 @@ class _Column:
         return np.broadcast_to(self.rep, (self.total, *self.rep.shape[1:]))
 
 
-_OWN_COLUMNS = ("vs", "ve", "v_prog", "t0", "s0", "ph_t", "t_stop")
+_OWN_COLUMNS = ("vs", "ve", "v_prog", "t0", "s0", "t_stop")
 
 
 class SegmentJoin:
@@ -202,7 +212,7 @@ class SegmentJoin:
         self._table = {name: _Column(moves) for name in MoveTable.__slots__ if name not in self._shared}
         # a profile's length is its move's (build_profiles keeps the very array)
         self._prof = {name: _Column(moves) for name in Profiles.__slots__ if name != "length_mm"}
-        self._own = {name: _Column(7 * moves if name == "ph_t" else moves) for name in _OWN_COLUMNS}
+        self._own = {name: _Column(moves) for name in _OWN_COLUMNS}
         self._last: Segment | None = None
         self._count = 0
 
@@ -228,7 +238,7 @@ class SegmentJoin:
                               for name in Profiles.__slots__))
         cols = {name: col.result() for name, col in self._own.items()}
         return Segment(table, profiles, cols["vs"], cols["ve"], cols["v_prog"], cols["t0"], last.t_end,
-                       cols["s0"], last.s_end, cols["ph_t"], cols["t_stop"])
+                       cols["s0"], last.s_end, cols["t_stop"])
 
 
 class Interpolator:

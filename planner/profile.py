@@ -218,13 +218,46 @@ def _solve_peak(length, vs, ve, vc, a_max, j_max):
     return vlo + x, x + d1, x + d2
 
 
+def _boundaries(length, vs, ve, vp, j_max, times):
+    """Time, length, speed and acceleration (each (k, 8)) at the phase boundaries of moves
+    whose phase durations are ``times`` (k, 5): tj1, ta1, tj2, ta2, t_cruise. Elementwise, so
+    rows made for any subset are bit for bit the rows made for all."""
+    k = length.shape[0]
+    tj1, ta1, tj2, ta2, t_cruise = times.T
+    durations = np.stack([tj1, ta1, tj1, t_cruise, tj2, ta2, tj2], axis=1)
+    d_up = 0.5 * (vs + vp) * (2.0 * tj1 + ta1)
+    jerk = _PHASE_JERK[None, :] * j_max[:, None]
+    t_b = np.zeros((k, 8))
+    s_b = np.zeros((k, 8))
+    v_b = np.zeros((k, 8))
+    a_b = np.zeros((k, 8))
+    v_b[:, 0] = vs
+    t_b[:, 1:] = np.cumsum(durations, axis=1)
+    for ph in range(7):
+        d = durations[:, ph]
+        j = jerk[:, ph]
+        s0, v0, a0 = s_b[:, ph], v_b[:, ph], a_b[:, ph]
+        s_b[:, ph + 1] = s0 + d * (v0 + d * (0.5 * a0 + d * j / 6.0))
+        v_b[:, ph + 1] = v0 + d * (a0 + 0.5 * j * d)
+        a_b[:, ph + 1] = a0 + j * d
+        if ph == 2:  # end of the speed-up: exactly (d_up, vp, 0)
+            s_b[:, 3], v_b[:, 3], a_b[:, 3] = d_up, vp, 0.0
+        elif ph == 3:
+            s_b[:, 4] = d_up + vp * t_cruise
+        elif ph == 6:  # end of the move: exactly (L, ve, 0)
+            s_b[:, 7], v_b[:, 7], a_b[:, 7] = length, ve, 0.0
+    return t_b, s_b, v_b, a_b
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class Profiles:
-    """Closed-form jerk-limited profiles of n moves (arrays of shape (n,) or (n, 8)).
+    """Closed-form jerk-limited profiles of n moves (arrays of shape (n,), ``times`` (n, 5)).
 
-    ``t_b``, ``s_b``, ``v_b``, ``a_b``: time, length, speed, acceleration at the 8 phase
-    boundaries (t_b[:, 0] = 0, t_b[:, 7] = duration); ``jerk``: (n, 7) jerk of each phase
-    (made from ``j_max`` on demand).
+    ``times``: the phase durations tj1, ta1, tj2, ta2 and the cruise (the seven phases are
+    tj1, ta1, tj1, cruise, tj2, ta2, tj2). The state at the 8 phase boundaries (``tables``:
+    time, length, speed, acceleration; t_b[:, 0] = 0, t_b[:, 7] = duration) is made from them
+    for the rows asked, when asked: kept for every move it was 256 bytes a move, the most of
+    a plan of millions of moves. ``jerk``: (n, 7) jerk of each phase, also made on demand.
     """
 
     length_mm: np.ndarray
@@ -234,13 +267,34 @@ class Profiles:
     vp: np.ndarray  # reached peak (cruise) speed
     a_max: np.ndarray
     j_max: np.ndarray
-    t_b: np.ndarray
-    s_b: np.ndarray
-    v_b: np.ndarray
-    a_b: np.ndarray
+    times: np.ndarray
+    duration: np.ndarray  # (n,) = t_b[:, 7]
 
     def __len__(self) -> int:
         return int(self.length_mm.shape[0])
+
+    def tables(self, rows=None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(t_b, s_b, v_b, a_b), each (k, 8), of moves ``rows`` (an index array or slice;
+        None: all)."""
+        sel = slice(None) if rows is None else rows
+        return _boundaries(self.length_mm[sel], self.vs[sel], self.ve[sel], self.vp[sel], self.j_max[sel],
+                           self.times[sel])
+
+    @property
+    def t_b(self) -> np.ndarray:
+        return self.tables()[0]
+
+    @property
+    def s_b(self) -> np.ndarray:
+        return self.tables()[1]
+
+    @property
+    def v_b(self) -> np.ndarray:
+        return self.tables()[2]
+
+    @property
+    def a_b(self) -> np.ndarray:
+        return self.tables()[3]
 
     @property
     def jerk(self) -> np.ndarray:
@@ -250,10 +304,6 @@ class Profiles:
     def phase_jerk(self, move: np.ndarray, phase: np.ndarray) -> np.ndarray:
         """Jerk of phase ``phase[k]`` of move ``move[k]``."""
         return _PHASE_JERK[phase] * self.j_max[move]
-
-    @property
-    def duration(self) -> np.ndarray:
-        return self.t_b[:, 7]
 
     @property
     def accel_peak(self) -> np.ndarray:
@@ -273,14 +323,14 @@ class Profiles:
 
     def evaluate(self, move: np.ndarray, tau: np.ndarray):
         """(s, v, a, j) of move ``move[k]`` at local time ``tau[k]`` (clamped to [0, duration])."""
-        tb = self.t_b[move]
+        tb, sb, vb, ab = self.tables(move)
         tau = np.clip(tau, 0.0, tb[:, 7])
         phase = np.minimum((tau[:, None] >= tb[:, 1:7]).sum(axis=1), 6)
         rows = np.arange(move.shape[0])
         dt = tau - tb[rows, phase]
-        s0 = self.s_b[move, phase]
-        v0 = self.v_b[move, phase]
-        a0 = self.a_b[move, phase]
+        s0 = sb[rows, phase]
+        v0 = vb[rows, phase]
+        a0 = ab[rows, phase]
         j = self.phase_jerk(move, phase)
         s = s0 + dt * (v0 + dt * (0.5 * a0 + dt * (j / 6.0)))
         v = v0 + dt * (a0 + 0.5 * j * dt)
@@ -291,16 +341,8 @@ class Profiles:
         return s, v, a, np.where(end, 0.0, j)
 
     def evaluate_s(self, move: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        """Only s, cheaper (the interpolation's hot path)."""
-        tb = self.t_b[move]
-        tau = np.clip(tau, 0.0, tb[:, 7])
-        phase = np.minimum((tau[:, None] >= tb[:, 1:7]).sum(axis=1), 6)
-        flat = move * 8 + phase
-        dt = tau - tb.ravel()[np.arange(move.shape[0]) * 8 + phase]
-        s = self.s_b.ravel()[flat] + dt * (self.v_b.ravel()[flat] + dt * (
-            0.5 * self.a_b.ravel()[flat] + dt * (self.phase_jerk(move, phase) / 6.0)))
-        length = self.length_mm[move]
-        return np.where(tau >= tb[:, 7], length, np.clip(s, 0.0, length))
+        """Only s."""
+        return self.evaluate(move, tau)[0]
 
 
 def _s_curve_times(dv, a_max, j_max):
@@ -360,25 +402,7 @@ def build_profiles(length_mm, vs, ve, vc, a_max, j_max, tolerance: float = 1e-6)
     t_cruise = np.where(cruise, (length - d_up - d_dn) / vp, 0.0)
     t_cruise = np.maximum(t_cruise, 0.0)
 
-    durations = np.stack([tj1, ta1, tj1, t_cruise, tj2, ta2, tj2], axis=1)
-    jerk = _PHASE_JERK[None, :] * j_max[:, None]
-    t_b = np.zeros((n, 8))
-    s_b = np.zeros((n, 8))
-    v_b = np.zeros((n, 8))
-    a_b = np.zeros((n, 8))
-    v_b[:, 0] = vs
-    t_b[:, 1:] = np.cumsum(durations, axis=1)
-    for k in range(7):
-        d = durations[:, k]
-        j = jerk[:, k]
-        s0, v0, a0 = s_b[:, k], v_b[:, k], a_b[:, k]
-        s_b[:, k + 1] = s0 + d * (v0 + d * (0.5 * a0 + d * j / 6.0))
-        v_b[:, k + 1] = v0 + d * (a0 + 0.5 * j * d)
-        a_b[:, k + 1] = a0 + j * d
-        if k == 2:  # end of the speed-up: exactly (d_up, vp, 0)
-            s_b[:, 3], v_b[:, 3], a_b[:, 3] = d_up, vp, 0.0
-        elif k == 3:
-            s_b[:, 4] = d_up + vp * t_cruise
-        elif k == 6:  # end of the move: exactly (L, ve, 0)
-            s_b[:, 7], v_b[:, 7], a_b[:, 7] = length, ve, 0.0
-    return Profiles(length, vs, ve, vc, vp, a_max, j_max, t_b, s_b, v_b, a_b)
+    times = np.stack([tj1, ta1, tj2, ta2, t_cruise], axis=1)
+    # the duration as the boundary times' last (the same sum in the same order)
+    duration = np.cumsum(np.stack([tj1, ta1, tj1, t_cruise, tj2, ta2, tj2], axis=1), axis=1)[:, -1]
+    return Profiles(length, vs, ve, vc, vp, a_max, j_max, times, duration)
