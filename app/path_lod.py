@@ -22,7 +22,7 @@ from app.path_raster import Layer, rasterize
 from app.toolpath import Polylines, ToolPath, thin
 from planner.program import MoveKind
 
-__all__ = ["Detail", "LodLevels", "ViewSpec", "build_levels", "detail", "needs_levels"]
+__all__ = ["ALL_MOVES", "Detail", "LodLevels", "ViewSpec", "build_levels", "detail", "needs_levels"]
 
 LOD_MIN_POINTS = 200_000
 BASE_CELLS = 65_536  # the finest copy: the path's extent in this many cubes
@@ -30,9 +30,12 @@ LEVELS = 7  # each level's cube 4 times the one before (the coarsest: extent / 1
 MARGIN = 0.25  # of the view's size, drawn beyond each side (a pan shows no gap at once)
 VECTOR_POINTS = 250_000  # more points in view: the path is drawn as an image of the view
 KINDS = (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)  # drawing order (later on top)
+# the copies of every move in program order, for the part already run (drawn over the path:
+# at millions of points drawn whole it took 150 ms a frame at each line reached)
+ALL_MOVES = "all"
 
 Projection = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
-LodLevels = dict[MoveKind, list[tuple[float, Polylines]]]
+LodLevels = dict[MoveKind | str, list[tuple[float, Polylines]]]
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,11 +58,14 @@ class Detail:
     vectors: dict[MoveKind, tuple[np.ndarray, np.ndarray, np.ndarray]]
     image: np.ndarray | None = None  # (width, height, 4) uint8, column-major
     rect: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)  # x, y, width, height
+    # every move in program order for this view, at most VECTOR_POINTS points: (x, y, connect,
+    # move index); the part run so far is a prefix of it (None: draw it from the whole path)
+    executed: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 def needs_levels(path: ToolPath | None) -> bool:
     """Whether ``path`` has a kind of move big enough for thinned copies."""
-    return path is not None and any(len(pl.points) > LOD_MIN_POINTS for pl in path.kinds.values())
+    return path is not None and len(path.all.points) > LOD_MIN_POINTS
 
 
 def build_levels(path: ToolPath | None) -> LodLevels:
@@ -71,7 +77,8 @@ def build_levels(path: ToolPath | None) -> LodLevels:
     extent = float(np.max(np.asarray(hi, float) - np.asarray(lo, float))) if len(lo) else 0.0
     if not extent > 0.0:
         return levels
-    for kind, pl in path.kinds.items():
+    every: list[tuple[MoveKind | str, Polylines]] = [*path.kinds.items(), (ALL_MOVES, path.all)]
+    for key, pl in every:
         if len(pl.points) <= LOD_MIN_POINTS:
             continue
         copies, cell, part = [], extent / BASE_CELLS, pl
@@ -79,8 +86,25 @@ def build_levels(path: ToolPath | None) -> LodLevels:
             part = thin(part, cell)
             copies.append((cell, part))
             cell *= 4.0
-        levels[kind] = copies
+        levels[key] = copies
     return levels
+
+
+def _cut(pl: Polylines, view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The points of ``pl`` in the view (with a margin), the other end of every segment with
+    one end in it, and no line across what is left out: (x, y, connect, their indices)."""
+    x, y = view.project(pl.points)
+    mx, my = MARGIN * (view.x1 - view.x0), MARGIN * (view.y1 - view.y0)
+    inside = (x >= view.x0 - mx) & (x <= view.x1 + mx) & (y >= view.y0 - my) & (y <= view.y1 + my)
+    keep = inside.copy()  # and the other end of every segment that has one end inside
+    keep[1:] |= inside[:-1] & pl.connect[:-1]
+    keep[:-1] |= inside[1:] & pl.connect[:-1]
+    idx = np.flatnonzero(keep)
+    connect = pl.connect[idx].copy()
+    if len(idx):
+        connect[:-1] &= np.diff(idx) == 1
+        connect[-1] = False
+    return x[idx], y[idx], connect, idx
 
 
 def _visible(pl: Polylines, copies: list[tuple[float, Polylines]] | None,
@@ -91,30 +115,38 @@ def _visible(pl: Polylines, copies: list[tuple[float, Polylines]] | None,
     for cell, part in copies:
         if cell <= 0.5 * view.pixel:  # a cube's diagonal within a pixel
             pl = part
-    x, y = view.project(pl.points)
-    mx, my = MARGIN * (view.x1 - view.x0), MARGIN * (view.y1 - view.y0)
-    inside = (x >= view.x0 - mx) & (x <= view.x1 + mx) & (y >= view.y0 - my) & (y <= view.y1 + my)
-    keep = inside.copy()  # and the other end of every segment that has one end inside
-    keep[1:] |= inside[:-1] & pl.connect[:-1]
-    keep[:-1] |= inside[1:] & pl.connect[:-1]
-    idx = np.flatnonzero(keep)
-    connect = pl.connect[idx].copy()
-    if len(idx):
-        connect[:-1] &= np.diff(idx) == 1  # no line across what is left out
-        connect[-1] = False
-    return x[idx], y[idx], connect
+    return _cut(pl, view)[:3]
+
+
+def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
+              view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Every move in program order for the view: the finest copy within half a pixel, or a
+    coarser one while more than VECTOR_POINTS points would be in view (an overlay may be
+    coarser than the path under it; vectors of millions of points are not drawn in time)."""
+    candidates = [path.all] + [part for _cell, part in copies]
+    first = 0
+    for k, (cell, _part) in enumerate(copies, start=1):
+        if cell <= 0.5 * view.pixel:
+            first = k
+    for pl in candidates[first:]:
+        x, y, connect, idx = _cut(pl, view)
+        if len(x) <= VECTOR_POINTS or pl is candidates[-1]:
+            return x, y, connect, pl.move_index[idx]
+    raise AssertionError("unreachable: the last copy is always taken")
 
 
 def detail(path: ToolPath, levels: LodLevels, view: ViewSpec) -> Detail:
     """What to draw of ``path`` for ``view``."""
     shown = {kind: _visible(path.kinds[kind], levels.get(kind), view) for kind in KINDS
              if path.kinds[kind].count}
+    copies = levels.get(ALL_MOVES)
+    executed = _executed(path, copies, view) if copies else None
     if not levels or sum(len(v[0]) for v in shown.values()) <= VECTOR_POINTS:
-        return Detail(shown)
+        return Detail(shown, executed=executed)
     w, h = view.x1 - view.x0, view.y1 - view.y0
     x0, y0 = view.x0 - MARGIN * w, view.y0 - MARGIN * h
     width = max(1, math.ceil((1 + 2 * MARGIN) * w / view.pixel))
     height = max(1, math.ceil((1 + 2 * MARGIN) * h / view.pixel))
     layers = [Layer(*shown[kind], view.colours[kind]) for kind in KINDS if kind in shown]
     image = rasterize(layers, x0, y0, view.pixel, width, height)
-    return Detail({}, image, (x0, y0, width * view.pixel, height * view.pixel))
+    return Detail({}, image, (x0, y0, width * view.pixel, height * view.pixel), executed)

@@ -76,6 +76,8 @@ class PreviewPlot(pg.PlotWidget):
         # a big path's thinned copies (app.path_lod); a new view's detail is made off the GUI
         # thread once the view settles, the old one shown meanwhile
         self._lod: LodLevels = {}
+        # (x, y, connect, move index) of every move for the view, when the path is big
+        self._executed: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
         self._lod_timer = QTimer(self)
         self._lod_timer.setSingleShot(True)
         self._lod_timer.setInterval(LOD_REDRAW_MS)
@@ -164,6 +166,7 @@ class PreviewPlot(pg.PlotWidget):
         self.current_item.setData([], [])
         self.selected_item.setData([], [])
         self._lod = {}
+        self._executed = None
         self.fit()  # first: what is drawn depends on the view (level of detail)
         self._levels_work.cancel()
         self._levels_pending = needs_levels(path)
@@ -298,6 +301,9 @@ class PreviewPlot(pg.PlotWidget):
     def _show_detail(self, drawn: object) -> None:
         if not isinstance(drawn, Detail):  # an exception of the work: keep what is shown
             return
+        self._executed = drawn.executed
+        done, self._done_move = self._done_move, -1
+        self.set_executed(done)  # the part run so far, for this view
         for kind, item in self.items.items():
             if kind in drawn.vectors:
                 x, y, connect = drawn.vectors[kind]
@@ -364,6 +370,14 @@ class PreviewPlot(pg.PlotWidget):
         self._update_current()
         if move_index <= 0:
             self.done_item.setData([], [])
+            return
+        if self._executed is not None:  # a big path: a prefix of the view's own copy
+            x, y, connect, moves = self._executed
+            end = int(np.searchsorted(moves, move_index, side="left"))
+            connect = connect[:end].copy()
+            if end:
+                connect[-1] = False
+            self.done_item.setData(x[:end], y[:end], connect=connect)
             return
         end = int(self.path.move_first_point[min(move_index, len(self.path.move_first_point) - 1)])
         if move_index >= len(self.path.move_first_point):
