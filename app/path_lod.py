@@ -29,6 +29,9 @@ BASE_CELLS = 65_536  # the finest copy: the path's extent in this many cubes
 LEVELS = 7  # each level's cube 4 times the one before (the coarsest: extent / 16)
 MARGIN = 0.25  # of the view's size, drawn beyond each side (a pan shows no gap at once)
 VECTOR_POINTS = 250_000  # more points in view: the path is drawn as an image of the view
+# the part run, drawn over the path at every line reached: a coarser copy above this many
+# points in view (250,000 points of vectors took 140 ms a frame)
+EXECUTED_POINTS = 50_000
 KINDS = (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)  # drawing order (later on top)
 # the copies of every move in program order, for the part already run (drawn over the path:
 # at millions of points drawn whole it took 150 ms a frame at each line reached)
@@ -58,7 +61,7 @@ class Detail:
     vectors: dict[MoveKind, tuple[np.ndarray, np.ndarray, np.ndarray]]
     image: np.ndarray | None = None  # (width, height, 4) uint8, column-major
     rect: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)  # x, y, width, height
-    # every move in program order for this view, at most VECTOR_POINTS points: (x, y, connect,
+    # every move in program order for this view, at most EXECUTED_POINTS points: (x, y, connect,
     # move index); the part run so far is a prefix of it (None: draw it from the whole path)
     executed: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
@@ -121,7 +124,7 @@ def _visible(pl: Polylines, copies: list[tuple[float, Polylines]] | None,
 def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
               view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Every move in program order for the view: the finest copy within half a pixel, or a
-    coarser one while more than VECTOR_POINTS points would be in view (an overlay may be
+    coarser one while more than EXECUTED_POINTS points would be in view (an overlay may be
     coarser than the path under it; vectors of millions of points are not drawn in time)."""
     candidates = [path.all] + [part for _cell, part in copies]
     first = 0
@@ -130,7 +133,7 @@ def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
             first = k
     for pl in candidates[first:]:
         x, y, connect, idx = _cut(pl, view)
-        if len(x) <= VECTOR_POINTS or pl is candidates[-1]:
+        if len(x) <= EXECUTED_POINTS or pl is candidates[-1]:
             return x, y, connect, pl.move_index[idx]
     raise AssertionError("unreachable: the last copy is always taken")
 

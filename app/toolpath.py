@@ -107,7 +107,10 @@ def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polyli
     rn, on, nn = rows[has_n], owner[has_n], n_ax[owner][has_n]
     pts[rn, nn] = start[on, nn] + rise[on] * t[has_n]
     last = first + counts - 1
-    pts[last] = end  # exact end points
+    # exact start and end points: an arc's ends are then the very points of the moves beside
+    # it, so a chain of arcs and lines is one run (``_joined``), which thinning can thin
+    pts[first] = start
+    pts[last] = end
     connect = np.ones(total, bool)
     connect[last] = False
     return Polylines(pts, connect, idx[owner].astype(np.int32), len(idx))

@@ -111,14 +111,14 @@ def test_the_preview_draws_a_big_path_as_an_image_then_zoomed_in_as_vectors(qtbo
 
 def test_the_part_run_of_a_big_path_is_a_prefix_of_a_thinned_copy_in_view(big_path):
     """Seen whole, the run part of 400,000 points is drawn from a copy of at most
-    VECTOR_POINTS points; zoomed in, every point of the path in view that was run is drawn."""
-    from app.path_lod import ALL_MOVES, VECTOR_POINTS
+    EXECUTED_POINTS points; zoomed in, every point of the path in view that was run is drawn."""
+    from app.path_lod import ALL_MOVES, EXECUTED_POINTS
 
     levels = build_levels(big_path)
     assert ALL_MOVES in levels
     whole = detail(big_path, levels, _view(-5, 105, -5, 100, 0.1))
     x, y, connect, moves = whole.executed
-    assert 0 < len(x) <= VECTOR_POINTS < len(big_path.all.points)
+    assert 0 < len(x) <= EXECUTED_POINTS < len(big_path.all.points)
     assert np.all(np.diff(moves) >= 0)
     near = detail(big_path, levels, _view(10, 12, 10, 12, 0.002))
     x, y, connect, moves = near.executed
@@ -129,7 +129,7 @@ def test_the_part_run_of_a_big_path_is_a_prefix_of_a_thinned_copy_in_view(big_pa
 
 
 def test_the_preview_draws_the_run_part_of_a_big_path_from_its_copy(qtbot, big_path):
-    from app.path_lod import VECTOR_POINTS
+    from app.path_lod import EXECUTED_POINTS
     from app.widgets.preview_plot import PreviewPlot
 
     plot = PreviewPlot()
@@ -142,7 +142,7 @@ def test_the_preview_draws_the_run_part_of_a_big_path_from_its_copy(qtbot, big_p
     plot.set_executed(half)
     x = plot.done_item.xData
     ran = big_path.all.points[big_path.all.move_index < half]
-    assert 0 < len(x) <= VECTOR_POINTS and len(x) < len(ran) / 2  # thinned, not the points run
+    assert 0 < len(x) <= EXECUTED_POINTS and len(x) < len(ran) / 2  # thinned, not the points run
     assert x.max() <= ran[:, 0].max() and plot.done_item.yData.max() <= ran[:, 1].max()
     assert plot.done_item.yData.max() >= ran[:, 1].max() - 0.5  # up to the row being cut
     plot.getViewBox().setRange(xRange=(10, 12), yRange=(10, 12), padding=0)  # the view's copy
