@@ -38,6 +38,7 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
+from app.machine.spindle import spin_up_waits
 from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, pause_points, reduced_machine
 from ethercat.worker import ReplaceResult
 from planner.files import write_output
@@ -136,6 +137,8 @@ class Streamer:
         else:
             program = plan.program
         pauses = pause_points(plan, single_block, True)
+        spin_ups = spin_up_waits(pauses, self.m.spindle_ctl.spindle,
+                                 self.m.config.controller.spindle_spinup_s)
         ex = TimeScaledExecutor(
             plan,
             self.m.conn.machine,
@@ -151,10 +154,11 @@ class Streamer:
             plan=plan,
             executor=ex,
             overrides=overrides,
-            estimated_s=plan.cycle_time_s,
+            estimated_s=plan.cycle_time_s + sum(wait for _tau, wait in spin_ups),
             machine=self.m.conn.machine,
         )
         job.single_block = single_block
+        job.spin_ups = spin_ups
         return job
 
     def start_job(self, job: Job) -> None:
@@ -341,6 +345,15 @@ class Streamer:
         snap = self.m.poller.last_snap
         return int(snap.samples_consumed) if snap is not None else 0
 
+    @staticmethod
+    def _spin_ups_left(job: Job, tau: float, now_s: float) -> float:
+        """The spindle's waits still ahead of planned time ``tau``, and what is left of the one
+        under way (the motion stands meanwhile: the time left counts them)."""
+        left = sum(wait for at, wait in job.spin_ups if at > tau)
+        if job.spinup_until is not None:
+            left += max(job.spinup_until - now_s, 0.0)
+        return left
+
     def poll_job(self, job: Job, snap: Any) -> None:
         consumed = int(snap.samples_consumed)
         info = job.info_at(consumed)
@@ -358,7 +371,7 @@ class Streamer:
                 frac = min(tau_g / t_end, 1.0) if t_end > 0 else 1.0
                 capped = job.executor.capped_to
                 ovr = max(self.m.run.feed_pct / 100.0 if capped is None else capped, 1e-3)
-                remaining = max(t_end - tau_g, 0.0) / ovr
+                remaining = max(t_end - tau_g, 0.0) / ovr + self._spin_ups_left(job, tau, float(snap.time_s))
                 self.progress = (frac, remaining)
                 self.m.progressChanged.emit(frac, remaining)
         capped = job.executor.capped_to

@@ -81,6 +81,8 @@ class Job:
         # the spindle stopped for a tool change, brought back by cycle start
         self.spindle_paused: SpindleState | None = None
         self.spinup_until: float | None = None   # worker time the spindle is at speed
+        # (planned time, wait) of each spin-up of the spindle the run will wait for
+        self.spin_ups: list[tuple[float, float]] = []
         self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.origin: tuple[Program, int, float] | None = None
         self.single_block = False

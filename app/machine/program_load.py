@@ -35,7 +35,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from app.background import Background
-from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
+from app.machine.model import CommandResult, ProgramInfo, ProgramIssue, SpindleState
+from app.machine.spindle import spin_up_waits
+from app.machine.timescale import pause_points
 from app.program_lines import line_starts
 from app.toolpath import build_toolpath
 from planner.blend import blend_program, blend_report
@@ -78,6 +80,9 @@ class LoadRequest:
     # the text is read from ``path`` by the worker (``text`` is "" until then): a file of
     # 250 MB takes half a second to read and decode, which the GUI thread must not wait for
     read_file: bool = False
+    # the spindle when the program starts and its spin-up time: the cycle time counts the waits
+    spindle: SpindleState = field(default_factory=SpindleState)
+    spin_up_s: float = 0.0
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
     outcome: ProgramInfo | tuple[tuple[ProgramIssue, ...], str] | None = None
     finished: bool = False  # applied in the controller's thread (or dropped)
@@ -187,7 +192,8 @@ def check_text(
         text=text,
         line_count=program.line_count or text.count("\n") + 1,
         move_count=len(program.moves),
-        cycle_time_s=float(plan.cycle_time_s),
+        cycle_time_s=float(plan.cycle_time_s) + sum(wait for _tau, wait in spin_up_waits(
+            pause_points(plan, False, True), req.spindle, req.spin_up_s)),
         length_mm=float(np.sum(tab.length)) if n else 0.0,
         bounds_min=tuple(float(x) for x in lo),
         bounds_max=tuple(float(x) for x in hi),
@@ -332,6 +338,8 @@ class ProgramLoader:
             tools=self.m.tools.table,
             tool_in_spindle=self.m.tools.in_spindle,
             parameters=dict(self.m.pos.parameters),
+            spindle=self.m.spindle_ctl.spindle,
+            spin_up_s=float(self.m.config.controller.spindle_spinup_s),
         )
 
     def _supersede_load(self) -> None:

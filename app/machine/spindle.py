@@ -4,7 +4,8 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -13,11 +14,36 @@ from app.machine.model import CommandResult, Severity, SpindleState
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
 
-__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl"]
+__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl", "spin_up_waits", "spins_up"]
 
 # never below half: a slowed spindle under the same feed overloads the cutter
 OVERRIDE_MIN_PCT = 50.0
 OVERRIDE_MAX_PCT = 150.0
+
+
+def spins_up(old: SpindleState, new: SpindleState) -> bool:
+    """Whether switching from ``old`` to ``new`` makes the motion wait for the spindle: it
+    starts, reverses or speeds up."""
+    return new.on and (not old.on or old.direction != new.direction or new.rpm > old.rpm)
+
+
+def spin_up_waits(pauses: Iterable[Any], start: SpindleState, spin_up_s: float) -> list[tuple[float, float]]:
+    """(planned time, wait) of every spin-up a run through these pause points
+    (``timescale.pause_points``) waits for, from the spindle state ``start``: an M3/M4/S that
+    starts, reverses or speeds the spindle up, and the restart after a tool change with the
+    spindle on (it stops while hands are near it). The run's cycle time and the time left
+    count them: the motion stands while the spindle comes up to speed."""
+    waits: list[tuple[float, float]] = []
+    state = start
+    for p in pauses:
+        if p.kind == "spindle":
+            new = SpindleState(direction=int(np.sign(p.value)), rpm=abs(float(p.value)))
+            if spins_up(state, new) and spin_up_s > 0.0:
+                waits.append((float(p.tau_s), spin_up_s))
+            state = new
+        elif p.kind == "tool_change" and state.on and spin_up_s > 0.0:
+            waits.append((float(p.tau_s), spin_up_s))
+    return waits
 
 
 class SpindleControl:
@@ -55,12 +81,7 @@ class SpindleControl:
     def spin_up_s(self, new: SpindleState) -> float:
         """How long the motion waits after switching to ``new``: the configured spin-up time
         when the spindle starts, reverses or speeds up, else 0."""
-        old = self.spindle
-        if not new.on:
-            return 0.0
-        if not old.on or old.direction != new.direction or new.rpm > old.rpm:
-            return float(self.m.config.controller.spindle_spinup_s)
-        return 0.0
+        return float(self.m.config.controller.spindle_spinup_s) if spins_up(self.spindle, new) else 0.0
 
     def set_override(self, percent: float) -> CommandResult:
         """Spindle override 50-150 %: the speed the program asks for times this, at once

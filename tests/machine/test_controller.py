@@ -714,10 +714,47 @@ def test_a_program_waits_for_the_spindle_to_reach_speed_before_cutting(ctl: Mach
     ctl.advance(ctl.config.controller.spindle_spinup_s - 0.2)
     assert ctl.reference_position[0] == x == 1.0
     run_to_idle(ctl)
-    # a slower speed needs no wait: the whole run is the moves and the one spin-up, no more
-    assert ctl.last_run is not None
+    # a slower speed needs no wait: the whole run is the moves and the one spin-up, no more,
+    # and the estimate (of the load and of the run) counts that one spin-up too
+    assert ctl.last_run is not None and ctl.program_info is not None
     run, spinup = ctl.last_run, ctl.config.controller.spindle_spinup_s
-    assert run.cycle_time_s == pytest.approx(run.estimated_s + spinup, abs=0.05)
+    moving = ctl.program_info.plan.cycle_time_s
+    assert run.cycle_time_s == pytest.approx(moving + spinup, abs=0.05)
+    assert run.estimated_s == pytest.approx(moving + spinup, abs=1e-9)
+    assert ctl.program_info.cycle_time_s == pytest.approx(moving + spinup, abs=1e-9)
+
+
+def test_the_time_left_counts_the_spin_ups_ahead(ctl: MachineController) -> None:
+    """Time left at the start: the moves and both spin-ups (the start, and the speed-up from
+    800 to 900 rpm; the slow-down to 800 waits for nothing)."""
+    seen: list[float] = []
+    ctl.progressChanged.connect(lambda _frac, left: seen.append(left))
+    spinup = ctl.config.controller.spindle_spinup_s
+    start(ctl, "G0 X1 Y0\nM3 S1000\nG1 X5 F600\nS800\nG1 X6\nS900\nG1 X7\nM30\n")
+    info = ctl.program_info
+    assert info is not None
+    assert info.cycle_time_s == pytest.approx(info.plan.cycle_time_s + 2 * spinup, abs=1e-9)
+    assert ctl.run_until(lambda: bool(seen), 5)
+    assert seen[0] == pytest.approx(info.plan.cycle_time_s + 2 * spinup, abs=0.1)
+    assert ctl.run_until(lambda: ctl.reference_position[0] > 6.5, 30)
+    assert ctl.run_until(lambda: len(seen) > 1 and seen[-1] < info.plan.cycle_time_s, 5)
+    assert seen[-1] < 0.5 * spinup  # past both spin-ups: only the moves are left
+
+
+def test_spin_ups_are_starts_reversals_speed_ups_and_restarts_after_a_tool_change() -> None:
+    from app.machine.model import SpindleState
+    from app.machine.spindle import spin_up_waits
+    from app.machine.timescale import PausePoint
+
+    def at(tau: float, kind: str, value: float = 0.0) -> PausePoint:
+        return PausePoint(tau, kind, 1, 0, value)
+
+    pauses = [at(1, "spindle", 1000), at(2, "spindle", 800), at(3, "tool_change", 2), at(4, "spindle", -800),
+              at(5, "spindle", 0), at(6, "tool_change", 3), at(7, "dwell", 2.0), at(8, "spindle", 900)]
+    assert spin_up_waits(pauses, SpindleState(), 2.5) == [(1, 2.5), (3, 2.5), (4, 2.5), (8, 2.5)]
+    # already turning at the programmed speed when the program starts: no wait at its M3
+    assert spin_up_waits(pauses[:2], SpindleState(1, 1000.0), 2.5) == []
+    assert spin_up_waits(pauses, SpindleState(), 0.0) == []
 
 
 def test_spindle_override_scales_the_commanded_speed_within_the_maximum(ctl: MachineController) -> None:
