@@ -68,15 +68,17 @@ class Segment:
     """Moves with profiles and start times on the global clock."""
 
     table: MoveTable
-    profiles: Profiles
-    vs: np.ndarray
-    ve: np.ndarray
+    profiles: Profiles  # their vs, ve: each move's start and end speed
     v_prog: np.ndarray
     t0: np.ndarray  # (n,) start time of each move
     t_end: float  # end of the segment's time span (after the last move's dwell)
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
-    t_stop: np.ndarray  # (n,) time each move reaches its end (before any dwell)
+
+    @property
+    def t_stop(self) -> np.ndarray:
+        """(n,) time each move reaches its end (before any dwell)."""
+        return self.t0 + self.profiles.duration
 
     def state(self, t: np.ndarray, need_va: bool = False):
         """(row, s) or (row, s, v, a) at global times t (closed form, vectorised)."""
@@ -106,7 +108,7 @@ class Segment:
         v0 = v_b.ravel()[flat]
         s = s_b.ravel()[flat] + dt * (v0 + dt * (0.5 * a0 + dt * j6))
         length = self.table.length[row]
-        s = np.where(t >= self.t_stop[row], length, np.minimum(s, length))
+        s = np.where(t >= self.t0[row] + prof.duration[row], length, np.minimum(s, length))
         if not need_va:
             return row, s
         v = v0 + dt * (a0 + 3.0 * j6 * dt)
@@ -148,8 +150,7 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
     bounds = np.cumsum(np.concatenate([[t_start], prof.duration + dwell]))
     s_bounds = np.cumsum(np.concatenate([[s_start], table.length]))
     t0 = bounds[:-1]
-    return Segment(table, prof, vs, ve, v_prog, t0, float(bounds[-1]), s_bounds[:-1],
-                   float(s_bounds[-1]), t0 + prof.duration)
+    return Segment(table, prof, v_prog, t0, float(bounds[-1]), s_bounds[:-1], float(s_bounds[-1]))
 
 
 class _Column:
@@ -194,7 +195,7 @@ class _Column:
         return np.broadcast_to(self.rep, (self.total, *self.rep.shape[1:]))
 
 
-_OWN_COLUMNS = ("vs", "ve", "v_prog", "t0", "s0", "t_stop")
+_OWN_COLUMNS = ("v_prog", "t0", "s0")
 
 
 class SegmentJoin:
@@ -237,8 +238,7 @@ class SegmentJoin:
         profiles = Profiles(*(self._prof[name].result() if name != "length_mm" else table.length
                               for name in Profiles.__slots__))
         cols = {name: col.result() for name, col in self._own.items()}
-        return Segment(table, profiles, cols["vs"], cols["ve"], cols["v_prog"], cols["t0"], last.t_end,
-                       cols["s0"], last.s_end, cols["t_stop"])
+        return Segment(table, profiles, cols["v_prog"], cols["t0"], last.t_end, cols["s0"], last.s_end)
 
 
 class Interpolator:

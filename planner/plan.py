@@ -263,7 +263,7 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
 
         empty = MoveTable.from_moves((), len(program.axes))
         z = np.zeros(0)
-        seg = Segment(empty, build_profiles(z, z, z, z, z, z), z, z, z, z, 0.0, z, 0.0, z)
+        seg = Segment(empty, build_profiles(z, z, z, z, z, z), z, z, 0.0, z, 0.0)
     return Plan(program, machine, mode, interpolation, seg, time.perf_counter() - started)
 
 
