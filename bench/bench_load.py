@@ -10,7 +10,8 @@ headless path: all work in the calling thread, as every load was before it moved
 thread); ``controller``: the controller alone, loading in its worker thread (parse, soft-limit
 check, plan);
 ``cycle_start`` / ``config``: the program is loaded first (``wait=True``) on a connected
-controller (simulated drives, manual clock); then ``cycle_start()`` resp. ``update_config``
+controller (simulated drives, manual clock; also timed: the cycle start call and the making of
+the first chunk of set-points); then ``cycle_start()`` resp. ``update_config``
 (a small acceleration change: the program is checked again) is called from the GUI thread and
 the longest gap is recorded until cycle start is possible again (the re-check done; for
 ``config`` a cycle start follows, so both stalls count); ``panel``: the whole panel (main
@@ -200,6 +201,17 @@ def run_action(program: Path, action: str, settle_s: float) -> dict:
             else:
                 QTimer.singleShot(10, step)
                 return
+        job = controller.stream.job
+        if "first_chunk_s" not in marks and job is not None:
+            # the first set-points the feeder makes for the worker (the manual clock feeds on
+            # demand: made here once and the executor put back as it was)
+            from app.machine.feeder import CHUNK
+
+            state = job.executor.save_state()
+            t0 = time.perf_counter()
+            job.executor.generate(CHUNK)
+            marks["first_chunk_s"] = time.perf_counter() - t0
+            job.executor.restore_state(state)
         QTimer.singleShot(round(settle_s * 1000), loop.quit)
 
     timer = QTimer()
@@ -222,6 +234,9 @@ def run_action(program: Path, action: str, settle_s: float) -> dict:
         "lines": controller.program_info.line_count if controller.program_info else 0,
         "started": end == end,
         "start_after_s": round(end - t, 4),
+        # cycle start's call and the making of the first chunk of set-points after it
+        "first_setpoints_after_s": round(calls[-1][1] + marks.get("first_chunk_s", float("nan")), 4)
+        if calls else float("nan"),
         "calls": [{"call": n, "blocked_s": round(d, 4), "ok": ok, "reason": r} for n, d, ok, r in calls],
         "max_gui_gap_until_started_ms": round(1000 * max(to_start, default=0.0), 1),
         "max_gui_gap_ms": round(1000 * max(during, default=0.0), 1),
