@@ -169,10 +169,15 @@ def build_toolpath(program: Program) -> ToolPath:
     if offsets is not None and len(moves):
         # drawn in work coordinates (what the program says, where the operator set part zero)
         offsets = np.asarray(offsets, dtype=float)
+        constant = offsets.shape[0] > 0 and offsets.strides[0] == 0  # one offset throughout
         for kind, pl in list(result.items()):
-            if len(pl.points):
-                work = pl.points - offsets[pl.move_index]
-                result[kind] = Polylines(work, pl.connect, pl.move_index, pl.count)
+            if not len(pl.points) or (constant and not offsets[0].any()):
+                continue
+            if constant:  # in place: these points were made here, a copy would double them
+                np.subtract(pl.points, offsets[0], out=pl.points)
+            else:
+                result[kind] = Polylines(pl.points - offsets[pl.move_index], pl.connect, pl.move_index,
+                                         pl.count)
     everything = _merge([result[k] for k in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)], n_axes)
     first_point = np.searchsorted(everything.move_index, np.arange(len(moves)))
     if len(everything.points):

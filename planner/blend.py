@@ -702,8 +702,12 @@ def _remap(program: Program, new: list[Move], spans: list[tuple[int, int]]) -> P
                    for e in program.events)
     move_offsets = None
     if program.move_offsets is not None:
-        move_offsets = np.asarray(program.move_offsets)[np.array([hi for _, hi in spans], dtype=np.int64)]
-        move_offsets.setflags(write=False)
+        offsets = np.asarray(program.move_offsets)
+        if offsets.ndim == 2 and offsets.shape[0] and offsets.strides[0] == 0:  # one offset throughout
+            move_offsets = np.broadcast_to(offsets[0], (len(spans), offsets.shape[1]))
+        else:
+            move_offsets = offsets[np.array([hi for _, hi in spans], dtype=np.int64)]
+            move_offsets.setflags(write=False)
     return replace(program, moves=tuple(new), events=events,
                    modal=tuple((first(f), t) for f, t in program.modal),
                    offset_parts=tuple((first(p[0]), *p[1:]) for p in program.offset_parts),

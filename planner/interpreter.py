@@ -1148,11 +1148,16 @@ class _Interpreter:
     def build(self, line_count: int) -> Program:
         moves = self.out.store()
         n_moves = len(moves)
-        offsets = np.empty((n_moves, self.n))
         changes = self.offset_changes + [(n_moves, None)]
-        for (first, off), (nxt, _) in zip(changes[:-1], changes[1:]):
-            offsets[first:nxt] = off
-        offsets.setflags(write=False)
+        if len(changes) == 2 and changes[0][0] == 0:
+            # one offset for the whole program (the usual case): one row seen n times, not
+            # 24 bytes a move
+            offsets = np.broadcast_to(np.array(changes[0][1], dtype=float), (n_moves, self.n))
+        else:
+            offsets = np.empty((n_moves, self.n))
+            for (first, off), (nxt, _) in zip(changes[:-1], changes[1:]):
+                offsets[first:nxt] = off
+            offsets.setflags(write=False)
         start = np.array(self.start, dtype=float)
         start.setflags(write=False)
         return Program(

@@ -167,6 +167,19 @@ def test_work_offsets_g54_g59_and_g53():
     np.testing.assert_array_equal(p.move_offsets[1], [-5, 0, 1])
 
 
+def test_one_offset_throughout_is_one_row_seen_for_every_move():
+    """A program that never changes its offset keeps one row for all its moves (no 24 bytes a
+    move); one that changes it keeps a row per move."""
+    m = _machine_with_offsets()
+    one = P("G0 X1 Y1 Z1\nG1 X2 F100\nG1 X3\n", machine=m).move_offsets
+    assert one.shape == (3, 3) and one.strides[0] == 0
+    np.testing.assert_array_equal(one, [[100, 50, -20]] * 3)
+    assert not one.flags.writeable
+    two = P("G0 X1 Y1 Z1\nG55 G0 X1\nG1 X3 F100\n", machine=m).move_offsets
+    assert two.strides[0] != 0 and not two.flags.writeable
+    np.testing.assert_array_equal(two, [[100, 50, -20], [-5, 0, 1], [-5, 0, 1]])
+
+
 def test_g90_1_centre_uses_work_offset():
     m = _machine_with_offsets()
     arc = P("G0 X10 Y0\nG90.1 G3 X0 Y10 I0 J0 F60", machine=m).moves[1].arc
