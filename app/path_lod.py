@@ -80,16 +80,26 @@ def build_levels(path: ToolPath | None) -> LodLevels:
     extent = float(np.max(np.asarray(hi, float) - np.asarray(lo, float))) if len(lo) else 0.0
     if not extent > 0.0:
         return levels
-    every: list[tuple[MoveKind | str, Polylines]] = [*path.kinds.items(), (ALL_MOVES, path.all)]
-    for key, pl in every:
-        if len(pl.points) <= LOD_MIN_POINTS:
-            continue
+
+    def copies_of(pl: Polylines) -> list[tuple[float, Polylines]]:
         copies, cell, part = [], extent / BASE_CELLS, pl
         for _ in range(LEVELS):
             part = thin(part, cell)
             copies.append((cell, part))
             cell *= 4.0
-        levels[key] = copies
+        return copies
+
+    for kind in KINDS:  # one kind's polylines at a time, let go once thinned
+        points = int(np.count_nonzero(path.point_kind == kind))
+        if not points:
+            continue
+        pl = path.kind(kind)
+        # a kind with few points is kept whole (cube 0: taken at every scale), so that the view's
+        # detail never takes it from the whole path again
+        levels[kind] = copies_of(pl) if points > LOD_MIN_POINTS else [(0.0, pl)]
+        del pl
+    if len(path.all.points) > LOD_MIN_POINTS:
+        levels[ALL_MOVES] = copies_of(path.all)
     return levels
 
 
@@ -110,15 +120,15 @@ def _cut(pl: Polylines, view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndar
     return x[idx], y[idx], connect, idx
 
 
-def _visible(pl: Polylines, copies: list[tuple[float, Polylines]] | None,
+def _visible(path: ToolPath, kind: MoveKind, copies: list[tuple[float, Polylines]],
              view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    if not copies:
-        x, y = view.project(pl.points)
-        return x, y, pl.connect
+    """The coarsest copy whose cubes stay within half a pixel, cut to the view; zoomed in closer
+    than the finest copy, the kind's own points (taken from the path for this view)."""
+    pl = None
     for cell, part in copies:
         if cell <= 0.5 * view.pixel:  # a cube's diagonal within a pixel
             pl = part
-    return _cut(pl, view)[:3]
+    return _cut(pl if pl is not None else path.kind(kind), view)[:3]
 
 
 def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
@@ -140,11 +150,18 @@ def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
 
 def detail(path: ToolPath, levels: LodLevels, view: ViewSpec) -> Detail:
     """What to draw of ``path`` for ``view``."""
-    shown = {kind: _visible(path.kinds[kind], levels.get(kind), view) for kind in KINDS
-             if path.kinds[kind].count}
+    if not levels:  # a small path: drawn whole
+        shown = {}
+        for kind in KINDS:
+            if path.kind_counts.get(kind, 0):
+                pl = path.kind(kind)
+                x, y = view.project(pl.points)
+                shown[kind] = (x, y, pl.connect)
+        return Detail(shown)
+    shown = {kind: _visible(path, kind, levels[kind], view) for kind in KINDS if kind in levels}
     copies = levels.get(ALL_MOVES)
     executed = _executed(path, copies, view) if copies else None
-    if not levels or sum(len(v[0]) for v in shown.values()) <= VECTOR_POINTS:
+    if sum(len(v[0]) for v in shown.values()) <= VECTOR_POINTS:
         return Detail(shown, executed=executed)
     w, h = view.x1 - view.x0, view.y1 - view.y0
     x0, y0 = view.x0 - MARGIN * w, view.y0 - MARGIN * h

@@ -2,8 +2,9 @@
 
 Lines and rapids become point pairs; arcs, helices and spirals are sampled at most
 ARC_STEP_RAD apart (at least MIN_ARC_POINTS points) from their exact parametrisation, all
-arcs at once. Each kind is one array of points with a ``connect`` array (True: draw to the
-next point), so pyqtgraph draws a whole program with a few items.
+arcs at once. The path is one array of points in program order with a ``connect`` array (True:
+draw to the next point) and the kind each point is drawn as; each kind's polylines are taken
+from it when asked, so pyqtgraph draws a whole program with a few items.
 """
 
 from __future__ import annotations
@@ -31,11 +32,17 @@ class Polylines:
     count: int  # number of moves drawn
 
 
+DRAWN_KINDS = (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)  # blends are drawn with the arcs
+
+
 @dataclass(frozen=True, slots=True)
 class ToolPath:
     axes: tuple[str, ...]
-    kinds: dict[MoveKind, Polylines]
-    all: Polylines  # every move, program order (for the executed-part overlay)
+    all: Polylines  # every move, program order
+    # the kind each point of ``all`` is drawn as (blends as arcs), int8: each kind's polylines
+    # are taken from ``all`` when asked (``kind``), not kept beside it (58 bytes a line move)
+    point_kind: np.ndarray
+    kind_counts: dict[MoveKind, int]  # moves drawn as each kind
     move_lines: np.ndarray  # int32 (n_moves,), source line per move
     move_first_point: np.ndarray  # int (n_moves,), index of each move's first point in ``all``
     bounds: tuple[np.ndarray, np.ndarray]  # (min, max) per axis
@@ -45,6 +52,20 @@ class ToolPath:
 
     def column(self, name: str) -> int | None:
         return self.axes.index(name) if name in self.axes else None
+
+    def kind(self, kind: MoveKind) -> Polylines:
+        """The polylines of one kind of move (a new array: a big path's levels of detail are
+        made from it once, then it goes)."""
+        if not self.kind_counts.get(kind, 0):
+            return _empty(len(self.axes))
+        sel = np.flatnonzero(self.point_kind == kind)
+        return Polylines(self.all.points[sel], self.all.connect[sel], self.all.move_index[sel],
+                         self.kind_counts[kind])
+
+    @property
+    def kinds(self) -> dict[MoveKind, Polylines]:
+        """Every kind's polylines (made when asked)."""
+        return {kind: self.kind(kind) for kind in DRAWN_KINDS}
 
 
 def _empty(n_axes: int) -> Polylines:
@@ -130,61 +151,74 @@ def _blends(program: Program, idx: np.ndarray) -> Polylines:
     return Polylines(pts, connect, np.repeat(idx, BLEND_POINTS).astype(np.int32), len(idx))
 
 
-def _merge(parts: list[Polylines], n_axes: int) -> Polylines:
-    """Concatenate polylines and reorder their points by move index (stable within a move)."""
+def _merge(parts: list[Polylines], n_axes: int,
+           codes: list[int] | None = None) -> tuple[Polylines, np.ndarray]:
+    """Concatenate polylines and reorder their points by move index (stable within a move);
+    and the code of the part each point came from (``codes``, one per part)."""
     if not parts:
-        return _empty(n_axes)
+        return _empty(n_axes), np.zeros(0, np.int8)
     pts = np.concatenate([p.points for p in parts])
     con = np.concatenate([p.connect for p in parts])
     mi = np.concatenate([p.move_index for p in parts])
     order = np.argsort(mi, kind="stable")
-    return Polylines(pts[order], con[order], mi[order], sum(p.count for p in parts))
+    codes = codes or [0] * len(parts)
+    code = np.concatenate([np.full(len(p.points), c, np.int8) for p, c in zip(parts, codes)])
+    return Polylines(pts[order], con[order], mi[order], sum(p.count for p in parts)), code[order]
 
 
 def build_toolpath(program: Program) -> ToolPath:
     n_axes = len(program.axes)
     moves = program.moves
+    n = len(moves)
     # a program read from G-code keeps its moves as columns: no Move object is made here
     cols = moves.columns() if isinstance(moves, MoveStore) else None
     if cols is not None:
         kinds, lines = cols.kind, cols.line.astype(np.int32)
     else:
-        kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=len(moves))
-        lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=len(moves))
-    result: dict[MoveKind, Polylines] = {}
-    for kind in (MoveKind.RAPID, MoveKind.LINE):
-        idx = np.flatnonzero(kinds == kind)
-        if len(idx) and cols is not None:
-            result[kind] = _straight(cols.start[idx], cols.end[idx], idx)
-        elif len(idx):
-            starts = np.array([moves[i].start for i in idx])
-            ends = np.array([moves[i].end for i in idx])
-            result[kind] = _straight(starts, ends, idx)
-        else:
-            result[kind] = _empty(n_axes)
-    # corner blends (G64 P) are drawn with the arcs: curved feed moves
-    result[MoveKind.ARC] = _merge([_arcs(program, np.flatnonzero(kinds == MoveKind.ARC), cols),
-                                   _blends(program, np.flatnonzero(kinds == MoveKind.BLEND))], n_axes)
+        kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=n)
+        lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=n)
+    arc_idx = np.flatnonzero(kinds == MoveKind.ARC)
+    blend_idx = np.flatnonzero(kinds == MoveKind.BLEND)
+    counts = {MoveKind.RAPID: int(np.count_nonzero(kinds == MoveKind.RAPID)),
+              MoveKind.LINE: int(np.count_nonzero(kinds == MoveKind.LINE)),
+              MoveKind.ARC: len(arc_idx) + len(blend_idx)}
+
+    def straight(idx: np.ndarray) -> Polylines:
+        if cols is not None and len(idx) == n:  # every move: the columns themselves, no copy
+            return _straight(cols.start, cols.end, idx)
+        if cols is not None:
+            return _straight(cols.start[idx], cols.end[idx], idx)
+        return _straight(np.array([moves[i].start for i in idx]).reshape(-1, n_axes),
+                         np.array([moves[i].end for i in idx]).reshape(-1, n_axes), idx)
+
+    if not counts[MoveKind.ARC]:
+        # lines and rapids only (a CAM raster): two points a move, already in program order
+        everything = straight(np.arange(n))
+        point_kind = np.repeat(kinds.astype(np.int8), 2)
+    else:
+        # corner blends (G64 P) are drawn with the arcs: curved feed moves
+        curved, _ = _merge([_arcs(program, arc_idx, cols), _blends(program, blend_idx)], n_axes)
+        parts = [straight(np.flatnonzero(kinds == MoveKind.RAPID)),
+                 straight(np.flatnonzero(kinds == MoveKind.LINE)), curved]
+        everything, point_kind = _merge(parts, n_axes, [int(k) for k in DRAWN_KINDS])
+        del parts, curved
     offsets = program.move_offsets
-    if offsets is not None and len(moves):
+    if offsets is not None and n and len(everything.points):
         # drawn in work coordinates (what the program says, where the operator set part zero)
         offsets = np.asarray(offsets, dtype=float)
-        constant = offsets.shape[0] > 0 and offsets.strides[0] == 0  # one offset throughout
-        for kind, pl in list(result.items()):
-            if not len(pl.points) or (constant and not offsets[0].any()):
-                continue
-            if constant:  # in place: these points were made here, a copy would double them
-                np.subtract(pl.points, offsets[0], out=pl.points)
-            else:
-                result[kind] = Polylines(pl.points - offsets[pl.move_index], pl.connect, pl.move_index,
-                                         pl.count)
-    everything = _merge([result[k] for k in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)], n_axes)
-    first_point = np.searchsorted(everything.move_index, np.arange(len(moves)))
+        if offsets.strides[0] == 0:  # one offset throughout: in place, the points are ours
+            if offsets[0].any():
+                np.subtract(everything.points, offsets[0], out=everything.points)
+        else:
+            everything = Polylines(everything.points - offsets[everything.move_index],
+                                   everything.connect, everything.move_index, everything.count)
+    first_point = np.searchsorted(everything.move_index, np.arange(n))
     if len(everything.points):
         lo, hi = everything.points.min(axis=0), everything.points.max(axis=0)
     else:
         lo = hi = np.asarray(program.start_position, float)
-    return ToolPath(tuple(program.axes), result, everything, lines, first_point, (lo, hi), offsets)
+    return ToolPath(tuple(program.axes), everything, point_kind, counts, lines, first_point, (lo, hi),
+                    offsets)
 
 
 def _joined(pl: Polylines) -> Polylines:

@@ -132,3 +132,24 @@ def test_a_chain_of_lines_and_arcs_is_one_run_once_joined():
     for i in (1, 3):  # the arcs' first points are their moves' start points, bit for bit
         first = path.all.points[path.move_first_point[i]]
         np.testing.assert_array_equal(first, program.moves[i].start)
+
+
+@pytest.mark.parametrize("with_arcs", [False, True])
+def test_each_kind_is_its_moves_points_in_program_order(with_arcs):
+    """A kind's polylines, taken from the one path, are the points of the moves of that kind,
+    move after move: with arcs (merged by move), and without (the raster's direct way)."""
+    arc = "G2 X6 Y2 R3\n" if with_arcs else "G1 X6 Y2\n"
+    text = "G21 G90 G17\nG0 X1 Y1\nG1 X2 Y1 F600\nG1 X3 Y2\n" + arc + "G0 Z5\nG0 X0 Y0\nG1 Z0\n"
+    program = parse_program(text, "kinds.nc")
+    path = build_toolpath(program)
+    kinds = [m.kind for m in program.moves]
+    for kind in (MoveKind.RAPID, MoveKind.LINE):
+        pl = path.kind(kind)
+        idx = [i for i, k in enumerate(kinds) if k == kind]
+        assert pl.count == len(idx) and pl.move_index.tolist() == [i for i in idx for _ in (0, 1)]
+        want = [p for i in idx for p in (program.moves[i].start, program.moves[i].end)]
+        np.testing.assert_array_equal(pl.points, np.array(want))
+        assert pl.connect.tolist() == [True, False] * len(idx)
+    arcs = path.kind(MoveKind.ARC)
+    assert arcs.count == int(with_arcs) and (len(arcs.points) > 4) == with_arcs
+    assert len(path.all.points) == sum(len(path.kind(k).points) for k in path.kinds)
