@@ -1,18 +1,21 @@
 """Level of detail of a drawn tool path (no Qt): what the preview draws for a view.
 
 A kind of move with more than ``LOD_MIN_POINTS`` points keeps thinned copies of itself
-(``app.toolpath.thin``), finest first, each cube 4 times the one before. For a view, each such
-kind is taken from the coarsest copy whose cubes stay within half a pixel (the full path when
-zoomed in closer) and cut to the view with a margin. When the view then still holds more
-than ``VECTOR_POINTS`` points, the path is drawn as one image of the view
-(``app.path_raster``), which costs what its pixels cost whatever the segments; else as
-vectors. Everything here runs in any thread: the preview computes a new view off the GUI
-thread while the old one is shown.
+(``app.toolpath.thin``), finest first, each cube 4 times the one before; a copy is kept only
+where it has at most half the points of the finer one kept before it (near-copies of the path
+cost its memory and draw no faster). For a view, each such kind is taken from the coarsest copy
+whose cubes stay within half a pixel (the kind's own points when zoomed in closer) and cut to
+the view with a margin. The copies of a path are made once for all the plots that draw it.
+When the view then still holds more than ``VECTOR_POINTS`` points, the path is drawn as one
+image of the view (``app.path_raster``), which costs what its pixels cost whatever the
+segments; else as vectors. Everything here runs in any thread: the preview computes a new view
+off the GUI thread while the old one is shown.
 """
 
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -71,21 +74,51 @@ def needs_levels(path: ToolPath | None) -> bool:
     return path is not None and len(path.all.points) > LOD_MIN_POINTS
 
 
+# the copies of the last path asked for: the preview and the Auto page's backplot draw the same
+# path, and each made its own copies (twice the memory, twice the work)
+_made_lock = threading.Lock()
+_made: tuple[ToolPath, threading.Event, list[LodLevels]] | None = None
+
+
 def build_levels(path: ToolPath | None) -> LodLevels:
-    """Thinned copies of every kind with many points (none for a small path)."""
-    levels: LodLevels = {}
+    """Thinned copies of every kind with many points (none for a small path); made once for the
+    last path asked for, whatever thread asks (a second asker waits for the first's)."""
+    global _made
     if path is None:
+        return {}
+    with _made_lock:
+        entry = _made
+        mine = entry is None or entry[0] is not path
+        if mine:
+            entry = _made = (path, threading.Event(), [])
+    assert entry is not None
+    if not mine:
+        entry[1].wait()
+        if entry[2]:
+            return entry[2][0]
+        return _make_levels(path)  # the first asker failed: its error is its own
+    try:
+        levels = _make_levels(path)
+        entry[2].append(levels)
         return levels
+    finally:
+        entry[1].set()
+
+
+def _make_levels(path: ToolPath) -> LodLevels:
+    levels: LodLevels = {}
     lo, hi = path.bounds
     extent = float(np.max(np.asarray(hi, float) - np.asarray(lo, float))) if len(lo) else 0.0
     if not extent > 0.0:
         return levels
 
     def copies_of(pl: Polylines) -> list[tuple[float, Polylines]]:
-        copies, cell, part = [], extent / BASE_CELLS, pl
+        copies, cell, part, kept = [], extent / BASE_CELLS, pl, len(pl.points)
         for _ in range(LEVELS):
             part = thin(part, cell)
-            copies.append((cell, part))
+            if 2 * len(part.points) <= kept:
+                copies.append((cell, part))
+                kept = len(part.points)
             cell *= 4.0
         return copies
 

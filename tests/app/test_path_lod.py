@@ -148,3 +148,24 @@ def test_the_preview_draws_the_run_part_of_a_big_path_from_its_copy(qtbot, big_p
     plot.getViewBox().setRange(xRange=(10, 12), yRange=(10, 12), padding=0)  # the view's copy
     qtbot.waitUntil(lambda: not plot.detail_pending, timeout=10_000)
     assert 0 < len(plot.done_item.xData) < 10_000
+
+
+def test_copies_are_made_once_per_path_and_each_halves_the_one_before(big_path):
+    import threading
+
+    from app.path_lod import ALL_MOVES
+
+    got: list[object] = []
+    threads = [threading.Thread(target=lambda: got.append(build_levels(big_path))) for _ in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(got) == 3 and got[0] is got[1] is got[2]  # the preview and the backplot share them
+    levels = got[0]
+    for key in (MoveKind.LINE, ALL_MOVES):
+        source = big_path.all if key == ALL_MOVES else big_path.kind(key)
+        sizes = [len(source.points)] + [len(part.points) for _cell, part in levels[key]]
+        assert len(sizes) > 2 and all(2 * b <= a for a, b in zip(sizes, sizes[1:])), sizes
+    other = build_toolpath(parse_program("G1 X1 Y1 F100\nG1 X2\n", "small.ngc"))
+    assert build_levels(other) is not levels
