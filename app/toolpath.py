@@ -264,9 +264,16 @@ def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,
     """Move index nearest to (x, y) where ``px, py`` are the drawn coordinates of every point
     (any projection: a plane or the 3-D view), and its distance (-1 if none)."""
     pl = path.all
-    if len(pl.points) < 2:
+    return nearest_segment(px, py, pl.connect, pl.move_index, x, y)
+
+
+def nearest_segment(px: np.ndarray, py: np.ndarray, connect: np.ndarray, move_index: np.ndarray, x: float,
+                    y: float) -> tuple[int, float]:
+    """Move index of the drawn segment (points ``px, py``, ``connect``, the move of each point)
+    nearest to (x, y), and its distance (-1 if none)."""
+    if len(px) < 2:
         return -1, math.inf
-    seg = np.flatnonzero(pl.connect[:-1])
+    seg = np.flatnonzero(connect[:-1])
     ax, ay, bx, by = px[seg], py[seg], px[seg + 1], py[seg + 1]
     dx, dy = bx - ax, by - ay
     den = dx * dx + dy * dy
@@ -277,4 +284,4 @@ def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,
     if len(d2) == 0:
         return -1, math.inf
     k = int(np.argmin(d2))
-    return int(pl.move_index[seg[k]]), float(math.sqrt(d2[k]))
+    return int(move_index[seg[k]]), float(math.sqrt(d2[k]))

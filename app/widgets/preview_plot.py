@@ -19,8 +19,8 @@ from PySide6.QtGui import QColor, QPen
 from PySide6.QtWidgets import QGestureEvent, QPinchGesture, QWidget
 
 from app.background import Background
-from app.path_lod import Detail, LodLevels, ViewSpec, build_levels, detail, needs_levels
-from app.toolpath import ToolPath, nearest_projected
+from app.path_lod import LOD_MIN_POINTS, Detail, LodLevels, ViewSpec, build_levels, detail, needs_levels
+from app.toolpath import ToolPath, nearest_projected, nearest_segment
 from planner.program import MoveKind
 
 ARC_COLOR = QColor(64, 224, 208)     # turquoise
@@ -327,7 +327,15 @@ class PreviewPlot(pg.PlotWidget):
         if self.path is None or len(self.path.all.points) == 0:
             self.getViewBox().setRange(xRange=(-10, 10), yRange=(-10, 10))
             return
-        x, y = self._xy(self.path.all.points)
+        if len(self.path.all.points) > LOD_MIN_POINTS:
+            # a big path: its bounding box's corners (projecting every point held the GUI
+            # thread 0.2 s at 10,000,000 moves in 3-D); the view may be a little looser
+            lo, hi = (np.asarray(b, float) for b in self.path.bounds)
+            corners = np.array([[hi[c] if (k >> c) & 1 else lo[c] for c in range(len(lo))]
+                                for k in range(1 << len(lo))])
+            x, y = self._xy(corners)
+        else:
+            x, y = self._xy(self.path.all.points)
         pad = 0.05 * max(float(np.ptp(x)), float(np.ptp(y)), 1.0)
         self.getViewBox().setRange(xRange=(x.min() - pad, x.max() + pad),
                                    yRange=(y.min() - pad, y.max() + pad), padding=0)
@@ -394,9 +402,13 @@ class PreviewPlot(pg.PlotWidget):
         if self.path is None or move_index < 0:
             self.selected_item.setData([], [])
             return
-        pl = self.path.all
-        sel = pl.move_index == move_index
-        x, y = self._xy(pl.points[sel])
+        first = self.path.move_first_point
+        if move_index >= len(first):
+            self.selected_item.setData([], [])
+            return
+        # a move's points are one stretch of the path's
+        end = int(first[move_index + 1]) if move_index + 1 < len(first) else len(self.path.all.points)
+        x, y = self._xy(self.path.all.points[int(first[move_index]): end])
         self.selected_item.setData(x, y)
 
     # --- touch ---------------------------------------------------------------------------
@@ -404,8 +416,12 @@ class PreviewPlot(pg.PlotWidget):
         """Move index within ``radius`` (data units) of (x, y), else -1."""
         if self.path is None:
             return -1
-        px, py = self._xy(self.path.all.points)
-        index, dist = nearest_projected(self.path, px, py, x, y)
+        if self._executed is not None:  # a big path: among the points drawn for this view
+            px, py, connect, moves = self._executed
+            index, dist = nearest_segment(px, py, connect, moves, x, y)
+        else:
+            px, py = self._xy(self.path.all.points)
+            index, dist = nearest_projected(self.path, px, py, x, y)
         return index if dist <= radius else -1
 
     def _on_click(self, event) -> None:  # pyqtgraph MouseClickEvent

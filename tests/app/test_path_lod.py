@@ -169,3 +169,34 @@ def test_copies_are_made_once_per_path_and_each_halves_the_one_before(big_path):
         assert len(sizes) > 2 and all(2 * b <= a for a, b in zip(sizes, sizes[1:])), sizes
     other = build_toolpath(parse_program("G1 X1 Y1 F100\nG1 X2\n", "small.ngc"))
     assert build_levels(other) is not levels
+
+
+def test_a_tap_on_a_big_path_picks_the_move_drawn_there(qtbot, big_path, monkeypatch):
+    """Picked among the points drawn for the view (not every point of the path), the move under
+    the finger; its highlight is that move's own points; the view fits the path's box."""
+    import app.widgets.preview_plot as preview_plot
+    from app.widgets.preview_plot import PreviewPlot
+
+    def every_point(*_args):
+        raise AssertionError("a big path is picked among the points drawn, not every point")
+
+    monkeypatch.setattr(preview_plot, "nearest_projected", every_point)
+
+    plot = PreviewPlot()
+    qtbot.addWidget(plot)
+    plot.resize(900, 600)
+    plot.show()
+    plot.set_toolpath(big_path)
+    (x0, x1), (y0, y1) = plot.getViewBox().viewRange()
+    assert x0 < 0.0 and x1 > 100.0 and y0 < 0.0 and y1 > 99.5  # the raster's 100 x 99.5 mm, padded
+    qtbot.waitUntil(lambda: not plot.detail_pending, timeout=10_000)
+    assert plot._executed is not None
+    pts, mi = big_path.all.points, big_path.all.move_index
+    k = int(mi[np.flatnonzero((np.abs(pts[:, 1] - 50.0) < 1e-9) & (np.abs(pts[:, 0] - 33.3) < 0.03))[0]])
+    picked = plot.pick(33.31, 50.0, radius=0.5)
+    assert picked >= 0 and abs(picked - k) <= 20  # within a few of the 0.05 mm moves there
+    seg = pts[mi == picked]
+    assert np.all(np.abs(seg[:, 1] - 50.0) < 1e-9)  # on the row tapped
+    plot.highlight_move(picked)
+    np.testing.assert_array_equal(plot.selected_item.xData, seg[:, 0])
+    assert plot.pick(50.0, 120.0, radius=0.5) == -1  # nothing there
