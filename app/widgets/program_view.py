@@ -30,6 +30,14 @@ VIEW_BG = QColor("#141a21")
 FIND_PIECE = 1 << 20  # characters searched backwards at a time
 
 
+def _widest(starts: np.ndarray, piece: int = 1 << 20) -> int:
+    """Characters of the longest line, a million lines at a time (no copy of the index)."""
+    widest = 0
+    for lo in range(0, len(starts) - 1, piece):
+        widest = max(widest, int(np.diff(starts[lo: lo + piece + 1]).max()))
+    return widest
+
+
 class _Margin(QWidget):
     """Line numbers, left of the lines."""
 
@@ -72,8 +80,7 @@ class ProgramView(QAbstractScrollArea):
         del chunked
         self._text = text
         self._starts = line_starts(text) if starts is None else starts
-        lengths = np.diff(self._starts.astype(np.int64))
-        self._widest = int(lengths.max()) if len(lengths) else 0
+        self._widest = _widest(self._starts)
         self._current = 1
         self._find_pos, self._on_match = 0, False
         self._update_scroll_range()

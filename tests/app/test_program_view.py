@@ -113,3 +113,12 @@ def test_find_goes_forward_and_back_and_wraps(view: ProgramView) -> None:
     assert view.find_text("N200000 ", backward=True) and view.current_line() == 200_000  # wraps
     assert not view.find_text("G2 ")
     assert not view.find_text("")
+
+
+def test_the_longest_line_is_found_a_piece_of_the_index_at_a_time() -> None:
+    from app.widgets.program_view import _widest
+
+    text = "".join("G1 X1\n" if i != 37 else "G1 X1 Y2 Z3 (the longest)\n" for i in range(100)) + "M2"
+    starts = line_starts(text)
+    want = max(len(line) + 1 for line in text.split("\n")[:-1])
+    assert _widest(starts, piece=7) == _widest(starts) == want

@@ -211,3 +211,19 @@ def test_a_long_program_reports_how_far_it_is_read(monkeypatch, bulk):
     assert all(total == 5002 for _, total in seen)
     done = [d for d, _ in seen]
     assert done == sorted(done) and done[-1] >= 5000 and done[0] <= 1000
+
+
+def test_a_big_file_is_decoded_in_pieces_as_at_once(tmp_path, monkeypatch):
+    """Pieces cut after newlines, multi-byte characters near the cuts: the same text; a file
+    that is not UTF-8 still falls back to Latin-1."""
+    import planner.interpreter as interpreter
+
+    monkeypatch.setattr(interpreter, "_DECODE_PIECE", 7)
+    text = "".join(f"G1 X{i} (é°ü{i % 3 * 'İ'})\n" for i in range(200)) + "M2"
+    path = tmp_path / "u.ngc"
+    path.write_bytes(text.encode("utf-8"))
+    got, data = interpreter.read_program(path)
+    assert got == text and data == text.encode("utf-8")
+    path.write_bytes(text.encode("utf-8") + b"\xff\n")
+    got, data = interpreter.read_program(path)
+    assert data is None and got == (text.encode("utf-8") + b"\xff\n").decode("latin-1")
