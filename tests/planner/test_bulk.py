@@ -227,3 +227,13 @@ def test_a_big_file_is_decoded_in_pieces_as_at_once(tmp_path, monkeypatch):
     path.write_bytes(text.encode("utf-8") + b"\xff\n")
     got, data = interpreter.read_program(path)
     assert data is None and got == (text.encode("utf-8") + b"\xff\n").decode("latin-1")
+
+
+@pytest.mark.parametrize("at", [0, 5, 6, 7, 12, 13])
+def test_windows_line_ends_are_found_across_the_pieces_searched(at):
+    from planner.interpreter import _contains
+
+    text = "G1X1\nG1X2\nG1X3\n"
+    crlf = text[:at] + "\r\n" + text[at:]
+    assert _contains(crlf, "\r\n", piece=3) and _contains(crlf, "\r\n", piece=6)
+    assert not _contains(text, "\r\n", piece=3)
