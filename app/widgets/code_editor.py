@@ -26,6 +26,19 @@ CHUNK_LINES = 3000  # a big text goes in in pieces, one per event-loop turn (~30
 ERROR_BG = QColor("#5a1020")
 CURRENT_BG = QColor("#1c3550")
 RUN_BG = QColor("#1b5f2a")
+MARGIN_BG = QColor("#0f1318")  # the line numbers' margin
+NUMBER_FG = QColor("#7a8796")
+ERROR_MARK = QColor("#ff3050")  # the bar beside an error line's number, and its number
+ERROR_NUMBER_FG = QColor("#ff8090")
+RUN_NUMBER_FG = QColor("#9fffb0")
+
+
+def code_font() -> QFont:
+    """The monospaced font G-code is shown in (the editor and the read-only view alike)."""
+    font = QFont("DejaVu Sans Mono")
+    font.setStyleHint(QFont.StyleHint.Monospace)
+    font.setPointSize(13)
+    return font
 
 
 class _LineNumberArea(QWidget):
@@ -47,10 +60,7 @@ class CodeEditor(QPlainTextEdit):
     def __init__(self, parent: QWidget | None = None, read_only: bool = False) -> None:
         super().__init__(parent)
         self.setObjectName("codeEditor")
-        font = QFont("DejaVu Sans Mono")
-        font.setStyleHint(QFont.StyleHint.Monospace)
-        font.setPointSize(13)
-        self.setFont(font)
+        self.setFont(code_font())
         self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
         self.setReadOnly(read_only)
         self._errors: dict[int, str] = {}
@@ -152,7 +162,7 @@ class CodeEditor(QPlainTextEdit):
 
     def paint_line_numbers(self, event: QPaintEvent) -> None:
         painter = QPainter(self._numbers)
-        painter.fillRect(event.rect(), QColor("#0f1318"))
+        painter.fillRect(event.rect(), MARGIN_BG)
         block = self.firstVisibleBlock()
         number = block.blockNumber() + 1
         top = round(self.blockBoundingGeometry(block).translated(self.contentOffset()).top())
@@ -161,12 +171,12 @@ class CodeEditor(QPlainTextEdit):
         while block.isValid() and top <= event.rect().bottom():
             if block.isVisible() and top + height >= event.rect().top():
                 if number in self._errors:
-                    painter.fillRect(0, top, 8, height, QColor("#ff3050"))
-                    painter.setPen(QColor("#ff8090"))
+                    painter.fillRect(0, top, 8, height, ERROR_MARK)
+                    painter.setPen(ERROR_NUMBER_FG)
                 elif number == self._run_line:
-                    painter.setPen(QColor("#9fffb0"))
+                    painter.setPen(RUN_NUMBER_FG)
                 else:
-                    painter.setPen(QColor("#7a8796"))
+                    painter.setPen(NUMBER_FG)
                 painter.drawText(0, top, width - 6, height, Qt.AlignmentFlag.AlignRight, str(number))
             block = block.next()
             top += height

@@ -15,17 +15,23 @@ import re
 
 import numpy as np
 from PySide6.QtCore import QRect, QSize, Qt, Signal
-from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPaintEvent, QResizeEvent
+from PySide6.QtGui import QColor, QMouseEvent, QPainter, QPaintEvent, QResizeEvent
 from PySide6.QtWidgets import QAbstractScrollArea, QWidget
 
 from app.program_lines import line_starts, line_text
+from app.widgets.code_editor import (
+    CURRENT_BG,
+    ERROR_BG,
+    ERROR_MARK,
+    ERROR_NUMBER_FG,
+    MARGIN_BG,
+    NUMBER_FG,
+    RUN_BG,
+    RUN_NUMBER_FG,
+    code_font,
+)
 
-ERROR_BG = QColor("#5a1020")
-CURRENT_BG = QColor("#1c3550")
-RUN_BG = QColor("#1b5f2a")
 TEXT_FG = QColor("#d8dee6")
-NUMBER_FG = QColor("#7a8796")
-MARGIN_BG = QColor("#0f1318")
 VIEW_BG = QColor("#141a21")
 FIND_PIECE = 1 << 20  # characters searched backwards at a time
 
@@ -56,10 +62,7 @@ class ProgramView(QAbstractScrollArea):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setObjectName("programView")
-        font = QFont("DejaVu Sans Mono")
-        font.setStyleHint(QFont.StyleHint.Monospace)
-        font.setPointSize(13)
-        self.setFont(font)
+        self.setFont(code_font())
         self._text = ""
         self._starts = line_starts("")
         self._widest = 0  # characters of the longest line
@@ -202,10 +205,10 @@ class ProgramView(QAbstractScrollArea):
         while y < self._margin.height() and index < n:
             number = index + 1
             if number in self._errors:
-                painter.fillRect(0, y, 8, h, QColor("#ff3050"))
-                painter.setPen(QColor("#ff8090"))
+                painter.fillRect(0, y, 8, h, ERROR_MARK)
+                painter.setPen(ERROR_NUMBER_FG)
             elif number == self._run_line:
-                painter.setPen(QColor("#9fffb0"))
+                painter.setPen(RUN_NUMBER_FG)
             else:
                 painter.setPen(NUMBER_FG)
             painter.drawText(0, y, width - 6, h, Qt.AlignmentFlag.AlignRight, str(number))
