@@ -41,6 +41,18 @@ def code_font() -> QFont:
     return font
 
 
+def paint_line_number(painter: QPainter, number: int, top: int, width: int, height: int, error: bool,
+                      running: bool) -> None:
+    """One line's number in the margin: a red bar and red number for an error, green for the
+    line being run."""
+    if error:
+        painter.fillRect(0, top, 8, height, ERROR_MARK)
+        painter.setPen(ERROR_NUMBER_FG)
+    else:
+        painter.setPen(RUN_NUMBER_FG if running else NUMBER_FG)
+    painter.drawText(0, top, width - 6, height, Qt.AlignmentFlag.AlignRight, str(number))
+
+
 class _LineNumberArea(QWidget):
     def __init__(self, editor: CodeEditor) -> None:
         super().__init__(editor)
@@ -170,14 +182,8 @@ class CodeEditor(QPlainTextEdit):
         width = self._numbers.width()
         while block.isValid() and top <= event.rect().bottom():
             if block.isVisible() and top + height >= event.rect().top():
-                if number in self._errors:
-                    painter.fillRect(0, top, 8, height, ERROR_MARK)
-                    painter.setPen(ERROR_NUMBER_FG)
-                elif number == self._run_line:
-                    painter.setPen(RUN_NUMBER_FG)
-                else:
-                    painter.setPen(NUMBER_FG)
-                painter.drawText(0, top, width - 6, height, Qt.AlignmentFlag.AlignRight, str(number))
+                paint_line_number(painter, number, top, width, height, number in self._errors,
+                                  number == self._run_line)
             block = block.next()
             top += height
             height = round(self.blockBoundingRect(block).height())

@@ -19,17 +19,7 @@ from PySide6.QtGui import QColor, QMouseEvent, QPainter, QPaintEvent, QResizeEve
 from PySide6.QtWidgets import QAbstractScrollArea, QWidget
 
 from app.program_lines import line_starts, line_text
-from app.widgets.code_editor import (
-    CURRENT_BG,
-    ERROR_BG,
-    ERROR_MARK,
-    ERROR_NUMBER_FG,
-    MARGIN_BG,
-    NUMBER_FG,
-    RUN_BG,
-    RUN_NUMBER_FG,
-    code_font,
-)
+from app.widgets.code_editor import CURRENT_BG, ERROR_BG, MARGIN_BG, RUN_BG, code_font, paint_line_number
 
 TEXT_FG = QColor("#d8dee6")
 VIEW_BG = QColor("#141a21")
@@ -204,14 +194,7 @@ class ProgramView(QAbstractScrollArea):
         index = first
         while y < self._margin.height() and index < n:
             number = index + 1
-            if number in self._errors:
-                painter.fillRect(0, y, 8, h, ERROR_MARK)
-                painter.setPen(ERROR_NUMBER_FG)
-            elif number == self._run_line:
-                painter.setPen(RUN_NUMBER_FG)
-            else:
-                painter.setPen(NUMBER_FG)
-            painter.drawText(0, y, width - 6, h, Qt.AlignmentFlag.AlignRight, str(number))
+            paint_line_number(painter, number, y, width, h, number in self._errors, number == self._run_line)
             y += h
             index += 1
         painter.end()

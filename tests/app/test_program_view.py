@@ -82,6 +82,12 @@ def test_run_line_error_lines_and_current_line_are_painted(view: ProgramView, qt
     assert _row_colour(view, 5) == ERROR_BG
     assert _row_colour(view, 1) == CURRENT_BG
     assert _row_colour(view, 2) != CURRENT_BG
+    margin = view._margin.grab().toImage()
+    h = view.line_height()
+    from app.widgets.code_editor import ERROR_MARK, MARGIN_BG
+
+    assert QColor(margin.pixel(2, 4 * h + h // 2)) == ERROR_MARK  # the bar beside line 5
+    assert QColor(margin.pixel(2, 1 * h + h // 2)) == MARGIN_BG
     view.set_run_line(120_000)  # out of sight: brought to the middle
     assert view.first_visible_line() < 120_000 < view.first_visible_line() + view.visible_lines()
     assert _row_colour(view, 120_000) == RUN_BG
