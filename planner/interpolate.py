@@ -75,11 +75,6 @@ class Segment:
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
 
-    @property
-    def t_stop(self) -> np.ndarray:
-        """(n,) time each move reaches its end (before any dwell)."""
-        return self.t0 + self.profiles.duration
-
     def state(self, t: np.ndarray, need_va: bool = False):
         """(row, s) or (row, s, v, a) at global times t (closed form, vectorised)."""
         if t.shape[0] > 1 and t[0] <= t[-1] and np.all(t[1:] >= t[:-1]):

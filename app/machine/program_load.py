@@ -118,11 +118,6 @@ def _issues_from_limits(
 LOAD_SHARES = (0.25, 0.05, 0.55)
 
 
-def _toolpath(program: Program, req: LoadRequest) -> object:
-    req.progress = sum(LOAD_SHARES)
-    toolpath = build_toolpath(program)
-    trim_heap()  # the check's freed temporaries back to the system (planner.heap)
-    return toolpath
 
 
 def check_text(
@@ -183,7 +178,11 @@ def check_text(
     except PlannerError as exc:
         return (ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}"
     stage()
+    req.progress = sum(LOAD_SHARES)
+    toolpath = build_toolpath(program)
+    starts = line_starts(text)
     lo, hi = program_bounds(program, table)
+    trim_heap()  # the check's freed temporaries back to the system (planner.heap)
     tab = plan.segment.table
     n = len(tab)
     return ProgramInfo(
@@ -199,8 +198,8 @@ def check_text(
         bounds_max=tuple(float(x) for x in hi),
         program=program,
         plan=plan,
-        toolpath=_toolpath(program, req),
-        line_starts=line_starts(text),
+        toolpath=toolpath,
+        line_starts=starts,
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
     )
