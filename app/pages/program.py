@@ -24,6 +24,10 @@ AUTOSAVE_MS = 5000
 # widget holds about 350 bytes a line and fills at ~100,000 lines a second in the GUI thread,
 # so 2,000,000 lines took 700 MB and 20 s; such programs come from CAM and are edited there
 EDIT_MAX_LINES = 100_000
+# a file bigger than this (about 150,000 CAM lines) is opened by the controller's load: its
+# worker reads and checks it, and the page shows the text it read; a page that read it first
+# held the GUI thread a second at 10,000,000 lines
+BIG_FILE_BYTES = 4 << 20
 TOOLBAR = (
     ("new", N_("New")), ("open", N_("Open…")), ("save", N_("Save")), ("save_as", N_("Save as…")),
     ("find", N_("Find")), ("goto", N_("Go to line")), ("keyboard", N_("Keyboard")),
@@ -84,6 +88,7 @@ class ProgramPage(QWidget):
         self._autosave.setInterval(AUTOSAVE_MS)
         self._autosave.timeout.connect(self.doc.autosave)
         self._loading = False
+        self._opening: Path | None = None  # a big file being read by the controller, not shown yet
 
         self.buttons["new"].clicked.connect(self.new_program)
         self.buttons["open"].clicked.connect(self.open_dialog)
@@ -232,6 +237,16 @@ class ProgramPage(QWidget):
         if why:
             self.ctx.dialogs.inform(self, tr("Open program"), why)
             return
+        try:
+            big = Path(path).stat().st_size > BIG_FILE_BYTES
+        except OSError:
+            big = False  # open_file says why it cannot be read
+        if big:  # shown once the controller has read it (or refused it: then with its errors)
+            self._opening = Path(path)
+            self.ctx.program.expect("", Path(path).name)
+            if not self.ctx.controller.load_program(Path(path)):
+                self._open_refused()
+            return
         self.open_file(Path(path))
         # what the editor shows is what the machine has: opening a program loads it (the
         # controller checks it, or refuses while a program runs and says why)
@@ -298,6 +313,7 @@ class ProgramPage(QWidget):
         self.checker.request(self.doc.text)
 
     def _on_program_loaded(self, info: object) -> None:
+        self._opening = None
         text = str(getattr(info, "text", ""))
         if self.doc.modified or text == self.doc.text:
             return
@@ -317,7 +333,18 @@ class ProgramPage(QWidget):
         else:
             self.set_text(text, checked=True, starts=starts)
 
+    def _open_refused(self) -> None:
+        """A big file the controller refused: shown now, read here, so that its errors are
+        marked on its own lines (the refusal is the rarer case)."""
+        path, self._opening = self._opening, None
+        if path is not None and path.is_file():
+            self.open_file(path)
+            self.ctx.program.expect(self.doc.text, self.doc.name)
+
     def _on_program_errors(self, issues: object) -> None:
+        if self._opening is not None:
+            self._open_refused()
+            self.ctx.program.set_errors(issues, self.doc.text, self.doc.name)
         errors: dict[int, str] = {}
         for issue in issues:  # type: ignore[attr-defined]
             errors.setdefault(int(issue.line), str(issue.message))

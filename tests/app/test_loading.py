@@ -4,6 +4,8 @@ pieces (editor text in chunks, one page per event-loop turn)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from tests.machine.test_program_load import big_program
 
 SHORT = "G21 G90 G17\nG00 X1 Y1\nG01 X5 Y2 F1200\nG02 X7 Y4 R2\nM30\n"
@@ -109,3 +111,44 @@ def test_a_program_over_the_edit_limit_is_shown_read_only_through_a_view(
     program.set_text(SHORT)
     assert not program.read_only and program.editor.toPlainText() == SHORT
     assert not program.read_only_note.isVisibleTo(program) and program.buttons["keyboard"].isEnabled()
+
+
+def test_a_big_file_opened_on_the_program_page_is_read_once_by_the_controller(
+        demo_window, real_controller, qtbot, monkeypatch, dialogs) -> None:
+    """Open on a big file: the page does not read it; the controller's worker does, and the
+    page shows the text it read. Refused, the file is shown with its errors on its lines."""
+    import app.pages.program as program_page
+    from app.program_document import ProgramDocument
+
+    monkeypatch.setattr(program_page, "BIG_FILE_BYTES", 1000)
+    monkeypatch.setattr(program_page, "EDIT_MAX_LINES", 500)
+    reads: list[str] = []
+    real_open = ProgramDocument.open
+
+    def open_(self, path, text=None):
+        if text is None:
+            reads.append(str(path))
+        return real_open(self, path, text)
+
+    monkeypatch.setattr(ProgramDocument, "open", open_)
+    c = real_controller
+    program = demo_window.page("program")
+    folder = Path(demo_window.context.folders.default)
+    good = folder / "big.nc"
+    good.write_text(big_program(700), encoding="utf-8")
+    dialogs.answers.append(str(good))
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        program.buttons["open"].click()
+        assert c.loading and reads == []
+    qtbot.waitUntil(lambda: program.doc.path is not None and program.doc.path.name == "big.nc",
+                    timeout=20_000)
+    assert reads == [] and program.viewer.toPlainText() is c.program_info.text
+    bad = folder / "bad.nc"
+    bad.write_text(big_program(700).replace("G1 Z0 F600", "G1 Z0 F600\nG2 X1 Y1 I0 J0 Q5"), encoding="utf-8")
+    dialogs.answers.append(str(bad))
+    with qtbot.waitSignal(c.programErrors, timeout=60_000):
+        program.buttons["open"].click()
+    assert reads == [str(bad)]  # read by the page only to show the refused file
+    assert program.doc.path.name == "bad.nc" and "Q5" in program.viewer.line(4)
+    assert 4 in program.viewer.errors
+    assert demo_window.context.program.text == program.doc.text  # the Auto page shows it too
