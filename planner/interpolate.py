@@ -32,7 +32,7 @@ import numpy as np
 
 from planner.errors import PlannerError
 from planner.lookahead import PlannedBlock
-from planner.movetable import MoveTable, concat_tables
+from planner.movetable import MoveTable, RowJoin, concat_tables
 from planner.profile import Profiles, build_profiles
 
 __all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "SegmentJoin", "first_sample_at",
@@ -148,48 +148,6 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
     return Segment(table, prof, v_prog, t0, float(bounds[-1]), s_bounds[:-1], float(s_bounds[-1]))
 
 
-class _Column:
-    """One column of a joined plan, filled part by part into an array made once at its full
-    length (joining a list of parts needs the parts and the whole at once, and the parts'
-    freed memory lies between the columns kept, where the heap cannot give it back). A column
-    whose parts all repeat one row (stride 0: the arc and blend columns of a program without
-    them) stays one row repeated."""
-
-    __slots__ = ("total", "out", "rep", "filled")
-
-    def __init__(self, total: int) -> None:
-        self.total = total
-        self.out: np.ndarray | None = None
-        self.rep: np.ndarray | None = None
-        self.filled = 0
-
-    def add(self, part: np.ndarray) -> None:
-        k = part.shape[0]
-        if k == 0:
-            return
-        if self.out is None:
-            same = self.rep is None or np.array_equal(part[:1], self.rep, equal_nan=True)
-            if part.strides[0] == 0 and same:
-                self.rep = part[:1] if self.rep is None else self.rep
-                self.filled += k
-                return
-            self.out = np.empty((self.total, *part.shape[1:]), dtype=part.dtype)
-            if self.filled:
-                self.out[: self.filled] = self.rep
-        elif part.dtype != self.out.dtype:
-            self.out = self.out.astype(np.result_type(self.out, part))
-        self.out[self.filled: self.filled + k] = part
-        self.filled += k
-
-    def result(self) -> np.ndarray:
-        if self.filled != self.total:
-            raise ValueError(f"a joined column has {self.filled} rows of {self.total}")
-        if self.out is not None:
-            return self.out
-        assert self.rep is not None
-        return np.broadcast_to(self.rep, (self.total, *self.rep.shape[1:]))
-
-
 _OWN_COLUMNS = ("v_prog", "t0", "s0")
 
 
@@ -205,10 +163,10 @@ class SegmentJoin:
 
     def __init__(self, moves: int, positions: np.ndarray | None = None) -> None:
         self._shared = {} if positions is None else {"start": positions[:-1], "end": positions[1:]}
-        self._table = {name: _Column(moves) for name in MoveTable.__slots__ if name not in self._shared}
+        self._table = {name: RowJoin(moves) for name in MoveTable.__slots__ if name not in self._shared}
         # a profile's length is its move's (build_profiles keeps the very array)
-        self._prof = {name: _Column(moves) for name in Profiles.__slots__ if name != "length_mm"}
-        self._own = {name: _Column(moves) for name in _OWN_COLUMNS}
+        self._prof = {name: RowJoin(moves) for name in Profiles.__slots__ if name != "length_mm"}
+        self._own = {name: RowJoin(moves) for name in _OWN_COLUMNS}
         self._last: Segment | None = None
         self._count = 0
 

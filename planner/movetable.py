@@ -20,7 +20,7 @@ from planner.blend import pair_frames, pair_positions
 from planner.movestore import MoveStore
 from planner.program import Arc, Move, MoveKind
 
-__all__ = ["MoveTable", "concat_tables", "contour_error", "join_rows", "take_rows"]
+__all__ = ["MoveTable", "RowJoin", "concat_tables", "contour_error", "join_rows", "take_rows"]
 
 _GL8_X, _GL8_W = np.polynomial.legendre.leggauss(8)
 _GL8_X = (_GL8_X + 1.0) * 0.5
@@ -380,15 +380,60 @@ def concat_tables(tables: list[MoveTable]) -> MoveTable:
     return MoveTable(**{name: join_rows([getattr(t, name) for t in tables]) for name in MoveTable.__slots__})
 
 
+class RowJoin:
+    """Rows of consecutive parts joined into one array made once at its full length, part by
+    part (joining a list of parts needs the parts and the whole at once, and the parts' freed
+    memory lies between the arrays kept, where the heap cannot give it back). A column whose
+    parts all repeat one row (stride 0: the arc and blend columns of tables without them)
+    stays one row repeated."""
+
+    __slots__ = ("total", "out", "rep", "filled", "like")
+
+    def __init__(self, total: int) -> None:
+        self.total = total
+        self.out: np.ndarray | None = None
+        self.rep: np.ndarray | None = None
+        self.filled = 0
+        self.like: np.ndarray | None = None  # the first part's empty rows: shape and dtype
+
+    def add(self, part: np.ndarray) -> None:
+        if self.like is None:
+            self.like = part[:0]
+        k = part.shape[0]
+        if k == 0:
+            return
+        if self.out is None:
+            same = self.rep is None or np.array_equal(part[:1], self.rep, equal_nan=True)
+            if part.strides[0] == 0 and same:
+                self.rep = part[:1] if self.rep is None else self.rep
+                self.filled += k
+                return
+            dtype = part.dtype if self.rep is None else np.result_type(self.rep, part)
+            self.out = np.empty((self.total, *part.shape[1:]), dtype=dtype)
+            if self.filled:
+                self.out[: self.filled] = self.rep
+        elif part.dtype != self.out.dtype:
+            self.out = self.out.astype(np.result_type(self.out, part))
+        self.out[self.filled: self.filled + k] = part
+        self.filled += k
+
+    def result(self) -> np.ndarray:
+        if self.filled != self.total:
+            raise ValueError(f"joined rows: {self.filled} of {self.total}")
+        if self.out is not None:
+            return self.out
+        if self.rep is not None:
+            return np.broadcast_to(self.rep, (self.total, *self.rep.shape[1:]))
+        assert self.like is not None, "no part to join"
+        return self.like.copy()
+
+
 def join_rows(parts: list[np.ndarray]) -> np.ndarray:
-    """Concatenated rows; columns that are one row repeated (stride 0, the blend columns of
-    tables without blends) stay so when all parts repeat the same row."""
-    first = parts[0]
-    if (first.ndim and first.strides[0] == 0 and all(p.strides[0] == 0 for p in parts)
-            and all(np.array_equal(p[:1], first[:1], equal_nan=True) for p in parts if p.shape[0])):
-        total = sum(p.shape[0] for p in parts)
-        return np.broadcast_to(first[:1], (total, *first.shape[1:]))
-    return np.concatenate(parts)
+    """Concatenated rows (``RowJoin``: one repeated row stays one)."""
+    join = RowJoin(sum(p.shape[0] for p in parts))
+    for part in parts:
+        join.add(part)
+    return join.result()
 
 
 def take_rows(table: MoveTable, sl: slice) -> MoveTable:
