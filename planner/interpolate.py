@@ -171,14 +171,23 @@ class SegmentJoin:
         self._count = 0
 
     def add(self, seg: Segment) -> None:
+        # the first segment is copied only once a second one comes: a plan of one segment
+        # (most programs) is that segment, not a copy of it
+        if self._count == 1:
+            assert self._last is not None
+            self._fill(self._last)
+        if self._count >= 1:
+            self._fill(seg)
+        self._last = seg
+        self._count += 1
+
+    def _fill(self, seg: Segment) -> None:
         for name, col in self._table.items():
             col.add(getattr(seg.table, name))
         for name, col in self._prof.items():
             col.add(getattr(seg.profiles, name))
         for name, col in self._own.items():
             col.add(getattr(seg, name))
-        self._last = seg
-        self._count += 1
 
     def result(self) -> Segment:
         last = self._last
