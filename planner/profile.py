@@ -218,13 +218,19 @@ def _solve_peak(length, vs, ve, vc, a_max, j_max):
     return vlo + x, x + d1, x + d2
 
 
+def _phase_durations(tj1, ta1, tj2, ta2, t_cruise):
+    """(k, 7) durations of the seven phases: jerk up, constant acceleration, jerk down, cruise,
+    and the same to slow down."""
+    return np.stack([tj1, ta1, tj1, t_cruise, tj2, ta2, tj2], axis=1)
+
+
 def _boundaries(length, vs, ve, vp, j_max, times):
     """Time, length, speed and acceleration (each (k, 8)) at the phase boundaries of moves
     whose phase durations are ``times`` (k, 5): tj1, ta1, tj2, ta2, t_cruise. Elementwise, so
     rows made for any subset are bit for bit the rows made for all."""
     k = length.shape[0]
     tj1, ta1, tj2, ta2, t_cruise = times.T
-    durations = np.stack([tj1, ta1, tj1, t_cruise, tj2, ta2, tj2], axis=1)
+    durations = _phase_durations(tj1, ta1, tj2, ta2, t_cruise)
     d_up = 0.5 * (vs + vp) * (2.0 * tj1 + ta1)
     jerk = _PHASE_JERK[None, :] * j_max[:, None]
     t_b = np.zeros((k, 8))
@@ -404,5 +410,5 @@ def build_profiles(length_mm, vs, ve, vc, a_max, j_max, tolerance: float = 1e-6)
 
     times = np.stack([tj1, ta1, tj2, ta2, t_cruise], axis=1)
     # the duration as the boundary times' last (the same sum in the same order)
-    duration = np.cumsum(np.stack([tj1, ta1, tj1, t_cruise, tj2, ta2, tj2], axis=1), axis=1)[:, -1]
+    duration = np.cumsum(_phase_durations(tj1, ta1, tj2, ta2, t_cruise), axis=1)[:, -1]
     return Profiles(length, vs, ve, vc, vp, a_max, j_max, times, duration)
