@@ -118,8 +118,6 @@ def _issues_from_limits(
 LOAD_SHARES = (0.25, 0.05, 0.55)
 
 
-
-
 def check_text(
     req: LoadRequest, machine: MachineSpec, plan_fn: Any
 ) -> ProgramInfo | tuple[tuple[ProgramIssue, ...], str]:
