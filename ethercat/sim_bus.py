@@ -15,6 +15,10 @@ Fault injection (the same names work through `CyclicWorker.inject` in every work
                                              `watchdog_s` without process data it faults 0x8700
     restore_slave(i, power_cycled=True)      drive i is back but in INIT (as after a power
                                              cycle): silent until `recover_slaves()`
+    set_probe_surface(i, bit, level, below)  a probe wired to bit `bit` of drive i's digital
+                                             inputs (0x60FD) touches a surface: the bit is on
+                                             while axis i (its units, not counts) is at or
+                                             below `level` (above, when not `below`)
 Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
@@ -30,7 +34,9 @@ from .object_dictionary import ERROR_OVERCURRENT, OBJECTS, decode_object, encode
 
 #: injection names accepted by `SimBus.inject`
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
-              "lose_slave", "restore_slave")
+              "lose_slave", "restore_slave", "probe_surface", "probe_off")
+#: ``inject("probe_surface", i, value)``: value = bit | below << 5 | round(level_units * 1e6) << 6
+PROBE_SURFACE_SCALE = 1e6
 
 
 class SimBus(Bus):
@@ -74,6 +80,9 @@ class SimBus(Bus):
         self.watchdog_s = float(watchdog_s)
         self.frames_sent = 0
         self.recoveries = 0
+        # the simulated probe: (drive, bit mask, level in counts, +1 contact at or below in
+        # counts, -1 at or above), or None
+        self._probe: tuple[int, int, float, int] | None = None
 
     # ------------------------------------------------------------------ backend
     @property
@@ -101,6 +110,29 @@ class SimBus(Bus):
         for i, m in enumerate(self.models):
             self._read_inputs(i, m)
 
+    def set_probe_surface(self, index: int, bit: int, level_units: float, below: bool = True) -> None:
+        """A probe on bit ``bit`` of drive ``index``'s inputs touching while that axis is at or
+        below ``level_units`` (axis units; above when not ``below``)."""
+        if not 0 <= index < self.n_drives or not 0 <= bit < 32:
+            raise ConfigurationError(f"probe on drive {index} bit {bit}: no such drive or bit")
+        d = self.drives[index]
+        sign = (1 if below else -1) * d.direction
+        self._probe = (index, 1 << bit, level_units * d.counts_per_unit * d.direction, sign)
+
+    def clear_probe_surface(self) -> None:
+        if self._probe is not None:
+            i, mask = self._probe[0], self._probe[1]
+            self.models[i].digital_inputs &= ~mask
+        self._probe = None
+
+    def _touch(self) -> None:
+        i, mask, level, sign = self._probe  # type: ignore[misc]
+        m = self.models[i]
+        if sign * m.position_actual <= sign * level:
+            m.digital_inputs |= mask
+        else:
+            m.digital_inputs &= ~mask
+
     def _read_inputs(self, i: int, m: DriveModel) -> None:
         self.statusword[i] = m.statusword
         self.position_actual[i] = m.position_actual
@@ -122,6 +154,8 @@ class SimBus(Bus):
         tp = self.target_position
         mode = self.modes_of_operation
         dout = self.digital_outputs
+        if self._probe is not None:
+            self._touch()
         for i, m in enumerate(self.models):
             if lost_frame or self._lost[i] or self._init[i]:
                 self._silent_s[i] += dt
@@ -240,6 +274,10 @@ class SimBus(Bus):
             self.lose_slave(index)
         elif name == "restore_slave":
             self.restore_slave(index, power_cycled=bool(value))
+        elif name == "probe_surface":
+            self.set_probe_surface(index, value & 31, (value >> 6) / PROBE_SURFACE_SCALE, bool(value >> 5 & 1))
+        elif name == "probe_off":
+            self.clear_probe_surface()
         else:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
 

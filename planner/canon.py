@@ -98,6 +98,8 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
     offsets_before = _offset_records(program, cols) if offsets else {}
     rotated = _unrotate(program, cols) if any(p[6] for p in program.offset_parts) else None
     move_offsets = program.move_offsets
+    # G38.x: LinuxCNC's call names the programmed end point; the move ends where the probe stopped
+    probe_targets = {p.move_index: p.target for p in program.probes if p.move_index >= 0}
     for i, move in enumerate(program.moves):
         yield from offsets_before.pop(i, ())
         end = move.end.tolist()
@@ -105,6 +107,11 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
         spec = rotated[i] if rotated is not None else None
         wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
         arc = move.arc
+        if probe_targets and i in probe_targets:
+            end = list(probe_targets[i])
+            wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
+            yield {"line": move.line, "call": "straight_probe", "args": wcs}
+            continue
         if arc is None:
             call = "straight_traverse" if move.kind == MoveKind.RAPID else "straight_feed"
             yield {"line": move.line, "call": call, "args": wcs}

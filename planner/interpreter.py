@@ -52,6 +52,8 @@ from planner.program import (
     Event,
     EventKind,
     MoveKind,
+    ProbeRequest,
+    ProbeResult,
     Program,
     _make_arc,
     spiral_length_mm,
@@ -68,7 +70,7 @@ _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dro
 # Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
 _G_GROUP = {
     40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0, 921: 0, 922: 0, 923: 0,
-    0: 1, 10: 1, 20: 1, 30: 1, 800: 1,
+    0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1,
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
     901: 4, 911: 4,
@@ -84,6 +86,10 @@ _G_GROUP = {
 }
 #: canned cycles (motion group 1), as LinuxCNC 2.9 runs them (interp_cycles.cc)
 _CYCLES = frozenset({730, 740, 810, 820, 830, 840, 850, 860, 890})
+#: G38.2-G38.5, straight probe moves (motion group 1, modal as in LinuxCNC)
+_PROBES = frozenset({382, 383, 384, 385})
+#: #5061-#5069: where the last probe move's input changed (program coordinates); #5070: 1 if it did
+_P_PROBE, _P_PROBE_TRIPPED = 5061, 5070
 _CYCLE_NEEDS_P = frozenset({820, 860, 890})
 _CYCLE_NEEDS_Q = frozenset({730, 830})
 _CYCLE_TAKES_P = _CYCLE_NEEDS_P | {740, 840}
@@ -96,7 +102,6 @@ _MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
     50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
     80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
-    382: "G38.2 probing", 383: "G38.3 probing", 384: "G38.4 probing", 385: "G38.5 probing",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
@@ -203,7 +208,8 @@ class _Interpreter:
     def __init__(self, name: str, machine, start_position, block_delete: bool, max_errors: int,
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
                  spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = (),
-                 parameters: dict[int, float] | None = None):
+                 parameters: dict[int, float] | None = None,
+                 probe_results: Sequence[ProbeResult] = ()):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -338,6 +344,10 @@ class _Interpreter:
         self.outputs: frozenset[int] = frozenset(getattr(machine, "outputs", ()) or ())
         self.mcodes: dict[int, tuple[str, str, int, bool]] = dict(getattr(machine, "mcodes", {}) or {})
         self.sub_files: dict[str, tuple[str, list[str], Structure]] = {}
+        # G38.x: the moves read so far, and what the machine's probe did on the first ones (the
+        # rest is assumed: contact at the programmed end point)
+        self.probes: list[ProbeRequest] = []
+        self.probe_results = tuple(probe_results)
 
     # ------------------------------------------------------------------ driver
     def run(self, text: str, utf8: bytes | None = None) -> Program:
@@ -1175,6 +1185,7 @@ class _Interpreter:
             tool_sets=tuple(self.tool_sets),
             blend_tolerance=tuple(self.blend_changes),
             naive_cam_tolerance=tuple(self.naive_changes),
+            probes=tuple(self.probes),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1541,6 +1552,10 @@ class _Interpreter:
         if g0 in (100, 281, 301, 520, 920, 921, 922, 923):
             self.data_code(g0, vals, axis_words, scale, line_no)
         # ---- motion
+        if motion in _PROBES and self.feed_mode != 940:
+            raise _BlockError(f"cannot probe ({_gname(motion)}) in "
+                              + ("inverse time feed mode (G93)" if self.feed_mode == 930
+                                 else "feed per revolution mode (G95)") + ": program G94 first", _gname(motion))
         if motion is not None and motion != 0 and not axis_data:
             if self.feed_mode == 930:
                 if motion in _CYCLES:
@@ -1571,7 +1586,9 @@ class _Interpreter:
             if polar:
                 self.polar(vals)
             target = self.target(vals, axis_words, scale, g0 == 530)
-            if motion in (0, 10):
+            if motion in _PROBES:
+                self.probe(motion, target, line_no)
+            elif motion in (0, 10):
                 self.straight(target, motion == 0, line_no)
             else:
                 self.arc(target, vals, motion == 20, scale, line_no)
@@ -1678,6 +1695,51 @@ class _Interpreter:
             if feed <= 0.0:
                 raise _BlockError(_ZERO_FEED, "G")
         self.emit(target, _RAPID if rapid else _LINE, feed, length, None, line_no)
+
+    def probe(self, code: int, target: list[float], line_no: int) -> None:
+        """G38.2-G38.5 as LinuxCNC 2.9 runs them: a straight move at the feed, the probe armed at
+        rest before it; at rest after it, #5061-#5069 hold where the input changed (program
+        coordinates) and #5070 whether it did, and the move ends where the machine stopped.
+        What the machine did is known for the first ``probe_results``; for the others the
+        contact is assumed at the end point (the run reads the rest again with the result)."""
+        name = _gname(code)
+        if self.comp.side != 0:
+            raise _BlockError(f"cannot probe ({name}) with cutter radius compensation on: program G40 "
+                              "first", name)
+        if self.feed_mm_s <= 0.0:
+            raise _BlockError(f"cannot probe ({name}) with zero feed rate: program an F word", name)
+        if self.comp.busy:
+            self.comp.straight_done()
+        if code in (382, 384) and all(abs(t - p) <= _ZERO_LEN for t, p in zip(target, self.pos)):
+            raise _BlockError(f"{name}: start point too close to probe point (the move has no length)", name)
+        k = len(self.probes)
+        known = k < len(self.probe_results)
+        if known:
+            result = self.probe_results[k]
+            if len(result.stop_position) != self.n or len(result.trip_position) != self.n:
+                raise PlannerError(f"probe result {k} has positions for {len(result.stop_position)} axes, "
+                                   f"the machine has {self.n}")
+            end, trip, tripped = list(result.stop_position), list(result.trip_position), result.tripped
+        else:
+            end, trip, tripped = list(target), list(target), True
+        self.events.append(Event(EventKind.PROBE_START, line_no, len(self.out) - 1, float(k),
+                                 f"{name}: probe armed"))
+        length = self.path_length(self.pos, end)
+        moved = length > _ZERO_LEN
+        if moved:
+            self.emit(end, _LINE, self.feed_mm_s, length, None, line_no)
+        self.probes.append(ProbeRequest(code, line_no, len(self.out) - 1 if moved else -1,
+                                        tuple(float(v) for v in target), known))
+        self.events.append(Event(EventKind.PROBE, line_no, len(self.out) - 1, float(k),
+                                 f"{name}: probe result"))
+        # #5061-#5069 in the coordinates of the system in use (offsets off, XY rotation undone)
+        saved = self.pos
+        self.pos = trip
+        for p, letter in enumerate(_PARAM_AXES):
+            value = self.system_parameter("_" + letter) if letter in self.axis_index else 0.0
+            self.params.numbered[_P_PROBE + p] = float(value or 0.0)
+        self.pos = saved
+        self.params.numbered[_P_PROBE_TRIPPED] = 1.0 if tripped else 0.0
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
              line_no: int, fixed_feed: bool = False) -> None:
@@ -2174,6 +2236,7 @@ def parse_program(
     parameters: dict[int, float] | None = None,
     progress: Callable[[int, int], None] | None = None,
     utf8: bytes | None = None,
+    probe_results: Sequence[ProbeResult] = (),
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -2190,9 +2253,11 @@ def parse_program(
     ``progress(lines read, lines in all)`` is called now and then while a long program is read.
     ``utf8``: the text's own UTF-8 bytes when at hand (``read_program``): the bulk reader scans
     them instead of encoding the text again.
+    ``probe_results``: what the machine's probe did on the program's first G38.x moves, in order
+    (``Program.probes``); the later ones are read as touching at their end point.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
-                          spindle, subroutine_dirs, parameters)
+                          spindle, subroutine_dirs, parameters, probe_results)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         interp.progress = progress
         return interp.run(text, utf8)

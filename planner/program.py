@@ -27,6 +27,8 @@ __all__ = [
     "EventKind",
     "Move",
     "MoveKind",
+    "ProbeRequest",
+    "ProbeResult",
     "Program",
     "STOPPING_EVENTS",
     "arc_length_mm",
@@ -243,6 +245,10 @@ class EventKind(enum.Enum):
     OFFSETS = "offsets"  # G10, G92, G52, G28.1 ...: Program.parameter_sets[value] is what the machine keeps
     OUTPUT = "output"  # M62-M65, a user M-code: value = output number (on) or -(number + 1) (off)
     TOOL_DATA = "tool_data"  # G10 L1/L10/L11: Program.tool_sets[value] is the tool as it is now
+    # G38.2-G38.5 (value: index into Program.probes): the probe is armed at rest before its move
+    # and read at rest after it; what follows depends on the result, so the run stops at both
+    PROBE_START = "probe_start"
+    PROBE = "probe"
 
 
 STOPPING_EVENTS = frozenset(
@@ -257,8 +263,44 @@ STOPPING_EVENTS = frozenset(
         EventKind.OFFSETS,     # LinuxCNC synchronises the motion on G10 and G92 too
         EventKind.OUTPUT,      # the output switches where the path is (M62/M63 as M64/M65)
         EventKind.TOOL_DATA,
+        EventKind.PROBE_START,
+        EventKind.PROBE,
     }
 )
+
+
+@dataclass(frozen=True, slots=True)
+class ProbeResult:
+    """What a probe move did on the machine (machine coordinates, mm / deg)."""
+
+    tripped: bool                     # the input changed (G38.2/.3: contact; G38.4/.5: contact lost)
+    trip_position: tuple[float, ...]  # where it changed (the end point when it did not)
+    stop_position: tuple[float, ...]  # where the probe move came to rest
+
+
+@dataclass(frozen=True, slots=True)
+class ProbeRequest:
+    """One G38.2-G38.5 move of a program, as the interpreter read it."""
+
+    code: int                 # 382, 383, 384, 385 (G38.2 ...)
+    line: int
+    move_index: int           # the probe move; -1 when it has no length (already at the end point)
+    target: tuple[float, ...]  # the programmed end point, machine coordinates
+    known: bool               # read with the machine's result; else the contact was assumed at the target
+
+    @property
+    def name(self) -> str:
+        return f"G38.{self.code - 380}"
+
+    @property
+    def toward(self) -> bool:
+        """G38.2/G38.3 move until the probe touches; G38.4/G38.5 until it no longer does."""
+        return self.code in (382, 383)
+
+    @property
+    def error_without_trip(self) -> bool:
+        """G38.2/G38.4: reaching the end point without the change is an error."""
+        return self.code in (382, 384)
 
 
 @dataclass(frozen=True, slots=True)
@@ -308,6 +350,10 @@ class Program:
     # G64 Q, LinuxCNC's naive CAM tolerance (mm), the same way: G01 runs within it of one line
     # are run as that line (Q defaults to P)
     naive_cam_tolerance: tuple[tuple[int, float], ...] = ()
+    # G38.2-G38.5 moves in program order (PROBE_START / PROBE events name them by index). The
+    # moves after the first one not ``known`` assume the contact at its end point: the run
+    # stops there and reads the rest again with the machine's result.
+    probes: tuple[ProbeRequest, ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

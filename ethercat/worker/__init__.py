@@ -17,6 +17,8 @@ from .types import (
     AlarmCode,
     EventCode,
     HomingState,
+    ProbeLatch,
+    ProbeState,
     ReplaceResult,
     TimingStats,
     TraceChunk,
@@ -29,6 +31,6 @@ from .types import (
 
 __all__ = [
     "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HomingState",
-    "ReplaceResult", "TimingStats", "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent",
+    "ProbeLatch", "ProbeState", "ReplaceResult", "TimingStats", "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent",
     "WorkerSnapshot", "WorkerState", "error_code_text",
 ]

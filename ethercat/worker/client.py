@@ -49,6 +49,8 @@ from .types import (
     AlarmCode,
     EventCode,
     HomingState,
+    ProbeLatch,
+    ProbeState,
     ReplaceResult,
     TimingStats,
     TraceChunk,
@@ -292,6 +294,22 @@ class CyclicWorker:
         if not self._command(Command.DOUT, self._axis_index(axis), int(value)):
             raise WorkerError(f"digital outputs of axis {axis} are not in the drive's process data "
                               "(0x60FE:1 not mapped)")
+
+    def arm_probe(self, axis: int | str, bit: int, level: bool) -> bool:
+        """Watch bit ``bit`` of the digital inputs (0x60FD) of ``axis``'s drive from the next
+        cycle on: the first cycle it reads ``level`` latches the actual positions and the
+        set-points consumed (``snapshot().probe``). False, and nothing armed, when it reads
+        ``level`` already (G38.2 with the probe touching) or the inputs are not in the drive's
+        process data."""
+        self._live()
+        if not 0 <= int(bit) < 32:
+            raise ConfigurationError(f"probe input bit {bit} outside 0..31 of 0x60FD")
+        return self._command(Command.PROBE, self._axis_index(axis), 1 | int(bit) << 1 | int(bool(level)) << 6)
+
+    def disarm_probe(self) -> None:
+        """Stop watching the probe input; the latch reads OFF."""
+        self._live()
+        self._command(Command.PROBE, 0, 0)
 
     def inject(self, name: str, axis: int | str = 0, value: int = 0) -> None:
         """Fault injection through the worker (any mode; the simulated bus only): names as
@@ -538,6 +556,8 @@ class CyclicWorker:
             lost_slaves=tuple(p for p in range(63) if lost >> p & 1),
             events=tuple(self._events),
             digital_inputs=tuple(int(x) for x in s["din"]),
+            probe=ProbeState(ProbeLatch(int(s["probe_state"])), int(s["probe_consumed"]),
+                             tuple(float(x) for x in s["probe_pos"])),
         )
 
     def drain_trace(self) -> TraceChunk:

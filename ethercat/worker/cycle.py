@@ -98,6 +98,8 @@ class CycleLoop:
         # drives without 0x603F in their process data: read by SDO after a fault
         self.error_code_by_sdo: list[bool] = [False] * n
         self.error_code_pending: list[int] = []
+        # the armed probe input: drive (-1: none), bit mask and the level that trips it
+        self.probe_axis, self.probe_mask, self.probe_level = -1, 0, True
         self.startup_reset_tried = False
         self.error_code_axis = -1
         self.enable_after_reset = False
@@ -257,10 +259,30 @@ class CycleLoop:
             return self._replace(a, b)
         elif code == Command.RESET_TRACKING:
             self.tracker.reset()
+        elif code == Command.PROBE:
+            return self._arm_probe(a, b)
         elif code == Command.STOP:
             self.stop_requested = True
         else:
             return Result.REFUSED
+        return Result.OK
+
+    def _arm_probe(self, axis: int, how: int) -> Result:
+        """``how``: bit 0 arm (else disarm), bits 1-5 the input bit of 0x60FD, bit 6 the level
+        that trips. Refused when the input reads that level already, or is not mapped."""
+        lv = self.lv
+        lv.probe_state[...] = 0
+        self.probe_axis = -1
+        if not how & 1:
+            return Result.OK
+        bus = self.bus
+        if not 0 <= axis < self.n or bus is None or not bus.maps_object(axis, 0x60FD):
+            return Result.REFUSED
+        mask, level = 1 << (how >> 1 & 31), how >> 6 & 1
+        if (int(bus.digital_inputs[axis]) & mask != 0) == bool(level):
+            return Result.REFUSED
+        self.probe_axis, self.probe_mask, self.probe_level = axis, mask, bool(level)
+        lv.probe_state[...] = 1
         return Result.OK
 
     def _replace(self, from_serial: int, n: int) -> Result:
@@ -395,6 +417,14 @@ class CycleLoop:
         np.copyto(lv.error_code, bus.error_code)
         np.copyto(lv.drive_state, states)
         np.copyto(lv.din, bus.digital_inputs)
+        if self.probe_axis >= 0 and (int(bus.digital_inputs[self.probe_axis]) & self.probe_mask != 0) \
+                == self.probe_level:
+            # latched in the cycle the input is read: where the axes were, and how far along
+            # the set-points; the controller stops the motion from there
+            np.copyto(lv.probe_pos, self.act)
+            lv.probe_consumed[...] = int(lv.consumed)
+            lv.probe_state[...] = 2
+            self.probe_axis = -1
         # following error against the set-point this actual position answers (bus delay)
         np.subtract(self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY], self.act,
                     out=self.fe)

@@ -28,6 +28,7 @@ class Command(enum.IntEnum):
     RESET_TRACKING = 10
     STOP = 11
     REPLACE = 12
+    PROBE = 13
 
 
 class Result(enum.IntEnum):
@@ -40,7 +41,7 @@ class Result(enum.IntEnum):
 
 #: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox
 INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
-                "lose_slave", "restore_slave")
+                "lose_slave", "restore_slave", "probe_surface", "probe_off")
 
 _ERROR_TEXT = {
     0x2310: "continuous over-current",

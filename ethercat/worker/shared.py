@@ -72,6 +72,9 @@ def live_dtype(n: int) -> np.dtype:
         ("time_s", "f8"), ("period_sum", "f8"), ("period_min", "f8"), ("period_max", "f8"),
         ("jitter_max", "f8"), ("exec_sum", "f8"), ("exec_max", "f8"), ("first_start", "f8"),
         ("last_start", "f8"),
+        # the probe: state (0 off, 1 armed, 2 tripped), the set-points consumed when it tripped,
+        # and the actual positions of that cycle
+        ("probe_state", "i8"), ("probe_consumed", "i8"), ("probe_pos", "f8", (n,)),
         ("drive_state", "i8", (n,)), ("statusword", "i8", (n,)), ("error_code", "i8", (n,)),
         ("homing", "i8", (n,)), ("homed", "i8", (n,)), ("dout", "i8", (n,)), ("din", "i8", (n,)),
         ("act", "f8", (n,)), ("ref", "f8", (n,)), ("fe", "f8", (n,)),
@@ -144,6 +147,9 @@ class LiveFields(_Fields):
     exec_max: np.ndarray
     first_start: np.ndarray
     last_start: np.ndarray
+    probe_state: np.ndarray
+    probe_consumed: np.ndarray
+    probe_pos: np.ndarray
     drive_state: np.ndarray
     statusword: np.ndarray
     error_code: np.ndarray

@@ -137,6 +137,21 @@ class TrackingStats:
     window_mse: tuple[float, ...]
 
 
+class ProbeLatch(enum.IntEnum):
+    OFF = 0
+    ARMED = 1
+    TRIPPED = 2
+
+
+@dataclass(frozen=True, slots=True)
+class ProbeState:
+    """The probe input as the loop watched it (``CyclicWorker.arm_probe``)."""
+
+    latch: ProbeLatch = ProbeLatch.OFF
+    consumed: int = 0                          # set-points consumed in the cycle it tripped
+    position: tuple[float, ...] = ()           # actual positions of that cycle (axis units)
+
+
 @dataclass(frozen=True, slots=True)
 class WorkerSnapshot:
     """What the panel and the controller read (<= 30 Hz). Arrays are read-only copies."""
@@ -168,6 +183,7 @@ class WorkerSnapshot:
     lost_slaves: tuple[int, ...] = ()  # slave positions lost and not yet back
     events: tuple[WorkerEvent, ...] = ()   # recent events (e.g. slave recovered), oldest first
     digital_inputs: tuple[int, ...] = ()   # 0x60FD per drive, from the process data
+    probe: ProbeState = ProbeState()       # the probe input's latch (``CyclicWorker.arm_probe``)
 
     @property
     def enabled(self) -> bool:

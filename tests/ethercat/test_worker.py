@@ -24,6 +24,7 @@ from ethercat.worker import (
     CyclicWorker,
     EventCode,
     HomingState,
+    ProbeLatch,
     ReplaceResult,
     WorkerConfig,
     WorkerState,
@@ -460,6 +461,40 @@ def test_digital_inputs_reach_the_snapshot(worker: CyclicWorker) -> None:
     worker._loop.bus.models[1].digital_inputs = 0x0001_0004      # type: ignore[union-attr]
     worker.step(2)
     assert worker.snapshot().digital_inputs == (0, 0x0001_0004)
+
+
+def test_the_probe_latches_where_the_axes_were_in_the_cycle_it_touched(worker: CyclicWorker) -> None:
+    """The simulated probe (bit 16 of Y's 0x60FD, touching at or below Y = -2.5; Y counts run
+    the other way) is watched every cycle: the latch holds the actual positions of the first
+    cycle that reads it, and the set-points consumed then, while the motion goes on."""
+    enable(worker)
+    worker.inject("probe_surface", "Y", 16 | 1 << 5 | int(-2.5e6) << 6)
+    q0 = worker.snapshot().actual_position.copy()
+    assert worker.arm_probe("Y", 16, True)
+    assert worker.snapshot().probe.latch is ProbeLatch.ARMED
+    q = cosine(q0, q0 + np.array([1.0, -5.0]), 1.0, hold_s=0.05)
+    feed(worker, q)
+    s = worker.snapshot()
+    assert s.probe.latch is ProbeLatch.TRIPPED
+    y = s.probe.position[1]
+    step = float(np.abs(np.diff(q[:, 1])).max())
+    assert -2.5 - step <= y <= -2.5                                     # the first cycle at or below
+    k = s.probe.consumed
+    assert 0 < k < len(q) and q[k - 1, 1] == pytest.approx(y, abs=2 * step)
+    assert s.actual_position[1] == pytest.approx(q0[1] - 5.0, abs=1e-4)   # the loop does not stop it
+    # touching now: arming again is refused, and nothing is armed
+    assert not worker.arm_probe("Y", 16, True)
+    assert worker.snapshot().probe.latch is ProbeLatch.OFF
+    # G38.4: armed to trip when the contact is lost
+    assert worker.arm_probe("Y", 16, False)
+    worker.disarm_probe()
+    assert worker.snapshot().probe.latch is ProbeLatch.OFF
+
+
+def test_a_probe_on_a_drive_without_its_inputs_mapped_is_refused() -> None:
+    with CyclicWorker(config(bus_options=(("unmapped_objects", (0x60FD,)),))) as w:
+        assert not w.arm_probe("X", 16, True)
+        assert w.snapshot().probe.latch is ProbeLatch.OFF
 
 
 def test_no_sdo_inside_the_cycle_homing_method_is_written_beside_it() -> None:

@@ -24,7 +24,7 @@ _CALL = re.compile(r"^\s*\d+\s+N\.+\s+([A-Z_0-9]+)\((.*)\)\s*$")
 
 @dataclass(frozen=True)
 class OracleResult:
-    motion: list[tuple]          # ("straight_traverse" | "straight_feed", (x, y, z)) or arcs
+    motion: list[tuple]          # ("straight_traverse" | "straight_feed" | "straight_probe", (x, y, z)) or arcs
     error: str                   # LinuxCNC's error text, "" when the program ran to its end
     error_block: str             # the block LinuxCNC printed after the error
 
@@ -110,7 +110,7 @@ def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
             rotation = float(args_t[0])
         elif name == "USE_TOOL_LENGTH_OFFSET":
             tool = tuple(float(v) * scale for v in args_t[0].split()[:3])
-        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
+        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "STRAIGHT_PROBE"):
             end = tuple(float(v) * scale for v in args_t[:3])
             motion.append((name.lower(), end))
             machine.append(to_machine(end))

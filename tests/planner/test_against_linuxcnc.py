@@ -49,7 +49,7 @@ def programs(draw) -> str:
     kinds = draw(st.lists(st.sampled_from(
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
-         "modal", "g43_1", "comp_tool", "g10_tool", "absarc"]), min_size=1, max_size=10))
+         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe"]), min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
         # its program coordinates differ from the last call's, so the oracle cannot drop it
@@ -163,6 +163,14 @@ def programs(draw) -> str:
             else:
                 out.append(f"G19 G3 Y{_n(y + 2 * d)} Z{_n(z)} J{_n(d)} K0\nG17")
                 y += 2 * d
+        elif kind == "probe":
+            # the stand-alone rs274 has no probe: it reports no contact and backs off 0.254 mm,
+            # where a run takes the machine's result; an absolute move after it meets both
+            if draw(st.booleans()):
+                out.append(f"G38.2 Z{_n(z - draw(st.integers(1, 20)))}")
+            else:
+                out.append(f"G38.3 X{_n(x + draw(st.integers(1, 50)) / 10.0)} Y{_n(draw(val))}")
+            goto()
         elif kind == "g53":
             out.append(f"G53 G0 Z{_n(draw(st.integers(0, 50).map(float)))}")
             goto()
