@@ -15,10 +15,12 @@ Fault injection (the same names work through `CyclicWorker.inject` in every work
                                              `watchdog_s` without process data it faults 0x8700
     restore_slave(i, power_cycled=True)      drive i is back but in INIT (as after a power
                                              cycle): silent until `recover_slaves()`
-    set_probe_surface(i, bit, level, below)  a probe wired to bit `bit` of drive i's digital
-                                             inputs (0x60FD) touches a surface: the bit is on
-                                             while axis i (its units, not counts) is at or
-                                             below `level` (above, when not `below`)
+    set_probe_surface(i, bit, level, below, input_drive)
+                                             a probe wired to bit `bit` of a drive's digital
+                                             inputs (0x60FD; axis i's own by default) touches
+                                             a surface: the bit is on while axis i (its units,
+                                             not counts) is at or below `level` (above, when
+                                             not `below`)
 Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
@@ -35,8 +37,16 @@ from .object_dictionary import ERROR_OVERCURRENT, OBJECTS, decode_object, encode
 #: injection names accepted by `SimBus.inject`
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
               "lose_slave", "restore_slave", "probe_surface", "probe_off")
-#: ``inject("probe_surface", i, value)``: value = bit | below << 5 | round(level_units * 1e6) << 6
+#: ``inject("probe_surface", i, value)``: value = ``probe_surface_value(...)``
 PROBE_SURFACE_SCALE = 1e6
+
+
+def probe_surface_value(bit: int, level_units: float, below: bool = True, input_drive: int = -1) -> int:
+    """The ``value`` of ``inject("probe_surface", axis, value)``: the probe on bit ``bit`` of
+    drive ``input_drive``'s inputs (-1: the axis' own drive) touching while the axis is at or
+    below ``level_units`` (above when not ``below``), packed into one integer."""
+    return (int(bit) & 31 | int(below) << 5 | (int(input_drive) + 1 & 63) << 6
+            | int(round(level_units * PROBE_SURFACE_SCALE)) << 12)
 
 
 class SimBus(Bus):
@@ -80,9 +90,9 @@ class SimBus(Bus):
         self.watchdog_s = float(watchdog_s)
         self.frames_sent = 0
         self.recoveries = 0
-        # the simulated probe: (drive, bit mask, level in counts, +1 contact at or below in
-        # counts, -1 at or above), or None
-        self._probe: tuple[int, int, float, int] | None = None
+        # the simulated probe: (axis watched, drive wired to, bit mask, level in counts, +1
+        # contact at or below in counts, -1 at or above), or None
+        self._probe: tuple[int, int, int, float, int] | None = None
 
     # ------------------------------------------------------------------ backend
     @property
@@ -110,25 +120,30 @@ class SimBus(Bus):
         for i, m in enumerate(self.models):
             self._read_inputs(i, m)
 
-    def set_probe_surface(self, index: int, bit: int, level_units: float, below: bool = True) -> None:
-        """A probe on bit ``bit`` of drive ``index``'s inputs touching while that axis is at or
-        below ``level_units`` (axis units; above when not ``below``)."""
-        if not 0 <= index < self.n_drives or not 0 <= bit < 32:
-            raise ConfigurationError(f"probe on drive {index} bit {bit}: no such drive or bit")
+    def set_probe_surface(self, index: int, bit: int, level_units: float, below: bool = True,
+                          input_drive: int = -1) -> None:
+        """A probe on bit ``bit`` of drive ``input_drive``'s inputs (-1: drive ``index``)
+        touching while axis ``index`` is at or below ``level_units`` (axis units; above when
+        not ``below``)."""
+        wired = index if input_drive < 0 else input_drive
+        if not 0 <= index < self.n_drives or not 0 <= wired < self.n_drives or not 0 <= bit < 32:
+            raise ConfigurationError(f"probe of axis {index} on drive {wired} bit {bit}: "
+                                     "no such drive or bit")
         d = self.drives[index]
         sign = (1 if below else -1) * d.direction
-        self._probe = (index, 1 << bit, level_units * d.counts_per_unit * d.direction, sign)
+        self.clear_probe_surface()
+        self._probe = (index, wired, 1 << bit, level_units * d.counts_per_unit * d.direction, sign)
 
     def clear_probe_surface(self) -> None:
         if self._probe is not None:
-            i, mask = self._probe[0], self._probe[1]
-            self.models[i].digital_inputs &= ~mask
+            wired, mask = self._probe[1], self._probe[2]
+            self.models[wired].digital_inputs &= ~mask
         self._probe = None
 
     def _touch(self) -> None:
-        i, mask, level, sign = self._probe  # type: ignore[misc]
-        m = self.models[i]
-        if sign * m.position_actual <= sign * level:
+        i, wired, mask, level, sign = self._probe  # type: ignore[misc]
+        m = self.models[wired]
+        if sign * self.models[i].position_actual <= sign * level:
             m.digital_inputs |= mask
         else:
             m.digital_inputs &= ~mask
@@ -275,7 +290,8 @@ class SimBus(Bus):
         elif name == "restore_slave":
             self.restore_slave(index, power_cycled=bool(value))
         elif name == "probe_surface":
-            self.set_probe_surface(index, value & 31, (value >> 6) / PROBE_SURFACE_SCALE, bool(value >> 5 & 1))
+            self.set_probe_surface(index, value & 31, (value >> 12) / PROBE_SURFACE_SCALE,
+                                   bool(value >> 5 & 1), (value >> 6 & 63) - 1)
         elif name == "probe_off":
             self.clear_probe_surface()
         else:

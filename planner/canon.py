@@ -25,7 +25,7 @@ from collections.abc import Iterator
 from typing import Any, BinaryIO
 
 from planner.files import write_output
-from planner.program import MoveKind, Program
+from planner.program import EventKind, MoveKind, Program
 
 __all__ = ["canon_records", "iter_canon_records", "write_canon"]
 
@@ -99,7 +99,9 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
     rotated = _unrotate(program, cols) if any(p[6] for p in program.offset_parts) else None
     move_offsets = program.move_offsets
     # G38.x: LinuxCNC's call names the programmed end point; the move ends where the probe stopped
-    probe_targets = {p.move_index: p.target for p in program.probes if p.move_index >= 0}
+    # (by the PROBE event, which follows the move when blending renumbers the moves)
+    probe_targets = {e.after_move: program.probes[int(e.value)].target for e in program.events
+                     if e.kind is EventKind.PROBE and program.probes[int(e.value)].move_index >= 0}
     for i, move in enumerate(program.moves):
         yield from offsets_before.pop(i, ())
         end = move.end.tolist()

@@ -209,7 +209,7 @@ class _Interpreter:
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
                  spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = (),
                  parameters: dict[int, float] | None = None,
-                 probe_results: Sequence[ProbeResult] = ()):
+                 probe_results: Sequence[ProbeResult | None] = ()):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -1553,9 +1553,9 @@ class _Interpreter:
             self.data_code(g0, vals, axis_words, scale, line_no)
         # ---- motion
         if motion in _PROBES and self.feed_mode != 940:
-            raise _BlockError(f"cannot probe ({_gname(motion)}) in "
-                              + ("inverse time feed mode (G93)" if self.feed_mode == 930
-                                 else "feed per revolution mode (G95)") + ": program G94 first", _gname(motion))
+            mode = ("inverse time feed mode (G93)" if self.feed_mode == 930
+                    else "feed per revolution mode (G95)")
+            raise _BlockError(f"cannot probe ({_gname(motion)}) in {mode}: program G94 first", _gname(motion))
         if motion is not None and motion != 0 and not axis_data:
             if self.feed_mode == 930:
                 if motion in _CYCLES:
@@ -1713,9 +1713,9 @@ class _Interpreter:
         if code in (382, 384) and all(abs(t - p) <= _ZERO_LEN for t, p in zip(target, self.pos)):
             raise _BlockError(f"{name}: start point too close to probe point (the move has no length)", name)
         k = len(self.probes)
-        known = k < len(self.probe_results)
-        if known:
-            result = self.probe_results[k]
+        result = self.probe_results[k] if k < len(self.probe_results) else None
+        known = result is not None
+        if result is not None:
             if len(result.stop_position) != self.n or len(result.trip_position) != self.n:
                 raise PlannerError(f"probe result {k} has positions for {len(result.stop_position)} axes, "
                                    f"the machine has {self.n}")
@@ -2236,7 +2236,7 @@ def parse_program(
     parameters: dict[int, float] | None = None,
     progress: Callable[[int, int], None] | None = None,
     utf8: bytes | None = None,
-    probe_results: Sequence[ProbeResult] = (),
+    probe_results: Sequence[ProbeResult | None] = (),
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -2253,8 +2253,9 @@ def parse_program(
     ``progress(lines read, lines in all)`` is called now and then while a long program is read.
     ``utf8``: the text's own UTF-8 bytes when at hand (``read_program``): the bulk reader scans
     them instead of encoding the text again.
-    ``probe_results``: what the machine's probe did on the program's first G38.x moves, in order
-    (``Program.probes``); the later ones are read as touching at their end point.
+    ``probe_results``: what the machine's probe did on the program's G38.x moves, in order
+    (``Program.probes``; None for one not run, as before a run from a later line); the others
+    are read as touching at their end point.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
                           spindle, subroutine_dirs, parameters, probe_results)

@@ -284,7 +284,9 @@ class ProbeRequest:
 
     code: int                 # 382, 383, 384, 385 (G38.2 ...)
     line: int
-    move_index: int           # the probe move; -1 when it has no length (already at the end point)
+    # the probe move as read (-1 when it has no length: already at the end point); blending
+    # renumbers the moves, the PROBE event's ``after_move`` follows
+    move_index: int
     target: tuple[float, ...]  # the programmed end point, machine coordinates
     known: bool               # read with the machine's result; else the contact was assumed at the target
 

@@ -108,12 +108,15 @@ def head_move(move: Move, u_mm: float) -> Move:
 def program_from_moves(template: Program, moves: list[Move], events: list[Event],
                        start_position: np.ndarray, name: str | None = None) -> Program:
     """A Program with ``moves`` re-indexed 0..n-1 (events' ``after_move`` must already refer
-    to the new indices)."""
+    to the new indices). What events name by their value (parameter sets, tools, probes) is
+    the template's."""
     moves = [replace(m, index=i) for i, m in enumerate(moves)]
     return Program(name=name or template.name, axes=template.axes, rotary=template.rotary,
                    moves=tuple(moves), events=tuple(events),
                    start_position=np.asarray(start_position, dtype=float).copy(),
-                   move_offsets=None, line_count=template.line_count)
+                   move_offsets=None, line_count=template.line_count,
+                   parameter_sets=template.parameter_sets, tool_sets=template.tool_sets,
+                   probes=template.probes)
 
 
 def remaining_program(program: Program, move_index: int, u_mm: float = 0.0) -> Program:

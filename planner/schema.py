@@ -145,6 +145,15 @@ MACHINE_FILE = Table("", tables=(
             ), array=True),
         )),
     )),
+    # the probe G38.2-G38.5 read: a bit of the digital inputs (0x60FD) of an axis' drive, and
+    # its level while the stylus touches; with simulated drives, a surface it touches
+    Table("probe", (
+        Key("drive", "int", None, 0, 63),
+        Key("bit", "int", 16, 0, 31),
+        Key("touching_level", "int", 1, choices=(0, 1)),
+        Key("sim_axis", "str", "Z", choices=("X", "Y", "Z", "A", "B", "C")),
+        Key("sim_surface_mm", "float", None, -_LIN, _LIN),
+    )),
     Table("controller", (
         Key("jog_speed_mm_s", "float", 10.0, 1e-3, 1e4),
         Key("lead_s", "float", 0.5, 0.01, 1.0),

@@ -48,6 +48,7 @@ __all__ = [
     "DriveIdentity",
     "HomingSettings",
     "MachineConfig",
+    "ProbeSettings",
     "config_from_dict",
     "config_to_toml",
     "load_config",
@@ -124,6 +125,21 @@ DEFAULT_LEAD_S = 0.5
 
 
 @dataclass(frozen=True, slots=True)
+class ProbeSettings:
+    """The probe input G38.2-G38.5 watch: bit ``bit`` of the digital inputs (0x60FD) of the
+    drive of axis index ``drive`` (None: the machine has no probe, and programs that probe are
+    refused), reading ``touching_level`` while the stylus touches. With simulated drives the
+    stylus touches when axis ``sim_axis`` is at or below machine coordinate ``sim_surface_mm``
+    (None: never)."""
+
+    drive: int | None = None
+    bit: int = 16
+    touching_level: int = 1
+    sim_axis: str = "Z"
+    sim_surface_mm: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class ControllerSettings:
     """Controller tuning. The override budget (see ``app.machine.timescale``): the program is
     planned with ``(1 - accel_reserve)`` of every acceleration limit and ``(1 - jerk_reserve)``
@@ -158,6 +174,7 @@ class MachineConfig:
     homing: HomingSettings = field(default_factory=HomingSettings)
     bus: BusSettings = field(default_factory=BusSettings)
     controller: ControllerSettings = field(default_factory=ControllerSettings)
+    probe: ProbeSettings = field(default_factory=ProbeSettings)
     path: str = ""  # file it was read from ("" if built in memory)
 
     @property
@@ -204,6 +221,12 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         if c["spindle_drive"] >= n:
             raise loc.fail(("controller", "spindle_drive"),
                            f"{c['spindle_drive']} must be below the axis count {n}")
+        pr = valid["probe"]
+        if pr["drive"] is not None and pr["drive"] >= n:
+            raise loc.fail(("probe", "drive"), f"{pr['drive']} must be below the axis count {n}")
+        if pr["sim_surface_mm"] is not None and pr["sim_axis"] not in machine.axis_names:
+            raise loc.fail(("probe", "sim_axis"), f"{pr['sim_axis']} is not an axis of this machine "
+                           f"({', '.join(machine.axis_names)})")
         for i, o in enumerate(valid["outputs"]):
             if o["drive"] == c["spindle_drive"] and o["bit"] in (0, 1):
                 raise loc.fail(("outputs", i, "bit"), f"bits 0 and 1 of drive {o['drive']} switch the "
@@ -217,7 +240,7 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
-                         path=where)
+                         probe=ProbeSettings(**valid["probe"]), path=where)
 
 
 def _parse(path: Path) -> MachineConfig:
@@ -353,6 +376,13 @@ def config_to_toml(config: MachineConfig) -> str:
             f"spindle_spinup_s = {_fmt(float(c.spindle_spinup_s))}"]
     if c.restart_clearance_mm is not None:
         out.append(f"restart_clearance_mm = {_fmt(float(c.restart_clearance_mm))}")
+    p = config.probe
+    out += ["", "[probe]"]
+    if p.drive is not None:
+        out.append(f"drive = {p.drive}")
+    out += [f"bit = {p.bit}", f"touching_level = {p.touching_level}", f"sim_axis = {_fmt(p.sim_axis)}"]
+    if p.sim_surface_mm is not None:
+        out.append(f"sim_surface_mm = {_fmt(float(p.sim_surface_mm))}")
     out += ["", END_MARK, ""]
     return "\n".join(out)
 

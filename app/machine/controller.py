@@ -93,6 +93,7 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.outputs import DigitalOutputs
+from app.machine.probing import Prober
 from app.machine.program_load import ProgramLoader
 from app.machine.program_run import ProgramRunner
 from app.machine.spindle import SpindleControl
@@ -172,6 +173,7 @@ class MachineController(QObject):
         self.tools = ToolControl(self)
         self.loader = ProgramLoader(self)
         self.stream = Streamer(self)
+        self.prober = Prober(self)
         self.manual = ManualMotion(self)
         self.poller = StatusPoller(self)
         self.conn.timer.timeout.connect(self.poller.poll)

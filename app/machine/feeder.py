@@ -43,7 +43,7 @@ from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, p
 from ethercat.worker import ReplaceResult
 from planner.files import write_output
 from planner.plan import Plan, plan_program
-from planner.program import Program
+from planner.program import EventKind, Program
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -159,7 +159,38 @@ class Streamer:
         )
         job.single_block = single_block
         job.spin_ups = spin_ups
+        info = self.m.loader.program_info
+        if kind is Activity.PROGRAM and info is not None:
+            job.reread = info.reread        # G38.x: the program is read again with each result
         return job
+
+    def follow(self, job: Job, rest: Program, origin: tuple[Program, int, float]) -> Job:
+        """At rest on the path: run ``rest`` (what is left of the program from here, planned
+        anew) in place of ``job``, as the same run (time, progress, trace, limits). Raises
+        PlannerError when the rest cannot be planned (``job`` is then unchanged)."""
+        new = self.make_job(job.kind, rest, job.name,
+                            single_block=self.m.run.single_block and job.kind is Activity.PROGRAM)
+        info = self.m.loader.program_info
+        full_t = info.cycle_time_s if info is not None and job.kind is Activity.PROGRAM else new.estimated_s
+        new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.t_end, 0.0)
+        new.origin = origin
+        new.start_time_s = job.start_time_s
+        new.trace = job.trace
+        new.samples, new.dwell_total_s = job.samples, job.dwell_total_s
+        new.carried_limits = merge_max(job.carried_limits, job.meter.final())
+        new.estimated_s = job.estimated_s
+        new.serial_base = job.serial_base
+        new.reread, new.probe_results = job.reread, job.probe_results
+        self.job = new
+        if self.m.conn.worker_mode != "manual":
+            self.feed()
+        return new
+
+    def finish_now(self, job: Job, rest: Program) -> None:
+        """The job ends at rest here, ``rest`` (events only) being what was left of it."""
+        job.messages.clear()
+        job.messages.extend((e.line, e.message) for e in rest.events if e.kind is EventKind.MESSAGE)
+        self._finish_job(job, self.m.poller.last_snap)
 
     def start_job(self, job: Job) -> None:
         snap = self.m.conn.snapshot_now()
@@ -192,6 +223,7 @@ class Streamer:
                 return
             if w.state() is not WorkerState.ENABLED:
                 return
+            self.m.prober.watch()           # a probe's contact stops the motion from here
             self._prune_chunks(job, w)
             want = self._lead_samples - w.buffer_level()
             if max_new is not None:
@@ -385,6 +417,9 @@ class Streamer:
             self.tracking = self._tracking_from(snap, "")
             self.m.trackingUpdated.emit(self.tracking)
         all_done = consumed >= self.pushed_total
+        self.m.prober.poll(job, all_done)
+        if self.job is not job:              # the probe's result: the rest runs as a new job
+            return
         # pause points reached by the drives
         if job.pause is not None and consumed >= job.pause_serial:
             self._at_pause(job, job.pause, snap)
@@ -408,6 +443,14 @@ class Streamer:
         if kind == "spindle":
             self.start_spindle(job, SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)),
                                float(snap.time_s))
+        elif kind == "probe_start":              # G38.x: the input watched from here, at rest
+            why = self.m.prober.arm(job, int(p.value))
+            if why:
+                self.m.prober.fail(why)
+            else:
+                self.release(job)
+        elif kind == "probe":                    # the probe move's end point reached
+            self.m.prober.finish(job)
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))
             self.release(job)
@@ -511,6 +554,7 @@ class Streamer:
             if job is None:
                 return None
             job.aborted = True
+            self.m.prober.cancel()
             if self.m.worker is not None and not completed:
                 try:
                     self.m.worker.flush()

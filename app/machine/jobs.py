@@ -4,6 +4,7 @@ meter, trace), the point to resume a program from, and the running limit meter."
 from __future__ import annotations
 
 import collections
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,7 +14,7 @@ from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
 from planner.machine import MachineSpec
 from planner.meter import LimitMeter
 from planner.plan import Plan
-from planner.program import EventKind, Program
+from planner.program import EventKind, ProbeResult, Program
 
 __all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
 
@@ -85,6 +86,10 @@ class Job:
         self.spin_ups: list[tuple[float, float]] = []
         self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.origin: tuple[Program, int, float] | None = None
+        # G38.x: reads the whole program again with the probe results (None: the job cannot
+        # probe), and the results so far by probe index (None: not run in this job)
+        self.reread: Callable[[tuple[ProbeResult | None, ...]], Program] | None = None
+        self.probe_results: tuple[ProbeResult | None, ...] = ()
         self.single_block = False
         self.carried_limits: dict[str, float] = {}
         self.tau_offset_s = 0.0

@@ -5,6 +5,7 @@ lost release stops there. A part of ``MachineController``.
 
 from __future__ import annotations
 
+import functools
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -141,13 +142,14 @@ class ManualMotion:
             return self.m.states.refuse("mdi", "MDI takes one block (one line)")
         if self.m.pos.active_offset != "G54":
             text = f"{self.m.pos.active_offset} {text}"
+        read = functools.partial(
+            parse_program, text, "MDI", machine=self.m.conn.machine,
+            start_position=self.m.states.machine_pos(), tools=self.m.tools.table,
+            tool_in_spindle=self.m.tools.in_spindle,
+            spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
+            parameters=dict(self.m.pos.parameters))
         try:
-            prog = parse_program(
-                text, "MDI", machine=self.m.conn.machine, start_position=self.m.states.machine_pos(),
-                tools=self.m.tools.table, tool_in_spindle=self.m.tools.in_spindle,
-                spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
-                parameters=self.m.pos.parameters,
-            )
+            prog = read()
         except ProgramError as exc:
             return self.m.states.refuse("mdi", "; ".join(e.message for e in exc.errors))
         except PlannerError as exc:
@@ -155,6 +157,9 @@ class ManualMotion:
         issues = self.m.loader.check_program_limits(prog)
         if issues:
             return self.m.states.refuse("mdi", f"soft limit: {issues[0].message}")
+        if prog.probes and self.m.config.probe.drive is None:
+            return self.m.states.refuse("mdi", f"{prog.probes[0].name} needs a probe input: this machine has "
+                                        "none ([probe] drive in the machine configuration)")
         why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm) or _mdi_stands_alone(prog, block)
         if why:
             return self.m.states.refuse("mdi", why)
@@ -185,6 +190,7 @@ class ManualMotion:
             return self.m.states.ok("mdi")
         try:
             job = self.m.stream.make_job(Activity.MDI, prog, "MDI")
+            job.reread = lambda results: read(probe_results=results)   # G38.x typed in MDI
         except PlannerError as exc:
             return self.m.states.refuse("mdi", f"planner: {exc}")
         self.m.stream.start_job(job)

@@ -46,7 +46,7 @@ from planner.gcpause import gc_paused
 from planner.heap import trim_heap
 from planner.interpreter import parse_program, read_program
 from planner.machine import MachineSpec
-from planner.program import Program
+from planner.program import ProbeResult, Program
 from planner.softlimits import check_program, move_bounds_table, program_bounds
 from planner.tools import ToolTable
 
@@ -145,6 +145,14 @@ def check_text(
             return (ProgramIssue(0, 0, why),), str(exc)
         req.read_file = False
     text, name = req.text, req.name
+
+    def reread(results: tuple[ProbeResult | None, ...]) -> Program:
+        """The same program from the same start, read with the probe results (G38.x)."""
+        again = parse_program(text, name, machine=machine, start_position=req.start_position,
+                              tools=req.tools, tool_in_spindle=req.tool_in_spindle,
+                              parameters=req.parameters, probe_results=results)
+        return blend_program(again, machine) if machine.planner.mode == "lookahead" else again
+
     try:
         program = parse_program(text, name, machine=machine, start_position=req.start_position,
                                 tools=req.tools, tool_in_spindle=req.tool_in_spindle,
@@ -155,6 +163,14 @@ def check_text(
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
+    probe_cfg = getattr(req.cfg, "probe", None)
+    if program.probes and (probe_cfg is None or probe_cfg.drive is None):
+        first = program.probes[0]
+        why = (f"{first.name} needs a probe input: this machine has none ([probe] drive in the machine "
+               "configuration)")
+        line = text.split("\n", first.line)[first.line - 1].upper() if first.line > 0 else ""
+        col = line.find("G38") + 1 or 1
+        return (ProgramIssue(first.line, col, why),), f"line {first.line}: {why}"
     if machine.planner.mode == "lookahead":
         # G64 P: the program of record is the blended one (preview, progress, resume and the
         # plan all count its moves)
@@ -200,6 +216,7 @@ def check_text(
         line_starts=starts,
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
+        reread=reread if program.probes else None,
     )
 
 

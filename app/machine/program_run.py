@@ -212,23 +212,9 @@ class ProgramRunner:
         if index >= len(prog.moves) - 1 and u_orig >= prog.moves[-1].length_mm - 1e-12:
             return None  # at the very end: nothing to re-plan
         try:
-            rest = remaining_program(prog, index, u_orig)
-            new = self.m.stream.make_job(Activity.PROGRAM, rest, job.name, single_block=self.single_block)
+            return self.m.stream.follow(job, remaining_program(prog, index, u_orig), (prog, index, u_orig))
         except PlannerError:
             return None
-        full_t = self.m.loader.program_info.cycle_time_s if self.m.loader.program_info else new.estimated_s
-        new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.t_end, 0.0)
-        new.origin = (prog, index, u_orig)
-        new.start_time_s = job.start_time_s
-        new.trace = job.trace
-        new.samples, new.dwell_total_s = job.samples, job.dwell_total_s
-        new.carried_limits = job.meter.final()
-        new.estimated_s = job.estimated_s
-        new.serial_base = job.serial_base
-        self.m.stream.job = new
-        if self.m.conn.worker_mode != "manual":
-            self.m.stream.feed()
-        return new
 
     def stop(self) -> CommandResult:
         """Jerk-limited stop along the path, then abandon the program (-> IDLE). In IDLE it

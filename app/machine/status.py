@@ -58,6 +58,7 @@ class StatusPoller:
         if job is not None and len(trace.cycle):
             job.trace.append((trace.cycle.copy(), trace.reference.copy(), trace.actual.copy()))
         self.m.pos.poll_homing(snap)
+        self.m.prober.place_simulated_surface()
         if job is not None:
             self.m.stream.poll_job(job, snap)
         self._emit_positions(snap)

@@ -497,7 +497,8 @@ def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[Pa
     kinds = {EventKind.PAUSE: "pause", EventKind.OPTIONAL_PAUSE: "optional_pause",
              EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
              EventKind.SPINDLE: "spindle", EventKind.END: "end", EventKind.TOOL_SET: "tool_set",
-             EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data"}
+             EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data",
+             EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe"}
     extra: list[PausePoint] = []
     for ev in prog.events:
         if ev.kind not in kinds or ev.after_move >= n:

@@ -31,6 +31,7 @@ from .types import (
 
 __all__ = [
     "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HomingState",
-    "ProbeLatch", "ProbeState", "ReplaceResult", "TimingStats", "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent",
+    "ProbeLatch", "ProbeState", "ReplaceResult", "TimingStats", "TraceChunk", "TrackingStats",
+    "WorkerConfig", "WorkerEvent",
     "WorkerSnapshot", "WorkerState", "error_code_text",
 ]

@@ -420,6 +420,14 @@ class CyclicWorker:
         shared block at once (not the 30 Hz snapshot). One aligned int64 load."""
         return int(self._live().live.consumed)
 
+    def probe_latched(self) -> tuple[float, ...] | None:
+        """The actual positions (axis units) latched when the armed probe input changed, read
+        from the shared block at once; None while it has not."""
+        live = self._live().live
+        if int(live.probe_state) != ProbeLatch.TRIPPED:
+            return None
+        return tuple(float(x) for x in live.probe_pos)
+
     # ------------------------------------------------------------------ manual mode
     def step(self, n_cycles: int = 1) -> None:
         """Manual mode only: run `n_cycles` cycles now (simulated time)."""

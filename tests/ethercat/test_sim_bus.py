@@ -11,7 +11,7 @@ from ethercat.bus import DriveSpec, make_bus
 from ethercat.cia402 import Cia402State
 from ethercat.drive_model import DriveParams
 from ethercat.errors import ConfigurationError
-from ethercat.sim_bus import SimBus
+from ethercat.sim_bus import SimBus, probe_surface_value
 from tests.ethercat.bus_contract import CONTRACT_DRIVES, BusContractTests, enable_all, states_of
 
 
@@ -131,3 +131,29 @@ def test_digital_io_in_the_process_data(bus: SimBus) -> None:
     bus.models[1].digital_inputs = 0b10
     bus.exchange()
     assert list(bus.digital_inputs) == [0, 0b10]
+
+
+def test_the_simulated_probe_touches_a_surface_through_the_inputs_of_its_drive() -> None:
+    """Axis 1 (counts running against its units) watched, the probe wired to bit 3 of drive
+    0: the bit is on while axis 1 is at or below the level, and off again above it; "above"
+    turns the rule round; inject() carries the same through one integer."""
+    drives = (DriveSpec(0, "X"), DriveSpec(1, "Z", counts_per_unit=1000.0, direction=-1))
+    with SimBus(drives, initial_positions_counts=[0.0, 2000.0]) as b:   # Z at -2 mm
+        b.set_probe_surface(1, 3, -1.5, below=True, input_drive=0)
+        b.exchange()
+        b.exchange()
+        assert b.digital_inputs[0] & 0b1000 and not b.digital_inputs[1]
+        b.set_probe_surface(1, 3, -1.5, below=False, input_drive=0)
+        b.exchange()
+        b.exchange()
+        assert not b.digital_inputs[0] & 0b1000
+        b.inject("probe_surface", 1, probe_surface_value(5, -2.5, False))        # on its own drive
+        b.exchange()
+        b.exchange()
+        assert b.digital_inputs[1] == 1 << 5 and not b.digital_inputs[0] & 0b1000
+        b.inject("probe_off", 0, 0)
+        b.exchange()
+        b.exchange()
+        assert b.digital_inputs[1] == 0
+        with pytest.raises(ConfigurationError, match="no such drive or bit"):
+            b.set_probe_surface(1, 40, 0.0)

@@ -19,6 +19,7 @@ from ethercat.bus import DriveSpec
 from ethercat.cia402 import Cia402State
 from ethercat.drive_model import DriveParams
 from ethercat.errors import ConfigurationError, EtherCATError, WorkerError, WorkerTimeoutError
+from ethercat.sim_bus import probe_surface_value
 from ethercat.worker import (
     AlarmCode,
     CyclicWorker,
@@ -468,7 +469,7 @@ def test_the_probe_latches_where_the_axes_were_in_the_cycle_it_touched(worker: C
     the other way) is watched every cycle: the latch holds the actual positions of the first
     cycle that reads it, and the set-points consumed then, while the motion goes on."""
     enable(worker)
-    worker.inject("probe_surface", "Y", 16 | 1 << 5 | int(-2.5e6) << 6)
+    worker.inject("probe_surface", "Y", probe_surface_value(16, -2.5))
     q0 = worker.snapshot().actual_position.copy()
     assert worker.arm_probe("Y", 16, True)
     assert worker.snapshot().probe.latch is ProbeLatch.ARMED

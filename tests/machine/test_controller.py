@@ -217,6 +217,18 @@ def test_run_from_line_moves_safely_and_restores_the_spindle(ctl: MachineControl
     assert not ctl.spindle.on  # M5 at line 7
 
 
+def test_run_from_line_keeps_the_offsets_and_tools_the_program_sets_later(ctl: MachineController) -> None:
+    """What G10 sets after the restart line reaches the machine as in a whole run (the events
+    name the program's parameter sets and tools, which the program from the line keeps)."""
+    text = "G0 Z5\nG0 X10\nG0 X20\nG10 L2 P2 X7 Y8\nG10 L1 P3 Z4.5\nG0 X30\nM30\n"
+    assert ctl.set_tool(Tool(3, 3, (("Z", 1.0),), 6.0, "drill"))
+    assert ctl.load_program(text, wait=True)
+    assert ctl.run_from_line(3)
+    run_to_idle(ctl)
+    assert ctl.work_offsets["G55"][:2] == (7.0, 8.0)
+    assert ctl.tool_table.get(3).offset("Z") == 4.5
+
+
 SAFE_RESTART = ("G0 Z5\nG0 X-20 Y0\nM3 S1200\nG1 Z-1 F600\nG1 X40 F1200\nG1 Y30\nG0 Z5\n"
                 "G0 X60 Y60\nG1 Z-2 F600\nG1 X0 F1200\nG0 Z5\nM5\nM30\n")
 

@@ -24,7 +24,8 @@ _CALL = re.compile(r"^\s*\d+\s+N\.+\s+([A-Z_0-9]+)\((.*)\)\s*$")
 
 @dataclass(frozen=True)
 class OracleResult:
-    motion: list[tuple]          # ("straight_traverse" | "straight_feed" | "straight_probe", (x, y, z)) or arcs
+    # ("straight_traverse" | "straight_feed" | "straight_probe", (x, y, z)) or arcs
+    motion: list[tuple]
     error: str                   # LinuxCNC's error text, "" when the program ran to its end
     error_block: str             # the block LinuxCNC printed after the error
 

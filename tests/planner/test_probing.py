@@ -37,7 +37,8 @@ def test_an_unknown_result_is_read_as_contact_at_the_end_point() -> None:
 
 def test_the_probe_stops_the_motion_before_and_after_its_move() -> None:
     p = parse_program(PROGRAM)
-    kinds = [(e.kind, e.after_move, e.value) for e in p.events if e.kind in (EventKind.PROBE_START, EventKind.PROBE)]
+    probing = (EventKind.PROBE_START, EventKind.PROBE)
+    kinds = [(e.kind, e.after_move, e.value) for e in p.events if e.kind in probing]
     assert kinds == [(EventKind.PROBE_START, 0, 0.0), (EventKind.PROBE, 1, 0.0)]
     assert all(e.stops for e in p.events if e.kind in (EventKind.PROBE_START, EventKind.PROBE))
 

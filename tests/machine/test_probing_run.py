@@ -1,0 +1,164 @@
+"""G38.2-G38.5 run on the machine (real CyclicWorker + SimBus in manual mode; the shipped XYZ
+mill's probe on bit 16 of Z's drive, its simulated stylus touching at Z <= -50 machine):
+stop at the contact, the result in #5061-#5070, the rest of the program read again and run
+from where the machine stands; the failures an operator must see."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.machine.controller import MachineController
+from app.machine.model import MachineState, Severity
+from tests.machine.conftest import make_controller, run_to_idle, trace
+
+SURFACE_Z = -50.0
+FEED_MM_MIN = 300.0
+
+
+def _messages(ctl: MachineController) -> list[str]:
+    out: list[str] = []
+    ctl.message.connect(out.append)
+    return out
+
+
+def _run(ctl: MachineController, text: str) -> None:
+    r = ctl.load_program(text, wait=True)
+    assert r, r.reason
+    assert ctl.cycle_start(wait=True)
+    assert ctl.state is MachineState.RUNNING
+
+
+PROBE_Z = f"""G21 G90 G54
+G0 X10 Y5 Z-40
+G38.2 Z-70 F{FEED_MM_MIN:g}
+(DEBUG,touched #5063 #5070)
+G0 Z[#5063 + 5]
+G1 X20 F600
+M2
+"""
+
+
+def test_the_probe_stops_at_the_contact_and_the_program_goes_on_from_its_result(
+        ctl: MachineController) -> None:
+    said = _messages(ctl)
+    _run(ctl, PROBE_Z)
+    run_to_idle(ctl)
+    assert ctl.last_run is not None and ctl.last_run.completed, ctl.last_run
+    debug = [m for m in said if m.startswith("touched")]
+    assert len(debug) == 1, said
+    z5063, tripped = (float(v) for v in re.findall(r"-?\d+\.\d+", debug[0]))
+    step = FEED_MM_MIN / 60.0 * 0.001                  # travel in one 1 ms cycle
+    assert tripped == 1.0
+    assert SURFACE_Z - 3 * step <= z5063 <= SURFACE_Z + 1e-4   # the actual position of the first cycle touching
+    # the operator is told where it touched
+    assert any(m.startswith("G38.2 (line 3): contact at X10.0000 Y5.0000 Z-50.00") for m in said), said
+    t = trace(ctl)
+    z_ref = t["reference"][:, 2]
+    overtravel = SURFACE_Z - float(z_ref.min())
+    # past the contact: the feed for the reaction (the feeder sees the latch within 10 ms
+    # here, the stop is spliced a few cycles ahead of the drives), then the jerk-limited stop
+    # along the path, v sqrt(v / J) from v = 5 mm/s at J = 10,000 mm/s^3 (0.11 mm)
+    v, jerk = FEED_MM_MIN / 60.0, ctl.config.machine.limits.j_max_mm_s3
+    stop_mm = v * np.sqrt(v / jerk)
+    assert stop_mm < overtravel < stop_mm + v * 0.015, overtravel
+    # what followed read the result: up 5 mm from the contact, then across
+    assert ctl.machine_position[2] == pytest.approx(z5063 + 5.0, abs=1e-3)
+    assert ctl.machine_position[0] == pytest.approx(20.0, abs=1e-3)
+    assert ctl.last_run.limits and max(ctl.last_run.limits[k] for k in ("axis_a", "axis_j")) <= 1.0 + 1e-6
+
+
+def test_no_contact_on_g38_2_is_an_alarm_and_the_program_stops_there(ctl: MachineController) -> None:
+    _run(ctl, "G21 G90\nG0 X0 Y0 Z-10\nG38.2 Z-30 F600\nG0 Z0\nM2\n")
+    assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 20.0), ctl.state_reason
+    run_to_idle_or_alarm(ctl)
+    alarm = [a for a in ctl.active_alarms if a.source == "probe"]
+    assert len(alarm) == 1 and alarm[0].severity is Severity.STOP
+    assert "G38.2 (line 3): the probe move ended without contact" in alarm[0].cause
+    assert ctl.machine_position[2] == pytest.approx(-30.0, abs=1e-3)     # not the G0 Z0 after it
+    assert ctl.last_run is not None and not ctl.last_run.completed
+    assert ctl.run.resume_point is None          # nothing after a failed probe may be resumed
+
+
+def run_to_idle_or_alarm(ctl: MachineController) -> None:
+    assert ctl.run_until(lambda: ctl.stream.job is None and ctl.worker.buffer_level() == 0, 10.0)
+
+
+def test_no_contact_on_g38_3_reads_5070_zero_and_goes_on(ctl: MachineController) -> None:
+    said = _messages(ctl)
+    _run(ctl, "G21 G90\nG0 Z-10\nG38.3 Z-30 F600\n(DEBUG,#5070 #5063)\nG0 Z[#5063 + 2]\nM2\n")
+    run_to_idle(ctl)
+    assert ctl.last_run is not None and ctl.last_run.completed
+    assert "0.000000 -30.000000" in [m.strip() for m in said], said
+    assert ctl.machine_position[2] == pytest.approx(-28.0, abs=1e-3)
+
+
+def test_a_probe_touching_where_g38_2_starts_is_refused_before_it_moves(ctl: MachineController) -> None:
+    _run(ctl, "G21 G90\nG0 Z-55\nG38.2 Z-60 F100\nM2\n")
+    assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 20.0), ctl.state_reason
+    run_to_idle_or_alarm(ctl)
+    (alarm,) = [a for a in ctl.active_alarms if a.source == "probe"]
+    assert "G38.2 (line 3): the probe already touches where the move starts" in alarm.cause
+    assert ctl.machine_position[2] == pytest.approx(-55.0, abs=1e-3)
+
+
+def test_g38_4_moves_until_the_contact_is_lost(ctl: MachineController) -> None:
+    said = _messages(ctl)
+    _run(ctl, "G21 G90\nG0 Z-40\nG1 Z-55 F600\nG38.4 Z-40 F120\n(DEBUG,#5063)\nM2\n")
+    run_to_idle(ctl)
+    assert ctl.last_run is not None and ctl.last_run.completed
+    (value,) = [float(m) for m in said if re.fullmatch(r"\s*-?\d+\.\d+\s*", m)]
+    assert SURFACE_Z < value <= SURFACE_Z + 3 * 120 / 60 * 0.001
+    assert any("contact lost at" in m for m in said)
+
+
+def test_the_rest_is_checked_against_the_soft_limits_with_the_result(ctl: MachineController) -> None:
+    """Checked with the contact assumed at Z-70 the program stays inside the travel; with the
+    contact at Z-50 it would go to X2000: an alarm, and the machine stays where it probed."""
+    _run(ctl, "G21 G90\nG0 Z-40\nG38.2 Z-70 F600\nG0 X[[#5063 + 70] * 100]\nM2\n")
+    assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 20.0), ctl.state_reason
+    run_to_idle_or_alarm(ctl)
+    (alarm,) = [a for a in ctl.active_alarms if a.source == "probe"]
+    assert "G38.2 (line 3): with the probe's result" in alarm.cause and "axis X" in alarm.cause
+    assert ctl.machine_position[0] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_probing_in_mdi_stops_at_the_contact(ctl: MachineController) -> None:
+    said = _messages(ctl)
+    assert ctl.mdi("G0 Z-45")
+    run_to_idle(ctl)
+    assert ctl.mdi("G38.2 Z-60 F60")
+    run_to_idle(ctl)
+    assert abs(ctl.machine_position[2] - SURFACE_Z) < 0.05
+    assert any("G38.2 (line 1): contact at" in m for m in said), said
+
+
+def test_a_machine_without_a_probe_refuses_probing_programs_with_their_place(
+        qapp, config_path: Path, state_dir: Path) -> None:
+    text = config_path.read_text().replace("drive = 2                      # axis index", "# drive = 2")
+    config_path.write_text(text)
+    ctl = make_controller(config_path, state_dir)
+    try:
+        errors: list = []
+        ctl.programErrors.connect(errors.append)
+        r = ctl.load_program("G21 F100\nG0 Z-1\nN30 G38.3 Z-5\nM2\n", wait=True)
+        assert not r and "needs a probe input" in r.reason
+        (issue,) = errors[0]
+        assert (issue.line, issue.col) == (3, 5)
+        r = ctl.mdi("G38.2 Z-5 F100")
+        assert not r and "needs a probe input" in r.reason
+    finally:
+        ctl.shutdown()
+
+
+def test_a_stop_during_the_probe_move_disarms_the_probe(ctl: MachineController) -> None:
+    _run(ctl, "G21 G90\nG0 Z-40\nG38.2 Z-70 F60\nM2\n")
+    assert ctl.run_until(lambda: ctl.prober.run is not None, 10.0)
+    assert ctl.stop()
+    run_to_idle(ctl)
+    assert ctl.prober.run is None
+    assert ctl.worker.snapshot().probe.latch.name == "OFF"
+    assert np.isfinite(ctl.machine_position[2])
