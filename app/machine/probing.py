@@ -19,7 +19,7 @@ that ends without the change is an alarm (the program stops there), as in LinuxC
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 

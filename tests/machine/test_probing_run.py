@@ -53,7 +53,8 @@ def test_the_probe_stops_at_the_contact_and_the_program_goes_on_from_its_result(
     z5063, tripped = (float(v) for v in re.findall(r"-?\d+\.\d+", debug[0]))
     step = FEED_MM_MIN / 60.0 * 0.001                  # travel in one 1 ms cycle
     assert tripped == 1.0
-    assert SURFACE_Z - 3 * step <= z5063 <= SURFACE_Z + 1e-4   # the actual position of the first cycle touching
+    # the actual position of the first cycle that reads the contact
+    assert SURFACE_Z - 3 * step <= z5063 <= SURFACE_Z + 1e-4
     # the operator is told where it touched
     assert any(m.startswith("G38.2 (line 3): contact at X10.0000 Y5.0000 Z-50.00") for m in said), said
     t = trace(ctl)
