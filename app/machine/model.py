@@ -145,6 +145,7 @@ class BusStatus:
     jitter_hist_bin_us: float = 0.0  # width of one bin of the cycle-start jitter histogram
     jitter_hist_counts: tuple[int, ...] = ()  # counts per bin from 0 us (last bin = overflow)
     jitter_max_us: float = 0.0
+    probe: str = ""  # the probe input (G38.x): "touching", "free", "" when the machine has none
 
 
 @dataclass(frozen=True, slots=True)

@@ -104,17 +104,27 @@ class StatusPoller:
             jitter_hist_bin_us=float(tm.histogram_bin_s * 1e6),
             jitter_hist_counts=tuple(tm.jitter_histogram),
             jitter_max_us=float(tm.jitter_max_s * 1e6),
+            probe=self._probe_text(snap),
         )
         self.emit_bus(status)
+
+    def _probe_text(self, snap: Any) -> str:
+        cfg = self.m.config.probe
+        inputs = tuple(getattr(snap, "digital_inputs", ()) or ())
+        if cfg.drive is None or cfg.drive >= len(inputs):
+            return ""
+        reads = inputs[cfg.drive] >> cfg.bit & 1
+        return "touching" if reads == cfg.touching_level else "free"
 
     def emit_bus(self, status: BusStatus) -> None:
         old = self.bus_status
         self.bus_status = status
-        if (old.state, old.drive_states, old.connected, old.late_cycles) != (
+        if (old.state, old.drive_states, old.connected, old.late_cycles, old.probe) != (
             status.state,
             status.drive_states,
             status.connected,
             status.late_cycles,
+            status.probe,
         ) or abs(old.buffer_level - status.buffer_level) > 50:
             self.m.busStateChanged.emit(status)
 

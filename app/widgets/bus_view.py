@@ -18,6 +18,11 @@ class BusView(QWidget):
         self.summary = QLabel()
         self.summary.setWordWrap(True)
         layout.addWidget(self.summary)
+        # the probe input as the drive reads it: wiring and level are checked here by touching
+        # the stylus by hand
+        self.probe = QLabel()
+        self.probe.setObjectName("probeState")
+        layout.addWidget(self.probe)
         self.table = QTableWidget(0, len(SLAVE_COLUMNS))
         self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.table.horizontalHeader().setStretchLastSection(True)
@@ -61,6 +66,9 @@ class BusView(QWidget):
             )
             for col, text in enumerate(values):
                 self.table.setItem(row, col, QTableWidgetItem(text))
+        probe = str(getattr(bus, "probe", "") or "")
+        self.probe.setText({"touching": tr("Probe input: touching"), "free": tr("Probe input: free")}.get(
+            probe, tr("Probe input: none ([probe] drive in the machine configuration)")))
         connected = tr("connected") if getattr(bus, "connected", False) else tr("not connected")
         self.summary.setText(tr("Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, "
                                 "period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}").format(

@@ -54,7 +54,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="246" />
+      <location filename="../../app/pages/program.py" line="261" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -104,7 +104,7 @@
       <translation>Veri yolu</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="65" />
+      <location filename="../../app/widgets/bus_view.py" line="73" />
       <source>Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}</source>
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="208" />
+      <location filename="../../app/pages/program.py" line="213" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -219,7 +219,7 @@
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="26" />
+      <location filename="../../app/widgets/bus_view.py" line="31" />
       <source>Cycle timing: start jitter histogram (µs)</source>
       <translation>Çevrim zamanlaması: başlangıç sapması histogramı (µs)</translation>
     </message>
@@ -259,7 +259,7 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="208" />
+      <location filename="../../app/pages/program.py" line="213" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
     </message>
@@ -324,7 +324,7 @@
       <translation>{0} içinde dosya adı:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="29" />
+      <location filename="../../app/pages/program.py" line="33" />
       <source>Find</source>
       <translation>Bul</translation>
     </message>
@@ -354,7 +354,7 @@
       <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="29" />
+      <location filename="../../app/pages/program.py" line="33" />
       <source>Go to line</source>
       <translation>Satıra git</translation>
     </message>
@@ -471,7 +471,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Satır {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="30" />
+      <location filename="../../app/pages/program.py" line="34" />
       <source>Load into machine</source>
       <translation>Makineye yükle</translation>
     </message>
@@ -541,7 +541,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="28" />
+      <location filename="../../app/pages/program.py" line="32" />
       <source>New</source>
       <translation>Yeni</translation>
     </message>
@@ -596,7 +596,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="28" />
+      <location filename="../../app/pages/program.py" line="32" />
       <source>Open…</source>
       <translation>Aç…</translation>
     </message>
@@ -671,6 +671,21 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Önizleme</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/bus_view.py" line="70" />
+      <source>Probe input: free</source>
+      <translation>Prob girişi: serbest</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="71" />
+      <source>Probe input: none ([probe] drive in the machine configuration)</source>
+      <translation>Prob girişi: yok (makine yapılandırmasında [probe] drive)</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="70" />
+      <source>Probe input: touching</source>
+      <translation>Prob girişi: temas ediyor</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/bus_view.py" line="11" />
       <source>Product</source>
       <translation>Ürün</translation>
@@ -738,7 +753,7 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="246" />
+      <location filename="../../app/pages/program.py" line="261" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
@@ -803,17 +818,17 @@ BIRAK</translation>
       <translation>Örnek sayısı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="28" />
+      <location filename="../../app/pages/program.py" line="32" />
       <source>Save</source>
       <translation>Kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="28" />
+      <location filename="../../app/pages/program.py" line="32" />
       <source>Save as…</source>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="277" />
+      <location filename="../../app/pages/program.py" line="292" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -1083,7 +1098,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="206" />
+      <location filename="../../app/pages/program.py" line="211" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -1163,7 +1178,7 @@ BIRAK</translation>
       <translation>{0} ekseni {1} s içinde OPERATION ENABLED durumuna geçmedi (sürücü durumu {2})</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="64" />
+      <location filename="../../app/widgets/bus_view.py" line="72" />
       <source>connected</source>
       <translation>bağlı</translation>
     </message>
@@ -1263,7 +1278,7 @@ BIRAK</translation>
       <translation>yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="64" />
+      <location filename="../../app/widgets/bus_view.py" line="72" />
       <source>not connected</source>
       <translation>bağlı değil</translation>
     </message>
@@ -1398,7 +1413,7 @@ BIRAK</translation>
       <translation>takım değişimi (M06, satır {0}): {1} takımını takın ve çevrim başlata basın</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="60" />
+      <location filename="../../app/widgets/bus_view.py" line="65" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
     </message>
@@ -1418,12 +1433,12 @@ BIRAK</translation>
       <translation>{0} (denetleniyor…)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="164" />
+      <location filename="../../app/pages/program.py" line="169" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="207" />
+      <location filename="../../app/pages/program.py" line="212" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>
@@ -1433,7 +1448,7 @@ BIRAK</translation>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="128" />
+      <location filename="../../app/pages/program.py" line="133" />
       <source>{0} lines: shown read-only (edit programs of over {1} lines in CAM or on a PC)</source>
       <translation>{0} satır: yalnızca okunur gösteriliyor ({1} satırdan uzun programları CAM'de ya da bir bilgisayarda düzenleyin)</translation>
     </message>

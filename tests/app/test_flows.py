@@ -137,3 +137,24 @@ def test_mdi_line_on_the_real_controller_refuses_with_the_reason(demo_window, re
     assert reason in demo_window._message.text()
     assert page.mdi_line.text() == block
     assert real_controller.state.value == "idle" and not real_controller.spindle.on
+
+
+def test_probing_from_the_mdi_line_shows_the_probe_and_where_it_touched(demo_window, real_controller) -> None:
+    """The demo's simulated stylus touches at machine Z -50: the Diagnostics page shows the
+    input free, then touching after a G38.2 typed on the Manual page; the message says where."""
+    c = real_controller
+    probe = demo_window.page("diagnostics").bus.probe
+    page = demo_window.page("manual")
+    page.mdi_line.setText("G0 Z-45")
+    page.send_mdi()
+    assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=20)
+    c.advance(0.1)
+    assert probe.text() == "Probe input: free"
+    page.mdi_line.setText("G38.2 Z-60 F120")
+    page.send_mdi()
+    assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=20)
+    c.advance(0.1)
+    assert probe.text() == "Probe input: touching"
+    assert "G38.2 (line 1): contact at X" in demo_window._message.text() + " ".join(
+        a.cause for a in c.alarms)
+    assert -50.1 < c.machine_position[2] <= -50.0

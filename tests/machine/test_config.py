@@ -50,6 +50,11 @@ def test_save_is_atomic_and_keeps_the_previous_file(config_path: Path) -> None:
     (lambda t: t.replace('method = "set_here"', 'method = "magic"'), ["method", "magic"]),
     (lambda t: t.replace('kind = "sim"', 'kind = "can"'), ["kind", "can"]),
     (lambda t: re.sub(r"lead_s = [0-9.]+", "lead_s = 5.0", t), ["lead_s", "5.0"]),
+    # the probe: an axis index the machine has, a bit of 0x60FD, an axis for the simulated surface
+    (lambda t: re.sub(r"(\[probe\][^\n]*\ndrive = )2", r"\g<1>3", t), ["probe.drive", "3", "axis count 3"]),
+    (lambda t: t.replace("bit = 16", "bit = 32"), ["probe.bit", "32"]),
+    (lambda t: t.replace('sim_axis = "Z"', 'sim_axis = "A"'), ["probe.sim_axis", "A is not an axis"]),
+    (lambda t: t.replace("touching_level = 1", "touching_level = 2"), ["touching_level", "2"]),
 ])
 def test_invalid_values_are_named(config_path: Path, edit, words) -> None:
     cfg = load_config(config_path)
