@@ -51,10 +51,12 @@ from planner.program import (
     Arc,
     Event,
     EventKind,
+    InputRequest,
     MoveKind,
     ProbeRequest,
     ProbeResult,
     Program,
+    WaitMode,
     _make_arc,
     spiral_length_mm,
 )
@@ -90,6 +92,8 @@ _CYCLES = frozenset({730, 740, 810, 820, 830, 840, 850, 860, 890})
 _PROBES = frozenset({382, 383, 384, 385})
 #: #5061-#5069: where the last probe move's input changed (program coordinates); #5070: 1 if it did
 _P_PROBE, _P_PROBE_TRIPPED = 5061, 5070
+#: #5399: the value M66 read (-1 when the wait timed out)
+_P_INPUT = 5399
 _CYCLE_NEEDS_P = frozenset({820, 860, 890})
 _CYCLE_NEEDS_Q = frozenset({730, 830})
 _CYCLE_TAKES_P = _CYCLE_NEEDS_P | {740, 840}
@@ -132,9 +136,9 @@ def system_base(code: int) -> int:
     """#5221 for G54, #5241 for G55 ... #5381 for G59.3."""
     return 5221 + 20 * _SYSTEMS.index(code)
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8,
-            62: 5, 63: 5, 64: 5, 65: 5, 70: 11, 71: 11, 72: 11, 73: 11, **dict.fromkeys(range(100, 200), 10)}
-_M_UNSUPPORTED = {66: "M66 waits on a digital or analog input, which this control does not read yet",
-                  19: "M19 orients the spindle, which this machine's spindle cannot",
+            62: 5, 63: 5, 64: 5, 65: 5, 66: 5, 70: 11, 71: 11, 72: 11, 73: 11,
+            **dict.fromkeys(range(100, 200), 10)}
+_M_UNSUPPORTED = {19: "M19 orients the spindle, which this machine's spindle cannot",
                   67: "M67 sets an analog output synchronised with motion; there are no analog outputs",
                   68: "M68 sets an analog output; there are no analog outputs"}
 _WORD_LETTERS = set("FSTPQRIJKDHL")
@@ -209,7 +213,8 @@ class _Interpreter:
                  tools: ToolTable | None = None, tool_in_spindle: int = 0,
                  spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = (),
                  parameters: dict[int, float] | None = None,
-                 probe_results: Sequence[ProbeResult | None] = ()):
+                 probe_results: Sequence[ProbeResult | None] = (),
+                 input_results: Sequence[float | None] = ()):
         if machine is None:
             from planner.machine import MachineSpec
 
@@ -348,6 +353,10 @@ class _Interpreter:
         # rest is assumed: contact at the programmed end point)
         self.probes: list[ProbeRequest] = []
         self.probe_results = tuple(probe_results)
+        # M66: the waits read so far and the values the machine read on the first ones
+        self.inputs_read: list[InputRequest] = []
+        self.input_results = tuple(input_results)
+        self.inputs: frozenset[int] = frozenset(getattr(machine, "inputs", ()) or ())
 
     # ------------------------------------------------------------------ driver
     def run(self, text: str, utf8: bytes | None = None) -> Program:
@@ -1046,6 +1055,39 @@ class _Interpreter:
                                              "M72: coolant as saved"))
         self.note_modal()
 
+    def wait_input(self, vals: dict[str, float], line_no: int) -> None:
+        """M66 P L Q as LinuxCNC 2.9 reads it: the motion stops, digital input P is read now
+        (L0) or waited for (L1 rise, L2 fall, L3 high, L4 low) for at most Q seconds, and #5399
+        holds its value (-1 after the timeout). The machine's value is known for the first
+        ``input_results``; for the others the awaited value is assumed."""
+        p = vals.get("P")
+        if p is None or round(p) < 0:
+            raise _BlockError("M66 needs a P word (the number of a digital input)", "M66")
+        number = round(p)
+        if number not in self.inputs:
+            known = ", ".join(f"P{k}" for k in sorted(self.inputs)) or "none: add [[inputs]]"
+            raise _BlockError(f"M66 P{number}: no such digital input on this machine ({known})", "P")
+        mode_n = round(vals.get("L", 0.0))
+        if not 0 <= mode_n <= 4:
+            raise _BlockError(f"M66 L{mode_n}: the wait mode is 0 (now), 1 (rise), 2 (fall), 3 (high) or "
+                              "4 (low)", "L")
+        timeout = vals.get("Q", 0.0)
+        if mode_n > 0 and timeout <= 0.0:
+            raise _BlockError("M66: zero timeout with a wait mode other than immediate (give Q, seconds)",
+                              "Q" if "Q" in vals else "L")
+        if self.comp.side != 0:
+            raise _BlockError("cannot wait for a digital input (M66) with cutter radius compensation on",
+                              "M66")
+        self.comp.stop(self)
+        k = len(self.inputs_read)
+        value = self.input_results[k] if k < len(self.input_results) else None
+        request = InputRequest(line_no, number, WaitMode(mode_n), timeout if mode_n else 0.0,
+                               value is not None)
+        self.inputs_read.append(request)
+        self.events.append(Event(EventKind.INPUT, line_no, len(self.out) - 1, float(k),
+                                 f"M66 P{number}"))
+        self.params.numbered[_P_INPUT] = float(request.assumed_value if value is None else value)
+
     def output_event(self, number: int, on: bool, line_no: int, after: int, text: str) -> None:
         """An OUTPUT event: value = number for on, -(number + 1) for off."""
         self.events.append(Event(EventKind.OUTPUT, line_no, after, float(number if on else -(number + 1)),
@@ -1186,6 +1228,7 @@ class _Interpreter:
             blend_tolerance=tuple(self.blend_changes),
             naive_cam_tolerance=tuple(self.naive_changes),
             probes=tuple(self.probes),
+            inputs=tuple(self.inputs_read),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1332,6 +1375,8 @@ class _Interpreter:
                     )
                 axis_words.append(letter)
             elif letter not in _WORD_LETTERS:
+                if letter == "E" and mgroups.get(5) == 66:
+                    raise _BlockError("M66 E (an analog input): this machine has no analog inputs", "E")
                 if letter in "UVW":
                     raise _BlockError(
                         f"axis {letter} is not on this machine (axes: {' '.join(self.axes)})", letter
@@ -1382,12 +1427,14 @@ class _Interpreter:
                                 or motion in _CYCLE_TAKES_P or 5 in mgroups):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64, G82, G84, G86, G89)",
                               "P")
-        if "Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q:
-            raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83)", "Q")
+        if ("Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q
+                and mgroups.get(5) != 66):
+            raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83, M66)", "Q")
         if "D" in vals and groups.get(7) not in (410, 420, 411, 421):
             raise _BlockError("D word with no G41, G41.1, G42 or G42.1 to use it", "D")
-        if "L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421):
-            raise _BlockError("L word with no canned cycle or G10 to use it", "L")
+        if ("L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421)
+                and mgroups.get(5) != 66):
+            raise _BlockError("L word with no canned cycle, G10 or M66 to use it", "L")
         if is_cycle:
             for letter in axis_words:
                 if self.rotary[self.axis_index[letter]]:
@@ -1465,6 +1512,9 @@ class _Interpreter:
             ev.append(Event(EventKind.COOLANT, line_no, after, {7: 1.0, 8: 2.0, 9: 0.0}[c], f"M0{c}"))
             self.coolant = 0 if c == 9 else self.coolant | (1 if c == 7 else 2)
         m5 = mgroups.get(5)
+        if m5 == 66:
+            self.wait_input(vals, line_no)
+            m5 = None
         if m5 is not None:            # M62/M64 on, M63/M65 off (all at this point of the path)
             self.comp_refuses("set a digital output", f"M{m5}")
             p = vals.get("P")
@@ -2237,6 +2287,7 @@ def parse_program(
     progress: Callable[[int, int], None] | None = None,
     utf8: bytes | None = None,
     probe_results: Sequence[ProbeResult | None] = (),
+    input_results: Sequence[float | None] = (),
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -2255,10 +2306,11 @@ def parse_program(
     them instead of encoding the text again.
     ``probe_results``: what the machine's probe did on the program's G38.x moves, in order
     (``Program.probes``; None for one not run, as before a run from a later line); the others
-    are read as touching at their end point.
+    are read as touching at their end point. ``input_results``: the values M66 read, the same
+    way (-1: the wait timed out); the others are read as the awaited value.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
-                          spindle, subroutine_dirs, parameters, probe_results)
+                          spindle, subroutine_dirs, parameters, probe_results, input_results)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         interp.progress = progress
         return interp.run(text, utf8)

@@ -74,10 +74,16 @@ class MachineSpec:
     # message, output number, on)
     output_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
     mcodes: dict[int, tuple[str, str, int, bool]] = field(default_factory=dict)
+    # digital inputs (M66): number -> (drive index, bit of its 0x60FD, name)
+    input_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
 
     @property
     def outputs(self) -> tuple[int, ...]:
         return tuple(sorted(self.output_bits))
+
+    @property
+    def inputs(self) -> tuple[int, ...]:
+        return tuple(sorted(self.input_bits))
 
     def subroutine_paths(self) -> tuple[str, ...]:
         """The subroutine folders, relative ones taken from the configuration file's folder."""
@@ -210,6 +216,14 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
             raise loc.fail(("outputs", i, "bit"),
                            f"bit {o['bit']} of drive {o['drive']} is already an output")
         output_bits[o["number"]] = (o["drive"], o["bit"], o["name"])
+    input_bits: dict[int, tuple[int, int, str]] = {}
+    for i, o in enumerate(valid["inputs"]):
+        if o["number"] in input_bits:
+            raise loc.fail(("inputs", i, "number"), f"input {o['number']} is defined twice")
+        if o["drive"] >= len(axes):
+            raise loc.fail(("inputs", i, "drive"),
+                           f"{o['drive']} must be below the axis count {len(axes)}")
+        input_bits[o["number"]] = (o["drive"], o["bit"], o["name"])
     mcodes: dict[int, tuple[str, str, int, bool]] = {}
     for i, mc in enumerate(valid["mcodes"]):
         if mc["code"] in mcodes:
@@ -220,7 +234,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
                            f"table ({', '.join(map(str, sorted(output_bits))) or 'none defined'})")
         mcodes[mc["code"]] = (mc["action"], mc["message"], -1 if out is None else out, mc["on"])
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
-                       work_offsets=offsets, config_dir=config_dir, output_bits=output_bits, mcodes=mcodes)
+                       work_offsets=offsets, config_dir=config_dir, output_bits=output_bits, mcodes=mcodes,
+                       input_bits=input_bits)
 
 
 def load_machine(path: str | Path) -> MachineSpec:

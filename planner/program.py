@@ -25,6 +25,7 @@ __all__ = [
     "Arc",
     "Event",
     "EventKind",
+    "InputRequest",
     "Move",
     "MoveKind",
     "ProbeRequest",
@@ -34,6 +35,7 @@ __all__ = [
     "arc_length_mm",
     "arc_param_at_length",
     "spiral_length_mm",
+    "WaitMode",
 ]
 
 
@@ -249,6 +251,9 @@ class EventKind(enum.Enum):
     # and read at rest after it; what follows depends on the result, so the run stops at both
     PROBE_START = "probe_start"
     PROBE = "probe"
+    # M66 (value: index into Program.inputs): the motion stops, the input is read (waited for)
+    # there; what follows depends on it
+    INPUT = "input"
 
 
 STOPPING_EVENTS = frozenset(
@@ -265,8 +270,36 @@ STOPPING_EVENTS = frozenset(
         EventKind.TOOL_DATA,
         EventKind.PROBE_START,
         EventKind.PROBE,
+        EventKind.INPUT,
     }
 )
+
+
+class WaitMode(enum.IntEnum):
+    """M66 L: how the input is waited for."""
+
+    IMMEDIATE = 0   # read it now
+    RISE = 1        # until it goes from 0 to 1
+    FALL = 2        # until it goes from 1 to 0
+    HIGH = 3        # until it reads 1
+    LOW = 4         # until it reads 0
+
+
+@dataclass(frozen=True, slots=True)
+class InputRequest:
+    """One M66 of a program: digital input ``number`` waited for as ``mode`` for at most
+    ``timeout_s`` (#5399 then reads -1), as the interpreter read it."""
+
+    line: int
+    number: int
+    mode: WaitMode
+    timeout_s: float
+    known: bool            # read with the machine's value; else the awaited value was assumed
+
+    @property
+    def assumed_value(self) -> float:
+        """What the check reads: the awaited level (0 for an immediate read)."""
+        return 1.0 if self.mode in (WaitMode.RISE, WaitMode.HIGH) else 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -356,6 +389,9 @@ class Program:
     # moves after the first one not ``known`` assume the contact at its end point: the run
     # stops there and reads the rest again with the machine's result.
     probes: tuple[ProbeRequest, ...] = ()
+    # M66 waits in program order (INPUT events name them by index), the same way: the moves
+    # after the first one not ``known`` assume the awaited value
+    inputs: tuple[InputRequest, ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

@@ -116,7 +116,7 @@ def program_from_moves(template: Program, moves: list[Move], events: list[Event]
                    start_position=np.asarray(start_position, dtype=float).copy(),
                    move_offsets=None, line_count=template.line_count,
                    parameter_sets=template.parameter_sets, tool_sets=template.tool_sets,
-                   probes=template.probes)
+                   probes=template.probes, inputs=template.inputs)
 
 
 def remaining_program(program: Program, move_index: int, u_mm: float = 0.0) -> Program:

@@ -100,6 +100,13 @@ MACHINE_FILE = Table("", tables=(
         Key("bit", "int", REQUIRED, 0, 31),
         Key("name", "str", ""),
     ), array=True),
+    # digital inputs a program reads or waits for (M66 P<number>): a bit of a drive's 0x60FD
+    Table("inputs", (
+        Key("number", "int", REQUIRED, 0, 63),
+        Key("drive", "int", REQUIRED, 0, 63),
+        Key("bit", "int", REQUIRED, 0, 31),
+        Key("name", "str", ""),
+    ), array=True),
     # user M-codes M100-M199: what each does on this machine
     Table("mcodes", (
         Key("code", "int", REQUIRED, 100, 199),

@@ -350,6 +350,9 @@ def config_to_toml(config: MachineConfig) -> str:
     for number, (drive, bit, name) in sorted(m.output_bits.items()):
         out += ["[[outputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",
                 f"name = {_fmt(name)}", ""]
+    for number, (drive, bit, name) in sorted(m.input_bits.items()):
+        out += ["[[inputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",
+                f"name = {_fmt(name)}", ""]
     for code, (action, message, output, on) in sorted(m.mcodes.items()):
         out += ["[[mcodes]]", f"code = {code}", f"action = {_fmt(action)}", f"message = {_fmt(message)}"]
         if output >= 0:

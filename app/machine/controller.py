@@ -75,6 +75,7 @@ from app.machine.config import MachineConfig
 from app.machine.connection import RAMP_DOWN_TIMEOUT_S, Connection
 from app.machine.feeder import Streamer
 from app.machine.homing import Positions
+from app.machine.inputs import InputWaiter, Prober
 from app.machine.jobs import SentLimits
 from app.machine.manual import JOG_INCREMENTS, ManualMotion
 from app.machine.model import (
@@ -93,7 +94,6 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.outputs import DigitalOutputs
-from app.machine.probing import Prober
 from app.machine.program_load import ProgramLoader
 from app.machine.program_run import ProgramRunner
 from app.machine.spindle import SpindleControl
@@ -174,6 +174,7 @@ class MachineController(QObject):
         self.loader = ProgramLoader(self)
         self.stream = Streamer(self)
         self.prober = Prober(self)
+        self.waiter = InputWaiter(self)
         self.manual = ManualMotion(self)
         self.poller = StatusPoller(self)
         self.conn.timer.timeout.connect(self.poller.poll)

@@ -161,7 +161,7 @@ class Streamer:
         job.spin_ups = spin_ups
         info = self.m.loader.program_info
         if kind is Activity.PROGRAM and info is not None:
-            job.reread = info.reread        # G38.x: the program is read again with each result
+            job.reread = info.reread        # G38.x, M66: the program is read again with each result
         return job
 
     def follow(self, job: Job, rest: Program, origin: tuple[Program, int, float]) -> Job:
@@ -180,7 +180,7 @@ class Streamer:
         new.carried_limits = merge_max(job.carried_limits, job.meter.final())
         new.estimated_s = job.estimated_s
         new.serial_base = job.serial_base
-        new.reread, new.probe_results = job.reread, job.probe_results
+        new.reread, new.probe_results, new.wait_results = job.reread, job.probe_results, job.wait_results
         self.job = new
         if self.m.conn.worker_mode != "manual":
             self.feed()
@@ -451,6 +451,8 @@ class Streamer:
                 self.release(job)
         elif kind == "probe":                    # the probe move's end point reached
             self.m.prober.finish(job)
+        elif kind == "input":                    # M66: read or waited for here, at rest
+            self.m.waiter.at_pause(job, int(p.value), snap)
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))
             self.release(job)
@@ -555,6 +557,7 @@ class Streamer:
                 return None
             job.aborted = True
             self.m.prober.cancel()
+            self.m.waiter.cancel()
             if self.m.worker is not None and not completed:
                 try:
                     self.m.worker.flush()

@@ -86,10 +86,12 @@ class Job:
         self.spin_ups: list[tuple[float, float]] = []
         self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.origin: tuple[Program, int, float] | None = None
-        # G38.x: reads the whole program again with the probe results (None: the job cannot
-        # probe), and the results so far by probe index (None: not run in this job)
-        self.reread: Callable[[tuple[ProbeResult | None, ...]], Program] | None = None
+        # G38.x and M66: reads the whole program again with the probe results and the values of
+        # the inputs (None: the job cannot), and those so far by index (None: not run in this job)
+        self.reread: Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program] | None \
+            = None
         self.probe_results: tuple[ProbeResult | None, ...] = ()
+        self.wait_results: tuple[float | None, ...] = ()
         self.single_block = False
         self.carried_limits: dict[str, float] = {}
         self.tau_offset_s = 0.0

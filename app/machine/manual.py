@@ -190,7 +190,8 @@ class ManualMotion:
             return self.m.states.ok("mdi")
         try:
             job = self.m.stream.make_job(Activity.MDI, prog, "MDI")
-            job.reread = lambda results: read(probe_results=results)   # G38.x typed in MDI
+            # G38.x or M66 typed in MDI
+            job.reread = lambda probes, waits: read(probe_results=probes, input_results=waits)
         except PlannerError as exc:
             return self.m.states.refuse("mdi", f"planner: {exc}")
         self.m.stream.start_job(job)
@@ -206,6 +207,9 @@ _NOT_IN_MDI = {
     EventKind.TOOL: "T selects the tool for a program's M6; in MDI say which tool is in the spindle with "
                     "M61 Q<n>",
     EventKind.COOLANT: "M7/M8/M9: no coolant output is configured on this machine",
+    # an MDI block is read on its own: #5399 would end with it (the Diagnostics page shows the inputs)
+    EventKind.INPUT: "M66 reads an input for the program that follows it; an MDI block keeps no "
+                     "value for the next one (the Diagnostics page shows the inputs)",
 }
 
 

@@ -199,8 +199,9 @@ class ProgramInfo:
     # G64 P: corners blended and fillets eased, and the largest distance from the programmed path
     blends: int = 0
     path_deviation_mm: float = 0.0
-    # G38.x: the program read again, from the same text and starting state, with the probe
-    # results (``planner.interpreter.parse_program(probe_results=)``), blended as ``program``
+    # G38.x, M66: the program read again, from the same text and starting state, with the probe
+    # results and the inputs' values (``planner.interpreter.parse_program(probe_results=,
+    # input_results=)``), blended as ``program``
     reread: object = field(default=None, repr=False, compare=False)
 
 

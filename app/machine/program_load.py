@@ -146,11 +146,12 @@ def check_text(
         req.read_file = False
     text, name = req.text, req.name
 
-    def reread(results: tuple[ProbeResult | None, ...]) -> Program:
-        """The same program from the same start, read with the probe results (G38.x)."""
+    def reread(probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...]) -> Program:
+        """The same program from the same start, read with the probe results (G38.x) and the
+        values of the inputs (M66)."""
         again = parse_program(text, name, machine=machine, start_position=req.start_position,
                               tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                              parameters=req.parameters, probe_results=results)
+                              parameters=req.parameters, probe_results=probes, input_results=waits)
         return blend_program(again, machine) if machine.planner.mode == "lookahead" else again
 
     try:
@@ -216,7 +217,7 @@ def check_text(
         line_starts=starts,
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
-        reread=reread if program.probes else None,
+        reread=reread if program.probes or program.inputs else None,
     )
 
 

@@ -498,7 +498,7 @@ def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[Pa
              EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
              EventKind.SPINDLE: "spindle", EventKind.END: "end", EventKind.TOOL_SET: "tool_set",
              EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data",
-             EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe"}
+             EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe", EventKind.INPUT: "input"}
     extra: list[PausePoint] = []
     for ev in prog.events:
         if ev.kind not in kinds or ev.after_move >= n:

@@ -123,7 +123,7 @@ def test_the_rest_is_checked_against_the_soft_limits_with_the_result(ctl: Machin
     assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 20.0), ctl.state_reason
     run_to_idle_or_alarm(ctl)
     (alarm,) = [a for a in ctl.active_alarms if a.source == "probe"]
-    assert "G38.2 (line 3): with the probe's result" in alarm.cause and "axis X" in alarm.cause
+    assert "G38.2 (line 3): with the result" in alarm.cause and "axis X" in alarm.cause
     assert ctl.machine_position[0] == pytest.approx(0.0, abs=1e-6)
 
 

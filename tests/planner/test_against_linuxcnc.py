@@ -1,7 +1,8 @@
 """Random programs mixing tools (G43, G43.1, G10 L1/L10), offsets (G10 L2 with rotation, G54/G55,
 G92, G52, G53, G28/G30), cycles, subroutines, loops, conditions, parameters and expressions,
 modal memory (M70/M72), cutter compensation (G41.1/G42.1 and G41/G42 from the table), arcs in
-every plane with turns and absolute centres, inverse time, polar words and inch blocks, read by
+every plane with turns and absolute centres, inverse time, polar words, inch blocks, probes
+(G38.2/G38.3) and input reads (M66 L0), read by
 LinuxCNC's own interpreter (``rs274`` of Debian's linuxcnc-uspace 2.9.0~pre1) and by this one:
 every motion call equal
 (end points, arc centres and turns, in program coordinates), or both refuse the program."""
@@ -9,6 +10,7 @@ every motion call equal
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -17,6 +19,7 @@ from hypothesis import strategies as st
 
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
+from planner.machine import MachineSpec
 from planner.tools import parse_tbl
 from tests.planner.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
 
@@ -26,6 +29,8 @@ pytestmark = pytest.mark.skipif(
 
 TOOLS = parse_tbl("T1 P1 Z10 D6\nT2 P2 Z25.5 D3\nT3 P3 Z-4 D10\n")
 SUB = "o100 sub\nG91 G1 X#1 Y#2\nG90\no100 endsub\n"
+# digital input 0 for M66 (the stand-alone rs274 reads 0 from it, as the check assumes of L0)
+MACHINE = replace(MachineSpec.default(), input_bits={0: (0, 16, "")})
 
 
 def _n(v: float) -> str:
@@ -49,7 +54,7 @@ def programs(draw) -> str:
     kinds = draw(st.lists(st.sampled_from(
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
-         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe"]), min_size=1, max_size=10))
+         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input"]), min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
         # its program coordinates differ from the last call's, so the oracle cannot drop it
@@ -171,6 +176,9 @@ def programs(draw) -> str:
             else:
                 out.append(f"G38.3 X{_n(x + draw(st.integers(1, 50)) / 10.0)} Y{_n(draw(val))}")
             goto()
+        elif kind == "input":
+            x = x + 1.0
+            out.append(f"M66 P0 L0\nG1 X[{_n(x)} + #5399]")
         elif kind == "g53":
             out.append(f"G53 G0 Z{_n(draw(st.integers(0, 50).map(float)))}")
             goto()
@@ -259,7 +267,7 @@ def _close(a: tuple, b: tuple) -> bool:
 def test_random_programs_read_as_linuxcnc_reads_them(text: str) -> None:
     theirs = run_linuxcnc(text, TOOLS)
     try:
-        program = parse_program(text, name="p.ngc", tools=TOOLS)
+        program = parse_program(text, name="p.ngc", tools=TOOLS, machine=MACHINE)
         ours = _without_short_moves(project_motion(program), program)
     except ProgramError as exc:
         assert theirs.error, f"only this interpreter refuses: {exc}\n{text}"

@@ -42,7 +42,7 @@ def test_user_m_codes_do_what_the_machine_says() -> None:
     ("M110\n", 1, "M110 is a user M-code this machine does not define (add it to [[mcodes]]"),
     ("M64 P7\n", 5, "M64 needs P with a configured output number (P1, P2)"),
     ("M64\n", 1, "M64 needs P"),
-    ("M66 P1 L3\n", 1, "M66 is not supported (M66 waits on a digital or analog input"),
+    ("M66 P1 L0\n", 5, "M66 P1: no such digital input on this machine (none: add [[inputs]])"),
     ("M64 M65 P2\n", 5, "same modal group"),
     ("M101 M102\n", 6, "same modal group"),
 ])
