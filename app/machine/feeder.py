@@ -164,10 +164,11 @@ class Streamer:
             job.reread = info.reread        # G38.x, M66: the program is read again with each result
         return job
 
-    def follow(self, job: Job, rest: Program, origin: tuple[Program, int, float]) -> Job:
+    def follow(self, job: Job, rest: Program, origin: tuple[Program, int, float], held: bool = False) -> Job:
         """At rest on the path: run ``rest`` (what is left of the program from here, planned
-        anew) in place of ``job``, as the same run (time, progress, trace, limits). Raises
-        PlannerError when the rest cannot be planned (``job`` is then unchanged)."""
+        anew) in place of ``job``, as the same run (time, progress, trace, limits); ``held``:
+        it waits for cycle start (the operator's feed hold). Raises PlannerError when the rest
+        cannot be planned (``job`` is then unchanged)."""
         new = self.make_job(job.kind, rest, job.name,
                             single_block=self.m.run.single_block and job.kind is Activity.PROGRAM)
         info = self.m.loader.program_info
@@ -181,6 +182,7 @@ class Streamer:
         new.estimated_s = job.estimated_s
         new.serial_base = job.serial_base
         new.reread, new.probe_results, new.wait_results = job.reread, job.probe_results, job.wait_results
+        new.executor.hold = held
         self.job = new
         if self.m.conn.worker_mode != "manual":
             self.feed()

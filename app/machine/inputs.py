@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from app.machine.model import MachineState
 from planner.errors import PlannerError, ProgramError
 from planner.program import EventKind, InputRequest, ProbeRequest, ProbeResult, Program, WaitMode
 from planner.resume import program_from_moves
@@ -211,7 +212,9 @@ def continue_after(m: MachineController, job: Job, kind: EventKind, index: int, 
         m.stream.finish_now(job, rest)
         return
     try:
-        new = m.stream.follow(job, rest, (full, len(full.moves) - len(rest.moves), 0.0))
+        # after an operator's feed hold, the rest waits for cycle start
+        new = m.stream.follow(job, rest, (full, len(full.moves) - len(rest.moves), 0.0),
+                              held=m.states.state is MachineState.HOLD)
     except PlannerError as exc:
         fail(f"{where}: planner: {exc}")
         return

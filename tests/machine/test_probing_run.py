@@ -163,3 +163,38 @@ def test_a_stop_during_the_probe_move_disarms_the_probe(ctl: MachineController) 
     assert ctl.prober.run is None
     assert ctl.worker.snapshot().probe.latch.name == "OFF"
     assert np.isfinite(ctl.machine_position[2])
+
+
+def test_a_feed_hold_during_the_probe_move_holds_and_cycle_start_probes_on(ctl: MachineController) -> None:
+    """Held just before the surface: the stop along the path crosses it, so the contact comes
+    while holding. The program is read again with the result, but nothing moves until cycle
+    start, and then it goes on from the contact."""
+    said = _messages(ctl)
+    _run(ctl, PROBE_Z)
+    assert ctl.run_until(lambda: ctl.reference_position[2] < SURFACE_Z + 0.05, 20.0)
+    assert ctl.feed_hold()
+    ctl.advance(0.5)
+    assert ctl.state is MachineState.HOLD
+    held = ctl.reference_position
+    assert held[2] < SURFACE_Z                                  # stopped past the surface
+    ctl.advance(1.0)
+    assert ctl.reference_position == held                       # the rest waits for cycle start
+    assert ctl.resume()
+    run_to_idle(ctl)
+    assert ctl.last_run is not None and ctl.last_run.completed
+    debug = [m for m in said if m.startswith("touched")]
+    z5063 = float(debug[0].split()[1])
+    assert ctl.machine_position[2] == pytest.approx(z5063 + 5.0, abs=1e-3)
+
+
+def test_a_feed_hold_before_the_contact_keeps_the_probe_armed(ctl: MachineController) -> None:
+    _run(ctl, PROBE_Z)
+    assert ctl.run_until(lambda: ctl.prober.run is not None and ctl.reference_position[2] < -45.0, 20.0)
+    assert ctl.feed_hold()
+    ctl.advance(0.5)
+    assert ctl.state is MachineState.HOLD and ctl.prober.run is not None
+    assert ctl.reference_position[2] > SURFACE_Z
+    assert ctl.resume()
+    run_to_idle(ctl)
+    assert ctl.last_run is not None and ctl.last_run.completed
+    assert ctl.machine_position[0] == pytest.approx(20.0, abs=1e-3)
