@@ -102,13 +102,22 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
     # (by the PROBE event, which follows the move when blending renumbers the moves)
     probe_targets = {e.after_move: program.probes[int(e.value)].target for e in program.events
                      if e.kind is EventKind.PROBE and program.probes[int(e.value)].move_index >= 0}
+    taps = set(program.taps)
+    back_out = {i + 1 for i in taps}
     for i, move in enumerate(program.moves):
         yield from offsets_before.pop(i, ())
+        if i in back_out:                   # G33.1 back out: part of its RIGID_TAP call
+            continue
         end = move.end.tolist()
         off = move_offsets[i].tolist() if move_offsets is not None else [0.0] * len(end)
         spec = rotated[i] if rotated is not None else None
         wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
         arc = move.arc
+        if i in taps:
+            end = move.end.tolist()
+            wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
+            yield {"line": move.line, "call": "rigid_tap", "args": wcs}
+            continue
         if probe_targets and i in probe_targets:
             end = list(probe_targets[i])
             wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]

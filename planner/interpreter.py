@@ -72,7 +72,7 @@ _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dro
 # Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
 _G_GROUP = {
     40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0, 921: 0, 922: 0, 923: 0,
-    0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1,
+    0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1, 331: 1,
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
     901: 4, 911: 4,
@@ -105,7 +105,7 @@ _PECK_CLEARANCE_MM = 0.254
 _MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
     50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
-    80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion", 331: "G33.1 rigid tapping",
+    80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion: this spindle has no encoder",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
@@ -353,6 +353,7 @@ class _Interpreter:
         # rest is assumed: contact at the programmed end point)
         self.probes: list[ProbeRequest] = []
         self.probe_results = tuple(probe_results)
+        self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
         # M66: the waits read so far and the values the machine read on the first ones
         self.inputs_read: list[InputRequest] = []
         self.input_results = tuple(input_results)
@@ -1229,6 +1230,7 @@ class _Interpreter:
             naive_cam_tolerance=tuple(self.naive_changes),
             probes=tuple(self.probes),
             inputs=tuple(self.inputs_read),
+            taps=tuple(self.taps),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1419,7 +1421,15 @@ class _Interpreter:
             )
         is_arc = motion in (20, 30)
         is_cycle = motion in _CYCLES
+        if motion == 331:
+            if "K" not in vals:
+                raise _BlockError("G33.1 needs a K word (the thread pitch, length per turn)", "G33.1"
+                                  if g1 == 331 else "K")
+            if "F" in vals:
+                raise _BlockError("F word with G33.1: the feed is the pitch K times the spindle speed", "F")
         for letter in ("I", "J", "K", "R"):
+            if motion == 331 and letter in "IK":
+                continue
             if letter in vals and not is_arc and not (letter == "R" and (is_cycle or g0 == 100)):
                 users = "G02/G03 or canned cycle" if letter == "R" else "G02/G03"
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
@@ -1638,6 +1648,8 @@ class _Interpreter:
             target = self.target(vals, axis_words, scale, g0 == 530)
             if motion in _PROBES:
                 self.probe(motion, target, line_no)
+            elif motion == 331:
+                self.rigid_tap(target, vals, scale, line_no)
             elif motion in (0, 10):
                 self.straight(target, motion == 0, line_no)
             else:
@@ -1791,6 +1803,45 @@ class _Interpreter:
         self.pos = saved
         self.params.numbered[_P_PROBE_TRIPPED] = 1.0 if tripped else 0.0
 
+    def rigid_tap(self, target: list[float], vals: dict[str, float], scale: float, line_no: int) -> None:
+        """G33.1 X Y Z K I, LinuxCNC's rigid tapping, as feed moves: this spindle has no encoder to
+        synchronise with, so the tap goes in at the pitch K times the programmed speed, the
+        spindle reverses (I times faster, I >= 1) and it comes out the same way to where it
+        started, where the spindle turns forward again (a floating tap holder takes up the
+        difference)."""
+        if self.spindle_dir == 0 or self.spindle_rpm <= 0.0:
+            raise _BlockError("spindle not turning in G33.1 (rigid tapping needs M3 or M4 and S)", "G33.1")
+        if self.comp.side != 0:
+            raise _BlockError("cannot tap (G33.1) with cutter radius compensation on: program G40 first",
+                              "G33.1")
+        if any(target[i] != self.pos[i] for i in self.rotary_idx):
+            raise _BlockError("G33.1 moves the linear axes only", "G33.1")
+        pitch = vals["K"] * scale
+        if pitch <= 0.0:
+            raise _BlockError(f"G33.1: the pitch K{vals['K']:g} must be above 0", "K")
+        speed_up = max(vals.get("I", 1.0), 1.0)          # LinuxCNC: below 1 counts as 1
+        start = list(self.pos)
+        length = self.path_length(start, target)
+        if length <= _ZERO_LEN:
+            return
+        if self.comp.busy:
+            self.comp.straight_done()
+        rpm = self.spindle_rpm
+        into = pitch * rpm / 60.0
+        self.taps.append(len(self.out))
+        saved_stop, self.exact_stop = self.exact_stop, True
+        try:
+            self.emit(target, _LINE, into, length, None, line_no, fixed_feed=True)
+            self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1,
+                                     -self.spindle_dir * rpm * speed_up,
+                                     "G33.1: spindle reversed to back the tap out (tapping as feed moves at "
+                                     "the pitch, not synchronised with the spindle: use a floating tap holder)"))
+            self.emit(start, _LINE, into * speed_up, length, None, line_no, fixed_feed=True)
+            self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1, self.spindle_dir * rpm,
+                                     "G33.1: spindle turning forward again"))
+        finally:
+            self.exact_stop = saved_stop
+
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
              line_no: int, fixed_feed: bool = False) -> None:
         if self.feed_mode == 930 and kind is not _RAPID and not fixed_feed:
@@ -1808,6 +1859,8 @@ class _Interpreter:
         self.offset_changes[:] = [(f - 1 if f > i else f, o) for f, o in self.offset_changes]
         self.offset_parts[:] = [(p[0] - 1 if p[0] > i else p[0], *p[1:]) for p in self.offset_parts]
         self.modal_changes[:] = [(f - 1 if f > i else f, t) for f, t in self.modal_changes]
+        self.taps[:] = [t - 1 if t > i else t for t in self.taps]
+        self.probes[:] = [replace(p, move_index=p.move_index - 1) if p.move_index > i else p for p in self.probes]
 
     def canned_cycle(self, motion: int, first: bool, vals: dict[str, float], axis_words: list[str],
                      scale: float, line_no: int) -> None:

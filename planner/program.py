@@ -392,6 +392,9 @@ class Program:
     # M66 waits in program order (INPUT events name them by index), the same way: the moves
     # after the first one not ``known`` assume the awaited value
     inputs: tuple[InputRequest, ...] = ()
+    # G33.1: the index of each tap's move into the hole as read (the next move backs it out);
+    # LinuxCNC writes the pair as one RIGID_TAP call
+    taps: tuple[int, ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

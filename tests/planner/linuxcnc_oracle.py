@@ -115,6 +115,11 @@ def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
             end = tuple(float(v) * scale for v in args_t[:3])
             motion.append((name.lower(), end))
             machine.append(to_machine(end))
+        elif name == "RIGID_TAP":
+            # in and back out to where it started: the tool stays where it was
+            end = tuple(float(v) * scale for v in args_t[:3])
+            motion.append(("rigid_tap", end))
+            machine.append(machine[-1] if machine else (0.0, 0.0, 0.0))
         elif name == "ARC_FEED":
             v = [float(a) for a in args_t[:6]]
             motion.append(("arc_feed", (v[0] * scale, v[1] * scale, v[2] * scale, v[3] * scale, v[4],
@@ -134,7 +139,7 @@ def _without_zero_moves(motion: list[tuple], machine: list[tuple]) -> list[tuple
     out = []
     last = (0.0, 0.0, 0.0)                      # both start at the origin
     for call, here in zip(motion, machine):
-        if call[0] != "arc_feed" and max(abs(a - b) for a, b in zip(here, last)) < 0.003:
+        if call[0] not in ("arc_feed", "rigid_tap") and max(abs(a - b) for a, b in zip(here, last)) < 0.003:
             continue
         out.append(call)
         last = here
