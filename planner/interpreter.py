@@ -1834,8 +1834,9 @@ class _Interpreter:
             self.emit(target, _LINE, into, length, None, line_no, fixed_feed=True)
             self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1,
                                      -self.spindle_dir * rpm * speed_up,
-                                     "G33.1: spindle reversed to back the tap out (tapping as feed moves at "
-                                     "the pitch, not synchronised with the spindle: use a floating tap holder)"))
+                                     "G33.1: spindle reversed to back the tap out (tapping as feed moves "
+                                     "at the pitch, not synchronised with the spindle: use a floating tap "
+                                     "holder)"))
             self.emit(start, _LINE, into * speed_up, length, None, line_no, fixed_feed=True)
             self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1, self.spindle_dir * rpm,
                                      "G33.1: spindle turning forward again"))
@@ -1860,7 +1861,8 @@ class _Interpreter:
         self.offset_parts[:] = [(p[0] - 1 if p[0] > i else p[0], *p[1:]) for p in self.offset_parts]
         self.modal_changes[:] = [(f - 1 if f > i else f, t) for f, t in self.modal_changes]
         self.taps[:] = [t - 1 if t > i else t for t in self.taps]
-        self.probes[:] = [replace(p, move_index=p.move_index - 1) if p.move_index > i else p for p in self.probes]
+        self.probes[:] = [replace(p, move_index=p.move_index - 1) if p.move_index > i else p
+                          for p in self.probes]
 
     def canned_cycle(self, motion: int, first: bool, vals: dict[str, float], axis_words: list[str],
                      scale: float, line_no: int) -> None:

@@ -49,7 +49,8 @@ def errors_of(text: str, **kw):
         ("G76 X1 Z-1", "G76 is not supported (G76 threading cycle)", 1, 1),
         ("G81 X1 Z-1 R1", "feed rate is zero", 1, 1),
         ("G91 F10\nG38.2 Z0", "G38.2: start point too close to probe point", 2, 1),
-        ("G33 X1 K1", "G33 is not supported (G33 spindle-synchronised motion: this spindle has no encoder)", 1, 1),
+        ("G33 X1 K1", "G33 is not supported (G33 spindle-synchronised motion: this spindle has no "
+         "encoder)", 1, 1),
         ("G41.1", "G41.1 needs a D word (the tool diameter)", 1, 1),
         ("G1.5 X1", "unknown G code G1.5", 1, 1),
         ("M99", "M99 is not supported", 1, 1),

@@ -203,7 +203,8 @@ def test_rigid_tapping_runs_as_feed_moves_at_the_pitch_and_backs_out_to_its_star
     p = parse_program(TAP)
     into, out = p.moves[1], p.moves[2]
     assert into.end.tolist() == [6.0, 0.0, -10.0] and out.end.tolist() == [5.0, 0.0, 2.0]
-    assert into.feed_mm_s == pytest.approx(1.25 * 500 / 60) and out.feed_mm_s == pytest.approx(2 * into.feed_mm_s)
+    assert into.feed_mm_s == pytest.approx(1.25 * 500 / 60)
+    assert out.feed_mm_s == pytest.approx(2 * into.feed_mm_s)
     assert into.exact_stop and out.exact_stop
     spindle = [(e.after_move, e.value) for e in p.events if e.kind is EventKind.SPINDLE and e.line == 3]
     assert spindle == [(1, -1000.0), (2, 500.0)]               # reversed I times faster, then forward
