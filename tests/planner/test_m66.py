@@ -14,6 +14,7 @@ from tests.planner.linuxcnc_oracle import RS274, run_linuxcnc
 def _debug(program) -> list[str]:
     return [e.message.strip() for e in program.events if e.kind is EventKind.MESSAGE]
 
+
 def _with_inputs(*numbers: int):
     from dataclasses import replace
 
