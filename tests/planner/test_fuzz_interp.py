@@ -5,6 +5,7 @@ else escapes, and whatever parses is geometrically sound (finite, contiguous, ev
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from datetime import timedelta
 from pathlib import Path
 
@@ -14,6 +15,7 @@ from hypothesis import strategies as st
 
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import _Interpreter, parse_program
+from planner.machine import MachineSpec
 from planner.tools import ToolTable, parse_tbl
 
 SAMPLES_DIR = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
@@ -40,10 +42,14 @@ SAMPLES = samples()
 TOOLS = parse_tbl("T1 P1 Z10.5 D6 ;flat\nT2 P2 X0.25 Z-3 D3 ;ball\n")
 
 
+#: a machine with a digital input, so that M66 P0 reads (the default machine has none)
+MACHINE = replace(MachineSpec.default(), input_bits={0: (0, 16, "")})
+
+
 def check(text: str, tools: ToolTable | None = None) -> None:
     n_lines = text.count("\n") + 1
     try:
-        program = parse_program(text, "fuzz.nc", tools=tools)
+        program = parse_program(text, "fuzz.nc", tools=tools, machine=MACHINE)
     except ProgramError as exc:
         assert isinstance(exc, PlannerError)
         assert exc.errors
@@ -104,6 +110,19 @@ token = st.one_of(
             "T2",
             "G80",
             "G4",
+            # what a program reads from the machine, and rigid tapping
+            "G38.2",
+            "G38.3",
+            "G38.4",
+            "G38.5",
+            "#5063",
+            "#5070",
+            "M66 P0",
+            "M66 P0 L3 Q1",
+            "#5399",
+            "G33.1 K1",
+            "G33.1",
+            "I2",
         ]
     ),
 )
