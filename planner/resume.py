@@ -33,7 +33,9 @@ __all__ = [
     "locate",
     "modal_state_at",
     "modal_state_before_move",
+    "probe_move_at",
     "program_from_moves",
+    "reads_before",
     "remaining_program",
     "split_move",
 ]
@@ -138,6 +140,22 @@ def remaining_program(program: Program, move_index: int, u_mm: float = 0.0) -> P
         moves = moves[1:]
         events = [replace(e, after_move=max(e.after_move - 1, -1)) for e in events]
     return program_from_moves(program, moves, events, tail.start)
+
+
+def reads_before(program: Program, move_index: int, line: int) -> list[Event]:
+    """The probes and M66 (PROBE, INPUT events) a run starting at move ``move_index``, from
+    source line ``line``, would not make again: those before it. What follows them was read
+    with their results (or with assumed ones)."""
+    return [e for e in program.events if e.kind in (EventKind.PROBE, EventKind.INPUT)
+            and (e.after_move < move_index - 1 or (e.after_move == move_index - 1 and e.line < line))]
+
+
+def probe_move_at(program: Program, move_index: int) -> Event | None:
+    """The PROBE event of move ``move_index`` when it is a probe move (G38.x), else None."""
+    starts = {int(e.value) for e in program.events
+              if e.kind is EventKind.PROBE_START and e.after_move == move_index - 1}
+    return next((e for e in program.events if e.kind is EventKind.PROBE and e.after_move == move_index
+                 and int(e.value) in starts), None)
 
 
 @dataclass(frozen=True, slots=True)

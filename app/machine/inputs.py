@@ -128,7 +128,10 @@ class Prober:
         """At rest after the probe move (stopped at the contact, or at its end point)."""
         run, self.run = self.run, None
         w = self.m.worker
-        if run is None or w is None:
+        if w is None:
+            return
+        if run is None:                      # never armed: its result would be a guess
+            self.fail("a probe move ended without the probe armed: the program stops here")
             return
         with self.m._lock:
             latched = w.probe_latched()

@@ -41,6 +41,9 @@ class ResumePoint:
     u_mm: float
     line: int
     cause: str
+    # what the run's probes and M66 read before it stopped (the program above is read with them)
+    probe_results: tuple[ProbeResult | None, ...] = ()
+    wait_results: tuple[float | None, ...] = ()
 
 
 class Job:
@@ -149,14 +152,15 @@ class Job:
             return self.then.resume_point(consumed, cause) if self.then is not None else None
         prog, base, u0 = self.origin
         m = self._mark_at(consumed - 1)
+        reads = (self.probe_results, self.wait_results)
         if m is None:
-            return ResumePoint(prog, base, u0, prog.moves[base].line if prog.moves else 0, cause)
+            return ResumePoint(prog, base, u0, prog.moves[base].line if prog.moves else 0, cause, *reads)
         _, line, _, move, u = m
         orig = base + move
         u_orig = (u0 + u) if move == 0 else u
         if orig >= len(prog.moves):
             return None
-        return ResumePoint(prog, orig, u_orig, line, cause)
+        return ResumePoint(prog, orig, u_orig, line, cause, *reads)
 
 
 def merge_max(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:

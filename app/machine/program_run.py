@@ -28,7 +28,9 @@ from planner.resume import (
     last_safe_height,
     locate,
     modal_state_before_move,
+    probe_move_at,
     program_from_moves,
+    reads_before,
     remaining_program,
 )
 
@@ -300,10 +302,28 @@ class ProgramRunner:
         if any(a.active and a.severity >= Severity.STOP for a in self.m.alarm_log.alarms):
             return self.m.states.refuse(action, "acknowledge the active alarms first")
         prog = point.program
+        reads = reads_before(prog, point.move_index, point.line)
+        if action == "run_from_line" and reads:
+            first = reads[0]
+            what = "the probe" if first.kind is EventKind.PROBE else "M66"
+            return self.m.states.refuse(
+                action, f"line {point.line} comes after {what} at line {first.line}: what follows depends on "
+                        f"what it read; run from line {first.line} (or before) to read it again")
+        probing = probe_move_at(prog, point.move_index)
+        if probing is not None and point.u_mm > 0.0:
+            # stopped during a probe move: it starts again from its start, the probe armed there
+            point = replace(point, u_mm=0.0, line=probing.line)
         try:
             rest = remaining_program(prog, point.move_index, point.u_mm)
         except PlannerError as exc:
             return self.m.states.refuse(action, str(exc))
+        if point.u_mm == 0.0:
+            # reads on the restart line itself, before its first move (a probe's arming, M66)
+            at_start = [replace(e, after_move=-1) for e in prog.events
+                        if e.after_move == point.move_index - 1 and e.line >= point.line
+                        and e.kind in (EventKind.PROBE_START, EventKind.INPUT)]
+            if at_start:
+                rest = replace(rest, events=(*at_start, *rest.events))
         modal = modal_state_before_move(prog, point.move_index)
         loads = (EventKind.TOOL_CHANGE, EventKind.TOOL_SET)
         changes = [e for e in prog.events if e.kind in loads and e.after_move < point.move_index]
@@ -339,6 +359,7 @@ class ProgramRunner:
         main.tau_offset_s = max(full_t - main.executor.t_end, 0.0)
         main.time_offset_s = main.tau_offset_s
         main.origin = (prog, point.move_index, point.u_mm)
+        main.probe_results, main.wait_results = point.probe_results, point.wait_results
         self.resume_point = None
         self.m.stream.line = point.line
         if way is not None:

@@ -198,3 +198,67 @@ def test_a_feed_hold_before_the_contact_keeps_the_probe_armed(ctl: MachineContro
     run_to_idle(ctl)
     assert ctl.last_run is not None and ctl.last_run.completed
     assert ctl.machine_position[0] == pytest.approx(20.0, abs=1e-3)
+
+
+TWO_PROBES = f"""G21 G90 G54
+G0 X10 Y5 Z-40
+G38.2 Z-70 F{FEED_MM_MIN:g}
+#<first> = #5063
+G0 Z[#<first> + 5]
+G1 X30 F600
+G1 X60
+G38.2 Z-70 F{FEED_MM_MIN:g}
+(DEBUG,both #<first> #5063)
+G0 Z[#5063 + 10]
+M2
+"""
+
+
+def test_run_from_a_line_after_a_probe_is_refused_and_from_the_probe_line_probes_again(
+        ctl: MachineController) -> None:
+    said = _messages(ctl)
+    assert ctl.load_program(TWO_PROBES, wait=True)
+    r = ctl.run_from_line(6)
+    assert not r and "line 6 comes after the probe at line 3" in r.reason and "run from line 3" in r.reason
+    assert ctl.run_from_line(3, wait=True)
+    run_to_idle(ctl, 40)
+    assert ctl.last_run is not None and ctl.last_run.completed
+    assert sum(m.startswith("G38.2 (line 3): contact at") for m in said) == 1
+    assert sum(m.startswith("G38.2 (line 8): contact at") for m in said) == 1
+
+
+def test_an_estop_during_the_probe_move_resumes_from_its_start_with_the_probe_armed(
+        ctl: MachineController) -> None:
+    said = _messages(ctl)
+    _run(ctl, PROBE_Z)
+    assert ctl.run_until(lambda: ctl.prober.run is not None and ctl.reference_position[2] < -44.0, 20.0)
+    assert ctl.estop("test")
+    assert ctl.run_until(lambda: ctl.state is MachineState.ESTOP, 2.0)
+    assert ctl.prober.run is None                               # disarmed with the job
+    assert ctl.estop_release()
+    assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+    assert ctl.acknowledge_alarm()
+    assert ctl.resume(), ctl.state_reason
+    run_to_idle(ctl, 40)
+    assert ctl.last_run is not None and ctl.last_run.completed, ctl.last_run
+    assert any(m.startswith("G38.2 (line 3): contact at") for m in said), said
+    assert ctl.machine_position[0] == pytest.approx(20.0, abs=1e-3)
+
+
+def test_a_fault_after_a_probe_resumes_with_its_result_for_the_next_probe(ctl: MachineController) -> None:
+    said = _messages(ctl)
+    _run(ctl, TWO_PROBES)
+    assert ctl.run_until(lambda: ctl.current_line == 7, 40.0)
+    ctl.advance(0.3)
+    assert ctl.estop("test")
+    assert ctl.run_until(lambda: ctl.state is MachineState.ESTOP, 2.0)
+    assert ctl.estop_release()
+    assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+    assert ctl.acknowledge_alarm()
+    assert ctl.resume(), ctl.state_reason
+    run_to_idle(ctl, 40)
+    assert ctl.last_run is not None and ctl.last_run.completed, ctl.last_run
+    (both,) = [m for m in said if m.startswith("both")]
+    first, second = (float(v) for v in both.split()[1:])
+    assert first == pytest.approx(SURFACE_Z, abs=0.01) and second == pytest.approx(SURFACE_Z, abs=0.01)
+    assert ctl.machine_position[2] == pytest.approx(second + 10.0, abs=1e-3)
