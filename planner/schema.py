@@ -158,6 +158,8 @@ MACHINE_FILE = Table("", tables=(
         Key("drive", "int", None, 0, 63),
         Key("bit", "int", 16, 0, 31),
         Key("touching_level", "int", 1, choices=(0, 1)),
+        # the fastest probe move: the stylus travels on past the contact while the motion stops
+        Key("max_feed_mm_min", "float", 1000.0, 1.0, 100_000.0),
         Key("sim_axis", "str", "Z", choices=("X", "Y", "Z", "A", "B", "C")),
         Key("sim_surface_mm", "float", None, -_LIN, _LIN),
     )),

@@ -135,6 +135,10 @@ class ProbeSettings:
     drive: int | None = None
     bit: int = 16
     touching_level: int = 1
+    # G38.x faster than this is refused: past the contact the stylus travels on for the
+    # reaction and the jerk-limited stop, v (10 ms + sqrt(v / J)) (1 mm at 1000 mm/min and
+    # 10,000 mm/s^3), which it must allow
+    max_feed_mm_min: float = 1000.0
     sim_axis: str = "Z"
     sim_surface_mm: float | None = None
 
@@ -383,7 +387,8 @@ def config_to_toml(config: MachineConfig) -> str:
     out += ["", "[probe]"]
     if p.drive is not None:
         out.append(f"drive = {p.drive}")
-    out += [f"bit = {p.bit}", f"touching_level = {p.touching_level}", f"sim_axis = {_fmt(p.sim_axis)}"]
+    out += [f"bit = {p.bit}", f"touching_level = {p.touching_level}",
+            f"max_feed_mm_min = {_fmt(float(p.max_feed_mm_min))}", f"sim_axis = {_fmt(p.sim_axis)}"]
     if p.sim_surface_mm is not None:
         out.append(f"sim_surface_mm = {_fmt(float(p.sim_surface_mm))}")
     out += ["", END_MARK, ""]

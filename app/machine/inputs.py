@@ -43,6 +43,23 @@ if TYPE_CHECKING:
 __all__ = ["InputWaiter", "ProbeRun", "Prober", "continue_after"]
 
 
+def probe_refusal(program: Program, drive: int | None, max_feed_mm_min: float) -> tuple[int, str]:
+    """Why a program's probing cannot run on this machine, with the line ((0, "") when it can):
+    no probe input, or a probe move faster than the stylus' overtravel allows."""
+    for p in program.probes:
+        if drive is None:
+            return p.line, (f"{p.name} needs a probe input: this machine has none ([probe] drive in the "
+                            "machine configuration)")
+        if p.move_index < 0:
+            continue
+        feed = program.moves[p.move_index].feed_mm_s * 60.0
+        if feed > max_feed_mm_min * (1.0 + 1e-9):
+            return p.line, (f"{p.name} at F{feed:g} mm/min is faster than the probe allows ([probe] "
+                            f"max_feed_mm_min = {max_feed_mm_min:g}: the stylus travels on past the "
+                            "contact while the motion stops)")
+    return 0, ""
+
+
 @dataclass
 class ProbeRun:
     """The probe move under way: its index in the program's probes, and the contact once seen."""

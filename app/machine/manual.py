@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from app.machine.errors import MachineError
+from app.machine.inputs import probe_refusal
 from app.machine.model import Activity, CommandResult, SpindleState
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
@@ -157,9 +158,9 @@ class ManualMotion:
         issues = self.m.loader.check_program_limits(prog)
         if issues:
             return self.m.states.refuse("mdi", f"soft limit: {issues[0].message}")
-        if prog.probes and self.m.config.probe.drive is None:
-            return self.m.states.refuse("mdi", f"{prog.probes[0].name} needs a probe input: this machine has "
-                                        "none ([probe] drive in the machine configuration)")
+        _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
+        if why:
+            return self.m.states.refuse("mdi", why)
         why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm) or _mdi_stands_alone(prog, block)
         if why:
             return self.m.states.refuse("mdi", why)

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from app.background import Background
+from app.machine.inputs import probe_refusal
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue, SpindleState
 from app.machine.spindle import spin_up_waits
 from app.machine.timescale import pause_points
@@ -165,13 +166,13 @@ def check_text(
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
     probe_cfg = getattr(req.cfg, "probe", None)
-    if program.probes and (probe_cfg is None or probe_cfg.drive is None):
-        first = program.probes[0]
-        why = (f"{first.name} needs a probe input: this machine has none ([probe] drive in the machine "
-               "configuration)")
-        line = text.split("\n", first.line)[first.line - 1].upper() if first.line > 0 else ""
-        col = line.find("G38") + 1 or 1
-        return (ProgramIssue(first.line, col, why),), f"line {first.line}: {why}"
+    if program.probes:
+        at, why = probe_refusal(program, getattr(probe_cfg, "drive", None),
+                                getattr(probe_cfg, "max_feed_mm_min", 0.0))
+        if why:
+            line = text.split("\n", at)[at - 1].upper() if at > 0 else ""
+            col = line.find("G38") + 1 or 1
+            return (ProgramIssue(at, col, why),), f"line {at}: {why}"
     if machine.planner.mode == "lookahead":
         # G64 P: the program of record is the blended one (preview, progress, resume and the
         # plan all count its moves)

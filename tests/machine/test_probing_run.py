@@ -262,3 +262,17 @@ def test_a_fault_after_a_probe_resumes_with_its_result_for_the_next_probe(ctl: M
     first, second = (float(v) for v in both.split()[1:])
     assert first == pytest.approx(SURFACE_Z, abs=0.01) and second == pytest.approx(SURFACE_Z, abs=0.01)
     assert ctl.machine_position[2] == pytest.approx(second + 10.0, abs=1e-3)
+
+
+def test_a_probe_faster_than_the_stylus_allows_is_refused_with_its_place(ctl: MachineController) -> None:
+    """Past the contact the stylus travels on for the reaction and the stop: at F3000 that is
+    about 4 mm; the shipped mill allows up to 1000 mm/min ([probe] max_feed_mm_min)."""
+    errors: list = []
+    ctl.programErrors.connect(errors.append)
+    r = ctl.load_program("G21 G90\nG0 Z-40\nN40 G38.2 Z-70 F3000\nM2\n", wait=True)
+    assert not r and "F3000 mm/min is faster than the probe allows" in r.reason
+    (issue,) = errors[0]
+    assert (issue.line, issue.col) == (3, 5) and "max_feed_mm_min = 1000" in issue.message
+    r = ctl.mdi("G38.2 Z-70 F1200")
+    assert not r and "F1200 mm/min is faster than the probe allows" in r.reason
+    assert ctl.load_program("G21 G90\nG0 Z-40\nG38.2 Z-70 F1000\nM2\n", wait=True)
