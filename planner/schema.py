@@ -160,6 +160,11 @@ MACHINE_FILE = Table("", tables=(
         Key("touching_level", "int", 1, choices=(0, 1)),
         # the fastest probe move: the stylus travels on past the contact while the motion stops
         Key("max_feed_mm_min", "float", 1000.0, 1.0, 100_000.0),
+        # a tool setter under the probe input: machine X and Y of its centre, and the machine
+        # Z at which the spindle's gauge line (a tool of length 0) would touch it
+        Key("setter_x_mm", "float", None, -_LIN, _LIN),
+        Key("setter_y_mm", "float", None, -_LIN, _LIN),
+        Key("setter_z_mm", "float", None, -_LIN, _LIN),
         Key("sim_axis", "str", "Z", choices=("X", "Y", "Z", "A", "B", "C")),
         Key("sim_surface_mm", "float", None, -_LIN, _LIN),
     )),

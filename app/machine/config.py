@@ -139,7 +139,16 @@ class ProbeSettings:
     # reaction and the jerk-limited stop, v (10 ms + sqrt(v / J)) (1 mm at 1000 mm/min and
     # 10,000 mm/s^3), which it must allow
     max_feed_mm_min: float = 1000.0
+    # a tool setter wired to the probe input (all three, or none): machine X, Y of its centre and
+    # the machine Z at which the spindle's gauge line (a tool of length 0) would touch it
+    setter_x_mm: float | None = None
+    setter_y_mm: float | None = None
+    setter_z_mm: float | None = None
     sim_axis: str = "Z"
+
+    @property
+    def has_setter(self) -> bool:
+        return self.drive is not None and None not in (self.setter_x_mm, self.setter_y_mm, self.setter_z_mm)
     sim_surface_mm: float | None = None
 
 
@@ -228,6 +237,17 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         pr = valid["probe"]
         if pr["drive"] is not None and pr["drive"] >= n:
             raise loc.fail(("probe", "drive"), f"{pr['drive']} must be below the axis count {n}")
+        setter = [pr[k] for k in ("setter_x_mm", "setter_y_mm", "setter_z_mm")]
+        if any(v is not None for v in setter) and None in setter:
+            missing = [k for k in ("setter_x_mm", "setter_y_mm", "setter_z_mm") if pr[k] is None]
+            raise loc.fail(("probe", missing[0]), "a tool setter needs setter_x_mm, setter_y_mm and "
+                           "setter_z_mm together")
+        for key, axis in (("setter_x_mm", "X"), ("setter_y_mm", "Y"), ("setter_z_mm", "Z")):
+            spec = next((a for a in machine.axes if a.name == axis), None)
+            if pr[key] is not None and (spec is None or not spec.min_pos <= pr[key] <= spec.max_pos):
+                where = f"outside the {axis} travel [{spec.min_pos:g}, {spec.max_pos:g}]" if spec else \
+                    f"the machine has no {axis} axis"
+                raise loc.fail(("probe", key), f"{pr[key]:g} is {where}")
         if pr["sim_surface_mm"] is not None and pr["sim_axis"] not in machine.axis_names:
             raise loc.fail(("probe", "sim_axis"), f"{pr['sim_axis']} is not an axis of this machine "
                            f"({', '.join(machine.axis_names)})")
@@ -389,8 +409,10 @@ def config_to_toml(config: MachineConfig) -> str:
         out.append(f"drive = {p.drive}")
     out += [f"bit = {p.bit}", f"touching_level = {p.touching_level}",
             f"max_feed_mm_min = {_fmt(float(p.max_feed_mm_min))}", f"sim_axis = {_fmt(p.sim_axis)}"]
-    if p.sim_surface_mm is not None:
-        out.append(f"sim_surface_mm = {_fmt(float(p.sim_surface_mm))}")
+    for key in ("setter_x_mm", "setter_y_mm", "setter_z_mm", "sim_surface_mm"):
+        value = getattr(p, key)
+        if value is not None:
+            out.append(f"{key} = {_fmt(float(value))}")
     out += ["", END_MARK, ""]
     return "\n".join(out)
 

@@ -556,6 +556,9 @@ class MachineController(QObject):
     def touch_off_tool(self, number: int, surface_z_mm: float = 0.0) -> CommandResult:
         return self.tools.touch_off_tool(number, surface_z_mm)
 
+    def measure_tool(self, number: int) -> CommandResult:
+        return self.tools.measure_tool(number)
+
     def import_tool_table(self, path: str) -> CommandResult:
         return self.tools.import_table(path)
 

@@ -182,6 +182,7 @@ class Streamer:
         new.estimated_s = job.estimated_s
         new.serial_base = job.serial_base
         new.reread, new.probe_results, new.wait_results = job.reread, job.probe_results, job.wait_results
+        new.when_done = job.when_done
         new.executor.hold = held
         self.job = new
         if self.m.conn.worker_mode != "manual":
@@ -550,6 +551,8 @@ class Streamer:
         if job.kind is Activity.PROGRAM:
             self.m.spindle_ctl.stop_spindle()      # program end: spindle off (M2/M30 or the last line)
         self.m.states.set_state(MachineState.IDLE, "program end" if completed_summary else "done")
+        if job.when_done is not None:
+            job.when_done(job)
 
     def drop_job(self, completed: bool, reason: str, snap: Any = None) -> RunSummary | None:
         """End the current job (under the lock). Emits programFinished for program jobs."""

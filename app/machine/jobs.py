@@ -95,6 +95,8 @@ class Job:
             = None
         self.probe_results: tuple[ProbeResult | None, ...] = ()
         self.wait_results: tuple[float | None, ...] = ()
+        # called with the job (the last of its followers) once it has run to its end
+        self.when_done: Callable[[Job], None] | None = None
         self.single_block = False
         self.carried_limits: dict[str, float] = {}
         self.tau_offset_s = 0.0

@@ -6,6 +6,7 @@ lost release stops there. A part of ``MachineController``.
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -20,6 +21,7 @@ from planner.program import EventKind, Move, MoveKind, Program
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
+    from app.machine.jobs import Job
 
 __all__ = ["JOG_INCREMENTS", "ManualMotion"]
 
@@ -128,6 +130,38 @@ class ManualMotion:
         job = self.m.stream.make_job(Activity.JOG, prog, prog.name, overrides=False)
         self.m.stream.start_job(job)
         return self.m.states.ok("jog")
+
+    def run_routine(self, text: str, name: str, action: str,
+                    when_done: Callable[[Job], None] | None = None) -> CommandResult:
+        """A few blocks the controller wrote (tool measurement): read, checked against the soft
+        limits and run as MDI is; ``when_done(job)`` once they have all run."""
+        try:
+            prog = parse_program(
+                text, name, machine=self.m.conn.machine, start_position=self.m.states.machine_pos(),
+                tools=self.m.tools.table, tool_in_spindle=self.m.tools.in_spindle,
+                parameters=dict(self.m.pos.parameters))
+        except ProgramError as exc:
+            return self.m.states.refuse(action, "; ".join(e.message for e in exc.errors))
+        except PlannerError as exc:
+            return self.m.states.refuse(action, str(exc))
+        issues = self.m.loader.check_program_limits(prog)
+        if issues:
+            return self.m.states.refuse(action, f"soft limit: {issues[0].message}")
+        _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
+        if why:
+            return self.m.states.refuse(action, why)
+        try:
+            job = self.m.stream.make_job(Activity.MDI, prog, name)
+        except PlannerError as exc:
+            return self.m.states.refuse(action, f"planner: {exc}")
+        machine, start, tools = self.m.conn.machine, self.m.states.machine_pos(), self.m.tools.table
+        in_spindle, parameters = self.m.tools.in_spindle, dict(self.m.pos.parameters)
+        job.reread = lambda probes, waits: parse_program(
+            text, name, machine=machine, start_position=start, tools=tools, tool_in_spindle=in_spindle,
+            parameters=parameters, probe_results=probes, input_results=waits)
+        job.when_done = when_done
+        self.m.stream.start_job(job)
+        return self.m.states.ok(action)
 
     def mdi(self, block: str) -> CommandResult:
         """Execute one G-code block with the active work offset and the same checks as a program

@@ -106,6 +106,66 @@ class ToolControl:
             return self.m.states.refuse("touch_off_tool", str(exc))
         return self._commit(table, self.in_spindle, "touch_off_tool")
 
+    def measure_tool(self, number: int) -> CommandResult:
+        """Measure the length (Z offset) of tool ``number``, which must be in the spindle, on the
+        tool setter (``[probe] setter_*``): up to the restart clearance, across over the setter,
+        a probe down at ``max_feed_mm_min``, back up by more than that probe's overtravel, a
+        second probe at a tenth of the feed, and back up to the clearance. The length is the
+        machine Z of the second contact less ``setter_z_mm``; the table takes it at the end."""
+        action = "measure_tool"
+        if self.m.states.state is not MachineState.IDLE:
+            return self.m.states.refuse(action, f"machine is {self.m.states.state.label.lower()}")
+        probe = self.m.config.probe
+        sx, sy, sz = probe.setter_x_mm, probe.setter_y_mm, probe.setter_z_mm
+        if not probe.has_setter or sx is None or sy is None or sz is None:
+            return self.m.states.refuse(action, "no tool setter on this machine ([probe] drive, setter_x_mm, "
+                                                "setter_y_mm and setter_z_mm in the machine configuration)")
+        tool = self.table.get(number)
+        if tool is None:
+            return self.m.states.refuse(action, f"T{number} is not in the tool table")
+        if number != self.in_spindle:
+            return self.m.states.refuse(action, f"T{number} is not in the spindle: put it in and set it "
+                                                "(In the spindle) first")
+        axes = self.m.config.axes
+        if not {"X", "Y", "Z"} <= set(axes):
+            return self.m.states.refuse(action, "measuring on a tool setter needs X, Y and Z axes")
+        if not all(self.m.pos.homed):
+            return self.m.states.refuse(action, "axes not homed: the setter's position is not known")
+        k = axes.index("Z")
+        z_axis = self.m.config.machine.axes[k]
+        c = self.m.config.controller
+        clear = z_axis.max_pos if c.restart_clearance_mm is None else c.restart_clearance_mm
+        # program Z of a machine Z: the routine runs in the active coordinate system, without G43
+        work = self.m.pos.offsets.get(self.m.pos.active_offset, (0.0,) * len(axes))
+        shift = float(work[k]) + float(self.m.pos.g92_offset()[k])
+        fast = probe.max_feed_mm_min
+        v = fast / 60.0
+        overtravel = v * (0.015 + math.sqrt(v / self.m.config.machine.limits.j_max_mm_s3))
+        bottom = max(sz - 1.0, z_axis.min_pos) - shift
+        text = "\n".join((
+            f"G21 G90 G94 G49 {self.m.pos.active_offset}",
+            f"G53 G0 Z{clear:.4f}",
+            f"G53 G0 X{sx:.4f} Y{sy:.4f}",
+            f"G38.2 Z{bottom:.4f} F{fast:g}",
+            f"G91 G0 Z{max(2.0, 2.0 * overtravel + 1.0):.4f}",
+            f"G90 G38.2 Z{bottom:.4f} F{fast / 10.0:g}",
+            f"G53 G0 Z{clear:.4f}",
+        ))
+
+        def done(job: object) -> None:
+            results = getattr(job, "probe_results", ())
+            second = results[1] if len(results) > 1 else None
+            if second is None or not second.tripped:
+                self.m.alarm_log.raise_alarm("tools", f"T{number}: the measurement has no second contact",
+                                             Severity.WARNING, "measure_tool")
+                return
+            length = round(float(second.trip_position[k]) - sz, 6)
+            res = self.set_tool(tool.with_offset("Z", length))
+            if res:
+                self.m.stream.show_message(f"T{number} measured on the tool setter: length {length:.4f} mm")
+
+        return self.m.manual.run_routine(text, f"measure T{number}", action, done)
+
     def import_table(self, path: str) -> CommandResult:
         """Replace the table by a LinuxCNC ``.tbl`` file (refused whole if any line is wrong)."""
         why = self._refusal()

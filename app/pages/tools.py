@@ -59,6 +59,7 @@ class ToolsPage(QWidget):
             ("remove", N_("Delete"), self.remove_tool),
             ("spindle", N_("In the spindle"), self.set_in_spindle),
             ("touch", N_("Touch off length"), self.touch_off),
+            ("measure", N_("Measure on the setter"), self.measure),
             ("import", N_("Import .tbl"), self.import_table),
         ):
             button = QPushButton()
@@ -158,6 +159,20 @@ class ToolsPage(QWidget):
             self, tr("Touch off {0}: work Z of the surface the tip touches").format(t.label()), 0.0)
         if z is not None:
             self.ctx.controller.touch_off_tool(t.number, z)
+
+    def measure(self) -> None:
+        """The tool in the spindle measured on the tool setter: the operator confirms first,
+        since the machine moves by itself (up, across, down onto the setter)."""
+        t = self.selected_tool()
+        if t is None:
+            return
+        question = tr("Measure {0} on the tool setter? The spindle goes up to the clearance height, "
+                      "across to the setter and probes down onto it twice. Keep clear of the machine."
+                      ).format(t.label())
+        if self.ctx.dialogs.confirm(self, tr("Measure on the setter"), question):
+            result = self.ctx.controller.measure_tool(t.number)
+            if not result:
+                self.ctx.dialogs.inform(self, tr("Measure on the setter"), result.reason)
 
     def import_table(self) -> None:
         folders = self.ctx.folders

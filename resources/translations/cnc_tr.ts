@@ -224,12 +224,12 @@
       <translation>Çevrim zamanlaması: başlangıç sapması histogramı (µs)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="145" />
+      <location filename="../../app/pages/tools.py" line="146" />
       <source>Delete</source>
       <translation>Sil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="144" />
+      <location filename="../../app/pages/tools.py" line="145" />
       <source>Delete {0} from the tool table?</source>
       <translation>{0} takım tablosundan silinsin mi?</translation>
     </message>
@@ -239,7 +239,7 @@
       <translation>Açıklama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="109" />
+      <location filename="../../app/pages/tools.py" line="110" />
       <source>Description:</source>
       <translation>Açıklama:</translation>
     </message>
@@ -409,7 +409,7 @@
       <translation>Hazır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="173" />
+      <location filename="../../app/pages/tools.py" line="188" />
       <source>Import .tbl</source>
       <translation>.tbl içe aktar</translation>
     </message>
@@ -419,7 +419,7 @@
       <translation>İş milinde</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="94" />
+      <location filename="../../app/pages/tools.py" line="95" />
       <source>In the spindle: {0}</source>
       <translation>İş milinde: {0}</translation>
     </message>
@@ -521,6 +521,16 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En büyük</translation>
     </message>
     <message>
+      <location filename="../../app/pages/tools.py" line="172" />
+      <source>Measure on the setter</source>
+      <translation>Ayarlayıcıda ölç</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="169" />
+      <source>Measure {0} on the tool setter? The spindle goes up to the clearance height, across to the setter and probes down onto it twice. Keep clear of the machine.</source>
+      <translation>{0} takım ayarlayıcıda ölçülsün mü? İş mili emniyet yüksekliğine çıkar, ayarlayıcının üzerine gider ve iki kez aşağı doğru problar. Makineden uzak durun.</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/axes.py" line="15" />
       <source>Min</source>
       <translation>En küçük</translation>
@@ -551,7 +561,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yeni servis şifresi (en az {0} karakter):</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="131" />
+      <location filename="../../app/pages/tools.py" line="132" />
       <source>New tool number</source>
       <translation>Yeni takım numarası</translation>
     </message>
@@ -778,7 +788,7 @@ BIRAK</translation>
       <translation>Yeni şifreyi tekrarlayın:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="173" />
+      <location filename="../../app/pages/tools.py" line="188" />
       <source>Replace the whole tool table by {0}?</source>
       <translation>Tüm takım tablosu {0} ile değiştirilsin mi?</translation>
     </message>
@@ -1038,7 +1048,7 @@ BIRAK</translation>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="158" />
+      <location filename="../../app/pages/tools.py" line="159" />
       <source>Touch off {0}: work Z of the surface the tip touches</source>
       <translation>{0} dokunarak ölç: ucun değdiği yüzeyin iş Z'si</translation>
     </message>
@@ -1058,12 +1068,12 @@ BIRAK</translation>
       <translation>Takip (referans − gerçek), Denklem 18</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="109" />
+      <location filename="../../app/pages/tools.py" line="110" />
       <source>T{0}</source>
       <translation>T{0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="136" />
+      <location filename="../../app/pages/tools.py" line="137" />
       <source>T{0} is already in the table.</source>
       <translation>T{0} tabloda zaten var.</translation>
     </message>
@@ -1078,17 +1088,17 @@ BIRAK</translation>
       <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="116" />
+      <location filename="../../app/pages/tools.py" line="117" />
       <source>T{0}: diameter (mm)</source>
       <translation>T{0}: çap (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="115" />
+      <location filename="../../app/pages/tools.py" line="116" />
       <source>T{0}: length Z (mm)</source>
       <translation>T{0}: boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="114" />
+      <location filename="../../app/pages/tools.py" line="115" />
       <source>T{0}: pocket</source>
       <translation>T{0}: cep</translation>
     </message>
@@ -1443,7 +1453,7 @@ BIRAK</translation>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="170" />
+      <location filename="../../app/pages/tools.py" line="185" />
       <source>{0} is not a tool table in the program folders</source>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>

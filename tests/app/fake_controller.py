@@ -323,6 +323,9 @@ class FakeController(QObject):
     def import_tool_table(self, path: str) -> CommandResult:
         return self._ok("import_tool_table", path)
 
+    def measure_tool(self, number: int) -> CommandResult:
+        return self._ok("measure_tool", number)
+
     def spindle_speed(self, rpm: float) -> CommandResult:
         self.spindle = replace(self.spindle, rpm=rpm)
         self.spindleChanged.emit(self.spindle)

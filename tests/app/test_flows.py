@@ -158,3 +158,22 @@ def test_probing_from_the_mdi_line_shows_the_probe_and_where_it_touched(demo_win
     assert "G38.2 (line 1): contact at X" in demo_window._message.text() + " ".join(
         a.cause for a in c.alarms)
     assert -50.1 < c.machine_position[2] <= -50.0
+
+
+def test_measuring_the_tool_in_the_spindle_on_the_setter(demo_window, real_controller, dialogs) -> None:
+    """The demo's tool setter (machine X-230 Y-180, a tool of length 0 would touch at Z-60) under
+    the simulated stylus at Z-50: the tool measures 10 mm, the table shows it, the spindle ends
+    up at the clearance height."""
+    from planner.tools import Tool
+
+    c = real_controller
+    assert c.set_tool(Tool(4, 4, (("Z", 33.0),), 6.0, "drill")) and c.set_tool_in_spindle(4)
+    page = demo_window.page("tools")
+    row = [t.number for t in c.tool_table].index(4)
+    page.table.selectRow(row)
+    page.buttons["measure"].click()
+    assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=60)
+    assert c.tool_table.get(4).length_mm == pytest.approx(10.0, abs=2e-4)
+    assert page.table.item(row, 2).text() == "10.000"
+    assert c.machine_position[2] == pytest.approx(c.config.machine.axes[2].max_pos)
+    assert "T4 measured on the tool setter: length " in demo_window._message.text()

@@ -77,3 +77,15 @@ def test_import_stays_in_the_program_folders(fake_window, fake_controller, dialo
     dialogs.answers.append(str(tbl))
     page.buttons["import"].click()
     assert fake_controller.calls[-1] == ("import_tool_table", str(tbl))
+
+
+def test_measuring_on_the_setter_asks_first(fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("tools")
+    _setup(fake_controller)
+    page.table.selectRow(1)
+    dialogs.answers.append(False)                       # declined: the machine does not move
+    page.buttons["measure"].click()
+    assert not any(c[0] == "measure_tool" for c in fake_controller.calls)
+    assert "Keep clear of the machine" in dialogs.asked[-1][1]
+    page.buttons["measure"].click()                     # confirmed
+    assert fake_controller.calls[-1] == ("measure_tool", 2)

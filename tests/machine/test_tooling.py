@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from app.machine.controller import MachineController
+from app.machine.errors import ConfigError
 from app.machine.model import MachineState
 from planner.tools import Tool
 from tests.machine.conftest import make_controller, run_to_idle
@@ -138,3 +139,40 @@ def test_the_approach_preview_is_the_way_run_from_line_takes(ctl: MachineControl
     assert [tuple(p) for p in way] == [(30.0, 30.0, -1.0), (30.0, 30.0, top), (10.0, 0.0, top),
                                        (10.0, 0.0, 5.0), (10.0, 0.0, -1.0)]
     assert isinstance(ctl.approach_preview(99), str)
+
+
+def test_measuring_on_the_setter_needs_the_tool_in_the_spindle_and_a_setter(
+        qapp, config_path, state_dir) -> None:
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1)
+        r = ctl.measure_tool(1)
+        assert not r and "T1 is not in the spindle" in r.reason
+        assert not ctl.measure_tool(9)
+        assert ctl.set_tool_in_spindle(1)
+        assert ctl.mdi("G0 X10")
+        r = ctl.measure_tool(1)                                # moving
+        assert not r and "machine is" in r.reason
+    finally:
+        ctl.shutdown()
+    text = config_path.read_text().replace("setter_x_mm = -230.0", "")
+    config_path.write_text(text)
+    with pytest.raises(ConfigError, match="setter_x_mm, setter_y_mm and setter_z_mm together"):
+        make_controller(config_path, state_dir, connect=False)
+
+
+def test_a_measurement_without_contact_leaves_the_length_as_it_was(qapp, config_path, state_dir) -> None:
+    """The setter's surface below the simulated stylus' reach: the first probe ends without
+    contact (an alarm), and the table keeps the length it had."""
+    text = config_path.read_text().replace("sim_surface_mm = -50.0", "sim_surface_mm = -140.0")
+    config_path.write_text(text)
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+        assert ctl.measure_tool(1)
+        assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 60)
+        assert ctl.run_until(lambda: ctl.stream.job is None, 10)
+        assert ctl.tool_table.get(1).length_mm == 40.0
+        assert any("the probe move ended without contact" in a.cause for a in ctl.active_alarms)
+    finally:
+        ctl.shutdown()
