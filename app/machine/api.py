@@ -438,6 +438,11 @@ class MachineApi(Protocol):
         """Replace the table by a LinuxCNC .tbl file (refused whole if a line is wrong)."""
         ...
 
+    def measure_tool(self, number: int) -> CommandResult:
+        """Measure the length of the tool in the spindle on the tool setter (``[probe] setter_*``):
+        the machine moves by itself; the table takes the length when it is done."""
+        ...
+
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         """Acknowledge one alarm (all active ones when None); persisted."""
         ...
