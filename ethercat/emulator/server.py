@@ -10,6 +10,7 @@ connection) lets tests and integrators inject faults without touching the link:
     {"op": "fault", "slave": 1, "code": 8976, "persistent": true} / {"op": "clear_fault", "slave": 1}
     {"op": "jam", "slave": 0, "on": true}           -> load blocked (following error)
     {"op": "lose", "slave": 2} / {"op": "restore", "slave": 2}  -> slave gone / back (power cycled)
+    {"op": "inputs", "slave": 1, "value": 65536}   -> the drive's digital inputs 0x60FD (a probe ...)
     {"op": "stop"}                                  -> the emulator exits
 """
 
@@ -156,6 +157,8 @@ class EmulatorServer:
         elif op == "restore":
             slave.power_cycle()
             slave.lost = False
+        elif op == "inputs":
+            slave.model.digital_inputs = int(req["value"]) & 0xFFFF_FFFF
         else:
             raise ConfigurationError(f"unknown control op {op!r}")
         return {"ok": True}

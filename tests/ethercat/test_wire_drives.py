@@ -27,7 +27,7 @@ import pytest
 from ethercat.bus import DriveSpec
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
 from ethercat.soem_bus import FRAME_TIMEOUT_ENV
-from ethercat.worker import AlarmCode, CyclicWorker, EventCode, WorkerConfig, WorkerState
+from ethercat.worker import AlarmCode, CyclicWorker, EventCode, ProbeLatch, WorkerConfig, WorkerState
 from tests.ethercat.test_wire_link import cosine, run_motion, wait_alarm, wait_until
 from tests.ethercat.third_party import KickcatLink, kickcat_unavailable_reason
 
@@ -132,6 +132,20 @@ def test_variant_runs_bench_motion_and_fault_reset(variant_link: EmulatedLink) -
     w.start()
     try:
         motion_and_fault_reset(w)
+        # the probe on bit 16 of Y's digital inputs, over the wire: latched in the cycle the
+        # emulated drive reports it; refused where 0x60FD is not in the process data (the
+        # minimal drive has no such object, the fixed drive's own mapping leaves it out)
+        armed = w.arm_probe("Y", 16, True)
+        assert armed is (variant in ("standard", "picky")), variant
+        if armed:
+            wait_until(lambda: w.snapshot().probe.latch is ProbeLatch.ARMED, "not armed in the snapshot")
+            variant_link.control("inputs", slave=1, value=1 << 16)
+            wait_until(lambda: w.probe_latched() is not None, "the probe did not latch")
+            wait_until(lambda: w.snapshot().digital_inputs[1] == 1 << 16, "inputs not in the snapshot")
+            assert w.probe_latched() == pytest.approx(tuple(w.snapshot().actual_position), abs=1e-3)
+            assert not w.arm_probe("Y", 16, True)           # touching: refused
+            variant_link.control("inputs", slave=1, value=0)
+            w.disarm_probe()
         # a drive fault now: the error code comes from the process data or, where the drive
         # does not map 0x603F, from an SDO beside the cycle
         variant_link.control("fault", slave=1, code=0x2310)
