@@ -205,25 +205,9 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
         offsets[key] = tuple(value)
     where = loc.where
     config_dir = os.path.dirname(os.path.abspath(where)) if where and not where.startswith("<") else ""
-    output_bits: dict[int, tuple[int, int, str]] = {}
-    for i, o in enumerate(valid["outputs"]):
-        if o["number"] in output_bits:
-            raise loc.fail(("outputs", i, "number"), f"output {o['number']} is defined twice")
-        if o["drive"] >= len(axes):
-            raise loc.fail(("outputs", i, "drive"),
-                           f"{o['drive']} must be below the axis count {len(axes)}")
-        if any((d, b) == (o["drive"], o["bit"]) for d, b, _ in output_bits.values()):
-            raise loc.fail(("outputs", i, "bit"),
-                           f"bit {o['bit']} of drive {o['drive']} is already an output")
-        output_bits[o["number"]] = (o["drive"], o["bit"], o["name"])
-    input_bits: dict[int, tuple[int, int, str]] = {}
-    for i, o in enumerate(valid["inputs"]):
-        if o["number"] in input_bits:
-            raise loc.fail(("inputs", i, "number"), f"input {o['number']} is defined twice")
-        if o["drive"] >= len(axes):
-            raise loc.fail(("inputs", i, "drive"),
-                           f"{o['drive']} must be below the axis count {len(axes)}")
-        input_bits[o["number"]] = (o["drive"], o["bit"], o["name"])
+    # two outputs on one bit would fight; two inputs on one bit read the same wire, which is fine
+    output_bits = _io_bits(loc, valid["outputs"], "outputs", "output", len(axes), exclusive=True)
+    input_bits = _io_bits(loc, valid["inputs"], "inputs", "input", len(axes), exclusive=False)
     mcodes: dict[int, tuple[str, str, int, bool]] = {}
     for i, mc in enumerate(valid["mcodes"]):
         if mc["code"] in mcodes:
@@ -236,6 +220,22 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
                        work_offsets=offsets, config_dir=config_dir, output_bits=output_bits, mcodes=mcodes,
                        input_bits=input_bits)
+
+
+def _io_bits(loc: Locator, entries: list[dict[str, Any]], table: str, what: str, n_axes: int,
+             exclusive: bool) -> dict[int, tuple[int, int, str]]:
+    """``[[outputs]]`` / ``[[inputs]]``: number -> (drive index, bit, name), each number once,
+    each drive one of the axes'; ``exclusive``: each (drive, bit) once."""
+    bits: dict[int, tuple[int, int, str]] = {}
+    for i, o in enumerate(entries):
+        if o["number"] in bits:
+            raise loc.fail((table, i, "number"), f"{what} {o['number']} is defined twice")
+        if o["drive"] >= n_axes:
+            raise loc.fail((table, i, "drive"), f"{o['drive']} must be below the axis count {n_axes}")
+        if exclusive and any((d, b) == (o["drive"], o["bit"]) for d, b, _ in bits.values()):
+            raise loc.fail((table, i, "bit"), f"bit {o['bit']} of drive {o['drive']} is already an {what}")
+        bits[o["number"]] = (o["drive"], o["bit"], o["name"])
+    return bits
 
 
 def load_machine(path: str | Path) -> MachineSpec:

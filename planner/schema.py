@@ -59,6 +59,14 @@ class Table:
 
 
 _LIN = 1e6        # mm: positions and travel
+#: a digital output or input: its number in a program (M62-M66 P), the axis index of the drive
+#: that carries it, the bit of the drive's 0x60FE:1 / 0x60FD, a name for the operator
+_IO_KEYS = (
+    Key("number", "int", REQUIRED, 0, 63),
+    Key("drive", "int", REQUIRED, 0, 63),
+    Key("bit", "int", REQUIRED, 0, 31),
+    Key("name", "str", ""),
+)
 MACHINE_FILE = Table("", tables=(
     Table("machine", (Key("name", "str", "machine"),)),
     Table("axes", (
@@ -94,19 +102,9 @@ MACHINE_FILE = Table("", tables=(
     Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
     # digital outputs a program switches (M62-M65 P<number>): a bit of a drive's 0x60FE:1
     # (bits 0 and 1 of the spindle drive switch the spindle)
-    Table("outputs", (
-        Key("number", "int", REQUIRED, 0, 63),
-        Key("drive", "int", REQUIRED, 0, 63),
-        Key("bit", "int", REQUIRED, 0, 31),
-        Key("name", "str", ""),
-    ), array=True),
+    Table("outputs", _IO_KEYS, array=True),
     # digital inputs a program reads or waits for (M66 P<number>): a bit of a drive's 0x60FD
-    Table("inputs", (
-        Key("number", "int", REQUIRED, 0, 63),
-        Key("drive", "int", REQUIRED, 0, 63),
-        Key("bit", "int", REQUIRED, 0, 31),
-        Key("name", "str", ""),
-    ), array=True),
+    Table("inputs", _IO_KEYS, array=True),
     # user M-codes M100-M199: what each does on this machine
     Table("mcodes", (
         Key("code", "int", REQUIRED, 100, 199),

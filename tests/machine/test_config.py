@@ -55,6 +55,10 @@ def test_save_is_atomic_and_keeps_the_previous_file(config_path: Path) -> None:
     (lambda t: t.replace("bit = 16", "bit = 32"), ["probe.bit", "32"]),
     (lambda t: t.replace('sim_axis = "Z"', 'sim_axis = "A"'), ["probe.sim_axis", "A is not an axis"]),
     (lambda t: t.replace("touching_level = 1", "touching_level = 2"), ["touching_level", "2"]),
+    # M66's inputs: on a drive the machine has, each number once
+    (lambda t: re.sub(r"(\[\[inputs\]\][^\n]*\nnumber = 0\ndrive = )0", r"\g<1>4", t),
+     ["inputs", "drive", "axis count 3"]),
+    (lambda t: t + "\n[[inputs]]\nnumber = 0\ndrive = 1\nbit = 20\n", ["inputs", "input 0 is defined twice"]),
 ])
 def test_invalid_values_are_named(config_path: Path, edit, words) -> None:
     cfg = load_config(config_path)

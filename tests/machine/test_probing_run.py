@@ -6,6 +6,7 @@ from where the machine stands; the failures an operator must see."""
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -227,19 +228,25 @@ def test_run_from_a_line_after_a_probe_is_refused_and_from_the_probe_line_probes
     assert sum(m.startswith("G38.2 (line 8): contact at") for m in said) == 1
 
 
-def test_an_estop_during_the_probe_move_resumes_from_its_start_with_the_probe_armed(
-        ctl: MachineController) -> None:
-    said = _messages(ctl)
-    _run(ctl, PROBE_Z)
-    assert ctl.run_until(lambda: ctl.prober.run is not None and ctl.reference_position[2] < -44.0, 20.0)
+def _estop_and_resume(ctl: MachineController, in_estop: Callable[[], bool] = lambda: True) -> None:
+    """E-stop now (``in_estop`` must hold then), released, the alarm acknowledged, resume, run
+    to the end."""
     assert ctl.estop("test")
     assert ctl.run_until(lambda: ctl.state is MachineState.ESTOP, 2.0)
-    assert ctl.prober.run is None                               # disarmed with the job
+    assert in_estop()
     assert ctl.estop_release()
     assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
     assert ctl.acknowledge_alarm()
     assert ctl.resume(), ctl.state_reason
     run_to_idle(ctl, 40)
+
+
+def test_an_estop_during_the_probe_move_resumes_from_its_start_with_the_probe_armed(
+        ctl: MachineController) -> None:
+    said = _messages(ctl)
+    _run(ctl, PROBE_Z)
+    assert ctl.run_until(lambda: ctl.prober.run is not None and ctl.reference_position[2] < -44.0, 20.0)
+    _estop_and_resume(ctl, lambda: ctl.prober.run is None)     # disarmed with the job
     assert ctl.last_run is not None and ctl.last_run.completed, ctl.last_run
     assert any(m.startswith("G38.2 (line 3): contact at") for m in said), said
     assert ctl.machine_position[0] == pytest.approx(20.0, abs=1e-3)
@@ -250,13 +257,7 @@ def test_a_fault_after_a_probe_resumes_with_its_result_for_the_next_probe(ctl: M
     _run(ctl, TWO_PROBES)
     assert ctl.run_until(lambda: ctl.current_line == 7, 40.0)
     ctl.advance(0.3)
-    assert ctl.estop("test")
-    assert ctl.run_until(lambda: ctl.state is MachineState.ESTOP, 2.0)
-    assert ctl.estop_release()
-    assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
-    assert ctl.acknowledge_alarm()
-    assert ctl.resume(), ctl.state_reason
-    run_to_idle(ctl, 40)
+    _estop_and_resume(ctl)
     assert ctl.last_run is not None and ctl.last_run.completed, ctl.last_run
     (both,) = [m for m in said if m.startswith("both")]
     first, second = (float(v) for v in both.split()[1:])
