@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from app.machine.controller import MachineController
     from app.machine.jobs import Job
 
-__all__ = ["InputWaiter", "ProbeRun", "Prober", "continue_after"]
+__all__ = ["InputWaiter", "ProbeRun", "Prober", "continue_after", "probe_refusal"]
 
 
 def probe_refusal(program: Program, drive: int | None, max_feed_mm_min: float) -> tuple[int, str]:
@@ -70,10 +70,12 @@ class ProbeRun:
 
 
 class Prober:
+    """G38.x on the machine: arms the input before a probe move, stops the motion at the
+    contact, and goes on with the result (the module docstring)."""
+
     def __init__(self, m: MachineController) -> None:
         self.m = m
         self.run: ProbeRun | None = None
-        self.last_result: ProbeResult | None = None
         # the worker and home offsets the simulated surface was placed for
         self._surface_at: tuple[object, tuple[float, ...]] | None = None
 
@@ -166,7 +168,6 @@ class Prober:
             return
         trip = run.trip_position if run.trip_position is not None else stop
         result = ProbeResult(tripped, tuple(float(v) for v in trip), tuple(float(v) for v in stop))
-        self.last_result = result
         axes = self.m.config.axes
         self.m.stream.show_message(
             f"{where}: " + (("contact at " if req.toward else "contact lost at ")
