@@ -1988,13 +1988,16 @@ class _Interpreter:
                     if clear_cc > r:
                         go(aa, bb, r, True)
                 if motion in (730, 830):
-                    depth = r - delta
-                    while depth > cc:
-                        go(aa, bb, depth, False)
-                        if motion == 830:
-                            go(aa, bb, r, True)
-                        go(aa, bb, depth + rapid_delta, True)
-                        depth -= delta
+                    if self.comp.busy:
+                        depth = r - delta
+                        while depth > cc:
+                            go(aa, bb, depth, False)
+                            if motion == 830:
+                                go(aa, bb, r, True)
+                            go(aa, bb, depth + rapid_delta, True)
+                            depth -= delta
+                    else:
+                        self.pecks(na, off[na], r, cc, delta, rapid_delta, motion == 830, line_no)
                     go(aa, bb, cc, False)
                     go(aa, bb, clear_cc, True)
                 elif motion in (740, 840):
@@ -2022,6 +2025,48 @@ class _Interpreter:
                         go(aa, bb, clear_cc, True)
         finally:
             self.exact_stop = saved_stop
+
+    def pecks(self, na: int, off_na: float, r: float, cc: float, delta: float, rapid_delta: float,
+              out_to_r: bool, line_no: int) -> None:
+        """The pecks of G73 / G83 (``out_to_r``) above the bottom ``cc``, from the R plane ``r``,
+        all at once: feed down by ``delta`` each time, then back off (G73: ``rapid_delta`` up;
+        G83: out to R and rapid back down to ``rapid_delta`` above the peck). The depths are
+        LinuxCNC's, by the same repeated subtraction; moves of no length are left out, as
+        ``straight`` leaves them out. Thousands of pecks (a small Q on a deep hole) take
+        milliseconds instead of seconds."""
+        n_est = int((r - cc) / delta) + 2
+        depths = np.subtract.accumulate(np.concatenate(([r], np.full(n_est, delta))))[1:]
+        depths = depths[depths > cc]
+        if not len(depths):
+            return
+        if self.feed_mm_s <= 0.0:
+            raise _BlockError(_ZERO_FEED, "G")
+        per = 3 if out_to_r else 2
+        z = np.empty(len(depths) * per)
+        z[0::per] = depths
+        if out_to_r:
+            z[1::per] = r
+        z[per - 1::per] = depths + rapid_delta
+        ends = np.repeat(np.asarray([self.pos], dtype=float), len(z), axis=0)
+        ends[:, na] = z + off_na
+        before = np.concatenate(([self.pos[na]], ends[:-1, na]))
+        length = np.abs(ends[:, na] - before)
+        rapid = np.ones(len(z), dtype=bool)
+        rapid[0::per] = False
+        keep = length > _ZERO_LEN
+        if not keep.all():
+            # a move left out leaves the tool where it was, and the next one starts there (rare:
+            # a back-off landing within 1e-9 mm of the R plane): measured one by one
+            at = self.pos[na]
+            for i in range(len(z)):
+                length[i] = abs(ends[i, na] - at)
+                keep[i] = length[i] > _ZERO_LEN
+                if keep[i]:
+                    at = ends[i, na]
+        feed = np.where(rapid, math.inf, self.feed_mm_s)
+        self.out.extend(ends[keep], np.full(int(keep.sum()), line_no), np.where(rapid[keep], 0, 1),
+                        feed[keep], length[keep], True)
+        self.pos = ends[-1].tolist()
 
     def g28(self, vals: dict[str, float], axis_words: list[str], scale: float, line_no: int,
             base: int = _P_G28) -> None:

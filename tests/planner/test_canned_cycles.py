@@ -272,3 +272,50 @@ def test_every_cycle_stays_between_its_bottom_and_its_clearance(code: str, plane
         if m.kind.name != "RAPID":
             d = np.abs(np.asarray(m.end) - np.asarray(m.start))
             assert d[[i for i in range(3) if i != normal]].max() <= tol
+
+
+def _pecks_by_loop(z0: float, r: float, bottom: float, q: float, g83: bool) -> list[tuple[str, float]]:
+    """LinuxCNC's G73/G83 loop (interp_cycles.cc), written out move by move: the reference the
+    interpreter's pecks, made all at once, must equal bit for bit."""
+    out = []
+    if z0 > r:
+        out.append(("rapid", r))
+    depth = r - q
+    while depth > bottom:
+        out.append(("feed", depth))
+        if g83:
+            out.append(("rapid", r))
+        out.append(("rapid", depth + 0.254))
+        depth -= q
+    out.append(("feed", bottom))
+    out.append(("rapid", r))
+    merged: list[tuple[str, float]] = []
+    at = z0
+    for kind, z in out:
+        if abs(z - at) > 1e-9:           # a move to where the tool is (within 1e-9 mm) is no move
+            merged.append((kind, z))
+            at = z
+    return merged
+
+
+@settings(max_examples=150, deadline=None)
+@given(r=st.floats(-20, 20), depth=st.floats(0.01, 60), q=st.floats(0.001, 5), g83=st.booleans(),
+       scale=st.sampled_from([0.001, 1.0, 1000.0]))
+def test_pecks_are_linuxcnc_s_loop_bit_for_bit(r: float, depth: float, q: float, g83: bool,
+                                               scale: float) -> None:
+    q = max(q, depth / 20_000)                      # at most 20,000 pecks
+    # the words as written (9 decimals); the reference computes from the same numbers
+    r_t, bottom_t, q_t, z0_t = (f"{v * scale:.9f}" for v in (r, r - depth, q, r + 5.0))
+    r, bottom, q, z0 = float(r_t), float(bottom_t), float(q_t), float(z0_t)
+    if not (q > 0 and bottom < r):
+        return
+    code = "G83" if g83 else "G73"
+    text = f"G21 G90 G99 F100\nG0 X0 Y0 Z{z0_t}\n{code} X0 Y0 Z{bottom_t} R{r_t} Q{q_t}\nM2\n"
+    program = parse_program(text)
+    got = [("rapid" if m.kind == 0 else "feed", float(m.end[2])) for m in program.moves[1:]]
+    assert got == _pecks_by_loop(z0, r, bottom, q, g83)
+    ends = np.array([m.end for m in program.moves])
+    starts = np.array([m.start for m in program.moves])
+    np.testing.assert_array_equal(starts[1:], ends[:-1])
+    np.testing.assert_allclose([m.length_mm for m in program.moves],
+                               np.linalg.norm(ends - starts, axis=1), rtol=1e-12)
