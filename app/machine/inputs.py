@@ -139,6 +139,8 @@ class Prober:
     def poll(self, job: Job, all_done: bool) -> None:
         """From the poll: stopped after the contact, the result is taken."""
         run = self.run
+        if job.stopping:                     # stopped meanwhile (stop, alarm): nothing goes on
+            return
         if run is not None and run.trip_position is not None and job.executor.standing and all_done:
             self.finish(job)
 

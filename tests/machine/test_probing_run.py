@@ -277,3 +277,16 @@ def test_a_probe_faster_than_the_stylus_allows_is_refused_with_its_place(ctl: Ma
     r = ctl.mdi("G38.2 Z-70 F1200")
     assert not r and "F1200 mm/min is faster than the probe allows" in r.reason
     assert ctl.load_program("G21 G90\nG0 Z-40\nG38.2 Z-70 F1000\nM2\n", wait=True)
+
+
+def test_a_stop_pressed_as_the_probe_touches_ends_the_program_there(ctl: MachineController) -> None:
+    """The contact's own stop and the operator's come together: the program read again with the
+    result must not set the machine moving after Stop."""
+    _run(ctl, PROBE_Z)
+    assert ctl.run_until(lambda: ctl.prober.run is not None and ctl.prober.run.trip_position is not None, 20.0)
+    assert ctl.stop()
+    run_to_idle(ctl)
+    assert ctl.last_run is not None and not ctl.last_run.completed
+    here = ctl.machine_position
+    ctl.advance(1.0)
+    assert ctl.machine_position == here and here[2] < SURFACE_Z
