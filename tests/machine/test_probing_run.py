@@ -283,7 +283,8 @@ def test_a_stop_pressed_as_the_probe_touches_ends_the_program_there(ctl: Machine
     """The contact's own stop and the operator's come together: the program read again with the
     result must not set the machine moving after Stop."""
     _run(ctl, PROBE_Z)
-    assert ctl.run_until(lambda: ctl.prober.run is not None and ctl.prober.run.trip_position is not None, 20.0)
+    run = ctl.prober
+    assert ctl.run_until(lambda: run.run is not None and run.run.trip_position is not None, 20.0)
     assert ctl.stop()
     run_to_idle(ctl)
     assert ctl.last_run is not None and not ctl.last_run.completed
