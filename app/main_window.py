@@ -119,6 +119,7 @@ class MainWindow(QMainWindow):
             lambda action, reason: self.show_message(tr("Refused: {0}").format(localize(reason))))
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
+        ctx.controller.programReadAgain.connect(ctx.program.set_read_again)
         self._progress_timer = QTimer(self)
         self._progress_timer.setInterval(deferred.LOAD_PROGRESS_MS)
         self._progress_timer.timeout.connect(self._show_progress)

@@ -80,6 +80,15 @@ class ProgramModel(QObject):
         self.errorsChanged.emit(self.errors)
         self.changed.emit()
 
+    def set_read_again(self, program: object) -> None:
+        """The running program read again with what a probe or M66 read: its path from there
+        on is the one the machine takes (the loaded text and its checked plan stay)."""
+        if not isinstance(program, Program) or self.info is None:
+            return
+        self.program = program
+        self.toolpath = build_toolpath(program)
+        self.changed.emit()
+
     def set_errors(self, issues: object, text: str = "", name: str = "") -> None:
         """The controller refused a program: keep its text and the errors per line."""
         self.info, self.program, self.toolpath = None, None, None

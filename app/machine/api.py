@@ -47,6 +47,9 @@ class MachineApi(Protocol):
     trackingSample: SignalInstance  # (time s, reference, actual) machine coords, <= 30 Hz
     programLoaded: SignalInstance  # ProgramInfo (checked: no errors, within soft limits)
     programErrors: SignalInstance  # tuple[ProgramIssue, ...] (parse errors, soft limits)
+    # planner.program.Program: the running program read again with what a probe or M66 read
+    # (the path from there on is the machine's, not the one assumed at the check)
+    programReadAgain: SignalInstance
     loadingChanged: SignalInstance  # (a program is being checked, its name)
     programFinished: SignalInstance  # RunSummary (completed or not)
     lineChanged: SignalInstance  # current source line (1-based), 0 when none

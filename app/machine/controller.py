@@ -128,6 +128,8 @@ class MachineController(QObject):
     positionChanged = Signal(object, object)  # (machine pos tuple, work pos tuple), <= 30 Hz
     trackingSample = Signal(float, object, object)  # (time s, reference, actual) machine coords, <= 30 Hz
     programLoaded = Signal(object)  # ProgramInfo (checked: no errors, within soft limits)
+    # Program: the running program read again with what a probe or M66 read (app.machine.inputs)
+    programReadAgain = Signal(object)
     programErrors = Signal(object)  # tuple[ProgramIssue, ...] (parse errors, soft limits)
     loadingChanged = Signal(bool, str)  # (a program is being checked, its name)
     programFinished = Signal(object)  # RunSummary (completed or not)

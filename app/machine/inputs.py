@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from app.machine.model import MachineState
+from app.machine.model import Activity, MachineState
 from planner.errors import PlannerError, ProgramError
 from planner.program import EventKind, InputRequest, ProbeRequest, ProbeResult, Program, WaitMode
 from planner.resume import program_from_moves
@@ -242,7 +242,8 @@ def continue_after(m: MachineController, job: Job, kind: EventKind, index: int, 
         fail(f"{where}: planner: {exc}")
         return
     new.probe_results, new.wait_results = probes, waits
-
+    if job.kind is Activity.PROGRAM:
+        m.programReadAgain.emit(full)        # the preview draws the path the machine takes
 
 def _after_event(full: Program, kind: EventKind, index: int) -> Program | None:
     """What follows read ``index`` of ``kind`` in ``full``: its later moves, from where the move

@@ -43,6 +43,7 @@ class FakeController(QObject):
     positionChanged = Signal(object, object)
     programLoaded = Signal(object)
     programErrors = Signal(object)
+    programReadAgain = Signal(object)
     loadingChanged = Signal(bool, str)
     programFinished = Signal(object)
     lineChanged = Signal(int)

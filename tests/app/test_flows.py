@@ -177,3 +177,21 @@ def test_measuring_the_tool_in_the_spindle_on_the_setter(demo_window, real_contr
     assert page.table.item(row, 2).text() == "10.000"
     assert c.machine_position[2] == pytest.approx(c.config.machine.axes[2].max_pos)
     assert "T4 measured on the tool setter: length " in demo_window._message.text()
+
+
+def test_after_a_probe_the_preview_draws_the_path_the_machine_takes(demo_window, real_controller) -> None:
+    """Checked with the contact assumed at Z-70, the move after the probe goes to Z-65 on the
+    preview; once the stylus touched at Z-50 the program is read again, and the preview and
+    the backplot draw that move to Z-45."""
+    c = real_controller
+    text = "G21 G90\nG0 X10 Y5 Z-40\nG38.2 Z-70 F300\nG0 Z[#5063 + 5]\nG1 X30 F600\nM2\n"
+    assert c.load_program(text, name="probe.nc", wait=True)
+    model = demo_window.context.program
+    assert c.run_until(lambda: model.program is not None and model.info is c.program_info, timeout_s=10)
+    assert model.program.moves[2].end[2] == pytest.approx(-65.0)
+    preview = demo_window.page("preview").plot
+    assert c.cycle_start(wait=True)
+    assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=60)
+    assert model.program.moves[2].end[2] == pytest.approx(-45.0, abs=0.01)
+    assert preview.path is model.toolpath and demo_window.page("auto").backplot.path is model.toolpath
+    assert c.program_info.program.moves[2].end[2] == pytest.approx(-65.0)   # the check's own stays
