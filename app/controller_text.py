@@ -67,6 +67,19 @@ TEMPLATES: tuple[str, ...] = (
     N_("the control did not shut down cleanly (power loss or killed; position last saved {0}): {1}"),
     N_("axes are not homed any more: home them before running a program"),
     N_("the drives have absolute encoders: homed flags kept"),
+    # probing, inputs and the tool setter
+    N_("{0} (line {1}): contact at {2} (machine)"),
+    N_("{0} (line {1}): contact lost at {2} (machine)"),
+    N_("{0} (line {1}): no contact"),
+    N_("{0} (line {1}): the probe move ended without contact"),
+    N_("{0} (line {1}): the probe already touches where the move starts"),
+    N_("{0} (line {1}): with the result, {2}"),
+    N_("a probe move ended without the probe armed: the program stops here"),
+    N_("line {0} comes after the probe at line {1}: what follows depends on what it read; run from line "
+       "{1} (or before) to read it again"),
+    N_("M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1"),
+    N_("T{0} measured on the tool setter: length {1} mm"),
+    N_("T{0} is not in the spindle: put it in and set it (In the spindle) first"),
 )
 
 

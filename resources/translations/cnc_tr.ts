@@ -149,12 +149,12 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="166" />
+      <location filename="../../app/main_window.py" line="167" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="185" />
+      <location filename="../../app/main_window.py" line="186" />
       <source>Checking {0} … {1} %</source>
       <translation>{0} denetleniyor … %{1}</translation>
     </message>
@@ -481,6 +481,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Servis seviyesini kilitle</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="80" />
+      <source>M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1</source>
+      <translation>M66 (satır {0}): P{1} girişi {2} s sonra zaman aşımına uğradı: #5399 = -1</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/manual.py" line="71" />
       <source>MDI</source>
       <translation>MDI</translation>
@@ -711,17 +716,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="199" />
+      <location filename="../../app/main_window.py" line="200" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="195" />
+      <location filename="../../app/main_window.py" line="196" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="212" />
+      <location filename="../../app/main_window.py" line="213" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -858,22 +863,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="244" />
+      <location filename="../../app/main_window.py" line="245" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="273" />
+      <location filename="../../app/main_window.py" line="274" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="249" />
+      <location filename="../../app/main_window.py" line="250" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="251" />
+      <location filename="../../app/main_window.py" line="252" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -883,7 +888,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="244" />
+      <location filename="../../app/main_window.py" line="245" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -1083,9 +1088,19 @@ BIRAK</translation>
       <translation>T{0} iş milinde: önce başka bir takım seçin</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="82" />
+      <source>T{0} is not in the spindle: put it in and set it (In the spindle) first</source>
+      <translation>T{0} iş milinde değil: önce takın ve ayarlayın (İş milinde)</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="50" />
       <source>T{0} is not in the tool table</source>
       <translation>T{0} takım tablosunda yok</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="81" />
+      <source>T{0} measured on the tool setter: length {1} mm</source>
+      <translation>T{0} takım ayarlayıcıda ölçüldü: boy {1} mm</translation>
     </message>
     <message>
       <location filename="../../app/pages/tools.py" line="117" />
@@ -1141,6 +1156,11 @@ BIRAK</translation>
       <location filename="../../app/dialogs.py" line="25" />
       <source>Yes</source>
       <translation>Evet</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="77" />
+      <source>a probe move ended without the probe armed: the program stops here</source>
+      <translation>bir prob hareketi prob kurulmadan bitti: program burada durur</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="36" />
@@ -1251,6 +1271,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="55" />
       <source>idle</source>
       <translation>boşta</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="78" />
+      <source>line {0} comes after the probe at line {1}: what follows depends on what it read; run from line {1} (or before) to read it again</source>
+      <translation>satır {0}, satır {1}'deki probdan sonra geliyor: devamı onun okuduğuna bağlı; yeniden okumak için satır {1}'den (veya öncesinden) çalıştırın</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="52" />
@@ -1438,9 +1463,39 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="168" />
+      <location filename="../../app/main_window.py" line="169" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="71" />
+      <source>{0} (line {1}): contact at {2} (machine)</source>
+      <translation>{0} (satır {1}): temas {2} konumunda (makine)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="72" />
+      <source>{0} (line {1}): contact lost at {2} (machine)</source>
+      <translation>{0} (satır {1}): temas {2} konumunda kesildi (makine)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="73" />
+      <source>{0} (line {1}): no contact</source>
+      <translation>{0} (satır {1}): temas yok</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="75" />
+      <source>{0} (line {1}): the probe already touches where the move starts</source>
+      <translation>{0} (satır {1}): prob, hareketin başladığı yerde zaten temas ediyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="74" />
+      <source>{0} (line {1}): the probe move ended without contact</source>
+      <translation>{0} (satır {1}): prob hareketi temas olmadan bitti</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="76" />
+      <source>{0} (line {1}): with the result, {2}</source>
+      <translation>{0} (satır {1}): sonuçla birlikte, {2}</translation>
     </message>
     <message>
       <location filename="../../app/pages/program.py" line="169" />
