@@ -1926,10 +1926,18 @@ class _Interpreter:
         off = self.offset
         pos = self.pos
         rotated = self.rotation != 0.0
-        if rotated and self.plane != 170:
-            raise _BlockError(f"{name} in {plane_g} with the XY plane rotated (G10 L2 R) is not supported",
-                              name)
-        current_cc = pos[na] - off[na]
+        ix, iy = self.axis_index.get("X", -1), self.axis_index.get("Y", -1)
+
+        def program_point(p: Sequence[float]) -> list[float]:
+            """Program coordinates of machine position ``p``: offsets off, the XY rotation undone
+            (in G18/G19 the hole axis or the plane's second axis is a turned X or Y)."""
+            q = [p[i] - off[i] for i in range(self.n)]
+            if rotated:
+                q[ix], q[iy] = self.prog_xy(p)
+            return q
+
+        here_prog = program_point(pos)
+        current_cc = here_prog[na]
         if self.cycle_il is None:
             self.cycle_il = current_cc
         old_cc = self.cycle_il
@@ -1937,7 +1945,7 @@ class _Interpreter:
             aa_inc = bb_inc = 0.0
             r = self.cycle_r_word
             cc = self.cycle_z_word
-            cur_a, cur_b = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
+            cur_a, cur_b = here_prog[fa], here_prog[sa]
             aa = vals[first_l] * scale if first_l in vals else cur_a
             bb = vals[second_l] * scale if second_l in vals else cur_b
         else:
@@ -1945,7 +1953,7 @@ class _Interpreter:
             bb_inc = vals.get(second_l, 0.0) * scale
             r = self.cycle_r_word + old_cc
             cc = r + self.cycle_z_word
-            aa, bb = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
+            aa, bb = here_prog[fa], here_prog[sa]
         if r < cc:
             raise _BlockError(f"R ({r / scale:g}) below the bottom {normal} ({cc / scale:g}) of the canned "
                               f"cycle in {plane_g}", "R" if "R" in vals else name)
@@ -1957,20 +1965,24 @@ class _Interpreter:
 
         def go(a: float, b: float, c: float, rapid: bool) -> None:
             target = self.pos.copy()
-            if rotated:
-                target[fa], target[sa] = self.machine_xy(a, b)
+            if rotated:                      # the plane's point in program coordinates, then turned
+                q = program_point(self.pos)
+                q[fa], q[sa], q[na] = a, b, c
+                target[ix], target[iy] = self.machine_xy(q[ix], q[iy])
+                for i in (fa, sa, na):
+                    if i not in (ix, iy):
+                        target[i] = q[i] + off[i]
             else:
                 target[fa] = a + off[fa]
                 target[sa] = b + off[sa]
-            target[na] = c + off[na]
+                target[na] = c + off[na]
             self.straight(target, rapid, line_no)
 
         def event(kind: EventKind, value: float, text: str) -> None:
             self.events.append(Event(kind, line_no, len(self.out) - 1, value, text))
 
         if old_cc < r:                         # below the R plane: straight up to it first
-            here = self.prog_xy(pos) if rotated else (pos[fa] - off[fa], pos[sa] - off[sa])
-            go(here[0], here[1], r, True)
+            go(here_prog[fa], here_prog[sa], r, True)
             old_cc = current_cc = r
         clear_cc = r if self.retract_r_plane else old_cc
         saved_stop = self.exact_stop
@@ -1988,7 +2000,7 @@ class _Interpreter:
                     if clear_cc > r:
                         go(aa, bb, r, True)
                 if motion in (730, 830):
-                    if self.comp.busy:
+                    if self.comp.busy or (rotated and na in (ix, iy)):   # pecks along a turned axis
                         depth = r - delta
                         while depth > cc:
                             go(aa, bb, depth, False)

@@ -54,7 +54,8 @@ def programs(draw) -> str:
     kinds = draw(st.lists(st.sampled_from(
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
-         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input"]), min_size=1, max_size=10))
+         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle"]),
+        min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
         # its program coordinates differ from the last call's, so the oracle cannot drop it
@@ -107,6 +108,16 @@ def programs(draw) -> str:
             out.append(f"X{_n(x2)} Y{_n(y2)}\nG80\nF600")
             x, y = x2, y2
             z = z if retract == "G98" else 2.0
+        elif kind == "plane_cycle":
+            # G18: holes along Y, G19: along X; in a rotated system that axis is a turned one
+            code = draw(st.sampled_from(["G81", "G83 Q1.5", "G73 Q1", "G85"]))
+            retract = draw(st.sampled_from(["G98", "G99"]))
+            a, b = draw(val), draw(val)
+            if draw(st.booleans()):
+                out.append(f"G0 Y5\nG18 {retract} {code} X{_n(a)} Z{_n(b)} Y-3 R2 F300\nG17 G80 F600")
+            else:
+                out.append(f"G0 X5\nG19 {retract} {code} Y{_n(a)} Z{_n(b)} X-3 R2 F300\nG17 G80 F600")
+            goto()
         elif kind == "sub":
             a, b = draw(val), draw(val)
             if a == b == 0.0:

@@ -18,7 +18,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import EventKind, Program
-from tests.planner.linuxcnc_oracle import canon_calls
+from tests.planner.linuxcnc_oracle import RS274, canon_calls
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 REFERENCES = sorted(p.parent for p in DATA.glob("g8*/*/*/expected"))
@@ -319,3 +319,23 @@ def test_pecks_are_linuxcnc_s_loop_bit_for_bit(r: float, depth: float, q: float,
     np.testing.assert_array_equal(starts[1:], ends[:-1])
     np.testing.assert_allclose([m.length_mm for m in program.moves],
                                np.linalg.norm(ends - starts, axis=1), rtol=1e-12)
+
+
+@pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs it as root)")
+@pytest.mark.parametrize("text", [
+    # G18: holes along Y, a turned axis when the system is rotated; G19: along X
+    "G21 F100\nG10 L2 P1 X10 Y20 Z-5 R30\nG54\nG0 X1 Y2 Z3\nG18 G81 X5 Y-4 Z2 R6\nG17 G80\nM2\n",
+    "G21 F100\nG10 L2 P1 X-7 Y3 R-45\nG54\nG0 X5 Y1 Z1\nG19 G99 G83 Y1 Z1 X-3 R4 Q0.7\nG17 G80\nM2\n",
+    "G21 F100\nG10 L2 P2 R90\nG55\nG0 X2 Y8 Z0\nG18 G98 G73 X1 Z-2 Y-6 R5 Q1.1 L2\n"
+    "G91 G18 G81 X2 Z1 Y-3 R1 L2\nG90 G17 G80\nM2\n",
+])
+def test_cycles_in_g18_g19_of_a_rotated_system_are_linuxcnc_s(text: str) -> None:
+    from tests.planner.linuxcnc_oracle import project_motion, run_linuxcnc
+
+    theirs = run_linuxcnc(text)
+    assert not theirs.error, theirs.error
+    program = parse_program(text)
+    ours = project_motion(program)
+    assert [c for c, _ in ours] == [c for c, _ in theirs.motion]
+    for (_, a), (_, b) in zip(ours, theirs.motion, strict=True):
+        assert a == pytest.approx(b, abs=0.003)
