@@ -291,3 +291,29 @@ def test_a_stop_pressed_as_the_probe_touches_ends_the_program_there(ctl: Machine
     here = ctl.machine_position
     ctl.advance(1.0)
     assert ctl.machine_position == here and here[2] < SURFACE_Z
+
+
+def test_the_probe_stops_in_real_time_as_in_simulated_time(qapp, config_path: Path, state_dir: Path) -> None:
+    """The worker's own thread at 1 ms and the feeder thread every 2 ms (not the manual clock):
+    the contact is latched and the motion stopped within the same overtravel, the reaction
+    bounded by the feeder's period and the splice margin (30 ms allowed: a shared 2-core box)."""
+    import time
+
+    ctl = MachineController(config_path, state_dir=state_dir, worker_mode="thread")
+    said = _messages(ctl)
+    try:
+        assert ctl.connect_bus() and ctl.set_machine_zero_here()
+        assert ctl.load_program(PROBE_Z, wait=True) and ctl.cycle_start(wait=True)
+        t_end = time.monotonic() + 30.0
+        while not (ctl.last_run is not None and ctl.state is MachineState.IDLE) and time.monotonic() < t_end:
+            time.sleep(0.01)
+            qapp.processEvents()
+        assert ctl.last_run is not None and ctl.last_run.completed, ctl.state_reason
+        z = trace(ctl)["reference"][:, 2]
+        v, jerk = FEED_MM_MIN / 60.0, ctl.config.machine.limits.j_max_mm_s3
+        stop_mm = v * np.sqrt(v / jerk)
+        assert stop_mm < SURFACE_Z - float(z.min()) < stop_mm + v * 0.030
+        assert any(m.startswith("G38.2 (line 3): contact at") for m in said), said
+        assert ctl.machine_position[2] == pytest.approx(SURFACE_Z + 5.0, abs=0.01)   # up 5 from the contact
+    finally:
+        ctl.shutdown()
