@@ -184,7 +184,8 @@ class Streamer:
         new.reread, new.probe_results, new.wait_results = job.reread, job.probe_results, job.wait_results
         new.when_done = job.when_done
         new.executor.hold = held
-        self.job = new
+        with self.m._lock:                  # the feeder thread reads the job under the lock
+            self.job = new
         if self.m.conn.worker_mode != "manual":
             self.feed()
         return new
