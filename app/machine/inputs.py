@@ -190,8 +190,7 @@ class Prober:
                 pass
 
     def fail(self, cause: str) -> None:
-        self.m.alarm_log.alarm_stop(cause, "probe", "probe")
-        self.m.run.resume_point = None       # what follows a failed probe must not be run
+        stop_program(self.m, cause, "probe")
 
     def _go_on(self, job: Job, index: int, result: ProbeResult) -> None:
         results: list[ProbeResult | None] = list(job.probe_results)
@@ -200,6 +199,13 @@ class Prober:
         req = job.plan.program.probes[index]
         continue_after(self.m, job, EventKind.PROBE, index, f"{req.name} (line {req.line})",
                        tuple(results), job.wait_results, self.fail)
+
+
+def stop_program(m: MachineController, cause: str, source: str) -> None:
+    """A read that went wrong: a STOP alarm (``source`` names it), and no resume past it (what
+    follows was read with a result the machine did not give)."""
+    m.alarm_log.alarm_stop(cause, source, source)
+    m.run.resume_point = None
 
 
 def continue_after(m: MachineController, job: Job, kind: EventKind, index: int, where: str,
@@ -277,8 +283,7 @@ class InputWaiter:
         self.wait: _Wait | None = None
 
     def fail(self, cause: str) -> None:
-        self.m.alarm_log.alarm_stop(cause, "input", "input")
-        self.m.run.resume_point = None
+        stop_program(self.m, cause, "input")
 
     def cancel(self) -> None:
         self.wait = None

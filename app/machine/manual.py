@@ -131,15 +131,19 @@ class ManualMotion:
         self.m.stream.start_job(job)
         return self.m.states.ok("jog")
 
-    def run_routine(self, text: str, name: str, action: str,
-                    when_done: Callable[[Job], None] | None = None) -> CommandResult:
-        """A few blocks the controller wrote (tool measurement): read, checked against the soft
-        limits and run as MDI is; ``when_done(job)`` once they have all run."""
+    def _read(self, text: str, name: str,
+              action: str) -> tuple[Program, Callable[..., Program]] | CommandResult:
+        """``text`` read from where the machine is, as a program is checked: parsed (the reader
+        kept, to read it again with what a probe or M66 reads), within the soft limits, its
+        probing possible on this machine. The refusal otherwise."""
+        read = functools.partial(
+            parse_program, text, name, machine=self.m.conn.machine,
+            start_position=self.m.states.machine_pos(), tools=self.m.tools.table,
+            tool_in_spindle=self.m.tools.in_spindle,
+            spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
+            parameters=dict(self.m.pos.parameters))
         try:
-            prog = parse_program(
-                text, name, machine=self.m.conn.machine, start_position=self.m.states.machine_pos(),
-                tools=self.m.tools.table, tool_in_spindle=self.m.tools.in_spindle,
-                parameters=dict(self.m.pos.parameters))
+            prog = read()
         except ProgramError as exc:
             return self.m.states.refuse(action, "; ".join(e.message for e in exc.errors))
         except PlannerError as exc:
@@ -150,18 +154,28 @@ class ManualMotion:
         _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
         if why:
             return self.m.states.refuse(action, why)
+        return prog, read
+
+    def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,
+               when_done: Callable[[Job], None] | None = None) -> CommandResult:
+        """Run ``prog`` (read by ``_read``) as an MDI job; ``when_done(job)`` once it has all run."""
         try:
             job = self.m.stream.make_job(Activity.MDI, prog, name)
         except PlannerError as exc:
             return self.m.states.refuse(action, f"planner: {exc}")
-        machine, start, tools = self.m.conn.machine, self.m.states.machine_pos(), self.m.tools.table
-        in_spindle, parameters = self.m.tools.in_spindle, dict(self.m.pos.parameters)
-        job.reread = lambda probes, waits: parse_program(
-            text, name, machine=machine, start_position=start, tools=tools, tool_in_spindle=in_spindle,
-            parameters=parameters, probe_results=probes, input_results=waits)
+        job.reread = lambda probes, waits: read(probe_results=probes, input_results=waits)
         job.when_done = when_done
         self.m.stream.start_job(job)
         return self.m.states.ok(action)
+
+    def run_routine(self, text: str, name: str, action: str,
+                    when_done: Callable[[Job], None] | None = None) -> CommandResult:
+        """A few blocks the controller wrote (tool measurement): read, checked and run as MDI
+        is; ``when_done(job)`` once they have all run."""
+        read = self._read(text, name, action)
+        if isinstance(read, CommandResult):
+            return read
+        return self._start(*read, name, action, when_done)
 
     def mdi(self, block: str) -> CommandResult:
         """Execute one G-code block with the active work offset and the same checks as a program
@@ -177,24 +191,10 @@ class ManualMotion:
             return self.m.states.refuse("mdi", "MDI takes one block (one line)")
         if self.m.pos.active_offset != "G54":
             text = f"{self.m.pos.active_offset} {text}"
-        read = functools.partial(
-            parse_program, text, "MDI", machine=self.m.conn.machine,
-            start_position=self.m.states.machine_pos(), tools=self.m.tools.table,
-            tool_in_spindle=self.m.tools.in_spindle,
-            spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
-            parameters=dict(self.m.pos.parameters))
-        try:
-            prog = read()
-        except ProgramError as exc:
-            return self.m.states.refuse("mdi", "; ".join(e.message for e in exc.errors))
-        except PlannerError as exc:
-            return self.m.states.refuse("mdi", str(exc))
-        issues = self.m.loader.check_program_limits(prog)
-        if issues:
-            return self.m.states.refuse("mdi", f"soft limit: {issues[0].message}")
-        _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
-        if why:
-            return self.m.states.refuse("mdi", why)
+        checked = self._read(text, "MDI", "mdi")
+        if isinstance(checked, CommandResult):
+            return checked
+        prog, read = checked
         why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm) or _mdi_stands_alone(prog, block)
         if why:
             return self.m.states.refuse("mdi", why)
@@ -223,14 +223,7 @@ class ManualMotion:
                     self.m.spindle_ctl.apply_spindle(SpindleState(direction=0, rpm=self.m.spindle.rpm))
                     self.m.states.reset()
             return self.m.states.ok("mdi")
-        try:
-            job = self.m.stream.make_job(Activity.MDI, prog, "MDI")
-            # G38.x or M66 typed in MDI
-            job.reread = lambda probes, waits: read(probe_results=probes, input_results=waits)
-        except PlannerError as exc:
-            return self.m.states.refuse("mdi", f"planner: {exc}")
-        self.m.stream.start_job(job)
-        return self.m.states.ok("mdi")
+        return self._start(prog, read, "MDI", "mdi")
 
 
 # What an MDI block may not do, and why: every block either does what it says or is refused.
