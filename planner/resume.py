@@ -121,11 +121,14 @@ def program_from_moves(template: Program, moves: list[Move], events: list[Event]
                    probes=template.probes, inputs=template.inputs)
 
 
-def remaining_program(program: Program, move_index: int, u_mm: float = 0.0) -> Program:
+def remaining_program(program: Program, move_index: int, u_mm: float = 0.0,
+                      line: int | None = None) -> Program:
     """The program from path length ``u_mm`` of move ``move_index`` to its end.
 
     Events after earlier moves are dropped (their effect is restored with ``modal_state_at``);
-    events after the split move and later keep their place.
+    events after the split move and later keep their place. ``line``: the run starts at that
+    source line, so what reads the machine on it before the move (a probe's arming, M66) is
+    kept, at the start.
     """
     n = len(program.moves)
     if not 0 <= move_index < n:
@@ -135,6 +138,11 @@ def remaining_program(program: Program, move_index: int, u_mm: float = 0.0) -> P
     moves = [tail, *program.moves[move_index + 1:]]
     events = [replace(e, after_move=e.after_move - move_index) for e in program.events
               if e.after_move >= move_index]
+    if line is not None and u_mm <= 0.0:
+        reads = [replace(e, after_move=-1) for e in program.events
+                 if e.after_move == move_index - 1 and e.line >= line
+                 and e.kind in (EventKind.PROBE_START, EventKind.INPUT)]
+        events = reads + events
     # Drop a zero-length tail (resuming exactly at a move's end).
     if tail.length_mm <= 1e-12 and len(moves) > 1:
         moves = moves[1:]

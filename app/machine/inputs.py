@@ -25,6 +25,7 @@ timeout, as in LinuxCNC.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -41,6 +42,14 @@ if TYPE_CHECKING:
     from app.machine.jobs import Job
 
 __all__ = ["InputWaiter", "ProbeRun", "Prober", "continue_after", "probe_refusal"]
+
+
+def probe_overtravel_mm(feed_mm_min: float, jerk_mm_s3: float, reaction_s: float = 0.015) -> float:
+    """How far the stylus travels past the contact at ``feed_mm_min``: the feed for the reaction
+    (the feeder sees the latch, the stop is spliced a few cycles ahead of the drives), then the
+    jerk-limited stop along the path, v sqrt(v / J)."""
+    v = feed_mm_min / 60.0
+    return v * (reaction_s + math.sqrt(v / jerk_mm_s3))
 
 
 def probe_refusal(program: Program, drive: int | None, max_feed_mm_min: float) -> tuple[int, str]:

@@ -314,16 +314,9 @@ class ProgramRunner:
             # stopped during a probe move: it starts again from its start, the probe armed there
             point = replace(point, u_mm=0.0, line=probing.line)
         try:
-            rest = remaining_program(prog, point.move_index, point.u_mm)
+            rest = remaining_program(prog, point.move_index, point.u_mm, line=point.line)
         except PlannerError as exc:
             return self.m.states.refuse(action, str(exc))
-        if point.u_mm == 0.0:
-            # reads on the restart line itself, before its first move (a probe's arming, M66)
-            at_start = [replace(e, after_move=-1) for e in prog.events
-                        if e.after_move == point.move_index - 1 and e.line >= point.line
-                        and e.kind in (EventKind.PROBE_START, EventKind.INPUT)]
-            if at_start:
-                rest = replace(rest, events=(*at_start, *rest.events))
         modal = modal_state_before_move(prog, point.move_index)
         loads = (EventKind.TOOL_CHANGE, EventKind.TOOL_SET)
         changes = [e for e in prog.events if e.kind in loads and e.after_move < point.move_index]

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from app.machine.inputs import probe_overtravel_mm
 from app.machine.model import CommandResult, MachineState, Severity
 from planner.errors import PlannerError
 from planner.tools import Tool, ToolTable, read_tbl
@@ -139,8 +140,7 @@ class ToolControl:
         work = self.m.pos.offsets.get(self.m.pos.active_offset, (0.0,) * len(axes))
         shift = float(work[k]) + float(self.m.pos.g92_offset()[k])
         fast = probe.max_feed_mm_min
-        v = fast / 60.0
-        overtravel = v * (0.015 + math.sqrt(v / self.m.config.machine.limits.j_max_mm_s3))
+        overtravel = probe_overtravel_mm(fast, self.m.config.machine.limits.j_max_mm_s3)
         bottom = max(sz - 1.0, z_axis.min_pos) - shift
         text = "\n".join((
             f"G21 G90 G94 G49 {self.m.pos.active_offset}",
