@@ -670,6 +670,15 @@ class _Interpreter:
         value = tool.offset(letter)
         return value if letter in "ABC" else value / self.scale
 
+    def program_position(self, p: Sequence[float]) -> list[float]:
+        """Program coordinates (mm, deg) of machine position ``p``: the offsets taken off, an XY
+        rotation of the coordinate system undone."""
+        q = [p[i] - self.offset[i] for i in range(self.n)]
+        if self.rotation != 0.0:
+            ix, iy = self.axis_index["X"], self.axis_index["Y"]
+            q[ix], q[iy] = self.prog_xy(p)
+        return q
+
     def system_parameter(self, name: str) -> float | None:
         """LinuxCNC's predefined named parameters the interpreter knows."""
         axis = name[1:]
@@ -679,9 +688,7 @@ class _Interpreter:
             return 0.0                     # an axis this machine does not have reads 0, as LinuxCNC's
         if axis in self.axis_index:
             i = self.axis_index[axis]
-            value = self.pos[i] - self.offset[i]
-            if axis in "XY" and self.rotation != 0.0:
-                value = self.prog_xy(self.pos)["XY".index(axis)]
+            value = self.program_position(self.pos)[i]
             return value if self.rotary[i] else value / self.scale
         return {
             "_LINE": float(self.current_line),
@@ -1794,13 +1801,13 @@ class _Interpreter:
                                         tuple(float(v) for v in target), known))
         self.events.append(Event(EventKind.PROBE, line_no, len(self.out) - 1, float(k),
                                  f"{name}: probe result"))
-        # #5061-#5069 in the coordinates of the system in use (offsets off, XY rotation undone)
-        saved = self.pos
-        self.pos = trip
+        # #5061-#5069 in the coordinates of the system in use, in the program's units (an axis the
+        # machine does not have reads 0)
+        at = self.program_position(trip)
         for p, letter in enumerate(_PARAM_AXES):
-            value = self.system_parameter("_" + letter) if letter in self.axis_index else 0.0
-            self.params.numbered[_P_PROBE + p] = float(value or 0.0)
-        self.pos = saved
+            i = self.axis_index.get(letter)
+            value = 0.0 if i is None else at[i] if self.rotary[i] else at[i] / self.scale
+            self.params.numbered[_P_PROBE + p] = float(value)
         self.params.numbered[_P_PROBE_TRIPPED] = 1.0 if tripped else 0.0
 
     def rigid_tap(self, target: list[float], vals: dict[str, float], scale: float, line_no: int) -> None:
@@ -1927,16 +1934,8 @@ class _Interpreter:
         pos = self.pos
         rotated = self.rotation != 0.0
         ix, iy = self.axis_index.get("X", -1), self.axis_index.get("Y", -1)
-
-        def program_point(p: Sequence[float]) -> list[float]:
-            """Program coordinates of machine position ``p``: offsets off, the XY rotation undone
-            (in G18/G19 the hole axis or the plane's second axis is a turned X or Y)."""
-            q = [p[i] - off[i] for i in range(self.n)]
-            if rotated:
-                q[ix], q[iy] = self.prog_xy(p)
-            return q
-
-        here_prog = program_point(pos)
+        # in G18/G19 of a rotated system the hole axis or the plane's second axis is a turned X or Y
+        here_prog = self.program_position(pos)
         current_cc = here_prog[na]
         if self.cycle_il is None:
             self.cycle_il = current_cc
@@ -1966,7 +1965,7 @@ class _Interpreter:
         def go(a: float, b: float, c: float, rapid: bool) -> None:
             target = self.pos.copy()
             if rotated:                      # the plane's point in program coordinates, then turned
-                q = program_point(self.pos)
+                q = self.program_position(self.pos)
                 q[fa], q[sa], q[na] = a, b, c
                 target[ix], target[iy] = self.machine_xy(q[ix], q[iy])
                 for i in (fa, sa, na):
