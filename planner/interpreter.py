@@ -353,6 +353,7 @@ class _Interpreter:
         # rest is assumed: contact at the programmed end point)
         self.probes: list[ProbeRequest] = []
         self.probe_results = tuple(probe_results)
+        self.oword_places: dict[str, tuple[str, int, str]] = {}   # O-word name -> file, line, keyword
         self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
         # M66: the waits read so far and the values the machine read on the first ones
         self.inputs_read: list[InputRequest] = []
@@ -498,6 +499,8 @@ class _Interpreter:
         """Run one control statement; returns the next line index, a frame to call, or _RETURN."""
         kw = st.keyword
         i = st.index
+        if kw in ("IF", "REPEAT", "WHILE", "DO"):
+            self.oword_place(st, frame)
         if kw == "SUB":
             return st.end + 1                 # a definition in the flow: skipped
         if kw in ("IF", "ELSEIF", "ELSE"):
@@ -551,6 +554,20 @@ class _Interpreter:
         if kw == "CALL":
             return self.call(st, frame, frames)
         raise _BlockError(f"o{st.label} {kw.lower()} is not supported", col=1)
+
+    def oword_place(self, st: Statement, frame: _Frame) -> None:
+        """LinuxCNC 2.9 keeps one place per O-word name (a label qualified by the subroutine
+        it is written in) for if, repeat, while and do, taken as each is first run: another
+        statement run under a name already held is refused, except the while closing a do.
+        Labels reused in branches not run, or in different subroutines, are accepted, as there."""
+        place = (frame.file, st.index)
+        held = self.oword_places.get(st.qname)
+        if held is None:
+            self.oword_places[st.qname] = (*place, st.keyword)
+        elif held[:2] != place and st.keyword != "DO" and not (st.keyword == "WHILE" and held[2] == "DO"):
+            where = f"line {held[1] + 1}" + ("" if held[0] == frame.file else f" of {held[0]}")
+            raise _BlockError(f"duplicate O-word label: o{st.label} {st.keyword.lower()} uses the label of "
+                              f"the {held[2].lower()} at {where}", col=1)
 
     def condition(self, st: Statement, frame: _Frame) -> bool:
         values = evaluate_brackets(st.rest, self.params, 0)
@@ -1639,9 +1656,15 @@ class _Interpreter:
         elif motion in _CYCLES:
             if g0 == 530:
                 raise _BlockError("G53 needs G00 or G01", "G53")
-            if polar:
+            turn = None
+            if polar and self.absolute:
                 self.polar(vals)
-            self.canned_cycle(motion, previous_motion != motion, vals, axis_words, scale, line_no)
+            elif polar:                       # G91: the radius and angle step at every repeat
+                if self.plane != 170:
+                    raise _BlockError("polar coordinates (@ ^) only in the XY plane (G17)",
+                                      "@" if "@" in vals else "^")
+                turn = (vals.pop("@", 0.0) * scale, math.radians(vals.pop("^", 0.0)))
+            self.canned_cycle(motion, previous_motion != motion, vals, axis_words, scale, line_no, turn)
         elif motion is not None:
             if g0 == 530:
                 if motion not in (0, 10):
@@ -1872,13 +1895,15 @@ class _Interpreter:
                           for p in self.probes]
 
     def canned_cycle(self, motion: int, first: bool, vals: dict[str, float], axis_words: list[str],
-                     scale: float, line_no: int) -> None:
+                     scale: float, line_no: int, turn: tuple[float, float] | None = None) -> None:
         """G73, G74, G81-G86, G89 as LinuxCNC 2.9 runs them (interp_cycles.cc): in the selected
         plane, the hole axis is the plane's normal; R, the bottom, P and Q are sticky while the
         same cycle stays the motion mode; L repeats (incremental G91 steps the position each
         time); G98 returns to the level the cycles started from (or R if that is higher), G99 to
         R. Every move of the cycle is an exact stop, as LinuxCNC's exact path mode. ``first``: the
-        cycle was not the motion mode before this block, so R, the bottom, P and Q must be given."""
+        cycle was not the motion mode before this block, so R, the bottom, P and Q must be given.
+        ``turn``: G91 polar words (radius step in mm, angle step in radians): each repeat's hole
+        is the one before moved out by the radius and turned by the angle about the origin."""
         name = _gname(motion)
         if self.feed_mm_s <= 0.0:
             raise _BlockError(_ZERO_FEED, name)
@@ -1991,6 +2016,15 @@ class _Interpreter:
             for k in range(int(repeats)):
                 aa += aa_inc
                 bb += bb_inc
+                for step, letter in zip(turn or (), "@^"):
+                    if not step:                # LinuxCNC: a zero step is no step
+                        continue
+                    if aa == 0.0 and bb == 0.0:
+                        raise _BlockError("incremental motion with polar coordinates is indeterminate at "
+                                          "the origin", letter)
+                    radius, theta = math.hypot(aa, bb), math.atan2(bb, aa)
+                    radius, theta = (radius + step, theta) if letter == "@" else (radius, theta + step)
+                    aa, bb = radius * math.cos(theta), radius * math.sin(theta)
                 if k == 0 and current_cc > r:
                     go(aa, bb, current_cc, True)
                     go(aa, bb, r, True)

@@ -60,6 +60,9 @@ class Statement:
     #                             repeat: endrepeat; break/continue: the loop's statement; sub: endsub
     end: int = -1               # if-chain: its endif; loops: the closing statement
     loop: int = -1              # break/continue: the loop's opening statement
+    # the name LinuxCNC keeps its place under: a local statement's label is qualified by the
+    # subroutine it is written in ("sub#label", "#label" outside any), a sub's is global
+    qname: str = ""
 
 
 @dataclass(slots=True)
@@ -80,9 +83,6 @@ def scan(lines: list[str]) -> Structure:
     """Control statements of ``lines`` and their matching; raises StructureError."""
     st = Structure()
     stack: list[Statement] = []
-    # LinuxCNC 2.9 keeps one place per label for sub, do, if, repeat and while: an if, a repeat,
-    # a while (not a do's) or a sub whose label an earlier one holds is refused
-    holders: dict[str, Statement] = {}
     for index, raw in enumerate(lines):
         if "o" not in raw and "O" not in raw:
             continue
@@ -99,13 +99,8 @@ def scan(lines: list[str]) -> Structure:
         s = Statement(index, _label(m.group(1)), m.group(2), m.group(3))
         st.statements[index] = s
         kw, label = s.keyword, s.label
-        held = holders.get(label)
-        if held is not None and (kw in ("IF", "REPEAT") or (kw == "WHILE" and held.keyword != "DO")
-                                 or (kw == "SUB" and held.keyword != "SUB")):
-            raise StructureError(index, col, f"duplicate O-word label: {_name(label)} {kw.lower()} uses "
-                                 f"the label of the {held.keyword.lower()} at line {held.index + 1}")
-        if kw in ("SUB", "DO", "IF", "REPEAT", "WHILE") and held is None:
-            holders[label] = s
+        sub = next((x.label for x in stack if x.keyword == "SUB"), "")
+        s.qname = label if kw in ("SUB", "ENDSUB", "CALL", "RETURN") else f"{sub}#{label}"
         if kw == "SUB":
             if any(x.keyword == "SUB" for x in stack):
                 raise StructureError(index, col, f"{_name(label)} sub inside another sub definition")

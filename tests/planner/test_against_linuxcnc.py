@@ -54,7 +54,8 @@ def programs(draw) -> str:
     kinds = draw(st.lists(st.sampled_from(
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
-         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle"]),
+         "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle",
+         "polar_cycle"]),
         min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
@@ -108,6 +109,15 @@ def programs(draw) -> str:
             out.append(f"X{_n(x2)} Y{_n(y2)}\nG80\nF600")
             x, y = x2, y2
             z = z if retract == "G98" else 2.0
+        elif kind == "polar_cycle":
+            # in G91 @ or ^ step at each L repeat about the program zero (bolt circles)
+            if math.hypot(x, y) < 1.0:
+                continue
+            step = draw(st.sampled_from(["^", "@"])) + str(draw(st.integers(-90, 90) if draw(st.booleans())
+                                                             else st.integers(1, 5)))
+            out.append(f"G0 Z{_n(max(z, 5.0))}\nG91 G98 G81 {step} R-1 Z-3 L{draw(st.integers(1, 4))} F300\n"
+                       "G90 G80 F600")
+            goto()
         elif kind == "plane_cycle":
             # G18: holes along Y, G19: along X; in a rotated system that axis is a turned one
             code = draw(st.sampled_from(["G81", "G83 Q1.5", "G73 Q1", "G85"]))

@@ -352,3 +352,20 @@ def test_polar_coordinates_as_linuxcnc_documents_them():
                         ("G21 F100 G18\nG1 @1 ^30\n", "only in the XY plane")):
         with pytest.raises(ProgramError, match=words):
             P(text)
+
+
+def test_polar_steps_of_a_repeated_cycle_turn_about_the_origin_at_every_hole():
+    """In G91 a cycle's @ and ^ step the radius and the angle at each L repeat, about the
+    program's zero, as LinuxCNC's bolt-circle sample (nc_files/hole-circle.ngc) uses them:
+    six holes 60 degrees apart on the circle through the start, not six steps of one chord."""
+    holes = P("G20 G17 G90\nG0 X1.5 Y0 Z0\nG91 G81 R.1 Z-.5 ^60 L6 F10\nM2\n")
+    bottoms = [m.end[:2] for m in holes.moves if m.kind is MoveKind.LINE]
+    want = [[38.1 * math.cos(math.radians(60 * k)), 38.1 * math.sin(math.radians(60 * k))] for k in range(1, 7)]
+    np.testing.assert_allclose(bottoms, want, atol=1e-9)
+    row = P("G20 G90\nG0 X0 Y0 Z0\nG81 @1 ^33 R.1 Z-.5 F60\nG91 G81 @1 R.1 Z-.5 L3\nM2\n")
+    bottoms = [m.end[:2] for m in row.moves if m.kind is MoveKind.LINE]
+    np.testing.assert_allclose([np.hypot(*b) / 25.4 for b in bottoms], [1, 2, 3, 4], atol=1e-12)
+    np.testing.assert_allclose([math.degrees(math.atan2(b[1], b[0])) for b in bottoms], [33] * 4, atol=1e-9)
+    with pytest.raises(ProgramError, match="indeterminate at the origin"):
+        P("G21 F100\nG0 X0 Y0 Z0\nG91 G81 R1 Z-1 ^30 L2\n")
+    assert P("G21 F100\nG0 X0 Y0 Z0\nG91 G81 R1 Z-1 ^0 L2\n").moves     # no step: no question

@@ -305,6 +305,30 @@ def test_a_reused_loop_label_is_refused_as_linuxcnc_does() -> None:
                              "o5 call\no5 call\nM2\n").moves) == 2
 
 
+def test_a_label_is_held_per_subroutine_and_only_once_run_as_linuxcnc_holds_it() -> None:
+    """LinuxCNC qualifies a local label by the subroutine it is written in and takes its place
+    when the statement first runs (LinuxCNC's own lathe_g7x_face_boring.ngc and
+    qt_auto_probe_tool.ngc reuse labels so): a repeat inside o100 and a sub o101 do not clash,
+    nor do two ifs in branches of which one runs; the same if label run twice at two places
+    does (rs274: "5: duplicate O-word label")."""
+    other_sub = ("G21 F600\no100 sub\no101 repeat [2]\nG91 G1 X1\nG90\no101 endrepeat\no100 endsub\n"
+                 "o101 sub\nG1 Y5\no101 endsub\no100 call\no101 call\nM2\n")
+    assert [tuple(m.end) for m in read(other_sub).moves] == [(1, 0, 0), (2, 0, 0), (2, 5, 0)]
+    branches = ("G21 F600\n#1=1\no1 if [#1]\no2 if [1]\nG1 X1\no2 endif\no1 else\no2 if [1]\nG1 X2\n"
+                "o2 endif\no1 endif\nM2\n")
+    assert [tuple(m.end) for m in read(branches).moves] == [(1, 0, 0)]
+    # the same if label in two subroutines: each sub's own
+    two_subs = ("G21 F600\no1 sub\no9 if [1]\nG1 X1\no9 endif\no1 endsub\n"
+                "o2 sub\no9 if [1]\nG1 X2\no9 endif\no2 endsub\no1 call\no2 call\nM2\n")
+    assert [m.end[0] for m in read(two_subs).moves] == [1, 2]
+    both_run = ("G21 F600\no1 if [1]\no2 if [1]\nG1 X1\no2 endif\no1 endif\no3 if [1]\no2 if [1]\nG1 X2\n"
+                "o2 endif\no3 endif\nM2\n")
+    with pytest.raises(ProgramError) as ei:
+        read(both_run)
+    (err,) = ei.value.errors
+    assert (err.line, err.col) == (8, 1) and "o2 if uses the label of the if at line 3" in err.message
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.sampled_from(["G1 X1", "(o100 sub)", "o100 sub", "  O<x> call", "N10 o2 while [1]",
                                  "/o3 if [1]", "X0 Y1 ; o5 endsub", "", "o", "O12", "%"]), max_size=30),
