@@ -360,7 +360,8 @@ def test_polar_steps_of_a_repeated_cycle_turn_about_the_origin_at_every_hole():
     six holes 60 degrees apart on the circle through the start, not six steps of one chord."""
     holes = P("G20 G17 G90\nG0 X1.5 Y0 Z0\nG91 G81 R.1 Z-.5 ^60 L6 F10\nM2\n")
     bottoms = [m.end[:2] for m in holes.moves if m.kind is MoveKind.LINE]
-    want = [[38.1 * math.cos(math.radians(60 * k)), 38.1 * math.sin(math.radians(60 * k))] for k in range(1, 7)]
+    angles = [math.radians(60 * k) for k in range(1, 7)]
+    want = [[38.1 * math.cos(a), 38.1 * math.sin(a)] for a in angles]
     np.testing.assert_allclose(bottoms, want, atol=1e-9)
     row = P("G20 G90\nG0 X0 Y0 Z0\nG81 @1 ^33 R.1 Z-.5 F60\nG91 G81 @1 R.1 Z-.5 L3\nM2\n")
     bottoms = [m.end[:2] for m in row.moves if m.kind is MoveKind.LINE]
