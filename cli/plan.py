@@ -257,16 +257,16 @@ def _move_list_json(moves: list[tuple[np.ndarray, ...]]):
 def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
     from planner.blend import blend_report
 
-    # G38.x: what follows a probe depends on where it touches; planned here as touching at the
-    # programmed end point (the run reads the rest again with the machine's result)
+    # G38.x: what follows a probe depends on where it touches; planned here as running to the
+    # programmed end point, #5070 = 0 (the run reads the rest again with the machine's result)
     probes = [{"line": p.line, "code": p.name, "assumed": not p.known} for p in program.probes]
     if not args.json:
         print(f"{program.name}: {len(program.moves)} moves, cycle time {summary.cycle_time_s:.3f} s, "
               f"{summary.n_samples} samples, plan {summary.plan_s * 1e3:.1f} ms")
         if probes:
             lines = ", ".join(str(p["line"]) for p in probes)
-            print(f"{program.name}: probing (G38.x) at line(s) {lines}: planned as touching at the "
-                  "programmed end point; a run reads what follows again with the machine's result")
+            print(f"{program.name}: probing (G38.x) at line(s) {lines}: planned as running to the "
+                  "programmed end point (#5070 = 0, as LinuxCNC's preview); a run reads what follows again with the machine's result")
         return 0
     report = summary.report
     assert report is not None

@@ -350,7 +350,7 @@ class _Interpreter:
         self.mcodes: dict[int, tuple[str, str, int, bool]] = dict(getattr(machine, "mcodes", {}) or {})
         self.sub_files: dict[str, tuple[str, list[str], Structure]] = {}
         # G38.x: the moves read so far, and what the machine's probe did on the first ones (the
-        # rest is assumed: contact at the programmed end point)
+        # rest are read as LinuxCNC's preview reads them: to the programmed end point, no contact)
         self.probes: list[ProbeRequest] = []
         self.probe_results = tuple(probe_results)
         self.oword_places: dict[str, tuple[str, int, str]] = {}   # O-word name -> file, line, keyword
@@ -1792,8 +1792,10 @@ class _Interpreter:
         """G38.2-G38.5 as LinuxCNC 2.9 runs them: a straight move at the feed, the probe armed at
         rest before it; at rest after it, #5061-#5069 hold where the input changed (program
         coordinates) and #5070 whether it did, and the move ends where the machine stopped.
-        What the machine did is known for the first ``probe_results``; for the others the
-        contact is assumed at the end point (the run reads the rest again with the result)."""
+        What the machine did is known for the first ``probe_results``; the others are read as
+        LinuxCNC's own preview and rs274 read them: the move goes to its programmed end point,
+        #5061-#5069 hold that point and #5070 is 0 (a loop probing while #5070 says it touched
+        ends; the run reads the rest again with the machine's result)."""
         name = _gname(code)
         if self.comp.side != 0:
             raise _BlockError(f"cannot probe ({name}) with cutter radius compensation on: program G40 "
@@ -1813,7 +1815,7 @@ class _Interpreter:
                                    f"the machine has {self.n}")
             end, trip, tripped = list(result.stop_position), list(result.trip_position), result.tripped
         else:
-            end, trip, tripped = list(target), list(target), True
+            end, trip, tripped = list(target), list(target), False
         self.events.append(Event(EventKind.PROBE_START, line_no, len(self.out) - 1, float(k),
                                  f"{name}: probe armed"))
         length = self.path_length(self.pos, end)
@@ -2451,8 +2453,9 @@ def parse_program(
     them instead of encoding the text again.
     ``probe_results``: what the machine's probe did on the program's G38.x moves, in order
     (``Program.probes``; None for one not run, as before a run from a later line); the others
-    are read as touching at their end point. ``input_results``: the values M66 read, the same
-    way (-1: the wait timed out); the others are read as the awaited value.
+    are read as run to their end point without a contact (#5070 = 0). ``input_results``: the
+    values M66 read, the same way (-1: the wait timed out); the others are read as the awaited
+    value.
     """
     interp = _Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
                           spindle, subroutine_dirs, parameters, probe_results, input_results)

@@ -321,7 +321,7 @@ class ProbeRequest:
     # renumbers the moves, the PROBE event's ``after_move`` follows
     move_index: int
     target: tuple[float, ...]  # the programmed end point, machine coordinates
-    known: bool               # read with the machine's result; else the contact was assumed at the target
+    known: bool               # read with the machine's result; else read as run to the target, no contact
 
     @property
     def name(self) -> str:
@@ -386,8 +386,9 @@ class Program:
     # are run as that line (Q defaults to P)
     naive_cam_tolerance: tuple[tuple[int, float], ...] = ()
     # G38.2-G38.5 moves in program order (PROBE_START / PROBE events name them by index). The
-    # moves after the first one not ``known`` assume the contact at its end point: the run
-    # stops there and reads the rest again with the machine's result.
+    # moves after the first one not ``known`` are read as if it ran to its end point without a
+    # contact (#5070 = 0, as LinuxCNC's preview reads it): the run stops there and reads the
+    # rest again with the machine's result.
     probes: tuple[ProbeRequest, ...] = ()
     # M66 waits in program order (INPUT events name them by index), the same way: the moves
     # after the first one not ``known`` assume the awaited value

@@ -269,7 +269,9 @@ def _without_short_moves(motion: list[tuple], program) -> list[tuple]:
     tool is (machine coordinates) is not compared; polar words end off the 0.1 mm grid, so a
     following grid move can be that short."""
     out, last = [], np.zeros(3)
-    for call, move in zip(motion, program.moves, strict=True):
+    back_out = {i + 1 for i in program.taps}          # a G33.1 is one call for its two moves
+    moves = [m for i, m in enumerate(program.moves) if i not in back_out]
+    for call, move in zip(motion, moves, strict=True):
         end = np.asarray(move.end[:3], dtype=float)
         if call[0] != "arc_feed" and np.max(np.abs(end - last)) < 0.003:
             continue

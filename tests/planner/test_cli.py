@@ -43,13 +43,13 @@ def test_json_report_has_every_field(capsys):
     assert rep["samples"] == int(np.ceil(rep["cycle_time_s"] / 0.001 - 1e-9)) + 1
 
 
-def test_a_probing_program_says_its_path_assumes_the_contact(capsys, tmp_path):
+def test_a_probing_program_says_its_path_assumes_the_result(capsys, tmp_path):
     prog = tmp_path / "probe.ngc"
     prog.write_text("G21 G90\nG0 X10 Z5\nG38.2 Z-20 F100\nG0 Z[#5063 + 2]\nG38.5 Z10\nM2\n")
     assert run_json(capsys, prog)["probes"] == [{"line": 3, "code": "G38.2", "assumed": True},
                                                 {"line": 5, "code": "G38.5", "assumed": True}]
     assert main([str(prog)]) == 0
-    assert "probing (G38.x) at line(s) 3, 5: planned as touching" in capsys.readouterr().out
+    assert "probing (G38.x) at line(s) 3, 5: planned as running to the" in capsys.readouterr().out
     assert run_json(capsys, FIG9)["probes"] == []
 
 

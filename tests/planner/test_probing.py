@@ -25,14 +25,26 @@ M2
 """
 
 
-def test_an_unknown_result_is_read_as_contact_at_the_end_point() -> None:
+def test_an_unknown_result_is_read_as_linuxcncs_preview_reads_it() -> None:
+    """Before the machine has probed, the move runs to its programmed end point, #5061-#5063
+    hold that point and #5070 is 0, as LinuxCNC's own preview (and rs274) read a probe."""
     p = parse_program(PROGRAM)
     probe = p.probes[0]
     assert (probe.code, probe.line, probe.known, probe.name) == (382, 3, False, "G38.2")
     assert probe.move_index == 1 and p.moves[1].end.tolist() == [10.0, 5.0, -20.0]
     assert p.moves[1].feed_mm_s == pytest.approx(100 / 60)
-    assert _debug(p) == ["10.000000 5.000000 -20.000000 1.000000"]
+    assert _debug(p) == ["10.000000 5.000000 -20.000000 0.000000"]
     assert p.moves[2].end.tolist() == [10.0, 5.0, -18.0]
+
+
+def test_a_loop_probing_while_it_touches_ends_when_read_before_the_run() -> None:
+    """LinuxCNC's grid probing sample (nc_files/smartprobe.ngc) goes round ``while [#5070 NE 0]``
+    probing away and across until nothing is in the way; read before any result (check,
+    preview) it must end after one pass, as it does in LinuxCNC, not run forever."""
+    text = ("G20 F20\n#5070=1\no4 while [#5070 NE 0]\nG38.5 Z1.1\nG38.3 X0.5\no4 endwhile\n"
+            "G38.2 Z-0.1\nM2\n")
+    p = parse_program(text)
+    assert [q.name for q in p.probes] == ["G38.5", "G38.3", "G38.2"]
 
 
 def test_the_probe_stops_the_motion_before_and_after_its_move() -> None:
@@ -57,7 +69,7 @@ def test_a_known_result_sets_the_parameters_and_ends_the_move_where_the_machine_
 def test_no_contact_is_5070_zero_and_the_next_probe_is_assumed_again() -> None:
     text = "G21 G90\nG0 Z10\nG38.3 Z0 F60\n(DEBUG,#5070)\nG38.3 Z-5\n(DEBUG,#5070)\nM2\n"
     p = parse_program(text, probe_results=[ProbeResult(False, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))])
-    assert _debug(p) == ["0.000000", "1.000000"]
+    assert _debug(p) == ["0.000000", "0.000000"]
     assert [q.known for q in p.probes] == [True, False]
 
 
@@ -67,7 +79,7 @@ def test_probe_positions_are_in_the_coordinates_in_use() -> None:
     text = ("G21 G90\nG10 L2 P1 X100 Y50 Z-20 R90\nG54\nG43.1 Z3\nG0 X0 Y0 Z10\n"
             "G38.2 X10 F100\n(DEBUG,#5061 #5062 #5063)\nM2\n")
     p = parse_program(text)
-    # contact assumed at the end point: the programmed point, at machine (100, 60, -7)
+    # no result: read as run to the programmed point, at machine (100, 60, -7)
     assert _debug(p) == ["10.000000 0.000000 10.000000"]
     assert p.moves[p.probes[0].move_index].end.tolist() == pytest.approx([100.0, 60.0, -7.0])
     # the machine touched at (100, 55, -8): 5 mm from the origin along the turned X axis, and
