@@ -266,7 +266,8 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
         if probes:
             lines = ", ".join(str(p["line"]) for p in probes)
             print(f"{program.name}: probing (G38.x) at line(s) {lines}: planned as running to the "
-                  "programmed end point (#5070 = 0, as LinuxCNC's preview); a run reads what follows again with the machine's result")
+                  "programmed end point (#5070 = 0, as LinuxCNC's preview); a run reads what follows "
+                  "again with the machine's result")
         return 0
     report = summary.report
     assert report is not None

@@ -5,10 +5,10 @@ Parts of ``MachineController``: ``controller.prober`` owns the probe move under 
 
 What follows such a read depends on its result, so the program was checked with a result
 assumed (the probe run to its programmed end point with no contact, #5070 = 0, as
-LinuxCNC's preview reads it; the input reading the awaited level), the run stops at rest there, and once the machine has the result the program is read
-again from its start with every result so far (``Job.reread``); the moves after the read are
-checked against the soft limits before the motion goes on from where the machine stands
-(``continue_after``).
+LinuxCNC's preview reads it; the input reading the awaited level), the run stops at rest
+there, and once the machine has the result the program is read again from its start with
+every result so far (``Job.reread``); the moves after the read are checked against the soft
+limits before the motion goes on from where the machine stands (``continue_after``).
 
 Probing: the run stops at rest before each probe move (the pause point PROBE_START: the input
 is armed in the worker, refused when it reads the trip level already) and after it (PROBE).
