@@ -77,7 +77,7 @@ _G_GROUP = {
     900: 3, 910: 3,
     901: 4, 911: 4,
     930: 5, 940: 5, 950: 5,
-    970: 14,
+    960: 14, 970: 14,
     200: 6, 210: 6,
     400: 7, 410: 7, 420: 7, 411: 7, 421: 7,
     430: 8, 431: 8, 432: 8, 490: 8,
@@ -111,8 +111,6 @@ _G_UNSUPPORTED = {
          "does not have",
     880: "G88 boring with a manual retract: the operator would jog the spindle out during a "
          "program stop; use G86 or G89",
-    960: "G96 constant surface speed: it sets the spindle speed from a lathe's X radius; on this "
-         "mill use G97 and an S in rpm",
     150: "G15 polar coordinates",
     160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
@@ -308,6 +306,10 @@ class _Interpreter:
         self.cycle_q = 0.0
         self.spindle_dir = int(spindle[0])   # as the spindle is when the program starts
         self.spindle_rpm = float(spindle[1])
+        # G96: the highest speed (rpm; inf without D) and the surface speed S; None in G97
+        self.css_max_rpm: float | None = None
+        self.css_speed = 0.0
+        self.spindle_max_rpm = float(getattr(machine, "spindle_max_rpm", 24000.0))
         # None: no tool table (every tool number known, offsets 0: the reference set-up);
         # a table: a tool must be in it to be selected, loaded or used for an offset
         self.tools = tools
@@ -1030,6 +1032,30 @@ class _Interpreter:
                      "retract_r_plane", "exact_stop", "exact_path", "blend_tol_mm", "naive_cam_mm",
                      "spindle_rpm", "spindle_dir", "coolant", "rotation")
 
+    def spindle_mode(self, code: int, vals: dict[str, float], line_no: int, after: int,
+                     switched: bool) -> None:
+        """G96 D S: constant surface speed, S the cutting speed (m/min, ft/min in G20) and D the
+        highest speed (rpm); G97: S in rpm again. LinuxCNC on a mill sets the speed from the X
+        radius; this spindle is switched by digital outputs and has no speed output, so G96 is
+        kept as the mode LinuxCNC reads (the motion is the same) and the operator is told that
+        the spindle turns at the speed set on its drive. The speed shown and counted (spin-up)
+        is what LinuxCNC commands near X0: D, else the spindle's highest speed."""
+        if code == 970:
+            self.css_max_rpm = None
+            return
+        d = vals.get("D")
+        self.css_max_rpm = min(abs(d), self.spindle_max_rpm) if d else self.spindle_max_rpm
+        if self.css_max_rpm != self.spindle_rpm:
+            self.spindle_rpm = self.css_max_rpm
+            if self.spindle_dir != 0 and not switched:   # an M3/M4/M5 here tells it
+                rpm = self.spindle_dir * self.spindle_rpm
+                self.events.append(Event(EventKind.SPINDLE, line_no, after, rpm))
+        unit = "ft/min" if self.inch else "m/min"
+        limit = f" up to {abs(d):g} rpm" if d else ""
+        self.events.append(Event(EventKind.MESSAGE, line_no, after, 0.0,
+                                 f"G96 constant surface speed S{vals['S']:g} {unit}{limit}: this spindle has "
+                                 f"no speed output to follow X; counted at {self.spindle_rpm:g} rpm"))
+
     def note_blend_tolerance(self) -> None:
         first = len(self.out)
         for changes, value in ((self.blend_changes, self.blend_tol_mm),
@@ -1464,8 +1490,10 @@ class _Interpreter:
         if ("Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q
                 and mgroups.get(5) != 66):
             raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83, M66)", "Q")
-        if "D" in vals and groups.get(7) not in (410, 420, 411, 421):
-            raise _BlockError("D word with no G41, G41.1, G42 or G42.1 to use it", "D")
+        if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and groups.get(14) != 960:
+            raise _BlockError("D word with no G41, G41.1, G42, G42.1 or G96 to use it", "D")
+        if groups.get(14) == 960 and "S" not in vals:
+            raise _BlockError("G96 needs an S word (the surface speed)", "G96")
         if ("L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421)
                 and mgroups.get(5) != 66):
             raise _BlockError("L word with no canned cycle, G10 or M66 to use it", "L")
@@ -1502,7 +1530,13 @@ class _Interpreter:
                 self.feed_mm_s = self.feed_per_rev * self.spindle_rpm / 60.0
             else:
                 self.feed_mm_s = f * scale / 60.0
-        if "S" in vals:
+        if 14 in groups:
+            self.spindle_mode(groups[14], vals, line_no, after, mgroups.get(7) is not None)
+        if "S" in vals and self.css_max_rpm is not None:
+            if vals["S"] < 0.0:
+                raise _BlockError(f"negative surface speed S{vals['S']:g}", "S")
+            self.css_speed = vals["S"]
+        elif "S" in vals:
             s = vals["S"]
             if s < 0.0:
                 raise _BlockError(f"negative spindle speed S{s:g}", "S")
@@ -1646,6 +1680,10 @@ class _Interpreter:
                     raise _BlockError("cannot use inverse time feed (G93) with canned cycles", "G93")
                 if "F" not in vals:
                     raise _BlockError("G93 inverse time: every feed move needs its F word (1/F minutes)", "G")
+            elif self.feed_mode == 950 and self.css_max_rpm is not None:
+                raise _BlockError("G95 feed per revolution in G96: the speed would follow X, and this "
+                                  "spindle has no speed output to follow it; program G97 and S in rpm", "G95"
+                                  if 5 in groups else "G")
             elif self.feed_mode == 950 and self.spindle_rpm <= 0.0:
                 raise _BlockError("G95 feed per revolution needs a spindle speed: S is 0", "G95"
                                   if 5 in groups else "G")
@@ -1841,6 +1879,9 @@ class _Interpreter:
         spindle reverses (I times faster, I >= 1) and it comes out the same way to where it
         started, where the spindle turns forward again (a floating tap holder takes up the
         difference)."""
+        if self.css_max_rpm is not None:
+            raise _BlockError("G33.1 in G96: the tap's pitch needs a known speed; program G97 and S in rpm",
+                              "G33.1")
         if self.spindle_dir == 0 or self.spindle_rpm <= 0.0:
             raise _BlockError("spindle not turning in G33.1 (rigid tapping needs M3 or M4 and S)", "G33.1")
         if self.comp.side != 0:

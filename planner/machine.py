@@ -76,6 +76,8 @@ class MachineSpec:
     mcodes: dict[int, tuple[str, str, int, bool]] = field(default_factory=dict)
     # digital inputs (M66): number -> (drive index, bit of its 0x60FD, name)
     input_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
+    # the spindle's highest speed ([controller] spindle_max_rpm): G96 without D runs at it
+    spindle_max_rpm: float = 24000.0
 
     @property
     def outputs(self) -> tuple[int, ...]:
@@ -219,7 +221,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
         mcodes[mc["code"]] = (mc["action"], mc["message"], -1 if out is None else out, mc["on"])
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
                        work_offsets=offsets, config_dir=config_dir, output_bits=output_bits, mcodes=mcodes,
-                       input_bits=input_bits)
+                       input_bits=input_bits,
+                       spindle_max_rpm=float(valid["controller"]["spindle_max_rpm"]))
 
 
 def _io_bits(loc: Locator, entries: list[dict[str, Any]], table: str, what: str, n_axes: int,

@@ -135,7 +135,7 @@ def test_g73_breaks_chips_with_a_small_retract() -> None:
         ("feed", (0, 0, -3)), ("trav", (0, 0, -2.746)),
         ("feed", (0, 0, -5)), ("trav", (0, 0, 10)),          # G98: back to the initial level
     ]
-    with pytest.raises(ProgramError, match="D word with no G41, G41.1, G42 or G42.1 to use it"):
+    with pytest.raises(ProgramError, match="D word with no G41, G41.1, G42, G42.1 or G96 to use it"):
         read("G21 G90 G98 F100\nG73 X0 Y0 Z-5 R1 Q2 D0.5\nM2\n")
 
 

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
+from planner.program import EventKind
 
 
 def durations(text: str, digits: int = 6) -> list[float]:
@@ -33,13 +34,33 @@ def test_feed_per_revolution_follows_the_programmed_spindle_speed() -> None:
     ("G21 G93\nG1 X1 F10\nG1 X2\n", 3, "every feed move needs its F word"),
     ("G21 G93 F10\nG81 X1 Z-1 R1 F10\n", 2, "inverse time feed (G93) with canned cycles"),
     ("G21 G95 F0.1\nG1 X1\n", 2, "needs a spindle speed: S is 0"),
-    ("G21 G96 S100\n", 1, "G96 is not supported (G96 constant surface speed"),
+    ("G21 G96 M3\n", 1, "G96 needs an S word"),
+    ("G21 G96 S100 M3\nG95 F0.1\nG1 X1\n", 3, "G95 feed per revolution in G96"),
+    ("G21 G96 S100 M3\nG33.1 Z-5 K1\n", 2, "G33.1 in G96"),
+    ("G21 D5 S100\n", 1, "D word with no G41, G41.1, G42, G42.1 or G96"),
 ])
 def test_feed_mode_refusals(text: str, line: int, words: str) -> None:
     with pytest.raises(ProgramError) as exc:
         parse_program(text)
     (err,) = exc.value.errors
     assert err.line == line and words in err.message, err
+
+
+def test_constant_surface_speed_is_a_mode_the_motion_does_not_see() -> None:
+    """G96 D S as LinuxCNC 2.9 reads it (rs274: SET_SPINDLE_MODE(0, D), the moves unchanged):
+    S is then a cutting speed, not rpm. This spindle has no speed output to follow X with, so
+    the operator is told, and the speed counted (spin-up waits, the panel) is what LinuxCNC
+    commands near X0: D, else the spindle's highest; G97 S is rpm again."""
+    p = parse_program("G21 F100\nG96 M3 S200\nG1 X10\nG96 D2500 S100\nG1 X20\nG97 S1000\nG1 X30\nM2\n")
+    assert [m.end[0] for m in p.moves] == [10, 20, 30]
+    assert [e.value for e in p.events if e.kind is EventKind.SPINDLE][:3] == [24000.0, 2500.0, 1000.0]
+    notes = [e.message for e in p.events if e.kind is EventKind.MESSAGE]
+    assert notes[0].startswith("G96 constant surface speed S200 m/min: this spindle has no speed output")
+    assert "S100 m/min up to 2500 rpm" in notes[1] and "counted at 2500 rpm" in notes[1]
+    # a surface speed is no spindle speed: S in G96 leaves the speed counted alone
+    q = parse_program("G20 F10\nG96 D900 S300 M4\nS400\nG1 X1\n")
+    assert [e.value for e in q.events if e.kind is EventKind.SPINDLE] == [-900.0]
+    assert "S300 ft/min" in [e.message for e in q.events if e.kind is EventKind.MESSAGE][0]
 
 
 def test_g93_does_not_clear_f_and_rapids_keep_their_speed() -> None:

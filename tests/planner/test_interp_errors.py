@@ -66,7 +66,7 @@ def errors_of(text: str, **kw):
         ("G1 X1 F60 I1", "I word with no G02/G03 to use it", 1, 11),
         ("G1 X1 F60 R1", "R word with no G02/G03 or canned cycle to use it", 1, 11),
         ("G1 X1 F60 P1", "P word with no G code that uses it", 1, 11),
-        ("G1 X1 F60 D1", "D word with no G41, G41.1, G42 or G42.1 to use it", 1, 11),
+        ("G1 X1 F60 D1", "D word with no G41, G41.1, G42, G42.1 or G96 to use it", 1, 11),
         ("G1 X1 F60 H1", "H word with no G43 or G43.2 to use it", 1, 11),
         ("S-5", "negative spindle speed", 1, 1),
         ("T1.5", "whole number >= 0", 1, 1),
