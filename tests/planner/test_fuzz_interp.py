@@ -139,6 +139,13 @@ token = st.one_of(
             "G33.1 K1",
             "G33.1",
             "I2",
+            # spindle modes, polar steps of repeated cycles
+            "G96 S100",
+            "G96 D2000 S50",
+            "G97 S1000",
+            "D0",
+            "^30 L3",
+            "@2",
         ]
     ),
 )
