@@ -909,15 +909,12 @@ class _Interpreter:
                     target[i] = pos[i] + (float(v) if rot[i] else float(v) * scale)
         if motion < 20:
             if self.all_linear:  # inline of straight() for the common machine
+                feed = math.inf if motion == 0 else self.feed_mm_s
+                if feed <= 0.0:             # a G01 with no feed, even to where the tool is
+                    raise _BlockError(_ZERO_FEED, "G")
                 length = math.dist(pos, target)
                 if length <= _ZERO_LEN:
                     return True
-                if motion == 0:
-                    feed = math.inf
-                else:
-                    feed = self.feed_mm_s
-                    if feed <= 0.0:
-                        raise _BlockError(_ZERO_FEED, "G")
                 self.out.append(target, line_no, 0 if motion == 0 else 1, feed, length, None,
                                 self.exact_stop)
                 self.pos = target
@@ -1815,15 +1812,12 @@ class _Interpreter:
                 comp.straight(self, target, rapid, line_no)
                 return
             comp.straight_done()
+        feed = math.inf if rapid else self.feed_mm_s
+        if feed <= 0.0:                     # LinuxCNC: a G01 with no feed, even to where the tool is
+            raise _BlockError(_ZERO_FEED, "G")
         length = self.path_length(self.pos, target)
         if length <= _ZERO_LEN:
             return  # zero-length move: dropped (position unchanged)
-        if rapid:
-            feed = math.inf
-        else:
-            feed = self.feed_mm_s
-            if feed <= 0.0:
-                raise _BlockError(_ZERO_FEED, "G")
         self.emit(target, _RAPID if rapid else _LINE, feed, length, None, line_no)
 
     def probe(self, code: int, target: list[float], line_no: int) -> None:

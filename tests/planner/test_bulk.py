@@ -152,9 +152,11 @@ def test_zero_length_lines_inside_a_run_are_dropped_as_one_by_one():
 
 
 def test_an_error_inside_a_run_has_its_line():
-    text = "G1 F0\n" + "".join(f"X{i}\n" for i in range(1, 40))
+    # F0 alone moves nothing; the first line of the run after it is the G01 with no feed
+    text = "G1 F100\n" + "".join(f"X{i}\n" for i in range(1, 20)) + "F0\n"
+    text += "".join(f"X{i}\n" for i in range(20, 40))
     a = _read(text, True)
-    assert isinstance(a, ProgramError) and a.errors[0].line == 2
+    assert isinstance(a, ProgramError) and a.errors[0].line == 22
     assert_same_reading(a, _read(text, False))
 
 

@@ -21,6 +21,9 @@ def errors_of(text: str, **kw):
     [
         # feed
         ("G1 X1", "feed rate is zero", 1, 1),
+        # LinuxCNC checks the feed of a G01 before its length: "Cannot do g1 with zero feed rate"
+        ("G1 (to where the tool is)", "feed rate is zero", 1, 1),
+        ("G1 X0 Y0", "feed rate is zero", 1, 1),
         ("G2 X1 Y1 R1", "feed rate is zero", 1, 1),
         ("G1 X1 F-5", "negative feed", 1, 7),
         # R form
