@@ -166,7 +166,7 @@ class _Frame:
     """One level of the O-word call stack."""
 
     __slots__ = ("file", "lines", "structure", "return_pc", "call_line", "entry", "repeats", "saved_numbered",
-                 "saved_named")
+                 "saved_named", "fanuc", "loops")
 
     def __init__(self, file: str, lines: list[str], structure: Structure, return_pc: int, call_line: int):
         self.file = file
@@ -178,6 +178,8 @@ class _Frame:
         self.repeats: dict[int, int] = {}
         self.saved_numbered: dict[int, float] = {}
         self.saved_named: dict[str, float] = {}
+        self.fanuc = False              # an M98 call: no arguments, the caller's parameters shared
+        self.loops = 1                  # M98 L: runs left, this one included
 
     def line_of(self, pc: int) -> int:
         return pc + 1
@@ -488,7 +490,8 @@ class _Interpreter:
                 if not frames:
                     return
                 pc = frame.return_pc
-                self.restore(frame)
+                if not frame.fanuc:
+                    self.restore(frame)
                 saved = self.saved_modal.pop(self.call_level, None)
                 self.call_level -= 1
                 if saved is not None and saved[1]:          # M73: back as it was at the call
@@ -555,6 +558,21 @@ class _Interpreter:
             return _RETURN
         if kw == "CALL":
             return self.call(st, frame, frames)
+        if kw == "PROG":                      # a Fanuc subprogram's start, reached in the flow: into it
+            return i + 1
+        if kw == "M98":
+            callee = self.call_program(st, frame, frames)
+            return i + 1 if callee is None else callee
+        if kw == "M99":
+            if frames and frame.fanuc:
+                if frame.loops > 1:           # M98 L: again from its start
+                    frame.loops -= 1
+                    return frame.entry
+                return _RETURN
+            if frames:
+                raise _BlockError("M99 inside an O-word subroutine: it ends with its endsub or return", "M99")
+            # the main program: LinuxCNC ends it here, as M02 does
+            return -1 if self.line("M2", i + 1) else i + 1
         raise _BlockError(f"o{st.label} {kw.lower()} is not supported", col=1)
 
     def oword_place(self, st: Statement, frame: _Frame) -> None:
@@ -609,6 +627,38 @@ class _Interpreter:
         self.params.named = {}
         self.params.globals["_VALUE"] = 0.0
         self.params.globals["_VALUE_RETURNED"] = 0.0
+        return callee
+
+    def call_program(self, st: Statement, frame: _Frame, frames: list[_Frame]) -> _Frame | None:
+        """M98 P<n> L<count>: run the Fanuc-style subprogram O<n> of this file count times (no
+        arguments; it works on the caller's parameters), back after its M99; L0 runs it not
+        at all (None), as in LinuxCNC."""
+        if len(frames) >= _MAX_CALL_DEPTH:
+            raise _BlockError(f"subprogram calls nested deeper than {_MAX_CALL_DEPTH} (endless recursion?)",
+                              "M98")
+        words, _ = read_line(st.rest, self.params)
+        vals = {letter: float(v) for letter, v in words}
+        unknown = sorted(set(vals) - {"P", "L"})
+        if unknown:
+            raise _BlockError(f"M98 takes only P and L words, not {' '.join(unknown)}", unknown[0])
+        if "P" not in vals:
+            raise _BlockError("M98 needs a P word (the number of the O subprogram to run)", "M98")
+        p, loops = vals["P"], vals.get("L", 1.0)
+        if p != int(p) or p < 0:
+            raise _BlockError(f"M98 P{p:g}: a subprogram number is a whole number", "P")
+        if loops != int(loops) or loops < 0:
+            raise _BlockError(f"M98 L{loops:g}: the runs of a subprogram are a whole number of 0 or more",
+                              "L")
+        target = frame.structure.programs.get(str(int(p)))
+        if target is None:
+            raise _BlockError(f"M98 P{int(p)}: no O{int(p)} in this program", "P")
+        if loops == 0:
+            return None
+        callee = _Frame(frame.file, frame.lines, frame.structure, return_pc=st.index + 1,
+                        call_line=frame.call_line or st.index + 1)
+        callee.entry = target + 1
+        callee.fanuc = True
+        callee.loops = int(loops)
         return callee
 
     def restore(self, frame: _Frame) -> None:

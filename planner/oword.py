@@ -20,9 +20,15 @@ KEYWORDS = ("SUB", "ENDSUB", "CALL", "RETURN", "IF", "ELSEIF", "ELSE", "ENDIF", 
 _KEYWORDS_RE = "|".join(sorted(KEYWORDS, key=len, reverse=True))
 _STMT_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+|<[^>]*>)(" + _KEYWORDS_RE + r")(.*)\Z")
 # a quick look for any control statement, so that programs without one keep the plain path
-_ANY_RE = re.compile(r"(?im)^[ \t]*(?:/[ \t]*)?(?:n[ \t\d.]*)?o[ \t]*(?:\d+|<[^>\n]*>)[ \t]*"
+_ANY_RE = re.compile(r"(?im)^[ \t]*(?:/[ \t]*)?(?:n[ \t\d.]*)?(?:o[ \t]*(?:\d+|<[^>\n]*>)[ \t]*"
                      r"(?:sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|endrepeat|break"
-                     r"|continue)\b")
+                     r"|continue)\b|m[ \t]*0*9[ \t]*[89](?![ \t]*[\d.]))")
+# Fanuc-style subprograms, which LinuxCNC 2.9 runs too: a line holding only "O<number>" starts
+# one, "M98 P<number> [L<count>]" (a line of its own) calls it, "M99" returns from it (in the
+# main program it ends the program, as M02 does)
+_PROG_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+)\Z")
+_M98_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?M0*98(?![\d.])(.*)\Z")
+_M99_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?M0*99\Z")
 
 
 def has_control_flow(text: str, piece_chars: int = 1 << 20) -> bool:
@@ -33,8 +39,9 @@ def has_control_flow(text: str, piece_chars: int = 1 << 20) -> bool:
     while start < n:
         end = text.find("\n", min(n, start + piece_chars))
         end = n if end < 0 else end
-        # no letter O in the piece (a CAM raster): no statement, no regular expression
-        maybe = text.find("o", start, end) >= 0 or text.find("O", start, end) >= 0
+        # no letter O and no M98/M99 in the piece (a CAM raster): no statement, no regular expression
+        maybe = (text.find("o", start, end) >= 0 or text.find("O", start, end) >= 0
+                 or text.find("99", start, end) >= 0 or text.find("98", start, end) >= 0)
         if maybe and _ANY_RE.search(text, start, end) is not None:  # '^' matches at start: a line start
             return True
         start = end + 1
@@ -69,6 +76,7 @@ class Statement:
 class Structure:
     statements: dict[int, Statement] = field(default_factory=dict)
     subs: dict[str, tuple[int, int]] = field(default_factory=dict)    # label -> (sub, endsub)
+    programs: dict[str, int] = field(default_factory=dict)            # Fanuc "O<n>" -> its line
 
 
 def _label(text: str) -> str:
@@ -84,7 +92,7 @@ def scan(lines: list[str]) -> Structure:
     st = Structure()
     stack: list[Statement] = []
     for index, raw in enumerate(lines):
-        if "o" not in raw and "O" not in raw:
+        if "o" not in raw and "O" not in raw and "9" not in raw:
             continue
         try:
             code = compact(raw)
@@ -94,6 +102,7 @@ def scan(lines: list[str]) -> Structure:
             code = code[1:]
         m = _STMT_RE.match(code)
         if m is None:
+            _fanuc(st, index, code)
             continue
         col = raw.upper().find("O") + 1
         s = Statement(index, _label(m.group(1)), m.group(2), m.group(3))
@@ -162,6 +171,22 @@ def scan(lines: list[str]) -> Structure:
         raise StructureError(s.index, 1, f"{_name(s.label)} {s.keyword.lower()} without its "
                              f"{_name(s.label)} {closing[s.keyword]}")
     return st
+
+
+def _fanuc(st: Structure, index: int, code: str) -> None:
+    """A Fanuc-style subprogram line, if ``code`` is one: its start "O<n>" (PROG), a call
+    "M98 P.. L.." (M98, the words after it in ``rest``) or a return "M99"."""
+    m = _PROG_RE.match(code)
+    if m is not None:
+        label = str(int(m.group(1)))
+        st.programs.setdefault(label, index)    # LinuxCNC finds the first one; a second is no error
+        st.statements[index] = Statement(index, label, "PROG", "")
+        return
+    m = _M98_RE.match(code)
+    if m is not None:
+        st.statements[index] = Statement(index, "", "M98", m.group(1))
+    elif _M99_RE.match(code) is not None:
+        st.statements[index] = Statement(index, "", "M99", "")
 
 
 def _top(stack: list[Statement], keyword: str, label: str, index: int, col: int, kw: str) -> Statement:

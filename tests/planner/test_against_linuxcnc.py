@@ -55,7 +55,7 @@ def programs(draw) -> str:
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
          "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle",
-         "polar_cycle"]),
+         "polar_cycle", "m98"]),
         min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
@@ -134,6 +134,11 @@ def programs(draw) -> str:
                 continue
             out.append(f"o100 call [{_n(a)}] [{_n(b)}]")
             x, y = x + a, y + b
+        elif kind == "m98":
+            # a Fanuc-style subprogram (O300 after the M2) run L times: 1 mm along X and Y each
+            runs = draw(st.integers(0, 3))
+            out.append(f"M98 P300 L{runs}")
+            x, y = x + runs, y + runs
         elif kind == "repeat":
             k = draw(st.integers(1, 4))
             label = 200 + 2 * len(out)      # a label of its own (LinuxCNC refuses a reused one)
@@ -260,7 +265,7 @@ def programs(draw) -> str:
             out.append(f"G90.1 {draw(st.sampled_from(['G2', 'G3']))} X{_n(ex)} Y{_n(ey)} I{cx:.4f} J{cy:.4f}"
                        "\nG91.1")
             x, y = ex, ey
-    out.append("M2")
+    out.append("M2\nO300 (a Fanuc-style subprogram)\nG91 G1 X1 Y1\nG90\nM99")
     return "\n".join(out) + "\n"
 
 

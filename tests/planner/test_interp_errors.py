@@ -56,7 +56,7 @@ def errors_of(text: str, **kw):
          "encoder)", 1, 1),
         ("G41.1", "G41.1 needs a D word (the tool diameter)", 1, 1),
         ("G1.5 X1", "unknown G code G1.5", 1, 1),
-        ("M99", "M99 is not supported", 1, 1),
+        ("M98 P3", "M98 P3: no O3 in this program", 1, 1),
         ("M67 E1 Q1", "M67 is not supported", 1, 1),
         ("M1.5", "unknown M code", 1, 1),
         ("M3 M5", "M3 and M5 are in the same modal group", 1, 4),

@@ -340,3 +340,35 @@ def test_control_flow_is_found_whichever_piece_holds_it(lines, piece_chars):
 
     text = "\n".join(lines)
     assert has_control_flow(text, piece_chars) == (_ANY_RE.search(text) is not None)
+
+
+def test_fanuc_subprograms_run_as_linuxcnc_runs_them() -> None:
+    """M98 P<n> L<count> runs the block from the line "O<n>" to its M99 count times (LinuxCNC
+    2.9 and its rs274: CAM posts for Mach3 and Fanuc write them); it takes no arguments and
+    works on the caller's parameters; L0 runs it not at all; an M99 in the main program ends
+    it as M02 does."""
+    text = "G21 F100\nM98 P100 L2\nG1 X5\nM98 P100 L0\nM98 P0100\nM2\nO100 (sub)\nG91 G1 Y1\nG90\nM99\n"
+    p = read(text)
+    assert [tuple(m.end[:2]) for m in p.moves] == [(0, 1), (0, 2), (5, 2), (5, 3)]
+    assert [m.line for m in p.moves] == [8, 8, 3, 8]          # the subprogram's own line
+    shared = read("G21 F100\n#1=3\nM98 P1\nG1 X#1\nM2\nO1\n#1=4\nM99\n")
+    assert [m.end[0] for m in shared.moves] == [4]
+    ends = read("G21 F100\nG1 X1\nO100\nG1 Y1\nM99\nG1 Z1\nM2\n")
+    assert [tuple(m.end) for m in ends.moves] == [(1, 0, 0), (1, 1, 0)]
+    assert [e.line for e in ends.events if e.kind is EventKind.END] == [5]
+    # a Fanuc program number alone at the top is no call and changes nothing
+    assert len(read("O0001 (PART)\nG21 G1 X1 F100\nM30\n").moves) == 1
+
+
+@pytest.mark.parametrize("text, line, words", [
+    ("G21 F100\nM98\nM2\n", 2, "M98 needs a P word"),
+    ("G21 F100\nM98 P7\nM2\n", 2, "M98 P7: no O7 in this program"),
+    ("G21 F100\nM98 P1 L1.5\nM2\nO1\nM99\n", 2, "M98 L1.5"),
+    ("G21 F100\nM98 P1 Q2\nM2\nO1\nM99\n", 2, "M98 takes only P and L words, not Q"),
+    ("G21 F100\no1 sub\nM99\no1 endsub\no1 call\nM2\n", 3, "M99 inside an O-word subroutine"),
+])
+def test_fanuc_subprogram_refusals_name_their_line(text: str, line: int, words: str) -> None:
+    with pytest.raises(ProgramError) as ei:
+        read(text)
+    (err,) = ei.value.errors
+    assert err.line == line and words in err.message, err
