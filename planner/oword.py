@@ -40,8 +40,7 @@ def has_control_flow(text: str, piece_chars: int = 1 << 20) -> bool:
         end = text.find("\n", min(n, start + piece_chars))
         end = n if end < 0 else end
         # no letter O and no M98/M99 in the piece (a CAM raster): no statement, no regular expression
-        maybe = (text.find("o", start, end) >= 0 or text.find("O", start, end) >= 0
-                 or text.find("99", start, end) >= 0 or text.find("98", start, end) >= 0)
+        maybe = any(text.find(c, start, end) >= 0 for c in "oOmM")   # one letter: a memchr
         if maybe and _ANY_RE.search(text, start, end) is not None:  # '^' matches at start: a line start
             return True
         start = end + 1
