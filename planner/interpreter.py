@@ -604,15 +604,22 @@ class _Interpreter:
         args = evaluate_brackets(st.rest, self.params, 0)
         if len(args) > 30:
             raise _BlockError(f"o{st.label} call with {len(args)} arguments (at most 30: #1-#30)", col=1)
-        target = frame.structure.subs.get(st.label)
+        label = st.label
+        if label.startswith("["):            # O[expression] call: the number it comes to
+            (value,) = evaluate_brackets(label, self.params, 0)
+            if value != round(value) or value < 0:
+                raise _BlockError(f"o{label} call: the subroutine number {value:g} is not a whole number",
+                                  col=1)
+            label = str(int(round(value)))
+        target = frame.structure.subs.get(label)
         file, lines, structure = frame.file, frame.lines, frame.structure
-        if target is None and st.label.startswith("<"):
-            file, lines, structure = self.subroutine_file(st.label[1:-1])
-            target = structure.subs.get(st.label)
+        if target is None and label.startswith("<"):
+            file, lines, structure = self.subroutine_file(label[1:-1])
+            target = structure.subs.get(label)
             if target is None:
-                raise _BlockError(f"{file} does not define o{st.label} sub", col=1)
+                raise _BlockError(f"{file} does not define o{label} sub", col=1)
         if target is None:
-            raise _BlockError(f"o{st.label} call: no o{st.label} sub in this program", col=1)
+            raise _BlockError(f"o{label} call: no o{label} sub in this program", col=1)
         callee = _Frame(file, lines, structure, return_pc=st.index + 1,
                         call_line=frame.call_line or st.index + 1)
         callee.entry = target[0] + 1

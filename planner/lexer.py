@@ -186,6 +186,8 @@ class _Reader:
         if s.startswith("O"):
             if re.fullmatch(r"O\d+", s):  # Fanuc-style program number line: "O0001"
                 return [("O", float(s[1:]))], []
+            if re.fullmatch(r"O<[^>]*>", s):  # ... or name, as LinuxCNC 2.9 reads it: "O<part>"
+                return [("O", 0.0)], []
             self.i = 0
             raise self.fail("unknown O-word statement (o-codes are sub, endsub, call, return, if, elseif, "
                             "else, endif, while, endwhile, do, repeat, endrepeat, break, continue)")

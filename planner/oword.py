@@ -19,6 +19,8 @@ KEYWORDS = ("SUB", "ENDSUB", "CALL", "RETURN", "IF", "ELSEIF", "ELSE", "ENDIF", 
             "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE")
 _KEYWORDS_RE = "|".join(sorted(KEYWORDS, key=len, reverse=True))
 _STMT_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+|<[^>]*>)(" + _KEYWORDS_RE + r")(.*)\Z")
+# LinuxCNC 2.9 also calls a subroutine whose number is an expression: O[#2 * 10] call
+_CALL_EXPR_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\[.*\])CALL(.*)\Z")
 # a quick look for any control statement, so that programs without one keep the plain path
 _ANY_RE = re.compile(r"(?im)^[ \t]*(?:/[ \t]*)?(?:n[ \t\d.]*)?(?:o[ \t]*(?:\d+|<[^>\n]*>)[ \t]*"
                      r"(?:sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|endrepeat|break"
@@ -26,7 +28,7 @@ _ANY_RE = re.compile(r"(?im)^[ \t]*(?:/[ \t]*)?(?:n[ \t\d.]*)?(?:o[ \t]*(?:\d+|<
 # Fanuc-style subprograms, which LinuxCNC 2.9 runs too: a line holding only "O<number>" starts
 # one, "M98 P<number> [L<count>]" (a line of its own) calls it, "M99" returns from it (in the
 # main program it ends the program, as M02 does)
-_PROG_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+)\Z")
+_PROG_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+|<[^>]*>)\Z")
 _M98_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?M0*98(?![\d.])(.*)\Z")
 _M99_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?M0*99\Z")
 
@@ -101,7 +103,11 @@ def scan(lines: list[str]) -> Structure:
             code = code[1:]
         m = _STMT_RE.match(code)
         if m is None:
-            _fanuc(st, index, code)
+            expr = _CALL_EXPR_RE.match(code)
+            if expr is not None:             # the label is evaluated when the call runs
+                st.statements[index] = Statement(index, expr.group(1), "CALL", expr.group(2))
+            else:
+                _fanuc(st, index, code)
             continue
         col = raw.upper().find("O") + 1
         s = Statement(index, _label(m.group(1)), m.group(2), m.group(3))
@@ -177,7 +183,7 @@ def _fanuc(st: Structure, index: int, code: str) -> None:
     "M98 P.. L.." (M98, the words after it in ``rest``) or a return "M99"."""
     m = _PROG_RE.match(code)
     if m is not None:
-        label = str(int(m.group(1)))
+        label = _label(m.group(1))
         st.programs.setdefault(label, index)    # LinuxCNC finds the first one; a second is no error
         st.statements[index] = Statement(index, label, "PROG", "")
         return

@@ -19,6 +19,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import EventKind, Program
+from tests.planner.linuxcnc_oracle import canon_calls
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 _MESSAGE = re.compile(r'^\s*N\.+\s+MESSAGE\("(.*)"\)\s*$')
@@ -356,8 +357,10 @@ def test_fanuc_subprograms_run_as_linuxcnc_runs_them() -> None:
     ends = read("G21 F100\nG1 X1\nO100\nG1 Y1\nM99\nG1 Z1\nM2\n")
     assert [tuple(m.end) for m in ends.moves] == [(1, 0, 0), (1, 1, 0)]
     assert [e.line for e in ends.events if e.kind is EventKind.END] == [5]
-    # a Fanuc program number alone at the top is no call and changes nothing
+    # a Fanuc program number or name alone at the top is no call and changes nothing (LinuxCNC's
+    # m98m99/13-named-program)
     assert len(read("O0001 (PART)\nG21 G1 X1 F100\nM30\n").moves) == 1
+    assert len(read("%\nO<MyProgram>\nG21 G1 X1 F100\nM30\n%\n").moves) == 1
 
 
 @pytest.mark.parametrize("text, line, words", [
@@ -372,3 +375,36 @@ def test_fanuc_subprogram_refusals_name_their_line(text: str, line: int, words: 
         read(text)
     (err,) = ei.value.errors
     assert err.line == line and words in err.message, err
+
+
+M98_CASES = ["01-basics", "02-variables", "05-M98-loops", "07-nested-subs", "08-sub-follows-main",
+             "10-M98-P001", "14-o-expression-call"]
+
+
+@pytest.mark.parametrize("name", M98_CASES)
+def test_linuxcnc_m98_m99_tests_move_for_move_and_print_for_print(name: str) -> None:
+    """LinuxCNC's own tests of Fanuc-style subprograms (tests/interp/m98m99): the moves and
+    the (PRINT,...) lines of its expected output, in order (most of its scripts drop each line's
+    first word, the call counter; a move to where the tool is, which LinuxCNC writes and a
+    Program does not hold, is left out)."""
+    folder = DATA / "m98m99" / name
+    lines = (folder / "expected").read_text().splitlines()
+    counted = bool(re.match(r"^\s*\d+\s+N\.", lines[0]))   # the script kept the counter
+    canon = re.compile(r"^\s*(\d+\s+)?N\.")
+    want_prints = [line.strip() for line in lines if line.strip() and not canon.match(line)]
+    want_moves, here = [], (0.0, 0.0, 0.0)
+    for call, args, scale in canon_calls("\n".join(re.sub(r"^\s*\d+\s+", "", x) for x in lines)):
+        if call in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
+            end = tuple(round(float(v) * scale, 3) for v in args[:3])
+            if end != here:
+                want_moves.append((call.lower()[9:], end))
+            here = end
+    got_prints, got_moves = [], []
+    for path in sorted(folder.glob("*.ngc")):
+        program = parse_program(path.read_text(), name=path.name)
+        got_prints += [m if counted else " ".join(m.split()[1:]) for m in messages(program)]
+        got_moves += [(r["call"][9:], tuple(round(v, 3) for v in r["args"][:3]))
+                      for r in canon_records(program)]
+    assert want_prints or want_moves, "the reference shows something"
+    assert got_prints == want_prints
+    assert got_moves == want_moves
