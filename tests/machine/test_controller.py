@@ -346,7 +346,7 @@ def test_mdi_refuses_what_it_cannot_do_with_the_reason(ctl: MachineController, b
     assert ctl.spindle == spindle_before and ctl.state is MachineState.IDLE
 
 
-@pytest.mark.parametrize("block", ["G91", "G20", "F500", "S1000", "G43 H0", "#1=5", "G61", "G18", "G1"])
+@pytest.mark.parametrize("block", ["G91", "G20", "F500", "S1000", "G43 H0", "#1=5", "G61", "G18", "G0"])
 def test_mdi_block_that_only_sets_modes_is_refused_not_forgotten(ctl: MachineController, block: str) -> None:
     """An MDI block is read on its own. G91 typed alone used to return OK and be forgotten, so
     the next "G1 X10" went to X10 absolute: now it is refused, saying how to write it."""
@@ -356,6 +356,13 @@ def test_mdi_block_that_only_sets_modes_is_refused_not_forgotten(ctl: MachineCon
     assert ctl.mdi("G91 G1 X10 F500")
     run_to_idle(ctl)
     assert ctl.reference_position[0] == pytest.approx(10.0)
+
+
+def test_mdi_g1_without_a_feed_is_refused_as_linuxcnc_refuses_it(ctl: MachineController) -> None:
+    """An MDI block keeps no feed from the one before: "G1" alone has none, and LinuxCNC
+    refuses a G01 with no feed even when it moves nowhere."""
+    r = ctl.mdi("G1")
+    assert not r and "feed rate is zero" in r.reason
 
 
 @pytest.mark.parametrize("block", ["G41.1 D4", "G42.1 D4 G1 X20 Y5 F600", "G41 G1 X20 F600"])
