@@ -367,6 +367,11 @@ class _Interpreter:
     # ------------------------------------------------------------------ driver
     def run(self, text: str, utf8: bytes | None = None) -> Program:
         """Interpret ``text`` (``utf8``: the same text encoded, when the caller has it)."""
+        if text.startswith("\ufeff"):
+            # a byte-order mark, which Windows editors put before the first line: an encoding
+            # marker, not G-code (LinuxCNC refuses it as a bad character), and no editor shows
+            # it, so the columns of line 1 are counted without it
+            text, utf8 = text[1:], None
         if _contains(text, "\r\n"):
             text = text.replace("\r\n", "\n")  # Windows line ends, once for the whole text
             utf8 = None

@@ -178,3 +178,15 @@ def test_empty_program():
     assert len(p.moves) == 0 and p.events == ()
     np.testing.assert_array_equal(p.end_position, [0, 0, 0])
     assert math.isclose(len(p.move_offsets), 0)
+
+
+def test_a_byte_order_mark_before_the_first_line_is_no_gcode(tmp_path) -> None:
+    """Windows editors write a UTF-8 byte-order mark first; it is an encoding marker that no
+    editor shows, so it is read as nothing and line 1's columns are counted without it."""
+    path = tmp_path / "bom.ngc"
+    path.write_bytes(b"\xef\xbb\xbfG21 G1 X1 F100\nM2\n")
+    assert [m.end[0] for m in parse_file(path).moves] == [1]
+    with pytest.raises(ProgramError) as ei:
+        parse_program("\ufeffG21 G1 X1 Q5 F100\n")
+    (err,) = ei.value.errors
+    assert (err.line, err.col) == (1, 11)
