@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -21,7 +20,8 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.tools import parse_tbl
-from tests.planner.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
+from tools.against_linuxcnc import close, without_short_moves
+from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
 
 pytestmark = pytest.mark.skipif(
     RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs Debian's linuxcnc-uspace "
@@ -270,24 +270,13 @@ def programs(draw) -> str:
 
 
 def _without_short_moves(motion: list[tuple], program) -> list[tuple]:
-    """The oracle's rule on this side too: a straight move ending within 0.003 mm of where the
-    tool is (machine coordinates) is not compared; polar words end off the 0.1 mm grid, so a
-    following grid move can be that short."""
-    out, last = [], np.zeros(3)
+    """The oracle's rule on this side too (``tools.against_linuxcnc.without_short_moves``):
+    polar words end off the 0.1 mm grid, so a following grid move can be that short."""
     back_out = {i + 1 for i in program.taps}          # a G33.1 is one call for its two moves
-    moves = [m for i, m in enumerate(program.moves) if i not in back_out]
-    for call, move in zip(motion, moves, strict=True):
-        end = np.asarray(move.end[:3], dtype=float)
-        if call[0] != "arc_feed" and np.max(np.abs(end - last)) < 0.003:
-            continue
-        out.append(call)
-        last = end
-    return out
+    return without_short_moves(motion, [m.end for i, m in enumerate(program.moves) if i not in back_out])
 
 
-def _close(a: tuple, b: tuple) -> bool:
-    # LinuxCNC prints four decimals of the program's unit (0.0001 in = 0.00254 mm)
-    return a[0] == b[0] and all(abs(u - v) <= 0.003 for u, v in zip(a[1], b[1]))
+_close = close
 
 
 @settings(max_examples=80, deadline=None)
@@ -313,3 +302,31 @@ def test_the_oracle_sees_what_it_should() -> None:
     assert res.motion[1][1][:4] == pytest.approx((20.0, 0.0, 15.0, 0.0))
     bad = run_linuxcnc("G21\nG1 X10\nM2\n")
     assert "zero feed rate" in bad.error and bad.error_block == "G1 X10"
+
+
+def test_the_library_check_classes_each_program(tmp_path) -> None:
+    """``python -m tools.against_linuxcnc FOLDER``, which an integrator runs on a shop's programs:
+    each program in its class, and the share rs274 reads that this reads alike."""
+    from tools.against_linuxcnc import main, programs_in, summary, judge
+
+    programs = {
+        "same.ngc": "G21 F100\nG1 X10\nG2 X20 R5\nM2\n",
+        # M68 (an analog output) this machine does not have; rs274 writes it
+        "analog.ngc": "G21 F100\nM68 E0 Q5\nG1 X1\nM2\n",
+        # no M2: rs274 calls it an error at the end, this reads it
+        "open_end.nc": "G21\nG1 X1 F100\n",
+        "no_feed.tap": "G21\nG1 X1\nM2\n",
+        # G84 in G18: LinuxCNC's own tests show it feeding along X; this feeds along Y
+        "tap_g18.ngc": "G21 G18 G98 F10\nM3 S1000\nG0 X0 Y50 Z0\nG84 X25 Z25 Y-25 R25\nM2\n",
+        "notes.txt": "G21 F100\nG1 X10\nM2\n",          # not a program's name: left alone
+    }
+    for name, text in programs.items():
+        (tmp_path / name).write_text(text)
+    found = programs_in([tmp_path])
+    assert sorted(p.name for p in found) == sorted(n for n in programs if not n.endswith(".txt"))
+    kinds = {p.name: judge(p).kind for p in found}
+    assert kinds == {"same.ngc": "same", "analog.ngc": "only rs274 reads it", "open_end.nc": "only this reads it",
+                     "no_feed.tap": "both refuse", "tap_g18.ngc": "differ"}
+    totals = summary([judge(p) for p in found])
+    assert (totals["programs"], totals["rs274 reads"], totals["read alike of those"]) == (5, 3, 33.3)
+    assert main([str(tmp_path)]) == 0

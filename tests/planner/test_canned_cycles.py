@@ -18,7 +18,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import EventKind, Program
-from tests.planner.linuxcnc_oracle import RS274, canon_calls
+from tools.linuxcnc_oracle import RS274, canon_calls
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 REFERENCES = sorted(p.parent for p in DATA.glob("g8*/*/*/expected"))
@@ -330,7 +330,7 @@ def test_pecks_are_linuxcnc_s_loop_bit_for_bit(r: float, depth: float, q: float,
     "G91 G18 G81 X2 Z1 Y-3 R1 L2\nG90 G17 G80\nM2\n",
 ])
 def test_cycles_in_g18_g19_of_a_rotated_system_are_linuxcnc_s(text: str) -> None:
-    from tests.planner.linuxcnc_oracle import project_motion, run_linuxcnc
+    from tools.linuxcnc_oracle import project_motion, run_linuxcnc
 
     theirs = run_linuxcnc(text)
     assert not theirs.error, theirs.error

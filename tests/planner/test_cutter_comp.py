@@ -20,8 +20,8 @@ from planner.interpreter import parse_program
 from planner.plan import plan_program
 from planner.program import MoveKind, Program
 from planner.tools import ToolTable, parse_tbl, read_tbl
-from tests.planner.linuxcnc_oracle import canon_calls, project_motion
 from tests.planner.motion_programs import paper_machine
+from tools.linuxcnc_oracle import canon_calls, project_motion
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 

@@ -8,7 +8,7 @@ import pytest
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.program import EventKind
-from tests.planner.linuxcnc_oracle import RS274, run_linuxcnc
+from tools.linuxcnc_oracle import RS274, run_linuxcnc
 
 
 def _debug(program) -> list[str]:

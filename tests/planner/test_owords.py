@@ -19,7 +19,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import EventKind, Program
-from tests.planner.linuxcnc_oracle import canon_calls
+from tools.linuxcnc_oracle import canon_calls
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 _MESSAGE = re.compile(r'^\s*N\.+\s+MESSAGE\("(.*)"\)\s*$')

@@ -1,6 +1,8 @@
 """LinuxCNC's own interpreter as an oracle: ``rs274`` (Debian's linuxcnc-uspace, installed by
 `make test` as root) reads a program and prints its canonical calls; this module runs it and
-turns the calls into comparable motion records (millimetres)."""
+turns the calls into comparable motion records (millimetres). The tests use it on generated
+programs (``run_linuxcnc``), ``tools.against_linuxcnc`` on folders of real ones
+(``run_linuxcnc_file``)."""
 
 from __future__ import annotations
 
@@ -19,7 +21,8 @@ from planner.program import Program
 from planner.tools import ToolTable, format_tbl
 
 RS274 = shutil.which("rs274")
-_CALL = re.compile(r"^\s*\d+\s+N\.+\s+([A-Z_0-9]+)\((.*)\)\s*$")
+# "12 N..... STRAIGHT_FEED(...)": the counter, the block's N number (dots without one), the call
+_CALL = re.compile(r"^\s*\d+\s+N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
 
 
 @dataclass(frozen=True)
@@ -28,6 +31,7 @@ class OracleResult:
     motion: list[tuple]
     error: str                   # LinuxCNC's error text, "" when the program ran to its end
     error_block: str             # the block LinuxCNC printed after the error
+    every: tuple[tuple, ...] = ()  # the motion calls, moves to where the tool is included
 
 
 _EXPECTED_CALL = re.compile(r"^\s*(?:N\.+\s+)?([A-Z_]+)\((.*)\)\s*$")
@@ -56,27 +60,64 @@ def _tbl_for_rs274(tools: ToolTable) -> str:
                                  for t in tools}))
 
 
-def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
+def _rs274(program: Path, tools: ToolTable | None, tmp: str, subroutine_dirs: tuple[str, ...] = (),
+           cwd: str | None = None) -> str:
+    """rs274's output for ``program`` (``tmp``: a folder for its tool table and INI file)."""
     assert RS274 is not None
+    args = [RS274, "-g"]
+    if tools is not None:
+        (Path(tmp) / "t.tbl").write_text(_tbl_for_rs274(tools))
+        args += ["-t", str(Path(tmp) / "t.tbl")]
+    if subroutine_dirs:
+        (Path(tmp) / "x.ini").write_text("[RS274NGC]\nSUBROUTINE_PATH = " + ":".join(subroutine_dirs) + "\n")
+        args += ["-i", str(Path(tmp) / "x.ini")]
+    # errors go to stderr: one stream keeps them where they happened. Two rs274 at once
+    # (two test processes) sometimes print nothing at all (measured: 1 run in 10 with three
+    # in parallel, none alone), so runs are serialised across processes by a lock file.
+    with open(Path(tempfile.gettempdir()) / "cnc-panel-rs274.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        return subprocess.run(args + [str(program)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              text=True, errors="replace", timeout=60, cwd=cwd or tmp,
+                              stdin=subprocess.DEVNULL).stdout
+
+
+def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
     with tempfile.TemporaryDirectory() as tmp:
         prog = Path(tmp) / "p.ngc"
         prog.write_text(text)
-        args = [RS274, "-g"]
-        if tools is not None:
-            (Path(tmp) / "t.tbl").write_text(_tbl_for_rs274(tools))
-            args += ["-t", str(Path(tmp) / "t.tbl")]
-        # errors go to stderr: one stream keeps them where they happened. Two rs274 at once
-        # (two test processes) sometimes print nothing at all (measured: 1 run in 10 with three
-        # in parallel, none alone), so runs are serialised across processes by a lock file.
-        with open(Path(tempfile.gettempdir()) / "cnc-panel-rs274.lock", "w") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
-            out = subprocess.run(args + [str(prog)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                 text=True, timeout=60, cwd=tmp, stdin=subprocess.DEVNULL).stdout
-        assert out.strip() not in ("", "executing"), f"rs274 printed nothing for:\n{text}"
+        out = _rs274(prog, tools, tmp)
+    assert out.strip() not in ("", "executing"), f"rs274 printed nothing for:\n{text}"
+    return read_output(out)
+
+
+# rs274 prints what (PRINT,...), (DEBUG,...) and (LOG,...) say as lines of their own, which
+# would read as its error: a program is given to it without them (they move nothing)
+_MESSAGE_COMMENT = re.compile(r"(?i)\((print|debug|log|logopen|logappend|logclose),")
+
+
+def run_linuxcnc_file(path: Path, tools: ToolTable | None = None,
+                      subroutine_dirs: tuple[str, ...] = ()) -> OracleResult:
+    """rs274 on a program file where it lies (its folder and ``subroutine_dirs`` searched for
+    subroutine files)."""
+    text = path.read_text(errors="replace")
+    with tempfile.TemporaryDirectory() as tmp:
+        program = path
+        if _MESSAGE_COMMENT.search(text):
+            program = Path(tmp) / path.name
+            program.write_text(_MESSAGE_COMMENT.sub("(", text))
+        dirs = (str(path.parent.resolve()), *subroutine_dirs)
+        out = _rs274(program.resolve(), tools, tmp, dirs, cwd=str(path.parent.resolve()))
+    return read_output(out)
+
+
+def read_output(out: str) -> OracleResult:
+    """Motion and the first error of rs274's output."""
     motion: list[tuple] = []
     machine: list[tuple] = []    # each motion call's end in machine coordinates (zero moves)
     scale = 1.0
-    g5x = g92 = tool = (0.0, 0.0, 0.0)
+    g5x: tuple[float, ...] = (0.0, 0.0, 0.0)
+    g92: tuple[float, ...] = (0.0, 0.0, 0.0)
+    tool: tuple[float, ...] = (0.0, 0.0, 0.0)
     rotation = 0.0
     plane = "XY"
     error = block = ""
@@ -128,7 +169,7 @@ def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
             xyz = {"XY": (first, second, normal), "YZ": (normal, first, second),
                    "XZ": (second, normal, first)}[plane]
             machine.append(to_machine(xyz))
-    return OracleResult(_without_zero_moves(motion, machine), error, block)
+    return OracleResult(_without_zero_moves(motion, machine), error, block, tuple(motion))
 
 
 def _without_zero_moves(motion: list[tuple], machine: list[tuple]) -> list[tuple]:

@@ -1,0 +1,193 @@
+"""Read folders of G-code programs with this interpreter and with LinuxCNC's rs274, side by side.
+
+    python -m tools.against_linuxcnc FOLDER [FOLDER ...] [--json]
+
+Every .ngc, .nc, .gcode, .tap and .cnc file below the folders is read by LinuxCNC 2.9's
+interpreter (``rs274``, which ``make test`` installs as root; subroutine files are looked for
+in the program's folder) and by ``planner.interpreter.parse_program`` on the default XYZ
+machine with digital input 0, both with tools 1-99 of no length and no diameter. Each program
+is put in one class:
+
+- ``same``: both read it and write the same motion, call for call, within what rs274 prints
+  (four decimals of the program's unit); moves shorter than that are not compared;
+- ``same path``: the calls differ in number only where moves are that short: walking both
+  paths in order, every point of each lies within 0.003 mm of the other path, not behind
+  where the point before it was found;
+- ``differ``: both read it, and the motion differs (the first difference is shown);
+- ``only rs274 reads it``, ``only this reads it``, ``both refuse``: with the reasons.
+
+It prints a line for each program that is not ``same``, then the counts and the share of the
+programs rs274 reads that this interpreter reads alike (``same`` and ``same path``). An integrator
+runs it on a shop's program library before the machine changes control.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from planner.errors import PlannerError, ProgramError
+from planner.interpreter import parse_program
+from planner.machine import MachineSpec
+from planner.program import Program
+from planner.tools import parse_tbl
+from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc_file
+
+SUFFIXES = (".ngc", ".nc", ".gcode", ".tap", ".cnc")
+TOOLS = parse_tbl("".join(f"T{n} P{n} Z0 D0\n" for n in range(1, 100)))
+MACHINE = replace(MachineSpec.default(), input_bits={0: (0, 16, "")})
+TOLERANCE_MM = 0.003  # LinuxCNC prints four decimals of an inch (0.00254 mm) in G20
+CLASSES = ("same", "same path", "differ", "only rs274 reads it", "only this reads it", "both refuse")
+
+
+@dataclass(frozen=True)
+class Verdict:
+    path: str
+    kind: str   # one of CLASSES
+    detail: str
+
+
+def without_short_moves(motion: Sequence[tuple], ends: Sequence[Sequence[float]]) -> list[tuple]:
+    """The calls whose move ends at least TOLERANCE_MM from where the last kept one ended (arcs
+    and rigid taps always kept): LinuxCNC writes moves to where the tool already is, which a
+    Program does not hold, and rounds what it prints."""
+    out, last = [], np.zeros(3)
+    for call, end in zip(motion, ends, strict=True):
+        here = np.asarray(end[:3], dtype=float)
+        if call[0] not in ("arc_feed", "rigid_tap") and np.max(np.abs(here - last)) < TOLERANCE_MM:
+            continue
+        out.append(call)
+        last = here
+    return out
+
+
+def close(a: tuple, b: tuple) -> bool:
+    return a[0] == b[0] and all(abs(u - v) <= TOLERANCE_MM for u, v in zip(a[1], b[1]))
+
+
+def _ours(program: Program, inch: bool) -> tuple[list[tuple], list[tuple]]:
+    """This interpreter's motion calls, rounded as rs274 prints them: without the short moves
+    (compared call by call) and all (for the path)."""
+    unit = 25.4 if inch else 1.0
+
+    def rounded(v: float) -> float:
+        return round(v / unit, 4) * unit
+
+    back_out = {i + 1 for i in program.taps}       # a G33.1 is one call for its two moves
+    ends = [[rounded(float(v)) for v in m.end[:3]] for i, m in enumerate(program.moves) if i not in back_out]
+    motion = [(call, tuple(x if call == "arc_feed" and k == 4 else rounded(x) for k, x in enumerate(args)))
+              for call, args in project_motion(program)]
+    return without_short_moves(motion, ends), motion
+
+
+AHEAD = 64  # segments of the other path searched past the last match
+
+
+def _follows(points: np.ndarray, path: np.ndarray) -> bool:
+    """Whether each point, in order, lies within TOLERANCE_MM of a segment of ``path`` at or
+    after the segment the point before it was found on (the same path, walked the same way:
+    not only the same set of points)."""
+    a, d = path[:-1], path[1:] - path[:-1]
+    length2 = np.maximum((d * d).sum(1), 1e-30)
+    k = 0
+    for p in points:
+        hi = min(k + AHEAD, len(a))
+        t = np.clip(((p - a[k:hi]) * d[k:hi]).sum(1) / length2[k:hi], 0.0, 1.0)
+        near = np.flatnonzero(np.sqrt((((a[k:hi] + t[:, None] * d[k:hi]) - p) ** 2).sum(1)) <= TOLERANCE_MM)
+        if not len(near):
+            return False
+        k += int(near[0])
+    return True
+
+
+def _same_path(ours: list[tuple], theirs: list[tuple]) -> bool:
+    """Whether two straight-move paths are the same within TOLERANCE_MM, walked in order (the
+    arcs must then be the same calls)."""
+    arcs = [[c for c in calls if c[0] == "arc_feed"] for calls in (ours, theirs)]
+    if len(arcs[0]) != len(arcs[1]) or not all(close(x, y) for x, y in zip(*arcs)):
+        return False
+    # both start where the tool stands: the origin (LinuxCNC writes a move to it first)
+    a = np.array([(0.0, 0.0, 0.0)] + [c[1][:3] for c in ours if c[0] != "arc_feed"], float)
+    b = np.array([(0.0, 0.0, 0.0)] + [c[1][:3] for c in theirs if c[0] != "arc_feed"], float)
+    return _follows(a, b) and _follows(b, a)
+
+
+def judge(path: Path) -> Verdict:
+    """Read ``path`` both ways and class it."""
+    theirs = run_linuxcnc_file(path, TOOLS)
+    text = path.read_text(errors="replace")
+    try:
+        program = parse_program(text, str(path), machine=MACHINE, tools=TOOLS, block_delete=False,
+                                subroutine_dirs=(str(path.parent),))
+        upper = text.upper()
+        ours, every = _ours(program, "G20" in upper and "G21" not in upper)
+        why = ""
+    except (ProgramError, PlannerError) as exc:
+        ours, every, why = None, [], str(exc).splitlines()[0]
+    if ours is None:
+        kind = "both refuse" if theirs.error else "only rs274 reads it"
+        return Verdict(str(path), kind, why + (f" | rs274: {theirs.error}" if theirs.error else ""))
+    if theirs.error:
+        return Verdict(str(path), "only this reads it", f"rs274: {theirs.error} at {theirs.error_block!r}")
+    first = next((k for k, (a, b) in enumerate(zip(ours, theirs.motion)) if not close(a, b)), None)
+    if first is None and len(ours) == len(theirs.motion):
+        return Verdict(str(path), "same", f"{len(ours)} calls")
+    if _same_path(every, list(theirs.every)):
+        return Verdict(str(path), "same path", f"{len(ours)} and {len(theirs.motion)} calls, within "
+                                               f"{TOLERANCE_MM} mm in order")
+    at = first if first is not None else min(len(ours), len(theirs.motion))
+    mine = ours[at] if at < len(ours) else None
+    lcnc = theirs.motion[at] if at < len(theirs.motion) else None
+    return Verdict(str(path), "differ", f"call {at + 1} of {len(ours)} / {len(theirs.motion)}: "
+                                        f"this {mine}, rs274 {lcnc}")
+
+
+def programs_in(folders: Iterable[Path]) -> list[Path]:
+    """The programs below ``folders`` (a file given is taken as it is)."""
+    found: list[Path] = []
+    for folder in folders:
+        if folder.is_file():
+            found.append(folder)
+        else:
+            found += sorted(p for p in folder.rglob("*") if p.is_file() and p.suffix.lower() in SUFFIXES)
+    return found
+
+
+def summary(verdicts: Sequence[Verdict]) -> dict:
+    counts = {kind: sum(v.kind == kind for v in verdicts) for kind in CLASSES}
+    read = counts["same"] + counts["same path"] + counts["differ"] + counts["only rs274 reads it"]
+    alike = counts["same"] + counts["same path"]
+    return {"programs": len(verdicts), **counts, "rs274 reads": read,
+            "read alike of those": round(100.0 * alike / read, 1) if read else None}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m tools.against_linuxcnc",
+                                     description=(__doc__ or "").split("\n")[0])
+    parser.add_argument("folders", nargs="+", type=Path)
+    parser.add_argument("--json", action="store_true", help="one JSON object: every verdict and the counts")
+    args = parser.parse_args(argv)
+    if RS274 is None:
+        print("rs274 (LinuxCNC's interpreter, Debian package linuxcnc-uspace) is not installed: "
+              "`make test` installs it as root", file=sys.stderr)
+        return 2
+    verdicts = [judge(p) for p in programs_in(args.folders)]
+    totals = summary(verdicts)
+    if args.json:
+        print(json.dumps({"verdicts": [v.__dict__ for v in verdicts], "summary": totals}, indent=1))
+        return 0
+    for v in verdicts:
+        if v.kind != "same":
+            print(f"{v.kind:20s} {v.path}: {v.detail}")
+    print(json.dumps(totals))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
