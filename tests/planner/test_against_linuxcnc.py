@@ -307,7 +307,7 @@ def test_the_oracle_sees_what_it_should() -> None:
 def test_the_library_check_classes_each_program(tmp_path) -> None:
     """``python -m tools.against_linuxcnc FOLDER``, which an integrator runs on a shop's programs:
     each program in its class, and the share rs274 reads that this reads alike."""
-    from tools.against_linuxcnc import main, programs_in, summary, judge
+    from tools.against_linuxcnc import judge, main, programs_in, summary
 
     programs = {
         "same.ngc": "G21 F100\nG1 X10\nG2 X20 R5\nM2\n",
