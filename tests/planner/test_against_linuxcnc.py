@@ -325,8 +325,10 @@ def test_the_library_check_classes_each_program(tmp_path) -> None:
     found = programs_in([tmp_path])
     assert sorted(p.name for p in found) == sorted(n for n in programs if not n.endswith(".txt"))
     kinds = {p.name: judge(p).kind for p in found}
-    assert kinds == {"same.ngc": "same", "analog.ngc": "only rs274 reads it",
-                     "open_end.nc": "only this reads it", "no_feed.tap": "both refuse", "tap_g18.ngc": "differ"}
+    assert kinds == {
+        "same.ngc": "same", "analog.ngc": "only rs274 reads it", "open_end.nc": "only this reads it",
+        "no_feed.tap": "both refuse", "tap_g18.ngc": "differ",
+    }
     totals = summary([judge(p) for p in found])
     assert (totals["programs"], totals["rs274 reads"], totals["read alike of those"]) == (5, 3, 33.3)
     assert main([str(tmp_path)]) == 0
