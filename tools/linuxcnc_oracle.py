@@ -21,6 +21,7 @@ from planner.program import Program
 from planner.tools import ToolTable, format_tbl
 
 RS274 = shutil.which("rs274")
+RS274_TIMEOUT_S = 60
 # "12 N..... STRAIGHT_FEED(...)": the counter, the block's N number (dots without one), the call
 _CALL = re.compile(r"^\s*\d+\s+N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
 
@@ -76,9 +77,12 @@ def _rs274(program: Path, tools: ToolTable | None, tmp: str, subroutine_dirs: tu
     # in parallel, none alone), so runs are serialised across processes by a lock file.
     with open(Path(tempfile.gettempdir()) / "cnc-panel-rs274.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        return subprocess.run(args + [str(program)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              text=True, errors="replace", timeout=60, cwd=cwd or tmp,
-                              stdin=subprocess.DEVNULL).stdout
+        try:
+            return subprocess.run(args + [str(program)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  text=True, errors="replace", timeout=RS274_TIMEOUT_S, cwd=cwd or tmp,
+                                  stdin=subprocess.DEVNULL).stdout
+        except subprocess.TimeoutExpired:          # an endless loop: LinuxCNC never ends it either
+            return f"rs274 did not finish within {RS274_TIMEOUT_S} s (an endless loop?)\n"
 
 
 def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
