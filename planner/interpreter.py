@@ -1097,8 +1097,8 @@ class _Interpreter:
         highest speed (rpm); G97: S in rpm again. LinuxCNC on a mill sets the speed from the X
         radius; this spindle is switched by digital outputs and has no speed output, so G96 is
         kept as the mode LinuxCNC reads (the motion is the same) and the operator is told that
-        the spindle turns at the speed set on its drive. The speed shown and counted (spin-up)
-        is what LinuxCNC commands near X0: D, else the spindle's highest speed."""
+        its speed does not follow X. The speed shown and counted (spin-up) is what LinuxCNC
+        commands near X0: D, else the spindle's highest speed."""
         if code == 970:
             self.css_max_rpm = None
             return
