@@ -610,8 +610,8 @@ class _Interpreter:
         if len(args) > 30:
             raise _BlockError(f"o{st.label} call with {len(args)} arguments (at most 30: #1-#30)", col=1)
         label = st.label
-        if label.startswith("["):            # O[expression] call: the number it comes to
-            (value,) = evaluate_brackets(label, self.params, 0)
+        if label.startswith(("[", "#")):     # O[expression] call, O#<name> call: its number
+            (value,) = evaluate_brackets(label if label.startswith("[") else f"[{label}]", self.params, 0)
             if value != round(value) or value < 0:
                 raise _BlockError(f"o{label} call: the subroutine number {value:g} is not a whole number",
                                   col=1)

@@ -19,8 +19,9 @@ KEYWORDS = ("SUB", "ENDSUB", "CALL", "RETURN", "IF", "ELSEIF", "ELSE", "ENDIF", 
             "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE")
 _KEYWORDS_RE = "|".join(sorted(KEYWORDS, key=len, reverse=True))
 _STMT_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\d+|<[^>]*>)(" + _KEYWORDS_RE + r")(.*)\Z")
-# LinuxCNC 2.9 also calls a subroutine whose number is an expression: O[#2 * 10] call
-_CALL_EXPR_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\[.*\])CALL(.*)\Z")
+# LinuxCNC 2.9 also calls a subroutine whose number is an expression or a parameter:
+# O[#2 * 10] call, O#<sub> call
+_CALL_EXPR_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?O(\[.*\]|#<[^>]*>|#\d+)CALL(.*)\Z")
 # a quick look for any control statement, so that programs without one keep the plain path
 _ANY_RE = re.compile(r"(?im)^[ \t]*(?:/[ \t]*)?(?:n[ \t\d.]*)?(?:o[ \t]*(?:\d+|<[^>\n]*>)[ \t]*"
                      r"(?:sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|endrepeat|break"

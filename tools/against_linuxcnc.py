@@ -4,8 +4,8 @@
 
 Every .ngc, .nc, .gcode, .tap and .cnc file below the folders is read by LinuxCNC 2.9's
 interpreter (``rs274``, which ``make test`` installs as root; subroutine files are looked for
-in the program's folder) and by ``planner.interpreter.parse_program`` on the default XYZ
-machine with digital input 0, both with tools 1-99 of no length and no diameter. Each program
+in the program's folder) and by ``planner.interpreter.parse_program`` on an XYZABC machine
+with digital input 0, both with tools 1-99 of no length and no diameter. Each program
 is put in one class:
 
 - ``same``: both read it and write the same motion, call for call, within what rs274 prints
@@ -34,14 +34,21 @@ import numpy as np
 
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
-from planner.machine import MachineSpec
+from planner.machine import WORK_OFFSET_NAMES, AxisSpec, MachineSpec
 from planner.program import Program
 from planner.tools import parse_tbl
 from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc_file
 
 SUFFIXES = (".ngc", ".nc", ".gcode", ".tap", ".cnc")
 TOOLS = parse_tbl("".join(f"T{n} P{n} Z0 D0\n" for n in range(1, 100)))
-MACHINE = replace(MachineSpec.default(), input_bits={0: (0, 16, "")})
+# rs274 is an XYZABC machine: so is the one this reads on (rotary axes of any travel)
+_BASE = MachineSpec.default()
+MACHINE = replace(
+    _BASE, name="XYZABC", input_bits={0: (0, 16, "")},
+    axes=_BASE.axes + tuple(AxisSpec(name=n, rotary=True, drive_position=3 + i, min_pos=-1e6, max_pos=1e6,
+                                     v_max=3600.0, a_max=36_000.0, j_max=360_000.0)
+                            for i, n in enumerate("ABC")),
+    work_offsets={n: (0.0,) * 6 for n in WORK_OFFSET_NAMES})
 TOLERANCE_MM = 0.003  # LinuxCNC prints four decimals of an inch (0.00254 mm) in G20
 CLASSES = ("same", "same path", "differ", "only rs274 reads it", "only this reads it", "both refuse")
 

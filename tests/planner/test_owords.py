@@ -363,6 +363,16 @@ def test_fanuc_subprograms_run_as_linuxcnc_runs_them() -> None:
     assert len(read("%\nO<MyProgram>\nG21 G1 X1 F100\nM30\n%\n").moves) == 1
 
 
+def test_a_subroutine_number_from_a_parameter_or_an_expression() -> None:
+    """O#<name> call and O[expression] call, as LinuxCNC 2.9 reads them (its
+    oword-bug315-p2 and m98m99/14 tests): the subroutine of the number they come to."""
+    text = ("G21 F100\no1 sub\nG1 X1\no1 endsub\no2 sub\nG1 X2\no2 endsub\n#<sub>=2\no#<sub> call\n"
+            "#5=1\no#5 call\no[#<sub> * 1] call\nM2\n")
+    assert [m.end[0] for m in read(text).moves] == [2, 1, 2]
+    with pytest.raises(ProgramError, match="not a whole number"):
+        read("G21 F100\no2 sub\nG1 X2\no2 endsub\no[1.5] call\nM2\n")
+
+
 @pytest.mark.parametrize("text, line, words", [
     ("G21 F100\nM98\nM2\n", 2, "M98 needs a P word"),
     ("G21 F100\nM98 P7\nM2\n", 2, "M98 P7: no O7 in this program"),
