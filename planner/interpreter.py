@@ -155,7 +155,7 @@ _FAST_G = {"0": 0, "00": 0, "1": 10, "01": 10, "2": 20, "02": 20, "3": 30, "03":
 _STOP_EVENTS = {0: EventKind.PAUSE, 1: EventKind.OPTIONAL_PAUSE, 2: EventKind.END, 30: EventKind.END}
 
 
-_MESSAGE_RE = re.compile(r"\(\s*(MSG|DEBUG|PRINT)\s*,([^)]*)\)", re.IGNORECASE)
+_MESSAGE_RE = re.compile(r"\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,([^)]*)\)", re.IGNORECASE)
 _PARAM_TEXT_RE = re.compile(r"#<([^>]*)>|#(\d+)")
 _MAX_EXECUTED = 10_000_000   # blocks run by one program with O-word loops
 _MAX_CALL_DEPTH = 50
@@ -1795,11 +1795,14 @@ class _Interpreter:
 
     def messages(self, raw: str, line_no: int) -> None:
         """(MSG,text), (DEBUG,text) and (PRINT,text) comments as MESSAGE events; DEBUG and PRINT
-        show parameter values (#123, #<name>) as LinuxCNC does, with six decimals."""
+        show parameter values (#123, #<name>) as LinuxCNC does, with six decimals. (ABORT,text)
+        ends the program there with its text as the error, as in LinuxCNC 2.9."""
         for m in _MESSAGE_RE.finditer(raw):
             kind, text = m.group(1).upper(), m.group(2)
             if kind != "MSG":
                 text = _PARAM_TEXT_RE.sub(self.param_text, text)
+            if kind == "ABORT":
+                raise _BlockError(f"the program aborts here (ABORT comment): {text.strip()}", col=1)
             self.events.append(Event(EventKind.MESSAGE, line_no, len(self.out) - 1, 0.0, text.strip()
                                      if kind == "MSG" else text))
 

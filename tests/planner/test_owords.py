@@ -418,3 +418,17 @@ def test_linuxcnc_m98_m99_tests_move_for_move_and_print_for_print(name: str) -> 
     assert want_prints or want_moves, "the reference shows something"
     assert got_prints == want_prints
     assert got_moves == want_moves
+
+
+def test_an_abort_comment_ends_the_program_with_its_text() -> None:
+    """LinuxCNC 2.9's (ABORT,...) comment (its tests/interp/abort-hot-comment): the program stops
+    there with the text, parameters shown as DEBUG shows them, as the error at its line; one
+    in a branch not taken does nothing."""
+    text = ("G21 F100\n#42=0\n#<named>=4711\no100 while [#42 lt 100]\no200 if [#42 eq 20]\n"
+            "  (abort, MixedCase param42=#42 named=#<named>)\no200 endif\nG1 X[#42]\n#42=[#42+1]\n"
+            "o100 endwhile\nM2\n")
+    with pytest.raises(ProgramError) as ei:
+        read(text)
+    (err,) = ei.value.errors
+    assert err.line == 6 and err.message.endswith("MixedCase param42=20.000000 named=4711.000000")
+    assert len(read(text.replace("eq 20", "eq 200")).moves) == 99      # X0 is where it stands
