@@ -146,6 +146,14 @@ token = st.one_of(
             "D0",
             "^30 L3",
             "@2",
+            # Fanuc-style subprograms, calls by number, an abort comment
+            "M98 P100",
+            "M98 P100 L2",
+            "O100",
+            "M99",
+            "o#<s> call",
+            "#<s>=100",
+            "(ABORT,stop #1)",
         ]
     ),
 )
