@@ -26,7 +26,7 @@ steps Eq. 16 over the actual increments of planned time.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -145,7 +145,26 @@ def make_segment(blocks: list[PlannedBlock], interpolation: str, ts: float, t_st
     bounds = np.cumsum(np.concatenate([[t_start], prof.duration + dwell]))
     s_bounds = np.cumsum(np.concatenate([[s_start], table.length]))
     t0 = bounds[:-1]
+    prof = shared_speeds(prof, v_prog)
     return Segment(table, prof, v_prog, t0, float(bounds[-1]), s_bounds[:-1], float(s_bounds[-1]))
+
+
+def shared_speeds(prof: Profiles, v_prog: np.ndarray) -> Profiles:
+    """The same profiles holding each speed once: a move ends at the speed the next one starts
+    with, so ``ve[:-1]`` and ``vs[1:]`` are the same numbers (one array of joint speeds, ``vs``
+    and ``ve`` views of it), and the cruise cap is the programmed speed wherever the path
+    does not lower it (``vc`` is then ``v_prog``). Shared only where equal to the bit: 16 of
+    the 177 bytes a move of a plan of millions of moves."""
+    vs, ve, vc = prof.vs, prof.ve, prof.vc
+    changes: dict[str, np.ndarray] = {}
+    if len(vs) > 1 and vs.strides[0] and ve.strides[0] and np.array_equal(ve[:-1], vs[1:]):
+        joint = np.empty(len(vs) + 1)
+        joint[:-1] = vs
+        joint[-1] = ve[-1]
+        changes["vs"], changes["ve"] = joint[:-1], joint[1:]
+    if vc is not v_prog and vc.strides[0] and v_prog.strides[0] and np.array_equal(vc, v_prog):
+        changes["vc"] = v_prog
+    return replace(prof, **changes) if changes else prof
 
 
 _OWN_COLUMNS = ("v_prog", "t0", "s0")
@@ -200,6 +219,7 @@ class SegmentJoin:
         profiles = Profiles(*(self._prof[name].result() if name != "length_mm" else table.length
                               for name in Profiles.__slots__))
         cols = {name: col.result() for name, col in self._own.items()}
+        profiles = shared_speeds(profiles, cols["v_prog"])
         return Segment(table, profiles, cols["v_prog"], cols["t0"], last.t_end, cols["s0"], last.s_end)
 
 

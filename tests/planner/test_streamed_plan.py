@@ -220,3 +220,27 @@ def test_segments_joined_as_they_come_are_the_segment_of_all_blocks(segment_move
     for seg in parts:
         join.add(seg)
     _fields_equal(join.result(), whole, "segment")
+
+
+def test_a_plans_speeds_are_held_once_where_they_are_the_same_numbers():
+    """A move ends at the speed the next starts with, and the cruise cap is the programmed speed
+    where the path does not lower it: a plan of millions of moves keeps these once (16 bytes a
+    move), as views of one array, joined from segments or not, with the same numbers."""
+    from planner.interpolate import SegmentJoin, shared_speeds
+
+    machine = paper_machine()
+    text = "G21 G90 G17 F900\n" + "".join(f"G1 X{i % 7} Y{i // 7 * 0.5:.1f}\n" for i in range(60))
+    program = parse_program(text, "s.ngc", machine)
+    join = SegmentJoin(len(program.moves))
+    parts = list(plan_segments(program, machine, window=8, segment_moves=10))
+    for part in parts:
+        join.add(part)
+    assert len(parts) > 3
+    for seg in (plan_program(program, machine).segment, join.result()):
+        prof = seg.profiles
+        assert np.shares_memory(prof.vs, prof.ve) and prof.vs.base is prof.ve.base
+        assert np.array_equal(prof.ve[:-1], prof.vs[1:]) and prof.vc is seg.v_prog
+    # where they differ, each keeps its own numbers
+    odd = replace(prof, ve=prof.ve + 1.0, vc=seg.v_prog * 0.5)
+    kept = shared_speeds(odd, seg.v_prog)
+    assert kept is odd and not np.shares_memory(kept.vs, kept.ve)
