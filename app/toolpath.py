@@ -55,11 +55,17 @@ class ToolPath:
 
     def kind(self, kind: MoveKind) -> Polylines:
         """The polylines of one kind of move (a new array: a big path's levels of detail are
-        made from it once, then it goes)."""
+        made from it once, then it goes). A point's kind is that of the segment it starts; the
+        point ending a segment of this kind comes along whatever kind starts there (a raster's
+        path is one point a move, rapids and feeds sharing their joints)."""
         if not self.kind_counts.get(kind, 0):
             return _empty(len(self.axes))
-        sel = np.flatnonzero(self.point_kind == kind)
-        return Polylines(self.all.points[sel], self.all.connect[sel], self.all.move_index[sel],
+        mine = self.point_kind == kind
+        starts = mine & self.all.connect          # points that start a drawn segment of this kind
+        take = mine.copy()
+        take[1:] |= starts[:-1]                   # ... and the points that end them
+        sel = np.flatnonzero(take)
+        return Polylines(self.all.points[sel], starts[sel], self.all.move_index[sel],
                          self.kind_counts[kind])
 
     @property
@@ -191,8 +197,21 @@ def build_toolpath(program: Program) -> ToolPath:
         return _straight(np.array([moves[i].start for i in idx]).reshape(-1, n_axes),
                          np.array([moves[i].end for i in idx]).reshape(-1, n_axes), idx)
 
-    if not counts[MoveKind.ARC]:
-        # lines and rapids only (a CAM raster): two points a move, already in program order
+    own_points = True      # the points are this path's (not the program's, which stay as read)
+    if not counts[MoveKind.ARC] and cols is not None and n:
+        # lines and rapids only (a CAM raster): one point a move, the program's own joint
+        # positions in program order (each move ends where the next starts), drawn as one run
+        positions = moves.positions
+        move_index = np.minimum(np.arange(n + 1, dtype=np.int32), n - 1)
+        connect = np.ones(n + 1, bool)
+        connect[-1] = False
+        everything = Polylines(positions, connect, move_index, n)
+        point_kind = np.empty(n + 1, np.int8)
+        point_kind[:-1] = kinds
+        point_kind[-1] = kinds[-1]
+        own_points = False
+    elif not counts[MoveKind.ARC]:
+        # lines and rapids given as Move objects: two points a move
         everything = straight(np.arange(n))
         point_kind = np.repeat(kinds.astype(np.int8), 2)
     else:
@@ -206,9 +225,12 @@ def build_toolpath(program: Program) -> ToolPath:
     if offsets is not None and n and len(everything.points):
         # drawn in work coordinates (what the program says, where the operator set part zero)
         offsets = np.asarray(offsets, dtype=float)
-        if offsets.strides[0] == 0:  # one offset throughout: in place, the points are ours
-            if offsets[0].any():
+        if offsets.strides[0] == 0:  # one offset throughout: in place where the points are ours
+            if offsets[0].any() and own_points:
                 np.subtract(everything.points, offsets[0], out=everything.points)
+            elif offsets[0].any():
+                everything = Polylines(everything.points - offsets[0], everything.connect,
+                                       everything.move_index, everything.count)
         else:
             everything = Polylines(everything.points - offsets[everything.move_index],
                                    everything.connect, everything.move_index, everything.count)

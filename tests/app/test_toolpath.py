@@ -136,20 +136,26 @@ def test_a_chain_of_lines_and_arcs_is_one_run_once_joined():
 
 @pytest.mark.parametrize("with_arcs", [False, True])
 def test_each_kind_is_its_moves_points_in_program_order(with_arcs):
-    """A kind's polylines, taken from the one path, are the points of the moves of that kind,
-    move after move: with arcs (merged by move), and without (the raster's direct way)."""
+    """A kind's polylines, taken from the one path, draw exactly the moves of that kind, move
+    after move, each from its start to its end: with arcs (merged by move), and without (a
+    raster: one point a move, the program's own joints, rapids and feeds sharing them)."""
     arc = "G2 X6 Y2 R3\n" if with_arcs else "G1 X6 Y2\n"
     text = "G21 G90 G17\nG0 X1 Y1\nG1 X2 Y1 F600\nG1 X3 Y2\n" + arc + "G0 Z5\nG0 X0 Y0\nG1 Z0\n"
     program = parse_program(text, "kinds.nc")
     path = build_toolpath(program)
     kinds = [m.kind for m in program.moves]
+    drawn: list[int] = []
     for kind in (MoveKind.RAPID, MoveKind.LINE):
         pl = path.kind(kind)
         idx = [i for i, k in enumerate(kinds) if k == kind]
-        assert pl.count == len(idx) and pl.move_index.tolist() == [i for i in idx for _ in (0, 1)]
-        want = [p for i in idx for p in (program.moves[i].start, program.moves[i].end)]
-        np.testing.assert_array_equal(pl.points, np.array(want))
-        assert pl.connect.tolist() == [True, False] * len(idx)
+        seg = np.flatnonzero(pl.connect)              # segment j: point j to point j + 1
+        assert pl.count == len(idx) and pl.move_index[seg].tolist() == idx
+        np.testing.assert_array_equal(pl.points[seg], np.array([program.moves[i].start for i in idx]))
+        np.testing.assert_array_equal(pl.points[seg + 1], np.array([program.moves[i].end for i in idx]))
+        drawn += idx
     arcs = path.kind(MoveKind.ARC)
     assert arcs.count == int(with_arcs) and (len(arcs.points) > 4) == with_arcs
-    assert len(path.all.points) == sum(len(path.kind(k).points) for k in path.kinds)
+    drawn += sorted(set(arcs.move_index.tolist()))
+    assert sorted(drawn) == list(range(len(kinds)))          # every move drawn once, by its kind
+    # a raster is one point a move: the path holds no copy of the joints beside the program's
+    assert (len(path.all.points) == len(kinds) + 1) == (not with_arcs)
