@@ -165,6 +165,10 @@ def check_text(
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
+    finally:
+        # the file's bytes served the bulk reader only: 250 MB at 10,000,000 lines, not held
+        # through the plan and the tool path
+        utf8 = None
     probe_cfg = getattr(req.cfg, "probe", None)
     if program.probes:
         at, why = probe_refusal(program, getattr(probe_cfg, "drive", None),
