@@ -250,7 +250,12 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
     # planned in segments and joined as they come: the same plan, with the temporaries of a
     # segment; segments of 16,384 moves: the progress moves often enough to be seen
     moves = program.moves
-    join = SegmentJoin(len(moves), moves.positions if isinstance(moves, MoveStore) else None)
+    if isinstance(moves, MoveStore):
+        cols = moves.columns()
+        join = SegmentJoin(len(moves), moves.positions,
+                           {name: getattr(cols, name) for name in SegmentJoin.PROGRAM_COLUMNS})
+    else:
+        join = SegmentJoin(len(moves))
     for seg in plan_segments(program, machine, mode, interpolation, window, segment_moves=16_384):
         join.add(seg)
         if progress is not None:

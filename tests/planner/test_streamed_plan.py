@@ -244,3 +244,30 @@ def test_a_plans_speeds_are_held_once_where_they_are_the_same_numbers():
     odd = replace(prof, ve=prof.ve + 1.0, vc=seg.v_prog * 0.5)
     kept = shared_speeds(odd, seg.v_prog)
     assert kept is odd and not np.shares_memory(kept.vs, kept.ve)
+
+
+def test_a_joined_plan_takes_the_programs_own_columns_where_they_are_its_rows():
+    """The table's line, kind and exact-stop columns are the program's own arrays while every
+    segment's rows are the program's; a column some segment differs from is joined from the
+    segments, its earlier rows taken from the program."""
+    from planner.interpolate import SegmentJoin
+
+    machine = paper_machine()
+    text = "G21 G90 G17 F900\n" + "".join(f"G1 X{i % 7} Y{i // 7 * 0.5:.1f}\n" for i in range(60))
+    program = parse_program(text, "s.ngc", machine)
+    cols = program.moves.columns()
+    parts = list(plan_segments(program, machine, window=8, segment_moves=10))
+    whole = next(iter(plan_segments(program, machine, window=8, segment_moves=10**9)))
+    given = {name: getattr(cols, name) for name in SegmentJoin.PROGRAM_COLUMNS}
+    # a program whose line numbers differ from the plan's from row 25 on
+    odd_lines = cols.line.copy()
+    odd_lines[25:] += 1
+    cases = ((given, set(given)), ({**given, "line": odd_lines}, set(given) - {"line"}))
+    for program_columns, shared in cases:
+        join = SegmentJoin(len(program.moves), program.moves.positions, program_columns)
+        for part in parts:
+            join.add(part)
+        table = join.result().table
+        for name in SegmentJoin.PROGRAM_COLUMNS:
+            np.testing.assert_array_equal(getattr(table, name), getattr(whole.table, name))
+            assert np.shares_memory(getattr(table, name), program_columns[name]) == (name in shared), name
