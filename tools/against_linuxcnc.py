@@ -74,6 +74,13 @@ def without_short_moves(motion: Sequence[tuple], ends: Sequence[Sequence[float]]
     return out
 
 
+def call_ends(program: Program) -> list[np.ndarray]:
+    """Where each of the program's motion calls ends: its moves' ends, but a G33.1 is one call
+    (RIGID_TAP) for its two moves, in and back out."""
+    back_out = {i + 1 for i in program.taps}
+    return [m.end for i, m in enumerate(program.moves) if i not in back_out]
+
+
 def close(a: tuple, b: tuple) -> bool:
     return a[0] == b[0] and all(abs(u - v) <= TOLERANCE_MM for u, v in zip(a[1], b[1]))
 
@@ -86,8 +93,7 @@ def _ours(program: Program, inch: bool) -> tuple[list[tuple], list[tuple]]:
     def rounded(v: float) -> float:
         return round(v / unit, 4) * unit
 
-    back_out = {i + 1 for i in program.taps}       # a G33.1 is one call for its two moves
-    ends = [[rounded(float(v)) for v in m.end[:3]] for i, m in enumerate(program.moves) if i not in back_out]
+    ends = [[rounded(float(v)) for v in end[:3]] for end in call_ends(program)]
     motion = [(call, tuple(x if call == "arc_feed" and k == 4 else rounded(x) for k, x in enumerate(args)))
               for call, args in project_motion(program)]
     return without_short_moves(motion, ends), motion

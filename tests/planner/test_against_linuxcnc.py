@@ -20,7 +20,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import MachineSpec
 from planner.tools import parse_tbl
-from tools.against_linuxcnc import close, without_short_moves
+from tools.against_linuxcnc import call_ends, close, without_short_moves
 from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
 
 pytestmark = pytest.mark.skipif(
@@ -272,8 +272,7 @@ def programs(draw) -> str:
 def _without_short_moves(motion: list[tuple], program) -> list[tuple]:
     """The oracle's rule on this side too (``tools.against_linuxcnc.without_short_moves``):
     polar words end off the 0.1 mm grid, so a following grid move can be that short."""
-    back_out = {i + 1 for i in program.taps}          # a G33.1 is one call for its two moves
-    return without_short_moves(motion, [m.end for i, m in enumerate(program.moves) if i not in back_out])
+    return without_short_moves(motion, call_ends(program))
 
 
 _close = close
