@@ -308,9 +308,8 @@ class _Interpreter:
         self.cycle_q = 0.0
         self.spindle_dir = int(spindle[0])   # as the spindle is when the program starts
         self.spindle_rpm = float(spindle[1])
-        # G96: the highest speed (rpm; inf without D) and the surface speed S; None in G97
+        # G96: the speed counted (rpm: D, else the spindle's highest); None in G97
         self.css_max_rpm: float | None = None
-        self.css_speed = 0.0
         self.spindle_max_rpm = float(getattr(machine, "spindle_max_rpm", 24000.0))
         # None: no tool table (every tool number known, offsets 0: the reference set-up);
         # a table: a tool must be in it to be selected, loaded or used for an offset
@@ -1592,9 +1591,9 @@ class _Interpreter:
         if 14 in groups:
             self.spindle_mode(groups[14], vals, line_no, after, mgroups.get(7) is not None)
         if "S" in vals and self.css_max_rpm is not None:
+            # a cutting speed: nothing to keep, the spindle's speed does not follow it here
             if vals["S"] < 0.0:
                 raise _BlockError(f"negative surface speed S{vals['S']:g}", "S")
-            self.css_speed = vals["S"]
         elif "S" in vals:
             s = vals["S"]
             if s < 0.0:
