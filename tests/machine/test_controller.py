@@ -83,6 +83,24 @@ def test_estop_quick_stops_at_once_and_release(ctl: MachineController) -> None:
 
 
 # ---------------------------------------------------------------------------- program run
+def test_a_fanuc_subprogram_runs_its_passes_and_ends_at_the_main_programs_end(ctl: MachineController) -> None:
+    """M98 P L: the subprogram's passes run one after the other (the line shown is the
+    subprogram's own), and the run ends at the main program's M30, not at the M99 after it."""
+    text = ("G21 G90 F3000\nG0 X0 Y0 Z5\nM98 P100 L3\nG0 Z5\nM30\n"
+            "O100 (a pass)\nG91 G1 Z-1\nG1 X10\nG1 Y2\nG1 X-10\nG90\nM99\n")
+    lines: list[int] = []
+    finished = []
+    ctl.lineChanged.connect(lines.append)
+    ctl.programFinished.connect(finished.append)
+    assert ctl.load_program(text, wait=True)
+    assert ctl.program_info.move_count == 14
+    assert ctl.cycle_start()
+    run_to_idle(ctl)
+    assert finished[0].completed and finished[0].last_line == 4
+    assert {8, 9, 10} <= set(lines)
+    np.testing.assert_array_equal(ctl.reference_position, (0.0, 6.0, 5.0))
+
+
 def test_program_runs_to_its_exact_end(ctl: MachineController) -> None:
     lines: list[int] = []
     progress: list[float] = []
