@@ -85,6 +85,21 @@ def _rs274(program: Path, tools: ToolTable | None, tmp: str, subroutine_dirs: tu
             return f"rs274 did not finish within {RS274_TIMEOUT_S} s (an endless loop?)\n"
 
 
+def refused_alike(text: str, machine=None) -> tuple[str, str]:
+    """The block rs274 refuses ``text`` at and the line this interpreter refuses it at, both as
+    written (equal when they refuse the same block; raises when either reads it)."""
+    from planner.errors import ProgramError
+    from planner.interpreter import parse_program
+
+    theirs = run_linuxcnc(text)
+    assert theirs.error, f"rs274 reads it:\n{text}"
+    try:
+        parse_program(text, machine=machine)
+    except ProgramError as exc:
+        return theirs.error_block, text.splitlines()[exc.errors[0].line - 1]
+    raise AssertionError(f"this interpreter reads it:\n{text}")
+
+
 def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
     with tempfile.TemporaryDirectory() as tmp:
         prog = Path(tmp) / "p.ngc"
