@@ -3,6 +3,8 @@
 Supported (everything else is an error with file:line:col, never skipped):
   motion G00 G01 G02 G03 (R or I/J/K, P turns) in G17 G18 G19, G04 P (s), G20 G21, G90 G91,
   G90.1 G91.1, G53 (one block, with G00/G01), G61 G61.1 G64 (P/Q accepted);
+  curves G05 (cubic), G05.1 (quadratic), G05.2/G05.3 (NURBS) in G17, run as LinuxCNC runs them
+  (``planner.splines``);
   feed modes G93 (inverse time) G94 G95 (per revolution), G97;
   canned cycles G73 G74 G81-G86 G89, G98/G99, G80 (also beside another motion code);
   tool data G10 L1/L10/L11 (TOOL_DATA events);
@@ -60,6 +62,7 @@ from planner.program import (
     _make_arc,
     spiral_length_mm,
 )
+from planner.splines import nurbs_pieces
 from planner.tools import Tool, ToolTable
 
 __all__ = ["parse_program", "parse_file", "read_program", "MAX_ERRORS"]
@@ -73,6 +76,7 @@ _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dro
 _G_GROUP = {
     40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0, 921: 0, 922: 0, 923: 0,
     0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1, 331: 1,
+    50: 1, 51: 1, 52: 1, 53: 0,
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
     901: 4, 911: 4,
@@ -104,7 +108,7 @@ _PECK_CLEARANCE_MM = 0.254
 #: hole would otherwise make millions of moves)
 _MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
-    50: "G05 splines", 51: "G05.1 splines", 52: "G05.2 NURBS", 70: "G07 lathe diameter mode",
+    70: "G07 lathe diameter mode",
     80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion: this spindle has no encoder",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
@@ -358,6 +362,15 @@ class _Interpreter:
         self.probe_results = tuple(probe_results)
         self.oword_places: dict[str, tuple[str, int, str]] = {}   # O-word name -> file, line, keyword
         self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
+        # G05: the first control point's offset when I and J are left out, -P and -Q of the G05
+        # before (program units; LinuxCNC keeps them in its canned cycles' I and J)
+        self.spline_ij = (0.0, 0.0)
+        # G05.2 ... G05.3: the control points so far (program units: x, y, weight), the order,
+        # the line G05.2 began on; None when no NURBS is open
+        self.nurbs: list[tuple[float, float, float]] | None = None
+        self.nurbs_order = 3
+        self.nurbs_line = 0
+        self.splines: list[tuple[int, int, int, int]] = []  # per curve: first move, end move, points, order
         # M66: the waits read so far and the values the machine read on the first ones
         self.inputs_read: list[InputRequest] = []
         self.input_results = tuple(input_results)
@@ -386,6 +399,9 @@ class _Interpreter:
                     break
                 if report is not None and line_no % every == 0:
                     report(line_no, len(lines))
+        if self.nurbs is not None and not self.ended:
+            self.error(self.nurbs_line, 1, "the program ends with this NURBS (G05.2) not ended: program "
+                       "G05.3 to run it")
         if self.errors:
             raise ProgramError(self.errors, self.truncated)
         return self.build(text.count("\n") + 1 if text else 0)
@@ -1339,6 +1355,7 @@ class _Interpreter:
             probes=tuple(self.probes),
             inputs=tuple(self.inputs_read),
             taps=tuple(self.taps),
+            splines=tuple(self.splines),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1529,6 +1546,8 @@ class _Interpreter:
             )
         is_arc = motion in (20, 30)
         is_cycle = motion in _CYCLES
+        if g1 in (50, 51) and not axis_words:
+            raise _BlockError(f"{_gname(g1)} needs X or Y (all axes missing with a motion code)", _gname(g1))
         if motion == 331:
             if "K" not in vals:
                 raise _BlockError("G33.1 needs a K word (the thread pitch, length per turn)", "G33.1"
@@ -1538,23 +1557,26 @@ class _Interpreter:
         for letter in ("I", "J", "K", "R"):
             if motion == 331 and letter in "IK":
                 continue
+            if letter in "IJ" and motion in (50, 51):
+                continue
             if letter in vals and not is_arc and not (letter == "R" and (is_cycle or g0 == 100)):
-                users = "G02/G03 or canned cycle" if letter == "R" else "G02/G03"
+                users = ("G02/G03 or canned cycle" if letter == "R"
+                         else "G02/G03, G05 or G05.1" if letter in "IJ" else "G02/G03")
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
         if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640
-                                or motion in _CYCLE_TAKES_P or 5 in mgroups):
-            raise _BlockError("P word with no G code that uses it (G04, G02/G03, G64, G82, G84, G86, G89)",
-                              "P")
+                                or motion in _CYCLE_TAKES_P or 5 in mgroups or motion in (50, 52)):
+            raise _BlockError("P word with no G code that uses it (G04, G02/G03, G05, G05.2, G64, G82, G84, "
+                              "G86, G89)", "P")
         if ("Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q
-                and mgroups.get(5) != 66):
-            raise _BlockError("Q word with no code that uses it (G64, M61, G73, G83, M66)", "Q")
+                and mgroups.get(5) != 66 and motion != 50):
+            raise _BlockError("Q word with no code that uses it (G05, G64, M61, G73, G83, M66)", "Q")
         if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and groups.get(14) != 960:
             raise _BlockError("D word with no G41, G41.1, G42, G42.1 or G96 to use it", "D")
         if groups.get(14) == 960 and "S" not in vals:
             raise _BlockError("G96 needs an S word (the surface speed)", "G96")
         if ("L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421)
-                and mgroups.get(5) != 66):
-            raise _BlockError("L word with no canned cycle, G10 or M66 to use it", "L")
+                and mgroups.get(5) != 66 and motion != 52):
+            raise _BlockError("L word with no canned cycle, G05.2, G10 or M66 to use it", "L")
         if is_cycle:
             for letter in axis_words:
                 if self.rotary[self.axis_index[letter]]:
@@ -1727,6 +1749,11 @@ class _Interpreter:
             self.comp_refuses(f"use {_gname(g0)}", _gname(g0))
         if g0 in (100, 281, 301, 520, 920, 921, 922, 923):
             self.data_code(g0, vals, axis_words, scale, line_no)
+        if g0 == 53:
+            self.nurbs_end(g1, previous_motion, line_no)
+        elif self.nurbs is not None and g1 is not None and g1 != 52:
+            raise _BlockError(f"{_gname(g1)} before the NURBS begun at line {self.nurbs_line} is ended: "
+                              "program G05.3 to run it first", _gname(g1))
         # ---- motion
         if motion in _PROBES and self.feed_mode != 940:
             mode = ("inverse time feed mode (G93)" if self.feed_mode == 930
@@ -1771,6 +1798,10 @@ class _Interpreter:
                     raise _BlockError("G53 cannot be used in incremental mode (G91)", "G53")
             if polar:
                 self.polar(vals)
+            if motion in (50, 51, 52):
+                self.spline(motion, previous_motion, vals, axis_words, line_no)
+                self.assign(assigns)
+                return
             target = self.target(vals, axis_words, scale, g0 == 530)
             if motion in _PROBES:
                 self.probe(motion, target, line_no)
@@ -1789,6 +1820,9 @@ class _Interpreter:
             kind = _STOP_EVENTS[m4]
             ev.append(Event(kind, line_no, len(self.out) - 1, 0.0, f"M{m4:02d}"))
             if kind is EventKind.END:
+                if self.nurbs is not None:
+                    raise _BlockError(f"the program ends with the NURBS begun at line {self.nurbs_line} "
+                                      "not ended: program G05.3 to run it", f"M{m4}")
                 self.ended = True
         self.assign(assigns)
 
@@ -2515,6 +2549,140 @@ class _Interpreter:
         arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, rise, turns)
         length = math.hypot(r0 * sweep, rise) if r0 == r1 else spiral_length_mm(r0, r1, sweep, rise)
         self.emit(target, _ARC, feed, length, arc, line_no)
+
+    # ------------------------------------------------------------------ G05, G05.1, G05.2/G05.3
+    def spline(self, motion: int, previous_motion: int | None, vals: dict[str, float], axis_words: list[str],
+               line_no: int) -> None:
+        """G05 (cubic: I J the first control point from the start, P Q the second from the end),
+        G05.1 (quadratic: I J the middle control point) and G05.2 (one NURBS control point, weight
+        P, order L) as LinuxCNC 2.9 reads them; the curve is run as LinuxCNC runs it
+        (``planner.splines``). Control points in program units and coordinates."""
+        name = _gname(motion)
+        if self.comp.radius > 0.0:
+            # LinuxCNC refuses G05/G05.1 so and runs a G05.2 NURBS uncompensated
+            raise _BlockError(f"cannot run a curve ({name}) with cutter radius compensation on: program G40 "
+                              "first", name)
+        if self.feed_mode == 930:
+            raise _BlockError(f"{name} in inverse time feed mode (G93): program G94 or G95 for curves", name)
+        if self.plane != 170:
+            raise _BlockError(f"{name}: curves only in the XY plane (G17)", name)
+        for letter in axis_words:
+            if letter not in "XY":
+                raise _BlockError(f"{name}: a curve moves in X and Y only, not {letter}", letter)
+        if self.feed_mm_s <= 0.0:
+            raise _BlockError(_ZERO_FEED, name)
+        px, py = self.prog_xy(self.pos)
+        x0, y0 = px / self.scale, py / self.scale
+
+        def end(letter: str, here: float) -> float:
+            if letter not in vals:
+                return here
+            return vals[letter] if self.absolute else here + vals[letter]
+
+        if motion == 52:
+            self.nurbs_point(previous_motion, vals, x0, y0, end, line_no)
+            return
+        x3, y3 = end("X", x0), end("Y", y0)
+        if motion == 51:
+            if "I" not in vals or "J" not in vals:
+                raise _BlockError("G05.1 needs both I and J (the middle control point, from the start)",
+                                  "J" if "I" in vals else "I")
+            points = [(x0, y0, 1.0), (x0 + vals["I"], y0 + vals["J"], 1.0), (x3, y3, 1.0)]
+            self.nurbs_feed(points, 3, line_no)
+            return
+        if ("I" in vals) != ("J" in vals):
+            raise _BlockError("G05 needs both I and J, or neither (then the first control point mirrors the "
+                              "last G05's P and Q)", "J" if "I" in vals else "I")
+        i, j = (vals["I"], vals["J"]) if "I" in vals else self.spline_ij
+        if "P" not in vals or "Q" not in vals:
+            raise _BlockError("G05 needs both P and Q (the second control point, from the end point)",
+                              "Q" if "P" in vals else "P")
+        p, q = vals["P"], vals["Q"]
+        points = [(x0, y0, 1.0), (x0 + i, y0 + j, 1.0), (x3 + p, y3 + q, 1.0), (x3, y3, 1.0)]
+        self.nurbs_feed(points, 4, line_no)
+        self.spline_ij = (-p, -q)
+
+    def nurbs_point(self, previous_motion: int | None, vals: dict[str, float], x0: float, y0: float,
+                    end: Callable[[str, float], float], line_no: int) -> None:
+        """A G05.2 block: the first one opens the NURBS at the current point (weight P when the
+        block has no X and Y, else 1); X and Y add a control point of weight P. In G91 every
+        point counts from where the curve begins: the tool does not move until G05.3."""
+        has_x, has_y = "X" in vals, "Y" in vals
+        if has_x != has_y:
+            raise _BlockError("G05.2 needs both X and Y for a control point", "Y" if has_x else "X")
+        weight = vals.get("P")
+        if self.nurbs is None or previous_motion != 52:
+            self.nurbs = [(x0, y0, weight if weight is not None and weight > 0.0 and not has_x else 1.0)]
+            self.nurbs_order = 3
+            self.nurbs_line = line_no
+        elif not has_x and weight is not None:
+            raise _BlockError("a weight P without X and Y only on the block that begins the NURBS", "P")
+        if "L" in vals:
+            order = vals["L"]
+            if order != int(order):
+                raise _BlockError(f"L (the NURBS order) must be a whole number, got L{order:g}", "L")
+            if order > 3:                       # LinuxCNC: L3 or less leaves the order at 3
+                self.nurbs_order = int(order)
+        if has_x:
+            if weight is None or weight <= 0.0:
+                # LinuxCNC takes a missing P on the first control point as weight -1
+                raise _BlockError("every NURBS control point needs a positive weight P",
+                                  "P" if weight is not None else "X")
+            self.nurbs.append((end("X", x0), end("Y", y0), weight))
+        self.motion = 52
+
+    def nurbs_end(self, g1: int | None, previous_motion: int | None, line_no: int) -> None:
+        """G05.3: run the NURBS of the G05.2 blocks before it."""
+        if g1 not in (None, 52):
+            raise _BlockError(f"{_gname(g1)} beside G05.3: between G05.2 and G05.3 only G05.2 blocks",
+                              _gname(g1))
+        if self.nurbs is None or previous_motion != 52:
+            raise _BlockError("G05.3 without G05.2 before it: there is no NURBS to end", "G5.3")
+        points, order = self.nurbs, self.nurbs_order
+        if len(points) < order:
+            raise _BlockError(f"a NURBS of order L = {order} needs at least {order} control points, the "
+                              f"start included; it has {len(points)}", "G5.3")
+        if self.comp.radius > 0.0:
+            raise _BlockError("cannot run a NURBS with cutter radius compensation on: program G40 first",
+                              "G5.3")
+        if self.feed_mm_s <= 0.0:
+            raise _BlockError(_ZERO_FEED, "G5.3")
+        self.nurbs = None
+        self.motion = None if g1 is None else 52   # LinuxCNC: no motion mode after G05.3
+        self.nurbs_feed(points, order, line_no)
+
+    def nurbs_feed(self, points: list[tuple[float, float, float]], order: int, line_no: int) -> None:
+        """The arcs and lines LinuxCNC's motion layer makes of the curve, in machine coordinates."""
+        pname, fa, sa, na, *_ = self.plane_axes()
+        scale = self.scale
+        feed = self.feed_mm_s
+        first = len(self.out)
+        pieces = nurbs_pieces(np.array(points, dtype=float), order)
+        last_x, last_y = points[-1][0], points[-1][1]
+        for k, piece in enumerate(pieces):
+            ex, ey = piece.end
+            if k == len(pieces) - 1 and math.hypot(ex - last_x, ey - last_y) <= 1e-9 * max(1.0, abs(last_x),
+                                                                                             abs(last_y)):
+                ex, ey = last_x, last_y            # the curve ends on its last control point
+            target = list(self.pos)
+            target[fa], target[sa] = self.machine_xy(ex * scale, ey * scale)
+            length = self.path_length(self.pos, target)
+            if length <= _ZERO_LEN:
+                continue
+            if piece.center is None:
+                self.emit(target, _LINE, feed, length, None, line_no)
+                continue
+            cx, cy = self.machine_xy(piece.center[0] * scale, piece.center[1] * scale)
+            x0, y0 = self.pos[fa], self.pos[sa]
+            r0 = math.hypot(x0 - cx, y0 - cy)
+            r1 = math.hypot(target[fa] - cx, target[sa] - cy)
+            if abs(r1 - r0) <= 1e-9 * r0:
+                r1 = r0
+            a0, sweep = sweep_angle(x0, y0, target[fa], target[sa], cx, cy, not piece.ccw, 1)
+            arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, 0.0, 1)
+            length = r0 * abs(sweep) if r0 == r1 else spiral_length_mm(r0, r1, sweep, 0.0)
+            self.emit(target, _ARC, feed, length, arc, line_no)
+        self.splines.append((first, len(self.out), len(points), order))
 
 
 def parse_program(

@@ -396,6 +396,10 @@ class Program:
     # G33.1: the index of each tap's move into the hole as read (the next move backs it out);
     # LinuxCNC writes the pair as one RIGID_TAP call
     taps: tuple[int, ...] = ()
+    # G05, G05.1, G05.2/G05.3: (first move, end move, control points, order) of each curve, the
+    # arcs and lines it is run as; LinuxCNC writes each curve as one NURBS_FEED call (moves as
+    # read: indexes into the interpreter's moves, before path blending)
+    splines: tuple[tuple[int, int, int, int], ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

@@ -9,7 +9,9 @@ with digital input 0, both with tools 1-99 of no length and no diameter. Each pr
 is put in one class:
 
 - ``same``: both read it and write the same motion, call for call, within what rs274 prints
-  (four decimals of the program's unit); moves shorter than that are not compared;
+  (four decimals of the program's unit); moves shorter than that are not compared; a curve
+  (G05, G05.1, G05.2) is one call of which rs274 prints the number of control points only, so
+  it is compared by that and its place (the tests check the curve itself against LinuxCNC's preview module);
 - ``same path``: the calls differ in number only where moves are that short: walking both
   paths in order, every point of each lies within 0.003 mm of the other path, not behind
   where the point before it was found;
@@ -37,7 +39,7 @@ from planner.interpreter import parse_program
 from planner.machine import WORK_OFFSET_NAMES, AxisSpec, MachineSpec
 from planner.program import Program
 from planner.tools import parse_tbl
-from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc_file
+from tools.linuxcnc_oracle import RS274, motion_calls, project_motion, run_linuxcnc_file
 
 SUFFIXES = (".ngc", ".nc", ".gcode", ".tap", ".cnc")
 TOOLS = parse_tbl("".join(f"T{n} P{n} Z0 D0\n" for n in range(1, 100)))
@@ -67,7 +69,8 @@ def without_short_moves(motion: Sequence[tuple], ends: Sequence[Sequence[float]]
     out, last = [], np.zeros(3)
     for call, end in zip(motion, ends, strict=True):
         here = np.asarray(end[:3], dtype=float)
-        if call[0] not in ("arc_feed", "rigid_tap") and np.max(np.abs(here - last)) < TOLERANCE_MM:
+        if (call[0] not in ("arc_feed", "rigid_tap", "nurbs_feed")
+                and np.max(np.abs(here - last)) < TOLERANCE_MM):
             continue
         out.append(call)
         last = here
@@ -75,10 +78,8 @@ def without_short_moves(motion: Sequence[tuple], ends: Sequence[Sequence[float]]
 
 
 def call_ends(program: Program) -> list[np.ndarray]:
-    """Where each of the program's motion calls ends: its moves' ends, but a G33.1 is one call
-    (RIGID_TAP) for its two moves, in and back out."""
-    back_out = {i + 1 for i in program.taps}
-    return [m.end for i, m in enumerate(program.moves) if i not in back_out]
+    """Where each of the program's motion calls ends (``motion_calls``)."""
+    return [np.asarray(end) for _, end in motion_calls(program)]
 
 
 def close(a: tuple, b: tuple) -> bool:
@@ -94,7 +95,8 @@ def _ours(program: Program, inch: bool) -> tuple[list[tuple], list[tuple]]:
         return round(v / unit, 4) * unit
 
     ends = [[rounded(float(v)) for v in end[:3]] for end in call_ends(program)]
-    motion = [(call, tuple(x if call == "arc_feed" and k == 4 else rounded(x) for k, x in enumerate(args)))
+    motion = [(call, tuple(x if (call == "arc_feed" and k == 4) or call == "nurbs_feed" else rounded(x)
+                           for k, x in enumerate(args)))
               for call, args in project_motion(program)]
     return without_short_moves(motion, ends), motion
 
@@ -121,13 +123,14 @@ def _follows(points: np.ndarray, path: np.ndarray) -> bool:
 
 def _same_path(ours: list[tuple], theirs: list[tuple]) -> bool:
     """Whether two straight-move paths are the same within TOLERANCE_MM, walked in order (the
-    arcs must then be the same calls)."""
-    arcs = [[c for c in calls if c[0] == "arc_feed"] for calls in (ours, theirs)]
+    arcs and curves must then be the same calls)."""
+    curved = ("arc_feed", "nurbs_feed")
+    arcs = [[c for c in calls if c[0] in curved] for calls in (ours, theirs)]
     if len(arcs[0]) != len(arcs[1]) or not all(close(x, y) for x, y in zip(*arcs)):
         return False
     # both start where the tool stands: the origin (LinuxCNC writes a move to it first)
-    a = np.array([(0.0, 0.0, 0.0)] + [c[1][:3] for c in ours if c[0] != "arc_feed"], float)
-    b = np.array([(0.0, 0.0, 0.0)] + [c[1][:3] for c in theirs if c[0] != "arc_feed"], float)
+    a = np.array([(0.0, 0.0, 0.0)] + [c[1][:3] for c in ours if c[0] not in curved], float)
+    b = np.array([(0.0, 0.0, 0.0)] + [c[1][:3] for c in theirs if c[0] not in curved], float)
     return _follows(a, b) and _follows(b, a)
 
 

@@ -180,6 +180,12 @@ def read_output(out: str) -> OracleResult:
             end = tuple(float(v) * scale for v in args_t[:3])
             motion.append(("rigid_tap", end))
             machine.append(machine[-1] if machine else (0.0, 0.0, 0.0))
+        elif name == "NURBS_FEED":
+            # G05, G05.1, G05.2: rs274 prints the number of the curve's control points only
+            # ("NURBS_FEED(4, ...)"), not the points nor where the curve ends (so the move after
+            # it is kept even when it goes where the tool already is)
+            motion.append(("nurbs_feed", (float(args_t[0]),)))
+            machine.append((math.nan, math.nan, math.nan))
         elif name == "ARC_FEED":
             v = [float(a) for a in args_t[:6]]
             motion.append(("arc_feed", (v[0] * scale, v[1] * scale, v[2] * scale, v[3] * scale, v[4],
@@ -206,12 +212,107 @@ def _without_zero_moves(motion: list[tuple], machine: list[tuple]) -> list[tuple
     return out
 
 
-def project_motion(program: Program) -> list[tuple]:
-    out = []
-    for rec in canon_records(program):
+def motion_calls(program: Program) -> list[tuple[tuple, tuple[float, ...]]]:
+    """The program's motion calls as ``read_output`` gives rs274's, each with where it ends
+    (machine coordinates): a G33.1 is one call (RIGID_TAP) for its two moves, in and back out,
+    and a curve (G05, G05.1, G05.2) one ("nurbs_feed", (control points,)) for all of its moves
+    (none when it moves nowhere), as rs274 prints them."""
+    out: list[tuple[tuple, tuple[float, ...]]] = []
+    curves = sorted(program.splines)
+    c = 0
+    back_out = {i + 1 for i in program.taps}
+    moves = [i for i in range(len(program.moves)) if i not in back_out]
+    last = tuple(float(v) for v in program.start_position)
+    skip_to = -1
+    for i, rec in zip(moves, canon_records(program), strict=True):
+        while c < len(curves) and curves[c][0] == i == curves[c][1]:       # a curve of no moves
+            out.append((("nurbs_feed", (float(curves[c][2]),)), last))
+            c += 1
+        end = tuple(float(v) for v in program.moves[i].end)
+        if i < skip_to:
+            last = end
+            continue
         a = rec["args"]
-        if rec["call"] == "arc_feed":
-            out.append(("arc_feed", (a[0], a[1], a[2], a[3], float(a[4]), a[5])))
+        if c < len(curves) and curves[c][0] == i:
+            skip_to = curves[c][1]
+            out.append((("nurbs_feed", (float(curves[c][2]),)),
+                        tuple(float(v) for v in program.moves[skip_to - 1].end)))
+            c += 1
+        elif rec["call"] == "arc_feed":
+            out.append((("arc_feed", (a[0], a[1], a[2], a[3], float(a[4]), a[5])), end))
         else:
-            out.append((rec["call"], tuple(a[:3])))
+            out.append(((rec["call"], tuple(a[:3])), end))
+        last = end
+    out.extend((("nurbs_feed", (float(curve[2]),)), last) for curve in curves[c:])
+    return out
+
+
+def project_motion(program: Program) -> list[tuple]:
+    """The program's motion calls as ``read_output`` gives rs274's (``motion_calls``)."""
+    return [call for call, _ in motion_calls(program)]
+
+
+# LinuxCNC's preview (AXIS's ``gcode`` module, in the same Debian package) draws a curve
+# (G05, G05.1, G05.2) as straight lines through points of it: 15 a control point, evaluated by
+# the interpreter's own NURBS code. Those points are LinuxCNC's curve, which rs274 does not
+# print; the module runs under the system Python it was built for.
+SYSTEM_PYTHON = "/usr/bin/python3"
+_PREVIEW_SCRIPT = r'''
+import gcode, json, os, sys, tempfile
+class Canon:
+    def __init__(self, var):
+        self.parameter_file = var
+        self.out = []
+    def __getattr__(self, name):
+        return lambda *args: None
+    def get_external_angular_units(self): return 1.0
+    def get_external_length_units(self): return 1.0 / 25.4
+    def get_axis_mask(self): return 7
+    def get_block_delete(self): return False
+    def check_abort(self): return False
+    def get_tool(self, pocket): return (-1,) + (0.0,) * 12 + (0,)
+    def straight_traverse(self, *a): self.out.append(("straight_traverse", a[:3]))
+    def straight_feed(self, *a): self.out.append(("straight_feed", a[:3]))
+    def arc_feed(self, *a): self.out.append(("arc_feed", a[:6]))
+tmp = tempfile.mkdtemp()
+var = os.path.join(tmp, "p.var")
+open(var, "w").close()
+ini = os.path.join(tmp, "p.ini")
+open(ini, "w").write("[RS274NGC]\nPARAMETER_FILE = " + var + "\n")
+os.environ["INI_FILE_NAME"] = ini
+canon = Canon(var)
+gcode.parse(sys.argv[1], canon, "G21", "")   # a millimetre machine, as rs274 runs
+print(json.dumps(canon.out))
+'''
+
+
+def preview_available() -> bool:
+    """Whether LinuxCNC's preview module can be run (``make test`` installs it as root)."""
+    if not Path(SYSTEM_PYTHON).exists():
+        return False
+    found = subprocess.run([SYSTEM_PYTHON, "-c", "import gcode"], capture_output=True,
+                           stdin=subprocess.DEVNULL)
+    return found.returncode == 0
+
+
+def run_linuxcnc_preview(text: str) -> list[tuple[str, tuple[float, ...]]]:
+    """The moves LinuxCNC's preview draws for ``text``, in millimetres: ("straight_feed" or
+    "straight_traverse", (x, y, z)) and ("arc_feed", (first end, second end, first centre,
+    second centre, turns, normal end)). It works in inches whatever the program's units. A
+    program it refuses raises RuntimeError."""
+    import json
+
+    with tempfile.TemporaryDirectory() as tmp:
+        prog = Path(tmp) / "p.ngc"
+        prog.write_text(text)
+        done = subprocess.run([SYSTEM_PYTHON, "-c", _PREVIEW_SCRIPT, str(prog)], capture_output=True,
+                              text=True, timeout=RS274_TIMEOUT_S, cwd=tmp, stdin=subprocess.DEVNULL)
+    if done.returncode != 0:
+        raise RuntimeError(f"LinuxCNC's preview refused the program: {done.stderr.strip()[-300:]}")
+    out = []
+    for call, args in json.loads(done.stdout.splitlines()[-1]):
+        if call == "arc_feed":
+            out.append((call, tuple(v * 25.4 if k != 4 else v for k, v in enumerate(args))))
+        else:
+            out.append((call, tuple(v * 25.4 for v in args)))
     return out

@@ -1,6 +1,7 @@
 """Random programs mixing tools (G43, G43.1, G10 L1/L10), offsets (G10 L2 with rotation, G54/G55,
 G92, G52, G53, G28/G30), cycles, subroutines, loops, conditions, parameters and expressions,
-modal memory (M70/M72), cutter compensation (G41.1/G42.1 and G41/G42 from the table), arcs in
+modal memory (M70/M72), curves (G05, G05.1, G05.2/G05.3), cutter compensation (G41.1/G42.1
+and G41/G42 from the table), arcs in
 every plane with turns and absolute centres, inverse time, polar words, inch blocks, probes
 (G38.2/G38.3) and input reads (M66 L0), read by
 LinuxCNC's own interpreter (``rs274`` of Debian's linuxcnc-uspace 2.9.0~pre1) and by this one:
@@ -55,7 +56,7 @@ def programs(draw) -> str:
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
          "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle",
-         "polar_cycle", "m98"]),
+         "polar_cycle", "m98", "curve"]),
         min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
@@ -109,6 +110,27 @@ def programs(draw) -> str:
             out.append(f"X{_n(x2)} Y{_n(y2)}\nG80\nF600")
             x, y = x2, y2
             z = z if retract == "G98" else 2.0
+        elif kind == "curve":
+            # G05, G05.1, G05.2/G05.3: rs274 prints each as one NURBS_FEED of its control points
+            ex, ey = draw(val), draw(val)
+            form = draw(st.sampled_from(["G5", "G5.1", "G5.2"]))
+            if form == "G5":
+                out.append(f"G5 X{_n(ex)} Y{_n(ey)} I{_n(draw(val))} J{_n(draw(val))} P{_n(draw(val))} "
+                           f"Q{_n(draw(val))}")
+            elif form == "G5.1":
+                out.append(f"G5.1 X{_n(ex)} Y{_n(ey)} I{_n(draw(val))} J{_n(draw(val))}")
+            else:
+                order = draw(st.integers(3, 5))
+                points = [(draw(val), draw(val)) for _ in range(draw(st.integers(order - 1, 6)))]
+                weights = [draw(st.sampled_from([0.5, 1, 2])) for _ in points]
+                body = "\n".join(f"X{_n(px)} Y{_n(py)} P{w}" for (px, py), w in zip(points, weights))
+                out.append(f"G5.2 L{order}\n{body}\nG5.3")
+                ex, ey = points[-1]
+            # rs274 does not print where a curve ends, so a move after it to where the tool
+            # already is cannot be told from a real one: the next move goes up
+            z += 1.0
+            out.append(f"G1 Z{_n(z)}")
+            x, y = ex, ey
         elif kind == "polar_cycle":
             # in G91 @ or ^ step at each L repeat about the program zero (bolt circles)
             if math.hypot(x, y) < 1.0:

@@ -1,0 +1,171 @@
+"""G05, G05.1 and G05.2/G05.3 curves as LinuxCNC 2.9 runs them: a NURBS made into arcs.
+
+LinuxCNC's interpreter turns a cubic spline (G05), a quadratic one (G05.1) and a NURBS (G05.2
+control points, G05.3 to end) into one NURBS of control points (x, y, weight) and an order k;
+its motion layer (emccanon.cc ``NURBS_FEED``) evaluates the curve at 4 points per control
+point, equally spaced in the parameter, and joins each pair by a biarc: two tangent arcs that
+leave along the curve's tangent at the first point and arrive along it at the second. The
+machine runs those arcs. This module does the same arithmetic (knot vector, basis functions
+with LinuxCNC's closed intervals, the tangent as a central difference of 1e-5 in the
+parameter, the biarc with equal tangent lengths) in program units, where LinuxCNC's thresholds
+apply, so that the path is LinuxCNC's.
+
+Where LinuxCNC's biarc has no solution (parallel end tangents, no real root, or both roots
+positive) it moves nowhere for that stretch and starts the next one from where it would have
+been, a jump; this feeds a straight line to the stretch's end instead.
+
+Plain floats and small NumPy arrays: a curve has a few dozen control points.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["SplinePiece", "knot_vector", "nurbs_points", "nurbs_tangents", "nurbs_pieces",
+           "biarc", "SAMPLES_PER_POINT"]
+
+#: LinuxCNC evaluates the curve at this many points per control point (emccanon.cc)
+SAMPLES_PER_POINT = 4
+_DU = 1e-5           # the parameter step of the tangent's central difference (LinuxCNC's DU)
+_ARC_SMALL = 1e-6    # below this 2 (chord x tangent), LinuxCNC feeds a line, not an arc
+
+
+@dataclass(frozen=True)
+class SplinePiece:
+    """One move of the curve in program units: to ``end``; an arc about ``center`` (turning
+    counter-clockwise when ``ccw``) or, with ``center`` None, a straight line."""
+
+    end: tuple[float, float]
+    center: tuple[float, float] | None = None
+    ccw: bool = True
+
+
+def knot_vector(n: int, k: int) -> np.ndarray:
+    """LinuxCNC's clamped uniform knots for control points 0..n and order k."""
+    return np.array([0 if i < k else (i - k + 1 if i <= n else n - k + 2) for i in range(n + k + 1)],
+                    dtype=float)
+
+
+def _basis(u: np.ndarray, k: int, knots: np.ndarray, count: int) -> list[np.ndarray]:
+    """N(i, k, u) for i < count, for every u at once, by LinuxCNC's recursion (``Nmix``): the
+    order-1 functions are 1 on closed intervals, and a term over a zero-width knot span is 0."""
+    span = len(knots) - 1
+    prev = [((u >= knots[i]) & (u <= knots[i + 1])).astype(float) for i in range(span)]
+    for kk in range(2, k + 1):
+        cur = []
+        for i in range(span - kk + 1):
+            d1 = knots[i + kk - 1] - knots[i]
+            d2 = knots[i + kk] - knots[i + 1]
+            if d1 == 0.0 and d2 != 0.0:
+                cur.append(((knots[i + kk] - u) * prev[i + 1]) / d2)
+            elif d2 == 0.0 and d1 != 0.0:
+                cur.append(((u - knots[i]) * prev[i]) / d1)
+            elif d1 == 0.0 and d2 == 0.0:
+                cur.append(np.zeros_like(u))
+            else:
+                cur.append(((u - knots[i]) * prev[i]) / d1 + ((knots[i + kk] - u) * prev[i + 1]) / d2)
+        prev = cur
+    return prev[:count]
+
+
+def nurbs_points(points: np.ndarray, k: int, u: np.ndarray) -> np.ndarray:
+    """The curve of control points ``points`` (rows x, y, weight) and order k at parameters
+    ``u`` (0 to n - k + 2), as LinuxCNC's ``nurbs_point``: rows (x, y)."""
+    n = len(points) - 1
+    knots = knot_vector(n, k)
+    basis = _basis(np.asarray(u, dtype=float), k, knots, n + 1)
+    den = np.zeros(len(u))
+    for i in range(n + 1):
+        den = den + basis[i] * points[i, 2]
+    x = np.zeros(len(u))
+    y = np.zeros(len(u))
+    for i in range(n + 1):
+        x = x + points[i, 0] * basis[i] * points[i, 2] / den
+        y = y + points[i, 1] * basis[i] * points[i, 2] / den
+    return np.column_stack([x, y])
+
+
+def nurbs_tangents(points: np.ndarray, k: int, u: np.ndarray) -> np.ndarray:
+    """Unit tangents at ``u`` as LinuxCNC's ``nurbs_tangent``: a central difference of the
+    curve over 1e-5 in the parameter (one-sided at the ends), normalised."""
+    umax = float(len(points) - 1 - k + 2)
+    u = np.asarray(u, dtype=float)
+    lo = np.maximum(0.0, u - _DU)
+    hi = np.minimum(umax, u + _DU)
+    d = (nurbs_points(points, k, hi) - nurbs_points(points, k, lo)) / (hi - lo)[:, None]
+    h = np.hypot(d[:, 0], d[:, 1])
+    h = np.where(h != 0.0, h, 1.0)
+    return d / h[:, None]
+
+
+def _arc(x0: float, y0: float, x1: float, y1: float, dx: float, dy: float) -> SplinePiece:
+    """The arc from (x0, y0) leaving along (dx, dy) to (x1, y1), as LinuxCNC's ``arc``: a line
+    when the chord is (nearly) along the tangent."""
+    x, y = x1 - x0, y1 - y0
+    den = 2.0 * (y * dx - x * dy)
+    if abs(den) > _ARC_SMALL:
+        r = -(x * x + y * y) / den
+        return SplinePiece((x1, y1), (x0 + dy * r, y0 - dx * r), r < 0.0)
+    return SplinePiece((x1, y1))
+
+
+def _unit(x: float, y: float) -> tuple[float, float]:
+    h = math.hypot(x, y)
+    return (x / h, y / h) if h != 0.0 else (x, y)
+
+
+def biarc(p0: Sequence[float], ts: Sequence[float], p4: Sequence[float],
+          te: Sequence[float]) -> list[SplinePiece] | None:
+    """The two tangent arcs from p0 (leaving along ts) to p4 (arriving along te), with equal
+    tangent lengths, as LinuxCNC's ``biarc``; None where LinuxCNC finds none."""
+    tsx, tsy = _unit(float(ts[0]), float(ts[1]))
+    tex, tey = _unit(float(te[0]), float(te[1]))
+    p0x, p0y = float(p0[0]), float(p0[1])
+    p4x, p4y = float(p4[0]), float(p4[1])
+    vx, vy = p0x - p4x, p0y - p4y
+    c = vx * vx + vy * vy
+    b = 2.0 * (vx * (tsx + tex) + vy * (tsy + tey))
+    a = 2.0 * (tsx * tex + tsy * tey - 1.0)
+    discr = b * b - 4.0 * a * c
+    if discr < 0.0 or a == 0.0:
+        return None
+    disq = math.sqrt(discr)
+    beta1 = (-b - disq) / 2.0 / a
+    beta2 = (-b + disq) / 2.0 / a
+    if beta1 > 0.0 and beta2 > 0.0:
+        return None
+    beta = beta2 if beta1 < beta2 else beta1
+    alpha = beta
+    ab = alpha + beta
+    if ab == 0.0 or not math.isfinite(ab):
+        return None
+    p1x, p1y = p0x + alpha * tsx, p0y + alpha * tsy
+    p3x, p3y = p4x - beta * tex, p4y - beta * tey
+    p2x = (p1x * beta + p3x * alpha) / ab
+    p2y = (p1y * beta + p3y * alpha) / ab
+    tmx, tmy = _unit(p3x - p2x, p3y - p2y)
+    return [_arc(p0x, p0y, p2x, p2y, tsx, tsy), _arc(p2x, p2y, p4x, p4y, tmx, tmy)]
+
+
+def nurbs_pieces(points: np.ndarray, k: int) -> list[SplinePiece]:
+    """The moves LinuxCNC's ``NURBS_FEED`` makes of the curve (control points ``points``, rows
+    x, y, weight, in program units; order k): a biarc between each pair of 4 (n + 1) equally
+    spaced samples, a line where there is no biarc."""
+    n = len(points) - 1
+    umax = float(n - k + 2)
+    div = (n + 1) * SAMPLES_PER_POINT
+    u = np.array([0.0] + [umax * i / div for i in range(1, div + 1)])
+    pts = nurbs_points(points, k, u)
+    tan = nurbs_tangents(points, k, u)
+    out: list[SplinePiece] = []
+    for i in range(1, div + 1):
+        pieces = biarc(pts[i - 1], tan[i - 1], pts[i], tan[i])
+        if pieces is None:
+            out.append(SplinePiece((float(pts[i, 0]), float(pts[i, 1]))))
+        else:
+            out.extend(pieces)
+    return out
