@@ -71,6 +71,10 @@ MAX_ERRORS = 100
 _VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
 _MAX_TURNS = 10_000
 _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
+#: a curve's arcs above this radius are fed as lines: a stretch of 100 mm departs from such an
+#: arc by at most 0.13 um, while the arc's positions, computed about a centre kilometres away,
+#: carry rounding noise that the limit meter would read as speed
+_CURVE_MAX_RADIUS_MM = 1e7
 
 # Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
 _G_GROUP = {
@@ -880,7 +884,8 @@ class _Interpreter:
         a line whose reading needs more (a state the fast path leaves to the general one, a zero
         feed, a move too short to keep) and returns how many lines it ran."""
         n_lines = values.shape[0]
-        if (not n_lines or self.feed_mode != 940 or self.rotation or self.comp.busy):
+        if (not n_lines or self.feed_mode != 940 or self.rotation or self.comp.busy
+                or self.nurbs is not None):
             return 0
         n_ax = len(cols)
         ax = values[:, :n_ax]
@@ -959,7 +964,7 @@ class _Interpreter:
             return False
         motion = int(gtxt) * 10 if gtxt is not None else self.motion
         if (motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation
-                or self.comp.busy):
+                or self.comp.busy or self.nurbs is not None):
             return False
         scale = self.scale
         if f_t is not None:
@@ -1399,7 +1404,7 @@ class _Interpreter:
             return False
         motion = g if g >= 0 else self.motion
         if (motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation
-                or self.comp.busy):
+                or self.comp.busy or self.nurbs is not None):
             return False
         if "F" in vals:
             f = vals["F"]
@@ -2586,17 +2591,17 @@ class _Interpreter:
         if motion == 51:
             if "I" not in vals or "J" not in vals:
                 raise _BlockError("G05.1 needs both I and J (the middle control point, from the start)",
-                                  "J" if "I" in vals else "I")
+                                  "I" if "I" in vals else "J" if "J" in vals else "G5.1")
             points = [(x0, y0, 1.0), (x0 + vals["I"], y0 + vals["J"], 1.0), (x3, y3, 1.0)]
             self.nurbs_feed(points, 3, line_no)
             return
         if ("I" in vals) != ("J" in vals):
             raise _BlockError("G05 needs both I and J, or neither (then the first control point mirrors the "
-                              "last G05's P and Q)", "J" if "I" in vals else "I")
+                              "last G05's P and Q)", "I" if "I" in vals else "J")
         i, j = (vals["I"], vals["J"]) if "I" in vals else self.spline_ij
         if "P" not in vals or "Q" not in vals:
             raise _BlockError("G05 needs both P and Q (the second control point, from the end point)",
-                              "Q" if "P" in vals else "P")
+                              "P" if "P" in vals else "Q" if "Q" in vals else "G5")
         p, q = vals["P"], vals["Q"]
         points = [(x0, y0, 1.0), (x0 + i, y0 + j, 1.0), (x3 + p, y3 + q, 1.0), (x3, y3, 1.0)]
         self.nurbs_feed(points, 4, line_no)
@@ -2675,6 +2680,11 @@ class _Interpreter:
             cx, cy = self.machine_xy(piece.center[0] * scale, piece.center[1] * scale)
             x0, y0 = self.pos[fa], self.pos[sa]
             r0 = math.hypot(x0 - cx, y0 - cy)
+            if r0 > _CURVE_MAX_RADIUS_MM:
+                # where the curve hardly bends, LinuxCNC's biarc is an arc of kilometres: the
+                # line it nearly is
+                self.emit(target, _LINE, feed, length, None, line_no)
+                continue
             r1 = math.hypot(target[fa] - cx, target[sa] - cy)
             if abs(r1 - r0) <= 1e-9 * r0:
                 r1 = r0

@@ -12,7 +12,10 @@ apply, so that the path is LinuxCNC's.
 
 Where LinuxCNC's biarc has no solution (parallel end tangents, no real root, or both roots
 positive) it moves nowhere for that stretch and starts the next one from where it would have
-been, a jump; this feeds a straight line to the stretch's end instead.
+been, a jump; this feeds a straight line to the stretch's end instead. The same where LinuxCNC's
+biarc leaves the box of the control points: a curve of positive weights lies inside them, but
+at a cusp (the curve turning back on itself) the two arcs can swing out tens of millimetres
+around a curve a tenth of a millimetre long.
 
 Plain floats and small NumPy arrays: a curve has a few dozen control points.
 """
@@ -151,10 +154,42 @@ def biarc(p0: Sequence[float], ts: Sequence[float], p4: Sequence[float],
     return [_arc(p0x, p0y, p2x, p2y, tsx, tsy), _arc(p2x, p2y, p4x, p4y, tmx, tmy)]
 
 
+def _arc_extremes(start: tuple[float, float], piece: SplinePiece) -> list[tuple[float, float]]:
+    """The points of an arc piece that bound it: its ends and where it crosses the axes'
+    directions from its centre."""
+    assert piece.center is not None
+    cx, cy = piece.center
+    r = math.hypot(start[0] - cx, start[1] - cy)
+    a0 = math.atan2(start[1] - cy, start[0] - cx)
+    a1 = math.atan2(piece.end[1] - cy, piece.end[0] - cx)
+    sweep = (a1 - a0) % (2.0 * math.pi) if piece.ccw else -((a0 - a1) % (2.0 * math.pi))
+    out = [start, piece.end]
+    for q in range(-4, 5):
+        angle = q * math.pi / 2.0
+        rel = (angle - a0) if piece.ccw else (a0 - angle)
+        if 0.0 < rel % (2.0 * math.pi) < abs(sweep):
+            out.append((cx + r * math.cos(angle), cy + r * math.sin(angle)))
+    return out
+
+
+def _inside(pieces: list[SplinePiece], start: tuple[float, float], lo: np.ndarray, hi: np.ndarray) -> bool:
+    here = start
+    for piece in pieces:
+        pts = _arc_extremes(here, piece) if piece.center is not None else [piece.end]
+        if any(not (lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1]) for x, y in pts):
+            return False
+        here = piece.end
+    return True
+
+
 def nurbs_pieces(points: np.ndarray, k: int) -> list[SplinePiece]:
     """The moves LinuxCNC's ``NURBS_FEED`` makes of the curve (control points ``points``, rows
     x, y, weight, in program units; order k): a biarc between each pair of 4 (n + 1) equally
-    spaced samples, a line where there is no biarc."""
+    spaced samples; a line where there is no biarc or where it leaves the control points' box."""
+    lo = points[:, :2].min(axis=0)
+    hi = points[:, :2].max(axis=0)
+    margin = 1e-6 * max(1.0, float(np.max(np.abs(points[:, :2]))))    # rounding, in program units
+    lo, hi = lo - margin, hi + margin
     n = len(points) - 1
     umax = float(n - k + 2)
     div = (n + 1) * SAMPLES_PER_POINT
@@ -164,7 +199,8 @@ def nurbs_pieces(points: np.ndarray, k: int) -> list[SplinePiece]:
     out: list[SplinePiece] = []
     for i in range(1, div + 1):
         pieces = biarc(pts[i - 1], tan[i - 1], pts[i], tan[i])
-        if pieces is None:
+        start = (float(pts[i - 1, 0]), float(pts[i - 1, 1]))
+        if pieces is None or not _inside(pieces, start, lo, hi):
             out.append(SplinePiece((float(pts[i, 0]), float(pts[i, 1]))))
         else:
             out.extend(pieces)

@@ -119,14 +119,15 @@ def sample_program(name: str, machine: MachineSpec | None = None):
 def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0) -> str:
     """A G-code program drawn block by block by hypothesis (so a failing one shrinks to the
     few blocks that matter): lines (long, tiny, nearly collinear), rapids, arcs and helices in
-    the three planes (I/J/K form, both directions, partial and full turns), feeds, dwells,
-    pauses, exact stop and blending. Every length is multiplied by ``scale``."""
+    the three planes (I/J/K form, both directions, partial and full turns), curves (G05 and
+    G05.2 NURBS, made into arcs), feeds, dwells, pauses, exact stop and blending. Every length
+    is multiplied by ``scale``."""
     pos = np.zeros(3)
     out = ["G21 G90 G94 G17 F1800", "G00 X0 Y0 Z0"]
     plane = "G17"
     length = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
     for _ in range(draw(st.integers(1, max_blocks))):
-        kind = draw(st.sampled_from(["line", "tiny", "collinear", "rapid", "arc", "arc", "event"]))
+        kind = draw(st.sampled_from(["line", "tiny", "collinear", "rapid", "arc", "arc", "curve", "event"]))
         feed = draw(st.sampled_from(["", "", " F300", " F1200", " F3000"]))
         if kind in ("line", "tiny", "collinear", "rapid"):
             step = np.array([draw(length), draw(length), draw(length)])
@@ -163,6 +164,26 @@ def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0) -> str:
             offs = " ".join(f"{OFFSET_LETTER[k]}{_fmt(center[k] - pos[k])}" for k in (f, s))
             out.append(f"{plane} {'G03' if ccw else 'G02'} {words} {offs}{feed}")
             pos = end
+        elif kind == "curve":
+            here = pos[:2].copy()
+
+            def near(here: np.ndarray = here) -> np.ndarray:
+                return here + np.array([draw(length), draw(length)]) * scale
+
+            if draw(st.booleans()):
+                end, first, last = near(), near() - here, near() - here
+                out.append(f"G17 G05 X{_fmt(end[0])} Y{_fmt(end[1])} I{_fmt(first[0])} J{_fmt(first[1])} "
+                           f"P{_fmt(last[0])} Q{_fmt(last[1])}{feed}")
+            else:
+                order = draw(st.integers(3, 4))
+                points = [near() for _ in range(draw(st.integers(order - 1, 5)))]
+                out.append(f"G17 G05.2 L{order}{feed}")
+                weight = st.sampled_from(["1", "2", "0.5"])
+                out += [f"X{_fmt(p[0])} Y{_fmt(p[1])} P{draw(weight)}" for p in points]
+                out.append("G05.3")
+                end = points[-1]
+            plane = "G17"
+            pos = np.array([end[0], end[1], pos[2]])
         else:
             out.append(draw(st.sampled_from(["G04 P0.05", "M00", "M01", "G61", "G64", "S5000 M03", "M05"])))
     out.append("M30")

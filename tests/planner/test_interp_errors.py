@@ -48,7 +48,7 @@ def errors_of(text: str, **kw):
         ("G1 F60\nG2 X1 I0.5 P0", "whole number >= 1", 2, 12),
         ("G1 F60\nG2 X1 I0.5 P20000", "more than 10000 turns", 2, 12),
         # codes
-        ("G5.3 X1", "unknown G code G5.3", 1, 1),
+        ("G5.4 X1", "unknown G code G5.4", 1, 1),
         ("G76 X1 Z-1", "G76 is not supported (G76 threading cycle)", 1, 1),
         ("G81 X1 Z-1 R1", "feed rate is zero", 1, 1),
         ("G91 F10\nG38.2 Z0", "G38.2: start point too close to probe point", 2, 1),
@@ -64,9 +64,9 @@ def errors_of(text: str, **kw):
         # words
         ("G0 B5", "axis B is not on this machine (axes: X Y Z)", 1, 4),
         ("G0 U5", "axis U is not on this machine", 1, 4),
-        ("G0 L5", "L word with no canned cycle, G10 or M66 to use it", 1, 4),
+        ("G0 L5", "L word with no canned cycle, G05.2, G10 or M66 to use it", 1, 4),
         ("X1", "axis words without a motion mode", 1, 1),
-        ("G1 X1 F60 I1", "I word with no G02/G03 to use it", 1, 11),
+        ("G1 X1 F60 I1", "I word with no G02/G03, G05 or G05.1 to use it", 1, 11),
         ("G1 X1 F60 R1", "R word with no G02/G03 or canned cycle to use it", 1, 11),
         ("G1 X1 F60 P1", "P word with no G code that uses it", 1, 11),
         ("G1 X1 F60 D1", "D word with no G41, G41.1, G42, G42.1 or G96 to use it", 1, 11),

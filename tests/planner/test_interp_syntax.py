@@ -67,7 +67,7 @@ def test_error_format_file_line_col():
         parse_program("G0 X0\nG1 F10\n  G1 X1 Q5\n", "part.nc")
     err = ei.value.errors[0]
     assert (err.file, err.line, err.col) == ("part.nc", 3, 9)
-    assert str(err) == "part.nc:3:9: error: Q word with no code that uses it (G64, M61, G73, G83, M66)"
+    assert str(err) == "part.nc:3:9: error: Q word with no code that uses it (G05, G64, M61, G73, G83, M66)"
     assert str(ei.value).startswith("part.nc:3:9: error: ")
     assert isinstance(ei.value, PlannerError) and isinstance(ei.value, ValueError)
     assert ei.value.line == 3
