@@ -154,6 +154,14 @@ token = st.one_of(
             "o#<s> call",
             "#<s>=100",
             "(ABORT,stop #1)",
+            # curves: cubic, quadratic, NURBS control points and their end
+            "G5 X3 Y2 I1 J1 P-1 Q1",
+            "G5 X4 Y-1 P1 Q-2",
+            "G5.1 X2 Y2 I1 J0",
+            "G5.2 L4",
+            "G5.2 P2",
+            "X1 Y3 P0.5",
+            "G5.3",
         ]
     ),
 )
