@@ -71,10 +71,11 @@ MAX_ERRORS = 100
 _VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
 _MAX_TURNS = 10_000
 _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
-#: a curve's arcs above this radius are fed as lines: a stretch of 100 mm departs from such an
-#: arc by at most 0.13 um, while the arc's positions, computed about a centre kilometres away,
-#: carry rounding noise that the limit meter would read as speed
-_CURVE_MAX_RADIUS_MM = 1e7
+#: a curve's arcs above this radius (1 km: LinuxCNC's biarc where the curve hardly bends) are
+#: fed as the lines they nearly are: a stretch of 10 mm departs from such an arc by at most
+#: 12.5 nm (100 mm: 1.25 um), and a centre that far away leaves the arc's own measure of its
+#: contour error (a distance from the centre) rounding above a nanometre
+_CURVE_MAX_RADIUS_MM = 1e6
 
 # Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
 _G_GROUP = {

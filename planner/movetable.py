@@ -54,6 +54,9 @@ def _spiral_newton(r0, r1, sweep, rise, length, u) -> np.ndarray:
 
 
 # Degree-7 interpolation at Chebyshev nodes on [0, 1] (one fixed matrix for every spiral).
+#: arcs above this radius are evaluated from their start point (``MoveTable._far_arc``); below
+#: it centre + radius (cos, sin) rounds no worse than a line's start + fraction x delta
+_FAR_RADIUS_MM = 1000.0
 _CHEB_X = 0.5 - 0.5 * np.cos((2 * np.arange(8) + 1) * np.pi / 16)
 _CHEB_INV = np.linalg.inv(np.vander(_CHEB_X, 8, increasing=True))
 SPIRAL_POLY_MAX_RATIO = 1e-2  # |dr| / r up to which the polynomial is exact to rounding
@@ -223,10 +226,14 @@ class MoveTable:
         if arc.any():
             fk = frac[k]
             theta = self.theta0[r] + self.sweep[r] * fk
-            rad = self.r0[r] + (self.r1[r] - self.r0[r]) * fk
+            r0 = self.r0[r]
+            rad = r0 + (self.r1[r] - r0) * fk
             x = self.cx[r] + rad * np.cos(theta)
             y = self.cy[r] + rad * np.sin(theta)
             f, s = self.first[r], self.second[r]
+            far = r0 > _FAR_RADIUS_MM
+            if far.any():
+                x[far], y[far] = self._far_arc(r[far], fk[far])
             if f.size and np.all(f == f[0]) and np.all(s == s[0]):  # one plane: plain columns
                 q[k, f[0]] = x
                 q[k, s[0]] = y
@@ -243,6 +250,23 @@ class MoveTable:
         if done.any():
             q[done] = self.end[row[done]]
         return q
+
+    def _far_arc(self, r: np.ndarray, fk: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(first, second) coordinates on arcs of a large radius, from the start point: centre +
+        radius (cos, sin) loses the last digits to the radius (an arc of kilometres: noise the
+        limit meter reads as jerk). The start's radius vector v turned by the angle so far,
+        R v - v by the half-angle forms, is small where the turn is; a spiral scales R v."""
+        f, s = self.first[r], self.second[r]
+        xs, ys = self.start[r, f], self.start[r, s]
+        vx, vy = xs - self.cx[r], ys - self.cy[r]
+        half = 0.5 * self.sweep[r] * fk
+        sh, ch = np.sin(half), np.cos(half)
+        c1 = -2.0 * sh * sh                  # cos(turn) - 1
+        s1 = 2.0 * sh * ch                   # sin(turn)
+        dx = c1 * vx - s1 * vy
+        dy = s1 * vx + c1 * vy
+        grow = (self.r1[r] - self.r0[r]) * fk / self.r0[r]
+        return xs + dx + grow * (vx + dx), ys + dy + grow * (vy + dy)
 
     def _blend_frames(self, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(rows, unit tangents, curvature vectors) of the blends at their start or end."""

@@ -112,6 +112,22 @@ def test_drawn_micrometre_programs_hold_every_limit(text):
     check_program(text)
 
 
+@pytest.mark.parametrize("radius_mm", [3e6, 1e8])
+def test_arcs_of_kilometres_hold_every_limit(radius_mm):
+    """A nearly straight arc (a curve's biarc where it hardly bends, or R of kilometres): its
+    points, taken about a centre that far away, would carry rounding noise the limit meter
+    reads as jerk over the limit (1.0002 x at 3 km, before the arcs were taken from their
+    start); from the start point they do not. (At 100 km the contour measure itself, a
+    distance from the centre, rounds to 1e-8 mm: only the limits are checked there.)"""
+    text = (f"G21 G90 G94 G17 F1800\nG0 X0 Y0\nG2 X1000 Y0 R{radius_mm:.0f}\nG1 X1200\n"
+            f"G3 X0 Y0 R{radius_mm:.0f}\nM30\n")
+    if radius_mm < 1e7:
+        check_program(text)
+    else:
+        machine = paper_machine()
+        assert plan_program(parse(text, machine), machine).limit_report().violations == {}
+
+
 def test_micrometre_corner_between_tiny_lines():
     """The program hypothesis shrank a failure to: four lines of 1-19 um with a 90-degree
     corner; the X acceleration reached 1.075 Amax there, until joints closer than two samples'
