@@ -2297,8 +2297,17 @@ class _Interpreter:
             if l_word in (1, 10, 11):
                 self.g10_tool(int(l_word), vals, axis_words, scale, line_no)
                 return
+            if l_word == 0:
+                # LinuxCNC reloads its tool table file, which G10 L1/L10/L11 have already
+                # written: here the table the program reads is the machine's, kept up to date
+                # the same way, so there is nothing to reload; LinuxCNC's refusal is kept
+                if self.tool > 0:
+                    raise _BlockError(f"G10 L0 (reload the tool table) with tool {self.tool} in the spindle: "
+                                      "unload it first (M6 T0 or M61 Q0)", "L")
+                return
             if l_word not in (2, 20):
-                raise _BlockError(f"G10 L{l_word:g} is not a G10 this control knows (L2, L20)", "L")
+                raise _BlockError(f"G10 L{l_word:g} is not a G10 this control knows (L0, L1, L2, L10, L11, "
+                                  "L20)", "L")
             p = vals.get("P")
             if p is None or p != int(p) or not 0 <= p <= 9:
                 raise _BlockError("G10 L2/L20 needs P0-P9 (0: the system in use, 1: G54 ... 9: G59.3)", "P")

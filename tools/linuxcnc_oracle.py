@@ -154,7 +154,10 @@ def read_output(out: str) -> OracleResult:
         if not m:
             if line.strip() and line.strip() != "executing" and not error:
                 error = line.strip()
-                block = lines[k + 1].strip() if k + 1 < len(lines) else ""
+                # the block follows; a message ending in a newline of its own leaves a blank
+                # line between them
+                block = next((after.strip() for after in lines[k + 1:k + 3]
+                              if after.strip() and not _CALL.match(after)), "")
             continue
         if error:
             continue

@@ -197,3 +197,26 @@ def test_g10_tool_data_from_the_program() -> None:
                         ("G10 L1 P1 R-1\n", "radius cannot be negative")):
         with pytest.raises(ProgramError, match=words):
             parse_program(text, tools=table)
+
+
+def test_g10_l0_reloads_nothing_and_is_refused_with_a_tool_in_the_spindle() -> None:
+    """G10 L0 (LinuxCNC: reload the tool table file, which G10 L1/L10/L11 have written): the
+    table the program reads is already the machine's, so the motion is unchanged; with a tool
+    in the spindle LinuxCNC refuses it, and so does this."""
+    from tools.linuxcnc_oracle import RS274, run_linuxcnc
+
+    table = parse_tbl("T1 P1 Z10 D6\n")
+    plain = "G21 F100\nT1 M6\nG43\nG1 X5 Z-1\nM6 T0\nG49\n{}G1 X10 Z-2\nM2\n"
+    with_l0 = parse_program(plain.format("G10 L0\n"), "l0.ngc", tools=table)
+    without = parse_program(plain.format(""), "p.ngc", tools=table)
+    assert [m.end.tolist() for m in with_l0.moves] == [m.end.tolist() for m in without.moves]
+    loaded = "G21 F100\nT1 M6\nG10 L0\nG1 X1\nM2\n"
+    with pytest.raises(ProgramError) as caught:
+        parse_program(loaded, "l0.ngc", tools=table)
+    err = caught.value.errors[0]
+    assert (err.line, err.col) == (3, 5) and "with tool 1 in the spindle" in err.message
+    if RS274 is not None:
+        # LinuxCNC refuses the same block; the stand-alone rs274 also refuses it after T0 M6 or
+        # M61 Q0 (it still names tool 1 loaded then), where this has unloaded the tool
+        assert run_linuxcnc(loaded, table).error_block == loaded.splitlines()[err.line - 1] == "G10 L0"
+        assert "loaded tool <1>" in run_linuxcnc(plain.format("G10 L0\n"), table).error
