@@ -308,12 +308,16 @@ _FEATURE_BLOCKS = [
     "#<v> = [{a} + 1]", "G1 X#<v> F{f}", "G17", "G18", "G19", "G20", "G21",
     "G41.1 D{p} G1 X{a} Y{b} F{f}", "G42.1 D{q}", "G41 D1", "G42", "G40", "G40 G1 X{a}",
     "G3 X{a} Y{b} I{p}", "G1 Y{b}", "G2 X{b} Y{a} R{n}", "G1 Z{z}", "G0 X{b}",
+    "G5 X{a} Y{b} I{p} J{q} P{n} Q{p} F{f}", "G5 X{b} Y{a} P{q} Q{n}", "G5.1 X{b} Y{a} I{q} J{p} F{f}",
+    "G5.2 X{a} Y{b} P1 L3", "X{b} Y{a} P2", "G5.3",
 ]
 _O_WRAPPERS = [("o10 if [{a} GT 0]", "o10 endif"), ("o20 repeat [2]", "o20 endrepeat"),
                ("o30 while [#<w> LT 2]\n#<w> = [#<w> + 1]", "o30 endwhile")]
 
 
-@settings(max_examples=200, deadline=timedelta(seconds=5))
+# a G83 of Q0.001 down 16 mm in a loop is tens of thousands of pecks, seconds to read: the
+# deadline catches a hang, not that
+@settings(max_examples=200, deadline=timedelta(seconds=30))
 @given(blocks=st.lists(st.sampled_from(_FEATURE_BLOCKS), min_size=1, max_size=14),
        wrap=st.sampled_from([None, *_O_WRAPPERS]),
        values=st.lists(st.floats(-50, 50), min_size=8, max_size=8),
