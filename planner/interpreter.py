@@ -51,6 +51,7 @@ from planner.movestore import MoveBuffer
 from planner.oword import Statement, Structure, StructureError, has_control_flow, scan
 from planner.program import (
     Arc,
+    Curve,
     Event,
     EventKind,
     InputRequest,
@@ -375,7 +376,7 @@ class _Interpreter:
         self.nurbs: list[tuple[float, float, float]] | None = None
         self.nurbs_order = 3
         self.nurbs_line = 0
-        self.splines: list[tuple[int, int, int, int]] = []  # per curve: first move, end move, points, order
+        self.splines: list[Curve] = []           # the curves read (G05, G05.1, G05.2/G05.3)
         # M66: the waits read so far and the values the machine read on the first ones
         self.inputs_read: list[InputRequest] = []
         self.input_results = tuple(input_results)
@@ -2702,7 +2703,8 @@ class _Interpreter:
             arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, 0.0, 1)
             length = r0 * abs(sweep) if r0 == r1 else spiral_length_mm(r0, r1, sweep, 0.0)
             self.emit(target, _ARC, feed, length, arc, line_no)
-        self.splines.append((first, len(self.out), len(points), order))
+        in_mm = tuple((x * scale, y * scale, w) for x, y, w in points)
+        self.splines.append(Curve(first, len(self.out), in_mm, order))
 
 
 def parse_program(

@@ -23,6 +23,7 @@ import numpy as np
 
 __all__ = [
     "Arc",
+    "Curve",
     "Event",
     "EventKind",
     "InputRequest",
@@ -312,6 +313,18 @@ class ProbeResult:
 
 
 @dataclass(frozen=True, slots=True)
+class Curve:
+    """A G05, G05.1 or G05.2/G05.3 curve as read: the moves it runs as (``first`` up to
+    ``end``, indexes into the interpreter's moves), its control points in program coordinates
+    (x and y in mm, weight) and its order."""
+
+    first: int
+    end: int
+    points: tuple[tuple[float, float, float], ...]
+    order: int
+
+
+@dataclass(frozen=True, slots=True)
 class ProbeRequest:
     """One G38.2-G38.5 move of a program, as the interpreter read it."""
 
@@ -396,10 +409,10 @@ class Program:
     # G33.1: the index of each tap's move into the hole as read (the next move backs it out);
     # LinuxCNC writes the pair as one RIGID_TAP call
     taps: tuple[int, ...] = ()
-    # G05, G05.1, G05.2/G05.3: (first move, end move, control points, order) of each curve, the
-    # arcs and lines it is run as; LinuxCNC writes each curve as one NURBS_FEED call (moves as
-    # read: indexes into the interpreter's moves, before path blending)
-    splines: tuple[tuple[int, int, int, int], ...] = ()
+    # G05, G05.1, G05.2/G05.3: each curve, the arcs and lines it is run as; LinuxCNC writes it
+    # as one NURBS_FEED call (moves as read: indexes into the interpreter's moves, before path
+    # blending)
+    splines: tuple[Curve, ...] = ()
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

@@ -11,7 +11,9 @@ is put in one class:
 - ``same``: both read it and write the same motion, call for call, within what rs274 prints
   (four decimals of the program's unit); moves shorter than that are not compared; a curve
   (G05, G05.1, G05.2) is one call of which rs274 prints the number of control points only, so
-  it is compared by that and its place (the tests check the curve itself against LinuxCNC's preview module);
+  it is compared by that and its place, and its points with those LinuxCNC's preview module
+  draws (15 a control point, within 1e-6 mm) where the module can draw the program (installed,
+  and no tool words: outside AXIS it stops on them);
 - ``same path``: the calls differ in number only where moves are that short: walking both
   paths in order, every point of each lies within 0.003 mm of the other path, not behind
   where the point before it was found;
@@ -37,9 +39,17 @@ import numpy as np
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
 from planner.machine import WORK_OFFSET_NAMES, AxisSpec, MachineSpec
-from planner.program import Program
+from planner.program import Curve, Program
+from planner.splines import nurbs_points
 from planner.tools import parse_tbl
-from tools.linuxcnc_oracle import RS274, motion_calls, project_motion, run_linuxcnc_file
+from tools.linuxcnc_oracle import (
+    RS274,
+    motion_calls,
+    preview_available,
+    project_motion,
+    run_linuxcnc_file,
+    run_linuxcnc_preview,
+)
 
 SUFFIXES = (".ngc", ".nc", ".gcode", ".tap", ".cnc")
 TOOLS = parse_tbl("".join(f"T{n} P{n} Z0 D0\n" for n in range(1, 100)))
@@ -134,6 +144,39 @@ def _same_path(ours: list[tuple], theirs: list[tuple]) -> bool:
     return _follows(a, b) and _follows(b, a)
 
 
+def preview_points(curve: Curve) -> np.ndarray:
+    """The points LinuxCNC's preview draws a curve through (program coordinates, mm): 15 a
+    control point, stepped as its loop steps, then the last control point."""
+    points = np.array(curve.points)
+    n = len(points) - 1
+    umax = n - curve.order + 2
+    step = umax / ((n + 1) * 15)
+    us = []
+    u = 0.0
+    while u + step < umax:
+        us.append(u + step)
+        u = u + step
+    return np.vstack([nurbs_points(points, curve.order, np.array(us)), points[-1:, :2]])
+
+
+def curves_differ(path: Path, program: Program) -> str | None:
+    """"" when every curve of ``program`` is the one LinuxCNC's preview draws for ``path`` (its
+    points in order, within 1e-6 mm), which curve is not, or None when the preview cannot draw
+    the program (outside AXIS it stops on any tool word: T, M6, M61, G43 H)."""
+    try:
+        drawn = np.array([args[:2] for call, args in run_linuxcnc_preview(path.read_text(errors="replace"))
+                          if call == "straight_feed"])
+    except RuntimeError:
+        return None
+    for curve in program.splines:
+        ours = preview_points(curve)
+        starts = np.flatnonzero(np.max(np.abs(drawn - ours[0]), axis=1) < 1e-6) if len(drawn) else []
+        if not any(len(drawn) - s >= len(ours) and np.max(np.abs(drawn[s:s + len(ours)] - ours)) < 1e-6
+                   for s in starts):
+            return f"the curve of moves {curve.first + 1}-{curve.end} is not LinuxCNC's preview's"
+    return ""
+
+
 def judge(path: Path) -> Verdict:
     """Read ``path`` both ways and class it."""
     theirs = run_linuxcnc_file(path, TOOLS)
@@ -153,7 +196,16 @@ def judge(path: Path) -> Verdict:
         return Verdict(str(path), "only this reads it", f"rs274: {theirs.error} at {theirs.error_block!r}")
     first = next((k for k, (a, b) in enumerate(zip(ours, theirs.motion)) if not close(a, b)), None)
     if first is None and len(ours) == len(theirs.motion):
-        return Verdict(str(path), "same", f"{len(ours)} calls")
+        if not program.splines:
+            return Verdict(str(path), "same", f"{len(ours)} calls")
+        why = curves_differ(path, program) if preview_available() else None
+        if why is None:
+            return Verdict(str(path), "same", f"{len(ours)} calls (curves by their control points' count: "
+                                              "LinuxCNC's preview module cannot draw the program here)")
+        if why:
+            return Verdict(str(path), "differ", why)
+        return Verdict(str(path), "same", f"{len(ours)} calls, {len(program.splines)} curves as LinuxCNC's "
+                                          "preview draws them")
     if _same_path(every, list(theirs.every)):
         return Verdict(str(path), "same path", f"{len(ours)} and {len(theirs.motion)} calls, within "
                                                f"{TOLERANCE_MM} mm in order")

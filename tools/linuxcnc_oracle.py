@@ -221,24 +221,24 @@ def motion_calls(program: Program) -> list[tuple[tuple, tuple[float, ...]]]:
     and a curve (G05, G05.1, G05.2) one ("nurbs_feed", (control points,)) for all of its moves
     (none when it moves nowhere), as rs274 prints them."""
     out: list[tuple[tuple, tuple[float, ...]]] = []
-    curves = sorted(program.splines)
+    curves = sorted(program.splines, key=lambda curve: curve.first)
     c = 0
     back_out = {i + 1 for i in program.taps}
     moves = [i for i in range(len(program.moves)) if i not in back_out]
     last = tuple(float(v) for v in program.start_position)
     skip_to = -1
     for i, rec in zip(moves, canon_records(program), strict=True):
-        while c < len(curves) and curves[c][0] == i == curves[c][1]:       # a curve of no moves
-            out.append((("nurbs_feed", (float(curves[c][2]),)), last))
+        while c < len(curves) and curves[c].first == i == curves[c].end:       # a curve of no moves
+            out.append((("nurbs_feed", (float(len(curves[c].points)),)), last))
             c += 1
         end = tuple(float(v) for v in program.moves[i].end)
         if i < skip_to:
             last = end
             continue
         a = rec["args"]
-        if c < len(curves) and curves[c][0] == i:
-            skip_to = curves[c][1]
-            out.append((("nurbs_feed", (float(curves[c][2]),)),
+        if c < len(curves) and curves[c].first == i:
+            skip_to = curves[c].end
+            out.append((("nurbs_feed", (float(len(curves[c].points)),)),
                         tuple(float(v) for v in program.moves[skip_to - 1].end)))
             c += 1
         elif rec["call"] == "arc_feed":
@@ -246,7 +246,7 @@ def motion_calls(program: Program) -> list[tuple[tuple, tuple[float, ...]]]:
         else:
             out.append(((rec["call"], tuple(a[:3])), end))
         last = end
-    out.extend((("nurbs_feed", (float(curve[2]),)), last) for curve in curves[c:])
+    out.extend((("nurbs_feed", (float(len(curve.points)),)), last) for curve in curves[c:])
     return out
 
 

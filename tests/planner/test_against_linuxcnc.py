@@ -325,6 +325,25 @@ def test_the_oracle_sees_what_it_should() -> None:
     assert "zero feed rate" in bad.error and bad.error_block == "G1 X10"
 
 
+def test_the_library_check_draws_curves_as_linuxcnc_does(tmp_path) -> None:
+    """rs274 prints a curve as NURBS_FEED(n, ...) only: the library check also holds each curve's
+    points against those LinuxCNC's preview module draws, and says when it could not."""
+    from tools.against_linuxcnc import judge
+    from tools.linuxcnc_oracle import preview_available
+
+    curve = tmp_path / "curve.ngc"
+    curve.write_text("G21 G17 F600\nG0 X1 Y2\nG5 X20 Y10 I8 J12 P-6 Q9\nG5.2 L4\nX25 Y5 P1\nX30 Y-5 P2\n"
+                     "X35 Y5 P1\nX40 Y0 P1\nG5.3\nM2\n")
+    tool = tmp_path / "tool.ngc"             # a tool word: the preview module cannot draw it here
+    tool.write_text("G21 G17 F600\nT1 M6\nG5.1 X20 Y10 I8 J12\nM2\n")
+    if not preview_available():
+        pytest.skip("LinuxCNC's preview module (gcode) is not installed")
+    verdict = judge(curve)
+    assert (verdict.kind, verdict.detail) == ("same", "3 calls, 2 curves as LinuxCNC's preview draws them")
+    verdict = judge(tool)
+    assert verdict.kind == "same" and "by their control points' count" in verdict.detail
+
+
 def test_the_library_check_classes_each_program(tmp_path) -> None:
     """``python -m tools.against_linuxcnc FOLDER``, which an integrator runs on a shop's programs:
     each program in its class, and the share rs274 reads that this reads alike."""

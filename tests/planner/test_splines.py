@@ -17,7 +17,9 @@ from hypothesis import strategies as st
 
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
+from planner.program import Curve
 from planner.splines import SAMPLES_PER_POINT, biarc, nurbs_points
+from tools.against_linuxcnc import preview_points
 from tools.linuxcnc_oracle import RS274, preview_available, refused_alike, run_linuxcnc_preview
 
 Point = tuple[float, float, float]
@@ -72,18 +74,9 @@ def test_the_curve_is_the_one_linuxcnc_computes(curve: tuple[str, list[Point], i
     code: those points are this module's curve at the same parameters."""
     text, points, order = curve
     drawn = np.array([args[:2] for call, args in run_linuxcnc_preview(text) if call == "straight_feed"])
-    n = len(points) - 1
-    umax = n - order + 2
-    step = umax / ((n + 1) * 15)
-    us = []
-    u = 0.0
-    while u + step < umax:            # the preview's own loop, sums and all
-        us.append(u + step)
-        u = u + step
-    assert len(drawn) == len(us) + 1, text
-    ours = nurbs_points(np.array(points), order, np.array(us))
-    assert np.max(np.abs(drawn[:-1] - ours)) < 1e-6, text
-    assert drawn[-1] == pytest.approx(points[-1][:2], abs=1e-9)
+    ours = preview_points(Curve(0, 0, tuple(points), order))      # the preview's own parameters
+    assert drawn.shape == ours.shape, text
+    assert np.max(np.abs(drawn - ours)) < 1e-6, text
 
 
 @settings(max_examples=80, deadline=None)
@@ -95,8 +88,9 @@ def test_the_moves_are_tangent_arcs_through_the_curve(curve: tuple[str, list[Poi
     text, points, order = curve
     program = parse_program(text, "c.ngc")
     assert len(program.splines) == 1
-    first, end, count, k = program.splines[0]
-    assert (count, k) == (len(points), order)
+    curve = program.splines[0]
+    first, end = curve.first, curve.end
+    assert curve.points == tuple(points) and curve.order == order
     moves = list(program.moves)[first:end]
     starts = [np.asarray(program.moves[first - 1].end[:2] if first else program.start_position[:2])]
     starts += [np.asarray(m.end[:2]) for m in moves[:-1]]
@@ -153,7 +147,9 @@ def test_a_curve_moves_with_the_coordinate_system_and_the_units() -> None:
     assert len(turned.moves) == len(plain.moves) + 1 == len(inches.moves) + 1 == 97
     assert np.max(np.abs(np.array([m.end[:2] for m in turned.moves[1:]]) - moved)) < 1e-9
     assert np.max(np.abs(np.array([m.end[:2] for m in inches.moves]) - 25.4 * a)) < 1e-9
-    assert [(s[2], s[3]) for s in plain.splines] == [(4, 4), (3, 3), (5, 4)]
+    assert [(len(s.points), s.order) for s in plain.splines] == [(4, 4), (3, 3), (5, 4)]
+    assert [s.points for s in inches.splines] == [tuple((25.4 * x, 25.4 * y, w) for x, y, w in s.points)
+                                                  for s in plain.splines]
 
 
 def test_where_linuxcnc_finds_no_biarc_a_line_is_fed() -> None:
