@@ -7,6 +7,7 @@ programs (``run_linuxcnc``), ``tools.against_linuxcnc`` on folders of real ones
 from __future__ import annotations
 
 import fcntl
+import functools
 import math
 import re
 import shutil
@@ -289,8 +290,10 @@ print(json.dumps(canon.out))
 '''
 
 
+@functools.cache
 def preview_available() -> bool:
-    """Whether LinuxCNC's preview module can be run (``make test`` installs it as root)."""
+    """Whether LinuxCNC's preview module can be run (``make test`` installs it as root); asked
+    once a process."""
     if not Path(SYSTEM_PYTHON).exists():
         return False
     found = subprocess.run([SYSTEM_PYTHON, "-c", "import gcode"], capture_output=True,
