@@ -95,6 +95,7 @@ _G_GROUP = {
     610: 13, 611: 13, 640: 13,
     730: 1, 740: 1, 810: 1, 820: 1, 830: 1, 840: 1, 850: 1, 860: 1, 890: 1,
     980: 10, 990: 10,
+    70: 15, 80: 15,
 }
 #: canned cycles (motion group 1), as LinuxCNC 2.9 runs them (interp_cycles.cc)
 _CYCLES = frozenset({730, 740, 810, 820, 830, 840, 850, 860, 890})
@@ -114,8 +115,7 @@ _PECK_CLEARANCE_MM = 0.254
 #: hole would otherwise make millions of moves)
 _MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
-    70: "G07 lathe diameter mode",
-    80: "G08 lathe radius mode", 330: "G33 spindle-synchronised motion: this spindle has no encoder",
+    330: "G33 spindle-synchronised motion: this spindle has no encoder",
     760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
@@ -125,7 +125,7 @@ _G_UNSUPPORTED = {
     160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
 }
-_SHOWN_GROUPS = frozenset({2, 3, 6, 7, 8, 12, 13})  # the modal groups the panel shows
+_SHOWN_GROUPS = frozenset({2, 3, 6, 7, 8, 12, 13, 15})  # the modal groups the panel shows
 #: group 0 codes whose axis words are data, not a motion target
 _AXIS_USERS = frozenset({100, 280, 300, 520, 920})
 #: coordinate systems 1-9 (G54 ... G59.3) and LinuxCNC's parameters for them: each system has
@@ -286,6 +286,8 @@ class _Interpreter:
         self.scale = 1.0  # mm per program length unit
         self.absolute = True
         self.arc_absolute = False
+        # G7: X words are diameters (halved as they are read), G8 (the default): radii
+        self.diameter = False
         self.feed_mm_s = 0.0
         self.work = self.work_offsets[540]       # G54-G59
         # XY rotation of the coordinate system in use (G10 L2 R, degrees, about its origin)
@@ -806,6 +808,8 @@ class _Interpreter:
             "_PLANE": float(self.plane),
             "_RETRACT_R_PLANE": 1.0 if self.retract_r_plane else 0.0,
             "_RETRACT_OLD_Z": 0.0 if self.retract_r_plane else 1.0,
+            "_LATHE_DIAMETER_MODE": 1.0 if self.diameter else 0.0,
+            "_LATHE_RADIUS_MODE": 0.0 if self.diameter else 1.0,
             "_TASK": 1.0,
             "_VALUE": 0.0,
             "_VALUE_RETURNED": 0.0,
@@ -887,7 +891,7 @@ class _Interpreter:
         feed, a move too short to keep) and returns how many lines it ran."""
         n_lines = values.shape[0]
         if (not n_lines or self.feed_mode != 940 or self.rotation or self.comp.busy
-                or self.nurbs is not None):
+                or self.nurbs is not None or self.diameter):
             return 0
         n_ax = len(cols)
         ax = values[:, :n_ax]
@@ -966,7 +970,7 @@ class _Interpreter:
             return False
         motion = int(gtxt) * 10 if gtxt is not None else self.motion
         if (motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation
-                or self.comp.busy or self.nurbs is not None):
+                or self.comp.busy or self.nurbs is not None or self.diameter):
             return False
         scale = self.scale
         if f_t is not None:
@@ -1048,7 +1052,7 @@ class _Interpreter:
             _gname(self.feed_mode),
             _gname(self.work_code), _gname(self.comp_code), _gname(self.tlo_code),
             "G61" if self.exact_stop else ("G61.1" if self.exact_path else self.g64_text()),
-        ))
+        )) + (" G7" if self.diameter else "")   # X in diameters: shown, since it halves every X
 
     def g64_text(self) -> str:
         """G64 with the tolerances in force, in the program's units (as the operator wrote them)."""
@@ -1111,7 +1115,7 @@ class _Interpreter:
     _MODAL_FIELDS = ("inch", "scale", "plane", "comp_code", "absolute", "arc_absolute", "feed_mode",
                      "feed_mm_s", "feed_per_rev", "inverse_f", "work_code", "work", "tlo_code", "tlo",
                      "retract_r_plane", "exact_stop", "exact_path", "blend_tol_mm", "naive_cam_mm",
-                     "spindle_rpm", "spindle_dir", "coolant", "rotation")
+                     "spindle_rpm", "spindle_dir", "coolant", "rotation", "diameter")
 
     def spindle_mode(self, code: int, vals: dict[str, float], line_no: int, after: int,
                      switched: bool) -> None:
@@ -1406,7 +1410,7 @@ class _Interpreter:
             return False
         motion = g if g >= 0 else self.motion
         if (motion is None or motion > 30 or (ctr and motion < 20) or self.feed_mode != 940 or self.rotation
-                or self.comp.busy or self.nurbs is not None):
+                or self.comp.busy or self.nurbs is not None or self.diameter):
             return False
         if "F" in vals:
             f = vals["F"]
@@ -1597,6 +1601,12 @@ class _Interpreter:
         m11 = mgroups.get(11)
         if m11 is not None:              # M70-M73 before the block's own changes
             self.modal_memory(m11, line_no)
+        if 15 in groups:
+            self.diameter = groups[15] == 70
+        if self.diameter and "X" in vals:
+            # LinuxCNC halves X as it reads it in G7 and undoes that for a G8 in the same
+            # block: every use of the word (motion, G10, G92, G28, cycles) takes the radius
+            vals["X"] *= 0.5
         if 6 in groups:  # units before anything that reads a length
             self.inch = groups[6] == 200
             self.scale = MM_PER_INCH if self.inch else 1.0

@@ -56,7 +56,7 @@ def programs(draw) -> str:
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
          "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle",
-         "polar_cycle", "m98", "curve"]),
+         "polar_cycle", "m98", "curve", "diameter"]),
         min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
@@ -279,6 +279,13 @@ def programs(draw) -> str:
             goto()
             out.append("G49")
             goto()
+        elif kind == "diameter":
+            # G7: X words are diameters, in every code that reads one, until G8
+            d, dx = draw(val), draw(val)
+            if math.hypot(d / 2 - x, 0) < 0.01 or dx == 0:
+                continue
+            out.append(f"G7 G1 X{_n(d)}\nG91 X{_n(dx)}\nG90 G92 X{_n(d)}\nG1 Y{_n(y + 1)}\nG92.1\nG8")
+            x, y = d / 2 + dx / 2, y + 1
         elif kind == "absarc":
             ex, ey = draw(val), draw(val)
             cx, cy = (x + ex) / 2.0, (y + ey) / 2.0
