@@ -70,6 +70,10 @@ __all__ = ["parse_program", "parse_file", "read_program", "MAX_ERRORS"]
 
 MAX_ERRORS = 100
 _VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
+#: F may go further: programs write F1e9 for "as fast as the machine goes" (LinuxCNC reads it,
+#: and the feed is held to the machine's limits either way); 1e12 keeps inverse-time products
+#: far from overflow
+_FEED_LIMIT = 1e12
 _MAX_TURNS = 10_000
 _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
 #: a curve's arcs above this radius (1 km: LinuxCNC's biarc where the curve hardly bends) are
@@ -1434,8 +1438,9 @@ class _Interpreter:
         first = True
         for letter, t in words:
             v = float(t)
-            if not -_VALUE_LIMIT < v < _VALUE_LIMIT:
-                raise _BlockError(f"{letter} value {v:g} out of range (|value| < 1e9)", letter)
+            if not -_VALUE_LIMIT < v < _VALUE_LIMIT and not (letter == "F" and abs(v) < _FEED_LIMIT):
+                limit = "1e12" if letter == "F" else "1e9"
+                raise _BlockError(f"{letter} value {v:g} out of range (|value| < {limit})", letter)
             if letter == "G":
                 c = round(v * 10.0)
                 if abs(v * 10.0 - c) > 1e-6:

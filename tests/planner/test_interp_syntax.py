@@ -107,6 +107,7 @@ def test_error_limit():
         ("G1 E5 F1", "word E is not supported", 4),
         ("G0 X1e5", "word E is not supported", 6),
         ("G0 X99999999999", "out of range", 4),
+        ("G1 X1 F1000000000000", "F value 1e+12 out of range (|value| < 1e12)", 7),
         ("o100 sub", "o100 sub without its o100 endsub", 1),
         ("G0 % X1", "unexpected character '%'", 4),
         ("% X1", "'%' must be alone", 1),

@@ -128,6 +128,13 @@ def test_arcs_of_kilometres_hold_every_limit(radius_mm):
         assert plan_program(parse(text, machine), machine).limit_report().violations == {}
 
 
+@pytest.mark.parametrize("feed", ["F1000000000", "F999999999999"])
+def test_a_feed_of_a_billion_runs_at_the_machines_limits(feed):
+    # programs write F1e9 for "as fast as the machine goes" (LinuxCNC's own tests do): read,
+    # and held to every limit, in G94 and in inverse time
+    check_program(f"G21 G90 G0 X0 Y0 Z0\n{feed}\nG1 X-1\nG2 X5 Y2 R4\nG93 G1 X6 {feed}\nG94 {feed} X1\nM2\n")
+
+
 def test_micrometre_corner_between_tiny_lines():
     """The program hypothesis shrank a failure to: four lines of 1-19 um with a 90-degree
     corner; the X acceleration reached 1.075 Amax there, until joints closer than two samples'
