@@ -50,6 +50,8 @@ from planner.lexer import LexError, Params, compact, evaluate_brackets, original
 from planner.movestore import MoveBuffer
 from planner.oword import Statement, Structure, StructureError, has_control_flow, scan
 from planner.program import (
+    FEED_OVERRIDE_OFF,
+    SPINDLE_OVERRIDE_OFF,
     Arc,
     Curve,
     Event,
@@ -149,6 +151,7 @@ def system_base(code: int) -> int:
     return 5221 + 20 * _SYSTEMS.index(code)
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8,
             62: 5, 63: 5, 64: 5, 65: 5, 66: 5, 70: 11, 71: 11, 72: 11, 73: 11,
+            48: 9, 49: 9, 50: 9, 51: 9, 52: 9, 53: 9,
             **dict.fromkeys(range(100, 200), 10)}
 _M_UNSUPPORTED = {19: "M19 orients the spindle, which this machine's spindle cannot",
                   67: "M67 sets an analog output synchronised with motion; there are no analog outputs",
@@ -292,6 +295,11 @@ class _Interpreter:
         self.arc_absolute = False
         # G7: X words are diameters (halved as they are read), G8 (the default): radii
         self.diameter = False
+        # M48-M51: whether the operator's feed and spindle overrides act on what follows; the
+        # OVERRIDES bits last written for the moves (tapping turns both off for its moves)
+        self.feed_override_on = True
+        self.spindle_override_on = True
+        self.override_bits = 0
         self.feed_mm_s = 0.0
         self.work = self.work_offsets[540]       # G54-G59
         # XY rotation of the coordinate system in use (G10 L2 R, degrees, about its origin)
@@ -1056,7 +1064,48 @@ class _Interpreter:
             _gname(self.feed_mode),
             _gname(self.work_code), _gname(self.comp_code), _gname(self.tlo_code),
             "G61" if self.exact_stop else ("G61.1" if self.exact_path else self.g64_text()),
-        )) + (" G7" if self.diameter else "")   # X in diameters: shown, since it halves every X
+        )) + (" G7" if self.diameter else "") + self.override_text()   # shown: they change what X and
+        # the override knobs do
+
+    def override_text(self) -> str:
+        if self.feed_override_on and self.spindle_override_on:
+            return ""
+        if not (self.feed_override_on or self.spindle_override_on):
+            return " M49"
+        return " M50 P0" if not self.feed_override_on else " M51 P0"
+
+    def overrides_event(self, line_no: int, after: int, text: str, lock: int = 0,
+                        kind: EventKind = EventKind.OVERRIDES) -> None:
+        """The OVERRIDES bits for the moves from ``after`` + 1 on: the program's M48-M51 state,
+        and ``lock`` (tapping: both off for its moves; ``kind`` TAPPING, where the path stands)."""
+        bits = ((0 if self.feed_override_on else FEED_OVERRIDE_OFF)
+                | (0 if self.spindle_override_on else SPINDLE_OVERRIDE_OFF) | lock)
+        if bits != self.override_bits:
+            self.override_bits = bits
+            self.events.append(Event(kind, line_no, after, float(bits), text))
+
+    def override_codes(self, code: int, vals: dict[str, float], line_no: int, after: int) -> None:
+        """M48-M53 as LinuxCNC 2.9 reads them (refused with compensation on, as there)."""
+        on = vals.get("P", 1.0) != 0.0
+        if self.comp.side != 0:
+            verb = "enable" if code == 48 or (code != 49 and on) else "disable"
+            raise _BlockError(f"cannot {verb} overrides with cutter radius compensation on "
+                              f"({_gname(self.comp_code)}): program G40 first", f"M{code}")
+        if code == 52 and on:
+            raise _BlockError("M52 (adaptive feed) scales the feed by an input this machine does not have",
+                              "M52")
+        if code in (48, 49):
+            self.feed_override_on = self.spindle_override_on = code == 48
+        elif code == 50:
+            self.feed_override_on = on
+        elif code == 51:
+            self.spindle_override_on = on
+        # M52 P0: adaptive feed off, as it is; M53: the feed stop switch, which this machine
+        # does not have (the panel's feed hold is LinuxCNC's pause, which M53 leaves alone)
+        what = {48: "overrides on", 49: "overrides off: the program's own feed and speed",
+                50: f"feed override {'on' if on else 'off'}", 51: f"spindle override {'on' if on else 'off'}"}
+        self.overrides_event(line_no, after, f"M{code}: {what.get(code, '')}")
+        self.note_modal()
 
     def g64_text(self) -> str:
         """G64 with the tolerances in force, in the program's units (as the operator wrote them)."""
@@ -1119,7 +1168,8 @@ class _Interpreter:
     _MODAL_FIELDS = ("inch", "scale", "plane", "comp_code", "absolute", "arc_absolute", "feed_mode",
                      "feed_mm_s", "feed_per_rev", "inverse_f", "work_code", "work", "tlo_code", "tlo",
                      "retract_r_plane", "exact_stop", "exact_path", "blend_tol_mm", "naive_cam_mm",
-                     "spindle_rpm", "spindle_dir", "coolant", "rotation", "diameter")
+                     "spindle_rpm", "spindle_dir", "coolant", "rotation", "diameter", "feed_override_on",
+                     "spindle_override_on")
 
     def spindle_mode(self, code: int, vals: dict[str, float], line_no: int, after: int,
                      switched: bool) -> None:
@@ -1193,6 +1243,7 @@ class _Interpreter:
                 if self.coolant & bit and not coolant_before & bit:
                     self.events.append(Event(EventKind.COOLANT, line_no, after, float(bit),
                                              "M72: coolant as saved"))
+        self.overrides_event(line_no, after, "M72: overrides as saved")
         self.note_modal()
 
     def wait_input(self, vals: dict[str, float], line_no: int) -> None:
@@ -1556,6 +1607,10 @@ class _Interpreter:
             motion = None
         if motion == 800:
             motion = None
+        if polar and (motion is None or axis_data or axis_words_offset):
+            # LinuxCNC: G10, G28, G30, G52, G92 and G43.1/G43.2 take no polar words either
+            raise _BlockError("polar coordinates (@ ^) can only be used for motion",
+                              "@" if "@" in vals else "^")
         if axis_words and motion is None and not axis_data:
             raise _BlockError(
                 "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
@@ -1579,7 +1634,7 @@ class _Interpreter:
                 users = ("G02/G03 or canned cycle" if letter == "R"
                          else "G02/G03, G05 or G05.1" if letter in "IJ" else "G02/G03")
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
-        if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640
+        if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640 or 9 in mgroups
                                 or motion in _CYCLE_TAKES_P or 5 in mgroups or motion in (50, 52)):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G05, G05.2, G64, G82, G84, "
                               "G86, G89)", "P")
@@ -1693,6 +1748,8 @@ class _Interpreter:
                 raise _BlockError(f"M{m5} needs P with a configured output number ({known})",
                                   "P" if p is not None else f"M{m5}")
             self.output_event(int(p), m5 in (62, 64), line_no, after, f"M{m5}")
+        if 9 in mgroups:
+            self.override_codes(mgroups[9], vals, line_no, after)
         user = mgroups.get(10)
         if user is not None:
             action, message, output, on = self.mcodes[user]
@@ -2017,6 +2074,10 @@ class _Interpreter:
         into = pitch * rpm / 60.0
         self.taps.append(len(self.out))
         saved_stop, self.exact_stop = self.exact_stop, True
+        # the tap's feed follows the spindle: neither override may change one without the other
+        self.overrides_event(line_no, len(self.out) - 1,
+                             "G33.1: feed and spindle overrides off while tapping",
+                             FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF, EventKind.TAPPING)
         try:
             self.emit(target, _LINE, into, length, None, line_no, fixed_feed=True)
             self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1,
@@ -2028,6 +2089,8 @@ class _Interpreter:
             self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1, self.spindle_dir * rpm,
                                      "G33.1: spindle turning forward again"))
         finally:
+            self.overrides_event(line_no, len(self.out) - 1, "G33.1: overrides as before the tap",
+                                 kind=EventKind.TAPPING)
             self.exact_stop = saved_stop
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
@@ -2203,6 +2266,11 @@ class _Interpreter:
                     go(aa, bb, cc, False)
                     go(aa, bb, clear_cc, True)
                 elif motion in (740, 840):
+                    # LinuxCNC turns both overrides off for the tap: its feed is the pitch times
+                    # the speed
+                    self.overrides_event(line_no, len(self.out) - 1, f"{name}: feed and spindle overrides "
+                                         "off while tapping", FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF,
+                                         EventKind.TAPPING)
                     go(aa, bb, cc, False)
                     event(EventKind.SPINDLE, -rpm, f"{name}: spindle reversed to back the tap out (tapping "
                           "as feed moves at F, not synchronised with the spindle: use a floating tap holder)")
@@ -2210,6 +2278,8 @@ class _Interpreter:
                         event(EventKind.DWELL, self.cycle_p, f"dwell {self.cycle_p:g} s")
                     go(aa, bb, clear_cc, False)
                     event(EventKind.SPINDLE, rpm, f"{name}: spindle turning forward again")
+                    self.overrides_event(line_no, len(self.out) - 1, f"{name}: overrides as before the tap",
+                                         kind=EventKind.TAPPING)
                 else:
                     go(aa, bb, cc, False)
                     if motion in (820, 860, 890) and self.cycle_p > 0.0:

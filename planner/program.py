@@ -26,6 +26,8 @@ __all__ = [
     "Curve",
     "Event",
     "EventKind",
+    "FEED_OVERRIDE_OFF",
+    "SPINDLE_OVERRIDE_OFF",
     "InputRequest",
     "Move",
     "MoveKind",
@@ -255,6 +257,17 @@ class EventKind(enum.Enum):
     # M66 (value: index into Program.inputs): the motion stops, the input is read (waited for)
     # there; what follows depends on it
     INPUT = "input"
+    # M48-M51: the overrides the motion from here follows (value: 1 the feed override is off,
+    # 2 the spindle override is off, 3 both, 0 both on); not stopping, as in LinuxCNC
+    OVERRIDES = "overrides"
+    # the same for a tap's feed moves (G74/G84, G33.1: both off), which start and end at rest:
+    # the overrides change where the path stands, never on the way
+    TAPPING = "tapping"
+
+
+#: OVERRIDES bits
+FEED_OVERRIDE_OFF = 1
+SPINDLE_OVERRIDE_OFF = 2
 
 
 STOPPING_EVENTS = frozenset(
@@ -272,6 +285,7 @@ STOPPING_EVENTS = frozenset(
         EventKind.PROBE_START,
         EventKind.PROBE,
         EventKind.INPUT,
+        EventKind.TAPPING,
     }
 )
 
@@ -413,6 +427,18 @@ class Program:
     # as one NURBS_FEED call (moves as read: indexes into the interpreter's moves, before path
     # blending)
     splines: tuple[Curve, ...] = ()
+
+    def override_locks(self) -> np.ndarray | None:
+        """Per move, the OVERRIDES bits in force for it (``FEED_OVERRIDE_OFF``,
+        ``SPINDLE_OVERRIDE_OFF``); None when the program never turns an override off."""
+        changes = [(e.after_move + 1, int(e.value)) for e in self.events
+                   if e.kind in (EventKind.OVERRIDES, EventKind.TAPPING)]
+        if not any(bits for _, bits in changes):
+            return None
+        changes.sort(key=lambda c: c[0])     # stable: of changes at one move the later wins
+        firsts = np.array([max(f, 0) for f, _ in changes], dtype=np.int64)
+        bits = np.array([0] + [b for _, b in changes], dtype=np.uint8)
+        return bits[np.searchsorted(firsts, np.arange(len(self.moves)), side="right")]
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

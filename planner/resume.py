@@ -34,6 +34,7 @@ __all__ = [
     "modal_state_at",
     "modal_state_before_move",
     "probe_move_at",
+    "carry_overrides",
     "program_from_moves",
     "reads_before",
     "remaining_program",
@@ -143,11 +144,25 @@ def remaining_program(program: Program, move_index: int, u_mm: float = 0.0,
                  if e.after_move == move_index - 1 and e.line >= line
                  and e.kind in (EventKind.PROBE_START, EventKind.INPUT)]
         events = reads + events
+    events = carry_overrides(program, move_index, events)
     # Drop a zero-length tail (resuming exactly at a move's end).
     if tail.length_mm <= 1e-12 and len(moves) > 1:
         moves = moves[1:]
         events = [replace(e, after_move=max(e.after_move - 1, -1)) for e in events]
     return program_from_moves(program, moves, events, tail.start)
+
+
+def carry_overrides(program: Program, first_move: int, events: list[Event]) -> list[Event]:
+    """``events`` (of the moves from ``first_move`` on) with the overrides in force for that
+    move put first: a restart inside a tap or after M49 keeps the overrides off, though the
+    event that turned them off comes before it."""
+    locks = program.override_locks()
+    if locks is None or not 0 <= first_move < len(locks) or not locks[first_move]:
+        return events
+    bits = int(locks[first_move])
+    line = program.moves[first_move].line
+    return [Event(EventKind.OVERRIDES, line, -1, float(bits), "overrides off as before the restart point"),
+            *events]
 
 
 def reads_before(program: Program, move_index: int, line: int) -> list[Event]:

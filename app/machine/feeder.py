@@ -416,6 +416,17 @@ class Streamer:
             if capped is not None:
                 self.m.message.emit(f"feed override {self.m.run.feed_pct:g} % capped at {100 * capped:.0f} % "
                                     "here: the machine's speed, acceleration or jerk limit")
+        at_pause = job.pause is not None and consumed >= job.pause_serial
+        if job.spindle_locked is not None and job.overrides and not at_pause:
+            move = job.move_at(consumed)
+            if move is not None and 0 <= move < len(job.spindle_locked):
+                self.m.spindle_ctl.set_program_lock(bool(job.spindle_locked[move]))
+        off = job.executor.override_off_here
+        if off != job.override_off_reported:
+            job.override_off_reported = off
+            if off and job.overrides and self.m.run.feed_pct != 100.0:
+                self.m.message.emit(f"feed override {self.m.run.feed_pct:g} % not applied here: the program "
+                                    "turned it off (tapping, M49 or M50 P0) and runs its own feed")
         if snap.time_s - self.m.poller.tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
             self.m.poller.tracking_emit_t = snap.time_s
             self.tracking = self._tracking_from(snap, "")
@@ -457,6 +468,11 @@ class Streamer:
             self.m.prober.finish(job)
         elif kind == "input":                    # M66: read or waited for here, at rest
             self.m.waiter.at_pause(job, int(p.value), snap)
+        elif kind == "tapping":                  # a tap's overrides change here, at rest
+            nxt = p.move + 1
+            if job.spindle_locked is not None and job.overrides and nxt < len(job.spindle_locked):
+                self.m.spindle_ctl.set_program_lock(bool(job.spindle_locked[nxt]))
+            self.release(job)
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))
             self.release(job)
@@ -562,6 +578,7 @@ class Streamer:
             if job is None:
                 return None
             job.aborted = True
+            self.m.spindle_ctl.set_program_lock(False)
             self.m.prober.cancel()
             self.m.waiter.cancel()
             if self.m.worker is not None and not completed:

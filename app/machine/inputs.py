@@ -35,7 +35,7 @@ import numpy as np
 from app.machine.model import Activity, MachineState
 from planner.errors import PlannerError, ProgramError
 from planner.program import EventKind, InputRequest, ProbeRequest, ProbeResult, Program, WaitMode
-from planner.resume import program_from_moves
+from planner.resume import carry_overrides, program_from_moves
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -269,7 +269,8 @@ def _after_event(full: Program, kind: EventKind, index: int) -> Program | None:
         return None
     after = full.events[at].after_move
     first = after + 1
-    events = [replace(e, after_move=e.after_move - first) for e in full.events[at + 1:]]
+    events = carry_overrides(full, first, [replace(e, after_move=e.after_move - first)
+                                           for e in full.events[at + 1:]])
     start = full.moves[after].end if after >= 0 else full.start_position
     return program_from_moves(full, list(full.moves[first:]), events, start)
 

@@ -14,7 +14,7 @@ from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
 from planner.machine import MachineSpec
 from planner.meter import LimitMeter
 from planner.plan import Plan
-from planner.program import EventKind, ProbeResult, Program
+from planner.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, Program
 
 __all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
 
@@ -88,6 +88,10 @@ class Job:
         # (planned time, wait) of each spin-up of the spindle the run will wait for
         self.spin_ups: list[tuple[float, float]] = []
         self.cap_reported = False  # the operator was told the limits cap the feed override here
+        self.override_off_reported = False  # ... that the program turned the feed override off here
+        locks = plan.program.override_locks()
+        # moves the program runs with the spindle override off (None: none)
+        self.spindle_locked = None if locks is None else (locks & SPINDLE_OVERRIDE_OFF).astype(bool)
         self.origin: tuple[Program, int, float] | None = None
         # G38.x and M66: reads the whole program again with the probe results and the values of
         # the inputs (None: the job cannot), and those so far by index (None: not run in this job)
@@ -140,6 +144,11 @@ class Job:
         serial = consumed - 1
         m = self._mark_at(serial)
         return (m[1], m[2]) if m is not None else None
+
+    def move_at(self, consumed: int) -> int | None:
+        """The move of the set-point the drives reached."""
+        m = self._mark_at(consumed - 1)
+        return m[3] if m is not None else None
 
     def _mark_at(self, serial: int) -> tuple[int, int, float, int, float] | None:
         marks = self._marks

@@ -248,6 +248,9 @@ def _mdi_stands_alone(prog: Program, block: str) -> str:
     if any(tok in ("G41", "G42", "G41.1", "G42.1") for _, text in prog.modal for tok in text.split()):
         return ("cutter radius compensation (G41/G42) works across the moves of a program; an MDI "
                 "block stands alone, so it would end without its exit move: run it in a program")
+    if not prog.moves and any(e.kind is EventKind.OVERRIDES for e in prog.events):
+        return ("M48-M51 switch the overrides for the moves that follow them; an MDI block stands alone: "
+                "put the code in the block with the move (tapping cycles turn them off by themselves)")
     if prog.moves or prog.events:
         return ""
     try:

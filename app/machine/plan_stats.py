@@ -11,6 +11,7 @@ import numpy as np
 
 from planner.machine import MachineSpec
 from planner.plan import Plan
+from planner.program import FEED_OVERRIDE_OFF
 
 __all__ = ["BLOCK", "BlockStats"]
 
@@ -34,6 +35,9 @@ class BlockStats:
         self.v_feed, self.v_rapid = lim.v_max_mm_s, lim.rapid_mm_s
         self.a_path, self.j_path = lim.a_max_mm_s2, lim.j_max_mm_s3
         self.rapid_move = plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
+        # moves the program runs with the feed override off (tapping, M49, M50 P0): None if none
+        locks = plan.program.override_locks()
+        self.fixed_move = None if locks is None else (locks & FEED_OVERRIDE_OFF).astype(bool)
         self._chunks: Iterator = plan.iter_chunks(chunk_samples=BLOCK * 256)
         self._tail_q: np.ndarray | None = None
         self._tail_m: np.ndarray | None = None
@@ -43,6 +47,7 @@ class BlockStats:
         self.cols = {k: np.zeros(cap) for k in ("rv", "ra", "rj", "alpha", "beta", "gamma", "rjraw", "raraw")}
         self.has_rapid = np.zeros(cap, bool)
         self.has_feed = np.zeros(cap, bool)
+        self.has_fixed = np.zeros(cap, bool)   # a move of the block runs with the feed override off
         self.done = False
         self._carry_q = np.zeros((0, len(machine.axes)))
         self._carry_m = np.zeros(0, np.int64)
@@ -56,6 +61,7 @@ class BlockStats:
             self.cols[k] = np.concatenate([v, np.zeros(new - cap)])
         self.has_rapid = np.concatenate([self.has_rapid, np.zeros(new - cap, bool)])
         self.has_feed = np.concatenate([self.has_feed, np.zeros(new - cap, bool)])
+        self.has_fixed = np.concatenate([self.has_fixed, np.zeros(new - cap, bool)])
 
     def ensure(self, tau_s: float) -> None:
         """Compute blocks up to planned time tau_s (or the end)."""
@@ -138,6 +144,12 @@ class BlockStats:
             rr = rpf.reshape(nb, BLOCK)
             self.has_rapid[b0:b0 + nb] = rr.any(axis=1)
             self.has_feed[b0:b0 + nb] = (~rr).any(axis=1)
+        if self.fixed_move is not None and len(mm):
+            fx = self.fixed_move[np.clip(mm, 0, len(self.fixed_move) - 1)][sl]
+            pad = nb * BLOCK - len(fx)
+            fx = np.concatenate([fx, np.repeat(fx[-1:], pad)]) if pad > 0 and len(fx) else fx
+            if len(fx) == nb * BLOCK:
+                self.has_fixed[b0:b0 + nb] = fx.reshape(nb, BLOCK).any(axis=1)
         self.n_blocks = b0 + nb
         keep = max(end - 3, 0)
         return q[keep:], m[keep:]

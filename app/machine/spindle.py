@@ -57,13 +57,16 @@ class SpindleControl:
         self.m = m
         self.spindle = SpindleState()
         self.override_pct = 100.0
+        # the running program turned the spindle override off here (tapping, M49, M51 P0): the
+        # spindle turns at S whatever the knob says, and back at the knob once it turns it on
+        self.program_lock = False
 
     def apply_spindle(self, sp: SpindleState) -> None:
         rpm = min(abs(sp.rpm), self.m.config.controller.spindle_max_rpm)
         # rpm capped by the configuration, the override too (S x override never over the maximum)
         top = 100.0 * self.m.config.controller.spindle_max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
         sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm,
-                          override_pct=min(self.override_pct, top))
+                          override_pct=min(100.0 if self.program_lock else self.override_pct, top))
         if self.m.worker is not None:
             bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
             try:
@@ -77,6 +80,12 @@ class SpindleControl:
                     )
         self.spindle = sp
         self.m.spindleChanged.emit(sp)
+
+    def set_program_lock(self, locked: bool) -> None:
+        """The program turned the spindle override off (True) or on again from here."""
+        if locked != self.program_lock:
+            self.program_lock = locked
+            self.apply_spindle(self.spindle)
 
     def spin_up_s(self, new: SpindleState) -> float:
         """How long the motion waits after switching to ``new``: the configured spin-up time
@@ -93,7 +102,10 @@ class SpindleControl:
                 f"spindle override must be {OVERRIDE_MIN_PCT:g}-{OVERRIDE_MAX_PCT:g} %, got {p:g}")
         self.override_pct = p
         self.apply_spindle(self.spindle)
-        if self.spindle.override_pct < p:
+        if self.program_lock:
+            self.m.message.emit(f"spindle override {p:g} % not applied now: the program turned it off "
+                                "(tapping, M49 or M51 P0); it applies once the program turns it on")
+        elif self.spindle.override_pct < p:
             self.m.message.emit(f"spindle override {p:g} % capped at {self.spindle.override_pct:.0f} %: "
                                 f"the spindle's maximum is {self.m.config.controller.spindle_max_rpm:g} rpm")
         return self.m.states.ok("set_spindle_override")

@@ -119,7 +119,8 @@ def reduced_machine(machine: MachineSpec, budget: Budget) -> MachineSpec:
 @dataclass(frozen=True, slots=True)
 class PausePoint:
     """A planned full stop where tau halts: kind in "single_block", "pause", "optional_pause",
-    "tool_change", "dwell", "spindle", "end"; ``value`` dwell s / spindle rpm / tool."""
+    "tool_change", "dwell", "spindle", "tapping", "end", ...; ``value`` dwell s / spindle rpm /
+    tool / the overrides from here (tapping)."""
 
     tau_s: float
     kind: str
@@ -185,6 +186,7 @@ class TimeScaledExecutor:
         self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
         self._target_cache = 1.0
         self.capped_to: float | None = None  # the time scale the limits allow, when below the override
+        self.override_off_here = False  # the program runs its own feed here (tapping, M49, M50 P0)
         self.sigma_start = True  # at a standstill of the plan (start or pause point)
         # hold / stop: the time-optimal stop along the path (planner.stopping) when it keeps
         # every limit, else sigma -> 0 by the braking law above
@@ -285,12 +287,22 @@ class TimeScaledExecutor:
         cap = np.maximum(np.nan_to_num(cap, nan=SIGMA_MAX, posinf=SIGMA_MAX), 1.0)
         hr = st.has_rapid[w2]
         hf = st.has_feed[w2]
-        tgt = np.minimum(np.where(hf, self.feed_override, SIGMA_MAX),
+        # where the program turned the feed override off (tapping, M49, M50 P0) the feed is its own
+        feed = np.where(st.has_fixed[w2], 1.0, self.feed_override)
+        tgt = np.minimum(np.where(hf, feed, SIGMA_MAX),
                          np.where(hr, self.rapid_override, SIGMA_MAX))
         tgt = np.where(hr | hf, tgt, self.feed_override)
         x = np.minimum(cap, tgt)
         bt = self.ts * BLOCK
         start_tau = (np.arange(w2.start, w2.stop) * bt)
+        nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
+        if nxt is not None:
+            # the plan stands at a pause point, and sigma starts again from the target there:
+            # nothing after it is braked for (a tap at 100 % runs so to its end, its exact stop)
+            x = np.where(start_tau > nxt.tau_s, SIGMA_MAX, x)
+        if self.sigma_start:
+            # starting from a standstill of the plan: what the blocks behind it ran at is past
+            x = np.where(start_tau + bt <= self.tau, SIGMA_MAX, x)
         dist = start_tau - self.tau
         sig = max(self.sigma, 1e-3, 0.0 if self.hold else min(float(x.max()), SIGMA_MAX))
         # The highest sigma at each block from which every cap ahead can still be met: braking at
@@ -318,7 +330,10 @@ class TimeScaledExecutor:
         self._target_cache = float(env[ahead].min()) if ahead.any() else float(env[0])
         binding = ahead
         # what the operator asked for and the limits refuse here (reported, not an error)
-        asked = self.feed_override if hf[binding].any() or not hr[binding].any() else self.rapid_override
+        fixed = bool(st.has_fixed[w2][binding].any())
+        self.override_off_here = fixed
+        asked = (1.0 if fixed else self.feed_override) if hf[binding].any() or not hr[binding].any() \
+            else self.rapid_override
         self.capped_to = self._target_cache if not self.hold and self._target_cache < asked - 1e-3 \
             and self._target_cache >= 1.0 else None
 
@@ -498,7 +513,8 @@ def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[Pa
              EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
              EventKind.SPINDLE: "spindle", EventKind.END: "end", EventKind.TOOL_SET: "tool_set",
              EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data",
-             EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe", EventKind.INPUT: "input"}
+             EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe", EventKind.INPUT: "input",
+             EventKind.TAPPING: "tapping"}
     extra: list[PausePoint] = []
     for ev in prog.events:
         if ev.kind not in kinds or ev.after_move >= n:

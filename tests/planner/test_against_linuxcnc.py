@@ -56,7 +56,7 @@ def programs(draw) -> str:
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
          "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle",
-         "polar_cycle", "m98", "curve", "diameter"]),
+         "polar_cycle", "m98", "curve", "diameter", "overrides"]),
         min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
@@ -286,6 +286,15 @@ def programs(draw) -> str:
                 continue
             out.append(f"G7 G1 X{_n(d)}\nG91 X{_n(dx)}\nG90 G92 X{_n(d)}\nG1 Y{_n(y + 1)}\nG92.1\nG8")
             x, y = d / 2 + dx / 2, y + 1
+        elif kind == "overrides":
+            # M48-M53 around a move: the moves read as LinuxCNC reads them (the overrides
+            # themselves are checked in test_override_codes)
+            nx = draw(val)
+            if nx == x:
+                continue
+            code = draw(st.sampled_from(["M49", "M50 P0", "M51 P0", "M50", "M52 P0", "M53 P1"]))
+            out.append(f"{code}\nG1 X{_n(nx)}\nM48")
+            x = nx
         elif kind == "absarc":
             ex, ey = draw(val), draw(val)
             cx, cy = (x + ex) / 2.0, (y + ey) / 2.0

@@ -17,6 +17,7 @@ from planner.errors import ProgramError
 from planner.interpreter import PERSISTENT_PARAMETERS, parse_program
 from planner.machine import MachineSpec
 from planner.program import EventKind, Program
+from tools.linuxcnc_oracle import RS274, refused_alike
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 
@@ -184,3 +185,18 @@ def test_linuxcnc_tool_data_offsets_and_position_parameters(name: str, count: in
     assert len(want) == count
     got = [re.sub(" {2,}", " ", e.message) for e in program.events if e.kind is EventKind.MESSAGE]
     assert got == want
+
+
+@pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs it as root)")
+@pytest.mark.parametrize("text", [
+    "G21 G90\nG43.1 @2\nG1 X1 F100\nM2\n",
+    "G21 G90\nG92 @2\nM2\n",
+    "G21 G90\nG28 @2 ^30\nM2\n",
+    "G21 G90\nG10 L20 P1 @2\nM2\n",
+    "G21 G90\nG52 @2\nM2\n",
+    "G21 G90\n@2\nM2\n",
+])
+def test_polar_words_move_or_are_refused_as_linuxcnc_refuses_them(text: str) -> None:
+    # the codes whose axis words are data (offsets, G28, G43.1) take no polar words
+    theirs, ours = refused_alike(text)
+    assert theirs == ours
