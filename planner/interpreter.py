@@ -130,6 +130,9 @@ _G_UNSUPPORTED = {
     150: "G15 polar coordinates",
     160: "G16 polar coordinates",
     680: "G68 coordinate rotation", 690: "G69 coordinate rotation",
+    171: "G17.1 selects the UV plane, of U and V axes this machine does not have",
+    181: "G18.1 selects the WU plane, of U and W axes this machine does not have",
+    191: "G19.1 selects the VW plane, of V and W axes this machine does not have",
 }
 _SHOWN_GROUPS = frozenset({2, 3, 6, 7, 8, 12, 13, 15})  # the modal groups the panel shows
 #: group 0 codes whose axis words are data, not a motion target
@@ -155,7 +158,8 @@ _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 
             **dict.fromkeys(range(100, 200), 10)}
 _M_UNSUPPORTED = {19: "M19 orients the spindle, which this machine's spindle cannot",
                   67: "M67 sets an analog output synchronised with motion; there are no analog outputs",
-                  68: "M68 sets an analog output; there are no analog outputs"}
+                  68: "M68 sets an analog output; there are no analog outputs",
+                  60: "M60 exchanges pallets and pauses; this machine has no pallet shuttle"}
 _WORD_LETTERS = set("FSTPQRIJKDHL")
 _AXIS_LETTERS = "XYZABC"
 # plane code -> (name, first, second, normal, centre letter of first, of second, letter not allowed)

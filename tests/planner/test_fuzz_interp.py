@@ -162,6 +162,17 @@ token = st.one_of(
             "G5.2 P2",
             "X1 Y3 P0.5",
             "G5.3",
+            # lathe diameter mode, the overrides' codes, a tap, the feed of a billion
+            "G7",
+            "G8",
+            "M48",
+            "M49",
+            "M50 P0",
+            "M51",
+            "M52 P0",
+            "M53 P1",
+            "G84 Z-2 R1",
+            "F1000000000",
         ]
     ),
 )

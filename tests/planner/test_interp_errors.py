@@ -58,6 +58,8 @@ def errors_of(text: str, **kw):
         ("G1.5 X1", "unknown G code G1.5", 1, 1),
         ("M98 P3", "M98 P3: no O3 in this program", 1, 1),
         ("M67 E1 Q1", "M67 is not supported", 1, 1),
+        ("M60", "M60 is not supported (M60 exchanges pallets and pauses; this machine has no pallet", 1, 1),
+        ("G0 G18.1 X1", "G18.1 is not supported (G18.1 selects the WU plane, of U and W axes", 1, 4),
         ("M1.5", "unknown M code", 1, 1),
         ("M3 M5", "M3 and M5 are in the same modal group", 1, 4),
         ("M0 M2", "M0 and M2 are in the same modal group", 1, 4),
