@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -61,12 +62,15 @@ class SpindleControl:
         # spindle turns at S whatever the knob says, and back at the knob once it turns it on
         self.program_lock = False
 
+    def _override_for(self, rpm: float) -> float:
+        """The override the spindle takes at ``rpm``: the knob's, or 100 % where the program
+        turned it off; capped so S x override never exceeds the maximum."""
+        top = 100.0 * self.m.config.controller.spindle_max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
+        return min(100.0 if self.program_lock else self.override_pct, top)
+
     def apply_spindle(self, sp: SpindleState) -> None:
         rpm = min(abs(sp.rpm), self.m.config.controller.spindle_max_rpm)
-        # rpm capped by the configuration, the override too (S x override never over the maximum)
-        top = 100.0 * self.m.config.controller.spindle_max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
-        sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm,
-                          override_pct=min(100.0 if self.program_lock else self.override_pct, top))
+        sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm, override_pct=self._override_for(rpm))
         if self.m.worker is not None:
             bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
             try:
@@ -82,10 +86,12 @@ class SpindleControl:
         self.m.spindleChanged.emit(sp)
 
     def set_program_lock(self, locked: bool) -> None:
-        """The program turned the spindle override off (True) or on again from here."""
+        """The program turned the spindle override off (True) or on again from here: the speed
+        follows; the outputs (direction) stay as they are."""
         if locked != self.program_lock:
             self.program_lock = locked
-            self.apply_spindle(self.spindle)
+            self.spindle = replace(self.spindle, override_pct=self._override_for(self.spindle.rpm))
+            self.m.spindleChanged.emit(self.spindle)
 
     def spin_up_s(self, new: SpindleState) -> float:
         """How long the motion waits after switching to ``new``: the configured spin-up time
