@@ -86,7 +86,8 @@ _CURVE_MAX_RADIUS_MM = 1e6
 
 # Modal groups of the supported G codes (code * 10 as int), RS274/NGC table 4.
 _G_GROUP = {
-    40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0, 921: 0, 922: 0, 923: 0,
+    40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0,
+    921: 16, 922: 16, 923: 16,     # LinuxCNC 2.9: a group of their own, after group 0's code
     0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1, 331: 1,
     50: 1, 51: 1, 52: 1, 53: 0,
     170: 2, 180: 2, 190: 2,
@@ -1826,12 +1827,16 @@ class _Interpreter:
         # ---- offsets and stored positions (RS274/NGC order: after the modes, before motion)
         if g0 in (281, 301):
             self.comp_refuses("store the G28/G30 position", _gname(g0))
-        elif g0 in (520, 920, 921, 922, 923):
+        elif g0 in (520, 920):
             self.comp_refuses("change the axis offsets (G52, G92)", _gname(g0))
         elif g0 in (280, 300):
             self.comp_refuses(f"use {_gname(g0)}", _gname(g0))
-        if g0 in (100, 281, 301, 520, 920, 921, 922, 923):
+        if g0 in (100, 281, 301, 520, 920):
             self.data_code(g0, vals, axis_words, scale, line_no)
+        g16 = groups.get(16)
+        if g16 is not None:
+            self.comp_refuses("change the axis offsets (G52, G92)", _gname(g16))
+            self.data_code(g16, vals, [], scale, line_no)
         if g0 == 53:
             self.nurbs_end(g1, previous_motion, line_no)
         elif self.nurbs is not None and g1 is not None and g1 != 52:

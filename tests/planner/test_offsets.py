@@ -200,3 +200,19 @@ def test_polar_words_move_or_are_refused_as_linuxcnc_refuses_them(text: str) -> 
     # the codes whose axis words are data (offsets, G28, G43.1) take no polar words
     theirs, ours = refused_alike(text)
     assert theirs == ours
+
+
+@pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs it as root)")
+@pytest.mark.parametrize("block", ["G92.1 G92 X1", "G92.2 G10 L2 P1 X1", "G92.3 G28", "G52 X1 G92.1",
+                                   "G92 X3\nG92.2 G52 Y2", "G92 X3\nG92.2\nG92.3 G10 L20 P1 Y4"])
+def test_g92_1_to_g92_3_go_beside_a_code_of_group_0_after_it(block: str) -> None:
+    # LinuxCNC 2.9 has them in a group of their own, run after G10, G28, G52 and G92
+    from tools.linuxcnc_oracle import project_motion, run_linuxcnc
+
+    text = f"G21 G90 F600\nG0 X1 Y1 Z1\n{block}\nG1 X2 Y3\nG0 X5 Y-1\nM2\n"
+    theirs = run_linuxcnc(text)
+    assert not theirs.error, theirs.error
+    ours = project_motion(parse_program(text))
+    assert [c for c, _ in ours] == [c for c, _ in theirs.motion]
+    for (_, a), (_, b) in zip(ours, theirs.motion, strict=True):
+        assert a == pytest.approx(b, abs=0.003)
