@@ -116,3 +116,49 @@ def test_mdi_takes_m48_to_m51_only_with_a_move(ctl) -> None:
     r = ctl.mdi("M49")
     assert not r and "put the code in the block with the move" in r.reason
     assert ctl.mdi("M49 G91 G1 X1 F300")
+
+
+def test_a_tap_planned_again_from_a_hold_inside_it_still_runs_at_the_programmed_feed(qapp, config_path,
+                                                                                    state_dir) -> None:
+    """Held halfway into the hole at 150 % feed override, single block switched on (the rest
+    of the program is planned again from the point it stands at), then resumed: the rest of
+    the tap keeps the overrides off, though what turned them off lies behind that point."""
+    from app.machine.model import MachineState
+    from tests.machine.conftest import make_controller, run_to_idle
+
+    ctl = make_controller(config_path, state_dir)
+    try:
+        text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
+        assert ctl.load_program(text, "tap.ngc", wait=True)
+        assert ctl.set_feed_override(150)
+        assert ctl.cycle_start()
+        assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -8.0, 20)
+        assert ctl.feed_hold()
+        assert ctl.run_until(lambda: ctl.state is MachineState.HOLD and ctl.stream.job.executor.standing
+                             and ctl.stream.consumed() >= ctl.stream.pushed_total, 10)
+        held_at = ctl.stream.job
+        assert ctl.set_single_block(True)
+        ctl.loader.wait_run_plan(None)
+        assert ctl.resume()
+        ctl.advance(0.05)
+        assert ctl.stream.job is not held_at                  # the rest, planned again from the hold
+        sigmas: list[float] = []
+        for _ in range(2000):
+            if ctl.state is MachineState.IDLE:
+                break
+            if ctl.state is MachineState.HOLD:                # single block: each block's end
+                assert ctl.cycle_start()
+            ctl.advance(0.02)
+            job = ctl.stream.job
+            if job is None:
+                continue
+            move = job.move_at(ctl.stream.consumed())
+            tap_feed = move is not None and job.plan.program.moves[move].line == 3 \
+                and job.plan.program.moves[move].kind.name == "LINE"
+            if tap_feed and job.executor.sigma > 0.0:
+                sigmas.append(job.executor.sigma)
+        run_to_idle(ctl)
+        assert len(sigmas) > 20                               # the rest of the tap, in and out
+        assert max(sigmas) <= 1.0 + 1e-12
+    finally:
+        ctl.shutdown()
