@@ -137,6 +137,9 @@ class MachineController(QObject):
     progressChanged = Signal(float, float)  # (fraction 0..1, remaining time s at current override)
     speedChanged = Signal(float)  # commanded path speed mm/s
     overridesChanged = Signal(float, float)  # (feed %, rapid %)
+    # what the feed override does where the run is, when not what the knob says ("runs 100 %:
+    # program" where a tap or M49 turned it off, "runs 120 %: limits" where they cap it; "")
+    feedOverrideNote = Signal(str)
     modesChanged = Signal(bool, bool)  # (single block, optional stop)
     alarmsChanged = Signal(object)  # tuple[Alarm, ...] (active and history)
     homedChanged = Signal(object)  # tuple[bool, ...] per axis

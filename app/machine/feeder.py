@@ -94,6 +94,7 @@ class Streamer:
         self.pushed_total = 0
         self.line = 0
         self.progress = (0.0, 0.0)
+        self.feed_note = ""          # feedOverrideNote as last emitted
         self.speed = 0.0
         self.tracking = TrackingReport(axes=m.config.axes)
         self.last_summary: RunSummary | None = None
@@ -421,12 +422,14 @@ class Streamer:
             move = job.move_at(consumed)
             if move is not None and 0 <= move < len(job.spindle_locked):
                 self.m.spindle_ctl.set_program_lock(bool(job.spindle_locked[move]))
-        off = job.executor.override_off_here
+        off = job.executor.override_off_here and job.overrides and self.m.run.feed_pct != 100.0
         if off != job.override_off_reported:
             job.override_off_reported = off
-            if off and job.overrides and self.m.run.feed_pct != 100.0:
+            if off:
                 self.m.message.emit(f"feed override {self.m.run.feed_pct:g} % not applied here: the program "
                                     "turned it off (tapping, M49 or M50 P0) and runs its own feed")
+        self.set_feed_note("runs 100 %: program" if off else
+                           f"runs {100 * capped:.0f} %: limits" if capped is not None else "")
         if snap.time_s - self.m.poller.tracking_emit_t >= 1.0 and job.kind is Activity.PROGRAM:
             self.m.poller.tracking_emit_t = snap.time_s
             self.tracking = self._tracking_from(snap, "")
@@ -441,6 +444,11 @@ class Streamer:
             return
         if job.stopping and job.executor.standing and all_done:
             self._finish_stop(job)
+
+    def set_feed_note(self, note: str) -> None:
+        if note != self.feed_note:
+            self.feed_note = note
+            self.m.feedOverrideNote.emit(note)
 
     def _at_pause(self, job: Job, p: PausePoint, snap: Any) -> None:
         kind = p.kind
@@ -579,6 +587,7 @@ class Streamer:
                 return None
             job.aborted = True
             self.m.spindle_ctl.set_program_lock(False)
+            self.set_feed_note("")
             self.m.prober.cancel()
             self.m.waiter.cancel()
             if self.m.worker is not None and not completed:

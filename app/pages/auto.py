@@ -154,6 +154,7 @@ class AutoPage(QWidget):
         c.progressChanged.connect(self._on_progress)
         c.speedChanged.connect(self._on_speed)
         c.overridesChanged.connect(self._on_overrides)
+        c.feedOverrideNote.connect(self.feed.set_note)
         c.modesChanged.connect(self._on_modes)
         c.spindleChanged.connect(self._on_spindle)
         c.toolsChanged.connect(self._on_tools)

@@ -45,12 +45,22 @@ class OverrideControl(QWidget):
         row.addWidget(self.buttons["100%"])
         layout.addLayout(row)
         self._quiet = False
+        self._note = ""
+
+    def _show(self, value: int) -> None:
+        self.value_label.setText(f"{value} %" + (f" ({self._note})" if self._note else ""))
+
+    def set_note(self, note: str) -> None:
+        """What the override does here when not what it is set to ("runs 100 %: program");
+        "" when it is."""
+        self._note = note
+        self._show(self.slider.value())
 
     def _step(self, delta: int) -> None:
         self.slider.setValue(100 if delta == 0 else self.slider.value() + delta)
 
     def _on_slider(self, value: int) -> None:
-        self.value_label.setText(f"{value} %")
+        self._show(value)
         if not self._quiet:
             self.changed.emit(float(value))
 
@@ -58,7 +68,7 @@ class OverrideControl(QWidget):
         """Show the controller's value without echoing it back."""
         self._quiet = True
         self.slider.setValue(round(percent))
-        self.value_label.setText(f"{round(percent)} %")
+        self._show(round(percent))
         self._quiet = False
 
     def value(self) -> float:

@@ -50,6 +50,7 @@ class FakeController(QObject):
     progressChanged = Signal(float, float)
     speedChanged = Signal(float)
     overridesChanged = Signal(float, float)
+    feedOverrideNote = Signal(str)
     modesChanged = Signal(bool, bool)
     alarmsChanged = Signal(object)
     homedChanged = Signal(object)

@@ -385,6 +385,19 @@ def test_auto_page_shows_spindle_feed_tool_modal_codes_and_the_prompt(fake_windo
     assert auto.progress.value() == 0 and "finished" not in auto.info_label.text()
 
 
+def test_auto_page_shows_what_the_feed_override_does_where_it_is_not_what_it_is_set_to(
+        fake_window, fake_controller) -> None:
+    auto = fake_window.page("auto")
+    fake_controller.set_feed_override(150)
+    assert auto.feed.value_label.text() == "150 %"
+    fake_controller.feedOverrideNote.emit("runs 100 %: program")      # a tap, M49
+    assert auto.feed.value_label.text() == "150 % (runs 100 %: program)"
+    auto.feed.buttons["+10"].click()                                # the knob still moves
+    assert auto.feed.value_label.text() == "160 % (runs 100 %: program)"
+    fake_controller.feedOverrideNote.emit("")
+    assert auto.feed.value_label.text() == "160 %"
+
+
 def test_auto_page_backplot_follows_the_run(fake_window, fake_controller) -> None:
     auto = fake_window.page("auto")
     fake_controller.load_program(DEMO_PROGRAM, wait=True)

@@ -84,6 +84,15 @@ def test_holding_a_tap_still_stops_it(machine) -> None:
     assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
 
 
+def test_m53_p0_leaves_the_feed_hold_working(machine) -> None:
+    # M53 switches LinuxCNC's feed stop input, which this machine does not have: the panel's
+    # feed hold (LinuxCNC's pause) stops the motion whatever a program says
+    text = "G21 G90 G0 X0 Y0 Z0\nM53 P0\nG1 X80 F900\nM2\n"
+    prog, plan, ex, q, s, mv, sig, tau = run(machine, text, {200: ("hold", 1.0), 1200: ("hold", 0.0)})
+    assert np.all(sig[900:1200] == 0.0)                        # held, standing on the path
+    np.testing.assert_array_equal(q[-1], prog.end_position)
+
+
 def test_the_machine_taps_at_the_programmed_speed_and_says_why(qapp, config_path, state_dir) -> None:
     """A run at 150 % feed and 120 % spindle override: the spindle turns at S while it taps (the
     reversal at the bottom too), the operator is told the feed override does not apply there,
@@ -95,8 +104,10 @@ def test_the_machine_taps_at_the_programmed_speed_and_says_why(qapp, config_path
     try:
         spindles: list[SpindleState] = []
         messages: list[str] = []
+        notes: list[str] = []
         ctl.spindleChanged.connect(spindles.append)
         ctl.message.connect(messages.append)
+        ctl.feedOverrideNote.connect(notes.append)
         text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-6 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
         assert ctl.load_program(text, "tap.ngc", wait=True)
         assert ctl.set_feed_override(150)
@@ -108,6 +119,8 @@ def test_the_machine_taps_at_the_programmed_speed_and_says_why(qapp, config_path
         # forward, out reversed, forward again at its top; 120 % once the tap is done
         assert turning == [(1, 1200), (1, 1000), (-1, 1000), (1, 1000), (1, 1200)]
         assert any("not applied here: the program turned it off" in m for m in messages)
+        # the Auto page's feed override says so while the tap runs, and nothing once it is done
+        assert "runs 100 %: program" in notes and notes[-1] == ""
     finally:
         ctl.shutdown()
 
