@@ -183,10 +183,12 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
         ))
     names = [a.name for a in axes]
     if len(set(names)) != len(names):
-        raise loc.fail(("axes",), f"axis names must be unique, got {names}")
+        j = next(k for k in range(len(names)) if names[k] in names[:k])     # the second one's line
+        raise loc.fail(("axes", j, "name"), f"axis names must be unique, got {names}")
     positions = [a.drive_position for a in axes]
     if len(set(positions)) != len(positions):
-        raise loc.fail(("axes",), f"drive positions must be unique, got {positions}")
+        j = next(k for k in range(len(positions)) if positions[k] in positions[:k])
+        raise loc.fail(("axes", j, "drive_position"), f"drive positions must be unique, got {positions}")
     lim = valid["limits"]
     limits = PathLimits(v_max_mm_s=lim["v_max_mm_s"], a_max_mm_s2=lim["a_max_mm_s2"],
                         j_max_mm_s3=lim["j_max_mm_s3"], rapid_mm_s=lim["rapid_mm_s"])

@@ -59,6 +59,8 @@ def test_save_is_atomic_and_keeps_the_previous_file(config_path: Path) -> None:
     (lambda t: re.sub(r"(\[\[inputs\]\][^\n]*\nnumber = 0\ndrive = )0", r"\g<1>4", t),
      ["inputs", "drive", "axis count 3"]),
     (lambda t: t + "\n[[inputs]]\nnumber = 0\ndrive = 1\nbit = 20\n", ["inputs", "input 0 is defined twice"]),
+    # a copied axis left with its name: the copy's line is named
+    (lambda t: t.replace('name = "Y"', 'name = "X"', 1), ["axes[1].name", "must be unique"]),
 ])
 def test_invalid_values_are_named(config_path: Path, edit, words) -> None:
     cfg = load_config(config_path)
