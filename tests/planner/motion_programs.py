@@ -127,8 +127,10 @@ def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0) -> str:
     plane = "G17"
     length = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
     for _ in range(draw(st.integers(1, max_blocks))):
-        kind = draw(st.sampled_from(["line", "tiny", "collinear", "rapid", "arc", "arc", "curve", "event"]))
-        feed = draw(st.sampled_from(["", "", " F300", " F1200", " F3000"]))
+        kind = draw(st.sampled_from(["line", "tiny", "collinear", "rapid", "arc", "arc", "curve", "event",
+                                     "cycle"]))
+        # F1e9: "as fast as the machine goes", held to its limits
+        feed = draw(st.sampled_from(["", "", " F300", " F1200", " F3000", " F1000000000"]))
         if kind in ("line", "tiny", "collinear", "rapid"):
             step = np.array([draw(length), draw(length), draw(length)])
             if kind == "tiny":
@@ -184,6 +186,20 @@ def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0) -> str:
                 end = points[-1]
             plane = "G17"
             pos = np.array([end[0], end[1], pos[2]])
+        elif kind == "cycle":
+            # a drilling, pecking or tapping cycle in G17 from here: R above, the bottom below;
+            # the taps with their spindle on, at their own feed
+            code = draw(st.sampled_from(["G81", "G82 P0.05", "G83 Q", "G73 Q", "G84", "G85", "G89 P0.05"]))
+            depth = draw(st.floats(0.5, 10.0)) * scale
+            r_up = draw(st.floats(0.2, 3.0)) * scale
+            hole = pos[:2] + np.array([draw(length), draw(length)]) * scale
+            if code.endswith("Q"):
+                code += _fmt(depth / draw(st.integers(1, 6)))
+            spindle = "S1000 M03\n" if code == "G84" else ""
+            out.append(f"{spindle}G17 G98 {code} X{_fmt(hole[0])} Y{_fmt(hole[1])} Z{_fmt(pos[2] - depth)} "
+                       f"R{_fmt(pos[2] + r_up)}{feed or ' F600'}\nG80")
+            plane = "G17"
+            pos = np.array([hole[0], hole[1], pos[2] + r_up])
         else:
             out.append(draw(st.sampled_from(["G04 P0.05", "M00", "M01", "G61", "G64", "S5000 M03", "M05"])))
     out.append("M30")
