@@ -56,6 +56,7 @@ class MachineApi(Protocol):
     progressChanged: SignalInstance  # (fraction 0..1, remaining time s at current override)
     speedChanged: SignalInstance  # commanded path speed mm/s
     overridesChanged: SignalInstance  # (feed %, rapid %)
+    feedOverrideNote: SignalInstance  # what the feed override does here when not its value ("" when it is)
     modesChanged: SignalInstance  # (single block, optional stop)
     alarmsChanged: SignalInstance  # tuple[Alarm, ...] (active and history)
     homedChanged: SignalInstance  # tuple[bool, ...] per axis
