@@ -218,6 +218,24 @@ def _compact_or_none(raw: str) -> str | None:
         return None
 
 
+def _through_closing_percent(lines: list[str]) -> int:
+    """How many lines the program has: up to and with its closing '%' (the first '%' line after
+    content or after an opening '%'), else all: LinuxCNC ignores what follows it, subroutines
+    defined there included."""
+    started = False
+    for i, raw in enumerate(lines):
+        s = raw.strip()
+        if not s:
+            continue
+        if s[0] == "%" and (s == "%" or _compact_or_none(s) == "%"):
+            if started:
+                return i + 1
+            started = True
+        elif not started and _compact_or_none(s) != "":
+            started = True
+    return len(lines)
+
+
 def _gname(code10: int) -> str:
     return f"G{code10 // 10}" if code10 % 10 == 0 else f"G{code10 // 10}.{code10 % 10}"
 
@@ -487,6 +505,7 @@ class _Interpreter:
         where to return, the caller's #1-#30 and local named parameters). A subroutine not in
         the file is read from ``<name>.ngc`` in the subroutine folders. Moves made in another
         file carry the line of the call in the program, so the panel shows where it is."""
+        lines = lines[:_through_closing_percent(lines)]   # LinuxCNC ignores what follows it
         try:
             main = scan(lines)
         except StructureError as e:

@@ -424,3 +424,16 @@ def test_an_abort_comment_ends_the_program_with_its_text() -> None:
     (err,) = ei.value.errors
     assert err.line == 6 and err.message.endswith("MixedCase param42=20.000000 named=4711.000000")
     assert len(read(text.replace("eq 20", "eq 200")).moves) == 99      # X0 is where it stands
+
+
+def test_what_follows_the_closing_percent_is_not_read_subroutines_included() -> None:
+    # LinuxCNC's own m98m99 test-illegal-sub-after-percent: a sub defined after the closing
+    # '%' is not there for the call
+    text = "%\nG21 G0 X1 Y2\no2 call\n%\no2 sub\nG0 Z3\no2 endsub\n"
+    with pytest.raises(ProgramError) as info:
+        parse_program(text)
+    err = info.value.errors[0]
+    assert (err.line, err.col) == (3, 1) and "no o2 sub" in err.message
+    # before the closing '%' it is
+    p = parse_program("%\no2 sub\nG0 Z3\no2 endsub\nG21 G0 X1 Y2\no2 call\n%\no3 sub\no3 endsub\n")
+    assert [m.end.tolist() for m in p.moves] == [[1.0, 2.0, 0.0], [1.0, 2.0, 3.0]]
