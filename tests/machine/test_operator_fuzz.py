@@ -1,6 +1,7 @@
 """An operator who presses anything at any time: random sequences of cycle start, hold,
-resume, stop, reset, E-stop and its release, overrides, single block and run from line, at
-random moments of a program with arcs, a dwell, a tap, M49/M48 and M0, on the simulated
+resume, stop, reset, E-stop and its release, overrides, single block, run from line, MDI,
+jog steps and the spindle by hand, at random moments of a program with arcs, a dwell, a tap,
+M49/M48 and M0, on the simulated
 drives. Whatever happens: every command is done or refused with a reason, nothing escapes,
 no set-point the drives received exceeds a limit, the spindle is off once a stop, a reset
 or an E-stop has brought the axes to rest, and the machine ends idle or in E-stop."""
@@ -40,6 +41,10 @@ ACTIONS = st.one_of(
     st.tuples(st.just("feed"), st.sampled_from([0, 10, 50, 100, 150, 200])),
     st.tuples(st.just("spindle"), st.sampled_from([50, 100, 150])),
     st.tuples(st.just("from_line"), st.integers(1, 15)),
+    # between runs, at a hold or a stop: MDI, a jog step, the spindle by hand
+    st.tuples(st.just("mdi"), st.sampled_from(["G91 G1 X2 F600", "G0 Z6", "M3 S3000", "M5", "G91 G0 Y-1"])),
+    st.tuples(st.just("jog"), st.sampled_from(["X", "Y", "Z"])),
+    st.sampled_from(["spindle_on", "spindle_off"]),
 )
 DELAYS_S = st.sampled_from([0.0, 0.01, 0.05, 0.2, 0.6, 1.5])
 STEPS = st.lists(st.tuples(DELAYS_S, ACTIONS), min_size=1, max_size=12)
@@ -48,11 +53,14 @@ STEPS = st.lists(st.tuples(DELAYS_S, ACTIONS), min_size=1, max_size=12)
 def act(ctl, action) -> object:
     if isinstance(action, tuple):
         what, value = action
+        if what == "jog":
+            return ctl.jog_increment(value, 0.5)
         return {"feed": ctl.set_feed_override, "spindle": ctl.set_spindle_override,
-                "from_line": ctl.run_from_line}[what](value)
+                "from_line": ctl.run_from_line, "mdi": ctl.mdi}[what](value)
     return {"cycle_start": ctl.cycle_start, "hold": ctl.feed_hold, "resume": ctl.resume, "stop": ctl.stop,
             "reset": ctl.reset, "estop": ctl.estop, "release": ctl.estop_release,
             "single_on": lambda: ctl.set_single_block(True),
+            "spindle_on": ctl.spindle_on, "spindle_off": ctl.spindle_off,
             "single_off": lambda: ctl.set_single_block(False)}[action]()
 
 
