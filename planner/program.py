@@ -14,6 +14,7 @@ positive sweep is counter-clockwise (G03) seen from the positive end of the norm
 from __future__ import annotations
 
 import enum
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -428,9 +429,11 @@ class Program:
     # blending)
     splines: tuple[Curve, ...] = ()
 
+    @functools.cached_property
     def override_locks(self) -> np.ndarray | None:
         """Per move, the OVERRIDES bits in force for it (``FEED_OVERRIDE_OFF``,
-        ``SPINDLE_OVERRIDE_OFF``); None when the program never turns an override off."""
+        ``SPINDLE_OVERRIDE_OFF``); None when the program never turns an override off. Made
+        once: the run's time scale and its spindle both read it."""
         changes = [(e.after_move + 1, int(e.value)) for e in self.events
                    if e.kind in (EventKind.OVERRIDES, EventKind.TAPPING)]
         if not any(bits for _, bits in changes):

@@ -156,7 +156,7 @@ def carry_overrides(program: Program, first_move: int, events: list[Event]) -> l
     """``events`` (of the moves from ``first_move`` on) with the overrides in force for that
     move put first: a restart inside a tap or after M49 keeps the overrides off, though the
     event that turned them off comes before it."""
-    locks = program.override_locks()
+    locks = program.override_locks
     if locks is None or not 0 <= first_move < len(locks) or not locks[first_move]:
         return events
     bits = int(locks[first_move])

@@ -417,11 +417,8 @@ class Streamer:
             if capped is not None:
                 self.m.message.emit(f"feed override {self.m.run.feed_pct:g} % capped at {100 * capped:.0f} % "
                                     "here: the machine's speed, acceleration or jerk limit")
-        at_pause = job.pause is not None and consumed >= job.pause_serial
-        if job.spindle_locked is not None and job.overrides and not at_pause:
-            move = job.move_at(consumed)
-            if move is not None and 0 <= move < len(job.spindle_locked):
-                self.m.spindle_ctl.set_program_lock(bool(job.spindle_locked[move]))
+        if job.pause is None or consumed < job.pause_serial:    # a pause point sets it itself
+            self._spindle_lock_at(job, job.move_at(consumed))
         off = job.executor.override_off_here and job.overrides and self.m.run.feed_pct != 100.0
         if off != job.override_off_reported:
             job.override_off_reported = off
@@ -444,6 +441,12 @@ class Streamer:
             return
         if job.stopping and job.executor.standing and all_done:
             self._finish_stop(job)
+
+    def _spindle_lock_at(self, job: Job, move: int | None) -> None:
+        """The spindle override as the program wants it for ``move`` (off in a tap, after M49)."""
+        locked = job.spindle_locked
+        if locked is not None and job.overrides and move is not None and 0 <= move < len(locked):
+            self.m.spindle_ctl.set_program_lock(bool(locked[move]))
 
     def set_feed_note(self, note: str) -> None:
         if note != self.feed_note:
@@ -477,9 +480,7 @@ class Streamer:
         elif kind == "input":                    # M66: read or waited for here, at rest
             self.m.waiter.at_pause(job, int(p.value), snap)
         elif kind == "tapping":                  # a tap's overrides change here, at rest
-            nxt = p.move + 1
-            if job.spindle_locked is not None and job.overrides and nxt < len(job.spindle_locked):
-                self.m.spindle_ctl.set_program_lock(bool(job.spindle_locked[nxt]))
+            self._spindle_lock_at(job, p.move + 1)
             self.release(job)
         elif kind == "tool_set":                 # M61 Q: the program says which tool is in
             self.m.tools.loaded_by_program(int(p.value))

@@ -89,7 +89,7 @@ class Job:
         self.spin_ups: list[tuple[float, float]] = []
         self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.override_off_reported = False  # ... that the program turned the feed override off here
-        locks = plan.program.override_locks()
+        locks = plan.program.override_locks
         # moves the program runs with the spindle override off (None: none)
         self.spindle_locked = None if locks is None else (locks & SPINDLE_OVERRIDE_OFF).astype(bool)
         self.origin: tuple[Program, int, float] | None = None

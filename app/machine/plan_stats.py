@@ -36,7 +36,7 @@ class BlockStats:
         self.a_path, self.j_path = lim.a_max_mm_s2, lim.j_max_mm_s3
         self.rapid_move = plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
         # moves the program runs with the feed override off (tapping, M49, M50 P0): None if none
-        locks = plan.program.override_locks()
+        locks = plan.program.override_locks
         self.fixed_move = None if locks is None else (locks & FEED_OVERRIDE_OFF).astype(bool)
         self._chunks: Iterator = plan.iter_chunks(chunk_samples=BLOCK * 256)
         self._tail_q: np.ndarray | None = None
@@ -137,19 +137,21 @@ class BlockStats:
         for key, arr in (("rv", rv), ("ra", ra), ("rj", rj), ("alpha", alpha), ("beta", beta),
                          ("gamma", gamma)):
             self.cols[key][b0:b0 + nb] = blocks(arr)
-        rp = rapid[sl]
-        pad = nb * BLOCK - len(rp)
-        rpf = np.concatenate([rp, np.repeat(rp[-1:], pad)]) if pad > 0 and len(rp) else rp
-        if len(rpf) == nb * BLOCK:
-            rr = rpf.reshape(nb, BLOCK)
+        def per_block(x: np.ndarray) -> np.ndarray | None:
+            """(nb, BLOCK) of a per-sample flag, the last sample's repeated to fill the last block."""
+            y = x[sl]
+            pad = nb * BLOCK - len(y)
+            y = np.concatenate([y, np.repeat(y[-1:], pad)]) if pad > 0 and len(y) else y
+            return y.reshape(nb, BLOCK) if len(y) == nb * BLOCK else None
+
+        rr = per_block(rapid)
+        if rr is not None:
             self.has_rapid[b0:b0 + nb] = rr.any(axis=1)
             self.has_feed[b0:b0 + nb] = (~rr).any(axis=1)
         if self.fixed_move is not None and len(mm):
-            fx = self.fixed_move[np.clip(mm, 0, len(self.fixed_move) - 1)][sl]
-            pad = nb * BLOCK - len(fx)
-            fx = np.concatenate([fx, np.repeat(fx[-1:], pad)]) if pad > 0 and len(fx) else fx
-            if len(fx) == nb * BLOCK:
-                self.has_fixed[b0:b0 + nb] = fx.reshape(nb, BLOCK).any(axis=1)
+            fx = per_block(self.fixed_move[np.clip(mm, 0, len(self.fixed_move) - 1)])
+            if fx is not None:
+                self.has_fixed[b0:b0 + nb] = fx.any(axis=1)
         self.n_blocks = b0 + nb
         keep = max(end - 3, 0)
         return q[keep:], m[keep:]

@@ -32,7 +32,7 @@ def machine() -> MachineSpec:
 
 
 def moves_where(prog, bit: int) -> set[int]:
-    locks = prog.override_locks()
+    locks = prog.override_locks
     assert locks is not None
     return {int(i) for i in np.nonzero(locks & bit)[0]}
 

@@ -18,7 +18,7 @@ NEEDS_RS274 = pytest.mark.skipif(RS274 is None,
 
 
 def locks(text: str) -> list[int]:
-    got = parse_program(text).override_locks()
+    got = parse_program(text).override_locks
     assert got is not None
     return [int(b) for b in got]
 
@@ -37,7 +37,7 @@ def test_the_panel_sees_the_overrides_off_in_the_modes() -> None:
 def test_tapping_turns_both_overrides_off_for_its_feed_moves_only() -> None:
     p = parse_program("G21 G90 G0 X0 Y0 Z10\nS500 M3\nG84 X10 Z-12 R2 F625 L1\nX20\nG80\n"
                       "G33.1 Z-8 K1.25\nG0 Z10\nM2\n")
-    got = p.override_locks()
+    got = p.override_locks
     assert got is not None
     feeds_in_taps = [i for i, m in enumerate(p.moves) if m.kind.name == "LINE"]
     assert [i for i, b in enumerate(got) if b] == feeds_in_taps
@@ -58,7 +58,7 @@ def test_a_restart_inside_a_tap_keeps_the_overrides_off() -> None:
     p = parse_program("G21 G90 G0 X0 Y0 Z10\nS500 M3\nG84 X10 Z-12 R2 F625\nG80\nG1 X30 F900\nM2\n")
     tap_in = next(i for i, m in enumerate(p.moves) if m.kind.name == "LINE")
     rest = remaining_program(p, tap_in, 3.0)
-    got = rest.override_locks()
+    got = rest.override_locks
     assert got is not None
     assert [int(b) for b in got] == [BOTH, BOTH, 0]
 
@@ -85,7 +85,7 @@ def test_m52_p0_and_m53_change_nothing_here() -> None:
     # adaptive feed is off already; M53 is the feed stop switch, which this machine does not
     # have (the panel's feed hold always works: it is LinuxCNC's pause, which M53 leaves alone)
     p = parse_program("G21 F600\nM52 P0\nM53 P0\nG1 X1\nM53 P1\nG1 X2\nM2\n")
-    assert p.override_locks() is None
+    assert p.override_locks is None
     assert [e.kind for e in p.events if e.kind is EventKind.OVERRIDES] == []
 
 
