@@ -218,6 +218,11 @@ def _compact_or_none(raw: str) -> str | None:
         return None
 
 
+def _percent_line(s: str) -> bool:
+    """A stripped line that is a '%' alone (a comment beside it allowed)."""
+    return s[0] == "%" and (s == "%" or _compact_or_none(s) == "%")
+
+
 def _through_closing_percent(lines: list[str]) -> int:
     """How many lines the program has: up to and with its closing '%' (the first '%' line after
     content or after an opening '%'), else all: LinuxCNC ignores what follows it, subroutines
@@ -227,7 +232,7 @@ def _through_closing_percent(lines: list[str]) -> int:
         s = raw.strip()
         if not s:
             continue
-        if s[0] == "%" and (s == "%" or _compact_or_none(s) == "%"):
+        if _percent_line(s):
             if started:
                 return i + 1
             started = True
@@ -473,7 +478,7 @@ class _Interpreter:
         if not s:
             return False
         if s[0] == "%":
-            if s != "%" and _compact_or_none(s) != "%":
+            if not _percent_line(s):
                 self.error(line_no, raw.index("%") + 1, "'%' must be alone on its line")
                 return False
             if self.started:
@@ -1082,14 +1087,14 @@ class _Interpreter:
         return original_column(raw, i) if i >= 0 else 1
 
     def modal_text(self) -> str:
-        """The modal codes as LinuxCNC's panels list them (motion mode aside)."""
+        """The modal codes as LinuxCNC's panels list them (motion mode aside); G7 and the
+        overrides turned off are shown when in force, as they change what X and the knobs do."""
         return " ".join((
             _PLANE_G[self.plane], "G20" if self.inch else "G21", "G90" if self.absolute else "G91",
             _gname(self.feed_mode),
             _gname(self.work_code), _gname(self.comp_code), _gname(self.tlo_code),
             "G61" if self.exact_stop else ("G61.1" if self.exact_path else self.g64_text()),
-        )) + (" G7" if self.diameter else "") + self.override_text()   # shown: they change what X and
-        # the override knobs do
+        )) + (" G7" if self.diameter else "") + self.override_text()
 
     def override_text(self) -> str:
         if self.feed_override_on and self.spindle_override_on:
