@@ -101,6 +101,19 @@ def refused_alike(text: str, machine=None) -> tuple[str, str]:
     raise AssertionError(f"this interpreter reads it:\n{text}")
 
 
+def motion_alike(text: str, abs_mm: float = 0.003) -> None:
+    """Raises unless rs274 and this interpreter read ``text`` to the same motion calls, their
+    end points within ``abs_mm`` (rs274 prints 4 decimals)."""
+    from planner.interpreter import parse_program
+
+    theirs = run_linuxcnc(text)
+    assert not theirs.error, f"rs274 refuses it: {theirs.error}\n{text}"
+    ours = project_motion(parse_program(text))
+    assert [c for c, _ in ours] == [c for c, _ in theirs.motion], text
+    for (call, a), (_, b) in zip(ours, theirs.motion, strict=True):
+        assert max(abs(x - y) for x, y in zip(a, b, strict=True)) <= abs_mm, (call, a, b, text)
+
+
 def run_linuxcnc(text: str, tools: ToolTable | None = None) -> OracleResult:
     with tempfile.TemporaryDirectory() as tmp:
         prog = Path(tmp) / "p.ngc"

@@ -9,7 +9,7 @@ import pytest
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.program import EventKind
-from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
+from tools.linuxcnc_oracle import RS274, motion_alike
 
 
 def x_ends(text: str) -> list[float]:
@@ -68,9 +68,4 @@ def test_g7_and_g8_are_one_modal_group() -> None:
     "G21 F300\nG7 G0 X20 Z5\nG81 X30 Y4 Z-3 R1\nX40\nG80\nG28 X8\nM2\n",
 ])
 def test_diameter_mode_reads_as_linuxcnc_reads_it(text: str) -> None:
-    theirs = run_linuxcnc(text)
-    assert not theirs.error, theirs.error
-    ours = project_motion(parse_program(text))
-    assert [c for c, _ in ours] == [c for c, _ in theirs.motion]
-    for (_, a), (_, b) in zip(ours, theirs.motion, strict=True):
-        assert a == pytest.approx(b, abs=0.003)
+    motion_alike(text)

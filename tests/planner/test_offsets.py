@@ -17,7 +17,7 @@ from planner.errors import ProgramError
 from planner.interpreter import PERSISTENT_PARAMETERS, parse_program
 from planner.machine import MachineSpec
 from planner.program import EventKind, Program
-from tools.linuxcnc_oracle import RS274, refused_alike
+from tools.linuxcnc_oracle import RS274, motion_alike, refused_alike
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 
@@ -207,12 +207,5 @@ def test_polar_words_move_or_are_refused_as_linuxcnc_refuses_them(text: str) -> 
                                    "G92 X3\nG92.2 G52 Y2", "G92 X3\nG92.2\nG92.3 G10 L20 P1 Y4"])
 def test_g92_1_to_g92_3_go_beside_a_code_of_group_0_after_it(block: str) -> None:
     # LinuxCNC 2.9 has them in a group of their own, run after G10, G28, G52 and G92
-    from tools.linuxcnc_oracle import project_motion, run_linuxcnc
-
     text = f"G21 G90 F600\nG0 X1 Y1 Z1\n{block}\nG1 X2 Y3\nG0 X5 Y-1\nM2\n"
-    theirs = run_linuxcnc(text)
-    assert not theirs.error, theirs.error
-    ours = project_motion(parse_program(text))
-    assert [c for c, _ in ours] == [c for c, _ in theirs.motion]
-    for (_, a), (_, b) in zip(ours, theirs.motion, strict=True):
-        assert a == pytest.approx(b, abs=0.003)
+    motion_alike(text)

@@ -10,7 +10,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.program import FEED_OVERRIDE_OFF, SPINDLE_OVERRIDE_OFF, EventKind
 from planner.resume import remaining_program
-from tools.linuxcnc_oracle import RS274, project_motion, refused_alike, run_linuxcnc
+from tools.linuxcnc_oracle import RS274, motion_alike, refused_alike
 
 BOTH = FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF
 NEEDS_RS274 = pytest.mark.skipif(RS274 is None,
@@ -96,12 +96,7 @@ def test_m52_p0_and_m53_change_nothing_here() -> None:
     "G21 G90 G0 X0 Y0 Z10\nS500 M3\nM49\nG84 X10 Z-12 R2 F625\nG80\nM48\nG33.1 Z-8 K1.25\nG0 Z10\nM2\n",
 ])
 def test_linuxcnc_reads_these_alike(text: str) -> None:
-    theirs = run_linuxcnc(text)
-    assert not theirs.error, theirs.error
-    ours = project_motion(parse_program(text))
-    assert [c for c, _ in ours] == [c for c, _ in theirs.motion]
-    for (_, a), (_, b) in zip(ours, theirs.motion, strict=True):
-        assert a == pytest.approx(b, abs=0.003)
+    motion_alike(text)
 
 
 @NEEDS_RS274

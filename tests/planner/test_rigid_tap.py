@@ -8,7 +8,7 @@ import pytest
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.program import EventKind
-from tools.linuxcnc_oracle import RS274, run_linuxcnc
+from tools.linuxcnc_oracle import RS274, motion_alike
 
 TAP = "G21 S500 M3\nG0 X5 Z2\nG33.1 X6 Z-10 K1.25 I2\nG0 Z5\nM2\n"
 
@@ -53,11 +53,4 @@ def test_rigid_tapping_refusals(text: str, col_word: str, reason: str) -> None:
     "G20 S600 M4\nG0 Z0.1\nG91 G33.1 Z-0.5 K0.05\nG90 G0 X1\nM2\n",
 ])
 def test_rigid_tapping_is_the_rigid_tap_call_linuxcnc_makes(text: str) -> None:
-    from tools.linuxcnc_oracle import project_motion
-
-    theirs = run_linuxcnc(text)
-    assert not theirs.error, theirs.error
-    ours = project_motion(parse_program(text))
-    assert [c for c, _ in ours] == [c for c, _ in theirs.motion]
-    for (_, a), (_, b) in zip(ours, theirs.motion, strict=True):
-        assert a == pytest.approx(b, abs=0.003)
+    motion_alike(text)
