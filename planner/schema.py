@@ -193,7 +193,7 @@ def check_complete(text: str, where: str) -> None:
 
 
 _HEADER_RE = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.-]+)\s*\]\]?")
-_KEY_RE = re.compile(r"^\s*([A-Za-z0-9_-]+)\s*=")
+_KEY_RE = re.compile(r"^\s*([A-Za-z0-9_-]+)\s*[=.]")   # "a = 1", or a dotted key's first part
 
 
 def key_lines(text: str) -> dict[tuple[str | int, ...], int]:
@@ -221,6 +221,8 @@ def key_lines(text: str) -> dict[tuple[str | int, ...], int]:
                     path.append(counters[dotted])
             current = tuple(path)
             lines.setdefault(current, number)
+            if m.group(1) == "[[":
+                lines.setdefault(current[:-1], number)    # the array itself: its first element
             continue
         k = _KEY_RE.match(line)
         if k:

@@ -189,6 +189,20 @@ position = 1
 """
 
 
+@pytest.mark.parametrize(("junk", "key"), [("[[drives]]", "drives: unknown section"),
+                                           ("a.b = 2", "a: unknown section")])
+def test_an_unknown_array_or_dotted_key_is_named_with_its_line(tmp_path: Path, junk: str, key: str) -> None:
+    text = Path(shipped_machine("xyz_mill")).read_text(encoding="utf-8")
+    lines = text.splitlines()
+    at = next(i for i, line in enumerate(lines) if line.startswith("[")) + 1   # before the first table
+    lines.insert(at - 1, junk)
+    p = tmp_path / "m.toml"
+    p.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(ConfigError) as exc:
+        load_config(p)
+    assert f"{p}:{at}: {key}" in str(exc.value)
+
+
 def _with_drives(tables: str) -> str:
     head = shipped_machine("xyz_mill").read_text(encoding="utf-8").split("[bus]")[0]
     return f'{head}[bus]\nkind = "soem"\nadapter = "eth1"\n{tables}'
