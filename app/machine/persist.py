@@ -32,6 +32,14 @@ __all__ = ["StateStore"]
 MAX_ALARMS = 500
 
 
+def _finite(x: object) -> float | None:
+    """``x`` as a finite number, or None (a string, null, NaN, infinity or a boolean)."""
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        return None
+    value = float(x)
+    return value if math.isfinite(value) else None
+
+
 class StateStore:
     """Reads and writes the state directory. Problems found while reading are collected in
     ``problems`` (the controller raises them as alarms)."""
@@ -97,16 +105,23 @@ class StateStore:
         data = self._read_json("state.json")
         if not isinstance(data, dict):
             return None
-        if tuple(data.get("axes", ())) != tuple(axes):
+        saved_axes = data.get("axes")
+        if not isinstance(saved_axes, list) or tuple(saved_axes) != tuple(axes):
             self.problems.append(f"{self.path('state.json')}: saved for axes {data.get('axes')}, "
                                  f"machine has {list(axes)}: positions and homed state not restored")
             return None
         try:
             n = len(axes)
+            numbers = {k: [_finite(x) for x in data[k]][:n] for k in ("raw_position", "home_offset")}
+            if any(x is None for v in numbers.values() for x in v):
+                raise ValueError("a position is not a number")
+            homed = data["homed"]
+            if not (isinstance(homed, list) and all(isinstance(x, bool) for x in homed)):
+                raise ValueError(f"homed is {homed!r}, not true/false per axis")
             out = {
-                "raw_position": [float(x) for x in data["raw_position"]][:n],
-                "home_offset": [float(x) for x in data["home_offset"]][:n],
-                "homed": [bool(x) for x in data["homed"]][:n],
+                "raw_position": numbers["raw_position"],
+                "home_offset": numbers["home_offset"],
+                "homed": homed[:n],
                 "active_offset": str(data.get("active_offset", "G54")),
                 # True while a controller had the drives: still True at the next start means
                 # it did not shut down cleanly (power loss, kill -9)
@@ -138,7 +153,12 @@ class StateStore:
                 self.problems.append(f"{self.path('offsets.json')}: {k} does not have {n_axes} values; "
                                      "offsets from the configuration used")
                 return None
-            out[k] = tuple(float(x) for x in v)
+            values = [_finite(x) for x in v]
+            if any(x is None for x in values):
+                self.problems.append(f"{self.path('offsets.json')}: {k} holds {v!r}, not numbers; "
+                                     "offsets from the configuration used")
+                return None
+            out[k] = tuple(x for x in values if x is not None)
         return out
 
     def save_offsets(self, offsets: dict[str, tuple[float, ...]]) -> None:
@@ -211,7 +231,7 @@ class StateStore:
                 out.append(Alarm(id=int(d["id"]), time_s=float(d["time_s"]), source=str(d["source"]),
                                  cause=str(d["cause"]), severity=Severity(int(d["severity"])),
                                  state=AlarmState(d["state"]), code=str(d.get("code", ""))))
-            except (KeyError, TypeError, ValueError):
+            except (KeyError, TypeError, ValueError, OverflowError):   # int(inf)
                 continue
         return out[-MAX_ALARMS:]
 

@@ -54,7 +54,7 @@ def act(ctl, action) -> object:
     if isinstance(action, tuple):
         what, value = action
         if what == "jog":
-            return ctl.jog_increment(value, 0.5)
+            return ctl.jog_increment(value, 1.0)
         return {"feed": ctl.set_feed_override, "spindle": ctl.set_spindle_override,
                 "from_line": ctl.run_from_line, "mdi": ctl.mdi}[what](value)
     return {"cycle_start": ctl.cycle_start, "hold": ctl.feed_hold, "resume": ctl.resume, "stop": ctl.stop,
