@@ -223,16 +223,24 @@ class StateStore:
     # ------------------------------------------------------------------ alarms
     def load_alarms(self) -> list[Alarm]:
         data = self._read_json("alarms.json")
+        if data is None:
+            return []
         if not isinstance(data, list):
+            self.problems.append(f"{self.path('alarms.json')}: not a list of alarms; the alarm history "
+                                 "starts empty")
             return []
         out = []
+        skipped = 0
         for d in data:
             try:
                 out.append(Alarm(id=int(d["id"]), time_s=float(d["time_s"]), source=str(d["source"]),
                                  cause=str(d["cause"]), severity=Severity(int(d["severity"])),
                                  state=AlarmState(d["state"]), code=str(d.get("code", ""))))
             except (KeyError, TypeError, ValueError, OverflowError):   # int(inf)
-                continue
+                skipped += 1
+        if skipped:
+            self.problems.append(f"{self.path('alarms.json')}: {skipped} damaged alarm(s) left out of the "
+                                 "history")
         return out[-MAX_ALARMS:]
 
     def save_alarms(self, alarms: list[Alarm]) -> None:

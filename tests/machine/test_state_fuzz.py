@@ -118,6 +118,20 @@ def test_damage_found_before(qapp, saved_state, tmp_path_factory, name: str, spe
         qapp, saved_state, tmp_path_factory, (name, spec))
 
 
+def test_a_damaged_alarm_is_left_out_and_said(qapp, saved_state, tmp_path) -> None:
+    shutil.copytree(saved_state, tmp_path, dirs_exist_ok=True)
+    path = tmp_path / "state" / "alarms.json"
+    data = json.loads(path.read_text(encoding="utf-8"))
+    assert len(data) >= 1
+    data[0]["severity"] = "high"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    ctl = make_controller(tmp_path / "machine.toml", tmp_path / "state", zero=False)
+    try:
+        assert any("alarms.json: 1 damaged alarm(s) left out" in a.cause for a in ctl.alarms)
+    finally:
+        ctl.shutdown()
+
+
 def test_a_homed_state_that_is_not_true_or_false_is_not_taken(qapp, saved_state, tmp_path) -> None:
     shutil.copytree(saved_state, tmp_path, dirs_exist_ok=True)
     path = tmp_path / "state" / "state.json"
