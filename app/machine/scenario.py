@@ -79,7 +79,7 @@ def parse_op(text: str, where: str) -> ScenarioOp:
     if not isinstance(data, dict):
         raise MachineError(f"{where}: not a JSON object")
     op = data.get("op")
-    if op not in OPS:
+    if not isinstance(op, str) or op not in OPS:
         raise MachineError(f"{where}: op must be one of {', '.join(OPS)}, got {op!r}")
     extra = OPS[op]
     unknown = sorted(set(data) - {"op", *_TRIGGERS} - ({extra} if extra else set()))

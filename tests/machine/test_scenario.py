@@ -8,10 +8,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from app.machine import run_cli
 from app.machine.errors import MachineError
-from app.machine.scenario import read_script
+from app.machine.scenario import OPS, parse_op, read_script
 
 CUT = ("G21 G90 G17\nG0 Z5\nG0 X-20 Y0\nM3 S1200\nG1 Z-1 F600\nG1 X40 F1200\nG1 Y30\nG0 Z5\n"
        "G0 X60 Y60\nG1 Z-2 F600\nG1 X0 F1200\nG0 Z5\nM5\nM30\n")
@@ -118,6 +120,26 @@ def test_a_bad_script_line_is_named(tmp_path: Path, line: str, words: str) -> No
     with pytest.raises(MachineError) as exc:
         read_script(script)
     assert f"{script}:4:" in str(exc.value) and words in str(exc.value)
+
+
+_JSON = st.recursive(
+    st.none() | st.booleans() | st.integers(-10**20, 10**20) | st.text(max_size=8)
+    | st.sampled_from([float("nan"), float("inf"), 1e308, -0.5, 2.5, 150]),
+    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=6), inner, max_size=3),
+    max_leaves=6)
+_KEYS = st.sampled_from(["op", "at_line", "after_s", "line", "percent", "when", "Op"])
+_OPS = st.sampled_from([*OPS, "jump", ""]) | _JSON
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.dictionaries(_KEYS, _JSON, max_size=4), _OPS)
+def test_any_script_line_is_an_action_or_refused_with_its_line(data: dict, op: object) -> None:
+    if "op" in data or op != "":
+        data = {**data, "op": op}
+    try:
+        parse_op(json.dumps(data), "ops.jsonl:7")
+    except MachineError as exc:
+        assert str(exc).startswith("ops.jsonl:7: "), str(exc)
 
 
 def test_cnc_run_refuses_a_bad_script_before_running(tmp_path: Path, capsys) -> None:
