@@ -157,6 +157,11 @@ def machine_from_dict(data: dict[str, Any], where: str | Locator = "<config>", t
     return machine_from_valid(validate(data, loc), loc)
 
 
+def _first_repeat(values: list[Any]) -> int | None:
+    """Index of the first value that repeats an earlier one (None: all differ)."""
+    return next((k for k in range(len(values)) if values[k] in values[:k]), None)
+
+
 def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
     """The planner's sections of a configuration already checked by ``schema.validate``, with
     the checks across keys: travel, unique names and drives, offsets per axis, counts."""
@@ -182,12 +187,12 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
             following_error_window=a["following_error_window"],
         ))
     names = [a.name for a in axes]
-    if len(set(names)) != len(names):
-        j = next(k for k in range(len(names)) if names[k] in names[:k])     # the second one's line
+    j = _first_repeat(names)           # the copy's line is named
+    if j is not None:
         raise loc.fail(("axes", j, "name"), f"axis names must be unique, got {names}")
     positions = [a.drive_position for a in axes]
-    if len(set(positions)) != len(positions):
-        j = next(k for k in range(len(positions)) if positions[k] in positions[:k])
+    j = _first_repeat(positions)
+    if j is not None:
         raise loc.fail(("axes", j, "drive_position"), f"drive positions must be unique, got {positions}")
     lim = valid["limits"]
     limits = PathLimits(v_max_mm_s=lim["v_max_mm_s"], a_max_mm_s2=lim["a_max_mm_s2"],

@@ -417,8 +417,8 @@ class Streamer:
             if capped is not None:
                 self.m.message.emit(f"feed override {self.m.run.feed_pct:g} % capped at {100 * capped:.0f} % "
                                     "here: the machine's speed, acceleration or jerk limit")
-        if job.pause is None or consumed < job.pause_serial:    # a pause point sets it itself
-            self._spindle_lock_at(job, job.move_at(consumed))
+        if job.spindle_locked is not None and (job.pause is None or consumed < job.pause_serial):
+            self._spindle_lock_at(job, job.move_at(consumed))      # (a pause point sets it itself)
         off = job.executor.override_off_here and job.overrides and self.m.run.feed_pct != 100.0
         if off != job.override_off_reported:
             job.override_off_reported = off
