@@ -7,6 +7,7 @@ first ``max_time_s`` seconds only, so a long program never costs unbounded memor
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,17 +32,21 @@ class PathProfile:
 
 
 def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX_TIME_S,
-                 plan: object | None = None) -> PathProfile:
-    """From the controller's plan when given (what will run), else planned here."""
-    from planner.plan import Plan, plan_program
+                 plan: object | None = None, cycle_time_s: float = math.nan) -> PathProfile:
+    """From the controller's plan when given (what will run), else planned here as far as it
+    is shown (a long program's plan is not held: ``cycle_time_s`` is its planned time, known
+    from the load's check)."""
+    from planner.plan import Plan
+    from planner.window import PlanWindow
 
-    if not isinstance(plan, Plan):
-        plan = plan_program(program, machine)
-    ts = plan.ts_s
+    source: Plan | PlanWindow = plan if isinstance(plan, Plan) else PlanWindow(program, machine,
+                                                                             estimate_s=cycle_time_s)
+    ts = source.ts_s
     t_parts, s_parts = [], []
     n = 0
     limit = int(max_time_s / ts) + 4
-    for chunk in plan.iter_chunks():
+    chunks = source.iter_chunks() if isinstance(source, Plan) else source.iter_chunks(let_go=True)
+    for chunk in chunks:
         t_parts.append(chunk.t)
         s_parts.append(chunk.s)
         n += len(chunk)
@@ -53,7 +58,7 @@ def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX
     limits = (lim.v_max_mm_s, lim.a_max_mm_s2, lim.j_max_mm_s3)
     if len(t) < 4:
         z = np.zeros(len(t))
-        return PathProfile(t, z, z, z, plan.cycle_time_s, False, limits, lim.rapid_mm_s)
+        return PathProfile(t, z, z, z, source.cycle_time_s, False, limits, lim.rapid_mm_s)
     v, a, j = path_vaj(s, ts)
-    return PathProfile(t, v, a, j, plan.cycle_time_s, plan.cycle_time_s > max_time_s, limits,
+    return PathProfile(t, v, a, j, source.cycle_time_s, source.cycle_time_s > max_time_s, limits,
                        lim.rapid_mm_s)

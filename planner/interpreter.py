@@ -50,6 +50,7 @@ from planner.lexer import LexError, Params, compact, evaluate_brackets, original
 from planner.movestore import MoveBuffer
 from planner.oword import Statement, Structure, StructureError, has_control_flow, scan
 from planner.program import (
+    FEED_HOLD_DEFERRED,
     FEED_OVERRIDE_OFF,
     SPINDLE_OVERRIDE_OFF,
     Arc,
@@ -76,6 +77,9 @@ _VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
 #: and the feed is held to the machine's limits either way); 1e12 keeps inverse-time products
 #: far from overflow
 _FEED_LIMIT = 1e12
+# a tap's moves: the feed follows the spindle, so neither override may change one of them, and
+# the operator's feed hold waits until the tap is out of the hole
+_TAP_LOCK = FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF | FEED_HOLD_DEFERRED
 _MAX_TURNS = 10_000
 _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
 #: a curve's arcs above this radius (1 km: LinuxCNC's biarc where the curve hardly bends) are
@@ -1573,7 +1577,7 @@ class _Interpreter:
                 raise _BlockError(f"M{c} is a user M-code this machine does not define (add it to "
                                   "[[mcodes]] in the machine configuration: a pause with a message, an "
                                   "output or nothing)", f"M{c}")
-            if g in mgroups and not (g == 8 and {mgroups[g], c} == {7, 8}):
+            if g in mgroups:          # M7 M8 too: LinuxCNC 2.9 refuses them in one block
                 raise _BlockError(
                     f"M{mgroups[g]} and M{c} are in the same modal group (one per block)", f"M{c}"
                 )
@@ -2110,7 +2114,7 @@ class _Interpreter:
         # the tap's feed follows the spindle: neither override may change one without the other
         self.overrides_event(line_no, len(self.out) - 1,
                              "G33.1: feed and spindle overrides off while tapping",
-                             FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF, EventKind.TAPPING)
+                             _TAP_LOCK, EventKind.TAPPING)
         try:
             self.emit(target, _LINE, into, length, None, line_no, fixed_feed=True)
             self.events.append(Event(EventKind.SPINDLE, line_no, len(self.out) - 1,
@@ -2302,7 +2306,7 @@ class _Interpreter:
                     # LinuxCNC turns both overrides off for the tap: its feed is the pitch times
                     # the speed
                     self.overrides_event(line_no, len(self.out) - 1, f"{name}: feed and spindle overrides "
-                                         "off while tapping", FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF,
+                                         "off while tapping", _TAP_LOCK,
                                          EventKind.TAPPING)
                     go(aa, bb, cc, False)
                     event(EventKind.SPINDLE, -rpm, f"{name}: spindle reversed to back the tap out (tapping "

@@ -157,6 +157,13 @@ class MoveStore(Sequence[Move]):
     def __repr__(self) -> str:
         return f"MoveStore({self._n} moves from {self._base})"
 
+    def with_exact_stops(self) -> MoveStore:
+        """The same moves, each ending at rest (single block's plan), over the same columns
+        but that one."""
+        store = self._view(0, self._n)
+        store._stop = _readonly(np.ones(self._n, bool))
+        return store
+
     @property
     def positions(self) -> np.ndarray:
         """(n + 1, d): where each move starts, then where the last one ends."""

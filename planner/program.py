@@ -259,9 +259,11 @@ class EventKind(enum.Enum):
     # there; what follows depends on it
     INPUT = "input"
     # M48-M51: the overrides the motion from here follows (value: 1 the feed override is off,
-    # 2 the spindle override is off, 3 both, 0 both on); not stopping, as in LinuxCNC
+    # 2 the spindle override is off, 3 both, 0 both on; 4 the feed hold waits, set by taps
+    # only); not stopping, as in LinuxCNC
     OVERRIDES = "overrides"
-    # the same for a tap's feed moves (G74/G84, G33.1: both off), which start and end at rest:
+    # the same for a tap's feed moves (G74/G84, G33.1: both off, the feed hold deferred to the
+    # tap's end), which start and end at rest:
     # the overrides change where the path stands, never on the way
     TAPPING = "tapping"
 
@@ -269,6 +271,10 @@ class EventKind(enum.Enum):
 #: OVERRIDES bits
 FEED_OVERRIDE_OFF = 1
 SPINDLE_OVERRIDE_OFF = 2
+#: a tap is in the hole: the operator's feed hold waits until it is out (LinuxCNC holds
+#: spindle-synchronised motion to its end, Fanuc a G84 to its return): axes standing while the
+#: spindle turns would strip the thread or break the tap
+FEED_HOLD_DEFERRED = 4
 
 
 STOPPING_EVENTS = frozenset(
@@ -442,6 +448,15 @@ class Program:
         firsts = np.array([max(f, 0) for f, _ in changes], dtype=np.int64)
         bits = np.array([0] + [b for _, b in changes], dtype=np.uint8)
         return bits[np.searchsorted(firsts, np.arange(len(self.moves)), side="right")]
+
+    @functools.cached_property
+    def rapid_moves(self) -> np.ndarray:
+        """Per move, whether it is a rapid (G0): the limits the run holds it to differ."""
+        moves = self.moves
+        columns = getattr(moves, "columns", None)
+        if columns is not None:            # a MoveStore: its kind column as it is
+            return np.asarray(columns().kind) == int(MoveKind.RAPID)
+        return np.fromiter((m.kind is MoveKind.RAPID for m in moves), bool, len(moves))
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

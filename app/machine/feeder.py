@@ -19,9 +19,10 @@ hold starts decelerating within ~5-10 ms of the request instead of after the lea
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -39,20 +40,34 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.spindle import spin_up_waits
-from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor, pause_points, reduced_machine
+from app.machine.timescale import (
+    PauseFeed,
+    PausePoint,
+    ScaledChunk,
+    TimeScaledExecutor,
+    pause_points,
+    reduced_machine,
+)
 from ethercat.worker import ReplaceResult
 from planner.files import write_output
+from planner.machine import MachineSpec
+from planner.movestore import MoveStore
 from planner.plan import Plan, plan_program
 from planner.program import EventKind, Program
+from planner.window import PlanWindow
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
 
-__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "Streamer", "SpliceInfo", "single_block_program"]
+__all__ = ["SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "WINDOWED_RUN_MOVES", "RunPlanner", "Streamer", "SpliceInfo",
+           "single_block_program"]
 
 SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
 SPLICE_ATTEMPTS = 6
 CHUNK = 20  # executor samples per pushed chunk
+#: programs of more moves run from a plan made as they run (``planner.window``): a whole plan
+#: holds about 150 bytes a move (1.5 GB at 10,000,000 moves), a window a few thousand moves
+WINDOWED_RUN_MOVES = 200_000
 
 
 class SpliceInfo:
@@ -74,11 +89,45 @@ class SpliceInfo:
 
 def single_block_program(program: Program) -> Program:
     """The program with an exact stop (G61) at every block end: single block's plan."""
-    return replace(program, moves=tuple(replace(m, exact_stop=True) for m in program.moves))
+    moves = program.moves
+    if isinstance(moves, MoveStore):        # millions of moves: the columns, not Move objects
+        return replace(program, moves=moves.with_exact_stops())
+    return replace(program, moves=tuple(replace(m, exact_stop=True) for m in moves))
+
+
+@dataclass(frozen=True, eq=False)
+class RunPlanner:
+    """Plans for runs, bound to the machine and the override budget of the moment it was made
+    (a change of the configuration meanwhile cannot reach into a plan under way in a worker
+    thread): called as ``plan_program`` is (a whole ``Plan``), or ``window`` (planned as the
+    run reaches it) for programs of more than ``WINDOWED_RUN_MOVES`` moves."""
+
+    machine: MachineSpec   # the reduced limits the plan is made with
+
+    def __call__(self, program: Program, progress: Callable[[int, int], None] | None = None) -> Plan:
+        return plan_program(program, self.machine, progress=progress)
+
+    def window(self, program: Program, estimate_s: float = math.nan) -> PlanWindow:
+        return PlanWindow(program, self.machine, estimate_s=estimate_s)
+
+    def for_run(self, program: Program, estimate_s: float = math.nan) -> Plan | PlanWindow:
+        """What a run of ``program`` plays: a window for a long program, else the whole plan."""
+        if len(program.moves) > WINDOWED_RUN_MOVES:
+            return self.window(program, estimate_s)
+        return self(program)
 
 
 def _set_hold(ex: TimeScaledExecutor) -> None:
     ex.hold = True
+    ex.hold_waits_for_tap = False
+
+
+def _set_feed_hold(ex: TimeScaledExecutor) -> None:
+    ex.hold = True
+    ex.hold_waits_for_tap = True
+
+
+_HOLDS = (_set_hold, _set_feed_hold)
 
 
 class Streamer:
@@ -108,15 +157,11 @@ class Streamer:
         return max(int(self.m.config.controller.lead_s / ts), 10)
 
     def plan(self, program: Program, progress: Callable[[int, int], None] | None = None) -> Plan:
-        machine = reduced_machine(self.m.conn.machine, self.m.conn.budget)
-        return plan_program(program, machine, progress=progress)
+        return self.planner()(program, progress)
 
-    def planner(self) -> Callable[..., Plan]:
-        """``_plan`` bound to the machine and budget of now (for a worker thread: a change of
-        the configuration meanwhile cannot reach into a plan under way); it takes the program
-        and, as ``plan_program`` does, a ``progress`` callback."""
-        machine = reduced_machine(self.m.conn.machine, self.m.conn.budget)
-        return lambda program, progress=None: plan_program(program, machine, progress=progress)
+    def planner(self) -> RunPlanner:
+        """Plans bound to the machine and budget of now (for a worker thread)."""
+        return RunPlanner(reduced_machine(self.m.conn.machine, self.m.conn.budget))
 
     def make_job(
         self,
@@ -126,28 +171,34 @@ class Streamer:
         *,
         overrides: bool = True,
         single_block: bool = False,
-        plan: Plan | None = None,
+        plan: Plan | PlanWindow | None = None,
+        estimate_s: float = math.nan,
+        stops: tuple[PausePoint, ...] | None = None,
     ) -> Job:
         """A job for ``program``. ``plan``: a ready plan of exactly this program (already the
         single-block variant when ``single_block``) with the current machine and budget, e.g.
-        the one made at load time (``ProgramInfo.plan``): then nothing is planned here."""
+        the one made at load time (``ProgramInfo.plan``): then nothing is planned here. A long
+        program is planned as it runs (``RunPlanner.for_run``); ``estimate_s``: its planned
+        time as far as known (the time left shows it), ``stops``: its pause points as a check
+        pass found them (the spin-ups the time left counts)."""
         if plan is None:
             if single_block:
                 program = single_block_program(program)
-            plan = self.plan(program)
+            plan = self.planner().for_run(program, estimate_s)
         else:
             program = plan.program
-        pauses = pause_points(plan, single_block, True)
+        overrides_now = (self.m.run.feed_pct / 100.0 if overrides else 1.0,
+                         self.m.run.rapid_pct / 100.0 if overrides else 1.0)
+        if isinstance(plan, PlanWindow):
+            # its pause points come with its segments; the spin-ups from the check pass's
+            pauses = list(stops or ())
+            ex = TimeScaledExecutor(plan, self.m.conn.machine, self.m.conn.budget, None, *overrides_now,
+                                    pause_feed=PauseFeed(program, single_block, True))
+        else:
+            pauses = pause_points(plan, single_block, True)
+            ex = TimeScaledExecutor(plan, self.m.conn.machine, self.m.conn.budget, pauses, *overrides_now)
         spin_ups = spin_up_waits(pauses, self.m.spindle_ctl.spindle,
                                  self.m.config.controller.spindle_spinup_s)
-        ex = TimeScaledExecutor(
-            plan,
-            self.m.conn.machine,
-            self.m.conn.budget,
-            pauses,
-            feed_override=self.m.run.feed_pct / 100.0 if overrides else 1.0,
-            rapid_override=self.m.run.rapid_pct / 100.0 if overrides else 1.0,
-        )
         job = Job(
             kind=kind,
             name=name,
@@ -155,7 +206,7 @@ class Streamer:
             plan=plan,
             executor=ex,
             overrides=overrides,
-            estimated_s=plan.cycle_time_s + sum(wait for _tau, wait in spin_ups),
+            estimated_s=ex.planned_end_s + sum(wait for _tau, wait in spin_ups),
             machine=self.m.conn.machine,
         )
         job.single_block = single_block
@@ -170,11 +221,17 @@ class Streamer:
         anew) in place of ``job``, as the same run (time, progress, trace, limits); ``held``:
         it waits for cycle start (the operator's feed hold). Raises PlannerError when the rest
         cannot be planned (``job`` is then unchanged)."""
-        new = self.make_job(job.kind, rest, job.name,
-                            single_block=self.m.run.single_block and job.kind is Activity.PROGRAM)
         info = self.m.loader.program_info
-        full_t = info.cycle_time_s if info is not None and job.kind is Activity.PROGRAM else new.estimated_s
-        new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.t_end, 0.0)
+        # where the run stands on the whole program's timeline: a long rest is planned as it
+        # runs, its end estimated from there
+        at_s = job.tau_offset_s + job.executor.tau
+        full_t = info.cycle_time_s if info is not None and job.kind is Activity.PROGRAM else math.nan
+        new = self.make_job(job.kind, rest, job.name,
+                            single_block=self.m.run.single_block and job.kind is Activity.PROGRAM,
+                            estimate_s=max(job.executor.planned_end_s + job.tau_offset_s - at_s, 0.0))
+        if math.isnan(full_t):
+            full_t = new.estimated_s
+        new.tau_offset_s = new.time_offset_s = max(full_t - new.executor.planned_end_s, 0.0)
         new.origin = origin
         new.start_time_s = job.start_time_s
         new.trace = job.trace
@@ -235,7 +292,7 @@ class Streamer:
                 want = min(want, max_new)
             ex = job.executor
             while want > 0 and job.pause is None:
-                if ex.hold and ex.standing:
+                if ex.held:
                     break  # held still on the path: the worker keeps the last set-point
                 state = ex.save_state()
                 ch = ex.generate(min(want, CHUNK))
@@ -296,7 +353,7 @@ class Streamer:
                 return
             current = ex.save_state()
             ts = self.m.config.machine.planner.ts_s
-            hold = change is _set_hold
+            hold = change in _HOLDS
             margin_s = SPLICE_MARGIN_S
             if self.m.conn.worker_mode != "manual":
                 # real time: the loop runs on while we compute (a hold plans the time-optimal
@@ -326,11 +383,17 @@ class Streamer:
             took = time.perf_counter() - t_start
             self.last_splice = SpliceInfo(-1, first_consumed, SPLICE_ATTEMPTS, took, True)
 
-    def hold_motion(self) -> None:
+    def hold_motion(self, wait_for_tap: bool = False) -> None:
         """The running job's executor to hold (sigma -> 0 / the time-optimal path stop), from a
-        few cycles ahead of the drives (feed hold, stop, STOP alarms, jog release)."""
+        few cycles ahead of the drives (stop, STOP alarms, jog release, a probe's contact: at
+        once; the operator's feed hold, ``wait_for_tap``: once a tap in the hole is out)."""
         job = self.job
-        if job is not None and not job.executor.hold:
+        if job is None:
+            return
+        ex = job.executor
+        if wait_for_tap and not ex.hold:
+            self.change_motion(_set_feed_hold)
+        elif not wait_for_tap and not ex.holding:
             self.change_motion(_set_hold)
 
     def _splice_at(
@@ -403,7 +466,7 @@ class Streamer:
             while job.messages and job.messages[0][0] <= line:
                 self.show_message(job.messages.popleft()[1])
             if job.kind is Activity.PROGRAM:
-                t_end = job.executor.t_end + job.time_offset_s
+                t_end = job.executor.planned_end_s + job.time_offset_s
                 tau_g = tau + job.tau_offset_s
                 frac = min(tau_g / t_end, 1.0) if t_end > 0 else 1.0
                 capped = job.executor.capped_to

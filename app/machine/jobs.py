@@ -15,6 +15,7 @@ from planner.machine import MachineSpec
 from planner.meter import LimitMeter
 from planner.plan import Plan
 from planner.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, Program
+from planner.window import PlanWindow
 
 __all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
 
@@ -54,7 +55,7 @@ class Job:
         kind: Activity,
         name: str,
         program: Program,
-        plan: Plan,
+        plan: Plan | PlanWindow,
         executor: TimeScaledExecutor,
         overrides: bool,
         estimated_s: float,
@@ -106,9 +107,7 @@ class Job:
         self.tau_offset_s = 0.0
         self.time_offset_s = 0.0
         self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-        self.meter = SentLimits(
-            machine, plan.ts_s, plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
-        )
+        self.meter = SentLimits(machine, plan.ts_s, plan.program.rapid_moves)
         # per pushed chunk: serial of its last sample, line, tau, move, u within the move
         self._marks: collections.deque[tuple[int, int, float, int, float]] = collections.deque()
         self._last_mark: tuple[int, int, float, int, float] | None = None
@@ -133,7 +132,7 @@ class Job:
     def record(self, ch: ScaledChunk, serial_start: int) -> None:
         end = serial_start + len(ch.q) - 1
         move = int(ch.move[-1])
-        u = float(ch.s_mm[-1] - self.plan.segment.s0[move]) if len(self.plan.segment.table) else 0.0
+        u = float(ch.s_mm[-1] - self.executor.move_start_s(move)) if self.executor.n_moves else 0.0
         self._marks.append((end, int(ch.line[-1]), float(ch.tau[-1]), move, u))
         if len(self._marks) > 4096:
             self._marks.popleft()

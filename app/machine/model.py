@@ -189,7 +189,9 @@ class ProgramInfo:
     bounds_min: tuple[float, ...]  # machine coordinates, per axis, whole path (arcs included)
     bounds_max: tuple[float, ...]
     program: object = field(default=None, repr=False, compare=False)  # planner.program.Program
-    plan: object = field(default=None, repr=False, compare=False)  # planner.plan.Plan (reduced limits)
+    # planner.plan.Plan (reduced limits); None for a long program, planned as it runs
+    # (``app.machine.feeder.WINDOWED_RUN_MOVES``)
+    plan: object = field(default=None, repr=False, compare=False)
     # app.toolpath.ToolPath of ``program``, made with the check off the GUI thread (seconds for
     # millions of moves): the preview draws it
     toolpath: object = field(default=None, repr=False, compare=False)
@@ -203,6 +205,10 @@ class ProgramInfo:
     # results and the inputs' values (``planner.interpreter.parse_program(probe_results=,
     # input_results=)``), blended as ``program``
     reread: object = field(default=None, repr=False, compare=False)
+    # the plan's own end (planned time, without the spin-up waits ``cycle_time_s`` counts) and
+    # its pause points (``app.machine.timescale.PausePoint``), made with the check
+    plan_end_s: float = 0.0
+    stops: tuple = field(default=(), repr=False, compare=False)
 
 
 @dataclass(frozen=True, slots=True)

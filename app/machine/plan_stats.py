@@ -1,7 +1,8 @@
 """Per-block maxima of a plan's normalised velocity, acceleration and jerk, measured ahead of
 execution: what the time scaling (``app.machine.timescale``) may do with sigma near planned
-time tau depends on them. Computed lazily from ``plan.iter_chunks``, against the machine's
-true limits (not the reduced ones the plan was made with)."""
+time tau depends on them. Computed lazily from ``plan.iter_chunks`` (a whole plan, or one made
+as the run reaches it), against the machine's true limits (not the reduced ones the plan was
+made with)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ import numpy as np
 from planner.machine import MachineSpec
 from planner.plan import Plan
 from planner.program import FEED_OVERRIDE_OFF
+from planner.window import PlanWindow
 
 __all__ = ["BLOCK", "BlockStats"]
 
@@ -22,7 +24,7 @@ class BlockStats:
     """Per-block maxima of the plan's normalised velocity/acceleration/jerk, computed lazily
     from ``plan.iter_chunks`` ahead of execution (true machine limits, not the reduced ones)."""
 
-    def __init__(self, plan: Plan, machine: MachineSpec) -> None:
+    def __init__(self, plan: Plan | PlanWindow, machine: MachineSpec) -> None:
         self.plan = plan
         ts = plan.ts_s
         self.ts = ts
@@ -34,7 +36,7 @@ class BlockStats:
         lim = machine.limits
         self.v_feed, self.v_rapid = lim.v_max_mm_s, lim.rapid_mm_s
         self.a_path, self.j_path = lim.a_max_mm_s2, lim.j_max_mm_s3
-        self.rapid_move = plan.segment.table.is_rapid if len(plan.segment.table) else np.zeros(0, bool)
+        self.rapid_move = plan.program.rapid_moves
         # moves the program runs with the feed override off (tapping, M49, M50 P0): None if none
         locks = plan.program.override_locks
         self.fixed_move = None if locks is None else (locks & FEED_OVERRIDE_OFF).astype(bool)

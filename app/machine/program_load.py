@@ -10,6 +10,10 @@ cancelled between its stages and its result dropped. A failed load unloads the p
 program. ``load_program(..., wait=True)`` and ``wait_loaded()`` give the synchronous behaviour
 for headless use (``cnc-run``, tests).
 
+A program of more than ``WINDOWED_RUN_MOVES`` moves (``app.machine.feeder``) is planned
+through once here, segment by segment (``check_pass``: its time, length and pause points), and
+its plan is not kept: cycle start plans it again as the run reaches it (``planner.window``).
+
 Cycle start runs the plan made here (``ProgramInfo.plan``) as long as it is valid: same
 configuration (limits, budget, planner mode) and work offsets, and the machine where the program
 was interpreted from (``_program_stale``). Otherwise the program is checked again by this same
@@ -28,6 +32,7 @@ from __future__ import annotations
 import os
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -38,7 +43,7 @@ from app.background import Background
 from app.machine.inputs import probe_refusal
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue, SpindleState
 from app.machine.spindle import spin_up_waits
-from app.machine.timescale import pause_points
+from app.machine.timescale import PauseFeed, PausePoint, pause_points
 from app.program_lines import line_starts
 from app.toolpath import build_toolpath
 from planner.blend import blend_program, blend_report
@@ -50,6 +55,7 @@ from planner.machine import MachineSpec
 from planner.program import ProbeResult, Program
 from planner.softlimits import check_program, move_bounds_table, program_bounds
 from planner.tools import ToolTable
+from planner.window import PlanWindow
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
@@ -193,8 +199,20 @@ def check_text(
         return limit_issues, f"soft limit: {limit_issues[0]}"
     stage()
     req.progress = LOAD_SHARES[0] + LOAD_SHARES[1]
+    progress = stage_progress(req.progress, LOAD_SHARES[2])
+    plan = None
     try:
-        plan = plan_fn(program, progress=stage_progress(req.progress, LOAD_SHARES[2]))
+        from app.machine import feeder
+
+        if len(program.moves) > feeder.WINDOWED_RUN_MOVES:
+            # planned through once, segment by segment as the run will plan it, keeping the
+            # time, the length and the pause points: the run plans it again as it goes
+            plan_end_s, length_mm, stops = check_pass(program, plan_fn.window(program), progress)
+        else:
+            plan = plan_fn(program, progress=progress)
+            plan_end_s = float(plan.cycle_time_s)
+            length_mm = float(np.sum(plan.segment.table.length))
+            stops = tuple(pause_points(plan, False, True))
     except PlannerError as exc:
         return (ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}"
     stage()
@@ -203,27 +221,44 @@ def check_text(
     starts = line_starts(text)
     lo, hi = program_bounds(program, table)
     trim_heap()  # the check's freed temporaries back to the system (planner.heap)
-    tab = plan.segment.table
-    n = len(tab)
     return ProgramInfo(
         name=name,
         path=req.path,
         text=text,
         line_count=program.line_count or text.count("\n") + 1,
         move_count=len(program.moves),
-        cycle_time_s=float(plan.cycle_time_s) + sum(wait for _tau, wait in spin_up_waits(
-            pause_points(plan, False, True), req.spindle, req.spin_up_s)),
-        length_mm=float(np.sum(tab.length)) if n else 0.0,
+        cycle_time_s=plan_end_s + sum(wait for _tau, wait in spin_up_waits(stops, req.spindle,
+                                                                           req.spin_up_s)),
+        length_mm=length_mm,
         bounds_min=tuple(float(x) for x in lo),
         bounds_max=tuple(float(x) for x in hi),
         program=program,
         plan=plan,
+        plan_end_s=plan_end_s,
+        stops=stops,
         toolpath=toolpath,
         line_starts=starts,
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
         reread=reread if program.probes or program.inputs else None,
     )
+
+
+def check_pass(program: Program, window: PlanWindow,
+               progress: Callable[[int, int], None]) -> tuple[float, float, tuple[PausePoint, ...]]:
+    """The whole plan of ``window``'s program made once, segment by segment, each let go once
+    seen: its end (planned time), its length and its pause points."""
+    feed = PauseFeed(program, False, True)
+    stops: list[PausePoint] = []
+    length = 0.0
+    n = len(program.moves)
+    while not window.done:
+        for seg in window.ensure(window.covered_until + 1e-9):
+            stops.extend(feed.points_in(seg))
+            length += float(np.sum(seg.table.length))
+            progress(int(seg.table.index[-1]) + 1, n)
+        window.release(window.covered_until)
+    return window.t_end, length, tuple(stops)
 
 
 class ProgramLoader:
@@ -429,7 +464,7 @@ class ProgramLoader:
         if was_loading:
             self.m.loadingChanged.emit(False, name)
         try:
-            outcome = check_text(req, self.m.conn.machine, self.m.stream.plan)
+            outcome = check_text(req, self.m.conn.machine, self.m.stream.planner())
         except _Cancelled:  # pragma: no cover - nobody cancels a synchronous load
             return CommandResult(False, "load_program", "cancelled")
         if isinstance(outcome, ProgramInfo):
@@ -507,6 +542,14 @@ class ProgramLoader:
         info = self.program_info
         if info is None:
             return None
+        if info.plan is None:
+            # a long program: planned as it runs, from its start (no plan to wait for)
+            from app.machine.feeder import single_block_program
+
+            planner = self.m.stream.planner()
+            if single_block:
+                return planner.window(single_block_program(info.program))  # type: ignore[arg-type]
+            return planner.window(info.program, info.plan_end_s)  # type: ignore[arg-type]
         if not single_block:
             return info.plan
         ready = self._run_plan_ready

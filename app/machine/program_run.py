@@ -135,7 +135,8 @@ class ProgramRunner:
             self.m.loader.start_run_plan(single)
             return self._start_when_ready(f"{info.name} is being planned for single block")
         try:
-            job = self.m.stream.make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan)
+            job = self.m.stream.make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan,
+                                         stops=None if single else info.stops)
         except PlannerError as exc:
             return self.m.states.refuse("cycle_start", f"planner: {exc}")
         job.origin = (prog, 0, 0.0)
@@ -148,7 +149,8 @@ class ProgramRunner:
         """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
         scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
         cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
-        beyond that are replaced (``Streamer.change_motion``), not run first.
+        beyond that are replaced (``Streamer.change_motion``), not run first. In a tap (G74,
+        G84, G33.1) the stop waits until the tap is out of the hole, where it ends at rest.
         """
         why = self.m.states.refusal("feed_hold")
         if why:
@@ -157,8 +159,11 @@ class ProgramRunner:
             job = self.m.stream.job
             if job is None:
                 return self.m.states.refuse("feed_hold", "nothing is moving")
-            self.m.stream.hold_motion()
-        self.m.states.set_state(MachineState.HOLD, "feed hold", HoldKind.FEED_HOLD)
+            self.m.stream.hold_motion(wait_for_tap=True)
+            waits = job.executor.hold_deferred
+        # the operator sees why the axes go on: the hold takes effect where the tap has ended
+        reason = "feed hold: the tap runs out of the hole first" if waits else "feed hold"
+        self.m.states.set_state(MachineState.HOLD, reason, HoldKind.FEED_HOLD)
         return self.m.states.ok("feed_hold")
 
     def resume(self) -> CommandResult:
@@ -209,7 +214,7 @@ class ProgramRunner:
         ex = job.executor
         _, _, move, s_cum = ex.evaluate(np.array([ex.tau]))
         m = int(move[0])
-        u = float(s_cum[0] - job.plan.segment.s0[m])
+        u = float(s_cum[0] - ex.move_start_s(m))
         index, u_orig = base + m, (u0 + u if m == 0 else u)
         if index >= len(prog.moves) - 1 and u_orig >= prog.moves[-1].length_mm - 1e-12:
             return None  # at the very end: nothing to re-plan
@@ -343,13 +348,17 @@ class ProgramRunner:
         else:
             rest = replace(rest, events=(spindle_event, *rest.events))
         name = self.m.loader.program_info.name if self.m.loader.program_info else prog.name
+        info = self.m.loader.program_info
+        # a long rest is planned as it runs: its time estimated by the share of moves left
+        left = 1.0 - point.move_index / max(len(prog.moves), 1)
         try:
-            main = self.m.stream.make_job(Activity.PROGRAM, rest, name, single_block=self.single_block)
+            main = self.m.stream.make_job(Activity.PROGRAM, rest, name, single_block=self.single_block,
+                                          estimate_s=info.cycle_time_s * left if info else math.nan)
         except PlannerError as exc:
             return self.m.states.refuse(action, f"planner: {exc}")
         # progress relative to the whole program
-        full_t = self.m.loader.program_info.cycle_time_s if self.m.loader.program_info else main.estimated_s
-        main.tau_offset_s = max(full_t - main.executor.t_end, 0.0)
+        full_t = info.cycle_time_s if info else main.estimated_s
+        main.tau_offset_s = max(full_t - main.executor.planned_end_s, 0.0)
         main.time_offset_s = main.tau_offset_s
         main.origin = (prog, point.move_index, point.u_mm)
         main.probe_results, main.wait_results = point.probe_results, point.wait_results

@@ -65,6 +65,11 @@ ends with zero speed: M00, M01, dwell, single block, program end) are pause poin
 exactly there (speed and acceleration of the plan are zero there, so stopping tau is smooth),
 and restarts at the target sigma.
 
+A feed hold asked for while a tap is in the hole (G74/G84, G33.1: the moves whose feed follows
+the spindle) waits until the tap has come out, where it ends at rest (``hold_deferred``): the
+axes standing while the spindle turns would strip the thread or break the tap. A stop, an
+alarm or a probe's contact holds at once.
+
 **What the claim rests on.** (a) The plan keeps r_a <= k_a and r_j <= k_j (the planner's own
 guarantee, made with the reduced limits); jerk at joints (tangent breaks, curvature jumps) is
 the planner's joint figure, excluded here as in its limit report, and r_j is clipped to k_j
@@ -86,16 +91,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.machine.plan_stats import BLOCK, BlockStats
-from planner.interpolate import Interpolator
+from planner.interpolate import Interpolator, Segment
 from planner.machine import MachineSpec
 from planner.meter import check_limits
 from planner.plan import Plan
+from planner.program import FEED_HOLD_DEFERRED, EventKind, Program
 from planner.stopping import PathStop, plan_path_stop
+from planner.window import PlanWindow
 
 __all__ = ["Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
            "reduced_machine"]
 
 SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap it (3)
+# planned time a plan made as it runs is held behind tau: a splice rewinds to the set-points
+# queued in the worker (a tenth of a second of real time, at most 0.2 s of plan at 200 %)
+KEEP_BEHIND_S = 2.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -144,30 +154,40 @@ class ScaledChunk:
 class TimeScaledExecutor:
     """Runs a plan at a time scale sigma (override / hold), producing set-points every Ts."""
 
-    def __init__(self, plan: Plan, machine: MachineSpec, budget: Budget,
+    def __init__(self, plan: Plan | PlanWindow, machine: MachineSpec, budget: Budget,
                  pauses: list[PausePoint] | None = None, feed_override: float = 1.0,
-                 rapid_override: float = 1.0) -> None:
-        self.plan = plan
+                 rapid_override: float = 1.0, pause_feed: PauseFeed | None = None) -> None:
+        # a whole plan, or one made as the run reaches it (``planner.window``): the executor
+        # reads it only around tau, from where a splice may rewind to as far as it brakes ahead
+        window = plan if isinstance(plan, PlanWindow) else PlanWindow.of_plan(plan)
+        self.window = window
+        self.plan = window
         self.machine = machine
         self.budget = budget
-        self.ts = plan.ts_s
-        self.stats = BlockStats(plan, machine)
+        self.ts = window.ts_s
+        self.pauses = sorted(pauses or [], key=lambda p: p.tau_s)
+        # the pause points of a plan made as it runs, added as its segments are made
+        self._pause_feed = pause_feed
+        window.on_segment = self._segment_made if pause_feed is not None else None
+        self.stats = BlockStats(window, machine)
         # the planner's own interpolation (exact, taylor or classic), at the scaled times
-        self.interp = Interpolator(plan.interpolation, plan.ts_s)
-        seg = plan.segment
-        if plan.interpolation == "taylor" and len(seg.table):
+        self.interp = Interpolator(window.interpolation, window.ts_s)
+        self.n_moves = window.n_moves
+        if self.n_moves:
+            self._advance_window(0.0, 0.0)
+        if window.interpolation == "taylor" and self.n_moves:
             # Eq. 16 starts where the plan does, at rest at planned time 0, as cnc-plan's samples
-            self.interp.at_state = (0.0, float(seg.s0[0]), 0.0, 0.0)
-        self.seg = seg
-        self.n_moves = len(seg.table)
-        self.t_end = float(seg.t_end)
+            self.interp.at_state = (0.0, float(self.seg.s0[0]), 0.0, 0.0)
         self.tau = 0.0
         self.sigma = 0.0
         self.sigma_dot = 0.0
         self.feed_override = float(feed_override)
         self.rapid_override = float(rapid_override)
         self.hold = False
-        self.pauses = sorted(pauses or [], key=lambda p: p.tau_s)
+        # the operator's feed hold waits while a tap is in the hole (``hold_deferred``); a stop,
+        # an alarm or a probe's contact holds at once
+        self.hold_waits_for_tap = False
+        self._locks = window.program.override_locks     # per move; None when nothing is locked
         self._pause_i = 0
         self.paused: PausePoint | None = None
         self.finished = self.n_moves == 0
@@ -196,10 +216,42 @@ class TimeScaledExecutor:
         self._stop_tried = False
         self.stops_taken = 0  # how many holds used the path stop (diagnostics, tests)
         self._last = (np.zeros((0, len(machine.axes))), np.zeros(0), np.zeros(0, np.int64))
-        self._rapid_move = seg.table.is_rapid if self.n_moves else np.zeros(0, bool)
+        self._rapid_move = window.program.rapid_moves
+
+    # ------------------------------------------------------------------ the plan around tau
+    @property
+    def seg(self) -> Segment:
+        """The plan's held segments as one (rows local; ``table.index``: the program's moves)."""
+        return self.window.segment
+
+    @property
+    def t_end(self) -> float:
+        """The plan's end (infinite until a plan made as it runs has made its last segment)."""
+        return self.window.t_end
+
+    @property
+    def planned_end_s(self) -> float:
+        """The plan's end, or its estimate while it is being made (for the time left)."""
+        return self.window.cycle_time_s
+
+    def move_start_s(self, move: int) -> float:
+        """Cumulative path length where the program's move ``move`` starts (near tau)."""
+        return self.window.move_start_s(move)
+
+    def _segment_made(self, seg: Segment) -> None:
+        assert self._pause_feed is not None
+        self.pauses.extend(self._pause_feed.points_in(seg))
+
+    def _advance_window(self, tau_back: float, tau_ahead: float) -> None:
+        """Plan ahead to ``tau_ahead``, let go of what ends before ``tau_back``."""
+        window = self.window
+        if not window.done:
+            window.ensure(tau_ahead)
+        window.release(tau_back)
 
     # ------------------------------------------------------------------ state (splicing)
-    _STATE = ("tau", "sigma", "sigma_dot", "feed_override", "rapid_override", "hold", "_pause_i", "paused",
+    _STATE = ("tau", "sigma", "sigma_dot", "feed_override", "rapid_override", "hold", "hold_waits_for_tap",
+              "_pause_i", "paused",
               "finished", "_win_valid_until", "_bounds", "_target_cache", "sigma_start", "_stop", "_stop_k",
               "_stop_tried", "stops_taken", "_last", "_interp_state")
 
@@ -245,6 +297,39 @@ class TimeScaledExecutor:
     def standing(self) -> bool:
         return self.sigma == 0.0 and self.sigma_dot == 0.0
 
+    @property
+    def in_tap(self) -> bool:
+        """The plan is inside a tap (past its start, before its end: the tool in the hole).
+        At a move's start (a pause point: the spindle reversing at the bottom) it is inside
+        when the move before is the tap's too."""
+        locks = self._locks
+        if locks is None or not self.n_moves:
+            return False
+        seg = self.seg
+        row = int(np.searchsorted(seg.t0, self.tau, side="right")) - 1
+        if row < 0:
+            return False
+        move = int(seg.table.index[row])
+        if not locks[move] & FEED_HOLD_DEFERRED:
+            return False
+        return self.tau > float(seg.t0[row]) or (move > 0 and bool(locks[move - 1] & FEED_HOLD_DEFERRED))
+
+    @property
+    def hold_deferred(self) -> bool:
+        """A feed hold asked for, waiting until the tap runs out of the hole (where it ends at
+        rest, and the hold takes it)."""
+        return self.hold and self.hold_waits_for_tap and self.in_tap
+
+    @property
+    def holding(self) -> bool:
+        """The hold acts now: sigma goes to 0, or is 0."""
+        return self.hold and not self.hold_deferred
+
+    @property
+    def held(self) -> bool:
+        """Held still on the path."""
+        return self.holding and self.standing
+
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The plan in closed form at arbitrary planned times: (q, line, move index, cumulative
@@ -276,8 +361,9 @@ class TimeScaledExecutor:
         # target: override per block kind, capped (3), over the braking distance ahead
         k_a, k_j = self.budget.k_a, self.budget.k_j
         w2 = st.window(self.tau, self.tau + horizon)
+        holding = self.holding
         if w2.stop <= w2.start:
-            self._target_cache = 0.0 if self.hold else min(self.feed_override, 1.0)
+            self._target_cache = 0.0 if holding else min(self.feed_override, 1.0)
             return
         rv = c["rv"][w2]
         ra = c["ra"][w2]
@@ -304,7 +390,7 @@ class TimeScaledExecutor:
             # starting from a standstill of the plan: what the blocks behind it ran at is past
             x = np.where(start_tau + bt <= self.tau, SIGMA_MAX, x)
         dist = start_tau - self.tau
-        sig = max(self.sigma, 1e-3, 0.0 if self.hold else min(float(x.max()), SIGMA_MAX))
+        sig = max(self.sigma, 1e-3, 0.0 if holding else min(float(x.max()), SIGMA_MAX))
         # The highest sigma at each block from which every cap ahead can still be met: braking at
         # the rate D1 the step bounds will allow there (for sigma >= 1 the worst of (1): the
         # largest |q'|/A and |q''|/J over the 0.25 s window the steps look at), in planned time
@@ -334,7 +420,7 @@ class TimeScaledExecutor:
         self.override_off_here = fixed
         asked = (1.0 if fixed else self.feed_override) if hf[binding].any() or not hr[binding].any() \
             else self.rapid_override
-        self.capped_to = self._target_cache if not self.hold and self._target_cache < asked - 1e-3 \
+        self.capped_to = self._target_cache if not holding and self._target_cache < asked - 1e-3 \
             and self._target_cache >= 1.0 else None
 
     def _step_bounds(self, sigma: float) -> tuple[float, float]:
@@ -359,7 +445,8 @@ class TimeScaledExecutor:
         if not self.path_stops or self.sigma <= 0.0 or self.sigma_start:
             return
         nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
-        tau_limit = nxt.tau_s if nxt is not None else self.t_end
+        # the stop ends before the next pause point, and within the plan made so far
+        tau_limit = min(nxt.tau_s if nxt is not None else self.t_end, self.window.covered_until)
         try:
             stop = plan_path_stop(self.plan, self.machine, self.tau, self.sigma, self.sigma_dot, tau_limit)
         except (ValueError, FloatingPointError, IndexError):  # pragma: no cover - keep the ramp
@@ -417,7 +504,15 @@ class TimeScaledExecutor:
         paused (call ``release_pause``) or finished."""
         if self.finished or self.paused is not None or n <= 0:
             return None
-        if not self.hold:
+        if not self.window.done or self.window.first_move:
+            # as far as this call can go and the braking looks ahead; back to where a splice
+            # may rewind to (the set-points queued in the worker, well under a second)
+            reach = n * self.ts * SIGMA_MAX + 1.2 * SIGMA_MAX * self.time_to_ramp_s + 1.0
+            self._advance_window(self.tau - KEEP_BEHIND_S, self.tau + reach)
+        # a deferred hold (a tap in the hole) acts once the tap has ended, at a pause point:
+        # ``generate`` returns there, so this holds for the whole call
+        holding = self.holding
+        if not holding:
             self._stop_tried = False
         elif self._stop is None and not self._stop_tried:
             self._try_path_stop()
@@ -432,15 +527,15 @@ class TimeScaledExecutor:
             if k % 16 == 0:
                 self._local_bounds()
             d2_ref = self.d2_ref
-            target = 0.0 if self.hold else self._target_cache
+            target = 0.0 if holding else self._target_cache
             sigma, sd = self.sigma, self.sigma_dot
-            if self.sigma_start and not self.hold:
+            if self.sigma_start and not holding:
                 # at a standstill of the plan itself: start directly at the target (the plan's
                 # speed and acceleration are zero here, see the module docstring)
                 sigma, sd = target, 0.0
                 self.sigma = sigma  # the jump happens at the standstill, not over the step
                 self.sigma_start = False
-            elif self.sigma_start and self.hold:
+            elif self.sigma_start and holding:
                 sigma, sd = 0.0, 0.0
             else:
                 d1, d2 = self._step_bounds(sigma)
@@ -497,39 +592,60 @@ class TimeScaledExecutor:
         return 1.0 if self.t_end <= 0 else min(self.tau / self.t_end, 1.0)
 
 
-def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[PausePoint]:
-    """Pause points of a plan from its program's stopping events (and every block end in
-    single-block mode; the plan must then have been made with exact stops)."""
-    from planner.program import EventKind
+_PAUSE_KINDS = {EventKind.PAUSE: "pause", EventKind.OPTIONAL_PAUSE: "optional_pause",
+                EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
+                EventKind.SPINDLE: "spindle", EventKind.END: "end", EventKind.TOOL_SET: "tool_set",
+                EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data",
+                EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe", EventKind.INPUT: "input",
+                EventKind.TAPPING: "tapping"}
 
-    seg = plan.segment
-    prog = plan.program
-    n = len(seg.table)
-    if n == 0:
+
+class PauseFeed:
+    """The pause points of a program's plan, segment by segment in order as they are made
+    (``points_in``): from its stopping events, every block end in single-block mode (the plan
+    must then have been made with exact stops), and its end."""
+
+    def __init__(self, program: Program, single_block: bool, optional_stop: bool) -> None:
+        self.n = len(program.moves)
+        self.single_block = single_block
+        events = [ev for ev in program.events
+                  if ev.kind in _PAUSE_KINDS and ev.after_move < self.n
+                  and (optional_stop or ev.kind is not EventKind.OPTIONAL_PAUSE)
+                  # events before the first move act at the start (dwell: the plan's timeline
+                  # starts after it)
+                  and not (ev.after_move < 0 and ev.kind is EventKind.DWELL)]
+        self._events = sorted(events, key=lambda ev: ev.after_move)
+        self._next = 0
+
+    def points_in(self, seg: Segment) -> list[PausePoint]:
+        """The pause points within ``seg`` (the next segment of the plan)."""
+        n_seg = len(seg.table)
+        if n_seg == 0:
+            return []
+        lo = int(seg.table.index[0])
+        hi = lo + n_seg
+        t_end_move = seg.t0 + seg.profiles.duration
+        pts: list[PausePoint] = []
+        events = self._events
+        while self._next < len(events) and events[self._next].after_move < hi:
+            ev = events[self._next]
+            self._next += 1
+            i = ev.after_move
+            tau = float(t_end_move[i - lo]) if i >= 0 else 0.0
+            pts.append(PausePoint(tau, _PAUSE_KINDS[ev.kind], ev.line, max(i, 0), float(ev.value),
+                                  ev.message))
+        if self.single_block:
+            lines = seg.table.line
+            pts.extend(PausePoint(float(t_end_move[r]), "single_block", int(lines[r]), lo + r)
+                       for r in range(min(n_seg, self.n - 1 - lo)))
+        pts.sort(key=lambda p: (p.tau_s, p.line))
+        if hi >= self.n:
+            pts.append(PausePoint(float(seg.t_end), "end", int(seg.table.line[-1]), self.n - 1))
+        return pts
+
+
+def pause_points(plan: Plan, single_block: bool, optional_stop: bool) -> list[PausePoint]:
+    """Pause points of a whole plan (``PauseFeed`` over its one segment)."""
+    if not len(plan.segment.table):
         return []
-    t_end_move = seg.t0 + seg.profiles.duration
-    out: dict[int, PausePoint] = {}
-    kinds = {EventKind.PAUSE: "pause", EventKind.OPTIONAL_PAUSE: "optional_pause",
-             EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
-             EventKind.SPINDLE: "spindle", EventKind.END: "end", EventKind.TOOL_SET: "tool_set",
-             EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data",
-             EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe", EventKind.INPUT: "input",
-             EventKind.TAPPING: "tapping"}
-    extra: list[PausePoint] = []
-    for ev in prog.events:
-        if ev.kind not in kinds or ev.after_move >= n:
-            continue
-        if ev.kind is EventKind.OPTIONAL_PAUSE and not optional_stop:
-            continue
-        i = ev.after_move
-        # events before the first move act at the start (dwell: the plan's timeline starts after it)
-        tau = float(t_end_move[i]) if i >= 0 else 0.0
-        if i < 0 and ev.kind is EventKind.DWELL:
-            continue
-        extra.append(PausePoint(tau, kinds[ev.kind], ev.line, max(i, 0), float(ev.value), ev.message))
-    if single_block:
-        for i in range(n - 1):
-            out[i] = PausePoint(float(t_end_move[i]), "single_block", int(seg.table.line[i]), i)
-    pts = sorted(extra + list(out.values()), key=lambda p: (p.tau_s, p.line))
-    pts.append(PausePoint(float(seg.t_end), "end", int(seg.table.line[-1]), n - 1))
-    return pts
+    return PauseFeed(plan.program, single_block, optional_stop).points_in(plan.segment)

@@ -79,9 +79,10 @@ class DiagnosticsPage(QWidget):
             return
         machine = self.ctx.controller.config.machine
         plan = getattr(self.ctx.program.info, "plan", None)
+        planned_s = float(getattr(self.ctx.program.info, "plan_end_s", float("nan")))
         self._profile_state = N_("Planning…")
         self._show_profile_state()
-        self._planning.submit(lambda: path_profile(program, machine, plan=plan))
+        self._planning.submit(lambda: path_profile(program, machine, plan=plan, cycle_time_s=planned_s))
 
     def _on_profile(self, result: object) -> None:
         if isinstance(result, Exception):  # shown on the page, never kills the panel

@@ -68,12 +68,38 @@ def test_m49_and_m50_p0_hold_the_feed_until_m48_or_m50(machine) -> None:
     assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
 
 
-def test_holding_a_tap_still_stops_it(machine) -> None:
-    # the operator's feed hold is never turned off: a tap stops on the path when held
+def _into_first_tap(machine, set_points: int) -> tuple[int, list[int]]:
+    """The set-point ``set_points`` into the first tap's feed in, and the tap moves."""
     free = run(machine, TAPPING, {})
     prog, mv_free = free[0], free[5]
     taps = sorted(moves_where(prog, FEED_OVERRIDE_OFF))
-    k_in = int(np.nonzero(mv_free == taps[0])[0][0]) + 40      # 40 set-points into the G84's feed
+    return int(np.nonzero(mv_free == taps[0])[0][0]) + set_points, taps
+
+
+def test_a_feed_hold_in_a_tap_waits_until_the_tap_is_out_of_the_hole(machine) -> None:
+    # axes standing with the tap in the hole while the spindle turns strip the thread or break
+    # the tap: the hold takes effect where the tap ends, at rest above the hole (LinuxCNC holds
+    # spindle-synchronised motion to its end, Fanuc a G84 to its return)
+    k_in, taps = _into_first_tap(machine, 40)
+    prog, plan, ex, q, s, mv, sig, tau = run(machine, TAPPING, {k_in: ("feed_hold", 1.0),
+                                                                k_in + 3000: ("feed_hold", 0.0)})
+    stood = np.nonzero(sig == 0.0)[0]
+    stood = stood[stood > k_in]
+    assert len(stood) > 100
+    first = stood[0]
+    tap_end = plan.segment.t0[taps[1]] + plan.segment.profiles.duration[taps[1]]
+    assert tau[first] == pytest.approx(tap_end, abs=1e-12)     # at the end of the tap's way out
+    # the tap ran at the programmed feed all the way out: never slowed by the hold
+    inside = (mv > taps[0] - 1) & (mv <= taps[1]) & (np.arange(len(mv)) > k_in) & (tau < tap_end)
+    assert inside.sum() > 100 and np.all(sig[inside] == 1.0)
+    np.testing.assert_allclose(q[first][2], 2.0, atol=1e-9)       # at R, out of the hole
+    np.testing.assert_array_equal(q[-1], prog.end_position)
+    assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
+
+
+def test_a_stop_in_a_tap_stops_it_at_once(machine) -> None:
+    # a stop, an alarm or a probe's contact holds where the tool is, in a tap too
+    k_in, taps = _into_first_tap(machine, 40)
     prog, plan, ex, q, s, mv, sig, tau = run(machine, TAPPING, {k_in: ("hold", 1.0),
                                                                 k_in + 1500: ("hold", 0.0)})
     stood = np.nonzero(sig == 0.0)[0]
@@ -82,6 +108,21 @@ def test_holding_a_tap_still_stops_it(machine) -> None:
     assert int(mv[stood[0]]) == taps[0]                          # it stood inside the tap
     np.testing.assert_array_equal(q[-1], prog.end_position)
     assert_within(check_limits(q, s, mv, machine, plan.ts_s, plan.segment.table.is_rapid))
+
+
+def test_a_feed_hold_before_a_tap_stands_before_it(machine) -> None:
+    # at rest above the hole, the tap not yet started: the hold takes effect there
+    free = run(machine, TAPPING, {})
+    prog, mv_free = free[0], free[5]
+    taps = sorted(moves_where(prog, FEED_OVERRIDE_OFF))
+    k_before = int(np.nonzero(mv_free == taps[0])[0][0]) - 30     # on the rapid down to R
+    prog, plan, ex, q, s, mv, sig, tau = run(machine, TAPPING, {k_before: ("feed_hold", 1.0),
+                                                                k_before + 2000: ("feed_hold", 0.0)})
+    stood = np.nonzero(sig == 0.0)[0]
+    stood = stood[stood > k_before]
+    assert len(stood) > 100
+    assert int(mv[stood[0]]) < taps[0]
+    assert tau[stood[0]] <= plan.segment.t0[taps[0]] + 1e-12
 
 
 def test_m53_p0_leaves_the_feed_hold_working(machine) -> None:
@@ -131,11 +172,57 @@ def test_mdi_takes_m48_to_m51_only_with_a_move(ctl) -> None:
     assert ctl.mdi("M49 G91 G1 X1 F300")
 
 
-def test_a_tap_planned_again_from_a_hold_inside_it_still_runs_at_the_programmed_feed(qapp, config_path,
-                                                                                    state_dir) -> None:
-    """Held halfway into the hole at 150 % feed override, single block switched on (the rest
-    of the program is planned again from the point it stands at), then resumed: the rest of
-    the tap keeps the overrides off, though what turned them off lies behind that point."""
+def test_the_operator_is_told_a_feed_hold_waits_for_the_tap(qapp, config_path, state_dir) -> None:
+    from app.machine.model import MachineState
+    from tests.machine.conftest import make_controller, run_to_idle
+
+    ctl = make_controller(config_path, state_dir)
+    try:
+        text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
+        assert ctl.load_program(text, "tap.ngc", wait=True)
+        assert ctl.cycle_start()
+        assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -8.0, 20)
+        assert ctl.feed_hold()
+        assert ctl.state is MachineState.HOLD
+        assert "the tap runs out of the hole first" in ctl.state_reason
+        assert ctl.run_until(lambda: ctl.stream.job.executor.held
+                             and ctl.stream.consumed() >= ctl.stream.pushed_total, 10)
+        assert ctl.machine_position[2] == pytest.approx(1.0, abs=1e-6)   # at R, out of the hole
+        assert ctl.spindle.on                                            # a feed hold only
+        assert ctl.resume()
+        run_to_idle(ctl)
+        assert ctl.last_run.completed
+    finally:
+        ctl.shutdown()
+
+
+def test_stop_after_a_waiting_feed_hold_stops_the_tap_at_once(qapp, config_path, state_dir) -> None:
+    # the feed hold waits for the tap; the operator's stop does not wait for the feed hold
+    from app.machine.model import MachineState
+    from tests.machine.conftest import make_controller
+
+    ctl = make_controller(config_path, state_dir)
+    try:
+        text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
+        assert ctl.load_program(text, "tap.ngc", wait=True)
+        assert ctl.cycle_start()
+        assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -6.0, 20)
+        assert ctl.feed_hold()
+        ctl.advance(0.05)
+        z = ctl.machine_position[2]
+        assert ctl.stop()
+        assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
+        assert ctl.machine_position[2] == pytest.approx(z, abs=2.0)
+        assert not ctl.spindle.on
+    finally:
+        ctl.shutdown()
+
+
+def test_a_tap_resumed_from_a_stop_inside_it_still_runs_at_the_programmed_feed(qapp, config_path,
+                                                                             state_dir) -> None:
+    """Stopped halfway into the hole by an alarm at 150 % feed override, then resumed from
+    that point (the rest of the program planned again from it): the rest of the tap keeps the
+    overrides off, though what turned them off lies behind that point."""
     from app.machine.model import MachineState
     from tests.machine.conftest import make_controller, run_to_idle
 
@@ -146,21 +233,18 @@ def test_a_tap_planned_again_from_a_hold_inside_it_still_runs_at_the_programmed_
         assert ctl.set_feed_override(150)
         assert ctl.cycle_start()
         assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -8.0, 20)
-        assert ctl.feed_hold()
-        assert ctl.run_until(lambda: ctl.state is MachineState.HOLD and ctl.stream.job.executor.standing
-                             and ctl.stream.consumed() >= ctl.stream.pushed_total, 10)
-        held_at = ctl.stream.job
-        assert ctl.set_single_block(True)
-        ctl.loader.wait_run_plan(None)
+        alarm_z = ctl.machine_position[2]
+        ctl.alarm_log.alarm_stop("test: coolant pressure lost", "controller", "test")
+        assert ctl.run_until(lambda: ctl.stream.job is None, 5)
+        # an alarm stops at once, in the hole too (not at the bottom, nor out of it)
+        assert ctl.machine_position[2] == pytest.approx(alarm_z, abs=2.0)
+        assert ctl.reset()
+        assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
         assert ctl.resume()
-        ctl.advance(0.05)
-        assert ctl.stream.job is not held_at                  # the rest, planned again from the hold
         sigmas: list[float] = []
-        for _ in range(2000):
+        for _ in range(3000):
             if ctl.state is MachineState.IDLE:
                 break
-            if ctl.state is MachineState.HOLD:                # single block: each block's end
-                assert ctl.cycle_start()
             ctl.advance(0.02)
             job = ctl.stream.job
             if job is None:
@@ -171,6 +255,7 @@ def test_a_tap_planned_again_from_a_hold_inside_it_still_runs_at_the_programmed_
             if tap_feed and job.executor.sigma > 0.0:
                 sigmas.append(job.executor.sigma)
         run_to_idle(ctl)
+        assert ctl.last_run.completed
         assert len(sigmas) > 20                               # the rest of the tap, in and out
         assert max(sigmas) <= 1.0 + 1e-12
     finally:

@@ -10,6 +10,7 @@ from app.machine.config import load_config
 from app.machine.timescale import (
     SIGMA_MAX,
     Budget,
+    PauseFeed,
     TimeScaledExecutor,
     pause_points,
     reduced_machine,
@@ -18,6 +19,7 @@ from planner.interpreter import parse_program
 from planner.meter import check_limits
 from planner.movetable import contour_error
 from planner.plan import plan_program
+from planner.window import PlanWindow
 from resources import shipped_machine
 
 PROGRAM = """G0 X10 Y0
@@ -37,11 +39,19 @@ def machine():
     return load_config(shipped_machine("xyz_mill")).machine
 
 
-def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budget: Budget | None = None):
+def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budget: Budget | None = None,
+        window_moves: int | None = None, held: list[int] | None = None):
+    """The executor through ``program_text`` with ``actions`` at set-point numbers. With
+    ``window_moves`` it plays a plan made as it runs, in segments of that many moves (``held``
+    collects how many moves the window holds at each step)."""
     budget = budget or Budget()
     prog = parse_program(program_text, machine=machine)
-    plan = plan_program(prog, reduced_machine(machine, budget))
-    ex = TimeScaledExecutor(plan, machine, budget, pause_points(plan, False, False))
+    if window_moves is None:
+        plan = plan_program(prog, reduced_machine(machine, budget))
+        ex = TimeScaledExecutor(plan, machine, budget, pause_points(plan, False, False))
+    else:
+        plan = PlanWindow(prog, reduced_machine(machine, budget), segment_moves=window_moves)
+        ex = TimeScaledExecutor(plan, machine, budget, pause_feed=PauseFeed(prog, False, False))
     q, s, mv, sig, tau = [], [], [], [], []
     k = 0
     while not ex.finished:
@@ -52,13 +62,17 @@ def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budge
                     ex.set_overrides(feed=value)
                 elif what == "rapid":
                     ex.set_overrides(rapid=value)
-                elif what == "hold":
-                    ex.hold = bool(value)
+                elif what == "hold":              # a stop, an alarm: at once
+                    ex.hold, ex.hold_waits_for_tap = bool(value), False
+                elif what == "feed_hold":         # the operator's: after a tap in the hole
+                    ex.hold, ex.hold_waits_for_tap = bool(value), True
         ch = ex.generate(10)
         if ch is None:
             assert ex.paused is not None
             ex.release_pause()
             continue
+        if held is not None:
+            held.append(len(ex.seg.table))
         q.append(ch.q)
         s.append(ch.s_mm)
         mv.append(ch.move)

@@ -231,7 +231,7 @@ def test_tool_and_m06_tool_change():
 
 
 def test_coolant_events():
-    p = P("M8\nM9\nM7 M8\n")
+    p = P("M8\nM9\nM7\nM8\n")
     assert [(e.kind, e.value) for e in p.events] == [
         (EventKind.COOLANT, 2),
         (EventKind.COOLANT, 0),

@@ -63,6 +63,7 @@ def errors_of(text: str, **kw):
         ("M1.5", "unknown M code", 1, 1),
         ("M3 M5", "M3 and M5 are in the same modal group", 1, 4),
         ("M0 M2", "M0 and M2 are in the same modal group", 1, 4),
+        ("M7 M8", "M7 and M8 are in the same modal group", 1, 4),   # as LinuxCNC 2.9, which refuses it
         # words
         ("G0 B5", "axis B is not on this machine (axes: X Y Z)", 1, 4),
         ("G0 U5", "axis U is not on this machine", 1, 4),

@@ -8,11 +8,12 @@ import pytest
 
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
-from planner.program import FEED_OVERRIDE_OFF, SPINDLE_OVERRIDE_OFF, EventKind
+from planner.program import FEED_HOLD_DEFERRED, FEED_OVERRIDE_OFF, SPINDLE_OVERRIDE_OFF, EventKind
 from planner.resume import remaining_program
 from tools.linuxcnc_oracle import RS274, motion_alike, refused_alike
 
 BOTH = FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF
+TAP = BOTH | FEED_HOLD_DEFERRED      # a tap's moves: the operator's feed hold waits for its end
 NEEDS_RS274 = pytest.mark.skipif(RS274 is None,
                                  reason="LinuxCNC's rs274 is not installed (make test installs it as root)")
 
@@ -41,13 +42,13 @@ def test_tapping_turns_both_overrides_off_for_its_feed_moves_only() -> None:
     assert got is not None
     feeds_in_taps = [i for i, m in enumerate(p.moves) if m.kind.name == "LINE"]
     assert [i for i, b in enumerate(got) if b] == feeds_in_taps
-    assert all(int(got[i]) == BOTH for i in feeds_in_taps)
+    assert all(int(got[i]) == TAP for i in feeds_in_taps)
 
 
 def test_after_a_tap_the_program_state_comes_back() -> None:
     # M50 P0 before the cycle: after the tap the feed override stays off, the spindle's comes back
     got = locks("G21 G90 G0 X0 Y0 Z10\nS500 M3\nM50 P0\nG84 X10 Z-12 R2 F625\nG80\nG1 X30\nM2\n")
-    assert got == [0, FEED_OVERRIDE_OFF, FEED_OVERRIDE_OFF, BOTH, BOTH, FEED_OVERRIDE_OFF]
+    assert got == [0, FEED_OVERRIDE_OFF, FEED_OVERRIDE_OFF, TAP, TAP, FEED_OVERRIDE_OFF]
 
 
 def test_m72_restores_the_overrides_saved_by_m70() -> None:
@@ -60,7 +61,7 @@ def test_a_restart_inside_a_tap_keeps_the_overrides_off() -> None:
     rest = remaining_program(p, tap_in, 3.0)
     got = rest.override_locks
     assert got is not None
-    assert [int(b) for b in got] == [BOTH, BOTH, 0]
+    assert [int(b) for b in got] == [TAP, TAP, 0]
 
 
 @pytest.mark.parametrize(("text", "word", "why"), [
