@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QObject, Signal
 
+from app.program_lines import line_text
 from app.toolpath import ToolPath, build_toolpath
 from planner.errors import PlannerError, ProgramError
 from planner.machine import MachineSpec
@@ -56,6 +57,25 @@ class ProgramModel(QObject):
         import numpy as np
 
         return int(np.searchsorted(self.toolpath.move_lines, line, side="left"))
+
+    def line(self, number: int) -> str:
+        """The text of line ``number`` (1-based; "" beyond the program), through the loaded
+        program's line index when there is one: a program of millions of lines is not split
+        into millions of strings for one line."""
+        text = self.text
+        if number < 1:
+            return ""
+        starts = getattr(self.info, "line_starts", None)
+        if starts is not None and getattr(self.info, "text", None) is text:
+            return line_text(text, starts, number - 1) if number < len(starts) else ""
+        lo = 0
+        for _ in range(number - 1):
+            lo = text.find("\n", lo) + 1
+            if lo == 0:
+                return ""
+        hi = text.find("\n", lo)
+        line = text[lo:] if hi < 0 else text[lo:hi]
+        return line[:-1] if line.endswith("\r") else line
 
     def expect(self, text: str, name: str) -> None:
         """The panel is about to load this text: shown with its errors if the controller refuses it."""

@@ -44,7 +44,7 @@ class ToolPath:
     point_kind: np.ndarray
     kind_counts: dict[MoveKind, int]  # moves drawn as each kind
     move_lines: np.ndarray  # int32 (n_moves,), source line per move
-    move_first_point: np.ndarray  # int (n_moves,), index of each move's first point in ``all``
+    move_first_point: np.ndarray  # int32 (n_moves,), index of each move's first point in ``all``
     bounds: tuple[np.ndarray, np.ndarray]  # (min, max) per axis
     # (n_moves, n_axes) offset subtracted from machine positions to draw each move in the
     # program's (work) coordinates: work offset and tool length offset of that move
@@ -179,7 +179,7 @@ def build_toolpath(program: Program) -> ToolPath:
     # a program read from G-code keeps its moves as columns: no Move object is made here
     cols = moves.columns() if isinstance(moves, MoveStore) else None
     if cols is not None:
-        kinds, lines = cols.kind, cols.line.astype(np.int32)
+        kinds, lines = cols.kind, cols.line.astype(np.int32, copy=False)   # the program's own
     else:
         kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=n)
         lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=n)
@@ -234,7 +234,12 @@ def build_toolpath(program: Program) -> ToolPath:
         else:
             everything = Polylines(everything.points - offsets[everything.move_index],
                                    everything.connect, everything.move_index, everything.count)
-    first_point = np.searchsorted(everything.move_index, np.arange(n))
+    if not own_points:          # one point a move: move k starts at point k
+        first_point = np.arange(n, dtype=np.int32)
+    else:
+        first_point = np.searchsorted(everything.move_index, np.arange(n, dtype=np.int32))
+        if len(everything.points) < 2**31:
+            first_point = first_point.astype(np.int32)   # 4 bytes a move, not 8
     if len(everything.points):
         lo, hi = everything.points.min(axis=0), everything.points.max(axis=0)
     else:

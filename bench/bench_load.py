@@ -18,7 +18,8 @@ the longest gap is recorded until cycle start is possible again (the re-check do
 window on the real controller, manual worker clock), so the
 pages' reactions to ``programLoaded`` (editors, tool path, v/a/j profile) count too. Prints one
 JSON object: total load time (call -> ``programLoaded``), time spent inside the call itself,
-the longest GUI-thread gap before ``programLoaded`` and until the panel settled, and the p99 gap.
+the longest GUI-thread gap before ``programLoaded`` and until the panel settled, the p99 gap,
+and the process's peak resident memory until loaded and until settled.
 """
 
 from __future__ import annotations
@@ -26,11 +27,16 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import tempfile
 import time
 from pathlib import Path
 
 TICK_MS = 10
+
+
+def _peak_rss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
 def _program_file(path: str | None) -> Path:
@@ -83,6 +89,7 @@ def run(program: Path, mode: str, settle_s: float) -> dict:
     def done(kind: str, _payload: object) -> None:
         marks.setdefault("done", time.perf_counter())
         marks.setdefault("gaps_at_done", float(len(gaps)))
+        marks.setdefault("peak_at_done_mb", _peak_rss_mb())
         marks["ok"] = 1.0 if kind == "loaded" else 0.0
 
     controller.programLoaded.connect(lambda info: done("loaded", info))
@@ -138,6 +145,10 @@ def run(program: Path, mode: str, settle_s: float) -> dict:
         "max_gui_gap_ms": round(1000 * max(during, default=0.0), 1),
         "p99_gui_gap_ms": round(1000 * p99, 1),
         "settle_s": settle_s,
+        # the whole process's peak resident memory: until the program was loaded, and until
+        # the panel had settled after it (the pages' tool path and preview included)
+        "peak_rss_at_loaded_mb": round(marks.get("peak_at_done_mb", float("nan"))),
+        "peak_rss_mb": round(_peak_rss_mb()),
     }
     if window is not None:
         window.close()

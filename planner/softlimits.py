@@ -10,6 +10,7 @@ Other axes of an arc (helix axis, rotary axes) move linearly: their end points a
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,7 +20,8 @@ from planner.movestore import MoveStore
 from planner.program import Move, Program
 
 __all__ = [
-    "LimitViolation", "check_point", "check_program", "move_bounds", "move_bounds_table", "program_bounds",
+    "LimitViolation", "check_and_bound", "check_point", "check_program", "move_bounds", "move_bounds_pieces",
+    "move_bounds_table", "program_bounds",
 ]
 
 _EPS = 1e-9  # mm|deg: rounding allowance at a limit
@@ -78,33 +80,59 @@ def move_bounds(move: Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return arr.min(axis=0), arr.max(axis=0), arr
 
 
-def move_bounds_table(program: Program, chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
-    """Per-move bounds (lo (M, n_axes), hi (M, n_axes)), arcs exact: NumPy over lines and
-    rapids (their end points), ``move_bounds`` for arcs. Built in chunks so that a load in a
-    worker thread never holds the GIL for long."""
+#: moves whose bounds are made at once: a piece's tables are a few megabytes (the whole
+#: table of 10,000,000 moves took 480 MB for as long as the load held it)
+PIECE_MOVES = 1 << 18
+
+
+def move_bounds_pieces(program: Program, piece: int = PIECE_MOVES,
+                       chunk: int = 2048) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+    """Per-move bounds a piece of moves at a time: (first move, lo (m, n_axes), hi (m, n_axes)),
+    arcs exact: NumPy over lines and rapids (their end points), ``move_bounds`` for arcs and
+    blends. Made in chunks so that a load in a worker thread never holds the GIL for long."""
     moves = program.moves
     n = len(program.axes) if program.axes else len(program.start_position)
     if isinstance(moves, MoveStore):
         # columns: straight moves by their end points at once, only arcs and blends one by one
         pos = moves.positions
-        lo = np.minimum(pos[:-1], pos[1:])
-        hi = np.maximum(pos[:-1], pos[1:])
         cols = moves.columns()
-        for k in np.union1d(cols.arc_rows, cols.blend_rows).tolist():
-            lo[k], hi[k], _ = move_bounds(moves[k])
-        return lo, hi
-    lo = np.empty((len(moves), n))
-    hi = np.empty((len(moves), n))
-    for k in range(0, len(moves), chunk):
-        part = moves[k:k + chunk]
-        starts = np.array([m.start for m in part], dtype=float).reshape(len(part), n)
-        ends = np.array([m.end for m in part], dtype=float).reshape(len(part), n)
-        np.minimum(starts, ends, out=lo[k:k + len(part)])
-        np.maximum(starts, ends, out=hi[k:k + len(part)])
-        for i, m in enumerate(part):
-            if m.arc is not None or m.blend is not None:
-                lo[k + i], hi[k + i], _ = move_bounds(m)
-    return lo, hi
+        special = np.union1d(cols.arc_rows, cols.blend_rows)
+        for a in range(0, len(moves), piece):
+            b = min(a + piece, len(moves))
+            lo = np.minimum(pos[a:b], pos[a + 1:b + 1])
+            hi = np.maximum(pos[a:b], pos[a + 1:b + 1])
+            for k in special[np.searchsorted(special, a):np.searchsorted(special, b)].tolist():
+                lo[k - a], hi[k - a], _ = move_bounds(moves[k])
+            yield a, lo, hi
+        return
+    for a in range(0, len(moves), piece):
+        b = min(a + piece, len(moves))
+        lo = np.empty((b - a, n))
+        hi = np.empty((b - a, n))
+        for k in range(a, b, chunk):
+            part = moves[k:min(k + chunk, b)]
+            starts = np.array([m.start for m in part], dtype=float).reshape(len(part), n)
+            ends = np.array([m.end for m in part], dtype=float).reshape(len(part), n)
+            np.minimum(starts, ends, out=lo[k - a:k - a + len(part)])
+            np.maximum(starts, ends, out=hi[k - a:k - a + len(part)])
+            for i, m in enumerate(part):
+                if m.arc is not None or m.blend is not None:
+                    lo[k - a + i], hi[k - a + i], _ = move_bounds(m)
+        yield a, lo, hi
+
+
+def move_bounds_table(program: Program, chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
+    """Per-move bounds of the whole program (lo (M, n_axes), hi (M, n_axes)), arcs exact."""
+    n = len(program.axes) if program.axes else len(program.start_position)
+    pieces = list(move_bounds_pieces(program, chunk=chunk))
+    if not pieces:
+        return np.empty((0, n)), np.empty((0, n))
+    return np.concatenate([p[1] for p in pieces]), np.concatenate([p[2] for p in pieces])
+
+
+def _pieces(program: Program, table: tuple[np.ndarray, np.ndarray] | None, piece: int = PIECE_MOVES
+            ) -> Iterable[tuple[int, np.ndarray, np.ndarray]]:
+    return [(0, *table)] if table is not None else move_bounds_pieces(program, piece)
 
 
 def program_bounds(program: Program, table: tuple[np.ndarray, np.ndarray] | None = None
@@ -113,10 +141,10 @@ def program_bounds(program: Program, table: tuple[np.ndarray, np.ndarray] | None
     ``table``: a ``move_bounds_table`` of the program, if already built."""
     lo = np.asarray(program.start_position, dtype=float).copy()
     hi = lo.copy()
-    mlo, mhi = table if table is not None else move_bounds_table(program)
-    if len(mlo):
-        np.minimum(lo, mlo.min(axis=0), out=lo)
-        np.maximum(hi, mhi.max(axis=0), out=hi)
+    for _, mlo, mhi in _pieces(program, table):
+        if len(mlo):
+            np.minimum(lo, mlo.min(axis=0), out=lo)
+            np.maximum(hi, mhi.max(axis=0), out=hi)
     return lo, hi
 
 
@@ -137,29 +165,45 @@ def check_program(program: Program, machine: MachineSpec, max_reports: int = 50,
     """Every move whose path leaves an axis' travel, with its line and axis (first report per
     move and axis). Empty when the whole path is inside the soft limits. ``table``: a
     ``move_bounds_table`` of the program, if already built."""
+    return check_and_bound(program, machine, max_reports, table)[0]
+
+
+def check_and_bound(program: Program, machine: MachineSpec, max_reports: int = 50,
+                    table: tuple[np.ndarray, np.ndarray] | None = None, piece: int = PIECE_MOVES
+                    ) -> tuple[list[LimitViolation], np.ndarray, np.ndarray]:
+    """``check_program`` and ``program_bounds`` in one pass over the moves, ``piece`` moves at
+    a time (the bounds of every move are never held at once)."""
     lo_lim = np.array([a.min_pos for a in machine.axes])
     hi_lim = np.array([a.max_pos for a in machine.axes])
     names = machine.axis_names
     out: list[LimitViolation] = []
-    mlo, mhi = table if table is not None else move_bounds_table(program)
-    if not len(mlo):
-        return out
-    bad_hi_all = mhi > hi_lim + _EPS
-    bad_lo_all = mlo < lo_lim - _EPS
-    for j in np.flatnonzero((bad_hi_all | bad_lo_all).any(axis=1)):
-        m = program.moves[int(j)]
-        a, b = mlo[j], mhi[j]
-        bad_hi, bad_lo = bad_hi_all[j], bad_lo_all[j]
-        ends = np.vstack([m.start, m.end])
-        for i in np.nonzero(bad_hi | bad_lo)[0]:
-            if bad_hi[i]:
-                value, limit = float(b[i]), float(hi_lim[i])
-                at_end = ends[:, i].max() > hi_lim[i] + _EPS
-            else:
-                value, limit = float(a[i]), float(lo_lim[i])
-                at_end = ends[:, i].min() < lo_lim[i] - _EPS
-            where = "end point" if at_end else ("arc extreme" if m.arc is not None else "path")
-            out.append(LimitViolation(m.line, names[i], value, limit, where))
+    lo = np.asarray(program.start_position, dtype=float).copy()
+    hi = lo.copy()
+    for first, mlo, mhi in _pieces(program, table, piece):
+        if not len(mlo):
+            continue
+        np.minimum(lo, mlo.min(axis=0), out=lo)
+        np.maximum(hi, mhi.max(axis=0), out=hi)
+        if len(out) >= max_reports:
+            continue
+        bad_hi_all = mhi > hi_lim + _EPS
+        bad_lo_all = mlo < lo_lim - _EPS
+        for j in np.flatnonzero((bad_hi_all | bad_lo_all).any(axis=1)):
+            m = program.moves[first + int(j)]
+            a, b = mlo[j], mhi[j]
+            bad_hi, bad_lo = bad_hi_all[j], bad_lo_all[j]
+            ends = np.vstack([m.start, m.end])
+            for i in np.nonzero(bad_hi | bad_lo)[0]:
+                if bad_hi[i]:
+                    value, limit = float(b[i]), float(hi_lim[i])
+                    at_end = ends[:, i].max() > hi_lim[i] + _EPS
+                else:
+                    value, limit = float(a[i]), float(lo_lim[i])
+                    at_end = ends[:, i].min() < lo_lim[i] - _EPS
+                where = "end point" if at_end else ("arc extreme" if m.arc is not None else "path")
+                out.append(LimitViolation(m.line, names[i], value, limit, where))
+                if len(out) >= max_reports:
+                    break
             if len(out) >= max_reports:
-                return out
-    return out
+                break
+    return out, lo, hi

@@ -53,7 +53,7 @@ from planner.heap import trim_heap
 from planner.interpreter import parse_program, read_program
 from planner.machine import MachineSpec
 from planner.program import ProbeResult, Program
-from planner.softlimits import check_program, move_bounds_table, program_bounds
+from planner.softlimits import LimitViolation, check_and_bound, check_program
 from planner.tools import ToolTable
 from planner.window import PlanWindow
 
@@ -111,13 +111,12 @@ class RunPlanRequest:
     finished: bool = False
 
 
-def _issues_from_limits(
-    program: Program, machine: MachineSpec, table: tuple[np.ndarray, np.ndarray] | None = None
-) -> tuple[ProgramIssue, ...]:
-    return tuple(
-        ProgramIssue(v.line, 1, str(v).split(": ", 1)[1], v.axis)
-        for v in check_program(program, machine, table=table)
-    )
+def _issues(violations: list[LimitViolation]) -> tuple[ProgramIssue, ...]:
+    return tuple(ProgramIssue(v.line, 1, str(v).split(": ", 1)[1], v.axis) for v in violations)
+
+
+def _issues_from_limits(program: Program, machine: MachineSpec) -> tuple[ProgramIssue, ...]:
+    return _issues(check_program(program, machine))
 
 
 # the parts of a load's time (read, soft limits, plan; the tool path the rest), as measured
@@ -193,8 +192,9 @@ def check_text(
         return (ProgramIssue(0, 0, why),), why
     stage()
     blended = blend_report(program)
-    table = move_bounds_table(program)  # per-move extremes, arcs exact: limits and bounds
-    limit_issues = _issues_from_limits(program, machine, table)
+    # every move's extremes, arcs exact, a piece of the program at a time: limits and bounds
+    violations, lo, hi = check_and_bound(program, machine)
+    limit_issues = _issues(violations)
     if limit_issues:
         return limit_issues, f"soft limit: {limit_issues[0]}"
     stage()
@@ -219,7 +219,6 @@ def check_text(
     req.progress = sum(LOAD_SHARES)
     toolpath = build_toolpath(program)
     starts = line_starts(text)
-    lo, hi = program_bounds(program, table)
     trim_heap()  # the check's freed temporaries back to the system (planner.heap)
     return ProgramInfo(
         name=name,

@@ -120,8 +120,7 @@ class PreviewPage(QWidget):
 
     def _on_tapped(self, _index: int, line: int) -> None:
         self._picked_line = line
-        lines = self.ctx.program.text.splitlines()
-        text = lines[line - 1].strip() if 0 < line <= len(lines) else ""
+        text = self.ctx.program.line(line).strip()
         self.line_label.setText(tr("Line {0}: {1}").format(line, text))
         self.show_line_button.setEnabled(True)
 

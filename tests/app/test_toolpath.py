@@ -159,3 +159,17 @@ def test_each_kind_is_its_moves_points_in_program_order(with_arcs):
     assert sorted(drawn) == list(range(len(kinds)))          # every move drawn once, by its kind
     # a raster is one point a move: the path holds no copy of the joints beside the program's
     assert (len(path.all.points) == len(kinds) + 1) == (not with_arcs)
+
+
+@pytest.mark.parametrize("with_arcs", [False, True])
+def test_each_move_starts_at_its_first_point_and_keeps_its_line(with_arcs: bool) -> None:
+    # kept 4 bytes a move (the index of each move's first point), the lines the program's own
+    text = "G21 G0 X0 Y0\nG1 X5 F600\nY5\n" + ("G2 X10 Y0 R6\n" if with_arcs else "") + "G0 X0\nG1 Y2\n"
+    program = parse_program(text)
+    path = build_toolpath(program)
+    n = len(program.moves)
+    np.testing.assert_array_equal(path.move_first_point,
+                                  np.searchsorted(path.all.move_index, np.arange(n)))
+    assert path.move_first_point.dtype == np.int32
+    np.testing.assert_array_equal(path.move_lines, [m.line for m in program.moves])
+    assert np.shares_memory(path.move_lines, program.moves.columns().line)

@@ -68,8 +68,24 @@ def act(ctl, action) -> object:
 # failing sequence is printed as drawn)
 @settings(max_examples=25, deadline=None, phases=[Phase.explicit, Phase.generate],
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-@given(steps=STEPS)
-def test_any_sequence_of_operator_actions_keeps_the_machine_safe(qapp, tmp_path_factory, steps) -> None:
+@given(steps=STEPS, windowed=st.booleans())
+def test_any_sequence_of_operator_actions_keeps_the_machine_safe(qapp, tmp_path_factory, steps,
+                                                                 windowed: bool) -> None:
+    """``windowed``: the program runs as a long one does, from a plan made as it runs (in
+    segments of a few moves here)."""
+    from app.machine import feeder
+    from planner import window
+
+    saved = feeder.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES
+    if windowed:
+        feeder.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES = 0, 4
+    try:
+        _operate(qapp, tmp_path_factory, steps)
+    finally:
+        feeder.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES = saved
+
+
+def _operate(qapp, tmp_path_factory, steps) -> None:
     from resources import shipped_machine
 
     root = tmp_path_factory.mktemp("op")
@@ -117,6 +133,7 @@ def test_any_sequence_of_operator_actions_keeps_the_machine_safe(qapp, tmp_path_
     [(0.2, ("spindle", 50)), (0.6, ("feed", 50)), (0.2, ("feed", 100)), (1.5, ("from_line", 3)),
      (1.5, ("spindle", 150)), (1.5, ("from_line", 10)), (1.5, ("feed", 150)), (0.05, ("spindle", 150))],
 ])
-def test_known_sequences(qapp, tmp_path_factory, steps) -> None:
+@pytest.mark.parametrize("windowed", [False, True])
+def test_known_sequences(qapp, tmp_path_factory, steps, windowed: bool) -> None:
     test_any_sequence_of_operator_actions_keeps_the_machine_safe.hypothesis.inner_test(
-        qapp, tmp_path_factory, steps)
+        qapp, tmp_path_factory, steps, windowed)
