@@ -135,7 +135,7 @@ def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polyli
     pts[rn, nn] = start[on, nn] + rise[on] * t[has_n]
     last = first + counts - 1
     # exact start and end points: an arc's ends are then the very points of the moves beside
-    # it, so a chain of arcs and lines is one run (``_joined``), which thinning can thin
+    # it, so a chain of arcs and lines is one run (``joined_runs``), which thinning can thin
     pts[first] = start
     pts[last] = end
     connect = np.ones(total, bool)
@@ -144,6 +144,7 @@ def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polyli
 
 
 BLEND_POINTS = 9
+THIN_PIECE = 1 << 20  # points thinned at a time
 
 
 def _blends(program: Program, idx: np.ndarray) -> Polylines:
@@ -248,7 +249,7 @@ def build_toolpath(program: Program) -> ToolPath:
                     offsets)
 
 
-def _joined(pl: Polylines) -> Polylines:
+def joined_runs(pl: Polylines) -> Polylines:
     """Runs that start where the run before them ends, as one run (lines and rapids are drawn
     as point pairs: a chain of moves becomes one polyline, which ``thin`` can thin)."""
     pts = pl.points
@@ -271,19 +272,48 @@ def thin(pl: Polylines, cell_mm: float) -> Polylines:
     the line drawn through the points kept never leaves the path by more than a cube's
     diagonal. The first and last point of every run stay. Drawn at a pixel per cube, it looks
     the same as the full path, with as many points as the path crosses cubes."""
-    pl = _joined(pl)
-    pts = pl.points
-    n = len(pts)
-    if n < 3 or not cell_mm > 0.0:
+    pl = joined_runs(pl)
+    if len(pl.points) < 3 or not cell_mm > 0.0:
         return pl
-    same = np.ones(n - 1, bool)  # point i + 1 lies in the cube of point i
-    for k in range(pts.shape[1]):
-        c = np.floor(pts[:, k] / cell_mm)
-        same &= c[1:] == c[:-1]
-    keep = np.ones(n, bool)
-    keep[1:-1] = ~(same[:-1] & pl.connect[:-2] & pl.connect[1:-1])
-    idx = np.flatnonzero(keep)
-    return Polylines(pts[idx], pl.connect[idx], pl.move_index[idx], pl.count)
+    return take_points(pl, thin_masks(pl, cell_mm, 1)[0])
+
+
+def thin_masks(pl: Polylines, cell_mm: float, levels: int) -> list[np.ndarray]:
+    """The points ``thin`` keeps of joined polylines ``pl`` (``joined_runs``) at cubes of
+    ``cell_mm``, 4 ``cell_mm``, 16 ``cell_mm`` ... (``levels`` of them), in one pass a piece
+    at a time. Cubes of 4 c are made of whole cubes of c, so thinning the thinned copy at 4 c
+    keeps what thinning the whole at 4 c keeps: each level is taken from the whole, none made
+    to make the next (the cube numbers of 10,000,000 points per axis took 250 MB at once)."""
+    pts, connect = pl.points, pl.connect
+    n = len(pts)
+    keeps = [np.ones(n, bool) for _ in range(levels)]
+    for lo in range(1, n - 1, THIN_PIECE):
+        hi = min(lo + THIN_PIECE, n - 1)          # points lo .. hi - 1, each with the one before
+        inner = connect[lo - 1:hi - 1] & connect[lo:hi]
+        cubes = [np.floor(pts[lo - 1:hi, k] / cell_mm) for k in range(pts.shape[1])]
+        for level, keep in enumerate(keeps):
+            same = inner.copy()               # point i lies in the cube of point i - 1
+            for c in cubes:
+                c = np.floor(c / 4.0 ** level) if level else c
+                same &= c[1:] == c[:-1]
+            keep[lo:hi] = ~same
+    return keeps
+
+
+def take_points(pl: Polylines, keep: np.ndarray) -> Polylines:
+    """The points of ``pl`` where ``keep``, gathered a piece at a time."""
+    kept = int(np.count_nonzero(keep))
+    out_pts = np.empty((kept, pl.points.shape[1]), pl.points.dtype)
+    out_con = np.empty(kept, bool)
+    out_mi = np.empty(kept, pl.move_index.dtype)
+    k = 0
+    for lo in range(0, len(keep), THIN_PIECE):
+        idx = lo + np.flatnonzero(keep[lo:lo + THIN_PIECE])
+        m = len(idx)
+        out_pts[k:k + m] = pl.points[idx]
+        out_con[k:k + m], out_mi[k:k + m] = pl.connect[idx], pl.move_index[idx]
+        k += m
+    return Polylines(out_pts, out_con, out_mi, pl.count)
 
 
 def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,

@@ -31,6 +31,7 @@ import os
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -46,6 +47,7 @@ from planner.cutter_comp import LEFT, RIGHT, CutterComp
 from planner.errors import BlockError as _BlockError
 from planner.errors import PlannerError, ProgramError, SourceError
 from planner.gcpause import gc_paused
+from planner.heap import trim_heap
 from planner.lexer import LexError, Params, compact, evaluate_brackets, original_column, read_line
 from planner.movestore import MoveBuffer
 from planner.oword import Statement, Structure, StructureError, has_control_flow, scan
@@ -69,7 +71,8 @@ from planner.program import (
 from planner.splines import nurbs_pieces
 from planner.tools import Tool, ToolTable
 
-__all__ = ["parse_program", "parse_file", "read_program", "MAX_ERRORS"]
+__all__ = ["parse_program", "parse_file", "read_program", "read_program_bytes", "decode_program",
+           "MAX_ERRORS"]
 
 MAX_ERRORS = 100
 _VALUE_LIMIT = 1e9  # |word value| above this is rejected (also catches inf/nan)
@@ -80,6 +83,7 @@ _FEED_LIMIT = 1e12
 # a tap's moves: the feed follows the spindle, so neither override may change one of them, and
 # the operator's feed hold waits until the tap is out of the hole
 _TAP_LOCK = FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF | FEED_HOLD_DEFERRED
+_TRIM_BYTES = 32 << 20   # program bytes read in bulk between two trims of the heap
 _MAX_TURNS = 10_000
 _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
 #: a curve's arcs above this radius (1 km: LinuxCNC's biarc where the curve hardly bends) are
@@ -429,8 +433,20 @@ class _Interpreter:
         self.inputs: frozenset[int] = frozenset(getattr(machine, "inputs", ()) or ())
 
     # ------------------------------------------------------------------ driver
-    def run(self, text: str, utf8: bytes | None = None) -> Program:
-        """Interpret ``text`` (``utf8``: the same text encoded, when the caller has it)."""
+    def run(self, text: str | None, utf8: bytes | None = None) -> Program:
+        """Interpret ``text`` (``utf8``: the same text encoded, when the caller has it). With
+        ``text`` None the program is ``utf8`` alone: a CAM program of plain lines is read from
+        its bytes without its text beside them (250 MB at 10,000,000 lines); any other is
+        decoded first."""
+        if text is None:
+            assert utf8 is not None
+            if (not (self.use_bulk and self.use_fast) or utf8.startswith(b"\xef\xbb\xbf")
+                    or _contains(utf8, b"\r\n") or has_control_flow(utf8)):
+                text = _decode_utf8(utf8)
+            else:
+                self.started = False
+                self.run_bulk(None, utf8)
+                return self._finish(utf8.count(b"\n") + 1 if utf8 else 0)
         if text.startswith("\ufeff"):
             # a byte-order mark, which Windows editors put before the first line: an encoding
             # marker, not G-code (LinuxCNC refuses it as a bad character), and no editor shows
@@ -451,12 +467,15 @@ class _Interpreter:
                     break
                 if report is not None and line_no % every == 0:
                     report(line_no, len(lines))
+        return self._finish(text.count("\n") + 1 if text else 0)
+
+    def _finish(self, line_count: int) -> Program:
         if self.nurbs is not None and not self.ended:
             self.error(self.nurbs_line, 1, "the program ends with this NURBS (G05.2) not ended: program "
                        "G05.3 to run it")
         if self.errors:
             raise ProgramError(self.errors, self.truncated)
-        return self.build(text.count("\n") + 1 if text else 0)
+        return self.build(line_count)
 
     def line(self, raw: str, line_no: int) -> bool:
         """Read one line; True when the program ends here (closing '%', M2/M30, too many errors)."""
@@ -860,11 +879,11 @@ class _Interpreter:
             "_VALUE_RETURNED": 0.0,
         }.get(name)
 
-    def run_bulk(self, text: str, utf8: bytes | None = None) -> bool:
+    def run_bulk(self, text: str | None, utf8: bytes | None = None) -> bool:
         """Read the program, plain coordinate lines in runs (``planner.bulk``), every other
         line by ``line``. False (nothing read) when the text is not plain UTF-8."""
         try:
-            data = np.frombuffer(text.encode("utf-8") if utf8 is None else utf8, np.uint8)
+            data = np.frombuffer(utf8 if utf8 is not None else (text or "").encode("utf-8"), np.uint8)
         except UnicodeEncodeError:
             return False
         nl = newline_offsets(data)
@@ -888,7 +907,13 @@ class _Interpreter:
 
         skip = 0  # blocks left to read line by line: the last scan found few long runs
         b1 = 0
+        trimmed_at = 0   # bytes read when the heap was last trimmed
         while b1 < n_lines:
+            if int(starts[b1]) - trimmed_at > _TRIM_BYTES:
+                # each block's scan makes and frees arrays of megabytes, which stay in the heap
+                # between the moves kept (360 MB of 1.1 GB after 10,000,000 lines): handed back
+                trim_heap()
+                trimmed_at = int(starts[b1])
             # a small first block tells cheaply whether the program is made of long runs
             b0, b1 = b1, min(n_lines, b1 + (self.BULK_LINES if b1 else self.BULK_LINES // 8))
             if skip:
@@ -2830,7 +2855,7 @@ class _Interpreter:
 
 
 def parse_program(
-    text: str,
+    text: str | None,
     name: str = "<string>",
     machine=None,
     start_position=None,
@@ -2861,7 +2886,8 @@ def parse_program(
     G28/G30 positions, coordinate systems); the machine's work offsets take precedence for G54-G59.
     ``progress(lines read, lines in all)`` is called now and then while a long program is read.
     ``utf8``: the text's own UTF-8 bytes when at hand (``read_program``): the bulk reader scans
-    them instead of encoding the text again.
+    them instead of encoding the text again; with ``text`` None they are the program
+    (``read_program_bytes``), read without its text where it is plain lines.
     ``probe_results``: what the machine's probe did on the program's G38.x moves, in order
     (``Program.probes``; None for one not run, as before a run from a later line); the others
     are read as run to their end point without a contact (#5070 = 0). ``input_results``: the
@@ -2873,6 +2899,41 @@ def parse_program(
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         interp.progress = progress
         return interp.run(text, utf8)
+
+
+def read_program_bytes(path: str | os.PathLike[str]) -> tuple[str | None, bytes | None]:
+    """A G-code file as ``parse_program(None, ..., utf8=)`` reads it: (None, its bytes) when
+    they are UTF-8, else (its Latin-1 text, None); ``decode_program`` makes the text of the
+    bytes once they are read (the text and the bytes are then not held at once while the
+    program is read). Raises PlannerError naming the file and why."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as exc:
+        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    if data.isascii() or _is_utf8(data):
+        return None, data
+    return data.decode("latin-1"), None
+
+
+def _is_utf8(data: bytes) -> bool:
+    """Whether ``data`` decodes as UTF-8, a piece (cut after a newline) at a time."""
+    view = memoryview(data)
+    lo = 0
+    try:
+        while lo < len(data):
+            hi = data.find(b"\n", min(lo + _DECODE_PIECE, len(data)))
+            hi = len(data) if hi < 0 else hi + 1
+            str(view[lo:hi], "utf-8")
+            lo = hi
+    except UnicodeDecodeError:
+        return False
+    return True
+
+
+def decode_program(data: bytes) -> str:
+    """The text of a program's UTF-8 bytes (as ``read_program`` decodes it)."""
+    return _decode_utf8(data)
 
 
 def read_program(path: str | os.PathLike[str]) -> tuple[str, bytes | None]:
@@ -2892,7 +2953,7 @@ def read_program(path: str | os.PathLike[str]) -> tuple[str, bytes | None]:
 _DECODE_PIECE = 1 << 22  # bytes decoded at a time
 
 
-def _contains(text: str, needle: str, piece: int = 1 << 22) -> bool:
+def _contains(text: Any, needle: Any, piece: int = 1 << 22) -> bool:
     """``needle in text``, a piece at a time: one search through a 250 MB program held the GIL,
     and with it the panel's GUI thread, for 0.18 s."""
     for lo in range(0, len(text), piece):

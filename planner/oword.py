@@ -34,10 +34,13 @@ _M98_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?M0*98(?![\d.])(.*)\Z")
 _M99_RE = re.compile(r"(?:N\d+(?:\.\d*)?)?M0*99\Z")
 
 
-def has_control_flow(text: str, piece_chars: int = 1 << 20) -> bool:
-    """Whether the program has an O-word statement. Searched a megabyte of whole lines at a
-    time: a regular expression holds the interpreter lock for as long as it searches, and the
-    panel's GUI thread must not wait a quarter of a second on a program of millions of lines."""
+def has_control_flow(text: str | bytes, piece_chars: int = 1 << 20) -> bool:
+    """Whether the program (its text, or its UTF-8 bytes) has an O-word statement. Searched a
+    megabyte of whole lines at a time: a regular expression holds the interpreter lock for as
+    long as it searches, and the panel's GUI thread must not wait a quarter of a second on a
+    program of millions of lines."""
+    if isinstance(text, bytes):
+        return _bytes_have_control_flow(text, piece_chars)
     start, n = 0, len(text)
     while start < n:
         end = text.find("\n", min(n, start + piece_chars))
@@ -46,6 +49,19 @@ def has_control_flow(text: str, piece_chars: int = 1 << 20) -> bool:
         maybe = any(text.find(c, start, end) >= 0 for c in "oOmM")   # one letter: a memchr
         if maybe and _ANY_RE.search(text, start, end) is not None:  # '^' matches at start: a line start
             return True
+        start = end + 1
+    return False
+
+
+def _bytes_have_control_flow(data: bytes, piece: int) -> bool:
+    """``has_control_flow`` over UTF-8 bytes: only a piece with one of the letters is decoded."""
+    start, n = 0, len(data)
+    while start < n:
+        end = data.find(b"\n", min(n, start + piece))
+        end = n if end < 0 else end
+        if any(data.find(c, start, end) >= 0 for c in (b"o", b"O", b"m", b"M")):
+            if _ANY_RE.search(data[start:end].decode("utf-8", "replace")) is not None:
+                return True
         start = end + 1
     return False
 

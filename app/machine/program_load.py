@@ -50,7 +50,7 @@ from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
 from planner.heap import trim_heap
-from planner.interpreter import parse_program, read_program
+from planner.interpreter import decode_program, parse_program, read_program_bytes
 from planner.machine import MachineSpec
 from planner.program import ProbeResult, Program
 from planner.softlimits import LimitViolation, check_and_bound, check_program
@@ -143,14 +143,17 @@ def check_text(
         return report
 
     utf8: bytes | None = None
+    text: str | None = req.text
     if req.read_file:
         try:
-            req.text, utf8 = read_program(req.path)
+            # a UTF-8 file is read from its bytes alone, and its text made once it is read:
+            # the two are never held at once beside the moves (250 MB each at 10,000,000 lines)
+            text, utf8 = read_program_bytes(req.path)
         except PlannerError as exc:
             why = str(exc).split(": ", 1)[1] if ": " in str(exc) else str(exc)
             return (ProgramIssue(0, 0, why),), str(exc)
         req.read_file = False
-    text, name = req.text, req.name
+    name = req.name
 
     def reread(probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...]) -> Program:
         """The same program from the same start, read with the probe results (G38.x) and the
@@ -171,7 +174,12 @@ def check_text(
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
     finally:
-        # the file's bytes served the bulk reader only: 250 MB at 10,000,000 lines, not held
+        trim_heap()   # the reading's freed temporaries back before its text is made
+        if text is None:
+            assert utf8 is not None
+            text = decode_program(utf8)
+        req.text = text
+        # the file's bytes served the reader only: 250 MB at 10,000,000 lines, not held
         # through the plan and the tool path
         utf8 = None
     probe_cfg = getattr(req.cfg, "probe", None)

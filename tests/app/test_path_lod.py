@@ -47,6 +47,71 @@ def test_thinning_keeps_run_ends_and_every_dropped_point_near_the_one_before(ste
             assert before and min(np.linalg.norm(before - p, axis=1)) <= diag
 
 
+def _thin_whole(pl: Polylines, cell: float) -> Polylines:
+    """The thinning of every point at once (the rule, written plainly)."""
+    from app.toolpath import joined_runs
+
+    pl = joined_runs(pl)
+    pts, n = pl.points, len(pl.points)
+    if n < 3:
+        return pl
+    same = np.ones(n - 1, bool)
+    for k in range(pts.shape[1]):
+        c = np.floor(pts[:, k] / cell)
+        same &= c[1:] == c[:-1]
+    keep = np.ones(n, bool)
+    keep[1:-1] = ~(same[:-1] & pl.connect[:-2] & pl.connect[1:-1])
+    idx = np.flatnonzero(keep)
+    return Polylines(pts[idx], pl.connect[idx], pl.move_index[idx], pl.count)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.floats(-3, 3), st.floats(-3, 3)), min_size=2, max_size=80),
+       st.lists(st.booleans(), max_size=80), st.sampled_from([0.01, 0.5, 2.0]),
+       st.sampled_from([1, 2, 7, 64]))
+def test_thinning_a_piece_at_a_time_is_thinning_at_once(steps, breaks, cell, piece):
+    # millions of points are thinned a piece at a time (their cube numbers took 250 MB at once)
+    import app.toolpath as toolpath
+
+    pl = _polyline(steps, [b and i % 5 == 0 for i, b in enumerate(breaks)])
+    old = toolpath.THIN_PIECE
+    toolpath.THIN_PIECE = piece
+    try:
+        got = thin(pl, cell)
+    finally:
+        toolpath.THIN_PIECE = old
+    want = _thin_whole(pl, cell)
+    for name in ("points", "connect", "move_index"):
+        np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.floats(-3, 3), st.floats(-3, 3)), min_size=2, max_size=120),
+       st.lists(st.booleans(), max_size=120), st.sampled_from([0.003, 0.01, 0.13]),
+       st.sampled_from([3, 64]))
+def test_each_level_taken_from_the_whole_is_the_level_thinned_from_the_one_before(steps, breaks, cell, piece):
+    # cubes of 4 c are made of whole cubes of c: the copies are made from the path at once,
+    # none made only to make the next, and are the chain of thinnings to the point
+    import app.toolpath as toolpath
+    from app.toolpath import joined_runs, take_points, thin_masks
+
+    pl = _polyline(steps, [b and i % 6 == 0 for i, b in enumerate(breaks)])
+    old = toolpath.THIN_PIECE
+    toolpath.THIN_PIECE = piece
+    try:
+        joined = joined_runs(pl)
+        masks = thin_masks(joined, cell, 5) if len(joined.points) >= 3 else []
+        part = pl
+        for level, keep in enumerate(masks):
+            part = _thin_whole(part, cell * 4.0 ** level)
+            got = take_points(joined, keep)
+            for name in ("points", "connect", "move_index"):
+                np.testing.assert_array_equal(getattr(got, name), getattr(part, name),
+                                              err_msg=f"{level} {name}")
+    finally:
+        toolpath.THIN_PIECE = old
+
+
 def test_a_raster_image_shows_the_pixels_a_segment_passes():
     layer = Layer(np.array([0.5, 9.5]), np.array([2.5, 2.5]), np.array([True, False]), (0, 255, 0, 255))
     img = rasterize([layer], 0.0, 0.0, 1.0, 12, 6)

@@ -122,12 +122,12 @@ def test_a_program_of_columns_draws_as_one_of_move_objects() -> None:
 def test_a_chain_of_lines_and_arcs_is_one_run_once_joined():
     """An arc's drawn ends are the very end points of the moves beside it, so the chain is one
     polyline that thinning can thin (a start off by a rounding of cos/sin broke it in runs)."""
-    from app.toolpath import _joined
+    from app.toolpath import joined_runs
 
     text = "G1 X1 Y0.3 F600\nG2 X7.1 Y3.3 R4\nG1 X9 Y-1.7\nG3 X13.2 Y0.11 R3.7\nG1 X20 Y1\n"
     program = parse_program("G21 G90 G17\n" + text, "chain.nc")
     path = build_toolpath(program)
-    joined = _joined(path.all)
+    joined = joined_runs(path.all)
     assert int((~joined.connect).sum()) == 1 < len(joined.points)
     for i in (1, 3):  # the arcs' first points are their moves' start points, bit for bit
         first = path.all.points[path.move_first_point[i]]

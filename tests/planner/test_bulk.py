@@ -239,3 +239,40 @@ def test_windows_line_ends_are_found_across_the_pieces_searched(at):
     crlf = text[:at] + "\r\n" + text[at:]
     assert _contains(crlf, "\r\n", piece=3) and _contains(crlf, "\r\n", piece=6)
     assert not _contains(text, "\r\n", piece=3)
+
+
+def _read_bytes(data: bytes):
+    try:
+        return parse_program(None, "p.ngc", utf8=data)
+    except ProgramError as e:
+        return e
+
+
+@settings(max_examples=200, deadline=None)
+@given(program(1.0),
+       st.sampled_from(["", "G1 F300\n", "\ufeffG1 F300\n", "o100 sub\no100 endsub\nG1 F300\n"]),
+       st.sampled_from(["\n", "\r\n"]))
+def test_a_program_read_from_its_bytes_alone_reads_as_its_text(lines, head, newline):
+    # a file's bytes are read without their text beside them (250 MB each at 10,000,000 lines):
+    # plain programs by the bulk reader, any other (a byte-order mark, Windows line ends,
+    # O-words) decoded first; the same program, the same errors, the same line count
+    text = (head + "\n".join(lines) + "\nM2\n").replace("\n", newline)
+    ref = _read(text, True)
+    got = _read_bytes(text.encode("utf-8"))
+    assert_same_reading(got, ref)
+    if not isinstance(ref, ProgramError):
+        assert got.line_count == ref.line_count
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "latin-1", "ascii"])
+def test_a_file_is_read_from_its_bytes_when_they_are_utf8(tmp_path, encoding):
+    from planner.interpreter import decode_program, read_program_bytes
+
+    body = ("(Uberfrasen)\n" if encoding == "ascii" else "(Überfräsen, ø6)\n") + "G1 F300\nX1\nM2\n"
+    path = tmp_path / "p.ngc"
+    path.write_bytes(body.encode(encoding))
+    text, data = read_program_bytes(path)
+    if encoding == "latin-1":
+        assert data is None and text == body                  # not UTF-8: its text at once
+    else:
+        assert text is None and decode_program(data) == body
