@@ -272,7 +272,8 @@ class ProgramView(QAbstractScrollArea):
         hit = self._find_back(pattern, len(text)) if backward else self._find_forward(pattern, len(text))
         if hit is None:
             return False
-        line = int(np.searchsorted(self._starts, hit, side="right"))  # 1-based
+        # 1-based; the offset as the index's own type (a Python int copies the index to 64 bits)
+        line = int(np.searchsorted(self._starts, self._starts.dtype.type(hit), side="right"))
         self._set_current(line)
         self._find_pos, self._on_match = hit, True
         self._center(line)
