@@ -2979,6 +2979,6 @@ def _decode_utf8(data: bytes) -> str:
 
 
 def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
-    """Read and interpret a G-code file (UTF-8, falling back to Latin-1)."""
-    text, utf8 = read_program(path)
+    """Read and interpret a G-code file (UTF-8, from its bytes alone; falling back to Latin-1)."""
+    text, utf8 = read_program_bytes(path)
     return parse_program(text, str(path), machine, utf8=utf8, **kwargs)

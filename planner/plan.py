@@ -29,7 +29,7 @@ from planner.interpolate import (
     first_sample_at,
     make_segment,
 )
-from planner.lookahead import MODES, LimitSet, PlannedBlock, plan_blocks, stop_and_dwell
+from planner.lookahead import MODES, LimitSet, PlannedBlock, plan_blocks, stops_and_dwells
 from planner.machine import MachineSpec
 from planner.meter import LimitMeter
 from planner.movestore import MoveStore
@@ -80,7 +80,7 @@ def plan_segments(program: Program, machine: MachineSpec, mode: str | None = Non
     mode, interpolation = resolve_settings(machine, mode, interpolation)
     ts = machine.planner.ts_s
     lim = LimitSet.from_machine(machine)
-    _, _, t_start = stop_and_dwell(program)
+    t_start = stops_and_dwells(program).before_s
     s_start = 0.0
     pending: list[PlannedBlock] = []
     pending_moves = 0

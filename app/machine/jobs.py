@@ -12,7 +12,7 @@ import numpy as np
 from app.machine.model import Activity, SpindleState
 from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
 from planner.machine import MachineSpec
-from planner.meter import LimitMeter
+from planner.meter import LimitMeter, PathSpeedLimits
 from planner.plan import Plan
 from planner.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, Program
 from planner.window import PlanWindow
@@ -186,7 +186,7 @@ class SentLimits:
 
     def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray, keep: int = 4096) -> None:
         lim = machine.limits
-        v_path = (np.where(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s) if len(rapid_move)
+        v_path = (PathSpeedLimits(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s) if len(rapid_move)
                   else np.array([max(lim.v_max_mm_s, lim.rapid_mm_s)]))
         self._meter = LimitMeter(machine, ts_s, v_path)
         self.keep = keep

@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from planner.interpreter import parse_program
 from planner.lookahead import (
     ACCEL_NORMAL_SHARE,
     JERK_NORMAL_SHARE,
@@ -188,3 +192,36 @@ def test_paper_table3_fig7_and_g01_joints():
 def test_paper_table3_cases(text, expected, case):
     plan = speeds(f"G21 G90 G17 F1800\n{text}\nM30\n", mode="paper")
     assert plan.ve[0] == pytest.approx(expected), case
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.integers(-1, 30), st.sampled_from(["dwell", "pause", "coolant"]),
+                          st.floats(0.0, 2.0)), max_size=12),
+       st.integers(0, 30), st.integers(0, 30))
+def test_the_stops_and_dwells_of_a_window_are_the_programs(events, a, b):
+    # kept as the few rows they are; any window of moves reads them as one flag and one dwell
+    # a move, as the look-ahead wants them
+    from planner.lookahead import stops_and_dwells
+    from planner.program import Event, EventKind
+
+    a, b = min(a, b), max(a, b)
+    kinds = {"dwell": EventKind.DWELL, "pause": EventKind.PAUSE, "coolant": EventKind.COOLANT}
+    prog = parse_program("G1 F600\n" + "".join(f"X{i + 1}\n" for i in range(30)))
+    evs = tuple(Event(kinds[k], 1, i, v, "") for i, k, v in events)
+    prog = replace(prog, events=evs)
+    stop = np.zeros(30, bool)
+    dwell = np.zeros(30)
+    before = 0.0
+    for ev in evs:                          # one after the last move (30) acts nowhere
+        if ev.kind is EventKind.DWELL:
+            if ev.after_move < 0:
+                before += ev.value
+            elif ev.after_move < 30:
+                dwell[ev.after_move] += ev.value
+        if ev.stops and 0 <= ev.after_move < 30:
+            stop[ev.after_move] = True
+    stop[-1] = True
+    sd = stops_and_dwells(prog)
+    np.testing.assert_array_equal(sd.stops(a, b), stop[a:b])
+    np.testing.assert_array_equal(sd.dwells(a, b), dwell[a:b])
+    assert sd.before_s == before
