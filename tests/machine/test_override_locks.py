@@ -172,16 +172,24 @@ def test_mdi_takes_m48_to_m51_only_with_a_move(ctl) -> None:
     assert ctl.mdi("M49 G91 G1 X1 F300")
 
 
+DEEP_TAP = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
+
+
+def _into_the_hole(ctl, below_mm: float, feed_pct: float = 100.0) -> None:
+    """``DEEP_TAP`` loaded and started, the machine run until the tap is ``below_mm`` deep."""
+    assert ctl.load_program(DEEP_TAP, "tap.ngc", wait=True)
+    assert ctl.set_feed_override(feed_pct)
+    assert ctl.cycle_start()
+    assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -below_mm, 20)
+
+
 def test_the_operator_is_told_a_feed_hold_waits_for_the_tap(qapp, config_path, state_dir) -> None:
     from app.machine.model import MachineState
     from tests.machine.conftest import make_controller, run_to_idle
 
     ctl = make_controller(config_path, state_dir)
     try:
-        text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
-        assert ctl.load_program(text, "tap.ngc", wait=True)
-        assert ctl.cycle_start()
-        assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -8.0, 20)
+        _into_the_hole(ctl, 8.0)
         assert ctl.feed_hold()
         assert ctl.state is MachineState.HOLD
         assert "the tap runs out of the hole first" in ctl.state_reason
@@ -203,10 +211,7 @@ def test_stop_after_a_waiting_feed_hold_stops_the_tap_at_once(qapp, config_path,
 
     ctl = make_controller(config_path, state_dir)
     try:
-        text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
-        assert ctl.load_program(text, "tap.ngc", wait=True)
-        assert ctl.cycle_start()
-        assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -6.0, 20)
+        _into_the_hole(ctl, 6.0)
         assert ctl.feed_hold()
         ctl.advance(0.05)
         z = ctl.machine_position[2]
@@ -228,11 +233,7 @@ def test_a_tap_resumed_from_a_stop_inside_it_still_runs_at_the_programmed_feed(q
 
     ctl = make_controller(config_path, state_dir)
     try:
-        text = "G21 G90 G0 X0 Y0 Z5\nS1000 M3\nG84 X20 Z-20 R1 F1250\nG80\nG1 X40 F600\nM5\nM2\n"
-        assert ctl.load_program(text, "tap.ngc", wait=True)
-        assert ctl.set_feed_override(150)
-        assert ctl.cycle_start()
-        assert ctl.run_until(lambda: ctl.current_line == 3 and ctl.machine_position[2] < -8.0, 20)
+        _into_the_hole(ctl, 8.0, feed_pct=150)
         alarm_z = ctl.machine_position[2]
         ctl.alarm_log.alarm_stop("test: coolant pressure lost", "controller", "test")
         assert ctl.run_until(lambda: ctl.stream.job is None, 5)

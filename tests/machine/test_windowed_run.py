@@ -12,6 +12,7 @@ from planner.machine import MachineSpec
 from planner.meter import check_limits
 from resources import shipped_machine
 from tests.machine.test_timescale import assert_within, run
+from tests.planner.motion_programs import short_move_raster
 
 
 @pytest.fixture(scope="module")
@@ -78,13 +79,6 @@ def test_a_feed_hold_in_a_tap_waits_in_a_window_too(machine) -> None:
     assert tau[stood[0]] > tau[k]
 
 
-def _raster(rows: int) -> str:
-    """0.5 mm moves at 20 mm/s (40 a second), rows of 10 mm."""
-    lines = ["G21 G90 G0 X0 Y0 Z0", "G1 F1200"]
-    for row in range(rows):
-        xs = [0.5 * (i + 1) for i in range(20)]
-        lines += [f"X{x if row % 2 == 0 else 10.0 - x:.1f}" for x in xs] + [f"Y{0.5 * (row + 1):.1f}"]
-    return "\n".join(lines + ["M2"]) + "\n"
 
 
 def test_the_plan_held_is_bounded_by_the_time_around_the_run_not_the_program(machine) -> None:
@@ -93,7 +87,7 @@ def test_the_plan_held_is_bounded_by_the_time_around_the_run_not_the_program(mac
     most = []
     for rows in (60, 120):
         held: list[int] = []
-        out = run(machine, _raster(rows), {}, window_moves=64, held=held)
+        out = run(machine, short_move_raster(rows), {}, window_moves=64, held=held)
         assert len(out[0].moves) == 21 * rows
         np.testing.assert_array_equal(out[3][-1], out[0].end_position)
         most.append(max(held))
@@ -103,7 +97,9 @@ def test_the_plan_held_is_bounded_by_the_time_around_the_run_not_the_program(mac
 
 # -- the machine: a long program is checked through once and run from a window -------------
 def _part(rows: int) -> str:
-    return _raster(rows).replace("G1 F1200", "S1000 M3\nG1 F1200", 1).replace("M2", "M0\nG0 X0 Y0\nM2")
+    """The raster with the spindle on, and an M0 and a way home at its end."""
+    text = short_move_raster(rows).replace("G1 F1200", "S1000 M3\nG1 F1200", 1)
+    return text.replace("M2", "M0\nG0 X0 Y0\nM2")
 
 
 PART = _part(40)

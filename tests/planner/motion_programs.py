@@ -106,6 +106,15 @@ def random_program(seed: int, n_blocks: int = 40, events: bool = True, planes: b
     return "\n".join(out) + "\n"
 
 
+def short_move_raster(rows: int) -> str:
+    """A raster of 0.5 mm lines (40 a second at F1200), rows of 10 mm turning at right angles."""
+    lines = ["G21 G90 G0 X0 Y0 Z0", "G1 F1200"]
+    for row in range(rows):
+        xs = [0.5 * (i + 1) for i in range(20)]
+        lines += [f"X{x if row % 2 == 0 else 10.0 - x:.1f}" for x in xs] + [f"Y{0.5 * (row + 1):.1f}"]
+    return "\n".join(lines + ["M2"]) + "\n"
+
+
 def parse(text: str, machine: MachineSpec | None = None, name: str = "<test>"):
     return parse_program(text, name, machine or paper_machine())
 

@@ -16,7 +16,7 @@ from planner.interpolate import SampleChunk
 from planner.interpreter import parse_program
 from planner.plan import plan_program
 from planner.window import PlanWindow
-from tests.planner.motion_programs import paper_machine, programs, random_program
+from tests.planner.motion_programs import paper_machine, programs, random_program, short_move_raster
 
 
 def _collect(win: PlanWindow, let_go: bool) -> SampleChunk:
@@ -61,19 +61,13 @@ def test_drawn_programs_at_any_scale_plan_alike_in_a_window(text: str, segment_m
     assert win.t_end == whole.t_end
 
 
-def _raster(rows: int) -> str:
-    lines = ["G21 G90 G0 X0 Y0 Z0", "G1 F1200"]
-    for row in range(rows):
-        xs = [0.5 * (i + 1) for i in range(20)]
-        lines += [f"X{x if row % 2 == 0 else 10.0 - x:.1f}" for x in xs] + [f"Y{0.5 * (row + 1):.1f}"]
-    return "\n".join(lines + ["M2"]) + "\n"
 
 
 def test_a_pass_that_lets_go_holds_a_few_segments_whatever_the_program() -> None:
     machine = paper_machine()
     most = []
     for rows in (40, 160):
-        win = PlanWindow(parse_program(_raster(rows), "r.ngc", machine), machine, segment_moves=32)
+        win = PlanWindow(parse_program(short_move_raster(rows), "r.ngc", machine), machine, segment_moves=32)
         held = 0
         for _ in win.iter_chunks(chunk_samples=200, let_go=True):
             held = max(held, len(win.segment.table))
@@ -85,7 +79,7 @@ def test_a_pass_that_lets_go_holds_a_few_segments_whatever_the_program() -> None
 
 def test_until_its_last_segment_the_end_is_not_known_and_the_estimate_stands_for_it() -> None:
     machine = paper_machine()
-    program = parse_program(_raster(30), "r.ngc", machine)
+    program = parse_program(short_move_raster(30), "r.ngc", machine)
     win = PlanWindow(program, machine, segment_moves=16, estimate_s=123.0)
     win.ensure(0.5)
     assert not win.done and math.isinf(win.t_end) and win.cycle_time_s == 123.0
@@ -98,7 +92,7 @@ def test_until_its_last_segment_the_end_is_not_known_and_the_estimate_stands_for
 
 def test_a_move_outside_the_window_is_refused_with_where_the_window_is() -> None:
     machine = paper_machine()
-    program = parse_program(_raster(30), "r.ngc", machine)
+    program = parse_program(short_move_raster(30), "r.ngc", machine)
     win = PlanWindow(program, machine, segment_moves=16)
     win.ensure(2.0)
     beyond = int(win.segment.table.index[-1]) + 1
@@ -114,7 +108,7 @@ def test_a_move_outside_the_window_is_refused_with_where_the_window_is() -> None
 
 def test_a_window_needs_segments_of_a_move_at_least() -> None:
     machine = paper_machine()
-    program = parse_program(_raster(2), "r.ngc", machine)
+    program = parse_program(short_move_raster(2), "r.ngc", machine)
     with pytest.raises(PlannerError, match="at least one move"):
         PlanWindow(program, machine, segment_moves=0)
 
