@@ -103,9 +103,10 @@ __all__ = ["Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_p
            "reduced_machine"]
 
 SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap it (3)
-# planned time a plan made as it runs is held behind tau: a splice rewinds to the set-points
-# queued in the worker (a tenth of a second of real time, at most 0.2 s of plan at 200 %)
-KEEP_BEHIND_S = 2.0
+# planned time a plan made as it runs is held behind tau: a splice rewinds to the first
+# set-point still queued in the worker, at most ``lead_s`` (1 s, the configuration's bound) and
+# a chunk of real time back, 2 s of plan at 200 %
+KEEP_BEHIND_S = 3.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -167,6 +168,9 @@ class TimeScaledExecutor:
         self.ts = window.ts_s
         self.pauses = sorted(pauses or [], key=lambda p: p.tau_s)
         # the pause points of a plan made as it runs, added as its segments are made
+        if pause_feed is not None and window.segments_made:
+            raise ValueError("the pause points of a plan made as it runs come from each of its segments: "
+                             "give the executor a window not yet moved")
         self._pause_feed = pause_feed
         window.on_segment = self._segment_made if pause_feed is not None else None
         self.stats = BlockStats(window, machine)

@@ -82,7 +82,7 @@ def test_a_feed_hold_in_a_tap_waits_in_a_window_too(machine) -> None:
 
 
 def test_the_plan_held_is_bounded_by_the_time_around_the_run_not_the_program(machine) -> None:
-    # held: two seconds behind, ahead as far as the braking and its statistics look (a few
+    # held: three seconds of plan behind, ahead as far as the braking and its statistics look (a few
     # seconds), in segments of 64 moves; twice the program, the same held
     most = []
     for rows in (60, 120):
@@ -237,3 +237,16 @@ def test_a_long_program_stopped_by_an_alarm_resumes_where_it_stopped(qapp, confi
         assert lines and min(lines) >= stopped_line                     # on from where it stopped
     finally:
         ctl.shutdown()
+
+
+def test_a_window_already_moved_cannot_give_its_pause_points(machine) -> None:
+    # they come from each segment as it is made: a window planned ahead already would miss some
+    from app.machine.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
+    from planner.interpreter import parse_program
+    from planner.window import PlanWindow
+
+    prog = parse_program(zigzag(10), machine=machine)
+    win = PlanWindow(prog, reduced_machine(machine, Budget()), segment_moves=8)
+    win.ensure(1.0)
+    with pytest.raises(ValueError, match="not yet moved"):
+        TimeScaledExecutor(win, machine, Budget(), pause_feed=PauseFeed(prog, False, True))
