@@ -2939,15 +2939,8 @@ def decode_program(data: bytes) -> str:
 def read_program(path: str | os.PathLike[str]) -> tuple[str, bytes | None]:
     """A G-code file's text (UTF-8, falling back to Latin-1) and, when it is UTF-8, its bytes
     (for ``parse_program(..., utf8=)``). Raises PlannerError naming the file and why."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as exc:
-        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    try:
-        return _decode_utf8(data), data
-    except UnicodeDecodeError:
-        return data.decode("latin-1"), None
+    text, data = read_program_bytes(path)
+    return (_decode_utf8(data), data) if text is None and data is not None else (text or "", None)
 
 
 _DECODE_PIECE = 1 << 22  # bytes decoded at a time

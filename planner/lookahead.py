@@ -329,7 +329,6 @@ class StopsAndDwells:
     move of 10,000,000 took 90 MB and, made at each cycle start, 0.2 s), and the dwell
     before the first move."""
 
-    n: int
     stop_rows: np.ndarray     # sorted move indices
     dwell_rows: np.ndarray    # sorted move indices, each once
     dwell_s: np.ndarray       # the dwell after each of them
@@ -368,7 +367,7 @@ def stops_and_dwells(program: Program) -> StopsAndDwells:
     if n:
         stops.add(n - 1)
     rows = sorted(dwell)
-    return StopsAndDwells(n, np.array(sorted(stops), dtype=np.int64), np.array(rows, dtype=np.int64),
+    return StopsAndDwells(np.array(sorted(stops), dtype=np.int64), np.array(rows, dtype=np.int64),
                           np.array([dwell[r] for r in rows], dtype=float), before)
 
 

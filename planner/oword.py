@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from planner.lexer import LexError, compact
 
@@ -39,28 +40,19 @@ def has_control_flow(text: str | bytes, piece_chars: int = 1 << 20) -> bool:
     megabyte of whole lines at a time: a regular expression holds the interpreter lock for as
     long as it searches, and the panel's GUI thread must not wait a quarter of a second on a
     program of millions of lines."""
-    if isinstance(text, bytes):
-        return _bytes_have_control_flow(text, piece_chars)
+    raw = isinstance(text, bytes)
+    newline: Any = b"\n" if raw else "\n"
+    letters: Any = (b"o", b"O", b"m", b"M") if raw else "oOmM"
     start, n = 0, len(text)
     while start < n:
-        end = text.find("\n", min(n, start + piece_chars))
+        end = text.find(newline, min(n, start + piece_chars))
         end = n if end < 0 else end
-        # no letter O and no M98/M99 in the piece (a CAM raster): no statement, no regular expression
-        maybe = any(text.find(c, start, end) >= 0 for c in "oOmM")   # one letter: a memchr
-        if maybe and _ANY_RE.search(text, start, end) is not None:  # '^' matches at start: a line start
-            return True
-        start = end + 1
-    return False
-
-
-def _bytes_have_control_flow(data: bytes, piece: int) -> bool:
-    """``has_control_flow`` over UTF-8 bytes: only a piece with one of the letters is decoded."""
-    start, n = 0, len(data)
-    while start < n:
-        end = data.find(b"\n", min(n, start + piece))
-        end = n if end < 0 else end
-        if any(data.find(c, start, end) >= 0 for c in (b"o", b"O", b"m", b"M")):
-            if _ANY_RE.search(data[start:end].decode("utf-8", "replace")) is not None:
+        # no letter O and no M98/M99 in the piece (a CAM raster): no statement, no regular
+        # expression (one letter: a memchr); bytes are decoded only for such a piece
+        if any(text.find(c, start, end) >= 0 for c in letters):
+            found = (_ANY_RE.search(text[start:end].decode("utf-8", "replace")) if isinstance(text, bytes)
+                     else _ANY_RE.search(text, start, end))    # '^' matches at start: a line start
+            if found is not None:
                 return True
         start = end + 1
     return False
