@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.path_raster import Layer, rasterize
-from app.toolpath import Polylines, ToolPath, joined_runs, take_points, thin_masks
+from app.toolpath import PointRows, Polylines, ToolPath, joined_rows, rows_of, take_points, thin_masks
 from planner.heap import trim_heap
 from planner.program import MoveKind
 
@@ -113,18 +113,22 @@ def _make_levels(path: ToolPath) -> LodLevels:
     if not extent > 0.0:
         return levels
 
-    def copies_of(pl: Polylines) -> list[tuple[float, Polylines]]:
-        """The thinned copies of ``pl`` worth keeping, each as ``thin`` of the one before it
-        makes it; only those kept are made (``thin_masks``)."""
-        cell, kept = extent / BASE_CELLS, len(pl.points)
-        joined = joined_runs(pl)
-        if len(joined.points) < 3:
-            return [(cell, joined)] if 2 * len(joined.points) <= kept else []
+    origin = np.asarray(lo, float)
+
+    def copies_of(pr: PointRows) -> list[tuple[float, Polylines]]:
+        """The thinned copies of ``pr`` worth keeping, each as ``thin`` of the one before it
+        makes it; only those kept are made (``thin_masks``), as 4-byte floats from the path's
+        corner (``Polylines.origin``)."""
+        cell, kept = extent / BASE_CELLS, len(pr)
+        joined = joined_rows(pr)
+        if len(joined) < 3:
+            every = np.ones(len(joined), bool)
+            return [(cell, take_points(joined, every, origin))] if 2 * len(joined) <= kept else []
         copies = []
         for level, keep in enumerate(thin_masks(joined, cell, LEVELS)):
             count = int(np.count_nonzero(keep))
             if 2 * count <= kept:
-                copies.append((cell * 4.0 ** level, take_points(joined, keep)))
+                copies.append((cell * 4.0 ** level, take_points(joined, keep, origin)))
                 kept = count
         return copies
 
@@ -134,43 +138,79 @@ def _make_levels(path: ToolPath) -> LodLevels:
             continue
         # a kind with few points is kept whole (cube 0: taken at every scale), so that the view's
         # detail never takes it from the whole path again
-        pl = path.kind(kind)
-        levels[kind] = copies_of(pl) if points > LOD_MIN_POINTS else [(0.0, pl)]
-        del pl
+        if points > LOD_MIN_POINTS:
+            levels[kind] = copies_of(path.kind_rows(kind))
+        else:
+            levels[kind] = [(0.0, path.kind(kind))]
     if len(path.all.points) > LOD_MIN_POINTS:
-        levels[ALL_MOVES] = copies_of(path.all)
+        levels[ALL_MOVES] = copies_of(rows_of(path.all))
     # the thinning's temporaries (each kind's points, cube numbers per axis) lie freed in the
     # heap between the copies kept: 280 MB of a 10,000,000-move raster, handed back
     trim_heap()
     return levels
 
 
-def _cut(pl: Polylines, view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+CUT_PIECE = 1 << 18  # points looked at a time when cutting a path to a view
+
+
+def _projected(view: ViewSpec, points: np.ndarray,
+               origin: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """View coordinates of ``points`` (from ``origin`` when given: the projection is linear)."""
+    x, y = view.project(points)
+    if origin is None:
+        return x, y
+    ox, oy = view.project(origin[None, :])
+    return np.add(x, ox[0], dtype=np.float64), np.add(y, oy[0], dtype=np.float64)
+
+
+def _cut(pl: Polylines | PointRows, view: ViewSpec,
+         most: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """The points of ``pl`` in the view (with a margin), the other end of every segment with
-    one end in it, and no line across what is left out: (x, y, connect, their indices)."""
-    x, y = view.project(pl.points)
+    one end in it, and no line across what is left out: (x, y, connect, their moves); None
+    when there are more than ``most``. Looked at and gathered a piece at a time: the whole
+    path seen close did not make its view coordinates at once (160 MB of 10,000,000 points),
+    nor a copy of a kind's points (290 MB)."""
+    pr = rows_of(pl) if isinstance(pl, Polylines) else pl
+    origin = pl.origin if isinstance(pl, Polylines) else None
+    n = len(pr)
     mx, my = MARGIN * (view.x1 - view.x0), MARGIN * (view.y1 - view.y0)
-    inside = (x >= view.x0 - mx) & (x <= view.x1 + mx) & (y >= view.y0 - my) & (y <= view.y1 + my)
+    inside = np.empty(n, bool)
+    for lo in range(0, n, CUT_PIECE):
+        x, y = _projected(view, pr.points(lo, lo + CUT_PIECE), origin)
+        inside[lo:lo + CUT_PIECE] = ((x >= view.x0 - mx) & (x <= view.x1 + mx)
+                                     & (y >= view.y0 - my) & (y <= view.y1 + my))
     keep = inside.copy()  # and the other end of every segment that has one end inside
-    keep[1:] |= inside[:-1] & pl.connect[:-1]
-    keep[:-1] |= inside[1:] & pl.connect[:-1]
+    keep[1:] |= inside[:-1] & pr.connect[:-1]
+    keep[:-1] |= inside[1:] & pr.connect[:-1]
+    del inside
+    if most is not None and np.count_nonzero(keep) > most:
+        return None
     idx = np.flatnonzero(keep)
-    connect = pl.connect[idx].copy()
-    if len(idx):
+    del keep
+    k = len(idx)
+    x, y = np.empty(k), np.empty(k)
+    moves = np.empty(k, pr.source.move_index.dtype)
+    for lo in range(0, k, CUT_PIECE):
+        points, moves[lo:lo + CUT_PIECE] = pr.take(idx[lo:lo + CUT_PIECE])
+        x[lo:lo + CUT_PIECE], y[lo:lo + CUT_PIECE] = _projected(view, points, origin)
+    connect = pr.connect[idx]
+    if k:
         connect[:-1] &= np.diff(idx) == 1
         connect[-1] = False
-    return x[idx], y[idx], connect, idx
+    return x, y, connect, moves
 
 
 def _visible(path: ToolPath, kind: MoveKind, copies: list[tuple[float, Polylines]],
              view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The coarsest copy whose cubes stay within half a pixel, cut to the view; zoomed in closer
     than the finest copy, the kind's own points (taken from the path for this view)."""
-    pl = None
+    pl: Polylines | PointRows | None = None
     for cell, part in copies:
         if cell <= 0.5 * view.pixel:  # a cube's diagonal within a pixel
             pl = part
-    return _cut(pl if pl is not None else path.kind(kind), view)[:3]
+    cut = _cut(pl if pl is not None else path.kind_rows(kind), view)
+    assert cut is not None
+    return cut[:3]
 
 
 def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
@@ -178,15 +218,15 @@ def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
     """Every move in program order for the view: the finest copy within half a pixel, or a
     coarser one while more than EXECUTED_POINTS points would be in view (an overlay may be
     coarser than the path under it; vectors of millions of points are not drawn in time)."""
-    candidates = [path.all] + [part for _cell, part in copies]
+    candidates: list[Polylines | PointRows] = [rows_of(path.all)] + [part for _cell, part in copies]
     first = 0
     for k, (cell, _part) in enumerate(copies, start=1):
         if cell <= 0.5 * view.pixel:
             first = k
     for pl in candidates[first:]:
-        x, y, connect, idx = _cut(pl, view)
-        if len(x) <= EXECUTED_POINTS or pl is candidates[-1]:
-            return x, y, connect, pl.move_index[idx]
+        cut = _cut(pl, view, None if pl is candidates[-1] else EXECUTED_POINTS)
+        if cut is not None:
+            return cut
     raise AssertionError("unreachable: the last copy is always taken")
 
 
@@ -210,5 +250,10 @@ def detail(path: ToolPath, levels: LodLevels, view: ViewSpec) -> Detail:
     width = max(1, math.ceil((1 + 2 * MARGIN) * w / view.pixel))
     height = max(1, math.ceil((1 + 2 * MARGIN) * h / view.pixel))
     layers = [Layer(*shown[kind], view.colours[kind]) for kind in KINDS if kind in shown]
+    del shown
     image = rasterize(layers, x0, y0, view.pixel, width, height)
+    del layers
+    # the view's points (millions, seen whole) were freed into the heap of the thread that
+    # made them, where they stayed: 200 MB of a 10,000,000-move path after two views
+    trim_heap()
     return Detail({}, image, (x0, y0, width * view.pixel, height * view.pixel), executed)

@@ -30,6 +30,54 @@ class Polylines:
     connect: np.ndarray  # bool (N,)
     move_index: np.ndarray  # int32 (N,), move of each point
     count: int  # number of moves drawn
+    # None: ``points`` are where the points are; else the points are ``points + origin``
+    # (a thinned copy keeps 4-byte floats from the path's corner: a copy's cube is at least
+    # 1/65,536 of the path's extent, a float's step 1/16,777,216 of it)
+    origin: np.ndarray | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class PointRows:
+    """Polylines made of some points of ``source``, in order, without a copy of them: point i
+    is ``source.points[rows[i]]`` (``rows`` None: every point), with a ``connect`` of its own.
+    A kind of move of a 10,000,000-point path taken as a copy held 290 MB; as rows, 40."""
+
+    source: Polylines
+    rows: np.ndarray | None
+    connect: np.ndarray
+    count: int
+
+    def __len__(self) -> int:
+        return int(self.connect.shape[0])
+
+    def points(self, lo: int, hi: int) -> np.ndarray:
+        """Points lo .. hi - 1 (a new array unless every point is taken)."""
+        return self.source.points[lo:hi] if self.rows is None else self.source.points[self.rows[lo:hi]]
+
+    def take(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The points at ``idx`` and their moves."""
+        rows = idx if self.rows is None else self.rows[idx]
+        return self.source.points[rows], self.source.move_index[rows]
+
+
+def rows_of(pl: Polylines) -> PointRows:
+    """Every point of ``pl`` as rows."""
+    return PointRows(pl, None, pl.connect, pl.count)
+
+
+def _nonzero(mask: np.ndarray) -> np.ndarray:
+    """``np.flatnonzero(mask)`` as 4-byte indices where they fit, a piece at a time (8 bytes
+    a point at once was 80 MB of a 10,000,000-point path)."""
+    n = int(mask.shape[0])
+    if n >= 2**31:
+        return np.flatnonzero(mask)
+    out = np.empty(int(np.count_nonzero(mask)), np.int32)
+    k = 0
+    for lo in range(0, n, THIN_PIECE):
+        part = np.flatnonzero(mask[lo:lo + THIN_PIECE])
+        out[k:k + len(part)] = part + lo
+        k += len(part)
+    return out
 
 
 DRAWN_KINDS = (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC)  # blends are drawn with the arcs
@@ -54,19 +102,24 @@ class ToolPath:
         return self.axes.index(name) if name in self.axes else None
 
     def kind(self, kind: MoveKind) -> Polylines:
-        """The polylines of one kind of move (a new array: a big path's levels of detail are
-        made from it once, then it goes). A point's kind is that of the segment it starts; the
-        point ending a segment of this kind comes along whatever kind starts there (a raster's
-        path is one point a move, rapids and feeds sharing their joints)."""
+        """The polylines of one kind of move, as a copy (``kind_rows``: the same without)."""
+        rows = self.kind_rows(kind)
+        idx = np.arange(len(rows))
+        points, move_index = rows.take(idx)
+        return Polylines(points, rows.connect, move_index, rows.count)
+
+    def kind_rows(self, kind: MoveKind) -> PointRows:
+        """The polylines of one kind of move as rows of ``all``. A point's kind is that of the
+        segment it starts; the point ending a segment of this kind comes along whatever kind
+        starts there (a raster's path is one point a move, rapids and feeds sharing their
+        joints)."""
         if not self.kind_counts.get(kind, 0):
-            return _empty(len(self.axes))
+            return rows_of(_empty(len(self.axes)))
         mine = self.point_kind == kind
         starts = mine & self.all.connect          # points that start a drawn segment of this kind
-        take = mine.copy()
-        take[1:] |= starts[:-1]                   # ... and the points that end them
-        sel = np.flatnonzero(take)
-        return Polylines(self.all.points[sel], starts[sel], self.all.move_index[sel],
-                         self.kind_counts[kind])
+        mine[1:] |= starts[:-1]                   # ... and the points that end them
+        rows = _nonzero(mine)
+        return PointRows(self.all, rows, starts[rows], self.kind_counts[kind])
 
     @property
     def kinds(self) -> dict[MoveKind, Polylines]:
@@ -144,7 +197,7 @@ def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polyli
 
 
 BLEND_POINTS = 9
-THIN_PIECE = 1 << 20  # points thinned at a time
+THIN_PIECE = 1 << 18  # points thinned at a time (their temporaries: some 12 MB)
 
 
 def _blends(program: Program, idx: np.ndarray) -> Polylines:
@@ -252,18 +305,31 @@ def build_toolpath(program: Program) -> ToolPath:
 def joined_runs(pl: Polylines) -> Polylines:
     """Runs that start where the run before them ends, as one run (lines and rapids are drawn
     as point pairs: a chain of moves becomes one polyline, which ``thin`` can thin)."""
-    pts = pl.points
-    if len(pts) < 2:
+    joined = joined_rows(rows_of(pl))
+    if joined.rows is None:
         return pl
-    again = ~pl.connect[:-1] & np.all(pts[1:] == pts[:-1], axis=1)  # point i + 1 repeats point i
+    return take_points(joined, np.ones(len(joined), bool))
+
+
+def joined_rows(pr: PointRows) -> PointRows:
+    """``joined_runs`` of rows: the rows kept and their connect (``pr`` itself when no run
+    joins another)."""
+    n = len(pr)
+    if n < 2:
+        return pr
+    again = np.empty(n - 1, bool)    # point i + 1 repeats point i, which ends a run
+    for lo in range(0, n - 1, THIN_PIECE):
+        hi = min(n - 1, lo + THIN_PIECE)
+        pts = pr.points(lo, hi + 1)
+        again[lo:hi] = ~pr.connect[lo:hi] & np.all(pts[1:] == pts[:-1], axis=1)
     if not again.any():
-        return pl
-    keep = np.ones(len(pts), bool)
+        return pr
+    keep = np.ones(n, bool)
     keep[1:] = ~again
-    connect = pl.connect.copy()
+    connect = pr.connect.copy()
     connect[:-1] |= again  # the run's end now continues into the next run
-    idx = np.flatnonzero(keep)
-    return Polylines(pts[idx], connect[idx], pl.move_index[idx], pl.count)
+    idx = _nonzero(keep)
+    return PointRows(pr.source, idx if pr.rows is None else pr.rows[idx], connect[idx], pr.count)
 
 
 def thin(pl: Polylines, cell_mm: float) -> Polylines:
@@ -278,19 +344,22 @@ def thin(pl: Polylines, cell_mm: float) -> Polylines:
     return take_points(pl, thin_masks(pl, cell_mm, 1)[0])
 
 
-def thin_masks(pl: Polylines, cell_mm: float, levels: int) -> list[np.ndarray]:
+def thin_masks(pl: Polylines | PointRows, cell_mm: float, levels: int) -> list[np.ndarray]:
     """The points ``thin`` keeps of joined polylines ``pl`` (``joined_runs``) at cubes of
     ``cell_mm``, 4 ``cell_mm``, 16 ``cell_mm`` ... (``levels`` of them), in one pass a piece
     at a time. Cubes of 4 c are made of whole cubes of c, so thinning the thinned copy at 4 c
     keeps what thinning the whole at 4 c keeps: each level is taken from the whole, none made
     to make the next (the cube numbers of 10,000,000 points per axis took 250 MB at once)."""
-    pts, connect = pl.points, pl.connect
-    n = len(pts)
+    pr = rows_of(pl) if isinstance(pl, Polylines) else pl
+    connect = pr.connect
+    n = len(pr)
     keeps = [np.ones(n, bool) for _ in range(levels)]
     for lo in range(1, n - 1, THIN_PIECE):
         hi = min(lo + THIN_PIECE, n - 1)          # points lo .. hi - 1, each with the one before
         inner = connect[lo - 1:hi - 1] & connect[lo:hi]
-        cubes = [np.floor(pts[lo - 1:hi, k] / cell_mm) for k in range(pts.shape[1])]
+        pts = pr.points(lo - 1, hi)
+        cubes = [np.floor(pts[:, k] / cell_mm) for k in range(pts.shape[1])]
+        del pts
         for level, keep in enumerate(keeps):
             same = inner.copy()               # point i lies in the cube of point i - 1
             for c in cubes:
@@ -300,20 +369,27 @@ def thin_masks(pl: Polylines, cell_mm: float, levels: int) -> list[np.ndarray]:
     return keeps
 
 
-def take_points(pl: Polylines, keep: np.ndarray) -> Polylines:
-    """The points of ``pl`` where ``keep``, gathered a piece at a time."""
+def take_points(pl: Polylines | PointRows, keep: np.ndarray,
+                origin: np.ndarray | None = None) -> Polylines:
+    """The points of ``pl`` where ``keep``, gathered a piece at a time; with ``origin``, as
+    4-byte floats from there (``Polylines.origin``)."""
+    pr = rows_of(pl) if isinstance(pl, Polylines) else pl
     kept = int(np.count_nonzero(keep))
-    out_pts = np.empty((kept, pl.points.shape[1]), pl.points.dtype)
+    source = pr.source
+    dtype = source.points.dtype if origin is None else np.float32
+    out_pts = np.empty((kept, source.points.shape[1]), dtype)
     out_con = np.empty(kept, bool)
-    out_mi = np.empty(kept, pl.move_index.dtype)
+    out_mi = np.empty(kept, source.move_index.dtype)
     k = 0
     for lo in range(0, len(keep), THIN_PIECE):
         idx = lo + np.flatnonzero(keep[lo:lo + THIN_PIECE])
         m = len(idx)
-        out_pts[k:k + m] = pl.points[idx]
-        out_con[k:k + m], out_mi[k:k + m] = pl.connect[idx], pl.move_index[idx]
+        pts, out_mi[k:k + m] = pr.take(idx)
+        out_pts[k:k + m] = pts if origin is None else pts - origin
+        out_con[k:k + m] = pr.connect[idx]
         k += m
-    return Polylines(out_pts, out_con, out_mi, pl.count)
+    return Polylines(out_pts, out_con, out_mi, pr.count,
+                     None if origin is None else np.asarray(origin, float).copy())
 
 
 def nearest_projected(path: ToolPath, px: np.ndarray, py: np.ndarray, x: float,

@@ -26,11 +26,12 @@ none (axis words need a G00-G03 first).
 
 from __future__ import annotations
 
+import codecs
 import math
 import os
 import re
 from collections.abc import Callable, Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -71,7 +72,7 @@ from planner.program import (
 from planner.splines import nurbs_pieces
 from planner.tools import Tool, ToolTable
 
-__all__ = ["parse_program", "parse_file", "read_program", "read_program_bytes", "decode_program",
+__all__ = ["parse_program", "parse_file", "read_program", "read_program_bytes",
            "MAX_ERRORS"]
 
 MAX_ERRORS = 100
@@ -84,6 +85,15 @@ _FEED_LIMIT = 1e12
 # the operator's feed hold waits until the tap is out of the hole
 _TAP_LOCK = FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF | FEED_HOLD_DEFERRED
 _TRIM_BYTES = 32 << 20   # program bytes read in bulk between two trims of the heap
+
+
+@dataclass
+class _BulkState:
+    """What the bulk reader carries from one piece of the program to the next."""
+
+    scanned: bool = False  # a block was scanned (the first is small)
+    skip: int = 0          # blocks left to read line by line: the last scan found few long runs
+    trimmed_at: int = 0    # where the heap was last trimmed
 _MAX_TURNS = 10_000
 _ZERO_LEN = 1e-9  # moves shorter than this (mm, and deg on rotary axes) are dropped
 #: a curve's arcs above this radius (1 km: LinuxCNC's biarc where the curve hardly bends) are
@@ -259,6 +269,7 @@ class _Interpreter:
     BULK_LINES = 16_384  # lines scanned at once by the bulk reader (its arrays: ~40 MB)
     BULK_MIN_RUN = 24  # shorter runs of plain lines are read one by one (cheaper than the arrays)
     BULK_SKIP_BLOCKS = 4  # blocks read line by line after a scan that found few long runs
+    BULK_PIECE = 16 << 20  # characters of the program indexed at a time by the bulk reader
     PROGRESS_LINES = 16_384  # the line reader reports its progress this often
     progress: Callable[[int, int], None] | None = None
 
@@ -881,47 +892,77 @@ class _Interpreter:
 
     def run_bulk(self, text: str | None, utf8: bytes | None = None) -> bool:
         """Read the program, plain coordinate lines in runs (``planner.bulk``), every other
-        line by ``line``. False (nothing read) when the text is not plain UTF-8."""
-        try:
-            data = np.frombuffer(utf8 if utf8 is not None else (text or "").encode("utf-8"), np.uint8)
-        except UnicodeEncodeError:
-            return False
-        nl = newline_offsets(data)
-        starts = np.concatenate(([0], nl + 1))
-        ends = np.concatenate((nl, [data.shape[0]]))
+        line by ``line``; ``utf8`` (the text's bytes) when given, else ``text``. A piece of
+        the program (cut after a newline) at a time: the line index of a whole program of
+        10,000,000 lines was 240 MB, its encoded text 250 MB more."""
+        source: str | bytes = utf8 if utf8 is not None else (text or "")
+        newline: Any = b"\n" if utf8 is not None else "\n"
+        total = len(source)
+        state = _BulkState()
+        lo = 0
+        first_line = 0     # lines of the program before this piece
+        while True:
+            hi = source.find(newline, lo + self.BULK_PIECE) if lo + self.BULK_PIECE < total else -1
+            last = hi < 0
+            hi = total if last else hi + 1
+            if isinstance(source, bytes):
+                # a copy of the piece: NumPy's passes over a buffer at an odd offset ran at half speed
+                data = np.frombuffer(source[lo:hi], np.uint8)
+            else:
+                # "surrogatepass": a text with lone surrogates reads as it did when it was
+                # split into lines whole (they stay in the lines read one by one)
+                data = np.frombuffer(source[lo:hi].encode("utf-8", "surrogatepass"), np.uint8)
+            nl = newline_offsets(data)
+            starts = np.concatenate(([0], nl + 1))
+            ends = np.concatenate((nl, [data.shape[0]]))
+            if not last:    # the piece ends with its newline: no line starts after it
+                starts, ends = starts[:-1], ends[:-1]
+            if self._bulk_piece(data, starts, ends, first_line, lo, total, state, utf8 is None):
+                return True
+            if last:
+                return True
+            first_line += int(starts.shape[0])
+            lo = hi
+
+    def _bulk_piece(self, data: np.ndarray, starts: np.ndarray, ends: np.ndarray, first_line: int,
+                    offset: int, total: int, state: _BulkState, surrogates: bool) -> bool:
+        """Read the lines of one piece (``data``, lines from ``starts`` to ``ends``, the first
+        being line ``first_line + 1`` of the program, at ``offset`` of its ``total``): True
+        when the program ends there."""
         n_lines = int(starts.shape[0])
         letters = "".join(a for a, rot in zip(self.axes, self.rotary) if not rot) + "FGN"
         cols = [self.axis_index[a] for a in letters[:-3]]
         line = self.line
         min_run = self.BULK_MIN_RUN
+        errors = "surrogatepass" if surrogates else "strict"
 
         def by_line(a: int, b: int) -> bool:
             """Lines a .. b - 1 by ``line`` (True when the program ends there)."""
             if a >= b:
                 return False
-            text = data[int(starts[a]):int(ends[b - 1])].tobytes().decode("utf-8")
-            for line_no, raw in enumerate(text.split("\n"), a + 1):
+            text = data[int(starts[a]):int(ends[b - 1])].tobytes().decode("utf-8", errors)
+            for line_no, raw in enumerate(text.split("\n"), first_line + a + 1):
                 if line(raw, line_no):
                     return True
             return False
 
-        skip = 0  # blocks left to read line by line: the last scan found few long runs
         b1 = 0
-        trimmed_at = 0   # bytes read when the heap was last trimmed
         while b1 < n_lines:
-            if int(starts[b1]) - trimmed_at > _TRIM_BYTES:
+            if offset + int(starts[b1]) - state.trimmed_at > _TRIM_BYTES:
                 # each block's scan makes and frees arrays of megabytes, which stay in the heap
                 # between the moves kept (360 MB of 1.1 GB after 10,000,000 lines): handed back
                 trim_heap()
-                trimmed_at = int(starts[b1])
+                state.trimmed_at = offset + int(starts[b1])
             # a small first block tells cheaply whether the program is made of long runs
-            b0, b1 = b1, min(n_lines, b1 + (self.BULK_LINES if b1 else self.BULK_LINES // 8))
-            if skip:
-                skip -= 1
+            b0 = b1
+            b1 = min(n_lines, b1 + (self.BULK_LINES if state.scanned else self.BULK_LINES // 8))
+            state.scanned = True
+            if state.skip:
+                state.skip -= 1
                 if by_line(b0, b1):
                     return True
                 if self.progress is not None:
-                    self.progress(b1, n_lines)
+                    self.progress(offset + int(ends[b1 - 1]), total)
                 continue
             base = int(starts[b0])
             block = scan_plain(data[base:int(ends[b1 - 1])], starts[b0:b1] - base, ends[b0:b1] - base,
@@ -934,15 +975,15 @@ class _Interpreter:
             if sum(r1 - r0 for r0, r1 in runs) < 0.25 * (b1 - b0):
                 # a program of short runs (arcs between few lines): scanning costs more than it
                 # saves; look again every few blocks, where the program may change its kind
-                skip = self.BULK_SKIP_BLOCKS
+                state.skip = self.BULK_SKIP_BLOCKS
             cursor = b0
             for r0, r1 in runs:
                 if by_line(cursor, r0):
                     return True
                 i = r0
                 while i < r1:
-                    i += self.bulk_lines(block.values[i - b0:r1 - b0], block.words[i - b0:r1 - b0], i + 1,
-                                         cols)
+                    i += self.bulk_lines(block.values[i - b0:r1 - b0], block.words[i - b0:r1 - b0],
+                                         first_line + i + 1, cols)
                     if i < r1:  # a line the run cannot take: the line reader's
                         if by_line(i, i + 1):
                             return True
@@ -951,8 +992,8 @@ class _Interpreter:
             if by_line(cursor, b1):
                 return True
             if self.progress is not None:
-                self.progress(b1, n_lines)
-        return True
+                self.progress(offset + int(ends[b1 - 1]), total)
+        return False
 
     def bulk_lines(self, values: np.ndarray, words: np.ndarray, first_line: int, cols: list[int]) -> int:
         """Run plain lines (``planner.bulk``: values of the linear axes' words in ``cols``
@@ -2884,8 +2925,9 @@ def parse_program(
     does not define the subroutine itself.
     ``parameters``: the persistent parameters the machine kept (``PERSISTENT_PARAMETERS``: G92,
     G28/G30 positions, coordinate systems); the machine's work offsets take precedence for G54-G59.
-    ``progress(lines read, lines in all)`` is called now and then while a long program is read.
-    ``utf8``: the text's own UTF-8 bytes when at hand (``read_program``): the bulk reader scans
+    ``progress(done, total)`` is called now and then while a long program is read (lines read
+    of all the lines, or characters of the text in bulk: ``done / total`` is what is read).
+    ``utf8``: the text's own UTF-8 bytes when at hand: the bulk reader scans
     them instead of encoding the text again; with ``text`` None they are the program
     (``read_program_bytes``), read without its text where it is plain lines.
     ``probe_results``: what the machine's probe did on the program's G38.x moves, in order
@@ -2903,9 +2945,8 @@ def parse_program(
 
 def read_program_bytes(path: str | os.PathLike[str]) -> tuple[str | None, bytes | None]:
     """A G-code file as ``parse_program(None, ..., utf8=)`` reads it: (None, its bytes) when
-    they are UTF-8, else (its Latin-1 text, None); ``decode_program`` makes the text of the
-    bytes once they are read (the text and the bytes are then not held at once while the
-    program is read). Raises PlannerError naming the file and why."""
+    they are UTF-8, else (its Latin-1 text, None). Raises PlannerError naming the file and
+    why."""
     try:
         with open(path, "rb") as f:
             data = f.read()
@@ -2931,16 +2972,28 @@ def _is_utf8(data: bytes) -> bool:
     return True
 
 
-def decode_program(data: bytes) -> str:
-    """The text of a program's UTF-8 bytes (as ``read_program`` decodes it)."""
-    return _decode_utf8(data)
-
-
-def read_program(path: str | os.PathLike[str]) -> tuple[str, bytes | None]:
-    """A G-code file's text (UTF-8, falling back to Latin-1) and, when it is UTF-8, its bytes
-    (for ``parse_program(..., utf8=)``). Raises PlannerError naming the file and why."""
-    text, data = read_program_bytes(path)
-    return (_decode_utf8(data), data) if text is None and data is not None else (text or "", None)
+def read_program(path: str | os.PathLike[str]) -> str:
+    """A G-code file's text (UTF-8, falling back to Latin-1), read and decoded a piece at a
+    time: the file's bytes are never held whole beside the text (250 MB each at 10,000,000
+    lines), and no one decode holds the GIL long. Raises PlannerError naming the file and
+    why."""
+    try:
+        with open(path, "rb") as f:
+            try:
+                decoder = codecs.getincrementaldecoder("utf-8")()
+                pieces = []
+                while block := f.read(_DECODE_PIECE):
+                    pieces.append(decoder.decode(block))
+                pieces.append(decoder.decode(b"", final=True))
+            except UnicodeDecodeError:
+                pieces = []
+                f.seek(0)
+                return f.read().decode("latin-1")
+    except OSError as exc:
+        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    text = "".join(pieces)
+    del pieces
+    return text
 
 
 _DECODE_PIECE = 1 << 22  # bytes decoded at a time

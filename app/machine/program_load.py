@@ -50,7 +50,7 @@ from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.gcpause import gc_paused
 from planner.heap import trim_heap
-from planner.interpreter import decode_program, parse_program, read_program_bytes
+from planner.interpreter import parse_program, read_program
 from planner.machine import MachineSpec
 from planner.program import ProbeResult, Program
 from planner.softlimits import LimitViolation, check_and_bound, check_program
@@ -142,17 +142,19 @@ def check_text(
             req.progress = first + share * min(1.0, done / max(total, 1))
         return report
 
-    utf8: bytes | None = None
     text: str | None = req.text
     if req.read_file:
         try:
-            # a UTF-8 file is read from its bytes alone, and its text made once it is read:
-            # the two are never held at once beside the moves (250 MB each at 10,000,000 lines)
-            text, utf8 = read_program_bytes(req.path)
+            # the text first, decoded a piece at a time, before any move is made: the reader
+            # then goes through it a piece at a time too (text, bytes and the moves of
+            # 10,000,000 lines were once held at once: 250 MB each and 460 MB)
+            text = read_program(req.path)
         except PlannerError as exc:
             why = str(exc).split(": ", 1)[1] if ": " in str(exc) else str(exc)
             return (ProgramIssue(0, 0, why),), str(exc)
         req.read_file = False
+    assert text is not None
+    req.text = text
     name = req.name
 
     def reread(probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...]) -> Program:
@@ -166,22 +168,14 @@ def check_text(
     try:
         program = parse_program(text, name, machine=machine, start_position=req.start_position,
                                 tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]),
-                                utf8=utf8)
+                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]))
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
     finally:
-        trim_heap()   # the reading's freed temporaries back before its text is made
-        if text is None:
-            assert utf8 is not None
-            text = decode_program(utf8)
-        req.text = text
-        # the file's bytes served the reader only: 250 MB at 10,000,000 lines, not held
-        # through the plan and the tool path
-        utf8 = None
+        trim_heap()   # the reading's freed temporaries back to the system
     probe_cfg = getattr(req.cfg, "probe", None)
     if program.probes:
         at, why = probe_refusal(program, getattr(probe_cfg, "drive", None),

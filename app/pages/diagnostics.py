@@ -46,6 +46,7 @@ class DiagnosticsPage(QWidget):
         self.profile: PathProfile | None = None
         self._planning = Background("diag-plan", self._on_profile, self)
         self._profile_state = N_("No program loaded.")
+        self._profile_stale = False   # the program changed while the page was not shown
         context.program.changed.connect(self.compute_profile)
         c.trackingSample.connect(self.tracking.add_sample)
         c.trackingUpdated.connect(self.tracking.set_report)
@@ -62,6 +63,8 @@ class DiagnosticsPage(QWidget):
     def showEvent(self, event) -> None:  # noqa: N802 - Qt override
         self.timer.start()
         super().showEvent(event)
+        if self._profile_stale:
+            self.compute_profile()
 
     def hideEvent(self, event) -> None:  # noqa: N802 - Qt override
         self.timer.stop()
@@ -77,6 +80,16 @@ class DiagnosticsPage(QWidget):
             self._profile_state = N_("No program loaded.")
             self._show_profile_state()
             return
+        if not self.isVisible():
+            # planned when the page is shown: a program of millions of moves was planned
+            # for this page while its preview's copies were made, 120 MB more at once
+            self._profile_stale = True
+            self.profile = None
+            self.profile_plots.set_profile(None)
+            self._profile_state = N_("Planned when this page is shown.")
+            self._show_profile_state()
+            return
+        self._profile_stale = False
         machine = self.ctx.controller.config.machine
         plan = getattr(self.ctx.program.info, "plan", None)
         planned_s = float(getattr(self.ctx.program.info, "plan_end_s", float("nan")))

@@ -581,6 +581,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yüklü program yok.</translation>
     </message>
     <message>
+      <location filename="../../app/pages/diagnostics.py" line="85" />
+      <source>Planned when this page is shown.</source>
+      <translation>Bu sayfa gösterildiğinde planlanır.</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/keypad.py" line="96" />
       <source>Not a number</source>
       <translation>Sayı değil</translation>

@@ -321,6 +321,10 @@ def test_estop_button_and_state(fake_window, fake_controller, dialogs) -> None:
 def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> None:
     page = fake_window.page("diagnostics")
     fake_controller.load_program(DEMO_PROGRAM, wait=True)
+    qtbot.wait(50)
+    # planned when the page is shown, not beside the preview's work at every load
+    assert page.profile is None and not page._planning.busy
+    assert fake_window.show_page("diagnostics")
     qtbot.waitUntil(lambda: page.profile is not None, timeout=10000)
     p = page.profile
     assert p.cycle_time_s > 1.0 and len(p.t) > 1000

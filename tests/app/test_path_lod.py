@@ -265,3 +265,130 @@ def test_a_tap_on_a_big_path_picks_the_move_drawn_there(qtbot, big_path, monkeyp
     plot.highlight_move(picked)
     np.testing.assert_array_equal(plot.selected_item.xData, seg[:, 0])
     assert plot.pick(50.0, 120.0, radius=0.5) == -1  # nothing there
+
+
+def _mixed_path(seed: int, scale: float):
+    """A path of rapids, lines and arcs (two points a line move: runs to join)."""
+    rng = np.random.default_rng(seed)
+    lines = ["G21 G90 F600"]
+    for _ in range(60):
+        x, y, z = (rng.uniform(-50, 50, 3) * scale).round(4)
+        pick = rng.integers(0, 4)
+        if pick == 0:
+            lines.append(f"G0 X{x} Y{y} Z{z}")
+        elif pick == 1:
+            lines.append(f"G2 X{x} Y{y} R{abs(x) + abs(y) + 60 * scale:.4f}")
+        else:
+            lines.append(f"G1 X{x} Y{y} Z{z}")
+    return build_toolpath(parse_program("\n".join(lines) + "\n", "mixed.ngc"))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**31), st.sampled_from([0.001, 1.0, 1000.0]), st.sampled_from([1, 5, 64, 1 << 20]),
+       st.sampled_from([0.01, 0.1, 1.0]))
+def test_a_kind_thinned_as_rows_of_the_path_is_the_kind_thinned_as_a_copy(seed, scale, piece, cell):
+    """The copies of a big path are made from rows of its points (no copy of a kind's points);
+    a piece at a time; as 4-byte floats from the path's corner: the same points within a
+    float's step of the extent, the same runs and moves."""
+    import app.toolpath as toolpath
+    from app.toolpath import joined_rows, joined_runs, take_points, thin_masks
+
+    path = _mixed_path(seed, scale)
+    lo, hi = path.bounds
+    extent = float(np.max(hi - lo))
+    old = toolpath.THIN_PIECE
+    toolpath.THIN_PIECE = piece
+    try:
+        for kind in (MoveKind.RAPID, MoveKind.LINE, MoveKind.ARC):
+            rows = joined_rows(path.kind_rows(kind))
+            copy = joined_runs(path.kind(kind))
+            assert len(rows) == len(copy.points)
+            if len(copy.points) < 3:
+                continue
+            masks = zip(thin_masks(rows, cell * scale, 3), thin_masks(copy, cell * scale, 3))
+            for keep_rows, keep_copy in masks:
+                np.testing.assert_array_equal(keep_rows, keep_copy)
+                want = take_points(copy, keep_copy)
+                got = take_points(rows, keep_rows, np.asarray(lo))
+                assert got.points.dtype == np.float32
+                np.testing.assert_array_equal(got.connect, want.connect)
+                np.testing.assert_array_equal(got.move_index, want.move_index)
+                np.testing.assert_allclose(got.points + got.origin, want.points, rtol=0,
+                                           atol=extent * 2.0**-22)
+    finally:
+        toolpath.THIN_PIECE = old
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**31), st.sampled_from([3, 64, 1 << 20]), st.floats(0.05, 0.9), st.floats(0.05, 0.9))
+def test_a_path_cut_to_a_view_a_piece_at_a_time_is_cut_at_once(seed, piece, fx, fy):
+    import app.path_lod as path_lod
+
+    path = _mixed_path(seed, 1.0)
+    lo, hi = path.bounds
+    x0, y0 = lo[0] + fx * (hi[0] - lo[0]) * 0.5, lo[1] + fy * (hi[1] - lo[1]) * 0.5
+    view = _view(x0, x0 + 30, y0, y0 + 30, 0.05)
+    old = path_lod.CUT_PIECE
+    path_lod.CUT_PIECE = piece
+    try:
+        got = path_lod._cut(path.kind_rows(MoveKind.LINE), view)
+        assert got is not None
+    finally:
+        path_lod.CUT_PIECE = old
+    # the rule, written plainly over a copy of the kind
+    pl = path.kind(MoveKind.LINE)
+    x, y = pl.points[:, 0], pl.points[:, 1]
+    m = 0.25 * 30
+    inside = (x >= view.x0 - m) & (x <= view.x1 + m) & (y >= view.y0 - m) & (y <= view.y1 + m)
+    keep = inside.copy()
+    keep[1:] |= inside[:-1] & pl.connect[:-1]
+    keep[:-1] |= inside[1:] & pl.connect[:-1]
+    idx = np.flatnonzero(keep)
+    connect = pl.connect[idx] & np.r_[np.diff(idx) == 1, False]
+    for a, b in zip(got, (x[idx], y[idx], connect, pl.move_index[idx])):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_copies_of_a_big_path_hold_no_copy_of_its_points_on_the_way(big_path, monkeypatch):
+    """Thinned copies are taken from rows of the path's points (a piece at a time), and kept
+    as 4-byte floats: beyond the copies kept, making them holds less than half of what the
+    path's points take (a copy of a kind's points took more than all of it)."""
+    import tracemalloc
+
+    import app.toolpath as toolpath
+    from app.path_lod import ALL_MOVES, _make_levels
+
+    monkeypatch.setattr(toolpath, "THIN_PIECE", 1 << 14)
+    points_bytes = big_path.all.points.nbytes
+    tracemalloc.start()
+    try:
+        levels = _make_levels(big_path)
+        kept, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    copies = [part for key in (MoveKind.LINE, ALL_MOVES) for _c, part in levels[key]]
+    assert len(copies) >= 2 and all(part.points.dtype == np.float32 for part in copies)
+    assert kept < 1.2 * points_bytes and peak - kept < points_bytes / 2, (peak, kept, points_bytes)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.integers(0, 2**31), st.sampled_from([1, 3, 64]), st.sampled_from([0.05, 0.5, 5.0]))
+def test_an_image_stepped_a_piece_of_the_segments_at_a_time_is_stepped_at_once(seed, piece, pixel):
+    """Segments far more than pixels (their steps thinned to the image's budget) or fewer, in
+    and out of the image: stepped a few segments at a time, the very same pixels."""
+    import app.path_raster as path_raster
+
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 400))
+    x, y = np.cumsum(rng.normal(0, 3, (2, n)), axis=1)
+    connect = rng.random(n) < 0.9
+    layer = Layer(x, y, connect, (0, 255, 0, 255))
+    old = path_raster.COVER_PIECE
+    try:
+        path_raster.COVER_PIECE = piece
+        got = rasterize([layer], -10.0, -10.0, pixel, 40, 30)
+        path_raster.COVER_PIECE = 1 << 20
+        want = rasterize([layer], -10.0, -10.0, pixel, 40, 30)
+    finally:
+        path_raster.COVER_PIECE = old
+    np.testing.assert_array_equal(got, want)

@@ -213,7 +213,7 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
     path = tmp_path / "prog.nc"
     path.write_text(SHORT, encoding="utf-8")
     readers: list[str] = []
-    real_read = program_load.read_program_bytes
+    real_read = program_load.read_program
 
     def read(p):
         import threading
@@ -221,7 +221,7 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
         readers.append(threading.current_thread().name)
         return real_read(p)
 
-    monkeypatch.setattr(program_load, "read_program_bytes", read)
+    monkeypatch.setattr(program_load, "read_program", read)
     with qtbot.waitSignal(ctl.programLoaded, timeout=10_000) as blocker:
         assert ctl.load_program(path)
         assert ctl.loading
@@ -231,7 +231,7 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
     def gone(p):
         raise program_load.PlannerError(f"{p}: cannot read: No such file or directory")
 
-    monkeypatch.setattr(program_load, "read_program_bytes", gone)
+    monkeypatch.setattr(program_load, "read_program", gone)
     with qtbot.waitSignal(ctl.programErrors, timeout=10_000) as failed:
         assert ctl.load_program(path)
     assert "cannot read" in failed.args[0][0].message and ctl.program_info is None
