@@ -22,7 +22,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.path_raster import Layer, rasterize
-from app.toolpath import PointRows, Polylines, ToolPath, joined_rows, rows_of, take_points, thin_masks
+from app.toolpath import (
+    PointRows,
+    Polylines,
+    ToolPath,
+    joined_rows,
+    nonzero_indices,
+    rows_of,
+    take_points,
+    thin_copies,
+)
 from planner.heap import trim_heap
 from planner.program import MoveKind
 
@@ -124,12 +133,18 @@ def _make_levels(path: ToolPath) -> LodLevels:
         if len(joined) < 3:
             every = np.ones(len(joined), bool)
             return [(cell, take_points(joined, every, origin))] if 2 * len(joined) <= kept else []
-        copies = []
-        for level, keep in enumerate(thin_masks(joined, cell, LEVELS)):
-            count = int(np.count_nonzero(keep))
-            if 2 * count <= kept:
-                copies.append((cell * 4.0 ** level, take_points(joined, keep, origin)))
-                kept = count
+
+        def worth_keeping(counts: list[int]) -> list[int]:
+            """A copy with at most half the points of the finer one kept before it."""
+            chosen, before = [], kept
+            for level, count in enumerate(counts):
+                if 2 * count <= before:
+                    chosen.append(level)
+                    before = count
+            return chosen
+
+        made = thin_copies(joined, cell, LEVELS, worth_keeping, origin)
+        copies = [(cell * 4.0 ** level, made[level]) for level in sorted(made)]
         return copies
 
     for kind in KINDS:  # one kind's polylines at a time, let go once thinned
@@ -163,13 +178,11 @@ def _projected(view: ViewSpec, points: np.ndarray,
     return np.add(x, ox[0], dtype=np.float64), np.add(y, oy[0], dtype=np.float64)
 
 
-def _cut(pl: Polylines | PointRows, view: ViewSpec,
-         most: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
-    """The points of ``pl`` in the view (with a margin), the other end of every segment with
-    one end in it, and no line across what is left out: (x, y, connect, their moves); None
-    when there are more than ``most``. Looked at and gathered a piece at a time: the whole
-    path seen close did not make its view coordinates at once (160 MB of 10,000,000 points),
-    nor a copy of a kind's points (290 MB)."""
+def _in_view(pl: Polylines | PointRows, view: ViewSpec) -> np.ndarray:
+    """Which points of ``pl`` are drawn for the view (with a margin): those in it and the other
+    end of every segment with one end in it. Looked at a piece at a time: the whole path seen
+    close did not make its view coordinates at once (160 MB of 10,000,000 points), nor a copy
+    of a kind's points (290 MB)."""
     pr = rows_of(pl) if isinstance(pl, Polylines) else pl
     origin = pl.origin if isinstance(pl, Polylines) else None
     n = len(pr)
@@ -182,35 +195,54 @@ def _cut(pl: Polylines | PointRows, view: ViewSpec,
     keep = inside.copy()  # and the other end of every segment that has one end inside
     keep[1:] |= inside[:-1] & pr.connect[:-1]
     keep[:-1] |= inside[1:] & pr.connect[:-1]
-    del inside
-    if most is not None and np.count_nonzero(keep) > most:
-        return None
-    idx = np.flatnonzero(keep)
-    del keep
+    return keep
+
+
+def _gather(pl: Polylines | PointRows, keep: np.ndarray, view: ViewSpec,
+            relative: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The points of ``pl`` where ``keep``, with no line across what is left out: (x, y,
+    connect, their moves), a piece at a time; ``relative``: x and y as 4-byte floats from
+    the view's corner (x0, y0), for an image of it (half the memory of millions of points)."""
+    pr = rows_of(pl) if isinstance(pl, Polylines) else pl
+    origin = pl.origin if isinstance(pl, Polylines) else None
+    idx = nonzero_indices(keep)
     k = len(idx)
-    x, y = np.empty(k), np.empty(k)
+    x, y = (np.empty(k, np.float32 if relative else np.float64) for _ in range(2))
     moves = np.empty(k, pr.source.move_index.dtype)
     for lo in range(0, k, CUT_PIECE):
         points, moves[lo:lo + CUT_PIECE] = pr.take(idx[lo:lo + CUT_PIECE])
-        x[lo:lo + CUT_PIECE], y[lo:lo + CUT_PIECE] = _projected(view, points, origin)
+        px, py = _projected(view, points, origin)
+        if relative:
+            px, py = px - view.x0, py - view.y0
+        x[lo:lo + CUT_PIECE], y[lo:lo + CUT_PIECE] = px, py
     connect = pr.connect[idx]
+    for lo in range(0, k - 1, CUT_PIECE):   # no line across what is left out
+        hi = min(k - 1, lo + CUT_PIECE)
+        connect[lo:hi] &= idx[lo + 1:hi + 1] - idx[lo:hi] == 1
     if k:
-        connect[:-1] &= np.diff(idx) == 1
         connect[-1] = False
     return x, y, connect, moves
 
 
-def _visible(path: ToolPath, kind: MoveKind, copies: list[tuple[float, Polylines]],
-             view: ViewSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The coarsest copy whose cubes stay within half a pixel, cut to the view; zoomed in closer
-    than the finest copy, the kind's own points (taken from the path for this view)."""
+def _cut(pl: Polylines | PointRows, view: ViewSpec,
+         most: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+    """The points of ``pl`` drawn for the view (``_in_view``) as (x, y, connect, their moves);
+    None when there are more than ``most``."""
+    keep = _in_view(pl, view)
+    if most is not None and np.count_nonzero(keep) > most:
+        return None
+    return _gather(pl, keep, view)
+
+
+def _source(path: ToolPath, kind: MoveKind, copies: list[tuple[float, Polylines]],
+            view: ViewSpec) -> Polylines | PointRows:
+    """The coarsest copy whose cubes stay within half a pixel; zoomed in closer than the
+    finest copy, the kind's own points (rows of the path)."""
     pl: Polylines | PointRows | None = None
     for cell, part in copies:
         if cell <= 0.5 * view.pixel:  # a cube's diagonal within a pixel
             pl = part
-    cut = _cut(pl if pl is not None else path.kind_rows(kind), view)
-    assert cut is not None
-    return cut[:3]
+    return pl if pl is not None else path.kind_rows(kind)
 
 
 def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
@@ -230,8 +262,21 @@ def _executed(path: ToolPath, copies: list[tuple[float, Polylines]],
     raise AssertionError("unreachable: the last copy is always taken")
 
 
+# views of a big path made off the GUI thread are made one at a time: each holds some 100 MB
+# of a 10,000,000-move path on the way, and the preview and the Auto page's backplot make
+# theirs at once after every load (the GUI thread never waits for this lock)
+_detail_lock = threading.Lock()
+
+
 def detail(path: ToolPath, levels: LodLevels, view: ViewSpec) -> Detail:
     """What to draw of ``path`` for ``view``."""
+    if not levels or threading.current_thread() is threading.main_thread():
+        return _detail(path, levels, view)
+    with _detail_lock:
+        return _detail(path, levels, view)
+
+
+def _detail(path: ToolPath, levels: LodLevels, view: ViewSpec) -> Detail:
     if not levels:  # a small path: drawn whole
         shown = {}
         for kind in KINDS:
@@ -240,18 +285,25 @@ def detail(path: ToolPath, levels: LodLevels, view: ViewSpec) -> Detail:
                 x, y = view.project(pl.points)
                 shown[kind] = (x, y, pl.connect)
         return Detail(shown)
-    shown = {kind: _visible(path, kind, levels[kind], view) for kind in KINDS if kind in levels}
+    sources = {kind: _source(path, kind, levels[kind], view) for kind in KINDS if kind in levels}
+    keeps = {kind: _in_view(pl, view) for kind, pl in sources.items()}
     copies = levels.get(ALL_MOVES)
     executed = _executed(path, copies, view) if copies else None
-    if sum(len(v[0]) for v in shown.values()) <= VECTOR_POINTS:
+    if sum(int(np.count_nonzero(keep)) for keep in keeps.values()) <= VECTOR_POINTS:
+        shown = {kind: _gather(pl, keeps[kind], view)[:3] for kind, pl in sources.items()}
         return Detail(shown, executed=executed)
     w, h = view.x1 - view.x0, view.y1 - view.y0
     x0, y0 = view.x0 - MARGIN * w, view.y0 - MARGIN * h
     width = max(1, math.ceil((1 + 2 * MARGIN) * w / view.pixel))
     height = max(1, math.ceil((1 + 2 * MARGIN) * h / view.pixel))
-    layers = [Layer(*shown[kind], view.colours[kind]) for kind in KINDS if kind in shown]
-    del shown
-    image = rasterize(layers, x0, y0, view.pixel, width, height)
+    layers = []
+    for kind in KINDS:       # from the view's corner: what is drawn is the pixels it passes
+        if kind in sources:
+            x, y, connect, _moves = _gather(sources[kind], keeps[kind], view, relative=True)
+            layers.append(Layer(x, y, connect, view.colours[kind]))
+            del x, y, connect, _moves
+    del sources, keeps
+    image = rasterize(layers, x0 - view.x0, y0 - view.y0, view.pixel, width, height)
     del layers
     # the view's points (millions, seen whole) were freed into the heap of the thread that
     # made them, where they stayed: 200 MB of a 10,000,000-move path after two views

@@ -9,6 +9,7 @@ NumPy.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,29 +34,30 @@ COVER_PIECE = 1 << 16  # segments stepped through at a time
 
 def _cover(layer: Layer, x0: float, y0: float, pixel: float, width: int, height: int) -> np.ndarray:
     """(width, height) bool: the pixels the layer's segments pass, one pixel wide. Stepped a
-    piece of the segments at a time: the steps of a view of millions of segments (up to
-    STEPS_PER_PIXEL a pixel, 40 bytes each) took 350 MB at once."""
+    piece of the segments at a time, twice (their count of steps, then the steps): the steps
+    of a view of millions of segments (up to STEPS_PER_PIXEL a pixel, 40 bytes each) took
+    350 MB at once, the segments' own numbers 16 bytes each."""
     hit = np.zeros(width * height, bool)
-    seg = np.flatnonzero(layer.connect[:-1]) if len(layer.x) > 1 else np.zeros(0, np.int64)
-    if not len(seg):
+    n = len(layer.x)
+    if n < 2 or not layer.connect[:-1].any():
         return hit.reshape(width, height)
 
-    def pixels(s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        ax, ay = (layer.x[s] - x0) / pixel, (layer.y[s] - y0) / pixel
-        return ax, ay, (layer.x[s + 1] - x0) / pixel - ax, (layer.y[s + 1] - y0) / pixel - ay
+    def pieces() -> Iterator[tuple[np.ndarray, ...]]:
+        """Each piece's segments: where they start and go, in pixels, and their steps (one a
+        pixel along each: its end is the next segment's start)."""
+        for lo in range(0, n - 1, COVER_PIECE):
+            s = lo + np.flatnonzero(layer.connect[lo:min(lo + COVER_PIECE, n - 1)])
+            ax, ay = (layer.x[s] - x0) / pixel, (layer.y[s] - y0) / pixel
+            dx, dy = (layer.x[s + 1] - x0) / pixel - ax, (layer.y[s + 1] - y0) / pixel - ay
+            steps = np.maximum(1, np.ceil(np.maximum(np.abs(dx), np.abs(dy)))).astype(np.int64)
+            yield s, ax, ay, dx, dy, steps
 
-    # a step per pixel along each segment (its end is the next segment's start)
-    steps = np.empty(len(seg), np.int64)
-    for lo in range(0, len(seg), COVER_PIECE):
-        _ax, _ay, dx, dy = pixels(seg[lo:lo + COVER_PIECE])
-        steps[lo:lo + COVER_PIECE] = np.maximum(1, np.ceil(np.maximum(np.abs(dx), np.abs(dy))))
-    total = int(steps.sum())
+    total = sum(int(piece[-1].sum()) for piece in pieces())
     budget = STEPS_PER_PIXEL * width * height
-    if total > budget:  # far more segments than pixels: fewer steps along the long ones
-        steps = np.maximum(1, (steps * (budget / total)).astype(np.int64))
-    for lo in range(0, len(seg), COVER_PIECE):
-        ax, ay, dx, dy = pixels(seg[lo:lo + COVER_PIECE])
-        n_steps = steps[lo:lo + COVER_PIECE]
+    last = 0
+    for s, ax, ay, dx, dy, n_steps in pieces():
+        if total > budget:  # far more segments than pixels: fewer steps along the long ones
+            n_steps = np.maximum(1, (n_steps * (budget / total)).astype(np.int64))
         owner = np.repeat(np.arange(len(n_steps)), n_steps)
         t = np.arange(int(n_steps.sum()), dtype=np.float64)
         t -= np.repeat(np.cumsum(n_steps) - n_steps, n_steps)
@@ -64,7 +66,9 @@ def _cover(layer: Layer, x0: float, y0: float, pixel: float, width: int, height:
         j = (ay[owner] + t * dy[owner]).astype(np.int64)
         ok = (i >= 0) & (i < width) & (j >= 0) & (j < height)
         hit[i[ok] * height + j[ok]] = True
-    last = seg[-1] + 1  # the very last point of the layer
+        if len(s):
+            last = int(s[-1]) + 1
+    # the very last point of the layer
     li, lj = int((layer.x[last] - x0) // pixel), int((layer.y[last] - y0) // pixel)
     if 0 <= li < width and 0 <= lj < height:
         hit[li * height + lj] = True

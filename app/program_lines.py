@@ -10,9 +10,21 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["line_starts", "line_text"]
+__all__ = ["LineIndex", "line_starts", "line_text"]
 
 _PIECE = 1 << 22  # characters examined at a time
+
+
+def _piece_starts(text: str, lo: int) -> np.ndarray:
+    """Offsets (in characters) of the lines that start after a newline in ``text[lo:lo +
+    _PIECE]``, int64."""
+    piece = text[lo: lo + _PIECE]
+    data = piece.encode("utf-8", "surrogatepass")
+    buf = np.frombuffer(data, dtype=np.uint8)
+    ends = np.flatnonzero(buf == 10)
+    if len(data) != len(piece):  # not ASCII: bytes that start no character do not count
+        ends -= np.cumsum((buf & 0xC0) == 0x80)[ends]
+    return ends + (lo + 1)
 
 
 def line_starts(text: str) -> np.ndarray:
@@ -23,15 +35,62 @@ def line_starts(text: str) -> np.ndarray:
     dtype = np.uint32 if len(text) < 2**32 - 1 else np.int64
     parts = [np.zeros(1, dtype=dtype)]
     for lo in range(0, len(text), _PIECE):
-        piece = text[lo: lo + _PIECE]
-        data = piece.encode("utf-8", "surrogatepass")
-        buf = np.frombuffer(data, dtype=np.uint8)
-        ends = np.flatnonzero(buf == 10)
-        if len(data) != len(piece):  # not ASCII: bytes that start no character do not count
-            ends -= np.cumsum((buf & 0xC0) == 0x80)[ends]
-        parts.append((ends + (lo + 1)).astype(dtype))
+        parts.append(_piece_starts(text, lo).astype(dtype))
     parts.append(np.array([len(text)], dtype=dtype))
     return np.concatenate(parts)
+
+
+class LineIndex:
+    """``line_starts`` of a text kept every ``STRIDE``-th line: the lines between are found
+    by looking for their newlines from there (a few dozen short searches; the lines painted
+    one after another each take one). 10,000,000 lines in 1.3 MB instead of 40. Read like the
+    array: ``len`` is the lines + 1, ``index[k]`` where line k (0-based) starts."""
+
+    STRIDE = 64
+
+    def __init__(self, text: str) -> None:
+        self._text = text
+        stride = self.STRIDE
+        marks = [np.zeros(1, np.int64)]
+        count = 1                   # lines found so far (the first starts at 0)
+        widest, prev = 0, 0         # the longest line (with its newline), the last start seen
+        for lo in range(0, len(text), _PIECE):
+            starts = _piece_starts(text, lo)
+            if len(starts):
+                widest = max(widest, int(starts[0] - prev), int(np.diff(starts).max(initial=0)))
+                prev = int(starts[-1])
+                # line k starts at starts[k - count]: keep the lines k that are multiples of stride
+                first = -count % stride
+                marks.append(starts[first::stride])
+                count += len(starts)
+        self._marks = np.concatenate(marks)
+        self._lines = count
+        self.widest = max(widest, len(text) - prev)  # characters of the longest line
+        self._last = (0, 0)          # the last line looked up and where it starts
+
+    def __len__(self) -> int:
+        return self._lines + 1
+
+    def __getitem__(self, k: int) -> int:
+        """Where line ``k`` starts (0 <= k <= lines; ``k == lines``: the text's end)."""
+        k = int(k)
+        if not 0 <= k <= self._lines:
+            raise IndexError(f"line {k} of {self._lines}")
+        if k == self._lines:
+            return len(self._text)
+        last_k, pos = self._last
+        if not (k >= last_k and k // self.STRIDE == last_k // self.STRIDE):
+            last_k, pos = k - k % self.STRIDE, int(self._marks[k // self.STRIDE])
+        find = self._text.find
+        for _ in range(k - last_k):
+            pos = find("\n", pos) + 1
+        self._last = (k, pos)
+        return pos
+
+    def line_number(self, offset: int) -> int:
+        """The 1-based line holding character ``offset``."""
+        j = int(np.searchsorted(self._marks, offset, side="right")) - 1
+        return j * self.STRIDE + self._text.count("\n", int(self._marks[j]), offset) + 1
 
 
 def line_text(text: str, starts: np.ndarray, index: int) -> str:

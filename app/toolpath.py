@@ -10,6 +10,7 @@ from it when asked, so pyqtgraph draws a whole program with a few items.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -65,7 +66,7 @@ def rows_of(pl: Polylines) -> PointRows:
     return PointRows(pl, None, pl.connect, pl.count)
 
 
-def _nonzero(mask: np.ndarray) -> np.ndarray:
+def nonzero_indices(mask: np.ndarray) -> np.ndarray:
     """``np.flatnonzero(mask)`` as 4-byte indices where they fit, a piece at a time (8 bytes
     a point at once was 80 MB of a 10,000,000-point path)."""
     n = int(mask.shape[0])
@@ -92,7 +93,9 @@ class ToolPath:
     point_kind: np.ndarray
     kind_counts: dict[MoveKind, int]  # moves drawn as each kind
     move_lines: np.ndarray  # int32 (n_moves,), source line per move
-    move_first_point: np.ndarray  # int32 (n_moves,), index of each move's first point in ``all``
+    # int32 (n_moves,), index of each move's first point in ``all``; None where the path is
+    # one point a move (move k runs from point k to point k + 1: 40 MB less at 10,000,000)
+    move_first_point: np.ndarray | None
     bounds: tuple[np.ndarray, np.ndarray]  # (min, max) per axis
     # (n_moves, n_axes) offset subtracted from machine positions to draw each move in the
     # program's (work) coordinates: work offset and tool length offset of that move
@@ -100,6 +103,25 @@ class ToolPath:
 
     def column(self, name: str) -> int | None:
         return self.axes.index(name) if name in self.axes else None
+
+    @property
+    def move_count(self) -> int:
+        return int(self.move_lines.shape[0])
+
+    def move_points(self, k: int) -> tuple[int, int]:
+        """Where move ``k`` (0 <= k < move_count) is drawn: ``all.points[lo:hi]``."""
+        if self.move_first_point is None:
+            return k, k + 2
+        first = self.move_first_point
+        return int(first[k]), int(first[k + 1]) if k + 1 < len(first) else len(self.all.points)
+
+    def points_before(self, k: int) -> int:
+        """How many points of ``all`` draw moves 0 .. k - 1 (those run before move k)."""
+        if k <= 0:
+            return 0
+        if k >= self.move_count:
+            return len(self.all.points)
+        return self.move_points(k - 1)[1]
 
     def kind(self, kind: MoveKind) -> Polylines:
         """The polylines of one kind of move, as a copy (``kind_rows``: the same without)."""
@@ -118,7 +140,7 @@ class ToolPath:
         mine = self.point_kind == kind
         starts = mine & self.all.connect          # points that start a drawn segment of this kind
         mine[1:] |= starts[:-1]                   # ... and the points that end them
-        rows = _nonzero(mine)
+        rows = nonzero_indices(mine)
         return PointRows(self.all, rows, starts[rows], self.kind_counts[kind])
 
     @property
@@ -288,9 +310,8 @@ def build_toolpath(program: Program) -> ToolPath:
         else:
             everything = Polylines(everything.points - offsets[everything.move_index],
                                    everything.connect, everything.move_index, everything.count)
-    if not own_points:          # one point a move: move k starts at point k
-        first_point = np.arange(n, dtype=np.int32)
-    else:
+    first_point: np.ndarray | None = None   # one point a move: move k starts at point k
+    if own_points:
         first_point = np.searchsorted(everything.move_index, np.arange(n, dtype=np.int32))
         if len(everything.points) < 2**31:
             first_point = first_point.astype(np.int32)   # 4 bytes a move, not 8
@@ -328,7 +349,7 @@ def joined_rows(pr: PointRows) -> PointRows:
     keep[1:] = ~again
     connect = pr.connect.copy()
     connect[:-1] |= again  # the run's end now continues into the next run
-    idx = _nonzero(keep)
+    idx = nonzero_indices(keep)
     return PointRows(pr.source, idx if pr.rows is None else pr.rows[idx], connect[idx], pr.count)
 
 
@@ -346,27 +367,74 @@ def thin(pl: Polylines, cell_mm: float) -> Polylines:
 
 def thin_masks(pl: Polylines | PointRows, cell_mm: float, levels: int) -> list[np.ndarray]:
     """The points ``thin`` keeps of joined polylines ``pl`` (``joined_runs``) at cubes of
-    ``cell_mm``, 4 ``cell_mm``, 16 ``cell_mm`` ... (``levels`` of them), in one pass a piece
-    at a time. Cubes of 4 c are made of whole cubes of c, so thinning the thinned copy at 4 c
-    keeps what thinning the whole at 4 c keeps: each level is taken from the whole, none made
-    to make the next (the cube numbers of 10,000,000 points per axis took 250 MB at once)."""
+    ``cell_mm``, 4 ``cell_mm``, 16 ``cell_mm`` ... (``levels`` of them), as one mask a level
+    (``thin_pieces``)."""
     pr = rows_of(pl) if isinstance(pl, Polylines) else pl
+    keeps = [np.empty(len(pr), bool) for _ in range(levels)]
+    for lo, hi, parts in thin_pieces(pr, cell_mm, levels):
+        for keep, part in zip(keeps, parts):
+            keep[lo:hi] = part
+    return keeps
+
+
+def thin_pieces(pr: PointRows, cell_mm: float,
+                levels: int) -> Iterator[tuple[int, int, list[np.ndarray]]]:
+    """``thin_masks`` a piece at a time: (lo, hi, the masks of points lo .. hi - 1 a level),
+    pieces in order, every point once. Cubes of 4 c are made of whole cubes of c, so thinning
+    the thinned copy at 4 c keeps what thinning the whole at 4 c keeps: each level is taken
+    from the whole, none made to make the next; and no level's mask of the whole path is
+    held (7 levels of 10,000,000 points were 70 MB, the cube numbers per axis 250 MB)."""
     connect = pr.connect
     n = len(pr)
-    keeps = [np.ones(n, bool) for _ in range(levels)]
+    if n < 3:
+        yield 0, n, [np.ones(n, bool) for _ in range(levels)]
+        return
+    yield 0, 1, [np.ones(1, bool) for _ in range(levels)]  # a run's ends stay
     for lo in range(1, n - 1, THIN_PIECE):
         hi = min(lo + THIN_PIECE, n - 1)          # points lo .. hi - 1, each with the one before
         inner = connect[lo - 1:hi - 1] & connect[lo:hi]
         pts = pr.points(lo - 1, hi)
         cubes = [np.floor(pts[:, k] / cell_mm) for k in range(pts.shape[1])]
         del pts
-        for level, keep in enumerate(keeps):
+        parts = []
+        for level in range(levels):
             same = inner.copy()               # point i lies in the cube of point i - 1
             for c in cubes:
                 c = np.floor(c / 4.0 ** level) if level else c
                 same &= c[1:] == c[:-1]
-            keep[lo:hi] = ~same
-    return keeps
+            parts.append(~same)
+        yield lo, hi, parts
+    yield n - 1, n, [np.ones(1, bool) for _ in range(levels)]
+
+
+def thin_copies(pr: PointRows, cell_mm: float, levels: int, wanted: Callable[[list[int]], list[int]],
+                origin: np.ndarray | None = None) -> dict[int, Polylines]:
+    """The thinned copies of joined polylines ``pr`` at the levels ``wanted`` chooses from the
+    count of points each level keeps, made in two passes a piece at a time (the count, then
+    the copies): only the copies are held whole."""
+    counts = [0] * levels
+    for _lo, _hi, parts in thin_pieces(pr, cell_mm, levels):
+        for level, part in enumerate(parts):
+            counts[level] += int(np.count_nonzero(part))
+    chosen = wanted(counts)
+    if not chosen:
+        return {}
+    source = pr.source
+    dtype = source.points.dtype if origin is None else np.float32
+    outs = {level: (np.empty((counts[level], source.points.shape[1]), dtype), np.empty(counts[level], bool),
+                    np.empty(counts[level], source.move_index.dtype)) for level in chosen}
+    filled = dict.fromkeys(chosen, 0)
+    for lo, _hi, parts in thin_pieces(pr, cell_mm, max(chosen) + 1):
+        for level in chosen:
+            idx = lo + np.flatnonzero(parts[level])
+            k, m = filled[level], len(idx)
+            pts, mi = pr.take(idx)
+            out_pts, out_con, out_mi = outs[level]
+            out_pts[k:k + m] = pts if origin is None else pts - origin
+            out_con[k:k + m], out_mi[k:k + m] = pr.connect[idx], mi
+            filled[level] = k + m
+    kept_origin = None if origin is None else np.asarray(origin, float).copy()
+    return {level: Polylines(*outs[level], pr.count, kept_origin) for level in chosen}
 
 
 def take_points(pl: Polylines | PointRows, keep: np.ndarray,

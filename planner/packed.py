@@ -17,6 +17,8 @@ an array on the way.
 
 from __future__ import annotations
 
+import bisect
+import math
 from typing import Protocol
 
 import numpy as np
@@ -97,7 +99,7 @@ class RunColumn:
         return np.repeat(self.values[a:b], np.diff(edges))
 
     def at(self, i: int) -> float:
-        return float(self.values[int(np.searchsorted(self.starts, self.off + i, "right")) - 1])
+        return float(self.values[bisect.bisect_right(self.starts, self.off + i) - 1])
 
     def slice(self, a: int, b: int) -> RunColumn:
         return RunColumn(self.starts, self.values, self.off + a, b - a)
@@ -143,10 +145,16 @@ class DerivedLength:
 
     def at(self, i: int) -> float:
         r = self.off + i
-        k = int(np.searchsorted(self.rows, r))
+        k = bisect.bisect_left(self.rows, r) if len(self.rows) else 0
         if k < len(self.rows) and self.rows[k] == r:
             return float(self.values[k])
-        return float(straight_lengths(self.positions[r:r + 2])[0])
+        # the same operations as ``straight_lengths`` in the same order, each rounded alike,
+        # on Python floats: one move's length in a microsecond, not ten
+        a, b = self.positions[r].tolist(), self.positions[r + 1].tolist()
+        total = (b[0] - a[0]) * (b[0] - a[0])
+        for k in range(1, len(a)):
+            total += (b[k] - a[k]) * (b[k] - a[k])
+        return math.sqrt(total)
 
     def slice(self, a: int, b: int) -> DerivedLength:
         return DerivedLength(self.positions, self.rows, self.values, self.off + a, b - a)
@@ -177,7 +185,7 @@ class ColumnPacker:
         self._count = 0          # rows or runs kept so far
         self._dense: np.ndarray | None = None
         self._done = 0           # rows given
-        self._last = np.nan      # the value of the last row given (runs)
+        self._last = 0           # the bits of the last row given (runs)
 
     def add(self, values: np.ndarray) -> None:
         """The next ``len(values)`` rows."""
@@ -190,10 +198,12 @@ class ColumnPacker:
         if m == 0:
             return
         if self.kind == "runs":
-            change = np.flatnonzero(values[1:] != values[:-1]) + 1
-            first = lo == 0 or not (values[0] == self._last)
+            # runs of the same bits (-0.0 is not 0.0, a NaN is one value)
+            bits = np.ascontiguousarray(values, np.float64).view(np.int64)
+            change = np.flatnonzero(bits[1:] != bits[:-1]) + 1
+            first = lo == 0 or int(bits[0]) != self._last
             rows = np.concatenate(([0], change)) if first else change
-            self._last = values[-1]
+            self._last = int(bits[-1])
         else:
             assert self.positions is not None
             rows = np.flatnonzero(straight_lengths(self.positions[lo:lo + m + 1]) != values)

@@ -195,7 +195,7 @@ class ProgramInfo:
     # app.toolpath.ToolPath of ``program``, made with the check off the GUI thread (seconds for
     # millions of moves): the preview draws it
     toolpath: object = field(default=None, repr=False, compare=False)
-    # where each line of ``text`` starts (app.program_lines.line_starts), made with the check:
+    # where each line of ``text`` starts (app.program_lines.LineIndex), made with the check:
     # the pages show the text through it without copying it into a text widget
     line_starts: object = field(default=None, repr=False, compare=False)
     # G64 P: corners blended and fillets eased, and the largest distance from the programmed path

@@ -44,7 +44,7 @@ from app.machine.inputs import probe_refusal
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue, SpindleState
 from app.machine.spindle import spin_up_waits
 from app.machine.timescale import PauseFeed, PausePoint, pause_points
-from app.program_lines import line_starts
+from app.program_lines import LineIndex
 from app.toolpath import build_toolpath
 from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
@@ -220,7 +220,7 @@ def check_text(
     stage()
     req.progress = sum(LOAD_SHARES)
     toolpath = build_toolpath(program)
-    starts = line_starts(text)
+    starts = LineIndex(text)
     trim_heap()  # the check's freed temporaries back to the system (planner.heap)
     return ProgramInfo(
         name=name,

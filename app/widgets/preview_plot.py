@@ -354,11 +354,10 @@ class PreviewPlot(pg.PlotWidget):
     def _update_current(self) -> None:
         """The part of the move being executed up to the tool (nearest sampled point)."""
         path, k = self.path, self._done_move
-        if path is None or k < 0 or k >= len(path.move_first_point) or not len(self._tool):
+        if path is None or k < 0 or k >= path.move_count or not len(self._tool):
             self.current_item.setData([], [])
             return
-        lo = int(path.move_first_point[k])
-        hi = int(path.move_first_point[k + 1]) if k + 1 < len(path.move_first_point) else len(path.all.points)
+        lo, hi = path.move_points(k)
         pts = path.all.points[lo:hi]
         if len(pts) < 2:
             self.current_item.setData([], [])
@@ -387,9 +386,7 @@ class PreviewPlot(pg.PlotWidget):
                 connect[-1] = False
             self.done_item.setData(x[:end], y[:end], connect=connect)
             return
-        end = int(self.path.move_first_point[min(move_index, len(self.path.move_first_point) - 1)])
-        if move_index >= len(self.path.move_first_point):
-            end = len(self.path.all.points)
+        end = self.path.points_before(move_index)
         pl = self.path.all
         x, y = self._xy(pl.points[:end])
         connect = pl.connect[:end].copy()
@@ -402,13 +399,11 @@ class PreviewPlot(pg.PlotWidget):
         if self.path is None or move_index < 0:
             self.selected_item.setData([], [])
             return
-        first = self.path.move_first_point
-        if move_index >= len(first):
+        if move_index >= self.path.move_count:
             self.selected_item.setData([], [])
             return
-        # a move's points are one stretch of the path's
-        end = int(first[move_index + 1]) if move_index + 1 < len(first) else len(self.path.all.points)
-        x, y = self._xy(self.path.all.points[int(first[move_index]): end])
+        lo, hi = self.path.move_points(move_index)  # a move's points are one stretch of the path's
+        x, y = self._xy(self.path.all.points[lo:hi])
         self.selected_item.setData(x, y)
 
     # --- touch ---------------------------------------------------------------------------

@@ -13,25 +13,16 @@ from __future__ import annotations
 
 import re
 
-import numpy as np
 from PySide6.QtCore import QRect, QSize, Qt, Signal
 from PySide6.QtGui import QColor, QMouseEvent, QPainter, QPaintEvent, QResizeEvent
 from PySide6.QtWidgets import QAbstractScrollArea, QWidget
 
-from app.program_lines import line_starts, line_text
+from app.program_lines import LineIndex, line_text
 from app.widgets.code_editor import CURRENT_BG, ERROR_BG, MARGIN_BG, RUN_BG, code_font, paint_line_number
 
 TEXT_FG = QColor("#d8dee6")
 VIEW_BG = QColor("#141a21")
 FIND_PIECE = 1 << 20  # characters searched backwards at a time
-
-
-def _widest(starts: np.ndarray, piece: int = 1 << 20) -> int:
-    """Characters of the longest line, a million lines at a time (no copy of the index)."""
-    widest = 0
-    for lo in range(0, len(starts) - 1, piece):
-        widest = max(widest, int(np.diff(starts[lo: lo + piece + 1]).max()))
-    return widest
 
 
 class _Margin(QWidget):
@@ -54,7 +45,7 @@ class ProgramView(QAbstractScrollArea):
         self.setObjectName("programView")
         self.setFont(code_font())
         self._text = ""
-        self._starts = line_starts("")
+        self._starts = LineIndex("")
         self._widest = 0  # characters of the longest line
         self._current = 1
         self._run_line = 0
@@ -67,13 +58,13 @@ class ProgramView(QAbstractScrollArea):
         self._update_scroll_range()
 
     # --- text ----------------------------------------------------------------------------
-    def load_text(self, text: str, chunked: bool = False, starts: np.ndarray | None = None) -> None:
-        """Show ``text`` (its line index ``starts`` when known: ``line_starts``). ``chunked``
-        is accepted for the editor's sake; nothing here needs pieces."""
+    def load_text(self, text: str, chunked: bool = False, starts: LineIndex | None = None) -> None:
+        """Show ``text`` (its line index ``starts`` when known). ``chunked`` is accepted for
+        the editor's sake; nothing here needs pieces."""
         del chunked
         self._text = text
-        self._starts = line_starts(text) if starts is None else starts
-        self._widest = _widest(self._starts)
+        self._starts = LineIndex(text) if starts is None else starts
+        self._widest = self._starts.widest
         self._current = 1
         self._find_pos, self._on_match = 0, False
         self._update_scroll_range()
@@ -272,8 +263,7 @@ class ProgramView(QAbstractScrollArea):
         hit = self._find_back(pattern, len(text)) if backward else self._find_forward(pattern, len(text))
         if hit is None:
             return False
-        # 1-based; the offset as the index's own type (a Python int copies the index to 64 bits)
-        line = int(np.searchsorted(self._starts, self._starts.dtype.type(hit), side="right"))
+        line = self._starts.line_number(hit)
         self._set_current(line)
         self._find_pos, self._on_match = hit, True
         self._center(line)

@@ -130,7 +130,7 @@ def test_a_chain_of_lines_and_arcs_is_one_run_once_joined():
     joined = joined_runs(path.all)
     assert int((~joined.connect).sum()) == 1 < len(joined.points)
     for i in (1, 3):  # the arcs' first points are their moves' start points, bit for bit
-        first = path.all.points[path.move_first_point[i]]
+        first = path.all.points[path.move_points(i)[0]]
         np.testing.assert_array_equal(first, program.moves[i].start)
 
 
@@ -168,8 +168,17 @@ def test_each_move_starts_at_its_first_point_and_keeps_its_line(with_arcs: bool)
     program = parse_program(text)
     path = build_toolpath(program)
     n = len(program.moves)
-    np.testing.assert_array_equal(path.move_first_point,
-                                  np.searchsorted(path.all.move_index, np.arange(n)))
-    assert path.move_first_point.dtype == np.int32
+    assert path.move_count == n
+    for k, move in enumerate(program.moves):  # each move drawn from its start to its end
+        lo, hi = path.move_points(k)
+        assert hi - lo >= 2 and np.all(path.all.move_index[lo:hi - 1] == k)
+        np.testing.assert_array_equal(path.all.points[lo], move.start)
+        np.testing.assert_array_equal(path.all.points[hi - 1], move.end)
+        assert path.points_before(k) == (lo if with_arcs else lo + (k > 0))
+    assert path.points_before(n) == len(path.all.points)
+    if with_arcs:   # 4 bytes a move: the index of each move's first point
+        assert path.move_first_point is not None and path.move_first_point.dtype == np.int32
+    else:           # one point a move, move k from point k: no index kept
+        assert path.move_first_point is None
     np.testing.assert_array_equal(path.move_lines, [m.line for m in program.moves])
     assert np.shares_memory(path.move_lines, program.moves.columns().line)

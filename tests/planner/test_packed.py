@@ -45,7 +45,7 @@ def _check_column(column, values: np.ndarray, draw) -> None:
 @settings(max_examples=200, deadline=None)
 @given(st.data())
 def test_runs_give_back_every_value_bit_for_bit(data) -> None:
-    palette = data.draw(st.lists(st.floats(allow_nan=False, allow_infinity=True, width=64), min_size=1,
+    palette = data.draw(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
                                  max_size=4))
     n = data.draw(st.integers(0, 400))
     run_lengths = data.draw(st.lists(st.integers(1, 120), min_size=1, max_size=40))
@@ -57,6 +57,17 @@ def test_runs_give_back_every_value_bit_for_bit(data) -> None:
         packer.add(values[a:b])
     column = packer.column()
     _check_column(column, values, data.draw)
+
+
+def test_runs_keep_the_bits_of_signed_zeros_and_nans() -> None:
+    values = np.array([0.0, -0.0, -0.0, np.nan, np.nan, 0.0, 5.0])
+    packer = ColumnPacker(len(values))
+    packer.add(values[:2])
+    packer.add(values[2:])
+    column = packer.column()
+    assert isinstance(column, RunColumn) and len(column.values) == 5
+    assert _same_bits(column.array(), values)
+    assert [np.float64(column.at(i)).tobytes() for i in range(7)] == [v.tobytes() for v in values]
 
 
 def test_runs_are_packed_and_many_changes_fall_back_to_an_array() -> None:
