@@ -291,3 +291,13 @@ def test_a_file_is_read_from_its_bytes_when_they_are_utf8(tmp_path, encoding):
         assert data is None and text == body                  # not UTF-8: its text at once
     else:
         assert text is None and data == body.encode(encoding) and read_program(path) == body
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.text(alphabet="G1X\n\r é", max_size=60), st.sampled_from([1, 2, 5, 1 << 22]))
+def test_lines_are_counted_a_piece_at_a_time_as_at_once(text, piece):
+    from planner.interpreter import _count_lines
+
+    want = text.count("\n") + 1 if text else 0
+    assert _count_lines(text, piece) == want
+    assert _count_lines(text.encode("utf-8"), piece) == want
