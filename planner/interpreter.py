@@ -428,6 +428,7 @@ class _Interpreter:
         self.probes: list[ProbeRequest] = []
         self.probe_results = tuple(probe_results)
         self.oword_places: dict[str, tuple[str, int, str]] = {}   # O-word name -> file, line, keyword
+        self.sub_places: dict[tuple[str, str], int] = {}   # (file, sub label) -> the sub defined: its line
         self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
         # G05: the first control point's offset when I and J are left out, -P and -Q of the G05
         # before (program units; LinuxCNC keeps them in its canned cycles' I and J)
@@ -609,8 +610,9 @@ class _Interpreter:
         i = st.index
         if kw in ("IF", "REPEAT", "WHILE", "DO"):
             self.oword_place(st, frame)
-        if kw == "SUB":
-            return st.end + 1                 # a definition in the flow: skipped
+        if kw == "SUB":                       # a definition in the flow: defined, then skipped
+            self.define_sub(st, frame)
+            return st.end + 1
         if kw in ("IF", "ELSEIF", "ELSE"):
             if kw != "IF":                    # reached by finishing the branch before it
                 return st.end + 1
@@ -692,6 +694,34 @@ class _Interpreter:
             raise _BlockError(f"duplicate O-word label: o{st.label} {st.keyword.lower()} uses the label of "
                               f"the {held[2].lower()} at {where}", col=1)
 
+    def define_sub(self, st: Statement, frame: _Frame) -> None:
+        """The program runs through a sub's definition: it is defined from here on. Met again
+        (inside a loop, or after a call found it ahead), LinuxCNC 2.9 refuses it as "found in
+        illegal location"; another definition of the label met, as "redefining sub"."""
+        key = (frame.file, st.label)
+        held = self.sub_places.get(key)
+        if held is None:
+            self.sub_places[key] = st.index
+        elif held == st.index:
+            raise _BlockError(f"o{st.label} sub met a second time: a sub is defined once, as the program "
+                              "runs through it or a call finds it ahead (not inside a loop, nor after "
+                              "a call to it)", col=1)
+        else:
+            raise _BlockError(f"o{st.label} sub is defined twice: already at line {held + 1}", col=1)
+
+    def find_sub(self, label: str, call: Statement, frame: _Frame) -> tuple[int, int] | None:
+        """The sub a call in this file runs: the one defined (run through, or found by an earlier
+        call), else the first ahead of the call, which is then defined (LinuxCNC seeks it to the
+        end of the file); None when there is neither."""
+        definitions = frame.structure.subs.get(label, [])
+        held = self.sub_places.get((frame.file, label))
+        if held is not None:
+            return next(d for d in definitions if d[0] == held)
+        ahead = next((d for d in definitions if d[0] > call.index), None)
+        if ahead is not None:
+            self.sub_places[(frame.file, label)] = ahead[0]
+        return ahead
+
     def condition(self, st: Statement, frame: _Frame) -> bool:
         values = evaluate_brackets(st.rest, self.params, 0)
         if len(values) != 1:
@@ -714,13 +744,19 @@ class _Interpreter:
                 raise _BlockError(f"o{label} call: the subroutine number {value:g} is not a whole number",
                                   col=1)
             label = str(int(round(value)))
-        target = frame.structure.subs.get(label)
+        target = self.find_sub(label, st, frame)
         file, lines, structure = frame.file, frame.lines, frame.structure
+        behind = structure.subs.get(label)
         if target is None and label.startswith("<"):
             file, lines, structure = self.subroutine_file(label[1:-1])
-            target = structure.subs.get(label)
-            if target is None:
+            found = structure.subs.get(label)
+            if not found:
                 raise _BlockError(f"{file} does not define o{label} sub", col=1)
+            target = found[0]
+        if target is None and behind:
+            raise _BlockError(f"o{label} call: the o{label} sub at line {behind[0][0] + 1} is not defined "
+                              "here: the program did not run through it (a sub inside an if is defined "
+                              "only when that branch runs) and no other is ahead of the call", col=1)
         if target is None:
             raise _BlockError(f"o{label} call: no o{label} sub in this program", col=1)
         callee = _Frame(file, lines, structure, return_pc=st.index + 1,

@@ -85,7 +85,10 @@ class Statement:
 @dataclass(slots=True)
 class Structure:
     statements: dict[int, Statement] = field(default_factory=dict)
-    subs: dict[str, tuple[int, int]] = field(default_factory=dict)    # label -> (sub, endsub)
+    # label -> every (sub, endsub) of that label, in the file's order: LinuxCNC defines a sub
+    # as the program runs through it (or as a call finds it ahead), so one inside an if is
+    # defined only when that branch runs, and a label may have one in each branch
+    subs: dict[str, list[tuple[int, int]]] = field(default_factory=dict)
     programs: dict[str, int] = field(default_factory=dict)            # Fanuc "O<n>" -> its line
 
 
@@ -127,11 +130,6 @@ def scan(lines: list[str]) -> Structure:
         if kw == "SUB":
             if any(x.keyword == "SUB" for x in stack):
                 raise StructureError(index, col, f"{_name(label)} sub inside another sub definition")
-            if stack:
-                raise StructureError(index, col, f"{_name(label)} sub inside {_name(stack[-1].label)} "
-                                     f"{stack[-1].keyword.lower()}")
-            if label in st.subs:
-                raise StructureError(index, col, f"{_name(label)} sub is defined twice")
             stack.append(s)
         elif kw in ("IF", "DO", "REPEAT"):
             stack.append(s)
@@ -167,7 +165,7 @@ def scan(lines: list[str]) -> Structure:
             top.end = index
             s.target = top.index
             if kw == "ENDSUB":
-                st.subs[label] = (top.index, index)
+                st.subs.setdefault(label, []).append((top.index, index))
         elif kw in ("BREAK", "CONTINUE"):
             loop = next((x for x in reversed(stack)
                          if x.label == label and x.keyword in ("WHILE", "DO", "REPEAT")), None)

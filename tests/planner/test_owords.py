@@ -19,7 +19,7 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import EventKind, Program
-from tools.linuxcnc_oracle import canon_calls
+from tools.linuxcnc_oracle import RS274, canon_calls, motion_alike, refused_alike
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
 _MESSAGE = re.compile(r'^\s*N\.+\s+MESSAGE\("(.*)"\)\s*$')
@@ -437,3 +437,50 @@ def test_what_follows_the_closing_percent_is_not_read_subroutines_included() -> 
     # before the closing '%' it is
     p = parse_program("%\no2 sub\nG0 Z3\no2 endsub\nG21 G0 X1 Y2\no2 call\n%\no3 sub\no3 endsub\n")
     assert [m.end.tolist() for m in p.moves] == [[1.0, 2.0, 0.0], [1.0, 2.0, 3.0]]
+
+
+# A sub is defined as the program runs through it, or as a call finds it ahead (LinuxCNC 2.9's
+# offset map; each outcome below checked with its rs274): a sub inside an if is defined only when
+# that branch runs; met a second time it is refused, as is another definition of its label.
+_IF = "o10 if [#1 GT 0]\no100 sub\nG1 X[#1] F100\no100 endsub\no10 endif\n"
+SUB_DEFINITIONS = {
+    "inside an if that runs": ("#1 = 1\n" + _IF + "o100 call [5]\nG0 X0\nM2\n", None, [5.0, 0.0]),
+    "inside an if not run": ("#1 = 0\n" + _IF + "o100 call [5]\nG0 X0\nM2\n", 7, None),
+    "called, then met inside an if": ("o100 call [5]\n#1 = 1\n" + _IF + "M2\n", 4, None),
+    "called, then met in the flow": ("o100 call [5]\nG0 X1\no100 sub\nG1 X[#1] F100\no100 endsub\n"
+                                     "G0 X0\nM2\n", 3, None),
+    "inside a loop run twice": ("#2 = 0\no20 while [#2 LT 2]\no100 sub\nG1 X[#1] F100\no100 endsub\n"
+                                "#2 = [#2 + 1]\no20 endwhile\no100 call [5]\nM2\n", 3, None),
+    "one in each branch": ("#<m> = 0\no1 if [#<m> EQ 1]\no100 sub\nG1 X1 F100\no100 endsub\no1 else\n"
+                           "o100 sub\nG1 X2 F100\no100 endsub\no1 endif\no100 call\nM2\n", None, [2.0]),
+    "defined twice in the flow": ("o1 sub\nG1 X1 F100\no1 endsub\no1 sub\nG1 X2 F100\no1 endsub\n"
+                                  "o1 call\nM2\n", 4, None),
+    "two ahead, after the end": ("o1 call\nM2\no1 sub\nG1 X1 F100\no1 endsub\no1 sub\nG1 X2 F100\n"
+                                 "o1 endsub\n", None, [1.0]),
+}
+
+
+@pytest.mark.parametrize("case", list(SUB_DEFINITIONS))
+def test_a_sub_is_defined_as_the_program_runs_through_it(case: str) -> None:
+    text, refused_at, xs = SUB_DEFINITIONS[case]
+    if refused_at is not None:
+        with pytest.raises(ProgramError) as exc:
+            read(text)
+        (err,) = exc.value.errors
+        assert err.line == refused_at, err
+        return
+    program = read(text)
+    assert [float(m.end[0]) for m in program.moves] == xs
+
+
+@pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs it)")
+@pytest.mark.parametrize("case", list(SUB_DEFINITIONS))
+def test_a_sub_is_defined_where_linuxcnc_defines_it(case: str) -> None:
+    text, refused_at, _xs = SUB_DEFINITIONS[case]
+    if refused_at is None:
+        motion_alike(text)
+        return
+    theirs, ours = refused_alike(text)
+    assert ours == text.splitlines()[refused_at - 1]
+    # a call to a sub not defined: rs274 seeks it ahead and names the block where the file ended
+    assert theirs == (text.splitlines()[-1] if case == "inside an if not run" else ours)
