@@ -2977,7 +2977,12 @@ def parse_program(
                           spindle, subroutine_dirs, parameters, probe_results, input_results)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/gcpause.py)
         interp.progress = progress
-        return interp.run(text, utf8)
+        try:
+            return interp.run(text, utf8)
+        finally:
+            # the interpreter is cyclic garbage once it returns: it must not keep the caller's
+            # callback (and what that holds) until a collection finds it
+            interp.progress = None
 
 
 def read_program_bytes(path: str | os.PathLike[str]) -> tuple[str | None, bytes | None]:

@@ -235,3 +235,24 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
     with qtbot.waitSignal(ctl.programErrors, timeout=10_000) as failed:
         assert ctl.load_program(path)
     assert "cannot read" in failed.args[0][0].message and ctl.program_info is None
+
+
+def test_a_program_is_let_go_once_another_is_loaded(qtbot, ctl: MachineController) -> None:
+    """Loading programs all shift long keeps only the one loaded: the last one is freed when
+    the next replaces it, without waiting for a collection (each load's garbage is collected
+    before what survives it is frozen; a 10,000,000-line program is 600 MB)."""
+    import gc
+    import weakref
+
+    for name in ("first.nc", "second.nc"):
+        with qtbot.waitSignal(ctl.programLoaded, timeout=20_000):
+            assert ctl.load_program(big_program(2000), name=name)
+        if name == "first.nc":
+            first = weakref.ref(ctl.program_info.program)
+    qtbot.wait(50)
+    gc.disable()            # no collection may be what frees it
+    try:
+        assert ctl.program_info.name == "second.nc"
+        assert first() is None
+    finally:
+        gc.enable()

@@ -29,3 +29,26 @@ def test_a_disabled_collector_stays_disabled() -> None:
         assert not gc.isenabled()
     finally:
         gc.enable()
+
+
+class _Big:
+    """Something a cycle holds (a loaded program)."""
+
+
+def test_garbage_made_in_a_freezing_pause_is_collected_not_frozen() -> None:
+    """A load pauses the collector and freezes what survives it: a cycle that became garbage
+    meanwhile (a parse's interpreter holding a callback that holds the load and its program)
+    was frozen with it and never collected, and every program loaded since was kept."""
+    import weakref
+
+    big = _Big()
+    alive = weakref.ref(big)
+    try:
+        with gc_paused(freeze=True):
+            cycle: list[object] = [big]
+            cycle.append(cycle)
+            del cycle, big
+            assert alive() is not None      # no collection during the pause
+        assert alive() is None
+    finally:
+        gc.unfreeze()
