@@ -45,8 +45,9 @@ def gc_paused(freeze: bool = False) -> Iterator[None]:
                     # the cycles that became garbage during the pause first (a parse's interpreter
                     # holds its progress callback, and that the load and its program): frozen,
                     # they were never collected, and every program loaded since was kept
-                    # (10,000,000 lines: 600 MB more at each load). Only what was made since
-                    # the last freeze is scanned.
-                    gc.collect()
+                    # (10,000,000 lines: 600 MB more at each load). With the collector off they
+                    # are all in the young generations: those are scanned, not the panel's
+                    # hundreds of thousands of objects (a full collection held the GIL 0.1 s)
+                    gc.collect(1)
                     gc.freeze()
                 gc.enable()
