@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -29,12 +30,54 @@ class Polylines:
 
     points: np.ndarray
     connect: np.ndarray  # bool (N,)
-    move_index: np.ndarray  # int32 (N,), move of each point
+    move_index: np.ndarray  # int32 (N,), move of each point (or a JointMoves standing for it)
     count: int  # number of moves drawn
     # None: ``points`` are where the points are; else the points are ``points + origin``
     # (a thinned copy keeps 4-byte floats from the path's corner: a copy's cube is at least
     # 1/65,536 of the path's extent, a float's step 1/16,777,216 of it)
     origin: np.ndarray | None = None
+
+
+class JointMoves:
+    """The move of each point of a path drawn one point a move (point k starts move k, the
+    last point ends the last move): ``min(k, n - 1)``, read as the int32 array it stands for
+    (indexed by a number, a slice, indices or a mask; ``np.asarray`` makes it), without the
+    array: 40 MB at 10,000,000 moves."""
+
+    __slots__ = ("n",)
+    dtype = np.dtype(np.int32)
+
+    def __init__(self, n_moves: int) -> None:
+        if n_moves < 1:
+            raise ValueError("a path of one point a move has a move")
+        self.n = n_moves
+
+    def __len__(self) -> int:
+        return self.n + 1
+
+    @property
+    def shape(self) -> tuple[int]:
+        return (self.n + 1,)
+
+    def __getitem__(self, i: Any) -> Any:
+        if isinstance(i, (int, np.integer)):
+            k = int(i) + (self.n + 1 if i < 0 else 0)
+            if not 0 <= k <= self.n:
+                raise IndexError(f"point {i} of {self.n + 1}")
+            return np.int32(min(k, self.n - 1))
+        if isinstance(i, slice):
+            return np.minimum(np.arange(self.n + 1, dtype=np.int32)[i], self.n - 1)
+        idx = np.asarray(i)
+        if idx.dtype == bool:
+            idx = np.flatnonzero(idx)
+        idx = np.where(idx < 0, idx + self.n + 1, idx)
+        if idx.size and (idx.min() < 0 or idx.max() > self.n):
+            raise IndexError(f"points out of 0 .. {self.n}")
+        return np.minimum(idx, self.n - 1).astype(np.int32)
+
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        out = np.minimum(np.arange(self.n + 1, dtype=np.int32), self.n - 1)
+        return out if dtype is None else out.astype(dtype)
 
 
 @dataclass(frozen=True, slots=True)
@@ -278,7 +321,7 @@ def build_toolpath(program: Program) -> ToolPath:
         # lines and rapids only (a CAM raster): one point a move, the program's own joint
         # positions in program order (each move ends where the next starts), drawn as one run
         positions = moves.positions
-        move_index = np.minimum(np.arange(n + 1, dtype=np.int32), n - 1)
+        move_index: Any = JointMoves(n)
         connect = np.ones(n + 1, bool)
         connect[-1] = False
         everything = Polylines(positions, connect, move_index, n)

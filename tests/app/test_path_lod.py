@@ -33,12 +33,16 @@ def test_thinning_keeps_run_ends_and_every_dropped_point_near_the_one_before(ste
     pl = _polyline(steps, [b and i % 7 == 0 for i, b in enumerate(breaks)])
     out = thin(pl, cell)
     assert len(out.points) <= len(pl.points)
-    # every run's first and last point is drawn (the runs, joined where they touch)
-    starts = np.flatnonzero(np.r_[True, ~pl.connect[:-1]])
-    ends = np.flatnonzero(~pl.connect)
+    # every run's first and last point is drawn, the runs joined where one starts at the point
+    # the one before ends (that point is then inside the joined run, and may be thinned)
+    from app.toolpath import joined_runs
+
+    joined = joined_runs(pl)
+    starts = np.flatnonzero(np.r_[True, ~joined.connect[:-1]])
+    ends = np.flatnonzero(~joined.connect)
     kept = {tuple(p) for p in out.points}
     for i in np.r_[starts, ends]:
-        assert tuple(pl.points[i]) in kept
+        assert tuple(joined.points[i]) in kept
     # a dropped point lies within a cube's diagonal of a kept point of its own run before it
     diag = cell * np.sqrt(3.0) * (1 + 1e-12)
     for i, p in enumerate(pl.points):
@@ -192,7 +196,7 @@ def test_the_part_run_of_a_big_path_is_a_prefix_of_a_thinned_copy_in_view(big_pa
     assert np.all(np.diff(moves) >= 0)
     near = detail(big_path, levels, _view(10, 12, 10, 12, 0.002))
     x, y, connect, moves = near.executed
-    pts, mi = big_path.all.points, big_path.all.move_index
+    pts, mi = big_path.all.points, np.asarray(big_path.all.move_index)
     inside = (pts[:, 0] >= 10) & (pts[:, 0] <= 12) & (pts[:, 1] >= 10) & (pts[:, 1] <= 12)
     drawn = set(zip(x.tolist(), y.tolist(), moves.tolist()))
     assert all((px, py, m) in drawn for (px, py), m in zip(pts[inside, :2].tolist(), mi[inside].tolist()))
@@ -211,7 +215,7 @@ def test_the_preview_draws_the_run_part_of_a_big_path_from_its_copy(qtbot, big_p
     half = big_path.all.count // 2
     plot.set_executed(half)
     x = plot.done_item.xData
-    ran = big_path.all.points[big_path.all.move_index < half]
+    ran = big_path.all.points[np.asarray(big_path.all.move_index) < half]
     assert 0 < len(x) <= EXECUTED_POINTS and len(x) < len(ran) / 2  # thinned, not the points run
     assert x.max() <= ran[:, 0].max() and plot.done_item.yData.max() <= ran[:, 1].max()
     assert plot.done_item.yData.max() >= ran[:, 1].max() - 0.5  # up to the row being cut
@@ -261,7 +265,7 @@ def test_a_tap_on_a_big_path_picks_the_move_drawn_there(qtbot, big_path, monkeyp
     assert x0 < 0.0 and x1 > 100.0 and y0 < 0.0 and y1 > 99.5  # the raster's 100 x 99.5 mm, padded
     qtbot.waitUntil(lambda: not plot.detail_pending, timeout=10_000)
     assert plot._executed is not None
-    pts, mi = big_path.all.points, big_path.all.move_index
+    pts, mi = big_path.all.points, np.asarray(big_path.all.move_index)
     k = int(mi[np.flatnonzero((np.abs(pts[:, 1] - 50.0) < 1e-9) & (np.abs(pts[:, 0] - 33.3) < 0.03))[0]])
     picked = plot.pick(33.31, 50.0, radius=0.5)
     assert picked >= 0 and abs(picked - k) <= 20  # within a few of the 0.05 mm moves there

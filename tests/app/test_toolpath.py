@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from app.toolpath import build_toolpath, nearest_projected
 from planner.interpreter import parse_program
@@ -182,3 +184,38 @@ def test_each_move_starts_at_its_first_point_and_keeps_its_line(with_arcs: bool)
         assert path.move_first_point is None
     np.testing.assert_array_equal(path.move_lines, [m.line for m in program.moves])
     assert np.shares_memory(path.move_lines, program.moves.columns().line)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.integers(1, 50), st.data())
+def test_the_moves_of_a_one_point_a_move_path_read_as_their_array(n: int, data) -> None:
+    """A raster's path keeps no move index a point (40 MB at 10,000,000 moves): read by a
+    number, a slice, indices or a mask, it gives what the array gives, and refuses the same."""
+    from app.toolpath import JointMoves
+
+    joint = JointMoves(n)
+    want = np.minimum(np.arange(n + 1, dtype=np.int32), n - 1)
+    np.testing.assert_array_equal(np.asarray(joint), want)
+    assert len(joint) == len(want) and joint.dtype == want.dtype
+    k = data.draw(st.integers(-(n + 1), n))
+    assert joint[k] == want[k]
+    a, b = sorted(data.draw(st.lists(st.integers(-(n + 2), n + 2), min_size=2, max_size=2)))
+    np.testing.assert_array_equal(joint[a:b], want[a:b])
+    idx = np.array(data.draw(st.lists(st.integers(-(n + 1), n), max_size=8)), dtype=np.int64)
+    np.testing.assert_array_equal(joint[idx], want[idx])
+    mask = np.array(data.draw(st.lists(st.booleans(), min_size=n + 1, max_size=n + 1)))
+    np.testing.assert_array_equal(joint[mask], want[mask])
+    with pytest.raises(IndexError):
+        joint[n + 1]
+    with pytest.raises(IndexError):
+        joint[np.array([0, n + 1])]
+
+
+def test_a_raster_path_keeps_no_index_a_point() -> None:
+    from app.toolpath import JointMoves
+
+    text = "G21 G90 G0 X0 Y0\nG1 F600\n" + "".join(f"X{i % 2 * 10} Y{i * 0.5}\n" for i in range(400))
+    path = build_toolpath(parse_program(text))
+    assert isinstance(path.all.move_index, JointMoves) and path.move_first_point is None
+    line = path.kind(MoveKind.LINE)           # a kind taken from it: the moves of its points
+    assert np.all(np.diff(line.move_index) >= 0) and line.move_index[-1] == len(path.move_lines) - 1
