@@ -179,7 +179,6 @@ class ColumnPacker:
         if positions is not None and positions.shape[0] != n + 1:
             raise ValueError(f"{n} moves need {n + 1} positions, got {positions.shape[0]}")
         self.n, self.positions = n, positions
-        self.kind = "runs" if positions is None else "lengths"
         self._rows: list[np.ndarray] = []
         self._values: list[np.ndarray] = []
         self._count = 0          # rows or runs kept so far
@@ -197,7 +196,7 @@ class ColumnPacker:
             return
         if m == 0:
             return
-        if self.kind == "runs":
+        if self.positions is None:
             # runs of the same bits (-0.0 is not 0.0, a NaN is one value)
             bits = np.ascontiguousarray(values, np.float64).view(np.int64)
             change = np.flatnonzero(bits[1:] != bits[:-1]) + 1
@@ -214,7 +213,7 @@ class ColumnPacker:
             self._to_dense(lo + m)
 
     def _limit(self) -> float:
-        share = _MAX_RUN_SHARE if self.kind == "runs" else _MAX_EXCEPTION_SHARE
+        share = _MAX_RUN_SHARE if self.positions is None else _MAX_EXCEPTION_SHARE
         return max(64.0, share * self.n)
 
     def _to_dense(self, upto: int) -> None:
@@ -225,9 +224,8 @@ class ColumnPacker:
     def _column(self) -> FloatColumn:
         rows = np.concatenate(self._rows) if self._rows else np.zeros(0, np.int64)
         values = np.concatenate(self._values) if self._values else np.zeros(0)
-        if self.kind == "runs":
+        if self.positions is None:
             return RunColumn(rows, values, 0, self._done)
-        assert self.positions is not None
         return DerivedLength(self.positions, rows, values, 0, self._done)
 
     def column(self) -> FloatColumn:
