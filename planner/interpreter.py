@@ -27,6 +27,7 @@ none (axis words need a G00-G03 first).
 from __future__ import annotations
 
 import codecs
+import io
 import math
 import os
 import re
@@ -3072,21 +3073,11 @@ def _count_lines(text: Any, piece: int = 1 << 22) -> int:
 
 
 def _decode_utf8(data: bytes) -> str:
-    """``data.decode("utf-8")`` without a byte-order mark, Windows line ends made "\n", a
-    piece (cut after a newline, so no "\r\n" is cut) at a time: one decode of a 250 MB
-    program held the GIL, and with it the panel's GUI thread, for 0.12 s; changing the line
-    ends of the whole text, 0.6 s and a second text."""
-    if len(data) <= _DECODE_PIECE:
-        return data.decode("utf-8-sig").replace("\r\n", "\n")
-    view = memoryview(data)
-    pieces = []
-    lo = 3 if data.startswith(codecs.BOM_UTF8) else 0     # a byte-order mark: no part of the text
-    while lo < len(data):
-        hi = data.find(b"\n", min(lo + _DECODE_PIECE, len(data)))
-        hi = len(data) if hi < 0 else hi + 1
-        pieces.append(str(view[lo:hi], "utf-8").replace("\r\n", "\n"))
-        lo = hi
-    return "".join(pieces)
+    """``data`` as ``read_program`` reads a UTF-8 file: without a byte-order mark, Windows
+    line ends made "\n", decoded a piece at a time (one decode of a 250 MB program held the
+    GIL, and with it the panel's GUI thread, for 0.12 s; changing the line ends of the whole
+    text, 0.6 s and a second text)."""
+    return _decoded(io.BytesIO(data), codecs.getincrementaldecoder("utf-8-sig")())
 
 
 def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
