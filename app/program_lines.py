@@ -1,16 +1,17 @@
 """Where each line of a program's text starts: the index a view over the text reads lines by.
 
 A program of 10,000,000 lines is a 250 MB text. Put into a text widget it takes gigabytes
-and tens of seconds; a view that finds line k as ``text[starts[k]:starts[k + 1]]`` needs only
-this index (4 bytes a line) next to the text the loader holds anyway. Made with NumPy over the
-UTF-8 bytes, a piece at a time (the temporaries stay a few megabytes); no Qt.
+and tens of seconds; a view that finds line k as ``text[index[k]:index[k + 1]]`` needs only
+this index next to the text the loader holds anyway (``LineIndex``: every 64th line start, the
+others found from there). Made with NumPy over the UTF-8 bytes, a piece at a time (the
+temporaries stay a few megabytes); no Qt.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["LineIndex", "line_starts", "line_text"]
+__all__ = ["LineIndex", "line_text"]
 
 _PIECE = 1 << 22  # characters examined at a time
 
@@ -27,24 +28,13 @@ def _piece_starts(text: str, lo: int) -> np.ndarray:
     return ends + (lo + 1)
 
 
-def line_starts(text: str) -> np.ndarray:
-    """Offsets (in characters) where the lines of ``text`` start, then ``len(text)``: n + 1
-    values for n lines. Lines end at "\\n" (a "\\r" before it stays in the line); a text that
-    ends with "\\n" has an empty last line, as an editor shows it. Made a piece of the text at
-    a time: each NumPy pass holds the GIL (and the panel) a few milliseconds."""
-    dtype = np.uint32 if len(text) < 2**32 - 1 else np.int64
-    parts = [np.zeros(1, dtype=dtype)]
-    for lo in range(0, len(text), _PIECE):
-        parts.append(_piece_starts(text, lo).astype(dtype))
-    parts.append(np.array([len(text)], dtype=dtype))
-    return np.concatenate(parts)
-
-
 class LineIndex:
-    """``line_starts`` of a text kept every ``STRIDE``-th line: the lines between are found
-    by looking for their newlines from there (a few dozen short searches; the lines painted
-    one after another each take one). 10,000,000 lines in 1.3 MB instead of 40. Read like the
-    array: ``len`` is the lines + 1, ``index[k]`` where line k (0-based) starts."""
+    """Where each line of a text starts (lines end at "\n", a "\r" before it staying in the
+    line; a text ending with "\n" has an empty last line), kept every ``STRIDE``-th line: the
+    lines between are found by looking for their newlines from there (a few dozen short
+    searches; the lines painted one after another each take one). 10,000,000 lines in 1.3 MB
+    instead of 40. Read like an array: ``len`` is the lines + 1, ``index[k]`` where line k
+    (0-based) starts."""
 
     STRIDE = 64
 

@@ -11,7 +11,7 @@ from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QColor
 
 import app.program_lines as program_lines
-from app.program_lines import line_starts, line_text
+from app.program_lines import LineIndex, line_text
 from app.widgets.program_view import CURRENT_BG, ERROR_BG, RUN_BG, ProgramView
 
 LINE_CHARS = st.text(alphabet=st.sampled_from("G01XYZ.-5 \r;(é°ü)İ"), max_size=12)
@@ -21,6 +21,11 @@ def _lines_of(text: str) -> list[str]:
     return [line[:-1] if line.endswith("\r") else line for line in text.split("\n")]
 
 
+def line_starts(text: str) -> np.ndarray:
+    """Where every line starts, then the text's end (the rule, written plainly)."""
+    return np.array([0] + [i + 1 for i, c in enumerate(text) if c == "\n"] + [len(text)], np.int64)
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.lists(LINE_CHARS, max_size=30).map("\n".join), st.sampled_from([3, 7, 1 << 24]))
 def test_line_index_finds_every_line(text: str, piece: int) -> None:
@@ -28,19 +33,18 @@ def test_line_index_finds_every_line(text: str, piece: int) -> None:
     old = program_lines._PIECE
     program_lines._PIECE = piece
     try:
-        starts = line_starts(text)
+        starts = LineIndex(text)
     finally:
         program_lines._PIECE = old
     want = _lines_of(text)
     assert len(starts) == len(want) + 1
     assert [line_text(text, starts, i) for i in range(len(want))] == want
-    assert int(starts[-1]) == len(text)
+    assert starts[len(want)] == len(text)
 
 
 def test_a_final_newline_leaves_an_empty_last_line() -> None:
-    starts = line_starts("G0 X1\nG1 Y2\n")
+    starts = LineIndex("G0 X1\nG1 Y2\n")
     assert len(starts) - 1 == 3 and line_text("G0 X1\nG1 Y2\n", starts, 2) == ""
-    assert starts.dtype == np.uint32
 
 
 @pytest.fixture
@@ -128,8 +132,6 @@ def test_a_sparse_line_index_reads_as_the_whole_index(text: str, piece: int, str
     """Every stride-th line start kept (a 10,000,000-line program's index in 1.3 MB, not
     40): every line start, looked up in order or not, the line of every character and the
     longest line, as the whole index gives them."""
-    from app.program_lines import LineIndex
-
     old = program_lines._PIECE, LineIndex.STRIDE
     program_lines._PIECE, LineIndex.STRIDE = piece, stride
     try:
