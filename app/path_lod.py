@@ -126,7 +126,7 @@ def _make_levels(path: ToolPath) -> LodLevels:
 
     def copies_of(pr: PointRows) -> list[tuple[float, Polylines]]:
         """The thinned copies of ``pr`` worth keeping, each as ``thin`` of the one before it
-        makes it; only those kept are made (``thin_masks``), as 4-byte floats from the path's
+        makes it; only those kept are made (``thin_copies``), as 4-byte floats from the path's
         corner (``Polylines.origin``)."""
         cell, kept = extent / BASE_CELLS, len(pr)
         joined = joined_rows(pr)
@@ -159,8 +159,8 @@ def _make_levels(path: ToolPath) -> LodLevels:
             levels[kind] = [(0.0, path.kind(kind))]
     if len(path.all.points) > LOD_MIN_POINTS:
         levels[ALL_MOVES] = copies_of(rows_of(path.all))
-    # the thinning's temporaries (each kind's points, cube numbers per axis) lie freed in the
-    # heap between the copies kept: 280 MB of a 10,000,000-move raster, handed back
+    # the thinning's temporaries (rows of each kind, cube numbers per axis) lie freed in the
+    # heap between the copies kept: handed back
     trim_heap()
     return levels
 

@@ -425,3 +425,28 @@ def test_an_image_of_a_big_path_is_the_image_of_its_points_in_view(big_path):
     lit = want[:, :, 3] > 0
     assert lit.sum() > 10_000
     assert np.count_nonzero(whole.image[:, :, 3] != want[:, :, 3]) <= 0.001 * lit.sum()
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**31), st.sampled_from([3, 64, 1 << 18]), st.sampled_from([0.01, 0.1]))
+def test_copies_made_in_two_passes_are_the_masks_taken(seed, piece, cell):
+    """``thin_copies`` counts each level's points in one pass and gathers the chosen levels in
+    a second, holding no mask: the very copies the masks of the whole give."""
+    import app.toolpath as toolpath
+    from app.toolpath import joined_rows, take_points, thin_copies, thin_masks
+
+    path = _mixed_path(seed, 1.0)
+    rows = joined_rows(path.kind_rows(MoveKind.LINE))
+    origin = np.asarray(path.bounds[0])
+    old = toolpath.THIN_PIECE
+    toolpath.THIN_PIECE = piece
+    try:
+        made = thin_copies(rows, cell, 4, lambda counts: [0, 2, 3], origin)
+        masks = thin_masks(rows, cell, 4)
+    finally:
+        toolpath.THIN_PIECE = old
+    assert sorted(made) == [0, 2, 3]
+    for level, copy in made.items():
+        want = take_points(rows, masks[level], origin)
+        for name in ("points", "connect", "move_index", "origin"):
+            np.testing.assert_array_equal(getattr(copy, name), getattr(want, name), err_msg=f"{level} {name}")
