@@ -934,14 +934,17 @@ class _Interpreter:
         the program (cut after a newline) at a time: the line index of a whole program of
         10,000,000 lines was 240 MB, its encoded text 250 MB more."""
         source: str | bytes = utf8 if utf8 is not None else (text or "")
-        newline: Any = b"\n" if utf8 is not None else "\n"
         total = len(source)
         state = _BulkState()
-        # bytes are read where they lie, in pieces 4 times as big: the bytes are held anyway
-        # (only the pieces' index is new), and a cold process read a 2,000,000-line file 10 %
-        # slower in 16 MB pieces (the allocator's fresh pages for each piece's index)
-        whole = np.frombuffer(source, np.uint8) if isinstance(source, bytes) else np.zeros(0, np.uint8)
-        piece = self.BULK_PIECE * (4 if isinstance(source, bytes) else 1)
+        if isinstance(source, bytes):
+            # read where they lie, in pieces 4 times as big: the bytes are held anyway (only a
+            # piece's index is new), and a fresh process read a 2,000,000-line file 10 % slower
+            # in 16 MB pieces (why was not found: the same blocks scan as fast alone)
+            newline: Any = b"\n"
+            whole = np.frombuffer(source, np.uint8)
+            piece = 4 * self.BULK_PIECE
+        else:
+            newline, whole, piece = "\n", np.zeros(0, np.uint8), self.BULK_PIECE
         lo = 0
         first_line = 0     # lines of the program before this piece
         while True:
