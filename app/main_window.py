@@ -166,6 +166,8 @@ class MainWindow(QMainWindow):
         how far it is (a program of millions of lines takes seconds)."""
         checking = tr("Checking {0} …").format(name)
         if loading:
+            if self.context.controller.program_info is None:  # let go: a load replaces it
+                self.context.program.let_go(name)
             self._program_label.setText(tr("{0} (checking…)").format(name))
             self.show_message(checking)
             self._checking = (name, checking)

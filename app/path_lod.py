@@ -35,7 +35,8 @@ from app.toolpath import (
 from planner.heap import trim_heap
 from planner.program import MoveKind
 
-__all__ = ["ALL_MOVES", "Detail", "LodLevels", "ViewSpec", "build_levels", "detail", "needs_levels"]
+__all__ = ["ALL_MOVES", "Detail", "LodLevels", "ViewSpec", "build_levels", "detail", "forget_levels",
+           "needs_levels"]
 
 LOD_MIN_POINTS = 200_000
 BASE_CELLS = 65_536  # the finest copy: the path's extent in this many cubes
@@ -113,6 +114,16 @@ def build_levels(path: ToolPath | None) -> LodLevels:
         return levels
     finally:
         entry[1].set()
+
+
+def forget_levels(shown: ToolPath | None) -> None:
+    """A widget now shows ``shown``: the copies of another path are let go (they held the
+    path they were made of, hundreds of megabytes at 10,000,000 moves, after its program had
+    gone). A build under way keeps its own until it ends."""
+    global _made
+    with _made_lock:
+        if _made is not None and _made[0] is not shown:
+            _made = None
 
 
 def _make_levels(path: ToolPath) -> LodLevels:

@@ -32,6 +32,13 @@ def errors_by_line(exc: PlannerError) -> dict[int, str]:
     return out
 
 
+#: A program shown of at least this many moves is let go when the controller lets it go (a
+#: load or a check again has started): its tool path and preview copies are about 100 MB a
+#: million moves, and kept on screen while its successor is read the panel held two. Smaller
+#: ones stay on screen until the outcome, which comes within a second.
+LET_GO_MOVES = 1_000_000
+
+
 class ProgramModel(QObject):
     """Emits ``changed`` when a program is loaded (geometry + tool path) or rejected."""
 
@@ -102,6 +109,19 @@ class ProgramModel(QObject):
             self.errors = errors_by_line(exc)
         self.errorsChanged.emit(self.errors)
         self.changed.emit()
+
+    def let_go(self, successor: str) -> bool:
+        """The controller has let the loaded program go (a load or a check again started): a big
+        one's geometry goes too, and its text when ``successor`` (the name of the program being
+        checked) is another program's (a check again keeps it on screen); ``changed`` tells the
+        pages. True when it went."""
+        if self.toolpath is None or self.toolpath.move_count < LET_GO_MOVES:
+            return False
+        self.info, self.program, self.toolpath = None, None, None
+        if successor != self.name:
+            self.text, self.name, self.path = "", successor, ""
+        self.changed.emit()
+        return True
 
     def set_read_again(self, program: object) -> None:
         """The running program read again with what a probe or M66 read: its path from there

@@ -6,9 +6,10 @@ and returns at once; the outcome arrives through a queued signal in the controll
 which emits ``programLoaded`` or ``programErrors`` exactly as a synchronous load did. While a
 load runs, ``loading`` is True (``loadingChanged``), cycle start and run from line are refused
 with the reason, and a newer load (or a configuration change) supersedes it: the older one is
-cancelled between its stages and its result dropped. A failed load unloads the previous
-program. ``load_program(..., wait=True)`` and ``wait_loaded()`` give the synchronous behaviour
-for headless use (``cnc-run``, tests).
+cancelled between its stages and its result dropped. The program loaded before is let go as
+a load starts (``program_info`` is None until the outcome; a failed load leaves none), a check
+again after a touch-off included. ``load_program(..., wait=True)`` and ``wait_loaded()`` give
+the synchronous behaviour for headless use (``cnc-run``, tests).
 
 A program of more than ``WINDOWED_RUN_MOVES`` moves (``app.machine.feeder``) is planned
 through once here, segment by segment (``check_pass``: its time, length and pause points), and
@@ -275,6 +276,7 @@ class ProgramLoader:
         self.load_request: LoadRequest | None = None  # the load in flight
         self._load_generation = 0
         self._load_reason = ""  # why the last load was refused
+        self._let_go_of = False  # a program was let go by the load starting (its pages not yet trimmed)
         self._program_cfg: object = None  # configuration and offsets the program was checked with
         self._program_offsets: dict[str, tuple[float, ...]] = {}
         self._program_parameters: dict[int, float] = {}
@@ -379,8 +381,30 @@ class ProgramLoader:
         """Soft-limit issues of a program's whole path (also used by MDI and run from line)."""
         return list(_issues_from_limits(program, self.m.conn.machine))
 
+    def _let_go(self) -> None:
+        """A load replaces the loaded program whatever its outcome (a refused one unloads it,
+        as LinuxCNC drops a file it failed to open), so the program is let go as the load
+        starts: two programs are never held at once (a 10,000,000-line one is half a gigabyte,
+        and checking it again after a touch-off held it twice). Nothing could use it meanwhile:
+        cycle start and run from line wait for the load, and the stop point to resume from
+        belongs to the program let go (every load forgot it at its end already)."""
+        self._supersede_run_plan()
+        self._let_go_of = self.program_info is not None
+        self.program_info = None
+        self._program_text = ""     # a check again has it in its request
+        self.m.run.resume_point = None
+
+    def _given_back(self) -> None:
+        """Once the pages have let the program go too (``loadingChanged``): its freed pages back
+        to the system. They lie in the heap of the thread that made them, which the load's
+        worker does not take from: kept, they were counted twice."""
+        if self._let_go_of:
+            self._let_go_of = False
+            trim_heap()
+
     def _new_request(self, text: str, name: str, path: str, read_file: bool = False) -> LoadRequest:
         self._supersede_load()
+        self._let_go()
         self._load_generation += 1
         return LoadRequest(
             generation=self._load_generation,
@@ -412,6 +436,7 @@ class ProgramLoader:
         machine, plan_fn = self.m.conn.machine, self.m.stream.planner()
         self.load_request = req
         self.m.loadingChanged.emit(True, name)
+        self._given_back()
 
         def work() -> LoadRequest:
             try:
@@ -464,6 +489,7 @@ class ProgramLoader:
         req = self._new_request(text, name, path, read_file)
         if was_loading:
             self.m.loadingChanged.emit(False, name)
+        self._given_back()
         try:
             outcome = check_text(req, self.m.conn.machine, self.m.stream.planner())
         except _Cancelled:  # pragma: no cover - nobody cancels a synchronous load

@@ -259,8 +259,8 @@ class AutoPage(QWidget):
         model = self.ctx.program
         self._refused = ""
         self._update_info()       # the feed and modal codes come from the loaded program
-        if model.info is None and model.text and self.editor.toPlainText() != model.text:
-            self.editor.load_text(model.text)
+        if model.info is None and self.editor.toPlainText() != model.text:
+            self.editor.load_text(model.text)   # a refused program's text, or none: a big one let go
             self.program_label.setText(model.name)
         self.editor.set_errors(model.errors)
         self._update_buttons()

@@ -243,6 +243,10 @@ class ProgramPage(QWidget):
             big = False  # open_file says why it cannot be read
         if big:  # shown once the controller has read it (or refused it: then with its errors)
             self._opening = Path(path)
+            # the program shown goes now (its changes are saved or dropped: asked above): held
+            # while the next is read, a big one's text counted twice
+            self.doc.new()
+            self.set_text("")
             self.ctx.program.expect("", Path(path).name)
             if not self.ctx.controller.load_program(Path(path)):
                 self._open_refused()

@@ -19,7 +19,16 @@ from PySide6.QtGui import QColor, QPen
 from PySide6.QtWidgets import QGestureEvent, QPinchGesture, QWidget
 
 from app.background import Background
-from app.path_lod import LOD_MIN_POINTS, Detail, LodLevels, ViewSpec, build_levels, detail, needs_levels
+from app.path_lod import (
+    LOD_MIN_POINTS,
+    Detail,
+    LodLevels,
+    ViewSpec,
+    build_levels,
+    detail,
+    forget_levels,
+    needs_levels,
+)
 from app.toolpath import ToolPath, nearest_projected, nearest_segment
 from planner.program import MoveKind
 
@@ -169,6 +178,7 @@ class PreviewPlot(pg.PlotWidget):
         self._executed = None
         self.fit()  # first: what is drawn depends on the view (level of detail)
         self._levels_work.cancel()
+        forget_levels(path)
         self._levels_pending = needs_levels(path)
         if self._levels_pending:
             # a big path: its thinned copies are made off the GUI thread (seconds for

@@ -116,7 +116,8 @@ def test_a_program_over_the_edit_limit_is_shown_read_only_through_a_view(
 def test_a_big_file_opened_on_the_program_page_is_read_once_by_the_controller(
         demo_window, real_controller, qtbot, monkeypatch, dialogs) -> None:
     """Open on a big file: the page does not read it; the controller's worker does, and the
-    page shows the text it read. Refused, the file is shown with its errors on its lines."""
+    page shows the text it read; the program shown before leaves the page at once. Refused,
+    the file is shown with its errors on its lines."""
     import app.pages.program as program_page
     from app.program_document import ProgramDocument
 
@@ -148,7 +149,74 @@ def test_a_big_file_opened_on_the_program_page_is_read_once_by_the_controller(
     dialogs.answers.append(str(bad))
     with qtbot.waitSignal(c.programErrors, timeout=60_000):
         program.buttons["open"].click()
+        # big.nc has left the page as bad.nc is read (never two big texts held at once)
+        assert c.loading and program.doc.path is None and program.doc.text == ""
+        assert program.viewer.toPlainText() == "" and program.editor.toPlainText() == ""
     assert reads == [str(bad)]  # read by the page only to show the refused file
     assert program.doc.path.name == "bad.nc" and "Q5" in program.viewer.line(4)
     assert 4 in program.viewer.errors
     assert demo_window.context.program.text == program.doc.text  # the Auto page shows it too
+
+
+def test_a_big_program_shown_goes_as_soon_as_another_is_checked(demo_window, real_controller, qtbot,
+                                                                   monkeypatch) -> None:
+    """Two big programs are never held at once: when a load starts, the big program shown
+    leaves every page and the preview's thinned copies at that moment, not at the outcome (a
+    10,000,000-line program checked again after a touch-off took the panel to 1.4 GB). Checked
+    again, its text stays on screen; another program's load takes the text too. A small
+    program stays on screen until the outcome."""
+    import gc
+    import weakref
+    from dataclasses import replace
+
+    import app.path_lod as path_lod
+    import app.program_model as program_model
+
+    c = real_controller
+    model = demo_window.context.program
+    auto, preview = demo_window.page("auto"), demo_window.page("preview")
+    monkeypatch.setattr(program_model, "LET_GO_MOVES", 5000)    # "big", scaled down
+    monkeypatch.setattr(path_lod, "LOD_MIN_POINTS", 1000)       # thinned copies made
+    text = big_program(7000)
+
+    def shown_whole() -> None:
+        qtbot.waitUntil(lambda: model.info is c.program_info and not preview.plot._levels_pending
+                        and not auto.backplot._levels_pending and not auto.editor.loading, timeout=20_000)
+        assert model.toolpath.move_count >= 5000 and path_lod._made is not None
+
+    def held() -> list[weakref.ref]:
+        """The tool path's own array, a thinned copy's and the program (slotted objects have no
+        weak references)."""
+        levels = path_lod._made[2][0]
+        copy = next(copies for copies in levels.values() if copies)[0][1].points
+        program = c.program_info.program
+        return [weakref.ref(model.toolpath.point_kind), weakref.ref(copy), weakref.ref(program)]
+
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        assert c.load_program(text, name="big.nc")
+    shown_whole()
+    refs = held()
+    cfg = c.config
+    slower = replace(cfg, machine=cfg.machine.with_limits(a_max_mm_s2=cfg.machine.limits.a_max_mm_s2 * 0.8))
+    gc.disable()            # no collection may be what frees them
+    try:
+        with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+            assert c.update_config(slower)          # checked again: the same program
+            assert c.loading
+            assert model.info is None and model.toolpath is None
+            assert preview.plot.path is None and auto.backplot.path is None
+            assert path_lod._made is None
+            assert [ref() for ref in refs] == [None, None, None]
+            assert model.text is text and auto.editor.toPlainText() is text
+    finally:
+        gc.enable()
+    shown_whole()
+    with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+        assert c.load_program(SHORT, name="next.nc")    # another program: the text goes too
+        assert model.info is None and model.text == "" and auto.editor.toPlainText() == ""
+    qtbot.waitUntil(lambda: model.info is c.program_info, timeout=20_000)
+    small = model.toolpath
+    assert small is not None and small.move_count < 5000
+    with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+        assert c.load_program(SHORT, name="again.nc")
+        assert c.loading and model.toolpath is small and preview.plot.path is small

@@ -60,7 +60,7 @@ def test_config_change_rechecks_in_the_background(qtbot, ctl: MachineController,
         assert ctl.loading and ctl.loading_name == "big.nc"
         r = ctl.cycle_start()
         assert not r and "being checked" in r.reason
-        assert ctl.program_info is old  # the old one stays until the new check is done
+        assert ctl.program_info is None  # let go as the check starts: its outcome replaces it
     info = blocker.args[0]
     assert not ctl.loading and ctl.program_info is info and info is not old
     assert len(plan_calls) == 2
