@@ -56,6 +56,7 @@ class ProgramModel(QObject):
         self.toolpath: ToolPath | None = None
         self.errors: dict[int, str] = {}
         self._pending: tuple[str, str] = ("", "")
+        self._expected = False
 
     def move_at_line(self, line: int) -> int:
         """Index of the first move at or after ``line`` (len(moves) past the end, -1 if none)."""
@@ -90,8 +91,10 @@ class ProgramModel(QObject):
     def expect(self, text: str, name: str) -> None:
         """The panel is about to load this text: shown with its errors if the controller refuses it."""
         self._pending = (text, name)
+        self._expected = True       # a program the panel asked for: not a check again
 
     def set_loaded(self, info: object, machine: MachineSpec | None) -> None:
+        self._expected = False
         self.info = info
         self.name = str(getattr(info, "name", ""))
         self.path = str(getattr(info, "path", ""))
@@ -112,13 +115,13 @@ class ProgramModel(QObject):
 
     def let_go(self, successor: str) -> bool:
         """The controller has let the loaded program go (a load or a check again started): a big
-        one's geometry goes too, and its text when ``successor`` (the name of the program being
-        checked) is another program's (a check again keeps it on screen); ``changed`` tells the
-        pages. True when it went."""
+        one's geometry goes too, and its text when the panel asked for a program (``expect``) or
+        ``successor`` (the name of the program being checked) is another's: a check again keeps
+        it on screen. ``changed`` tells the pages. True when it went."""
         if self.toolpath is None or self.toolpath.move_count < LET_GO_MOVES:
             return False
         self.info, self.program, self.toolpath = None, None, None
-        if successor != self.name:
+        if self._expected or successor != self.name:
             self.text, self.name, self.path = "", successor, ""
         self.changed.emit()
         return True
@@ -134,6 +137,7 @@ class ProgramModel(QObject):
 
     def set_errors(self, issues: object, text: str = "", name: str = "") -> None:
         """The controller refused a program: keep its text and the errors per line."""
+        self._expected = False
         self.info, self.program, self.toolpath = None, None, None
         if not text:
             text, name = self._pending

@@ -153,7 +153,11 @@ class ProgramPage(QWidget):
         self._update_title()
 
     def _on_text_changed(self) -> None:
-        if self._loading or self.editor.loading:
+        if self._loading or self.editor.loading or self.read_only:
+            # not the operator's edit. Hidden behind a big program's read-only view, the emptied
+            # editor still says its text changed (its highlighter redoes it a turn later): taken
+            # for an edit, the program became "" with unsaved changes, autosaved so, and saved
+            # so on the operator's Save
             return
         self.doc.text = self.editor.toPlainText()
         self.checker.request(self.doc.text)
@@ -237,21 +241,26 @@ class ProgramPage(QWidget):
         if why:
             self.ctx.dialogs.inform(self, tr("Open program"), why)
             return
+        self.open_program(Path(path))
+
+    def open_program(self, path: Path) -> None:
+        """Open ``path`` (chosen, allowed, and the program shown may go) and load it: a big
+        file is read by the controller alone and shown once read."""
         try:
-            big = Path(path).stat().st_size > BIG_FILE_BYTES
+            big = path.stat().st_size > BIG_FILE_BYTES
         except OSError:
             big = False  # open_file says why it cannot be read
         if big:  # shown once the controller has read it (or refused it: then with its errors)
-            self._opening = Path(path)
+            self._opening = path
             # the program shown goes now (its changes are saved or dropped: asked above): held
             # while the next is read, a big one's text counted twice
             self.doc.new()
             self.set_text("")
-            self.ctx.program.expect("", Path(path).name)
-            if not self.ctx.controller.load_program(Path(path)):
+            self.ctx.program.expect("", path.name)
+            if not self.ctx.controller.load_program(path):
                 self._open_refused()
             return
-        self.open_file(Path(path))
+        self.open_file(path)
         # what the editor shows is what the machine has: opening a program loads it (the
         # controller checks it, or refuses while a program runs and says why)
         self.load_into_machine()
@@ -314,7 +323,10 @@ class ProgramPage(QWidget):
     # --- controller ----------------------------------------------------------------------
     def _on_config(self, config: object) -> None:
         self.checker.machine = getattr(config, "machine", self.checker.machine)
-        self.checker.request(self.doc.text)
+        if not self.read_only:
+            # a big program's errors come from the controller's own check again: read here as
+            # well, a 10,000,000-line one was read twice at once (0.4 GB more)
+            self.checker.request(self.doc.text)
 
     def _on_program_loaded(self, info: object) -> None:
         self._opening = None

@@ -163,8 +163,8 @@ def test_a_big_program_shown_goes_as_soon_as_another_is_checked(demo_window, rea
     """Two big programs are never held at once: when a load starts, the big program shown
     leaves every page and the preview's thinned copies at that moment, not at the outcome (a
     10,000,000-line program checked again after a touch-off took the panel to 1.4 GB). Checked
-    again, its text stays on screen; another program's load takes the text too. A small
-    program stays on screen until the outcome."""
+    again, its text stays on screen; a program the panel opens, even the same one, takes the
+    text too. A small program stays on screen until the outcome."""
     import gc
     import weakref
     from dataclasses import replace
@@ -211,6 +211,11 @@ def test_a_big_program_shown_goes_as_soon_as_another_is_checked(demo_window, rea
     finally:
         gc.enable()
     shown_whole()
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        model.expect("", "big.nc")       # the panel opens it again, as the Program page does
+        assert c.load_program(text, name="big.nc")
+        assert model.info is None and model.text == "" and auto.editor.toPlainText() == ""
+    shown_whole()
     with qtbot.waitSignal(c.programLoaded, timeout=20_000):
         assert c.load_program(SHORT, name="next.nc")    # another program: the text goes too
         assert model.info is None and model.text == "" and auto.editor.toPlainText() == ""
@@ -220,3 +225,71 @@ def test_a_big_program_shown_goes_as_soon_as_another_is_checked(demo_window, rea
     with qtbot.waitSignal(c.programLoaded, timeout=20_000):
         assert c.load_program(SHORT, name="again.nc")
         assert c.loading and model.toolpath is small and preview.plot.path is small
+
+
+def test_a_configuration_change_leaves_a_big_program_to_the_controller_s_check(
+        demo_window, real_controller, qtbot, monkeypatch) -> None:
+    """After a configuration change the controller checks the loaded program again; a big
+    one shown read-only is not read a second time by the Program page (a 10,000,000-line
+    program was read twice at once). An editable one is checked there as it is typed."""
+    from dataclasses import replace
+
+    import app.pages.program as program_page
+    import app.program_checker as checker
+
+    monkeypatch.setattr(program_page, "EDIT_MAX_LINES", 500)
+    read: list[int] = []
+    real = checker.interpret
+
+    def counting(text, name, machine):  # noqa: ANN001
+        read.append(text.count("\n"))
+        return real(text, name, machine)
+
+    monkeypatch.setattr(checker, "interpret", counting)
+    c = real_controller
+    program = demo_window.page("program")
+
+    def change_config() -> None:
+        cfg = c.config
+        limits = cfg.machine.limits
+        slower = replace(cfg, machine=cfg.machine.with_limits(a_max_mm_s2=limits.a_max_mm_s2 * 0.9))
+        with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+            assert c.update_config(slower)
+        qtbot.wait(600)                     # past the checker's delay
+        qtbot.waitUntil(lambda: not program.checker.busy, timeout=20_000)
+
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        assert c.load_program(big_program(700), name="big.nc")
+    qtbot.waitUntil(lambda: program.read_only and program.doc.text == c.program_info.text, timeout=20_000)
+    read.clear()
+    change_config()
+    assert read == []
+    program.set_text(SHORT)
+    program.load_into_machine()
+    qtbot.waitUntil(lambda: c.program_info is not None and c.program_info.text == SHORT, timeout=20_000)
+    qtbot.waitUntil(lambda: not program.checker.busy, timeout=20_000)
+    read.clear()
+    change_config()
+    assert read == [SHORT.count("\n")]
+
+
+def test_a_big_program_shown_read_only_stays_the_page_s_document(demo_window, real_controller, qtbot,
+                                                                 monkeypatch) -> None:
+    """The Program page shows a big program read-only; its hidden editor, emptied, still says
+    its text changed a turn later (its highlighter redoes the empty text). That is no edit:
+    the document stays the program, unmodified, with nothing autosaved (an empty program was
+    once taken for the operator's edit, autosaved, and written over the file on Save)."""
+    import app.pages.program as program_page
+
+    monkeypatch.setattr(program_page, "EDIT_MAX_LINES", 500)
+    c = real_controller
+    program = demo_window.page("program")
+    path = Path(demo_window.context.folders.default) / "big.nc"
+    path.write_text(big_program(700), encoding="utf-8")
+    with qtbot.waitSignal(c.programLoaded, timeout=60_000):
+        assert c.load_program(path)
+    qtbot.waitUntil(lambda: program.read_only and program.doc.path == path.resolve(), timeout=20_000)
+    assert program.doc.text == c.program_info.text and not program.doc.modified
+    qtbot.wait(300)         # the turns in which the editor spoke
+    assert program.doc.text == c.program_info.text and not program.doc.modified
+    assert not program._autosave.isActive()
