@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from planner.movestore import MoveBuffer, MoveStore
 from planner.movetable import MoveTable
@@ -91,3 +94,102 @@ def test_blend_report_reads_columns_as_move_objects():
     store = replace(blended, moves=MoveStore.from_moves(tuple(blended.moves), blended.start_position))
     a, b = blend_report(blended), blend_report(store)
     assert a.blends > 10 and a == b
+
+
+_KIND_LINE, _KIND_RAPID = int(MoveKind.LINE), int(MoveKind.RAPID)
+
+
+@st.composite
+def _buffer_steps(draw):  # noqa: ANN001, ANN202
+    """Moves appended one at a time (lines and rapids, feeds from a few values or from every
+    float, lengths the distance between the ends or not, as arcs have) or a block at a time,
+    with ends moved and moves dropped among them, anywhere."""
+    scale = draw(st.sampled_from([0.001, 1.0, 1000.0]))
+    coord = st.floats(-100.0, 100.0, allow_nan=False).map(lambda v: v * scale)
+    feeds = st.one_of(st.sampled_from([0.0, -0.0, 600.0, 1200.0]),
+                      st.floats(allow_nan=True, allow_infinity=True))
+    steps = []
+    for _ in range(draw(st.integers(1, 60))):
+        what = draw(st.sampled_from(["append", "append", "append", "extend", "replace", "delete"]))
+        if what == "append":
+            end = [draw(coord) for _ in range(3)]
+            length = draw(st.one_of(st.none(), st.floats(0.0, 1e6), st.just(-0.0), st.just(math.nan)))
+            kind = draw(st.sampled_from([_KIND_LINE, _KIND_RAPID]))
+            steps.append(("append", end, draw(st.integers(1, 10**6)), kind, draw(feeds), length,
+                          draw(st.booleans())))
+        elif what == "extend":
+            k = draw(st.integers(0, 40))
+            steps.append(("extend", [[draw(coord) for _ in range(3)] for _ in range(k)], draw(feeds),
+                          draw(st.booleans()), draw(st.booleans())))
+        else:
+            steps.append((what, draw(st.floats(0.0, 1.0)), [draw(coord) for _ in range(3)],
+                          draw(st.floats(0.0, 1e3))))
+    return steps
+
+
+def _run_steps(steps, chunk: int) -> MoveStore:  # noqa: ANN001
+    from planner.packed import straight_lengths
+
+    buf = MoveBuffer([0.0, 0.0, 0.0])
+    buf.CHUNK = chunk
+    for step in steps:
+        if step[0] == "append":
+            _, end, line, kind, feed, length, stop = step
+            if length is None:   # a straight move's own length, as the interpreter gives it
+                length = float(straight_lengths(np.array([buf.last_end(), end]))[0])
+            buf.append(list(end), line, kind, feed, length, None, stop)
+        elif step[0] == "extend":
+            _, ends, feed, straight, stop = step
+            ends = np.array(ends, float).reshape(-1, 3)
+            before = np.vstack((buf.last_end(), ends))
+            length = straight_lengths(before) if straight else np.full(len(ends), 2.5)
+            buf.extend(ends, np.arange(1, len(ends) + 1), np.full(len(ends), _KIND_LINE),
+                       np.full(len(ends), feed), length, stop)
+        elif len(buf):
+            _, at, end, length = step
+            i = min(int(at * len(buf)), len(buf) - 1)
+            if step[0] == "replace":
+                buf.replace(i, list(end), length, None)
+            else:
+                buf.delete(i)
+    return buf.store()
+
+
+@settings(max_examples=150, deadline=None)
+@given(_buffer_steps(), st.sampled_from([1, 2, 3, 4096]))
+def test_chunks_kept_sparse_give_the_store_of_plain_ones_bit_for_bit(steps, chunk: int) -> None:  # noqa: ANN001
+    """The chunks' feed and length kept sparse while a program is read give back the very
+    values the moves were made with, whatever was moved or dropped in between: the store is
+    that of plain chunks, bit for bit (NaN, -0.0 and every float feed included)."""
+    import planner.movestore as movestore
+
+    sparse = _run_steps(steps, chunk)
+    saved = movestore._SPARSE_SHARE
+    movestore._SPARSE_SHARE = -1.0     # nothing kept sparse: the plain chunks of before
+    try:
+        plain = _run_steps(steps, chunk)
+    finally:
+        movestore._SPARSE_SHARE = saved
+    a, b = sparse.columns(), plain.columns()
+    for name in ("start", "end", "line", "kind", "feed", "length", "exact_stop"):
+        x, y = np.asarray(getattr(a, name)), np.asarray(getattr(b, name))
+        assert x.dtype == y.dtype and x.shape == y.shape, name
+        assert x.tobytes() == y.tobytes(), name
+
+
+def test_a_raster_s_chunks_hold_no_feed_or_length_a_move() -> None:
+    """Reading a CAM raster, the chunks done with keep their feeds as runs and their lengths
+    as the ends give them: under a byte a move for both, not 16."""
+    from planner.packed import straight_lengths
+
+    buf = MoveBuffer([0.0, 0.0, 0.0])
+    ends = np.zeros((100_000, 3))
+    ends[:, 0] = np.arange(1, 100_001) * 0.1
+    ends[:, 1] = np.sin(np.arange(100_000))
+    for k in range(0, 100_000, 10_000):
+        piece = ends[k:k + 10_000]
+        buf.extend(piece, np.arange(k + 1, k + 10_001), np.full(10_000, _KIND_LINE), np.full(10_000, 1200.0),
+                   straight_lengths(np.vstack((buf.last_end(), piece))), False)
+    done = buf._chunks[:-1]
+    held = sum(c[3].rows.nbytes + c[3].values.nbytes + c[4].rows.nbytes + c[4].values.nbytes for c in done)
+    assert len(done) == 9 and held < 9 * 10_000
