@@ -3051,7 +3051,9 @@ def _decoded(f: Any, decoder: codecs.IncrementalDecoder) -> str:
         carry = "\r" if block and piece.endswith("\r") else ""
         if carry:
             piece = piece[:-1]
-        pieces.append(piece.replace("\r\n", "\n"))
+        # the search for two characters takes 3 ms a 4 MB piece, the one for "\r" alone 0.05 ms:
+        # most programs have no Windows line end, and the GUI thread waits out each hold
+        pieces.append(piece.replace("\r\n", "\n") if "\r" in piece else piece)
         if not block:
             break
     text = "".join(pieces)
@@ -3059,14 +3061,23 @@ def _decoded(f: Any, decoder: codecs.IncrementalDecoder) -> str:
     return text
 
 
-_DECODE_PIECE = 1 << 22  # bytes decoded at a time
+# bytes decoded at a time: a piece's decoding (3 ms for 4 MB) holds the GIL, which the GUI
+# thread waits for at each of its calls into Qt while a file is read
+_DECODE_PIECE = 1 << 20
 
 
 def _contains(text: Any, needle: Any, piece: int = 1 << 22) -> bool:
     """``needle in text``, a piece at a time: one search through a 250 MB program held the GIL,
-    and with it the panel's GUI thread, for 0.18 s."""
-    for lo in range(0, len(text), piece):
-        if text.find(needle, lo, min(len(text), lo + piece + len(needle) - 1)) >= 0:
+    and with it the panel's GUI thread, for 0.18 s. A piece is first looked through for the
+    needle's first character alone (a ``memchr``, ten times faster than the search for two):
+    "\r\n" in a program of "\n" line ends took 3 ms a 4 MB piece, and the GUI thread, painting
+    meanwhile, waited that long for the GIL at each of its hundreds of calls into Qt (a
+    quarter of a second as a 10,000,000-line program was checked again)."""
+    first, n, k = needle[:1], len(text), len(needle)
+    for lo in range(0, n, piece):
+        hi = min(n, lo + piece)
+        at = text.find(first, lo, hi)
+        if at >= 0 and text.find(needle, at, min(n, hi + k - 1)) >= 0:
             return True
     return False
 

@@ -256,6 +256,21 @@ def test_windows_line_ends_are_found_across_the_pieces_searched(at):
     assert not _contains(text, "\r\n", piece=3)
 
 
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet="\r\nG1X.", max_size=60), st.sampled_from(["\r\n", "\r", "G1", "X.1"]),
+       st.integers(1, 8), st.booleans())
+def test_a_piecewise_search_finds_what_a_whole_one_finds(text: str, needle: str, piece: int,
+                                                         raw: bool) -> None:
+    """Across pieces, with the needle's first character alone or not followed by the rest
+    (old Mac line ends, "\r" without "\n"), in text and in bytes."""
+    from planner.interpreter import _contains
+
+    if raw:
+        assert _contains(text.encode(), needle.encode(), piece=piece) == (needle.encode() in text.encode())
+    else:
+        assert _contains(text, needle, piece=piece) == (needle in text)
+
+
 def _read_bytes(data: bytes):
     try:
         return parse_program(None, "p.ngc", utf8=data)
