@@ -33,9 +33,9 @@ def errors_by_line(exc: PlannerError) -> dict[int, str]:
 
 
 #: A program shown of at least this many moves is let go when the controller lets it go (a
-#: load or a check again has started): its tool path and preview copies are about 100 MB a
-#: million moves, and kept on screen while its successor is read the panel held two. Smaller
-#: ones stay on screen until the outcome, which comes within a second.
+#: load or a check again has started): its moves, tool path and preview copies are about 50 MB
+#: a million moves of a CAM raster, and kept on screen while its successor was read the panel
+#: held two programs. Smaller ones stay on screen until the outcome, which comes within seconds.
 LET_GO_MOVES = 1_000_000
 
 
