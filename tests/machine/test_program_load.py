@@ -285,3 +285,24 @@ def test_the_loaded_program_is_let_go_as_a_check_starts(qtbot, ctl: MachineContr
     finally:
         gc.enable()
     assert ctl.program_info.name == "a.nc"   # the same program, checked again
+
+
+def test_a_load_forgets_where_the_program_it_replaces_stopped(qtbot, ctl: MachineController) -> None:
+    """The point a fault left to resume from belongs to the program loaded. A load replaces
+    that program whatever its outcome (this one is refused), so the point goes as the load
+    starts: resume is refused meanwhile, never run on the program let go."""
+    assert ctl.load_program(SHORT, wait=True)
+    assert ctl.cycle_start(wait=True)
+    assert ctl.run_until(lambda: ctl.current_line == 3, 5)
+    ctl.advance(0.1)
+    ctl.worker.inject("drive_fault", "Y", 0x2310)
+    assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 1)
+    ctl.advance(0.3)
+    assert ctl.resume_line == 3
+    assert ctl.reset() and ctl.state is MachineState.IDLE
+    with qtbot.waitSignal(ctl.programErrors, timeout=20_000):
+        assert ctl.load_program(BAD, name="bad.nc")
+        assert ctl.loading and ctl.resume_line == 0
+        refused = ctl.resume()
+        assert not refused and "nothing to resume" in refused.reason
+    assert ctl.program_info is None and ctl.resume_line == 0
