@@ -23,7 +23,7 @@ from typing import Any, overload
 import numpy as np
 
 from planner.heap import trim_heap
-from planner.packed import ColumnPacker, DenseColumn, FloatColumn, straight_lengths
+from planner.packed import ColumnPacker, DenseColumn, DerivedLength, FloatColumn, RunColumn, length_exceptions
 from planner.program import Arc, Move, MoveKind, _make_move
 
 __all__ = ["MoveBuffer", "MoveColumns", "MoveStore"]
@@ -209,47 +209,41 @@ _TRIM_MOVES = 1 << 20   # moves copied into the columns between two trims of the
 
 @dataclass(frozen=True, slots=True, eq=False)
 class _Sparse:
-    """A chunk's feed or length column kept as what its end points do not give: the feed as
-    runs (the rows where a value starts, and the values), the length as the rows where it is
-    not the distance between the ends (arcs, helices, rotary moves) and their values. A CAM
-    raster's chunks then hold a few bytes for both instead of 16 a move: 160 MB less while a
-    10,000,000-line program is read."""
+    """A chunk's lengths kept as the rows where a length is not the distance between the ends
+    (arcs, helices, rotary moves) and their values, as the store's column keeps them
+    (``DerivedLength``); the feeds are kept as runs (``RunColumn``). A CAM raster's chunks then
+    hold a few bytes for both instead of 16 a move: 160 MB less while a 10,000,000-line program
+    is read."""
 
     rows: np.ndarray
     values: np.ndarray
 
 
-# packing a chunk's column pays while a kept row (16 bytes) stands for 4 rows (32 bytes)
+# packing a chunk's lengths pays while a kept row (16 bytes) stands for 4 rows (32 bytes)
 _SPARSE_SHARE = 0.25
 
 
-def _sparse_feed(feed: np.ndarray) -> _Sparse | np.ndarray:
-    m = int(feed.shape[0])
-    bits = np.ascontiguousarray(feed, np.float64).view(np.int64)   # -0.0 is not 0.0; a NaN is one value
-    rows = np.concatenate(([0], np.flatnonzero(bits[1:] != bits[:-1]) + 1)) if m else np.zeros(0, np.intp)
-    return _Sparse(rows, feed[rows]) if len(rows) <= _SPARSE_SHARE * m else feed
+def _sparse_feed(feed: np.ndarray) -> RunColumn | np.ndarray:
+    packer = ColumnPacker(int(feed.shape[0]))    # runs as the store keeps them, bit for bit
+    packer.add(feed)
+    runs = packer.column()
+    return runs if isinstance(runs, RunColumn) else feed
 
 
-def _dense_feed(feed: _Sparse | np.ndarray, m: int) -> np.ndarray:
-    if isinstance(feed, np.ndarray):
-        return feed
-    return np.repeat(feed.values, np.diff(np.append(feed.rows, m)))
+def _dense_feed(feed: RunColumn | np.ndarray) -> np.ndarray:
+    return feed.array() if isinstance(feed, RunColumn) else feed
 
 
 def _sparse_length(length: np.ndarray, ends: np.ndarray, before: np.ndarray) -> _Sparse | np.ndarray:
-    # the rule the store's column keeps too (``ColumnPacker``): given back the same, the store
-    # made of it is the same
-    straight = straight_lengths(np.vstack((before, ends)))
-    rows = np.flatnonzero(straight != length)
+    rows = length_exceptions(np.vstack((before, ends)), length)
     return _Sparse(rows, length[rows]) if len(rows) <= _SPARSE_SHARE * length.shape[0] else length
 
 
 def _dense_length(length: _Sparse | np.ndarray, ends: np.ndarray, before: np.ndarray) -> np.ndarray:
     if isinstance(length, np.ndarray):
         return length
-    out = straight_lengths(np.vstack((before, ends)))
-    out[length.rows] = length.values
-    return out
+    m = int(ends.shape[0])
+    return DerivedLength(np.vstack((before, ends)), length.rows, length.values, 0, m).array()
 
 
 class MoveBuffer:
@@ -315,9 +309,9 @@ class MoveBuffer:
         """Chunk ``k`` with its feed and length as arrays (kept so: it is being changed or read
         row by row, which only compensation does, on the moves it has just made)."""
         ends, line, kind, feed, length, stop, before = self._chunks[k]
-        if isinstance(feed, _Sparse) or isinstance(length, _Sparse):
-            self._chunks[k] = (ends, line, kind, _dense_feed(feed, line.shape[0]),
-                               _dense_length(length, ends, before), stop, before)
+        if isinstance(feed, RunColumn) or isinstance(length, _Sparse):
+            self._chunks[k] = (ends, line, kind, _dense_feed(feed), _dense_length(length, ends, before),
+                               stop, before)
         return self._chunks[k]
 
     def _locate(self, i: int) -> tuple[tuple[Any, ...], int]:
@@ -416,7 +410,7 @@ class MoveBuffer:
             line[k:k + m] = c_line
             kind[k:k + m] = c_kind
             stop[k:k + m] = c_stop
-            feed.add(_dense_feed(c_feed, m))
+            feed.add(_dense_feed(c_feed))
             length.add(_dense_length(c_length, ends, before))
             k += m
             del ends, c_line, c_kind, c_feed, c_length, c_stop, before

@@ -23,7 +23,8 @@ from typing import Protocol
 
 import numpy as np
 
-__all__ = ["ColumnPacker", "DenseColumn", "DerivedLength", "FloatColumn", "RunColumn", "straight_lengths"]
+__all__ = ["ColumnPacker", "DenseColumn", "DerivedLength", "FloatColumn", "RunColumn", "length_exceptions",
+           "straight_lengths"]
 
 _PIECE_ROWS = 1 << 16  # rows computed at a time: the temporaries stay a few megabytes
 
@@ -119,6 +120,12 @@ def straight_lengths(positions: np.ndarray) -> np.ndarray:
     return np.sqrt(total)
 
 
+def length_exceptions(positions: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The rows of ``values`` ((m,)) that are not the distance between consecutive rows of
+    ``positions`` ((m + 1, d)): what a ``DerivedLength`` keeps."""
+    return np.flatnonzero(straight_lengths(positions) != values)
+
+
 class DerivedLength:
     """Lengths that are the distance between the end points (``straight_lengths`` of the
     positions) but at ``rows`` (ascending), where they are ``values``; rows ``off .. off + n
@@ -205,7 +212,7 @@ class ColumnPacker:
             self._last = int(bits[-1])
         else:
             assert self.positions is not None
-            rows = np.flatnonzero(straight_lengths(self.positions[lo:lo + m + 1]) != values)
+            rows = length_exceptions(self.positions[lo:lo + m + 1], values)
         self._rows.append(rows + lo)
         self._values.append(values[rows])
         self._count += len(rows)

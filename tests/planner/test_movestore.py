@@ -164,12 +164,13 @@ def test_chunks_kept_sparse_give_the_store_of_plain_ones_bit_for_bit(steps, chun
     import planner.movestore as movestore
 
     sparse = _run_steps(steps, chunk)
-    saved = movestore._SPARSE_SHARE
-    movestore._SPARSE_SHARE = -1.0     # nothing kept sparse: the plain chunks of before
+    made = movestore._sparse_feed, movestore._sparse_length
+    # nothing kept sparse: the plain chunks of before
+    movestore._sparse_feed, movestore._sparse_length = (lambda feed: feed), (lambda length, _e, _b: length)
     try:
         plain = _run_steps(steps, chunk)
     finally:
-        movestore._SPARSE_SHARE = saved
+        movestore._sparse_feed, movestore._sparse_length = made
     a, b = sparse.columns(), plain.columns()
     for name in ("start", "end", "line", "kind", "feed", "length", "exact_stop"):
         x, y = np.asarray(getattr(a, name)), np.asarray(getattr(b, name))
@@ -191,5 +192,5 @@ def test_a_raster_s_chunks_hold_no_feed_or_length_a_move() -> None:
         buf.extend(piece, np.arange(k + 1, k + 10_001), np.full(10_000, _KIND_LINE), np.full(10_000, 1200.0),
                    straight_lengths(np.vstack((buf.last_end(), piece))), False)
     done = buf._chunks[:-1]
-    held = sum(c[3].rows.nbytes + c[3].values.nbytes + c[4].rows.nbytes + c[4].values.nbytes for c in done)
+    held = sum(c[3].nbytes + c[4].rows.nbytes + c[4].values.nbytes for c in done)
     assert len(done) == 9 and held < 9 * 10_000
