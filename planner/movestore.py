@@ -251,9 +251,9 @@ class MoveBuffer:
 
     A chunk is (ends, line, kind, feed, length, stop, before): ``before`` is where its first
     move starts (a copy: compensation may move the end of the chunk before it later, and the
-    lengths kept are those the moves were made with). Every chunk but the last keeps feed and
-    length sparse where that pays (``_Sparse``); the last stays plain, as compensation changes
-    the moves it has just made."""
+    lengths kept are those the moves were made with). Every chunk but the last keeps its feeds
+    as runs (``RunColumn``) and its lengths as exceptions (``_Sparse``) where that pays; the last
+    stays plain, as compensation changes the moves it has just made."""
 
     CHUNK = 4096  # moves kept as Python lists before they are packed
 
