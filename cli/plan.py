@@ -260,6 +260,7 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
     # G38.x: what follows a probe depends on where it touches; planned here as running to the
     # programmed end point, #5070 = 0 (the run reads the rest again with the machine's result)
     probes = [{"line": p.line, "code": p.name, "assumed": not p.known} for p in program.probes]
+    synchronised = [{"line": s.line, "code": s.code} for s in program.synchronised]
     if not args.json:
         print(f"{program.name}: {len(program.moves)} moves, cycle time {summary.cycle_time_s:.3f} s, "
               f"{summary.n_samples} samples, plan {summary.plan_s * 1e3:.1f} ms")
@@ -268,6 +269,10 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
             print(f"{program.name}: probing (G38.x) at line(s) {lines}: planned as running to the "
                   "programmed end point (#5070 = 0, as LinuxCNC's preview); a run reads what follows "
                   "again with the machine's result")
+        if synchronised:
+            lines = ", ".join(f"{s['code']} at {s['line']}" for s in synchronised)
+            print(f"{program.name}: spindle-synchronised motion ({lines}): planned at the pitch times "
+                  "the programmed speed; the machine refuses to run it (its spindle has no encoder)")
         return 0
     report = summary.report
     assert report is not None
@@ -297,6 +302,7 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
         "path_deviation_line": blends.line,
         "ok": report.ok,
         "probes": probes,
+        "synchronised": synchronised,
     }
     # one string through the C encoder per piece: json.dump writes piece by piece in Python
     # (1.7 s for the 35,000 moves of the sphere finishing program against 0.1 s); the move

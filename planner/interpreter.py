@@ -7,6 +7,8 @@ Supported (everything else is an error with file:line:col, never skipped):
   (``planner.splines``);
   feed modes G93 (inverse time) G94 G95 (per revolution), G97;
   canned cycles G73 G74 G81-G86 G89, G98/G99, G80 (also beside another motion code);
+  G33.1 rigid tapping (run as feed moves), G33 and the G76 threading cycle (read; recorded in
+  ``Program.synchronised``, which a machine without a spindle encoder refuses to run);
   tool data G10 L1/L10/L11 (TOOL_DATA events);
   coordinate systems G54-G59.3, G10 L2 (with R: XY rotation)/L20, G92 G92.1 G92.2 G92.3, G52,
   G28/G28.1, G30/G30.1
@@ -66,6 +68,7 @@ from planner.program import (
     ProbeRequest,
     ProbeResult,
     Program,
+    SynchronisedMotion,
     WaitMode,
     _make_arc,
     spiral_length_mm,
@@ -107,7 +110,7 @@ _CURVE_MAX_RADIUS_MM = 1e6
 _G_GROUP = {
     40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0,
     921: 16, 922: 16, 923: 16,     # LinuxCNC 2.9: a group of their own, after group 0's code
-    0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1, 331: 1,
+    0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1, 331: 1, 330: 1, 760: 1,
     50: 1, 51: 1, 52: 1, 53: 0,
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
@@ -131,6 +134,8 @@ _PROBES = frozenset({382, 383, 384, 385})
 _P_PROBE, _P_PROBE_TRIPPED = 5061, 5070
 #: #5399: the value M66 read (-1 when the wait timed out)
 _P_INPUT = 5399
+#: G33, G33.1, G76: feed moves at the pitch (K, P) times the spindle speed; F is not theirs
+_SYNCHRONISED = frozenset({330, 331, 760})
 _CYCLE_NEEDS_P = frozenset({820, 860, 890})
 _CYCLE_NEEDS_Q = frozenset({730, 830})
 _CYCLE_TAKES_P = _CYCLE_NEEDS_P | {740, 840}
@@ -141,8 +146,6 @@ _PECK_CLEARANCE_MM = 0.254
 #: hole would otherwise make millions of moves)
 _MAX_CYCLE_MOVES = 100_000
 _G_UNSUPPORTED = {
-    330: "G33 spindle-synchronised motion: this spindle has no encoder",
-    760: "G76 threading cycle",
     870: "G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle "
          "does not have",
     880: "G88 boring with a manual retract: the operator would jog the spindle out during a "
@@ -431,6 +434,7 @@ class _Interpreter:
         self.oword_places: dict[str, tuple[str, int, str]] = {}   # O-word name -> file, line, keyword
         self.sub_places: dict[tuple[str, str], int] = {}   # (file, sub label) -> the sub defined: its line
         self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
+        self.synchronised: list[SynchronisedMotion] = []   # G33, G76
         # G05: the first control point's offset when I and J are left out, -P and -Q of the G05
         # before (program units; LinuxCNC keeps them in its canned cycles' I and J)
         self.spline_ij = (0.0, 0.0)
@@ -1566,6 +1570,7 @@ class _Interpreter:
             inputs=tuple(self.inputs_read),
             taps=tuple(self.taps),
             splines=tuple(self.splines),
+            synchronised=tuple(self.synchronised),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1713,8 +1718,9 @@ class _Interpreter:
                     )
                 axis_words.append(letter)
             elif letter not in _WORD_LETTERS:
-                if letter == "E" and mgroups.get(5) == 66:
-                    raise _BlockError("M66 E (an analog input): this machine has no analog inputs", "E")
+                if letter == "E":
+                    continue                  # its use is known once the motion is
+
                 if letter in "UVW":
                     raise _BlockError(
                         f"axis {letter} is not on this machine (axes: {' '.join(self.axes)})", letter
@@ -1759,18 +1765,32 @@ class _Interpreter:
             raise _BlockError(
                 "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
             )
+        if "E" in vals and motion not in _SYNCHRONISED:   # G76: the taper; G33, G33.1 ignore it
+            if mgroups.get(5) == 66:
+                raise _BlockError("M66 E (an analog input): this machine has no analog inputs", "E")
+            raise _BlockError("E word with no G33, G33.1 or G76 to use it", "E")
         is_arc = motion in (20, 30)
         is_cycle = motion in _CYCLES
         if g1 in (50, 51) and not axis_words:
             raise _BlockError(f"{_gname(g1)} needs X or Y (all axes missing with a motion code)", _gname(g1))
-        if motion == 331:
+        if motion in (330, 331):
+            name = _gname(motion)
             if "K" not in vals:
-                raise _BlockError("G33.1 needs a K word (the thread pitch, length per turn)", "G33.1"
-                                  if g1 == 331 else "K")
+                raise _BlockError(f"{name} needs a K word (the thread pitch, length per turn)", name
+                                  if g1 == motion else "K")
             if "F" in vals:
-                raise _BlockError("F word with G33.1: the feed is the pitch K times the spindle speed", "F")
+                raise _BlockError(f"F word with {name}: the feed is the pitch K times the spindle speed", "F")
+        if motion == 760:
+            if "P" not in vals:
+                raise _BlockError("G76 needs a P word (the thread pitch, length per turn)",
+                                  "G76" if g1 == 760 else axis_words[0] if axis_words else "G")
+            missing = [letter for letter in "IJK" if letter not in vals]
+            if missing:
+                raise _BlockError(f"G76 needs I, J and K words (the thread's offset, first cut and depth): "
+                                  f"{' '.join(missing)} missing",
+                                  "G76" if g1 == 760 else axis_words[0] if axis_words else "G")
         for letter in ("I", "J", "K", "R"):
-            if motion == 331 and letter in "IK":
+            if motion == 331 and letter in "IK" or motion == 330 and letter == "K" or motion == 760:
                 continue
             if letter in "IJ" and motion in (50, 51):
                 continue
@@ -1779,25 +1799,25 @@ class _Interpreter:
                          else "G02/G03, G05 or G05.1" if letter in "IJ" else "G02/G03")
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
         if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640 or 9 in mgroups
-                                or motion in _CYCLE_TAKES_P or 5 in mgroups or motion in (50, 52)):
+                                or motion in _CYCLE_TAKES_P or 5 in mgroups or motion in (50, 52, 760)):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G05, G05.2, G64, G82, G84, "
                               "G86, G89)", "P")
         if ("Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q
-                and mgroups.get(5) != 66 and motion != 50):
+                and mgroups.get(5) != 66 and motion not in (50, 760)):
             raise _BlockError("Q word with no code that uses it (G05, G64, M61, G73, G83, M66)", "Q")
         if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and groups.get(14) != 960:
             raise _BlockError("D word with no G41, G41.1, G42, G42.1 or G96 to use it", "D")
         if groups.get(14) == 960 and "S" not in vals:
             raise _BlockError("G96 needs an S word (the surface speed)", "G96")
         if ("L" in vals and not is_cycle and g0 != 100 and groups.get(7) not in (411, 421)
-                and mgroups.get(5) != 66 and motion != 52):
-            raise _BlockError("L word with no canned cycle, G05.2, G10 or M66 to use it", "L")
+                and mgroups.get(5) != 66 and motion not in (52, 760)):
+            raise _BlockError("L word with no canned cycle, G05.2, G10, G76 or M66 to use it", "L")
         if is_cycle:
             for letter in axis_words:
                 if self.rotary[self.axis_index[letter]]:
                     raise _BlockError(f"cannot put an {letter} word in a canned cycle", letter)
-        if "H" in vals and groups.get(8) not in (430, 432):
-            raise _BlockError("H word with no G43 or G43.2 to use it", "H")
+        if "H" in vals and groups.get(8) not in (430, 432) and motion != 760:
+            raise _BlockError("H word with no G43, G43.2 or G76 to use it", "H")
 
         # ---- execute in RS274/NGC order
         after = len(self.out) - 1
@@ -1806,7 +1826,13 @@ class _Interpreter:
         if m11 is not None:              # M70-M73 before the block's own changes
             self.modal_memory(m11, line_no)
         if 15 in groups:
-            self.diameter = groups[15] == 70
+            diameter = groups[15] == 70
+            if motion == 760 and diameter != self.diameter:
+                # LinuxCNC scales a G76's I J K as the mode changes in its block (and halves them
+                # again in the cycle in G7): its arithmetic, kept so programs read the same
+                for letter in "IJK":
+                    vals[letter] *= 0.5 if diameter else 2.0
+            self.diameter = diameter
         if self.diameter and "X" in vals:
             # LinuxCNC halves X as it reads it in G7 and undoes that for a G8 in the same
             # block: every use of the word (motion, G10, G92, G28, cycles) takes the radius
@@ -1986,7 +2012,7 @@ class _Interpreter:
             mode = ("inverse time feed mode (G93)" if self.feed_mode == 930
                     else "feed per revolution mode (G95)")
             raise _BlockError(f"cannot probe ({_gname(motion)}) in {mode}: program G94 first", _gname(motion))
-        if motion is not None and motion != 0 and not axis_data:
+        if motion is not None and motion != 0 and motion not in _SYNCHRONISED and not axis_data:
             if self.feed_mode == 930:
                 if motion in _CYCLES:
                     raise _BlockError("cannot use inverse time feed (G93) with canned cycles", "G93")
@@ -2034,6 +2060,10 @@ class _Interpreter:
                 self.probe(motion, target, line_no)
             elif motion == 331:
                 self.rigid_tap(target, vals, scale, line_no)
+            elif motion == 330:
+                self.synchronised_feed(target, vals, scale, line_no)
+            elif motion == 760:
+                self.thread_cycle(target, vals, scale, line_no)
             elif motion in (0, 10):
                 self.straight(target, motion == 0, line_no)
             else:
@@ -2239,6 +2269,156 @@ class _Interpreter:
         finally:
             self.overrides_event(line_no, len(self.out) - 1, "G33.1: overrides as before the tap",
                                  kind=EventKind.TAPPING)
+            self.exact_stop = saved_stop
+
+    def synchronised_speed(self, name: str) -> float:
+        """The spindle speed (rpm) a G33 or G76 moves at: the spindle must turn (LinuxCNC's
+        rule), and at a speed, or the feed it gives would be 0."""
+        if self.spindle_dir == 0:
+            raise _BlockError(f"spindle not turning in {name} (M3 or M4 first)", name)
+        if self.spindle_rpm <= 0.0:
+            raise _BlockError(f"{name} with the spindle at S0: the feed, the pitch times the speed, "
+                              "would be 0", name)
+        return self.spindle_rpm
+
+    def synchronised_move(self, target: list[float], feed: float, line_no: int) -> None:
+        """A feed move of G33 or G76 at ``feed`` (mm/s), whatever F and the feed mode say."""
+        length = self.path_length(self.pos, target)
+        if length > _ZERO_LEN:
+            self.emit(target, _LINE, feed, length, None, line_no, fixed_feed=True)
+
+    def synchronised_feed(self, target: list[float], vals: dict[str, float], scale: float,
+                          line_no: int) -> None:
+        """G33 X Y Z K, LinuxCNC's spindle-synchronised motion: a straight move at the pitch K
+        (length per turn) times the spindle speed. Recorded in ``synchronised``: the machine,
+        whose spindle has no encoder, refuses to run it (a thread's passes would not meet)."""
+        rpm = self.synchronised_speed("G33")
+        if self.comp.side != 0:
+            raise _BlockError("cannot use G33 with cutter radius compensation on: program G40 first", "G33")
+        pitch = vals["K"] * scale
+        if pitch <= 0.0:
+            raise _BlockError(f"G33: the pitch K{vals['K']:g} must be above 0", "K")
+        if self.comp.busy:
+            self.comp.straight_done()
+        self.synchronised.append(SynchronisedMotion("G33", line_no))
+        self.synchronised_move(target, pitch * rpm / 60.0, line_no)
+
+    def thread_cycle(self, target: list[float], vals: dict[str, float], scale: float, line_no: int) -> None:
+        """G76 P I J K [R Q H E L], LinuxCNC 2.9's threading cycle (interp_convert.cc), in X and
+        Z from where the tool stands (the drive line): P the pitch; I the thread's offset from
+        the drive line (negative: an outside thread, positive: boring); J the first cut's depth
+        and K the thread's full depth; R the depth degression (the n-th pass cuts to
+        J n^(1/R)); Q the compound slide angle (degrees); H spring passes at full depth; E the
+        taper's length along Z, L which ends have it (1 entry, 2 exit, 3 both). Each pass goes
+        back to the drive line, rapid in to its depth, feeds along Z at the pitch times the
+        speed, and rapid out; the cycle ends with a rapid to the block's end point. In G7 I J K
+        are diameters. Recorded in ``synchronised``: the machine refuses to run it."""
+        rpm = self.synchronised_speed("G76")
+        if any(target[i] != self.pos[i] for i in self.rotary_idx):
+            raise _BlockError("cannot move rotary axes with G76", "G76")
+        if "X" not in self.axis_index or "Z" not in self.axis_index:
+            raise _BlockError(f"G76 threads along Z and cuts in X: this machine has no "
+                              f"{'X' if 'X' not in self.axis_index else 'Z'} axis", "G76")
+        if self.comp.side != 0:
+            raise _BlockError("cannot use the G76 threading cycle with cutter radius compensation on: "
+                              "program G40 first", "G76")
+        i_w, j_w, k_w = vals["I"], vals["J"], vals["K"]
+        if i_w == 0.0:
+            raise _BlockError("G76: I (the thread's offset from the drive line) must not be 0", "I")
+        if j_w <= 0.0:
+            raise _BlockError("G76: J (the first cut's depth) must be greater than 0", "J")
+        if k_w <= j_w:
+            raise _BlockError("G76: K (the full thread depth) must be greater than J", "K")
+        if vals["P"] <= 0.0:
+            raise _BlockError(f"G76: the pitch P{vals['P']:g} must be above 0", "P")
+        spring = vals.get("H", 0.0)
+        if spring != int(spring) or spring < 0.0:
+            raise _BlockError(f"G76: H{spring:g} (spring passes) must be a whole number of 0 or more", "H")
+        flags = vals.get("L", 0.0)
+        if flags != int(flags) or flags < 0.0:
+            raise _BlockError(f"G76: L{flags:g} (taper ends) must be a whole number of 0 or more", "L")
+        half = 0.5 if self.diameter else 1.0
+        i_mm, j_mm, k_mm = i_w * scale * half, j_w * scale * half, k_w * scale * half
+        ix, iz, iy = self.axis_index["X"], self.axis_index["Z"], self.axis_index.get("Y")
+        here, end = self.program_position(self.pos), self.program_position(target)
+        safe_x, start_z = here[ix], here[iz]
+        start_y = here[iy] if iy is not None else 0.0
+        boring = i_mm > 0.0
+        full_dia_depth = abs(i_mm)
+        cut_increment = abs(j_mm)
+        full_threadheight = abs(k_mm)
+        end_depth = full_threadheight + full_dia_depth
+        pitch = vals["P"] * scale
+        angle = vals.get("Q", 0.0)
+        angle = math.radians(0.0 if angle == -1.0 else angle)    # LinuxCNC reads Q-1 as no Q
+        if end[iz] > start_z:
+            angle = -angle
+        degression = vals.get("R", 1.0)
+        degression = max(degression, 1.0)
+        taper_dist = max(vals.get("E", 0.0) * scale, 0.0)
+        taper_pitch = (pitch * math.hypot(taper_dist, full_threadheight) / taper_dist if taper_dist > 0.0
+                       else pitch)
+        if end[iz] > start_z:
+            taper_dist = -taper_dist
+        entry_taper, exit_taper = int(flags) & 1, int(flags) & 2
+        target_z = end[iz] + full_threadheight * math.tan(angle)
+        # the passes' depths: J n^(1/R) below the first, then the full depth 1 + H times
+        depths = []
+        depth, n = full_dia_depth + cut_increment, 1
+        while depth < end_depth:
+            depths.append(depth)
+            if len(depths) > _MAX_CYCLE_MOVES // 6:
+                raise _BlockError(f"G76: J{j_w:g} to K{k_w:g} (R{degression:g}) makes more than "
+                                  f"{_MAX_CYCLE_MOVES // 6} passes", "J")
+            n += 1
+            depth = full_dia_depth + cut_increment * n ** (1.0 / degression)
+        if len(depths) + spring + 1 > _MAX_CYCLE_MOVES // 6:
+            raise _BlockError(f"G76: H{spring:g} makes more than {_MAX_CYCLE_MOVES // 6} passes", "H")
+        depths += [end_depth] * (int(spring) + 1)
+        off = self.offset
+        rotated = self.rotation != 0.0
+
+        def point(x: float, z: float) -> list[float]:
+            q = self.program_position(self.pos)
+            q[ix], q[iz] = x, z
+            if iy is not None:
+                q[iy] = start_y
+            out = list(self.pos)
+            if rotated and iy is not None:     # the XY rotation turns X (and Y) with the system
+                out[ix], out[iy] = self.machine_xy(q[ix], q[iy])
+            else:
+                out[ix] = q[ix] + off[ix]
+                if iy is not None:
+                    out[iy] = q[iy] + off[iy]
+            out[iz] = q[iz] + off[iz]
+            return out
+
+        sign = 1.0 if boring else -1.0
+        feed = pitch * rpm / 60.0
+        taper_feed = taper_pitch * rpm / 60.0
+        self.synchronised.append(SynchronisedMotion("G76", line_no))
+        saved_stop, self.exact_stop = self.exact_stop, True
+        try:
+            for depth in depths:
+                zoff = (depth - full_dia_depth) * math.tan(angle)
+                at_depth = safe_x + sign * depth
+                clear = safe_x + sign * (depth - end_depth)
+                top = safe_x + sign * (depth - full_threadheight)
+                self.straight(point(clear, start_z - zoff), True, line_no)            # back
+                if taper_dist and entry_taper:
+                    self.synchronised_move(point(top, start_z - zoff), taper_feed, line_no)       # in
+                    self.synchronised_move(point(at_depth, start_z - zoff - taper_dist), taper_feed,
+                                           line_no)                                          # angled in
+                else:
+                    self.straight(point(at_depth, start_z - zoff), True, line_no)     # in
+                if taper_dist and exit_taper:
+                    self.synchronised_move(point(at_depth, target_z - zoff + taper_dist), feed, line_no)
+                    self.synchronised_move(point(top, target_z - zoff), taper_feed, line_no)  # angled out
+                else:
+                    self.synchronised_move(point(at_depth, target_z - zoff), feed, line_no)   # over
+                self.straight(point(clear, target_z - zoff), True, line_no)          # out
+            self.straight(target, True, line_no)
+        finally:
             self.exact_stop = saved_stop
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,

@@ -36,6 +36,7 @@ __all__ = [
     "ProbeResult",
     "Program",
     "STOPPING_EVENTS",
+    "SynchronisedMotion",
     "arc_length_mm",
     "arc_param_at_length",
     "spiral_length_mm",
@@ -346,6 +347,15 @@ class Curve:
 
 
 @dataclass(frozen=True, slots=True)
+class SynchronisedMotion:
+    """A G33 move or G76 threading cycle: motion that LinuxCNC ties to the spindle's turning
+    (each pass of a thread must start at the same spindle angle)."""
+
+    code: str                 # "G33" or "G76"
+    line: int
+
+
+@dataclass(frozen=True, slots=True)
 class ProbeRequest:
     """One G38.2-G38.5 move of a program, as the interpreter read it."""
 
@@ -430,6 +440,9 @@ class Program:
     # G33.1: the index of each tap's move into the hole as read (the next move backs it out);
     # LinuxCNC writes the pair as one RIGID_TAP call
     taps: tuple[int, ...] = ()
+    # G33 and G76, in program order: read as LinuxCNC reads them, their feed moves at the pitch
+    # times the programmed speed; a machine whose spindle has no encoder refuses to run them
+    synchronised: tuple[SynchronisedMotion, ...] = ()
     # G05, G05.1, G05.2/G05.3: each curve, the arcs and lines it is run as; LinuxCNC writes it
     # as one NURBS_FEED call (moves as read: indexes into the interpreter's moves, before path
     # blending)

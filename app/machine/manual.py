@@ -14,6 +14,7 @@ import numpy as np
 from app.machine.errors import MachineError
 from app.machine.inputs import probe_refusal
 from app.machine.model import Activity, CommandResult, SpindleState
+from app.machine.spindle import synchronised_refusal
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
 from planner.lexer import LexError, compact
@@ -152,6 +153,9 @@ class ManualMotion:
         if issues:
             return self.m.states.refuse(action, f"soft limit: {issues[0].message}")
         _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
+        if why:
+            return self.m.states.refuse(action, why)
+        _, why = synchronised_refusal(prog)
         if why:
             return self.m.states.refuse(action, why)
         return prog, read

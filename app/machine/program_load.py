@@ -43,7 +43,7 @@ import numpy as np
 from app.background import Background
 from app.machine.inputs import probe_refusal
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue, SpindleState
-from app.machine.spindle import spin_up_waits
+from app.machine.spindle import spin_up_waits, synchronised_refusal
 from app.machine.timescale import PauseFeed, PausePoint, pause_points
 from app.program_lines import LineIndex
 from app.toolpath import build_toolpath
@@ -178,12 +178,16 @@ def check_text(
     finally:
         trim_heap()   # the reading's freed temporaries back to the system
     probe_cfg = getattr(req.cfg, "probe", None)
+    refusals = []
     if program.probes:
-        at, why = probe_refusal(program, getattr(probe_cfg, "drive", None),
-                                getattr(probe_cfg, "max_feed_mm_min", 0.0))
+        refusals.append((*probe_refusal(program, getattr(probe_cfg, "drive", None),
+                                        getattr(probe_cfg, "max_feed_mm_min", 0.0)), "G38"))
+    if program.synchronised:
+        refusals.append((*synchronised_refusal(program), program.synchronised[0].code))
+    for at, why, code in refusals:
         if why:
             line = text.split("\n", at)[at - 1].upper() if at > 0 else ""
-            col = line.find("G38") + 1 or 1
+            col = line.find(code) + 1 or 1
             return (ProgramIssue(at, col, why),), f"line {at}: {why}"
     if machine.planner.mode == "lookahead":
         # G64 P: the program of record is the blended one (preview, progress, resume and the

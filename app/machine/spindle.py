@@ -14,12 +14,27 @@ from app.machine.model import CommandResult, Severity, SpindleState
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
+    from planner.program import Program
 
-__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl", "spin_up_waits", "spins_up"]
+__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl", "spin_up_waits", "spins_up",
+           "synchronised_refusal"]
 
 # never below half: a slowed spindle under the same feed overloads the cutter
 OVERRIDE_MIN_PCT = 50.0
 OVERRIDE_MAX_PCT = 150.0
+
+
+def synchronised_refusal(program: Program) -> tuple[int, str]:
+    """Why this machine cannot run a program's spindle-synchronised motion (G33, G76), with its
+    line ((0, "") when it has none). Each pass of a thread must start at the same spindle angle;
+    this spindle is switched by a drive's digital outputs and has no encoder to give its angle,
+    so the passes would each cut a thread of their own. (G33.1 rigid tapping runs: it goes in
+    and back out once, and a floating tap holder takes up the difference.)"""
+    for motion in program.synchronised:
+        return motion.line, (f"{motion.code} is spindle-synchronised motion: every pass of a thread must "
+                             "start at the same spindle angle, and this machine's spindle has no encoder "
+                             "to give it; it cannot run here")
+    return 0, ""
 
 
 def spins_up(old: SpindleState, new: SpindleState) -> bool:

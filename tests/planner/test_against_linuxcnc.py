@@ -1,7 +1,7 @@
 """Random programs mixing tools (G43, G43.1, G10 L1/L10), offsets (G10 L2 with rotation, G54/G55,
 G92, G52, G53, G28/G30), cycles, subroutines, loops, conditions, parameters and expressions,
 modal memory (M70/M72), curves (G05, G05.1, G05.2/G05.3), cutter compensation (G41.1/G42.1
-and G41/G42 from the table), arcs in
+and G41/G42 from the table), threads (G76, G33), arcs in
 every plane with turns and absolute centres, inverse time, polar words, inch blocks, probes
 (G38.2/G38.3) and input reads (M66 L0), read by
 LinuxCNC's own interpreter (``rs274`` of Debian's linuxcnc-uspace 2.9.0~pre1) and by this one:
@@ -56,7 +56,7 @@ def programs(draw) -> str:
         ["line", "rapid", "arc", "inc", "tool", "offset", "g92", "cycle", "sub", "repeat", "comp",
          "inverse", "polar", "inch", "helix", "plane_arc", "g53", "g28", "g52", "params", "ifwhile",
          "modal", "g43_1", "comp_tool", "g10_tool", "absarc", "probe", "input", "plane_cycle",
-         "polar_cycle", "m98", "curve", "diameter", "overrides"]),
+         "polar_cycle", "m98", "curve", "diameter", "overrides", "thread"]),
         min_size=1, max_size=10))
     for kind in kinds:
         # no move to where the tool is: LinuxCNC writes one (a Program has none), and after G92
@@ -279,6 +279,16 @@ def programs(draw) -> str:
             goto()
             out.append("G49")
             goto()
+        elif kind == "thread":
+            # G76 from where the tool stands (offsets, rotation and G92 as they are), then a G33
+            nz = draw(st.integers(-30, 10).map(float))
+            if nz == z:
+                continue
+            words = [f"P{draw(st.sampled_from(['1', '1.5', '2']))}", f"Z{_n(nz)}",
+                     f"I{draw(st.sampled_from(['-1', '0.8']))}", "J0.2", "K0.9"]
+            words += draw(st.lists(st.sampled_from(["R1.5", "Q29.5", "H1", "E1 L3", "E0.5 L1"]),
+                                   max_size=2, unique=True))
+            out.append(f"M3 S400\nG76 {' '.join(draw(st.permutations(words)))}\nG33 Z{_n(z)} K1\nM5")
         elif kind == "diameter":
             # G7: X words are diameters, in every code that reads one, until G8
             d, dx = draw(val), draw(val)

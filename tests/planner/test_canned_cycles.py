@@ -201,7 +201,7 @@ def test_cycles_move_with_the_work_offset_and_inch_units() -> None:
     ("G21 F100\nG81 X1 Z-1 R1 L0\n", 2, 15, "whole number of 1 or more"),
     ("G21 F100\nG81 X1 Z-1 R1 L2.5\n", 2, 15, "whole number of 1 or more"),
     ("G21\nG81 X1 Z-1 R1\n", 2, 1, "feed rate is zero"),
-    ("G21 F100\nG1 X1 L2\n", 2, 7, "L word with no canned cycle, G05.2, G10 or M66"),
+    ("G21 F100\nG1 X1 L2\n", 2, 7, "L word with no canned cycle, G05.2, G10, G76 or M66"),
     ("G21 F100\nG1 X1 R2\n", 2, 7, "R word with no G02/G03 or canned cycle"),
     ("G21 F100 S100 M3\nG84 X1 Z-1 R1 Q1\n", 2, 15, "Q word with no code that uses it"),
     ("G21 F100 S100\nG84 X1 Z-1 R1\n", 2, 1, "spindle not turning in G84"),

@@ -53,6 +53,18 @@ def test_a_probing_program_says_its_path_assumes_the_result(capsys, tmp_path):
     assert run_json(capsys, FIG9)["probes"] == []
 
 
+def test_a_threading_program_says_the_machine_refuses_to_run_it(capsys, tmp_path):
+    prog = tmp_path / "thread.ngc"
+    prog.write_text("G21 M3 S500\nG0 X10 Z5\nG76 P1.5 Z-20 I-1 J0.1 K0.9\nG0 Z5\nG33 Z-2 K1\nM2\n")
+    rep = run_json(capsys, prog)
+    assert rep["synchronised"] == [{"line": 3, "code": "G76"}, {"line": 5, "code": "G33"}]
+    assert rep["ok"] is True and rep["moves"] == 1 + 9 * 4 + 1 + 1
+    assert main([str(prog)]) == 0
+    assert ("spindle-synchronised motion (G76 at 3, G33 at 5): planned at the pitch times the programmed "
+            "speed; the machine refuses to run it" in capsys.readouterr().out)
+    assert run_json(capsys, FIG9)["synchronised"] == []
+
+
 def test_limits_mode_interp_and_ts_flags(capsys):
     slow = run_json(capsys, FIG9, "--vmax", 10, "--amax", 500, "--jmax", 5000, "--ts", 0.002)
     assert slow["tangential"]["v"] <= 10 + 1e-9 and slow["ts_s"] == 0.002

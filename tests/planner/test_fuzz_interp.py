@@ -138,6 +138,11 @@ token = st.one_of(
             "#5399",
             "G33.1 K1",
             "G33.1",
+            "G33 K1.5",
+            "G76 P1.5 I-1 J0.1 K0.9",
+            "G76 P2 I1 J0.2 K1.2 R1.5 Q29.5 H1 E1 L3",
+            "E2",
+            "G7",
             "I2",
             # spindle modes, polar steps of repeated cycles
             "G96 S100",

@@ -139,11 +139,11 @@ def test_g90_1_absolute_and_g91_1_incremental_centres():
     assert back.center == pytest.approx((0, 10))
 
 
-def test_g94_and_g93_accepted_g76_rejected():
+def test_g94_and_g93_accepted_g87_rejected():
     assert len(P("G94 G1 X1 F10").moves) == 1
     assert len(P("G93 G1 X1 F10").moves) == 1
-    with pytest.raises(ProgramError, match="G76 is not supported"):
-        P("G76 X1 Z-1")
+    with pytest.raises(ProgramError, match="G87 is not supported"):
+        P("G87 X1 Z-1 R1 I1 J1 K1 F10")
 
 
 def _machine_with_offsets() -> MachineSpec:

@@ -49,11 +49,14 @@ def errors_of(text: str, **kw):
         ("G1 F60\nG2 X1 I0.5 P20000", "more than 10000 turns", 2, 12),
         # codes
         ("G5.4 X1", "unknown G code G5.4", 1, 1),
-        ("G76 X1 Z-1", "G76 is not supported (G76 threading cycle)", 1, 1),
+        ("G76 X1 Z-1", "G76 needs a P word (the thread pitch, length per turn)", 1, 1),
+        ("M3 S100\nG76 X1 Z-1 P1 I-1 K1", "G76 needs I, J and K words (the thread's offset, first cut "
+         "and depth): J missing", 2, 1),
+        ("M3 S100\nG76 Z-1 P1 I-1 J0 K1", "G76: J (the first cut's depth) must be greater than 0", 2, 16),
+        ("G1 X1 E2 F10", "E word with no G33, G33.1 or G76 to use it", 1, 7),
         ("G81 X1 Z-1 R1", "feed rate is zero", 1, 1),
         ("G91 F10\nG38.2 Z0", "G38.2: start point too close to probe point", 2, 1),
-        ("G33 X1 K1", "G33 is not supported (G33 spindle-synchronised motion: this spindle has no "
-         "encoder)", 1, 1),
+        ("G33 X1 K1", "spindle not turning in G33 (M3 or M4 first)", 1, 1),
         ("G41.1", "G41.1 needs a D word (the tool diameter)", 1, 1),
         ("G1.5 X1", "unknown G code G1.5", 1, 1),
         ("M98 P3", "M98 P3: no O3 in this program", 1, 1),
@@ -67,13 +70,13 @@ def errors_of(text: str, **kw):
         # words
         ("G0 B5", "axis B is not on this machine (axes: X Y Z)", 1, 4),
         ("G0 U5", "axis U is not on this machine", 1, 4),
-        ("G0 L5", "L word with no canned cycle, G05.2, G10 or M66 to use it", 1, 4),
+        ("G0 L5", "L word with no canned cycle, G05.2, G10, G76 or M66 to use it", 1, 4),
         ("X1", "axis words without a motion mode", 1, 1),
         ("G1 X1 F60 I1", "I word with no G02/G03, G05 or G05.1 to use it", 1, 11),
         ("G1 X1 F60 R1", "R word with no G02/G03 or canned cycle to use it", 1, 11),
         ("G1 X1 F60 P1", "P word with no G code that uses it", 1, 11),
         ("G1 X1 F60 D1", "D word with no G41, G41.1, G42, G42.1 or G96 to use it", 1, 11),
-        ("G1 X1 F60 H1", "H word with no G43 or G43.2 to use it", 1, 11),
+        ("G1 X1 F60 H1", "H word with no G43, G43.2 or G76 to use it", 1, 11),
         ("S-5", "negative spindle speed", 1, 1),
         ("T1.5", "whole number >= 0", 1, 1),
         ("G1 X1 Y1 X2 F60", "two X words in one block", 1, 4),

@@ -50,7 +50,7 @@ def test_m66_with_the_machine_s_values_and_a_timeout() -> None:
     ("M66 P1 L5 Q1\n", "L5", "the wait mode is 0 (now), 1 (rise), 2 (fall), 3 (high) or 4 (low)"),
     ("M66 E0 L0\n", "E0", "no analog inputs"),
     ("G1 F100 G41.1 D2 X10\nM66 P0 L0\n", "M66", "cutter radius compensation on"),
-    ("M62 P1 L0\n", "L0", "L word with no canned cycle, G05.2, G10 or M66"),
+    ("M62 P1 L0\n", "L0", "L word with no canned cycle, G05.2, G10, G76 or M66"),
 ])
 def test_m66_refusals_name_the_place(text: str, col_word: str, reason: str) -> None:
     with pytest.raises(ProgramError) as info:

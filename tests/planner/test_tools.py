@@ -117,7 +117,7 @@ def test_the_work_position_subtracts_the_tool_offset_like_linuxcncs_relative_dro
     ("G1 G43.1 Z1 F100\n", "t.nc:1:4: error: cannot use two G codes that both use axis values"),
     ("G43.2\n", "t.nc:1:1: error: G43.2 needs an H word or axis words"),
     ("G43 H1.5\n", "t.nc:1:5: error: tool number H1.5 must be a whole number"),
-    ("H1\n", "t.nc:1:1: error: H word with no G43 or G43.2"),
+    ("H1\n", "t.nc:1:1: error: H word with no G43, G43.2 or G76"),
     ("Q1\n", "t.nc:1:1: error: Q word with no code that uses it"),
 ])
 def test_tool_mistakes_are_refused_at_their_word(text: str, where: str) -> None:
