@@ -52,6 +52,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--ts", type=float, default=None, help="sample period, s (default 0.001)")
     p.add_argument("--mode", choices=PLANNER_MODES, default=None, help="joint speeds (default lookahead)")
     p.add_argument("--interp", choices=INTERPOLATIONS, default=None, help="interpolation (default exact)")
+    p.add_argument("--block-delete", action="store_true",
+                   help="skip lines starting with '/' (the block delete switch on; off by default, as in "
+                        "LinuxCNC)")
     p.add_argument("--config", help="machine configuration TOML")
     p.add_argument("--tools", help="tool table in LinuxCNC's .tbl format (T1 P1 Z12.5 D6 ;comment); "
                                    "without it every tool number is accepted with zero offsets")
@@ -338,7 +341,8 @@ def main(argv: list[str] | None = None) -> int:
                 from planner.tools import read_tbl
 
                 tools = read_tbl(args.tools)
-            program = parse_file(args.program, machine, tools=tools, tool_in_spindle=args.tool)
+            program = parse_file(args.program, machine, tools=tools, tool_in_spindle=args.tool,
+                                 block_delete=args.block_delete)
             parse_s = time.perf_counter() - started
             if args.config:
                 # the machine's travel, checked on the whole path as the controller does

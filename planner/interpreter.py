@@ -3126,7 +3126,7 @@ def parse_program(
     machine=None,
     start_position=None,
     *,
-    block_delete: bool = True,
+    block_delete: bool = False,
     max_errors: int = MAX_ERRORS,
     tools: ToolTable | None = None,
     tool_in_spindle: int = 0,
@@ -3142,7 +3142,8 @@ def parse_program(
 
     ``machine``: a planner.machine.MachineSpec (axes, work offsets); default 3-axis XYZ.
     ``start_position``: machine position before the first move (default all zeros).
-    ``block_delete``: lines starting with '/' are skipped (switch on) or run (off).
+    ``block_delete``: the operator's block delete switch: lines starting with '/' are skipped
+    (on) or run (off, as LinuxCNC starts and as rs274 reads).
     ``tools``: the tool table (None: any tool number, all offsets 0, as LinuxCNC's reference
     runs); ``tool_in_spindle``: the tool loaded when the program starts (G43 without H uses it);
     ``spindle``: (direction, rpm) when it starts (an S word alone then changes a running spindle).

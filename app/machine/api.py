@@ -57,7 +57,7 @@ class MachineApi(Protocol):
     speedChanged: SignalInstance  # commanded path speed mm/s
     overridesChanged: SignalInstance  # (feed %, rapid %)
     feedOverrideNote: SignalInstance  # what the feed override does here when not its value ("" when it is)
-    modesChanged: SignalInstance  # (single block, optional stop)
+    modesChanged: SignalInstance  # (single block, optional stop, block delete)
     alarmsChanged: SignalInstance  # tuple[Alarm, ...] (active and history)
     homedChanged: SignalInstance  # tuple[bool, ...] per axis
     offsetsChanged: SignalInstance  # (dict name -> tuple per axis, active name)
@@ -192,6 +192,11 @@ class MachineApi(Protocol):
     @property
     def optional_stop(self) -> bool:
         """Optional stop (M01) honoured."""
+        ...
+
+    @property
+    def block_delete(self) -> bool:
+        """Block delete: lines starting with '/' skipped."""
         ...
 
     @property
@@ -338,6 +343,11 @@ class MachineApi(Protocol):
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         """Honour M01 (optional pause); may change while running."""
+        ...
+
+    def set_block_delete(self, on: bool) -> CommandResult:
+        """Skip lines starting with '/'; refused while a program runs (it is read whole before
+        it runs), a loaded program checked again with it."""
         ...
 
     def approach_preview(self, line: int) -> Any:

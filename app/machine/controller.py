@@ -140,7 +140,7 @@ class MachineController(QObject):
     # what the feed override does where the run is, when not what the knob says ("runs 100 %:
     # program" where a tap or M49 turned it off, "runs 120 %: limits" where they cap it; "")
     feedOverrideNote = Signal(str)
-    modesChanged = Signal(bool, bool)  # (single block, optional stop)
+    modesChanged = Signal(bool, bool, bool)  # (single block, optional stop, block delete)
     alarmsChanged = Signal(object)  # tuple[Alarm, ...] (active and history)
     homedChanged = Signal(object)  # tuple[bool, ...] per axis
     offsetsChanged = Signal(object, str)  # (dict name -> tuple per axis, active name)
@@ -316,6 +316,11 @@ class MachineController(QObject):
         return self.run.optional_stop
 
     @property
+    def block_delete(self) -> bool:
+        """Block delete: lines starting with '/' skipped."""
+        return self.run.block_delete
+
+    @property
     def spindle(self) -> SpindleState:
         """Spindle state."""
         return self.spindle_ctl.spindle
@@ -368,6 +373,7 @@ class MachineController(QObject):
             rapid_override_pct=self.run.rapid_pct,
             single_block=self.run.single_block,
             optional_stop=self.run.optional_stop,
+            block_delete=self.run.block_delete,
             spindle=self.spindle_ctl.spindle,
             alarms=tuple(self.alarm_log.alarms),
             bus=self.poller.bus_status,
@@ -474,6 +480,9 @@ class MachineController(QObject):
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         return self.run.set_optional_stop(on)
+
+    def set_block_delete(self, on: bool) -> CommandResult:
+        return self.run.set_block_delete(on)
 
     def approach_preview(self, line: int) -> Any:
         return self.run.approach_preview(line)

@@ -142,7 +142,7 @@ class ManualMotion:
             start_position=self.m.states.machine_pos(), tools=self.m.tools.table,
             tool_in_spindle=self.m.tools.in_spindle,
             spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
-            parameters=dict(self.m.pos.parameters))
+            parameters=dict(self.m.pos.parameters), block_delete=self.m.run.block_delete)
         try:
             prog = read()
         except ProgramError as exc:

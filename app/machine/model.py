@@ -244,6 +244,7 @@ class ControllerSnapshot:
     rapid_override_pct: float
     single_block: bool
     optional_stop: bool
+    block_delete: bool
     spindle: SpindleState
     alarms: tuple[Alarm, ...]
     bus: BusStatus

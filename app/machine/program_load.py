@@ -91,6 +91,7 @@ class LoadRequest:
     # the spindle when the program starts and its spin-up time: the cycle time counts the waits
     spindle: SpindleState = field(default_factory=SpindleState)
     spin_up_s: float = 0.0
+    block_delete: bool = False   # the operator's switch: lines starting with '/' skipped
     # ProgramInfo, or (issues, reason) for a refused program; None while running / cancelled
     outcome: ProgramInfo | tuple[tuple[ProgramIssue, ...], str] | None = None
     finished: bool = False  # applied in the controller's thread (or dropped)
@@ -163,13 +164,15 @@ def check_text(
         values of the inputs (M66)."""
         again = parse_program(text, name, machine=machine, start_position=req.start_position,
                               tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                              parameters=req.parameters, probe_results=probes, input_results=waits)
+                              parameters=req.parameters, probe_results=probes, input_results=waits,
+                              block_delete=req.block_delete)
         return blend_program(again, machine) if machine.planner.mode == "lookahead" else again
 
     try:
         program = parse_program(text, name, machine=machine, start_position=req.start_position,
                                 tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]))
+                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]),
+                                block_delete=req.block_delete)
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
@@ -283,6 +286,7 @@ class ProgramLoader:
         self._let_go_of = False  # a program was let go by the load starting (its pages not yet trimmed)
         self._program_cfg: object = None  # configuration and offsets the program was checked with
         self._program_offsets: dict[str, tuple[float, ...]] = {}
+        self._program_block_delete = False
         self._program_parameters: dict[int, float] = {}
         self._program_tools: tuple[ToolTable, int] | None = None
         self.run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
@@ -424,6 +428,7 @@ class ProgramLoader:
             parameters=dict(self.m.pos.parameters),
             spindle=self.m.spindle_ctl.spindle,
             spin_up_s=float(self.m.config.controller.spindle_spinup_s),
+            block_delete=self.m.run.block_delete,
         )
 
     def _supersede_load(self) -> None:
@@ -507,6 +512,7 @@ class ProgramLoader:
         self.program_info = info
         self._program_cfg = req.cfg  # what the program and its plan were made for
         self._program_offsets = dict(req.offsets)
+        self._program_block_delete = req.block_delete
         self._program_parameters = dict(req.parameters)
         self._program_tools = (req.tools, req.tool_in_spindle)
         self._program_text = info.text
@@ -551,6 +557,8 @@ class ProgramLoader:
             return "the tool table changed since it was loaded"
         if self._program_tools[1] != self.m.tools.in_spindle:
             return "another tool is in the spindle since it was loaded"
+        if self._program_block_delete != self.m.run.block_delete:
+            return "block delete was switched since it was loaded"
         start = np.asarray(info.program.start_position)  # type: ignore[attr-defined]
         if np.max(np.abs(start - self.m.states.machine_pos()), initial=0.0) > 1e-6:
             return "the machine moved since it was loaded"

@@ -53,6 +53,9 @@ class ProgramRunner:
         self.rapid_pct = 100.0
         self.single_block = False
         self.optional_stop = False
+        # lines starting with '/' skipped; off as LinuxCNC starts. The program is read whole
+        # before it runs, so the switch changes the program loaded: it is read again
+        self.block_delete = False
         self.resume_point: ResumePoint | None = None
         self.start_pending = False  # cycle start pressed while the program is checked again
         self.pending_line = 0       # ... or run from this line
@@ -262,7 +265,7 @@ class ProgramRunner:
             and self.m.loader.load_request is None
         ):
             self.m.loader.start_run_plan(True)  # ready by the time cycle start is pressed
-        self.m.modesChanged.emit(self.single_block, self.optional_stop)
+        self.m.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
         if self.m.stream.job is not None and self.m.stream.job.kind is Activity.PROGRAM:
             self.m.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
         return self.m.states.ok("set_single_block")
@@ -270,8 +273,27 @@ class ProgramRunner:
     def set_optional_stop(self, on: bool) -> CommandResult:
         """Honour M01 (optional pause); may change while running."""
         self.optional_stop = bool(on)
-        self.m.modesChanged.emit(self.single_block, self.optional_stop)
+        self.m.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
         return self.m.states.ok("set_optional_stop")
+
+    def set_block_delete(self, on: bool) -> CommandResult:
+        """Block delete: lines starting with '/' are skipped (on) or run (off). The program is
+        read whole before it runs, so the switch cannot change a run under way: refused while a
+        program or MDI runs or holds. A loaded program is checked again with it (the preview
+        then shows the path it gives), as after an offset change."""
+        on = bool(on)
+        if on == self.block_delete:
+            return self.m.states.ok("set_block_delete")
+        if self.m.stream.job is not None:
+            self.m.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
+            return self.m.states.refuse("set_block_delete", "block delete changes which lines the program "
+                                        "has: switch it before cycle start, not during a run")
+        self.block_delete = on
+        self.m.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
+        loader = self.m.loader
+        if loader.program_info is not None and loader.load_request is None:
+            loader.recheck_program(wait=False)
+        return self.m.states.ok("set_block_delete")
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         """Start the loaded program at source line ``line``: a safe approach (up to the restart

@@ -45,6 +45,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     p.add_argument("--feed-override", type=float, default=100.0, help="feed override in %% (0-200)")
     p.add_argument("--optional-stop", action="store_true", help="honour M01")
+    p.add_argument("--block-delete", action="store_true", help="skip lines starting with '/'")
     p.add_argument("--state-dir", help="state directory (default: a temporary one)")
     p.add_argument("--worker", choices=("process", "thread", "manual"), default="process",
                    help="worker mode (default: its own real-time process)")
@@ -150,6 +151,7 @@ def main(argv: list[str] | None = None) -> int:
             if not res:
                 print(f"cnc-run: {res.reason}", file=sys.stderr)
                 return 2
+        ctl.set_block_delete(args.block_delete)   # before the load: it decides which lines it has
         res = ctl.load_program(Path(args.program), wait=True)
         if not res:
             for e in errors or [res.reason]:

@@ -132,7 +132,7 @@ class StatusPoller:
         self.m.homedChanged.emit(tuple(self.m.pos.homed))
         self.m.offsetsChanged.emit(dict(self.m.pos.offsets), self.m.pos.active_offset)
         self.m.overridesChanged.emit(self.m.run.feed_pct, self.m.run.rapid_pct)
-        self.m.modesChanged.emit(self.m.run.single_block, self.m.run.optional_stop)
+        self.m.modesChanged.emit(self.m.run.single_block, self.m.run.optional_stop, self.m.run.block_delete)
         self.m.spindleChanged.emit(self.m.spindle_ctl.spindle)
         self.m.alarmsChanged.emit(tuple(self.m.alarm_log.alarms))
         self.last_emit_pos = ()

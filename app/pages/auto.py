@@ -100,6 +100,7 @@ class AutoPage(QWidget):
         self.optional_stop.clicked.connect(lambda on: c.set_optional_stop(on))
         grid.addWidget(self.single_block, 2, 0)
         grid.addWidget(self.optional_stop, 2, 1)
+        self._block_delete = False   # switched on the Program page, beside the lines it skips
         self.run_from = QPushButton()
         i18n.bind(self.run_from, N_("Run from line…"))
         self.run_from.clicked.connect(self.run_from_line)
@@ -168,7 +169,7 @@ class AutoPage(QWidget):
         context.program.changed.connect(self._on_program_model)
         i18n.languageChanged.connect(lambda _l: self._update_info())
         self._on_overrides(c.feed_override_pct, c.rapid_override_pct)
-        self._on_modes(c.single_block, c.optional_stop)
+        self._on_modes(c.single_block, c.optional_stop, c.block_delete)
         self.backplot.set_toolpath(context.program.toolpath)
         if c.program_info is not None:
             self._on_loaded(c.program_info)
@@ -285,9 +286,11 @@ class AutoPage(QWidget):
         self.feed.set_value(feed)
         self.rapid.set_value(rapid)
 
-    def _on_modes(self, single_block: bool, optional_stop: bool) -> None:
+    def _on_modes(self, single_block: bool, optional_stop: bool, block_delete: bool) -> None:
         self.single_block.setChecked(single_block)
         self.optional_stop.setChecked(optional_stop)
+        self._block_delete = block_delete
+        self._update_info()
 
     def _on_spindle(self, spindle: object) -> None:
         self._spindle = spindle
@@ -339,6 +342,9 @@ class AutoPage(QWidget):
         text = tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
             self._line, 100 * self._fraction, format_duration(self._remaining), format_speed(self._speed))
         # the end of a run or a refusal takes the second line's place: the page never grows
+        if self._block_delete:       # what runs is not every line shown
+            first, second = text.split("\n", 1)
+            text = first + "   " + tr("/ lines skipped") + "\n" + second
         note = self._refused or self._finished
         if note:
             text = text.split("\n")[0] + "\n" + note

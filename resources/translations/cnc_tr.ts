@@ -626,6 +626,16 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>İsteğe bağlı duruş</translation>
     </message>
     <message>
+      <location filename="../../app/pages/auto.py" line="352" />
+      <source>/ lines skipped</source>
+      <translation>/ satırları atlanıyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="64" />
+      <source>Block delete (/)</source>
+      <translation>Blok atlama (/)</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/status_header.py" line="20" />
       <source>Optional stop (M1)</source>
       <translation>İsteğe bağlı duruş (M1)</translation>

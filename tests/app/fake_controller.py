@@ -51,7 +51,7 @@ class FakeController(QObject):
     speedChanged = Signal(float)
     overridesChanged = Signal(float, float)
     feedOverrideNote = Signal(str)
-    modesChanged = Signal(bool, bool)
+    modesChanged = Signal(bool, bool, bool)
     alarmsChanged = Signal(object)
     homedChanged = Signal(object)
     offsetsChanged = Signal(object, str)
@@ -84,6 +84,7 @@ class FakeController(QObject):
         self.rapid_override_pct = 100.0
         self.single_block = False
         self.optional_stop = False
+        self.block_delete = False
         self.spindle = SpindleState()
         self.tool_table = ToolTable()
         self.tool_in_spindle = 0
@@ -115,7 +116,8 @@ class FakeController(QObject):
             line=self.current_line, progress=self.progress[0], remaining_s=self.progress[1],
             path_speed_mm_s=0.0, feed_override_pct=self.feed_override_pct,
             rapid_override_pct=self.rapid_override_pct, single_block=self.single_block,
-            optional_stop=self.optional_stop, spindle=self.spindle, alarms=self.alarms, bus=self.bus_status)
+            optional_stop=self.optional_stop, block_delete=self.block_delete, spindle=self.spindle,
+            alarms=self.alarms, bus=self.bus_status)
 
     @property
     def axes(self) -> tuple[str, ...]:
@@ -213,13 +215,18 @@ class FakeController(QObject):
 
     def set_single_block(self, on: bool) -> CommandResult:
         self.single_block = on
-        self.modesChanged.emit(self.single_block, self.optional_stop)
+        self.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
         return self._ok("set_single_block", on)
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         self.optional_stop = on
-        self.modesChanged.emit(self.single_block, self.optional_stop)
+        self.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
         return self._ok("set_optional_stop", on)
+
+    def set_block_delete(self, on: bool) -> CommandResult:
+        self.block_delete = on
+        self.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
+        return self._ok("set_block_delete", on)
 
     def approach_preview(self, line: int):
         self.calls.append(("approach_preview", line))

@@ -358,6 +358,18 @@ def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> N
     assert [label.text()[0] for label in window.header.dro.axis_labels] == ["Y", "Z", "C", "A"]
 
 
+def test_block_delete_is_switched_on_the_program_page_and_shown_on_the_auto_page(
+        fake_window, fake_controller) -> None:
+    program, auto = fake_window.page("program"), fake_window.page("auto")
+    assert not program.block_delete.isChecked() and "/ lines skipped" not in auto.info_label.text()
+    program.block_delete.click()
+    assert fake_controller.calls[-1] == ("set_block_delete", True) and program.block_delete.isChecked()
+    assert "/ lines skipped" in auto.info_label.text().split("\n")[0]
+    fake_controller.modesChanged.emit(False, False, False)     # refused, or switched elsewhere
+    assert not program.block_delete.isChecked() and "/ lines skipped" not in auto.info_label.text()
+    assert program.block_delete.text() == "Block delete (/)"
+
+
 def test_auto_page_shows_spindle_feed_tool_modal_codes_and_the_prompt(fake_window, fake_controller) -> None:
     from app.machine.model import HoldKind, MachineState, Prompt, RunSummary, SpindleState
     from planner.tools import Tool

@@ -947,3 +947,43 @@ def test_g64_p_corners_are_blended_and_run_to_the_exact_end(ctl: MachineControll
     assert s.completed
     np.testing.assert_array_equal(ctl.reference_position, (85.0, 0.35 * (8 % 2), 0.0))
     assert_within_limits(s.limits)
+
+
+def test_block_delete_is_off_as_linuxcnc_starts_and_reads_the_program_again_when_switched(
+        ctl: MachineController) -> None:
+    """Lines starting with '/' run until the operator switches block delete on; the loaded
+    program is then checked again without them (its path, its moves), and a switch during a
+    run is refused with the reason, the run keeping the lines it was read with."""
+    modes: list[tuple[bool, bool, bool]] = []
+    ctl.modesChanged.connect(lambda *m: modes.append(m))
+    text = "G1 X5 F1800\n/G1 Y20\nG1 X10\nM30\n"
+    assert not ctl.block_delete
+    assert ctl.load_program(text, wait=True)
+    assert ctl.program_info is not None and ctl.program_info.move_count == 3
+    assert ctl.set_block_delete(True)
+    assert modes[-1] == (False, False, True) and ctl.snapshot().block_delete
+    assert ctl.loader.wait_loaded()
+    assert ctl.program_info is not None and ctl.program_info.move_count == 2
+    assert ctl.cycle_start()
+    refused = ctl.set_block_delete(False)
+    assert not refused and "before cycle start" in refused.reason
+    assert ctl.block_delete and modes[-1] == (False, False, True)
+    run_to_idle(ctl)
+    np.testing.assert_array_equal(ctl.reference_position, (10.0, 0.0, 0.0))   # Y20 skipped
+    assert ctl.set_block_delete(False)
+    assert ctl.loader.wait_loaded() and ctl.program_info.move_count == 3
+    assert ctl.mdi("/G0 X0") and not ctl.block_delete
+    run_to_idle(ctl)
+    assert ctl.reference_position[0] == 0.0
+
+
+def test_block_delete_switched_while_a_program_is_checked_is_caught_at_cycle_start(
+        ctl: MachineController) -> None:
+    text = "G1 X5 F1800\n/G1 Y20\nG1 X10\nM30\n"
+    assert ctl.load_program(text)                 # checked in the background
+    assert ctl.set_block_delete(True)             # meanwhile: that check read the '/' line
+    assert ctl.loader.wait_loaded()
+    assert ctl.loader.program_stale() == "block delete was switched since it was loaded"
+    assert ctl.cycle_start(wait=True)             # checked again first, then run
+    run_to_idle(ctl)
+    np.testing.assert_array_equal(ctl.reference_position, (10.0, 0.0, 0.0))

@@ -53,6 +53,13 @@ def test_a_probing_program_says_its_path_assumes_the_result(capsys, tmp_path):
     assert run_json(capsys, FIG9)["probes"] == []
 
 
+def test_block_delete_is_off_unless_asked_as_in_linuxcnc(capsys, tmp_path):
+    prog = tmp_path / "skip.ngc"
+    prog.write_text("G21 G1 X5 F600\n/G1 Y20\nG1 X10\nM2\n")
+    assert run_json(capsys, prog)["moves"] == 3
+    assert run_json(capsys, prog, "--block-delete")["moves"] == 2
+
+
 def test_a_threading_program_says_the_machine_refuses_to_run_it(capsys, tmp_path):
     prog = tmp_path / "thread.ngc"
     prog.write_text("G21 M3 S500\nG0 X10 Z5\nG76 P1.5 Z-20 I-1 J0.1 K0.9\nG0 Z5\nG33 Z-2 K1\nM2\n")

@@ -42,10 +42,11 @@ def test_number_forms(text, value):
 
 def test_line_numbers_block_delete_comments_percent():
     text = "%\nN10 G0 X1 (comment) Y2 ; rest\n/G0 X99\nN20 G0 X3 (a)(b)\n%\nG0 X1000\n"
-    e = ends(text)
+    # the block delete switch on: the '/' line is skipped
+    e = ends(text, block_delete=True)
     np.testing.assert_array_equal(e, [[1, 2, 0], [3, 2, 0]])
-    # block delete switch off: the '/' line runs
-    e = ends(text, block_delete=False)
+    # off, as LinuxCNC starts and as rs274 reads: the '/' line runs
+    e = ends(text)
     np.testing.assert_array_equal(e[:, 0], [1, 99, 3])
 
 
