@@ -264,6 +264,8 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
     # programmed end point, #5070 = 0 (the run reads the rest again with the machine's result)
     probes = [{"line": p.line, "code": p.name, "assumed": not p.known} for p in program.probes]
     synchronised = [{"line": s.line, "code": s.code} for s in program.synchronised]
+    analog = [{"line": a.line, "code": a.code, "index": a.index, "value": a.value}
+              for a in program.analog_outputs]
     if not args.json:
         print(f"{program.name}: {len(program.moves)} moves, cycle time {summary.cycle_time_s:.3f} s, "
               f"{summary.n_samples} samples, plan {summary.plan_s * 1e3:.1f} ms")
@@ -276,6 +278,10 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
             lines = ", ".join(f"{s['code']} at {s['line']}" for s in synchronised)
             print(f"{program.name}: spindle-synchronised motion ({lines}): planned at the pitch times "
                   "the programmed speed; the machine refuses to run it (its spindle has no encoder)")
+        if analog:
+            lines = ", ".join(f"{a['code']} at {a['line']}" for a in analog)
+            print(f"{program.name}: analog outputs ({lines}): read; the machine refuses to run them (its "
+                  "drives' outputs are digital)")
         return 0
     report = summary.report
     assert report is not None
@@ -306,6 +312,7 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
         "ok": report.ok,
         "probes": probes,
         "synchronised": synchronised,
+        "analog_outputs": analog,
     }
     # one string through the C encoder per piece: json.dump writes piece by piece in Python
     # (1.7 s for the 35,000 moves of the sphere finishing program against 0.1 s); the move

@@ -59,6 +59,7 @@ from planner.program import (
     FEED_HOLD_DEFERRED,
     FEED_OVERRIDE_OFF,
     SPINDLE_OVERRIDE_OFF,
+    AnalogOutput,
     Arc,
     Curve,
     Event,
@@ -176,12 +177,10 @@ def system_base(code: int) -> int:
     """#5221 for G54, #5241 for G55 ... #5381 for G59.3."""
     return 5221 + 20 * _SYSTEMS.index(code)
 _M_GROUP = {0: 4, 1: 4, 2: 4, 30: 4, 6: 6, 61: 6, 3: 7, 4: 7, 5: 7, 7: 8, 8: 8, 9: 8,
-            62: 5, 63: 5, 64: 5, 65: 5, 66: 5, 70: 11, 71: 11, 72: 11, 73: 11,
+            62: 5, 63: 5, 64: 5, 65: 5, 66: 5, 67: 5, 68: 5, 70: 11, 71: 11, 72: 11, 73: 11,
             48: 9, 49: 9, 50: 9, 51: 9, 52: 9, 53: 9,
             **dict.fromkeys(range(100, 200), 10)}
 _M_UNSUPPORTED = {19: "M19 orients the spindle, which this machine's spindle cannot",
-                  67: "M67 sets an analog output synchronised with motion; there are no analog outputs",
-                  68: "M68 sets an analog output; there are no analog outputs",
                   60: "M60 exchanges pallets and pauses; this machine has no pallet shuttle"}
 _WORD_LETTERS = set("FSTPQRIJKDHL")
 _AXIS_LETTERS = "XYZABC"
@@ -435,6 +434,7 @@ class _Interpreter:
         self.sub_places: dict[tuple[str, str], int] = {}   # (file, sub label) -> the sub defined: its line
         self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
         self.synchronised: list[SynchronisedMotion] = []   # G33, G76
+        self.analog_outputs: list[AnalogOutput] = []       # M67, M68
         # G05: the first control point's offset when I and J are left out, -P and -Q of the G05
         # before (program units; LinuxCNC keeps them in its canned cycles' I and J)
         self.spline_ij = (0.0, 0.0)
@@ -1571,6 +1571,7 @@ class _Interpreter:
             taps=tuple(self.taps),
             splines=tuple(self.splines),
             synchronised=tuple(self.synchronised),
+            analog_outputs=tuple(self.analog_outputs),
         )
 
     # ------------------------------------------------------------------ one block
@@ -1765,10 +1766,11 @@ class _Interpreter:
             raise _BlockError(
                 "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
             )
-        if "E" in vals and motion not in _SYNCHRONISED:   # G76: the taper; G33, G33.1 ignore it
+        # G76: the taper; G33, G33.1 ignore it; M67, M68: the analog output
+        if "E" in vals and motion not in _SYNCHRONISED and mgroups.get(5) not in (67, 68):
             if mgroups.get(5) == 66:
                 raise _BlockError("M66 E (an analog input): this machine has no analog inputs", "E")
-            raise _BlockError("E word with no G33, G33.1 or G76 to use it", "E")
+            raise _BlockError("E word with no G33, G33.1, G76, M67 or M68 to use it", "E")
         is_arc = motion in (20, 30)
         is_cycle = motion in _CYCLES
         if g1 in (50, 51) and not axis_words:
@@ -1803,8 +1805,9 @@ class _Interpreter:
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G05, G05.2, G64, G82, G84, "
                               "G86, G89)", "P")
         if ("Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q
-                and mgroups.get(5) != 66 and motion not in (50, 760)):
-            raise _BlockError("Q word with no code that uses it (G05, G64, M61, G73, G83, M66)", "Q")
+                and mgroups.get(5) not in (66, 67, 68) and motion not in (50, 760)):
+            raise _BlockError("Q word with no code that uses it (G05, G64, M61, G73, G76, G83, M66, M67, "
+                              "M68)", "Q")
         if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and groups.get(14) != 960:
             raise _BlockError("D word with no G41, G41.1, G42, G42.1 or G96 to use it", "D")
         if groups.get(14) == 960 and "S" not in vals:
@@ -1910,7 +1913,15 @@ class _Interpreter:
         if m5 == 66:
             self.wait_input(vals, line_no)
             m5 = None
-        if m5 is not None:            # M62/M64 on, M63/M65 off (all at this point of the path)
+        if m5 in (67, 68):            # E the output's number, Q its value (LinuxCNC: -1 without Q)
+            self.comp_refuses("set an analog output", f"M{m5}")
+            e = vals.get("E")
+            if e is None or math.floor(e + 0.5) < 0:
+                raise _BlockError(f"M{m5} needs an E word, the analog output's number (0 or more)",
+                                  "E" if e is not None else f"M{m5}")
+            self.analog_outputs.append(AnalogOutput(f"M{m5}", line_no, math.floor(e + 0.5),
+                                                    vals.get("Q", -1.0)))
+        elif m5 is not None:          # M62/M64 on, M63/M65 off (all at this point of the path)
             self.comp_refuses("set a digital output", f"M{m5}")
             p = vals.get("P")
             if p is None or p != int(p) or int(p) not in self.outputs:

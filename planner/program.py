@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 __all__ = [
+    "AnalogOutput",
     "Arc",
     "Curve",
     "Event",
@@ -356,6 +357,17 @@ class SynchronisedMotion:
 
 
 @dataclass(frozen=True, slots=True)
+class AnalogOutput:
+    """An M67 (with the next move) or M68 (at once) setting analog output ``index`` to
+    ``value``, as LinuxCNC reads it."""
+
+    code: str                 # "M67" or "M68"
+    line: int
+    index: int
+    value: float
+
+
+@dataclass(frozen=True, slots=True)
 class ProbeRequest:
     """One G38.2-G38.5 move of a program, as the interpreter read it."""
 
@@ -443,6 +455,9 @@ class Program:
     # G33 and G76, in program order: read as LinuxCNC reads them, their feed moves at the pitch
     # times the programmed speed; a machine whose spindle has no encoder refuses to run them
     synchronised: tuple[SynchronisedMotion, ...] = ()
+    # M67/M68 in program order: read as LinuxCNC reads them; a machine without analog outputs
+    # refuses to run them
+    analog_outputs: tuple[AnalogOutput, ...] = ()
     # G05, G05.1, G05.2/G05.3: each curve, the arcs and lines it is run as; LinuxCNC writes it
     # as one NURBS_FEED call (moves as read: indexes into the interpreter's moves, before path
     # blending)

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from app.machine.model import Activity, MachineState
+from app.machine.outputs import analog_refusal
 from app.machine.spindle import synchronised_refusal
 from planner.errors import PlannerError, ProgramError
 from planner.program import EventKind, InputRequest, ProbeRequest, ProbeResult, Program, WaitMode
@@ -247,10 +248,11 @@ def continue_after(m: MachineController, job: Job, kind: EventKind, index: int, 
     if issues:
         fail(f"{where}: with the result, {issues[0]}")
         return
-    at, why = synchronised_refusal(full)
-    if why:                              # a branch the first reading did not take
-        fail(f"{where}: with the result, line {at}: {why}")
-        return
+    for refusal in (synchronised_refusal, analog_refusal):
+        at, why = refusal(full)
+        if why:                          # a branch the first reading did not take
+            fail(f"{where}: with the result, line {at}: {why}")
+            return
     if not rest.moves:                   # nothing moves after it: the program ends here
         m.stream.finish_now(job, rest)
         return

@@ -14,6 +14,7 @@ import numpy as np
 from app.machine.errors import MachineError
 from app.machine.inputs import probe_refusal
 from app.machine.model import Activity, CommandResult, SpindleState
+from app.machine.outputs import analog_refusal
 from app.machine.spindle import synchronised_refusal
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
@@ -155,9 +156,10 @@ class ManualMotion:
         _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
         if why:
             return self.m.states.refuse(action, why)
-        _, why = synchronised_refusal(prog)
-        if why:
-            return self.m.states.refuse(action, why)
+        for refusal in (synchronised_refusal, analog_refusal):
+            _, why = refusal(prog)
+            if why:
+                return self.m.states.refuse(action, why)
         return prog, read
 
     def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,

@@ -14,8 +14,18 @@ from app.machine.model import Severity
 
 if TYPE_CHECKING:
     from app.machine.controller import MachineController
+    from planner.program import Program
 
-__all__ = ["DigitalOutputs"]
+__all__ = ["DigitalOutputs", "analog_refusal"]
+
+
+def analog_refusal(program: Program) -> tuple[int, str]:
+    """Why this machine cannot run a program's M67/M68, with the line ((0, "") when it has
+    none): its drives' outputs are digital (0x60FE); it has no analog output to set."""
+    for out in program.analog_outputs:
+        return out.line, (f"{out.code} E{out.index} sets an analog output, and this machine has none "
+                          "(its drives' outputs are digital: M62-M65)")
+    return 0, ""
 
 
 class DigitalOutputs:

@@ -43,6 +43,7 @@ import numpy as np
 from app.background import Background
 from app.machine.inputs import probe_refusal
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue, SpindleState
+from app.machine.outputs import analog_refusal
 from app.machine.spindle import spin_up_waits, synchronised_refusal
 from app.machine.timescale import PauseFeed, PausePoint, pause_points
 from app.program_lines import LineIndex
@@ -187,6 +188,8 @@ def check_text(
                                         getattr(probe_cfg, "max_feed_mm_min", 0.0)), "G38"))
     if program.synchronised:
         refusals.append((*synchronised_refusal(program), program.synchronised[0].code))
+    if program.analog_outputs:
+        refusals.append((*analog_refusal(program), program.analog_outputs[0].code))
     for at, why, code in refusals:
         if why:
             line = text.split("\n", at)[at - 1].upper() if at > 0 else ""

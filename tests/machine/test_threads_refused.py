@@ -1,6 +1,7 @@
-"""G33 and G76 on this machine: read as LinuxCNC reads them, but not run, since the spindle
-has no encoder to start every pass of a thread at the same angle. The refusal names the line
-and the word, in a program, in MDI, and where a probe's result leads a program to one."""
+"""What this machine reads as LinuxCNC reads it but cannot run: G33 and G76 (the spindle has no
+encoder to start every pass of a thread at the same angle), M67/M68 (no analog outputs). The
+refusal names the line and the word, in a program, in MDI, and where a probe's result leads a
+program to one."""
 
 from __future__ import annotations
 
@@ -63,3 +64,16 @@ def test_rigid_tapping_still_runs(ctl: MachineController) -> None:
     assert ctl.cycle_start(wait=True)
     run_to_idle(ctl)
     assert ctl.last_run is not None and ctl.last_run.completed
+
+
+def test_analog_outputs_are_refused_at_their_line_in_a_program_and_in_mdi(ctl: MachineController) -> None:
+    errors: list = []
+    ctl.programErrors.connect(errors.append)
+    r = ctl.load_program("G21 F600\nG1 X5\nN30 M68 E0 Q50\nG1 X10\nM2\n", wait=True)
+    assert not r and "M68 E0 sets an analog output, and this machine has none" in r.reason
+    (issue,) = errors[0]
+    assert (issue.line, issue.col) == (3, 5)
+    assert ctl.program_info is None
+    r = ctl.mdi("M67 E1 Q3 G1 X1 F100")
+    assert not r and "M67 E1 sets an analog output" in r.reason
+    assert ctl.machine_position == pytest.approx([0.0, 0.0, 0.0])

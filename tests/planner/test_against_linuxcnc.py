@@ -377,8 +377,8 @@ def test_the_library_check_classes_each_program(tmp_path) -> None:
 
     programs = {
         "same.ngc": "G21 F100\nG1 X10\nG2 X20 R5\nM2\n",
-        # M68 (an analog output) this machine does not have; rs274 writes it
-        "analog.ngc": "G21 F100\nM68 E0 Q5\nG1 X1\nM2\n",
+        # M19 (an oriented spindle stop) this machine's spindle cannot do; rs274 writes it
+        "orient.ngc": "G21 F100 M3 S100\nM19 R90\nG1 X1\nM2\n",
         # no M2: rs274 calls it an error at the end, this reads it
         "open_end.nc": "G21\nG1 X1 F100\n",
         "no_feed.tap": "G21\nG1 X1\nM2\n",
@@ -392,7 +392,7 @@ def test_the_library_check_classes_each_program(tmp_path) -> None:
     assert sorted(p.name for p in found) == sorted(n for n in programs if not n.endswith(".txt"))
     kinds = {p.name: judge(p).kind for p in found}
     assert kinds == {
-        "same.ngc": "same", "analog.ngc": "only rs274 reads it", "open_end.nc": "only this reads it",
+        "same.ngc": "same", "orient.ngc": "only rs274 reads it", "open_end.nc": "only this reads it",
         "no_feed.tap": "both refuse", "tap_g18.ngc": "differ",
     }
     totals = summary([judge(p) for p in found])

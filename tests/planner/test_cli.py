@@ -72,6 +72,17 @@ def test_a_threading_program_says_the_machine_refuses_to_run_it(capsys, tmp_path
     assert run_json(capsys, FIG9)["synchronised"] == []
 
 
+def test_a_program_setting_analog_outputs_says_the_machine_refuses_it(capsys, tmp_path):
+    prog = tmp_path / "laser.ngc"
+    prog.write_text("G21 F600\nM68 E0 Q40\nG1 X10\nM68 E0 Q0\nM2\n")
+    assert run_json(capsys, prog)["analog_outputs"] == [
+        {"line": 2, "code": "M68", "index": 0, "value": 40.0},
+        {"line": 4, "code": "M68", "index": 0, "value": 0.0}]
+    assert main([str(prog)]) == 0
+    out = capsys.readouterr().out
+    assert "analog outputs (M68 at 2, M68 at 4): read; the machine refuses to run them" in out
+
+
 def test_limits_mode_interp_and_ts_flags(capsys):
     slow = run_json(capsys, FIG9, "--vmax", 10, "--amax", 500, "--jmax", 5000, "--ts", 0.002)
     assert slow["tangential"]["v"] <= 10 + 1e-9 and slow["ts_s"] == 0.002

@@ -143,6 +143,8 @@ token = st.one_of(
             "G76 P2 I1 J0.2 K1.2 R1.5 Q29.5 H1 E1 L3",
             "E2",
             "G7",
+            "M67 E0 Q1",
+            "M68 E1 Q5",
             "I2",
             # spindle modes, polar steps of repeated cycles
             "G96 S100",

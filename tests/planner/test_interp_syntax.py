@@ -68,7 +68,8 @@ def test_error_format_file_line_col():
         parse_program("G0 X0\nG1 F10\n  G1 X1 Q5\n", "part.nc")
     err = ei.value.errors[0]
     assert (err.file, err.line, err.col) == ("part.nc", 3, 9)
-    assert str(err) == "part.nc:3:9: error: Q word with no code that uses it (G05, G64, M61, G73, G83, M66)"
+    assert str(err) == ("part.nc:3:9: error: Q word with no code that uses it (G05, G64, M61, G73, G76, G83, "
+                        "M66, M67, M68)")
     assert str(ei.value).startswith("part.nc:3:9: error: ")
     assert isinstance(ei.value, PlannerError) and isinstance(ei.value, ValueError)
     assert ei.value.line == 3
@@ -105,8 +106,8 @@ def test_error_limit():
         ("G1 X1 $ F1", "unexpected character '$'", 7),
         ("G1 X1 N5 F1", "N word (line number) must begin the block", 7),
         ("G1 X1 X2 F1", "two X words", 4),
-        ("G1 E5 F1", "E word with no G33, G33.1 or G76 to use it", 4),
-        ("G0 X1e5", "E word with no G33, G33.1 or G76 to use it", 6),
+        ("G1 E5 F1", "E word with no G33, G33.1, G76, M67 or M68 to use it", 4),
+        ("G0 X1e5", "E word with no G33, G33.1, G76, M67 or M68 to use it", 6),
         ("G0 X99999999999", "out of range", 4),
         ("G1 X1 F1000000000000", "F value 1e+12 out of range (|value| < 1e12)", 7),
         ("o100 sub", "o100 sub without its o100 endsub", 1),

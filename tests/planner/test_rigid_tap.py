@@ -36,7 +36,7 @@ def test_rigid_tapping_in_inches_and_counterclockwise() -> None:
     ("G21 S500 M3\nG33.1 Z-10\n", "G33.1", "needs a K word"),
     ("G21 S500 M3\nG33.1 Z-10 K1 F100\n", "F100", "the feed is the pitch K times the spindle speed"),
     ("G21 S500 M3\nG33.1 Z-10 K0\n", "K0", "must be above 0"),
-    ("G21 S500 M3\nG33.1 Z-10 K1\nE2\n", "E2", "E word with no G33, G33.1 or G76"),
+    ("G21 S500 M3\nG33.1 Z-10 K1\nE2\n", "E2", "E word with no G33, G33.1, G76, M67 or M68"),
 ])
 def test_rigid_tapping_refusals(text: str, col_word: str, reason: str) -> None:
     with pytest.raises(ProgramError) as info:

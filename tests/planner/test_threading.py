@@ -121,7 +121,7 @@ def test_g33_feeds_at_the_pitch_times_the_speed_whatever_the_feed_mode() -> None
     ("G21 M3 S500\nG76 P1 Z-10 I-1 J0.1 K1 L0.5\n", "L0.5", "whole number"),
     ("G21 M3 S500\nG76 P1 Z-10 I-1 J0.00001 K1 R3\n", "J0.00001", "passes"),
     ("G21 M3 S500 F100\nG41.1 D2\nG1 X5\nG76 P1 Z-10 I-1 J0.1 K1\n", "G76", "cutter radius compensation"),
-    ("G21 M3 S500\nG1 X1 E2 F10\n", "E2", "E word with no G33, G33.1 or G76"),
+    ("G21 M3 S500\nG1 X1 E2 F10\n", "E2", "E word with no G33, G33.1, G76, M67 or M68"),
 ])
 def test_refusals_name_the_word_and_the_reason(text: str, col_word: str, reason: str) -> None:
     with pytest.raises(ProgramError) as info:
