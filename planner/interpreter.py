@@ -9,6 +9,7 @@ Supported (everything else is an error with file:line:col, never skipped):
   canned cycles G73 G74 G81-G86 G89, G98/G99, G80 (also beside another motion code);
   G33.1 rigid tapping (run as feed moves), G33 and the G76 threading cycle (read; recorded in
   ``Program.synchronised``, which a machine without a spindle encoder refuses to run);
+  the lathe cycles G70, G71/G71.1/G71.2, G72/G72.1/G72.2 on a profile subroutine (``planner.g7x``);
   tool data G10 L1/L10/L11 (TOOL_DATA events);
   coordinate systems G54-G59.3, G10 L2 (with R: XY rotation)/L20, G92 G92.1 G92.2 G92.3, G52,
   G28/G28.1, G30/G30.1
@@ -39,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from planner import g7x
 from planner.arcs import (
     MM_PER_INCH,
     ArcError,
@@ -112,6 +114,7 @@ _G_GROUP = {
     40: 0, 280: 0, 530: 0, 100: 0, 281: 0, 300: 0, 301: 0, 520: 0, 920: 0,
     921: 16, 922: 16, 923: 16,     # LinuxCNC 2.9: a group of their own, after group 0's code
     0: 1, 10: 1, 20: 1, 30: 1, 800: 1, 382: 1, 383: 1, 384: 1, 385: 1, 331: 1, 330: 1, 760: 1,
+    700: 1, 710: 1, 711: 1, 712: 1, 720: 1, 721: 1, 722: 1,
     50: 1, 51: 1, 52: 1, 53: 0,
     170: 2, 180: 2, 190: 2,
     900: 3, 910: 3,
@@ -135,6 +138,8 @@ _PROBES = frozenset({382, 383, 384, 385})
 _P_PROBE, _P_PROBE_TRIPPED = 5061, 5070
 #: #5399: the value M66 read (-1 when the wait timed out)
 _P_INPUT = 5399
+#: the lathe cycles G70 (finishing), G71/G72 (roughing; .1 no pockets, .2 pockets only)
+_G7X = frozenset({700, 710, 711, 712, 720, 721, 722})
 #: G33, G33.1, G76: feed moves at the pitch (K, P) times the spindle speed; F is not theirs
 _SYNCHRONISED = frozenset({330, 331, 760})
 _CYCLE_NEEDS_P = frozenset({820, 860, 890})
@@ -433,6 +438,8 @@ class _Interpreter:
         self.oword_places: dict[str, tuple[str, int, str]] = {}   # O-word name -> file, line, keyword
         self.sub_places: dict[tuple[str, str], int] = {}   # (file, sub label) -> the sub defined: its line
         self.taps: list[int] = []             # G33.1: the moves into the hole (back out: the next)
+        self.frame: _Frame | None = None      # the file and line being run (G7x finds its profile there)
+        self.frame_pc = 0
         self.synchronised: list[SynchronisedMotion] = []   # G33, G76
         self.analog_outputs: list[AnalogOutput] = []       # M67, M68
         # G05: the first control point's offset when I and J are left out, -P and -Q of the G05
@@ -562,6 +569,7 @@ class _Interpreter:
         pc = 0
         executed = 0
         while 0 <= pc < len(frame.lines):
+            self.frame, self.frame_pc = frame, pc    # where a G7x cycle looks for its profile
             executed += 1
             if executed > _MAX_EXECUTED:
                 self.error(frame.line_of(pc), 1, f"more than {_MAX_EXECUTED:,} blocks run (an endless loop?)")
@@ -1767,7 +1775,7 @@ class _Interpreter:
                 "axis words without a motion mode: program G00/G01/G02/G03 first", axis_words[0]
             )
         # G76: the taper; G33, G33.1 ignore it; M67, M68: the analog output
-        if "E" in vals and motion not in _SYNCHRONISED and mgroups.get(5) not in (67, 68):
+        if "E" in vals and motion not in _SYNCHRONISED and mgroups.get(5) not in (67, 68) and motion != 700:
             if mgroups.get(5) == 66:
                 raise _BlockError("M66 E (an analog input): this machine has no analog inputs", "E")
             raise _BlockError("E word with no G33, G33.1, G76, M67 or M68 to use it", "E")
@@ -1794,6 +1802,8 @@ class _Interpreter:
         for letter in ("I", "J", "K", "R"):
             if motion == 331 and letter in "IK" or motion == 330 and letter == "K" or motion == 760:
                 continue
+            if motion in _G7X and motion != 700 and letter in "IR":   # the depth of cut, the retract
+                continue
             if letter in "IJ" and motion in (50, 51):
                 continue
             if letter in vals and not is_arc and not (letter == "R" and (is_cycle or g0 == 100)):
@@ -1801,14 +1811,15 @@ class _Interpreter:
                          else "G02/G03, G05 or G05.1" if letter in "IJ" else "G02/G03")
                 raise _BlockError(f"{letter} word with no {users} to use it", letter)
         if "P" in vals and not (g0 in (40, 100) or is_arc or groups.get(13) == 640 or 9 in mgroups
-                                or motion in _CYCLE_TAKES_P or 5 in mgroups or motion in (50, 52, 760)):
+                                or motion in _CYCLE_TAKES_P or 5 in mgroups or motion in (50, 52, 760, 700)):
             raise _BlockError("P word with no G code that uses it (G04, G02/G03, G05, G05.2, G64, G82, G84, "
                               "G86, G89)", "P")
         if ("Q" in vals and groups.get(13) != 640 and mgroups.get(6) != 61 and motion not in _CYCLE_NEEDS_Q
-                and mgroups.get(5) not in (66, 67, 68) and motion not in (50, 760)):
+                and mgroups.get(5) not in (66, 67, 68) and motion not in (50, 760) and motion not in _G7X):
             raise _BlockError("Q word with no code that uses it (G05, G64, M61, G73, G76, G83, M66, M67, "
                               "M68)", "Q")
-        if "D" in vals and groups.get(7) not in (410, 420, 411, 421) and groups.get(14) != 960:
+        if ("D" in vals and groups.get(7) not in (410, 420, 411, 421) and groups.get(14) != 960
+                and motion not in _G7X):
             raise _BlockError("D word with no G41, G41.1, G42, G42.1 or G96 to use it", "D")
         if groups.get(14) == 960 and "S" not in vals:
             raise _BlockError("G96 needs an S word (the surface speed)", "G96")
@@ -2075,6 +2086,8 @@ class _Interpreter:
                 self.synchronised_feed(target, vals, scale, line_no)
             elif motion == 760:
                 self.thread_cycle(target, vals, scale, line_no)
+            elif motion in _G7X:
+                self.lathe_cycle(motion, vals, scale, line_no)
             elif motion in (0, 10):
                 self.straight(target, motion == 0, line_no)
             else:
@@ -2431,6 +2444,191 @@ class _Interpreter:
             self.straight(target, True, line_no)
         finally:
             self.exact_stop = saved_stop
+
+    def lathe_cycle(self, motion: int, vals: dict[str, float], scale: float, line_no: int) -> None:
+        """G70 (finishing), G71 (roughing along Z) and G72 (along X), with .1 (no pockets) and .2
+        (the pockets only), as LinuxCNC 2.9 runs them (``planner.g7x``): a rapid to the block's
+        X Z, then the profile of the numbered subroutine Q (G0-G3 blocks with X Z, U W
+        incremental, I K or R, A a round and C a chamfer at its end) is cut from there: G71/G72
+        in passes of depth I (default 1), retracting R (0.5), down to D from the profile moved by
+        U W; G70 in P passes from D to E. In G18 only."""
+        name = _gname(motion)
+        cycle, variant = motion // 10, motion % 10
+        if "Q" not in vals:
+            raise _BlockError(f"{name} requires a Q word (the number of the subroutine with the profile)",
+                              name)
+        if self.comp.side != 0:
+            raise _BlockError(f"{name} cannot be used with cutter compensation enabled: program G40 first",
+                              name)
+        if self.plane != 180:
+            raise _BlockError(f"{name} can only be used in the XZ plane (G18)", name)
+        if "X" not in self.axis_index or "Z" not in self.axis_index:
+            raise _BlockError(f"{name} cuts in X and Z: this machine has no "
+                              f"{'X' if 'X' not in self.axis_index else 'Z'} axis", name)
+        ix, iz = self.axis_index["X"], self.axis_index["Z"]
+        here = self.program_position(self.pos)
+        x, z = here[ix] / scale, here[iz] / scale           # program units, as LinuxCNC works
+        incremental = not self.absolute
+        if incremental:
+            x, z = x + vals.get("X", 0.0), z + vals.get("Z", 0.0)
+        else:
+            x, z = vals.get("X", x), vals.get("Z", z)
+        arc_absolute, absolute = self.arc_absolute, self.absolute
+        last_mode = [0]
+
+        def target(p: complex) -> list[float]:
+            return self.target({"X": p.imag, "Z": p.real}, ["X", "Z"], scale, False)
+
+        def straight(p: complex, rapid: bool) -> None:
+            self.straight(target(p), rapid, line_no)
+            last_mode[0] = 0 if rapid else 10
+
+        def arc(ccw: bool, center: complex, p: complex) -> None:
+            now = self.program_position(self.pos)
+            if abs(now[iz] / scale - p.real) >= 1e-4 or abs(now[ix] / scale - p.imag) >= 1e-4:
+                self.arc(target(p), {"X": p.imag, "Z": p.real, "I": center.imag, "K": center.real}, not ccw,
+                         scale, line_no)
+                last_mode[0] = 30 if ccw else 20
+
+        # LinuxCNC reads the cycle's own moves, and the block's X Z for the rapid, as absolute
+        self.absolute, self.arc_absolute = True, True
+        try:
+            axes: list[str] = [a for a in ("X", "Z") if a in vals]
+            self.straight(self.target(vals, list(axes), scale, False), True, line_no)
+            segments = self.lathe_profile(vals["Q"], complex(z, x), incremental, arc_absolute, name)
+            if len(segments) <= 1:
+                return
+            i = vals.get("I", 1.0)
+            if i <= 0:
+                raise _BlockError(f"{name}: I (the depth of cut) must be greater than zero", "I")
+            out = g7x.Motion(lambda p: straight(p, False), lambda p: straight(p, True), arc)
+            profile = g7x.Profile(segments)
+            if cycle == 70:
+                profile.g70(out, x, z, vals.get("D", 0.0), vals.get("E", 0.0), vals.get("P", 1.0))
+            else:
+                profile.g71(out, variant, x, z, vals.get("U", 0.0), vals.get("W", 0.0), vals.get("D", 0.0), i,
+                            vals.get("R", 0.5), rotate=cycle == 72)
+        except g7x.G7xError as e:
+            raise _BlockError(f"{name}: {e}", name) from None
+        except (ZeroDivisionError, ValueError, OverflowError):
+            # LinuxCNC's arithmetic goes on with infinities here and draws nonsense
+            raise _BlockError(f"{name}: the profile cannot be offset or cut (a segment of no length, or "
+                              "the cycle's start on the profile)", name) from None
+        finally:
+            self.absolute, self.arc_absolute = absolute, arc_absolute
+        self.motion = last_mode[0]
+
+    def lathe_profile(self, q: float, start: complex, incremental: bool, centre_absolute: bool,
+                      name: str) -> list[Any]:
+        """The profile of subroutine ``o<q>`` as LinuxCNC's G7x reads it (program units, points
+        as z + 1j x): each block's G0-G3, X Z or U W, I K or R, A (round) and C (chamfer);
+        other words are not the profile's. Parameters are set as the blocks are read."""
+        if q != int(q) or q < 0:
+            raise _BlockError(f"{name} Q{q:g}: the profile's subroutine number is a whole number", "Q")
+        frame = self.frame
+        label = str(int(q))
+        found = None
+        if frame is not None:
+            found = self.find_sub(label, Statement(self.frame_pc, label, "CALL", ""), frame)
+        if frame is None or found is None:
+            raise _BlockError(f"{name} Q{q:g}: no o{label} sub in this program (the profile)", "Q")
+        segments: list[Any] = []
+        mode = 0                                  # the rapid to the start was the last move
+        scale = self.scale
+        saved_pos = self.pos
+        k, steps = found[0] + 1, 0
+        try:
+            while k < found[1]:
+                steps += 1
+                if steps > _MAX_EXECUTED:
+                    raise _BlockError(f"{name}: more than {_MAX_EXECUTED:,} profile blocks read (an endless "
+                                      "loop?)", "Q")
+                where = f"line {k + 1}, in the profile"
+                st = frame.structure.statements.get(k)
+                if st is not None:                # loops and branches run as the profile is read
+                    if st.keyword == "RETURN":
+                        break
+                    if st.keyword not in ("IF", "ELSEIF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "DO",
+                                          "DOWHILE", "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE"):
+                        raise _BlockError(f"{name}: o{st.label} {st.keyword.lower()} ({where}) is not "
+                                          "supported: a profile's calls are written out", "Q")
+                    try:
+                        nxt = self.statement(st, frame, [])
+                    except _BlockError as e:
+                        raise _BlockError(f"{name}: {where}: {e.message}", "Q") from None
+                    assert isinstance(nxt, int)
+                    k = nxt
+                    continue
+                k += 1
+                text = frame.lines[k - 1].strip()
+                if not text or text.startswith("%") or (text.startswith("/") and self.block_delete):
+                    continue
+                try:
+                    words, assigns = read_line(text.lstrip("/"), self.params)
+                except LexError as e:
+                    raise _BlockError(f"{name}: {where}: {e.message}", "Q") from None
+                mode, start = self._profile_block(words, mode, start, incremental, centre_absolute, segments,
+                                                  f"{name}: ", f" ({where})")
+                # #<_x>, #<_z> read where the profile has got to, as in LinuxCNC
+                self.pos = self.target({"X": start.imag, "Z": start.real}, ["X", "Z"], scale, False)
+                self.assign(assigns)
+        finally:
+            self.pos = saved_pos
+        return segments
+
+    def _profile_block(self, words: list, mode: int, start: complex, incremental: bool, centre_absolute: bool,
+                       segments: list[Any], head: str, where: str) -> tuple[int, complex]:
+        """One block of a G7x profile: its segment (and round or chamfer) appended; the motion
+        mode and the point it ends at returned."""
+        w: dict[str, float] = {}
+        for letter, value in words:
+            if letter == "G" and float(value) in (0.0, 1.0, 2.0, 3.0):
+                mode = int(float(value)) * 10
+            else:
+                w[letter] = float(value)
+        end = complex(0.0, 0.0) if incremental else start
+        for word, axis in (("U", "X"), ("W", "Z")):
+            if word in w:
+                if incremental:
+                    raise _BlockError(f"{head}cannot use {word} in incremental mode (G91){where}", "Q")
+                if axis in w:
+                    raise _BlockError(f"{head}cannot use {word} and {axis} in the same block{where}", "Q")
+        if "U" in w:
+            end += 1j * (w["U"] / 2 if self.diameter else w["U"])
+        elif "X" in w:
+            end = complex(end.real, w["X"] / 2 if self.diameter else w["X"])
+        if "W" in w:
+            end += w["W"]
+        elif "Z" in w:
+            end = complex(w["Z"], end.imag)
+        center = complex(w.get("K", 0.0), w.get("I", 0.0))
+        if incremental:
+            end += start
+        if end == start:
+            return mode, start
+        if mode in (0, 10):
+            segments.append(g7x.StraightSegment(start, end))
+        elif "R" in w:
+            if "I" in w or "K" in w:
+                raise _BlockError(f"{head}both R and I or K for an arc{where}", "Q")
+            r, chord = w["R"], abs(end - start) ** 2
+            if r * r < chord / 4:
+                raise _BlockError(f"{head}radius R{r:g} too small for the arc{where}", "Q")
+            d = 1j * math.sqrt((r * r - chord / 4) / chord) * (end - start)
+            segments.append(g7x.RoundSegment(mode == 30, start, (start + end) / 2 + (d if mode == 30 else -d),
+                                             end))
+        else:
+            if "I" not in w and "K" not in w:
+                raise _BlockError(f"{head}either I or K must be present for an arc{where}", "Q")
+            segments.append(g7x.RoundSegment(mode == 30, start, center if centre_absolute else center + start,
+                                             end))
+        if "A" in w and "C" in w:
+            raise _BlockError(f"{head}both A and C on a corner{where}", "Q")
+        if "A" in w:
+            segments.append(g7x.fillet(w["A"], end))
+        if "C" in w:
+            segments.append(g7x.chamfer(w["C"], end))
+        return mode, end
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
              line_no: int, fixed_feed: bool = False) -> None:

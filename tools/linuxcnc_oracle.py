@@ -166,6 +166,8 @@ def read_output(out: str) -> OracleResult:
     for k, line in enumerate(lines):
         m = _CALL.match(line)
         if not m:
+            if line.startswith("Oops ("):
+                continue     # G7x's offsetting prints where it drops a segment, and goes on
             if line.strip() and line.strip() != "executing" and not error:
                 error = line.strip()
                 # the block follows; a message ending in a newline of its own leaves a blank

@@ -145,6 +145,9 @@ token = st.one_of(
             "G7",
             "M67 E0 Q1",
             "M68 E1 Q5",
+            "G71 Q100 I1",
+            "G70 Q100 P2",
+            "G72.2 Q100 I0.5 R0.2",
             "I2",
             # spindle modes, polar steps of repeated cycles
             "G96 S100",
