@@ -99,6 +99,20 @@ class _Segment:
     def intersection_z(self, x: float) -> list[float]:
         raise NotImplementedError
 
+    def draw(self, out: Motion) -> None:
+        raise NotImplementedError
+
+    def climb(self, loc: list[complex], out: Motion) -> bool:
+        """Along the contour upwards from ``loc[0]``; True where it stops climbing."""
+        raise NotImplementedError
+
+    def climb_only(self, loc: list[complex], out: Motion) -> None:
+        raise NotImplementedError
+
+    def dive(self, loc: list[complex], x: float, out: Motion, fast: bool) -> bool:
+        """Down the contour from ``loc[0]`` to the pass at ``x``; True where it does not dive."""
+        raise NotImplementedError
+
 
 class StraightSegment(_Segment):
     def dup(self) -> _Segment:
@@ -461,7 +475,7 @@ class Profile:
             swapped.rapid(path.segs[0].start)
             swapped.rapid(path.segs[0].end)
             for s in path.segs[1:]:
-                s.draw(swapped)   # type: ignore[attr-defined]
+                s.draw(swapped)
 
     def g71(self, out: Motion, cycle: int, x: float, z: float, u: float, w: float, d: float, i: float,
             r: float, rotate: bool = False) -> None:
@@ -493,7 +507,7 @@ class Profile:
         x = self.pocket_starts[-1].imag
         if cycle == 2:                       # skips the first roughing pass
             while p < len(segs):
-                if segs[p].dive(loc, -1e9, out, p == 0):   # type: ignore[attr-defined]
+                if segs[p].dive(loc, -1e9, out, p == 0):
                     break
                 p += 1
             cycle = 3
@@ -503,14 +517,14 @@ class Profile:
                 raise G7xError(f"more than {_MAX_PASSES} roughing passes (the cycle does not progress)")
             while x - _TOL > loc[0].imag:
                 x -= self.delta
-            if segs[p].dive(loc, x, out, p == 0):   # type: ignore[attr-defined]
+            if segs[p].dive(loc, x, out, p == 0):
                 if cycle == 1:               # along the final contour, and done
                     while p < len(segs):
-                        segs[p].climb_only(loc, out)   # type: ignore[attr-defined]
+                        segs[p].climb_only(loc, out)
                         p += 1
                 else:                        # along the contour to the next pocket, then into it
                     while p < len(segs):
-                        if segs[p].climb(loc, out):   # type: ignore[attr-defined]
+                        if segs[p].climb(loc, out):
                             if cycle == 3:
                                 if loc[0].imag > self.pocket_starts[-1].imag and len(self.pocket_starts) > 1:
                                     self.pocket_starts.pop()
