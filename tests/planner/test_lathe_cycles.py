@@ -14,8 +14,7 @@ from hypothesis import strategies as st
 from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.program import MoveKind
-from tools.against_linuxcnc import call_ends, close, without_short_moves
-from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
+from tools.linuxcnc_oracle import RS274, motion_alike
 
 # a turned part: a cone, a round over a shoulder (G2 R), a cove (G3 R), a fillet (A) and a
 # chamfer (C) at corners, the X and Z of its blocks falling as it runs
@@ -23,16 +22,6 @@ PROFILE = ("O100 SUB\nG0 X0 Z3\nG1 X2 Z0\nG2 X4 Z-2 R2\nG1 Z-5\nG3 X6 Z-7 R2\nG1
            "G1 X9 C0.3\nG1 Z-14\nG0 X12\nO100 ENDSUB\n")
 HEAD = "G21 G18 G90 F300\n"
 STEP = "O7 SUB\nG1 X2 Z0\nG1 Z-5\nG1 X6\nG1 Z-10\nG1 X9\nO7 ENDSUB\n"
-
-
-def _alike(text: str) -> None:
-    theirs = run_linuxcnc(text)
-    assert not theirs.error, f"rs274 refuses it: {theirs.error}\n{text}"
-    program = parse_program(text)
-    ours = without_short_moves(project_motion(program), call_ends(program))
-    assert len(ours) == len(theirs.motion), (len(ours), len(theirs.motion), text)
-    mismatch = [(k, a, b) for k, (a, b) in enumerate(zip(ours, theirs.motion)) if not close(a, b)]
-    assert not mismatch, (mismatch[:3], text)
 
 
 needs_rs274 = pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test "
@@ -64,7 +53,7 @@ needs_rs274 = pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not 
     "O101 ENDREPEAT\nO100 ENDSUB\nG72 Q100 X1 Z1 D0.5 I1 R0.3\nG70 Q100 X1 Z1 D0.5 P2\nM2\n",
 ])
 def test_lathe_cycles_are_the_moves_linuxcnc_makes(text: str) -> None:
-    _alike(text)
+    motion_alike(text)
 
 
 def _profile_x(z: float) -> float:

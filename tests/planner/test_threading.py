@@ -15,24 +15,11 @@ from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.machine import AxisSpec, MachineSpec
 from planner.program import MoveKind, SynchronisedMotion
-from tools.against_linuxcnc import call_ends, close, without_short_moves
-from tools.linuxcnc_oracle import RS274, project_motion, run_linuxcnc
+from tools.linuxcnc_oracle import RS274, motion_alike
 
 # an outside thread from X10 Z5 to Z-20: 1.5 mm pitch, 1 mm off the drive line, first cut 0.1 mm,
 # full depth 0.9 mm
 THREAD = "G21 G18 M3 S500\nG0 X10 Z5\nG76 P1.5 Z-20 I-1 J0.1 K0.9\nM2\n"
-
-
-def motion_alike(text: str) -> None:
-    """rs274 and this interpreter make the same motion calls of ``text``, within what rs274
-    prints (moves shorter than that left out on both sides, as rs274's are)."""
-    theirs = run_linuxcnc(text)
-    assert not theirs.error, f"rs274 refuses it: {theirs.error}\n{text}"
-    program = parse_program(text)
-    ours = without_short_moves(project_motion(program), call_ends(program))
-    assert len(ours) == len(theirs.motion), (len(ours), len(theirs.motion), text)
-    mismatch = [(k, a, b) for k, (a, b) in enumerate(zip(ours, theirs.motion)) if not close(a, b)]
-    assert not mismatch, (mismatch[:3], text)
 
 
 def _feeds(program):
