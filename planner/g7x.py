@@ -37,6 +37,20 @@ def _norm(c: complex) -> float:
     return c.real * c.real + c.imag * c.imag
 
 
+def _line_meets_circle(a: complex, b: complex, on_circle: complex, center: complex, near: complex) -> complex:
+    """Where the line through ``a`` and ``b`` meets the circle about ``center`` through
+    ``on_circle``, of the two points the one nearer ``near`` (the line's nearest point where
+    they miss): the line turned onto the real axis at ``b``, as LinuxCNC computes it."""
+    rot = (a - b).conjugate() / abs(a - b)
+    pe = (on_circle - b) * rot
+    pc = (center - b) * rot
+    d = _norm(pc - pe) - pc.imag * pc.imag
+    d = 0.0 if d < 0 else math.sqrt(d)
+    s1 = (pc.real + d) / rot + b
+    s2 = (pc.real - d) / rot + b
+    return s1 if abs(near - s1) < abs(near - s2) else s2
+
+
 class _Segment:
     def __init__(self, start: complex, end: complex) -> None:
         self.start, self.end = start, end
@@ -176,16 +190,8 @@ class StraightSegment(_Segment):
 
     def intersect_end(self, p: _Segment) -> None:
         if isinstance(p, RoundSegment):          # an arc followed by this line
-            if abs(self.start - p.end) < _TOL:
-                return
-            rot = (self.start - self.end).conjugate() / abs(self.start - self.end)
-            pe = (p.end - self.end) * rot
-            pc = (p.center - self.end) * rot
-            b = _norm(pc - pe) - pc.imag * pc.imag
-            b = 0.0 if b < 0 else math.sqrt(b)
-            s1 = (pc.real + b) / rot + self.end
-            s2 = (pc.real - b) / rot + self.end
-            self.start = p.end = s1 if abs(self.start - s1) < abs(self.start - s2) else s2
+            if abs(self.start - p.end) >= _TOL:
+                self.start = p.end = _line_meets_circle(self.start, self.end, p.end, p.center, self.start)
             return
         rot = (self.start - self.end).conjugate() / abs(self.start - self.end)
         ps = (p.start - self.end) * rot
@@ -352,16 +358,8 @@ class RoundSegment(_Segment):
             point = rot * (p.center - self.center) / c * a + self.center
             p.end = self.start = point
             return
-        if abs(self.start - p.end) < _TOL:      # a line followed by this arc
-            return
-        rot = (p.start - p.end).conjugate() / abs(p.start - p.end)
-        pe = (self.end - p.end) * rot
-        pc = (self.center - p.end) * rot
-        b = _norm(pc - pe) - pc.imag * pc.imag
-        b = 0.0 if b < 0 else math.sqrt(b)
-        s1 = (pc.real + b) / rot + p.end
-        s2 = (pc.real - b) / rot + p.end
-        self.start = p.end = s1 if abs(self.start - s1) < abs(self.start - s2) else s2
+        if abs(self.start - p.end) >= _TOL:     # a line followed by this arc
+            self.start = p.end = _line_meets_circle(p.start, p.end, self.end, self.center, self.start)
 
 
 class _Fillet(RoundSegment):
