@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from planner.errors import ProgramError
 from planner.interpreter import parse_program
 from planner.program import EventKind
+from tests.planner.refusals import refused_at
 from tools.linuxcnc_oracle import RS274, motion_alike
 
 TAP = "G21 S500 M3\nG0 X5 Z2\nG33.1 X6 Z-10 K1.25 I2\nG0 Z5\nM2\n"
@@ -39,11 +39,7 @@ def test_rigid_tapping_in_inches_and_counterclockwise() -> None:
     ("G21 S500 M3\nG33.1 Z-10 K1\nE2\n", "E2", "E word with no G33, G33.1, G76, M67 or M68"),
 ])
 def test_rigid_tapping_refusals(text: str, col_word: str, reason: str) -> None:
-    with pytest.raises(ProgramError) as info:
-        parse_program(text + "M2\n")
-    err = info.value.errors[0]
-    assert text.splitlines()[err.line - 1][err.col - 1:].startswith(col_word)
-    assert reason in err.message
+    refused_at(text, col_word, reason)
 
 
 @pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs it as root)")
