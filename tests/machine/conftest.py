@@ -55,6 +55,17 @@ def ctl(qapp, config_path: Path, state_dir: Path) -> Iterator[MachineController]
     c.shutdown()
 
 
+def refused_load(c: MachineController, text: str, reason: str) -> tuple[int, int, str, str]:
+    """``text`` is refused at load with ``reason`` in what the controller says; the program's
+    one issue as (line, column, message), what the Program page marks, and the whole reason."""
+    errors: list = []
+    c.programErrors.connect(errors.append)
+    r = c.load_program(text, wait=True)
+    assert not r and reason in r.reason, r
+    (issue,) = errors[-1]
+    return issue.line, issue.col, issue.message, r.reason
+
+
 def run_to_idle(c: MachineController, timeout_s: float = 20.0) -> None:
     assert c.run_until(lambda: c.state is MachineState.IDLE and c.worker.buffer_level() == 0, timeout_s), \
         f"not idle after {timeout_s} s: {c.state} {c.state_reason}"

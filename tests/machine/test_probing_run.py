@@ -14,7 +14,7 @@ import pytest
 
 from app.machine.controller import MachineController
 from app.machine.model import MachineState, Severity
-from tests.machine.conftest import make_controller, run_to_idle, trace
+from tests.machine.conftest import make_controller, refused_load, run_to_idle, trace
 
 SURFACE_Z = -50.0
 FEED_MM_MIN = 300.0
@@ -144,12 +144,8 @@ def test_a_machine_without_a_probe_refuses_probing_programs_with_their_place(
     config_path.write_text(text)
     ctl = make_controller(config_path, state_dir)
     try:
-        errors: list = []
-        ctl.programErrors.connect(errors.append)
-        r = ctl.load_program("G21 F100\nG0 Z-1\nN30 G38.3 Z-5\nM2\n", wait=True)
-        assert not r and "needs a probe input" in r.reason
-        (issue,) = errors[0]
-        assert (issue.line, issue.col) == (3, 5)
+        line, col, _, _ = refused_load(ctl, "G21 F100\nG0 Z-1\nN30 G38.3 Z-5\nM2\n", "needs a probe input")
+        assert (line, col) == (3, 5)
         r = ctl.mdi("G38.2 Z-5 F100")
         assert not r and "needs a probe input" in r.reason
     finally:
@@ -268,12 +264,9 @@ def test_a_fault_after_a_probe_resumes_with_its_result_for_the_next_probe(ctl: M
 def test_a_probe_faster_than_the_stylus_allows_is_refused_with_its_place(ctl: MachineController) -> None:
     """Past the contact the stylus travels on for the reaction and the stop: at F3000 that is
     about 4 mm; the shipped mill allows up to 1000 mm/min ([probe] max_feed_mm_min)."""
-    errors: list = []
-    ctl.programErrors.connect(errors.append)
-    r = ctl.load_program("G21 G90\nG0 Z-40\nN40 G38.2 Z-70 F3000\nM2\n", wait=True)
-    assert not r and "F3000 mm/min is faster than the probe allows" in r.reason
-    (issue,) = errors[0]
-    assert (issue.line, issue.col) == (3, 5) and "max_feed_mm_min = 1000" in issue.message
+    line, col, message, _ = refused_load(ctl, "G21 G90\nG0 Z-40\nN40 G38.2 Z-70 F3000\nM2\n",
+                                      "F3000 mm/min is faster than the probe allows")
+    assert (line, col) == (3, 5) and "max_feed_mm_min = 1000" in message
     r = ctl.mdi("G38.2 Z-70 F1200")
     assert not r and "F1200 mm/min is faster than the probe allows" in r.reason
     assert ctl.load_program("G21 G90\nG0 Z-40\nG38.2 Z-70 F1000\nM2\n", wait=True)

@@ -9,31 +9,26 @@ import pytest
 
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
-from tests.machine.conftest import run_to_idle
+from tests.machine.conftest import refused_load, run_to_idle
 from tests.machine.test_probing_run import run_to_idle_or_alarm
 
 REASON = "spindle-synchronised motion"
 
 
 def test_a_threading_program_is_refused_at_its_line_and_no_program_is_kept(ctl: MachineController) -> None:
-    errors: list = []
-    ctl.programErrors.connect(errors.append)
-    r = ctl.load_program("G21 M3 S500\nG0 X10 Z5\nN30 G76 P1.5 Z-20 I-1 J0.1 K0.9\nM2\n", wait=True)
-    assert not r and REASON in r.reason and "no encoder" in r.reason
-    (issue,) = errors[0]
-    assert (issue.line, issue.col) == (3, 5) and issue.message.startswith("G76 is spindle-synchronised")
+    line, col, message, _ = refused_load(ctl, "G21 M3 S500\nG0 X10 Z5\nN30 G76 P1.5 Z-20 I-1 J0.1 K0.9\nM2\n",
+                                         REASON)
+    assert (line, col) == (3, 5) and message.startswith("G76 is spindle-synchronised")
+    assert "no encoder" in message
     assert ctl.program_info is None
     assert not ctl.cycle_start(wait=True)
     assert ctl.machine_position == pytest.approx([0.0, 0.0, 0.0])
 
 
 def test_a_modal_g33_line_is_refused_where_it_is(ctl: MachineController) -> None:
-    errors: list = []
-    ctl.programErrors.connect(errors.append)
-    r = ctl.load_program("G21 M3 S500\nG0 Z5\nG1 X1 F100\nG33 Z-5 K1\nM4\nZ5 K1\nM2\n", wait=True)
-    assert not r and r.reason.startswith("line 4: G33 is spindle-synchronised")
-    (issue,) = errors[0]
-    assert (issue.line, issue.col) == (4, 1)
+    line, col, _, reason = refused_load(ctl, "G21 M3 S500\nG0 Z5\nG1 X1 F100\nG33 Z-5 K1\nM4\nZ5 K1\nM2\n",
+                                        "G33 is spindle-synchronised")
+    assert (line, col) == (4, 1) and reason.startswith("line 4: G33 is spindle-synchronised")
     r = ctl.load_program("G21 M3 S500\nG0 Z5\nG33 Z-5 K1 X1\nM4\nX0 Z5 K1\nM2\n", wait=True)
     assert not r and r.reason.startswith("line 3: G33 is spindle-synchronised")
 
@@ -67,12 +62,9 @@ def test_rigid_tapping_still_runs(ctl: MachineController) -> None:
 
 
 def test_analog_outputs_are_refused_at_their_line_in_a_program_and_in_mdi(ctl: MachineController) -> None:
-    errors: list = []
-    ctl.programErrors.connect(errors.append)
-    r = ctl.load_program("G21 F600\nG1 X5\nN30 M68 E0 Q50\nG1 X10\nM2\n", wait=True)
-    assert not r and "M68 E0 sets an analog output, and this machine has none" in r.reason
-    (issue,) = errors[0]
-    assert (issue.line, issue.col) == (3, 5)
+    line, col, _, _ = refused_load(ctl, "G21 F600\nG1 X5\nN30 M68 E0 Q50\nG1 X10\nM2\n",
+                                "M68 E0 sets an analog output, and this machine has none")
+    assert (line, col) == (3, 5)
     assert ctl.program_info is None
     r = ctl.mdi("M67 E1 Q3 G1 X1 F100")
     assert not r and "M67 E1 sets an analog output" in r.reason
