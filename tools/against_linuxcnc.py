@@ -1,12 +1,12 @@
 """Read folders of G-code programs with this interpreter and with LinuxCNC's rs274, side by side.
 
-    python -m tools.against_linuxcnc FOLDER [FOLDER ...] [--json]
+    python -m tools.against_linuxcnc FOLDER [FOLDER ...] [--subroutines DIR ...] [--json]
 
 Every .ngc, .nc, .gcode, .tap and .cnc file below the folders is read by LinuxCNC 2.9's
 interpreter (``rs274``, which ``make test`` installs as root; subroutine files are looked for
-in the program's folder) and by ``planner.interpreter.parse_program`` on an XYZABC machine
-with digital input 0, both with tools 1-99 of no length and no diameter. Each program
-is put in one class:
+in the program's folder, then in each ``--subroutines`` folder, as LinuxCNC's SUBROUTINE_PATH)
+and by ``planner.interpreter.parse_program`` on an XYZABC machine with digital input 0, both
+with tools 1-99 of no length and no diameter. Each program is put in one class:
 
 - ``same``: both read it and write the same motion, call for call, within what rs274 prints
   (four decimals of the program's unit); moves shorter than that are not compared; a curve
@@ -177,13 +177,15 @@ def curves_differ(path: Path, program: Program) -> str | None:
     return ""
 
 
-def judge(path: Path) -> Verdict:
-    """Read ``path`` both ways and class it."""
-    theirs = run_linuxcnc_file(path, TOOLS)
+def judge(path: Path, subroutine_dirs: Sequence[Path] = ()) -> Verdict:
+    """Read ``path`` both ways and class it; subroutine files are looked for in its folder, then in
+    ``subroutine_dirs`` (as LinuxCNC's SUBROUTINE_PATH)."""
+    extra = tuple(str(d.resolve()) for d in subroutine_dirs)
+    theirs = run_linuxcnc_file(path, TOOLS, extra)
     text = path.read_text(errors="replace")
     try:
         program = parse_program(text, str(path), machine=MACHINE, tools=TOOLS, block_delete=False,
-                                subroutine_dirs=(str(path.parent),))
+                                subroutine_dirs=(str(path.parent), *extra))
         upper = text.upper()
         ours, every = _ours(program, "G20" in upper and "G21" not in upper)
         why = ""
@@ -240,12 +242,19 @@ def main(argv: Sequence[str] | None = None) -> int:
                                      description=(__doc__ or "").split("\n")[0])
     parser.add_argument("folders", nargs="+", type=Path)
     parser.add_argument("--json", action="store_true", help="one JSON object: every verdict and the counts")
+    parser.add_argument("--subroutines", type=Path, action="append", default=[], metavar="DIR",
+                        help="a folder of subroutine files (o<name> call), looked for after the program's "
+                             "own folder, as LinuxCNC's SUBROUTINE_PATH; may be given more than once")
     args = parser.parse_args(argv)
     if RS274 is None:
         print("rs274 (LinuxCNC's interpreter, Debian package linuxcnc-uspace) is not installed: "
               "`make test` installs it as root", file=sys.stderr)
         return 2
-    verdicts = [judge(p) for p in programs_in(args.folders)]
+    missing = [str(d) for d in args.subroutines if not d.is_dir()]
+    if missing:
+        print(f"--subroutines: no such folder: {', '.join(missing)}", file=sys.stderr)
+        return 2
+    verdicts = [judge(p, args.subroutines) for p in programs_in(args.folders)]
     totals = summary(verdicts)
     if args.json:
         print(json.dumps({"verdicts": [v.__dict__ for v in verdicts], "summary": totals}, indent=1))

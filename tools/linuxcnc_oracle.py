@@ -23,8 +23,9 @@ from planner.tools import ToolTable, format_tbl
 
 RS274 = shutil.which("rs274")
 RS274_TIMEOUT_S = 60
-# "12 N..... STRAIGHT_FEED(...)": the counter, the block's N number (dots without one), the call
-_CALL = re.compile(r"^\s*\d+\s+N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
+# "12 N..... STRAIGHT_FEED(...)": the counter, the block's N number (dots without one), the call;
+# rs274 pads the number to five places, so a longer one runs into the call ("N100100STRAIGHT_FEED")
+_CALL = re.compile(r"^\s*\d+\s+N(?:\.+|\d+)\s*([A-Z_][A-Z_0-9]*)\((.*)\)\s*$")
 
 
 @dataclass(frozen=True)

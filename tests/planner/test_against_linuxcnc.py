@@ -351,6 +351,32 @@ def test_the_oracle_sees_what_it_should() -> None:
     assert "zero feed rate" in bad.error and bad.error_block == "G1 X10"
 
 
+def test_the_oracle_reads_long_block_numbers() -> None:
+    """rs274 pads a block's N number to five places: a longer one runs into the call's name
+    ("N100100STRAIGHT_FEED"), and the call is still read, not taken for an error."""
+    res = run_linuxcnc("G21 F600\nN5 G1 X1\nN100100 G1 X2\nN1234567 G1 Y3\nM2\n")
+    assert not res.error
+    assert [end for _, end in res.motion] == [(1.0, 0.0, 0.0), (2.0, 0.0, 0.0), (2.0, 3.0, 0.0)]
+
+
+def test_the_library_check_finds_subroutines_where_it_is_told(tmp_path) -> None:
+    """A shop keeps its subroutine files in a folder of their own (LinuxCNC's SUBROUTINE_PATH):
+    ``--subroutines DIR`` gives it to both interpreters, after the program's own folder."""
+    from tools.against_linuxcnc import judge, main
+
+    (tmp_path / "programs").mkdir()
+    (tmp_path / "subs").mkdir()
+    program = tmp_path / "programs" / "part.ngc"
+    program.write_text("G21 F300\no<hole> call [5] [7]\nM2\n")
+    (tmp_path / "subs" / "hole.ngc").write_text(
+        "o<hole> sub\nG0 X#1 Y#2\nG1 Z-1\nG0 Z1\no<hole> endsub\nM2\n")
+    assert judge(program).kind == "both refuse"
+    verdict = judge(program, [tmp_path / "subs"])
+    assert (verdict.kind, verdict.detail) == ("same", "3 calls")
+    assert main([str(program), "--subroutines", str(tmp_path / "subs")]) == 0
+    assert main([str(program), "--subroutines", str(tmp_path / "nowhere")]) == 2
+
+
 def test_the_library_check_draws_curves_as_linuxcnc_does(tmp_path) -> None:
     """rs274 prints a curve as NURBS_FEED(n, ...) only: the library check also holds each curve's
     points against those LinuxCNC's preview module draws, and says when it could not."""
