@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from planner.movestore import MoveColumns, MoveStore
-from planner.program import MoveKind, Program
+from planner.program import MoveKind, Program, turn_xy
 
 ARC_STEP_RAD = math.radians(6.0)
 MIN_ARC_POINTS = 5
@@ -246,11 +246,20 @@ def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polyli
     theta = a0[owner] + sweep[owner] * t
     r = r0[owner] + (r1 - r0)[owner] * t
     rows = np.arange(total)
+    # arcs in a turned frame (G18/G19 in a rotated system): the points are made in the frame,
+    # where the linear part (start + t delta) is turned first, and turned back
+    turn = np.array([a.xy_turn_rad for a in arcs])
+    tr = np.nonzero(turn[owner] != 0.0)[0]
+    if tr.size:
+        xy = np.array([a.turned_xy or (0, 0) for a in arcs])[owner[tr]]
+        turn_xy(pts, xy[:, 0], xy[:, 1], -turn[owner[tr]], tr)
     pts[rows, f_ax[owner]] = cf[owner] + r * np.cos(theta)
     pts[rows, s_ax[owner]] = cs[owner] + r * np.sin(theta)
-    has_n = n_ax[owner] >= 0
+    has_n = (n_ax[owner] >= 0) & (turn[owner] == 0.0)   # in a frame the normal is already there
     rn, on, nn = rows[has_n], owner[has_n], n_ax[owner][has_n]
     pts[rn, nn] = start[on, nn] + rise[on] * t[has_n]
+    if tr.size:
+        turn_xy(pts, xy[:, 0], xy[:, 1], turn[owner[tr]], tr)
     last = first + counts - 1
     # exact start and end points: an arc's ends are then the very points of the moves beside
     # it, so a chain of arcs and lines is one run (``joined_runs``), which thinning can thin

@@ -400,8 +400,8 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
                 or l2.blend is not None or arc.rise_mm != 0.0 or p_tol <= 0.0
                 or abs(arc.radius_end_mm - arc.radius_start_mm) > 0.25 * p_tol
                 or abs(arc.sweep_rad) >= math.pi - 1e-6 or event_after[k - 1] or event_after[k]
-                or l1.exact_stop or moves[k].exact_stop):
-            continue
+                or l1.exact_stop or moves[k].exact_stop or arc.xy_turn_rad != 0.0):
+            continue        # (an arc in a turned frame is no fillet of a machine plane)
         if any(np.any((m.end - m.start)[rotary] != 0.0) for m in (l1, moves[k], l2)):
             continue
         f, s = arc.first_axis, arc.second_axis

@@ -24,13 +24,17 @@ import os
 from collections.abc import Iterator
 from typing import Any, BinaryIO
 
+import numpy as np
+
 from planner.files import write_output
-from planner.program import EventKind, MoveKind, Program
+from planner.program import EventKind, MoveKind, Program, turn_xy
 
 __all__ = ["canon_records", "iter_canon_records", "write_canon"]
 
 _CANON_AXES = ("X", "Y", "Z", "A", "B", "C", "U", "V", "W")
 _PLANE_NAMES = {"XY": "XY", "ZX": "XZ", "YZ": "YZ"}
+# the plane's first, second and normal axis as places in the canonical order (X Y Z ...)
+_PLANE_CANON = {"XY": (0, 1, 2), "ZX": (2, 0, 1), "YZ": (1, 2, 0)}
 
 
 def _offset_records(program: Program, cols: list[int]) -> dict[int, list[dict[str, Any]]]:
@@ -129,22 +133,30 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
             continue
         f, s, n = arc.first_axis, arc.second_axis, arc.normal_axis
         rotation = arc.turns if arc.sweep_rad > 0 else -arc.turns
-        if spec:                         # XY arcs only turn with the system: centre the same way
-            centre = list(end)
-            centre[f], centre[s] = arc.center[0], arc.center[1]
-            cprog = _to_program(centre, cols, spec)
-            first_c, second_c = cprog[0], cprog[1]
-            first_e, second_e = wcs[0], wcs[1]
+        if spec:
+            # the centre as a machine point, in program coordinates as the end is. A G18/G19
+            # arc's centre is in its turned frame: put there and turned back, the frame's X (or
+            # Y) becomes the program's; the other of X and Y, the plane's normal, is not read
+            centre = np.array([end])
+            centre[0, f], centre[0, s] = arc.center
+            turned = arc.turned_xy
+            if turned is not None:
+                turn_xy(centre, turned[0], turned[1], arc.xy_turn_rad)
+            cprog = _to_program(centre[0].tolist(), cols, spec)
+            fi, si, ni = _PLANE_CANON[arc.plane]
+            first_c, second_c = cprog[fi], cprog[si]
+            first_e, second_e, normal_e = wcs[fi], wcs[si], wcs[ni]
         else:
             first_c, second_c = arc.center[0] - off[f], arc.center[1] - off[s]
             first_e, second_e = end[f] - off[f], end[s] - off[s]
+            normal_e = end[n] - off[n] if n >= 0 else 0.0
         args = [
             first_e,
             second_e,
             first_c,
             second_c,
             rotation,
-            end[n] - off[n] if n >= 0 else 0.0,
+            normal_e,
             *wcs[3:],
         ]
         yield {"line": move.line, "call": "arc_feed", "args": args, "plane": _PLANE_NAMES[arc.plane]}

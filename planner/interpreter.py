@@ -3127,11 +3127,14 @@ class _Interpreter:
             cj = vals.get(sc)
             if ci is None and cj is None:
                 raise _BlockError("arc needs R or a centre: R, I, J and K words all missing", "G")
+            turned = self.rotation != 0.0 and self.plane != 170
             if self.arc_absolute:
                 if ci is None or cj is None:
                     raise _BlockError(f"G90.1 (absolute arc centre) needs both {fc} and {sc}",
                                       fc if ci is None else sc)
-                if self.rotation != 0.0:
+                if turned:
+                    cx, cy = self.frame_centre(fa, sa, ci * scale, cj * scale)
+                elif self.rotation != 0.0:
                     cx, cy = self.machine_xy(ci * scale, cj * scale)
                 else:
                     cx = ci * scale + self.offset[fa]
@@ -3139,7 +3142,7 @@ class _Interpreter:
             else:
                 di = ci * scale if ci is not None else 0.0
                 dj = cj * scale if cj is not None else 0.0
-                if self.rotation != 0.0:     # the centre offset turns with the system
+                if self.rotation != 0.0 and not turned:   # the centre offset turns with the system
                     theta = math.radians(self.rotation)
                     di, dj = (di * math.cos(theta) - dj * math.sin(theta),
                               di * math.sin(theta) + dj * math.cos(theta))
@@ -3152,12 +3155,29 @@ class _Interpreter:
         except ArcError as e:
             raise _BlockError(str(e), "R" if "R" in vals else "G") from None
 
+    def frame_centre(self, fa: int, sa: int, first: float, second: float) -> tuple[float, float]:
+        """An absolute arc centre (G90.1) of a G18/G19 arc in a rotated system, from program
+        coordinates to the arc's frame (the machine's X and Y turned back by the rotation):
+        there the plane's X or Y is the program's plus a constant, and Z the machine's."""
+        ix, iy = self.axis_index["X"], self.axis_index["Y"]
+        out = []
+        for col, value in ((fa, first), (sa, second)):
+            if col == ix:
+                out.append(self.frame_xy(*self.machine_xy(value, 0.0))[0])
+            elif col == iy:
+                out.append(self.frame_xy(*self.machine_xy(0.0, value))[1])
+            else:
+                out.append(value + self.offset[col])
+        return out[0], out[1]
+
+    def frame_xy(self, x: float, y: float) -> tuple[float, float]:
+        """Machine X and Y turned back by the XY rotation: the frame of a G18/G19 arc there."""
+        theta = math.radians(self.rotation)
+        c, s = math.cos(theta), math.sin(theta)
+        return c * x + s * y, -s * x + c * y
+
     def arc(self, target: list[float], vals: dict[str, float], cw: bool, scale: float, line_no: int) -> None:
         pname, fa, sa, na, fc, sc, bad, letters = self.plane_axes()
-        if self.rotation != 0.0 and self.plane != 170:
-            raise _BlockError(f"arc in {_PLANE_G[self.plane]} with the XY plane rotated (G10 L2 R): the "
-                              "arc's plane would not be a machine plane; only G17 arcs turn with the "
-                              "coordinate system", "G")
         feed = self.feed_mm_s
         if feed <= 0.0:
             raise _BlockError(_ZERO_FEED, "G")
@@ -3169,10 +3189,20 @@ class _Interpreter:
             self.comp.arc(self, target, vals, cw, turns, scale, line_no)
             return
         pos = self.pos
-        x0 = pos[fa]
-        y0 = pos[sa]
-        x1 = target[fa]
-        y1 = target[sa]
+        turn = 0.0
+        frame_pos, frame_target = pos, target
+        if self.rotation != 0.0 and self.plane != 170:
+            # a G18/G19 arc in a rotated system: its plane holds Z and a turned X or Y, so it is
+            # made in the frame turned with the system, where that plane is an axis plane
+            turn = math.radians(self.rotation)
+            ix, iy = self.axis_index["X"], self.axis_index["Y"]
+            frame_pos, frame_target = list(pos), list(target)
+            frame_pos[ix], frame_pos[iy] = self.frame_xy(pos[ix], pos[iy])
+            frame_target[ix], frame_target[iy] = self.frame_xy(target[ix], target[iy])
+        x0 = frame_pos[fa]
+        y0 = frame_pos[sa]
+        x1 = frame_target[fa]
+        y1 = frame_target[sa]
         if "R" in vals and ("I" in vals or "J" in vals or "K" in vals):
             raise _BlockError("mixed radius (R) and centre (I/J/K) format for arc", "R")
         if ("R" in vals and (x0 != x1 or y0 != y1) and vals["R"] > 0.0
@@ -3183,8 +3213,8 @@ class _Interpreter:
             a0, sweep = sweep_angle(x0, y0, x1, y1, cx, cy, cw, turns)
         except ArcError as e:
             raise _BlockError(str(e), "R" if "R" in vals else "G") from None
-        rise = target[na] - pos[na] if na >= 0 else 0.0
-        arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, rise, turns)
+        rise = frame_target[na] - frame_pos[na] if na >= 0 else 0.0
+        arc = _make_arc(pname, fa, sa, na, (cx, cy), r0, r1, a0, sweep, rise, turns, turn)
         length = math.hypot(r0 * sweep, rise) if r0 == r1 else spiral_length_mm(r0, r1, sweep, rise)
         self.emit(target, _ARC, feed, length, arc, line_no)
 

@@ -170,6 +170,12 @@ def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
         tc[sp] = np.abs(table.end[sp] - table.start[sp]) / speed_min[:, None]
     tc[k, table.first[k]] = 0.0
     tc[k, table.second[k]] = 0.0
+    # an arc in a turned frame (G18/G19 in a rotated system): the machine's X and Y each carry
+    # part of the plane's turned axis and part of the normal, so X, Y and Z are all counted as
+    # the plane's, with the whole tangent in it (rho 1, as a blend's): |a component| <= |the vector|
+    kt = k[table.turn[k] != 0.0]
+    tc[kt, table.turn_x[kt]] = 0.0
+    tc[kt, table.turn_y[kt]] = 0.0
     bl = np.nonzero(table.is_blend)[0]
     # a blend turns in the plane of its two lines: every axis of that plane changes speed
     bl_plane = (np.abs(table.bl_u1[bl]) + np.abs(table.bl_n1[bl])) > 1e-12
@@ -181,13 +187,17 @@ def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
         vc[bl] = np.minimum(vc[bl], np.where(bl_plane, lim.v_axis[None, :], np.inf).min(axis=1))
     if k.size or bl.size:
         rho, kappa, omega = table.arc_terms()
+        rho[kt] = 1.0
         f, s = table.first[k], table.second[k]
-        v_pl = np.concatenate([np.minimum(lim.v_axis[f], lim.v_axis[s]),
-                               np.where(bl_plane, lim.v_axis[None, :], np.inf).min(axis=1)])
-        a_pl = np.concatenate([np.minimum(lim.a_axis[f], lim.a_axis[s]),
-                               np.where(bl_plane, lim.a_axis[None, :], np.inf).min(axis=1)])
-        j_pl = np.concatenate([np.minimum(lim.j_axis[f], lim.j_axis[s]),
-                               np.where(bl_plane, lim.j_axis[None, :], np.inf).min(axis=1)])
+        # the turned frame's X and Y (f and s elsewhere: no change there)
+        turned = table.turn[k] != 0.0
+        tx, ty = np.where(turned, table.turn_x[k], f), np.where(turned, table.turn_y[k], s)
+
+        def plane_min(limit: np.ndarray) -> np.ndarray:
+            arcs = np.minimum(np.minimum(limit[f], limit[s]), np.minimum(limit[tx], limit[ty]))
+            return np.concatenate([arcs, np.where(bl_plane, limit[None, :], np.inf).min(axis=1)])
+
+        v_pl, a_pl, j_pl = plane_min(lim.v_axis), plane_min(lim.a_axis), plane_min(lim.j_axis)
         # shares of the in-plane jerk (see the module docstring): arcs keep most of the cross
         # budget for the tangential acceleration they need along their length; a blend is short
         # and crossed at about one speed, so its changing curvature takes most of it
@@ -235,6 +245,8 @@ def _paper_joint_caps(table: MoveTable, vc: np.ndarray, lim: LimitSet) -> np.nda
     n21 = np.hypot(d21[:, 0], d21[:, 1])
     ok = both_arcs & (n10 > 1e-9) & (n21 > 1e-9)
     ok &= (table.first[nxt] == f) & (table.second[nxt] == s)
+    # Table 3 reads the arcs' chords in a machine plane: arcs in a turned frame stop at their joints
+    ok &= (table.turn[cur] == 0.0) & (table.turn[nxt] == 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         cosb = np.clip((d10 * d21).sum(axis=1) / (n10 * n21), -1.0, 1.0)
     beta = 180.0 - np.degrees(np.arccos(cosb))

@@ -85,6 +85,11 @@ class MoveTable:
     theta0: np.ndarray
     sweep: np.ndarray
     rise: np.ndarray
+    # a G18/G19 arc in a rotated system (Arc.xy_turn_rad): the turn of its frame about Z and the
+    # machine's X and Y columns (0 elsewhere: only rows with a turn read them)
+    turn: np.ndarray
+    turn_x: np.ndarray
+    turn_y: np.ndarray
     spiral_poly: np.ndarray  # (n, 8) t(x) - x coefficients (x = u / L), spirals only
     spiral_poly_ok: np.ndarray  # (n,) bool: polynomial exact to rounding for this spiral
     # corner blends (planner.blend): pair start A, unit direction and inside normal (n, d),
@@ -136,18 +141,21 @@ class MoveTable:
         n = int(length.shape[0])
         is_arc = np.zeros(n, dtype=bool)
         if arc_rows.size:
-            arc_vals = np.zeros((n, 10))
+            arc_vals = np.zeros((n, 13))
             is_arc[arc_rows] = True
             arc_vals[arc_rows] = [(a.first_axis, a.second_axis, a.normal_axis, a.center[0], a.center[1],
                                    a.radius_start_mm, a.radius_end_mm, a.start_angle_rad, a.sweep_rad,
-                                   a.rise_mm) for a in arcs if a is not None]
+                                   a.rise_mm, a.xy_turn_rad, *(a.turned_xy or (0, 0)))
+                                  for a in arcs if a is not None]
             first = arc_vals[:, 0].astype(np.int64)
             second = arc_vals[:, 1].astype(np.int64)
             normal = np.where(is_arc, arc_vals[:, 2], -1).astype(np.int64)
+            turn_x = arc_vals[:, 11].astype(np.int64)
+            turn_y = arc_vals[:, 12].astype(np.int64)
         else:
             # no arc: the arc columns take no memory (one row repeated, stride 0), as below
-            arc_vals = np.broadcast_to(np.zeros((1, 10)), (n, 10))
-            first = second = np.broadcast_to(np.zeros(1, np.int64), (n,))
+            arc_vals = np.broadcast_to(np.zeros((1, 13)), (n, 13))
+            first = second = turn_x = turn_y = np.broadcast_to(np.zeros(1, np.int64), (n,))
             normal = np.broadcast_to(np.full(1, -1, np.int64), (n,))
         r0, r1 = arc_vals[:, 5], arc_vals[:, 6]
         spiral = is_arc & (r0 != r1)
@@ -191,6 +199,7 @@ class MoveTable:
             first=first, second=second, normal=normal,
             cx=arc_vals[:, 3], cy=arc_vals[:, 4], r0=r0, r1=r1,
             theta0=arc_vals[:, 7], sweep=arc_vals[:, 8], rise=arc_vals[:, 9],
+            turn=arc_vals[:, 10], turn_x=turn_x, turn_y=turn_y,
             spiral_poly=poly, spiral_poly_ok=poly_ok,
             is_blend=is_blend, bl_a=bl_vec[0], bl_u1=bl_vec[1], bl_n1=bl_vec[2],
             bl_half=bl_val[0], bl_turn=bl_val[1], bl_s0=bl_val[2], bl_arc=bl_val[3],
@@ -224,6 +233,10 @@ class MoveTable:
         q *= frac[:, None]
         q += self.start[row]
         if arc.any():
+            # arcs in a turned frame: the linear part (start + frac delta) into the frame first
+            tw = np.nonzero(self.turn[r])[0]
+            if tw.size:
+                self._turn(q, k[tw], r[tw], -1.0)
             fk = frac[k]
             theta = self.theta0[r] + self.sweep[r] * fk
             r0 = self.r0[r]
@@ -240,6 +253,8 @@ class MoveTable:
             else:
                 q[k, f] = x
                 q[k, s] = y
+            if tw.size:
+                self._turn(q, k[tw], r[tw], 1.0)
         bl = self.is_blend[row]
         if bl.any():
             k = np.nonzero(bl)[0]
@@ -257,7 +272,11 @@ class MoveTable:
         limit meter reads as jerk). The start's radius vector v turned by the angle so far,
         R v - v by the half-angle forms, is small where the turn is; a spiral scales R v."""
         f, s = self.first[r], self.second[r]
-        xs, ys = self.start[r, f], self.start[r, s]
+        start = self.start[r]
+        tw = np.nonzero(self.turn[r])[0]
+        if tw.size:                          # the start in the frame of a turned arc
+            self._turn(start, tw, r[tw], -1.0)
+        xs, ys = start[np.arange(r.size), f], start[np.arange(r.size), s]
         vx, vy = xs - self.cx[r], ys - self.cy[r]
         half = 0.5 * self.sweep[r] * fk
         sh, ch = np.sin(half), np.cos(half)
@@ -267,6 +286,15 @@ class MoveTable:
         dy = s1 * vx + c1 * vy
         grow = (self.r1[r] - self.r0[r]) * fk / self.r0[r]
         return xs + dx + grow * (vx + dx), ys + dy + grow * (vy + dy)
+
+    def _turn(self, q: np.ndarray, k: np.ndarray, r: np.ndarray, sign: float) -> None:
+        """Turn rows ``k`` of ``q`` (moves ``r``, arcs in a turned frame) into their frame
+        (``sign`` -1) or back to the machine's (+1)."""
+        c, s = np.cos(sign * self.turn[r]), np.sin(sign * self.turn[r])
+        ix, iy = self.turn_x[r], self.turn_y[r]
+        x, y = q[k, ix], q[k, iy]
+        q[k, ix] = c * x - s * y
+        q[k, iy] = s * x + c * y
 
     def _blend_frames(self, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(rows, unit tangents, curvature vectors) of the blends at their start or end."""
@@ -319,8 +347,13 @@ class MoveTable:
                 d1s = dr * np.sin(theta) + rad * w * np.cos(theta)
                 speed = np.sqrt(d1f * d1f + d1s * d1s + self.rise[k] ** 2)
                 out[k] = (self.end[k] - self.start[k]) / speed[:, None]
+                tw = np.nonzero(self.turn[k])[0]
+                if tw.size:
+                    self._turn(out, k[tw], k[tw], -1.0)
                 out[k, self.first[k]] = d1f / speed
                 out[k, self.second[k]] = d1s / speed
+                if tw.size:
+                    self._turn(out, k[tw], k[tw], 1.0)
         if self.is_blend.any():
             for at_end, out in ((False, t_start), (True, t_end)):
                 k, t, _ = self._blend_frames(at_end)
@@ -340,6 +373,9 @@ class MoveTable:
                 rad = self.r0[k] + (self.r1[k] - self.r0[k]) * frac
                 out[k, self.first[k]] = -rad * omega * omega * np.cos(theta)
                 out[k, self.second[k]] = -rad * omega * omega * np.sin(theta)
+                tw = np.nonzero(self.turn[k])[0]
+                if tw.size:                  # written in the frame, where the rest was 0
+                    self._turn(out, k[tw], k[tw], 1.0)
         if self.is_blend.any():
             for at_end, out in ((False, c_start), (True, c_end)):
                 k, _, c = self._blend_frames(at_end)
@@ -500,8 +536,13 @@ def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarra
         k = np.nonzero(arc)[0]
         r = row[k]
         f, s = table.first[r], table.second[r]
-        px = q[k, f] - table.cx[r]
-        py = q[k, s] - table.cy[r]
+        qk, start_k, delta_k = q[k], start[k], delta[k]     # copies (fancy indexing)
+        tw = np.nonzero(table.turn[r])[0]
+        if tw.size:                          # arcs in a turned frame: all three into it
+            for a in (qk, start_k, delta_k):
+                table._turn(a, tw, r[tw], -1.0)
+        px = qk[np.arange(k.size), f] - table.cx[r]
+        py = qk[np.arange(k.size), s] - table.cy[r]
         ang = np.arctan2(py, px)
         # Unwrap the angle next to the nominal angle of the point's own path parameter.
         sweep = table.sweep[r]
@@ -514,7 +555,7 @@ def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarra
         flat = np.maximum(table.r0[r], table.r1[r]) * np.abs(sweep) < 1e-6 * table.length[r]
         frac = np.where(flat, proj[k], frac)
         radius = table.r0[r] + (table.r1[r] - table.r0[r]) * frac
-        other = q[k] - (start[k] + frac[:, None] * delta[k])
+        other = qk - (start_k + frac[:, None] * delta_k)
         other[np.arange(k.size), f] = 0.0
         other[np.arange(k.size), s] = 0.0
         radial = np.hypot(px, py) - radius

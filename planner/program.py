@@ -41,6 +41,7 @@ __all__ = [
     "arc_length_mm",
     "arc_param_at_length",
     "spiral_length_mm",
+    "turn_xy",
     "WaitMode",
 ]
 
@@ -67,10 +68,36 @@ class Arc:
     sweep_rad: float  # signed: + counter-clockwise (G03) seen from + normal; includes whole turns
     rise_mm: float  # helix: change of the normal axis over the arc
     turns: int = 1  # P word (LinuxCNC's |rotation|); sweep already includes the extra turns
+    # A G18/G19 arc while the XY plane is rotated (G10 L2 R) lies in a plane turned about Z:
+    # its centre, angles and axes (X and Y of the turned system) are in a frame whose X and Y are
+    # the machine's turned by this angle, machine (X, Y) = R(xy_turn_rad) (frame X, Y). Zero for
+    # every other arc (a G17 arc turns with the system in its own plane).
+    xy_turn_rad: float = 0.0
 
     @property
     def clockwise(self) -> bool:
         return self.sweep_rad < 0.0
+
+    @property
+    def turned_xy(self) -> tuple[int, int] | None:
+        """The machine's X and Y columns of an arc in a turned frame (G18: the second axis and
+        the normal, G19: the normal and the first axis), None for an arc in a machine plane."""
+        if self.xy_turn_rad == 0.0:
+            return None
+        if self.plane == "ZX":
+            return self.second_axis, self.normal_axis
+        return self.normal_axis, self.first_axis
+
+
+def turn_xy(q: np.ndarray, ix: Any, iy: Any, angle_rad: Any, rows: Any = slice(None)) -> None:
+    """Turn columns ``ix``, ``iy`` of ``q[rows]`` by ``angle_rad`` about Z, in place (scalars, or
+    one value a row: ``rows`` an index array)."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    x = q[rows, ix]
+    y = q[rows, iy]
+    x, y = c * x - s * y, s * x + c * y      # both made before either column is written
+    q[rows, ix] = x
+    q[rows, iy] = y
 
 
 # 16-point Gauss-Legendre rule on [0, 1] for the arc length of near-circular spirals.
@@ -207,9 +234,14 @@ class Move:
 
         # Axes other than the plane's move linearly in t (helix axis, rotary axes).
         pos = start + t[:, None] * delta
+        turned = arc.turned_xy
+        if turned is not None:     # into the arc's frame (a linear map: start + t delta there too)
+            turn_xy(pos, turned[0], turned[1], -arc.xy_turn_rad)
         pos[:, f] = arc.center[0] + r * c
         pos[:, s] = arc.center[1] + r * sn
-        if nrm >= 0:
+        if turned is not None:
+            turn_xy(pos, turned[0], turned[1], arc.xy_turn_rad)
+        elif nrm >= 0:
             pos[:, nrm] = start[nrm] + arc.rise_mm * t
         pos[u >= length] = self.end
 
@@ -223,10 +255,14 @@ class Move:
         tangent = np.empty((n_pts, start.shape[0]))
         tangent[:] = delta
         tangent /= speed[:, None]
+        if turned is not None:
+            turn_xy(tangent, turned[0], turned[1], -arc.xy_turn_rad)
         tangent[:, f] = d1f / speed
         tangent[:, s] = d1s / speed
         if nrm >= 0:
             tangent[:, nrm] = rise / speed
+        if turned is not None:
+            turn_xy(tangent, turned[0], turned[1], arc.xy_turn_rad)
         # |p' x p''| / |p'|^3 with p = (first, second, normal), p''_normal = 0.
         cx = -rise * d2s
         cy = rise * d2f
@@ -528,10 +564,10 @@ def _make_move(index, line, kind, start, end, feed_mm_s, length_mm, arc, exact_s
     return m
 
 
-def _make_arc(plane, first_axis, second_axis, normal_axis, center, r0, r1, a0, sweep, rise, turns,
+def _make_arc(plane, first_axis, second_axis, normal_axis, center, r0, r1, a0, sweep, rise, turns, turn=0.0,
               _new=_new, _cls=Arc, _s0=_ARC_SET[0], _s1=_ARC_SET[1], _s2=_ARC_SET[2], _s3=_ARC_SET[3],
               _s4=_ARC_SET[4], _s5=_ARC_SET[5], _s6=_ARC_SET[6], _s7=_ARC_SET[7], _s8=_ARC_SET[8],
-              _s9=_ARC_SET[9], _s10=_ARC_SET[10]) -> Arc:
+              _s9=_ARC_SET[9], _s10=_ARC_SET[10], _s11=_ARC_SET[11]) -> Arc:
     a = _new(_cls)
     _s0(a, plane)
     _s1(a, first_axis)
@@ -544,4 +580,5 @@ def _make_arc(plane, first_axis, second_axis, normal_axis, center, r0, r1, a0, s
     _s8(a, sweep)
     _s9(a, rise)
     _s10(a, turns)
+    _s11(a, turn)
     return a

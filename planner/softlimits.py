@@ -17,7 +17,7 @@ import numpy as np
 
 from planner.machine import MachineSpec
 from planner.movestore import MoveStore
-from planner.program import Move, Program
+from planner.program import Arc, Move, Program
 
 __all__ = [
     "LimitViolation", "check_and_bound", "check_point", "check_program", "move_bounds", "move_bounds_pieces",
@@ -64,20 +64,54 @@ def move_bounds(move: Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             lo, hi = min(a0, a1), max(a0, a1)
             k0 = math.ceil(lo / (math.pi / 2) - 1e-12)
             k1 = math.floor(hi / (math.pi / 2) + 1e-12)
-            if k1 >= k0:
-                ang = np.arange(k0, k1 + 1) * (math.pi / 2)
+            ang = np.arange(k0, k1 + 1) * (math.pi / 2) if k1 >= k0 else np.zeros(0)
+            if arc.xy_turn_rad != 0.0:
+                ang = np.concatenate([ang, _turned_extreme_angles(arc, lo, hi)])
+            if ang.size:
                 # Angle -> path length: u = L (ang - a0) / sweep (angle linear in u).
                 u = move.length_mm * (ang - a0) / arc.sweep_rad if arc.sweep_rad else np.zeros_like(ang)
                 p = move.evaluate(u)[0]
-                # Exact plane coordinates at the extreme angles (no rounding from u).
-                p[:, arc.first_axis] = arc.center[0] + arc.radius_start_mm * np.cos(ang)
-                p[:, arc.second_axis] = arc.center[1] + arc.radius_start_mm * np.sin(ang)
+                # Exact plane coordinates at the extreme angles (no rounding from u); in a turned
+                # frame u's rounding stays (the extremes of X and Y are no plane coordinates)
+                if arc.xy_turn_rad == 0.0:
+                    p[:, arc.first_axis] = arc.center[0] + arc.radius_start_mm * np.cos(ang)
+                    p[:, arc.second_axis] = arc.center[1] + arc.radius_start_mm * np.sin(ang)
                 pts.extend(p)
         else:
             n = max(int(abs(arc.sweep_rad) / math.radians(1.0)) + 2, 8)
             pts.extend(move.evaluate(np.linspace(0.0, move.length_mm, n))[0])
     arr = np.vstack(pts)
     return arr.min(axis=0), arr.max(axis=0), arr
+
+
+def _turned_extreme_angles(arc: Arc, lo: float, hi: float) -> np.ndarray:
+    """Angles in [lo, hi] where the machine's X or Y is extreme on a circle or helix in a turned
+    frame (G18/G19 in a rotated system). There each of X and Y is a cos(t) + b sin(t) + g t +
+    const: the frame's in-plane axes and its normal each carry part of it, so a helix's extremes
+    are off the quarter turns: where -a sin(t) + b cos(t) + g = 0."""
+    c, s = math.cos(arc.xy_turn_rad), math.sin(arc.xy_turn_rad)
+    turned = (c, s)                       # the frame's X in machine X, Y
+    normal = (-s, c)                      # the frame's Y
+    # (X, Y) parts of the plane's first axis, its second, and its normal, per unit
+    if arc.plane == "ZX":                 # first Z, second the frame's X, normal its Y
+        first, second, along = (0.0, 0.0), turned, normal
+    else:                                 # "YZ": first the frame's Y, second Z, normal its X
+        first, second, along = normal, (0.0, 0.0), turned
+    r = arc.radius_start_mm
+    k = arc.rise_mm / arc.sweep_rad if arc.sweep_rad else 0.0
+    out = []
+    for axis in (0, 1):
+        a, b, g = r * first[axis], r * second[axis], k * along[axis]
+        amp = math.hypot(a, b)
+        if amp == 0.0 or abs(g) > amp:
+            continue
+        delta = math.atan2(a, b)          # -a sin t + b cos t = amp cos(t + delta)
+        psi = math.acos(-g / amp)
+        for base in (-delta + psi, -delta - psi):
+            m0 = math.ceil((lo - base) / (2 * math.pi))
+            m1 = math.floor((hi - base) / (2 * math.pi))
+            out += [base + 2 * math.pi * m for m in range(m0, m1 + 1)]
+    return np.array(out)
 
 
 #: moves whose bounds are made at once: a piece's tables are a few megabytes (the whole

@@ -107,8 +107,8 @@ def solve_transition(k0: float, k1: float, dpsi: float, bx: float, by: float
 def _plane(a: Move, b: Move, n_axes: int) -> tuple[int, int] | None:
     """The machine plane (first, second axis) both moves lie in, from their arcs."""
     planes = {(m.arc.first_axis, m.arc.second_axis) for m in (a, b) if m.arc is not None}
-    if len(planes) != 1:
-        return None
+    if len(planes) != 1 or any(m.arc is not None and m.arc.xy_turn_rad != 0.0 for m in (a, b)):
+        return None                 # an arc in a turned frame lies in no machine plane
     f, s = planes.pop()
     other = np.ones(n_axes, dtype=bool)
     other[[f, s]] = False

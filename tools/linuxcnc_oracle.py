@@ -35,6 +35,9 @@ class OracleResult:
     error: str                   # LinuxCNC's error text, "" when the program ran to its end
     error_block: str             # the block LinuxCNC printed after the error
     every: tuple[tuple, ...] = ()  # the motion calls, moves to where the tool is included
+    # where each call of ``motion`` ends in machine coordinates (X, Y, Z: the offsets, the XY
+    # rotation and the tool's length applied, as LinuxCNC's canon applies them)
+    machine: tuple[tuple[float, ...], ...] = ()
 
 
 _EXPECTED_CALL = re.compile(r"^\s*(?:N\.+\s+)?([A-Z_]+)\((.*)\)\s*$")
@@ -217,20 +220,22 @@ def read_output(out: str) -> OracleResult:
             xyz = {"XY": (first, second, normal), "YZ": (normal, first, second),
                    "XZ": (second, normal, first)}[plane]
             machine.append(to_machine(xyz))
-    return OracleResult(_without_zero_moves(motion, machine), error, block, tuple(motion))
+    kept = _without_zero_moves(motion, machine)
+    return OracleResult([motion[k] for k in kept], error, block, tuple(motion),
+                        tuple(machine[k] for k in kept))
 
 
-def _without_zero_moves(motion: list[tuple], machine: list[tuple]) -> list[tuple]:
+def _without_zero_moves(motion: list[tuple], machine: list[tuple]) -> list[int]:
     """LinuxCNC writes moves to where the tool already is; a Program has none. Compared in
     machine coordinates (an offset change moves the program's point, not the tool), within
     what LinuxCNC prints (four decimals of an inch in G20); the generated programs move on a
-    0.1 mm grid, so no real move is this short."""
+    0.1 mm grid, so no real move is this short. The places of the calls kept."""
     out = []
     last = (0.0, 0.0, 0.0)                      # both start at the origin
-    for call, here in zip(motion, machine):
+    for k, (call, here) in enumerate(zip(motion, machine)):
         if call[0] not in ("arc_feed", "rigid_tap") and max(abs(a - b) for a, b in zip(here, last)) < 0.003:
             continue
-        out.append(call)
+        out.append(k)
         last = here
     return out
 

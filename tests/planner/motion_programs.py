@@ -125,14 +125,17 @@ def sample_program(name: str, machine: MachineSpec | None = None):
 
 
 @st.composite
-def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0) -> str:
+def programs(draw: st.DrawFn, max_blocks: int = 12, scale: float = 1.0, rotated: bool = False) -> str:
     """A G-code program drawn block by block by hypothesis (so a failing one shrinks to the
     few blocks that matter): lines (long, tiny, nearly collinear), rapids, arcs and helices in
     the three planes (I/J/K form, both directions, partial and full turns), curves (G05 and
     G05.2 NURBS, made into arcs), feeds, dwells, pauses, exact stop and blending. Every length
-    is multiplied by ``scale``."""
+    is multiplied by ``scale``. ``rotated``: in a coordinate system turned about Z by a drawn
+    angle (G10 L2 R), where G18/G19 arcs lie in turned planes."""
     pos = np.zeros(3)
     out = ["G21 G90 G94 G17 F1800", "G00 X0 Y0 Z0"]
+    if rotated:
+        out.insert(1, f"G10 L2 P1 R{draw(st.floats(-180.0, 180.0).filter(lambda r: abs(r) > 0.01)):.3f}")
     plane = "G17"
     length = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
     for _ in range(draw(st.integers(1, max_blocks))):

@@ -299,3 +299,94 @@ def test_spiral_length_closed_form_and_quadrature(dr_rel, rise_mm):
     length = spiral_length_mm(r0, r1, sweep, rise_mm)
     assert float(_spiral_s(arc, np.array([1.0]))[0]) == pytest.approx(length, rel=1e-13)
     assert arc_param_at_length(arc, np.array([length]), length)[0] == 1.0
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    rotation=st.floats(-179.0, 179.0).filter(lambda r: abs(r) > 0.01),
+    plane=st.sampled_from(["G18", "G19"]),
+    c1=coord,
+    c2=coord,
+    n0=coord,
+    r=radius,
+    a0=angle,
+    a1=angle,
+    g=gdir,
+    turns=st.integers(1, 3),
+    h=rise,
+)
+def test_arcs_in_a_rotated_system_lie_in_their_turned_plane(rotation, plane, c1, c2, n0, r, a0, a1, g,
+                                                            turns, h):
+    """A G18/G19 arc while the XY plane is rotated (G10 L2 R) lies in the plane of Z and the
+    turned X (or Y): turned back by the rotation, every point is on the programmed circle, the
+    normal linear in the angle, the ends exact; the vectorised table gives the
+    same points, tangents and ends as the move itself."""
+    from planner.movetable import MoveTable, contour_error
+
+    p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
+    p1 = (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
+    assume(math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
+    (f, s, n), (ci, cj) = PLANES[plane]
+    start = {f: p0[0], s: p0[1], n: n0}
+    text = f"G10 L2 P1 R{num(rotation)}\n" + program_for(
+        plane, (start["X"], start["Y"], start["Z"]),
+        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} {ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} "
+        f"P{turns}")
+    program = parse_program(text)
+    move = program.moves[-1]
+    arc = move.arc
+    assert arc is not None and arc.xy_turn_rad == pytest.approx(math.radians(rotation))
+    u = np.linspace(0.0, move.length_mm, 57)
+    pos, tan, curv = move.evaluate(u)
+    np.testing.assert_allclose(pos[0], move.start, atol=TOL * max(1.0, r), rtol=0)
+    np.testing.assert_array_equal(pos[-1], move.end)
+    # program coordinates (no offsets here): machine X, Y turned back by the rotation
+    c, sn = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
+    prog = pos.copy()
+    prog[:, 0], prog[:, 1] = c * pos[:, 0] + sn * pos[:, 1], -sn * pos[:, 0] + c * pos[:, 1]
+    fc, sc, nc = COLUMN[f], COLUMN[s], COLUMN[n]
+    tol = 1e-9 * max(1.0, r, abs(c1), abs(c2), abs(n0))
+    np.testing.assert_allclose(np.hypot(prog[:, fc] - c1, prog[:, sc] - c2), r, atol=tol * 10, rtol=1e-9)
+    # the normal rises linearly in the angle, and so in u on a circle
+    np.testing.assert_allclose(prog[:, nc], n0 + h * u / move.length_mm, atol=tol * 10, rtol=1e-9)
+    # unit tangent = dq/du (central differences), curvature of a helix about a circle
+    np.testing.assert_allclose(np.linalg.norm(tan, axis=1), 1.0, rtol=1e-9)
+    du = 1e-6 * move.length_mm
+    mid = u[1:-1]
+    fd = (move.evaluate(mid + du)[0] - move.evaluate(mid - du)[0]) / (2 * du)
+    np.testing.assert_allclose(fd, tan[1:-1], atol=1e-5)
+    pitch = arc.rise_mm / arc.sweep_rad
+    np.testing.assert_allclose(curv, r / (r * r + pitch * pitch), rtol=1e-6)
+    # the vectorised table: positions, end tangents and curvature vectors, distance to the path
+    table = MoveTable.from_moves([move], len(program.axes))
+    rows = np.zeros(u.size, dtype=np.int64)
+    np.testing.assert_allclose(table.positions(rows, u), pos, atol=tol * 10, rtol=0)
+    t_start, t_end = table.end_tangents()
+    np.testing.assert_allclose(t_start[0], tan[0], atol=1e-9)
+    np.testing.assert_allclose(t_end[0], tan[-1], atol=1e-9)
+    c_start, _ = table.end_curvature_vectors()
+    h2 = 1e-4 * min(move.length_mm, r)          # small against the radius, large against rounding
+    fd2 = (move.evaluate(np.array([2 * h2]))[0] - 2 * move.evaluate(np.array([h2]))[0]
+           + move.evaluate(np.array([0.0]))[0]) / (h2 * h2)
+    np.testing.assert_allclose(c_start[0], fd2[0], atol=1e-3 * max(1.0, 1.0 / r), rtol=1e-3)
+    assert float(contour_error(table, rows, pos, u).max()) <= tol * 10
+
+
+@pytest.mark.parametrize("rotation", [17.0, 45.0, -120.0, 90.0])
+@pytest.mark.parametrize("arc", ["G18 G2 X40 Z0 I20 K0", "G19 G3 Y40 Z0 J20 K0 X5",
+                                 "G18 G3 X0 Z0 I20 K0 Y-30 P2", "G19 G2 Y6 Z0 J3 K0.5 X-9"])
+def test_the_travel_an_arc_in_a_rotated_system_covers_is_its_own(rotation, arc):
+    """The soft limits read a move's bounds: for a G18/G19 arc in a rotated system, whose plane
+    swings X, Y and Z at once, the bounds are those of its points (its extremes, not its ends);
+    along a helix there the extremes of X and Y are off the quarter turns."""
+    from planner.softlimits import move_bounds
+
+    program = parse_program(f"G21 G90 F600\nG10 L2 P1 R{rotation}\nG0 X0 Y0 Z0\n{arc}\nM2\n")
+    move = program.moves[-1]
+    assert move.arc is not None and move.arc.xy_turn_rad != 0.0
+    lo, hi, _ = move_bounds(move)
+    pts = move.evaluate(np.linspace(0.0, move.length_mm, 200_001))[0]
+    # every point inside the bounds, and the bounds reached (to the sampling's 1e-6 mm)
+    assert np.all(pts.min(axis=0) >= lo - 1e-9) and np.all(pts.max(axis=0) <= hi + 1e-9)
+    np.testing.assert_allclose(lo, pts.min(axis=0), atol=1e-6)
+    np.testing.assert_allclose(hi, pts.max(axis=0), atol=1e-6)

@@ -143,8 +143,18 @@ def test_rotated_system_turns_lines_arcs_cycles_and_polar_words() -> None:
                        [9, 1, 1], [10, 2, 1], [10, 3, 1]]
     arc = next(r for r in canon_records(p) if r["call"] == "arc_feed")
     assert [round(v, 9) for v in arc["args"][:4]] == [5.0, 0.0, 2.5, 0.0]        # program coordinates
-    with pytest.raises(ProgramError, match="arc in G18 with the XY plane rotated"):
-        parse_program("G21 F100\nG10 L2 P1 R30\nG18 G2 X1 Z0 R1\n")
+    # a G18 arc there lies in the plane of Z and the turned X: from the origin to program X1 (the
+    # machine's cos 30, sin 30) about the centre Z 0.866 X 0.5, as rs274 writes it; half way it
+    # is 0.134 below, at half the turned X
+    g18 = parse_program("G21 F100\nG10 L2 P1 R30\nG18 G2 X1 Z0 R1\nM2\n")
+    move = g18.moves[-1]
+    c30, s30 = np.cos(np.radians(30.0)), np.sin(np.radians(30.0))
+    np.testing.assert_allclose(move.end, [c30, s30, 0.0], atol=1e-12)
+    np.testing.assert_allclose(move.evaluate(np.array([move.length_mm / 2]))[0][0],
+                               [0.5 * c30, 0.5 * s30, c30 - 1.0], atol=1e-12)
+    arc = next(r for r in canon_records(g18) if r["call"] == "arc_feed")
+    assert [round(v, 9) for v in arc["args"][:4]] == [0.0, 1.0, round(c30, 9), 0.5]
+    assert arc["plane"] == "XZ"
     with pytest.raises(ProgramError, match="R not allowed in G10 L20"):
         parse_program("G10 L20 P1 X0 R10\n")
 
