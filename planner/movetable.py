@@ -18,7 +18,7 @@ import numpy as np
 
 from planner.blend import pair_frames, pair_positions
 from planner.movestore import MoveStore
-from planner.program import Arc, Move, MoveKind
+from planner.program import Arc, Move, MoveKind, turn_xy
 
 __all__ = ["MoveTable", "RowJoin", "concat_tables", "contour_error", "join_rows", "take_rows"]
 
@@ -290,11 +290,7 @@ class MoveTable:
     def _turn(self, q: np.ndarray, k: np.ndarray, r: np.ndarray, sign: float) -> None:
         """Turn rows ``k`` of ``q`` (moves ``r``, arcs in a turned frame) into their frame
         (``sign`` -1) or back to the machine's (+1)."""
-        c, s = np.cos(sign * self.turn[r]), np.sin(sign * self.turn[r])
-        ix, iy = self.turn_x[r], self.turn_y[r]
-        x, y = q[k, ix], q[k, iy]
-        q[k, ix] = c * x - s * y
-        q[k, iy] = s * x + c * y
+        turn_xy(q, self.turn_x[r], self.turn_y[r], sign * self.turn[r], k)
 
     def _blend_frames(self, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(rows, unit tangents, curvature vectors) of the blends at their start or end."""
