@@ -162,6 +162,22 @@ def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
     assert m2.length_mm == pytest.approx(move.length_mm, abs=1e-9 * max(1.0, move.length_mm))
 
 
+def ijk_arc_text(plane, c1, c2, n0, r, a0, a1, g, turns, h, full=False) -> str:
+    """A program to the start of an I/J/K arc about (c1, c2) of radius r from angle a0 to a1 (a
+    whole circle with ``full``), its normal from n0 rising by h, in ``turns`` turns, and the arc."""
+    p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
+    p1 = p0 if full else (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
+    assume(full or math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
+    (f, s, n), (ci, cj) = PLANES[plane]
+    start = {f: p0[0], s: p0[1], n: n0}
+    return program_for(
+        plane,
+        (start["X"], start["Y"], start["Z"]),
+        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
+        f"{ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} P{turns}",
+    )
+
+
 @settings(max_examples=40)
 @given(
     plane=plane,
@@ -179,16 +195,7 @@ def test_r_form(plane, c1, c2, n0, r, a0, a1, g, sign, h):
 def test_ijk_form_turns_and_full_circles(plane, c1, c2, n0, r, a0, a1, g, turns, h, full):
     p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
     p1 = p0 if full else (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
-    assume(full or math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
-    (f, s, n), (ci, cj) = PLANES[plane]
-    start = {f: p0[0], s: p0[1], n: n0}
-    text = program_for(
-        plane,
-        (start["X"], start["Y"], start["Z"]),
-        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} "
-        f"{ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} P{turns}",
-    )
-    move = parse_program(text).moves[-1]
+    move = parse_program(ijk_arc_text(plane, c1, c2, n0, r, a0, a1, g, turns, h, full)).moves[-1]
     arc = move.arc
     check_exact_geometry(move)
     assert arc.turns == turns
@@ -323,16 +330,9 @@ def test_arcs_in_a_rotated_system_lie_in_their_turned_plane(rotation, plane, c1,
     same points, tangents and ends as the move itself."""
     from planner.movetable import MoveTable, contour_error
 
-    p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
-    p1 = (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
-    assume(math.hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1e-6)
-    (f, s, n), (ci, cj) = PLANES[plane]
-    start = {f: p0[0], s: p0[1], n: n0}
-    text = f"G10 L2 P1 R{num(rotation)}\n" + program_for(
-        plane, (start["X"], start["Y"], start["Z"]),
-        f"G{g} {endpoint_words(plane, p1[0], p1[1], n0 + h)} {ci}{num(c1 - p0[0])} {cj}{num(c2 - p0[1])} "
-        f"P{turns}")
-    program = parse_program(text)
+    (f, s, n), _ = PLANES[plane]
+    program = parse_program(f"G10 L2 P1 R{num(rotation)}\n"
+                            + ijk_arc_text(plane, c1, c2, n0, r, a0, a1, g, turns, h))
     move = program.moves[-1]
     arc = move.arc
     assert arc is not None and arc.xy_turn_rad == pytest.approx(math.radians(rotation))
