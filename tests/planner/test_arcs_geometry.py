@@ -390,3 +390,21 @@ def test_the_travel_an_arc_in_a_rotated_system_covers_is_its_own(rotation, arc):
     assert np.all(pts.min(axis=0) >= lo - 1e-9) and np.all(pts.max(axis=0) <= hi + 1e-9)
     np.testing.assert_allclose(lo, pts.min(axis=0), atol=1e-6)
     np.testing.assert_allclose(hi, pts.max(axis=0), atol=1e-6)
+
+
+@pytest.mark.parametrize("arc", ["G18 G2 X40 Z0 I20 K0 Y-7", "G19 G3 Y40 Z0 J20 K0 P2"])
+def test_a_stop_inside_an_arc_in_a_rotated_system_resumes_on_it(arc):
+    """A run stopped part way along a G18/G19 arc in a rotated system resumes from there on the
+    same path (the tail and the head of the move keep the turned frame), to the same end."""
+    from planner.resume import head_move, split_move
+
+    move = parse_program(f"G21 G90 F600\nG10 L2 P1 X3 Y-2 R-35\nG0 X0 Y0 Z0\n{arc}\nM2\n").moves[-1]
+    u = 0.37 * move.length_mm
+    tail, head = split_move(move, u), head_move(move, u)
+    assert tail.arc.xy_turn_rad == head.arc.xy_turn_rad == move.arc.xy_turn_rad != 0.0
+    np.testing.assert_array_equal(tail.end, move.end)
+    assert tail.length_mm == pytest.approx(move.length_mm - u, rel=1e-12)
+    w = np.linspace(0.0, tail.length_mm, 101)
+    np.testing.assert_allclose(tail.evaluate(w)[0], move.evaluate(u + w)[0], atol=1e-9)
+    w = np.linspace(0.0, u, 101)
+    np.testing.assert_allclose(head.evaluate(w)[0], move.evaluate(w)[0], atol=1e-9)
