@@ -1493,8 +1493,11 @@ class _Interpreter:
             raise _BlockError(f"cutter compensation works in the XY (G17) or XZ (G18) plane, not in "
                               f"{_PLANE_G[self.plane]}", name)
         if self.plane == 180 and self.rotation != 0.0:
-            raise _BlockError("cutter compensation in G18 with the XY plane rotated (G10 L2 R): the offset "
-                              "would not lie in a machine plane", name)
+            # LinuxCNC offsets in the plane of Z and the turned X; this engine offsets in machine
+            # planes (G18 arcs in a rotated system are read, their compensation is not)
+            raise _BlockError("cutter compensation in G18 with the XY plane rotated (G10 L2 R) is not "
+                              "supported: cancel the rotation (G10 L2 R0) or program the tool centre's path",
+                              name)
         d = vals.get("D")
         if code in (411, 421):
             if d is None:

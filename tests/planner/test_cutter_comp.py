@@ -138,6 +138,8 @@ def test_the_same_codes_are_accepted_once_compensation_is_off() -> None:
     ("G21 F600\nG41 D1.5\n", 2, 5, "D to be a tool number"),
     ("G21 F600\nG41 D9 G1 X10\n", 2, 5, "tool T9 is not in the tool table"),
     ("G21 F600\nG42.1 D4 L3 G1 X10\n", 2, 10, "lathe tool orientations are not supported"),
+    ("G21 F600\nG10 L2 P1 R30\nG18 G41.1 D2\n", 3, 5,
+     "cutter compensation in G18 with the XY plane rotated (G10 L2 R) is not supported"),
     ("G21 F600\nG41.1 D20 G1 X5\n", 2, 1,
      "entry move (5.0000 mm in the plane) is not longer than the tool radius"),
     ("G21 F600\nG41.1 D20 G1 Z-1\n", 2, 1, "entry move (0.0000 mm in the plane)"),
