@@ -228,6 +228,8 @@ def main(argv: list[str] | None = None) -> int:
                       file=sys.stderr)
         wall = time.monotonic() - started
         summary = done[-1] if done else ctl.last_run
+        if summary is not None and summary.completed:
+            _settle(ctl, tick)
         snap = ctl.worker.snapshot() if ctl.worker is not None else None
         result = _result(ctl, info, summary, wall, snap, notes)
         if runner is not None and recorder is not None:
@@ -250,6 +252,23 @@ def main(argv: list[str] | None = None) -> int:
         del app
         if tmp is not None:
             tmp.cleanup()
+
+
+#: The run ends with its last set-point, while the drives still follow a few cycles behind (a
+#: CSP drive's actual position lags its target; a slave that answers late, by more): the end
+#: position is read once every axis is within SETTLE_MM of where the path ended, or after
+#: SETTLE_S, as a control reports a block done once its axes are in position.
+SETTLE_MM = 0.001
+SETTLE_S = 1.0
+
+
+def _settle(ctl: Any, tick: Any) -> None:
+    until = time.monotonic() + SETTLE_S
+    while time.monotonic() < until:
+        gap = max((abs(a - r) for a, r in zip(ctl.machine_position, ctl.reference_position)), default=0.0)
+        if gap <= SETTLE_MM:
+            return
+        tick()
 
 
 def _result(ctl: Any, info: Any, summary: Any, wall: float, snap: Any, notes: list[str]) -> dict[str, Any]:

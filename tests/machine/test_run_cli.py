@@ -175,3 +175,36 @@ def test_a_run_killed_by_sigkill_leaves_the_state_unclean_and_no_axis_homed(qapp
     clean = json.loads(subprocess.run([*cmd, "--state-dir", str(state), "--status", "--json"], cwd=ROOT,
                                       capture_output=True, text=True, check=True).stdout)
     assert clean["unclean_shutdown"] is False                # that controller shut down cleanly
+
+
+class _Following:
+    """Axes a few cycles behind the path's end, closing half the gap at each tick (a drive
+    that follows its target), or never (a drive that does not move)."""
+
+    def __init__(self, moving: bool) -> None:
+        self.reference_position = (3.0, 1.0)
+        self.machine_position = (3.0113, 0.9887)
+        self.moving = moving
+        self.ticks = 0
+
+    def tick(self) -> None:
+        self.ticks += 1
+        if self.moving:
+            self.machine_position = tuple(r + 0.5 * (m - r) for m, r in
+                                          zip(self.machine_position, self.reference_position))
+
+
+def test_the_end_position_is_read_once_the_axes_are_in_position() -> None:
+    """A run ends with its last set-point while the drives still follow: cnc-run reads the end
+    position once every axis is within 1 um of where the path ended, and waits no longer than
+    SETTLE_S for a drive that stays behind."""
+    import time
+
+    ctl = _Following(moving=True)
+    run_cli._settle(ctl, ctl.tick)
+    assert max(abs(m - r) for m, r in zip(ctl.machine_position, ctl.reference_position)) <= run_cli.SETTLE_MM
+    assert ctl.ticks == 4                      # 11.3 um halved four times: 0.7 um
+    stuck = _Following(moving=False)
+    t0 = time.monotonic()
+    run_cli._settle(stuck, lambda: time.sleep(0.01))
+    assert run_cli.SETTLE_S <= time.monotonic() - t0 < run_cli.SETTLE_S + 0.5
