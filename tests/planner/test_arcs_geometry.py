@@ -178,20 +178,12 @@ def ijk_arc_text(plane, c1, c2, n0, r, a0, a1, g, turns, h, full=False) -> str:
     )
 
 
+# an I/J/K arc's centre, start and end angles, direction, normal and rise, as ijk_arc_text takes them
+IJK_ARC = {"c1": coord, "c2": coord, "n0": coord, "r": radius, "a0": angle, "a1": angle, "g": gdir, "h": rise}
+
+
 @settings(max_examples=40)
-@given(
-    plane=plane,
-    c1=coord,
-    c2=coord,
-    n0=coord,
-    r=radius,
-    a0=angle,
-    a1=angle,
-    g=gdir,
-    turns=st.integers(1, 4),
-    h=rise,
-    full=st.booleans(),
-)
+@given(plane=plane, turns=st.integers(1, 4), full=st.booleans(), **IJK_ARC)
 def test_ijk_form_turns_and_full_circles(plane, c1, c2, n0, r, a0, a1, g, turns, h, full):
     p0 = (c1 + r * math.cos(a0), c2 + r * math.sin(a0))
     p1 = p0 if full else (c1 + r * math.cos(a1), c2 + r * math.sin(a1))
@@ -309,19 +301,8 @@ def test_spiral_length_closed_form_and_quadrature(dr_rel, rise_mm):
 
 
 @settings(max_examples=60, deadline=None)
-@given(
-    rotation=st.floats(-179.0, 179.0).filter(lambda r: abs(r) > 0.01),
-    plane=st.sampled_from(["G18", "G19"]),
-    c1=coord,
-    c2=coord,
-    n0=coord,
-    r=radius,
-    a0=angle,
-    a1=angle,
-    g=gdir,
-    turns=st.integers(1, 3),
-    h=rise,
-)
+@given(rotation=st.floats(-179.0, 179.0).filter(lambda r: abs(r) > 0.01),
+       plane=st.sampled_from(["G18", "G19"]), turns=st.integers(1, 3), **IJK_ARC)
 def test_arcs_in_a_rotated_system_lie_in_their_turned_plane(rotation, plane, c1, c2, n0, r, a0, a1, g,
                                                             turns, h):
     """A G18/G19 arc while the XY plane is rotated (G10 L2 R) lies in the plane of Z and the
