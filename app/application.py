@@ -41,7 +41,8 @@ def save_screenshot(window: MainWindow, path) -> None:
 
 
 def run(options: PanelOptions) -> int:
-    app = QApplication.instance() or QApplication(sys.argv[:1])
+    running = QApplication.instance()
+    app = running if isinstance(running, QApplication) else QApplication(sys.argv[:1])
     app.setApplicationName("cnc-panel")
     apply_theme(app)
     from app.machine.errors import ConfigError, StateFolderBusy

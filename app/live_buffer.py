@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 
@@ -19,7 +21,7 @@ class RingBuffer:
     def clear(self) -> None:
         self._next = self._count = 0
 
-    def append(self, t: float, values: object) -> None:
+    def append(self, t: float, values: Sequence[float] | np.ndarray) -> None:
         i = self._next
         self.t[i] = t
         self.values[i] = values

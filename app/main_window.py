@@ -22,6 +22,7 @@ from app import deferred
 from app.context import PanelContext, PanelOptions
 from app.controller_text import localize
 from app.i18n import LANGUAGES, tr
+from app.machine.model import ProgramIssue
 from app.pages import PAGES, PageInfo, page_info
 from app.pages.placeholder import PlaceholderPage
 from app.service_access import IDLE_LOCK_S
@@ -208,10 +209,10 @@ class MainWindow(QMainWindow):
     def _apply_program(self, info: object) -> None:
         self.context.program.set_loaded(info, self.context.controller.config.machine)
 
-    def _on_program_errors(self, issues: object) -> None:
+    def _on_program_errors(self, issues: tuple[ProgramIssue, ...]) -> None:
         deferred.cancel("program-model")  # an older program not shown yet: never show it now
         self.context.program.set_errors(issues)
-        n = len(issues)  # type: ignore[arg-type]
+        n = len(issues)
         self.show_message(tr("Program refused: {0} error(s)").format(n))
 
     # --- navigation ----------------------------------------------------------------------

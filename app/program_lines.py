@@ -83,7 +83,7 @@ class LineIndex:
         return j * self.STRIDE + self._text.count("\n", int(self._marks[j]), offset) + 1
 
 
-def line_text(text: str, starts: np.ndarray, index: int) -> str:
+def line_text(text: str, starts: np.ndarray | LineIndex, index: int) -> str:
     """Line ``index`` (0-based) without its end of line."""
     line = text[int(starts[index]): int(starts[index + 1])]
     if line.endswith("\n"):

@@ -6,8 +6,11 @@ controller's own (``ProgramInfo.program``); only if it is missing is the text in
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 from PySide6.QtCore import QObject, Signal
 
+from app.machine.model import ProgramIssue
 from app.program_lines import line_text
 from app.toolpath import ToolPath, build_toolpath
 from planner.errors import PlannerError, ProgramError
@@ -135,7 +138,7 @@ class ProgramModel(QObject):
         self.toolpath = build_toolpath(program)
         self.changed.emit()
 
-    def set_errors(self, issues: object, text: str = "", name: str = "") -> None:
+    def set_errors(self, issues: Iterable[ProgramIssue] | None, text: str = "", name: str = "") -> None:
         """The controller refused a program: keep its text and the errors per line."""
         self._expected = False
         self.info, self.program, self.toolpath = None, None, None
@@ -146,9 +149,8 @@ class ProgramModel(QObject):
         if name:
             self.name = name
         errors: dict[int, str] = {}
-        for issue in issues or ():  # ProgramIssue(line, col, message, axis)
-            line = int(getattr(issue, "line", 1) or 1)
-            errors.setdefault(line, str(getattr(issue, "message", issue)))
+        for issue in issues or ():
+            errors.setdefault(int(issue.line or 1), issue.message)
         self.errors = errors
         self.errorsChanged.emit(self.errors)
         self.changed.emit()

@@ -45,7 +45,7 @@ def _key_code(name: str) -> int | None:
     seq = QKeySequence(name)
     if seq.count() != 1:
         return None
-    combo = seq[0]
+    combo = seq[0]  # type: ignore[index]  # QKeySequence[i] is a QKeyCombination (not in the stubs)
     if combo.keyboardModifiers() != Qt.KeyboardModifier.NoModifier:
         return None  # a jog key that needs Ctrl held is a chord, not a jog key
     code = int(combo.key().value)

@@ -329,6 +329,7 @@ def build_toolpath(program: Program) -> ToolPath:
     if not counts[MoveKind.ARC] and cols is not None and n:
         # lines and rapids only (a CAM raster): one point a move, the program's own joint
         # positions in program order (each move ends where the next starts), drawn as one run
+        assert isinstance(moves, MoveStore)     # its columns were taken above
         positions = moves.positions
         move_index: Any = JointMoves(n)
         connect = np.ones(n + 1, bool)

@@ -249,7 +249,7 @@ def run_action(program: Path, action: str, settle_s: float) -> dict:
         if "first_chunk_s" not in marks and job is not None:
             # the first set-points the feeder makes for the worker (the manual clock feeds on
             # demand: made here once and the executor put back as it was)
-            from app.machine.feeder import CHUNK
+            from app.machine.motion.feeding import CHUNK
 
             state = job.executor.save_state()
             t0 = time.perf_counter()

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-CALL_SAMPLES = 20  # what the feeder asks the executor for at a time (app.machine.feeder.CHUNK)
+CALL_SAMPLES = 20  # what the feeder asks the executor for at a time (app.machine.motion.feeding.CHUNK)
 
 
 def _program(path: str | None, lines: int) -> Path:
@@ -39,7 +39,7 @@ def _program(path: str | None, lines: int) -> Path:
 
 def run(program: Path, seconds: float) -> dict:
     from app.machine.config import load_config
-    from app.machine.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
+    from app.machine.motion.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
     from planner.interpreter import parse_file
     from planner.window import PlanWindow
     from resources import shipped_machine

@@ -38,12 +38,12 @@ def _int(text: str) -> int:
 
 
 def _scan(ifname: str) -> Any:
-    from . import soem_bus
+    from . import soem_access
 
-    master = soem_bus.open_master(ifname)
+    master = soem_access.open_master(ifname)
     try:
-        soem_bus.config_init(master, ifname)
-        master.state_check(soem_bus.AL_PREOP, 2_000_000)
+        soem_access.config_init(master, ifname)
+        master.state_check(soem_access.AL_PREOP, 2_000_000)
     except BaseException:
         master.close()
         raise
@@ -51,7 +51,7 @@ def _scan(ifname: str) -> Any:
 
 
 def cmd_slaves(args: argparse.Namespace) -> int:
-    from .soem_bus import slave_infos
+    from .soem_access import slave_infos
 
     master = _scan(args.ifname)
     try:
@@ -88,7 +88,7 @@ def _esi_devices(path: str | None) -> dict[tuple[int, int], EsiDevice]:
 
 
 def cmd_pdos(args: argparse.Namespace) -> int:
-    from .soem_bus import read_mapping
+    from .soem_access import read_mapping
 
     described = _esi_devices(args.esi)
     master = _scan(args.ifname)
@@ -115,7 +115,7 @@ def _object_format(index: int, sub: int, type_name: str | None) -> str | None:
 
 
 def cmd_upload(args: argparse.Namespace) -> int:
-    from .soem_bus import sdo_upload
+    from .soem_access import sdo_upload
 
     master = _scan(args.ifname)
     try:
@@ -134,7 +134,7 @@ def cmd_upload(args: argparse.Namespace) -> int:
 
 
 def cmd_download(args: argparse.Namespace) -> int:
-    from .soem_bus import sdo_download
+    from .soem_access import sdo_download
 
     fmt = _object_format(args.index, args.subindex, args.type)
     if fmt is None:
@@ -158,7 +158,7 @@ def cmd_esi(args: argparse.Namespace) -> int:
 
     devices = read_esi(args.file)
     if args.check:
-        from .soem_bus import read_mapping
+        from .soem_access import read_mapping
 
         described = {(d.vendor_id, d.product_code): d for d in devices}
         master = _scan(args.check)

@@ -5,7 +5,7 @@ about 700 bytes and a microsecond to make. ``MoveStore`` keeps the joint positio
 (n + 1, d) array (move i runs from row i to row i + 1, as a path does) and line, kind, feed,
 length and exact stop as one column each; the few arcs and corner blends sit in dictionaries
 by move index. It is a read-only ``Sequence[Move]``: indexing and iteration make ``Move``
-objects on demand (equal, field for field, to the ones the interpreter used to keep), and a
+objects on demand (equal, field for field, to the ones the interpreter makes), and a
 slice is a view that keeps the moves' own indices, as a slice of a tuple of moves does.
 Code that needs speed reads the columns (``columns``) instead.
 

@@ -13,6 +13,7 @@ positive sweep is counter-clockwise (G03) seen from the positive end of the norm
 
 from __future__ import annotations
 
+import bisect
 import enum
 import functools
 import math
@@ -21,6 +22,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+
+from planner.frames import Frame
 
 __all__ = [
     "AnalogOutput",
@@ -521,6 +524,18 @@ class Program:
         if columns is not None:            # a MoveStore: its kind column as it is
             return np.asarray(columns().kind) == int(MoveKind.RAPID)
         return np.fromiter((m.kind is MoveKind.RAPID for m in moves), bool, len(moves))
+
+    def frame_at(self, index: int) -> Frame:
+        """The offsets in force for move ``index`` (before the first move: at the start), as
+        the program set them (``offset_parts``); no offsets when it recorded none."""
+        parts = self.offset_parts
+        k = bisect.bisect_right([p[0] for p in parts], max(index, 0)) - 1 if parts else -1
+        if k < 0:
+            if not parts:
+                return Frame.identity(self.axes)
+            k = 0
+        _first, _line, system, work, g92, tlo, rotation = parts[k]
+        return Frame(tuple(self.axes), tuple(work), tuple(g92), tuple(tlo), float(rotation), int(system))
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

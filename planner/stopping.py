@@ -42,6 +42,7 @@ import numpy as np
 
 from planner.machine import MachineSpec
 from planner.plan import Plan
+from planner.window import PlanWindow
 
 __all__ = ["PathStop", "StopProfile", "plan_path_stop", "stop_profile"]
 
@@ -126,7 +127,7 @@ class PathStop:
     profile: StopProfile
 
 
-def _geometry_bounds(plan: Plan, s_from: float, s_to: float) -> tuple[np.ndarray, bool]:
+def _geometry_bounds(plan: Plan | PlanWindow, s_from: float, s_to: float) -> tuple[np.ndarray, bool]:
     """Per-axis maxima of |dq/ds|, |d2q/ds2|, |d3q/ds3| over [s_from, s_to] (rows g1, g2, g3)
     and whether a tangent break (corner) lies inside."""
     seg = plan.segment
@@ -165,7 +166,7 @@ def _geometry_bounds(plan: Plan, s_from: float, s_to: float) -> tuple[np.ndarray
     return g, corner
 
 
-def plan_path_stop(plan: Plan, machine: MachineSpec, tau0: float, sigma: float, sigma_dot: float,
+def plan_path_stop(plan: Plan | PlanWindow, machine: MachineSpec, tau0: float, sigma: float, sigma_dot: float,
                    tau_limit: float) -> PathStop | None:
     """The time-optimal jerk-limited stop along ``plan`` from planned time ``tau0`` run at
     time scale ``sigma`` (d tau / dt) changing at ``sigma_dot``, to be at rest before planned

@@ -72,3 +72,70 @@ def test_importing_every_module_loads_no_forbidden_package(package: str) -> None
 def test_top_level_layout() -> None:
     for name in ("pyproject.toml", "README.md", "app", "planner", "ethercat", "resources", "tests"):
         assert (ROOT / name).exists(), f"{name} missing at the top level"
+
+
+MACHINE = ROOT / "app" / "machine"
+
+
+def _machine_modules() -> list[Path]:
+    return sorted(MACHINE.rglob("*.py"))
+
+
+def test_only_the_facade_knows_the_controller() -> None:
+    """The controller's parts get narrow interfaces (``app.machine.ports``), never the facade:
+    no module of ``app.machine`` but the facade's own imports it."""
+    offenders = []
+    for path in _machine_modules():
+        if path == MACHINE / "controller.py":
+            continue
+        for lineno, module in imported_modules(path):
+            if module == "app.machine.controller":
+                offenders.append(f"{path.relative_to(ROOT)}:{lineno}")
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and any(a.name == "MachineController" for a in node.names):
+                offenders.append(f"{path.relative_to(ROOT)}:{node.lineno}: imports MachineController")
+    assert not offenders, "\n".join(offenders)
+
+
+def test_a_part_writes_only_its_own_fields() -> None:
+    """A part keeps the interfaces it was given as ``self._<name>``; ``self._<name>.<field> = ...``
+    would write into another part's state: each field has one writer, its owner (a part
+    changes another through that part's methods)."""
+    offenders = []
+    for path in _machine_modules():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            targets: list[ast.expr] = []
+            if isinstance(node, ast.Assign):
+                targets = list(node.targets)
+            elif isinstance(node, (ast.AugAssign, ast.AnnAssign)):
+                targets = [node.target]
+            for t in targets:
+                for leaf in (t.elts if isinstance(t, ast.Tuple) else [t]):
+                    if (isinstance(leaf, ast.Attribute) and isinstance(leaf.value, ast.Attribute)
+                            and isinstance(leaf.value.value, ast.Name) and leaf.value.value.id == "self"
+                            and leaf.value.attr.startswith("_")):
+                        offenders.append(f"{path.relative_to(ROOT)}:{leaf.lineno}: "
+                                         f"self.{leaf.value.attr}.{leaf.attr} = ...")
+    assert not offenders, "\n".join(offenders)
+
+
+def test_no_lock_is_taken_from_outside_its_owner() -> None:
+    """A lock is its owner's: ``x._lock`` is read only as ``self._lock``."""
+    offenders = []
+    for path in _machine_modules():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and node.attr.endswith("_lock") and node.attr.startswith("_") \
+                    and not (isinstance(node.value, ast.Name) and node.value.id == "self"):
+                offenders.append(f"{path.relative_to(ROOT)}:{node.lineno}")
+    assert not offenders, "\n".join(offenders)
+
+
+@pytest.mark.parametrize("package", ["app/machine", "ethercat"])
+def test_no_file_holds_more_than_a_reader_can(package: str) -> None:
+    """700 lines at most a module in the controller and the bus package."""
+    long = [f"{p.relative_to(ROOT)}: {n} lines" for p in sorted((ROOT / package).rglob("*.py"))
+            if (n := len(p.read_text(encoding="utf-8").splitlines())) > 700]
+    assert not long, long

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Protocol
 
+import numpy as np
 from PySide6.QtCore import SignalInstance
 
 from app.machine.config import MachineConfig
@@ -68,6 +69,9 @@ class MachineApi(Protocol):
     configChanged: SignalInstance  # MachineConfig (after update_config / load)
     commandRefused: SignalInstance  # (action, reason)
     message: SignalInstance  # informational text for the status line
+    # ControllerSnapshot: the status in one object, published when anything in it changed (at
+    # most once an event-loop turn); ``snapshot()`` makes one now
+    statusChanged: SignalInstance
 
     @property
     def state(self) -> MachineState:
@@ -266,7 +270,9 @@ class MachineApi(Protocol):
         ...
 
     def snapshot(self) -> ControllerSnapshot:
-        """Everything the panel shows, in one immutable object."""
+        """The status now in one immutable object: state and mode, program, line, progress,
+        overrides, spindle, tool, positions in machine and work coordinates with the offsets in
+        force (``frame``), alarms, the bus."""
         ...
 
     def refusal(self, action: str) -> str:
@@ -350,7 +356,7 @@ class MachineApi(Protocol):
         it runs), a loaded program checked again with it."""
         ...
 
-    def approach_preview(self, line: int) -> Any:
+    def approach_preview(self, line: int) -> np.ndarray | str:
         """The way a run from ``line`` would take (machine coordinates, an array of corners),
         or a string saying why there is none: shown before the operator confirms."""
         ...

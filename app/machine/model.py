@@ -7,7 +7,16 @@ Units: positions mm (linear) / degrees (rotary), times s, speeds mm/s, spindle r
 from __future__ import annotations
 
 import enum
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from app.program_lines import LineIndex
+    from app.toolpath import ToolPath
+    from planner.frames import Frame
+    from planner.plan import Plan
+    from planner.program import ProbeResult, Program
 
 
 class MachineState(enum.Enum):
@@ -188,27 +197,28 @@ class ProgramInfo:
     length_mm: float
     bounds_min: tuple[float, ...]  # machine coordinates, per axis, whole path (arcs included)
     bounds_max: tuple[float, ...]
-    program: object = field(default=None, repr=False, compare=False)  # planner.program.Program
-    # planner.plan.Plan (reduced limits); None for a long program, planned as it runs
-    # (``app.machine.feeder.WINDOWED_RUN_MOVES``)
-    plan: object = field(default=None, repr=False, compare=False)
-    # app.toolpath.ToolPath of ``program``, made with the check off the GUI thread (seconds for
+    program: Program = field(repr=False, compare=False)
+    # the plan (reduced limits); None for a long program, planned as it runs
+    # (``app.machine.motion.plans.WINDOWED_RUN_MOVES``)
+    plan: Plan | None = field(default=None, repr=False, compare=False)
+    # the tool path of ``program``, made with the check off the GUI thread (seconds for
     # millions of moves): the preview draws it
-    toolpath: object = field(default=None, repr=False, compare=False)
-    # where each line of ``text`` starts (app.program_lines.LineIndex), made with the check:
-    # the pages show the text through it without copying it into a text widget
-    line_starts: object = field(default=None, repr=False, compare=False)
+    toolpath: ToolPath | None = field(default=None, repr=False, compare=False)
+    # where each line of ``text`` starts, made with the check: the pages show the text
+    # through it without copying it into a text widget
+    line_starts: LineIndex | None = field(default=None, repr=False, compare=False)
     # G64 P: corners blended and fillets eased, and the largest distance from the programmed path
     blends: int = 0
     path_deviation_mm: float = 0.0
     # G38.x, M66: the program read again, from the same text and starting state, with the probe
     # results and the inputs' values (``planner.interpreter.parse_program(probe_results=,
     # input_results=)``), blended as ``program``
-    reread: object = field(default=None, repr=False, compare=False)
+    reread: Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program] | None = field(
+        default=None, repr=False, compare=False)
     # the plan's own end (planned time, without the spin-up waits ``cycle_time_s`` counts) and
-    # its pause points (``app.machine.timescale.PausePoint``), made with the check
+    # its pause points, made with the check
     plan_end_s: float = 0.0
-    stops: tuple = field(default=(), repr=False, compare=False)
+    stops: tuple[PausePoint, ...] = field(default=(), repr=False, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -227,7 +237,11 @@ class RunSummary:
 
 @dataclass(frozen=True, slots=True)
 class ControllerSnapshot:
-    """Everything the panel shows, in one immutable object (``MachineController.snapshot()``)."""
+    """The machine's status in one immutable object (``MachineController.snapshot()``, and
+    ``statusChanged`` when anything in it changed): what the panel shows, what ``cnc-run
+    --json`` reports and what a monitoring client reads. Positions in machine coordinates
+    (``machine_pos``, the drives' actual; ``reference_pos``, the last set-point) and read in
+    the offsets in force (``work_pos`` = ``frame.to_program(machine_pos)``)."""
 
     state: MachineState
     activity: Activity
@@ -248,3 +262,83 @@ class ControllerSnapshot:
     spindle: SpindleState
     alarms: tuple[Alarm, ...]
     bus: BusStatus
+    state_reason: str = ""
+    hold_kind: HoldKind = HoldKind.NONE
+    prompt: Prompt | None = None
+    reference_pos: tuple[float, ...] = ()
+    frame: Frame | None = None            # the offsets in force
+    tool_in_spindle: int = 0
+    program_name: str = ""                # "" when none is loaded
+    program_path: str = ""
+    program_lines: int = 0
+    estimated_cycle_s: float = 0.0
+    loading: bool = False                 # a program is being checked or planned
+    resume_line: int = 0                  # where a stopped program would resume (0: none)
+    last_run: RunSummary | None = None
+    time_s: float = 0.0                   # UNIX time it was taken
+    sequence: int = 0                     # one more at every publication
+
+    @property
+    def active_alarms(self) -> tuple[Alarm, ...]:
+        return tuple(a for a in self.alarms if a.active)
+
+
+@dataclass(frozen=True, slots=True)
+class Budget:
+    """Share of the acceleration and jerk limits the plan may use (the rest is for sigma)."""
+
+    k_a: float = 0.85
+    k_j: float = 0.7
+
+
+class PauseKind(enum.StrEnum):
+    """Why the plan halts at a pause point: a program's stopping event (the values of
+    ``planner.program.EventKind``), a block end in single block, or the program's end."""
+
+    PAUSE = "pause"                     # M00
+    OPTIONAL_PAUSE = "optional_pause"   # M01
+    TOOL_CHANGE = "tool_change"         # M06
+    DWELL = "dwell"                     # G04
+    SPINDLE = "spindle"                 # M03/M04/M05/S
+    END = "end"                         # M02/M30 or the last move
+    TOOL_SET = "tool_set"               # M61
+    OFFSETS = "offsets"                 # G10, G92, G52, G28.1 ...
+    OUTPUT = "output"                   # M62-M65, user M-codes
+    TOOL_DATA = "tool_data"             # G10 L1/L10/L11
+    PROBE_START = "probe_start"         # before a G38.x move
+    PROBE = "probe"                     # after it
+    INPUT = "input"                     # M66
+    TAPPING = "tapping"                 # a tap's overrides change
+    SINGLE_BLOCK = "single_block"       # a block end in single block
+
+
+@dataclass(frozen=True, slots=True)
+class PausePoint:
+    """A planned full stop where tau halts; ``value`` dwell s / spindle rpm / tool / the
+    overrides from here (tapping) / an index into the program's tables (probes, inputs,
+    parameter sets, tools) / an output (its number, or -(number + 1) to switch it off)."""
+
+    tau_s: float
+    kind: PauseKind     # a string of its values is taken as the kind
+    line: int
+    move: int
+    value: float = 0.0
+    message: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.kind, PauseKind):
+            object.__setattr__(self, "kind", PauseKind(self.kind))
+
+
+@dataclass(frozen=True, slots=True)
+class ResumePoint:
+    """Where a program stopped (fault, E-stop, stop alarm): move index and distance within it."""
+
+    program: Program
+    move_index: int
+    u_mm: float
+    line: int
+    cause: str
+    # what the run's probes and M66 read before it stopped (the program above is read with them)
+    probe_results: tuple[ProbeResult | None, ...] = ()
+    wait_results: tuple[float | None, ...] = ()

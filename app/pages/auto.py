@@ -20,10 +20,12 @@ from app.context import PanelContext
 from app.controller_text import localize
 from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
+from app.machine.model import SpindleState
 from app.widgets.override_control import OverrideControl
 from app.widgets.preview_plot import PreviewPlot
 from app.widgets.program_view import ProgramView
 from app.widgets.touch import enable_kinetic_scrolling
+from planner.tools import ToolTable
 
 BUTTONS = (  # (key, label, object name, controller action for refusal())
     ("start", N_("Cycle start"), "cycleStart", "cycle_start"),
@@ -292,12 +294,12 @@ class AutoPage(QWidget):
         self._block_delete = block_delete
         self._update_info()
 
-    def _on_spindle(self, spindle: object) -> None:
+    def _on_spindle(self, spindle: SpindleState) -> None:
         self._spindle = spindle
-        self.spindle_override.set_value(float(getattr(spindle, "override_pct", 100.0)))
+        self.spindle_override.set_value(float(spindle.override_pct))
         self._update_info()
 
-    def _on_tools(self, table: object, in_spindle: int) -> None:
+    def _on_tools(self, table: ToolTable, in_spindle: int) -> None:
         self._tools, self._tool = table, int(in_spindle)
         self._update_info()
 

@@ -3,6 +3,8 @@ axis with RMSE/MSE (Fig. 17, Table 4), EtherCAT slaves and states, cycle-timing 
 
 from __future__ import annotations
 
+import functools
+
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QLabel, QTabWidget, QVBoxLayout, QWidget
 
@@ -41,7 +43,7 @@ class DiagnosticsPage(QWidget):
         self.tabs.addTab(self.tracking, "")
         self.tabs.addTab(self.bus, "")
         for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"))):
-            i18n.bind(self.tabs, text, lambda t, i=index: self.tabs.setTabText(i, t))
+            i18n.bind(self.tabs, text, functools.partial(self.tabs.setTabText, index))
 
         self.profile: PathProfile | None = None
         self._planning = Background("diag-plan", self._on_profile, self)

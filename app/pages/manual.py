@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from PySide6.QtGui import QGuiApplication
 from PySide6.QtWidgets import (
     QApplication,
     QGroupBox,
@@ -102,7 +103,7 @@ class ManualPage(QWidget):
         i18n.languageChanged.connect(lambda _l: self._on_spindle(c.spindle))
         self._on_spindle(c.spindle)
         app = QApplication.instance()
-        if app is not None:  # safe release: the panel losing the screen stops continuous jogging
+        if isinstance(app, QGuiApplication):  # safe release: the panel losing the screen stops jogging
             app.applicationStateChanged.connect(self._release_jog)
 
     def _release_jog(self, *_args: object) -> None:

@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
 from app.config_edit import validate, with_bus, with_homing, with_limits, with_planner
 from app.context import PanelContext
 from app.i18n import N_, tr
+from app.machine.config import MachineConfig
 from app.service_access import MIN_LENGTH
 from app.widgets.apply_bar import ApplyBar
 from app.widgets.numeric_field import NumericField
@@ -63,6 +64,7 @@ class ParametersPage(QWidget):
         scroll.setWidget(body)
         form = QFormLayout(body)
         self.fields: dict[str, NumericField] = {}
+        self.pending: MachineConfig = context.controller.config   # what Apply writes
 
         def label(text: str) -> QLabel:
             lab = QLabel()
@@ -124,8 +126,8 @@ class ParametersPage(QWidget):
         c.configChanged.connect(lambda _cfg: self.revert())
         self.revert()
 
-    def _set(self, config: object) -> None:
-        self.pending = config  # type: ignore[assignment]
+    def _set(self, config: MachineConfig) -> None:
+        self.pending = config
         self.refresh()
 
     def revert(self) -> None:

@@ -3,6 +3,8 @@ touch off per axis (the current position becomes a chosen work coordinate)."""
 
 from __future__ import annotations
 
+import functools
+
 from PySide6.QtWidgets import (
     QHBoxLayout,
     QHeaderView,
@@ -65,7 +67,7 @@ class PartZeroPage(QWidget):
         self.touch_buttons: dict[str, QPushButton] = {}
         for axis in self.axes:
             button = QPushButton()
-            i18n.bind(button, N_("Touch off {0}"), lambda t, b=button, a=axis: b.setText(t.format(a)))
+            i18n.bind(button, N_("Touch off {0}"), functools.partial(_set_axis_text, button, axis))
             button.clicked.connect(lambda _=False, a=axis: self.touch_off(a))
             touch.addWidget(button)
             self.touch_buttons[axis] = button
@@ -119,3 +121,8 @@ class PartZeroPage(QWidget):
 
 def create_page(context: PanelContext) -> QWidget:
     return PartZeroPage(context)
+
+
+def _set_axis_text(button: QPushButton, axis: str, text: str) -> None:
+    """A button's text from its translated template and its axis."""
+    button.setText(text.format(axis))

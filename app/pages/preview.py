@@ -14,6 +14,8 @@ from app.widgets.touch import exclusive_buttons
 
 
 class PreviewPage(QWidget):
+    plot: PreviewPlot
+
     def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setObjectName("previewPage")

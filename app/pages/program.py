@@ -12,6 +12,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QStackedWidget, 
 from app import deferred
 from app.context import PanelContext
 from app.i18n import N_, tr
+from app.machine.model import ProgramIssue
 from app.program_checker import ProgramChecker
 from app.widgets.code_editor import CodeEditor
 from app.widgets.find_bar import FindBar
@@ -175,14 +176,14 @@ class ProgramPage(QWidget):
         self._autosave.start()
         self._update_title()
 
-    def _on_checked(self, errors: object) -> None:
-        self.shown.set_errors(errors)  # type: ignore[arg-type]
+    def _on_checked(self, errors: dict[int, str]) -> None:
+        self.shown.set_errors(errors)
         self._show_line_error(self.shown.current_line())
-        n = len(errors)  # type: ignore[arg-type]
+        n = len(errors)
         if n and self.error_label.text() == "":
-            first = min(errors)  # type: ignore[type-var]
+            first = min(errors)
             self.error_label.setText(tr("{0} error(s); first at line {1}: {2}").format(
-                n, first, errors[first]))  # type: ignore[index]
+                n, first, errors[first]))
 
     def _show_line_error(self, line: int) -> None:
         errors = self.shown.errors
@@ -368,12 +369,12 @@ class ProgramPage(QWidget):
             self.open_file(path)
             self.ctx.program.expect(self.doc.text, self.doc.name)
 
-    def _on_program_errors(self, issues: object) -> None:
+    def _on_program_errors(self, issues: tuple[ProgramIssue, ...]) -> None:
         if self._opening is not None:
             self._open_refused()
             self.ctx.program.set_errors(issues, self.doc.text, self.doc.name)
         errors: dict[int, str] = {}
-        for issue in issues:  # type: ignore[attr-defined]
+        for issue in issues:
             errors.setdefault(int(issue.line), str(issue.message))
         self.shown.set_errors(errors)
         self._show_line_error(self.shown.current_line())

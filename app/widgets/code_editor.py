@@ -95,7 +95,7 @@ class CodeEditor(QPlainTextEdit):
         is True and ``textChanged`` fires per piece until ``textLoaded``."""
         self._load_generation += 1
         big = text.count("\n") > HIGHLIGHT_MAX_LINES
-        self.highlighter.setDocument(None if big else self.document())  # type: ignore[arg-type]
+        self.highlighter.setDocument(None if big else self.document())
         if self._loading_text:  # a chunked load in progress: stopped above, undo it
             self._loading_text = False
             self.setReadOnly(self._read_only_before)

@@ -30,7 +30,7 @@ class OnScreenKeyboard(QWidget):
         super().__init__(parent)
         self.setObjectName("onScreenKeyboard")
         self._target: QWidget | None = None
-        self.lower = False  # "Aa" switches the letters to lower case (passwords, file names)
+        self.lower_case = False  # "Aa" switches the letters to lower case (passwords, file names)
         # keys without the theme's wide padding: 13 keys a row fit beside the navigation in
         # 1280 px (with it the keyboard asked for 1600 px and pushed E-STOP off the screen)
         self.setStyleSheet("QPushButton { padding: 0px 2px; min-width: 48px; }")
@@ -54,15 +54,15 @@ class OnScreenKeyboard(QWidget):
 
     def press(self, key: str) -> None:
         if key == "Aa":
-            self.lower = not self.lower
+            self.lower_case = not self.lower_case
             for k, button in self.buttons.items():
                 if len(k) == 1 and k.isalpha():
-                    button.setText(k.lower() if self.lower else k)
+                    button.setText(k.lower() if self.lower_case else k)
             return
         target = self._target
         if target is None:
             return
-        if len(key) == 1 and key.isalpha() and self.lower:
+        if len(key) == 1 and key.isalpha() and self.lower_case:
             key = key.lower()
         code, text = SPECIAL.get(key, (0, key))
         if not code:

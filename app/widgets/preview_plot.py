@@ -286,7 +286,10 @@ class PreviewPlot(pg.PlotWidget):
         vb = self.getViewBox()
         (x0, x1), (y0, y1) = vb.viewRange()
         pixel = float(np.max(np.abs(np.asarray(vb.viewPixelSize(), float))))
-        colours = {kind: kind_pen(kind).color().getRgb() for kind in self.items}
+        colours: dict[MoveKind, tuple[int, int, int, int]] = {}
+        for kind in self.items:
+            c = kind_pen(kind).color()
+            colours[kind] = (c.red(), c.green(), c.blue(), c.alpha())
         return ViewSpec(project, float(x0), float(x1), float(y0), float(y1), pixel, colours)
 
     def _draw_paths(self, wait: bool = True) -> None:

@@ -9,7 +9,9 @@ from app.context import PanelContext
 from app.controller_text import localize
 from app.format import tool_text
 from app.i18n import N_, tr
+from app.machine.model import Alarm, BusStatus, MachineState
 from app.widgets.dro import DroWidget
+from planner.tools import ToolTable
 
 STATE_TEXT = {  # MachineState.value -> label (translated when shown)
     "disconnected": N_("Disconnected"), "idle": N_("Idle"), "homing": N_("Homing"),
@@ -82,19 +84,19 @@ class StatusHeader(QWidget):
         self.refresh()
 
     # --- controller signals --------------------------------------------------------------
-    def _on_state(self, state: object, _reason: str) -> None:
+    def _on_state(self, state: MachineState, _reason: str) -> None:
         self._state = state
         self.refresh()
 
-    def _on_position(self, machine: object, work: object) -> None:
-        self.dro.set_positions(machine, work)  # type: ignore[arg-type]
+    def _on_position(self, machine: tuple[float, ...], work: tuple[float, ...]) -> None:
+        self.dro.set_positions(machine, work)
 
-    def _on_bus(self, bus: object) -> None:
+    def _on_bus(self, bus: BusStatus) -> None:
         self._bus = bus
         self.refresh()
 
-    def _on_alarms(self, alarms: object) -> None:
-        self._alarms = tuple(a for a in alarms if a.active)  # type: ignore[attr-defined, union-attr]
+    def _on_alarms(self, alarms: tuple[Alarm, ...]) -> None:
+        self._alarms = tuple(a for a in alarms if a.active)
         self.refresh()
 
     def _bus_clicked(self) -> None:
@@ -113,7 +115,7 @@ class StatusHeader(QWidget):
         else:
             self.ctx.controller.estop("operator")
 
-    def _on_tools(self, table: object, in_spindle: int) -> None:
+    def _on_tools(self, table: ToolTable, in_spindle: int) -> None:
         self._tools, self._tool = table, int(in_spindle)
         self.refresh()
 

@@ -63,6 +63,7 @@ class FakeController(QObject):
     configChanged = Signal(object)
     commandRefused = Signal(str, str)
     message = Signal(str)
+    statusChanged = Signal(object)
 
     def __init__(self, config: MachineConfig | None = None) -> None:
         super().__init__()

@@ -77,7 +77,7 @@ def test_no_display_gives_advice_instead_of_crashing() -> None:
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
 def test_a_signal_shuts_the_panel_down_cleanly(tmp_path: Path, sig: signal.Signals) -> None:
     """kill or Ctrl+C: the worker stops, its shared memory is released, the state is saved,
-    and the panel exits with 0 (it used to leave the shared-memory block behind)."""
+    and the panel exits with 0, leaving no shared-memory block behind."""
     before = shm_before()
     env = {**os.environ, "QT_QPA_PLATFORM": "offscreen"}
     proc = subprocess.Popen([sys.executable, "-m", "app", "--demo", "--state-dir", str(tmp_path / "state")],

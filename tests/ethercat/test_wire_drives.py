@@ -26,7 +26,7 @@ import pytest
 
 from ethercat.bus import DriveSpec
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
-from ethercat.soem_bus import FRAME_TIMEOUT_ENV
+from ethercat.soem_access import FRAME_TIMEOUT_ENV
 from ethercat.worker import AlarmCode, CyclicWorker, EventCode, ProbeLatch, WorkerConfig, WorkerState
 from tests.ethercat.test_wire_link import cosine, run_motion, wait_alarm, wait_until
 from tests.ethercat.third_party import KickcatLink, kickcat_unavailable_reason
@@ -256,7 +256,7 @@ def test_kickcat_configuration_from_its_esi_runs_a_program(kickcat: KickcatLink,
     config.write_text(XY_MACHINE.format(adapter=kickcat.master_ifname) + res.stdout, encoding="utf-8")
     program = tmp_path / "square.ngc"
     program.write_text("G21 G90\nG1 X2 Y-1.5 F600\nG1 X4 Y0\nG0 X3 Y1\nM2\n", encoding="utf-8")
-    run = subprocess.run([sys.executable, "-m", "app.machine.run_cli", str(program), "--config", str(config),
+    run = subprocess.run([sys.executable, "-m", "app.run_cli", str(program), "--config", str(config),
                           "--hardware", "--json", "--state-dir", str(tmp_path / "state")],
                          capture_output=True, text=True, cwd=ROOT, timeout=120,
                          env={**os.environ, FRAME_TIMEOUT_ENV: "20000"})

@@ -26,7 +26,8 @@ from ethercat.drive_setup import DriveSetup, MappingPolicy, StartupStep
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
 from ethercat.errors import AdapterError, AlStateError, SdoAbortError, SlaveIdentityError
 from ethercat.pdo import CSP_MAPPING, PdoEntry, PdoMapping
-from ethercat.soem_bus import FRAME_TIMEOUT_ENV, SoemBus
+from ethercat.soem_access import FRAME_TIMEOUT_ENV
+from ethercat.soem_bus import SoemBus
 from ethercat.worker import AlarmCode, CyclicWorker, EventCode, WorkerConfig, WorkerEvent, WorkerState
 from tests.ethercat.bus_contract import CONTRACT_DRIVES, BusContractTests, enable_all
 

@@ -17,7 +17,8 @@ from ethercat.bus import DriveSpec
 from ethercat.cli import build_parser, main
 from ethercat.errors import ConfigurationError, SdoAbortError
 from ethercat.pdo import CSP_MAPPING, DRIVE_MAPPINGS, DriveIo, PdoEntry, PdoMapping
-from ethercat.soem_bus import SoemBus, al_state_name
+from ethercat.soem_access import al_state_name
+from ethercat.soem_bus import SoemBus
 
 ROOT = Path(__file__).resolve().parents[2]
 DRIVES = (DriveSpec(0, "X"), DriveSpec(1, "Y", direction=-1))
@@ -115,7 +116,7 @@ def test_link_tests_skip_reasons(monkeypatch: pytest.MonkeyPatch) -> None:
 
 def test_frame_timeout_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
     from ethercat.errors import ConfigurationError
-    from ethercat.soem_bus import FRAME_TIMEOUT_ENV, frame_timeout_us
+    from ethercat.soem_access import FRAME_TIMEOUT_ENV, frame_timeout_us
 
     monkeypatch.delenv(FRAME_TIMEOUT_ENV, raising=False)
     assert frame_timeout_us() is None                      # SOEM's own default is kept
@@ -129,11 +130,11 @@ def test_frame_timeout_comes_from_the_environment(monkeypatch: pytest.MonkeyPatc
 
 def test_sdo_failures_are_named_so_an_integrator_can_act() -> None:
     """SOEM's errors of one SDO transfer, decoded: the slave by position, name and identity,
-    the object, and what the code means (it used to say "(1, 1)")."""
+    the object, and what the code means, not SOEM's bare "(1, 1)"."""
     import pysoem
 
     from ethercat.errors import SdoError, SdoTimeoutError
-    from ethercat.soem_bus import _map_sdo_error
+    from ethercat.soem_access import _map_sdo_error
 
     master = SimpleNamespace(slaves=[None, SimpleNamespace(name="KickCAT drive", man=0x6A5, id=0xB0CAD0)])
     packet = _map_sdo_error(pysoem.PacketError(1, 1), 1, 0x1C12, 0, master)

@@ -16,9 +16,9 @@ from app.machine.controller import MachineController
 from app.machine.model import MachineState
 from resources import shipped_machine
 
-# The streaming lead no longer delays a feed hold, stop or override (the controller splices the
-# worker's queue a few cycles ahead of the drives), so these tests, which place holds at given
-# points of short programs, run with the default lead (they used to pin it to 0.1 s).
+# A feed hold, stop or override takes effect a few cycles ahead of the drives whatever the
+# streaming lead (the controller splices the worker's queue), so these tests, which place
+# holds at given points of short programs, run with the default lead.
 TEST_LEAD_S = DEFAULT_LEAD_S
 
 

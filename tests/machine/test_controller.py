@@ -174,14 +174,14 @@ def test_override_changes_mid_move(ctl: MachineController) -> None:
     ctl.speedChanged.connect(speeds.append)
     start(ctl, "G0 X5 Y0\nG1 X120 F1200\nM30\n")  # 20 mm/s programmed
     ctl.advance(1.2)
-    v100 = ctl.stream.speed
+    v100 = ctl.snapshot().path_speed_mm_s
     assert v100 == pytest.approx(20.0, rel=0.02)
     assert ctl.set_feed_override(150)
     ctl.advance(1.0)
-    assert ctl.stream.speed == pytest.approx(30.0, rel=0.02)  # 150 % of 20, within Vmax 30
+    assert ctl.snapshot().path_speed_mm_s == pytest.approx(30.0, rel=0.02)  # 150 % of 20, within Vmax 30
     assert ctl.set_feed_override(40)
     ctl.advance(1.0)
-    assert ctl.stream.speed == pytest.approx(8.0, rel=0.03)
+    assert ctl.snapshot().path_speed_mm_s == pytest.approx(8.0, rel=0.03)
     assert not ctl.set_feed_override(201)
     assert ctl.set_feed_override(100)
     run_to_idle(ctl)
@@ -275,7 +275,7 @@ def test_restart_after_a_stop_while_cutting_never_moves_sideways_low_and_spins_u
         samples: list[tuple[float, tuple[float, ...], float]] = []
 
         def record() -> bool:
-            samples.append((float(ctl.conn.snapshot_now().time_s),
+            samples.append((float(ctl.machine_time_s()),
                             ctl.reference_position, ctl.spindle.direction * ctl.spindle.rpm))
             return ctl.activity is Activity.PROGRAM
 
@@ -366,8 +366,8 @@ def test_mdi_refuses_what_it_cannot_do_with_the_reason(ctl: MachineController, b
 
 @pytest.mark.parametrize("block", ["G91", "G20", "F500", "S1000", "G43 H0", "#1=5", "G61", "G18", "G0"])
 def test_mdi_block_that_only_sets_modes_is_refused_not_forgotten(ctl: MachineController, block: str) -> None:
-    """An MDI block is read on its own. G91 typed alone used to return OK and be forgotten, so
-    the next "G1 X10" went to X10 absolute: now it is refused, saying how to write it."""
+    """An MDI block is read on its own: G91 typed alone would change nothing that lasts (the
+    next "G1 X10" would go to X10 absolute), so it is refused, saying how to write it."""
     r = ctl.mdi(block)
     assert not r and "an MDI block stands alone" in r.reason and "G91 G1 X10 F500" in r.reason
     assert ctl.mdi("(only a comment)")            # says nothing and does nothing
@@ -559,10 +559,10 @@ def test_rapid_override_applies_to_rapids_only(ctl: MachineController) -> None:
     assert ctl.set_rapid_override(25)
     start(ctl, "G0 X100\nG1 X110 F1200\nM30\n")
     ctl.advance(1.5)
-    assert ctl.stream.speed == pytest.approx(12.5, rel=0.03)  # 25 % of the 50 mm/s rapid
+    assert ctl.snapshot().path_speed_mm_s == pytest.approx(12.5, rel=0.03)  # 25 % of the 50 mm/s rapid
     assert ctl.run_until(lambda: ctl.current_line == 2, 10)
     ctl.advance(0.3)
-    assert ctl.stream.speed == pytest.approx(20.0, rel=0.03)  # the feed is not affected
+    assert ctl.snapshot().path_speed_mm_s == pytest.approx(20.0, rel=0.03)  # the feed is not affected
     run_to_idle(ctl)
     assert_within_limits(ctl.last_run.limits)
     assert not ctl.set_rapid_override(120)
@@ -781,8 +781,8 @@ def test_the_time_left_counts_the_spin_ups_ahead(ctl: MachineController) -> None
 
 def test_spin_ups_are_starts_reversals_speed_ups_and_restarts_after_a_tool_change() -> None:
     from app.machine.model import SpindleState
-    from app.machine.spindle import spin_up_waits
-    from app.machine.timescale import PausePoint
+    from app.machine.motion.spinup import spin_up_waits
+    from app.machine.motion.timescale import PausePoint
 
     def at(tau: float, kind: str, value: float = 0.0) -> PausePoint:
         return PausePoint(tau, kind, 1, 0, value)
@@ -821,8 +821,8 @@ def test_a_program_leaves_its_offsets_and_parameters_with_the_machine(qapp, conf
         assert ctl.load_program(text, "offsets.ngc", wait=True)
         assert ctl.cycle_start()
         run_to_idle(ctl)
-        assert ctl.pos.offsets["G55"][:2] == (10.0, 20.0)
-        params = ctl.pos.parameters
+        assert ctl.work_offsets["G55"][:2] == (10.0, 20.0)
+        params = ctl.coordinates.parameters
         assert params[5210] == 1.0 and params[5211] == -4.0 and (params[5161], params[5162]) == (1.0, 1.0)
         assert "changed since it was loaded" in ctl.loader.program_stale()
         np.testing.assert_allclose(ctl.reference_position[:2], (-2.0, 1.0))    # X2 with G92: 2 - 4
@@ -834,13 +834,13 @@ def test_a_program_leaves_its_offsets_and_parameters_with_the_machine(qapp, conf
         ctl.shutdown()
     again = make_controller(config_path, state_dir, zero=False)
     try:
-        assert again.pos.parameters[5211] == -4.0 and again.pos.offsets["G55"][:2] == (10.0, 20.0)
+        assert again.coordinates.parameters[5211] == -4.0 and again.work_offsets["G55"][:2] == (10.0, 20.0)
         assert again.g92_offset is not None and again.g92_offset[0] == -4.0
         assert again.clear_g92()
-        assert again.g92_offset is None and again.pos.parameters[5211] == 0.0
-        assert again.mdi("G92 X1") and again.pos.parameters[5210] == 1.0
+        assert again.g92_offset is None and again.coordinates.parameters[5211] == 0.0
+        assert again.mdi("G92 X1") and again.coordinates.parameters[5210] == 1.0
         assert again.mdi("G92.1")
-        assert again.pos.parameters[5210] == 0.0 and again.pos.parameters[5211] == 0.0
+        assert again.coordinates.parameters[5210] == 0.0 and again.coordinates.parameters[5211] == 0.0
     finally:
         again.shutdown()
 

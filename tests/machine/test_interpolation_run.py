@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from app.machine.config import config_to_toml, load_config
-from app.machine.timescale import Budget, reduced_machine
+from app.machine.motion.timescale import Budget, reduced_machine
 from cli.plan import main as cnc_plan
 from tests.machine.conftest import make_controller, run_to_idle
 

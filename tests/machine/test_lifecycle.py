@@ -48,7 +48,7 @@ def test_shutdown_mid_run_stops_along_the_path_first(qapp, config_path: Path, st
     try:
         assert ctl.load_program(SHORT, wait=True) and ctl.cycle_start()
         ctl.advance(0.5)  # in line 2 at 30 mm/s
-        assert ctl.state is MachineState.RUNNING and ctl.stream.speed > 10.0
+        assert ctl.state is MachineState.RUNNING and ctl.snapshot().path_speed_mm_s > 10.0
         x0 = ctl.reference_position[0]
     finally:
         ctl.shutdown()
@@ -144,7 +144,7 @@ def test_a_second_panel_on_the_same_state_folder_is_refused(tmp_path: Path) -> N
     import subprocess
     import sys
 
-    from app.machine.persist import StateStore
+    from app.machine.infra.persist import StateStore
 
     state = tmp_path / "state"
     holder = StateStore(state, exclusive=True)            # a first control, as far as the folder knows

@@ -73,16 +73,16 @@ def test_any_sequence_of_operator_actions_keeps_the_machine_safe(qapp, tmp_path_
                                                                  windowed: bool) -> None:
     """``windowed``: the program runs as a long one does, from a plan made as it runs (in
     segments of a few moves here)."""
-    from app.machine import feeder
+    from app.machine.motion import plans
     from planner import window
 
-    saved = feeder.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES
+    saved = plans.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES
     if windowed:
-        feeder.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES = 0, 4
+        plans.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES = 0, 4
     try:
         _operate(qapp, tmp_path_factory, steps)
     finally:
-        feeder.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES = saved
+        plans.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES = saved
 
 
 def _operate(qapp, tmp_path_factory, steps) -> None:

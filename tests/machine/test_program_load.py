@@ -182,7 +182,7 @@ def test_the_tool_path_is_made_with_the_check_not_by_the_pages(ctl: MachineContr
     assert isinstance(info.toolpath, ToolPath)
     assert len(info.toolpath.move_lines) == info.move_count
     model = ProgramModel()
-    model.set_loaded(info, ctl.conn.machine)
+    model.set_loaded(info, ctl.coordinates.machine())
     assert model.toolpath is info.toolpath
 
 
@@ -194,7 +194,7 @@ def test_a_check_in_the_background_tells_how_far_it_is(qtbot, ctl: MachineContro
     with qtbot.waitSignal(ctl.programLoaded, timeout=60_000):
         assert ctl.load_program(big_program(60_000), name="big.nc")
     timer.stop()
-    from app.machine.program_load import LOAD_SHARES
+    from app.machine.program.checks import LOAD_SHARES
 
     moving = [p for p in seen if p > 0.0]
     assert moving and moving == sorted(moving) and max(moving) <= 1.0
@@ -208,7 +208,7 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
                                                             monkeypatch) -> None:
     """The call only looks whether the file opens; the worker reads it (a 250 MB file took the
     GUI thread half a second), and a file that cannot be read by then is refused with why."""
-    import app.machine.program_load as program_load
+    import app.machine.program.checks as program_load
 
     path = tmp_path / "prog.nc"
     path.write_text(SHORT, encoding="utf-8")

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from app.machine import run_cli
+from app import run_cli
 from app.machine.controller import MachineController
 from app.machine.model import MachineState
 from resources import (
@@ -110,7 +110,7 @@ def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
     prog = tmp_path / "long.nc"
     prog.write_text("G1 X200 F600\nM30\n")          # 20 s at 10 mm/s
     before = shm_before()
-    proc = subprocess.Popen([sys.executable, "-m", "app.machine.run_cli", str(prog), "--sim", "--json",
+    proc = subprocess.Popen([sys.executable, "-m", "app.run_cli", str(prog), "--sim", "--json",
                              "--worker", "process"], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     try:
@@ -141,7 +141,7 @@ def test_a_run_killed_by_sigkill_leaves_the_state_unclean_and_no_axis_homed(qapp
     state = tmp_path / "state"
     prog = tmp_path / "long.nc"
     prog.write_text("G1 X200 F600\nM30\n")
-    cmd = [sys.executable, "-m", "app.machine.run_cli"]
+    cmd = [sys.executable, "-m", "app.run_cli"]
     run = [*cmd, str(prog), "--sim", "--json", "--worker", "thread", "--state-dir", str(state)]
     proc = subprocess.Popen(run, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:

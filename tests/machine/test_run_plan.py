@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-import app.machine.feeder as feeder
+import app.machine.motion.plans as plans
 from app.machine.controller import MachineController
 from app.machine.model import Activity, MachineState
 from tests.machine.conftest import run_to_idle
@@ -22,13 +22,13 @@ SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"
 def plan_calls(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     """Counts the planner calls of the controller (load, re-check, jobs)."""
     calls: list[int] = []
-    real = feeder.plan_program
+    real = plans.plan_program
 
     def counting(program, machine, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003
         calls.append(len(program.moves))
         return real(program, machine, *args, **kwargs)
 
-    monkeypatch.setattr(feeder, "plan_program", counting)
+    monkeypatch.setattr(plans, "plan_program", counting)
     return calls
 
 
@@ -140,8 +140,8 @@ def test_single_block_plan_is_made_in_the_background(qtbot, ctl: MachineControll
     assert ctl.cycle_start() and len(plan_calls) == 2
     job_plan = ctl.stream.job.plan
     assert all(m.exact_stop for m in job_plan.program.moves)
-    sync = feeder.plan_program(feeder.single_block_program(ctl.program_info.program),
-                               feeder.reduced_machine(ctl.conn.machine, ctl.conn.budget))
+    sync = plans.plan_program(plans.single_block_program(ctl.program_info.program),
+                               plans.reduced_machine(ctl.coordinates.machine(), ctl.settings.budget))
     same_plan(job_plan, sync)
     stops = 0
     while ctl.state is not MachineState.IDLE:
@@ -177,7 +177,7 @@ def test_a_waiting_cycle_start_is_cancelled_by_stop_and_by_a_failed_check(
 
 def test_run_from_line_after_a_move_is_pressed_once(qtbot, ctl: MachineController) -> None:
     """After a stop the machine has moved: run from line checks the program again and then
-    starts from that line by itself (it used to fail silently until pressed again)."""
+    starts from that line by itself: the operator presses once."""
     assert ctl.load_program("G0 X5 Y0\nG1 X10 F600\nG1 Y10\nM30\n", wait=True)
     assert ctl.mdi("G0 X1 Y2")
     run_to_idle(ctl)

@@ -11,9 +11,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.machine import run_cli
+from app import run_cli
 from app.machine.errors import MachineError
-from app.machine.scenario import OPS, parse_op, read_script
+from app.machine.program.scenario import OPS, parse_op, read_script
 
 CUT = ("G21 G90 G17\nG0 Z5\nG0 X-20 Y0\nM3 S1200\nG1 Z-1 F600\nG1 X40 F1200\nG1 Y30\nG0 Z5\n"
        "G0 X60 Y60\nG1 Z-2 F600\nG1 X0 F1200\nG0 Z5\nM5\nM30\n")

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from app.machine.config import load_config
-from app.machine.timescale import Budget, TimeScaledExecutor, pause_points, reduced_machine
+from app.machine.motion.timescale import Budget, TimeScaledExecutor, pause_points, reduced_machine
 from planner.interpreter import parse_program
 from planner.meter import check_limits
 from planner.movetable import contour_error

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from app.machine.config import load_config
-from app.machine.timescale import (
+from app.machine.motion.timescale import (
     SIGMA_MAX,
     Budget,
     PauseFeed,

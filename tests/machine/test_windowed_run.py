@@ -108,10 +108,10 @@ PART = _part(40)
 @pytest.fixture
 def windowed(monkeypatch):
     """Every program counts as long: planned as it runs."""
-    from app.machine import feeder
+    from app.machine.motion import plans
     from planner import window
 
-    monkeypatch.setattr(feeder, "WINDOWED_RUN_MOVES", 0)
+    monkeypatch.setattr(plans, "WINDOWED_RUN_MOVES", 0)
     monkeypatch.setattr(window, "WINDOW_SEGMENT_MOVES", 32)     # segments of a short program
 
 
@@ -128,9 +128,9 @@ def test_a_long_program_is_checked_without_holding_its_plan(qapp, config_path, s
     try:
         assert ctl.load_program(PART, "part.ngc", wait=True)
         whole = ctl.program_info
-        from app.machine import feeder
+        from app.machine.motion import plans
 
-        monkeypatch.setattr(feeder, "WINDOWED_RUN_MOVES", 0)
+        monkeypatch.setattr(plans, "WINDOWED_RUN_MOVES", 0)
         assert ctl.load_program(PART, "part.ngc", wait=True)
         long = ctl.program_info
         assert whole.plan is not None and long.plan is None
@@ -241,7 +241,7 @@ def test_a_long_program_stopped_by_an_alarm_resumes_where_it_stopped(qapp, confi
 
 def test_a_window_already_moved_cannot_give_its_pause_points(machine) -> None:
     # they come from each segment as it is made: a window planned ahead already would miss some
-    from app.machine.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
+    from app.machine.motion.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
     from planner.interpreter import parse_program
     from planner.window import PlanWindow
 

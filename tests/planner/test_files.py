@@ -144,7 +144,7 @@ def test_kill_9_during_saves_leaves_a_whole_file_and_the_next_write_cleans_up(tm
 
 
 def test_the_state_folder_is_cleaned_of_stale_temporaries_at_start(tmp_path: Path) -> None:
-    from app.machine.persist import StateStore
+    from app.machine.infra.persist import StateStore
 
     state = tmp_path / "state"
     state.mkdir()

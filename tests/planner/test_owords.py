@@ -293,7 +293,7 @@ def test_m72_without_a_saved_state_and_m73_in_the_program_are_refused() -> None:
 
 def test_a_reused_loop_label_is_refused_as_linuxcnc_does() -> None:
     """LinuxCNC keeps one place per label for subs, do, repeat and while: a second repeat with
-    the same label stops it with "duplicate O-word label" (it used to run here)."""
+    the same label stops it with "duplicate O-word label"."""
     text = ("G21 F600\no200 repeat [2]\nG91 G1 X1\nG90\no200 endrepeat\n"
             "o200 repeat [3]\nG91 G1 Y1\nG90\no200 endrepeat\nM2\n")
     with pytest.raises(ProgramError) as ei:

@@ -90,7 +90,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.machine.plan_stats import BLOCK, BlockStats
+from app.machine.model import Budget, PauseKind, PausePoint
+from app.machine.motion.plan_stats import BLOCK, BlockStats
 from planner.interpolate import Interpolator, Segment
 from planner.machine import MachineSpec
 from planner.meter import check_limits
@@ -99,7 +100,7 @@ from planner.program import FEED_HOLD_DEFERRED, EventKind, Program
 from planner.stopping import PathStop, plan_path_stop
 from planner.window import PlanWindow
 
-__all__ = ["Budget", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
+__all__ = ["Budget", "PauseKind", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
            "reduced_machine"]
 
 SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap it (3)
@@ -107,14 +108,6 @@ SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap i
 # set-point still queued in the worker, at most ``lead_s`` (1 s, the configuration's bound) and
 # a chunk of real time back, 2 s of plan at 200 %
 KEEP_BEHIND_S = 3.0
-
-
-@dataclass(frozen=True, slots=True)
-class Budget:
-    """Share of the acceleration and jerk limits the plan may use (the rest is for sigma)."""
-
-    k_a: float = 0.85
-    k_j: float = 0.7
 
 
 def reduced_machine(machine: MachineSpec, budget: Budget) -> MachineSpec:
@@ -125,20 +118,6 @@ def reduced_machine(machine: MachineSpec, budget: Budget) -> MachineSpec:
     lim = replace(machine.limits, a_max_mm_s2=machine.limits.a_max_mm_s2 * budget.k_a,
                   j_max_mm_s3=machine.limits.j_max_mm_s3 * budget.k_j)
     return replace(machine, axes=axes, limits=lim)
-
-
-@dataclass(frozen=True, slots=True)
-class PausePoint:
-    """A planned full stop where tau halts: kind in "single_block", "pause", "optional_pause",
-    "tool_change", "dwell", "spindle", "tapping", "end", ...; ``value`` dwell s / spindle rpm /
-    tool / the overrides from here (tapping)."""
-
-    tau_s: float
-    kind: str
-    line: int
-    move: int
-    value: float = 0.0
-    message: str = ""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -292,7 +271,7 @@ class TimeScaledExecutor:
     def release_pause(self) -> None:
         """Continue after a pause point (M00, single block, dwell elapsed, ...)."""
         if self.paused is not None:
-            if self.paused.kind == "dwell":
+            if self.paused.kind is PauseKind.DWELL:
                 self.tau = min(self.tau + self.paused.value, self.t_end)  # the dwell is timed by the caller
             self.paused = None
             self.sigma_start = True
@@ -493,8 +472,9 @@ class TimeScaledExecutor:
             # one more set-point at rest: the stop's last (sampled) jerk and a resume's first
             # never fall into one third difference (a resume requested during the stop measured
             # 1.03-1.05 J_max across that junction without it)
-            ch = ScaledChunk(*(np.concatenate([a, a[-1:]]) for a in (ch.q, ch.tau, ch.sigma, ch.line, ch.move,
-                                                                       ch.s_mm)), None)
+            q, tau, sigma, line, move, s_mm = (np.concatenate([a, a[-1:]]) for a in (ch.q, ch.tau, ch.sigma,
+                                                                                   ch.line, ch.move, ch.s_mm))
+            ch = ScaledChunk(q, tau, sigma, line, move, s_mm, None)
         self._remember(ch)
         return ch
 
@@ -576,8 +556,8 @@ class TimeScaledExecutor:
                     pause = nxt
                     self._pause_i += 1
                     self.paused = nxt
-                    if nxt.kind == "end" or limit_tau >= self.t_end:
-                        self.finished = nxt.kind == "end" or self._pause_i >= len(self.pauses)
+                    if nxt.kind is PauseKind.END or limit_tau >= self.t_end:
+                        self.finished = nxt.kind is PauseKind.END or self._pause_i >= len(self.pauses)
                 else:
                     self.finished = True
                 self.sigma_dot = 0.0
@@ -596,12 +576,10 @@ class TimeScaledExecutor:
         return 1.0 if self.t_end <= 0 else min(self.tau / self.t_end, 1.0)
 
 
-_PAUSE_KINDS = {EventKind.PAUSE: "pause", EventKind.OPTIONAL_PAUSE: "optional_pause",
-                EventKind.TOOL_CHANGE: "tool_change", EventKind.DWELL: "dwell",
-                EventKind.SPINDLE: "spindle", EventKind.END: "end", EventKind.TOOL_SET: "tool_set",
-                EventKind.OFFSETS: "offsets", EventKind.OUTPUT: "output", EventKind.TOOL_DATA: "tool_data",
-                EventKind.PROBE_START: "probe_start", EventKind.PROBE: "probe", EventKind.INPUT: "input",
-                EventKind.TAPPING: "tapping"}
+_PAUSE_KINDS = {kind: PauseKind(kind.value) for kind in (
+    EventKind.PAUSE, EventKind.OPTIONAL_PAUSE, EventKind.TOOL_CHANGE, EventKind.DWELL, EventKind.SPINDLE,
+    EventKind.END, EventKind.TOOL_SET, EventKind.OFFSETS, EventKind.OUTPUT, EventKind.TOOL_DATA,
+    EventKind.PROBE_START, EventKind.PROBE, EventKind.INPUT, EventKind.TAPPING)}
 
 
 class PauseFeed:
@@ -640,11 +618,11 @@ class PauseFeed:
                                   ev.message))
         if self.single_block:
             lines = seg.table.line
-            pts.extend(PausePoint(float(t_end_move[r]), "single_block", int(lines[r]), lo + r)
+            pts.extend(PausePoint(float(t_end_move[r]), PauseKind.SINGLE_BLOCK, int(lines[r]), lo + r)
                        for r in range(min(n_seg, self.n - 1 - lo)))
         pts.sort(key=lambda p: (p.tau_s, p.line))
         if hi >= self.n:
-            pts.append(PausePoint(float(seg.t_end), "end", int(seg.table.line[-1]), self.n - 1))
+            pts.append(PausePoint(float(seg.t_end), PauseKind.END, int(seg.table.line[-1]), self.n - 1))
         return pts
 
 

@@ -118,7 +118,7 @@ class StateStore:
             homed = data["homed"]
             if not (isinstance(homed, list) and all(isinstance(x, bool) for x in homed)):
                 raise ValueError(f"homed is {homed!r}, not true/false per axis")
-            out = {
+            out: dict[str, Any] = {
                 "raw_position": numbers["raw_position"],
                 "home_offset": numbers["home_offset"],
                 "homed": homed[:n],

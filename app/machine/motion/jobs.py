@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.machine.model import Activity, SpindleState
-from app.machine.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
+from app.machine.model import Activity, ResumePoint, SpindleState
+from app.machine.motion.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
 from planner.machine import MachineSpec
 from planner.meter import LimitMeter, PathSpeedLimits
 from planner.plan import Plan
@@ -31,20 +31,6 @@ class ChunkRecord:
     pushed: int
     state: tuple
     pause: bool
-
-
-@dataclass(frozen=True, slots=True)
-class ResumePoint:
-    """Where a program stopped (fault, E-stop, stop alarm): move index and distance within it."""
-
-    program: Program
-    move_index: int
-    u_mm: float
-    line: int
-    cause: str
-    # what the run's probes and M66 read before it stopped (the program above is read with them)
-    probe_results: tuple[ProbeResult | None, ...] = ()
-    wait_results: tuple[float | None, ...] = ()
 
 
 class Job:

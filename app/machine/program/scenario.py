@@ -28,12 +28,13 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
+from app.machine.api import MachineApi
 from app.machine.errors import MachineError
-from app.machine.model import HoldKind, MachineState
+from app.machine.model import CommandResult, HoldKind, MachineState, SpindleState
 
 __all__ = ["OPS", "Recorder", "ScenarioOp", "ScenarioRunner", "read_script"]
 
@@ -121,11 +122,20 @@ def read_script(path: str | Path) -> tuple[ScenarioOp, ...]:
     return tuple(ops)
 
 
+class ScriptedMachine(MachineApi, Protocol):
+    """The controller as a script drives it: its public face, the machine's clock and the
+    trace of every set-point sent."""
+
+    def machine_time_s(self) -> float: ...
+
+    def add_trace_sink(self, sink: Callable[[np.ndarray, np.ndarray, np.ndarray], None]) -> None: ...
+
+
 class Recorder:
     """Every set-point sent while the drives were enabled, in machine coordinates, with the
     program line and commanded spindle speed (signed: + CW) of its time, and the prompts."""
 
-    def __init__(self, ctl: Any) -> None:
+    def __init__(self, ctl: ScriptedMachine) -> None:
         self.ctl = ctl
         self.ts_s = float(ctl.config.machine.planner.ts_s)
         self._chunks: list[tuple[np.ndarray, np.ndarray, np.ndarray, int, float]] = []
@@ -134,18 +144,18 @@ class Recorder:
         # no samples while the drives are disabled, after an E-stop for one)
         self.spindle: list[dict[str, float]] = []
         self._last_prompt: object = None
-        ctl.poller.sink = self._chunk
+        ctl.add_trace_sink(self._chunk)
         ctl.stateChanged.connect(self._on_state)
         ctl.spindleChanged.connect(self._on_spindle)
 
-    def _on_spindle(self, sp: Any) -> None:
-        t = float(self.ctl.conn.snapshot_now().time_s)
+    def _on_spindle(self, sp: SpindleState) -> None:
+        t = float(self.ctl.machine_time_s())
         self.spindle.append({"t_s": round(t, 6), "rpm": float(sp.direction * sp.rpm)})
 
     def _chunk(self, cycles: np.ndarray, reference: np.ndarray, actual: np.ndarray) -> None:
+        """A drained chunk of the trace (machine coordinates)."""
         sp = self.ctl.spindle
-        offset = np.asarray(self.ctl.pos.home_offset, dtype=float)
-        self._chunks.append((cycles.copy(), reference - offset, actual - offset, int(self.ctl.current_line),
+        self._chunks.append((cycles.copy(), reference.copy(), actual.copy(), int(self.ctl.current_line),
                              float(sp.direction * sp.rpm)))
 
     def _on_state(self, state: MachineState, _reason: str) -> None:
@@ -174,15 +184,18 @@ class Recorder:
     def save(self, path: str) -> None:
         from planner.files import write_output
 
-        data = self.arrays()
-        write_output(path, lambda fh: np.savez_compressed(fh, **data))
+        d = self.arrays()
+        write_output(path, lambda fh: np.savez_compressed(fh, t=d["t"], reference=d["reference"],
+                                                          actual=d["actual"],
+                                                          axes=d["axes"], line=d["line"],
+                                                          spindle_rpm=d["spindle_rpm"]))
 
 
 class ScenarioRunner:
     """Fires the script's actions in order as their triggers come; ``step()`` after every
     advance of the machine. ``done`` when every action has been tried."""
 
-    def __init__(self, ctl: Any, ops: tuple[ScenarioOp, ...], now: Callable[[], float]) -> None:
+    def __init__(self, ctl: ScriptedMachine, ops: tuple[ScenarioOp, ...], now: Callable[[], float]) -> None:
         self.ctl = ctl
         self.ops = list(ops)
         self.now = now
@@ -204,10 +217,10 @@ class ScenarioRunner:
     def _due(self, op: ScenarioOp) -> bool:
         if op.after_s is not None:
             return self.now() - self.last_t >= op.after_s - 1e-9
-        return self.ctl.current_line >= (op.at_line or 0) and self.ctl.state in (
-            MachineState.RUNNING, MachineState.HOLD)
+        status = self.ctl.snapshot()
+        return status.line >= (op.at_line or 0) and status.state in (MachineState.RUNNING, MachineState.HOLD)
 
-    def _fire(self, op: ScenarioOp) -> Any:
+    def _fire(self, op: ScenarioOp) -> CommandResult | _Refused:
         c = self.ctl
         if op.op == "run_from_line":
             return c.run_from_line(op.line, wait=True)

@@ -61,7 +61,7 @@ def _parser() -> argparse.ArgumentParser:
 
 def _status(state_dir: str, as_json: bool) -> int:
     """The persisted state of a state folder, read without taking it (no controller started)."""
-    from app.machine.persist import StateStore
+    from app.machine.infra.persist import StateStore
 
     raw = StateStore(state_dir)._read_json("state.json")
     if not isinstance(raw, dict):
@@ -100,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     from app.machine.controller import MachineController
     from app.machine.errors import ConfigError, MachineError, StateFolderBusy
     from app.machine.model import MachineState
-    from app.machine.scenario import Recorder, ScenarioRunner, read_script
+    from app.machine.program.scenario import Recorder, ScenarioRunner, read_script
 
     try:
         ops = read_script(args.script) if args.script else None
@@ -169,7 +169,7 @@ def main(argv: list[str] | None = None) -> int:
         recorder = Recorder(ctl) if (args.trace or ops is not None) else None
         runner = None
         if ops is not None:
-            runner = ScenarioRunner(ctl, ops, lambda: float(ctl.conn.snapshot_now().time_s))
+            runner = ScenarioRunner(ctl, ops, ctl.machine_time_s)
             max_s = args.max_s if args.max_s is not None else 3.0 * info.cycle_time_s + 60.0
             max_s += runner.last_t
         started = time.monotonic()
@@ -236,7 +236,6 @@ def main(argv: list[str] | None = None) -> int:
             result["actions"] = runner.results
             result["prompts"] = recorder.prompts
             result["spindle"] = recorder.spindle
-        result["final_state"] = ctl.state.value
         if args.trace and recorder is not None:
             recorder.save(args.trace)
             result["trace"] = args.trace
@@ -272,7 +271,11 @@ def _settle(ctl: Any, tick: Any) -> None:
 
 
 def _result(ctl: Any, info: Any, summary: Any, wall: float, snap: Any, notes: list[str]) -> dict[str, Any]:
-    axes = list(ctl.axes)
+    """The run as JSON: from the controller's status snapshot (positions in both frames, the
+    offsets in force, alarms, state) and the run's summary."""
+    status = ctl.snapshot()
+    axes = list(status.axes)
+    frame = status.frame
     out: dict[str, Any] = {
         "program": info.name, "lines": info.line_count, "moves": info.move_count,
         "completed": bool(summary is not None and summary.completed),
@@ -280,11 +283,15 @@ def _result(ctl: Any, info: Any, summary: Any, wall: float, snap: Any, notes: li
         "cycle_time_s": summary.cycle_time_s if summary is not None else 0.0,
         "estimated_cycle_time_s": info.cycle_time_s, "wall_time_s": wall,
         "last_line": summary.last_line if summary is not None else 0,
-        "end_position": list(ctl.machine_position), "reference_end_position": list(ctl.reference_position),
+        "end_position": list(status.machine_pos), "reference_end_position": list(status.reference_pos),
+        "end_work_position": list(status.work_pos),
+        "offsets": {"system": frame.system_name, "g5x": list(frame.g5x), "g92": list(frame.g92),
+                    "tool": list(frame.tool), "xy_rotation_deg": frame.rotation_deg},
         "limits": summary.limits if summary is not None else {},
         "limits_ok": bool(summary is not None and all(
             v <= 1.0 + 1e-6 for k, v in summary.limits.items() if not k.endswith("_max"))),
-        "tracking": {}, "alarms": [f"{a.source}: {a.cause}" for a in ctl.alarms], "notes": notes,
+        "tracking": {}, "alarms": [f"{a.source}: {a.cause}" for a in status.alarms], "notes": notes,
+        "final_state": status.state.value,
     }
     if summary is not None:
         t = summary.tracking

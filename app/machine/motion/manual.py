@@ -1,29 +1,36 @@
 """Manual motion: continuous and incremental jog, MDI. Every motion is planned and checked like a
 program (soft limits on the whole path); a continuous jog is planned to the soft limit, so a
-lost release stops there. A part of ``MachineController``.
+lost release stops there.
 """
 
 from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from app.machine.errors import MachineError
-from app.machine.inputs import probe_refusal
 from app.machine.model import Activity, CommandResult, SpindleState
-from app.machine.outputs import analog_refusal
-from app.machine.spindle import synchronised_refusal
+from app.machine.motion.jobs import Job
+from app.machine.motion.making import JobMaker
+from app.machine.motion.refusals import analog_refusal, limit_issues, probe_refusal, synchronised_refusal
+from app.machine.motion.streamer import Streamer
+from app.machine.ports import (
+    CoordinatesView,
+    OutputSwitch,
+    PositionsView,
+    RunModes,
+    Settings,
+    SpindleDrive,
+    ToolView,
+)
+from app.machine.state.gate import Action, guarded
+from app.machine.state.states import StateMachine
 from planner.errors import PlannerError, ProgramError
 from planner.interpreter import parse_program
 from planner.lexer import LexError, compact
 from planner.program import EventKind, Move, MoveKind, Program
-
-if TYPE_CHECKING:
-    from app.machine.controller import MachineController
-    from app.machine.jobs import Job
 
 __all__ = ["JOG_INCREMENTS", "ManualMotion"]
 
@@ -31,20 +38,36 @@ JOG_INCREMENTS: tuple[float, ...] = (0.001, 0.01, 0.1, 1.0)  # mm or degrees
 
 
 class ManualMotion:
-    """Jog and MDI.
+    """Jog and MDI (``controller.manual``)."""
 
-    A part of ``MachineController`` (``controller.manual``): it owns the state set up in
-    ``__init__`` and reaches the other parts through the facade ``m``.
-    """
+    def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView,
+                 coordinates: CoordinatesView, tools: ToolView, spindle: SpindleDrive,
+                 outputs: OutputSwitch, modes: RunModes, motion: Streamer, jobs: JobMaker) -> None:
+        self._settings = settings
+        self._states = states
+        self._positions = positions
+        self._coordinates = coordinates
+        self._tools = tools
+        self._spindle = spindle
+        self._outputs = outputs
+        self._modes = modes
+        self._motion = motion
+        self._jobs = jobs
 
-    def __init__(self, m: MachineController) -> None:
-        self.m = m
+    @property
+    def gate(self) -> StateMachine:
+        return self._states
+
+    def show_message(self, text: str) -> None:
+        """A message for the operator (the status line and the alarm log)."""
+        self._motion.show_message(text)
 
     def _single_axis_program(self, i: int, target: float, feed_mm_s: float, name: str) -> Program:
-        cur = self.m.states.machine_pos()
+        cfg = self._settings.config
+        cur = self._positions.machine_pos()
         end = cur.copy()
         end[i] = target
-        rotary = self.m.config.machine.rotary
+        rotary = cfg.machine.rotary
         length = abs(target - cur[i])
         move = Move(
             index=0,
@@ -59,7 +82,7 @@ class ManualMotion:
         )
         return Program(
             name=name,
-            axes=self.m.config.axes,
+            axes=cfg.axes,
             rotary=rotary,
             moves=(move,),
             events=(),
@@ -67,112 +90,104 @@ class ManualMotion:
             line_count=0,
         )
 
+    @guarded(Action.JOG)
     def jog_start(self, axis: str | int, direction: int, speed_fraction: float = 1.0) -> CommandResult:
         """Continuous jog of one axis toward + (1) or - (-1) at ``speed_fraction`` of the jog
         speed. The motion is planned to end at the soft limit, so a lost release stops exactly
         there; ``jog_stop`` is a jerk-limited stop.
         """
+        states, cfg = self._states, self._settings.config
         try:
-            i = self.m.states.axis(axis)
+            i = states.axis(axis)
         except MachineError as exc:
-            return self.m.states.refuse("jog", str(exc))
-        why = self.m.states.refusal("jog")
-        if why:
-            return self.m.states.refuse("jog", why)
+            return states.refuse(Action.JOG, str(exc))
         if direction not in (1, -1):
-            return self.m.states.refuse("jog", f"direction must be +1 or -1, got {direction}")
-        ax = self.m.config.machine.axes[i]
-        cur = float(self.m.states.machine_pos()[i])
+            return states.refuse(Action.JOG, f"direction must be +1 or -1, got {direction}")
+        ax = cfg.machine.axes[i]
+        cur = float(self._positions.machine_pos()[i])
         limit = ax.max_pos if direction > 0 else ax.min_pos
         if (limit - cur) * direction <= 1e-9:
-            return self.m.states.refuse("jog", f"axis {ax.name} is at its soft limit {limit:g}")
+            return states.refuse(Action.JOG, f"axis {ax.name} is at its soft limit {limit:g}")
         frac = min(max(float(speed_fraction), 0.01), 1.0)
-        feed = min(self.m.config.controller.jog_speed_mm_s * frac, ax.v_max)
+        feed = min(cfg.controller.jog_speed_mm_s * frac, ax.v_max)
         prog = self._single_axis_program(i, limit, feed, f"jog {ax.name}{'+' if direction > 0 else '-'}")
-        job = self.m.stream.make_job(Activity.JOG, prog, prog.name, overrides=False)
-        self.m.stream.start_job(job)
-        return self.m.states.ok("jog")
+        self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
+        return states.ok(Action.JOG)
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:
         """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
-        with self.m._lock:
-            job = self.m.stream.job
-            if job is None or job.kind is not Activity.JOG:
-                return self.m.states.ok("jog_stop")
-            self.m.stream.hold_motion()
-            job.stopping = True
-            job.stop_reason = "jog released"
-        return self.m.states.ok("jog_stop")
+        self._motion.stop_job("jog released", only=Activity.JOG)
+        return self._states.ok("jog_stop")
 
+    @guarded(Action.JOG)
     def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
         """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
         when the target is beyond the soft limit.
         """
+        states, cfg = self._states, self._settings.config
         try:
-            i = self.m.states.axis(axis)
+            i = states.axis(axis)
         except MachineError as exc:
-            return self.m.states.refuse("jog", str(exc))
-        why = self.m.states.refusal("jog")
-        if why:
-            return self.m.states.refuse("jog", why)
+            return states.refuse(Action.JOG, str(exc))
         step = abs(float(step))
         if not any(abs(step - s) < 1e-12 for s in JOG_INCREMENTS):
-            return self.m.states.refuse("jog", f"increment must be one of {JOG_INCREMENTS}, got {step:g}")
-        ax = self.m.config.machine.axes[i]
-        target = float(self.m.states.machine_pos()[i]) + (1 if direction > 0 else -1) * step
+            return states.refuse(Action.JOG, f"increment must be one of {JOG_INCREMENTS}, got {step:g}")
+        ax = cfg.machine.axes[i]
+        target = float(self._positions.machine_pos()[i]) + (1 if direction > 0 else -1) * step
         if not ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9:
-            return self.m.states.refuse(
-                "jog",
+            return states.refuse(
+                Action.JOG,
                 f"axis {ax.name} would reach {target:.4f}, beyond its soft limit "
                 f"[{ax.min_pos:g}, {ax.max_pos:g}]",
             )
-        prog = self._single_axis_program(
-            i, target, min(self.m.config.controller.jog_speed_mm_s, ax.v_max), f"jog {ax.name} {step:g}"
-        )
-        job = self.m.stream.make_job(Activity.JOG, prog, prog.name, overrides=False)
-        self.m.stream.start_job(job)
-        return self.m.states.ok("jog")
+        prog = self._single_axis_program(i, target, min(cfg.controller.jog_speed_mm_s, ax.v_max),
+                                         f"jog {ax.name} {step:g}")
+        self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
+        return states.ok(Action.JOG)
 
     def _read(self, text: str, name: str,
               action: str) -> tuple[Program, Callable[..., Program]] | CommandResult:
         """``text`` read from where the machine is, as a program is checked: parsed (the reader
         kept, to read it again with what a probe or M66 reads), within the soft limits, its
         probing possible on this machine. The refusal otherwise."""
+        machine = self._coordinates.machine()
+        spindle = self._spindle.spindle
         read = functools.partial(
-            parse_program, text, name, machine=self.m.conn.machine,
-            start_position=self.m.states.machine_pos(), tools=self.m.tools.table,
-            tool_in_spindle=self.m.tools.in_spindle,
-            spindle=(self.m.spindle_ctl.spindle.direction, self.m.spindle_ctl.spindle.rpm),
-            parameters=dict(self.m.pos.parameters), block_delete=self.m.run.block_delete)
+            parse_program, text, name, machine=machine,
+            start_position=self._positions.machine_pos(), tools=self._tools.table,
+            tool_in_spindle=self._tools.in_spindle, spindle=(spindle.direction, spindle.rpm),
+            parameters=dict(self._coordinates.parameters), block_delete=self._modes.block_delete)
+        states = self._states
         try:
             prog = read()
         except ProgramError as exc:
-            return self.m.states.refuse(action, "; ".join(e.message for e in exc.errors))
+            return states.refuse(action, "; ".join(e.message for e in exc.errors))
         except PlannerError as exc:
-            return self.m.states.refuse(action, str(exc))
-        issues = self.m.loader.check_program_limits(prog)
+            return states.refuse(action, str(exc))
+        issues = limit_issues(prog, machine)
         if issues:
-            return self.m.states.refuse(action, f"soft limit: {issues[0].message}")
-        _, why = probe_refusal(prog, self.m.config.probe.drive, self.m.config.probe.max_feed_mm_min)
+            return states.refuse(action, f"soft limit: {issues[0].message}")
+        probe = self._settings.config.probe
+        _, why = probe_refusal(prog, probe.drive, probe.max_feed_mm_min)
         if why:
-            return self.m.states.refuse(action, why)
+            return states.refuse(action, why)
         for refusal in (synchronised_refusal, analog_refusal):
             _, why = refusal(prog)
             if why:
-                return self.m.states.refuse(action, why)
+                return states.refuse(action, why)
         return prog, read
 
     def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,
                when_done: Callable[[Job], None] | None = None) -> CommandResult:
         """Run ``prog`` (read by ``_read``) as an MDI job; ``when_done(job)`` once it has all run."""
         try:
-            job = self.m.stream.make_job(Activity.MDI, prog, name)
+            job = self._jobs.make_job(Activity.MDI, prog, name)
         except PlannerError as exc:
-            return self.m.states.refuse(action, f"planner: {exc}")
+            return self._states.refuse(action, f"planner: {exc}")
         job.reread = lambda probes, waits: read(probe_results=probes, input_results=waits)
         job.when_done = when_done
-        self.m.stream.start_job(job)
-        return self.m.states.ok(action)
+        self._motion.start_job(job)
+        return self._states.ok(action)
 
     def run_routine(self, text: str, name: str, action: str,
                     when_done: Callable[[Job], None] | None = None) -> CommandResult:
@@ -183,53 +198,53 @@ class ManualMotion:
             return read
         return self._start(*read, name, action, when_done)
 
+    @guarded(Action.MDI)
     def mdi(self, block: str) -> CommandResult:
         """Execute one G-code block with the active work offset and the same checks as a program
         (parse, soft limits on the whole path, homed rule).
         """
-        why = self.m.states.refusal("mdi")
-        if why:
-            return self.m.states.refuse("mdi", why)
+        states, action = self._states, Action.MDI
         text = block.strip()
         if not text:
-            return self.m.states.refuse("mdi", "empty block")
+            return states.refuse(action, "empty block")
         if "\n" in text:
-            return self.m.states.refuse("mdi", "MDI takes one block (one line)")
-        if self.m.pos.active_offset != "G54":
-            text = f"{self.m.pos.active_offset} {text}"
-        checked = self._read(text, "MDI", "mdi")
+            return states.refuse(action, "MDI takes one block (one line)")
+        active = self._coordinates.active_offset
+        if active != "G54":
+            text = f"{active} {text}"
+        checked = self._read(text, "MDI", action)
         if isinstance(checked, CommandResult):
             return checked
         prog, read = checked
-        why = _mdi_refusal(prog, self.m.config.controller.spindle_max_rpm) or _mdi_stands_alone(prog, block)
+        why = (_mdi_refusal(prog, self._settings.config.controller.spindle_max_rpm)
+               or _mdi_stands_alone(prog, block))
         if why:
-            return self.m.states.refuse("mdi", why)
+            return states.refuse(action, why)
         if not prog.moves:
             for ev in prog.events:
                 if ev.kind is EventKind.SPINDLE:
-                    self.m.spindle_ctl.apply_spindle(
-                        SpindleState(direction=int(np.sign(ev.value)), rpm=abs(ev.value))
-                    )
+                    self._spindle.apply_spindle(SpindleState(direction=int(np.sign(ev.value)),
+                                                             rpm=abs(ev.value)))
                 elif ev.kind is EventKind.TOOL_SET:
-                    res = self.m.tools.set_tool_in_spindle(int(ev.value))
+                    res = self._tools.set_tool_in_spindle(int(ev.value))
                     if not res:
-                        return self.m.states.refuse("mdi", res.reason)
+                        return states.refuse(action, res.reason)
                 elif ev.kind is EventKind.OUTPUT:      # M64 P1 ... typed in MDI
                     number = int(ev.value) if ev.value >= 0 else -int(ev.value) - 1
-                    why = self.m.outputs.set_output(number, ev.value >= 0)
+                    why = self._outputs.set_output(number, ev.value >= 0)
                     if why:
-                        return self.m.states.refuse("mdi", why)
+                        return states.refuse(action, why)
                 elif ev.kind is EventKind.MESSAGE:     # (MSG,...) typed in MDI
-                    self.m.stream.show_message(ev.message)
+                    self._motion.show_message(ev.message)
                 elif ev.kind is EventKind.TOOL_DATA:   # G10 L1/L10/L11 typed in MDI
-                    self.m.tools.set_by_program(prog.tool_sets[int(ev.value)])
+                    self._tools.set_by_program(prog.tool_sets[int(ev.value)])
                 elif ev.kind is EventKind.OFFSETS:     # G10, G92, G52, G28.1 ... typed in MDI
-                    self.m.pos.apply_parameters(prog.parameter_sets[int(ev.value)])
+                    self._coordinates.apply_parameters(prog.parameter_sets[int(ev.value)])
                 elif ev.kind is EventKind.END:  # M2/M30: the end of a program: spindle off, reset
-                    self.m.spindle_ctl.apply_spindle(SpindleState(direction=0, rpm=self.m.spindle.rpm))
-                    self.m.states.reset()
-            return self.m.states.ok("mdi")
-        return self._start(prog, read, "MDI", "mdi")
+                    self._spindle.apply_spindle(SpindleState(direction=0, rpm=self._spindle.spindle.rpm))
+                    states.reset()
+            return states.ok(action)
+        return self._start(prog, read, "MDI", action)
 
 
 # What an MDI block may not do, and why: every block either does what it says or is refused.

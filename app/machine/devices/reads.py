@@ -1,0 +1,108 @@
+"""Going on after the machine read something (a probe's contact, an input): the program is read
+again from its start with every result so far (``Job.reread``), and what follows the read runs
+from where the machine stands once it passes the soft limits; or the run stops with a STOP
+alarm that leaves nothing to resume (what follows was read with a result the machine did not
+give)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from app.machine.infra.events import PanelChannels
+from app.machine.model import Activity, MachineState
+from app.machine.motion.jobs import Job
+from app.machine.motion.refusals import analog_refusal, limit_issues, synchronised_refusal
+from app.machine.motion.streamer import Streamer
+from app.machine.ports import AlarmSink, CoordinatesView, PositionsView
+from app.machine.state.states import StateMachine
+from planner.errors import PlannerError, ProgramError
+from planner.program import EventKind, ProbeResult, Program
+from planner.resume import carry_overrides, program_from_moves
+
+__all__ = ["ReadAgain"]
+
+
+class ReadAgain:
+    """The program read again with what the machine read, and the run going on with it."""
+
+    def __init__(self, states: StateMachine, positions: PositionsView, coordinates: CoordinatesView,
+                 motion: Streamer, alarms: AlarmSink, out: PanelChannels) -> None:
+        self._states = states
+        self._positions = positions
+        self._coordinates = coordinates
+        self._motion = motion
+        self._alarms = alarms
+        self._out = out
+
+    def stop(self, cause: str, source: str) -> None:
+        """A read that went wrong: a STOP alarm (``source`` names it), and no resume past it."""
+        self._alarms.alarm_stop(cause, source, source, resumable=False)
+
+    def continue_after(self, job: Job, kind: EventKind, index: int, where: str,
+                       probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...],
+                       source: str) -> None:
+        """At rest after read ``index`` of ``kind`` (PROBE, INPUT): read the program again with
+        the results and run what follows it from where the machine stands, or stop saying why
+        not (``source`` names the alarm's source)."""
+        def fail(cause: str) -> None:
+            self.stop(cause, source)
+
+        if job.reread is None:
+            fail(f"{where}: the program cannot be read again with the result")
+            return
+        try:
+            full = job.reread(probes, waits)
+        except ProgramError as exc:
+            e = exc.errors[0]
+            fail(f"{where}: with the result, line {e.line} reads: {e.message}")
+            return
+        except PlannerError as exc:
+            fail(f"{where}: with the result the program reads: {exc}")
+            return
+        rest = after_event(full, kind, index)
+        if rest is None:
+            fail(f"{where}: the program read again does not have it")
+            return
+        here = self._positions.reference_pos()
+        if rest.moves and float(np.max(np.abs(rest.start_position - here))) > 1e-6:
+            fail(f"{where}: the program read again does not go on from where the machine stands")
+            return
+        issues = limit_issues(rest, self._coordinates.machine()) if rest.moves else []
+        if issues:
+            fail(f"{where}: with the result, {issues[0]}")
+            return
+        for refusal in (synchronised_refusal, analog_refusal):
+            at, why = refusal(full)
+            if why:                          # a branch the first reading did not take
+                fail(f"{where}: with the result, line {at}: {why}")
+                return
+        if not rest.moves:                   # nothing moves after it: the program ends here
+            self._motion.finish_now(job, rest)
+            return
+        try:
+            # after an operator's feed hold, the rest waits for cycle start
+            new = self._motion.follow(job, rest, (full, len(full.moves) - len(rest.moves), 0.0),
+                                      held=self._states.state is MachineState.HOLD)
+        except PlannerError as exc:
+            fail(f"{where}: planner: {exc}")
+            return
+        new.probe_results, new.wait_results = probes, waits
+        if job.kind is Activity.PROGRAM:
+            self._out.programReadAgain.emit(full)        # the preview draws the path the machine takes
+
+
+def after_event(full: Program, kind: EventKind, index: int) -> Program | None:
+    """What follows read ``index`` of ``kind`` in ``full``: its later moves, from where the move
+    before the event ended, with the events that come after it in the program (a message right
+    after it included; those before it were done already)."""
+    at = next((k for k, e in enumerate(full.events) if e.kind is kind and int(e.value) == index), -1)
+    if at < 0:
+        return None
+    after = full.events[at].after_move
+    first = after + 1
+    events = carry_overrides(full, first, [replace(e, after_move=e.after_move - first)
+                                           for e in full.events[at + 1:]])
+    start = full.moves[after].end if after >= 0 else full.start_position
+    return program_from_moves(full, list(full.moves[first:]), events, start)

@@ -1,0 +1,145 @@
+"""Spindle on CW/CCW/off and speed, by hand and from the program: the drive's digital outputs
+(bit 0 on, bit 1 counter-clockwise).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from app.machine.devices.outputs import DigitalOutputs
+from app.machine.infra.drives import DriveLink
+from app.machine.infra.events import MachineEvents, PanelChannels
+from app.machine.model import CommandResult, MachineState, Severity, SpindleState
+from app.machine.motion.spinup import spins_up
+from app.machine.ports import AlarmSink, Settings
+from app.machine.state.gate import Action, guarded
+from app.machine.state.states import StateMachine
+
+__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl"]
+
+# never below half: a slowed spindle under the same feed overloads the cutter
+OVERRIDE_MIN_PCT = 50.0
+OVERRIDE_MAX_PCT = 150.0
+
+
+class SpindleControl:
+    """The spindle: its state, the operator's override, and whether the program turned the
+    override off (``controller.spindle_ctl``). It stops on E-stop, faults and reset."""
+
+    def __init__(self, settings: Settings, states: StateMachine, drives: DriveLink, outputs: DigitalOutputs,
+                 alarms: AlarmSink, out: PanelChannels, events: MachineEvents) -> None:
+        self._settings = settings
+        self._states = states
+        self._drives = drives
+        self._outputs = outputs
+        self._alarms = alarms
+        self._out = out
+        self.spindle = SpindleState()
+        self.override_pct = 100.0
+        # the running program turned the spindle override off here (tapping, M49, M51 P0): the
+        # spindle turns at S whatever the knob says, and back at the knob once it turns it on
+        self.program_lock = False
+        events.estop.connect(lambda _reason: self.stop_spindle())
+        events.fault.connect(lambda _cause: self.stop_spindle())
+        events.reset.connect(lambda _state: self.stop_spindle())
+        events.shutdown.connect(self.stop_spindle)
+        events.announce.connect(self.announce)
+
+    @property
+    def gate(self) -> StateMachine:
+        return self._states
+
+    @property
+    def _max_rpm(self) -> float:
+        return float(self._settings.config.controller.spindle_max_rpm)
+
+    def _override_for(self, rpm: float) -> float:
+        """The override the spindle takes at ``rpm``: the knob's, or 100 % where the program
+        turned it off; capped so S x override never exceeds the maximum."""
+        top = 100.0 * self._max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
+        return min(100.0 if self.program_lock else self.override_pct, top)
+
+    def apply_spindle(self, sp: SpindleState) -> None:
+        rpm = min(abs(sp.rpm), self._max_rpm)
+        sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm, override_pct=self._override_for(rpm))
+        if self._drives.attached:
+            bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
+            try:
+                self._outputs.set_bits(self._settings.config.controller.spindle_drive, 0b11, bits)
+            except Exception as exc:  # noqa: BLE001
+                if sp.on and self._states.state in (MachineState.RUNNING, MachineState.HOLD):
+                    self._alarms.alarm_stop(f"spindle output failed: {exc}", "spindle", "spindle")
+                else:
+                    self._alarms.raise_alarm("spindle", f"spindle output failed: {exc}", Severity.WARNING,
+                                             "spindle")
+        self.spindle = sp
+        self._out.spindleChanged.emit(sp)
+
+    def set_program_lock(self, locked: bool) -> None:
+        """The program turned the spindle override off (True) or on again from here: the speed
+        follows; the outputs (direction) stay as they are."""
+        if locked != self.program_lock:
+            self.program_lock = locked
+            self.spindle = replace(self.spindle, override_pct=self._override_for(self.spindle.rpm))
+            self._out.spindleChanged.emit(self.spindle)
+
+    def spin_up_s(self, new: SpindleState) -> float:
+        """How long the motion waits after switching to ``new``: the configured spin-up time
+        when the spindle starts, reverses or speeds up, else 0."""
+        return float(self._settings.config.controller.spindle_spinup_s) if spins_up(self.spindle,
+                                                                                    new) else 0.0
+
+    def set_override(self, percent: float) -> CommandResult:
+        """Spindle override 50-150 %: the speed the program asks for times this, at once
+        (capped at the spindle's maximum speed, and the operator told so)."""
+        p = float(percent)
+        if not OVERRIDE_MIN_PCT <= p <= OVERRIDE_MAX_PCT:
+            return self._states.refuse(
+                Action.SET_SPINDLE_OVERRIDE,
+                f"spindle override must be {OVERRIDE_MIN_PCT:g}-{OVERRIDE_MAX_PCT:g} %, got {p:g}")
+        self.override_pct = p
+        self.apply_spindle(self.spindle)
+        if self.program_lock:
+            self._out.message.emit(f"spindle override {p:g} % not applied now: the program turned it off "
+                                   "(tapping, M49 or M51 P0); it applies once the program turns it on")
+        elif self.spindle.override_pct < p:
+            self._out.message.emit(f"spindle override {p:g} % capped at {self.spindle.override_pct:.0f} %: "
+                                   f"the spindle's maximum is {self._max_rpm:g} rpm")
+        return self._states.ok(Action.SET_SPINDLE_OVERRIDE)
+
+    def stop_spindle(self) -> None:
+        """Spindle off if it runs (stop, reset, program end, alarms, E-stop); the speed is kept
+        for the next start."""
+        if self.spindle.on:
+            self.apply_spindle(SpindleState(direction=0, rpm=self.spindle.rpm))
+
+    @guarded(Action.SPINDLE_ON)
+    def spindle_on(self, clockwise: bool = True, rpm: float | None = None) -> CommandResult:
+        """Spindle on, clockwise (M03) or counter-clockwise (M04), at ``rpm`` (last speed if None)."""
+        speed = self.spindle.rpm if rpm is None else float(rpm)
+        if not 0.0 <= speed <= self._max_rpm:
+            return self._states.refuse(Action.SPINDLE_ON, f"speed must be 0-{self._max_rpm:g} rpm")
+        self.apply_spindle(SpindleState(direction=1 if clockwise else -1, rpm=speed))
+        return self._states.ok(Action.SPINDLE_ON)
+
+    def spindle_off(self) -> CommandResult:
+        """Spindle off (M05); always allowed."""
+        self.apply_spindle(SpindleState(direction=0, rpm=self.spindle.rpm))
+        return self._states.ok("spindle_off")
+
+    def spindle_speed(self, rpm: float) -> CommandResult:
+        """Set the spindle speed (applied at once when running)."""
+        speed = float(rpm)
+        if not 0.0 <= speed <= self._max_rpm:
+            return self._states.refuse(Action.SPINDLE_SPEED, f"speed must be 0-{self._max_rpm:g} rpm")
+        if self.spindle.on:
+            self.apply_spindle(SpindleState(direction=self.spindle.direction, rpm=speed))
+        else:
+            self.spindle = SpindleState(direction=0, rpm=speed)
+            self._out.spindleChanged.emit(self.spindle)
+        return self._states.ok(Action.SPINDLE_SPEED)
+
+    def announce(self) -> None:
+        self._out.spindleChanged.emit(self.spindle)

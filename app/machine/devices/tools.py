@@ -1,0 +1,158 @@
+"""The tool table and the tool in the spindle: edited by the operator (Tools page), loaded by
+the program (M6, M61), persisted in the state folder.
+
+The offsets are read when a program is checked (G43 takes them from the table then): editing
+the table while a program runs is refused, and a loaded program is checked again before it
+starts when the table changed since.
+"""
+
+from __future__ import annotations
+
+import math
+
+from app.machine.infra.events import PanelChannels
+from app.machine.infra.persist import StateStore
+from app.machine.model import CommandResult, Severity
+from app.machine.motion.jobs import Job
+from app.machine.motion.pauses import PauseHandlers
+from app.machine.motion.timescale import PauseKind, PausePoint
+from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Settings
+from app.machine.state.gate import Action, guarded
+from app.machine.state.states import StateMachine
+from ethercat.worker import WorkerSnapshot
+from planner.errors import PlannerError
+from planner.tools import Tool, ToolTable, read_tbl
+
+__all__ = ["ToolControl"]
+
+
+class ToolControl:
+    """The tool table and the tool in the spindle (``controller.tools``)."""
+
+    def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView,
+                 coordinates: CoordinatesView, store: StateStore, alarms: AlarmSink, out: PanelChannels,
+                 pauses: PauseHandlers) -> None:
+        self._settings = settings
+        self._states = states
+        self._positions = positions
+        self._coordinates = coordinates
+        self._store = store
+        self._alarms = alarms
+        self._out = out
+        self.table, self.in_spindle = store.load_tools()
+        self.version = 0          # changes with every edit: a loaded program knows its version
+        pauses.on(PauseKind.TOOL_SET, self.at_tool_set)
+        pauses.on(PauseKind.TOOL_DATA, self.at_tool_data)
+
+    @property
+    def gate(self) -> StateMachine:
+        return self._states
+
+    def _commit(self, table: ToolTable, in_spindle: int, action: str) -> CommandResult:
+        try:
+            self._store.save_tools(table, in_spindle)
+        except OSError as exc:
+            self._alarms.raise_alarm("persistence", f"cannot save the tool table: {exc}", Severity.WARNING,
+                                     "tools")
+            return self._states.refuse(action, f"cannot save the tool table: {exc}")
+        self.table, self.in_spindle = table, in_spindle
+        self.version += 1
+        self._out.toolsChanged.emit(self.table, self.in_spindle)
+        return self._states.ok(action)
+
+    @guarded(Action.SET_TOOL)
+    def set_tool(self, tool: Tool) -> CommandResult:
+        """Add or replace a tool (number, pocket, offsets, diameter, description)."""
+        try:
+            table = self.table.with_tool(tool)
+        except PlannerError as exc:
+            return self._states.refuse(Action.SET_TOOL, str(exc))
+        return self._commit(table, self.in_spindle, Action.SET_TOOL)
+
+    @guarded(Action.REMOVE_TOOL)
+    def remove_tool(self, number: int) -> CommandResult:
+        """Take a tool out of the table (not the one in the spindle)."""
+        if number not in self.table:
+            return self._states.refuse(Action.REMOVE_TOOL, f"T{number} is not in the tool table")
+        if number == self.in_spindle:
+            return self._states.refuse(Action.REMOVE_TOOL,
+                                       f"T{number} is in the spindle: set another tool first")
+        return self._commit(self.table.without(number), self.in_spindle, Action.REMOVE_TOOL)
+
+    @guarded(Action.SET_TOOL_IN_SPINDLE)
+    def set_tool_in_spindle(self, number: int) -> CommandResult:
+        """The tool now in the spindle, without a change (as M61 Q); 0: the spindle is empty."""
+        if number and number not in self.table:
+            return self._states.refuse(Action.SET_TOOL_IN_SPINDLE, f"T{number} is not in the tool table")
+        return self._commit(self.table, int(number), Action.SET_TOOL_IN_SPINDLE)
+
+    @guarded(Action.TOUCH_OFF_TOOL)
+    def touch_off_tool(self, number: int, surface_z_mm: float = 0.0) -> CommandResult:
+        """Set the length (Z offset) of tool ``number`` so that, with it in the spindle at the
+        machine's Z now, the work Z reads ``surface_z_mm`` (LinuxCNC's G10 L10 for Z): the tip
+        touches a surface at that height in the active work coordinates."""
+        action = Action.TOUCH_OFF_TOOL
+        cfg = self._settings.config
+        tool = self.table.get(number)
+        if tool is None:
+            return self._states.refuse(action, f"T{number} is not in the tool table")
+        if "Z" not in cfg.axes:
+            return self._states.refuse(action, "the machine has no Z axis")
+        if not math.isfinite(surface_z_mm):
+            return self._states.refuse(action, "the surface height must be a number")
+        if cfg.homing.required and not all(self._positions.homed):
+            return self._states.refuse(action, "axes not homed: the machine Z is not known")
+        k = cfg.axes.index("Z")
+        machine_z = float(self._positions.machine_pos()[k])
+        offsets = self._coordinates.offsets
+        work_z = float(offsets.get(self._coordinates.active_offset, (0.0,) * (k + 1))[k])
+        length = machine_z - work_z - float(surface_z_mm)
+        try:
+            table = self.table.with_tool(tool.with_offset("Z", round(length, 6)))
+        except PlannerError as exc:
+            return self._states.refuse(action, str(exc))
+        return self._commit(table, self.in_spindle, action)
+
+    @guarded(Action.IMPORT_TOOL_TABLE)
+    def import_table(self, path: str) -> CommandResult:
+        """Replace the table by a LinuxCNC ``.tbl`` file (refused whole if any line is wrong)."""
+        try:
+            table = read_tbl(path)
+        except PlannerError as exc:
+            return self._states.refuse(Action.IMPORT_TOOL_TABLE, str(exc))
+        in_spindle = self.in_spindle if self.in_spindle in table else 0
+        return self._commit(table, in_spindle, Action.IMPORT_TOOL_TABLE)
+
+    def set_by_program(self, tool: Tool) -> None:
+        """G10 L1/L10/L11 reached by the motion (or typed in MDI): the table takes the tool as
+        the program set it, and keeps it (tools.tbl), as LinuxCNC writes its tool table."""
+        try:
+            table = self.table.with_tool(tool)
+        except PlannerError as exc:
+            self._alarms.raise_alarm("tools", f"G10: {exc}", Severity.WARNING, "tools")
+            return
+        self._commit(table, self.in_spindle, "g10_tool")
+
+    def loaded_by_program(self, number: int) -> None:
+        """M6 done or M61 reached: the program put ``number`` in the spindle."""
+        if number != self.in_spindle:
+            try:
+                self._store.save_tools(self.table, number)
+            except OSError as exc:
+                self._alarms.raise_alarm("persistence", f"cannot save the tool in the spindle: {exc}",
+                                         Severity.WARNING, "tools")
+            self.in_spindle = number
+            self._out.toolsChanged.emit(self.table, self.in_spindle)
+
+    # ------------------------------------------------------------------ at pause points
+    def at_tool_set(self, _job: Job, point: PausePoint, _snap: WorkerSnapshot) -> bool:
+        """M61 Q reached: the program says which tool is in; the motion goes on."""
+        self.loaded_by_program(int(point.value))
+        return True
+
+    def at_tool_data(self, job: Job, point: PausePoint, _snap: WorkerSnapshot) -> bool:
+        """G10 L1/L10/L11 reached: the table takes the tool; the motion goes on."""
+        tools = job.plan.program.tool_sets
+        if 0 <= int(point.value) < len(tools):
+            self.set_by_program(tools[int(point.value)])
+        return True

@@ -1,0 +1,195 @@
+"""The handle on the drives: the one place the controller calls the cyclic worker.
+
+``DriveLink`` holds the worker while the bus is connected (``attach``/``detach``, by the
+connection) and its last snapshot. Every call goes through its own lock, which no other part
+takes: ``detach`` waits for a call in flight (the feeder thread's push, say) and every call
+after it finds no worker and does nothing (a push takes none, a snapshot is None). The worker
+is itself safe to call from the controller's thread and the feeder thread at once (its own
+lock orders the commands and the set-point ring).
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Sequence
+
+import numpy as np
+
+from ethercat.worker import (
+    CyclicWorker,
+    ReplaceResult,
+    TraceChunk,
+    WorkerEvent,
+    WorkerSnapshot,
+    WorkerState,
+)
+
+__all__ = ["DriveLink"]
+
+
+class DriveLink:
+    """The connected worker (or none) and what the controller asks of it."""
+
+    def __init__(self, worker_mode: str) -> None:
+        #: "process" (the 1 ms loop in its own process), "thread", or "manual" (no clock:
+        #: ``step`` runs the cycles; tests and fast headless runs)
+        self.worker_mode = worker_mode
+        self._lock = threading.RLock()
+        self._worker: CyclicWorker | None = None
+        #: the newest snapshot taken (``snapshot``), None before the first
+        self.last_snapshot: WorkerSnapshot | None = None
+
+    # ---------------------------------------------------------------- life cycle
+    def attach(self, worker: CyclicWorker) -> None:
+        with self._lock:
+            self._worker = worker
+            self.last_snapshot = None
+
+    def detach(self) -> CyclicWorker | None:
+        """Let go of the worker (after the call in flight); the caller stops it."""
+        with self._lock:
+            w, self._worker = self._worker, None
+            return w
+
+    @property
+    def attached(self) -> bool:
+        return self._worker is not None
+
+    @property
+    def worker(self) -> CyclicWorker | None:
+        """The worker itself, for diagnostics and tests (None when disconnected)."""
+        return self._worker
+
+    @property
+    def realtime(self) -> bool:
+        """Whether the loop runs on its own clock (not stepped by ``step``)."""
+        return self.worker_mode != "manual"
+
+    # ---------------------------------------------------------------- state
+    def state(self) -> WorkerState:
+        with self._lock:
+            return self._worker.state() if self._worker is not None else WorkerState.STOPPED
+
+    def snapshot(self) -> WorkerSnapshot | None:
+        """A fresh snapshot (kept as ``last_snapshot``); None when disconnected."""
+        with self._lock:
+            if self._worker is None:
+                return None
+            snap = self._worker.snapshot()
+            self.last_snapshot = snap
+            return snap
+
+    def events(self) -> tuple[WorkerEvent, ...]:
+        with self._lock:
+            return self._worker.events() if self._worker is not None else ()
+
+    def drain_trace(self) -> TraceChunk | None:
+        with self._lock:
+            return self._worker.drain_trace() if self._worker is not None else None
+
+    def bus_notes(self) -> tuple[str, ...]:
+        w = self._worker
+        return tuple(w.bus_notes) if w is not None else ()
+
+    def samples_consumed(self) -> int | None:
+        """The serial the drives reached, read live (None when disconnected)."""
+        with self._lock:
+            return self._worker.samples_consumed() if self._worker is not None else None
+
+    def buffer_level(self) -> int:
+        with self._lock:
+            return self._worker.buffer_level() if self._worker is not None else 0
+
+    def probe_latched(self) -> tuple[float, ...] | None:
+        with self._lock:
+            return self._worker.probe_latched() if self._worker is not None else None
+
+    # ---------------------------------------------------------------- set-points
+    def push(self, q: np.ndarray) -> int:
+        """Queue set-points (drive units); how many were taken, -1 when disconnected."""
+        with self._lock:
+            return self._worker.push(q) if self._worker is not None else -1
+
+    def replace(self, serial: int, q: np.ndarray) -> tuple[ReplaceResult, int]:
+        """Replace the queue from ``serial`` (``CyclicWorker.replace``); BEYOND_END when
+        disconnected (nothing queued to replace)."""
+        with self._lock:
+            if self._worker is None:
+                return ReplaceResult.BEYOND_END, 0
+            return self._worker.replace(serial, q)
+
+    def flush(self) -> None:
+        """Drop the queued set-points (best effort: a stopping worker queues nothing)."""
+        with self._lock:
+            if self._worker is not None:
+                try:
+                    self._worker.flush()
+                except Exception:  # noqa: BLE001 - the queue is gone either way
+                    pass
+
+    def step(self, cycles: int) -> None:
+        """Manual worker mode: run ``cycles`` cycles now."""
+        with self._lock:
+            if self._worker is not None:
+                self._worker.step(cycles)
+
+    def reset_tracking(self) -> None:
+        with self._lock:
+            if self._worker is not None:
+                self._worker.reset_tracking()
+
+    # ---------------------------------------------------------------- commands
+    def enable_drives(self) -> None:
+        """Fault reset where needed, then enable every drive (raises what the worker raises)."""
+        with self._lock:
+            w = self._worker
+            if w is None:
+                raise RuntimeError("not connected")
+            st = w.state()
+            if st in (WorkerState.FAULT, WorkerState.QUICK_STOP, WorkerState.FAULT_RESET):
+                w.fault_reset()
+                w.wait_for((WorkerState.DISABLED,), timeout_s=2.0)
+            w.flush()
+            w.enable()
+            w.wait_for((WorkerState.ENABLED,), timeout_s=3.0)
+
+    def estop(self, reason: str) -> None:
+        """The drives' quick stop at once (best effort: an E-stop goes on whatever happens)."""
+        with self._lock:
+            if self._worker is not None:
+                try:
+                    self._worker.estop(reason)
+                except Exception:  # noqa: BLE001
+                    pass
+
+    def home(self, axis: int, method: int) -> None:
+        with self._lock:
+            if self._worker is None:
+                raise RuntimeError("not connected")
+            self._worker.home(axis, method)
+
+    def set_digital_output(self, drive: int, word: int) -> None:
+        with self._lock:
+            if self._worker is not None:
+                self._worker.set_digital_output(drive, word)
+
+    def arm_probe(self, drive: int, bit: int, level: bool) -> bool:
+        with self._lock:
+            return self._worker.arm_probe(drive, bit, level) if self._worker is not None else False
+
+    def disarm_probe(self) -> None:
+        with self._lock:
+            if self._worker is not None:
+                try:
+                    self._worker.disarm_probe()
+                except Exception:  # noqa: BLE001 - a worker going away watches nothing
+                    pass
+
+    def inject(self, name: str, axis: int, value: int) -> None:
+        with self._lock:
+            if self._worker is not None:
+                self._worker.inject(name, axis, value)
+
+    def digital_inputs(self) -> Sequence[int]:
+        snap = self.last_snapshot
+        return tuple(snap.digital_inputs) if snap is not None else ()

@@ -1,0 +1,31 @@
+"""What happens at a pause point is the business of the part it belongs to: the probe's (G38.x),
+the inputs' (M66), the outputs' (M62-M65), the tools' (M61, G10 L1), the coordinates' (G10, G92).
+Each registers its handler here when it is built; the streamer asks at every pause point."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from app.machine.motion.jobs import Job
+from app.machine.motion.timescale import PauseKind, PausePoint
+from ethercat.worker import WorkerSnapshot
+
+__all__ = ["PauseHandler", "PauseHandlers"]
+
+#: a pause point's handler: at rest there, True when the motion goes on at once
+PauseHandler = Callable[[Job, PausePoint, WorkerSnapshot], bool]
+
+
+class PauseHandlers:
+    """The handlers by kind of pause point (one each)."""
+
+    def __init__(self) -> None:
+        self._handlers: dict[PauseKind, PauseHandler] = {}
+
+    def on(self, kind: PauseKind, handler: PauseHandler) -> None:
+        if kind in self._handlers:
+            raise ValueError(f"pause points of kind {kind} are handled already")
+        self._handlers[kind] = handler
+
+    def get(self, kind: PauseKind) -> PauseHandler | None:
+        return self._handlers.get(kind)

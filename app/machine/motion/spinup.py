@@ -1,0 +1,39 @@
+"""The spindle's spin-ups a run waits for: the motion stands while the spindle comes up to
+speed (``[controller] spindle_spinup_s``), and the cycle time and the time left count it."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+
+from app.machine.model import SpindleState
+from app.machine.motion.timescale import PauseKind, PausePoint
+
+__all__ = ["spin_up_waits", "spins_up"]
+
+
+def spins_up(old: SpindleState, new: SpindleState) -> bool:
+    """Whether switching from ``old`` to ``new`` makes the motion wait for the spindle: it
+    starts, reverses or speeds up."""
+    return new.on and (not old.on or old.direction != new.direction or new.rpm > old.rpm)
+
+
+def spin_up_waits(pauses: Iterable[PausePoint], start: SpindleState,
+                  spin_up_s: float) -> list[tuple[float, float]]:
+    """(planned time, wait) of every spin-up a run through these pause points
+    (``timescale.pause_points``) waits for, from the spindle state ``start``: an M3/M4/S that
+    starts, reverses or speeds the spindle up, and the restart after a tool change with the
+    spindle on (it stops while hands are near it). The run's cycle time and the time left
+    count them: the motion stands while the spindle comes up to speed."""
+    waits: list[tuple[float, float]] = []
+    state = start
+    for p in pauses:
+        if p.kind is PauseKind.SPINDLE:
+            new = SpindleState(direction=int(np.sign(p.value)), rpm=abs(float(p.value)))
+            if spins_up(state, new) and spin_up_s > 0.0:
+                waits.append((float(p.tau_s), spin_up_s))
+            state = new
+        elif p.kind is PauseKind.TOOL_CHANGE and state.on and spin_up_s > 0.0:
+            waits.append((float(p.tau_s), spin_up_s))
+    return waits

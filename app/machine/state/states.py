@@ -1,0 +1,272 @@
+"""The machine state machine: states, legal transitions, refusals with reasons, and the safety
+transitions (E-stop, faults, alarms, reset).
+
+``TRANSITIONS`` is the table every state change is checked against (an illegal one is an
+internal error, never an operator refusal); ``refusal(action)`` says why a command would be
+refused now. E-stop, faults and STOP alarms are told to the other parts as events
+(``MachineEvents``: motion, homing, spindle and outputs each stop what is theirs), then the
+state changes; a reset is told the same way once accepted.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Protocol
+
+from app.machine.errors import MachineError
+from app.machine.infra.drives import DriveLink
+from app.machine.infra.events import MachineEvents, PanelChannels
+from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Prompt, Severity
+from app.machine.ports import AlarmSink, LoaderView, MotionState, PositionsView, Settings
+from app.machine.state.gate import Action, Answers
+
+__all__ = ["StateMachine", "TRANSITIONS"]
+
+S = MachineState
+TRANSITIONS: dict[MachineState, frozenset[MachineState]] = {
+    S.DISCONNECTED: frozenset({S.IDLE, S.ESTOP}),
+    S.IDLE: frozenset({S.RUNNING, S.HOMING, S.ALARM, S.ESTOP, S.DISCONNECTED}),
+    S.HOMING: frozenset({S.IDLE, S.ALARM, S.ESTOP, S.DISCONNECTED}),
+    S.RUNNING: frozenset({S.HOLD, S.IDLE, S.ALARM, S.ESTOP, S.DISCONNECTED}),
+    S.HOLD: frozenset({S.RUNNING, S.IDLE, S.ALARM, S.ESTOP, S.DISCONNECTED}),
+    S.ALARM: frozenset({S.IDLE, S.ESTOP, S.DISCONNECTED}),
+    S.ESTOP: frozenset({S.IDLE, S.DISCONNECTED}),
+}
+
+_NEED_IDLE = frozenset({Action.CYCLE_START, Action.RUN_FROM_LINE, Action.JOG, Action.MDI, Action.HOME,
+                        Action.UPDATE_CONFIG, Action.LOAD_PROGRAM})
+# loading a program and changing the configuration touch no axis: allowed while not connected,
+# in an alarm or in E-stop as in IDLE
+_NOT_MOVING_OK = frozenset({Action.LOAD_PROGRAM, Action.UPDATE_CONFIG})
+_STANDING = frozenset({MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP})
+# the tool table is read when a program is checked: it changes only while nothing runs
+_TOOL_EDITS = frozenset({Action.SET_TOOL, Action.REMOVE_TOOL, Action.SET_TOOL_IN_SPINDLE,
+                         Action.TOUCH_OFF_TOOL,
+                         Action.IMPORT_TOOL_TABLE})
+
+
+class _Stopper(Protocol):
+    def stop(self) -> CommandResult: ...
+
+
+class StateMachine:
+    """States, transitions, refusals, E-stop, faults, alarms and reset (``controller.states``).
+
+    It owns the state, its reason, the kind of hold, the prompt and the activity: every other
+    part changes them through ``set_state`` and ``set_activity``."""
+
+    def __init__(self, settings: Settings, out: PanelChannels, events: MachineEvents, drives: DriveLink,
+                 positions: PositionsView, alarms: AlarmSink) -> None:
+        self._settings = settings
+        self._out = out
+        self._events = events
+        self._drives = drives
+        self._positions = positions
+        self._alarms = alarms
+        self._answers = Answers(out)
+        self.state = MachineState.DISCONNECTED
+        self.state_reason = "not connected"
+        self.hold_kind = HoldKind.NONE
+        self.prompt: Prompt | None = None
+        self.activity = Activity.NONE
+        self._loader: LoaderView | None = None
+        self._motion: MotionState | None = None
+        self._runner: _Stopper | None = None
+        self._poll: Callable[[], None] = lambda: None
+
+    def wire(self, loader: LoaderView, motion: MotionState, runner: _Stopper, poll: Callable[[],
+                                                                                             None]) -> None:
+        """The parts built after this one that its refusals and reset read."""
+        self._loader, self._motion, self._runner, self._poll = loader, motion, runner, poll
+
+    @property
+    def gate(self) -> StateMachine:
+        return self
+
+    # ------------------------------------------------------------------ answers
+    def refuse(self, action: str, reason: str) -> CommandResult:
+        return self._answers.refuse(action, reason)
+
+    def ok(self, action: str) -> CommandResult:
+        return self._answers.ok(action)
+
+    def axis(self, axis: str | int) -> int:
+        """The column of ``axis`` (a name or an index); MachineError naming the axes if none."""
+        axes = self._settings.config.axes
+        if isinstance(axis, str):
+            name = axis.upper()
+            if name not in axes:
+                raise MachineError(f"unknown axis {axis!r}; axes: {' '.join(axes)}")
+            return axes.index(name)
+        if not 0 <= int(axis) < len(axes):
+            raise MachineError(f"axis index {axis} out of range")
+        return int(axis)
+
+    # ------------------------------------------------------------------ state
+    def set_state(self, new: MachineState, reason: str = "", hold: HoldKind = HoldKind.NONE,
+                  prompt: Prompt | None = None) -> None:
+        """``hold``: why, when ``new`` is HOLD (the header names the stop after it);
+        ``prompt``: what that stop asks of the operator (kept while in HOLD)."""
+        old = self.state
+        hold = hold if new is MachineState.HOLD else HoldKind.NONE
+        self.prompt = prompt if new is MachineState.HOLD else None
+        if new is old:
+            if reason != self.state_reason or hold is not self.hold_kind:
+                self.state_reason = reason
+                self.hold_kind = hold
+                self._out.stateChanged.emit(new, reason)
+            return
+        if new not in TRANSITIONS[old]:
+            raise MachineError(f"internal error: illegal transition {old.value} -> {new.value}")
+        self.state = new
+        self.state_reason = reason
+        self.hold_kind = hold
+        if new in (MachineState.IDLE, MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP):
+            self.set_activity(Activity.NONE)
+        self._events.transition.emit(old, new)
+        self._out.stateChanged.emit(new, reason)
+
+    def tell_state(self, reason: str) -> None:
+        """The state stays; the panel is told it again with ``reason`` (a new job in RUNNING)."""
+        self._out.stateChanged.emit(self.state, reason)
+
+    def set_activity(self, act: Activity) -> None:
+        if act is not self.activity:
+            self.activity = act
+            self._out.activityChanged.emit(act)
+
+    def refusal(self, action: str) -> str:
+        """Why ``action`` ("cycle_start", "run_from_line", "jog", "mdi", "home", "feed_hold",
+        "resume", "touch_off", "spindle_on", "update_config", ...) would be refused now; "" when
+        allowed (for enabling buttons).
+        """
+        st = self.state
+        cfg = self._settings.config
+        loader, motion = self._loader, self._motion
+        if action == Action.CYCLE_START and st is MachineState.HOLD:
+            return ""
+        if action in _TOOL_EDITS:
+            if st in _STANDING or st is MachineState.IDLE:
+                return ""
+            return (f"the tool table cannot change while the machine is {st.label.lower()}: "
+                    "a program reads the offsets when it is checked")
+        if action in _NEED_IDLE and st is not MachineState.IDLE:
+            if action in _NOT_MOVING_OK and st in _STANDING:
+                return ""
+            return f"machine is {st.label.lower()}" + (f" ({self.state_reason})" if self.state_reason else "")
+        if action in (Action.CYCLE_START, Action.RUN_FROM_LINE, Action.MDI):
+            homed = self._positions.homed
+            if cfg.homing.required and not all(homed):
+                missing = [a for a, h in zip(cfg.axes, homed) if not h]
+                return f"axes not homed: {' '.join(missing)} (home them or set machine zero first)"
+        if loader is not None:
+            if action in (Action.CYCLE_START, Action.RUN_FROM_LINE) and loader.checking_name:
+                return f"the program {loader.checking_name} is still being checked (wait until it is loaded)"
+            if action == Action.CYCLE_START and loader.planning_name:
+                return (f"the program {loader.planning_name} is being planned for single block "
+                        "(wait until it is ready)")
+            if action in (Action.CYCLE_START, Action.RUN_FROM_LINE) and loader.program_info is None:
+                return "no program loaded"
+        if action == Action.FEED_HOLD and st is not MachineState.RUNNING:
+            return f"nothing to hold: machine is {st.label.lower()}"
+        if action == Action.RESUME and st is not MachineState.HOLD and not (
+                st is MachineState.IDLE and motion is not None and motion.resume_point is not None):
+            return f"nothing to resume: machine is {st.label.lower()}"
+        if action in (Action.TOUCH_OFF, Action.SET_WORK_OFFSET, Action.SELECT_WORK_OFFSET,
+                      Action.CLEAR_G92) and st in (MachineState.RUNNING, MachineState.HOLD,
+                                                   MachineState.HOMING):
+            return f"not while the machine is {st.label.lower()}"
+        if action == Action.SPINDLE_ON and st not in (MachineState.IDLE, MachineState.HOLD):
+            return f"spindle cannot start: machine is {st.label.lower()}"
+        return ""
+
+    # ------------------------------------------------------------------ safety
+    def reset(self) -> CommandResult:
+        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
+        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
+        resume point. Spindle and the program's outputs go off. Also cancels a cycle start
+        waiting for a check.
+        """
+        st = self.state
+        motion = self._motion
+        assert motion is not None and self._runner is not None
+        if st is MachineState.HOLD:
+            if not motion.standing():
+                return self._runner.stop()
+            self._events.reset.emit(st)
+            self.set_state(MachineState.IDLE, "reset")
+            return self.ok(Action.RESET)
+        if st is MachineState.ALARM:
+            if motion.busy:
+                return self.refuse(Action.RESET, "the machine is still stopping: wait for standstill")
+            self._alarms.acknowledge_all()
+            try:
+                self._drives.enable_drives()
+            except Exception as exc:  # noqa: BLE001
+                return self.refuse(Action.RESET, f"the drives cannot be re-enabled: {exc}")
+            self._poll()
+            if self.state is not MachineState.ALARM:
+                return self.refuse(Action.RESET, f"machine is {self.state.label.lower()}")
+            self._events.reset.emit(st)
+            self.set_state(MachineState.IDLE, "reset")
+            return self.ok(Action.RESET)
+        if st is MachineState.IDLE:
+            self._events.reset.emit(st)
+            return self.ok(Action.RESET)
+        return self.refuse(Action.RESET, f"reset not possible: machine is {st.label.lower()}")
+
+    def enter_estop(self, reason: str) -> None:
+        """The machine is in E-stop: every part stops what is its own (motion abandoned with
+        its point to resume from, homing, spindle, outputs), then the state."""
+        self._events.estop.emit(reason)
+        if self.state is not MachineState.ESTOP:
+            self.set_state(MachineState.ESTOP, reason)
+
+    def estop(self, reason: str = "operator") -> CommandResult:
+        """Emergency stop: the drives' quick stop at once, program abandoned (resume point kept),
+        spindle off, -> ESTOP.
+        """
+        self._drives.estop(reason)
+        self._alarms.raise_alarm("operator" if reason == "operator" else "controller", f"E-stop: {reason}",
+                                 Severity.ESTOP, "estop")
+        self.enter_estop(reason)
+        if self._drives.attached:
+            self._poll()
+        return self.ok("estop")
+
+    def estop_release(self) -> CommandResult:
+        """Release the E-stop: fault reset and re-enable the drives, -> IDLE."""
+        if self.state is not MachineState.ESTOP:
+            return self.refuse(Action.ESTOP_RELEASE, "E-stop is not active")
+        if not self._drives.attached:
+            self.set_state(MachineState.DISCONNECTED, "E-stop released; not connected")
+            return self.ok(Action.ESTOP_RELEASE)
+        try:
+            self._drives.enable_drives()
+        except Exception as exc:  # noqa: BLE001
+            return self.refuse(Action.ESTOP_RELEASE, f"the drives cannot be re-enabled: {exc}")
+        self._alarms.acknowledge_code("estop")
+        self._drives.snapshot()
+        self.set_state(MachineState.IDLE, "E-stop released")
+        return self.ok(Action.ESTOP_RELEASE)
+
+    def fault(self, cause: str) -> None:
+        """A quick-stop class alarm: the drives stopped by themselves. Motion (its point to
+        resume from kept), homing and the spindle stop; the machine is in ALARM."""
+        self._events.fault.emit(cause)
+        if self.state not in (MachineState.ESTOP, MachineState.DISCONNECTED, MachineState.ALARM):
+            self.set_state(MachineState.ALARM, cause)
+
+    def alarm_stop(self, cause: str, resumable: bool = True) -> None:
+        """A STOP-class alarm: a jerk-limited stop along the path, the program abandoned (its
+        point to resume from kept when ``resumable``), state ALARM. Motion ends by itself; the
+        poll drops the job at standstill."""
+        self._events.alarm_stop.emit(cause, resumable)
+        if self.state in (MachineState.IDLE, MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING):
+            self.set_state(MachineState.ALARM, cause)
+
+    def homing_failed(self, cause: str) -> None:
+        """A drive's homing failed: homing ends; in HOMING or IDLE the machine is in ALARM."""
+        self._events.homing_failed.emit(cause)
+        if self.state in (MachineState.HOMING, MachineState.IDLE):
+            self.set_state(MachineState.ALARM, cause)
