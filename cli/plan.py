@@ -327,10 +327,8 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    from planner.blend import blend_program
     from planner.canon import write_canon
-    from planner.interpreter import parse_file
-    from planner.softlimits import check_program
+    from planner.pipeline import Abilities, SoftLimitError, load
 
     # --canon alone needs no planning: comparing with LinuxCNC's canonical calls runs it on every file.
     want_plan = bool(args.json or args.samples or args.csv or args.plot or not args.canon)
@@ -348,25 +346,28 @@ def main(argv: list[str] | None = None) -> int:
                 from planner.tools import read_tbl
 
                 tools = read_tbl(args.tools)
-            program = parse_file(args.program, machine, tools=tools, tool_in_spindle=args.tool,
-                                 block_delete=args.block_delete)
-            parse_s = time.perf_counter() - started
-            if args.config:
-                # the machine's travel, checked on the whole path as the controller does
-                over = check_program(program, machine)
-                if over:
-                    for v in over:
-                        print(f"{args.program}:{v.line}: error: {str(v).split(': ', 1)[1]}", file=sys.stderr)
-                    return 2
-            programmed = program  # --canon writes the programmed path, as LinuxCNC's canon does
-            if want_plan and (args.mode or machine.planner.mode) == "lookahead":
-                # G64 P: sharp line corners become clothoid blends within the tolerance (the paper's
-                # mode keeps the path as programmed, so its figures can still be reproduced)
-                program = blend_program(program, machine)
-            if want_plan:
-                # planned (and interpolated and measured) segment by segment: memory bounded by a
-                # segment, whatever the length of the program
-                summary = _summarise(program, machine, args, Path(scratch))
+            # the one load pipeline, as the controller loads: read; blend in look-ahead mode (G64 P:
+            # sharp line corners become clothoid blends within the tolerance; the paper's mode keeps
+            # the path as programmed, so its figures can still be reproduced); the machine's travel
+            # on the path that runs, with --config; then planned (and interpolated and measured)
+            # segment by segment: memory bounded by a segment, whatever the length of the program.
+            # A planning tool refuses nothing a machine might run (Abilities()).
+            timings: dict[str, float] = {}
+
+            def plan(program):  # noqa: ANN001, ANN202 - planner.program.Program -> _Summary | None
+                timings["parse_s"] = time.perf_counter() - started
+                return _summarise(program, machine, args, Path(scratch)) if want_plan else None
+
+            loaded = load(Path(args.program), args.program, machine, plan, tools=tools,
+                          tool_in_spindle=args.tool, block_delete=args.block_delete, abilities=Abilities(),
+                          blend=want_plan and (args.mode or machine.planner.mode) == "lookahead",
+                          check_travel=bool(args.config), require_motion=want_plan)
+            program, programmed, summary = loaded.program, loaded.programmed, loaded.plan
+            parse_s = timings["parse_s"]
+        except SoftLimitError as exc:
+            for v in exc.violations:
+                print(f"{args.program}:{v.line}: error: {str(v).split(': ', 1)[1]}", file=sys.stderr)
+            return 2
         except ProgramError as exc:
             print(str(exc), file=sys.stderr)
             return 2

@@ -218,7 +218,7 @@ class MachineController(QObject):
                                        events)
         stream.wire(run, loader)
         loader.wire(run)
-        read_again = ReadAgain(states, positions, coords, stream, alarms, out)
+        read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
         self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses)
         self.waiter = InputWaiter(coords, stream, read_again, pauses)
         self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs, run,

@@ -13,9 +13,9 @@ import numpy as np
 from app.machine.infra.events import PanelChannels
 from app.machine.model import Activity, MachineState
 from app.machine.motion.jobs import Job
-from app.machine.motion.refusals import analog_refusal, limit_issues, synchronised_refusal
+from app.machine.motion.refusals import limit_issues, refusal
 from app.machine.motion.streamer import Streamer
-from app.machine.ports import AlarmSink, CoordinatesView, PositionsView
+from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Settings
 from app.machine.state.states import StateMachine
 from planner.errors import PlannerError, ProgramError
 from planner.program import EventKind, ProbeResult, Program
@@ -27,8 +27,10 @@ __all__ = ["ReadAgain"]
 class ReadAgain:
     """The program read again with what the machine read, and the run going on with it."""
 
-    def __init__(self, states: StateMachine, positions: PositionsView, coordinates: CoordinatesView,
-                 motion: Streamer, alarms: AlarmSink, out: PanelChannels) -> None:
+    def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView,
+                 coordinates: CoordinatesView, motion: Streamer, alarms: AlarmSink,
+                 out: PanelChannels) -> None:
+        self._settings = settings
         self._states = states
         self._positions = positions
         self._coordinates = coordinates
@@ -73,11 +75,10 @@ class ReadAgain:
         if issues:
             fail(f"{where}: with the result, {issues[0]}")
             return
-        for refusal in (synchronised_refusal, analog_refusal):
-            at, why = refusal(full)
-            if why:                          # a branch the first reading did not take
-                fail(f"{where}: with the result, line {at}: {why}")
-                return
+        at, why = refusal(full, self._settings.config)
+        if why:                              # a branch the first reading did not take
+            fail(f"{where}: with the result, line {at}: {why}")
+            return
         if not rest.moves:                   # nothing moves after it: the program ends here
             self._motion.finish_now(job, rest)
             return

@@ -14,7 +14,7 @@ from app.machine.errors import MachineError
 from app.machine.model import Activity, CommandResult, SpindleState
 from app.machine.motion.jobs import Job
 from app.machine.motion.making import JobMaker
-from app.machine.motion.refusals import analog_refusal, limit_issues, probe_refusal, synchronised_refusal
+from app.machine.motion.refusals import limit_issues, refusal
 from app.machine.motion.streamer import Streamer
 from app.machine.ports import (
     CoordinatesView,
@@ -167,14 +167,9 @@ class ManualMotion:
         issues = limit_issues(prog, machine)
         if issues:
             return states.refuse(action, f"soft limit: {issues[0].message}")
-        probe = self._settings.config.probe
-        _, why = probe_refusal(prog, probe.drive, probe.max_feed_mm_min)
+        _, why = refusal(prog, self._settings.config)
         if why:
             return states.refuse(action, why)
-        for refusal in (synchronised_refusal, analog_refusal):
-            _, why = refusal(prog)
-            if why:
-                return states.refuse(action, why)
         return prog, read
 
     def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,

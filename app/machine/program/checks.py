@@ -1,7 +1,8 @@
-"""The load's heavy part, run off the controller's thread: read, parse, refuse what this machine
-cannot run (``app.machine.motion.refusals``), blend, check the soft limits of the whole path,
-plan, and make the tables the pages show. Every refusal names the line (and the column where
-the code stands) and says why.
+"""The load's heavy part, run off the controller's thread: the planner's one load pipeline
+(``planner.pipeline.load``: read, refuse what this machine cannot run, blend, the soft limits of
+the path that will run, plan) with this machine's abilities and its run planner, then the tables
+the pages show. Every refusal names the line (and the column where the code stands) and says
+why.
 """
 
 from __future__ import annotations
@@ -17,18 +18,18 @@ from app.machine.config import MachineConfig
 from app.machine.model import ProgramInfo, ProgramIssue, SpindleState
 from app.machine.motion import plans
 from app.machine.motion.plans import RunPlanner
-from app.machine.motion.refusals import analog_refusal, probe_refusal, synchronised_refusal, violation_issues
+from app.machine.motion.refusals import machine_abilities, violation_issues
 from app.machine.motion.spinup import spin_up_waits
 from app.machine.motion.timescale import PauseFeed, PausePoint, pause_points
 from app.program_lines import LineIndex
 from app.toolpath import build_toolpath
-from planner.blend import blend_program, blend_report
 from planner.errors import PlannerError, ProgramError
 from planner.heap import trim_heap
-from planner.interpreter import parse_program, read_program
+from planner.interpreter import read_program
 from planner.machine import MachineSpec
-from planner.program import ProbeResult, Program
-from planner.softlimits import check_and_bound
+from planner.pipeline import Refused, SoftLimitError, load
+from planner.plan import Plan
+from planner.program import Program
 from planner.tools import ToolTable
 from planner.window import PlanWindow
 
@@ -106,71 +107,43 @@ def check_text(
     req.text = text
     name = req.name
 
-    def reread(probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...]) -> Program:
-        """The same program from the same start, read with the probe results (G38.x) and the
-        values of the inputs (M66)."""
-        again = parse_program(text, name, machine=machine, start_position=req.start_position,
-                              tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                              parameters=req.parameters, probe_results=probes, input_results=waits,
-                              block_delete=req.block_delete)
-        return blend_program(again, machine) if machine.planner.mode == "lookahead" else again
+    def plan(program: Program) -> tuple[Plan | None, float, float, tuple[PausePoint, ...]]:
+        """The last stage: the run's plan; a planner error here is the planner's."""
+        req.progress = LOAD_SHARES[0] + LOAD_SHARES[1]
+        progress = stage_progress(req.progress, LOAD_SHARES[2])
+        try:
+            if len(program.moves) > plans.WINDOWED_RUN_MOVES:
+                # planned through once, segment by segment as the run will plan it, keeping the
+                # time, the length and the pause points: the run plans it again as it goes
+                return (None, *check_pass(program, plan_fn.window(program), progress))
+            whole = plan_fn(program, progress=progress)
+        except PlannerError as exc:
+            raise PlannerError(f"planner: {exc}") from None
+        return (whole, float(whole.cycle_time_s), float(np.sum(whole.segment.table.length)),
+                tuple(pause_points(whole, False, True)))
 
     try:
-        program = parse_program(text, name, machine=machine, start_position=req.start_position,
-                                tools=req.tools, tool_in_spindle=req.tool_in_spindle,
-                                parameters=req.parameters, progress=stage_progress(0.0, LOAD_SHARES[0]),
-                                block_delete=req.block_delete)
+        loaded = load(text, name, machine, plan, start_position=req.start_position, tools=req.tools,
+                      tool_in_spindle=req.tool_in_spindle, parameters=req.parameters,
+                      block_delete=req.block_delete, abilities=machine_abilities(req.cfg),
+                      progress=stage_progress(0.0, LOAD_SHARES[0]), between=stage)
+    except Refused as exc:
+        e = exc.errors[0]
+        issue = ProgramIssue(e.line, e.col, e.message)
+        return (issue,), (f"line {e.line}: {e.message}" if e.line > 0 else e.message)
     except ProgramError as exc:
         issues = tuple(ProgramIssue(e.line, e.col, e.message) for e in exc.errors)
         return issues, f"{len(issues)} error(s) in the program; first: {issues[0]}"
+    except SoftLimitError as exc:
+        beyond = violation_issues(list(exc.violations))
+        return beyond, f"soft limit: {beyond[0]}"
     except PlannerError as exc:
         return (ProgramIssue(0, 0, str(exc)),), str(exc)
-    finally:
-        trim_heap()   # the reading's freed temporaries back to the system
-    probe_cfg = req.cfg.probe
-    refusals: list[tuple[int, str, str]] = []
-    if program.probes:
-        refusals.append((*probe_refusal(program, probe_cfg.drive, probe_cfg.max_feed_mm_min), "G38"))
-    if program.synchronised:
-        refusals.append((*synchronised_refusal(program), program.synchronised[0].code))
-    if program.analog_outputs:
-        refusals.append((*analog_refusal(program), program.analog_outputs[0].code))
-    for at, why, code in refusals:
-        if why:
-            line = text.split("\n", at)[at - 1].upper() if at > 0 else ""
-            col = line.find(code) + 1 or 1
-            return (ProgramIssue(at, col, why),), f"line {at}: {why}"
-    if machine.planner.mode == "lookahead":
-        # G64 P: the program of record is the blended one (preview, progress, resume and the
-        # plan all count its moves)
-        program = blend_program(program, machine)
-    if not program.moves:
-        why = ("the program moves no axis: nothing to run (spindle, tool and coolant codes alone "
-               "are given in MDI, M61 Q for the tool in the spindle)")
-        return (ProgramIssue(0, 0, why),), why
-    stage()
-    blended = blend_report(program)
-    # every move's extremes, arcs exact, a piece of the program at a time: limits and bounds
-    violations, lo, hi = check_and_bound(program, machine)
-    beyond = violation_issues(violations)
-    if beyond:
-        return beyond, f"soft limit: {beyond[0]}"
-    stage()
-    req.progress = LOAD_SHARES[0] + LOAD_SHARES[1]
-    progress = stage_progress(req.progress, LOAD_SHARES[2])
-    plan = None
-    try:
-        if len(program.moves) > plans.WINDOWED_RUN_MOVES:
-            # planned through once, segment by segment as the run will plan it, keeping the
-            # time, the length and the pause points: the run plans it again as it goes
-            plan_end_s, length_mm, stops = check_pass(program, plan_fn.window(program), progress)
-        else:
-            plan = plan_fn(program, progress=progress)
-            plan_end_s = float(plan.cycle_time_s)
-            length_mm = float(np.sum(plan.segment.table.length))
-            stops = tuple(pause_points(plan, False, True))
-    except PlannerError as exc:
-        return (ProgramIssue(0, 0, f"planner: {exc}"),), f"planner: {exc}"
+    program = loaded.program
+    plan_made, plan_end_s, length_mm, stops = loaded.plan
+    assert loaded.bounds is not None
+    lo, hi = loaded.bounds
+    blended = loaded.blends
     stage()
     req.progress = sum(LOAD_SHARES)
     toolpath = build_toolpath(program)
@@ -188,14 +161,14 @@ def check_text(
         bounds_min=tuple(float(x) for x in lo),
         bounds_max=tuple(float(x) for x in hi),
         program=program,
-        plan=plan,
+        plan=plan_made,
         plan_end_s=plan_end_s,
         stops=stops,
         toolpath=toolpath,
         line_starts=starts,
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
-        reread=reread if program.probes or program.inputs else None,
+        reread=loaded.reread if program.probes or program.inputs else None,
     )
 
 
