@@ -12,7 +12,7 @@ from PySide6.QtWidgets import QApplication
 from app.context import PanelOptions
 from app.main_window import MainWindow
 from app.paths import STYLES
-from planner.files import write_output_via_path
+from planner.core.files import write_output_via_path
 
 
 def apply_theme(app: QApplication) -> None:

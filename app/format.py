@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from planner.tools import ToolTable
+from planner.core.tools import ToolTable
 
 
 def format_duration(seconds: float) -> str:

@@ -18,7 +18,7 @@ from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from planner.files import write_text
+from planner.core.files import write_text
 
 __all__ = ["DEFAULT_SERVICE_PASSWORD", "PanelSettings", "SettingsStore", "legacy_password_hash"]
 

@@ -32,8 +32,8 @@ from app.toolpath import (
     take_points,
     thin_copies,
 )
-from planner.heap import trim_heap
-from planner.program import MoveKind
+from planner.core.heap import trim_heap
+from planner.core.program import MoveKind
 
 __all__ = ["ALL_MOVES", "Detail", "LodLevels", "ViewSpec", "build_levels", "detail", "forget_levels",
            "needs_levels"]

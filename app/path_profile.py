@@ -1,7 +1,7 @@
 """Speed, acceleration and jerk along the path of a planned program against time (Fig. 14).
 
 Derived from the planner's 1 ms samples of the path length s(t) by the limit meter's finite
-differences (``planner.meter.path_vaj``, the same as ``cnc-plan --plot``); the
+differences (``planner.motion.meter.path_vaj``, the same as ``cnc-plan --plot``); the
 first ``max_time_s`` seconds only, so a long program never costs unbounded memory.
 """
 
@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planner.machine import MachineSpec
-from planner.meter import path_vaj
-from planner.program import Program
+from planner.core.machine import MachineSpec
+from planner.core.program import Program
+from planner.motion.meter import path_vaj
 
 MAX_TIME_S = 600.0
 
@@ -36,8 +36,8 @@ def path_profile(program: Program, machine: MachineSpec, max_time_s: float = MAX
     """From the controller's plan when given (what will run), else planned here as far as it
     is shown (a long program's plan is not held: ``cycle_time_s`` is its planned time, known
     from the load's check)."""
-    from planner.plan import Plan
-    from planner.window import PlanWindow
+    from planner.motion.plan import Plan
+    from planner.motion.window import PlanWindow
 
     source: Plan | PlanWindow = plan if isinstance(plan, Plan) else PlanWindow(program, machine,
                                                                              estimate_s=cycle_time_s)

@@ -10,8 +10,8 @@ from PySide6.QtCore import QObject, QTimer, Signal
 
 from app.background import Background
 from app.program_model import errors_by_line, interpret
-from planner.errors import PlannerError
-from planner.machine import MachineSpec
+from planner.core.errors import PlannerError
+from planner.core.machine import MachineSpec
 
 
 class ProgramChecker(QObject):

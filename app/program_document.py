@@ -11,7 +11,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from planner.files import write_text
+from planner.core.files import write_text
 
 
 class ProgramDocument:

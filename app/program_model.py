@@ -13,13 +13,13 @@ from PySide6.QtCore import QObject, Signal
 from app.machine.model import ProgramIssue
 from app.program_lines import line_text
 from app.toolpath import ToolPath, build_toolpath
-from planner.errors import PlannerError, ProgramError
-from planner.machine import MachineSpec
-from planner.program import Program
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.machine import MachineSpec
+from planner.core.program import Program
 
 
 def interpret(text: str, name: str, machine: MachineSpec | None) -> Program:
-    from planner.interpreter import parse_program  # lands with the interpreter issue
+    from planner.gcode.interpreter import parse_program  # lands with the interpreter issue
 
     return parse_program(text, name=name, machine=machine)
 

@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from planner.movestore import MoveColumns, MoveStore
-from planner.program import MoveKind, Program, turn_xy
+from planner.core.movestore import MoveColumns, MoveStore
+from planner.core.program import MoveKind, Program, turn_xy
 
 ARC_STEP_RAD = math.radians(6.0)
 MIN_ARC_POINTS = 5

@@ -25,11 +25,12 @@ from pathlib import Path
 
 import numpy as np
 
-from planner.blend import blend_program, blend_report
-from planner.errors import PlannerError, ProgramError
-from planner.interpreter import parse_program
-from planner.machine import MachineSpec
-from planner.plan import plan_program
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.machine import MachineSpec
+from planner.gcode.interpreter import parse_program
+from planner.geometry.blend import blend_report
+from planner.motion.blending import blend_program
+from planner.motion.plan import plan_program
 
 SHARED_CAM = Path(__file__).resolve().parents[2] / "shared" / "gcode" / "cam"
 _MODE_WORD = re.compile(r"G6[14](?:\.1)?(?![0-9.])(?:\s*[PQ]\s*[-+]?[0-9.]+)*", re.IGNORECASE)

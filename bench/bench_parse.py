@@ -19,7 +19,7 @@ import sys
 import time
 import tracemalloc
 
-from planner.interpreter import parse_program
+from planner.gcode.interpreter import parse_program
 
 
 def generate_program(n_lines: int = 35_000, seed: int = 1) -> str:

@@ -23,8 +23,8 @@ import time
 
 from bench.gen_programs import PROGRAMS
 from cli.plan import build_machine
-from planner.interpreter import parse_program
-from planner.plan import plan_program, stream_program
+from planner.gcode.interpreter import parse_program
+from planner.motion.plan import plan_program, stream_program
 
 STREAM_CHUNK = 4096
 

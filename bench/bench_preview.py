@@ -54,9 +54,9 @@ def run(lines: int, arc_share: float) -> dict:
 
     from app.toolpath import build_toolpath
     from app.widgets.preview_plot import PreviewPlot
-    from planner.interpreter import parse_program
-    from planner.machine import MachineSpec
-    from planner.program import MoveKind
+    from planner.core.machine import MachineSpec
+    from planner.core.program import MoveKind
+    from planner.gcode.interpreter import parse_program
 
     app = QApplication.instance() or QApplication([])
     text = generate_program(lines, arc_share)

@@ -40,8 +40,8 @@ def _program(path: str | None, lines: int) -> Path:
 def run(program: Path, seconds: float) -> dict:
     from app.machine.config import load_config
     from app.machine.motion.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
-    from planner.interpreter import parse_file
-    from planner.window import PlanWindow
+    from planner.gcode.interpreter import parse_file
+    from planner.motion.window import PlanWindow
     from resources import shipped_machine
 
     machine = load_config(shipped_machine("xyz_mill")).machine

@@ -28,11 +28,11 @@ from pathlib import Path
 
 import numpy as np
 
-from planner.errors import PlannerError, ProgramError
-from planner.files import write_output, write_output_via_path
-from planner.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
-from planner.meter import path_vaj
-from planner.plan import LimitReport
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.files import write_output, write_output_via_path
+from planner.core.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
+from planner.motion.meter import path_vaj
+from planner.motion.plan import LimitReport
 
 __all__ = ["build_machine", "main"]
 
@@ -203,8 +203,8 @@ def _summarise(program, machine: MachineSpec, args, scratch: Path) -> _Summary:
     """Plan segment by segment for the cycle time; with --json or sample files, plan again and
     interpolate (and measure) segment by segment, the files filled as the samples come (the
     cycle time comes first: a program of days is refused before any sample is made)."""
-    from planner.interpolate import first_sample_at
-    from planner.plan import plan_segments, report_segments, resolve_settings, stream_program
+    from planner.motion.interpolate import first_sample_at
+    from planner.motion.plan import plan_segments, report_segments, resolve_settings, stream_program
 
     mode, interpolation = resolve_settings(machine, args.mode, args.interp)
     ts = machine.planner.ts_s
@@ -243,7 +243,7 @@ def _summarise(program, machine: MachineSpec, args, scratch: Path) -> _Summary:
 
 def _move_list_json(moves: list[tuple[np.ndarray, ...]]):
     """The JSON text of the move list, piece by piece (a few thousand moves each)."""
-    from planner.program import MoveKind
+    from planner.core.program import MoveKind
 
     kinds = {int(k): k.name.lower() for k in MoveKind}
     first = True
@@ -258,7 +258,7 @@ def _move_list_json(moves: list[tuple[np.ndarray, ...]]):
 
 
 def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
-    from planner.blend import blend_report
+    from planner.geometry.blend import blend_report
 
     # G38.x: what follows a probe depends on where it touches; planned here as running to the
     # programmed end point, #5070 = 0 (the run reads the rest again with the machine's result)
@@ -327,7 +327,7 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    from planner.canon import write_canon
+    from planner.gcode.canon import write_canon
     from planner.pipeline import Abilities, SoftLimitError, load
 
     # --canon alone needs no planning: comparing with LinuxCNC's canonical calls runs it on every file.
@@ -343,7 +343,7 @@ def main(argv: list[str] | None = None) -> int:
             started = time.perf_counter()
             tools = None
             if args.tools:
-                from planner.tools import read_tbl
+                from planner.core.tools import read_tbl
 
                 tools = read_tbl(args.tools)
             # the one load pipeline, as the controller loads: read; blend in look-ahead mode (G64 P:
@@ -354,7 +354,7 @@ def main(argv: list[str] | None = None) -> int:
             # A planning tool refuses nothing a machine might run (Abilities()).
             timings: dict[str, float] = {}
 
-            def plan(program):  # noqa: ANN001, ANN202 - planner.program.Program -> _Summary | None
+            def plan(program):  # noqa: ANN001, ANN202 - planner.core.program.Program -> _Summary | None
                 timings["parse_s"] = time.perf_counter() - started
                 return _summarise(program, machine, args, Path(scratch)) if want_plan else None
 

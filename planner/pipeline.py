@@ -17,14 +17,15 @@ from typing import Generic, TypeVar
 
 import numpy as np
 
-from planner.blend import BlendReport, blend_program, blend_report
-from planner.errors import PlannerError, ProgramError, SourceError
-from planner.heap import trim_heap
-from planner.interpreter import parse_program, read_program_bytes
-from planner.machine import MachineSpec
-from planner.program import ProbeResult, Program
-from planner.softlimits import LimitViolation, check_and_bound
-from planner.tools import ToolTable
+from planner.core.errors import PlannerError, ProgramError, SourceError
+from planner.core.heap import trim_heap
+from planner.core.machine import MachineSpec
+from planner.core.program import ProbeResult, Program
+from planner.core.tools import ToolTable
+from planner.gcode.interpreter import parse_program, read_program_bytes
+from planner.geometry.blend import BlendReport, blend_report
+from planner.geometry.softlimits import LimitViolation, check_and_bound
+from planner.motion.blending import blend_program
 
 __all__ = ["Abilities", "Loaded", "Refused", "SoftLimitError", "load", "refusal"]
 

@@ -5,7 +5,7 @@
 Every .ngc, .nc, .gcode, .tap and .cnc file below the folders is read by LinuxCNC 2.9's
 interpreter (``rs274``, which ``make test`` installs as root; subroutine files are looked for
 in the program's folder, then in each ``--subroutines`` folder, as LinuxCNC's SUBROUTINE_PATH)
-and by ``planner.interpreter.parse_program`` on an XYZABC machine with digital input 0, both
+and by ``planner.gcode.interpreter.parse_program`` on an XYZABC machine with digital input 0, both
 with tools 1-99 of no length and no diameter. Each program is put in one class:
 
 - ``same``: both read it and write the same motion, call for call, within what rs274 prints
@@ -36,12 +36,12 @@ from pathlib import Path
 
 import numpy as np
 
-from planner.errors import PlannerError, ProgramError
-from planner.interpreter import parse_program
-from planner.machine import WORK_OFFSET_NAMES, AxisSpec, MachineSpec
-from planner.program import Curve, Program
-from planner.splines import nurbs_points
-from planner.tools import parse_tbl
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.machine import WORK_OFFSET_NAMES, AxisSpec, MachineSpec
+from planner.core.program import Curve, Program
+from planner.core.tools import parse_tbl
+from planner.gcode.interpreter import parse_program
+from planner.geometry.splines import nurbs_points
 from tools.linuxcnc_oracle import (
     RS274,
     motion_calls,

@@ -17,9 +17,9 @@ from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from planner.canon import canon_records
-from planner.program import Program
-from planner.tools import ToolTable, format_tbl
+from planner.core.program import Program
+from planner.core.tools import ToolTable, format_tbl
+from planner.gcode.canon import canon_records
 
 RS274 = shutil.which("rs274")
 RS274_TIMEOUT_S = 60
@@ -93,8 +93,8 @@ def _rs274(program: Path, tools: ToolTable | None, tmp: str, subroutine_dirs: tu
 def refused_alike(text: str, machine=None) -> tuple[str, str]:
     """The block rs274 refuses ``text`` at and the line this interpreter refuses it at, both as
     written (equal when they refuse the same block; raises when either reads it)."""
-    from planner.errors import ProgramError
-    from planner.interpreter import parse_program
+    from planner.core.errors import ProgramError
+    from planner.gcode.interpreter import parse_program
 
     theirs = run_linuxcnc(text)
     assert theirs.error, f"rs274 reads it:\n{text}"
@@ -109,7 +109,7 @@ def motion_alike(text: str, abs_mm: float = 0.003) -> None:
     """Raises unless rs274 and this interpreter read ``text`` to the same motion calls, their
     end points within ``abs_mm`` (rs274 prints 4 decimals). Moves shorter than what it prints
     are left out on this side too, as ``read_output`` leaves rs274's out."""
-    from planner.interpreter import parse_program
+    from planner.gcode.interpreter import parse_program
     from tools.against_linuxcnc import call_ends, without_short_moves
 
     theirs = run_linuxcnc(text)

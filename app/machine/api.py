@@ -30,7 +30,7 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
-from planner.tools import Tool, ToolTable
+from planner.core.tools import Tool, ToolTable
 
 __all__ = ["MachineApi"]
 
@@ -48,7 +48,7 @@ class MachineApi(Protocol):
     trackingSample: SignalInstance  # (time s, reference, actual) machine coords, <= 30 Hz
     programLoaded: SignalInstance  # ProgramInfo (checked: no errors, within soft limits)
     programErrors: SignalInstance  # tuple[ProgramIssue, ...] (parse errors, soft limits)
-    # planner.program.Program: the running program read again with what a probe or M66 read
+    # planner.core.program.Program: the running program read again with what a probe or M66 read
     # (the path from there on is the machine's, not the one assumed at the check)
     programReadAgain: SignalInstance
     loadingChanged: SignalInstance  # (a program is being checked, its name)
@@ -160,12 +160,12 @@ class MachineApi(Protocol):
 
     @property
     def program(self) -> object | None:
-        """The loaded, checked ``planner.program.Program`` (None if none)."""
+        """The loaded, checked ``planner.core.program.Program`` (None if none)."""
         ...
 
     @property
     def plan(self) -> object | None:
-        """The ``planner.plan.Plan`` of the loaded program (planned with the override budget)."""
+        """The ``planner.motion.plan.Plan`` of the loaded program (planned with the override budget)."""
         ...
 
     @property
@@ -330,7 +330,7 @@ class MachineApi(Protocol):
         ...
 
     def feed_hold(self) -> CommandResult:
-        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time scale
+        """Jerk-limited stop along the path (time-optimal, ``planner.motion.stopping``, or the time scale
         to 0 where that would exceed a limit): RUNNING -> HOLD."""
         ...
 

@@ -1,7 +1,7 @@
 """The machine configuration: one TOML file, read strictly, written atomically.
 
 Full configuration = the planner's ``MachineSpec`` (axes, path limits, planner settings, work
-offsets; read by ``planner.machine.machine_from_dict``) + ``[homing]`` + ``[bus]`` with
+offsets; read by ``planner.core.machine.machine_from_dict``) + ``[homing]`` + ``[bus]`` with
 ``[[bus.drives]]`` + ``[controller]`` (jog, streaming lead, override budget, spindle).
 
 Writing: the new text goes to a temporary file in the same directory (flushed and fsync'ed),
@@ -33,10 +33,10 @@ import tomlkit.items
 
 from app.machine.errors import ConfigError
 from ethercat.errors import EtherCATError
-from planner.errors import PlannerError
-from planner.files import write_output, write_text
-from planner.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
-from planner.schema import END_MARK, HEADER, Locator, check_complete, validate
+from planner.core.errors import PlannerError
+from planner.core.files import write_output, write_text
+from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
+from planner.core.schema import END_MARK, HEADER, Locator, check_complete, validate
 from resources import shipped_machine
 
 if TYPE_CHECKING:
@@ -202,7 +202,7 @@ class MachineConfig:
 
 # ------------------------------------------------------------------------------ reading
 def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | None = None) -> MachineConfig:
-    """Validate a parsed configuration against the one schema (``planner.schema``, strict:
+    """Validate a parsed configuration against the one schema (``planner.core.schema``, strict:
     unknown keys, wrong types and values out of range are errors naming the file, the line
     when ``text`` is given, the key and the value) and build it."""
     loc = Locator(where, text)

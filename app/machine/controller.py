@@ -28,14 +28,14 @@ override budget (``app.machine.motion.timescale``: acceleration and jerk limits 
 and 70 %); a ``TimeScaledExecutor`` then runs the plan at a time scale sigma that carries feed
 override (0-200 %), rapid override (0-100 %) and feed hold without leaving the path or
 exceeding a limit; a hold or stop while moving is the time-optimal jerk-limited stop along the
-path (``planner.stopping``) when it keeps every limit, else sigma's own ramp. Continuous jog
+path (``planner.motion.stopping``) when it keeps every limit, else sigma's own ramp. Continuous jog
 is a move planned to the soft limit (a lost release stops there); a release is a hold followed
 by abandoning the move. Faults keep the point to resume from (``resume_line``; ``resume()`` in
 IDLE moves there safely and continues).
 
 Coordinates: machine = drive position - home offset (set by homing); what a program reads
 (the work position) is the machine position read in the frame in force
-(``planner.frames.Frame``: G5x with its XY rotation, G92/G52). Persisted in the state folder.
+(``planner.core.frames.Frame``: G5x with its XY rotation, G92/G52). Persisted in the state folder.
 
 Units: positions mm / degrees (rotary), speeds mm/s, times s, overrides in percent.
 
@@ -112,9 +112,9 @@ from app.machine.state.states import TRANSITIONS, StateMachine
 from app.machine.state.status import StatusBoard
 from app.paths import DEFAULT_STATE_DIR
 from ethercat.worker import CyclicWorker, WorkerConfig
-from planner.plan import Plan
-from planner.program import Program
-from planner.tools import ToolTable
+from planner.core.program import Program
+from planner.core.tools import ToolTable
+from planner.motion.plan import Plan
 
 __all__ = [
     "DEFAULT_STATE_DIR",

@@ -14,9 +14,9 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from app.program_lines import LineIndex
     from app.toolpath import ToolPath
-    from planner.frames import Frame
-    from planner.plan import Plan
-    from planner.program import ProbeResult, Program
+    from planner.core.frames import Frame
+    from planner.core.program import ProbeResult, Program
+    from planner.motion.plan import Plan
 
 
 class MachineState(enum.Enum):
@@ -211,7 +211,7 @@ class ProgramInfo:
     blends: int = 0
     path_deviation_mm: float = 0.0
     # G38.x, M66: the program read again, from the same text and starting state, with the probe
-    # results and the inputs' values (``planner.interpreter.parse_program(probe_results=,
+    # results and the inputs' values (``planner.gcode.interpreter.parse_program(probe_results=,
     # input_results=)``), blended as ``program``
     reread: Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program] | None = field(
         default=None, repr=False, compare=False)
@@ -293,7 +293,7 @@ class Budget:
 
 class PauseKind(enum.StrEnum):
     """Why the plan halts at a pause point: a program's stopping event (the values of
-    ``planner.program.EventKind``), a block end in single block, or the program's end."""
+    ``planner.core.program.EventKind``), a block end in single block, or the program's end."""
 
     PAUSE = "pause"                     # M00
     OPTIONAL_PAUSE = "optional_pause"   # M01

@@ -23,9 +23,9 @@ if TYPE_CHECKING:
         Severity,
         SpindleState,
     )
-    from planner.frames import Frame
-    from planner.machine import MachineSpec
-    from planner.tools import Tool, ToolTable
+    from planner.core.frames import Frame
+    from planner.core.machine import MachineSpec
+    from planner.core.tools import Tool, ToolTable
 
 __all__ = [
     "AlarmSink",

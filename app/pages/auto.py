@@ -25,7 +25,7 @@ from app.widgets.override_control import OverrideControl
 from app.widgets.preview_plot import PreviewPlot
 from app.widgets.program_view import ProgramView
 from app.widgets.touch import enable_kinetic_scrolling
-from planner.tools import ToolTable
+from planner.core.tools import ToolTable
 
 BUTTONS = (  # (key, label, object name, controller action for refusal())
     ("start", N_("Cycle start"), "cycleStart", "cycle_start"),

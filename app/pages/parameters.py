@@ -22,7 +22,7 @@ from app.service_access import MIN_LENGTH
 from app.widgets.apply_bar import ApplyBar
 from app.widgets.numeric_field import NumericField
 from app.widgets.touch import enable_kinetic_scrolling
-from planner.machine import INTERPOLATIONS, PLANNER_MODES
+from planner.core.machine import INTERPOLATIONS, PLANNER_MODES
 
 LIMIT_FIELDS = (  # (attribute, label, unit, minimum, maximum, decimals)
     ("v_max_mm_s", N_("Path speed Vmax"), "mm/s", 0.001, 10000.0, 3),

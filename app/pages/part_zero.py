@@ -19,7 +19,7 @@ from PySide6.QtWidgets import (
 from app.context import PanelContext
 from app.i18n import N_, tr
 from app.widgets.touch import exclusive_buttons, touch_rows
-from planner.machine import WORK_OFFSET_NAMES
+from planner.core.machine import WORK_OFFSET_NAMES
 
 
 class PartZeroPage(QWidget):

@@ -23,7 +23,7 @@ from app.context import PanelContext
 from app.format import tool_text
 from app.i18n import N_, tr
 from app.widgets.touch import touch_rows
-from planner.tools import Tool, ToolTable
+from planner.core.tools import Tool, ToolTable
 
 COLUMNS = (N_("Tool"), N_("Pocket"), N_("Length Z (mm)"), N_("Diameter (mm)"), N_("Description"))
 

@@ -30,7 +30,7 @@ from app.path_lod import (
     needs_levels,
 )
 from app.toolpath import ToolPath, nearest_projected, nearest_segment
-from planner.program import MoveKind
+from planner.core.program import MoveKind
 
 ARC_COLOR = QColor(64, 224, 208)     # turquoise
 LINE_COLOR = QColor(0, 200, 70)      # green

@@ -11,7 +11,7 @@ from app.format import tool_text
 from app.i18n import N_, tr
 from app.machine.model import Alarm, BusStatus, MachineState
 from app.widgets.dro import DroWidget
-from planner.tools import ToolTable
+from planner.core.tools import ToolTable
 
 STATE_TEXT = {  # MachineState.value -> label (translated when shown)
     "disconnected": N_("Disconnected"), "idle": N_("Idle"), "homing": N_("Homing"),

@@ -32,9 +32,9 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.tools import Tool, ToolTable
+from planner.core.errors import ProgramError
+from planner.core.tools import Tool, ToolTable
+from planner.gcode.interpreter import parse_program
 
 
 class FakeController(QObject):

@@ -164,7 +164,7 @@ def test_measuring_the_tool_in_the_spindle_on_the_setter(demo_window, real_contr
     """The demo's tool setter (machine X-230 Y-180, a tool of length 0 would touch at Z-60) under
     the simulated stylus at Z-50: the tool measures 10 mm, the table shows it, the spindle ends
     up at the clearance height."""
-    from planner.tools import Tool
+    from planner.core.tools import Tool
 
     c = real_controller
     assert c.set_tool(Tool(4, 4, (("Z", 33.0),), 6.0, "drill")) and c.set_tool_in_spindle(4)

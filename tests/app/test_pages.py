@@ -12,7 +12,7 @@ from app.pages import PAGE_NAMES
 from app.paths import DEMO_PROGRAM
 from app.service_access import IDLE_LOCK_S
 from app.widgets.preview_plot import ARC_COLOR, LINE_COLOR, RAPID_COLOR
-from planner.program import MoveKind
+from planner.core.program import MoveKind
 
 BAD_PROGRAM = "G21 G17 G90\nG01 X10 F100\nG02 X20 Y0 R2\nG01 X0\n"  # line 3: radius too small
 
@@ -372,7 +372,7 @@ def test_block_delete_is_switched_on_the_program_page_and_shown_on_the_auto_page
 
 def test_auto_page_shows_spindle_feed_tool_modal_codes_and_the_prompt(fake_window, fake_controller) -> None:
     from app.machine.model import HoldKind, MachineState, Prompt, RunSummary, SpindleState
-    from planner.tools import Tool
+    from planner.core.tools import Tool
 
     auto = fake_window.page("auto")
     fake_controller.load_program("G21 G90 G17 G55\nM3 S8000\nG0 X1\nG1 X5 F900\nG91 G1 X1 F300\nM30\n",

@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 from app.path_lod import ViewSpec, build_levels, detail
 from app.path_raster import Layer, rasterize
 from app.toolpath import Polylines, build_toolpath, thin
-from planner.interpreter import parse_program
-from planner.program import MoveKind
+from planner.core.program import MoveKind
+from planner.gcode.interpreter import parse_program
 
 
 def _polyline(steps: list[tuple[float, float]], breaks: list[bool]) -> Polylines:

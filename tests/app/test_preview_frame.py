@@ -10,9 +10,9 @@ import pytest
 
 from app.toolpath import build_toolpath
 from app.widgets.preview_plot import VIEW_3D
-from planner.interpreter import parse_program
-from planner.machine import MachineSpec
-from planner.program import MoveKind
+from planner.core.machine import MachineSpec
+from planner.core.program import MoveKind
+from planner.gcode.interpreter import parse_program
 
 PROGRAM = "G21 G90 G55\nG0 X10 Y5 Z2\nG1 Z-1 F300\nG1 X20\nM30\n"
 

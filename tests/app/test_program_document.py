@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from app.program_document import ProgramDocument
-from planner.files import write_text
+from planner.core.files import write_text
 
 
 def test_save_is_atomic_and_clears_modified(tmp_path: Path) -> None:

@@ -8,8 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from app.toolpath import build_toolpath, nearest_projected
-from planner.interpreter import parse_program
-from planner.program import MoveKind
+from planner.core.program import MoveKind
+from planner.gcode.interpreter import parse_program
 
 PROGRAM = """G21 G17 G90
 G00 X0 Y0 Z5
@@ -100,10 +100,10 @@ def test_empty_program() -> None:
 
 
 def test_corner_blends_are_drawn_on_their_curve() -> None:
-    """G64 P blends (planner.blend) are drawn with the curved moves, on their exact points,
+    """G64 P blends (planner.geometry.blend) are drawn with the curved moves, on their exact points,
     and the drawing stays continuous through them."""
-    from planner.blend import blend_program
-    from planner.machine import MachineSpec
+    from planner.core.machine import MachineSpec
+    from planner.motion.blending import blend_program
 
     machine = MachineSpec.default()
     text = "G21 G90 G64 P0.05\nG0 X1 Y1\nG1 F3000 X21\nX41 Y2\nX61 Y1\nM2\n"
@@ -128,7 +128,7 @@ def test_a_program_of_columns_draws_as_one_of_move_objects() -> None:
     Move objects they stand for, the tool path is the same, point for point."""
     from dataclasses import replace
 
-    from planner.movestore import MoveStore
+    from planner.core.movestore import MoveStore
 
     text = "G21 G90 G0 X1 Y1 Z5\nG1 Z-1 F300\n" + "".join(
         f"G1 X{i % 9} Y{i % 4}\nG2 X{i % 9 + 2} Y{i % 4} I1 J0\nG0 Z{1 + i % 3}\n" for i in range(40))

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from planner.tools import Tool
+from planner.core.tools import Tool
 
 
 def _setup(fake_controller) -> None:

@@ -17,7 +17,7 @@ from app.machine.config import load_config, save_config
 from app.machine.controller import TRANSITIONS, MachineController
 from app.machine.errors import MachineError
 from app.machine.model import Activity, MachineState, Severity
-from planner.tools import Tool
+from planner.core.tools import Tool
 from tests.machine.conftest import make_controller, run_to_idle, trace
 
 SHORT = "G0 X5 Y0\nG1 X20 F1800\nG3 X20 Y20 R10\nG1 X5\nM30\n"
@@ -878,7 +878,7 @@ def test_program_outputs_share_the_drive_word_with_the_spindle_and_go_off_on_est
 def test_g10_tool_data_reaches_the_tool_table(ctl: MachineController, state_dir: Path) -> None:
     """G10 L10 in a program sets the tool's length where the motion reaches it; the table is saved
     and the loaded program is checked again before the next start."""
-    from planner.tools import Tool
+    from planner.core.tools import Tool
 
     assert ctl.tools.set_tool(Tool(1, 1, (("Z", 10.0),), 6.0, "end mill"))
     assert ctl.load_program("G21 G90 F600\nG0 Z30\nG10 L10 P1 Z5\nG0 Z31\nM2\n", "g10.ngc", wait=True)

@@ -8,10 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from app.machine.config import load_config
-from planner.interpreter import parse_program
-from planner.program import MoveKind
-from planner.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
-from planner.softlimits import check_and_bound, check_program, move_bounds_table, program_bounds
+from planner.core.program import MoveKind
+from planner.gcode.interpreter import parse_program
+from planner.geometry.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
+from planner.geometry.softlimits import check_and_bound, check_program, move_bounds_table, program_bounds
 from resources import shipped_machine
 
 

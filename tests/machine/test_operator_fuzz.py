@@ -74,7 +74,7 @@ def test_any_sequence_of_operator_actions_keeps_the_machine_safe(qapp, tmp_path_
     """``windowed``: the program runs as a long one does, from a plan made as it runs (in
     segments of a few moves here)."""
     from app.machine.motion import plans
-    from planner import window
+    from planner.motion import window
 
     saved = plans.WINDOWED_RUN_MOVES, window.WINDOW_SEGMENT_MOVES
     if windowed:

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from app.machine.config import load_config
-from planner.machine import MachineSpec
-from planner.meter import check_limits
-from planner.program import FEED_OVERRIDE_OFF
+from planner.core.machine import MachineSpec
+from planner.core.program import FEED_OVERRIDE_OFF
+from planner.motion.meter import check_limits
 from resources import shipped_machine
 from tests.machine.test_timescale import assert_within, run
 

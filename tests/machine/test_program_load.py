@@ -137,9 +137,9 @@ def test_vectorised_bounds_table_matches_move_bounds() -> None:
     move by move, and the soft-limit check built on it reports what a per-move loop finds."""
     import numpy as np
 
-    from planner.interpreter import parse_program
-    from planner.machine import load_machine
-    from planner.softlimits import check_program, move_bounds, move_bounds_table, program_bounds
+    from planner.core.machine import load_machine
+    from planner.gcode.interpreter import parse_program
+    from planner.geometry.softlimits import check_program, move_bounds, move_bounds_table, program_bounds
     from resources import shipped_machine
 
     machine = load_machine(shipped_machine("xyz_mill"))

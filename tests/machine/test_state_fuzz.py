@@ -28,7 +28,7 @@ json_values = st.recursive(
 def saved_state(tmp_path_factory, qapp) -> Path:
     """A state folder as a controller leaves it: moved, offsets and a G92 set, a tool in, an
     E-stop in the alarm log."""
-    from planner.tools import Tool
+    from planner.core.tools import Tool
     from resources import shipped_machine
 
     root = tmp_path_factory.mktemp("saved")

@@ -1,4 +1,4 @@
-"""The time-optimal jerk-limited stop along the path (planner.stopping) used by feed hold and
+"""The time-optimal jerk-limited stop along the path (planner.motion.stopping) used by feed hold and
 stop: time-optimal in 1-D (against Ruckig), no limit exceeded on the executed set-points,
 shorter than the time-scaling ramp, and hold-then-resume still ends exactly at the end."""
 
@@ -9,11 +9,11 @@ import pytest
 
 from app.machine.config import load_config
 from app.machine.motion.timescale import Budget, TimeScaledExecutor, pause_points, reduced_machine
-from planner.interpreter import parse_program
-from planner.meter import check_limits
-from planner.movetable import contour_error
-from planner.plan import plan_program
-from planner.stopping import stop_profile
+from planner.gcode.interpreter import parse_program
+from planner.geometry.movetable import contour_error
+from planner.motion.meter import check_limits
+from planner.motion.plan import plan_program
+from planner.motion.stopping import stop_profile
 from resources import shipped_machine
 from tests.machine.test_timescale import PROGRAM, assert_within, random_program
 

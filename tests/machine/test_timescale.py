@@ -15,11 +15,11 @@ from app.machine.motion.timescale import (
     pause_points,
     reduced_machine,
 )
-from planner.interpreter import parse_program
-from planner.meter import check_limits
-from planner.movetable import contour_error
-from planner.plan import plan_program
-from planner.window import PlanWindow
+from planner.gcode.interpreter import parse_program
+from planner.geometry.movetable import contour_error
+from planner.motion.meter import check_limits
+from planner.motion.plan import plan_program
+from planner.motion.window import PlanWindow
 from resources import shipped_machine
 
 PROGRAM = """G0 X10 Y0

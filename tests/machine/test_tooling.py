@@ -10,7 +10,7 @@ import pytest
 from app.machine.controller import MachineController
 from app.machine.errors import ConfigError
 from app.machine.model import MachineState
-from planner.tools import Tool
+from planner.core.tools import Tool
 from tests.machine.conftest import make_controller, run_to_idle
 
 T1 = Tool(1, 1, (("Z", 40.0),), 6.0, "6 mm flat")

@@ -1,4 +1,4 @@
-"""A long program runs from a plan made as it runs (``planner.window``), holding a few segments
+"""A long program runs from a plan made as it runs (``planner.motion.window``), holding a few segments
 around the point it executes instead of the whole plan: every set-point is the one the whole
 plan gives, with overrides, holds, pause points and taps, and the held plan stays bounded."""
 
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from app.machine.config import load_config
-from planner.machine import MachineSpec
-from planner.meter import check_limits
+from planner.core.machine import MachineSpec
+from planner.motion.meter import check_limits
 from resources import shipped_machine
 from tests.machine.test_timescale import assert_within, run
 from tests.planner.motion_programs import short_move_raster
@@ -109,7 +109,7 @@ PART = _part(40)
 def windowed(monkeypatch):
     """Every program counts as long: planned as it runs."""
     from app.machine.motion import plans
-    from planner import window
+    from planner.motion import window
 
     monkeypatch.setattr(plans, "WINDOWED_RUN_MOVES", 0)
     monkeypatch.setattr(window, "WINDOW_SEGMENT_MOVES", 32)     # segments of a short program
@@ -242,8 +242,8 @@ def test_a_long_program_stopped_by_an_alarm_resumes_where_it_stopped(qapp, confi
 def test_a_window_already_moved_cannot_give_its_pause_points(machine) -> None:
     # they come from each segment as it is made: a window planned ahead already would miss some
     from app.machine.motion.timescale import Budget, PauseFeed, TimeScaledExecutor, reduced_machine
-    from planner.interpreter import parse_program
-    from planner.window import PlanWindow
+    from planner.gcode.interpreter import parse_program
+    from planner.motion.window import PlanWindow
 
     prog = parse_program(zigzag(10), machine=machine)
     win = PlanWindow(prog, reduced_machine(machine, Budget()), segment_moves=8)

@@ -10,8 +10,8 @@ import numpy as np
 from hypothesis import strategies as st
 
 from cli.plan import build_machine
-from planner.interpreter import parse_program
-from planner.machine import AxisSpec, MachineSpec
+from planner.core.machine import AxisSpec, MachineSpec
+from planner.gcode.interpreter import parse_program
 from resources import PROGRAMS
 
 # Plane -> (first, second, normal) axis columns of X Y Z, and the I/J/K letters of first/second.

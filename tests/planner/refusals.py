@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-from planner.errors import ProgramError, SourceError
-from planner.interpreter import parse_program
+from planner.core.errors import ProgramError, SourceError
+from planner.gcode.interpreter import parse_program
 
 
 def refused_at(text: str, col_word: str, reason: str) -> SourceError:

@@ -17,10 +17,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import MachineSpec
-from planner.tools import parse_tbl
+from planner.core.errors import ProgramError
+from planner.core.machine import MachineSpec
+from planner.core.tools import parse_tbl
+from planner.gcode.interpreter import parse_program
 from tools.against_linuxcnc import call_ends, close, without_short_moves
 from tools.linuxcnc_oracle import RS274, motion_calls, project_motion, run_linuxcnc
 

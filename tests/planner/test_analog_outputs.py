@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import pytest
 
-from planner.interpreter import parse_program
-from planner.program import AnalogOutput
+from planner.core.program import AnalogOutput
+from planner.gcode.interpreter import parse_program
 from tests.planner.refusals import refused_at
 from tools.linuxcnc_oracle import RS274, motion_alike
 

@@ -15,8 +15,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from planner.interpreter import parse_program
-from planner.program import (
+from planner.core.program import (
     Arc,
     Move,
     MoveKind,
@@ -25,6 +24,7 @@ from planner.program import (
     arc_param_at_length,
     spiral_length_mm,
 )
+from planner.gcode.interpreter import parse_program
 
 PLANES = {  # G code: (first, second, normal) axis letters and their centre-offset letters
     "G17": (("X", "Y", "Z"), ("I", "J")),
@@ -309,7 +309,7 @@ def test_arcs_in_a_rotated_system_lie_in_their_turned_plane(rotation, plane, c1,
     turned X (or Y): turned back by the rotation, every point is on the programmed circle, the
     normal linear in the angle, the ends exact; the vectorised table gives the
     same points, tangents and ends as the move itself."""
-    from planner.movetable import MoveTable, contour_error
+    from planner.geometry.movetable import MoveTable, contour_error
 
     (f, s, n), _ = PLANES[plane]
     program = parse_program(f"G10 L2 P1 R{num(rotation)}\n"
@@ -360,7 +360,7 @@ def test_the_travel_an_arc_in_a_rotated_system_covers_is_its_own(rotation, arc):
     """The soft limits read a move's bounds: for a G18/G19 arc in a rotated system, whose plane
     swings X, Y and Z at once, the bounds are those of its points (its extremes, not its ends);
     along a helix there the extremes of X and Y are off the quarter turns."""
-    from planner.softlimits import move_bounds
+    from planner.geometry.softlimits import move_bounds
 
     program = parse_program(f"G21 G90 F600\nG10 L2 P1 R{rotation}\nG0 X0 Y0 Z0\n{arc}\nM2\n")
     move = program.moves[-1]
@@ -377,7 +377,7 @@ def test_the_travel_an_arc_in_a_rotated_system_covers_is_its_own(rotation, arc):
 def test_a_stop_inside_an_arc_in_a_rotated_system_resumes_on_it(arc):
     """A run stopped part way along a G18/G19 arc in a rotated system resumes from there on the
     same path (the tail and the head of the move keep the turned frame), to the same end."""
-    from planner.resume import head_move, split_move
+    from planner.geometry.resume import head_move, split_move
 
     move = parse_program(f"G21 G90 F600\nG10 L2 P1 X3 Y-2 R-35\nG0 X0 Y0 Z0\n{arc}\nM2\n").moves[-1]
     u = 0.37 * move.length_mm

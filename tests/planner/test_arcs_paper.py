@@ -6,7 +6,7 @@ planes, except where the paper's formulas are singular. The singular cases, name
   2. start point straight above/below the centre (x0 == xc): Eq. 8-9 divide by x0 - xc;
   3. start == end: rho = 0 in Eq. 1-2;
   4. R < 0 (arcs over 180 degrees): not covered by the paper.
-The vector form (planner.arcs.center_from_radius) handles all of them.
+The vector form (planner.geometry.arcs.center_from_radius) handles all of them.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ import math
 import numpy as np
 import pytest
 
-from planner.arcs import PaperSingular, center_from_radius, paper_center_and_angles
-from planner.interpreter import parse_program
+from planner.gcode.interpreter import parse_program
+from planner.geometry.arcs import PaperSingular, center_from_radius, paper_center_and_angles
 
 PLANES = {"G17": ("X", "Y", "Z"), "G18": ("Z", "X", "Y"), "G19": ("Y", "Z", "X")}
 # 8 chord directions that avoid the singular ones (0 and 180 deg: chord parallel to the first axis)

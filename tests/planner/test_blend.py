@@ -21,16 +21,27 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from planner.blend import blend_program, blend_report, merge_naive_cam, pair_frames, round_fillets, unit_pair
-from planner.errors import PlannerError
-from planner.interpreter import parse_program
-from planner.lookahead import LimitSet
-from planner.machine import MachineSpec, load_machine
-from planner.plan import plan_program
-from planner.program import EventKind, MoveKind
-from planner.resume import remaining_program, split_move
-from planner.softlimits import check_program
+from planner.core.curves import pair_frames, unit_pair
+from planner.core.errors import PlannerError
+from planner.core.machine import MachineSpec, load_machine
+from planner.core.program import EventKind, MoveKind
+from planner.gcode.interpreter import parse_program
+from planner.geometry.blend import (
+    blend_report,
+    merge_naive_cam,
+    round_fillets,
+)
+from planner.geometry.resume import remaining_program, split_move
+from planner.geometry.softlimits import check_program
+from planner.motion.blending import blend_program
+from planner.motion.lookahead import LimitSet
+from planner.motion.plan import plan_program
 from tests.planner.motion_programs import paper_machine
+
+
+def planned(m: MachineSpec):  # noqa: ANN201 - planner.geometry.blend.SpeedOracle
+    """The oracle the planner gives the geometry: the plan of the program as it stands."""
+    return lambda p: plan_program(p, m)
 
 
 def fast_machine() -> MachineSpec:
@@ -446,7 +457,7 @@ def distance_to_program(q: np.ndarray, program) -> np.ndarray:
 def test_fillets_ease_onto_a_smaller_circle_within_the_tolerance() -> None:
     m = fast_machine()
     sharp = rectangle(m)
-    prog = round_fillets(sharp, m, only_where_quicker=False)
+    prog = round_fillets(sharp, m)
     kinds = [mv.kind.name for mv in prog.moves]
     assert kinds == ["LINE", "BLEND"] * 4 + ["LINE"]
     for a, b in zip(prog.moves[:-1], prog.moves[1:]):
@@ -476,7 +487,7 @@ def test_fillets_hold_every_limit_and_run_sooner() -> None:
     the plan is quicker."""
     m = fast_machine()
     sharp = rectangle(m)
-    prog = round_fillets(sharp, m)
+    prog = round_fillets(sharp, m, planned(m))
     assert blend_report(prog).blends == 4
     plan = plan_program(prog, m)
     rep = plan.limit_report()
@@ -492,7 +503,7 @@ def test_an_arc_that_is_not_tangent_stays() -> None:
     m = fast_machine()
     text = "G21 G90 G64 P0.01 Q0\nG1 F3000 X40 Y0.5\nG3 X42 Y2 R2\nG1 Y20\nM2\n"
     prog = parse_program(text, "k.ngc", m)
-    assert round_fillets(prog, m, only_where_quicker=False) is prog
+    assert round_fillets(prog, m) is prog
 
 
 @settings(max_examples=40, deadline=None)
@@ -517,7 +528,7 @@ def test_random_fillets_stay_within_the_tolerance_and_the_limits(turn, radius, l
     text = (f"G21 G90 G64 P{tol * scale:.12f} Q0\nG1 F6000 X{t1[0]:.12f} Y0\n"
             f"G3 X{t2[0]:.12f} Y{t2[1]:.12f} I0 J{r:.12f}\nG1 X{end[0]:.12f} Y{end[1]:.12f}\nM2\n")
     sharp = parse_program(text, "r.ngc", m)
-    prog = round_fillets(sharp, m, only_where_quicker=False)
+    prog = round_fillets(sharp, m)
     plan = plan_program(prog, m)
     assume(plan.cycle_time_s < 30.0)   # the sample checks cost time in proportion
     assert plan.limit_report().violations == {}
@@ -533,8 +544,8 @@ def test_a_blended_program_streams_as_it_plans(interp: str, tol: float) -> None:
     """Windows of the blended path (pairs, fillets, joined lines) give the whole plan's samples
     in every interpolation; the exact one keeps every limit on them (Taylor's Eq. 16 drifts and
     classic ignores the profile, by design, blended or not)."""
-    from planner.interpolate import SampleChunk
-    from planner.plan import stream_program
+    from planner.motion.interpolate import SampleChunk
+    from planner.motion.plan import stream_program
 
     m = fast_machine()
     rise = 10.0 * math.tan(math.radians(2.5))
@@ -559,7 +570,7 @@ ARCS = "G21 G90 G64 P{tol} Q0\nG1 F3000 X10\nG3 X14 Y4 R4\nG1 Y10\nG2 X20 Y16 R6
 
 def test_the_transition_curve_meets_both_ends() -> None:
     """The cubic-curvature curve ends where asked with the heading and curvature asked."""
-    from planner.transition import solve_transition
+    from planner.geometry.transition import solve_transition
 
     for k0, k1, dpsi, bx, by in ((0.0, 0.5, 0.3, 0.59, 0.09), (0.25, -0.2, 0.02, 1.0, 0.01),
                                  (1.0, 1.0, 0.4, 0.39, 0.08), (0.0, 0.2, 0.0, 1.0, 0.033)):
@@ -576,11 +587,11 @@ def test_the_transition_curve_meets_both_ends() -> None:
 
 
 def test_joints_of_arcs_get_curvature_continuous_transitions() -> None:
-    from planner.transition import ease_joints
+    from planner.geometry.transition import ease_joints
 
     m = fast_machine()
     sharp = parse_program(ARCS.format(tol=0.01), "arcs.ngc", m)
-    prog = ease_joints(sharp, m, only_where_quicker=False)
+    prog = ease_joints(sharp, m)
     assert [mv.kind.name for mv in prog.moves] == ["LINE", "BLEND", "ARC", "BLEND", "LINE", "BLEND", "ARC",
                                                    "BLEND", "ARC"]
     for a, b in zip(prog.moves[:-1], prog.moves[1:]):
@@ -603,7 +614,7 @@ def test_joints_of_arcs_get_curvature_continuous_transitions() -> None:
 
 
 def test_head_move_keeps_the_geometry() -> None:
-    from planner.resume import head_move
+    from planner.geometry.resume import head_move
 
     m = fast_machine()
     prog = parse_program("G21 G90\nG1 F600 X10\nG3 X14 Y4 R4.0005\nM2\n", "h.ngc", m)
@@ -617,11 +628,11 @@ def test_head_move_keeps_the_geometry() -> None:
 
 
 def test_soft_limits_bound_a_transition() -> None:
-    from planner.softlimits import move_bounds
-    from planner.transition import ease_joints
+    from planner.geometry.softlimits import move_bounds
+    from planner.geometry.transition import ease_joints
 
     m = fast_machine()
-    prog = ease_joints(parse_program(ARCS.format(tol=0.05), "arcs.ngc", m), m, only_where_quicker=False)
+    prog = ease_joints(parse_program(ARCS.format(tol=0.05), "arcs.ngc", m), m)
     for mv in prog.moves:
         if mv.blend is not None:
             lo, hi, _ = move_bounds(mv)
@@ -636,7 +647,7 @@ def test_soft_limits_bound_a_transition() -> None:
 def test_random_arc_chains_ease_within_the_tolerance_and_the_limits(spec, tol, scale, every) -> None:
     """Chains of lines and arcs, tangent or kinked up to 4 degrees, at 0.001x, 1x and 1000x:
     the eased path stays within P of the programmed one and every limit holds."""
-    from planner.transition import ease_joints
+    from planner.geometry.transition import ease_joints
 
     m = fast_machine()
     m = replace(m, axes=tuple(replace(a, min_pos=-1e7, max_pos=1e7) for a in m.axes))
@@ -658,7 +669,7 @@ def test_random_arc_chains_ease_within_the_tolerance_and_the_limits(spec, tol, s
         heading += side * sweep
         lines.append(f"{'G3' if side > 0 else 'G2'} X{x:.12f} Y{y:.12f} I{cx - px:.12f} J{cy - py:.12f}")
     sharp = parse_program("\n".join(lines + ["M2"]) + "\n", "c.ngc", m)
-    prog = ease_joints(sharp, m, only_where_quicker=not every)
+    prog = ease_joints(sharp, m, None if every else planned(m))
     plan = plan_program(prog, m)
     assume(plan.cycle_time_s < 30.0)
     rep = plan.limit_report()
@@ -672,9 +683,9 @@ def test_random_arc_chains_ease_within_the_tolerance_and_the_limits(spec, tol, s
 
 
 def test_a_resume_inside_a_transition_follows_the_same_curve() -> None:
-    from planner.transition import ease_joints
+    from planner.geometry.transition import ease_joints
 
     m = fast_machine()
-    prog = ease_joints(parse_program(ARCS.format(tol=0.05), "arcs.ngc", m), m, only_where_quicker=False)
+    prog = ease_joints(parse_program(ARCS.format(tol=0.05), "arcs.ngc", m), m)
     assert prog.moves[1].blend is not None and prog.moves[1].blend.poly is not None
     assert_resume_follows(prog, m, 0.61)

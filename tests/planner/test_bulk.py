@@ -1,4 +1,4 @@
-"""Plain coordinate lines read many at a time (planner.bulk) read exactly as one at a time.
+"""Plain coordinate lines read many at a time (planner.gcode.bulk) read exactly as one at a time.
 
 The line-by-line interpreter is the reference: the same moves (positions bit for bit, line,
 kind, feed, exact stop; lengths to the last bit of a double), events, modal record, offsets and
@@ -15,9 +15,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.bulk import scan_plain
-from planner.errors import ProgramError
-from planner.interpreter import _Interpreter, parse_file, parse_program
+from planner.core.errors import ProgramError
+from planner.gcode.bulk import scan_plain
+from planner.gcode.interpreter import Interpreter, parse_file, parse_program
 from tests.planner.motion_programs import xyza_machine
 
 SHARED_CAM = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
@@ -63,15 +63,15 @@ def test_what_is_a_plain_line(line, plain):
 
 
 def _read(text: str, bulk: bool, machine=None, start=None):
-    old_bulk, old_run = _Interpreter.use_bulk, _Interpreter.BULK_MIN_RUN
-    _Interpreter.use_bulk = bulk
-    _Interpreter.BULK_MIN_RUN = 1  # every run in bulk, however short
+    old_bulk, old_run = Interpreter.use_bulk, Interpreter.BULK_MIN_RUN
+    Interpreter.use_bulk = bulk
+    Interpreter.BULK_MIN_RUN = 1  # every run in bulk, however short
     try:
         return parse_program(text, "p.ngc", machine, start)
     except ProgramError as e:
         return e
     finally:
-        _Interpreter.use_bulk, _Interpreter.BULK_MIN_RUN = old_bulk, old_run
+        Interpreter.use_bulk, Interpreter.BULK_MIN_RUN = old_bulk, old_run
 
 
 def assert_same_reading(a, b) -> None:
@@ -187,12 +187,12 @@ def test_a_program_read_a_piece_at_a_time_reads_as_the_line_reader(lines, piece,
     """The bulk reader indexes the program a piece (cut after a newline) at a time: pieces of
     one line and more, from the text or from its bytes, read as line by line."""
     text = "G1 F300\n" + "\n".join(lines) + "\nM2\n"
-    old = _Interpreter.BULK_PIECE, _Interpreter.BULK_MIN_RUN
-    _Interpreter.BULK_PIECE, _Interpreter.BULK_MIN_RUN = piece, 1
+    old = Interpreter.BULK_PIECE, Interpreter.BULK_MIN_RUN
+    Interpreter.BULK_PIECE, Interpreter.BULK_MIN_RUN = piece, 1
     try:
         got = _read_bytes(text.encode("utf-8")) if from_bytes else _read(text, True)
     finally:
-        _Interpreter.BULK_PIECE, _Interpreter.BULK_MIN_RUN = old
+        Interpreter.BULK_PIECE, Interpreter.BULK_MIN_RUN = old
     ref = _read(text, False)
     assert_same_reading(got, ref)
     if not isinstance(ref, ProgramError):
@@ -202,28 +202,28 @@ def test_a_program_read_a_piece_at_a_time_reads_as_the_line_reader(lines, piece,
 def test_blocks_of_short_runs_then_long_runs_read_the_same(monkeypatch):
     """A program that starts with arcs between few lines (the reader stops scanning for some
     blocks) and goes on with long plain runs reads as line by line, across small blocks."""
-    monkeypatch.setattr(_Interpreter, "BULK_LINES", 32)
+    monkeypatch.setattr(Interpreter, "BULK_LINES", 32)
     def arcs(n: int) -> str:
         return "".join(f"G1 X{i % 5} Y{i % 3}\nG2 X{i % 5 + 2} Y{i % 3} I1 J0\n" for i in range(n))
 
     raster = "G1\n" + "".join(f"X{i * 0.1:.1f} Y{(i // 50) * 0.2:.1f}\n" for i in range(400))
     text = "G1 F600\n" + arcs(150) + raster + arcs(20) + raster
-    old = _Interpreter.use_bulk
+    old = Interpreter.use_bulk
     try:
         a = parse_program(text, "m.ngc")
-        _Interpreter.use_bulk = False
+        Interpreter.use_bulk = False
         b = parse_program(text, "m.ngc")
     finally:
-        _Interpreter.use_bulk = old
+        Interpreter.use_bulk = old
     assert len(a.moves) > 1000
     assert_same_reading(a, b)
 
 
 @pytest.mark.parametrize("bulk", [True, False])
 def test_a_long_program_reports_how_far_it_is_read(monkeypatch, bulk):
-    monkeypatch.setattr(_Interpreter, "use_bulk", bulk)
-    monkeypatch.setattr(_Interpreter, "BULK_LINES", 1000)
-    monkeypatch.setattr(_Interpreter, "PROGRESS_LINES", 1000)
+    monkeypatch.setattr(Interpreter, "use_bulk", bulk)
+    monkeypatch.setattr(Interpreter, "BULK_LINES", 1000)
+    monkeypatch.setattr(Interpreter, "PROGRESS_LINES", 1000)
     text = "G1 F600\n" + "".join(f"X{i * 0.01:.2f} Y{i % 7}\n" for i in range(5000))
     seen: list[float] = []
     parse_program(text, "p.ngc", progress=lambda done, total: seen.append(done / total))
@@ -235,25 +235,25 @@ def test_a_long_program_reports_how_far_it_is_read(monkeypatch, bulk):
 def test_a_big_file_is_decoded_in_pieces_as_at_once(tmp_path, monkeypatch):
     """Pieces cut after newlines, multi-byte characters near the cuts: the same text; a file
     that is not UTF-8 still falls back to Latin-1."""
-    import planner.interpreter as interpreter
+    import planner.gcode.source as source
 
-    monkeypatch.setattr(interpreter, "_DECODE_PIECE", 7)
+    monkeypatch.setattr(source, "DECODE_PIECE", 7)
     text = "".join(f"G1 X{i} (é°ü{i % 3 * 'İ'})\n" for i in range(200)) + "M2"
     path = tmp_path / "u.ngc"
     path.write_bytes(text.encode("utf-8"))
-    assert interpreter.read_program(path) == text
+    assert source.read_program(path) == text
     path.write_bytes(text.encode("utf-8") + b"\xff\n")
-    assert interpreter.read_program(path) == (text.encode("utf-8") + b"\xff\n").decode("latin-1")
+    assert source.read_program(path) == (text.encode("utf-8") + b"\xff\n").decode("latin-1")
 
 
 @pytest.mark.parametrize("at", [0, 5, 6, 7, 12, 13])
 def test_windows_line_ends_are_found_across_the_pieces_searched(at):
-    from planner.interpreter import _contains
+    from planner.gcode.source import contains
 
     text = "G1X1\nG1X2\nG1X3\n"
     crlf = text[:at] + "\r\n" + text[at:]
-    assert _contains(crlf, "\r\n", piece=3) and _contains(crlf, "\r\n", piece=6)
-    assert not _contains(text, "\r\n", piece=3)
+    assert contains(crlf, "\r\n", piece=3) and contains(crlf, "\r\n", piece=6)
+    assert not contains(text, "\r\n", piece=3)
 
 
 @settings(max_examples=300, deadline=None)
@@ -263,12 +263,12 @@ def test_a_piecewise_search_finds_what_a_whole_one_finds(text: str, needle: str,
                                                          raw: bool) -> None:
     """Across pieces, with the needle's first character alone or not followed by the rest
     (old Mac line ends, "\r" without "\n"), in text and in bytes."""
-    from planner.interpreter import _contains
+    from planner.gcode.source import contains
 
     if raw:
-        assert _contains(text.encode(), needle.encode(), piece=piece) == (needle.encode() in text.encode())
+        assert contains(text.encode(), needle.encode(), piece=piece) == (needle.encode() in text.encode())
     else:
-        assert _contains(text, needle, piece=piece) == (needle in text)
+        assert contains(text, needle, piece=piece) == (needle in text)
 
 
 def _read_bytes(data: bytes):
@@ -296,7 +296,7 @@ def test_a_program_read_from_its_bytes_alone_reads_as_its_text(lines, head, newl
 
 @pytest.mark.parametrize("encoding", ["utf-8", "latin-1", "ascii"])
 def test_a_file_is_read_from_its_bytes_when_they_are_utf8(tmp_path, encoding):
-    from planner.interpreter import read_program, read_program_bytes
+    from planner.gcode.interpreter import read_program, read_program_bytes
 
     body = ("(Uberfrasen)\n" if encoding == "ascii" else "(Überfräsen, ø6)\n") + "G1 F300\nX1\nM2\n"
     path = tmp_path / "p.ngc"
@@ -311,11 +311,11 @@ def test_a_file_is_read_from_its_bytes_when_they_are_utf8(tmp_path, encoding):
 @settings(max_examples=100, deadline=None)
 @given(st.text(alphabet="G1X\n\r é", max_size=60), st.sampled_from([1, 2, 5, 1 << 22]))
 def test_lines_are_counted_a_piece_at_a_time_as_at_once(text, piece):
-    from planner.interpreter import _count_lines
+    from planner.gcode.source import count_lines
 
     want = text.count("\n") + 1 if text else 0
-    assert _count_lines(text, piece) == want
-    assert _count_lines(text.encode("utf-8"), piece) == want
+    assert count_lines(text, piece) == want
+    assert count_lines(text.encode("utf-8"), piece) == want
 
 
 @settings(max_examples=200, deadline=None)
@@ -328,7 +328,7 @@ def test_a_file_is_read_with_windows_line_ends_made_newlines_a_piece_at_a_time(t
     import os
     import tempfile
 
-    import planner.interpreter as interpreter
+    import planner.gcode.source as source
 
     tail = b"\xff" if encoding == "latin-1" else b""         # not UTF-8: read as Latin-1
     data = (b"\xef\xbb\xbf" if mark else b"") + text.encode("utf-8") + tail
@@ -337,9 +337,9 @@ def test_a_file_is_read_with_windows_line_ends_made_newlines_a_piece_at_a_time(t
         path = os.path.join(tmp, "p.ngc")
         with open(path, "wb") as f:
             f.write(data)
-        old = interpreter._DECODE_PIECE
-        interpreter._DECODE_PIECE = piece
+        old = source.DECODE_PIECE
+        source.DECODE_PIECE = piece
         try:
-            assert interpreter.read_program(path) == want
+            assert source.read_program(path) == want
         finally:
-            interpreter._DECODE_PIECE = old
+            source.DECODE_PIECE = old

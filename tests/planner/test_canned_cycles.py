@@ -13,11 +13,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.canon import canon_records
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import AxisSpec, MachineSpec
-from planner.program import EventKind, Program
+from planner.core.errors import ProgramError
+from planner.core.machine import AxisSpec, MachineSpec
+from planner.core.program import EventKind, Program
+from planner.gcode.canon import canon_records
+from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, canon_calls
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"

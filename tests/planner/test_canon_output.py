@@ -8,9 +8,9 @@ from dataclasses import replace
 
 import pytest
 
-from planner.canon import canon_records, write_canon
-from planner.interpreter import parse_program
-from planner.machine import MachineSpec, load_machine
+from planner.core.machine import MachineSpec, load_machine
+from planner.gcode.canon import canon_records, write_canon
+from planner.gcode.interpreter import parse_program
 from resources import shipped_machine
 
 

@@ -10,10 +10,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import planner.lookahead as lookahead
-from planner.lookahead import backward_pass, forward_pass
-from planner.plan import plan_program
-from planner.profile import reachable_speed_lower_bound, reachable_speed_scalar
+import planner.motion.lookahead as lookahead
+from planner.motion.lookahead import backward_pass, forward_pass
+from planner.motion.plan import plan_program
+from planner.motion.profile import reachable_speed_lower_bound, reachable_speed_scalar
 from tests.planner.motion_programs import paper_machine, programs
 
 if not lookahead.COMPILED:
@@ -57,7 +57,7 @@ def test_both_passes_give_the_same_speeds(rows, a_max, j_max, cut):
 @settings(max_examples=40, deadline=None)
 @given(programs(max_blocks=14))
 def test_plans_are_the_same_with_either_passes(text):
-    from planner.interpreter import parse_program
+    from planner.gcode.interpreter import parse_program
 
     machine = paper_machine()
     program = parse_program(text, "g.ngc", machine)

@@ -14,12 +14,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.canon import canon_records
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.plan import plan_program
-from planner.program import MoveKind, Program
-from planner.tools import ToolTable, parse_tbl, read_tbl
+from planner.core.errors import ProgramError
+from planner.core.program import MoveKind, Program
+from planner.core.tools import ToolTable, parse_tbl, read_tbl
+from planner.gcode.canon import canon_records
+from planner.gcode.interpreter import parse_program
+from planner.motion.plan import plan_program
 from tests.planner.motion_programs import paper_machine
 from tools.linuxcnc_oracle import canon_calls, project_motion
 
@@ -209,15 +209,15 @@ def test_compensated_programs_plan_within_the_machine_limits() -> None:
 
 
 def test_fast_paths_give_the_same_reading_with_compensation() -> None:
-    from planner import interpreter
+    from planner.gcode import interpreter
 
     text = "G21 F600\nG0 X-5 Y-5\nG41.1 D2\nG1 X0 Y0\nX10\nY10\nG3 X0 Y10 R5\nG1 Y0\nG40 X-5\n"
     fast = parse_program(text)
-    interpreter._Interpreter.use_fast = False
+    interpreter.Interpreter.use_fast = False
     try:
         slow = parse_program(text)
     finally:
-        interpreter._Interpreter.use_fast = True
+        interpreter.Interpreter.use_fast = True
     assert [m.end.tolist() for m in fast.moves] == [m.end.tolist() for m in slow.moves]
     assert any(m.arc is not None and abs(m.arc.radius_start_mm - 1.0) < 1e-9 for m in fast.moves)
 

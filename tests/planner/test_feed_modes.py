@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.program import EventKind
+from planner.core.errors import ProgramError
+from planner.core.program import EventKind
+from planner.gcode.interpreter import parse_program
 
 
 def durations(text: str, digits: int = 6) -> list[float]:

@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from cli.plan import main as cnc_plan
-from planner.files import remove_stale_temporaries, write_output, write_text
+from planner.core.files import remove_stale_temporaries, write_output, write_text
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -103,7 +103,7 @@ def test_temporary_names_are_random_and_left_nothing(tmp_path: Path) -> None:
 
 _WRITER = """
 import sys, time
-from planner.files import write_output
+from planner.core.files import write_output
 path, = sys.argv[1:]
 
 def slow(fh, digit):

@@ -12,11 +12,11 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import PlannerError, ProgramError
-from planner.interpreter import _Interpreter, parse_program
-from planner.machine import MachineSpec
-from planner.movestore import MoveStore
-from planner.tools import ToolTable, parse_tbl
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.machine import MachineSpec
+from planner.core.movestore import MoveStore
+from planner.core.tools import ToolTable, parse_tbl
+from planner.gcode.interpreter import Interpreter, parse_program
 
 SAMPLES_DIR = Path(__file__).resolve().parents[3] / "shared" / "gcode" / "cam"
 BUILTIN = (
@@ -282,11 +282,11 @@ def test_fast_and_general_paths_agree(lines):
     text = "G1 F300\n" + "\n".join(lines)
     fast = _outcome(text)  # mostly the one-regex path
     commented = _outcome("G1 F300\n" + "\n".join(f"{line} ( )" for line in lines))  # word fast path
-    _Interpreter.use_fast = False
+    Interpreter.use_fast = False
     try:
         general = _outcome(text)
     finally:
-        _Interpreter.use_fast = True
+        Interpreter.use_fast = True
     _same(fast, general)
     _same(commented, general)
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import gc
 
-from planner.gcpause import gc_paused
+from planner.core.gcpause import gc_paused
 
 
 def test_overlapping_pauses_end_with_the_last() -> None:

@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from planner.heap import trim_heap
+from planner.core.heap import trim_heap
 
 
 def _rss_mb() -> float:

@@ -8,10 +8,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import MachineSpec, load_machine
-from planner.program import EventKind, MoveKind
+from planner.core.errors import ProgramError
+from planner.core.machine import MachineSpec, load_machine
+from planner.core.program import EventKind, MoveKind
+from planner.gcode.interpreter import parse_program
 from resources import shipped_machine
 
 P = parse_program

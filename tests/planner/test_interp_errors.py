@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import load_machine
+from planner.core.errors import ProgramError
+from planner.core.machine import load_machine
+from planner.gcode.interpreter import parse_program
 from resources import shipped_machine
 
 

@@ -29,10 +29,10 @@ from pathlib import Path
 
 import pytest
 
-from planner.canon import canon_records
-from planner.errors import ProgramError
-from planner.interpreter import _Interpreter, parse_file, parse_program
-from planner.program import EventKind
+from planner.core.errors import ProgramError
+from planner.core.program import EventKind
+from planner.gcode.canon import canon_records
+from planner.gcode.interpreter import Interpreter, parse_file, parse_program
 
 GCODE_DIR = Path(os.environ.get("CNC_GCODE_REFS", Path(__file__).resolve().parents[3] / "shared" / "gcode"))
 pytestmark = pytest.mark.skipif(
@@ -142,7 +142,7 @@ def compare(ours: list[dict], feeds_ours: list[float], ref: list) -> None:
 @pytest.mark.parametrize("rel", cam_programs())
 def test_cam_program_against_linuxcnc(rel, path_kind, monkeypatch):
     if path_kind == "general":  # the same result without the one-regex / word fast paths
-        monkeypatch.setattr(_Interpreter, "use_fast", False)
+        monkeypatch.setattr(Interpreter, "use_fast", False)
     assert rel in CAM_NOTES, f"add a note for {rel}"
     path = GCODE_DIR / "cam" / rel
     ref, dwells, error = reference_calls(Path(str(path) + ".lcnc_canon.jsonl"))

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from planner.interpreter import parse_file
-from planner.program import EventKind, MoveKind
+from planner.core.program import EventKind, MoveKind
+from planner.gcode.interpreter import parse_file
 from resources import PROGRAMS
 
 

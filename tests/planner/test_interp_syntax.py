@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from planner.errors import PlannerError, ProgramError, SourceError
-from planner.interpreter import parse_file, parse_program
-from planner.program import MoveKind
+from planner.core.errors import PlannerError, ProgramError, SourceError
+from planner.core.program import MoveKind
+from planner.gcode.interpreter import parse_file, parse_program
 
 
 def ends(text: str, **kw) -> np.ndarray:

@@ -1,6 +1,6 @@
 """The lathe cycles G70 (finishing) and G71/G72 (roughing along Z and along X; .1 without the
 pockets, .2 the pockets only) as the interpreter reads them: LinuxCNC 2.9's geometry
-(``planner.g7x``, from ``interp_g7x.cc``) on a profile subroutine, checked move for move
+(``planner.gcode.g7x``, from ``interp_g7x.cc``) on a profile subroutine, checked move for move
 against rs274, its refusals with their place, and the roughing never cutting into the
 finishing allowance."""
 
@@ -11,9 +11,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.program import MoveKind
+from planner.core.errors import ProgramError
+from planner.core.program import MoveKind
+from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, motion_alike
 
 # a turned part: a cone, a round over a shoulder (G2 R), a cove (G3 R), a fillet (A) and a

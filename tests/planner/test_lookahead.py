@@ -10,17 +10,17 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.interpreter import parse_program
-from planner.lookahead import (
+from planner.core.machine import AxisSpec
+from planner.gcode.interpreter import parse_program
+from planner.motion.lookahead import (
     ACCEL_NORMAL_SHARE,
     JERK_NORMAL_SHARE,
     LimitSet,
     plan_blocks,
     plan_whole,
 )
-from planner.machine import AxisSpec
-from planner.plan import plan_program
-from planner.profile import reachable_speed, reachable_speed_lower_bound, transition_length
+from planner.motion.plan import plan_program
+from planner.motion.profile import reachable_speed, reachable_speed_lower_bound, transition_length
 from tests.planner.motion_programs import machine_with_axes, paper_machine, parse, random_program
 
 
@@ -201,8 +201,8 @@ def test_paper_table3_cases(text, expected, case):
 def test_the_stops_and_dwells_of_a_window_are_the_programs(events, a, b):
     # kept as the few rows they are; any window of moves reads them as one flag and one dwell
     # a move, as the look-ahead wants them
-    from planner.lookahead import stops_and_dwells
-    from planner.program import Event, EventKind
+    from planner.core.program import Event, EventKind
+    from planner.motion.lookahead import stops_and_dwells
 
     a, b = min(a, b), max(a, b)
     kinds = {"dwell": EventKind.DWELL, "pause": EventKind.PAUSE, "coolant": EventKind.COOLANT}

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.program import EventKind
+from planner.core.errors import ProgramError
+from planner.core.program import EventKind
+from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, refused_alike, run_linuxcnc
 
 
@@ -18,7 +18,7 @@ def _debug(program) -> list[str]:
 def _with_inputs(*numbers: int):
     from dataclasses import replace
 
-    from planner.machine import MachineSpec
+    from planner.core.machine import MachineSpec
 
     return replace(MachineSpec.default(), input_bits={n: (0, 16 + n, f"in{n}") for n in numbers})
 

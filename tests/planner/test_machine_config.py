@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import PlannerError
-from planner.machine import MachineSpec, load_machine, machine_from_dict
+from planner.core.errors import PlannerError
+from planner.core.machine import MachineSpec, load_machine, machine_from_dict
 from resources import shipped_machine
 
 

@@ -10,9 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cli.plan import build_machine
-from planner.interpreter import parse_program
-from planner.meter import LimitMeter, check_limits, path_vaj
-from planner.plan import plan_program
+from planner.gcode.interpreter import parse_program
+from planner.motion.meter import LimitMeter, check_limits, path_vaj
+from planner.motion.plan import plan_program
 
 PROGRAM = "G21 G90 G17\nG1 X20 F1800\nG1 X20 Y15\nG2 X30 Y25 R10\nG1 X50 F1200\nM30\n"
 

@@ -7,9 +7,9 @@ import time
 import numpy as np
 import pytest
 
-from planner.interpolate import SampleChunk
-from planner.movetable import MoveTable
-from planner.plan import plan_program, stream_program
+from planner.geometry.movetable import MoveTable
+from planner.motion.interpolate import SampleChunk
+from planner.motion.plan import plan_program, stream_program
 from tests.planner.motion_programs import paper_machine, parse, random_program, sample_program
 
 
@@ -142,7 +142,7 @@ def test_empty_program_and_dwells():
 
 
 def test_spiral_polynomial_parameter_equals_newton():
-    from planner.movetable import _spiral_newton
+    from planner.geometry.movetable import _spiral_newton
 
     m = paper_machine()
     moves = []

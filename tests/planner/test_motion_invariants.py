@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.lookahead import LimitSet
-from planner.plan import plan_program
+from planner.motion.lookahead import LimitSet
+from planner.motion.plan import plan_program
 from tests.planner.motion_programs import paper_machine, parse, programs, random_program, xyza_machine
 
 

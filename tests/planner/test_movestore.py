@@ -10,10 +10,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.movestore import MoveBuffer, MoveStore
-from planner.movetable import MoveTable
-from planner.program import MoveKind
-from planner.softlimits import move_bounds_table
+from planner.core.movestore import MoveBuffer, MoveStore
+from planner.core.program import MoveKind
+from planner.geometry.movetable import MoveTable
+from planner.geometry.softlimits import move_bounds_table
 from tests.planner.motion_programs import parse, random_program
 
 
@@ -85,7 +85,8 @@ def test_the_buffer_moves_an_end_and_drops_a_move_packed_or_not():
 
 
 def test_blend_report_reads_columns_as_move_objects():
-    from planner.blend import blend_program, blend_report
+    from planner.geometry.blend import blend_report
+    from planner.motion.blending import blend_program
     from tests.planner.motion_programs import paper_machine
 
     text = "G64 P0.05\nG1 F6000\n" + "".join(f"X{i * 3} Y{(i % 2) * 0.5}\n" for i in range(1, 30))
@@ -128,7 +129,7 @@ def _buffer_steps(draw):  # noqa: ANN001, ANN202
 
 
 def _run_steps(steps, chunk: int) -> MoveStore:  # noqa: ANN001
-    from planner.packed import straight_lengths
+    from planner.core.packed import straight_lengths
 
     buf = MoveBuffer([0.0, 0.0, 0.0])
     buf.CHUNK = chunk
@@ -161,7 +162,7 @@ def test_chunks_kept_sparse_give_the_store_of_plain_ones_bit_for_bit(steps, chun
     """The chunks' feed and length kept sparse while a program is read give back the very
     values the moves were made with, whatever was moved or dropped in between: the store is
     that of plain chunks, bit for bit (NaN, -0.0 and every float feed included)."""
-    import planner.movestore as movestore
+    import planner.core.movestore as movestore
 
     sparse = _run_steps(steps, chunk)
     made = movestore._sparse_feed, movestore._sparse_length
@@ -181,7 +182,7 @@ def test_chunks_kept_sparse_give_the_store_of_plain_ones_bit_for_bit(steps, chun
 def test_a_raster_s_chunks_hold_no_feed_or_length_a_move() -> None:
     """Reading a CAM raster, the chunks done with keep their feeds as runs and their lengths
     as the ends give them: under a byte a move for both, not 16."""
-    from planner.packed import straight_lengths
+    from planner.core.packed import straight_lengths
 
     buf = MoveBuffer([0.0, 0.0, 0.0])
     ends = np.zeros((100_000, 3))

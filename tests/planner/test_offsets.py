@@ -13,10 +13,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import ProgramError
-from planner.interpreter import PERSISTENT_PARAMETERS, parse_program
-from planner.machine import MachineSpec
-from planner.program import EventKind, Program
+from planner.core.errors import ProgramError
+from planner.core.machine import MachineSpec
+from planner.core.program import EventKind, Program
+from planner.gcode.interpreter import PERSISTENT_PARAMETERS, parse_program
 from tools.linuxcnc_oracle import RS274, motion_alike, refused_alike
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
@@ -114,7 +114,7 @@ def test_linuxcnc_rotated_coordinate_system(name: str) -> None:
     position parameters #5420/#5421, and the moves in program coordinates (--canon)."""
     import re
 
-    from planner.canon import canon_records
+    from planner.gcode.canon import canon_records
 
     folder = DATA / name
     program = parse_program((folder / "test.ngc").read_text())
@@ -134,7 +134,7 @@ def test_linuxcnc_rotated_coordinate_system(name: str) -> None:
 
 
 def test_rotated_system_turns_lines_arcs_cycles_and_polar_words() -> None:
-    from planner.canon import canon_records
+    from planner.gcode.canon import canon_records
 
     text = ("G21 G90 F100\nG10 L2 P1 X10 Y0 R90\nG54 G0 X0 Y0\nG1 X5\nG2 X5 Y0 I-2.5 J0\nG91 G1 Y1\n"
             "G90 G81 X1 Y1 Z-1 R1\nG80\nG0 @2 ^0\nG10 L20 P1 X0\nG0 X1\nM2\n")
@@ -186,7 +186,7 @@ def test_linuxcnc_tool_data_offsets_and_position_parameters(name: str, count: in
     read in G21 on this millimetre machine, the numbers are the same."""
     import re
 
-    from planner.tools import parse_tbl
+    from planner.core.tools import parse_tbl
 
     folder = DATA / name
     text = (folder / "test.ngc").read_text().replace("g20", "g21").replace("G20", "G21")

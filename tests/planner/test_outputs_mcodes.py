@@ -10,9 +10,9 @@ import pytest
 
 from app.machine.config import config_from_dict
 from app.machine.errors import ConfigError
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import MachineSpec
+from planner.core.errors import ProgramError
+from planner.core.machine import MachineSpec
+from planner.gcode.interpreter import parse_program
 from resources import shipped_machine
 
 MACHINE = replace(MachineSpec.default(), output_bits={1: (0, 4, "vacuum"), 2: (1, 2, "air blast")},

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import pytest
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.program import FEED_HOLD_DEFERRED, FEED_OVERRIDE_OFF, SPINDLE_OVERRIDE_OFF, EventKind
-from planner.resume import remaining_program
+from planner.core.errors import ProgramError
+from planner.core.program import FEED_HOLD_DEFERRED, FEED_OVERRIDE_OFF, SPINDLE_OVERRIDE_OFF, EventKind
+from planner.gcode.interpreter import parse_program
+from planner.geometry.resume import remaining_program
 from tools.linuxcnc_oracle import RS274, motion_alike, refused_alike
 
 BOTH = FEED_OVERRIDE_OFF | SPINDLE_OVERRIDE_OFF

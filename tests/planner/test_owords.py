@@ -13,12 +13,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import planner.interpreter as interpreter
-from planner.canon import canon_records
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import AxisSpec, MachineSpec
-from planner.program import EventKind, Program
+import planner.gcode.flow as flow
+from planner.core.errors import ProgramError
+from planner.core.machine import AxisSpec, MachineSpec
+from planner.core.program import EventKind, Program
+from planner.gcode.canon import canon_records
+from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, canon_calls, motion_alike, refused_alike
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc_interp"
@@ -176,7 +176,7 @@ def test_refusals_name_the_line_and_what_is_wrong(text: str, line: int, words: s
 
 
 def test_an_endless_loop_is_stopped_with_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(interpreter, "_MAX_EXECUTED", 10_000)
+    monkeypatch.setattr(flow, "MAX_EXECUTED", 10_000)
     with pytest.raises(ProgramError) as exc:
         read("#<a> = 0\no1 while [1]\n#<a> = [#<a> + 1]\no1 endwhile\n")
     assert "more than 10,000 blocks run (an endless loop?)" in exc.value.errors[0].message
@@ -240,7 +240,7 @@ def test_subroutine_folders_of_the_machine_configuration(tmp_path: Path) -> None
     config.write_text(text, encoding="utf-8")
     program = tmp_path / "p.ngc"
     program.write_text("G21 G90 F600\no<square> call [5]\nM2\n")
-    from planner.machine import load_machine
+    from planner.core.machine import load_machine
 
     machine = load_machine(config)
     assert machine.subroutine_paths() == (str(tmp_path / "subs"),)
@@ -343,7 +343,7 @@ def test_a_label_is_held_per_subroutine_and_only_once_run_as_linuxcnc_holds_it()
 def test_control_flow_is_found_whichever_piece_holds_it(lines, piece_chars):
     """The look for O-word statements, piece by piece, finds what one search of the whole text
     finds (a statement never spans two pieces: pieces end at line ends)."""
-    from planner.oword import _ANY_RE, has_control_flow
+    from planner.gcode.oword import _ANY_RE, has_control_flow
 
     text = "\n".join(lines)
     assert has_control_flow(text, piece_chars) == (_ANY_RE.search(text) is not None)

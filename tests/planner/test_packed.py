@@ -10,9 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from bench.bench_big import raster
-from planner.movestore import MoveStore
-from planner.packed import ColumnPacker, DenseColumn, DerivedLength, RunColumn, straight_lengths
-from planner.program import MoveKind
+from planner.core.movestore import MoveStore
+from planner.core.packed import ColumnPacker, DenseColumn, DerivedLength, RunColumn, straight_lengths
+from planner.core.program import MoveKind
 from tests.planner.motion_programs import parse
 
 

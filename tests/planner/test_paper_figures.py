@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from planner.plan import plan_program
+from planner.motion.plan import plan_program
 from tests.planner.motion_programs import paper_machine, sample_program
 
 

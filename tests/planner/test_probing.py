@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.program import EventKind, ProbeResult
+from planner.core.errors import ProgramError
+from planner.core.program import EventKind, ProbeResult
+from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, refused_alike
 
 

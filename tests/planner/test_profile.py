@@ -7,8 +7,8 @@ import pytest
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from planner.errors import PlannerError
-from planner.profile import (
+from planner.core.errors import PlannerError
+from planner.motion.profile import (
     build_profiles,
     reachable_speed,
     reachable_speed_scalar,

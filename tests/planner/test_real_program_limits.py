@@ -16,13 +16,13 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from planner.arcs import SPIRAL_ABS_TOLERANCE_MM
-from planner.blend import blend_program
-from planner.errors import ProgramError
-from planner.interpreter import parse_file, parse_program
-from planner.lookahead import LimitSet
-from planner.plan import plan_program
-from planner.program import MoveKind, Program
+from planner.core.errors import ProgramError
+from planner.core.program import MoveKind, Program
+from planner.gcode.interpreter import parse_file, parse_program
+from planner.geometry.arcs import SPIRAL_ABS_TOLERANCE_MM
+from planner.motion.blending import blend_program
+from planner.motion.lookahead import LimitSet
+from planner.motion.plan import plan_program
 from tests.planner.motion_programs import paper_machine
 from tests.planner.test_blend import blend_axis_derivatives
 from tests.planner.test_motion_invariants import check_program

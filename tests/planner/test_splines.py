@@ -15,10 +15,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.program import Curve
-from planner.splines import SAMPLES_PER_POINT, biarc, nurbs_points
+from planner.core.errors import ProgramError
+from planner.core.program import Curve
+from planner.gcode.interpreter import parse_program
+from planner.geometry.splines import SAMPLES_PER_POINT, biarc, nurbs_points
 from tools.against_linuxcnc import preview_points
 from tools.linuxcnc_oracle import RS274, preview_available, refused_alike, run_linuxcnc_preview
 

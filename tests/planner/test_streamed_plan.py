@@ -13,8 +13,8 @@ import pytest
 from hypothesis import example, given, settings
 
 from cli.plan import main
-from planner.interpreter import parse_file, parse_program
-from planner.plan import plan_program, plan_segments, report_segments
+from planner.gcode.interpreter import parse_file, parse_program
+from planner.motion.plan import plan_program, plan_segments, report_segments
 from tests.planner.motion_programs import paper_machine, programs, random_program, xyza_machine
 
 
@@ -96,7 +96,7 @@ def test_cli_json_is_the_whole_plans(tmp_path, capsys):
     from cli.plan import build_machine
 
     machine = build_machine(None, None, None, None, None)
-    from planner.blend import blend_program
+    from planner.motion.blending import blend_program
 
     plan = plan_program(blend_program(parse_file(path, machine), machine), machine)
     assert got["moves"] == len(plan.program.moves) and len(machine_program.moves) > 30
@@ -140,7 +140,7 @@ def test_sample_files_hold_the_whole_plans_samples(tmp_path, capsys, with_json):
     """--samples and --csv are written chunk by chunk as the samples are made (with --json, by
     the limit report's own pass); they hold exactly the whole plan's samples."""
     from cli.plan import build_machine
-    from planner.blend import blend_program
+    from planner.motion.blending import blend_program
 
     path = tmp_path / "p.ngc"
     path.write_text(random_program(11, n_blocks=40))
@@ -172,7 +172,7 @@ def test_plan_program_reports_the_moves_planned():
 def test_a_plan_of_many_segments_joined_is_the_streamed_one():
     """plan_program joins segments of 16,384 moves, its table's ends views of the program's own
     positions: its samples are the stream's, one by one."""
-    from planner.plan import stream_program
+    from planner.motion.plan import stream_program
 
     machine = paper_machine()
     raster = "".join(f"X{(i % 400) * 0.1:.1f} Y{(i // 400) * 0.2:.1f}\n" for i in range(40_000))
@@ -207,7 +207,7 @@ def test_segments_joined_as_they_come_are_the_segment_of_all_blocks(segment_move
     """A plan joined segment by segment (each let go once added) is the one segment made of all
     blocks at once, column by column: columns of one repeated row (no arcs yet) filled in once
     the first arc comes, and stay one repeated row where no segment has any."""
-    from planner.interpolate import SegmentJoin
+    from planner.motion.interpolate import SegmentJoin
 
     machine = paper_machine()
     lines = "".join(f"G1 X{i % 5} Y{i // 5 * 0.5:.1f}\n" for i in range(12))
@@ -228,7 +228,7 @@ def test_a_plans_speeds_are_held_once_where_they_are_the_same_numbers():
     """A move ends at the speed the next starts with, and the cruise cap is the programmed speed
     where the path does not lower it: a plan of millions of moves keeps these once (16 bytes a
     move), as views of one array, joined from segments or not, with the same numbers."""
-    from planner.interpolate import SegmentJoin, shared_speeds
+    from planner.motion.interpolate import SegmentJoin, shared_speeds
 
     machine = paper_machine()
     text = "G21 G90 G17 F900\n" + "".join(f"G1 X{i % 7} Y{i // 7 * 0.5:.1f}\n" for i in range(60))
@@ -252,7 +252,7 @@ def test_a_joined_plan_takes_the_programs_own_columns_where_they_are_its_rows():
     """The table's line, kind and exact-stop columns are the program's own arrays while every
     segment's rows are the program's; a column some segment differs from is joined from the
     segments, its earlier rows taken from the program."""
-    from planner.interpolate import SegmentJoin
+    from planner.motion.interpolate import SegmentJoin
 
     machine = paper_machine()
     text = "G21 G90 G17 F900\n" + "".join(f"G1 X{i % 7} Y{i // 7 * 0.5:.1f}\n" for i in range(60))

@@ -11,10 +11,10 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from planner.errors import ProgramError
-from planner.interpreter import parse_program
-from planner.machine import AxisSpec, MachineSpec
-from planner.program import MoveKind, SynchronisedMotion
+from planner.core.errors import ProgramError
+from planner.core.machine import AxisSpec, MachineSpec
+from planner.core.program import MoveKind, SynchronisedMotion
+from planner.gcode.interpreter import parse_program
 from tests.planner.refusals import refused_at
 from tools.linuxcnc_oracle import RS274, motion_alike
 

@@ -8,10 +8,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import PlannerError, ProgramError
-from planner.interpreter import parse_program
-from planner.program import EventKind
-from planner.tools import Tool, ToolTable, format_tbl, parse_tbl
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.program import EventKind
+from planner.core.tools import Tool, ToolTable, format_tbl, parse_tbl
+from planner.gcode.interpreter import parse_program
 
 TABLE = parse_tbl("T1 P1 Z10 D6 ;6 mm flat\n"
                   "T2 P5 X0.1 Z-3.5 D3 ;3 mm ball\n"
@@ -152,8 +152,8 @@ def test_cnc_plan_reads_a_tool_table(tmp_path, capsys) -> None:
 def test_cutter_compensation_takes_the_radius_from_the_tool_table() -> None:
     """G41/G42 offset the path by half the diameter of D's tool, or of the tool in the spindle
     without D or with D0 (LinuxCNC's rule); a tool with no diameter runs the programmed path."""
-    from planner.interpreter import parse_program
-    from planner.tools import parse_tbl
+    from planner.core.tools import parse_tbl
+    from planner.gcode.interpreter import parse_program
 
     table = parse_tbl("T1 P1 Z10 D6 ;end mill\nT2 P2 Z5 ;probe\n")
 
@@ -175,10 +175,10 @@ def test_g10_tool_data_from_the_program() -> None:
     and the program carries the changed tools for the machine to keep."""
     from dataclasses import replace
 
-    from planner.interpreter import parse_program
-    from planner.machine import MachineSpec
-    from planner.program import EventKind
-    from planner.tools import parse_tbl
+    from planner.core.machine import MachineSpec
+    from planner.core.program import EventKind
+    from planner.core.tools import parse_tbl
+    from planner.gcode.interpreter import parse_program
 
     table = parse_tbl("T1 P1 Z20 D6 ;end mill\n")
     machine = replace(MachineSpec.default(),

@@ -11,11 +11,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planner.errors import PlannerError
-from planner.interpolate import SampleChunk
-from planner.interpreter import parse_program
-from planner.plan import plan_program
-from planner.window import PlanWindow
+from planner.core.errors import PlannerError
+from planner.gcode.interpreter import parse_program
+from planner.motion.interpolate import SampleChunk
+from planner.motion.plan import plan_program
+from planner.motion.window import PlanWindow
 from tests.planner.motion_programs import paper_machine, programs, random_program, short_move_raster
 
 

@@ -14,7 +14,7 @@ from app.machine.motion.streamer import Streamer
 from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import CoordinatesView
 from ethercat.worker import WorkerSnapshot
-from planner.program import EventKind, InputRequest, WaitMode
+from planner.core.program import EventKind, InputRequest, WaitMode
 
 __all__ = ["InputWaiter"]
 

@@ -37,7 +37,7 @@ from app.machine.motion.streamer import Streamer
 from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import PositionsView, Settings
 from ethercat.worker import WorkerSnapshot
-from planner.program import EventKind, ProbeRequest, ProbeResult
+from planner.core.program import EventKind, ProbeRequest, ProbeResult
 
 __all__ = ["ProbeRun", "Prober", "probe_overtravel_mm"]
 

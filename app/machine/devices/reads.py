@@ -17,9 +17,9 @@ from app.machine.motion.refusals import limit_issues, refusal
 from app.machine.motion.streamer import Streamer
 from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Settings
 from app.machine.state.states import StateMachine
-from planner.errors import PlannerError, ProgramError
-from planner.program import EventKind, ProbeResult, Program
-from planner.resume import carry_overrides, program_from_moves
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.program import EventKind, ProbeResult, Program
+from planner.geometry.resume import carry_overrides, program_from_moves
 
 __all__ = ["ReadAgain"]
 

@@ -20,8 +20,8 @@ from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Setting
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from ethercat.worker import WorkerSnapshot
-from planner.errors import PlannerError
-from planner.tools import Tool, ToolTable, read_tbl
+from planner.core.errors import PlannerError
+from planner.core.tools import Tool, ToolTable, read_tbl
 
 __all__ = ["ToolControl"]
 

@@ -31,8 +31,8 @@ if TYPE_CHECKING:
         SpindleState,
         TrackingReport,
     )
-    from planner.program import Program
-    from planner.tools import ToolTable
+    from planner.core.program import Program
+    from planner.core.tools import ToolTable
 
 __all__ = ["Channel", "MachineEvents", "PanelChannels"]
 

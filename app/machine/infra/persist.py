@@ -23,9 +23,9 @@ from typing import Any
 
 from app.machine.errors import StateFolderBusy
 from app.machine.model import Alarm, AlarmState, Severity
-from planner.errors import PlannerError
-from planner.files import remove_stale_temporaries, write_text
-from planner.tools import ToolTable, format_tbl, read_tbl
+from planner.core.errors import PlannerError
+from planner.core.files import remove_stale_temporaries, write_text
+from planner.core.tools import ToolTable, format_tbl, read_tbl
 
 __all__ = ["StateStore"]
 

@@ -1,6 +1,6 @@
 """Part zero: the work offsets (G54-G59), the G-code parameters that programs leave (G92, the
 XY rotation of G10 L2 R, G28/G30 positions), and from them the frame in force
-(``planner.frames.Frame``): the one model by which machine positions are read as program
+(``planner.core.frames.Frame``): the one model by which machine positions are read as program
 positions (the Work DRO) and offsets are set by touch-off.
 
 Persisted at every change, as LinuxCNC writes its var file.
@@ -25,8 +25,8 @@ from app.machine.ports import AlarmSink, PositionsView, Settings
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from ethercat.worker import WorkerSnapshot
-from planner.frames import PARAMETER_AXES, Frame, system_parameter_base
-from planner.machine import WORK_OFFSET_NAMES, MachineSpec
+from planner.core.frames import PARAMETER_AXES, Frame, system_parameter_base
+from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec
 
 __all__ = ["Coordinates"]
 

@@ -11,11 +11,11 @@ import numpy as np
 
 from app.machine.model import Activity, ResumePoint, SpindleState
 from app.machine.motion.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
-from planner.machine import MachineSpec
-from planner.meter import LimitMeter, PathSpeedLimits
-from planner.plan import Plan
-from planner.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, Program
-from planner.window import PlanWindow
+from planner.core.machine import MachineSpec
+from planner.core.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, Program
+from planner.motion.meter import LimitMeter, PathSpeedLimits
+from planner.motion.plan import Plan
+from planner.motion.window import PlanWindow
 
 __all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
 
@@ -165,7 +165,7 @@ def merge_max(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:
 
 class SentLimits:
     """The set-points sent to the drives, measured by the planner's limit meter
-    (``planner.meter``) against the machine's limits, as ratios (<= 1 holds).
+    (``planner.motion.meter``) against the machine's limits, as ratios (<= 1 holds).
 
     The newest ``keep`` samples stay unmetered, so a splice of the worker's queue (at most its
     capacity, 2000 set-points) can take them back (``rewind``) before they count."""

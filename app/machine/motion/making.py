@@ -11,10 +11,10 @@ from app.machine.motion.plans import RunPlanner, single_block_program
 from app.machine.motion.spinup import spin_up_waits
 from app.machine.motion.timescale import PauseFeed, PausePoint, TimeScaledExecutor, pause_points
 from app.machine.ports import CoordinatesView, LoaderView, RunModes, Settings, SpindleView
-from planner.machine import MachineSpec
-from planner.plan import Plan
-from planner.program import Program
-from planner.window import PlanWindow
+from planner.core.machine import MachineSpec
+from planner.core.program import Program
+from planner.motion.plan import Plan
+from planner.motion.window import PlanWindow
 
 __all__ = ["JobMaker"]
 

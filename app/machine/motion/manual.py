@@ -27,10 +27,10 @@ from app.machine.ports import (
 )
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
-from planner.errors import PlannerError, ProgramError
-from planner.interpreter import parse_program
-from planner.lexer import LexError, compact
-from planner.program import EventKind, Move, MoveKind, Program
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.program import EventKind, Move, MoveKind, Program
+from planner.gcode.interpreter import parse_program
+from planner.gcode.lexer import LexError, compact
 
 __all__ = ["JOG_INCREMENTS", "ManualMotion"]
 

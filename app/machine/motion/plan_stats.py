@@ -10,10 +10,10 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from planner.machine import MachineSpec
-from planner.plan import Plan
-from planner.program import FEED_OVERRIDE_OFF
-from planner.window import PlanWindow
+from planner.core.machine import MachineSpec
+from planner.core.program import FEED_OVERRIDE_OFF
+from planner.motion.plan import Plan
+from planner.motion.window import PlanWindow
 
 __all__ = ["BLOCK", "BlockStats"]
 

@@ -1,7 +1,7 @@
 """Plans for runs: made with the machine and the override budget of the moment (the
 acceleration and jerk held back for the time scale, ``app.machine.motion.timescale``), whole
 for a program of up to ``WINDOWED_RUN_MOVES`` moves, else as the run reaches them
-(``planner.window``)."""
+(``planner.motion.window``)."""
 
 from __future__ import annotations
 
@@ -10,15 +10,15 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from app.machine.motion.timescale import Budget, reduced_machine
-from planner.machine import MachineSpec
-from planner.movestore import MoveStore
-from planner.plan import Plan, plan_program
-from planner.program import Program
-from planner.window import PlanWindow
+from planner.core.machine import MachineSpec
+from planner.core.movestore import MoveStore
+from planner.core.program import Program
+from planner.motion.plan import Plan, plan_program
+from planner.motion.window import PlanWindow
 
 __all__ = ["WINDOWED_RUN_MOVES", "RunPlanner", "single_block_program"]
 
-#: programs of more moves run from a plan made as they run (``planner.window``): a whole plan
+#: programs of more moves run from a plan made as they run (``planner.motion.window``): a whole plan
 #: holds about 150 bytes a move (1.5 GB at 10,000,000 moves), a window a few thousand moves
 WINDOWED_RUN_MOVES = 200_000
 

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 from app.machine.config import MachineConfig
 from app.machine.model import ProgramIssue
-from planner.machine import MachineSpec
+from planner.core.machine import MachineSpec
+from planner.core.program import Program
+from planner.geometry.softlimits import LimitViolation, check_program
 from planner.pipeline import Abilities
 from planner.pipeline import refusal as pipeline_refusal
-from planner.program import Program
-from planner.softlimits import LimitViolation, check_program
 
 __all__ = ["limit_issues", "machine_abilities", "refusal", "violation_issues"]
 

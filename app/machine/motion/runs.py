@@ -8,7 +8,7 @@ import numpy as np
 from app.machine.model import TrackingReport
 from app.machine.motion.jobs import Job
 from ethercat.worker import WorkerSnapshot
-from planner.files import write_output
+from planner.core.files import write_output
 
 __all__ = ["save_trace", "tracking_report"]
 

@@ -54,9 +54,9 @@ from app.machine.ports import (
 )
 from app.machine.state.states import StateMachine
 from ethercat.worker import TraceChunk, WorkerSnapshot, WorkerState
-from planner.errors import PlannerError
-from planner.program import EventKind, Program
-from planner.resume import remaining_program
+from planner.core.errors import PlannerError
+from planner.core.program import EventKind, Program
+from planner.geometry.resume import remaining_program
 
 __all__ = ["Streamer"]
 

@@ -53,7 +53,7 @@ rate D2 (no clipping of sigma_dot, which would be a jump in sigma_ddot).
 
 A feed hold is sigma -> 0 under the same bounds: a jerk-limited stop along the path; resume
 ramps sigma back up and the plan continues to the same end. Shorter: when a hold (or stop)
-arrives while moving, the executor first tries ``planner.stopping.plan_path_stop``, the
+arrives while moving, the executor first tries ``planner.motion.stopping.plan_path_stop``, the
 time-optimal jerk-limited stop of the path speed from the current (s, v, a) with per-axis
 bounds from the geometry ahead (about half the distance and a third of the time of the ramp:
 30 mm/s on an arc, 1.7 mm in 0.11 s instead of 5.2 mm in 0.43 s); it is used only if the
@@ -92,13 +92,13 @@ import numpy as np
 
 from app.machine.model import Budget, PauseKind, PausePoint
 from app.machine.motion.plan_stats import BLOCK, BlockStats
-from planner.interpolate import Interpolator, Segment
-from planner.machine import MachineSpec
-from planner.meter import check_limits
-from planner.plan import Plan
-from planner.program import FEED_HOLD_DEFERRED, EventKind, Program
-from planner.stopping import PathStop, plan_path_stop
-from planner.window import PlanWindow
+from planner.core.machine import MachineSpec
+from planner.core.program import FEED_HOLD_DEFERRED, EventKind, Program
+from planner.motion.interpolate import Interpolator, Segment
+from planner.motion.meter import check_limits
+from planner.motion.plan import Plan
+from planner.motion.stopping import PathStop, plan_path_stop
+from planner.motion.window import PlanWindow
 
 __all__ = ["Budget", "PauseKind", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
            "reduced_machine"]
@@ -137,7 +137,7 @@ class TimeScaledExecutor:
     def __init__(self, plan: Plan | PlanWindow, machine: MachineSpec, budget: Budget,
                  pauses: list[PausePoint] | None = None, feed_override: float = 1.0,
                  rapid_override: float = 1.0, pause_feed: PauseFeed | None = None) -> None:
-        # a whole plan, or one made as the run reaches it (``planner.window``): the executor
+        # a whole plan, or one made as the run reaches it (``planner.motion.window``): the executor
         # reads it only around tau, from where a splice may rewind to as far as it brakes ahead
         window = plan if isinstance(plan, PlanWindow) else PlanWindow.of_plan(plan)
         self.window = window
@@ -191,7 +191,7 @@ class TimeScaledExecutor:
         self.capped_to: float | None = None  # the time scale the limits allow, when below the override
         self.override_off_here = False  # the program runs its own feed here (tapping, M49, M50 P0)
         self.sigma_start = True  # at a standstill of the plan (start or pause point)
-        # hold / stop: the time-optimal stop along the path (planner.stopping) when it keeps
+        # hold / stop: the time-optimal stop along the path (planner.motion.stopping) when it keeps
         # every limit, else sigma -> 0 by the braking law above
         self.path_stops = True
         self._stop: PathStop | None = None

@@ -23,15 +23,15 @@ from app.machine.motion.spinup import spin_up_waits
 from app.machine.motion.timescale import PauseFeed, PausePoint, pause_points
 from app.program_lines import LineIndex
 from app.toolpath import build_toolpath
-from planner.errors import PlannerError, ProgramError
-from planner.heap import trim_heap
-from planner.interpreter import read_program
-from planner.machine import MachineSpec
+from planner.core.errors import PlannerError, ProgramError
+from planner.core.heap import trim_heap
+from planner.core.machine import MachineSpec
+from planner.core.program import Program
+from planner.core.tools import ToolTable
+from planner.gcode.interpreter import read_program
+from planner.motion.plan import Plan
+from planner.motion.window import PlanWindow
 from planner.pipeline import Refused, SoftLimitError, load
-from planner.plan import Plan
-from planner.program import Program
-from planner.tools import ToolTable
-from planner.window import PlanWindow
 
 __all__ = ["LOAD_SHARES", "Cancelled", "LoadRequest", "check_pass", "check_text"]
 
@@ -148,7 +148,7 @@ def check_text(
     req.progress = sum(LOAD_SHARES)
     toolpath = build_toolpath(program)
     starts = LineIndex(text)
-    trim_heap()  # the check's freed temporaries back to the system (planner.heap)
+    trim_heap()  # the check's freed temporaries back to the system (planner.core.heap)
     return ProgramInfo(
         name=name,
         path=req.path,

@@ -13,7 +13,7 @@ the synchronous behaviour for headless use (``cnc-run``, tests).
 
 A program of more than ``WINDOWED_RUN_MOVES`` moves (``app.machine.motion.plans``) is planned
 through once here, segment by segment (``check_pass``: its time, length and pause points), and
-its plan is not kept: cycle start plans it again as the run reaches it (``planner.window``).
+its plan is not kept: cycle start plans it again as the run reaches it (``planner.motion.window``).
 
 Cycle start runs the plan made here (``ProgramInfo.plan``) as long as it is valid: same
 configuration (limits, budget, planner mode) and work offsets, and the machine where the program
@@ -58,13 +58,13 @@ from app.machine.ports import (
 from app.machine.program.checks import Cancelled, LoadRequest, check_text
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
-from planner.errors import PlannerError
-from planner.gcpause import gc_paused
-from planner.heap import trim_heap
-from planner.plan import Plan
-from planner.program import Program
-from planner.tools import ToolTable
-from planner.window import PlanWindow
+from planner.core.errors import PlannerError
+from planner.core.gcpause import gc_paused
+from planner.core.heap import trim_heap
+from planner.core.program import Program
+from planner.core.tools import ToolTable
+from planner.motion.plan import Plan
+from planner.motion.window import PlanWindow
 
 __all__ = ["ProgramLoader", "RunPlanRequest"]
 

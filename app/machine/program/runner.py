@@ -19,9 +19,9 @@ from app.machine.ports import AlarmSink, PositionsView, Settings, ToolView
 from app.machine.program.loader import ProgramLoader
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
-from planner.errors import PlannerError
-from planner.program import Event, EventKind, Program
-from planner.resume import (
+from planner.core.errors import PlannerError
+from planner.core.program import Event, EventKind, Program
+from planner.geometry.resume import (
     Approach,
     approach_moves,
     last_safe_height,
@@ -178,7 +178,7 @@ class ProgramRunner:
 
     @guarded(Action.FEED_HOLD)
     def feed_hold(self) -> CommandResult:
-        """Jerk-limited stop along the path (time-optimal, ``planner.stopping``, or the time
+        """Jerk-limited stop along the path (time-optimal, ``planner.motion.stopping``, or the time
         scale to 0 where that would exceed a limit): RUNNING -> HOLD. The stop starts a few
         cycles (``SPLICE_MARGIN_S``) after the request: the set-points queued in the worker
         beyond that are replaced (``Streamer.change_motion``), not run first. In a tap (G74,
@@ -368,7 +368,7 @@ class ProgramRunner:
     def _approach(self, prog: Program, move_index: int, cur: np.ndarray, target: np.ndarray,
                   feed_mm_s: float) -> Approach:
         """Up to the restart clearance, across, down to the program's own retract plane there,
-        then at the program's feed to the restart point (``planner.resume.approach_moves``)."""
+        then at the program's feed to the restart point (``planner.geometry.resume.approach_moves``)."""
         cfg = self._settings.config
         axes = cfg.axes
         c = cfg.controller

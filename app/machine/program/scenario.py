@@ -182,7 +182,7 @@ class Recorder:
         }
 
     def save(self, path: str) -> None:
-        from planner.files import write_output
+        from planner.core.files import write_output
 
         d = self.arrays()
         write_output(path, lambda fh: np.savez_compressed(fh, t=d["t"], reference=d["reference"],

@@ -33,7 +33,7 @@ from app.machine.session.poller import StatusPoller
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from ethercat.worker import CyclicWorker, DriveSpec, WorkerConfig, WorkerSnapshot
-from planner.machine import WORK_OFFSET_NAMES
+from planner.core.machine import WORK_OFFSET_NAMES
 
 __all__ = ["Connection", "PERSIST_EVERY_S", "RAMP_DOWN_TIMEOUT_S"]
 

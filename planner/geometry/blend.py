@@ -42,21 +42,38 @@ no event (dwell, output, message, spindle...) sits at the joint.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
-from planner.machine import MachineSpec
-from planner.movestore import MoveStore
-from planner.program import Move, MoveKind, Program
+from planner.core.curves import Blend, fresnel, unit_pair
+from planner.core.limits import ACCEL_NORMAL_SHARE, BLEND_DK_SHARE, BLEND_NORMAL_SHARE, LimitSet
+from planner.core.machine import MachineSpec
+from planner.core.movestore import MoveStore
+from planner.core.program import Move, MoveKind, Program
 
-__all__ = ["Blend", "BlendReport", "blend_eval", "blend_program", "blend_report", "merge_naive_cam",
-           "unit_pair"]
+__all__ = ["BlendReport", "JointSpeeds", "SpeedOracle", "blend_corners", "blend_report", "merge_naive_cam",
+           "round_fillets"]
 
-_GX, _GW = np.polynomial.legendre.leggauss(16)
-_GX = (_GX + 1.0) * 0.5
-_GW = _GW * 0.5
+class JointSpeeds(Protocol):
+    """A program's plan as blends are judged by it: per move, the speed at its start and end
+    and the highest it reaches (a ``planner.motion.plan.Plan`` is one)."""
+
+    @property
+    def vs(self) -> np.ndarray: ...
+
+    @property
+    def ve(self) -> np.ndarray: ...
+
+    @property
+    def vpeak(self) -> np.ndarray: ...
+
+
+#: the sharp program's plan, for keeping only the blends that are quicker than the sharp
+#: corner (None: every blend the tolerance allows is made)
+SpeedOracle = Callable[[Program], JointSpeeds]
 
 #: joints turning less than this are tangent for the planner already (no break to remove)
 MIN_TURN_RAD = 1e-7
@@ -67,204 +84,9 @@ MAX_TURN_RAD = math.radians(175.0)
 MIN_LINE_MM = 1e-9
 
 
-@dataclass(frozen=True, slots=True, eq=False)
-class Blend:
-    """Exact geometry of one clothoid-pair blend (or of its tail from ``s0_mm`` on)."""
-
-    origin: np.ndarray  # A: start of the pair on the incoming line (n_axes,), machine coords
-    u1: np.ndarray  # unit direction of the incoming line (n_axes,)
-    n1: np.ndarray  # unit normal in the corner's plane, towards the inside of the turn
-    half_mm: float  # L_s, the length of each clothoid
-    turn_rad: float  # theta, the direction change of the corner
-    corner: np.ndarray  # C: the programmed corner (n_axes,); a fillet's: where its lines meet
-    s0_mm: float = 0.0  # where this move starts along the blend (a resumed tail: > 0)
-    arc_mm: float = 0.0  # length of the arc between the clothoids (a rounded fillet), 0 for a pair
-    measured_deviation_mm: float = math.nan  # a fillet's or transition's distance from its path
-    # a transition (planner.transition): signed curvature kappa(s) = c0 + c1 s + c2 s^2 + c3 s^3
-    # towards n1, heading from u1, over the whole length 2 * half_mm; None for pairs and fillets
-    poly: tuple[float, float, float, float] | None = None
-
-    @property
-    def radius_mm(self) -> float:
-        """Radius in the middle (the smallest)."""
-        if self.poly is not None:
-            return 1.0 / self.kappa_max
-        return (self.half_mm + self.arc_mm) / self.turn_rad
-
-    @property
-    def kappa_max(self) -> float:
-        if self.poly is not None:
-            return poly_bounds(self.poly, 2.0 * self.half_mm)[0]
-        return 1.0 / self.radius_mm
-
-    @property
-    def sharpness(self) -> float:
-        """|dkappa/ds| (1/mm^2) on the clothoids (a transition: its largest)."""
-        if self.poly is not None:
-            return poly_bounds(self.poly, 2.0 * self.half_mm)[1]
-        return 1.0 / (self.radius_mm * self.half_mm)
-
-    @property
-    def length_mm(self) -> float:
-        return 2.0 * self.half_mm + self.arc_mm
-
-    @property
-    def deviation_mm(self) -> float:
-        """Largest distance from the programmed path: a pair's middle from its corner, or a
-        fillet's, measured when it was made."""
-        if not math.isnan(self.measured_deviation_mm):
-            return self.measured_deviation_mm
-        _, y1, _, d1 = unit_pair(np.array([self.turn_rad]))
-        return float(d1[0] * self.half_mm)
-
-
-def _fresnel(theta: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """X, Y of the unit pair (L_s = 1, c = theta) at x in [0, 1], element-wise."""
-    xs = x[..., None] * _GX
-    phase = 0.5 * theta[..., None] * xs * xs
-    return x * (np.cos(phase) @ _GW), x * (np.sin(phase) @ _GW)
-
-
-def unit_pair(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(X(1), Y(1), tangent length T, corner deviation D) of the pair of half length 1."""
-    theta = np.asarray(theta, dtype=float)
-    x1, y1 = _fresnel(theta, np.ones_like(theta))
-    half = 0.5 * theta
-    return x1, y1, x1 + y1 * np.tan(half), y1 / np.cos(half)
-
-
-_PX, _PW = np.polynomial.legendre.leggauss(24)
-_PX = (_PX + 1.0) * 0.5
-_PW = _PW * 0.5
-
-
-def poly_bounds(c: tuple[float, float, float, float], length: float) -> tuple[float, float]:
-    """(max |kappa|, max |dkappa/ds|) of kappa(s) = c0 + c1 s + c2 s^2 + c3 s^3 on [0, length],
-    exactly: at the ends and where the derivative (a quadratic) and its derivative vanish."""
-    c0, c1, c2, c3 = c
-    cand = [0.0, length]
-    disc = 4.0 * c2 * c2 - 12.0 * c3 * c1
-    if c3 != 0.0 and disc >= 0.0:
-        r = math.sqrt(disc)
-        cand += [(-2.0 * c2 + r) / (6.0 * c3), (-2.0 * c2 - r) / (6.0 * c3)]
-    elif c3 == 0.0 and c2 != 0.0:
-        cand.append(-c1 / (2.0 * c2))
-    if c3 != 0.0:
-        cand.append(-c2 / (3.0 * c3))
-    pts = np.clip(np.array(cand), 0.0, length)
-    k = c0 + pts * (c1 + pts * (c2 + pts * c3))
-    dk = c1 + pts * (2.0 * c2 + pts * 3.0 * c3)
-    return float(np.abs(k).max()), float(np.abs(dk).max())
-
-
-def _poly_heading(c: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """Heading psi(s) = integral of kappa (row-wise coefficients c (N, 4), s (N,) or (N, m))."""
-    if s.ndim == 2:
-        c = c[:, None, :]
-    return s * (c[..., 0] + s * (c[..., 1] / 2.0 + s * (c[..., 2] / 3.0 + s * c[..., 3] / 4.0)))
-
-
-def _poly_eval(origin, u1, n1, c, s):
-    """Positions, unit tangents and curvature vectors of transitions at arc length s (row-wise):
-    p(s) = A + integral_0^s (cos psi u1 + sin psi n1), by 24-point Gauss-Legendre (psi is a
-    polynomial of degree 4 turning a fraction of a radian: exact to rounding)."""
-    sg = s[:, None] * _PX[None, :]
-    ps = _poly_heading(c, sg)
-    x = s * (np.cos(ps) @ _PW)
-    y = s * (np.sin(ps) @ _PW)
-    pos = origin + x[:, None] * u1 + y[:, None] * n1
-    psi = _poly_heading(c, s)
-    cp, sp = np.cos(psi)[:, None], np.sin(psi)[:, None]
-    tangent = cp * u1 + sp * n1
-    normal = -sp * u1 + cp * n1
-    kappa = c[:, 0] + s * (c[:, 1] + s * (c[:, 2] + s * c[:, 3]))
-    return pos, tangent, kappa[:, None] * normal
-
-
-def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None, poly=None):
-    """Positions, unit tangents and curvature vectors of blends at arc length s from A.
-
-    A blend is a clothoid of length L_c (``half``) from A, an arc of length L_a (``arc``, 0 for
-    a clothoid pair) and the mirror clothoid into B (``end``), turning by theta in all: the
-    middle radius is R_c = (L_c + L_a) / theta, the clothoids' heading at x = s / L_c is
-    (L_c / R_c) x^2 / 2. Row-wise arrays: origin, u1, n1, end (N, d); half, theta, s, arc (N,)."""
-    if arc is None:
-        arc = np.zeros_like(half)
-    total = 2.0 * half + arc
-    s = np.clip(s, 0.0, total)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rc = np.where(theta != 0.0, (half + arc) / np.where(theta != 0.0, theta, 1.0), np.inf)
-    vt = half / rc
-    first = s <= half
-    third = s >= half + arc
-    x = np.where(first, s, np.where(third, total - s, half)) / half
-    xf, yf = _fresnel(vt, x)
-    xf = (xf * half)[:, None]
-    yf = (yf * half)[:, None]
-    ct, st = np.cos(theta)[:, None], np.sin(theta)[:, None]
-    u2 = ct * u1 + st * n1
-    n2 = -st * u1 + ct * n1
-    f = first[:, None]
-    pos = np.where(f, origin + xf * u1 + yf * n1, end - xf * u2 + yf * n2)
-    phi = (0.5 * vt * x * x)[:, None]
-    cp, sp = np.cos(phi), np.sin(phi)
-    tangent = np.where(f, cp * u1 + sp * n1, cp * u2 - sp * n2)
-    normal = np.where(f, -sp * u1 + cp * n1, sp * u2 + cp * n2)
-    kappa = x / rc
-    mid = ~(first | third)
-    if mid.any():
-        # the arc: from the first clothoid's end Q1 (heading vt / 2) about its centre
-        k = np.nonzero(mid)[0]
-        x1, y1 = _fresnel(vt[k], np.ones(k.size))
-        q1 = origin[k] + (x1 * half[k])[:, None] * u1[k] + (y1 * half[k])[:, None] * n1[k]
-        ph0 = 0.5 * vt[k]
-        psi = ph0 + (s[k] - half[k]) / rc[k]
-        r = rc[k][:, None]
-        pos[k] = q1 + r * ((np.sin(psi) - np.sin(ph0))[:, None] * u1[k]
-                           + (np.cos(ph0) - np.cos(psi))[:, None] * n1[k])
-        tangent[k] = np.cos(psi)[:, None] * u1[k] + np.sin(psi)[:, None] * n1[k]
-        normal[k] = -np.sin(psi)[:, None] * u1[k] + np.cos(psi)[:, None] * n1[k]
-        kappa[k] = 1.0 / rc[k]
-    curv = kappa[:, None] * normal
-    if poly is not None:
-        is_poly = ~np.isnan(poly[:, 0])
-        if is_poly.any():
-            k = np.nonzero(is_poly)[0]
-            pos[k], tangent[k], curv[k] = _poly_eval(origin[k], u1[k], n1[k], poly[k], s[k])
-    return pos, tangent, curv
-
-
-def blend_eval(move: Move, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``Move.evaluate`` for a blend: position, unit tangent and curvature at u."""
-    b = move.blend
-    assert b is not None
-    u = np.clip(np.atleast_1d(np.asarray(u_mm, dtype=float)).ravel(), 0.0, move.length_mm)
-    n = u.shape[0]
-    rep = (n, 1)
-    poly = np.tile(np.array(b.poly if b.poly is not None else (math.nan,) * 4), rep)
-    pos, tangent, curv = _pair_eval(np.tile(b.origin, rep), np.tile(b.u1, rep), np.tile(b.n1, rep),
-                                    np.tile(move.end, rep), np.full(n, b.half_mm),
-                                    np.full(n, b.turn_rad), b.s0_mm + u, np.full(n, b.arc_mm), poly)
-    pos[u >= move.length_mm] = move.end
-    return pos, tangent, np.sqrt((curv * curv).sum(axis=1))
-
-
-def pair_positions(origin, u1, n1, end, half, theta, s, arc=None, poly=None) -> np.ndarray:
-    """Positions only (row-wise arrays, see ``_pair_eval``)."""
-    return _pair_eval(origin, u1, n1, end, half, theta, s, arc, poly)[0]
-
-
-def pair_frames(origin, u1, n1, end, half, theta, s, arc=None, poly=None) -> tuple[np.ndarray, np.ndarray]:
-    """(unit tangents, curvature vectors) at s (row-wise arrays)."""
-    _, t, k = _pair_eval(origin, u1, n1, end, half, theta, s, arc, poly)
-    return t, k
-
-
 def _blend_caps_k(kappa: np.ndarray, dk: np.ndarray, a_pl: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
     """The speed a blend allows from its largest curvature and curvature rate (the planner's
     in-plane rules for blends in ``lookahead.move_limits``)."""
-    from planner.lookahead import ACCEL_NORMAL_SHARE, BLEND_DK_SHARE, BLEND_NORMAL_SHARE
-
     v = np.sqrt(ACCEL_NORMAL_SHARE * a_pl / kappa)
     v = np.minimum(v, np.cbrt(BLEND_NORMAL_SHARE * j_pl / (kappa * kappa)))
     return np.minimum(v, np.cbrt(BLEND_DK_SHARE * j_pl / dk))
@@ -275,8 +97,8 @@ def _blend_caps(theta: np.ndarray, half: np.ndarray, a_pl: np.ndarray, j_pl: np.
     return _blend_caps_k(theta / half, theta / (half * half), a_pl, j_pl)
 
 
-def _blend_not_slower(program: Program, machine: MachineSpec, jj: np.ndarray, v_blend: np.ndarray,
-                      tangent_len: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
+def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds, jj: np.ndarray,
+                      v_blend: np.ndarray, tangent_len: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
     """True where the blend cannot make the corner slower than the sharp corner's plan.
 
     The program is planned as it is; a blend holds about one speed over the lines' last and
@@ -285,9 +107,6 @@ def _blend_not_slower(program: Program, machine: MachineSpec, jj: np.ndarray, v_
     each move's profile starts with zero acceleration, and the lines' peak speeds), the blended
     corner is crossed at least as fast everywhere, provided the corner is where the sharp plan
     is slowest."""
-    from planner.plan import plan_program
-
-    plan = plan_program(program, machine)
     v_joint = np.asarray(plan.ve)[jj]
     j = np.minimum(j_pl, machine.limits.j_max_mm_s3)
     v_ramp = _ramp_speed(v_joint, tangent_len, j)
@@ -330,10 +149,10 @@ def _settle(lc: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarray,
     rc = radius.copy()
     for _ in range(12):
         vt = lc / rc
-        x1, y1 = _fresnel(vt, np.ones_like(vt))
+        x1, y1 = fresnel(vt, np.ones_like(vt))
         rc = radius - (lc * y1 - rc * (1.0 - np.cos(0.5 * vt)))
     vt = lc / rc
-    x1, y1 = _fresnel(vt, np.ones_like(vt))
+    x1, y1 = fresnel(vt, np.ones_like(vt))
     p = lc * y1 - rc * (1.0 - np.cos(0.5 * vt))
     return rc, p, lc * x1 - rc * np.sin(0.5 * vt)
 
@@ -359,7 +178,7 @@ def _fillet_sizes(radius: np.ndarray, theta: np.ndarray, tol: np.ndarray, room: 
     return lc, rc, rc * theta - lc, cx, p
 
 
-def _arc_distance(q: np.ndarray, move: Move) -> np.ndarray:
+def arc_distance(q: np.ndarray, move: Move) -> np.ndarray:
     """Distance of points q from a circular arc move (its angular range, else its ends)."""
     arc = move.arc
     assert arc is not None
@@ -379,13 +198,14 @@ def _arc_distance(q: np.ndarray, move: Move) -> np.ndarray:
     return np.where(inside, np.hypot(radial, off_plane), ends)
 
 
-def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
+def round_fillets(program: Program, machine: MachineSpec, speeds: SpeedOracle | None = None) -> Program:
     """Under G64 P, a fillet - a circular arc tangent to a line on each side, CAM's rounded
     corner - is run as clothoid, arc, clothoid: the curvature eases from 0 onto a circle about
     the same centre, p <= 0.9 P smaller in radius, and back, instead of stepping to 1/R where
     the arc meets each line (where the jerk limit allows only sqrt(J Ts R): 4.5 mm/s on a 2 mm
     fillet at 10,000 mm/s^3). The new path stays within P of the programmed one (checked on
-    samples). Made only where its speed is at least what the sharp plan reaches on the arc."""
+    samples). With ``speeds``, made only where its speed is at least what the sharp plan
+    reaches on the arc."""
     moves = program.moves
     n = len(moves)
     if n < 3 or not any(v > 0 for _, v in program.blend_tolerance):
@@ -449,7 +269,7 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
         cs_t, sn_t = math.cos(theta[i]), math.sin(theta[i])
         u2, n2 = cs_t * u1 + sn_t * n1, -sn_t * u1 + cs_t * n1
         # B along the forward path: first clothoid, arc, then back along the last clothoid
-        x1, y1 = _fresnel(np.array([lc[i] / rc[i]]), np.ones(1))
+        x1, y1 = fresnel(np.array([lc[i] / rc[i]]), np.ones(1))
         x1, y1 = float(x1[0]) * lc[i], float(y1[0]) * lc[i]
         ph0 = 0.5 * lc[i] / rc[i]
         sweep = la[i] / rc[i]
@@ -474,17 +294,18 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
                   length_mm=bl.length_mm, arc=None, exact_stop=False, blend=bl)
         # within P of the programmed line, arc, line: checked on samples
         q = mv.evaluate(np.linspace(0.0, mv.length_mm, 65))[0]
-        dist = np.minimum.reduce([_arc_distance(q, moves[k]),
-                                  _seg_dist(q, moves[k - 1].start[None, :], moves[k - 1].end[None, :]),
-                                  _seg_dist(q, moves[k + 1].start[None, :], moves[k + 1].end[None, :])])
+        before, after = moves[k - 1], moves[k + 1]
+        dist = np.minimum.reduce([arc_distance(q, moves[k]),
+                                  segment_distance(q, before.start[None, :], before.end[None, :]),
+                                  segment_distance(q, after.start[None, :], after.end[None, :])])
         dev = float(dist.max())
         if dev > ptol[i]:
             continue
         blends[k] = replace(mv, blend=replace(bl, measured_deviation_mm=dev))
     if not blends:
         return program
-    if only_where_quicker:
-        blends = _fillets_not_slower(program, machine, blends)
+    if speeds is not None:
+        blends = _fillets_not_slower(speeds(program), machine, blends)
         if not blends:
             return program
     # each fillet's lines were given at most half (room): two fillets never share a line's part
@@ -516,7 +337,7 @@ def round_fillets(program: Program, machine: MachineSpec, only_where_quicker: bo
             continue
         new.append(m)
         spans.append((i, i))
-    return _remap(program, new, spans)
+    return remap_program(program, new, spans)
 
 
 def blend_speed(move: Move, lim: Any) -> float:
@@ -532,12 +353,8 @@ def blend_speed(move: Move, lim: Any) -> float:
     return min(v_b, move.feed_mm_s, lim.v_path)
 
 
-def _fillets_not_slower(program: Program, machine: MachineSpec, blends: dict[int, Move]) -> dict[int, Move]:
+def _fillets_not_slower(plan: JointSpeeds, machine: MachineSpec, blends: dict[int, Move]) -> dict[int, Move]:
     """The fillets whose speed is at least what the sharp plan reaches on their arc."""
-    from planner.lookahead import LimitSet
-    from planner.plan import plan_program
-
-    plan = plan_program(program, machine)
     ve, vpeak = np.asarray(plan.ve), np.asarray(plan.vpeak)
     lim = LimitSet.from_machine(machine)
     # the sharp plan crosses a fillet's joints at no more than sqrt(J Ts R) (the curvature step)
@@ -557,20 +374,10 @@ def _ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray) ->
     return v_joint + 0.5 * j * t * t
 
 
-def blend_program(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
-    """The program under G64 P/Q: runs of lines joined by Q (``merge_naive_cam``), fillets eased
-    by clothoids (``round_fillets``), joints of arcs eased by cubic-curvature transitions
-    (``planner.transition``), then sharp line-line joints replaced by clothoid pairs.
-
-    Returns ``program`` itself when nothing is blended. Move indices change: events, modal
-    texts and offset changes are moved to the new indices (each keeps its place in the path).
-    ``only_where_quicker=False`` blends every eligible corner (smoothest motion: no velocity
-    step at those joints, even where the sharp corner would be crossed sooner).
-    """
-    from planner.transition import ease_joints
-
-    program = round_fillets(merge_naive_cam(program), machine, only_where_quicker)
-    program = ease_joints(program, machine, only_where_quicker)
+def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | None = None) -> Program:
+    """Sharp line-line joints under G64 P replaced by clothoid pairs (the module's text); with
+    ``speeds``, only where the pair is quicker than the sharp corner's plan. ``program``
+    itself when none is made."""
     moves = program.moves
     n = len(moves)
     if n < 2 or not program.blend_tolerance or not any(v > 0 for _, v in program.blend_tolerance):
@@ -624,12 +431,12 @@ def blend_program(program: Program, machine: MachineSpec, only_where_quicker: bo
     dt = np.abs(u2 - u1)
     with np.errstate(divide="ignore", invalid="ignore"):
         v_break = np.where(dt > 1e-12, c_brk * ts / dt, np.inf).min(axis=1)
-    good = v_blend > v_break if only_where_quicker else np.ones(v_blend.shape, dtype=bool)
-    if only_where_quicker and good.any():
+    good = v_blend > v_break if speeds is not None else np.ones(v_blend.shape, dtype=bool)
+    if speeds is not None and good.any():
         # the pair is crossed at no more than the slower line's feed, over both halves
         feeds = np.array([min(moves[i].feed_mm_s, moves[i + 1].feed_mm_s) for i in jj])
         v_cross = np.minimum(v_blend, np.minimum(feeds, machine.limits.v_max_mm_s))
-        good &= _blend_not_slower(program, machine, jj, v_cross, half * t1, j_pl)
+        good &= _blend_not_slower(program, machine, speeds(program), jj, v_cross, half * t1, j_pl)
     jj, u1, n1, theta, half = jj[good], u1[good], n1[good], theta[good], half[good]
     t1 = t1[good]
     if not jj.size:
@@ -679,10 +486,10 @@ def _rebuild(program: Program, joints: np.ndarray, a_pts: np.ndarray, b_pts: np.
             prev_b = b_end
         else:
             prev_b = None
-    return _remap(program, new, [(o, o) for o in origin])
+    return remap_program(program, new, [(o, o) for o in origin])
 
 
-def _remap(program: Program, new: list[Move], spans: list[tuple[int, int]]) -> Program:
+def remap_program(program: Program, new: list[Move], spans: list[tuple[int, int]]) -> Program:
     """The program with moves ``new``; ``spans[k]``: the old moves new move k comes from.
 
     Events after old move i go after the last new move of i; modal texts, offset parts and
@@ -781,7 +588,7 @@ def merge_naive_cam(program: Program) -> Program:
     # end if move i's end lies within Q of the line from its start to that end
     pair_ok = np.zeros(n, dtype=bool)
     if n > 1:
-        pair_ok[:-1] = cont[1:] & (_seg_dist(lin[:-1], b_lin[:-1], lin[1:]) <= q_tol[:-1])
+        pair_ok[:-1] = cont[1:] & (segment_distance(lin[:-1], b_lin[:-1], lin[1:]) <= q_tol[:-1])
         pair_ok[:-1] &= np.any(lin[1:] != b_lin[:-1], axis=1)
     # run[i]: how many moves after i continue a chain holding i (cont run length)
     follows = np.append(cont[1:], False)  # follows[i]: move i + 1 continues
@@ -809,10 +616,10 @@ def merge_naive_cam(program: Program) -> Program:
         i = k_end + 1
     if not joined:
         return program
-    return _remap(program, new, spans)
+    return remap_program(program, new, spans)
 
 
-def _seg_dist(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Distance of points p from segments a-b, row by row (LinuxCNC's clamped projection)."""
     m = b - a
     rel = p - a
@@ -835,7 +642,7 @@ def _chain_end(lin: np.ndarray, b: np.ndarray, i: int, last: int, q: float) -> i
         ends = lin[hi_done + 1:hi + 1]                 # candidate ends k = hi_done+1 .. hi
         pts = lin[i:hi]                                # chain points i .. hi-1
         k_idx = np.arange(hi_done + 1, hi + 1)
-        dist = _seg_dist(pts[None, :, :], b[None, None, :], ends[:, None, :])
+        dist = segment_distance(pts[None, :, :], b[None, None, :], ends[:, None, :])
         inside = (dist <= q) | (np.arange(i, hi)[None, :] >= k_idx[:, None])
         ok = inside.all(axis=1) & np.any(ends != b, axis=1)
         bad = np.flatnonzero(~ok)

@@ -30,17 +30,17 @@ is on (LinuxCNC refuses it too).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
-from planner.arcs import FULL_CIRCLE_MM
-from planner.errors import BlockError
-from planner.program import MoveKind, _make_arc, spiral_length_mm
+from planner.core.errors import BlockError
+from planner.core.movestore import MoveBuffer
+from planner.core.program import Arc, MoveKind, _make_arc, spiral_length_mm
+from planner.gcode.codes import G
+from planner.geometry.arcs import FULL_CIRCLE_MM
 
-if TYPE_CHECKING:
-    from planner.interpreter import _Interpreter
-
-__all__ = ["CutterComp", "LEFT", "RIGHT", "find_turn"]
+__all__ = ["CutterComp", "CompHost", "LEFT", "RIGHT", "find_turn"]
 
 LEFT, RIGHT = 1, -1
 _SMALL = 0.05          # rad: LinuxCNC's TOLERANCE_CONCAVE_CORNER
@@ -48,6 +48,65 @@ _EQUAL = 1e-6          # LinuxCNC's TOLERANCE_EQUAL
 _ARC_BACK_MM = 0.0254  # rad: how far an arc's end may move past its programmed sweep
 _HALF_PI = 0.5 * math.pi
 _TWO_PI = 2.0 * math.pi
+
+
+
+class _Moves(Protocol):
+    @property
+    def out(self) -> MoveBuffer: ...
+
+
+class _Units(Protocol):
+    @property
+    def inch(self) -> bool: ...
+
+    @property
+    def scale(self) -> float: ...
+
+    @property
+    def feed_mode(self) -> int: ...
+
+    @property
+    def feed_mm_s(self) -> float: ...
+
+    @property
+    def inverse_f(self) -> float: ...
+
+
+class _Fixed(Protocol):
+    @property
+    def start(self) -> tuple[float, ...]: ...
+
+    @property
+    def zero_length(self) -> float: ...
+
+
+class CompHost(Protocol):
+    """What compensation uses of the interpreter: where the tool is, the moves made (to cut
+    back a queued one), the units and feed, and the interpreter's own move and arc rules."""
+
+    pos: list[float]
+
+    @property
+    def rec(self) -> _Moves: ...
+
+    @property
+    def modal(self) -> _Units: ...
+
+    @property
+    def setup(self) -> _Fixed: ...
+
+    def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
+             line_no: int, fixed_feed: bool = False) -> None: ...
+
+    def drop_move(self, i: int) -> None: ...
+
+    def path_length(self, a: Sequence[float], b: Sequence[float]) -> float: ...
+
+    def plane_axes(self) -> tuple: ...
+
+    def arc_center(self, x0: float, y0: float, x1: float, y1: float, vals: dict[str, float], cw: bool,
+                   scale: float) -> tuple[float, float, float, float]: ...
 
 
 def find_turn(x1: float, y1: float, cx: float, cy: float, turn: int, x2: float, y2: float) -> float:
@@ -113,7 +172,7 @@ class CutterComp:
         self.axes = axes
         self._update()
 
-    def turn_off(self, host: _Interpreter) -> None:
+    def turn_off(self, host: CompHost) -> None:
         if self.side != 0 and self.radius > 0.0 and not self.first:
             fa, sa = self.axes
             self.move_endpoint_and_flush(host, host.pos[fa], host.pos[sa])
@@ -133,7 +192,7 @@ class CutterComp:
         self.arc_banned = False
         self._update()
 
-    def stop(self, host: _Interpreter) -> None:
+    def stop(self, host: CompHost) -> None:
         """M0, M1, M2, M30: the queued moves are final (LinuxCNC's convert_stop)."""
         if self.queue:
             fa, sa = self.axes
@@ -154,7 +213,7 @@ class CutterComp:
         self.queue.clear()
         self.endpoint = None
 
-    def move_endpoint_and_flush(self, host: _Interpreter, x: float, y: float) -> None:
+    def move_endpoint_and_flush(self, host: CompHost, x: float, y: float) -> None:
         """Move the end of every queued move to (x, y) in the plane, then make them final."""
         if not self.queue:
             return
@@ -164,7 +223,7 @@ class CutterComp:
             self.dequeue()       # the queued moves stay as they are; no second error from them
             raise
         fa, sa = self.axes
-        out = host.out
+        out = host.rec.out
         for q in self.queue:
             moved = out.end(q.index).copy()
             moved[fa], moved[sa] = x, y
@@ -173,24 +232,24 @@ class CutterComp:
             self._rebuild(host, q)
         host.pos = out.last_end()
         for q in reversed(self.queue):
-            if out.record(q.index)[3] <= host.zero_length:
+            if out.record(q.index)[3] <= host.setup.zero_length:
                 host.drop_move(q.index)
         self.queue.clear()
         self.endpoint = (x, y)
 
-    def _check_moved_ends(self, host: _Interpreter, x: float, y: float) -> None:
+    def _check_moved_ends(self, host: CompHost, x: float, y: float) -> None:
         """LinuxCNC's gouge checks: a line must not turn back, an arc must not grow."""
         fa, sa = self.axes
         ep = self.endpoint
         # LinuxCNC adds this to the sweep (rad) as it is: 0.0254 in mm programs, 0.001 in inch
-        tol = 0.001 if host.inch else _ARC_BACK_MM
+        tol = 0.001 if host.modal.inch else _ARC_BACK_MM
         for q in self.queue:
-            end = host.out.end(q.index)
+            end = host.rec.out.end(q.index)
             if q.center is not None:
                 cx, cy = q.center
                 r1 = math.hypot(end[fa] - cx, end[sa] - cy)
                 r2 = math.hypot(x - cx, y - cy)
-                if abs(r1 - r2) > 0.01 * host.scale:
+                if abs(r1 - r2) > 0.01 * host.modal.scale:
                     raise BlockError(f"cutter compensation made an arc whose radius changes from {r1:.4f} "
                                      f"to {r2:.4f} mm (an error of this control: please report the "
                                      "program)", "G")
@@ -200,14 +259,14 @@ class CutterComp:
                         raise BlockError("arc move in a concave corner cannot be reached by the tool "
                                          "without gouging (the tool is too big for this corner)", "G")
             elif ep is not None and q.dx * (x - ep[0]) + q.dy * (y - ep[1]) < 0.0:
-                what = "rapid" if host.out.record(q.index)[1] is MoveKind.RAPID else "straight feed"
+                what = "rapid" if host.rec.out.record(q.index)[1] is MoveKind.RAPID else "straight feed"
                 raise BlockError(f"{what} in a concave corner cannot be reached by the tool without "
                                  "gouging (the corner's sides are shorter than the tool needs)", "G")
 
-    def _rebuild(self, host: _Interpreter, q: _Queued) -> None:
+    def _rebuild(self, host: CompHost, q: _Queued) -> None:
         i = q.index
-        out = host.out
-        start = out.end(i - 1) if i else list(host.start)
+        out = host.rec.out
+        start = out.end(i - 1) if i else list(host.setup.start)
         end = out.end(i)
         if q.center is None:
             out.replace(i, end, host.path_length(start, end), None)
@@ -215,7 +274,7 @@ class CutterComp:
             arc, length = self._arc_record(host, start, end, q.center, q.turn, q.sweep0)
             out.replace(i, end, length, arc)
 
-    def _arc_record(self, host: _Interpreter, start: list[float], end: list[float],
+    def _arc_record(self, host: CompHost, start: list[float], end: list[float],
                     center: tuple[float, float], turn: int, sweep0: float = 0.0) -> tuple:
         """The arc and its length; ``sweep0`` the programmed sweep, which decides whether an
         arc that ends where it starts (to rounding) is a whole turn or nothing."""
@@ -239,37 +298,37 @@ class CutterComp:
         return arc, length
 
     # ------------------------------------------------------------------ emitting
-    def _line(self, host: _Interpreter, end: list[float], rapid: bool, feed: float, line_no: int,
+    def _line(self, host: CompHost, end: list[float], rapid: bool, feed: float, line_no: int,
               dx: float, dy: float, queued: bool = True) -> None:
         length = host.path_length(host.pos, end)
-        if length <= host.zero_length:
+        if length <= host.setup.zero_length:
             return
         host.emit(end, MoveKind.RAPID if rapid else MoveKind.LINE, math.inf if rapid else feed, length,
                   None, line_no, fixed_feed=True)
         if queued:
-            self.queue.append(_Queued(len(host.out) - 1, dx, dy))
+            self.queue.append(_Queued(len(host.rec.out) - 1, dx, dy))
 
-    def _arc(self, host: _Interpreter, end: list[float], center: tuple[float, float], turn: int,
+    def _arc(self, host: CompHost, end: list[float], center: tuple[float, float], turn: int,
              feed: float, line_no: int, sweep0: float, queued: bool = True) -> None:
         arc, length = self._arc_record(host, host.pos, end, center, turn, sweep0)
         if sweep0 != 0.0 and abs(arc.sweep_rad) > abs(sweep0) + math.pi:
             raise BlockError("with cutter compensation this arc would turn a whole circle more than "
                              "programmed: the arc is too short for the tool's radius", "G")
-        if length <= host.zero_length:
+        if length <= host.setup.zero_length:
             return
         host.emit(end, MoveKind.ARC, feed, length, arc, line_no, fixed_feed=True)
         if queued:
-            self.queue.append(_Queued(len(host.out) - 1, 0.0, 0.0, center, turn, sweep0))
+            self.queue.append(_Queued(len(host.rec.out) - 1, 0.0, 0.0, center, turn, sweep0))
 
-    def _feed(self, host: _Interpreter, rapid: bool, programmed_mm: float) -> float:
+    def _feed(self, host: CompHost, rapid: bool, programmed_mm: float) -> float:
         if rapid:
             return math.inf
-        if host.feed_mode == 930:      # G93: the block's time over its programmed length
-            return programmed_mm * host.inverse_f / 60.0
-        return host.feed_mm_s
+        if host.modal.feed_mode == G.G93:    # the block's time over its programmed length
+            return programmed_mm * host.modal.inverse_f / 60.0
+        return host.modal.feed_mm_s
 
     # ------------------------------------------------------------------ straight moves
-    def straight(self, host: _Interpreter, target: list[float], rapid: bool, line_no: int) -> None:
+    def straight(self, host: CompHost, target: list[float], rapid: bool, line_no: int) -> None:
         fa, sa = self.axes
         pos = host.pos
         base = self.base(pos)
@@ -372,7 +431,7 @@ class CutterComp:
         self.programmed = (px, py)
 
     # ------------------------------------------------------------------ arcs
-    def arc(self, host: _Interpreter, target: list[float], vals: dict[str, float], cw: bool, turns: int,
+    def arc(self, host: CompHost, target: list[float], vals: dict[str, float], cw: bool, turns: int,
             scale: float, line_no: int) -> None:
         fa, sa = self.axes
         pos = host.pos

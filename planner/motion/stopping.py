@@ -40,9 +40,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planner.machine import MachineSpec
-from planner.plan import Plan
-from planner.window import PlanWindow
+from planner.core.machine import MachineSpec
+from planner.motion.plan import Plan
+from planner.motion.window import PlanWindow
 
 __all__ = ["PathStop", "StopProfile", "plan_path_stop", "stop_profile"]
 

@@ -2,7 +2,7 @@
 lines are control statements, and where each one leads. ``scan`` reads a program's lines once
 and matches every ``sub``/``endsub``, ``if``/``elseif``/``else``/``endif``, ``while``/``endwhile``,
 ``do``/``while``, ``repeat``/``endrepeat`` by their label (``o100`` or ``o<name>``), and resolves
-``break``/``continue`` to their loop. The interpreter (``planner.interpreter``) runs the program
+``break``/``continue`` to their loop. The interpreter (``planner.gcode.interpreter``) runs the program
 with these jump tables; a mismatch is an error naming the line and what is missing.
 """
 
@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from planner.lexer import LexError, compact
+from planner.gcode.lexer import LexError, compact
 
 __all__ = ["KEYWORDS", "Statement", "Structure", "StructureError", "has_control_flow", "scan"]
 

@@ -26,8 +26,8 @@ from typing import Any, BinaryIO
 
 import numpy as np
 
-from planner.files import write_output
-from planner.program import EventKind, MoveKind, Program, turn_xy
+from planner.core.files import write_output
+from planner.core.program import EventKind, MoveKind, Program, turn_xy
 
 __all__ = ["canon_records", "iter_canon_records", "write_canon"]
 
@@ -165,7 +165,7 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
 
 
 def write_canon(program: Program, path: str | os.PathLike[str], offsets: bool = True) -> None:
-    """Write canon_records(program, offsets) as JSONL (``planner.files``: atomically for a file,
+    """Write canon_records(program, offsets) as JSONL (``planner.core.files``: atomically for a file,
     directly to a device, a pipe or ``-``)."""
 
     def write(fh: BinaryIO) -> None:

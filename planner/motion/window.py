@@ -24,11 +24,11 @@ from collections.abc import Callable, Iterator
 
 import numpy as np
 
-from planner.errors import PlannerError
-from planner.interpolate import Interpolator, SampleChunk, Segment, SegmentJoin, first_sample_at
-from planner.machine import MachineSpec
-from planner.plan import DEFAULT_CHUNK, DEFAULT_WINDOW, Plan, plan_segments, resolve_settings
-from planner.program import Program
+from planner.core.errors import PlannerError
+from planner.core.machine import MachineSpec
+from planner.core.program import Program
+from planner.motion.interpolate import Interpolator, SampleChunk, Segment, SegmentJoin, first_sample_at
+from planner.motion.plan import DEFAULT_CHUNK, DEFAULT_WINDOW, Plan, plan_segments, resolve_settings
 
 __all__ = ["PlanWindow", "WINDOW_SEGMENT_MOVES"]
 

@@ -1,7 +1,7 @@
 """Machine description the planner needs: axes, limits, planner settings, work offsets.
 
 Read from the machine configuration TOML (resources/machines/*.toml), declared once in
-``planner.schema``. The controller (app/machine) reads the same file, through the same schema,
+``planner.core.schema``. The controller (app/machine) reads the same file, through the same schema,
 for the sections the planner does not use ([homing], [bus], [controller]).
 """
 
@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from planner.errors import PlannerError
-from planner.schema import Locator, check_complete, validate
+from planner.core.errors import PlannerError
+from planner.core.schema import Locator, check_complete, validate
 
 WORK_OFFSET_NAMES: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59")
 PLANNER_MODES: tuple[str, ...] = ("lookahead", "paper")
@@ -150,7 +150,7 @@ COUNTS_LIMIT = 2**31 * 0.9
 
 def machine_from_dict(data: dict[str, Any], where: str | Locator = "<config>", text: str | None = None
                       ) -> MachineSpec:
-    """Validate a parsed configuration (``planner.schema``, strict) and build the planner's
+    """Validate a parsed configuration (``planner.core.schema``, strict) and build the planner's
     view of it; every message names the file, the line when ``text`` is given, the key and
     the value."""
     loc = where if isinstance(where, Locator) else Locator(where, text)

@@ -16,7 +16,7 @@ programmed moves (checked on samples; d shrinks until it does) and takes at most
 move. Its largest curvature and curvature rate (exact, ``blend.poly_bounds``) set its speed.
 Made only where its speed beats the speed the sharp plan crosses the joint at.
 
-Joints handled: line-arc, arc-line and arc-arc (not line-line: ``planner.blend``'s corners),
+Joints handled: line-arc, arc-line and arc-arc (not line-line: ``planner.geometry.blend``'s corners),
 both moves in one machine plane (the arc's; no helix), no rotary motion, G64 P on both, no
 exact stop or event at the joint, and at most 30 degrees of kink.
 """
@@ -28,19 +28,21 @@ from dataclasses import replace
 
 import numpy as np
 
-from planner.blend import (
+from planner.core.curves import Blend, poly_heading
+from planner.core.limits import LimitSet
+from planner.core.machine import MachineSpec
+from planner.core.program import Move, MoveKind, Program
+from planner.geometry.blend import (
     MIN_LINE_MM,
-    Blend,
-    _arc_distance,
-    _poly_heading,
-    _remap,
-    _seg_dist,
+    JointSpeeds,
+    SpeedOracle,
+    arc_distance,
     blend_speed,
     joint_context,
+    remap_program,
+    segment_distance,
 )
-from planner.machine import MachineSpec
-from planner.program import Move, MoveKind, Program
-from planner.resume import head_move, split_move
+from planner.geometry.resume import head_move, split_move
 
 __all__ = ["ease_joints", "solve_transition"]
 
@@ -62,7 +64,7 @@ def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tupl
 
 
 def _end(c: tuple[float, float, float, float], length: float) -> np.ndarray:
-    ps = _poly_heading(np.array([c]), np.array([length * _GX]))[0]
+    ps = poly_heading(np.array([c]), np.array([length * _GX]))[0]
     return length * np.array([np.cos(ps) @ _GW, np.sin(ps) @ _GW])
 
 
@@ -128,8 +130,8 @@ def _kappa_at(m: Move, u: float) -> float:
 
 def _distance_to(q: np.ndarray, m: Move) -> np.ndarray:
     if m.arc is None:
-        return _seg_dist(q, m.start[None, :], m.end[None, :])
-    return _arc_distance(q, m)
+        return segment_distance(q, m.start[None, :], m.end[None, :])
+    return arc_distance(q, m)
 
 
 def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float) -> tuple[Move, Move, Move] | None:
@@ -178,9 +180,10 @@ def _head(m: Move, u: float, end: np.ndarray) -> Move | None:
     return head_move(m, u)
 
 
-def ease_joints(program: Program, machine: MachineSpec, only_where_quicker: bool = True) -> Program:
+def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | None = None) -> Program:
     """The program with its line-arc, arc-line and arc-arc joints under G64 P eased (see the
-    module's text); ``program`` itself when none is."""
+    module's text; with ``speeds``, only where the transition is quicker than the sharp
+    joint's plan); ``program`` itself when none is."""
     moves = program.moves
     n = len(moves)
     if n < 2 or not any(v > 0 for _, v in program.blend_tolerance):
@@ -222,22 +225,18 @@ def ease_joints(program: Program, machine: MachineSpec, only_where_quicker: bool
         made[j] = trio
     if not made:
         return program
-    if only_where_quicker:
-        made = _quicker(program, machine, made)
+    if speeds is not None:
+        made = _quicker(speeds(program), machine, made)
         if not made:
             return program
     return _apply(program, made)
 
 
-def _quicker(program: Program, machine: MachineSpec, made: dict[int, tuple[Move, Move, Move]]
+def _quicker(plan: JointSpeeds, machine: MachineSpec, made: dict[int, tuple[Move, Move, Move]]
              ) -> dict[int, tuple[Move, Move, Move]]:
     """The transitions whose speed beats the speed the sharp plan crosses their joint at (not
     also what it reaches a stretch away, as corner blends ask: that keeps fewer transitions,
     and the shared CAM programs run slower with it)."""
-    from planner.lookahead import LimitSet
-    from planner.plan import plan_program
-
-    plan = plan_program(program, machine)
     ve = np.asarray(plan.ve)
     lim = LimitSet.from_machine(machine)
     return {j: trio for j, trio in made.items() if blend_speed(trio[1], lim) > ve[j]}
@@ -267,4 +266,4 @@ def _apply(program: Program, made: dict[int, tuple[Move, Move, Move]]) -> Progra
             continue
         new.append(cur)
         spans.append((i, i))
-    return _remap(program, new, spans)
+    return remap_program(program, new, spans)

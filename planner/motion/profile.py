@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planner.errors import PlannerError
+from planner.core.errors import PlannerError
 
 __all__ = [
     "Profiles",

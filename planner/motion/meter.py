@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planner.machine import MachineSpec
+from planner.core.machine import MachineSpec
 
 __all__ = ["KINDS", "REL_TOL", "LimitMeter", "PathSpeedLimits", "Worst", "check_limits", "path_vaj"]
 

@@ -30,10 +30,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from planner.errors import PlannerError
-from planner.lookahead import PlannedBlock
-from planner.movetable import MoveTable, RowJoin, concat_tables
-from planner.profile import Profiles, build_profiles
+from planner.core.errors import PlannerError
+from planner.geometry.movetable import MoveTable, RowJoin, concat_tables
+from planner.motion.lookahead import PlannedBlock
+from planner.motion.profile import Profiles, build_profiles
 
 __all__ = ["INTERPOLATIONS", "Interpolator", "SampleChunk", "Segment", "SegmentJoin", "first_sample_at",
            "make_segment"]

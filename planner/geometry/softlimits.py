@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planner.machine import MachineSpec
-from planner.movestore import MoveStore
-from planner.program import Arc, Move, Program
+from planner.core.machine import MachineSpec
+from planner.core.movestore import MoveStore
+from planner.core.program import Arc, Move, Program
 
 __all__ = [
     "LimitViolation", "check_and_bound", "check_point", "check_program", "move_bounds", "move_bounds_pieces",

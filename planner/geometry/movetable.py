@@ -16,9 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from planner.blend import pair_frames, pair_positions
-from planner.movestore import MoveStore
-from planner.program import Arc, Move, MoveKind, turn_xy
+from planner.core.curves import pair_frames, pair_positions
+from planner.core.movestore import MoveStore
+from planner.core.program import Arc, Move, MoveKind, turn_xy
 
 __all__ = ["MoveTable", "RowJoin", "concat_tables", "contour_error", "join_rows", "take_rows"]
 
@@ -92,7 +92,7 @@ class MoveTable:
     turn_y: np.ndarray
     spiral_poly: np.ndarray  # (n, 8) t(x) - x coefficients (x = u / L), spirals only
     spiral_poly_ok: np.ndarray  # (n,) bool: polynomial exact to rounding for this spiral
-    # corner blends (planner.blend): pair start A, unit direction and inside normal (n, d),
+    # corner blends (planner.geometry.blend): pair start A, unit direction and inside normal (n, d),
     # half length, turn and where the move starts along the pair (n,)
     is_blend: np.ndarray
     bl_a: np.ndarray

@@ -18,7 +18,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from planner.errors import PlannerError
+from planner.core.errors import PlannerError
 
 __all__ = ["OFFSET_AXES", "Tool", "ToolTable", "format_tbl", "parse_tbl", "read_tbl"]
 

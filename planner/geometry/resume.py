@@ -13,8 +13,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from planner.errors import PlannerError
-from planner.program import (
+from planner.core.errors import PlannerError
+from planner.core.program import (
     Arc,
     Event,
     EventKind,

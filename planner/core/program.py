@@ -23,7 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from planner.frames import Frame
+from planner.core.curves import Blend, blend_eval
+from planner.core.frames import Frame
 
 __all__ = [
     "AnalogOutput",
@@ -53,7 +54,7 @@ class MoveKind(enum.IntEnum):
     RAPID = 0
     LINE = 1
     ARC = 2
-    BLEND = 3  # a corner blend under G64 P (planner.blend): a pair of clothoids between two lines
+    BLEND = 3  # a corner blend under G64 P (planner.geometry.blend): a pair of clothoids between two lines
 
 
 @dataclass(frozen=True, slots=True)
@@ -196,7 +197,7 @@ class Move:
     length_mm: float  # u runs over [0, length_mm]; linear-axis length, rotary degrees if none
     arc: Arc | None
     exact_stop: bool  # G61 active -> full stop at the end of this move
-    blend: Any = None  # planner.blend.Blend for kind BLEND, else None
+    blend: Blend | None = None  # for kind BLEND (its clothoids, arc or transition), else None
 
     def evaluate(self, u_mm: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position (N, n_axes), unit tangent dq/du (N, n_axes) and curvature 1/mm (N,) at u.
@@ -212,8 +213,6 @@ class Move:
         delta = self.end - start
         arc = self.arc
         if self.blend is not None:
-            from planner.blend import blend_eval
-
             return blend_eval(self, u)
         if arc is None:
             if length > 0.0:
@@ -455,7 +454,7 @@ class Program:
     name: str
     axes: tuple[str, ...]
     rotary: tuple[bool, ...]
-    moves: Sequence[Move]  # a tuple, or planner.movestore.MoveStore (columns)
+    moves: Sequence[Move]  # a tuple, or planner.core.movestore.MoveStore (columns)
     events: tuple[Event, ...]
     start_position: np.ndarray  # machine position before the first move
     # Additions (not in the minimal contract):
@@ -464,7 +463,7 @@ class Program:
     # the active modal codes as the operator reads them ("G17 G21 G90 G94 G54 G40 G49 G64"),
     # from move ``first`` on: ((first, text), ...) at each change
     modal: tuple[tuple[int, str], ...] = ()
-    # the persistent parameters (planner.interpreter.PERSISTENT_PARAMETERS) after each OFFSETS
+    # the persistent parameters (planner.gcode.interpreter.PERSISTENT_PARAMETERS) after each OFFSETS
     # event, by the event's value
     parameter_sets: tuple[dict[int, float], ...] = ()
     # the offsets in parts, as LinuxCNC's canonical calls set them: (first move, line,
@@ -472,7 +471,7 @@ class Program:
     # machine units
     offset_parts: tuple[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
                               tuple[float, ...], float], ...] = ()
-    # tools changed by G10 L1/L10/L11, by the TOOL_DATA event's value (planner.tools.Tool)
+    # tools changed by G10 L1/L10/L11, by the TOOL_DATA event's value (planner.core.tools.Tool)
     tool_sets: tuple[Any, ...] = ()
     # the G64 P path tolerance (mm) from move ``first`` on: ((first, tolerance), ...) at each
     # change; 0 keeps the programmed path (G61, G61.1, G64 without a tolerance)

@@ -1,6 +1,6 @@
 """The machine configuration file, declared once: every section, key, type, range and default.
 
-The planner reads its sections from it (``planner.machine``) and the controller the rest
+The planner reads its sections from it (``planner.core.machine``) and the controller the rest
 (``app.machine.config``); both go through ``validate``, so a file is accepted or refused the
 same way by ``cnc-plan``, ``cnc-run`` and the panel. Strict: an unknown section or key is an
 error (with the nearest known name), a value of the wrong type is an error (an integer key
@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from planner.errors import PlannerError
+from planner.core.errors import PlannerError
 
 __all__ = ["END_MARK", "HEADER", "MACHINE_FILE", "REQUIRED", "Key", "Locator", "Table", "check_complete",
            "key_lines", "validate"]

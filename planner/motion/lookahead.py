@@ -32,7 +32,7 @@ Two modes (``planner.mode``):
     |jerk vector| <= J_plane. A_plane, J_plane: the smaller limit of the two plane axes.
     Spirals take the curvature and turn rate of their small end, and the jerk of their
     changing curvature, v^3 |dkappa/ds|, shares the cross term's part (at most half of it).
-    Corner blends (``planner.blend``, clothoid pairs in the plane of their two lines, every
+    Corner blends (``planner.geometry.blend``, clothoid pairs in the plane of their two lines, every
     axis of that plane counted) take kappa and dkappa/ds of the pair and other shares: the
     changing curvature up to 0.8 J_plane and the cross term the rest of 0.9 J_plane, the
     centripetal jerk up to 0.3 J_plane, j_t the rest of sqrt(1 - 0.9^2) J_plane.
@@ -61,17 +61,24 @@ move from any start speed; stops always are.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
-from planner.errors import PlannerError
-from planner.machine import MachineSpec
-from planner.movetable import MoveTable, take_rows
-from planner.profile import reachable_speed_lower_bound, reachable_speed_scalar
-from planner.program import EventKind, Program
+from planner.core.errors import PlannerError
+from planner.core.limits import (
+    ACCEL_NORMAL_SHARE,
+    BLEND_CROSS_SHARE,
+    BLEND_DK_SHARE,
+    BLEND_NORMAL_SHARE,
+    JERK_CROSS_SHARE,
+    JERK_NORMAL_SHARE,
+    LimitSet,
+)
+from planner.core.program import EventKind, Program
+from planner.geometry.movetable import MoveTable, take_rows
+from planner.motion.profile import reachable_speed_lower_bound, reachable_speed_scalar
 
 try:  # the passes in C (planner/_passes.c), built by `pip install -e .`; the Python ones else
     import planner._passes as _passes
@@ -96,41 +103,7 @@ __all__ = [
     "stops_and_dwells",
 ]
 
-ACCEL_NORMAL_SHARE = math.cos(math.radians(30.0))  # LinuxCNC's BLEND_ACC_RATIO_NORMAL
-JERK_NORMAL_SHARE = 0.5
-JERK_CROSS_SHARE = 0.6
-# corner blends (clothoid pairs): normal-direction jerk (cross term + v^3 dkappa/ds) <= 0.9 J,
-# of which the changing curvature up to 0.8 J; the tangential part then has
-# sqrt(1 - 0.9^2) = 0.436 J, of which kappa^2 v^3 takes up to 0.3 J
-BLEND_CROSS_SHARE = 0.9
-BLEND_DK_SHARE = 0.8
-BLEND_NORMAL_SHARE = 0.3
 MODES = ("lookahead", "paper")
-
-
-@dataclass(frozen=True, slots=True)
-class LimitSet:
-    """Path and axis limits as arrays (per-axis values in mm or deg units)."""
-
-    v_path: float
-    a_path: float
-    j_path: float
-    rapid_v: float
-    ts_s: float
-    v_axis: np.ndarray
-    a_axis: np.ndarray
-    j_axis: np.ndarray
-
-    @staticmethod
-    def from_machine(machine: MachineSpec, ts_s: float | None = None) -> LimitSet:
-        lim = machine.limits
-        return LimitSet(
-            v_path=lim.v_max_mm_s, a_path=lim.a_max_mm_s2, j_path=lim.j_max_mm_s3,
-            rapid_v=lim.rapid_mm_s, ts_s=machine.planner.ts_s if ts_s is None else ts_s,
-            v_axis=np.array([a.v_max for a in machine.axes], dtype=float),
-            a_axis=np.array([a.a_max for a in machine.axes], dtype=float),
-            j_axis=np.array([a.j_max for a in machine.axes], dtype=float),
-        )
 
 
 @dataclass(frozen=True, slots=True)

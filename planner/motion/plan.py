@@ -19,8 +19,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from planner.errors import PlannerError
-from planner.interpolate import (
+from planner.core.errors import PlannerError
+from planner.core.machine import MachineSpec
+from planner.core.movestore import MoveStore
+from planner.core.program import MoveKind, Program
+from planner.geometry.movetable import MoveTable, contour_error
+from planner.motion.interpolate import (
     INTERPOLATIONS,
     Interpolator,
     SampleChunk,
@@ -29,12 +33,9 @@ from planner.interpolate import (
     first_sample_at,
     make_segment,
 )
-from planner.lookahead import MODES, LimitSet, PlannedBlock, plan_blocks, stops_and_dwells
-from planner.machine import MachineSpec
-from planner.meter import LimitMeter
-from planner.movestore import MoveStore
-from planner.movetable import contour_error
-from planner.program import MoveKind, Program
+from planner.motion.lookahead import MODES, LimitSet, PlannedBlock, plan_blocks, stops_and_dwells
+from planner.motion.meter import LimitMeter
+from planner.motion.profile import build_profiles
 
 __all__ = ["LimitReport", "Plan", "SampleChunk", "plan_program", "stream_program"]
 
@@ -263,9 +264,6 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
     if len(moves):
         seg = join.result()
     else:
-        from planner.movetable import MoveTable
-        from planner.profile import build_profiles
-
         empty = MoveTable.from_moves((), len(program.axes))
         z = np.zeros(0)
         seg = Segment(empty, build_profiles(z, z, z, z, z, z), z, z, 0.0, z, 0.0)
@@ -294,7 +292,7 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
                     on_chunk: Callable[[SampleChunk], None] | None = None) -> LimitReport:
     """The limit report of a plan given as consecutive segments (``plan_segments``, or the
     whole plan's one): closed-form maxima of the profiles, and the samples measured by the one
-    limit meter (``planner.meter``) against the programmed feed of each move and the machine's
+    limit meter (``planner.motion.meter``) against the programmed feed of each move and the machine's
     limits. ``on_segment`` sees each segment once it is measured (a streamed summary),
     ``on_chunk`` each chunk of samples (files written as the samples are made)."""
     ts = machine.planner.ts_s

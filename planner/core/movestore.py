@@ -22,9 +22,16 @@ from typing import Any, overload
 
 import numpy as np
 
-from planner.heap import trim_heap
-from planner.packed import ColumnPacker, DenseColumn, DerivedLength, FloatColumn, RunColumn, length_exceptions
-from planner.program import Arc, Move, MoveKind, _make_move
+from planner.core.heap import trim_heap
+from planner.core.packed import (
+    ColumnPacker,
+    DenseColumn,
+    DerivedLength,
+    FloatColumn,
+    RunColumn,
+    length_exceptions,
+)
+from planner.core.program import Arc, Move, MoveKind, _make_move
 
 __all__ = ["MoveBuffer", "MoveColumns", "MoveStore"]
 
@@ -46,7 +53,7 @@ class MoveColumns:
     arc_rows: np.ndarray  # local rows that are arcs, ascending
     arcs: tuple[Arc, ...]  # their arcs
     blend_rows: np.ndarray  # local rows that are corner blends, ascending
-    blends: tuple[Any, ...]  # their planner.blend.Blend
+    blends: tuple[Any, ...]  # their planner.core.curves.Blend
 
     @property
     def feed(self) -> np.ndarray:
@@ -270,11 +277,12 @@ class MoveBuffer:
 
     def append(self, target: list[float], line: int, kind: int, feed: float, length: float,
                arc: Arc | None, exact_stop: bool) -> None:
+        ends = self._ends
         if arc is not None:
-            self.arcs[len(self)] = arc
-        self._ends.append(target)
+            self.arcs[self._packed + len(ends)] = arc
+        ends.append(target)
         self._recs.append((line, kind, feed, length, exact_stop))
-        if len(self._ends) >= self.CHUNK:
+        if len(ends) >= self.CHUNK:
             self._pack()
 
     def extend(self, ends: np.ndarray, line: np.ndarray, kind: np.ndarray, feed: np.ndarray,
@@ -399,7 +407,7 @@ class MoveBuffer:
         pos[0] = self.start
         line, kind, stop = np.empty(n, np.int32), np.empty(n, np.int8), np.empty(n, bool)
         # feeds come in runs and lengths are the distance between the ends but for arcs: kept
-        # packed (planner.packed), 160 MB less at 10,000,000 moves
+        # packed (planner.core.packed), 160 MB less at 10,000,000 moves
         feed, length = ColumnPacker(n), ColumnPacker(n, pos)
         k = 0
         trimmed_at = 0

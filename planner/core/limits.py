@@ -1,0 +1,50 @@
+"""The machine's limits as the planner holds them (``LimitSet``), and the shares of them that
+curvature may take: what the look-ahead caps a curved move's speed with, and what a blend's
+size and speed are judged by."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.core.machine import MachineSpec
+
+__all__ = ["ACCEL_NORMAL_SHARE", "BLEND_CROSS_SHARE", "BLEND_DK_SHARE", "BLEND_NORMAL_SHARE",
+           "JERK_CROSS_SHARE", "JERK_NORMAL_SHARE", "LimitSet"]
+
+ACCEL_NORMAL_SHARE = math.cos(math.radians(30.0))  # LinuxCNC's BLEND_ACC_RATIO_NORMAL
+JERK_NORMAL_SHARE = 0.5
+JERK_CROSS_SHARE = 0.6
+# corner blends (clothoid pairs): normal-direction jerk (cross term + v^3 dkappa/ds) <= 0.9 J,
+# of which the changing curvature up to 0.8 J; the tangential part then has
+# sqrt(1 - 0.9^2) = 0.436 J, of which kappa^2 v^3 takes up to 0.3 J
+BLEND_CROSS_SHARE = 0.9
+BLEND_DK_SHARE = 0.8
+BLEND_NORMAL_SHARE = 0.3
+
+
+@dataclass(frozen=True, slots=True)
+class LimitSet:
+    """Path and axis limits as arrays (per-axis values in mm or deg units)."""
+
+    v_path: float
+    a_path: float
+    j_path: float
+    rapid_v: float
+    ts_s: float
+    v_axis: np.ndarray
+    a_axis: np.ndarray
+    j_axis: np.ndarray
+
+    @staticmethod
+    def from_machine(machine: MachineSpec, ts_s: float | None = None) -> LimitSet:
+        lim = machine.limits
+        return LimitSet(
+            v_path=lim.v_max_mm_s, a_path=lim.a_max_mm_s2, j_path=lim.j_max_mm_s3,
+            rapid_v=lim.rapid_mm_s, ts_s=machine.planner.ts_s if ts_s is None else ts_s,
+            v_axis=np.array([a.v_max for a in machine.axes], dtype=float),
+            a_axis=np.array([a.a_max for a in machine.axes], dtype=float),
+            j_axis=np.array([a.j_max for a in machine.axes], dtype=float),
+        )
