@@ -59,6 +59,9 @@ TEMPLATES: tuple[str, ...] = (
     N_("drive fault on axis {0} (slave {1}): error code {2}: quick stop of all axes"),
     N_("working counter {0} instead of {1} for more than {2} cycles: quick stop of all axes{3}"),
     N_("E-stop: quick stop of all axes ({0})"),
+    N_("E-stop pressed"),
+    N_("E-stop pressed: {0}"),
+    N_("E-stop pressed {0}"),
     N_("quick stop of all axes: {0}"),
     N_("homing of axis {0} failed ({1})"),
     N_("{0} lost: not answering process data; trying to recover it when it comes back"),
@@ -80,6 +83,22 @@ TEMPLATES: tuple[str, ...] = (
     N_("M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1"),
     N_("T{0} measured on the tool setter: length {1} mm"),
     N_("T{0} is not in the spindle: put it in and set it (In the spindle) first"),
+    # restarts, offsets and tools
+    N_("the program stopped at line {0}: resume there or start it again from the beginning (choose one)"),
+    N_("no program stopped part-way"),
+    N_("run from line {0}"),
+    N_("reset"),
+    N_("the tool length offset in force changed since it was loaded"),
+    # the longer first: the shorter would take its words as a value
+    N_("{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel "
+       "{3} .. {4} {5}"),
+    N_("{0} {1} zero would be at machine {2}, outside the travel {3} .. {4} {5}"),
+    N_("touch off {0}: not a number"),
+    N_("{0}: not a number"),
+    N_("T{0} length {1} mm is longer than the Z travel ({2} mm): check the value and the surface it was "
+       "touched off on"),
+    N_("feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again"),
+    N_("M06: the spindle stops for the tool change"),
 )
 
 

@@ -62,3 +62,14 @@ class Dialogs:
 
     def inform(self, parent: QWidget | None, title: str, text: str) -> None:
         QMessageBox.information(parent, title, text)
+
+
+def connect_or_disconnect(parent: QWidget | None, dialogs: Dialogs, controller: object,
+                          connected: bool) -> None:
+    """The operator's Connect / Disconnect (the header's bus status, the Diagnostics page's
+    button): asked first, since it enables or disables the drives."""
+    if connected:
+        if dialogs.confirm(parent, tr("Disconnect"), tr("Stop and disable the drives?")):
+            controller.disconnect_bus()  # type: ignore[attr-defined]
+    elif dialogs.confirm(parent, tr("Connect"), tr("Connect to the drives and enable them?")):
+        controller.connect_bus()  # type: ignore[attr-defined]

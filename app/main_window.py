@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+from pathlib import Path
 
 from PySide6.QtCore import QEvent, QObject, QTimer, Signal
 from PySide6.QtGui import QCloseEvent
@@ -151,13 +152,25 @@ class MainWindow(QMainWindow):
     # --- start-up ------------------------------------------------------------------------
     def _start(self) -> None:
         ctx = self.context
+        c = ctx.controller
+        unclean = any(a.code == "unclean_shutdown" for a in c.active_alarms)
         if self.options.demo:  # simulated drives: connect, and home by "set here" if needed
-            ctx.controller.connect_bus()
-            if not all(ctx.controller.homed) and ctx.controller.config.homing.method == "set_here":
-                ctx.controller.home_all()
+            c.connect_bus()
+            # after a power loss or a kill the axes stay unhomed in demo too: homing "here"
+            # by itself would show them homed at a made-up zero; the operator homes (one tap)
+            if not all(c.homed) and c.config.homing.method == "set_here" and not unclean:
+                c.home_all()
             if not len(ctx.controller.tool_table):   # a first demo: a few tools to look at
                 ctx.controller.import_tool_table(str(shipped_program("demo_tools.tbl")))
                 ctx.controller.set_tool_in_spindle(1)
+        cut = c.interrupted
+        if cut is not None:
+            self.show_message(tr("{0} was running at line {1} when the control stopped (power loss or "
+                                 "killed): home the axes, open it and run from line {1}").format(
+                                     Path(cut[0]).name, cut[1]))
+        elif unclean:
+            self.show_message(tr("The control did not shut down cleanly: home the axes (Machine zero, "
+                                 "Home all) before running a program"))
         program = self.options.effective_program
         if program is not None and ctx.program.info is None:
             ctx.controller.load_program(program)  # the Program page opens it when it is loaded

@@ -12,7 +12,6 @@ import os
 from pathlib import Path
 from typing import Protocol
 
-import numpy as np
 from PySide6.QtCore import SignalInstance
 
 from app.machine.config import MachineConfig
@@ -26,6 +25,7 @@ from app.machine.model import (
     MachineState,
     ProgramInfo,
     Prompt,
+    RestartPreview,
     RunSummary,
     SpindleState,
     TrackingReport,
@@ -265,6 +265,12 @@ class MachineApi(Protocol):
         ...
 
     @property
+    def interrupted(self) -> tuple[str, int] | None:
+        """After a power loss or a kill: the program that was running (its file, or its name)
+        and its line; None when the last end was clean or a program has run since."""
+        ...
+
+    @property
     def resume_line(self) -> int:
         """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
         ...
@@ -325,8 +331,10 @@ class MachineApi(Protocol):
         """Load a program from a path (``os.PathLike`` or an existing file name) or G-code text."""
         ...
 
-    def cycle_start(self, *, wait: bool = False) -> CommandResult:
-        """Start the loaded program from its beginning (IDLE), or continue (HOLD)."""
+    def cycle_start(self, *, wait: bool = False, from_start: bool = False) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE), or continue (HOLD). After a
+        program stopped part-way (``resume_line``), refused until the operator chooses:
+        ``resume()`` there, or ``from_start``."""
         ...
 
     def feed_hold(self) -> CommandResult:
@@ -336,11 +344,13 @@ class MachineApi(Protocol):
 
     def resume(self) -> CommandResult:
         """HOLD -> RUNNING: continue after a feed hold, a single-block stop or M00/M01/M06 to the
-        same end."""
+        same end. In IDLE after a program stopped part-way (``resume_line``): the safe approach
+        to where it stopped (up, across, spindle, down), and on from there."""
         ...
 
     def stop(self) -> CommandResult:
-        """Jerk-limited stop along the path, then abandon the program (-> IDLE)."""
+        """Jerk-limited stop along the path, then abandon the program (-> IDLE), keeping the
+        point where it stopped (``resume_line``)."""
         ...
 
     def set_single_block(self, on: bool) -> CommandResult:
@@ -356,9 +366,10 @@ class MachineApi(Protocol):
         it runs), a loaded program checked again with it."""
         ...
 
-    def approach_preview(self, line: int) -> np.ndarray | str:
-        """The way a run from ``line`` would take (machine coordinates, an array of corners),
-        or a string saying why there is none: shown before the operator confirms."""
+    def restart_preview(self, line: int = 0) -> RestartPreview | str:
+        """What a restart would do before it moves (``line`` > 0: run from that line; else
+        resume where the program stopped): the way there, the clearance height, the spindle,
+        the tool; or why there is none."""
         ...
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:

@@ -279,6 +279,7 @@ class MachineController(QObject):
     active_alarms: reads[tuple[Alarm, ...]] = reads(_alarms, "active")
     bus_status: reads[BusStatus] = reads(_poller, "bus_status")
     config_path: reads[Path] = reads(_conn, "config_path")
+    interrupted: reads[tuple[str, int] | None] = reads(_conn, "interrupted")
     worker: reads[CyclicWorker | None] = reads(_drives, "worker")
 
     # ------------------------------------------------------------------ commands
@@ -304,7 +305,7 @@ class MachineController(QObject):
     set_single_block = forward(_run, ProgramRunner.set_single_block)
     set_optional_stop = forward(_run, ProgramRunner.set_optional_stop)
     set_block_delete = forward(_run, ProgramRunner.set_block_delete)
-    approach_preview = forward(_run, ProgramRunner.approach_preview)
+    restart_preview = forward(_run, ProgramRunner.restart_preview)
     run_from_line = forward(_run, ProgramRunner.run_from_line)
     set_feed_override = forward(_run, ProgramRunner.set_feed_override)
     set_rapid_override = forward(_run, ProgramRunner.set_rapid_override)

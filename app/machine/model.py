@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    import numpy as np
+
     from app.program_lines import LineIndex
     from app.toolpath import ToolPath
     from planner.core.frames import Frame
@@ -219,6 +221,8 @@ class ProgramInfo:
     # its pause points, made with the check
     plan_end_s: float = 0.0
     stops: tuple[PausePoint, ...] = field(default=(), repr=False, compare=False)
+    # what the operator confirms before it runs (a feed move with the spindle stopped after M6)
+    warnings: tuple[ProgramIssue, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -328,6 +332,22 @@ class PausePoint:
     def __post_init__(self) -> None:
         if not isinstance(self.kind, PauseKind):
             object.__setattr__(self, "kind", PauseKind(self.kind))
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class RestartPreview:
+    """What a restart will do, shown to the operator before it moves (resume at the point
+    where a program stopped, or run from a line): the line it goes on from and why it stopped
+    there, the way there (machine coordinates, one row per corner, from where the machine
+    stands: up, across, down), the clearance height it rises to (machine Z; -inf without Z),
+    the spindle it starts (signed rpm, 0: off) and the tool it needs in the spindle."""
+
+    line: int
+    cause: str
+    path: np.ndarray
+    clearance_mm: float
+    spindle_rpm: float
+    tool: int
 
 
 @dataclass(frozen=True, slots=True)

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     )
     from planner.core.frames import Frame
     from planner.core.machine import MachineSpec
+    from planner.core.program import Program
     from planner.core.tools import Tool, ToolTable
 
 __all__ = [
@@ -119,9 +120,19 @@ class CoordinatesView(Protocol):
 
     def frame(self) -> Frame: ...
 
+    def panel_frame(self) -> Frame: ...
+
     def machine(self) -> MachineSpec: ...
 
     def apply_parameters(self, values: dict[int, float]) -> None: ...
+
+    def set_spindle_tool(self, number: int, offsets: tuple[float, ...]) -> None: ...
+
+    def start_offset(self) -> tuple[int, tuple[float, ...]]: ...
+
+    def follow_program(self, frame: Frame | None) -> None: ...
+
+    def program_left(self, program: Program, move: int) -> None: ...
 
 
 class LoaderView(Protocol):

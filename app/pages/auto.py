@@ -20,7 +20,7 @@ from app.context import PanelContext
 from app.controller_text import localize
 from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
-from app.machine.model import SpindleState
+from app.machine.model import RestartPreview, SpindleState
 from app.widgets.override_control import OverrideControl
 from app.widgets.preview_plot import PreviewPlot
 from app.widgets.program_view import ProgramView
@@ -126,14 +126,18 @@ class AutoPage(QWidget):
         self.progress.setTextVisible(False)
         self.progress.setMinimumHeight(24)
         right.addWidget(self.progress)
+        # the two labels below hold a few lines each, their heights fixed: a longer text (a
+        # refusal, the end of a run) never moves the buttons above them
         self.info_label = QLabel()
         self.info_label.setObjectName("runInfo")
         self.info_label.setWordWrap(True)
+        self.info_label.setFixedHeight(self.info_label.fontMetrics().lineSpacing() * 3 + 4)
         right.addWidget(self.info_label)
         # what the machine does and is set to: spindle, feed, tool, the modal codes in force
         self.machine_label = QLabel()
         self.machine_label.setObjectName("machineInfo")
         self.machine_label.setWordWrap(True)
+        self.machine_label.setFixedHeight(self.machine_label.fontMetrics().lineSpacing() * 2 + 4)
         right.addWidget(self.machine_label)
         # what a program stop asks of the operator (tool change, M0), in words
         self.prompt_label = QLabel()
@@ -146,8 +150,10 @@ class AutoPage(QWidget):
         layout.addLayout(right, 2)
 
         self._fraction, self._remaining, self._speed, self._line = 0.0, float("nan"), 0.0, 0
+        self._feed_pct = 100.0
         self._refused = ""
         self._finished = ""
+        self._why_start = ""        # why Cycle start is disabled ("" when it is not)
         self._spindle = c.spindle
         self._tools, self._tool = c.tool_table, c.tool_in_spindle
         c.programLoaded.connect(self._on_loaded)
@@ -189,35 +195,102 @@ class AutoPage(QWidget):
             self._refused = tr("Cycle start refused: the program has errors (line {0})").format(
                 min(self.ctx.program.errors))
             self._update_info()
-        else:
+        elif c.resume_line > 0:
+            self._restart_choice()
+        elif self._warnings_confirmed():
             c.cycle_start()
+
+    def _warnings_confirmed(self) -> bool:
+        """What the check found for the operator to confirm before a run from the beginning
+        (a feed move with the spindle stopped after M6): asked, the lines named."""
+        info = self.ctx.controller.program_info
+        warnings = getattr(info, "warnings", ()) if info is not None else ()
+        if not warnings:
+            return True
+        text = "\n".join(tr("Line {0}: {1}").format(w.line, localize(w.message)) for w in warnings[:5])
+        question = text + "\n\n" + tr("Run the program anyway?")
+        return self.ctx.dialogs.confirm(self, tr("Cycle start"), question)
+
+    def _restart_choice(self) -> None:
+        """The program stopped part-way (Stop, E-stop and reset, an alarm): never again from
+        line 1 by default. The operator chooses: resume where it stopped (the way drawn) or
+        start from the beginning."""
+        c = self.ctx.controller
+        stopped = c.resume_line
+        preview = c.restart_preview(0)
+        beginning = tr("Start from the beginning")
+        if isinstance(preview, str):
+            text = tr("The program stopped at line {0} and cannot resume there: {1}").format(
+                stopped, localize(preview))
+            if self.ctx.dialogs.choose(self, tr("Cycle start"), text, [beginning, tr("Cancel")]) == 0:
+                c.cycle_start(from_start=True)
+            return
+        text = (tr("The program stopped at line {0} ({1}).").format(preview.line, localize(preview.cause))
+                + "\n\n" + self._restart_text(preview) + "\n\n"
+                + tr("Or start it again from line 1, from where the tool stands now."))
+        self._show_way(preview.path)
+        try:
+            choice = self.ctx.dialogs.choose(self, tr("Cycle start"), text,
+                                             [tr("Resume at line {0}").format(preview.line), beginning,
+                                              tr("Cancel")])
+        finally:
+            self._show_way(None)
+        if choice == 0:
+            c.resume()
+        elif choice == 1 and self._warnings_confirmed():
+            c.cycle_start(from_start=True)
+
+    def _restart_text(self, preview: RestartPreview) -> str:
+        """The way a restart goes, in words: clearance, spindle, tool."""
+        if np.isfinite(preview.clearance_mm):
+            way = tr("The machine goes up to Z{0:.3f} (machine), across, then down to it the way drawn"
+                     ).format(preview.clearance_mm)
+        else:
+            way = tr("The machine goes there the way drawn")
+        rpm = preview.spindle_rpm
+        spindle = (tr("the spindle stays off") if rpm == 0 else
+                   tr("the spindle starts at {0:.0f} rpm {1} before it goes down").format(
+                       abs(rpm), tr("CW") if rpm > 0 else tr("CCW")))
+        tool = tr("tool {0}").format(tool_text(self._tools, preview.tool))
+        return f"{way}; {spindle}; {tool}."
+
+    def _show_way(self, path: np.ndarray | None) -> None:
+        """The way a restart takes, drawn on the backplot in work coordinates (None: hidden)."""
+        if path is None:
+            self.backplot.set_approach(None)
+            return
+        c = self.ctx.controller
+        frame = c.snapshot().frame
+        way = np.asarray(path, float)
+        self.backplot.set_approach(frame.to_program(way) if frame is not None else way)
 
     def run_from_line(self) -> None:
         ctx = self.ctx
-        info = ctx.controller.program_info
+        c = ctx.controller
+        info = c.program_info
         if info is None:
             return
-        line = ctx.dialogs.ask_number(self, tr("Run from line"), float(max(1, self.editor.current_line())),
-                                      1, float(info.line_count), 0)
+        # where the program stopped (or was cut by a power loss), when it did; else the line
+        # the editor shows
+        cut = c.interrupted
+        cut_line = cut[1] if cut is not None and cut[0] in (info.path, info.name) else 0
+        default = c.resume_line or cut_line or max(1, self.editor.current_line())
+        line = ctx.dialogs.ask_number(self, tr("Run from line"), float(default), 1, float(info.line_count), 0)
         if line is None:
             return
-        c = ctx.controller
-        way = c.approach_preview(int(line))
-        if isinstance(way, str):
-            self._refused = tr("Run from line refused: {0}").format(localize(way))
+        preview = c.restart_preview(int(line))
+        if isinstance(preview, str):
+            self._refused = tr("Run from line refused: {0}").format(localize(preview))
             self._update_info()
             return
-        # the way there, drawn on the backplot (work coordinates) while the operator decides
-        offset = np.asarray(c.work_offsets.get(c.active_offset, (0.0,) * len(c.axes)), float)
-        self.backplot.set_approach(np.asarray(way, float) - offset[: np.asarray(way).shape[1]])
+        self._show_way(preview.path)
         try:
             if ctx.dialogs.confirm(self, tr("Run from line"),
-                                   tr("Move to the start of line {0} the way drawn (up to the clearance "
-                                      "height, across, spindle on, down) and run the program from there?")
-                                   .format(int(line))):
+                                   tr("Run the program from line {0}?").format(int(line)) + "\n\n"
+                                   + self._restart_text(preview)):
                 c.run_from_line(int(line))
         finally:
-            self.backplot.set_approach(None)
+            self._show_way(None)
 
     # --- controller signals --------------------------------------------------------------
     def _on_loading(self, loading: bool, name: str) -> None:
@@ -287,6 +360,8 @@ class AutoPage(QWidget):
     def _on_overrides(self, feed: float, rapid: float) -> None:
         self.feed.set_value(feed)
         self.rapid.set_value(rapid)
+        self._feed_pct = float(feed)
+        self._update_info()
 
     def _on_modes(self, single_block: bool, optional_stop: bool, block_delete: bool) -> None:
         self.single_block.setChecked(single_block)
@@ -342,12 +417,15 @@ class AutoPage(QWidget):
 
     def _update_info(self) -> None:
         text = tr("Line {0}   Progress {1:.0f} %\nRemaining {2}   Path speed {3}").format(
-            self._line, 100 * self._fraction, format_duration(self._remaining), format_speed(self._speed))
+            self._line, 100 * self._fraction,
+            # at 0 % nothing moves: no time is left to count until the override is raised
+            format_duration(float("nan") if self._feed_pct == 0.0 else self._remaining),
+            format_speed(self._speed))
         # the end of a run or a refusal takes the second line's place: the page never grows
         if self._block_delete:       # what runs is not every line shown
             first, second = text.split("\n", 1)
             text = first + "   " + tr("/ lines skipped") + "\n" + second
-        note = self._refused or self._finished
+        note = self._refused or self._finished or self._why_start
         if note:
             text = text.split("\n")[0] + "\n" + note
         self.info_label.setText(text)
@@ -363,15 +441,28 @@ class AutoPage(QWidget):
         self.machine_label.setText("\n".join(lines))
 
     def _update_buttons(self) -> None:
+        """Each button enabled when its command would be taken; a disabled one says why (its
+        tooltip, and Cycle start's reason on the info line)."""
         c = self.ctx.controller
-        for key, _label, _obj, action in BUTTONS:
+        why_start = ""
+        for key, label, _obj, action in BUTTONS:
             reason = c.refusal(action)
             if key == "start" and str(getattr(c.state, "value", "")) == "hold":
                 reason = c.refusal("resume")
             elif key == "start" and self.ctx.program.errors:
                 reason = "program has errors"
-            self.buttons[key].setEnabled(not reason)
-        self.run_from.setEnabled(not c.refusal("run_from_line"))
+            button = self.buttons[key]
+            button.setEnabled(not reason)
+            button.setToolTip(tr("{0}: {1}").format(tr(label), localize(reason)) if reason else "")
+            if key == "start" and reason and str(getattr(c.state, "value", "")) not in ("running", "hold"):
+                # while it runs or holds the other buttons are the ones to use: no note then
+                why_start = tr("{0}: {1}").format(tr(label), localize(reason))
+        reason = c.refusal("run_from_line")
+        self.run_from.setEnabled(not reason)
+        self.run_from.setToolTip(tr("Run from line: {0}").format(localize(reason)) if reason else "")
+        if why_start != self._why_start:
+            self._why_start = why_start
+            self._update_info()
 
 
 def create_page(context: PanelContext) -> QWidget:

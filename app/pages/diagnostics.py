@@ -6,10 +6,11 @@ from __future__ import annotations
 import functools
 
 from PySide6.QtCore import QTimer
-from PySide6.QtWidgets import QLabel, QTabWidget, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QLabel, QPushButton, QTabWidget, QVBoxLayout, QWidget
 
 from app.background import Background
 from app.context import PanelContext
+from app.dialogs import connect_or_disconnect
 from app.format import format_duration
 from app.i18n import N_, tr
 from app.path_profile import PathProfile, path_profile
@@ -39,6 +40,16 @@ class DiagnosticsPage(QWidget):
         pl.addWidget(self.profile_plots, 1)
         self.tracking = TrackingView(c.axes, i18n)
         self.bus = BusView(i18n)
+        # Connect / Disconnect as a button of its own (the header's bus status does the same)
+        self.connect_button = QPushButton()
+        self.connect_button.setObjectName("connectButton")
+        self.connect_button.setMinimumHeight(56)
+        self.connect_button.clicked.connect(
+            lambda: connect_or_disconnect(self, self.ctx.dialogs, self.ctx.controller,
+                                          bool(self.ctx.controller.bus_status.connected)))
+        bus_layout = self.bus.layout()
+        assert isinstance(bus_layout, QVBoxLayout)
+        bus_layout.insertWidget(0, self.connect_button)
         self.tabs.addTab(profile_tab, "")
         self.tabs.addTab(self.tracking, "")
         self.tabs.addTab(self.bus, "")
@@ -54,13 +65,20 @@ class DiagnosticsPage(QWidget):
         c.trackingUpdated.connect(self.tracking.set_report)
         c.programFinished.connect(self._on_finished)
         c.busStateChanged.connect(lambda bus: self.bus.set_state(bus, c.config))
+        c.busStateChanged.connect(lambda _bus: self._show_connect())
+        i18n.languageChanged.connect(lambda _l: self._show_connect())
         i18n.languageChanged.connect(lambda _l: self._show_profile_state())
         self.bus.set_state(c.bus_status, c.config)
+        self._show_connect()
         self.tracking.set_report(c.tracking)
         self.timer = QTimer(self)
         self.timer.setInterval(REDRAW_MS)
         self.timer.timeout.connect(self.tracking.redraw)
         self.compute_profile()
+
+    def _show_connect(self) -> None:
+        connected = bool(self.ctx.controller.bus_status.connected)
+        self.connect_button.setText(tr("Disconnect the drives") if connected else tr("Connect to the drives"))
 
     def showEvent(self, event) -> None:  # noqa: N802 - Qt override
         self.timer.start()

@@ -20,6 +20,7 @@ from PySide6.QtWidgets import (
 )
 
 from app.context import PanelContext
+from app.controller_text import localize
 from app.format import tool_text
 from app.i18n import N_, tr
 from app.widgets.touch import touch_rows
@@ -152,13 +153,36 @@ class ToolsPage(QWidget):
             self.ctx.controller.set_tool_in_spindle(t.number)
 
     def touch_off(self) -> None:
-        t = self.selected_tool()
-        if t is None:
+        """The length of the tool in the spindle (the one touching the surface): another tool
+        only when it is selected and the operator says so, naming it."""
+        number = self._in_spindle
+        selected = self.selected_tool()
+        d = self.ctx.dialogs
+        if selected is not None and selected.number != number:
+            if not number:
+                text = tr("No tool is in the spindle: put {0} in and set it (In the spindle) first.")
+                d.inform(self, tr("Touch off length"), text.format(selected.label()))
+                return
+            spindle_tool = self._tools.get(number)
+            label = spindle_tool.label() if spindle_tool is not None else f"T{number}"
+            choice = d.choose(self, tr("Touch off length"),
+                              tr("{0} is in the spindle, {1} is selected. Whose length is measured?").format(
+                                  label, selected.label()),
+                              [label, selected.label(), tr("Cancel")])
+            if choice == 1:
+                number = selected.number
+            elif choice != 0:
+                return
+        if not number:
+            d.inform(self, tr("Touch off length"), tr("No tool is in the spindle."))
             return
-        z = self.ctx.dialogs.ask_number(
-            self, tr("Touch off {0}: work Z of the surface the tip touches").format(t.label()), 0.0)
+        tool = self._tools.get(number)
+        label = tool.label() if tool is not None else f"T{number}"
+        z = d.ask_number(self, tr("Touch off {0}: work Z of the surface the tip touches").format(label), 0.0)
         if z is not None:
-            self.ctx.controller.touch_off_tool(t.number, z)
+            result = self.ctx.controller.touch_off_tool(number, z)
+            if not result:
+                d.inform(self, tr("Touch off length"), localize(result.reason))
 
     def measure(self) -> None:
         """The tool in the spindle measured on the tool setter: the operator confirms first,

@@ -8,7 +8,8 @@ from collections.abc import Sequence
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGridLayout, QLabel, QWidget
 
-from app.i18n import N_, I18n
+from app.i18n import N_, I18n, tr
+from planner.core.frames import Frame
 
 
 def format_position(value: float, rotary: bool = False) -> str:
@@ -17,6 +18,23 @@ def format_position(value: float, rotary: bool = False) -> str:
         return "---.---"
     text = f"{value:+.3f}"
     return "+0.000" if text == "-0.000" else text
+
+
+def frame_text(frame: Frame) -> str:
+    """What the Work DRO includes, in the operator's words: "Work = G54 · G92 · XY turned 30° ·
+    tool T2 length -12.500 mm"."""
+    parts = [frame.system_name]
+    if frame.has_g92:
+        parts.append("G92")
+    if frame.rotation_deg:
+        parts.append(tr("XY turned {0:g}°").format(frame.rotation_deg))
+    if frame.has_tool_offset:
+        z = frame.tool[frame.axes.index("Z")] if "Z" in frame.axes else 0.0
+        tool = f"T{frame.tool_number} " if frame.tool_number else ""
+        parts.append(tr("tool {0}length {1} mm").format(tool, format_position(z)))
+    else:
+        parts.append(tr("no tool length offset"))
+    return tr("Work = tool tip in {0}").format(" · ".join(parts))
 
 
 class DroWidget(QWidget):
@@ -59,8 +77,20 @@ class DroWidget(QWidget):
             self.axis_labels.append(axis)
             self.work_labels.append(work)
             self.machine_labels.append(machine)
+        # what the Work row includes (system, G92, rotation, tool length offset): one line of
+        # its own, its height fixed, so that a change never moves the digits
+        self.frame_label = QLabel()
+        self.frame_label.setObjectName("droFrame")
+        self.frame_label.setFixedHeight(self.frame_label.fontMetrics().height() + 4)
+        grid.addWidget(self.frame_label, 3, 0, 1, len(self.axes) + 1)
+        self._frame: Frame | None = None
         self.set_positions([0.0] * len(self.axes), [0.0] * len(self.axes))
         self.set_homed([False] * len(self.axes))
+
+    def set_frame(self, frame: Frame | None) -> None:
+        """The offsets the Work row reads the tool tip in."""
+        self._frame = frame
+        self.frame_label.setText(frame_text(frame) if frame is not None else "")
 
     def set_positions(self, machine: Sequence[float], work: Sequence[float]) -> None:
         for i, rot in enumerate(self.rotary):

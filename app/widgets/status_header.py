@@ -7,6 +7,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWi
 
 from app.context import PanelContext
 from app.controller_text import localize
+from app.dialogs import connect_or_disconnect
 from app.format import tool_text
 from app.i18n import N_, tr
 from app.machine.model import Alarm, BusStatus, MachineState
@@ -72,7 +73,10 @@ class StatusHeader(QWidget):
         self._bus = c.bus_status
         self._alarms = c.active_alarms
         c.stateChanged.connect(self._on_state)
+        self._feed_pct = float(c.feed_override_pct)
+        c.overridesChanged.connect(self._on_overrides)
         c.positionChanged.connect(self._on_position)
+        c.statusChanged.connect(lambda snap: self.dro.set_frame(snap.frame))
         c.homedChanged.connect(self.dro.set_homed)
         c.busStateChanged.connect(self._on_bus)
         c.alarmsChanged.connect(self._on_alarms)
@@ -81,6 +85,7 @@ class StatusHeader(QWidget):
         context.i18n.languageChanged.connect(lambda _lang: self.refresh())
         self.dro.set_positions(c.machine_position, c.work_position)
         self.dro.set_homed(c.homed)
+        self.dro.set_frame(c.snapshot().frame)
         self.refresh()
 
     # --- controller signals --------------------------------------------------------------
@@ -91,6 +96,10 @@ class StatusHeader(QWidget):
     def _on_position(self, machine: tuple[float, ...], work: tuple[float, ...]) -> None:
         self.dro.set_positions(machine, work)
 
+    def _on_overrides(self, feed: float, _rapid: float) -> None:
+        self._feed_pct = float(feed)
+        self.refresh()
+
     def _on_bus(self, bus: BusStatus) -> None:
         self._bus = bus
         self.refresh()
@@ -100,12 +109,8 @@ class StatusHeader(QWidget):
         self.refresh()
 
     def _bus_clicked(self) -> None:
-        c = self.ctx.controller
-        if bool(getattr(self._bus, "connected", False)):
-            if self.ctx.dialogs.confirm(self, tr("Disconnect"), tr("Stop and disable the drives?")):
-                c.disconnect_bus()
-        elif self.ctx.dialogs.confirm(self, tr("Connect"), tr("Connect to the drives and enable them?")):
-            c.connect_bus()
+        connected = bool(getattr(self._bus, "connected", False))
+        connect_or_disconnect(self, self.ctx.dialogs, self.ctx.controller, connected)
 
     def _estop_clicked(self) -> None:
         if self._state_value() == "estop":
@@ -129,6 +134,8 @@ class StatusHeader(QWidget):
         if value == "hold":
             hold = str(getattr(getattr(self.ctx.controller, "hold_kind", None), "value", ""))
             text = HOLD_TEXT.get(hold, text)
+        elif value == "running" and self._feed_pct == 0.0:
+            text = N_("Held by feed override 0 %")   # running, and nothing moves until it is raised
         self.state_label.setText(tr(text))
         self.state_label.setStyleSheet(
             f"background: {STATE_COLOR.get(value, '#26303b')}; color: white; font-size: 22px;"
@@ -142,6 +149,11 @@ class StatusHeader(QWidget):
         self.bus_label.setStyleSheet("color: %s; font-weight: 700; background: transparent; border: 0;"
                                      % ("#7fe0a0" if connected else "#ff9080"))
         self.estop_button.setText(tr("RELEASE\nE-STOP") if value == "estop" else tr("E-STOP"))
+        # as wide as the wider of its two texts in this language: pressing it never moves the header
+        fm = self.estop_button.fontMetrics()
+        widest = max(fm.horizontalAdvance(line) for text in (tr("RELEASE\nE-STOP"), tr("E-STOP"))
+                     for line in text.split("\n"))
+        self.estop_button.setFixedWidth(max(96, widest + 32))
         text = tr("Tool: {0}").format(tool_text(self._tools, self._tool))
         self.tool_label.setToolTip(text)
         metrics = self.tool_label.fontMetrics()

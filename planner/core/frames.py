@@ -106,7 +106,7 @@ class Frame:
             p[..., iy] = s * x + c * y
         return p + np.asarray(self.g5x) + np.asarray(self.tool)
 
-    def origin_for(self, machine: Sequence[float], axis: int, value: float) -> tuple[float, ...]:
+    def origin_for(self, machine: Sequence[float] | np.ndarray, axis: int, value: float) -> tuple[float, ...]:
         """The G5x origin that makes machine position ``machine`` read ``value`` on ``axis`` in
         this frame, its other axes reading what they read now (LinuxCNC's G10 L20: in a rotated
         system X and Y go together, the origin moving so that both read as wanted)."""

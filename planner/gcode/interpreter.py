@@ -71,9 +71,10 @@ class Interpreter(Executor, FastPaths):
                  spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = (),
                  parameters: dict[int, float] | None = None,
                  probe_results: Sequence[ProbeResult | None] = (),
-                 input_results: Sequence[float | None] = ()):
+                 input_results: Sequence[float | None] = (),
+                 tool_offset: tuple[int, Sequence[float]] | None = None):
         super().__init__(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
-                         spindle, subroutine_dirs, parameters, probe_results, input_results)
+                         spindle, subroutine_dirs, parameters, probe_results, input_results, tool_offset)
         self.rec.modal_changes.append((0, self.modal_text()))
         self.params.system = self.system_parameter
         self.params.system_numbered = self.position_parameter
@@ -206,6 +207,7 @@ def parse_program(
     utf8: bytes | None = None,
     probe_results: Sequence[ProbeResult | None] = (),
     input_results: Sequence[float | None] = (),
+    tool_offset: tuple[int, Sequence[float]] | None = None,
 ) -> Program:
     """Interpret a whole program; raises ProgramError listing every error (up to max_errors).
 
@@ -229,10 +231,12 @@ def parse_program(
     (``Program.probes``; None for one not run, as before a run from a later line); the others
     are read as run to their end point without a contact (#5070 = 0). ``input_results``: the
     values M66 read, the same way (-1: the wait timed out); the others are read as the awaited
-    value.
+    value. ``tool_offset``: the tool length offset in force when the program starts, (G43,
+    G43.1 or G49 as ``codes.G``, the offset per axis in machine units), as the machine keeps
+    it from the program or MDI before (LinuxCNC does); None: G49.
     """
     interp = Interpreter(name, machine, start_position, block_delete, max_errors, tools, tool_in_spindle,
-                         spindle, subroutine_dirs, parameters, probe_results, input_results)
+                         spindle, subroutine_dirs, parameters, probe_results, input_results, tool_offset)
     with gc_paused():  # tens of thousands of small acyclic objects (planner/core/gcpause.py)
         interp.progress = progress
         try:

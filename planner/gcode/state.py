@@ -321,7 +321,8 @@ class InterpBase(ABC):
                  spindle: tuple[int, float] = (0, 0.0), subroutine_dirs: Sequence[str] = (),
                  parameters: dict[int, float] | None = None,
                  probe_results: Sequence[ProbeResult | None] = (),
-                 input_results: Sequence[float | None] = ()):
+                 input_results: Sequence[float | None] = (),
+                 tool_offset: tuple[int, Sequence[float]] | None = None):
         if machine is None:
             machine = MachineSpec.default()
         axes = tuple(a.name.upper() for a in machine.axes)
@@ -368,12 +369,20 @@ class InterpBase(ABC):
             systems[code] = val
         on = num.get(P_G92_ON, 0.0) != 0.0
         num[P_SYSTEM] = 1.0
+        # the tool length offset the machine has in force (LinuxCNC keeps it from one program
+        # to the next): (G43 / G43.1 / G49, the offset per axis)
+        tlo_code: int = G.G49
+        tlo: tuple[float, ...] = (0.0,) * n
+        if tool_offset is not None:
+            tlo_code, tlo = tool_offset[0], tuple(float(v) for v in tool_offset[1])
+            if len(tlo) != n or tlo_code not in (G.G43, G.G43_1, G.G43_2, G.G49):
+                raise PlannerError(f"tool_offset {tool_offset!r}: G43, G43.1, G43.2 or G49 and {n} values")
         self.offsets = Offsets(
             systems=systems, work=systems[G.G54],
             g92=tuple(num.get(P_G92 + p, 0.0) if on else 0.0 for p in setup.axis_param),
-            tlo=(0.0,) * n, rotation=num.get(system_base(G.G54) + 9, 0.0))
+            tlo=tlo, rotation=num.get(system_base(G.G54) + 9, 0.0))
         self.modal = Modal(blend_tol_mm=blend_default_mm, naive_cam_mm=blend_default_mm,
-                           spindle_dir=int(spindle[0]), spindle_rpm=float(spindle[1]))
+                           spindle_dir=int(spindle[0]), spindle_rpm=float(spindle[1]), tlo_code=tlo_code)
         self.cycle = CycleState()
         self.curve = CurveState()
         self.calls = CallStack()

@@ -116,11 +116,19 @@ class ToolCodes(MotionCodes):
         self.rec.events.append(Event(EventKind.TOOL, b.line, after, float(t), f"tool T{int(t)} selected"))
 
     def convert_tool_change(self, b: Block, after: int) -> None:
-        """M6: the selected tool goes into the spindle (by hand); M61 Q: the tool in the spindle
-        is Q, nothing moves."""
+        """M6: the spindle stops (LinuxCNC's STOP_SPINDLE_TURNING, then CHANGE_TOOL) and stays
+        stopped until the program's own M3/M4, and the selected tool goes into the spindle by
+        hand; M6 of the tool already in the spindle changes nothing. M61 Q: the tool in the
+        spindle is Q, nothing moves."""
         code = b.mgroups.get(MGroup.TOOL_CHANGE)
         if code == M.M6:
             self.comp_refuses("change tools", "M6")
+            if self.selected == self.tool:
+                return
+            if self.modal.spindle_dir != 0:
+                self.modal.spindle_dir = 0
+                self.rec.events.append(Event(EventKind.SPINDLE, b.line, after, 0.0,
+                                             "M06: the spindle stops for the tool change"))
             self.tool = self.selected
             self.rec.events.append(Event(
                 EventKind.TOOL_CHANGE, b.line, after, float(self.tool),

@@ -4,17 +4,22 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="150" />
+      <location filename="../../app/widgets/status_header.py" line="164" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="106" />
+      <location filename="../../app/pages/diagnostics.py" line="140" />
       <source> (first {0:.0f} s shown)</source>
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="151" />
+      <location filename="../../app/pages/auto.py" line="427" />
+      <source>/ lines skipped</source>
+      <translation>/ satırları atlanıyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="165" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -29,17 +34,17 @@
       <translation>Tümünü onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="34" />
+      <location filename="../../app/pages/part_zero.py" line="36" />
       <source>Active:</source>
       <translation>Etkin:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="58" />
+      <location filename="../../app/pages/tools.py" line="59" />
       <source>Add tool</source>
       <translation>Takım ekle</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="16" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Alarm</source>
       <translation>Alarm</translation>
     </message>
@@ -54,7 +59,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="261" />
+      <location filename="../../app/pages/program.py" line="286" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -69,7 +74,7 @@
       <translation>Eksenleri uygula</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="161" />
+      <location filename="../../app/pages/parameters.py" line="163" />
       <source>Apply parameters</source>
       <translation>Parametreleri uygula</translation>
     </message>
@@ -79,7 +84,7 @@
       <translation>Değiştirilen eksen tanımları uygulansın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="158" />
+      <location filename="../../app/pages/parameters.py" line="160" />
       <source>Apply the changed parameters?</source>
       <translation>Değiştirilen parametreler uygulansın mı?</translation>
     </message>
@@ -99,7 +104,12 @@
       <translation>Eksen</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="104" />
+      <location filename="../../app/pages/program.py" line="65" />
+      <source>Block delete (/)</source>
+      <translation>Blok atlama (/)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="106" />
       <source>Bus</source>
       <translation>Veri yolu</translation>
     </message>
@@ -109,32 +119,32 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="137" />
+      <location filename="../../app/widgets/status_header.py" line="146" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="349" />
+      <location filename="../../app/pages/auto.py" line="253" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="52" />
+      <location filename="../../app/pages/manual.py" line="53" />
       <source>CCW (M04)</source>
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="349" />
+      <location filename="../../app/pages/auto.py" line="253" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="52" />
+      <location filename="../../app/pages/manual.py" line="53" />
       <source>CW (M03)</source>
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="213" />
+      <location filename="../../app/pages/auto.py" line="235" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -144,37 +154,42 @@
       <translation>Neden</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="110" />
+      <location filename="../../app/pages/parameters.py" line="112" />
       <source>Change service password</source>
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="167" />
+      <location filename="../../app/main_window.py" line="181" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="186" />
+      <location filename="../../app/main_window.py" line="202" />
       <source>Checking {0} … {1} %</source>
       <translation>{0} denetleniyor … %{1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="42" />
+      <location filename="../../app/pages/preview.py" line="44" />
       <source>Clear</source>
       <translation>Temizle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="59" />
+      <location filename="../../app/pages/part_zero.py" line="61" />
       <source>Clear G92</source>
       <translation>G92'yi sil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="105" />
+      <location filename="../../app/dialogs.py" line="74" />
       <source>Connect</source>
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="105" />
+      <location filename="../../app/pages/diagnostics.py" line="81" />
+      <source>Connect to the drives</source>
+      <translation>Sürücülere bağlan</translation>
+    </message>
+    <message>
+      <location filename="../../app/dialogs.py" line="74" />
       <source>Connect to the drives and enable them?</source>
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
@@ -184,7 +199,7 @@
       <translation>Sürekli</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="82" />
+      <location filename="../../app/pages/parameters.py" line="84" />
       <source>Corner tolerance (G64)</source>
       <translation>Köşe toleransı (G64)</translation>
     </message>
@@ -194,27 +209,27 @@
       <translation>Sayım/birim</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="180" />
+      <location filename="../../app/pages/parameters.py" line="182" />
       <source>Current service password:</source>
       <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="29" />
+      <location filename="../../app/pages/auto.py" line="31" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="185" />
+      <location filename="../../app/pages/auto.py" line="195" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="77" />
+      <location filename="../../app/pages/parameters.py" line="79" />
       <source>Cycle time Ts</source>
       <translation>Çevrim süresi Ts</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="103" />
+      <location filename="../../app/pages/diagnostics.py" line="137" />
       <source>Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</source>
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
@@ -224,22 +239,22 @@
       <translation>Çevrim zamanlaması: başlangıç sapması histogramı (µs)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="146" />
+      <location filename="../../app/pages/tools.py" line="147" />
       <source>Delete</source>
       <translation>Sil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="145" />
+      <location filename="../../app/pages/tools.py" line="146" />
       <source>Delete {0} from the tool table?</source>
       <translation>{0} takım tablosundan silinsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="28" />
+      <location filename="../../app/pages/tools.py" line="29" />
       <source>Description</source>
       <translation>Açıklama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="110" />
+      <location filename="../../app/pages/tools.py" line="111" />
       <source>Description:</source>
       <translation>Açıklama:</translation>
     </message>
@@ -249,7 +264,7 @@
       <translation>Tanılama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="28" />
+      <location filename="../../app/pages/tools.py" line="29" />
       <source>Diameter (mm)</source>
       <translation>Çap (mm)</translation>
     </message>
@@ -259,17 +274,22 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="213" />
+      <location filename="../../app/pages/program.py" line="229" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="103" />
+      <location filename="../../app/dialogs.py" line="72" />
       <source>Disconnect</source>
       <translation>Bağlantıyı kes</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="15" />
+      <location filename="../../app/pages/diagnostics.py" line="81" />
+      <source>Disconnect the drives</source>
+      <translation>Sürücülerin bağlantısını kes</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="18" />
       <source>Disconnected</source>
       <translation>Bağlı değil</translation>
     </message>
@@ -279,14 +299,29 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="142" />
+      <location filename="../../app/widgets/status_header.py" line="151" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="16" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>E-stop</source>
       <translation>Acil stop</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="62" />
+      <source>E-stop pressed</source>
+      <translation>Acil stop basıldı</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="64" />
+      <source>E-stop pressed {0}</source>
+      <translation>Acil stop basıldı {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="63" />
+      <source>E-stop pressed: {0}</source>
+      <translation>Acil stop basıldı: {0}</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="61" />
@@ -294,7 +329,7 @@
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="43" />
+      <location filename="../../app/pages/diagnostics.py" line="56" />
       <source>EtherCAT</source>
       <translation>EtherCAT</translation>
     </message>
@@ -304,17 +339,17 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="352" />
+      <location filename="../../app/pages/auto.py" line="439" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="30" />
+      <location filename="../../app/pages/auto.py" line="32" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="110" />
+      <location filename="../../app/pages/auto.py" line="113" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -324,7 +359,7 @@
       <translation>{0} içinde dosya adı:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="33" />
+      <location filename="../../app/pages/program.py" line="34" />
       <source>Find</source>
       <translation>Bul</translation>
     </message>
@@ -334,29 +369,34 @@
       <translation>Bul…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="35" />
+      <location filename="../../app/pages/preview.py" line="37" />
       <source>Fit</source>
       <translation>Sığdır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="76" />
+      <location filename="../../app/pages/manual.py" line="77" />
       <source>G-code block, e.g. G01 X10 F600</source>
       <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="95" />
+      <location filename="../../app/pages/part_zero.py" line="97" />
       <source>G92 offset: off</source>
       <translation>G92 ofseti: kapalı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="98" />
+      <location filename="../../app/pages/part_zero.py" line="100" />
       <source>G92 offset: {0} (on: every work position is shifted by it)</source>
       <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="33" />
+      <location filename="../../app/pages/program.py" line="34" />
       <source>Go to line</source>
       <translation>Satıra git</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="138" />
+      <source>Held by feed override 0 %</source>
+      <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
     <message>
       <location filename="../../app/pages/machine_zero.py" line="38" />
@@ -389,12 +429,12 @@
       <translation>Referanslı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="100" />
+      <location filename="../../app/pages/parameters.py" line="102" />
       <source>Homing</source>
       <translation>Referanslama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="98" />
+      <location filename="../../app/pages/parameters.py" line="100" />
       <source>Homing required before a program</source>
       <translation>Programdan önce referanslama gerekli</translation>
     </message>
@@ -404,27 +444,27 @@
       <translation>Referanslama: {0}; {1}.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="15" />
+      <location filename="../../app/widgets/status_header.py" line="18" />
       <source>Idle</source>
       <translation>Hazır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="188" />
+      <location filename="../../app/pages/tools.py" line="212" />
       <source>Import .tbl</source>
       <translation>.tbl içe aktar</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="60" />
+      <location filename="../../app/pages/tools.py" line="61" />
       <source>In the spindle</source>
       <translation>İş milinde</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="95" />
+      <location filename="../../app/pages/tools.py" line="96" />
       <source>In the spindle: {0}</source>
       <translation>İş milinde: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="95" />
+      <location filename="../../app/pages/parameters.py" line="97" />
       <source>Interpolation</source>
       <translation>İnterpolasyon</translation>
     </message>
@@ -434,7 +474,7 @@
       <translation>Jmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="36" />
+      <location filename="../../app/pages/manual.py" line="37" />
       <source>Jog</source>
       <translation>Elle hareket</translation>
     </message>
@@ -444,7 +484,7 @@
       <translation>Elle hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="81" />
+      <location filename="../../app/pages/manual.py" line="82" />
       <source>Keyboard</source>
       <translation>Klavye</translation>
     </message>
@@ -454,39 +494,44 @@
       <translation>Tür</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="28" />
+      <location filename="../../app/pages/tools.py" line="29" />
       <source>Length Z (mm)</source>
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="338" />
+      <location filename="../../app/pages/auto.py" line="419" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="125" />
+      <location filename="../../app/pages/auto.py" line="210" />
       <source>Line {0}: {1}</source>
       <translation>Satır {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="34" />
+      <location filename="../../app/pages/program.py" line="35" />
       <source>Load into machine</source>
       <translation>Makineye yükle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="113" />
+      <location filename="../../app/pages/parameters.py" line="115" />
       <source>Lock service level</source>
       <translation>Servis seviyesini kilitle</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="80" />
+      <location filename="../../app/controller_text.py" line="101" />
+      <source>M06: the spindle stops for the tool change</source>
+      <translation>M06: takım değişimi için iş mili durur</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="83" />
       <source>M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1</source>
       <translation>M66 (satır {0}): P{1} girişi {2} s sonra zaman aşımına uğradı: #5399 = -1</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="71" />
+      <location filename="../../app/pages/manual.py" line="72" />
       <source>MDI</source>
       <translation>MDI</translation>
     </message>
@@ -496,7 +541,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>MSE</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="34" />
+      <location filename="../../app/widgets/dro.py" line="52" />
       <source>Machine</source>
       <translation>Makine</translation>
     </message>
@@ -526,12 +571,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En büyük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="172" />
+      <location filename="../../app/pages/tools.py" line="196" />
       <source>Measure on the setter</source>
       <translation>Ayarlayıcıda ölç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="169" />
+      <location filename="../../app/pages/tools.py" line="193" />
       <source>Measure {0} on the tool setter? The spindle goes up to the clearance height, across to the setter and probes down onto it twice. Keep clear of the machine.</source>
       <translation>{0} takım ayarlayıcıda ölçülsün mü? İş mili emniyet yüksekliğine çıkar, ayarlayıcının üzerine gider ve iki kez aşağı doğru problar. Makineden uzak durun.</translation>
     </message>
@@ -541,32 +586,27 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>En küçük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="211" />
-      <source>Move to the start of line {0} the way drawn (up to the clearance height, across, spindle on, down) and run the program from there?</source>
-      <translation>{0}. satırın başına çizilen yoldan gidilsin (güvenli yüksekliğe çık, yana git, iş milini çalıştır, in) ve program oradan çalıştırılsın mı?</translation>
-    </message>
-    <message>
-      <location filename="../../app/pages/parameters.py" line="170" />
+      <location filename="../../app/pages/parameters.py" line="172" />
       <source>Network adapter</source>
       <translation>Ağ bağdaştırıcısı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="171" />
+      <location filename="../../app/pages/parameters.py" line="173" />
       <source>Network interface of the EtherCAT bus:</source>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="32" />
+      <location filename="../../app/pages/program.py" line="33" />
       <source>New</source>
       <translation>Yeni</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="183" />
+      <location filename="../../app/pages/parameters.py" line="185" />
       <source>New service password (at least {0} characters):</source>
       <translation>Yeni servis şifresi (en az {0} karakter):</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="132" />
+      <location filename="../../app/pages/tools.py" line="133" />
       <source>New tool number</source>
       <translation>Yeni takım numarası</translation>
     </message>
@@ -576,14 +616,19 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="48" />
+      <location filename="../../app/pages/diagnostics.py" line="61" />
       <source>No program loaded.</source>
       <translation>Yüklü program yok.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="85" />
-      <source>Planned when this page is shown.</source>
-      <translation>Bu sayfa gösterildiğinde planlanır.</translation>
+      <location filename="../../app/pages/tools.py" line="177" />
+      <source>No tool is in the spindle.</source>
+      <translation>İş milinde takım yok.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="163" />
+      <source>No tool is in the spindle: put {0} in and set it (In the spindle) first.</source>
+      <translation>İş milinde takım yok: önce {0} takın ve ayarlayın (İş milinde).</translation>
     </message>
     <message>
       <location filename="../../app/widgets/keypad.py" line="96" />
@@ -591,7 +636,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="194" />
+      <location filename="../../app/pages/parameters.py" line="196" />
       <source>Nothing changed: {0}</source>
       <translation>Hiçbir şey değişmedi: {0}</translation>
     </message>
@@ -601,7 +646,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Tamam</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="52" />
+      <location filename="../../app/pages/manual.py" line="53" />
       <source>Off (M05)</source>
       <translation>Kapalı (M05)</translation>
     </message>
@@ -616,29 +661,24 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="32" />
+      <location filename="../../app/pages/program.py" line="33" />
       <source>Open…</source>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="99" />
+      <location filename="../../app/pages/auto.py" line="101" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="352" />
-      <source>/ lines skipped</source>
-      <translation>/ satırları atlanıyor</translation>
-    </message>
-    <message>
-      <location filename="../../app/pages/program.py" line="64" />
-      <source>Block delete (/)</source>
-      <translation>Blok atlama (/)</translation>
-    </message>
-    <message>
-      <location filename="../../app/widgets/status_header.py" line="20" />
+      <location filename="../../app/widgets/status_header.py" line="23" />
       <source>Optional stop (M1)</source>
       <translation>İsteğe bağlı duruş (M1)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="230" />
+      <source>Or start it again from line 1, from where the tool stands now.</source>
+      <translation>Ya da programı takımın şu anki yerinden, 1. satırdan yeniden başlatın.</translation>
     </message>
     <message>
       <location filename="../../app/widgets/keypad.py" line="99" />
@@ -656,37 +696,42 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Parça sıfırı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="28" />
+      <location filename="../../app/pages/parameters.py" line="29" />
       <source>Path acceleration Amax</source>
       <translation>Yol ivmesi Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="29" />
+      <location filename="../../app/pages/parameters.py" line="30" />
       <source>Path jerk Jmax</source>
       <translation>Yol sarsıntısı Jmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="27" />
+      <location filename="../../app/pages/parameters.py" line="28" />
       <source>Path speed Vmax</source>
       <translation>Yol hızı Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="43" />
+      <location filename="../../app/pages/diagnostics.py" line="56" />
       <source>Path v / a / j</source>
       <translation>Yol v / a / j</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="90" />
+      <location filename="../../app/pages/diagnostics.py" line="109" />
+      <source>Planned when this page is shown.</source>
+      <translation>Bu sayfa gösterildiğinde planlanır.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="92" />
       <source>Planner mode</source>
       <translation>Planlayıcı kipi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="82" />
+      <location filename="../../app/pages/diagnostics.py" line="116" />
       <source>Planning…</source>
       <translation>Planlanıyor…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="28" />
+      <location filename="../../app/pages/tools.py" line="29" />
       <source>Pocket</source>
       <translation>Cep</translation>
     </message>
@@ -726,37 +771,37 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="311" />
+      <location filename="../../app/pages/auto.py" line="392" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="200" />
+      <location filename="../../app/main_window.py" line="216" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="196" />
+      <location filename="../../app/main_window.py" line="212" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="213" />
+      <location filename="../../app/main_window.py" line="229" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/widgets/status_header.py" line="22" />
       <source>Program stop (M0)</source>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="316" />
+      <location filename="../../app/pages/auto.py" line="397" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="142" />
+      <location filename="../../app/widgets/status_header.py" line="151" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -773,42 +818,42 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="113" />
+      <location filename="../../app/pages/auto.py" line="116" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="30" />
+      <location filename="../../app/pages/parameters.py" line="31" />
       <source>Rapid speed</source>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="261" />
+      <location filename="../../app/pages/program.py" line="286" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="119" />
+      <location filename="../../app/main_window.py" line="121" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="110" />
+      <location filename="../../app/widgets/status_header.py" line="117" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="111" />
+      <location filename="../../app/widgets/status_header.py" line="118" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="187" />
+      <location filename="../../app/pages/parameters.py" line="189" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="188" />
+      <location filename="../../app/pages/tools.py" line="212" />
       <source>Replace the whole tool table by {0}?</source>
       <translation>Tüm takım tablosu {0} ile değiştirilsin mi?</translation>
     </message>
@@ -818,27 +863,47 @@ BIRAK</translation>
       <translation>Sıfırla</translation>
     </message>
     <message>
+      <location filename="../../app/pages/auto.py" line="234" />
+      <source>Resume at line {0}</source>
+      <translation>{0}. satırdan devam et</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/apply_bar.py" line="22" />
       <source>Revert</source>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="196" />
+      <location filename="../../app/pages/auto.py" line="278" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="203" />
+      <location filename="../../app/pages/auto.py" line="283" />
       <source>Run from line refused: {0}</source>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="104" />
+      <location filename="../../app/pages/auto.py" line="462" />
+      <source>Run from line: {0}</source>
+      <translation>Satırdan çalıştır: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="107" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="16" />
+      <location filename="../../app/pages/auto.py" line="211" />
+      <source>Run the program anyway?</source>
+      <translation>Program yine de çalıştırılsın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="289" />
+      <source>Run the program from line {0}?</source>
+      <translation>Program {0}. satırdan çalıştırılsın mı?</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Running</source>
       <translation>Çalışıyor</translation>
     </message>
@@ -848,17 +913,17 @@ BIRAK</translation>
       <translation>Örnek sayısı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="32" />
+      <location filename="../../app/pages/program.py" line="33" />
       <source>Save</source>
       <translation>Kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="32" />
+      <location filename="../../app/pages/program.py" line="33" />
       <source>Save as…</source>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="292" />
+      <location filename="../../app/pages/program.py" line="317" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -868,42 +933,42 @@ BIRAK</translation>
       <translation>Programı farklı kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="78" />
+      <location filename="../../app/pages/manual.py" line="79" />
       <source>Send</source>
       <translation>Gönder</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="117" />
+      <location filename="../../app/pages/parameters.py" line="119" />
       <source>Service</source>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="245" />
+      <location filename="../../app/main_window.py" line="261" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="274" />
+      <location filename="../../app/main_window.py" line="290" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="250" />
+      <location filename="../../app/main_window.py" line="266" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="252" />
+      <location filename="../../app/main_window.py" line="268" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="180" />
+      <location filename="../../app/pages/parameters.py" line="182" />
       <source>Service password</source>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="245" />
+      <location filename="../../app/main_window.py" line="261" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -928,12 +993,12 @@ BIRAK</translation>
       <translation>Geçmişi göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="38" />
+      <location filename="../../app/pages/preview.py" line="40" />
       <source>Show in program</source>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="95" />
+      <location filename="../../app/pages/auto.py" line="97" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -943,34 +1008,39 @@ BIRAK</translation>
       <translation>Kaynak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="48" />
+      <location filename="../../app/pages/manual.py" line="49" />
       <source>Spindle</source>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="348" />
+      <location filename="../../app/pages/auto.py" line="435" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="116" />
+      <location filename="../../app/pages/auto.py" line="119" />
       <source>Spindle override</source>
       <translation>İş mili oranı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="59" />
+      <location filename="../../app/pages/manual.py" line="60" />
       <source>Spindle speed</source>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="349" />
+      <location filename="../../app/pages/auto.py" line="436" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="134" />
+      <location filename="../../app/pages/manual.py" line="135" />
       <source>Spindle: {0}, {1:.0f} rpm</source>
       <translation>İş mili: {0}, {1:.0f} dev/dak</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="221" />
+      <source>Start from the beginning</source>
+      <translation>Baştan başlat</translation>
     </message>
     <message>
       <location filename="../../app/pages/alarms.py" line="21" />
@@ -978,22 +1048,22 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="31" />
+      <location filename="../../app/pages/auto.py" line="33" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="103" />
+      <location filename="../../app/dialogs.py" line="72" />
       <source>Stop and disable the drives?</source>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="20" />
+      <location filename="../../app/widgets/status_header.py" line="23" />
       <source>Stopping</source>
       <translation>Duruyor</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="51" />
+      <location filename="../../app/pages/tools.py" line="52" />
       <source>Tap a value to change it. Lengths are the tool's Z offset, used by G43. Touch off: jog the tool tip onto a surface and enter its height in the active work coordinates.</source>
       <translation>Değiştirmek için bir değere dokunun. Boy, takımın G43 ile kullanılan Z ofsetidir. Dokunarak ölçme: takım ucunu bir yüzeye getirin ve yüzeyin etkin iş koordinatlarındaki yüksekliğini girin.</translation>
     </message>
@@ -1003,9 +1073,24 @@ BIRAK</translation>
       <translation>Değiştirmek için bir değere dokunun. Birimler: doğrusal eksenlerde mm, döner eksenlerde derece. Değişiklikler Uygula'dan sonra geçerli olur (atomik olarak yazılır).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="50" />
+      <location filename="../../app/pages/part_zero.py" line="52" />
       <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
       <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
+    </message>
+    <message>
+      <location filename="../../app/main_window.py" line="172" />
+      <source>The control did not shut down cleanly: home the axes (Machine zero, Home all) before running a program</source>
+      <translation>Kontrol düzgün kapanmadı: program çalıştırmadan önce eksenleri referanslayın (Makine sıfırı, Tüm eksenleri referansla)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="249" />
+      <source>The machine goes there the way drawn</source>
+      <translation>Makine oraya çizilen yoldan gider</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="246" />
+      <source>The machine goes up to Z{0:.3f} (machine), across, then down to it the way drawn</source>
+      <translation>Makine Z{0:.3f} (makine) yüksekliğine çıkar, yatay gider, sonra çizilen yoldan oraya iner</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="90" />
@@ -1013,7 +1098,17 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="192" />
+      <location filename="../../app/pages/auto.py" line="228" />
+      <source>The program stopped at line {0} ({1}).</source>
+      <translation>Program {0}. satırda durdu ({1}).</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="223" />
+      <source>The program stopped at line {0} and cannot resume there: {1}</source>
+      <translation>Program {0}. satırda durdu ve oradan devam edemez: {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/parameters.py" line="194" />
       <source>The service password was changed.</source>
       <translation>Servis şifresi değiştirildi.</translation>
     </message>
@@ -1033,22 +1128,22 @@ BIRAK</translation>
       <translation>Zaman</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="28" />
+      <location filename="../../app/pages/tools.py" line="29" />
       <source>Tool</source>
       <translation>Takım</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="20" />
+      <location filename="../../app/widgets/status_header.py" line="23" />
       <source>Tool change</source>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="351" />
+      <location filename="../../app/pages/auto.py" line="438" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="143" />
+      <location filename="../../app/widgets/status_header.py" line="157" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -1058,27 +1153,27 @@ BIRAK</translation>
       <translation>Takımlar</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="61" />
+      <location filename="../../app/pages/tools.py" line="62" />
       <source>Touch off length</source>
       <translation>Boyu dokunarak ölç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="68" />
+      <location filename="../../app/pages/part_zero.py" line="70" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="159" />
+      <location filename="../../app/pages/tools.py" line="181" />
       <source>Touch off {0}: work Z of the surface the tip touches</source>
       <translation>{0} dokunarak ölç: ucun değdiği yüzeyin iş Z'si</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="115" />
+      <location filename="../../app/pages/part_zero.py" line="117" />
       <source>Touch off {0}: work coordinate here</source>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="43" />
+      <location filename="../../app/pages/diagnostics.py" line="56" />
       <source>Tracking</source>
       <translation>Takip</translation>
     </message>
@@ -1088,12 +1183,12 @@ BIRAK</translation>
       <translation>Takip (referans − gerçek), Denklem 18</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="110" />
+      <location filename="../../app/pages/tools.py" line="111" />
       <source>T{0}</source>
       <translation>T{0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="137" />
+      <location filename="../../app/pages/tools.py" line="138" />
       <source>T{0} is already in the table.</source>
       <translation>T{0} tabloda zaten var.</translation>
     </message>
@@ -1103,7 +1198,7 @@ BIRAK</translation>
       <translation>T{0} iş milinde: önce başka bir takım seçin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="82" />
+      <location filename="../../app/controller_text.py" line="85" />
       <source>T{0} is not in the spindle: put it in and set it (In the spindle) first</source>
       <translation>T{0} iş milinde değil: önce takın ve ayarlayın (İş milinde)</translation>
     </message>
@@ -1113,22 +1208,27 @@ BIRAK</translation>
       <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="81" />
+      <location filename="../../app/controller_text.py" line="98" />
+      <source>T{0} length {1} mm is longer than the Z travel ({2} mm): check the value and the surface it was touched off on</source>
+      <translation>T{0} boyu {1} mm, Z hareket aralığından ({2} mm) uzun: değeri ve dokundurulduğu yüzeyi kontrol edin</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="84" />
       <source>T{0} measured on the tool setter: length {1} mm</source>
       <translation>T{0} takım ayarlayıcıda ölçüldü: boy {1} mm</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="117" />
+      <location filename="../../app/pages/tools.py" line="118" />
       <source>T{0}: diameter (mm)</source>
       <translation>T{0}: çap (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="116" />
+      <location filename="../../app/pages/tools.py" line="117" />
       <source>T{0}: length Z (mm)</source>
       <translation>T{0}: boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="115" />
+      <location filename="../../app/pages/tools.py" line="116" />
       <source>T{0}: pocket</source>
       <translation>T{0}: cep</translation>
     </message>
@@ -1138,7 +1238,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="211" />
+      <location filename="../../app/pages/program.py" line="227" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -1153,19 +1253,29 @@ BIRAK</translation>
       <translation>Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="34" />
+      <location filename="../../app/widgets/dro.py" line="52" />
       <source>Work</source>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="103" />
+      <location filename="../../app/widgets/dro.py" line="37" />
+      <source>Work = tool tip in {0}</source>
+      <translation>İş = takım ucu, {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/preview.py" line="105" />
       <source>Work coordinates ({0}): the cross is the work zero, the dashed box the machine's travel.</source>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="101" />
+      <location filename="../../app/pages/part_zero.py" line="103" />
       <source>XY rotation of {0}: {1} degrees</source>
       <translation>{0} XY döndürmesi: {1} derece</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/dro.py" line="30" />
+      <source>XY turned {0:g}°</source>
+      <translation>XY {0:g}° döndürülmüş</translation>
     </message>
     <message>
       <location filename="../../app/dialogs.py" line="25" />
@@ -1173,7 +1283,7 @@ BIRAK</translation>
       <translation>Evet</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="77" />
+      <location filename="../../app/controller_text.py" line="80" />
       <source>a probe move ended without the probe armed: the program stops here</source>
       <translation>bir prob hareketi prob kurulmadan bitti: program burada durur</translation>
     </message>
@@ -1203,7 +1313,7 @@ BIRAK</translation>
       <translation>program yüklendiğinden beri iş milinde başka bir takım var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="68" />
+      <location filename="../../app/controller_text.py" line="71" />
       <source>axes are not homed any more: home them before running a program</source>
       <translation>eksenler artık referanslı değil: program çalıştırmadan önce referanslayın</translation>
     </message>
@@ -1218,7 +1328,7 @@ BIRAK</translation>
       <translation>eksenler referanslanmadı: {0} (önce referanslayın ya da makine sıfırını ayarlayın)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="66" />
+      <location filename="../../app/controller_text.py" line="69" />
       <source>axis {0} did not reach OPERATION ENABLED within {1} s (drive state {2})</source>
       <translation>{0} ekseni {1} s içinde OPERATION ENABLED durumuna geçmedi (sürücü durumu {2})</translation>
     </message>
@@ -1253,6 +1363,11 @@ BIRAK</translation>
       <translation>ilerleme durduruldu</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="100" />
+      <source>feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again</source>
+      <translation>iş mili dururken ilerleme hareketi: {0}. satırdaki M6 onu durdurdu ve hiçbir M3/M4 yeniden başlatmadı</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="44" />
       <source>feed override must be 0-{0} %, got {1}</source>
       <translation>ilerleme oranı %0-{0} olmalı, {1} verildi</translation>
@@ -1278,7 +1393,7 @@ BIRAK</translation>
       <translation>referanslanıyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="63" />
+      <location filename="../../app/controller_text.py" line="66" />
       <source>homing of axis {0} failed ({1})</source>
       <translation>{0} ekseninin referanslanması başarısız ({1})</translation>
     </message>
@@ -1288,7 +1403,7 @@ BIRAK</translation>
       <translation>boşta</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="78" />
+      <location filename="../../app/controller_text.py" line="81" />
       <source>line {0} comes after the probe at line {1}: what follows depends on what it read; run from line {1} (or before) to read it again</source>
       <translation>satır {0}, satır {1}'deki probdan sonra geliyor: devamı onun okuduğuna bağlı; yeniden okumak için satır {1}'den (veya öncesinden) çalıştırın</translation>
     </message>
@@ -1323,6 +1438,16 @@ BIRAK</translation>
       <translation>yüklü program yok</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="88" />
+      <source>no program stopped part-way</source>
+      <translation>yarıda durmuş bir program yok</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/dro.py" line="36" />
+      <source>no tool length offset</source>
+      <translation>takım boy ofseti yok</translation>
+    </message>
+    <message>
       <location filename="../../app/format.py" line="42" />
       <source>none</source>
       <translation>yok</translation>
@@ -1338,7 +1463,7 @@ BIRAK</translation>
       <translation>durdurulacak bir şey yok: makine {0} durumunda</translation>
     </message>
     <message>
-      <location filename="../../app/pages/manual.py" line="133" />
+      <location filename="../../app/pages/manual.py" line="134" />
       <source>off</source>
       <translation>kapalı</translation>
     </message>
@@ -1363,7 +1488,7 @@ BIRAK</translation>
       <translation>program duraklatıldı (M00, satır {0}): çevrim başlata basın</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="62" />
+      <location filename="../../app/controller_text.py" line="65" />
       <source>quick stop of all axes: {0}</source>
       <translation>tüm eksenler hızlı durduruldu: {0}</translation>
     </message>
@@ -1373,9 +1498,19 @@ BIRAK</translation>
       <translation>program başlamadan önce gerekli</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="90" />
+      <source>reset</source>
+      <translation>sıfırlama</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/axes.py" line="56" />
       <source>rotary</source>
       <translation>döner</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="89" />
+      <source>run from line {0}</source>
+      <translation>{0}. satırdan çalıştırma</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="55" />
@@ -1388,7 +1523,7 @@ BIRAK</translation>
       <translation>şu anki konumu sıfır yap</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="65" />
+      <location filename="../../app/controller_text.py" line="68" />
       <source>set-point buffer underrun after {0} set-points: holding the last position</source>
       <translation>{0} hedef noktadan sonra hedef tamponu boşaldı: son konum tutuluyor</translation>
     </message>
@@ -1418,12 +1553,12 @@ BIRAK</translation>
       <translation>duruyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="67" />
+      <location filename="../../app/controller_text.py" line="70" />
       <source>the control did not shut down cleanly (power loss or killed; position last saved {0}): {1}</source>
       <translation>kontrol düzgün kapanmadı (elektrik kesintisi ya da zorla sonlandırma; konum en son {0} tarihinde kaydedildi): {1}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="69" />
+      <location filename="../../app/controller_text.py" line="72" />
       <source>the drives have absolute encoders: homed flags kept</source>
       <translation>sürücülerde mutlak enkoder var: referans bilgisi korundu</translation>
     </message>
@@ -1438,9 +1573,29 @@ BIRAK</translation>
       <translation>makine, program yüklendiğinden beri hareket etti</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="87" />
+      <source>the program stopped at line {0}: resume there or start it again from the beginning (choose one)</source>
+      <translation>program {0}. satırda durdu: oradan devam edin ya da baştan başlatın (birini seçin)</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="37" />
       <source>the program {0} is still being checked (wait until it is loaded)</source>
       <translation>{0} programı hâlâ denetleniyor (yüklenene kadar bekleyin)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="252" />
+      <source>the spindle starts at {0:.0f} rpm {1} before it goes down</source>
+      <translation>iş mili inmeden önce {0:.0f} dev/dk {1} döner</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="251" />
+      <source>the spindle stays off</source>
+      <translation>iş mili kapalı kalır</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="91" />
+      <source>the tool length offset in force changed since it was loaded</source>
+      <translation>yüklendiğinden beri geçerli takım boy ofseti değişti</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="48" />
@@ -1463,6 +1618,21 @@ BIRAK</translation>
       <translation>takım değişimi (M06, satır {0}): {1} takımını takın ve çevrim başlata basın</translation>
     </message>
     <message>
+      <location filename="../../app/pages/auto.py" line="254" />
+      <source>tool {0}</source>
+      <translation>takım {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/dro.py" line="34" />
+      <source>tool {0}length {1} mm</source>
+      <translation>takım {0}boy {1} mm</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="96" />
+      <source>touch off {0}: not a number</source>
+      <translation>{0} sıfırlama: sayı değil</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/bus_view.py" line="65" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
@@ -1478,69 +1648,99 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="169" />
+      <location filename="../../app/main_window.py" line="185" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="71" />
+      <location filename="../../app/controller_text.py" line="74" />
       <source>{0} (line {1}): contact at {2} (machine)</source>
       <translation>{0} (satır {1}): temas {2} konumunda (makine)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="72" />
+      <location filename="../../app/controller_text.py" line="75" />
       <source>{0} (line {1}): contact lost at {2} (machine)</source>
       <translation>{0} (satır {1}): temas {2} konumunda kesildi (makine)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="73" />
+      <location filename="../../app/controller_text.py" line="76" />
       <source>{0} (line {1}): no contact</source>
       <translation>{0} (satır {1}): temas yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="75" />
+      <location filename="../../app/controller_text.py" line="78" />
       <source>{0} (line {1}): the probe already touches where the move starts</source>
       <translation>{0} (satır {1}): prob, hareketin başladığı yerde zaten temas ediyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="74" />
+      <location filename="../../app/controller_text.py" line="77" />
       <source>{0} (line {1}): the probe move ended without contact</source>
       <translation>{0} (satır {1}): prob hareketi temas olmadan bitti</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="76" />
+      <location filename="../../app/controller_text.py" line="79" />
       <source>{0} (line {1}): with the result, {2}</source>
       <translation>{0} (satır {1}): sonuçla birlikte, {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="169" />
+      <location filename="../../app/pages/program.py" line="185" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="212" />
+      <location filename="../../app/pages/program.py" line="228" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/tools.py" line="185" />
+      <location filename="../../app/pages/tools.py" line="169" />
+      <source>{0} is in the spindle, {1} is selected. Whose length is measured?</source>
+      <translation>İş milinde {0} var, {1} seçili. Hangisinin boyu ölçülüyor?</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/tools.py" line="209" />
       <source>{0} is not a tool table in the program folders</source>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="133" />
+      <location filename="../../app/pages/program.py" line="145" />
       <source>{0} lines: shown read-only (edit programs of over {1} lines in CAM or on a PC)</source>
       <translation>{0} satır: yalnızca okunur gösteriliyor ({1} satırdan uzun programları CAM'de ya da bir bilgisayarda düzenleyin)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="64" />
+      <location filename="../../app/controller_text.py" line="67" />
       <source>{0} lost: not answering process data; trying to recover it when it comes back</source>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="108" />
+      <location filename="../../app/main_window.py" line="168" />
+      <source>{0} was running at line {1} when the control stopped (power loss or killed): home the axes, open it and run from line {1}</source>
+      <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="110" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="93" />
+      <source>{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel {3} .. {4} {5}</source>
+      <translation>{0} {1} sıfırı, geçerli takım boy ofsetiyle makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="95" />
+      <source>{0} {1} zero would be at machine {2}, outside the travel {3} .. {4} {5}</source>
+      <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="97" />
+      <source>{0}: not a number</source>
+      <translation>{0}: sayı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="459" />
+      <source>{0}: {1}</source>
+      <translation>{0}: {1}</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="38" />

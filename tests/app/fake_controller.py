@@ -27,6 +27,7 @@ from app.machine.model import (
     ProgramInfo,
     ProgramIssue,
     Prompt,
+    RestartPreview,
     RunSummary,
     Severity,
     SpindleState,
@@ -99,6 +100,7 @@ class FakeController(QObject):
         self.reference_position = (0.0,) * n
         self.progress = (0.0, 0.0)
         self.resume_line = 0
+        self.interrupted: tuple[str, int] | None = None
         self.last_run: RunSummary | None = None
         self.config_path = Path(self.config.path) if self.config.path else Path("machine.toml")
 
@@ -184,7 +186,7 @@ class FakeController(QObject):
         ok = self.program_info is not None
         return CommandResult(ok, "load_program", "" if ok else "no program loaded")
 
-    def cycle_start(self, *, wait: bool = False) -> CommandResult:
+    def cycle_start(self, *, wait: bool = False, from_start: bool = False) -> CommandResult:
         if self.program_info is None:
             self.commandRefused.emit("cycle_start", "no program loaded")
             return CommandResult(False, "cycle_start", "no program loaded")
@@ -229,12 +231,13 @@ class FakeController(QObject):
         self.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
         return self._ok("set_block_delete", on)
 
-    def approach_preview(self, line: int):
-        self.calls.append(("approach_preview", line))
+    def restart_preview(self, line: int = 0):
+        self.calls.append(("restart_preview", line))
         start = np.asarray(self.machine_position, float)
         top = start.copy()
         top[-1] = 100.0
-        return np.array([start, top])
+        return RestartPreview(line=line, cause=f"run from line {line}", path=np.array([start, top]),
+                              clearance_mm=100.0, spindle_rpm=6000.0, tool=self.tool_in_spindle)
 
     def run_from_line(self, line: int, *, wait: bool = False) -> CommandResult:
         return self._ok("run_from_line", line)

@@ -145,7 +145,7 @@ def test_auto_page_buttons(fake_window, fake_controller, dialogs) -> None:
     auto.run_from.click()
     names = [c[0] for c in fake_controller.calls]
     assert names[-7:] == ["cycle_start", "feed_hold", "resume", "set_feed_override", "set_single_block",
-                          "approach_preview", "run_from_line"]
+                          "restart_preview", "run_from_line"]
     assert fake_controller.calls[-1] == ("run_from_line", 9)
     fake_controller.lineChanged.emit(12)
     assert auto.editor.run_line == 12
@@ -453,6 +453,6 @@ def test_run_from_line_shows_the_way_before_asking(fake_window, fake_controller,
     auto.run_from.click()
     (x, _y), = seen
     assert x is not None and len(x) == 2                     # drawn while the question is asked
-    assert fake_controller.calls[-1] == ("approach_preview", 9)   # not run
+    assert fake_controller.calls[-1] == ("restart_preview", 9)    # not run
     x, _ = auto.backplot.approach_item.getData()
     assert x is None or len(x) == 0                          # and removed afterwards

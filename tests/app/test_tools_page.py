@@ -57,6 +57,10 @@ def test_add_delete_and_touch_off(fake_window, fake_controller, dialogs) -> None
     page.buttons["add"].click()
     assert dialogs.asked[-1] == ("inform", "T2 is already in the table.")
     page.table.selectRow(0)
+    page.buttons["touch"].click()                       # the spindle is empty: said, nothing measured
+    assert dialogs.asked[-1][0] == "inform" and "No tool is in the spindle" in dialogs.asked[-1][1]
+    assert not any(c[0] == "touch_off_tool" for c in fake_controller.calls)
+    fake_controller.set_tool_in_spindle(1)
     dialogs.answers.append(1.5)
     page.buttons["touch"].click()
     assert fake_controller.calls[-1] == ("touch_off_tool", 1, 1.5)
@@ -89,3 +93,22 @@ def test_measuring_on_the_setter_asks_first(fake_window, fake_controller, dialog
     assert "Keep clear of the machine" in dialogs.asked[-1][1]
     page.buttons["measure"].click()                     # confirmed
     assert fake_controller.calls[-1] == ("measure_tool", 2)
+
+
+def test_touch_off_length_measures_the_tool_in_the_spindle_unless_told_otherwise(
+        fake_window, fake_controller, dialogs) -> None:
+    page = fake_window.page("tools")
+    _setup(fake_controller)
+    fake_controller.set_tool_in_spindle(1)
+    page.table.selectRow(1)                              # T2 selected, T1 in the spindle
+    dialogs.answers.extend([0, 2.0])                     # asked whose: the one in the spindle
+    page.buttons["touch"].click()
+    assert dialogs.asked[-2][0] == "choose" and "is in the spindle" in dialogs.asked[-2][1]
+    assert fake_controller.calls[-1] == ("touch_off_tool", 1, 2.0)
+    dialogs.answers.extend([1, 3.0])                     # the selected one, said explicitly
+    page.buttons["touch"].click()
+    assert fake_controller.calls[-1] == ("touch_off_tool", 2, 3.0)
+    n = len(fake_controller.calls)
+    dialogs.answers.append(-1)                           # cancelled: nothing measured
+    page.buttons["touch"].click()
+    assert len(fake_controller.calls) == n

@@ -489,16 +489,44 @@ def test_drive_fault_mid_program_keeps_position_and_line(ctl: MachineController,
     np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
 
 
-def test_stop_abandons_the_program(ctl: MachineController) -> None:
+def test_stop_keeps_where_it_stopped_and_cycle_start_never_starts_again_by_itself(
+        ctl: MachineController) -> None:
+    """After Stop (and a reset) the program is not run again from line 1 by a cycle start:
+    the operator chooses to resume where it stopped or to start from the beginning."""
     start(ctl)
     ctl.advance(0.5)
     assert ctl.stop()
     run_to_idle(ctl, 3)
     assert not ctl.last_run.completed
+    line = ctl.resume_line
+    assert line > 0
+    here = ctl.reference_position
+    r = ctl.cycle_start(wait=True)
+    assert not r and f"stopped at line {line}" in r.reason
+    assert ctl.state is MachineState.IDLE
+    ctl.advance(0.5)
+    assert ctl.reference_position == here                 # nothing moved
+    assert ctl.reset() and ctl.resume_line == line         # a reset keeps the point
+    assert ctl.cycle_start(wait=True, from_start=True)     # the operator's choice
     assert ctl.resume_line == 0
-    assert ctl.cycle_start(wait=True)  # and it can start again from the beginning (checked again: moved)
     run_to_idle(ctl)
     assert ctl.last_run.completed
+
+
+def test_stop_then_resume_goes_on_from_where_it_stopped(ctl: MachineController) -> None:
+    start(ctl)
+    ctl.advance(0.5)
+    assert ctl.stop()
+    run_to_idle(ctl, 3)
+    stopped = np.array(ctl.reference_position)
+    preview = ctl.restart_preview()
+    assert not isinstance(preview, str)
+    np.testing.assert_allclose(preview.path[0], stopped, atol=1e-3)       # from where it stands (actual)
+    np.testing.assert_allclose(preview.path[-1], stopped, atol=1e-6)      # back to the stop point
+    assert ctl.resume()
+    run_to_idle(ctl)
+    assert ctl.last_run.completed
+    np.testing.assert_array_equal(ctl.reference_position, (5.0, 20.0, 0.0))
 
 
 def test_stop_class_alarm_stops_along_the_path(ctl: MachineController) -> None:
@@ -714,14 +742,15 @@ def test_each_hold_is_named_for_what_it_is(ctl: MachineController) -> None:
     assert ctl.run_until(lambda: ctl.state is MachineState.IDLE, 5)
 
 
-def test_a_tool_change_stops_the_spindle_and_cycle_start_brings_it_back_at_speed(
+def test_a_tool_change_stops_the_spindle_and_it_stays_off_until_the_programs_m3(
         ctl: MachineController) -> None:
-    """M6: the spindle stops while hands are at the spindle; cycle start restores it and the
-    motion waits the spin-up time before the next move."""
+    """M6 as LinuxCNC reads it: the spindle stops for the change and stays stopped after cycle
+    start until the program's own M3 (at that M3's speed, never the old tool's), and the motion
+    waits the spin-up time there."""
     from app.machine.model import HoldKind
 
     assert ctl.set_tool(Tool(2, 2, (("Z", 0.0),), 6.0, "6 mm flat"))
-    start(ctl, "M3 S1000\nG0 X10 Y0\nT2 M6\nG1 X20 F600\nM30\n")
+    start(ctl, "M3 S1000\nG0 X10 Y0\nT2 M6\nG0 X11\nM3 S600\nG1 X20 F600\nM30\n")
     assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 10)
     assert ctl.hold_kind is HoldKind.TOOL_CHANGE and "insert tool T2" in ctl.state_reason
     assert ctl.tool_in_spindle == 0                                # not before the operator says so
@@ -734,15 +763,38 @@ def test_a_tool_change_stops_the_spindle_and_cycle_start_brings_it_back_at_speed
     assert ctl.current_line == 3                                   # still, while it waits
     assert ctl.cycle_start()
     assert ctl.prompt is None
-    assert ctl.spindle.on and ctl.spindle.direction == 1 and ctl.spindle.rpm == 1000.0
+    seen: list[tuple[float, float]] = []
+    while ctl.reference_position[0] < 11.0:
+        ctl.advance(0.01)
+        seen.append((ctl.reference_position[0], ctl.spindle.rpm if ctl.spindle.on else 0.0))
+    moving = [rpm for x, rpm in seen if x < 11.0]
+    assert len(moving) > 10 and all(rpm == 0.0 for rpm in moving)  # the G0 X11 ran with it off
+    assert ctl.run_until(lambda: ctl.spindle.on, 1.0)
+    assert ctl.spindle.direction == 1 and ctl.spindle.rpm == 600.0
     spinup = ctl.config.controller.spindle_spinup_s
     assert spinup > 0.5
     ctl.advance(spinup - 0.2)
-    assert ctl.reference_position[0] == 10.0                       # not yet: spinning up
-    assert ctl.run_until(lambda: ctl.reference_position[0] > 10.0, 1.0)
+    assert ctl.reference_position[0] == 11.0                       # not yet: spinning up
     run_to_idle(ctl)
     assert ctl.reference_position[0] == 20.0 and not ctl.spindle.on
     assert ctl.tool_in_spindle == 2
+
+
+def test_m6_of_the_tool_in_the_spindle_changes_nothing(ctl: MachineController) -> None:
+    assert ctl.set_tool(Tool(2, 2, (("Z", 0.0),), 6.0, "6 mm flat")) and ctl.set_tool_in_spindle(2)
+    said: list[str] = []
+    ctl.stateChanged.connect(lambda _state, why: said.append(why))
+    start(ctl, "M3 S1000\nG0 X10 Y0\nT2 M6\nG1 X20 F600\nM30\n")
+    rpm: list[float] = []
+    for _ in range(3000):
+        if ctl.state is MachineState.IDLE:
+            break
+        ctl.advance(0.01)
+        rpm.append(ctl.spindle.rpm if ctl.spindle.on else 0.0)
+    assert ctl.last_run is not None and ctl.last_run.completed
+    on = [i for i, r in enumerate(rpm) if r > 0.0]
+    assert on and all(r == 1000.0 for r in rpm[on[0]:on[-1] + 1])   # never stopped for the M6
+    assert not any("tool change" in why for why in said), said
 
 
 def test_a_program_waits_for_the_spindle_to_reach_speed_before_cutting(ctl: MachineController) -> None:
@@ -779,7 +831,7 @@ def test_the_time_left_counts_the_spin_ups_ahead(ctl: MachineController) -> None
     assert seen[-1] < 0.5 * spinup  # past both spin-ups: only the moves are left
 
 
-def test_spin_ups_are_starts_reversals_speed_ups_and_restarts_after_a_tool_change() -> None:
+def test_spin_ups_are_starts_reversals_and_speed_ups_and_a_tool_change_leaves_it_stopped() -> None:
     from app.machine.model import SpindleState
     from app.machine.motion.spinup import spin_up_waits
     from app.machine.motion.timescale import PausePoint
@@ -789,7 +841,9 @@ def test_spin_ups_are_starts_reversals_speed_ups_and_restarts_after_a_tool_chang
 
     pauses = [at(1, "spindle", 1000), at(2, "spindle", 800), at(3, "tool_change", 2), at(4, "spindle", -800),
               at(5, "spindle", 0), at(6, "tool_change", 3), at(7, "dwell", 2.0), at(8, "spindle", 900)]
-    assert spin_up_waits(pauses, SpindleState(), 2.5) == [(1, 2.5), (3, 2.5), (4, 2.5), (8, 2.5)]
+    # 1000: a start; 800: slower; M6: stopped, not started again; -800: a start; 900 after the
+    # second M6 and a dwell: a start
+    assert spin_up_waits(pauses, SpindleState(), 2.5) == [(1, 2.5), (4, 2.5), (8, 2.5)]
     # already turning at the programmed speed when the program starts: no wait at its M3
     assert spin_up_waits(pauses[:2], SpindleState(1, 1000.0), 2.5) == []
     assert spin_up_waits(pauses, SpindleState(), 0.0) == []

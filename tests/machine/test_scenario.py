@@ -60,6 +60,23 @@ def test_run_from_line_after_a_stop_while_cutting(tmp_path: Path, capsys) -> Non
     assert (rpm[going_down & (ref[:, 2] < 5.0)] == 1200.0).all()
 
 
+def test_after_a_stop_cycle_start_is_refused_and_restart_runs_from_the_beginning(tmp_path: Path,
+                                                                               capsys) -> None:
+    code, out, tr = run(tmp_path, capsys, CUT, [
+        {"at_line": 7, "op": "stop"},
+        {"after_s": 1.0, "op": "cycle_start"},
+        {"after_s": 0.5, "op": "restart"},
+    ])
+    assert code == 1, out                         # an action was refused: said in the exit code
+    stopped, again, restart = out["actions"]
+    assert stopped["ok"] and restart["ok"]
+    assert not again["ok"] and "stopped at line 7" in again["reason"]
+    assert out["completed"]
+    t, line = tr["t"], tr["line"]
+    after = (t > restart["t_s"]) & (line > 0)
+    assert line[after][0] < 7                     # from the beginning, as chosen
+
+
 @pytest.mark.parametrize("op", ["stop", "estop", "reset"])
 def test_the_spindle_is_off_within_a_second(tmp_path: Path, capsys, op: str) -> None:
     ops = [{"at_line": 7, "op": op}, {"after_s": 1.5, "op": "feed_hold"}] if op != "reset" else [
@@ -77,9 +94,11 @@ def test_the_spindle_is_off_within_a_second(tmp_path: Path, capsys, op: str) -> 
         assert later.any() and (rpm[later] == 0.0).all()
 
 
-def test_a_tool_change_prompts_stops_the_spindle_and_continues_when_the_tool_is_in(tmp_path: Path,
-                                                                                   capsys) -> None:
-    program = "G21 G90\nM3 S1000\nG0 X10 Y0\nT2 M6\nM3 S1000\nG1 X20 F600\nM30\n"
+def test_a_tool_change_stops_the_spindle_until_the_programs_own_m3(tmp_path: Path, capsys) -> None:
+    """LinuxCNC's M6 (STOP_SPINDLE_TURNING, CHANGE_TOOL): after the operator's tool_changed the
+    spindle stays at 0 rpm until the program's M3 S6000, then turns at 6000: never at the old
+    tool's 8000."""
+    program = "G21 G90\nM3 S8000\nG0 X10 Y0\nT2 M6\nM3 S6000\nG1 X20 F600\nM30\n"
     (tmp_path / "t.tbl").write_text("T2 P2 Z0 D6 ;6 mm flat\n")
     code, out, tr = run(tmp_path, capsys, program, [{"after_s": 6.0, "op": "tool_changed"}],
                         "--tools", str(tmp_path / "t.tbl"))
@@ -90,8 +109,13 @@ def test_a_tool_change_prompts_stops_the_spindle_and_continues_when_the_tool_is_
     fired = out["actions"][0]["t_s"]
     waiting = np.flatnonzero((line == 4) & (t < fired))   # the M6 line stays highlighted meanwhile
     assert len(waiting) > 3000
-    assert (rpm[waiting[1000:]] == 0.0).all()     # and the spindle is off (after it stopped)
-    assert (rpm[line == 6] == 1000.0).all()       # back on for the cut
+    assert (rpm[waiting[1000:]] == 0.0).all()     # the spindle is off (after it stopped)
+    after = t >= fired
+    first_on = int(np.flatnonzero(after & (rpm > 0.0))[0])
+    assert (rpm[after & (t < t[first_on])] == 0.0).all()      # off until the program's M3
+    assert line[first_on] >= 5                                 # which is what starts it
+    assert set(np.unique(rpm[after & (rpm > 0.0)])) == {6000.0}   # at its speed, never the old
+    assert (rpm[after & (line == 6)] == 6000.0).all()
 
 
 def test_150_percent_override_ends_a_feed_bound_program_a_quarter_sooner(tmp_path: Path, capsys) -> None:

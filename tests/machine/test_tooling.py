@@ -130,15 +130,16 @@ def test_run_from_line_needs_the_tool_the_program_has_there(ctl: MachineControll
     assert ctl.reference_position[:2] == pytest.approx((5.0, 5.0))
 
 
-def test_the_approach_preview_is_the_way_run_from_line_takes(ctl: MachineController) -> None:
+def test_the_restart_preview_is_the_way_run_from_line_takes(ctl: MachineController) -> None:
     assert ctl.load_program("G0 Z5\nG0 X10 Y0\nG1 Z-1 F300\nG1 X20\nM30\n", wait=True)
     assert ctl.mdi("G0 X30 Y30 Z-1") and run_to_idle(ctl) is None
-    way = ctl.approach_preview(4)
-    assert not isinstance(way, str)
+    preview = ctl.restart_preview(4)
+    assert not isinstance(preview, str)
     top = ctl.config.machine.axes[2].max_pos
-    assert [tuple(p) for p in way] == [(30.0, 30.0, -1.0), (30.0, 30.0, top), (10.0, 0.0, top),
+    assert preview.line == 4 and preview.clearance_mm == top
+    assert [tuple(p) for p in preview.path] == [(30.0, 30.0, -1.0), (30.0, 30.0, top), (10.0, 0.0, top),
                                        (10.0, 0.0, 5.0), (10.0, 0.0, -1.0)]
-    assert isinstance(ctl.approach_preview(99), str)
+    assert isinstance(ctl.restart_preview(99), str)
 
 
 def test_measuring_on_the_setter_needs_the_tool_in_the_spindle_and_a_setter(
@@ -176,3 +177,28 @@ def test_a_measurement_without_contact_leaves_the_length_as_it_was(qapp, config_
         assert any("the probe move ended without contact" in a.cause for a in ctl.active_alarms)
     finally:
         ctl.shutdown()
+
+
+def test_a_tool_length_longer_than_the_z_travel_is_refused_with_why(ctl: MachineController) -> None:
+    span = ctl.config.machine.axes[2].max_pos - ctl.config.machine.axes[2].min_pos
+    r = ctl.set_tool(Tool(4, 4, (("Z", span + 1.0),), 6.0))
+    assert not r and "longer than the Z travel" in r.reason and 4 not in ctl.tool_table
+    assert ctl.set_tool(Tool(4, 4, (("Z", span - 1.0),), 6.0))
+    assert ctl.set_tool_in_spindle(4)
+    # touched off on a surface far below anything reachable: the length it gives is refused
+    r = ctl.touch_off_tool(4, -10.0 * span)
+    assert not r and "longer than the Z travel" in r.reason
+    assert ctl.tool_table.get(4).length_mm == span - 1.0          # kept as it was
+
+
+def test_touch_off_length_counts_g92_like_the_work_position(ctl: MachineController) -> None:
+    assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+    assert ctl.mdi("G53 G0 Z-50") and run_to_idle(ctl) is None
+    assert ctl.mdi("G92 Z3") and run_to_idle(ctl) is None    # this point reads Z3 (tool's 40 mm included)
+    # the tip on a surface at work Z 0: the length is the machine Z less the work Z of the gauge line
+    assert ctl.touch_off_tool(1, 0.0)
+    g5x = ctl.work_offsets["G54"][2]
+    g92 = ctl.g92_offset[2]
+    assert ctl.tool_table.get(1).length_mm == pytest.approx(-50.0 - g5x - g92, abs=1e-6)
+    # with that length the tip reads 0 here
+    assert ctl.work_position[2] == pytest.approx(0.0, abs=1e-3)

@@ -41,6 +41,7 @@ class ToolControl:
         self._out = out
         self.table, self.in_spindle = store.load_tools()
         self.version = 0          # changes with every edit: a loaded program knows its version
+        self._tell_coordinates()
         pauses.on(PauseKind.TOOL_SET, self.at_tool_set)
         pauses.on(PauseKind.TOOL_DATA, self.at_tool_data)
 
@@ -57,12 +58,41 @@ class ToolControl:
             return self._states.refuse(action, f"cannot save the tool table: {exc}")
         self.table, self.in_spindle = table, in_spindle
         self.version += 1
+        self._tell_coordinates()
         self._out.toolsChanged.emit(self.table, self.in_spindle)
         return self._states.ok(action)
 
+    def spindle_tool_offsets(self) -> tuple[float, ...]:
+        """The offsets (per axis, machine units) of the tool in the spindle; 0 without one."""
+        axes = self._settings.config.axes
+        tool = self.table.get(self.in_spindle) if self.in_spindle else None
+        return tuple(float(tool.offset(a)) if tool is not None else 0.0 for a in axes)
+
+    def _tell_coordinates(self) -> None:
+        """The tool length offset in force follows the tool in the spindle (G43 of it)."""
+        self._coordinates.set_spindle_tool(self.in_spindle, self.spindle_tool_offsets())
+
+    def _length_outside_travel(self, number: int, length: float) -> str:
+        """Why a Z length cannot be a tool's: longer than the Z travel; "" when it can."""
+        cfg = self._settings.config
+        if "Z" not in cfg.axes:
+            return ""
+        z = cfg.machine.axes[cfg.axes.index("Z")]
+        span = z.max_pos - z.min_pos
+        if not math.isfinite(length):
+            return f"T{number}: the length is not a number"
+        if abs(length) > span:
+            return (f"T{number} length {length:.4f} mm is longer than the Z travel ({span:g} mm): check the "
+                    "value and the surface it was touched off on")
+        return ""
+
     @guarded(Action.SET_TOOL)
     def set_tool(self, tool: Tool) -> CommandResult:
-        """Add or replace a tool (number, pocket, offsets, diameter, description)."""
+        """Add or replace a tool (number, pocket, offsets, diameter, description); a length
+        longer than the Z travel is refused."""
+        why = self._length_outside_travel(tool.number, tool.length_mm)
+        if why:
+            return self._states.refuse(Action.SET_TOOL, why)
         try:
             table = self.table.with_tool(tool)
         except PlannerError as exc:
@@ -104,11 +134,14 @@ class ToolControl:
             return self._states.refuse(action, "axes not homed: the machine Z is not known")
         k = cfg.axes.index("Z")
         machine_z = float(self._positions.machine_pos()[k])
-        offsets = self._coordinates.offsets
-        work_z = float(offsets.get(self._coordinates.active_offset, (0.0,) * (k + 1))[k])
-        length = machine_z - work_z - float(surface_z_mm)
+        # the work Z of the gauge line here (G5x and G92; the tool's own length left out)
+        frame = self._coordinates.panel_frame()
+        length = round(machine_z - float(frame.g5x[k]) - float(frame.g92[k]) - float(surface_z_mm), 6) + 0.0
+        why = self._length_outside_travel(number, length)
+        if why:
+            return self._states.refuse(action, why)
         try:
-            table = self.table.with_tool(tool.with_offset("Z", round(length, 6)))
+            table = self.table.with_tool(tool.with_offset("Z", length))
         except PlannerError as exc:
             return self._states.refuse(action, str(exc))
         return self._commit(table, self.in_spindle, action)
@@ -142,6 +175,7 @@ class ToolControl:
                 self._alarms.raise_alarm("persistence", f"cannot save the tool in the spindle: {exc}",
                                          Severity.WARNING, "tools")
             self.in_spindle = number
+            self._tell_coordinates()
             self._out.toolsChanged.emit(self.table, self.in_spindle)
 
     # ------------------------------------------------------------------ at pause points

@@ -127,6 +127,9 @@ class StateStore:
                 # it did not shut down cleanly (power loss, kill -9)
                 "running": bool(data.get("running", False)),
                 "saved": float(data.get("saved", 0.0)),
+                # the program that was running and its line, when one was
+                "program": str(data.get("program", "") or ""),
+                "line": int(data.get("line", 0) or 0),
             }
             if any(len(out[k]) != n for k in ("raw_position", "home_offset", "homed")):
                 raise ValueError("wrong number of values")
@@ -136,11 +139,14 @@ class StateStore:
             return None
 
     def save_state(self, axes: tuple[str, ...], raw_position: list[float], home_offset: list[float],
-                   homed: list[bool], active_offset: str, running: bool = False) -> None:
+                   homed: list[bool], active_offset: str, running: bool = False,
+                   program: str = "", line: int = 0) -> None:
+        """The machine's state; ``program`` and ``line``: the program running and its line (an
+        unclean end then says what was interrupted)."""
         self._write_json("state.json", {"axes": list(axes), "raw_position": list(raw_position),
                                         "home_offset": list(home_offset), "homed": list(homed),
                                         "active_offset": active_offset, "running": running,
-                                        "saved": time.time()})
+                                        "program": program, "line": int(line), "saved": time.time()})
 
     # ------------------------------------------------------------------ work offsets
     def load_offsets(self, n_axes: int) -> dict[str, tuple[float, ...]] | None:

@@ -9,8 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.machine.model import Activity, ResumePoint, SpindleState
+from app.machine.model import Activity, ResumePoint
 from app.machine.motion.timescale import PausePoint, ScaledChunk, TimeScaledExecutor
+from planner.core.frames import Frame
 from planner.core.machine import MachineSpec
 from planner.core.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, Program
 from planner.motion.meter import LimitMeter, PathSpeedLimits
@@ -49,6 +50,7 @@ class Job:
     ) -> None:
         self.kind = kind
         self.name = name
+        self.source = ""          # the program's file ("" for a text): what a power loss interrupted
         self.program = program
         # (MSG,...), (DEBUG,...) and user M-code texts, shown when the motion reaches their line
         self.messages: collections.deque[tuple[int, str]] = collections.deque(
@@ -69,8 +71,7 @@ class Job:
         self.stop_reason = ""
         self.aborted = False
         self.then: Job | None = None
-        # the spindle stopped for a tool change, brought back by cycle start
-        self.spindle_paused: SpindleState | None = None
+        self.keep_point = False   # stopped by the operator: the point where it rests is kept to resume
         self.spinup_until: float | None = None   # worker time the spindle is at speed
         # (planned time, wait) of each spin-up of the spindle the run will wait for
         self.spin_ups: list[tuple[float, float]] = []
@@ -134,6 +135,26 @@ class Job:
         """The move of the set-point the drives reached."""
         m = self._mark_at(consumed - 1)
         return m[3] if m is not None else None
+
+    def frame_at(self, consumed: int) -> Frame | None:
+        """The offsets in force (the program's own, ``Program.frame_at``) at the set-point the
+        drives reached; None before the first."""
+        m = self.move_at(consumed)
+        if m is None:
+            return None
+        if self.origin is not None:
+            prog, base, _u0 = self.origin
+            return prog.frame_at(base + m)
+        return self.plan.program.frame_at(m)
+
+    def left_at(self, consumed: int, completed: bool) -> tuple[Program, int]:
+        """The program this job ran and the move it ended with (``len(moves)`` when it ran to
+        its end): what it leaves in force is the program's state there."""
+        prog, base = (self.origin[0], self.origin[1]) if self.origin is not None else (self.plan.program, 0)
+        if completed:
+            return prog, len(prog.moves)
+        m = self.move_at(consumed)
+        return prog, base + (m if m is not None else 0)
 
     def _mark_at(self, serial: int) -> tuple[int, int, float, int, float] | None:
         marks = self._marks

@@ -156,7 +156,8 @@ class ManualMotion:
             parse_program, text, name, machine=machine,
             start_position=self._positions.machine_pos(), tools=self._tools.table,
             tool_in_spindle=self._tools.in_spindle, spindle=(spindle.direction, spindle.rpm),
-            parameters=dict(self._coordinates.parameters), block_delete=self._modes.block_delete)
+            parameters=dict(self._coordinates.parameters), block_delete=self._modes.block_delete,
+            tool_offset=self._coordinates.start_offset())
         states = self._states
         try:
             prog = read()

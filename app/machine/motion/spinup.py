@@ -23,8 +23,8 @@ def spin_up_waits(pauses: Iterable[PausePoint], start: SpindleState,
                   spin_up_s: float) -> list[tuple[float, float]]:
     """(planned time, wait) of every spin-up a run through these pause points
     (``timescale.pause_points``) waits for, from the spindle state ``start``: an M3/M4/S that
-    starts, reverses or speeds the spindle up, and the restart after a tool change with the
-    spindle on (it stops while hands are near it). The run's cycle time and the time left
+    starts, reverses or speeds the spindle up (after a tool change, M6 having stopped it, the
+    program's M3/M4 starts it again). The run's cycle time and the time left
     count them: the motion stands while the spindle comes up to speed."""
     waits: list[tuple[float, float]] = []
     state = start
@@ -34,6 +34,6 @@ def spin_up_waits(pauses: Iterable[PausePoint], start: SpindleState,
             if spins_up(state, new) and spin_up_s > 0.0:
                 waits.append((float(p.tau_s), spin_up_s))
             state = new
-        elif p.kind is PauseKind.TOOL_CHANGE and state.on and spin_up_s > 0.0:
-            waits.append((float(p.tau_s), spin_up_s))
+        elif p.kind is PauseKind.TOOL_CHANGE:
+            state = SpindleState()          # M6 stops the spindle until the program's M3/M4
     return waits

@@ -224,10 +224,11 @@ class Streamer:
             self.hold_motion(wait_for_tap=True)
             return bool(job.executor.hold_deferred)
 
-    def stop_job(self, reason: str, only: Activity | None = None, forget_point: bool = False) -> bool:
+    def stop_job(self, reason: str, only: Activity | None = None, keep_point: bool = False) -> bool:
         """Stop the job along its path and end it at standstill (``only``: just a job of that
-        kind); ``forget_point``: a program's point to resume from goes too. Whether there was
-        one to stop."""
+        kind); ``keep_point``: a program keeps the point where it comes to rest to resume from
+        (the operator's Stop: cycle start then asks to resume there or start again). Whether
+        there was one to stop."""
         with self._lock:
             job = self.job
             if job is None or (only is not None and job.kind is not only):
@@ -235,8 +236,9 @@ class Streamer:
             self.hold_motion()
             job.stopping = True
             job.stop_reason = reason
-            if forget_point and job.kind is Activity.PROGRAM:
+            if job.kind is Activity.PROGRAM:
                 self.resume_point = None
+                job.keep_point = keep_point
             return True
 
     def abandon(self, reason: str, keep_point: str | None = None) -> None:
@@ -260,11 +262,16 @@ class Streamer:
             self.resume_point = None
 
     def _reset(self, state: MachineState) -> None:
+        """Reset keeps a program's point to resume from (after E-stop, an alarm, a stop or a
+        pause): cycle start then asks to resume there or start again; the line shown goes."""
         if state is MachineState.HOLD:
+            with self._lock:
+                job = self.job
+                if job is not None and job.kind is Activity.PROGRAM and job.origin is not None \
+                        and self.resume_point is None:
+                    self.resume_point = job.resume_point(self.consumed(), "reset")
             self.drop_job(completed=False, reason="reset")
-            self.resume_point = None
         elif state is MachineState.IDLE:
-            self.resume_point = None
             self.clear_line()
 
     def set_overrides(self, feed: float | None = None, rapid: float | None = None) -> None:
@@ -283,7 +290,7 @@ class Streamer:
 
     def continue_held(self, single_block: bool) -> str:
         """Cycle start in HOLD: go on after a feed hold, a single-block stop or M00/M01/M06 (a
-        tool change: the tool is in; the spindle as it was, at speed before moving on). With
+        tool change: the tool is in; the spindle stays stopped until the program's M3/M4). With
         single block switched meanwhile the rest is planned again from here. "" when it goes
         on, else why not."""
         with self._lock:
@@ -304,12 +311,7 @@ class Streamer:
             if job.pause is not None and job.waiting:
                 if job.pause.kind is PauseKind.TOOL_CHANGE:      # the operator has put the tool in
                     self._tools.loaded_by_program(int(job.pause.value))
-                paused, job.spindle_paused = job.spindle_paused, None
-                if paused is not None:
-                    snap = self._drives.snapshot()
-                    self.start_spindle(job, paused, float(snap.time_s) if snap is not None else 0.0)
-                else:
-                    self.release(job)
+                self.release(job)
             return ""
 
     def _replan_here(self, job: Job) -> Job | None:
@@ -436,6 +438,9 @@ class Streamer:
             if line != self.line and job.kind in (Activity.PROGRAM, Activity.MDI) and not job.waiting:
                 self.line = line
                 self._out.lineChanged.emit(line)
+            if job.kind in (Activity.PROGRAM, Activity.MDI):
+                # the DRO reads the tool tip in the program's own frame at this move
+                self._coordinates.follow_program(job.frame_at(consumed))
             while job.messages and job.messages[0][0] <= line:
                 self.show_message(job.messages.popleft()[1])
             if job.kind is Activity.PROGRAM:
@@ -530,8 +535,9 @@ class Streamer:
         job.waiting = True
         kind = p.kind
         if kind is PauseKind.TOOL_CHANGE and self._spindle.spindle.on:
-            # hands go near the spindle: it stops, and cycle start brings it back
-            job.spindle_paused = self._spindle.spindle
+            # hands go near the spindle: it stops and stays stopped until the program's own
+            # M3/M4 (LinuxCNC's M6: STOP_SPINDLE_TURNING, CHANGE_TOOL; the program's M6 stops
+            # it first, this is the guard for a spindle the operator started meanwhile)
             self._spindle.stop_spindle()
         tool = int(p.value) if kind is PauseKind.TOOL_CHANGE else 0
         label = self._tools.table.label(tool)
@@ -601,6 +607,10 @@ class Streamer:
             job, self.job = self.job, None
             if job is None:
                 return None
+            if (not completed and job.keep_point and job.kind is Activity.PROGRAM and job.origin is not None
+                    and self.resume_point is None):
+                # the operator's stop: where the drives came to rest
+                self.resume_point = job.resume_point(self.consumed(), job.stop_reason)
             job.aborted = True
             self._spindle.set_program_lock(False)
             self.set_feed_note("")
@@ -608,6 +618,9 @@ class Streamer:
                 hook()
             if not completed:
                 self._drives.flush()
+        if job.kind in (Activity.PROGRAM, Activity.MDI) and job.then is None:
+            # what the program leaves in force (the tool length offset) stays, as in LinuxCNC
+            self._coordinates.program_left(*job.left_at(self.consumed(), completed))
         if job.kind is not Activity.PROGRAM:
             return None
         last_line = self.line

@@ -26,7 +26,8 @@ from app.toolpath import build_toolpath
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.heap import trim_heap
 from planner.core.machine import MachineSpec
-from planner.core.program import Program
+from planner.core.movestore import MoveStore
+from planner.core.program import EventKind, MoveKind, Program
 from planner.core.tools import ToolTable
 from planner.gcode.interpreter import read_program
 from planner.motion.plan import Plan
@@ -54,6 +55,8 @@ class LoadRequest:
     tools: ToolTable = field(default_factory=ToolTable)   # the table G43 reads (identity: stale)
     tool_in_spindle: int = 0
     parameters: dict[int, float] = field(default_factory=dict)   # G92, G28/G30 ... (var file)
+    # the tool length offset in force at the start (G43 / G43.1 / G49 code, values per axis)
+    tool_offset: tuple[int, tuple[float, ...]] | None = None
     cancel: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
     progress: float = 0.0  # 0..1, written by the worker as it reads, checks and plans
@@ -125,7 +128,8 @@ def check_text(
     try:
         loaded = load(text, name, machine, plan, start_position=req.start_position, tools=req.tools,
                       tool_in_spindle=req.tool_in_spindle, parameters=req.parameters,
-                      block_delete=req.block_delete, abilities=machine_abilities(req.cfg),
+                      block_delete=req.block_delete, tool_offset=req.tool_offset,
+                      abilities=machine_abilities(req.cfg),
                       progress=stage_progress(0.0, LOAD_SHARES[0]), between=stage)
     except Refused as exc:
         e = exc.errors[0]
@@ -169,7 +173,46 @@ def check_text(
         blends=blended.blends,
         path_deviation_mm=blended.max_corner_deviation_mm,
         reread=loaded.reread if program.probes or program.inputs else None,
+        warnings=spindle_stopped_cuts(program, req.spindle),
     )
+
+
+def spindle_stopped_cuts(program: Program, start: SpindleState) -> tuple[ProgramIssue, ...]:
+    """Feed moves the program makes with the spindle stopped after an M6 (LinuxCNC's M6 stops it
+    until the program's own M3/M4): the first of each such stretch, naming the M6, for the
+    operator to confirm before the run (a program that forgot its M3 would cut with a still
+    tool). The moves are columns: a stretch is found by its first feed move, not one by one."""
+    changes = [e for e in program.events if e.kind in (EventKind.TOOL_CHANGE, EventKind.SPINDLE)]
+    if not any(e.kind is EventKind.TOOL_CHANGE for e in changes):
+        return ()
+    moves = program.moves
+    n = len(moves)
+    if isinstance(moves, MoveStore):
+        cols = moves.columns()
+        kinds, lines = cols.kind, cols.line
+    else:
+        kinds = np.fromiter((int(m.kind) for m in moves), np.int8, n)
+        lines = np.fromiter((m.line for m in moves), np.int64, n)
+    feed = np.flatnonzero(kinds != int(MoveKind.RAPID))
+    found: list[ProgramIssue] = []
+    on = start.on
+    stopped_by = 0
+    bounds = [*changes, None]
+    for k, e in enumerate(changes):
+        if e.kind is EventKind.TOOL_CHANGE:
+            on, stopped_by = False, e.line
+        else:
+            on = e.value != 0.0
+        if on or not stopped_by:
+            continue
+        nxt = bounds[k + 1]
+        lo, hi = e.after_move + 1, (nxt.after_move + 1 if nxt is not None else n)
+        i = int(np.searchsorted(feed, lo))
+        if i < len(feed) and feed[i] < hi:
+            found.append(ProgramIssue(int(lines[feed[i]]), 0,
+                                      f"feed move with the spindle stopped: the M6 at line {stopped_by} "
+                                      "stopped it and no M3/M4 started it again"))
+    return tuple(found)
 
 
 def check_pass(program: Program, window: PlanWindow,

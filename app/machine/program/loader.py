@@ -116,6 +116,7 @@ class ProgramLoader:
         self._program_offsets: dict[str, tuple[float, ...]] = {}
         self._program_block_delete = False
         self._program_parameters: dict[int, float] = {}
+        self._program_tool_offset: tuple[int, tuple[float, ...]] | None = None
         self._program_tools: tuple[ToolTable, int] | None = None
         self.run_plan_request: RunPlanRequest | None = None  # single-block plan in flight
         self._run_plan_ready: RunPlanRequest | None = None  # ... and the one made
@@ -290,6 +291,7 @@ class ProgramLoader:
             tools=self._tools.table,
             tool_in_spindle=self._tools.in_spindle,
             parameters=dict(self._coordinates.parameters),
+            tool_offset=self._coordinates.start_offset(),
             spindle=self._spindle.spindle,
             spin_up_s=float(self._settings.config.controller.spindle_spinup_s),
             block_delete=self._block_delete,
@@ -378,6 +380,7 @@ class ProgramLoader:
         self._program_offsets = dict(req.offsets)
         self._program_block_delete = req.block_delete
         self._program_parameters = dict(req.parameters)
+        self._program_tool_offset = req.tool_offset
         self._program_tools = (req.tools, req.tool_in_spindle)
         self._program_text = info.text
         self._program_path = info.path
@@ -419,6 +422,8 @@ class ProgramLoader:
             return "the tool table changed since it was loaded"
         if self._program_tools[1] != self._tools.in_spindle:
             return "another tool is in the spindle since it was loaded"
+        if self._program_tool_offset != self._coordinates.start_offset():
+            return "the tool length offset in force changed since it was loaded"
         if self._program_block_delete != self._block_delete:
             return "block delete was switched since it was loaded"
         start = np.asarray(info.program.start_position)

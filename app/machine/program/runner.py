@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 from app.machine.infra.events import MachineEvents, PanelChannels
-from app.machine.model import Activity, CommandResult, HoldKind, MachineState, ProgramInfo
+from app.machine.model import Activity, CommandResult, HoldKind, MachineState, ProgramInfo, RestartPreview
 from app.machine.motion.jobs import ResumePoint
 from app.machine.motion.making import JobMaker
 from app.machine.motion.refusals import limit_issues
@@ -134,8 +134,11 @@ class ProgramRunner:
             else:
                 self.cycle_start()
 
-    def cycle_start(self, *, wait: bool = False) -> CommandResult:
-        """Start the loaded program from its beginning (IDLE), or continue (HOLD). Needs homed
+    def cycle_start(self, *, wait: bool = False, from_start: bool = False) -> CommandResult:
+        """Start the loaded program from its beginning (IDLE), or continue (HOLD). A program
+        that stopped part-way (Stop, E-stop and reset, an alarm) is never started again by
+        default: cycle start is refused, saying where it stopped, until the operator chooses
+        to resume there (``resume``) or to start from the beginning (``from_start``). Needs homed
         axes (unless the configuration says otherwise) and no active alarm of severity STOP or
         above. Runs the plan made at load time; when the configuration, the work offsets or
         the machine position changed since loading, the program is checked again first, and
@@ -155,6 +158,13 @@ class ProgramRunner:
             return self._states.refuse(action, why)
         if self._alarms.stops_motion():
             return self._states.refuse(action, "acknowledge the active alarms first")
+        point = self._motion.resume_point
+        if point is not None:
+            if not from_start:
+                return self._states.refuse(
+                    action, f"the program stopped at line {point.line}: resume there or start it again from "
+                            "the beginning (choose one)")
+            self._motion.forget_resume_point()
         prog = self._fresh_program(action, wait)
         if isinstance(prog, CommandResult):  # accepted: starts once checked again
             return prog
@@ -173,6 +183,7 @@ class ProgramRunner:
         except PlannerError as exc:
             return self._states.refuse(action, f"planner: {exc}")
         job.origin = (prog, 0, 0.0)
+        job.source = info.path
         self._motion.run_program(job, 0)
         return self._states.ok(action)
 
@@ -219,7 +230,7 @@ class ProgramRunner:
             return self._states.refuse(Action.STOP, f"nothing to stop: machine is {st.label.lower()}")
         if st is MachineState.HOMING:
             return self._states.refuse(Action.STOP, "homing cannot be stopped mid-way: use E-stop")
-        had_job = self._motion.stop_job("stopped by the operator", forget_point=True)
+        had_job = self._motion.stop_job("stopped by the operator", keep_point=True)
         if not had_job:
             self._states.set_state(MachineState.IDLE, "stopped")
         elif self._states.state is MachineState.RUNNING:
@@ -356,6 +367,7 @@ class ProgramRunner:
         main.tau_offset_s = max(full_t - main.executor.planned_end_s, 0.0)
         main.time_offset_s = main.tau_offset_s
         main.origin = (prog, point.move_index, point.u_mm)
+        main.source = info.path if info is not None else ""
         main.probe_results, main.wait_results = point.probe_results, point.wait_results
         if way is not None:
             job = self._jobs.make_job(Activity.APPROACH, way, "approach", overrides=True)
@@ -372,33 +384,52 @@ class ProgramRunner:
         cfg = self._settings.config
         axes = cfg.axes
         c = cfg.controller
-        clearance, safe = -math.inf, None
+        clearance, safe = self._clearance(), None
         if "Z" in axes:
-            k = axes.index("Z")
-            z_axis = cfg.machine.axes[k]
-            clearance = z_axis.max_pos if c.restart_clearance_mm is None else c.restart_clearance_mm
-            safe = last_safe_height(prog, move_index, k)
+            safe = last_safe_height(prog, move_index, axes.index("Z"))
         feed = feed_mm_s if feed_mm_s > 0.0 else c.jog_speed_mm_s
         return approach_moves(cur, target, axes, cfg.machine.rotary, clearance=clearance,
                               feed_mm_s=feed, safe_height=safe)
 
-    def approach_preview(self, line: int) -> np.ndarray | str:
-        """The way a run from ``line`` would take to its start point (machine coordinates,
-        one row per corner, from where the machine stands), for the operator to see before
-        confirming; or why there is none."""
-        info = self._loader.program_info
-        if info is None:
-            return "no program loaded"
-        prog = info.program
+    def restart_preview(self, line: int = 0) -> RestartPreview | str:
+        """What a restart would do, for the operator to see before confirming: ``line`` > 0 a
+        run from that line, else a resume at the point where the program stopped; or why
+        there is none."""
+        point = self._motion.resume_point
+        if line > 0:
+            info = self._loader.program_info
+            if info is None:
+                return "no program loaded"
+            prog = info.program
+            try:
+                i = locate(prog, int(line))
+            except PlannerError as exc:
+                return str(exc)
+            u, cause, at_line = 0.0, f"run from line {line}", int(line)
+        elif point is not None:
+            prog, i, u, cause, at_line = point.program, point.move_index, point.u_mm, point.cause, point.line
+        else:
+            return "no program stopped part-way"
         try:
-            i = locate(prog, int(line))
-            target = remaining_program(prog, i, 0.0).start_position
+            target = remaining_program(prog, i, u).start_position
             modal = modal_state_before_move(prog, i)
             cur = np.asarray(self._positions.machine_pos(), dtype=float)
             approach = self._approach(prog, i, cur, target, modal.feed_mm_s)
         except PlannerError as exc:
             return str(exc)
-        return np.array([cur, *(m.end for m in approach.moves)])
+        path = np.array([cur, *(m.end for m in approach.moves)])
+        return RestartPreview(line=at_line, cause=cause, path=path, clearance_mm=self._clearance(),
+                              spindle_rpm=float(modal.spindle_rpm),
+                              tool=int(modal.tool) if modal.tool else self._tools.in_spindle)
+
+    def _clearance(self) -> float:
+        """The machine height a restart rises to first (-inf on a machine without Z)."""
+        cfg = self._settings.config
+        if "Z" not in cfg.axes:
+            return -math.inf
+        z_axis = cfg.machine.axes[cfg.axes.index("Z")]
+        c = cfg.controller
+        return z_axis.max_pos if c.restart_clearance_mm is None else c.restart_clearance_mm
 
     @property
     def resume_line(self) -> int:

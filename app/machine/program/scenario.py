@@ -41,8 +41,8 @@ __all__ = ["OPS", "Recorder", "ScenarioOp", "ScenarioRunner", "read_script"]
 #: op -> the extra key it needs ("" for none)
 OPS: dict[str, str] = {
     "feed_hold": "", "resume": "", "stop": "", "reset": "", "estop": "", "estop_release": "",
-    "cycle_start": "", "run_from_line": "line", "feed_override": "percent", "rapid_override": "percent",
-    "spindle_override": "percent", "tool_changed": "",
+    "cycle_start": "", "restart": "", "run_from_line": "line", "feed_override": "percent",
+    "rapid_override": "percent", "spindle_override": "percent", "tool_changed": "",
 }
 _TRIGGERS = ("at_line", "after_s")
 
@@ -232,6 +232,8 @@ class ScenarioRunner:
             return c.set_spindle_override(op.percent)
         if op.op == "cycle_start":
             return c.cycle_start(wait=True)
+        if op.op == "restart":                   # after a stop: from the beginning, chosen
+            return c.cycle_start(wait=True, from_start=True)
         if op.op == "estop":
             return c.estop("operator (script)")
         if op.op == "tool_changed":

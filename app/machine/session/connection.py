@@ -9,6 +9,7 @@ time in worker mode "manual".
 
 from __future__ import annotations
 
+import os
 import sys
 import threading
 import time
@@ -24,7 +25,7 @@ from app.machine.infra.drives import DriveLink
 from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.infra.persist import StateStore
 from app.machine.infra.settings import MachineSettings
-from app.machine.model import BusStatus, CommandResult, MachineState, Severity
+from app.machine.model import Activity, BusStatus, CommandResult, MachineState, Severity
 from app.machine.motion.coordinates import Coordinates
 from app.machine.motion.positions import Positions
 from app.machine.motion.streamer import Streamer
@@ -65,6 +66,8 @@ class Connection:
         self._events = events
         self._worker_factory = worker_factory
         self.unclean_shutdown = False   # the state folder says the last run did not end cleanly
+        # the program (path, or name for a text) and line running when it did: (program, line)
+        self.interrupted: tuple[str, int] | None = None
         self.persisted_at = 0.0         # time.monotonic() of the last save of the machine state
         self._feeder: threading.Thread | None = None
         self._feeder_stop = threading.Event()
@@ -108,6 +111,10 @@ class Connection:
                 when = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(st["saved"])) if st["saved"] else "?"
                 cause = (f"the control did not shut down cleanly (power loss or killed; position last "
                          f"saved {when}): {why}")
+                if st["program"] and st["line"] > 0:
+                    self.interrupted = (st["program"], int(st["line"]))
+                    cause += (f"; {os.path.basename(st['program'])} was running at line {st['line']}: "
+                              f"load it and run from line {st['line']} once homed")
                 self._alarms.raise_alarm("controller", cause, Severity.WARNING, "unclean_shutdown")
             active = st["active_offset"] if st["active_offset"] in WORK_OFFSET_NAMES else None
         self._coordinates.restore(self.store.load_offsets(len(axes)), self.store.load_parameters(), active)
@@ -117,6 +124,10 @@ class Connection:
         whether a control has the drives (an unclean end leaves it set)."""
         self.persisted_at = time.monotonic()
         pos = self._positions
+        job = self._motion.job
+        program, line = "", 0
+        if job is not None and job.kind is Activity.PROGRAM and self._motion.line > 0:
+            program, line = job.source or job.name, int(self._motion.line)
         try:
             self.store.save_state(
                 self._settings.config.axes,
@@ -125,12 +136,15 @@ class Connection:
                 list(pos.homed),
                 self._coordinates.active_offset,
                 running=self._drives.attached and not self._shutdown,
+                program=program, line=line,
             )
         except OSError as exc:
             self._alarms.raise_alarm("persistence", f"cannot save machine state: {exc}", Severity.WARNING,
                                      "state_file")
 
     def _transition(self, _old: MachineState, new: MachineState) -> None:
+        if new is MachineState.RUNNING and self._states.activity in (Activity.PROGRAM, Activity.APPROACH):
+            self.interrupted = None          # a program runs again: what a power loss cut is past
         if new in _SAVED_ON:
             self.persist_state()
 

@@ -227,8 +227,10 @@ class StateMachine:
         spindle off, -> ESTOP.
         """
         self._drives.estop(reason)
-        self._alarms.raise_alarm("operator" if reason == "operator" else "controller", f"E-stop: {reason}",
-                                 Severity.ESTOP, "estop")
+        # the operator's own E-stop says so once ("operator: E-stop pressed"), another names its cause
+        by_operator = reason.startswith("operator")
+        cause = "E-stop pressed" + (reason[len("operator"):] if by_operator else f": {reason}")
+        self._alarms.raise_alarm("operator" if by_operator else "controller", cause, Severity.ESTOP, "estop")
         self.enter_estop(reason)
         if self._drives.attached:
             self._poll()

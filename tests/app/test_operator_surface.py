@@ -1,0 +1,261 @@
+"""What the operator sees and touches agrees with what the machine does: the real widgets on the
+real controller (simulated drives, manual clock), checked against the machine's positions and
+its trace, not only against what a label says.
+
+- the Work DRO reads the tool tip (the tool length offset in force included) and says what it
+  includes;
+- touch-off with a tool in the spindle sets the system so that the tip reads the value, and a
+  program going there lands at the touched point; values outside the travel are refused;
+- after Stop, and after E-stop and reset, cycle start never starts the program again from line 1
+  by itself: the operator chooses to resume where it stopped or to start from the beginning;
+- after a power loss the panel says which program and line were running, and demo mode keeps
+  the axes unhomed.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from app.context import PanelOptions
+from app.machine.model import MachineState
+from app.machine.session.connection import PERSIST_EVERY_S
+from planner.core.tools import Tool
+from tests.app.conftest import make_window
+
+LONG = "G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X20 F600\nG1 Y20\nG1 X0\nG1 Y0\nG0 Z5\nM30\n"
+
+
+def _lines_after(qtbot, c, press) -> list[int]:
+    """The lines the controller shows from ``press`` until the run ends."""
+    lines: list[int] = []
+    c.lineChanged.connect(lambda line: lines.append(int(line)))
+    press()
+    # checked again first in the worker thread (the machine moved since it was loaded): it
+    # starts by itself when the check is done
+    qtbot.waitUntil(lambda: c.state is MachineState.RUNNING, timeout=30_000)
+    assert c.run_until(lambda: c.state is MachineState.IDLE, 60)
+    return [line for line in lines if line > 0]
+
+
+def test_the_work_dro_reads_the_tool_tip_with_the_tool_length_offset(qtbot, demo_window,
+                                                                    real_controller) -> None:
+    c = real_controller
+    assert c.set_tool(Tool(2, 2, (("Z", -12.5),), 3.0, "3 mm ball")) and c.set_tool_in_spindle(2)
+    assert c.load_program("G21 G90\nT2 M6\nG43 H2\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG4 P2\nG0 Z5\nM2\n",
+                          name="tlo.nc", wait=True)
+    demo_window.page("auto").buttons["start"].click()
+    assert c.run_until(lambda: abs(c.reference_position[2] + 13.5) < 1e-9, 30)   # in the dwell at Z-1
+    c.advance(0.2)
+    dro = demo_window.header.dro
+    # the tip at Z-1 in program coordinates; the machine carries the tool's -12.5 mm
+    assert dro.work_text("Z") == "-1.000" and dro.machine_text("Z") == "-13.500"
+    qtbot.waitUntil(lambda: "length -12.500 mm" in dro.frame_label.text(), timeout=5_000)   # it says so
+    assert c.run_until(lambda: c.state is MachineState.IDLE, 30)
+    assert dro.work_text("Z") == "+5.000" and dro.machine_text("Z") == "-7.500"
+    assert c.machine_position[2] == pytest.approx(-7.5, abs=1e-3)
+
+
+def test_touch_off_z_with_a_tool_sets_the_system_for_its_tip(demo_window, real_controller, dialogs) -> None:
+    c = real_controller
+    assert c.set_tool(Tool(1, 1, (("Z", 10.0),), 6.0, "6 mm flat")) and c.set_tool_in_spindle(1)
+    assert c.mdi("G53 G0 Z-50") and c.run_until(lambda: c.state is MachineState.IDLE, 20)
+    page = demo_window.page("part_zero")
+    dialogs.answers.append(0.0)
+    page.touch_buttons["Z"].click()
+    c.advance(0.1)
+    # the tip reads 0 here: G54 Z is the machine Z less the tool's length (LinuxCNC's G10 L20)
+    assert c.work_offsets["G54"][2] == pytest.approx(-60.0, abs=1e-3)
+    assert demo_window.header.dro.work_text("Z") == "+0.000"
+    # a program that goes to Z0 with the tool's length (G43 H1) lands where the tip touched
+    assert c.mdi("G0 Z20") and c.run_until(lambda: c.state is MachineState.IDLE, 20)
+    assert c.mdi("G43 H1 G0 Z0") and c.run_until(lambda: c.state is MachineState.IDLE, 20)
+    assert c.machine_position[2] == pytest.approx(-50.0, abs=1e-3)
+
+
+def test_touch_off_refuses_a_zero_outside_the_travel_and_says_why(demo_window, real_controller,
+                                                                  dialogs) -> None:
+    c = real_controller
+    before = dict(c.work_offsets)
+    refused: list[str] = []
+    c.commandRefused.connect(lambda _action, why: refused.append(why))
+    dialogs.answers.append(1e9)
+    demo_window.page("part_zero").touch_buttons["X"].click()
+    assert c.work_offsets == before
+    assert refused and "outside the travel" in refused[-1]
+    r = c.touch_off("Z", float("nan"))
+    assert not r and "not a number" in r.reason
+    assert c.touch_off("X", -0.0)
+    assert str(c.work_offsets["G54"][0]) != "-0.0"
+
+
+def _stop_part_way(demo_window, c) -> int:
+    assert c.load_program(LONG, name="long.nc", wait=True)
+    auto = demo_window.page("auto")
+    auto.buttons["start"].click()
+    assert c.run_until(lambda: c.current_line >= 5, 30)
+    c.advance(0.5)
+    auto.buttons["stop"].click()
+    assert c.run_until(lambda: c.state is MachineState.IDLE, 10)
+    assert c.resume_line >= 5
+    return c.resume_line
+
+
+def test_cycle_start_after_stop_asks_and_resumes_where_it_stopped(qtbot, demo_window, real_controller,
+                                                                  dialogs) -> None:
+    c = real_controller
+    stopped = _stop_part_way(demo_window, c)
+    here = np.array(c.reference_position)
+    auto = demo_window.page("auto")
+    dialogs.answers.append(-1)                       # asked: the operator cancels
+    auto.buttons["start"].click()
+    c.advance(0.5)
+    assert dialogs.asked[-1][0] == "choose" and f"stopped at line {stopped}" in dialogs.asked[-1][1]
+    assert c.state is MachineState.IDLE and np.array_equal(c.reference_position, here)   # nothing moved
+    dialogs.answers.append(0)                        # resume at the stop point
+    lines = _lines_after(qtbot, c, auto.buttons["start"].click)
+    assert lines and min(lines) >= stopped            # never back to line 1
+    assert c.last_run is not None and c.last_run.completed
+    np.testing.assert_allclose(c.reference_position, (0.0, 0.0, 5.0), atol=1e-9)
+
+
+def test_cycle_start_after_stop_starts_from_the_beginning_only_when_chosen(qtbot, demo_window,
+                                                                           real_controller, dialogs) -> None:
+    c = real_controller
+    _stop_part_way(demo_window, c)
+    dialogs.answers.append(1)                        # start from the beginning
+    lines = _lines_after(qtbot, c, demo_window.page("auto").buttons["start"].click)
+    assert lines[0] <= 3 and c.last_run.completed
+
+
+def test_after_estop_and_reset_cycle_start_asks_too(demo_window, real_controller, dialogs) -> None:
+    c = real_controller
+    assert c.load_program(LONG, name="long.nc", wait=True)
+    auto = demo_window.page("auto")
+    auto.buttons["start"].click()
+    assert c.run_until(lambda: c.current_line >= 5, 30)
+    demo_window.header.estop_button.click()
+    assert c.state is MachineState.ESTOP
+    assert c.estop_release() and c.reset()
+    assert c.run_until(lambda: c.state is MachineState.IDLE, 10), c.state_reason
+    line = c.resume_line
+    assert line >= 5
+    dialogs.answers.append(-1)
+    auto.buttons["start"].click()
+    assert dialogs.asked[-1][0] == "choose" and f"line {line}" in dialogs.asked[-1][1]
+    c.advance(0.5)
+    assert c.state is MachineState.IDLE
+
+
+def test_run_from_line_opens_at_the_line_where_it_stopped(demo_window, real_controller, dialogs) -> None:
+    c = real_controller
+    stopped = _stop_part_way(demo_window, c)
+    seen: list[float] = []
+
+    def ask_number(parent, title, value, minimum=-1e9, maximum=1e9, decimals=3):
+        seen.append(value)
+        return None
+
+    dialogs.ask_number = ask_number  # type: ignore[method-assign]
+    demo_window.page("auto").run_from.click()
+    assert seen == [float(stopped)]
+
+
+def test_after_a_power_loss_the_panel_says_what_was_running_and_demo_does_not_home(
+        qtbot, qapp, state_dir, tmp_path, dialogs) -> None:
+    import shutil
+
+    from app.machine.controller import MachineController
+
+    first = MachineController(None, state_dir=state_dir, worker_mode="manual")
+    try:
+        assert first.connect_bus() and first.set_machine_zero_here()
+        assert first.mdi("G0 X-30 Y-40") and first.run_until(lambda: first.state is MachineState.IDLE, 20)
+        assert first.load_program(LONG, name="long.nc", wait=True) and first.cycle_start(wait=True)
+        assert first.run_until(lambda: first.current_line >= 5, 30)
+        time.sleep(PERSIST_EVERY_S)              # saved every so often (real time) while moving
+        first.advance(0.1)
+        line = first.current_line
+        where = np.array(first.machine_position)
+        # the power goes: the state folder as it is now, without a shutdown (its lock dies with
+        # the process), is what the next control starts from
+        after = tmp_path / "after_power_loss"
+        shutil.copytree(state_dir, after)
+        second = MachineController(None, state_dir=after, worker_mode="manual")
+        try:
+            assert second.interrupted is not None and second.interrupted[1] == line
+            window = make_window(qtbot, qapp, PanelOptions(demo=True, state_dir=after), dialogs, second)
+            qtbot.waitUntil(lambda: second.state is MachineState.IDLE, timeout=10_000)
+            assert not any(second.homed)                                     # never homed by itself
+            assert np.allclose(second.machine_position, where, atol=1.5)     # where it was (saved), not 0
+            assert np.linalg.norm(second.machine_position) > 10.0
+            assert any("long.nc was running at line" in a.cause for a in second.active_alarms)
+            window.close()
+        finally:
+            second.shutdown()
+    finally:
+        first.shutdown()
+
+
+def test_connect_is_a_button_and_a_disabled_cycle_start_says_why(qtbot, qapp, state_dir, dialogs,
+                                                                 real_controller) -> None:
+    c = real_controller
+    window = make_window(qtbot, qapp, PanelOptions(state_dir=state_dir), dialogs, c)
+    assert c.state is MachineState.DISCONNECTED
+    auto = window.page("auto")
+    assert not auto.buttons["start"].isEnabled()
+    assert "Cycle start:" in auto.info_label.text() and auto.buttons["start"].toolTip()
+    button = window.page("diagnostics").connect_button
+    assert button.text() == "Connect to the drives" and button.minimumHeight() >= 48
+    button.click()                                       # confirmed (the scripted default)
+    assert c.state is MachineState.IDLE
+    assert dialogs.asked[-1] == ("confirm", "Connect to the drives and enable them?")
+    c.advance(0.1)
+    qtbot.waitUntil(lambda: button.text() == "Disconnect the drives", timeout=5_000)
+
+
+def test_a_feed_move_with_the_spindle_stopped_after_m6_is_confirmed_first(demo_window, real_controller,
+                                                                          dialogs) -> None:
+    c = real_controller
+    assert c.set_tool(Tool(2, 2, (("Z", 0.0),), 3.0, "3 mm ball"))
+    assert c.load_program("G21 G90\nM3 S8000\nG0 X0 Y0 Z5\nT2 M6\nG1 Z-1 F300\nM3 S6000\nG1 X5\nM30\n",
+                          name="m6.nc", wait=True)
+    (warning,) = c.program_info.warnings
+    assert warning.line == 5 and "M6 at line 4" in warning.message
+    dialogs.answers.append(False)                          # asked: the operator says no
+    demo_window.page("auto").buttons["start"].click()
+    assert dialogs.asked[-1][0] == "confirm" and "Line 5" in dialogs.asked[-1][1]
+    c.advance(0.5)
+    assert c.state is MachineState.IDLE                    # nothing started
+    # the same program with its M3 before the cut: nothing to confirm
+    assert c.load_program("G21 G90\nM3 S8000\nG0 X0 Y0 Z5\nT2 M6\nM3 S6000\nG1 Z-1 F300\nM30\n",
+                          name="m6.nc", wait=True)
+    assert c.program_info.warnings == ()
+
+
+def test_zero_feed_override_reads_held_and_counts_no_time_left(demo_window, real_controller) -> None:
+    c = real_controller
+    assert c.load_program(LONG, name="long.nc", wait=True)
+    auto = demo_window.page("auto")
+    auto.buttons["start"].click()
+    assert c.run_until(lambda: c.current_line >= 4, 30)
+    auto.feed.buttons["-10"].click()                     # down to 0 % by the operator's taps
+    while c.feed_override_pct > 0.0:
+        auto.feed.buttons["-10"].click()
+    c.advance(1.0)
+    here = np.array(c.reference_position)
+    c.advance(1.0)
+    assert np.array_equal(here, c.reference_position)     # nothing moves
+    assert demo_window.header.state_label.text() == "Held by feed override 0 %"
+    assert "Remaining --:--" in auto.info_label.text()
+    assert c.set_feed_override(100)
+    assert demo_window.header.state_label.text() == "Running"
+
+
+def test_the_estop_banner_says_it_once(demo_window, real_controller) -> None:
+    demo_window.header.estop_button.click()
+    assert real_controller.state is MachineState.ESTOP
+    text = demo_window.header.alarm_banner.text()
+    assert text == "ALARM: operator: E-stop pressed", text
