@@ -172,6 +172,9 @@ class MainWindow(QMainWindow):
             self.show_message(tr("The control did not shut down cleanly: home the axes (Machine zero, "
                                  "Home all) before running a program"))
         program = self.options.effective_program
+        if self.options.demo and self.options.program_path is None and "X" not in c.axes:
+            # the paper's Y-Z-C-A machine: its own sample (rotary and linear mixed, G93 blocks)
+            program = shipped_program("tyre_mould.nc")
         if program is not None and ctx.program.info is None:
             ctx.controller.load_program(program)  # the Program page opens it when it is loaded
 

@@ -21,6 +21,7 @@ explicitly (keeping the damaged file as ``<file>.damaged``).
 
 from __future__ import annotations
 
+import math
 import os
 import tomllib
 from dataclasses import dataclass, field, replace
@@ -360,11 +361,16 @@ def config_to_toml(config: MachineConfig) -> str:
                 f"max = {_fmt(float(a.max_pos))}",
                 f"v_max = {_fmt(float(a.v_max))}", f"a_max = {_fmt(float(a.a_max))}",
                 f"j_max = {_fmt(float(a.j_max))}",
-                f"following_error_window = {_fmt(float(a.following_error_window))}", ""]
+                f"following_error_window = {_fmt(float(a.following_error_window))}"]
+        out += ["wrapped = true", ""] if a.wrapped else [""]
     lim = m.limits
     out += ["[limits]", f"v_max_mm_s = {_fmt(float(lim.v_max_mm_s))}",
             f"a_max_mm_s2 = {_fmt(float(lim.a_max_mm_s2))}", f"j_max_mm_s3 = {_fmt(float(lim.j_max_mm_s3))}",
-            f"rapid_mm_s = {_fmt(float(lim.rapid_mm_s))}", "",
+            f"rapid_mm_s = {_fmt(float(lim.rapid_mm_s))}"]
+    angular = ("v_max_deg_s", "a_max_deg_s2", "j_max_deg_s3", "rapid_deg_s")
+    out += [f"{key} = {_fmt(float(getattr(lim, key)))}" for key in angular
+            if math.isfinite(getattr(lim, key))]
+    out += ["",
             "[planner]", f"ts_s = {_fmt(float(m.planner.ts_s))}", f"mode = {_fmt(m.planner.mode)}",
             f"interpolation = {_fmt(m.planner.interpolation)}"]
     if m.planner.subroutine_dirs:

@@ -12,10 +12,15 @@ from app.i18n import N_, I18n, tr
 from planner.core.frames import Frame
 
 
-def format_position(value: float, rotary: bool = False) -> str:
-    """Signed, fixed width: mm with 3 decimals, degrees with 3 (rotary) and a unit-free look."""
+def format_position(value: float, rotary: bool = False, wrapped: bool = False) -> str:
+    """Signed, fixed width: mm with 3 decimals, degrees with 3 (rotary) and a unit-free look; a
+    wrapped rotary axis (turning without end) reads modulo 360, in [0, 360)."""
     if not math.isfinite(value):
         return "---.---"
+    if wrapped:
+        value = value % 360.0
+        if value >= 359.9995:       # shown to 3 decimals: 359.9999 reads as 0.000, not 360.000
+            value = 0.0
     text = f"{value:+.3f}"
     return "+0.000" if text == "-0.000" else text
 
@@ -39,11 +44,13 @@ def frame_text(frame: Frame) -> str:
 
 class DroWidget(QWidget):
     def __init__(self, axes: Sequence[str], rotary: Sequence[bool] | None = None,
-                 i18n: I18n | None = None, parent: QWidget | None = None) -> None:
+                 i18n: I18n | None = None, parent: QWidget | None = None,
+                 wrapped: Sequence[bool] | None = None) -> None:
         super().__init__(parent)
         self.setObjectName("dro")
         self.axes = tuple(axes)
         self.rotary = tuple(rotary) if rotary is not None else (False,) * len(self.axes)
+        self.wrapped = tuple(wrapped) if wrapped is not None else (False,) * len(self.axes)
         grid = QGridLayout(self)
         grid.setContentsMargins(6, 2, 6, 2)
         grid.setHorizontalSpacing(10)
@@ -93,8 +100,9 @@ class DroWidget(QWidget):
         self.frame_label.setText(frame_text(frame) if frame is not None else "")
 
     def set_positions(self, machine: Sequence[float], work: Sequence[float]) -> None:
-        for i, rot in enumerate(self.rotary):
-            w, m = format_position(float(work[i]), rot), format_position(float(machine[i]), rot)
+        for i, (rot, wrap) in enumerate(zip(self.rotary, self.wrapped)):
+            w = format_position(float(work[i]), rot, wrap)
+            m = format_position(float(machine[i]), rot, wrap)
             if self.work_labels[i].text() != w:
                 self.work_labels[i].setText(w)
             if self.machine_labels[i].text() != m:

@@ -38,7 +38,8 @@ class StatusHeader(QWidget):
         outer.setContentsMargins(0, 0, 0, 0)
         outer.setSpacing(2)
         row = QHBoxLayout()
-        self.dro = DroWidget(c.axes, c.config.machine.rotary, context.i18n)
+        self.dro = DroWidget(c.axes, c.config.machine.rotary, context.i18n,
+                             wrapped=tuple(a.wrapped for a in c.config.machine.axes))
         row.addWidget(self.dro, 1)
         status = QVBoxLayout()
         self.state_label = QLabel()

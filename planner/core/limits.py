@@ -5,7 +5,7 @@ size and speed are judged by."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -27,7 +27,10 @@ BLEND_NORMAL_SHARE = 0.3
 
 @dataclass(frozen=True, slots=True)
 class LimitSet:
-    """Path and axis limits as arrays (per-axis values in mm or deg units)."""
+    """Path and axis limits as arrays (per-axis values in mm or deg units). The path limits are
+    for moves with a linear axis in them (mm/s ...); ``*_rot`` for moves of rotary axes alone,
+    along their rotary distance (deg/s ...; infinite: the axes' own limits govern), as LinuxCNC
+    applies F in deg/min to them."""
 
     v_path: float
     a_path: float
@@ -37,6 +40,11 @@ class LimitSet:
     v_axis: np.ndarray
     a_axis: np.ndarray
     j_axis: np.ndarray
+    rotary: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    v_path_rot: float = math.inf
+    a_path_rot: float = math.inf
+    j_path_rot: float = math.inf
+    rapid_v_rot: float = math.inf
 
     @staticmethod
     def from_machine(machine: MachineSpec, ts_s: float | None = None) -> LimitSet:
@@ -47,4 +55,22 @@ class LimitSet:
             v_axis=np.array([a.v_max for a in machine.axes], dtype=float),
             a_axis=np.array([a.a_max for a in machine.axes], dtype=float),
             j_axis=np.array([a.j_max for a in machine.axes], dtype=float),
+            rotary=np.array([a.rotary for a in machine.axes], dtype=bool),
+            v_path_rot=lim.v_max_deg_s, a_path_rot=lim.a_max_deg_s2, j_path_rot=lim.j_max_deg_s3,
+            rapid_v_rot=lim.rapid_deg_s,
         )
+
+    def rotary_only(self, start: np.ndarray, end: np.ndarray) -> np.ndarray:
+        """Per move (rows of ``start``/``end``): whether only rotary axes move in it."""
+        if not self.rotary.any() or not len(start):
+            return np.zeros(len(start), dtype=bool)
+        delta = np.abs(np.asarray(end) - np.asarray(start))
+        return ~(delta[:, ~self.rotary] > 0.0).any(axis=1) & (delta[:, self.rotary] > 0.0).any(axis=1)
+
+    def path(self, rotary_only: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Per move: (feed speed cap, acceleration, jerk, rapid speed) along its path."""
+        def pick(linear: float, angular: float) -> np.ndarray:
+            return np.where(rotary_only, angular, linear)
+
+        return (pick(self.v_path, self.v_path_rot), pick(self.a_path, self.a_path_rot),
+                pick(self.j_path, self.j_path_rot), pick(self.rapid_v, self.rapid_v_rot))

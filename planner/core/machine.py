@@ -7,6 +7,7 @@ for the sections the planner does not use ([homing], [bus], [controller]).
 
 from __future__ import annotations
 
+import math
 import os
 import tomllib
 from dataclasses import dataclass, field
@@ -28,6 +29,9 @@ class AxisSpec:
 
     name: str
     rotary: bool = False
+    # LinuxCNC's WRAPPED_ROTARY: absolute moves go the short way, the position reads modulo
+    # 360, and the travel limits do not apply
+    wrapped: bool = False
     drive_position: int = 0
     counts_per_unit: float = 10_000.0
     direction: int = 1
@@ -45,12 +49,19 @@ class AxisSpec:
 
 @dataclass(frozen=True, slots=True)
 class PathLimits:
-    """Limits along the tool path (the paper's Vmax, Amax, Jmax) and the rapid speed."""
+    """Limits along the tool path (the paper's Vmax, Amax, Jmax) and the rapid speed, for moves
+    with a linear axis in them; and along the rotary distance for moves of rotary axes alone
+    (LinuxCNC's MAX_ANGULAR_VELOCITY and the like, deg/s ...; infinite: the rotary axes' own
+    limits govern, as for a rotary-only rapid in LinuxCNC)."""
 
     v_max_mm_s: float = 30.0
     a_max_mm_s2: float = 1000.0
     j_max_mm_s3: float = 10_000.0
     rapid_mm_s: float = 30.0
+    v_max_deg_s: float = math.inf
+    a_max_deg_s2: float = math.inf
+    j_max_deg_s3: float = math.inf
+    rapid_deg_s: float = math.inf
 
 
 @dataclass(frozen=True, slots=True)
@@ -179,8 +190,11 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
                            f"{max(abs(lo), abs(hi)):g} "
                            f"gives {counts:.4g} counts, beyond what the drive's 32-bit position holds "
                            f"with a 10 % margin ({COUNTS_LIMIT:.4g}) (axis {name})")
+        if a.get("wrapped") and kind != "rotary":
+            raise loc.fail(("axes", i, "wrapped"),
+                           f"only a rotary axis can be wrapped (axis {name} is linear)")
         axes.append(AxisSpec(
-            name=name, rotary=kind == "rotary",
+            name=name, rotary=kind == "rotary", wrapped=bool(a.get("wrapped")),
             drive_position=a["drive_position"] if a["drive_position"] is not None else i,
             counts_per_unit=a["counts_per_unit"], direction=a["direction"], min_pos=lo, max_pos=hi,
             v_max=a["v_max"], a_max=a["a_max"], j_max=a["j_max"],
@@ -195,8 +209,13 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
     if j is not None:
         raise loc.fail(("axes", j, "drive_position"), f"drive positions must be unique, got {positions}")
     lim = valid["limits"]
+    def angular(key: str) -> float:
+        return math.inf if lim.get(key) is None else float(lim[key])
+
     limits = PathLimits(v_max_mm_s=lim["v_max_mm_s"], a_max_mm_s2=lim["a_max_mm_s2"],
-                        j_max_mm_s3=lim["j_max_mm_s3"], rapid_mm_s=lim["rapid_mm_s"])
+                        j_max_mm_s3=lim["j_max_mm_s3"], rapid_mm_s=lim["rapid_mm_s"],
+                        v_max_deg_s=angular("v_max_deg_s"), a_max_deg_s2=angular("a_max_deg_s2"),
+                        j_max_deg_s3=angular("j_max_deg_s3"), rapid_deg_s=angular("rapid_deg_s"))
     pl = valid["planner"]
     planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"],
                               subroutine_dirs=tuple(pl["subroutine_dirs"]),

@@ -524,6 +524,22 @@ class Program:
             return np.asarray(columns().kind) == int(MoveKind.RAPID)
         return np.fromiter((m.kind is MoveKind.RAPID for m in moves), bool, len(moves))
 
+    @functools.cached_property
+    def rotary_only_moves(self) -> np.ndarray:
+        """Per move, whether only rotary axes move in it: its feed is in deg/min along the
+        rotary distance, and the angular path limits hold it (LinuxCNC 2.9's rule)."""
+        rotary = np.array(self.rotary, dtype=bool) if self.rotary else np.zeros(len(self.axes), bool)
+        n = len(self.moves)
+        if not rotary.any() or not n:
+            return np.zeros(n, dtype=bool)
+        moves = self.moves
+        positions = getattr(moves, "positions", None)
+        if positions is not None:          # a MoveStore: its positions as they are
+            delta = np.abs(np.diff(np.asarray(positions), axis=0))
+        else:
+            delta = np.abs(np.array([np.asarray(m.end) - np.asarray(m.start) for m in moves], dtype=float))
+        return np.asarray(~(delta[:, ~rotary] > 0.0).any(axis=1) & (delta[:, rotary] > 0.0).any(axis=1))
+
     def frame_at(self, index: int) -> Frame:
         """The offsets in force for move ``index`` (before the first move: at the start), as
         the program set them (``offset_parts``); no offsets when it recorded none."""

@@ -82,12 +82,21 @@ MACHINE_FILE = Table("", tables=(
         Key("a_max", "float", REQUIRED, 1e-3, 1e7),
         Key("j_max", "float", REQUIRED, 1e-3, 1e10),
         Key("following_error_window", "float", 1.0, 1e-6, 1e4),
+        # a rotary axis that turns without end (LinuxCNC's WRAPPED_ROTARY): absolute moves the
+        # short way, the position read modulo 360, no travel limits
+        Key("wrapped", "bool", False),
     ), array=True, required=True),
     Table("limits", (
         Key("v_max_mm_s", "float", 30.0, 1e-3, 1e5),
         Key("a_max_mm_s2", "float", 1000.0, 1e-3, 1e7),
         Key("j_max_mm_s3", "float", 10_000.0, 1e-3, 1e10),
         Key("rapid_mm_s", "float", 30.0, 1e-3, 1e5),
+        # moves of rotary axes alone, along their rotary distance (deg): left out, the rotary
+        # axes' own limits govern (LinuxCNC's MAX_ANGULAR_VELOCITY ...)
+        Key("v_max_deg_s", "float", None, 1e-3, 1e6),
+        Key("a_max_deg_s2", "float", None, 1e-3, 1e8),
+        Key("j_max_deg_s3", "float", None, 1e-3, 1e11),
+        Key("rapid_deg_s", "float", None, 1e-3, 1e6),
     )),
     Table("planner", (
         Key("ts_s", "float", 0.001, 1e-5, 0.1),

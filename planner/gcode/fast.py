@@ -21,6 +21,7 @@ from planner.gcode.motion import MotionCodes
 from planner.gcode.state import (
     VALUE_LIMIT,
     ZERO_LEN,
+    short_way,
 )
 
 TRIM_BYTES = 32 << 20   # program bytes read in bulk between two trims of the heap
@@ -99,10 +100,12 @@ class FastPaths(MotionCodes):
                 if v is not None:
                     target[i] = float(v) * scale + base[i]
         else:
-            rot = setup.rotary
+            rot, wrapped = setup.rotary, setup.wrapped
             for i, v in enumerate(axes):
                 if v is not None:
                     target[i] = (float(v) if rot[i] else float(v) * scale) + base[i]
+                    if wrapped[i] and base is not pos:      # absolute on an axis without end
+                        target[i] = short_way(pos[i], target[i])
         if motion < _G2:
             self.straight(target, motion == _G0, line_no)
         else:

@@ -25,6 +25,7 @@ from planner.gcode.state import (
     RAPID,
     ZERO_FEED,
     ZERO_LEN,
+    short_way,
 )
 from planner.geometry.arcs import (
     ArcError,
@@ -56,6 +57,8 @@ class MotionCodes(ModeCodes):
             i = idx[letter]
             v = vals[letter] if rot[i] else vals[letter] * scale
             tgt[i] = v if base is None else v + base[i]
+            if base is not pos and setup.wrapped[i]:        # absolute, on an axis without end
+                tgt[i] = short_way(pos[i], tgt[i])
         if rotated:                      # X and Y in the rotated system, then to the machine
             px, py = self.prog_xy(pos)
             for letter in ("X", "Y"):

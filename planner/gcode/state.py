@@ -76,6 +76,13 @@ PERSISTENT_PARAMETERS = (frozenset(range(5161, 5170)) | frozenset(range(5181, 51
 FAST_NUM = r"[-+]?(?:\d{1,9}(?:\.\d*)?|\.\d+)"
 
 
+def short_way(current: float, target: float) -> float:
+    """Where a wrapped rotary axis (LinuxCNC's WRAPPED_ROTARY) goes for an absolute target: the
+    target modulo 360, reached by a turn of at most half a turn (+180 for exactly half)."""
+    d = (target - current) % 360.0
+    return current + (d - 360.0 if d > 180.0 else d)
+
+
 def system_base(code: int) -> int:
     """#5221 for G54, #5241 for G55 ... #5381 for G59.3."""
     return 5221 + 20 * SYSTEMS.index(code)
@@ -107,6 +114,8 @@ class Setup:
     axis_param: tuple[int, ...] = field(init=False)   # each axis's place in #5221's X Y Z A B C U V W
     fast_letters: frozenset[str] = field(init=False)
     fast_order: tuple[str, ...] = field(init=False)   # the letters of ``fast_re``'s groups after G
+    wrapped: tuple[bool, ...] = ()           # per axis: LinuxCNC's WRAPPED_ROTARY
+    any_wrapped: bool = field(init=False)
     fast_re: re.Pattern[str] = field(init=False)
 
     def __post_init__(self) -> None:
@@ -120,6 +129,9 @@ class Setup:
         put(self, "axis_param", tuple(PARAM_AXES.index(a) for a in self.axes))
         put(self, "fast_letters", frozenset(self.axes) | frozenset("IJKRF"))
         put(self, "fast_order", (*self.axes, "I", "J", "K", "R", "F"))
+        if len(self.wrapped) != n:
+            put(self, "wrapped", (False,) * n)
+        put(self, "any_wrapped", any(self.wrapped))
         # the usual CAM block, in the usual word order, as one regex; numbers below 1e9
         put(self, "fast_re", re.compile(
             r"(?:N\d+)?(?:G0*([0-3]))?"
@@ -344,7 +356,8 @@ class InterpBase(ABC):
             inputs=frozenset(getattr(machine, "inputs", ()) or ()),
             mcodes=dict(getattr(machine, "mcodes", {}) or {}),
             probe_results=tuple(probe_results), input_results=tuple(input_results),
-            blend_default_mm=blend_default_mm)
+            blend_default_mm=blend_default_mm,
+            wrapped=tuple(bool(getattr(a, "wrapped", False)) for a in machine.axes))
         setup = self.setup
         self.name = name
         self.params = Params()

@@ -187,6 +187,8 @@ def check_point(machine: MachineSpec, q: np.ndarray) -> list[tuple[str, float, f
     out = []
     for i, ax in enumerate(machine.axes):
         v = float(q[i])
+        if ax.wrapped:                  # turns without end: no travel to leave
+            continue
         if v > ax.max_pos + _EPS:
             out.append((ax.name, v, ax.max_pos))
         elif v < ax.min_pos - _EPS:
@@ -207,8 +209,8 @@ def check_and_bound(program: Program, machine: MachineSpec, max_reports: int = 5
                     ) -> tuple[list[LimitViolation], np.ndarray, np.ndarray]:
     """``check_program`` and ``program_bounds`` in one pass over the moves, ``piece`` moves at
     a time (the bounds of every move are never held at once)."""
-    lo_lim = np.array([a.min_pos for a in machine.axes])
-    hi_lim = np.array([a.max_pos for a in machine.axes])
+    lo_lim = np.array([-np.inf if a.wrapped else a.min_pos for a in machine.axes])
+    hi_lim = np.array([np.inf if a.wrapped else a.max_pos for a in machine.axes])
     names = machine.axis_names
     out: list[LimitViolation] = []
     lo = np.asarray(program.start_position, dtype=float).copy()

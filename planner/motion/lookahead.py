@@ -122,11 +122,17 @@ def _safe_div(num, den):
 
 
 def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
-    n = len(table)
     rapid = table.is_rapid
-    v_prog = np.where(rapid, lim.rapid_v, np.minimum(table.feed, lim.v_path))
+    # moves of rotary axes alone run F along the rotary distance (deg/s) within their own
+    # path limits, rapids up to each axis's limit (LinuxCNC 2.9's rule)
+    v_path, a_path, j_path, rapid_v = lim.path(lim.rotary_only(table.start, table.end))
+    v_prog = np.where(rapid, rapid_v, np.minimum(table.feed, v_path))
     if mode == "paper":
-        return MoveLimits(v_prog.copy(), np.full(n, lim.a_path), np.full(n, lim.j_path), v_prog)
+        cap = np.isfinite(v_prog)       # the paper's ramps need a finite cap: the slowest axis's
+        if not cap.all():
+            v_prog = np.where(cap, v_prog, np.min(lim.v_axis))
+        return MoveLimits(v_prog.copy(), np.where(np.isfinite(a_path), a_path, np.min(lim.a_axis)),
+                          np.where(np.isfinite(j_path), j_path, np.min(lim.j_axis)), v_prog)
     if mode != "lookahead":
         raise PlannerError(f"planner mode must be one of {MODES}, got {mode!r}")
     arc = table.is_arc
@@ -154,8 +160,8 @@ def move_limits(table: MoveTable, lim: LimitSet, mode: str) -> MoveLimits:
     bl_plane = (np.abs(table.bl_u1[bl]) + np.abs(table.bl_n1[bl])) > 1e-12
     tc[bl] = 0.0
     vc = np.minimum(v_prog, np.min(_safe_div(lim.v_axis[None, :], tc), axis=1))
-    a_t = np.minimum(lim.a_path, np.min(_safe_div(lim.a_axis[None, :], tc), axis=1))
-    j_t = np.minimum(lim.j_path, np.min(_safe_div(lim.j_axis[None, :], tc), axis=1))
+    a_t = np.minimum(a_path, np.min(_safe_div(lim.a_axis[None, :], tc), axis=1))
+    j_t = np.minimum(j_path, np.min(_safe_div(lim.j_axis[None, :], tc), axis=1))
     if bl.size:
         vc[bl] = np.minimum(vc[bl], np.where(bl_plane, lim.v_axis[None, :], np.inf).min(axis=1))
     if k.size or bl.size:

@@ -25,6 +25,7 @@ stencils across chunk borders are measured once and memory is bounded by the chu
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -80,19 +81,28 @@ class Worst:
 
 class PathSpeedLimits:
     """Per move, the path speed limit: rapids to the rapid limit, every other move to the feed
-    limit, looked up for the moves asked (an array of them for 10,000,000 moves is 80 MB, and
-    making it held cycle start 0.17 s)."""
+    limit (moves of rotary axes alone: the angular ones, ``rotary_only``), looked up for the
+    moves asked (an array of them for 10,000,000 moves is 80 MB, and making it held cycle start
+    0.17 s)."""
 
-    def __init__(self, rapid_moves: np.ndarray, v_rapid_mm_s: float, v_feed_mm_s: float) -> None:
+    def __init__(self, rapid_moves: np.ndarray, v_rapid_mm_s: float, v_feed_mm_s: float,
+                 rotary_only: np.ndarray | None = None, v_rapid_deg_s: float = math.inf,
+                 v_feed_deg_s: float = math.inf) -> None:
         self.rapid = rapid_moves
         self.v_rapid = float(v_rapid_mm_s)
         self.v_feed = float(v_feed_mm_s)
+        self.rotary_only = rotary_only if rotary_only is not None and rotary_only.any() else None
+        self.v_rapid_rot, self.v_feed_rot = float(v_rapid_deg_s), float(v_feed_deg_s)
 
     def __len__(self) -> int:
         return len(self.rapid)
 
     def __getitem__(self, rows: np.ndarray) -> np.ndarray:
-        return np.where(self.rapid[rows], self.v_rapid, self.v_feed)
+        rapid = self.rapid[rows]
+        v = np.where(rapid, self.v_rapid, self.v_feed)
+        if self.rotary_only is not None:
+            v = np.where(self.rotary_only[rows], np.where(rapid, self.v_rapid_rot, self.v_feed_rot), v)
+        return v
 
 
 class LimitMeter:
@@ -117,6 +127,11 @@ class LimitMeter:
         self.j_axis = np.array([a.j_max for a in machine.axes], dtype=float)
         self.a_path = machine.limits.a_max_mm_s2
         self.j_path = machine.limits.j_max_mm_s3
+        # a stencil where no linear axis moves is along the rotary distance (deg): the angular
+        # path limits (infinite: the rotary axes' own limits, measured per axis, govern)
+        self.linear = ~np.array([a.rotary for a in machine.axes], dtype=bool)
+        self.a_path_rot = machine.limits.a_max_deg_s2
+        self.j_path_rot = machine.limits.j_max_deg_s3
         self.v_path: np.ndarray | PathSpeedLimits = (
             v_path_per_move if isinstance(v_path_per_move, PathSpeedLimits)
             else np.asarray(v_path_per_move, dtype=float))
@@ -187,6 +202,9 @@ class LimitMeter:
         same1 = move[1:] == move[:-1]
         same = {1: same1, 2: same1[1:] & same1[:-1], 3: same1[2:] & same1[1:-1] & same1[:-2]}
         dq, ds = q, s
+        # per sample pair: whether a linear axis moves (then the path is along X Y Z)
+        lin_step = (np.abs(np.diff(q[:, self.linear], axis=0)) > eps).any(axis=1) if self.linear.any() \
+            else np.zeros(max(len(q) - 1, 0), dtype=bool)
         for k, key in ((1, "v"), (2, "a"), (3, "j")):
             if len(q) <= k:
                 break
@@ -201,15 +219,19 @@ class LimitMeter:
             # axes: velocity and acceleration everywhere, jerk inside moves (joints reported)
             self._axes(key, aq, None if k < 3 else inside, axis_lim, lines, noise[key])
             # along the path
+            # a k-th difference spans k sample pairs: along the rotary distance when none of
+            # them moves a linear axis
+            moving = np.convolve(lin_step.astype(np.int64), np.ones(k, dtype=np.int64), "valid")[lo:] > 0
+            path_limit = (np.where(moving, self.a_path, self.a_path_rot) if k == 2
+                          else np.where(moving, self.j_path, self.j_path_rot))
             if k == 3 or not self.across_joints:
                 if not inside.any():
                     continue
                 val, vlines = as_[inside], lines[inside]
-                limit: np.ndarray | float = self._v_limit(move)[lo:][inside] if k == 1 else \
-                    (self.a_path if k == 2 else self.j_path)
+                limit: np.ndarray | float = self._v_limit(move)[lo:][inside] if k == 1 else path_limit[inside]
             else:
                 val, vlines = as_, lines
-                limit = self._v_limit(move)[lo:] if k == 1 else self.a_path
+                limit = self._v_limit(move)[lo:] if k == 1 else path_limit
             self.tangential[key] = max(self.tangential[key], float(val.max()))
             if k > 1 and not self.tangential_accel:
                 continue
@@ -258,13 +280,15 @@ class LimitMeter:
 
 
 def check_limits(q: np.ndarray, s_mm: np.ndarray, move: np.ndarray, machine: MachineSpec, ts_s: float,
-            rapid_move: np.ndarray | None = None) -> dict[str, float]:
+                 rapid_move: np.ndarray | None = None,
+                 rotary_only: np.ndarray | None = None) -> dict[str, float]:
     """Measured maxima of executed set-points as ratios to the machine's limits (<= 1 holds):
     the path speed against the machine's feed limit (rapid limit on rapid moves), joints
     excluded from the tangential figures. One call of the meter over one buffer."""
     lim = machine.limits
     if rapid_move is not None and len(rapid_move):
-        v_path = np.where(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s)
+        v_path = PathSpeedLimits(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s, rotary_only, lim.rapid_deg_s,
+                                 lim.v_max_deg_s)[np.arange(len(rapid_move))]
     else:
         v_path = np.array([max(lim.v_max_mm_s, lim.rapid_mm_s)])
     meter = LimitMeter(machine, ts_s, v_path)

@@ -330,8 +330,9 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
                           "a": max(tangential["a"], float(prof.accel_peak.max())),
                           "j": max(tangential["j"], float(prof.jerk_peak.max()))}
             closed["tangential_v"].update(vmax, seg.v_prog, lines, rel_tol, 1e-12)
-            closed["tangential_a"].update(prof.accel_peak, lim.a_path, lines, rel_tol, 1e-9)
-            closed["tangential_j"].update(prof.jerk_peak, lim.j_path, lines, rel_tol, 1e-9)
+            _v, a_path, j_path, _r = lim.path(lim.rotary_only(seg.table.start, seg.table.end))
+            closed["tangential_a"].update(prof.accel_peak, a_path, lines, rel_tol, 1e-9)
+            closed["tangential_j"].update(prof.jerk_peak, j_path, lines, rel_tol, 1e-9)
         end = first + len(seg.table)
         for chunk in _samples_of_segment(interp, seg, k_lo, end == n_total, chunk_samples):
             nan |= bool(np.isnan(chunk.q).any() or np.isnan(chunk.s).any())

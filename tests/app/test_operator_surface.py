@@ -259,3 +259,30 @@ def test_the_estop_banner_says_it_once(demo_window, real_controller) -> None:
     assert real_controller.state is MachineState.ESTOP
     text = demo_window.header.alarm_banner.text()
     assert text == "ALARM: operator: E-stop pressed", text
+
+
+def test_the_demo_on_the_papers_machine_runs_its_tyre_mould_sample_to_the_end(qtbot, qapp, tmp_path,
+                                                                              dialogs) -> None:
+    from app.machine.controller import MachineController
+    from resources import shipped_machine
+
+    state = tmp_path / "paper_state"
+    config = tmp_path / "paper.toml"
+    config.write_text(shipped_machine("paper_yzca").read_text())
+    c = MachineController(config, state_dir=state, worker_mode="manual")
+    try:
+        window = make_window(qtbot, qapp, PanelOptions(demo=True, state_dir=state, config_path=config),
+                             dialogs, c)
+        qtbot.waitUntil(lambda: c.program_info is not None, timeout=20_000)
+        assert c.program_info.name == "tyre_mould.nc"
+        window.page("auto").buttons["start"].click()
+        assert c.run_until(lambda: c.state is MachineState.IDLE and c.last_run is not None, 300)
+        run = c.last_run
+        assert run.completed, run
+        assert run.limits and max(run.limits[k] for k in ("axis_v", "axis_a", "axis_j", "tangential_v",
+                                                          "tangential_a", "tangential_j")) <= 1.0 + 1e-6
+        # the rotary work runs at its own speed: the run takes what the check planned
+        assert run.cycle_time_s == pytest.approx(c.program_info.cycle_time_s, rel=0.02)
+        window.close()
+    finally:
+        c.shutdown()

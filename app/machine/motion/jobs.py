@@ -94,7 +94,7 @@ class Job:
         self.tau_offset_s = 0.0
         self.time_offset_s = 0.0
         self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-        self.meter = SentLimits(machine, plan.ts_s, plan.program.rapid_moves)
+        self.meter = SentLimits(machine, plan.ts_s, plan.program.rapid_moves, plan.program.rotary_only_moves)
         # per pushed chunk: serial of its last sample, line, tau, move, u within the move
         self._marks: collections.deque[tuple[int, int, float, int, float]] = collections.deque()
         self._last_mark: tuple[int, int, float, int, float] | None = None
@@ -191,9 +191,11 @@ class SentLimits:
     The newest ``keep`` samples stay unmetered, so a splice of the worker's queue (at most its
     capacity, 2000 set-points) can take them back (``rewind``) before they count."""
 
-    def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray, keep: int = 4096) -> None:
+    def __init__(self, machine: MachineSpec, ts_s: float, rapid_move: np.ndarray,
+                 rotary_only: np.ndarray | None = None, keep: int = 4096) -> None:
         lim = machine.limits
-        v_path = (PathSpeedLimits(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s) if len(rapid_move)
+        v_path = (PathSpeedLimits(rapid_move, lim.rapid_mm_s, lim.v_max_mm_s, rotary_only, lim.rapid_deg_s,
+                                  lim.v_max_deg_s) if len(rapid_move)
                   else np.array([max(lim.v_max_mm_s, lim.rapid_mm_s)]))
         self._meter = LimitMeter(machine, ts_s, v_path)
         self.keep = keep

@@ -105,7 +105,8 @@ class ManualMotion:
             return states.refuse(Action.JOG, f"direction must be +1 or -1, got {direction}")
         ax = cfg.machine.axes[i]
         cur = float(self._positions.machine_pos()[i])
-        limit = ax.max_pos if direction > 0 else ax.min_pos
+        # a wrapped rotary axis turns without end: the jog runs until released (100 turns at most)
+        limit = cur + direction * 36_000.0 if ax.wrapped else ax.max_pos if direction > 0 else ax.min_pos
         if (limit - cur) * direction <= 1e-9:
             return states.refuse(Action.JOG, f"axis {ax.name} is at its soft limit {limit:g}")
         frac = min(max(float(speed_fraction), 0.01), 1.0)
@@ -134,7 +135,7 @@ class ManualMotion:
             return states.refuse(Action.JOG, f"increment must be one of {JOG_INCREMENTS}, got {step:g}")
         ax = cfg.machine.axes[i]
         target = float(self._positions.machine_pos()[i]) + (1 if direction > 0 else -1) * step
-        if not ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9:
+        if not ax.wrapped and not ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9:
             return states.refuse(
                 Action.JOG,
                 f"axis {ax.name} would reach {target:.4f}, beyond its soft limit "

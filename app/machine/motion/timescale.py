@@ -200,6 +200,7 @@ class TimeScaledExecutor:
         self.stops_taken = 0  # how many holds used the path stop (diagnostics, tests)
         self._last = (np.zeros((0, len(machine.axes))), np.zeros(0), np.zeros(0, np.int64))
         self._rapid_move = window.program.rapid_moves
+        self._rotary_only = window.program.rotary_only_moves
 
     # ------------------------------------------------------------------ the plan around tau
     @property
@@ -440,7 +441,7 @@ class TimeScaledExecutor:
         if len(q0):
             q = np.concatenate([q0, stop.q])
             r = check_limits(q, np.concatenate([s0, stop.s_mm]), np.concatenate([m0, stop.move]),
-                             self.machine, self.ts, self._rapid_move)
+                             self.machine, self.ts, self._rapid_move, self._rotary_only)
             if max(r[k] for k in ("tangential_v", "tangential_a", "tangential_j", "axis_v", "axis_a",
                                   "axis_j")) > 1.0 + 1e-6:  # as the tests: rounding of v = Vmax
                 return
