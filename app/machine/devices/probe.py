@@ -193,7 +193,7 @@ class Prober:
                                    "probe")
 
     def cancel(self) -> None:
-        """The job ends (stop, reset, alarm, E-stop): the input is no longer watched."""
+        """The job ends (stop, reset, alarm, E-stop): from then on nothing watches the input."""
         if self.run is None:
             return
         self.run = None
