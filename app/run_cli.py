@@ -54,9 +54,28 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--trace", help="write the NPZ trace of every set-point sent to this file")
     p.add_argument("--script", help="operator actions, one JSON object per line: "
                                     '{"at_line": N, "op": "stop"} or {"after_s": T, "op": ...}')
+    p.add_argument("--opcua-port", type=int, default=None, metavar="PORT",
+                   help="serve the OPC UA model (OPC 40501) on PORT while the program runs, with the "
+                        "configured [opcua] security")
+    p.add_argument("--opcua-insecure", action="store_true",
+                   help="the OPC UA server with security None and anonymous reading, on 127.0.0.1 only "
+                        "(local dashboards and tests)")
     p.add_argument("--max-s", type=float, default=None,
                    help="machine-time limit of a scripted run in s (default: 3 x the estimate + 60)")
     return p
+
+
+def opcua_override(configured: Any, port: int | None, insecure: bool) -> Any:
+    """The OPC UA settings the command line asks for (None: the configuration's own):
+    ``--opcua-port`` serves with the configured security, ``--opcua-insecure`` with none, on
+    127.0.0.1 only."""
+    if port is None and not insecure:
+        return None
+    if port is not None and not 1 <= port <= 65535:
+        raise ValueError(f"--opcua-port {port}: a TCP port is 1 to 65535")
+    if insecure:
+        return configured.insecure_local(port if port is not None else configured.port)
+    return replace(configured, enabled=True, port=port)
 
 
 def _status(state_dir: str, as_json: bool) -> int:
@@ -120,6 +139,11 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     # in-memory configuration: the state directory's machine.toml is never written by a run
     cfg = replace(cfg, path="")
+    try:
+        opcua = opcua_override(cfg.opcua, args.opcua_port, args.opcua_insecure)
+    except ValueError as exc:
+        print(f"cnc-run: {exc}", file=sys.stderr)
+        return 2
     app = QCoreApplication.instance() or QCoreApplication([])
     tmp = None
     state_dir = args.state_dir
@@ -127,10 +151,17 @@ def main(argv: list[str] | None = None) -> int:
         tmp = tempfile.TemporaryDirectory(prefix="cnc-run-")
         state_dir = tmp.name
     try:
-        ctl = MachineController(cfg, state_dir=state_dir, worker_mode=args.worker)
+        ctl = MachineController(cfg, state_dir=state_dir, worker_mode=args.worker, opcua=opcua)
     except StateFolderBusy as exc:
         print(f"cnc-run: {exc}", file=sys.stderr)
         return 2
+    if opcua is not None:
+        server = ctl.remote.server
+        status = server.wait_ready(30.0) if server is not None else None
+        if status is not None and status.running:
+            print(f"cnc-run: OPC UA server at {opcua.describe()}", file=sys.stderr)
+        elif status is not None:
+            print(f"cnc-run: {status.error}; running without it", file=sys.stderr)
     errors: list[str] = []
     ctl.programErrors.connect(lambda issues: errors.extend(str(i) for i in issues))
     notes: list[str] = []

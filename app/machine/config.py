@@ -33,6 +33,7 @@ import tomlkit.exceptions
 import tomlkit.items
 
 from app.machine.errors import ConfigError
+from opcua_server.settings import OpcUaSettings, host_problem
 from ethercat.errors import EtherCATError
 from planner.core.errors import PlannerError
 from planner.core.files import write_output, write_text
@@ -189,6 +190,7 @@ class MachineConfig:
     bus: BusSettings = field(default_factory=BusSettings)
     controller: ControllerSettings = field(default_factory=ControllerSettings)
     probe: ProbeSettings = field(default_factory=ProbeSettings)
+    opcua: OpcUaSettings = field(default_factory=OpcUaSettings)
     path: str = ""  # file it was read from ("" if built in memory)
 
     @property
@@ -256,6 +258,9 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
             if o["drive"] == c["spindle_drive"] and o["bit"] in (0, 1):
                 raise loc.fail(("outputs", i, "bit"), f"bits 0 and 1 of drive {o['drive']} switch the "
                                "spindle ([controller] spindle_drive): use bit 2 or above")
+        problem = host_problem(valid["opcua"]["host"])
+        if problem:
+            raise loc.fail(("opcua", "host"), problem)
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
     h = valid["homing"]
@@ -265,7 +270,8 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
-                         probe=ProbeSettings(**valid["probe"]), path=where)
+                         probe=ProbeSettings(**valid["probe"]), opcua=OpcUaSettings.from_valid(valid["opcua"]),
+                         path=where)
 
 
 def _parse(path: Path) -> MachineConfig:
@@ -419,6 +425,13 @@ def config_to_toml(config: MachineConfig) -> str:
         value = getattr(p, key)
         if value is not None:
             out.append(f"{key} = {_fmt(float(value))}")
+    u = config.opcua
+    out += ["", "[opcua]", f"enabled = {_fmt(u.enabled)}", f"host = {_fmt(u.host)}", f"port = {u.port}",
+            f"security = {_fmt([m.value for m in u.security])}", f"anonymous = {_fmt(u.anonymous)}",
+            f"rate_hz = {_fmt(float(u.rate_hz))}"]
+    for key in ("manufacturer", "model", "serial_number", "product_instance_uri"):
+        if getattr(u, key):
+            out.append(f"{key} = {_fmt(getattr(u, key))}")
     out += ["", END_MARK, ""]
     return "\n".join(out)
 

@@ -106,12 +106,15 @@ from app.machine.motion.streamer import Streamer
 from app.machine.program.loader import ProgramLoader
 from app.machine.program.runner import ProgramRunner
 from app.machine.session.connection import RAMP_DOWN_TIMEOUT_S, Connection
+from app.machine.session.monitoring import RemoteMonitoring
 from app.machine.session.poller import StatusPoller
 from app.machine.state.alarms import AlarmLog
 from app.machine.state.states import TRANSITIONS, StateMachine
 from app.machine.state.status import StatusBoard
 from app.paths import DEFAULT_STATE_DIR
 from ethercat.worker import CyclicWorker, WorkerConfig
+from opcua_server.server import ServerStatus
+from opcua_server.settings import OpcUaSettings
 from planner.core.program import Program
 from planner.core.tools import ToolTable
 from planner.motion.plan import Plan
@@ -136,7 +139,7 @@ _stream, _loader, _run, _manual, _homing = _part("stream"), _part("loader"), _pa
     _part("homing")
 _spindle, _tools, _setter, _alarms, _conn = _part("spindle_ctl"), _part("tools"), _part("setter"), \
     _part("alarm_log"), _part("conn")
-_poller, _drives, _status = _part("poller"), _part("drives"), _part("status")
+_poller, _drives, _status, _remote = _part("poller"), _part("drives"), _part("status"), _part("remote")
 
 
 class MachineController(QObject):
@@ -185,9 +188,12 @@ class MachineController(QObject):
         parent: QObject | None = None,
         worker_mode: str = "process",
         poll_hz: float = 30.0,
+        opcua: OpcUaSettings | None = None,
     ) -> None:
         """``worker_mode``: "process" (default, the real-time worker in its own process),
-        "thread", or "manual" (no clock: tests and tools drive time with ``advance``)."""
+        "thread", or "manual" (no clock: tests and tools drive time with ``advance``).
+        ``opcua``: the OPC UA server's settings instead of the configuration's ``[opcua]``
+        (the command line's ``--opcua-port`` / ``--opcua-insecure``)."""
         super().__init__(parent)
         out, events, pauses = PanelChannels(), MachineEvents(), PauseHandlers()
         for name in PanelChannels.names():
@@ -233,11 +239,15 @@ class MachineController(QObject):
         self.status = StatusBoard(settings, states, positions, coords, stream, run, run, loader, spindle,
                                   tools, alarms, poller, out, self)
         self.status.published.connect(self.statusChanged.emit)
+        self.remote = remote = RemoteMonitoring(settings, store.dir, alarms, events, opcua)
+        self.status.published.connect(remote.publish)
+        poller.on_poll(remote.poll)
         conn.restore_persisted()
         for text in store.problems:
             alarms.raise_alarm("persistence", text, Severity.WARNING, "state_file")
         if settings.notice:
             alarms.raise_alarm("config", settings.notice, Severity.WARNING, "config_recovered")
+        remote.start(self.status.current())
 
     # ------------------------------------------------------------------ read-only
     # (``MachineApi`` documents each; the part's attribute of that name, or as named)
@@ -281,6 +291,8 @@ class MachineController(QObject):
     config_path: reads[Path] = reads(_conn, "config_path")
     interrupted: reads[tuple[str, int] | None] = reads(_conn, "interrupted")
     worker: reads[CyclicWorker | None] = reads(_drives, "worker")
+    opcua_status: reads[ServerStatus | None] = reads(_remote, "status")
+    opcua_settings: reads[OpcUaSettings] = reads(_remote, "settings")
 
     # ------------------------------------------------------------------ commands
     snapshot = forward(_status, StatusBoard.current)

@@ -186,6 +186,22 @@ MACHINE_FILE = Table("", tables=(
         Key("spindle_spinup_s", "float", 2.0, 0.0, 120.0),
         Key("restart_clearance_mm", "float", None, -1e6, 1e6),
     )),
+    # the OPC UA server (OPC 40501 Machine Tools): read-only monitoring for a shop's clients.
+    # Security "None" is only what the file asks for by name; identification fills the
+    # MachineTool's Identification ("" takes the machine name and the host)
+    Table("opcua", (
+        Key("enabled", "bool", False),
+        Key("host", "str", "0.0.0.0"),
+        Key("port", "int", 4840, 1, 65535),
+        Key("security", "strs", ("Basic256Sha256_SignAndEncrypt",),
+            choices=("Basic256Sha256_SignAndEncrypt", "Basic256Sha256_Sign", "None")),
+        Key("anonymous", "bool", False),
+        Key("rate_hz", "float", 10.0, 0.1, 50.0),
+        Key("manufacturer", "str", ""),
+        Key("model", "str", ""),
+        Key("serial_number", "str", ""),
+        Key("product_instance_uri", "str", ""),
+    )),
 ))
 
 #: first and last line of a file the panel wrote: a file that starts with the header but has
@@ -283,6 +299,11 @@ def _check_value(ctx: Locator, path: tuple[str | int, ...], key: Key, value: Any
     if kind == "strs":
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             raise ctx.fail(path, f"must be a list of strings, got {value!r}")
+        for i, item in enumerate(value):
+            if key.choices and item not in key.choices:
+                raise ctx.fail((*path, i), f"must be one of {', '.join(map(repr, key.choices))}, got {item!r}")
+        if key.choices and not value:
+            raise ctx.fail(path, f"needs at least one of {', '.join(map(repr, key.choices))}")
         return list(value)
     if kind == "floats":
         if not isinstance(value, list):

@@ -1,0 +1,248 @@
+"""The OPC UA server in its own thread and event loop.
+
+The controller hands it each status snapshot with ``publish`` (one reference assignment:
+nothing waits); the server's loop reads the newest at most ``rate_hz`` times a second, writes
+what changed into the address space and sends the alarm and message events. A failure to
+start (port in use, a bad certificate) is reported in ``status`` and through ``on_status``,
+never raised into the caller: the machine keeps running without its server.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from app.machine.model import ControllerSnapshot
+from opcua_server.errors import OpcUaError
+from opcua_server.mapping import MessageTracker, ProgramTracker, view_of
+from opcua_server.model import MachineToolModel
+from opcua_server.settings import Identity, OpcUaSettings, SecurityMode
+
+__all__ = ["OpcUaServer", "ServerStatus"]
+
+_log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True, slots=True)
+class ServerStatus:
+    running: bool = False
+    endpoint: str = ""
+    error: str = ""                # why it is not serving ("" while it is or before it started)
+    thumbprint: str = ""           # the server certificate's SHA-1 ("" with security None alone)
+    security: str = ""             # what ``OpcUaSettings.describe`` says
+    clients: int = 0
+
+
+class _ReadOnlyRules:
+    """Every request of a reading client and none that changes anything: no write, no method
+    call, no node added or deleted, no history update. Opening a session is open to anyone;
+    the rest needs a session activated by a user (or anonymously, when that is allowed)."""
+
+    def __init__(self) -> None:
+        from asyncua import ua
+        from asyncua.crypto.permission_rules import USER_TYPES, UserRole
+
+        ids = ua.ObjectIds
+        session = {ids.CreateSessionRequest_Encoding_DefaultBinary, ids.ActivateSessionRequest_Encoding_DefaultBinary,
+                   ids.CloseSessionRequest_Encoding_DefaultBinary, ids.GetEndpointsRequest_Encoding_DefaultBinary,
+                   ids.FindServersRequest_Encoding_DefaultBinary, ids.CloseSecureChannelRequest_Encoding_DefaultBinary}
+        refused = {ids.WriteRequest_Encoding_DefaultBinary, ids.CallRequest_Encoding_DefaultBinary}
+        self._open = {ua.NodeId(t) for t in session}
+        self._reading = {ua.NodeId(t) for t in USER_TYPES if t not in refused}
+        self._user = UserRole.User
+
+    def check_validity(self, user: object, action_type_id: object, body: object) -> bool:
+        if action_type_id in self._open:
+            return True
+        return action_type_id in self._reading and getattr(user, "role", None) is self._user
+
+
+class OpcUaServer:
+    def __init__(self, settings: OpcUaSettings, identity: Identity, axes: tuple[tuple[str, bool], ...],
+                 machine_name: str, state_dir: str | Path,
+                 on_status: Callable[[ServerStatus], None] | None = None) -> None:
+        self.settings, self.identity, self.axes = settings, identity, axes
+        self.machine_name = machine_name or "Machine"
+        self.state_dir = Path(state_dir)
+        self._on_status = on_status
+        self._latest: ControllerSnapshot | None = None
+        self._status = ServerStatus(endpoint=settings.endpoint, security=settings.describe())
+        self._thread: threading.Thread | None = None
+        self._loop: asyncio.AbstractEventLoop | None = None
+        self._stop: asyncio.Event | None = None
+        self._ready = threading.Event()
+        self._started_at = time.monotonic()
+        self.updates = 0               # snapshots written into the address space
+        self.model: MachineToolModel | None = None    # the address space, once built (its thread)
+
+    # ------------------------------------------------------------------ the controller's side
+    def publish(self, snapshot: ControllerSnapshot) -> None:
+        self._latest = snapshot
+
+    @property
+    def status(self) -> ServerStatus:
+        return self._status
+
+    def start(self) -> None:
+        if self._thread is not None:
+            return
+        self._thread = threading.Thread(target=self._main, name="opcua-server", daemon=True)
+        self._thread.start()
+
+    def wait_ready(self, timeout_s: float) -> ServerStatus:
+        """Wait until it serves or failed (commissioning and tests; the panel never waits)."""
+        self._ready.wait(timeout_s)
+        return self._status
+
+    def stop(self, timeout_s: float = 5.0) -> None:
+        loop, stop, thread = self._loop, self._stop, self._thread
+        if loop is not None and stop is not None and not loop.is_closed():
+            try:
+                loop.call_soon_threadsafe(stop.set)
+            except RuntimeError:        # the loop ended on its own
+                pass
+        if thread is not None:
+            thread.join(timeout_s)
+        self._thread = None
+
+    # ------------------------------------------------------------------ the server's thread
+    def _set_status(self, status: ServerStatus) -> None:
+        self._status = status
+        if self._on_status is not None:
+            self._on_status(status)
+
+    def _main(self) -> None:
+        library = logging.getLogger("asyncua")
+        if library.level == logging.NOTSET:     # its notes on the nodesets are not the operator's
+            library.setLevel(logging.ERROR)
+        loop = asyncio.new_event_loop()
+        self._loop = loop
+        try:
+            loop.run_until_complete(self._serve())
+        except OpcUaError as exc:
+            self._set_status(ServerStatus(endpoint=self.settings.endpoint, error=str(exc),
+                                          security=self.settings.describe()))
+        except Exception as exc:  # noqa: BLE001 - the machine runs on without its server
+            _log.exception("OPC UA server failed")
+            self._set_status(ServerStatus(endpoint=self.settings.endpoint, error=f"OPC UA server failed: {exc}",
+                                          security=self.settings.describe()))
+        finally:
+            self._ready.set()
+            loop.close()
+
+    async def _serve(self) -> None:
+        from asyncua import Server, ua
+
+        from opcua_server.model import build_model
+        from opcua_server.security import ReadOnlyUsers, UserFile, ensure_certificate, folder, thumbprint
+
+        self._stop = asyncio.Event()
+        s = self.settings
+        base = folder(self.state_dir)
+        users = UserFile(base / "users")
+        server = Server(user_manager=ReadOnlyUsers(users, s.anonymous))
+        await server.init()
+        server.set_endpoint(s.bind_endpoint)
+        server.set_server_name(f"cnc-panel OPC UA server ({self.machine_name})")
+        policies = {SecurityMode.SIGN_AND_ENCRYPT: ua.SecurityPolicyType.Basic256Sha256_SignAndEncrypt,
+                    SecurityMode.SIGN: ua.SecurityPolicyType.Basic256Sha256_Sign,
+                    SecurityMode.NONE: ua.SecurityPolicyType.NoSecurity}
+        server.set_security_policy([policies[m] for m in s.security], permission_ruleset=_ReadOnlyRules())  # type: ignore[arg-type]
+        tokens: list[type] = [ua.UserNameIdentityToken]
+        if s.anonymous:
+            tokens.append(ua.AnonymousIdentityToken)
+        server.set_identity_tokens(tokens)
+        print_ = ""
+        secure = any(m is not SecurityMode.NONE for m in s.security)
+        if secure:
+            from opcua_server.security import APPLICATION_URI
+
+            key, cert = await ensure_certificate(base)
+            await server.set_application_uri(APPLICATION_URI)
+            await server.load_certificate(str(cert))
+            await server.load_private_key(str(key))
+            server.set_certificate_validator(_TrustedClients(base / "trusted", base / "rejected"))  # type: ignore[arg-type]
+            print_ = thumbprint(cert)
+        model = self.model = await build_model(server, self.identity, self.axes, self.machine_name)
+        programs, messages = ProgramTracker(), MessageTracker()
+        snap = self._latest
+        if snap is not None:
+            await model.update(view_of(snap, programs.state(snap)), 0)
+            for event in messages.events(snap):
+                await model.emit(event)
+        try:
+            await server.start()
+        except OSError as exc:
+            raise OpcUaError(f"OPC UA: cannot listen on {s.bind_endpoint}: {exc.strerror or exc} "
+                             f"([opcua] port = {s.port})") from None
+        self._set_status(ServerStatus(running=True, endpoint=s.endpoint, thumbprint=print_,
+                                      security=s.describe()))
+        self._ready.set()
+        period = 1.0 / s.rate_hz
+        last = snap
+        try:
+            while not self._stop.is_set():
+                try:
+                    await asyncio.wait_for(self._stop.wait(), period)
+                except TimeoutError:
+                    pass
+                snap = self._latest
+                if snap is None or snap is last:
+                    continue
+                last = snap
+                hours = int((time.monotonic() - self._started_at) // 3600)
+                await model.update(view_of(snap, programs.state(snap)), hours)
+                for event in messages.events(snap):
+                    await model.emit(event)
+                self.updates += 1
+        finally:
+            await server.stop()
+            self._set_status(ServerStatus(endpoint=s.endpoint, security=s.describe()))
+
+
+class _TrustedClients:
+    """The client certificate check: valid in time, for its application URI and use, and
+    trusted (a file in ``trusted/``, read again when that folder changes). A refused client's
+    certificate is kept in ``rejected/`` so the integrator can trust it by moving the file."""
+
+    def __init__(self, trusted: Path, rejected: Path) -> None:
+        self.trusted, self.rejected = trusted, rejected
+        self._validator: object | None = None
+        self._stamp: float = -1.0
+
+    async def _current(self) -> object:
+        from asyncua.crypto.truststore import TrustStore
+        from asyncua.crypto.validator import CertificateValidator, CertificateValidatorOptions
+
+        stamp = self.trusted.stat().st_mtime
+        if self._validator is None or stamp != self._stamp:
+            store = TrustStore([self.trusted], [])
+            await store.load()
+            options = CertificateValidatorOptions.TRUSTED_VALIDATION | CertificateValidatorOptions.PEER_CLIENT
+            self._validator, self._stamp = CertificateValidator(options, store), stamp
+        return self._validator
+
+    async def __call__(self, cert: object, app_description: object) -> None:
+        validator = await self._current()
+        try:
+            await validator(cert, app_description)  # type: ignore[operator]
+        except Exception:
+            self._keep(cert)
+            raise
+
+    def _keep(self, cert: object) -> None:
+        import hashlib
+
+        from cryptography.hazmat.primitives.serialization import Encoding
+
+        try:
+            der = cert.public_bytes(Encoding.DER)  # type: ignore[attr-defined]
+            if len(list(self.rejected.glob("*.der"))) < 100:
+                (self.rejected / f"{hashlib.sha1(der).hexdigest().upper()}.der").write_bytes(der)
+        except (OSError, AttributeError):
+            pass

@@ -1,0 +1,112 @@
+"""What the ``[opcua]`` section of the machine configuration asks of the server.
+
+Read-only monitoring only: the server exposes no method and accepts no write, whatever these
+settings say. Security "None" is used only when named (in the file, or by ``--opcua-insecure``,
+which also binds 127.0.0.1 alone).
+"""
+
+from __future__ import annotations
+
+import enum
+import ipaddress
+import re
+import socket
+from dataclasses import dataclass, replace
+from typing import Any
+
+__all__ = ["Identity", "OpcUaSettings", "SecurityMode", "host_problem"]
+
+_HOST_NAME = re.compile(r"(?=.{1,253}$)[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?"
+                        r"(?:\.[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?)*")
+
+
+def host_problem(host: str) -> str:
+    """Why ``host`` cannot be an address to listen on ("" when it can): an IP address, or a
+    host name of letters, digits, hyphens and dots."""
+    try:
+        ipaddress.ip_address(host)
+        return ""
+    except ValueError:
+        pass
+    if _HOST_NAME.fullmatch(host):
+        return ""
+    return f"{host!r} is not an IP address or a host name (0.0.0.0 listens on every interface)"
+
+
+class SecurityMode(enum.StrEnum):
+    """An endpoint's security: the policy and message mode, as OPC UA names them."""
+
+    SIGN_AND_ENCRYPT = "Basic256Sha256_SignAndEncrypt"
+    SIGN = "Basic256Sha256_Sign"
+    NONE = "None"
+
+
+@dataclass(frozen=True, slots=True)
+class Identity:
+    """The MachineTool's Identification (OPC 40501 with OPC 40001-1 and DI): what a shop's
+    MES files the machine under."""
+
+    manufacturer: str
+    model: str
+    serial_number: str
+    product_instance_uri: str
+    software_revision: str
+
+
+@dataclass(frozen=True, slots=True)
+class OpcUaSettings:
+    enabled: bool = False
+    host: str = "0.0.0.0"
+    port: int = 4840
+    security: tuple[SecurityMode, ...] = (SecurityMode.SIGN_AND_ENCRYPT,)
+    anonymous: bool = False          # read access without a user name
+    rate_hz: float = 10.0            # snapshots read per second, at most
+    manufacturer: str = ""
+    model: str = ""
+    serial_number: str = ""
+    product_instance_uri: str = ""
+
+    @staticmethod
+    def from_valid(section: dict[str, Any]) -> OpcUaSettings:
+        """From the schema-checked ``[opcua]`` section."""
+        return OpcUaSettings(
+            enabled=section["enabled"], host=section["host"], port=section["port"],
+            security=tuple(SecurityMode(s) for s in dict.fromkeys(section["security"])),
+            anonymous=section["anonymous"], rate_hz=section["rate_hz"],
+            manufacturer=section["manufacturer"], model=section["model"],
+            serial_number=section["serial_number"], product_instance_uri=section["product_instance_uri"])
+
+    def insecure_local(self, port: int) -> OpcUaSettings:
+        """``--opcua-insecure``: security None and anonymous reading, on 127.0.0.1 only."""
+        return replace(self, enabled=True, host="127.0.0.1", port=port, security=(SecurityMode.NONE,),
+                       anonymous=True)
+
+    @property
+    def insecure(self) -> bool:
+        """An endpoint anyone who reaches the port can read without a certificate."""
+        return SecurityMode.NONE in self.security
+
+    @property
+    def endpoint(self) -> str:
+        host = self.host if self.host not in ("0.0.0.0", "::") else socket.gethostname()
+        return f"opc.tcp://{host}:{self.port}/"
+
+    @property
+    def bind_endpoint(self) -> str:
+        return f"opc.tcp://{self.host}:{self.port}/"
+
+    def identity(self, machine_name: str, software_revision: str) -> Identity:
+        host = socket.gethostname()
+        serial = self.serial_number or f"{host}-{machine_name}"
+        uri = self.product_instance_uri or f"urn:cnc-panel:{host}:{machine_name}"
+        return Identity(manufacturer=self.manufacturer or "cnc-panel", model=self.model or machine_name,
+                        serial_number=serial, product_instance_uri=uri, software_revision=software_revision)
+
+    def describe(self) -> str:
+        """One line for the operator and the log: where and how it serves."""
+        modes = ", ".join(s.value for s in self.security)
+        who = "anonymous and users" if self.anonymous else "users only"
+        text = f"{self.endpoint} ({modes}; {who})"
+        if self.insecure:
+            text += ": security None, anyone who reaches the port reads the machine"
+        return text
