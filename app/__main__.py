@@ -44,7 +44,14 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
     parser.add_argument("--reset-service-password", action="store_true",
                         help="integrator's recovery at the panel PC: set the service password back to "
                              "the default (1234) in the state folder, clear the lockout, and exit")
+    parser.add_argument("--opcua-port", type=int, default=None, metavar="PORT",
+                        help="serve the OPC UA model (OPC 40501) on PORT, with the configured [opcua] "
+                             "security")
+    parser.add_argument("--opcua-insecure", action="store_true",
+                        help="the OPC UA server with security None and anonymous reading, on 127.0.0.1 only")
     ns = parser.parse_args(argv)
+    if ns.opcua_port is not None and not 1 <= ns.opcua_port <= 65535:
+        parser.error(f"--opcua-port {ns.opcua_port}: a TCP port is 1 to 65535")
     try:
         width, height = (int(v) for v in ns.size.lower().split("x"))
     except ValueError:
@@ -53,7 +60,8 @@ def parse_args(argv: list[str] | None = None) -> PanelOptions:
                         screenshot_path=ns.screenshot, page=ns.page, language=ns.lang,
                         width_px=width, height_px=height, state_dir=ns.state_dir,
                         run_for_s=ns.run_for, reset_service_password=ns.reset_service_password,
-                        program_dirs=tuple(ns.programs))
+                        program_dirs=tuple(ns.programs), opcua_port=ns.opcua_port,
+                        opcua_insecure=ns.opcua_insecure)
 
 
 def _has_display() -> bool:

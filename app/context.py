@@ -34,6 +34,8 @@ class PanelOptions:
     run_for_s: float = 0.0   # with --screenshot in demo: press cycle start, shoot this much later
     reset_service_password: bool = False   # the integrator's recovery: reset it and exit
     program_dirs: tuple[Path, ...] = ()    # more folders the operator may open and save in
+    opcua_port: int | None = None           # --opcua-port: serve OPC UA there (configured security)
+    opcua_insecure: bool = False            # --opcua-insecure: security None, 127.0.0.1 only
 
     @property
     def effective_program(self) -> Path | None:

@@ -17,11 +17,14 @@ from app.service_access import ServiceAccess
 def build_context(options: PanelOptions, dialogs: Dialogs | None = None,
                   controller: object | None = None) -> PanelContext:
     from app.machine.controller import MachineController
+    from opcua_server.settings import OpcUaOverride
 
     state_dir = Path(options.effective_state_dir)
     state_dir.mkdir(parents=True, exist_ok=True)
     if controller is None:
-        controller = MachineController(options.config_path, state_dir=state_dir)
+        opcua = OpcUaOverride(options.opcua_port, options.opcua_insecure) \
+            if options.opcua_port is not None or options.opcua_insecure else None
+        controller = MachineController(options.config_path, state_dir=state_dir, opcua=opcua)
     settings = SettingsStore(state_dir)
     context = PanelContext(
         options=options, state_dir=state_dir, controller=controller,  # type: ignore[arg-type]

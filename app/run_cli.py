@@ -65,19 +65,6 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def opcua_override(configured: Any, port: int | None, insecure: bool) -> Any:
-    """The OPC UA settings the command line asks for (None: the configuration's own):
-    ``--opcua-port`` serves with the configured security, ``--opcua-insecure`` with none, on
-    127.0.0.1 only."""
-    if port is None and not insecure:
-        return None
-    if port is not None and not 1 <= port <= 65535:
-        raise ValueError(f"--opcua-port {port}: a TCP port is 1 to 65535")
-    if insecure:
-        return configured.insecure_local(port if port is not None else configured.port)
-    return replace(configured, enabled=True, port=port)
-
-
 def _status(state_dir: str, as_json: bool) -> int:
     """The persisted state of a state folder, read without taking it (no controller started)."""
     from app.machine.infra.persist import StateStore
@@ -120,6 +107,7 @@ def main(argv: list[str] | None = None) -> int:
     from app.machine.errors import ConfigError, MachineError, StateFolderBusy
     from app.machine.model import MachineState
     from app.machine.program.scenario import Recorder, ScenarioRunner, read_script
+    from opcua_server.settings import OpcUaOverride
 
     try:
         ops = read_script(args.script) if args.script else None
@@ -140,7 +128,8 @@ def main(argv: list[str] | None = None) -> int:
     # in-memory configuration: the state directory's machine.toml is never written by a run
     cfg = replace(cfg, path="")
     try:
-        opcua = opcua_override(cfg.opcua, args.opcua_port, args.opcua_insecure)
+        opcua = OpcUaOverride(args.opcua_port, args.opcua_insecure) \
+            if args.opcua_port is not None or args.opcua_insecure else None
     except ValueError as exc:
         print(f"cnc-run: {exc}", file=sys.stderr)
         return 2
@@ -159,7 +148,7 @@ def main(argv: list[str] | None = None) -> int:
         server = ctl.remote.server
         status = server.wait_ready(30.0) if server is not None else None
         if status is not None and status.running:
-            print(f"cnc-run: OPC UA server at {opcua.describe()}", file=sys.stderr)
+            print(f"cnc-run: OPC UA server at {ctl.opcua_settings.describe()}", file=sys.stderr)
         elif status is not None:
             print(f"cnc-run: {status.error}; running without it", file=sys.stderr)
     errors: list[str] = []
@@ -270,6 +259,11 @@ def main(argv: list[str] | None = None) -> int:
         if args.trace and recorder is not None:
             recorder.save(args.trace)
             result["trace"] = args.trace
+        if opcua is not None and ctl.opcua_status is not None and ctl.opcua_status.running:
+            ctl.status.publish()          # the run's end, served a moment for the clients to read
+            end = time.monotonic() + OPCUA_LINGER_S
+            while time.monotonic() < end:
+                tick()
         if args.json:
             print(json.dumps(result, indent=1))
         else:
@@ -283,6 +277,10 @@ def main(argv: list[str] | None = None) -> int:
         if tmp is not None:
             tmp.cleanup()
 
+
+#: With ``--opcua-port``, the end of the run is served this long before the server closes, so
+#: a client reading at 10 Hz or faster sees the program Ended.
+OPCUA_LINGER_S = 1.0
 
 #: The run ends with its last set-point, while the drives still follow a few cycles behind (a
 #: CSP drive's actual position lags its target; a slave that answers late, by more): the end

@@ -9,9 +9,11 @@ from dataclasses import dataclass, field
 
 from asyncua import Client, Node, ua
 
+from opcua_server.ids import nid
+
 __all__ = ["Conformance", "check_mandatory", "find_machine", "tree"]
 
-_MANDATORY = ua.NodeId(ua.ObjectIds.ModellingRule_Mandatory)
+_MANDATORY = nid(ua.ObjectIds.ModellingRule_Mandatory)
 _HAS_INTERFACE = 17603
 _NUMERIC = {ua.VariantType.SByte, ua.VariantType.Byte, ua.VariantType.Int16, ua.VariantType.UInt16,
             ua.VariantType.Int32, ua.VariantType.UInt32, ua.VariantType.Int64, ua.VariantType.UInt64,
@@ -22,7 +24,7 @@ _UNSIGNED = {ua.VariantType.Byte, ua.VariantType.UInt16, ua.VariantType.UInt32, 
 async def find_machine(client: Client) -> Node:
     """The first machine under Machinery's Machines folder."""
     ns = await client.get_namespace_index("http://opcfoundation.org/UA/Machinery/")
-    machines = client.get_node(ua.NodeId(1001, ns))
+    machines = client.get_node(nid(1001, ns))
     children = await machines.get_children()
     if not children:
         raise LookupError("the Machines folder is empty")
@@ -78,12 +80,14 @@ class _Types:
             node = self.client.get_node(current)
             for ref in await node.get_references(refs=_HAS_INTERFACE, direction=ua.BrowseDirection.Forward):
                 out.append(ref.NodeId)
-            parents = await node.get_references(refs=ua.ObjectIds.HasSubtype, direction=ua.BrowseDirection.Inverse)
+            parents = await node.get_references(refs=ua.ObjectIds.HasSubtype,
+                                                direction=ua.BrowseDirection.Inverse)
             current = parents[0].NodeId if parents else None
         self._supers[type_id] = out
         return out
 
-    async def mandatory(self, type_id: ua.NodeId) -> list[tuple[ua.QualifiedName, ua.NodeClass, ua.NodeId | None]]:
+    async def mandatory(self, type_id: ua.NodeId) -> list[tuple[ua.QualifiedName, ua.NodeClass,
+                                                                ua.NodeId | None]]:
         if type_id in self._decls:
             return self._decls[type_id]
         out = []
@@ -130,17 +134,18 @@ async def check_mandatory(client: Client, root: Node) -> Conformance:
         for child in children:
             qn = await child.read_browse_name()
             names[(qn.NamespaceIndex, qn.Name)] = child
-        typedef = await node.read_type_definition() if cls in (ua.NodeClass.Object, ua.NodeClass.Variable) else None
+        typedef = await node.read_type_definition() if cls in (ua.NodeClass.Object,
+                                                               ua.NodeClass.Variable) else None
         if typedef is not None:
             for bname, decl_cls, dt in await types.mandatory(typedef):
                 result.checked_declarations += 1
-                child = names.get((bname.NamespaceIndex, bname.Name))
-                if child is None:
+                found = names.get((bname.NamespaceIndex, bname.Name))
+                if found is None:
                     result.problems.append(f"{path}: mandatory {bname.to_string()} is missing")
                     continue
                 if decl_cls == ua.NodeClass.Variable and dt is not None:
-                    valued.add(child.nodeid)
-                    await _check_value(types, child, f"{path}/{bname.Name}", dt, result)
+                    valued.add(found.nodeid)
+                    await _check_value(types, found, f"{path}/{bname.Name}", dt, result)
         if cls == ua.NodeClass.Variable and node.nodeid not in valued:
             await _check_value(types, node, path, await node.read_data_type(), result)
         for (_, name), child in names.items():
@@ -151,7 +156,8 @@ async def check_mandatory(client: Client, root: Node) -> Conformance:
     return result
 
 
-async def _check_value(types: _Types, node: Node, path: str, declared: ua.NodeId, result: Conformance) -> None:
+async def _check_value(types: _Types, node: Node, path: str, declared: ua.NodeId,
+                       result: Conformance) -> None:
     actual = await node.read_data_type()
     if actual != declared and not await types.is_subtype(actual, declared):
         result.problems.append(f"{path}: data type {actual.to_string()} is not {declared.to_string()}")
@@ -162,15 +168,16 @@ async def _check_value(types: _Types, node: Node, path: str, declared: ua.NodeId
         result.problems.append(f"{path}: no value")
         return
     vt = variant.VariantType
-    if actual.NamespaceIndex == 0 and actual.Identifier <= 25:
-        ok = vt == ua.VariantType(actual.Identifier)
-    elif await types.is_subtype(actual, ua.NodeId(ua.ObjectIds.Enumeration)):
+    builtin = actual.Identifier if actual.NamespaceIndex == 0 and isinstance(actual.Identifier, int) else 0
+    if 0 < builtin <= 25:
+        ok = vt == ua.VariantType(builtin)
+    elif await types.is_subtype(actual, nid(ua.ObjectIds.Enumeration)):
         ok = vt == ua.VariantType.Int32
-    elif actual == ua.NodeId(ua.ObjectIds.Number):
+    elif actual == nid(ua.ObjectIds.Number):
         ok = vt in _NUMERIC
-    elif actual == ua.NodeId(ua.ObjectIds.UInteger):
+    elif actual == nid(ua.ObjectIds.UInteger):
         ok = vt in _UNSIGNED
-    elif await types.is_subtype(actual, ua.NodeId(ua.ObjectIds.Structure)):
+    elif await types.is_subtype(actual, nid(ua.ObjectIds.Structure)):
         ok = vt == ua.VariantType.ExtensionObject
     else:
         ok = True

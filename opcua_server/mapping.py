@@ -189,7 +189,8 @@ def view_of(snap: ControllerSnapshot, program_state: ProgramState) -> UaView:
         program_name=snap.program_name, program_state=program_state, line=max(0, int(snap.line)),
         progress_pct=100.0 * float(snap.progress), estimated_cycle_s=float(snap.estimated_cycle_s),
         remaining_s=float(snap.remaining_s), stacklight=stacklight(snap),
-        machine_pos=tuple(float(v) for v in snap.machine_pos), work_pos=tuple(float(v) for v in snap.work_pos),
+        machine_pos=tuple(float(v) for v in snap.machine_pos),
+        work_pos=tuple(float(v) for v in snap.work_pos),
         homed=tuple(bool(h) for h in snap.homed), tool_in_spindle=int(snap.tool_in_spindle),
         machine_state=snap.state.label)
 

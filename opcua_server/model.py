@@ -19,6 +19,7 @@ from asyncua import Node, Server, ua
 from asyncua.common.instantiate_util import instantiate
 
 from opcua_server.errors import OpcUaError
+from opcua_server.ids import nid
 from opcua_server.mapping import AlarmEvent, ProgramState, UaView
 from opcua_server.settings import Identity
 
@@ -96,9 +97,10 @@ class MachineToolModel:
         if self._last.get(key, _UNSET) == value:
             return
         self._last[key] = value
-        status = await self.server.write_attribute_value(self.values[key].nodeid,
-                                                         ua.DataValue(ua.Variant(value, variant)))
-        if status is not None and status.is_bad():
+        # the address space itself: it answers with the status (a value of the wrong type is refused)
+        status = await self.server.iserver.aspace.write_attribute_value(
+            self.values[key].nodeid, ua.AttributeIds.Value, ua.DataValue(ua.Variant(value, variant)))
+        if status.is_bad():
             raise OpcUaError(f"OPC UA: {key} refused {value!r}: {status.name}")
 
     async def update(self, view: UaView, power_on_hours: int) -> None:
@@ -144,10 +146,10 @@ class MachineToolModel:
         NotificationEventType event; both with their Identifier / ErrorCode."""
         assert self.alert_type is not None and self.notification_type is not None
         if event.alarm is None:
-            gen = await self.server.get_event_generator(self.notification_type, self.messages)
+            gen = await self.server.get_event_generator(self.notification_type, self.messages.nodeid)
             _set(gen.event, "Identifier", event.identifier, ua.VariantType.String)
         else:
-            gen = await self.server.get_event_generator(self.alert_type, self.messages)
+            gen = await self.server.get_event_generator(self.alert_type, self.messages.nodeid)
             _set(gen.event, "ErrorCode", event.alarm.code or event.identifier, ua.VariantType.String)
             _set(gen.event, "ConditionName", event.identifier, ua.VariantType.String)
             active = not event.acknowledged or not event.needs_acknowledgement
@@ -155,7 +157,8 @@ class MachineToolModel:
                  ua.VariantType.LocalizedText)
             _set(gen.event, "ActiveState/Id", active, ua.VariantType.Boolean)
             acked = event.acknowledged or not event.needs_acknowledgement
-            _set(gen.event, "AckedState", ua.LocalizedText("Acknowledged" if acked else "Unacknowledged", "en"),
+            _set(gen.event, "AckedState", ua.LocalizedText("Acknowledged" if acked else "Unacknowledged",
+                                                           "en"),
                  ua.VariantType.LocalizedText)
             _set(gen.event, "AckedState/Id", acked, ua.VariantType.Boolean)
             _set(gen.event, "Retain", not acked, ua.VariantType.Boolean)
@@ -180,12 +183,18 @@ class _Builder:
 
     def node_id(self, parent: Node, name: str) -> ua.NodeId:
         """A readable id for a node this builder adds: its parent's id, a dot, its name."""
-        return ua.NodeId(f"{parent.nodeid.Identifier}.{name}", self.idx)
+        ident = parent.nodeid.Identifier
+        if isinstance(ident, (str, int)):
+            base = str(ident)
+        else:
+            base = parent.nodeid.to_string()
+        return nid(f"{base}.{name}", self.idx)
 
     def type_node(self, uri: str, i: int) -> Node:
-        return self.server.get_node(ua.NodeId(i, self.ns[uri]))
+        return self.server.get_node(nid(i, self.ns[uri]))
 
-    async def object(self, parent: Node, uri: str, type_id: int, name: str, name_uri: str | None = None) -> Node:
+    async def object(self, parent: Node, uri: str, type_id: int, name: str,
+                     name_uri: str | None = None) -> Node:
         """An instance of a type of ``uri``; its browse name in the namespace ``name_uri``
         that declared it (the type's, by default; "": this server's, for a placeholder's)."""
         ns = self.idx if name_uri == "" else self.ns[name_uri or uri]
@@ -197,12 +206,13 @@ class _Builder:
                      lo: float, hi: float) -> Node:
         """An AnalogUnitRangeType variable of Double with its unit and range."""
         ns = self.ns[name_uri] if name_uri else self.idx
-        nodes = await instantiate(parent, self.server.get_node(ua.NodeId(ua.ObjectIds.AnalogUnitRangeType)),
+        nodes = await instantiate(parent, self.server.get_node(nid(ua.ObjectIds.AnalogUnitRangeType)),
                                   bname=ua.QualifiedName(name, ns), dname=ua.LocalizedText(name),
                                   idx=self.idx, instantiate_optional=False)
         var = nodes[0]
         await var.write_attribute(ua.AttributeIds.DataType,
-                                  ua.DataValue(ua.Variant(ua.NodeId(ua.ObjectIds.Double), ua.VariantType.NodeId)))
+                                  ua.DataValue(ua.Variant(nid(ua.ObjectIds.Double),
+                                                          ua.VariantType.NodeId)))
         await var.write_value(ua.Variant(0.0, ua.VariantType.Double))
         await (await var.get_child("0:EngineeringUnits")).write_value(unit)
         await (await var.get_child("0:EURange")).write_value(ua.Range(lo, hi))
@@ -211,11 +221,14 @@ class _Builder:
     async def variable(self, parent: Node, name: str, name_uri: str | None, value: Any,
                        variant: ua.VariantType, datatype: int | ua.NodeId | None = None) -> Node:
         ns = self.ns[name_uri] if name_uri else self.idx
-        return await parent.add_variable(self.node_id(parent, name), ua.QualifiedName(name, ns), ua.Variant(value, variant),
-                                         datatype=ua.NodeId(datatype) if isinstance(datatype, int) else datatype)
+        return await parent.add_variable(self.node_id(parent, name), ua.QualifiedName(name, ns),
+                                         ua.Variant(value, variant),
+                                         datatype=nid(datatype) if isinstance(datatype,
+                                                                                    int) else datatype)
 
     async def prop(self, parent: Node, name: str, name_uri: str, value: Any, variant: ua.VariantType) -> Node:
-        return await parent.add_property(self.node_id(parent, name), ua.QualifiedName(name, self.ns[name_uri]),
+        return await parent.add_property(self.node_id(parent, name), ua.QualifiedName(name,
+                                                                                      self.ns[name_uri]),
                                          ua.Variant(value, variant))
 
 
@@ -241,9 +254,10 @@ async def build_model(server: Server, identity: Identity, axes: tuple[tuple[str,
     ns = {uri: await server.get_namespace_index(uri) for uri in (NS_DI, NS_MACHINERY, NS_IA, NS_MT)}
     mt, mach = ns[NS_MT], ns[NS_MACHINERY]
     b = _Builder(server, idx, ns)
-    machines = server.get_node(ua.NodeId(_MACHINES, mach))
+    machines = server.get_node(nid(_MACHINES, mach))
     machine = (await instantiate(machines, b.type_node(NS_MT, _MACHINE_TOOL_TYPE),
-                                 bname=ua.QualifiedName(machine_name, idx), dname=ua.LocalizedText(machine_name),
+                                 bname=ua.QualifiedName(machine_name,
+                                                        idx), dname=ua.LocalizedText(machine_name),
                                  idx=idx, instantiate_optional=False))[0]
     model = MachineToolModel(server=server, machine=machine, messages=machine)
 
@@ -289,7 +303,8 @@ async def build_model(server: Server, identity: Identity, axes: tuple[tuple[str,
         unit = DEGREE if rotary else MILLIMETRE
         v[f"MachinePosition{i}"] = await b.analog(axis, "MachinePosition", None, unit, -1e6, 1e6)
         v[f"WorkPosition{i}"] = await b.analog(axis, "WorkPosition", None, unit, -1e6, 1e6)
-        v[f"Homed{i}"] = await b.variable(axis, "Homed", None, False, ua.VariantType.Boolean, ua.ObjectIds.Boolean)
+        v[f"Homed{i}"] = await b.variable(axis, "Homed", None, False, ua.VariantType.Boolean,
+                                          ua.ObjectIds.Boolean)
     spindle = await b.object(monitoring, NS_MT, _SPINDLE_MONITORING_TYPE, "Spindle", "")
     await (await _child(spindle, ("Name", mt))).write_value("Spindle")
     v["IsRotating"] = await _child(spindle, ("IsRotating", mt))
@@ -309,7 +324,8 @@ async def build_model(server: Server, identity: Identity, axes: tuple[tuple[str,
         state_node = await sm_type.get_child(f"{mt}:{state.value}")
         number = await (await state_node.get_child("0:StateNumber")).read_value()
         model.state_ids[state] = (state_node.nodeid, int(number))
-    v["CurrentLine"] = await b.variable(active, "CurrentLine", None, 0, ua.VariantType.UInt32, ua.ObjectIds.UInt32)
+    v["CurrentLine"] = await b.variable(active, "CurrentLine", None, 0, ua.VariantType.UInt32,
+                                        ua.ObjectIds.UInt32)
     v["Progress"] = await b.analog(active, "Progress", None, PERCENT, 0.0, 100.0)
     v["EstimatedCycleTime"] = await b.analog(active, "EstimatedCycleTime", None, SECOND, 0.0, 1e9)
     v["RemainingTime"] = await b.analog(active, "RemainingTime", None, SECOND, 0.0, 1e9)
@@ -334,10 +350,11 @@ async def _stacklight(b: _Builder, monitoring: Node, v: dict[str, Node]) -> None
         element = (await instantiate(light, b.type_node(NS_IA, _STACK_ELEMENT_LIGHT_TYPE),
                                      bname=ua.QualifiedName(name, b.idx), dname=ua.LocalizedText(name),
                                      idx=b.idx, instantiate_optional=False))[0]
-        await light.delete_reference(element.nodeid, ua.ObjectIds.HasComponent, forward=True, bidirectional=True)
+        await light.delete_reference(element.nodeid, ua.ObjectIds.HasComponent, forward=True,
+                                     bidirectional=True)
         await light.add_reference(element.nodeid, ua.ObjectIds.HasOrderedComponent)
         await (await _named(element, "NumberInList")).write_value(
             ua.Variant(number, ua.VariantType.UInt32))
         await b.variable(element, "SignalColor", NS_IA, _SIGNAL_COLOR[colour], ua.VariantType.Int32,
-                         ua.NodeId(_SIGNAL_COLOR_TYPE, b.ns[NS_IA]))
+                         nid(_SIGNAL_COLOR_TYPE, b.ns[NS_IA]))
         v[f"Light{colour}"] = await b.prop(element, "SignalOn", NS_IA, False, ua.VariantType.Boolean)

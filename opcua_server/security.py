@@ -17,6 +17,8 @@ import socket
 from pathlib import Path
 from typing import Any
 
+from asyncua.server.user_managers import UserManager
+
 from opcua_server.errors import OpcUaError
 
 __all__ = ["APPLICATION_URI", "UserFile", "ensure_certificate", "folder", "thumbprint"]
@@ -110,7 +112,7 @@ class UserFile:
         return hmac.compare_digest(_hash(password, salt), digest)
 
 
-class ReadOnlyUsers:
+class ReadOnlyUsers(UserManager):
     """asyncua's user manager: a known user with the right password, or anonymous when allowed,
     gets the plain User role (read and browse)."""
 

@@ -19,6 +19,7 @@ from pathlib import Path
 
 from app.machine.model import ControllerSnapshot
 from opcua_server.errors import OpcUaError
+from opcua_server.ids import nid
 from opcua_server.mapping import MessageTracker, ProgramTracker, view_of
 from opcua_server.model import MachineToolModel
 from opcua_server.settings import Identity, OpcUaSettings, SecurityMode
@@ -48,12 +49,15 @@ class _ReadOnlyRules:
         from asyncua.crypto.permission_rules import USER_TYPES, UserRole
 
         ids = ua.ObjectIds
-        session = {ids.CreateSessionRequest_Encoding_DefaultBinary, ids.ActivateSessionRequest_Encoding_DefaultBinary,
-                   ids.CloseSessionRequest_Encoding_DefaultBinary, ids.GetEndpointsRequest_Encoding_DefaultBinary,
-                   ids.FindServersRequest_Encoding_DefaultBinary, ids.CloseSecureChannelRequest_Encoding_DefaultBinary}
+        session = {ids.CreateSessionRequest_Encoding_DefaultBinary,
+                   ids.ActivateSessionRequest_Encoding_DefaultBinary,
+                   ids.CloseSessionRequest_Encoding_DefaultBinary,
+                   ids.GetEndpointsRequest_Encoding_DefaultBinary,
+                   ids.FindServersRequest_Encoding_DefaultBinary,
+                   ids.CloseSecureChannelRequest_Encoding_DefaultBinary}
         refused = {ids.WriteRequest_Encoding_DefaultBinary, ids.CallRequest_Encoding_DefaultBinary}
-        self._open = {ua.NodeId(t) for t in session}
-        self._reading = {ua.NodeId(t) for t in USER_TYPES if t not in refused}
+        self._open = {nid(t) for t in session}
+        self._reading = {nid(t) for t in USER_TYPES if t not in refused}
         self._user = UserRole.User
 
     def check_validity(self, user: object, action_type_id: object, body: object) -> bool:
@@ -129,10 +133,16 @@ class OpcUaServer:
                                           security=self.settings.describe()))
         except Exception as exc:  # noqa: BLE001 - the machine runs on without its server
             _log.exception("OPC UA server failed")
-            self._set_status(ServerStatus(endpoint=self.settings.endpoint, error=f"OPC UA server failed: {exc}",
+            self._set_status(ServerStatus(endpoint=self.settings.endpoint,
+                                          error=f"OPC UA server failed: {exc}",
                                           security=self.settings.describe()))
         finally:
             self._ready.set()
+            pending = asyncio.all_tasks(loop)      # the sessions' and subscriptions' own tasks
+            for task in pending:
+                task.cancel()
+            if pending:
+                loop.run_until_complete(_drain(pending))
             loop.close()
 
     async def _serve(self) -> None:
@@ -147,12 +157,15 @@ class OpcUaServer:
         users = UserFile(base / "users")
         server = Server(user_manager=ReadOnlyUsers(users, s.anonymous))
         await server.init()
+        server.iserver.max_session_timeout_ms = s.session_timeout_s * 1000.0
+        server.iserver.max_connections = s.max_clients
         server.set_endpoint(s.bind_endpoint)
         server.set_server_name(f"cnc-panel OPC UA server ({self.machine_name})")
         policies = {SecurityMode.SIGN_AND_ENCRYPT: ua.SecurityPolicyType.Basic256Sha256_SignAndEncrypt,
                     SecurityMode.SIGN: ua.SecurityPolicyType.Basic256Sha256_Sign,
                     SecurityMode.NONE: ua.SecurityPolicyType.NoSecurity}
-        server.set_security_policy([policies[m] for m in s.security], permission_ruleset=_ReadOnlyRules())  # type: ignore[arg-type]
+        server.set_security_policy([policies[m] for m in s.security],
+                                   permission_ruleset=_ReadOnlyRules())  # type: ignore[arg-type]
         tokens: list[type] = [ua.UserNameIdentityToken]
         if s.anonymous:
             tokens.append(ua.AnonymousIdentityToken)
@@ -166,7 +179,7 @@ class OpcUaServer:
             await server.set_application_uri(APPLICATION_URI)
             await server.load_certificate(str(cert))
             await server.load_private_key(str(key))
-            server.set_certificate_validator(_TrustedClients(base / "trusted", base / "rejected"))  # type: ignore[arg-type]
+            server.set_certificate_validator(_TrustedClients(base / "trusted", base / "rejected"))
             print_ = thumbprint(cert)
         model = self.model = await build_model(server, self.identity, self.axes, self.machine_name)
         programs, messages = ProgramTracker(), MessageTracker()
@@ -200,9 +213,16 @@ class OpcUaServer:
                 for event in messages.events(snap):
                     await model.emit(event)
                 self.updates += 1
+            snap = self._latest          # what was published while it stopped: the last word
+            if snap is not None and snap is not last:
+                await model.update(view_of(snap, programs.state(snap)), 0)
         finally:
             await server.stop()
             self._set_status(ServerStatus(endpoint=s.endpoint, security=s.describe()))
+
+
+async def _drain(tasks: set[asyncio.Task[object]]) -> None:
+    await asyncio.gather(*tasks, return_exceptions=True)
 
 
 class _TrustedClients:

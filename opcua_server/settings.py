@@ -14,7 +14,7 @@ import socket
 from dataclasses import dataclass, replace
 from typing import Any
 
-__all__ = ["Identity", "OpcUaSettings", "SecurityMode", "host_problem"]
+__all__ = ["Identity", "OpcUaOverride", "OpcUaSettings", "SecurityMode", "host_problem"]
 
 _HOST_NAME = re.compile(r"(?=.{1,253}$)[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?"
                         r"(?:\.[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?)*")
@@ -65,6 +65,10 @@ class OpcUaSettings:
     model: str = ""
     serial_number: str = ""
     product_instance_uri: str = ""
+    # a session whose client vanished (no CloseSession) is closed after this long, with its
+    # subscriptions; at most ``max_clients`` connections at once
+    session_timeout_s: float = 60.0
+    max_clients: int = 64
 
     @staticmethod
     def from_valid(section: dict[str, Any]) -> OpcUaSettings:
@@ -110,3 +114,24 @@ class OpcUaSettings:
         if self.insecure:
             text += ": security None, anyone who reaches the port reads the machine"
         return text
+
+
+@dataclass(frozen=True, slots=True)
+class OpcUaOverride:
+    """The command line's ``--opcua-port`` / ``--opcua-insecure`` over the configured
+    ``[opcua]``: a port serves with the configured security; insecure serves with none, on
+    127.0.0.1 only (the configured port when no port is given)."""
+
+    port: int | None = None
+    insecure: bool = False
+
+    def __post_init__(self) -> None:
+        if self.port is not None and not 1 <= self.port <= 65535:
+            raise ValueError(f"--opcua-port {self.port}: a TCP port is 1 to 65535")
+
+    def apply(self, configured: OpcUaSettings) -> OpcUaSettings:
+        if self.insecure:
+            return configured.insecure_local(self.port if self.port is not None else configured.port)
+        if self.port is not None:
+            return replace(configured, enabled=True, port=self.port)
+        return configured

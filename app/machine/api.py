@@ -30,6 +30,8 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
+from opcua_server.server import ServerStatus
+from opcua_server.settings import OpcUaSettings
 from planner.core.tools import Tool, ToolTable
 
 __all__ = ["MachineApi"]
@@ -268,6 +270,16 @@ class MachineApi(Protocol):
     def interrupted(self) -> tuple[str, int] | None:
         """After a power loss or a kill: the program that was running (its file, or its name)
         and its line; None when the last end was clean or a program has run since."""
+        ...
+
+    @property
+    def opcua_status(self) -> ServerStatus | None:
+        """The OPC UA server: where it serves, or why it does not (None when it is off)."""
+        ...
+
+    @property
+    def opcua_settings(self) -> OpcUaSettings:
+        """What the server was asked to be (the configuration's ``[opcua]`` or the command line's)."""
         ...
 
     @property

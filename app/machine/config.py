@@ -33,8 +33,8 @@ import tomlkit.exceptions
 import tomlkit.items
 
 from app.machine.errors import ConfigError
-from opcua_server.settings import OpcUaSettings, host_problem
 from ethercat.errors import EtherCATError
+from opcua_server.settings import OpcUaSettings, host_problem
 from planner.core.errors import PlannerError
 from planner.core.files import write_output, write_text
 from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
@@ -270,8 +270,8 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
-                         probe=ProbeSettings(**valid["probe"]), opcua=OpcUaSettings.from_valid(valid["opcua"]),
-                         path=where)
+                         probe=ProbeSettings(**valid["probe"]),
+                         opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where)
 
 
 def _parse(path: Path) -> MachineConfig:

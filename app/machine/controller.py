@@ -114,7 +114,7 @@ from app.machine.state.status import StatusBoard
 from app.paths import DEFAULT_STATE_DIR
 from ethercat.worker import CyclicWorker, WorkerConfig
 from opcua_server.server import ServerStatus
-from opcua_server.settings import OpcUaSettings
+from opcua_server.settings import OpcUaOverride, OpcUaSettings
 from planner.core.program import Program
 from planner.core.tools import ToolTable
 from planner.motion.plan import Plan
@@ -188,12 +188,12 @@ class MachineController(QObject):
         parent: QObject | None = None,
         worker_mode: str = "process",
         poll_hz: float = 30.0,
-        opcua: OpcUaSettings | None = None,
+        opcua: OpcUaSettings | OpcUaOverride | None = None,
     ) -> None:
         """``worker_mode``: "process" (default, the real-time worker in its own process),
         "thread", or "manual" (no clock: tests and tools drive time with ``advance``).
-        ``opcua``: the OPC UA server's settings instead of the configuration's ``[opcua]``
-        (the command line's ``--opcua-port`` / ``--opcua-insecure``)."""
+        ``opcua``: the OPC UA server's settings instead of the configuration's ``[opcua]``, or
+        the command line's ``--opcua-port`` / ``--opcua-insecure`` over it."""
         super().__init__(parent)
         out, events, pauses = PanelChannels(), MachineEvents(), PauseHandlers()
         for name in PanelChannels.names():

@@ -50,6 +50,11 @@ class DiagnosticsPage(QWidget):
         bus_layout = self.bus.layout()
         assert isinstance(bus_layout, QVBoxLayout)
         bus_layout.insertWidget(0, self.connect_button)
+        # the OPC UA server: where a shop's clients find the machine, or why they cannot
+        self.opcua_label = QLabel()
+        self.opcua_label.setObjectName("opcuaLabel")
+        self.opcua_label.setWordWrap(True)
+        bus_layout.insertWidget(1, self.opcua_label)
         self.tabs.addTab(profile_tab, "")
         self.tabs.addTab(self.tracking, "")
         self.tabs.addTab(self.bus, "")
@@ -67,9 +72,12 @@ class DiagnosticsPage(QWidget):
         c.busStateChanged.connect(lambda bus: self.bus.set_state(bus, c.config))
         c.busStateChanged.connect(lambda _bus: self._show_connect())
         i18n.languageChanged.connect(lambda _l: self._show_connect())
+        i18n.languageChanged.connect(lambda _l: self._show_opcua())
+        c.statusChanged.connect(lambda _snap: self._show_opcua())
         i18n.languageChanged.connect(lambda _l: self._show_profile_state())
         self.bus.set_state(c.bus_status, c.config)
         self._show_connect()
+        self._show_opcua()
         self.tracking.set_report(c.tracking)
         self.timer = QTimer(self)
         self.timer.setInterval(REDRAW_MS)
@@ -79,6 +87,28 @@ class DiagnosticsPage(QWidget):
     def _show_connect(self) -> None:
         connected = bool(self.ctx.controller.bus_status.connected)
         self.connect_button.setText(tr("Disconnect the drives") if connected else tr("Connect to the drives"))
+
+    def _show_opcua(self) -> None:
+        c = self.ctx.controller
+        status, settings = c.opcua_status, c.opcua_settings
+        warn = False
+        if status is None:
+            text = tr("OPC UA server: off ([opcua] enabled = false)")
+        elif status.error:
+            text, warn = tr("OPC UA server: not serving: {0}").format(status.error), True
+        elif not status.running:
+            text = tr("OPC UA server: starting at {0}").format(status.endpoint)
+        elif settings.insecure:
+            text = tr("OPC UA server: serving {0} with security None: anyone who reaches the port "
+                      "reads the machine").format(status.endpoint)
+            warn = True
+        else:
+            text = tr("OPC UA server: serving {0} ({1}), certificate SHA-1 {2}").format(
+                status.endpoint, ", ".join(m.value for m in settings.security), status.thumbprint)
+        if text != self.opcua_label.text():
+            self.opcua_label.setText(text)
+            self.opcua_label.setProperty("warning", warn)
+            self.opcua_label.style().polish(self.opcua_label)
 
     def showEvent(self, event) -> None:  # noqa: N802 - Qt override
         self.timer.start()

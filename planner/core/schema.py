@@ -301,7 +301,8 @@ def _check_value(ctx: Locator, path: tuple[str | int, ...], key: Key, value: Any
             raise ctx.fail(path, f"must be a list of strings, got {value!r}")
         for i, item in enumerate(value):
             if key.choices and item not in key.choices:
-                raise ctx.fail((*path, i), f"must be one of {', '.join(map(repr, key.choices))}, got {item!r}")
+                raise ctx.fail((*path, i),
+                               f"must be one of {', '.join(map(repr, key.choices))}, got {item!r}")
         if key.choices and not value:
             raise ctx.fail(path, f"needs at least one of {', '.join(map(repr, key.choices))}")
         return list(value)

@@ -4,12 +4,12 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="164" />
+      <location filename="../../app/widgets/status_header.py" line="165" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="140" />
+      <location filename="../../app/pages/diagnostics.py" line="170" />
       <source> (first {0:.0f} s shown)</source>
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>/ satırları atlanıyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="165" />
+      <location filename="../../app/widgets/status_header.py" line="166" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -119,7 +119,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="146" />
+      <location filename="../../app/widgets/status_header.py" line="147" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -159,12 +159,12 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="181" />
+      <location filename="../../app/main_window.py" line="184" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="202" />
+      <location filename="../../app/main_window.py" line="205" />
       <source>Checking {0} … {1} %</source>
       <translation>{0} denetleniyor … %{1}</translation>
     </message>
@@ -184,7 +184,7 @@
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="81" />
+      <location filename="../../app/pages/diagnostics.py" line="89" />
       <source>Connect to the drives</source>
       <translation>Sürücülere bağlan</translation>
     </message>
@@ -229,7 +229,7 @@
       <translation>Çevrim süresi Ts</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="137" />
+      <location filename="../../app/pages/diagnostics.py" line="167" />
       <source>Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</source>
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
@@ -284,7 +284,7 @@
       <translation>Bağlantıyı kes</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="81" />
+      <location filename="../../app/pages/diagnostics.py" line="89" />
       <source>Disconnect the drives</source>
       <translation>Sürücülerin bağlantısını kes</translation>
     </message>
@@ -299,7 +299,7 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="151" />
+      <location filename="../../app/widgets/status_header.py" line="152" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -329,7 +329,7 @@
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="56" />
+      <location filename="../../app/pages/diagnostics.py" line="61" />
       <source>EtherCAT</source>
       <translation>EtherCAT</translation>
     </message>
@@ -394,7 +394,7 @@
       <translation>Satıra git</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="138" />
+      <location filename="../../app/widgets/status_header.py" line="139" />
       <source>Held by feed override 0 %</source>
       <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
@@ -541,7 +541,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>MSE</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="52" />
+      <location filename="../../app/widgets/dro.py" line="59" />
       <source>Machine</source>
       <translation>Makine</translation>
     </message>
@@ -616,7 +616,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="61" />
+      <location filename="../../app/pages/diagnostics.py" line="66" />
       <source>No program loaded.</source>
       <translation>Yüklü program yok.</translation>
     </message>
@@ -644,6 +644,31 @@ Kalan {2}   Yol hızı {3}</translation>
       <location filename="../../app/widgets/keypad.py" line="18" />
       <source>OK</source>
       <translation>Tamam</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="98" />
+      <source>OPC UA server: not serving: {0}</source>
+      <translation>OPC UA sunucusu: hizmet vermiyor: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="96" />
+      <source>OPC UA server: off ([opcua] enabled = false)</source>
+      <translation>OPC UA sunucusu: kapalı ([opcua] enabled = false)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="106" />
+      <source>OPC UA server: serving {0} ({1}), certificate SHA-1 {2}</source>
+      <translation>OPC UA sunucusu: {0} adresinde hizmet veriyor ({1}), sertifika SHA-1 {2}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="102" />
+      <source>OPC UA server: serving {0} with security None: anyone who reaches the port reads the machine</source>
+      <translation>OPC UA sunucusu: {0} adresinde güvenliksiz (None) hizmet veriyor: bağlantı noktasına ulaşan herkes makineyi okuyabilir</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="100" />
+      <source>OPC UA server: starting at {0}</source>
+      <translation>OPC UA sunucusu: {0} adresinde başlıyor</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="53" />
@@ -711,12 +736,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yol hızı Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="56" />
+      <location filename="../../app/pages/diagnostics.py" line="61" />
       <source>Path v / a / j</source>
       <translation>Yol v / a / j</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="109" />
+      <location filename="../../app/pages/diagnostics.py" line="139" />
       <source>Planned when this page is shown.</source>
       <translation>Bu sayfa gösterildiğinde planlanır.</translation>
     </message>
@@ -726,7 +751,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Planlayıcı kipi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="116" />
+      <location filename="../../app/pages/diagnostics.py" line="146" />
       <source>Planning…</source>
       <translation>Planlanıyor…</translation>
     </message>
@@ -776,17 +801,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="216" />
+      <location filename="../../app/main_window.py" line="219" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="212" />
+      <location filename="../../app/main_window.py" line="215" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="229" />
+      <location filename="../../app/main_window.py" line="232" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -801,7 +826,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="151" />
+      <location filename="../../app/widgets/status_header.py" line="152" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -838,12 +863,12 @@ BIRAK</translation>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="117" />
+      <location filename="../../app/widgets/status_header.py" line="118" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="118" />
+      <location filename="../../app/widgets/status_header.py" line="119" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -943,22 +968,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="261" />
+      <location filename="../../app/main_window.py" line="264" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="290" />
+      <location filename="../../app/main_window.py" line="293" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="266" />
+      <location filename="../../app/main_window.py" line="269" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="268" />
+      <location filename="../../app/main_window.py" line="271" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -968,7 +993,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="261" />
+      <location filename="../../app/main_window.py" line="264" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -1143,7 +1168,7 @@ BIRAK</translation>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="157" />
+      <location filename="../../app/widgets/status_header.py" line="158" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -1173,7 +1198,7 @@ BIRAK</translation>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="56" />
+      <location filename="../../app/pages/diagnostics.py" line="61" />
       <source>Tracking</source>
       <translation>Takip</translation>
     </message>
@@ -1253,12 +1278,12 @@ BIRAK</translation>
       <translation>Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="52" />
+      <location filename="../../app/widgets/dro.py" line="59" />
       <source>Work</source>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="37" />
+      <location filename="../../app/widgets/dro.py" line="42" />
       <source>Work = tool tip in {0}</source>
       <translation>İş = takım ucu, {0}</translation>
     </message>
@@ -1273,7 +1298,7 @@ BIRAK</translation>
       <translation>{0} XY döndürmesi: {1} derece</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="30" />
+      <location filename="../../app/widgets/dro.py" line="35" />
       <source>XY turned {0:g}°</source>
       <translation>XY {0:g}° döndürülmüş</translation>
     </message>
@@ -1443,7 +1468,7 @@ BIRAK</translation>
       <translation>yarıda durmuş bir program yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="36" />
+      <location filename="../../app/widgets/dro.py" line="41" />
       <source>no tool length offset</source>
       <translation>takım boy ofseti yok</translation>
     </message>
@@ -1623,7 +1648,7 @@ BIRAK</translation>
       <translation>takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="34" />
+      <location filename="../../app/widgets/dro.py" line="39" />
       <source>tool {0}length {1} mm</source>
       <translation>takım {0}boy {1} mm</translation>
     </message>
@@ -1648,7 +1673,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="185" />
+      <location filename="../../app/main_window.py" line="188" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>

@@ -101,6 +101,8 @@ class FakeController(QObject):
         self.progress = (0.0, 0.0)
         self.resume_line = 0
         self.interrupted: tuple[str, int] | None = None
+        self.opcua_status = None
+        self.opcua_settings = self.config.opcua
         self.last_run: RunSummary | None = None
         self.config_path = Path(self.config.path) if self.config.path else Path("machine.toml")
 

@@ -89,7 +89,8 @@ def make_served(qapp: Any, state_dir: Path, secure: bool = False, **changes: Any
 
     port = free_port()
     cfg = MachineConfig.default()
-    opcua = cfg.opcua.insecure_local(port) if not secure else replace(cfg.opcua, enabled=True, host="127.0.0.1",
+    opcua = cfg.opcua.insecure_local(port) if not secure else replace(cfg.opcua, enabled=True,
+                                                                      host="127.0.0.1",
                                                                       port=port)
     opcua = replace(opcua, rate_hz=50.0, **changes)
     ctl = MachineController(cfg, state_dir=state_dir, worker_mode="manual", opcua=opcua)

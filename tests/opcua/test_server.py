@@ -78,7 +78,8 @@ def test_the_conformance_walk_finds_a_missing_mandatory_node_and_a_value_of_the_
         await model.server.delete_nodes([model.values["ChannelMode"]])
         await model.server.write_attribute_value(
             model.values["IsRotating"].nodeid,
-            ua.DataValue(ua.Variant(ua.NodeId(ua.ObjectIds.String), ua.VariantType.NodeId)), ua.AttributeIds.DataType)
+            ua.DataValue(ua.Variant(ua.NodeId(ua.ObjectIds.String),
+                                    ua.VariantType.NodeId)), ua.AttributeIds.DataType)
         await model.server.write_attribute_value(model.values["OperationMode"].nodeid,
                                                  ua.DataValue(StatusCode=ua.StatusCode(ua.StatusCodes.BadNoData)))
 
@@ -201,7 +202,8 @@ def _client_certificate(folder: Path) -> tuple[Path, Path]:
 
     key, cert = folder / "client_key.pem", folder / "client_cert.der"
     asyncio.run(setup_self_signed_certificate(key, cert, "urn:test:client", "localhost",
-                                              [ExtendedKeyUsageOID.CLIENT_AUTH], {"commonName": "test client"}))
+                                              [ExtendedKeyUsageOID.CLIENT_AUTH],
+                                              {"commonName": "test client"}))
     return key, cert
 
 

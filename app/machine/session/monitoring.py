@@ -18,7 +18,7 @@ from app.machine.infra.events import MachineEvents
 from app.machine.model import ControllerSnapshot, Severity
 from app.machine.ports import AlarmSink, Settings
 from opcua_server.server import OpcUaServer, ServerStatus
-from opcua_server.settings import OpcUaSettings
+from opcua_server.settings import OpcUaOverride, OpcUaSettings
 
 __all__ = ["RemoteMonitoring"]
 
@@ -32,7 +32,9 @@ def software_revision() -> str:
 
 class RemoteMonitoring:
     def __init__(self, settings: Settings, state_dir: Path, alarms: AlarmSink, events: MachineEvents,
-                 override: OpcUaSettings | None = None) -> None:
+                 override: OpcUaSettings | OpcUaOverride | None = None) -> None:
+        """``override``: settings instead of the configuration's, or the command line's
+        changes to it."""
         self._settings, self._state_dir, self._alarms = settings, state_dir, alarms
         self._override = override
         self._server: OpcUaServer | None = None
@@ -45,7 +47,10 @@ class RemoteMonitoring:
 
     @property
     def settings(self) -> OpcUaSettings:
-        return self._override if self._override is not None else self._settings.config.opcua
+        configured = self._settings.config.opcua
+        if isinstance(self._override, OpcUaOverride):
+            return self._override.apply(configured)
+        return self._override if self._override is not None else configured
 
     @property
     def status(self) -> ServerStatus | None:
@@ -92,14 +97,13 @@ class RemoteMonitoring:
             return
         self._reported = status
         if status.error:
-            self._alarms.raise_alarm("opcua", f"{status.error}; the machine runs on without its OPC UA server",
+            self._alarms.raise_alarm("opcua",
+                                     f"{status.error}; the machine runs on without its OPC UA server",
                                      Severity.WARNING, "opcua_failed")
 
-    def _config_changed(self, config: MachineConfig, _axes_changed: bool) -> None:
-        if self._override is not None:
-            return
+    def _config_changed(self, config: MachineConfig, axes_changed: bool) -> None:
         server = self._server
-        if server is not None and server.settings == config.opcua and not _axes_changed:
+        if server is not None and server.settings == self.settings and not axes_changed:
             return
         self.stop()
         self.start(self._latest)
