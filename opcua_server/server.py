@@ -17,12 +17,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from asyncua import Server
+
 from app.machine.model import ControllerSnapshot
 from opcua_server.errors import OpcUaError
 from opcua_server.ids import nid
 from opcua_server.mapping import MessageTracker, ProgramTracker, view_of
 from opcua_server.model import MachineToolModel
 from opcua_server.settings import Identity, OpcUaSettings, SecurityMode
+from planner.core.gcpause import gc_paused
 
 __all__ = ["OpcUaServer", "ServerStatus"]
 
@@ -145,13 +148,14 @@ class OpcUaServer:
                 loop.run_until_complete(_drain(pending))
             loop.close()
 
-    async def _serve(self) -> None:
-        from asyncua import Server, ua
+    async def _build(self) -> tuple[Server, MachineToolModel, str]:
+        """The server with its endpoint, security and address space (not yet listening), and
+        its certificate's thumbprint ("" without one)."""
+        from asyncua import ua
 
         from opcua_server.model import build_model
         from opcua_server.security import ReadOnlyUsers, UserFile, ensure_certificate, folder, thumbprint
 
-        self._stop = asyncio.Event()
         s = self.settings
         base = folder(self.state_dir)
         users = UserFile(base / "users")
@@ -182,6 +186,16 @@ class OpcUaServer:
             server.set_certificate_validator(_TrustedClients(base / "trusted", base / "rejected"))
             print_ = thumbprint(cert)
         model = self.model = await build_model(server, self.identity, self.axes, self.machine_name)
+        return server, model, print_
+
+    async def _serve(self) -> None:
+        self._stop = asyncio.Event()
+        s = self.settings
+        # the address space is some hundred thousand objects that live as long as the server:
+        # built with the collector paused and then frozen, no later full collection walks them
+        # (one triggered by the server's own allocations held the GIL, and the panel, 0.1 s)
+        with gc_paused(freeze=True):
+            server, model, print_ = await self._build()
         programs, messages = ProgramTracker(), MessageTracker()
         snap = self._latest
         if snap is not None:
