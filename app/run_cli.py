@@ -52,6 +52,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--tools", help="tool table (LinuxCNC .tbl) to put in the state folder before the run")
     p.add_argument("--tool", type=int, default=None, help="the tool in the spindle at the start")
     p.add_argument("--trace", help="write the NPZ trace of every set-point sent to this file")
+    p.add_argument("--mkdir", action="store_true", help="create the folder of the --trace file when missing")
     p.add_argument("--script", help="operator actions, one JSON object per line: "
                                     '{"at_line": N, "op": "stop"} or {"after_s": T, "op": ...}')
     p.add_argument("--opcua-port", type=int, default=None, metavar="PORT",
@@ -96,6 +97,15 @@ def main(argv: list[str] | None = None) -> int:
         return _status(args.state_dir, args.json)
     if not args.program:
         print("cnc-run: a G-code program is needed (or --status)", file=sys.stderr)
+        return 2
+    from planner.core.files import OutputClash, check_outputs
+
+    outputs = {"--trace": args.trace, "--json": "-" if args.json else None}
+    inputs = {"the program": args.program, "--config": args.config, "--tools": args.tools, "--script": args.script}
+    try:
+        check_outputs(outputs, inputs, make_dirs=args.mkdir)
+    except OutputClash as exc:
+        print(f"cnc-run: {exc}", file=sys.stderr)
         return 2
     import os
 

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from planner.core.errors import PlannerError, ProgramError
-from planner.core.files import write_output, write_output_via_path
+from planner.core.files import OutputClash, check_outputs, write_output, write_output_via_path
 from planner.core.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
 from planner.motion.meter import path_vaj
 from planner.motion.plan import LimitReport
@@ -64,6 +64,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", help="write a velocity/acceleration/jerk PNG (paper Fig. 14)")
     p.add_argument("--canon", help="write the moves as LinuxCNC canonical calls (JSONL)")
     p.add_argument("--json", action="store_true", help="print a JSON report on stdout")
+    p.add_argument("--mkdir", action="store_true", help="create the folders of the output files when missing")
     p.add_argument("--max-cycle-h", type=float, default=DEFAULT_MAX_CYCLE_H,
                    help=f"refuse to interpolate a program whose cycle time exceeds this many hours "
                         f"(default {DEFAULT_MAX_CYCLE_H:g}); its cycle time is reported instead")
@@ -337,9 +338,23 @@ def main(argv: list[str] | None = None) -> int:
         print(f"cnc-plan: error: --max-cycle-h must be a positive number of hours, got {args.max_cycle_h}",
               file=sys.stderr)
         return 2
+    outputs = {"--samples": args.samples, "--csv": args.csv, "--plot": args.plot, "--canon": args.canon}
+    if args.json:
+        outputs["--json"] = "-"
+    inputs = {"the program": args.program, "--config": args.config, "--tools": args.tools}
+    try:
+        check_outputs(outputs, inputs, make_dirs=args.mkdir)
+    except OutputClash as exc:
+        print(f"cnc-plan: error: {exc}", file=sys.stderr)
+        return 2
     with tempfile.TemporaryDirectory(prefix="cnc-plan-") as scratch:
         try:
             machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
+            try:      # a subroutine file is an input too (the machine names their folders)
+                check_outputs(outputs, inputs, input_dirs=tuple(machine.planner.subroutine_dirs))
+            except OutputClash as exc:
+                print(f"cnc-plan: error: {exc}", file=sys.stderr)
+                return 2
             started = time.perf_counter()
             tools = None
             if args.tools:

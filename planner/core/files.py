@@ -32,10 +32,77 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
-__all__ = ["remove_stale_temporaries", "write_output", "write_output_via_path", "write_text"]
+__all__ = ["OutputClash", "check_outputs", "remove_stale_temporaries", "write_output",
+           "write_output_via_path", "write_text"]
 
 STDOUT = "-"
 _TMP_RE = re.compile(r"^\.(?P<name>.+)\.(?P<pid>\d+)\.[0-9a-f]{12}\.tmp(?P<suffix>\.\w+)?$")
+
+
+class OutputClash(ValueError):
+    """An output path that would destroy an input or another output, is empty, or lies in a
+    folder that does not exist; the message names the option and the reason."""
+
+
+def _identity(path: str) -> tuple[str, object]:
+    """What a path names, through links: the file's device and inode when it exists, else the
+    absolute path it would be created at."""
+    try:
+        st = os.stat(path)
+        return ("inode", (st.st_dev, st.st_ino))
+    except OSError:
+        return ("path", os.path.realpath(path))
+
+
+def check_outputs(outputs: dict[str, str | None], inputs: dict[str, str | None], *,
+                  input_dirs: tuple[str, ...] = (), make_dirs: bool = False) -> None:
+    """Refuse, before anything is written, an output (``{option: path}``, None when not asked
+    for) that is empty, that names the same file as an input (``{what: path}``) or as another
+    output (through links, by device and inode), that is a file in one of ``input_dirs`` (the
+    program's subroutine folders), or whose folder is missing (unless ``make_dirs``).
+    ``-`` (standard output) may be one output only. Raises ``OutputClash``."""
+    seen: dict[tuple[str, object], tuple[str, str]] = {}   # identity: (name, "an input" or "another output")
+    for what, path in inputs.items():
+        if path:
+            seen.setdefault(_identity(path), (what, "an input"))
+            seen.setdefault(("path", os.path.realpath(path)), (what, "an input"))
+    folders = [os.path.realpath(d) for d in input_dirs if d]
+    stdout_taken = ""
+    for option, path in outputs.items():
+        if path is None:
+            continue
+        if not path.strip():
+            raise OutputClash(f"{option}: an empty path (name a file, or - for standard output)")
+        if path == STDOUT:
+            if stdout_taken:
+                raise OutputClash(f"{option} -: standard output is already {stdout_taken}'s")
+            stdout_taken = option
+            continue
+        if os.path.isdir(path):
+            raise OutputClash(f"{option} {path}: is a folder, not a file")
+        try:
+            if stat.S_ISCHR(os.stat(path).st_mode):     # /dev/null and its kind: a sink, never a file lost
+                continue
+        except OSError:
+            pass
+        keys = (_identity(path), ("path", os.path.realpath(path)))
+        for key in keys:
+            if key in seen:
+                other, kind = seen[key]
+                raise OutputClash(f"{option} {path}: the same file as {other} ({kind}); it would be "
+                                  "overwritten: give another name")
+        real = os.path.realpath(path)
+        for folder in folders:
+            if os.path.dirname(real) == folder and os.path.exists(real):
+                raise OutputClash(f"{option} {path}: a file in the subroutine folder {folder}; it would be "
+                                  "overwritten: give another name")
+        parent = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(parent):
+            if not make_dirs:
+                raise OutputClash(f"{option} {path}: the folder {parent} does not exist (--mkdir creates it)")
+            os.makedirs(parent, exist_ok=True)
+        for key in keys:
+            seen[key] = (option, "another output")
 
 
 def write_text(path: str | os.PathLike[str], text: str, encoding: str = "utf-8") -> None:

@@ -1,0 +1,121 @@
+"""An output never destroys an input: ``cnc-plan`` and ``cnc-run`` refuse, before anything is
+read or written, an output path that names the program, the configuration, the tool table, a
+subroutine, a script or another output (through links, by inode), an empty path, or a file in a
+missing folder; the program is left byte for byte."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from cli.plan import main as plan_main
+
+PROGRAM = "G21 G90\nG0 X1 Y1\nG1 X5 F600\nM30\n"
+
+
+@pytest.fixture
+def files(tmp_path: Path) -> dict[str, Path]:
+    program = tmp_path / "P.ngc"
+    program.write_text(PROGRAM)
+    tools = tmp_path / "tools.tbl"
+    tools.write_text("T1 P1 Z10 D6\n")
+    link = tmp_path / "link.ngc"
+    link.symlink_to(program)
+    hard = tmp_path / "hard.ngc"
+    os.link(program, hard)
+    return {"program": program, "tools": tools, "link": link, "hard": hard}
+
+
+@pytest.mark.parametrize("option", ["--canon", "--samples", "--csv", "--plot"])
+@pytest.mark.parametrize("name", ["program", "link", "hard", "tools"])
+def test_cnc_plan_refuses_an_output_that_is_an_input(files: dict[str, Path], option: str, name: str,
+                                                     capsys: pytest.CaptureFixture[str]) -> None:
+    before = {k: p.read_bytes() for k, p in files.items()}
+    code = plan_main([str(files["program"]), "--tools", str(files["tools"]), option, str(files[name])])
+    assert code == 2
+    err = capsys.readouterr().err
+    what = "--tools" if name == "tools" else "the program"
+    assert f"{option} {files[name]}: the same file as {what} (an input)" in err
+    assert {k: p.read_bytes() for k, p in files.items()} == before
+
+
+def test_cnc_plan_refuses_two_outputs_in_one_file_an_empty_path_and_a_missing_folder(
+        files: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "out.bin"
+    assert plan_main([str(files["program"]), "--canon", str(out), "--samples", str(out)]) == 2
+    assert f"--canon {out}: the same file as --samples (another output)" in capsys.readouterr().err
+    assert not out.exists()
+    assert plan_main([str(files["program"]), "--canon", ""]) == 2
+    assert "--canon: an empty path" in capsys.readouterr().err
+    missing = tmp_path / "no" / "such" / "x.jsonl"
+    assert plan_main([str(files["program"]), "--canon", str(missing)]) == 2
+    assert f"the folder {missing.parent} does not exist (--mkdir creates it)" in capsys.readouterr().err
+    assert not missing.parent.exists()
+    assert plan_main([str(files["program"]), "--canon", str(missing), "--mkdir"]) == 0
+    assert missing.read_text().strip()
+    assert plan_main([str(files["program"]), "--samples", "-", "--json"]) == 2
+    assert "standard output is already --samples's" in capsys.readouterr().err
+
+
+def test_cnc_plan_refuses_to_write_over_a_subroutine(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from app.machine.config import MachineConfig, config_to_toml
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    sub = subs / "drill.ngc"
+    sub.write_text("o<drill> sub\nG0 X0\no<drill> endsub\n")
+    text = config_to_toml(MachineConfig.default()).replace(
+        'blend_tolerance_mm', f'subroutine_dirs = ["{subs}"]\nblend_tolerance_mm', 1)
+    config = tmp_path / "machine.toml"
+    config.write_text(text)
+    program = tmp_path / "P.ngc"
+    program.write_text("o<drill> call\nM30\n")
+    assert plan_main([str(program), "--config", str(config), "--canon", str(sub)]) == 2
+    assert "a file in the subroutine folder" in capsys.readouterr().err
+    assert sub.read_text().startswith("o<drill> sub")
+
+
+def test_cnc_run_refuses_a_trace_over_its_program_or_its_script(qapp: object, files: dict[str, Path],
+                                                                tmp_path: Path,
+                                                                capsys: pytest.CaptureFixture[str]) -> None:
+    from app.run_cli import main as run_main
+
+    script = tmp_path / "ops.jsonl"
+    script.write_text('{"at": 0.1, "op": "feed_hold"}\n')
+    for target, what in ((files["program"], "the program"), (files["link"], "the program"), (script, "--script")):
+        before = target.read_bytes()
+        code = run_main([str(files["program"]), "--sim", "--worker", "manual", "--script", str(script),
+                         "--trace", str(target), "--json"])
+        assert code == 2
+        assert f"the same file as {what} (an input)" in capsys.readouterr().err
+        assert target.read_bytes() == before
+
+
+@settings(max_examples=40)
+@given(picks=st.lists(st.sampled_from(["program", "link", "hard", "tools", "new1", "new2", "-", ""]),
+                      min_size=1, max_size=4),
+       options=st.permutations(["--canon", "--samples", "--csv", "--plot"]))
+def test_fuzz_output_paths_drawn_among_the_inputs_never_touch_an_input(
+        tmp_path_factory: pytest.TempPathFactory, picks: list[str], options: list[str]) -> None:
+    root = tmp_path_factory.mktemp("fuzz")
+    program = root / "P.ngc"
+    program.write_text(PROGRAM)
+    tools = root / "tools.tbl"
+    tools.write_text("T1 P1 Z10 D6\n")
+    (root / "link.ngc").symlink_to(program)
+    os.link(program, root / "hard.ngc")
+    names = {"program": str(program), "link": str(root / "link.ngc"), "hard": str(root / "hard.ngc"),
+             "tools": str(tools), "new1": str(root / "a.out"), "new2": str(root / "b.out"), "-": "-", "": ""}
+    argv = [str(program), "--tools", str(tools)]
+    for option, pick in zip(options, picks):
+        argv += [option, names[pick]]
+    clash = (any(p in ("program", "link", "hard", "tools", "") for p in picks)
+             or len([p for p in picks if p not in ("-",)]) != len({p for p in picks if p not in ("-",)})
+             or picks.count("-") > 1)
+    code = plan_main(argv)
+    assert program.read_text() == PROGRAM and tools.read_text() == "T1 P1 Z10 D6\n"
+    assert (code == 2) == clash, (argv, code)
