@@ -101,7 +101,8 @@ def main(argv: list[str] | None = None) -> int:
     from planner.core.files import OutputClash, check_outputs
 
     outputs = {"--trace": args.trace, "--json": "-" if args.json else None}
-    inputs = {"the program": args.program, "--config": args.config, "--tools": args.tools, "--script": args.script}
+    inputs = {"the program": args.program, "--config": args.config, "--tools": args.tools,
+              "--script": args.script}
     try:
         check_outputs(outputs, inputs, make_dirs=args.mkdir)
     except OutputClash as exc:

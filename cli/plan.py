@@ -28,9 +28,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ethercat.drive_setup import drive_table_problem
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.files import OutputClash, check_outputs, write_output, write_output_via_path
 from planner.core.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
+from planner.core.rules import drive_tables
 from planner.motion.meter import path_vaj
 from planner.motion.plan import LimitReport
 
@@ -78,7 +80,7 @@ def build_machine(config: str | None, vmax: float | None, amax: float | None, jm
         if value is not None and not (np.isfinite(value) and value > 0):
             raise PlannerError(f"{name} must be a positive number, got {value}")
     if config:
-        machine = load_machine(config)
+        machine = load_machine(config, drive_tables(drive_table_problem))
         changes = {k: v for k, v in (("v_max_mm_s", vmax), ("a_max_mm_s2", amax),
                                      ("j_max_mm_s3", jmax)) if v is not None}
         if changes:

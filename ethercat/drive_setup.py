@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import enum
 import struct
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
-from .errors import ConfigurationError
+from .errors import ConfigurationError, EtherCATError
 from .pdo import PdoMapping
 
-__all__ = ["DriveSetup", "MappingPolicy", "StartupSdo", "StartupStep"]
+__all__ = ["DriveSetup", "MappingPolicy", "StartupSdo", "StartupStep", "drive_table_problem"]
 
 
 class MappingPolicy(enum.Enum):
@@ -97,3 +99,34 @@ class DriveSetup:
         if self.sync_mode is not None and self.sync_mode not in (0, 1, 2, 3):
             raise ConfigurationError(f"0x1C32:1 sync mode must be 0 (free run), 1 (SM2 event), 2 (DC SYNC0) "
                                      f"or 3 (DC SYNC1), got {self.sync_mode}")
+
+
+def drive_table_problem(d: Mapping[str, Any]) -> tuple[tuple[str | int, ...], str] | None:
+    """What is wrong with one ``[[bus.drives]]`` table of the machine configuration (already
+    checked key by key), as the bring-up would find it: the key within the table and the
+    reason, or None. Every reader of the configuration asks this, so they refuse alike."""
+    from .pdo import parse_entry
+
+    entries: dict[str, list[Any]] = {}
+    for key in ("rx", "tx"):
+        entries[key] = []
+        for k, text in enumerate(d[key]):
+            try:
+                entries[key].append(parse_entry(text))
+            except EtherCATError as exc:
+                return (key, k), str(exc)
+    sdos = []
+    for k, x in enumerate(d["sdo"]):
+        try:
+            sdos.append(StartupSdo(x["index"], x["subindex"], x["value"], x["size"]))
+        except EtherCATError as exc:
+            return ("sdo", k), str(exc)
+    try:
+        mapping = PdoMapping(tuple(entries["rx"]), tuple(entries["tx"]), d["rx_pdo"], d["tx_pdo"]) \
+            if entries["rx"] or entries["tx"] else None
+        DriveSetup(mapping=mapping, policy=MappingPolicy(d["mapping"]), startup_sdos=tuple(sdos), dc=d["dc"],
+                   sync0_shift_ns=d["sync0_shift_ns"], sync_mode=d["sync_mode"],
+                   complete_access={"auto": None, "on": True, "off": False}[d["complete_access"]])
+    except EtherCATError as exc:
+        return ("tx" if "TxPDO" in str(exc) else "rx",), str(exc)
+    return None

@@ -8,30 +8,13 @@ which also binds 127.0.0.1 alone).
 from __future__ import annotations
 
 import enum
-import ipaddress
-import re
 import socket
 from dataclasses import dataclass, replace
 from typing import Any
 
+from planner.core.rules import host_problem
+
 __all__ = ["Identity", "OpcUaOverride", "OpcUaSettings", "SecurityMode", "host_problem"]
-
-_HOST_NAME = re.compile(r"(?=.{1,253}$)[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?"
-                        r"(?:\.[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?)*")
-
-
-def host_problem(host: str) -> str:
-    """Why ``host`` cannot be an address to listen on ("" when it can): an IP address, or a
-    host name of letters, digits, hyphens and dots."""
-    try:
-        ipaddress.ip_address(host)
-        return ""
-    except ValueError:
-        pass
-    if _HOST_NAME.fullmatch(host):
-        return ""
-    return f"{host!r} is not an IP address or a host name (0.0.0.0 listens on every interface)"
-
 
 class SecurityMode(enum.StrEnum):
     """An endpoint's security: the policy and message mode, as OPC UA names them."""

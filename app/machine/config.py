@@ -33,11 +33,12 @@ import tomlkit.exceptions
 import tomlkit.items
 
 from app.machine.errors import ConfigError
-from ethercat.errors import EtherCATError
-from opcua_server.settings import OpcUaSettings, host_problem
+from ethercat.drive_setup import drive_table_problem
+from opcua_server.settings import OpcUaSettings
 from planner.core.errors import PlannerError
 from planner.core.files import write_output, write_text
 from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
+from planner.core.rules import drive_tables
 from planner.core.schema import END_MARK, HEADER, Locator, check_complete, validate
 from resources import shipped_machine
 
@@ -211,61 +212,13 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     loc = Locator(where, text)
     try:
         valid = validate(data, loc)
-        machine = machine_from_valid(valid, loc)
-        n = len(machine.axes)
-        positions = {a.drive_position for a in machine.axes}
-        b = valid["bus"]
-        for i, d in enumerate(b["drives"]):
-            if d["position"] is None:
-                d["position"] = i
-            if d["position"] not in positions:
-                raise loc.fail(("bus", "drives", i, "position"),
-                               f"{d['position']} is not the drive of any axis ({sorted(positions)})")
-        for i, d in enumerate(b["drives"]):
-            if bool(d["rx"]) != bool(d["tx"]):
-                raise loc.fail(("bus", "drives", i, "rx" if not d["rx"] else "tx"),
-                               "rx and tx are given together (the whole mapping) or not at all")
-            _check_drive_setup(loc, i, d)
-        if b["kind"] == "soem" and not b["adapter"]:
-            raise loc.fail(("bus", "adapter"), 'is required when kind = "soem" (the network interface)')
-        c = valid["controller"]
-        z = [a for a in machine.axes if a.name == "Z"]
-        clearance = c["restart_clearance_mm"]
-        if clearance is not None and z and not z[0].min_pos <= clearance <= z[0].max_pos:
-            raise loc.fail(("controller", "restart_clearance_mm"),
-                           f"{clearance:g} is outside the Z travel [{z[0].min_pos:g}, {z[0].max_pos:g}]")
-        if c["spindle_drive"] >= n:
-            raise loc.fail(("controller", "spindle_drive"),
-                           f"{c['spindle_drive']} must be below the axis count {n}")
-        pr = valid["probe"]
-        if pr["drive"] is not None and pr["drive"] >= n:
-            raise loc.fail(("probe", "drive"), f"{pr['drive']} must be below the axis count {n}")
-        setter = [pr[k] for k in ("setter_x_mm", "setter_y_mm", "setter_z_mm")]
-        if any(v is not None for v in setter) and None in setter:
-            missing = [k for k in ("setter_x_mm", "setter_y_mm", "setter_z_mm") if pr[k] is None]
-            raise loc.fail(("probe", missing[0]), "a tool setter needs setter_x_mm, setter_y_mm and "
-                           "setter_z_mm together")
-        for key, axis in (("setter_x_mm", "X"), ("setter_y_mm", "Y"), ("setter_z_mm", "Z")):
-            spec = next((a for a in machine.axes if a.name == axis), None)
-            if pr[key] is not None and (spec is None or not spec.min_pos <= pr[key] <= spec.max_pos):
-                where = f"outside the {axis} travel [{spec.min_pos:g}, {spec.max_pos:g}]" if spec else \
-                    f"the machine has no {axis} axis"
-                raise loc.fail(("probe", key), f"{pr[key]:g} is {where}")
-        if pr["sim_surface_mm"] is not None and pr["sim_axis"] not in machine.axis_names:
-            raise loc.fail(("probe", "sim_axis"), f"{pr['sim_axis']} is not an axis of this machine "
-                           f"({', '.join(machine.axis_names)})")
-        for i, o in enumerate(valid["outputs"]):
-            if o["drive"] == c["spindle_drive"] and o["bit"] in (0, 1):
-                raise loc.fail(("outputs", i, "bit"), f"bits 0 and 1 of drive {o['drive']} switch the "
-                               "spindle ([controller] spindle_drive): use bit 2 or above")
-        problem = host_problem(valid["opcua"]["host"])
-        if problem:
-            raise loc.fail(("opcua", "host"), problem)
+        machine = machine_from_valid(valid, loc, drive_tables(drive_table_problem))
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
     h = valid["homing"]
     homing = HomingSettings(required=h["required"], method=h["method"], drive_method=h["drive_method"],
                             timeout_s=h["timeout_s"], absolute_encoders=h["absolute_encoders"])
+    b, c = valid["bus"], valid["controller"]
     drives = tuple(_drive(d) for d in b["drives"])
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
@@ -482,30 +435,6 @@ def _merge(dst: Any, src: Any) -> None:
 
 def _plain(value: Any) -> Any:
     return value.unwrap() if hasattr(value, "unwrap") else value
-
-
-def _check_drive_setup(loc: Locator, i: int, d: dict[str, Any]) -> None:
-    """The drive's start-up settings as the ``ethercat`` package reads them; a refusal names
-    the entry or SDO table at fault."""
-    from ethercat.drive_setup import StartupSdo
-    from ethercat.pdo import parse_entry
-
-    for key in ("rx", "tx"):
-        for k, text in enumerate(d[key]):
-            try:
-                parse_entry(text)
-            except EtherCATError as exc:
-                raise loc.fail(("bus", "drives", i, key, k), str(exc)) from None
-    for k, x in enumerate(d["sdo"]):
-        try:
-            StartupSdo(x["index"], x["subindex"], x["value"], x["size"])
-        except EtherCATError as exc:
-            raise loc.fail(("bus", "drives", i, "sdo", k), str(exc)) from None
-    try:
-        _drive(d).setup()
-    except EtherCATError as exc:
-        key = "tx" if "TxPDO" in str(exc) else "rx"
-        raise loc.fail(("bus", "drives", i, key), str(exc)) from None
 
 
 def _drive(d: dict[str, Any]) -> DriveIdentity:

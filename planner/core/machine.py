@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from planner.core.errors import PlannerError
+from planner.core.rules import SectionRule, check_sections
 from planner.core.schema import Locator, check_complete, validate
 
 WORK_OFFSET_NAMES: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -148,8 +149,8 @@ def _validate_planner(p: PlannerSettings, where: str) -> None:
     if p.interpolation not in INTERPOLATIONS:
         raise PlannerError(
             f"{where}: interpolation must be one of {INTERPOLATIONS}, got {p.interpolation!r}")
-    if not 1e-5 <= p.ts_s <= 0.1:
-        raise PlannerError(f"{where}: ts_s must be between 1e-05 and 0.1 s, got {p.ts_s}")
+    if not 1e-4 <= p.ts_s <= 0.1:
+        raise PlannerError(f"{where}: ts_s must be between 0.0001 and 0.1 s, got {p.ts_s}")
     if not 0.0 <= p.blend_tolerance_mm <= 10.0:
         raise PlannerError(f"{where}: blend_tolerance_mm must be between 0 and 10 mm, "
                            f"got {p.blend_tolerance_mm}")
@@ -159,13 +160,13 @@ def _validate_planner(p: PlannerSettings, where: str) -> None:
 COUNTS_LIMIT = 2**31 * 0.9
 
 
-def machine_from_dict(data: dict[str, Any], where: str | Locator = "<config>", text: str | None = None
-                      ) -> MachineSpec:
+def machine_from_dict(data: dict[str, Any], where: str | Locator = "<config>", text: str | None = None,
+                      extra: SectionRule | None = None) -> MachineSpec:
     """Validate a parsed configuration (``planner.core.schema``, strict) and build the planner's
     view of it; every message names the file, the line when ``text`` is given, the key and
     the value."""
     loc = where if isinstance(where, Locator) else Locator(where, text)
-    return machine_from_valid(validate(data, loc), loc)
+    return machine_from_valid(validate(data, loc), loc, extra)
 
 
 def _first_repeat(values: list[Any]) -> int | None:
@@ -173,9 +174,10 @@ def _first_repeat(values: list[Any]) -> int | None:
     return next((k for k in range(len(values)) if values[k] in values[:k]), None)
 
 
-def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
+def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule | None = None) -> MachineSpec:
     """The planner's sections of a configuration already checked by ``schema.validate``, with
-    the checks across keys: travel, unique names and drives, offsets per axis, counts."""
+    the checks across keys: travel, unique names and drives, offsets per axis, counts, and the
+    rules every reader applies (``rules.check_sections``, with the caller's ``extra``)."""
     axes: list[AxisSpec] = []
     for i, a in enumerate(valid["axes"]):
         name = a["name"]
@@ -245,6 +247,7 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator) -> MachineSpec:
             raise loc.fail(("mcodes", i, "output"), f"action \"output\" needs the number of an [[outputs]] "
                            f"table ({', '.join(map(str, sorted(output_bits))) or 'none defined'})")
         mcodes[mc["code"]] = (mc["action"], mc["message"], -1 if out is None else out, mc["on"])
+    check_sections(valid, loc, tuple(axes), extra)
     return MachineSpec(name=valid["machine"]["name"], axes=tuple(axes), limits=limits, planner=planner,
                        work_offsets=offsets, config_dir=config_dir, output_bits=output_bits, mcodes=mcodes,
                        input_bits=input_bits,
@@ -267,8 +270,9 @@ def _io_bits(loc: Locator, entries: list[dict[str, Any]], table: str, what: str,
     return bits
 
 
-def load_machine(path: str | Path) -> MachineSpec:
-    """Read and validate a machine configuration TOML file."""
+def load_machine(path: str | Path, extra: SectionRule | None = None) -> MachineSpec:
+    """Read and validate a machine configuration TOML file (``extra``: the caller's rules for
+    its own sections, as ``machine_from_valid`` takes them)."""
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
@@ -282,6 +286,6 @@ def load_machine(path: str | Path) -> MachineSpec:
         raise PlannerError(f"{p}: cannot read the machine configuration: {exc.strerror or exc}") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise PlannerError(f"{p}: not a valid TOML file: {exc}") from None
-    return machine_from_dict(data, str(p), text)
+    return machine_from_dict(data, str(p), text, extra)
 
 

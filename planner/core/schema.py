@@ -99,7 +99,8 @@ MACHINE_FILE = Table("", tables=(
         Key("rapid_deg_s", "float", None, 1e-3, 1e6),
     )),
     Table("planner", (
-        Key("ts_s", "float", 0.001, 1e-5, 0.1),
+        # the cyclic worker's range: 0.1 ms to 100 ms
+        Key("ts_s", "float", 0.001, 1e-4, 0.1),
         Key("mode", "str", "lookahead", choices=("lookahead", "paper")),
         Key("interpolation", "str", "exact", choices=("exact", "taylor", "classic")),
         # folders where "o<name> call" finds <name>.ngc (relative: to this file's folder)

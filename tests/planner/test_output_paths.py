@@ -61,7 +61,8 @@ def test_cnc_plan_refuses_two_outputs_in_one_file_an_empty_path_and_a_missing_fo
     assert "standard output is already --samples's" in capsys.readouterr().err
 
 
-def test_cnc_plan_refuses_to_write_over_a_subroutine(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_cnc_plan_refuses_to_write_over_a_subroutine(tmp_path: Path,
+                                                     capsys: pytest.CaptureFixture[str]) -> None:
     from app.machine.config import MachineConfig, config_to_toml
 
     subs = tmp_path / "subs"
@@ -86,7 +87,8 @@ def test_cnc_run_refuses_a_trace_over_its_program_or_its_script(qapp: object, fi
 
     script = tmp_path / "ops.jsonl"
     script.write_text('{"at": 0.1, "op": "feed_hold"}\n')
-    for target, what in ((files["program"], "the program"), (files["link"], "the program"), (script, "--script")):
+    cases = ((files["program"], "the program"), (files["link"], "the program"), (script, "--script"))
+    for target, what in cases:
         before = target.read_bytes()
         code = run_main([str(files["program"]), "--sim", "--worker", "manual", "--script", str(script),
                          "--trace", str(target), "--json"])
