@@ -10,6 +10,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from app.config_edit import validate as axes_page_validate
 from app.config_edit import with_axis, with_limits, with_planner
@@ -122,3 +124,27 @@ def test_every_reader_accepts_the_rule_just_kept(qapp: object, tmp_path: Path,
                                                   capsys: pytest.CaptureFixture[str], index: int) -> None:
     verdicts = _verdicts(cases(False)[index], tmp_path, capsys)
     assert set(verdicts.values()) == {""}, verdicts
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(rule=st.sampled_from(["ts_s", "window", "v_max", "rapid"]), factor=st.floats(0.5, 2.0))
+def test_fuzz_values_about_each_boundary_get_one_verdict_from_every_reader(
+        qapp: object, tmp_path_factory: pytest.TempPathFactory, capsys: pytest.CaptureFixture[str], rule: str,
+        factor: float) -> None:
+    boundary = {"ts_s": 1e-4, "window": 1.0 / X.counts_per_unit, "v_max": TRAVEL_X / 3600.0,
+                "rapid": LONGEST / 3600.0}[rule]
+    value = boundary * factor
+    case = {
+        "ts_s": Case("planner.ts_s", _set("planner", "ts_s", repr(value)), lambda c: with_planner(c,
+                                                                                                  ts_s=value)),
+        "window": Case("axes[0].following_error_window", _set("axes", "following_error_window", repr(value)),
+                       lambda c: with_axis(c, 0, following_error_window=value)),
+        "v_max": Case("axes[0].v_max", _set("axes", "v_max", repr(value)), lambda c: with_axis(c, 0,
+                                                                                               v_max=value)),
+        "rapid": Case("limits.rapid_mm_s", _set("limits", "rapid_mm_s", repr(value)),
+                      lambda c: with_limits(c, rapid_mm_s=value)),
+    }[rule]
+    verdicts = _verdicts(case, tmp_path_factory.mktemp("fuzz"), capsys)
+    assert len(set(verdicts.values())) == 1, verdicts
+    refused = next(iter(verdicts.values())) != ""
+    assert refused == (value < boundary), (value, boundary, verdicts)
