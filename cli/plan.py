@@ -42,6 +42,11 @@ PAPER_V, PAPER_A, PAPER_J, PAPER_TS = 30.0, 1000.0, 10_000.0, 0.001
 # A program that runs longer than this is almost always a mistake (a feed of 0.0001, a circle
 # of radius 1e6); interpolating it blindly would take hours and gigabytes for nothing.
 DEFAULT_MAX_CYCLE_H = 24.0
+# A program whose moves take this long on average, over an hour in all, is out of scale with
+# its length (one arc of 15.7 h at F1): its cycle time is told at once and its samples (56
+# million for that arc, a minute of work) are made only with --interpolate-long.
+LONG_MOVE_S = 600.0
+LONG_CYCLE_S = 3600.0
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -66,6 +71,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", help="write a velocity/acceleration/jerk PNG (paper Fig. 14)")
     p.add_argument("--canon", help="write the moves as LinuxCNC canonical calls (JSONL)")
     p.add_argument("--json", action="store_true", help="print a JSON report on stdout")
+    p.add_argument("--interpolate-long", action="store_true",
+                   help="interpolate and measure a program whose moves take over 10 minutes each on average "
+                        "(by default its cycle time is told without samples)")
     p.add_argument("--mkdir", action="store_true", help="create the folders of the output files when missing")
     p.add_argument("--max-cycle-h", type=float, default=DEFAULT_MAX_CYCLE_H,
                    help=f"refuse to interpolate a program whose cycle time exceeds this many hours "
@@ -200,6 +208,7 @@ class _Summary:
     interp_s: float = 0.0
     report: LimitReport | None = None
     moves: list[tuple[np.ndarray, ...]] = field(default_factory=list)  # per segment: line, kind, ...
+    not_sampled: str = ""      # why no sample was made ("": they were, or none was asked for)
 
 
 def _summarise(program, machine: MachineSpec, args, scratch: Path) -> _Summary:
@@ -218,6 +227,13 @@ def _summarise(program, machine: MachineSpec, args, scratch: Path) -> _Summary:
     n_samples = first_sample_at(cycle, ts) + 1 if len(program.moves) else 1
     out = _Summary(mode, interpolation, ts, cycle, n_samples, time.perf_counter() - started)
     if not cycle <= args.max_cycle_h * 3600.0:
+        return out
+    per_move = cycle / max(len(program.moves), 1)
+    asked = args.interpolate_long or args.samples or args.csv or args.plot    # samples wanted by name
+    if cycle > LONG_CYCLE_S and per_move > LONG_MOVE_S and not asked:
+        out.not_sampled = (f"{len(program.moves)} move(s) take {cycle / 3600.0:.3g} h, "
+                           f"{per_move / 60.0:.3g} min a move on average (a feed too low?): not interpolated "
+                           f"({out.n_samples:,} samples); --interpolate-long makes and measures them")
         return out
     sinks = _Sinks(args, list(program.axes), n_samples, scratch)
     if not args.json:
@@ -404,13 +420,24 @@ def main(argv: list[str] | None = None) -> int:
                        "refused": f"cycle time over {args.max_cycle_h:g} h"}, sys.stdout)
             sys.stdout.write("\n")
         return 2
+    if summary is not None and summary.not_sampled:
+        print(f"{args.program}: {summary.not_sampled}", file=sys.stderr)
+        if args.json:
+            json.dump({"program": str(args.program), "moves": len(program.moves),
+                       "cycle_time_s": summary.cycle_time_s, "ok": True, "sampled": False,
+                       "note": summary.not_sampled}, sys.stdout)
+            sys.stdout.write("\n")
+        else:
+            print(f"{program.name}: {len(program.moves)} moves, cycle time {summary.cycle_time_s:.3f} s")
+        if not args.canon:
+            return 0
     if args.canon:
         try:
             write_canon(programmed, args.canon)
         except OSError as exc:
             print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
             return 1
-    if summary is None:
+    if summary is None or summary.not_sampled:
         return 0
     return _print_summary(args, program, parse_s, summary)
 

@@ -130,7 +130,7 @@ def load(source: str | os.PathLike[str], name: str, machine: MachineSpec, plan: 
     text: str | None
     utf8: bytes | None
     if isinstance(source, os.PathLike):
-        text, utf8 = read_program_bytes(source)
+        text, utf8 = read_program_bytes(source, machine.planner.max_program_bytes)
     else:
         text, utf8 = source, None
 

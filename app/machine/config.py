@@ -335,6 +335,8 @@ def config_to_toml(config: MachineConfig) -> str:
     if m.planner.subroutine_dirs:
         out.append(f"subroutine_dirs = {_fmt(list(m.planner.subroutine_dirs))}")
     out.append(f"blend_tolerance_mm = {_fmt(float(m.planner.blend_tolerance_mm))}")
+    if m.planner.max_program_mb != 1024.0:
+        out.append(f"max_program_mb = {_fmt(float(m.planner.max_program_mb))}")
     out += [""]
     for number, (drive, bit, name) in sorted(m.output_bits.items()):
         out += ["[[outputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",

@@ -72,6 +72,11 @@ class PlannerSettings:
     interpolation: str = "exact"
     subroutine_dirs: tuple[str, ...] = ()    # as written; relative ones to MachineSpec.config_dir
     blend_tolerance_mm: float = 0.0  # G64 without P: corner blend tolerance (0: programmed path)
+    max_program_mb: float = 1024.0   # the largest program read
+
+    @property
+    def max_program_bytes(self) -> int:
+        return int(self.max_program_mb * (1 << 20))
 
 
 @dataclass(frozen=True)
@@ -221,7 +226,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
     pl = valid["planner"]
     planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"],
                               subroutine_dirs=tuple(pl["subroutine_dirs"]),
-                              blend_tolerance_mm=pl["blend_tolerance_mm"])
+                              blend_tolerance_mm=pl["blend_tolerance_mm"],
+                              max_program_mb=pl["max_program_mb"])
     offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in WORK_OFFSET_NAMES}
     for key, value in valid["offsets"].items():
         if len(value) != len(axes):

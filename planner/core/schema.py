@@ -108,6 +108,8 @@ MACHINE_FILE = Table("", tables=(
         # G64 without P: how far (mm) a corner blend may leave the programmed corner; 0 keeps
         # the programmed path (G64 P<tol> in a program sets its own)
         Key("blend_tolerance_mm", "float", 0.0, 0.0, 10.0),
+        # the largest program read (MB): a longer file, or a device that goes on, is refused
+        Key("max_program_mb", "float", 1024.0, 0.001, 65536.0),
     )),
     Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
     # digital outputs a program switches (M62-M65 P<number>): a bit of a drive's 0x60FE:1

@@ -17,6 +17,10 @@ from planner.gcode.state import (
 )
 
 MAX_EXECUTED = 10_000_000   # blocks run by one program with O-word loops
+#: blocks run in a row that make nothing (no move, no event): a loop that only counts or
+#: tests is taken for an endless one after about 2 s of reading, not the 40 s of MAX_EXECUTED
+MAX_IDLE = 1 << 19
+_IDLE_CHECK = 1 << 15        # blocks between two looks at what was made
 MAX_CALL_DEPTH = 50
 RETURN = -2                  # ``statement``: the subroutine returns
 
@@ -40,12 +44,21 @@ class FlowCodes(ModeCodes):
         frames: list[Frame] = []
         pc = 0
         executed = 0
+        made, idle_since = -1, 0      # what had been made at the last look, and since which block
         while 0 <= pc < len(frame.lines):
             self.calls.frame, self.calls.pc = frame, pc    # where a G7x cycle looks for its profile
             executed += 1
             if executed > MAX_EXECUTED:
                 self.error(frame.line_of(pc), 1, f"more than {MAX_EXECUTED:,} blocks run (an endless loop?)")
                 return
+            if executed % _IDLE_CHECK == 0:
+                now = len(self.rec.out) + len(self.rec.events)
+                if now != made:
+                    made, idle_since = now, executed
+                elif executed - idle_since >= MAX_IDLE:
+                    self.error(frame.line_of(pc), 1, f"{executed - idle_since:,} blocks run without a move "
+                               "(an endless loop?)")
+                    return
             stmt = frame.structure.statements.get(pc)
             raw = frame.lines[pc]
             line_no = pc + 1

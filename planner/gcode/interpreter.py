@@ -249,5 +249,6 @@ def parse_program(
 
 def parse_file(path: str | os.PathLike[str], machine=None, **kwargs) -> Program:
     """Read and interpret a G-code file (UTF-8, from its bytes alone; falling back to Latin-1)."""
-    text, utf8 = read_program_bytes(path)
+    text, utf8 = read_program_bytes(path, machine.planner.max_program_bytes) if machine is not None \
+        else read_program_bytes(path)
     return parse_program(text, str(path), machine, utf8=utf8, **kwargs)

@@ -8,17 +8,103 @@ from __future__ import annotations
 import codecs
 import io
 import os
+import select
+import stat
 from typing import Any
 
 from planner.core.errors import PlannerError
 from planner.gcode.lexer import LexError, compact, original_column
 
-__all__ = ["read_program", "read_program_bytes", "contains", "count_lines", "decode_utf8", "percent_line",
-           "compact_or_none", "through_closing_percent", "statement_col"]
+__all__ = ["MAX_PROGRAM_BYTES", "SILENT_PIPE_S", "compact_or_none", "contains", "count_lines", "decode_utf8",
+           "open_program", "percent_line", "read_program", "read_program_bytes", "statement_col",
+           "through_closing_percent"]
 
 # bytes decoded at a time: a piece's decoding (3 ms for 4 MB) holds the GIL, which the GUI
 # thread waits for at each of its calls into Qt while a file is read
 DECODE_PIECE = 1 << 20
+
+#: the largest program read, by default ([planner] max_program_mb): four times the 252 MB of
+#: the 10,000,000-line programs the panel runs; a file or a device that goes on is refused
+MAX_PROGRAM_BYTES = 1024 << 20
+#: a pipe or device that delivers nothing for this long is given up (a FIFO with no writer)
+SILENT_PIPE_S = 10.0
+
+
+def _too_big(path: object, limit: int) -> PlannerError:
+    return PlannerError(f"{path}: more than {limit / (1 << 20):g} MB, the most a program may have "
+                        "([planner] max_program_mb)")
+
+
+class _Bounded(io.RawIOBase):
+    """A program's file as a stream that ends at ``limit`` bytes (refused beyond) and, for a
+    pipe or a device, after ``SILENT_PIPE_S`` without data (refused), whatever the file is: a
+    regular file's size is looked at before it is read, /dev/zero ends at the limit, a FIFO
+    with no writer ends at the timeout."""
+
+    def __init__(self, path: str | os.PathLike[str], limit: int) -> None:
+        self.path, self.limit, self.read_bytes = path, limit, 0
+        try:
+            # without O_NONBLOCK, opening a FIFO waits for a writer, for ever
+            self.fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+        except OSError as exc:
+            raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+        try:
+            st = os.fstat(self.fd)
+            if stat.S_ISDIR(st.st_mode):
+                raise PlannerError(f"{path}: is a folder, not a program")
+            self.regular = stat.S_ISREG(st.st_mode)
+            if self.regular:
+                if st.st_size > limit:
+                    raise _too_big(path, limit)
+                os.set_blocking(self.fd, True)
+        except BaseException:
+            os.close(self.fd)
+            raise
+
+    def readable(self) -> bool:
+        return True
+
+    def readinto(self, buffer: Any) -> int:
+        view = memoryview(buffer).cast("B")
+        want = min(len(view), self.limit + 1 - self.read_bytes)
+        if want <= 0:
+            raise _too_big(self.path, self.limit)
+        while True:
+            if not self.regular:
+                ready, _, _ = select.select([self.fd], [], [], SILENT_PIPE_S)
+                if not ready:
+                    raise PlannerError(f"{self.path}: nothing came for {SILENT_PIPE_S:g} s (a pipe with no "
+                                       "writer?)")
+            try:
+                n = os.readv(self.fd, [view[:want]])
+            except BlockingIOError:
+                continue
+            except OSError as exc:
+                raise PlannerError(f"{self.path}: cannot read: {exc.strerror or exc}") from None
+            self.read_bytes += n
+            if self.read_bytes > self.limit:
+                raise _too_big(self.path, self.limit)
+            if not self.regular and view[:n].tobytes().find(b"\0") >= 0:
+                # a device of bytes (/dev/zero, /dev/urandom) is no program: said at once
+                raise PlannerError(f"{self.path}: binary data (a NUL byte), not a G-code program")
+            return n
+
+    def seek(self, offset: int, whence: int = 0) -> int:
+        if not self.regular:
+            raise PlannerError(f"{self.path}: a pipe is read once: its program is not UTF-8")
+        self.read_bytes = 0 if whence == 0 else self.read_bytes
+        return os.lseek(self.fd, offset, whence)
+
+    def close(self) -> None:
+        if not self.closed:
+            os.close(self.fd)
+        super().close()
+
+
+def open_program(path: str | os.PathLike[str], limit: int = MAX_PROGRAM_BYTES) -> io.BufferedReader:
+    """A program's file for reading, bounded (``_Bounded``). Raises PlannerError naming the
+    file and why."""
+    return io.BufferedReader(_Bounded(path, limit), buffer_size=DECODE_PIECE)
 
 
 def statement_col(raw: str, index: int) -> int:
@@ -55,15 +141,13 @@ def through_closing_percent(lines: list[str]) -> int:
     return len(lines)
 
 
-def read_program_bytes(path: str | os.PathLike[str]) -> tuple[str | None, bytes | None]:
+def read_program_bytes(path: str | os.PathLike[str], limit: int = MAX_PROGRAM_BYTES
+                       ) -> tuple[str | None, bytes | None]:
     """A G-code file as ``parse_program(None, ..., utf8=)`` reads it: (None, its bytes) when
-    they are UTF-8, else (its Latin-1 text, None). Raises PlannerError naming the file and
-    why."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as exc:
-        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    they are UTF-8, else (its Latin-1 text, None); at most ``limit`` bytes (``open_program``).
+    Raises PlannerError naming the file and why."""
+    with open_program(path, limit) as f:
+        data = f.read()
     if data.isascii() or is_utf8(data):
         return None, data
     return data.decode("latin-1"), None
@@ -84,23 +168,23 @@ def is_utf8(data: bytes) -> bool:
     return True
 
 
-def read_program(path: str | os.PathLike[str]) -> str:
+def read_program(path: str | os.PathLike[str], limit: int = MAX_PROGRAM_BYTES) -> str:
     """A G-code file's text (UTF-8 without a byte-order mark, falling back to Latin-1) with
     Windows line ends made "\n", read and decoded a piece at a time: the file's bytes are
     never held whole beside the text (250 MB each at 10,000,000 lines), nor the text twice to
     change its line ends or drop the mark (the reader did that to a whole text), and no one
-    decode holds the GIL long. Raises PlannerError naming the file and why."""
-    try:
-        with open(path, "rb") as f:
-            try:
-                # "utf-8-sig": a byte-order mark (Windows editors put one before the first
-                # line) is no part of the text, and the text is not copied to drop it
-                return decoded(f, codecs.getincrementaldecoder("utf-8-sig")())
-            except UnicodeDecodeError:
-                f.seek(0)
-                return decoded(f, codecs.getincrementaldecoder("latin-1")())
-    except OSError as exc:
-        raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    decode holds the GIL long. At most ``limit`` bytes (``open_program``). Raises PlannerError
+    naming the file and why."""
+    with open_program(path, limit) as f:
+        try:
+            # "utf-8-sig": a byte-order mark (Windows editors put one before the first
+            # line) is no part of the text, and the text is not copied to drop it
+            return decoded(f, codecs.getincrementaldecoder("utf-8-sig")())
+        except UnicodeDecodeError:
+            if not f.seekable():
+                raise PlannerError(f"{path}: not UTF-8, and a pipe cannot be read again as Latin-1") from None
+            f.seek(0)
+            return decoded(f, codecs.getincrementaldecoder("latin-1")())
 
 
 def decoded(f: Any, decoder: codecs.IncrementalDecoder) -> str:

@@ -101,7 +101,7 @@ def check_text(
             # the text first, decoded a piece at a time, before any move is made: the reader
             # then goes through it a piece at a time too (text, bytes and the moves of
             # 10,000,000 lines were once held at once: 250 MB each and 460 MB)
-            text = read_program(req.path)
+            text = read_program(req.path, machine.planner.max_program_bytes)
         except PlannerError as exc:
             why = str(exc).split(": ", 1)[1] if ": " in str(exc) else str(exc)
             return (ProgramIssue(0, 0, why),), str(exc)
