@@ -225,13 +225,22 @@ def main(argv: list[str] | None = None) -> int:
                 QTimer.singleShot(10 if runner is not None else 50, loop.quit)
                 loop.exec()
 
+        stopped_by = ""           # "time limit" or "signal" when cnc-run stopped the run itself
+
+        def stop_run() -> None:
+            # along the path, as the operator's Stop: the run ends with its summary (last line,
+            # time run, limits measured so far), then the normal end
+            ctl.stop()
+            end = time.monotonic() + 10.0
+            while ctl.state not in (MachineState.IDLE, MachineState.ALARM, MachineState.ESTOP) \
+                    and time.monotonic() < end:
+                tick()
+
         while True:
             if stop_requested:
                 notes.append(f"stopped by signal {signal.Signals(stop_requested[0]).name}")
-                ctl.stop()
-                end = time.monotonic() + 10.0
-                while ctl.state is not MachineState.IDLE and time.monotonic() < end:
-                    tick()
+                stopped_by = "signal"
+                stop_run()
                 break
             tick()
             if runner is not None:
@@ -240,8 +249,11 @@ def main(argv: list[str] | None = None) -> int:
                 if runner.done and standing:
                     break
                 if runner.now() > max_s:
-                    notes.append(f"time limit of {max_s - runner.start_t:g} s reached; actions not done: "
-                                 + "; ".join(op.describe() for op in runner.ops))
+                    left = "; ".join(op.describe() for op in runner.ops) or "none"
+                    notes.append(f"time limit of {max_s - runner.start_t:g} s reached; "
+                                 f"actions not done: {left}")
+                    stopped_by = "time limit"
+                    stop_run()
                     break
                 continue
             if done:
@@ -263,6 +275,8 @@ def main(argv: list[str] | None = None) -> int:
             _settle(ctl, tick)
         snap = ctl.worker.snapshot() if ctl.worker is not None else None
         result = _result(ctl, info, summary, wall, snap, notes)
+        if stopped_by:
+            result["reason"] = stopped_by
         if runner is not None and recorder is not None:
             result["actions"] = runner.results
             result["prompts"] = recorder.prompts

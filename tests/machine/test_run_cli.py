@@ -126,7 +126,35 @@ def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
     assert proc.returncode == 1, err                 # ran, did not complete
     result = json.loads(out)
     assert result["completed"] is False and "stopped by signal SIGTERM" in result["notes"]
+    # what ran is told: the line reached, the time run, the limits measured so far
+    assert result["reason"] == "signal" and result["last_line"] == 1
+    assert 1.0 < result["cycle_time_s"] < 20.0 and result["limits_ok"] is True and result["limits"]
+    assert result["final_state"] == "idle"
     assert not [p for p in mine if p.exists()], "shared memory left behind"
+
+
+def test_a_run_stopped_at_the_time_limit_tells_what_ran_and_which_actions_were_not_done(
+        qapp, capsys, tmp_path: Path) -> None:
+    from app.run_cli import main
+
+    prog = tmp_path / "long.nc"
+    prog.write_text("G21 G90\n" + "".join(f"G1 X{(i % 2) * 50} Y{i} F600\n" for i in range(40)) + "M30\n")
+    script = tmp_path / "ops.jsonl"
+    script.write_text('{"after_s": 0.5, "op": "feed_override", "percent": 100}\n'
+                      '{"after_s": 100, "op": "feed_hold"}\n')
+    argv = [str(prog), "--sim", "--worker", "manual", "--script", str(script), "--json"]
+    assert main([*argv, "--max-s", "3"]) == 1
+    result = json.loads(capsys.readouterr().out)
+    assert result["reason"] == "time limit" and result["completed"] is False
+    assert result["last_line"] >= 3 and 2.5 < result["cycle_time_s"] < 4.0
+    assert result["limits_ok"] is True and result["limits"]["axis_v"] > 0
+    assert result["final_state"] == "idle"
+    assert any(n.endswith("actions not done: feed_hold after 100 s") for n in result["notes"]), result["notes"]
+    script.write_text('{"after_s": 0.5, "op": "feed_override", "percent": 100}\n')
+    assert main([*argv, "--max-s", "2"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["reason"] == "time limit"
+    assert any(n.endswith("actions not done: none") for n in result["notes"]), result["notes"]
 
 
 def test_a_run_killed_by_sigkill_leaves_the_state_unclean_and_no_axis_homed(qapp, tmp_path: Path) -> None:
