@@ -149,7 +149,8 @@ def test_a_run_stopped_at_the_time_limit_tells_what_ran_and_which_actions_were_n
     assert result["last_line"] >= 3 and 2.5 < result["cycle_time_s"] < 4.0
     assert result["limits_ok"] is True and result["limits"]["axis_v"] > 0
     assert result["final_state"] == "idle"
-    assert any(n.endswith("actions not done: feed_hold after 100 s") for n in result["notes"]), result["notes"]
+    notes = result["notes"]
+    assert any(n.endswith("actions not done: feed_hold after 100 s") for n in notes), notes
     script.write_text('{"after_s": 0.5, "op": "feed_override", "percent": 100}\n')
     assert main([*argv, "--max-s", "2"]) == 0
     result = json.loads(capsys.readouterr().out)

@@ -103,7 +103,8 @@ def test_an_endless_loop_is_stopped_in_seconds(tmp_path: Path, capsys: pytest.Ca
 
 def test_a_loop_that_moves_runs_to_its_end(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     program = tmp_path / "moves.ngc"
-    program.write_text("#1=0\no1 while [#1 lt 2000]\nG1 X[1 + [#1 mod 2]] F6000\n#1=[#1+1]\no1 endwhile\nM30\n")
+    program.write_text("#1=0\no1 while [#1 lt 2000]\nG1 X[1 + [#1 mod 2]] F6000\n#1=[#1+1]\n"
+                       "o1 endwhile\nM30\n")
     assert plan_main([str(program), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["moves"] == 2000
 
