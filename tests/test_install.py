@@ -53,8 +53,9 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 def test_installed_packages_come_from_the_install_not_the_checkout(installed: Path, tmp_path: Path) -> None:
     out = _run([str(installed / "bin" / "python"), "-c",
-                "import app, cli, planner, ethercat, resources, json; "
-                "print(json.dumps([m.__file__ for m in (app, cli, planner, ethercat, resources)]))"],
+                "import app, cli, planner, ethercat, opcua_server, resources, json; "
+                "mods = (app, cli, planner, ethercat, opcua_server, resources); "
+                "print(json.dumps([m.__file__ for m in mods]))"],
                cwd=tmp_path)
     for path in json.loads(out):
         assert str(installed) in path and str(ROOT) not in path, path
@@ -75,3 +76,16 @@ def test_panel_starts_in_demo_mode_and_takes_a_screenshot(installed: Path, tmp_p
     _run([str(installed / "bin" / "cnc-panel"), "--demo", "--screenshot", str(shot),
           "--state-dir", str(tmp_path / "state")], cwd=tmp_path, env=env, timeout=120)
     assert shot.stat().st_size > 10_000
+
+
+def test_the_opcua_nodesets_and_their_notice_travel_with_the_package(installed: Path, tmp_path: Path) -> None:
+    out = _run([str(installed / "bin" / "python"), "-c",
+                "from importlib import resources; import json; "
+                "d = resources.files('opcua_server') / 'nodesets'; "
+                "print(json.dumps(sorted(p.name for p in d.iterdir())))"], cwd=tmp_path)
+    names = json.loads(out)
+    assert names == ["NOTICE.md", "Opc.Ua.Di.NodeSet2.xml", "Opc.Ua.IA.NodeSet2.xml",
+                     "Opc.Ua.MachineTool.NodeSet2.xml",
+                     "Opc.Ua.Machinery.NodeSet2.xml"]
+    text = _run([str(installed / "bin" / "cnc-opcua"), "--state-dir", str(tmp_path / "state")], cwd=tmp_path)
+    assert "certificate:" in text and "SHA-1" in text
