@@ -283,6 +283,12 @@ class MachineApi(Protocol):
         ...
 
     @property
+    def run_first_move(self) -> int:
+        """The move of the loaded program its current (or last) run began with: 0 from the
+        beginning, the line's first move after run from line (a resume keeps it)."""
+        ...
+
+    @property
     def resume_line(self) -> int:
         """Line a resume (after a fault or E-stop mid-program) would continue from, 0 if none."""
         ...

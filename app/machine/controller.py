@@ -282,6 +282,7 @@ class MachineController(QObject):
     optional_stop: reads[bool] = reads(_run, "optional_stop")
     block_delete: reads[bool] = reads(_run, "block_delete")
     resume_line: reads[int] = reads(_run, "resume_line")
+    run_first_move: reads[int] = reads(_run, "first_move")
     spindle: reads[SpindleState] = reads(_spindle, "spindle")
     tool_table: reads[ToolTable] = reads(_tools, "table")
     tool_in_spindle: reads[int] = reads(_tools, "in_spindle")

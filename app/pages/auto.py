@@ -345,7 +345,8 @@ class AutoPage(QWidget):
         self._line = line
         self.editor.set_run_line(line)
         if line > 0 and self.ctx.program.toolpath is not None:
-            self.backplot.set_executed(self.ctx.program.move_at_line(line))
+            self.backplot.set_executed(self.ctx.program.move_at_line(line),
+                                       self.ctx.controller.run_first_move)
         self._update_info()
 
     def _on_progress(self, fraction: float, remaining_s: float) -> None:

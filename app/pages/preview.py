@@ -114,11 +114,11 @@ class PreviewPage(QWidget):
 
     def _on_line(self, line: int) -> None:
         if line > 0:
-            self.plot.set_executed(self.ctx.program.move_at_line(line))
+            self.plot.set_executed(self.ctx.program.move_at_line(line), self.ctx.controller.run_first_move)
 
     def _on_finished(self, summary: object) -> None:
         if getattr(summary, "completed", False) and self.plot.path is not None:
-            self.plot.set_executed(len(self.plot.path.move_lines))
+            self.plot.set_executed(len(self.plot.path.move_lines), self.ctx.controller.run_first_move)
 
     def _on_tapped(self, _index: int, line: int) -> None:
         self._picked_line = line

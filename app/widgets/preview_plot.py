@@ -87,6 +87,7 @@ class PreviewPlot(pg.PlotWidget):
         self._lod: LodLevels = {}
         # (x, y, connect, move index) of every move for the view, when the path is big
         self._executed: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._first_move = 0    # where the run began (run from line): nothing before it ran
         self._lod_timer = QTimer(self)
         self._lod_timer.setSingleShot(True)
         self._lod_timer.setInterval(LOD_REDRAW_MS)
@@ -205,7 +206,7 @@ class PreviewPlot(pg.PlotWidget):
     def _refresh_view(self) -> None:
         self._redraw()
         done, self._done_move = self._done_move, -1
-        self.set_executed(done)
+        self.set_executed(done, self._first_move)
         selected = getattr(self, "_selected", -1)
         self.highlight_move(selected)
         self._draw_envelope()
@@ -316,7 +317,7 @@ class PreviewPlot(pg.PlotWidget):
             return
         self._executed = drawn.executed
         done, self._done_move = self._done_move, -1
-        self.set_executed(done)  # the part run so far, for this view
+        self.set_executed(done, self._first_move)  # the part run so far, for this view
         for kind, item in self.items.items():
             if kind in drawn.vectors:
                 x, y, connect = drawn.vectors[kind]
@@ -382,30 +383,31 @@ class PreviewPlot(pg.PlotWidget):
         x, y = self._xy(part)
         self.current_item.setData(x, y)
 
-    def set_executed(self, move_index: int) -> None:
-        """Highlight moves 0 .. move_index - 1 (those finished) as executed."""
-        if self.path is None or move_index == self._done_move:
+    def set_executed(self, move_index: int, first: int = 0) -> None:
+        """Highlight moves ``first`` .. move_index - 1 (those finished in this run: a run from
+        a line never cut what lies before it) as executed."""
+        if self.path is None or (move_index, first) == (self._done_move, self._first_move):
             return
-        self._done_move = move_index
+        self._done_move, self._first_move = move_index, first
         self._update_current()
-        if move_index <= 0:
+        if move_index <= first:
             self.done_item.setData([], [])
             return
-        if self._executed is not None:  # a big path: a prefix of the view's own copy
+        if self._executed is not None:  # a big path: a stretch of the view's own copy
             x, y, connect, moves = self._executed
+            lo = int(np.searchsorted(moves, first, side="left"))
             end = int(np.searchsorted(moves, move_index, side="left"))
-            connect = connect[:end].copy()
-            if end:
-                connect[-1] = False
-            self.done_item.setData(x[:end], y[:end], connect=connect)
-            return
-        end = self.path.points_before(move_index)
-        pl = self.path.all
-        x, y = self._xy(pl.points[:end])
-        connect = pl.connect[:end].copy()
-        if end:
+        else:
+            lo, end = self.path.points_before(first), self.path.points_before(move_index)
+            pl = self.path.all
+            x, y = self._xy(pl.points[:end])
+            connect = pl.connect
+        if first > 0 and lo > 0:
+            lo -= 1             # a move's points follow its start, the point before them
+        connect = connect[lo:end].copy()
+        if end > lo:
             connect[-1] = False
-        self.done_item.setData(x, y, connect=connect)
+        self.done_item.setData(x[lo:end], y[lo:end], connect=connect)
 
     def highlight_move(self, move_index: int) -> None:
         self._selected = move_index

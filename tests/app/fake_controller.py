@@ -100,6 +100,7 @@ class FakeController(QObject):
         self.reference_position = (0.0,) * n
         self.progress = (0.0, 0.0)
         self.resume_line = 0
+        self.run_first_move = 0
         self.interrupted: tuple[str, int] | None = None
         self.opcua_status = None
         self.opcua_settings = self.config.opcua

@@ -163,6 +163,26 @@ def test_run_from_line_opens_at_the_line_where_it_stopped(demo_window, real_cont
     assert seen == [float(stopped)]
 
 
+def test_after_run_from_line_only_what_ran_is_drawn_as_executed(qtbot, demo_window, real_controller) -> None:
+    c = real_controller
+    assert c.load_program(LONG, name="long.nc", wait=True)
+    qtbot.waitUntil(lambda: demo_window.page("auto").backplot.path is not None, timeout=10_000)
+    assert c.run_from_line(5, wait=True)                 # G1 Y20: from X20 Y0 at Z-1
+    assert c.run_until(lambda: c.state is MachineState.IDLE and c.last_run is not None, 60)
+    demo_window.page("auto")._on_line(8)
+    plot = demo_window.page("auto").backplot
+    x, y = plot.done_item.getData()
+    assert x is not None and len(x) >= 2
+    # the executed part begins where line 5 begins: not at the program's start (X0 Y0), and the
+    # rapid from there, the plunge and the cut along X that the run never made are not in it
+    assert (x[0], y[0]) == pytest.approx((20.0, 0.0))
+    assert c.run_first_move == int(plot.path.move_lines.tolist().index(5))
+    assert c.cycle_start(wait=True, from_start=True)
+    assert c.run_until(lambda: c.state is MachineState.IDLE, 60)
+    x, y = plot.done_item.getData()
+    assert c.run_first_move == 0 and (x[0], y[0]) == pytest.approx((0.0, 0.0))
+
+
 def test_after_a_power_loss_the_panel_says_what_was_running_and_demo_does_not_home(
         qtbot, qapp, state_dir, tmp_path, dialogs) -> None:
     import shutil

@@ -61,6 +61,7 @@ class ProgramRunner:
         self.block_delete = False
         self.start_pending = False  # cycle start pressed while the program is checked again
         self.pending_line = 0       # ... or run from this line
+        self.first_move = 0         # the move the program's current (or last) run began with
         # a cycle start waiting for a check does not outlive a state change, a new program, a
         # refused check or a reset
         events.transition.connect(lambda _old, _new: self._cancel_pending())
@@ -184,6 +185,7 @@ class ProgramRunner:
             return self._states.refuse(action, f"planner: {exc}")
         job.origin = (prog, 0, 0.0)
         job.source = info.path
+        self.first_move = 0
         self._motion.run_program(job, 0)
         return self._states.ok(action)
 
@@ -304,7 +306,10 @@ class ProgramRunner:
             return self._states.refuse(action, str(exc))
         point = ResumePoint(program=prog, move_index=i, u_mm=0.0, line=prog.moves[i].line,
                             cause=f"run from line {line}")
-        return self._resume_from_point(point, action=action)
+        done = self._resume_from_point(point, action=action)
+        if done:
+            self.first_move = i            # what lies before the line was not run in this run
+        return done
 
     def _resume_from_point(self, point: ResumePoint, action: str = Action.RESUME) -> CommandResult:
         cfg = self._settings.config
