@@ -28,6 +28,9 @@ STATE_COLOR = {
 }
 
 
+#: the reasons that only repeat the activity: the state reads "Running" with them
+_ACTIVITIES = frozenset({"program", "mdi", "jog", "approach", "homing", "none"})
+
 class StatusHeader(QWidget):
     def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -45,7 +48,7 @@ class StatusHeader(QWidget):
         self.state_label = QLabel()
         self.state_label.setObjectName("machineState")
         self.state_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
-        self.state_label.setMinimumWidth(190)
+        self.state_label.setFixedWidth(240)     # as the tool's: a long state never moves the header
         self.bus_label = QPushButton()  # tap: connect / disconnect the drives (confirmed)
         self.bus_label.setObjectName("busState")
         self.bus_label.clicked.connect(self._bus_clicked)
@@ -90,8 +93,9 @@ class StatusHeader(QWidget):
         self.refresh()
 
     # --- controller signals --------------------------------------------------------------
-    def _on_state(self, state: MachineState, _reason: str) -> None:
+    def _on_state(self, state: MachineState, reason: str) -> None:
         self._state = state
+        self._reason = str(reason)
         self.refresh()
 
     def _on_position(self, machine: tuple[float, ...], work: tuple[float, ...]) -> None:
@@ -137,9 +141,15 @@ class StatusHeader(QWidget):
             text = HOLD_TEXT.get(hold, text)
         elif value == "running" and self._feed_pct == 0.0:
             text = N_("Held by feed override 0 %")   # running, and nothing moves until it is raised
-        self.state_label.setText(tr(text))
+        text = tr(text)
+        reason = getattr(self, "_reason", "")
+        if value == "running" and self._feed_pct != 0.0 and reason and reason not in _ACTIVITIES:
+            said = localize(reason)                 # what runs, named: "Measuring tool T1"
+            text = said[:1].upper() + said[1:]
+        self.state_label.setText(text)
+        size = 22 if len(text) <= 16 else 16       # "Measuring tool T1" in one line of the label
         self.state_label.setStyleSheet(
-            f"background: {STATE_COLOR.get(value, '#26303b')}; color: white; font-size: 22px;"
+            f"background: {STATE_COLOR.get(value, '#26303b')}; color: white; font-size: {size}px;"
             "font-weight: 800; padding: 6px; border-radius: 6px;")
         bus = self._bus
         kind = str(getattr(bus, "kind", "")).upper()

@@ -14,7 +14,7 @@
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="427" />
+      <location filename="../../app/pages/auto.py" line="428" />
       <source>/ lines skipped</source>
       <translation>/ satırları atlanıyor</translation>
     </message>
@@ -339,7 +339,7 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="439" />
+      <location filename="../../app/pages/auto.py" line="440" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
@@ -499,7 +499,7 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="419" />
+      <location filename="../../app/pages/auto.py" line="420" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
@@ -521,12 +521,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Servis seviyesini kilitle</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="101" />
+      <location filename="../../app/controller_text.py" line="114" />
       <source>M06: the spindle stops for the tool change</source>
       <translation>M06: takım değişimi için iş mili durur</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="83" />
+      <location filename="../../app/controller_text.py" line="96" />
       <source>M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1</source>
       <translation>M66 (satır {0}): P{1} girişi {2} s sonra zaman aşımına uğradı: #5399 = -1</translation>
     </message>
@@ -796,7 +796,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="392" />
+      <location filename="../../app/pages/auto.py" line="393" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -821,7 +821,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="397" />
+      <location filename="../../app/pages/auto.py" line="398" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -908,7 +908,7 @@ BIRAK</translation>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="462" />
+      <location filename="../../app/pages/auto.py" line="463" />
       <source>Run from line: {0}</source>
       <translation>Satırdan çalıştır: {0}</translation>
     </message>
@@ -1038,7 +1038,7 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="435" />
+      <location filename="../../app/pages/auto.py" line="436" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
@@ -1053,7 +1053,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="436" />
+      <location filename="../../app/pages/auto.py" line="437" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -1163,7 +1163,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="438" />
+      <location filename="../../app/pages/auto.py" line="439" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -1223,7 +1223,7 @@ BIRAK</translation>
       <translation>T{0} iş milinde: önce başka bir takım seçin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="85" />
+      <location filename="../../app/controller_text.py" line="98" />
       <source>T{0} is not in the spindle: put it in and set it (In the spindle) first</source>
       <translation>T{0} iş milinde değil: önce takın ve ayarlayın (İş milinde)</translation>
     </message>
@@ -1233,12 +1233,12 @@ BIRAK</translation>
       <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="98" />
+      <location filename="../../app/controller_text.py" line="111" />
       <source>T{0} length {1} mm is longer than the Z travel ({2} mm): check the value and the surface it was touched off on</source>
       <translation>T{0} boyu {1} mm, Z hareket aralığından ({2} mm) uzun: değeri ve dokundurulduğu yüzeyi kontrol edin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="84" />
+      <location filename="../../app/controller_text.py" line="97" />
       <source>T{0} measured on the tool setter: length {1} mm</source>
       <translation>T{0} takım ayarlayıcıda ölçüldü: boy {1} mm</translation>
     </message>
@@ -1308,7 +1308,7 @@ BIRAK</translation>
       <translation>Evet</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="80" />
+      <location filename="../../app/controller_text.py" line="93" />
       <source>a probe move ended without the probe armed: the program stops here</source>
       <translation>bir prob hareketi prob kurulmadan bitti: program burada durur</translation>
     </message>
@@ -1388,7 +1388,7 @@ BIRAK</translation>
       <translation>ilerleme durduruldu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="100" />
+      <location filename="../../app/controller_text.py" line="113" />
       <source>feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again</source>
       <translation>iş mili dururken ilerleme hareketi: {0}. satırdaki M6 onu durdurdu ve hiçbir M3/M4 yeniden başlatmadı</translation>
     </message>
@@ -1428,7 +1428,7 @@ BIRAK</translation>
       <translation>boşta</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="81" />
+      <location filename="../../app/controller_text.py" line="94" />
       <source>line {0} comes after the probe at line {1}: what follows depends on what it read; run from line {1} (or before) to read it again</source>
       <translation>satır {0}, satır {1}'deki probdan sonra geliyor: devamı onun okuduğuna bağlı; yeniden okumak için satır {1}'den (veya öncesinden) çalıştırın</translation>
     </message>
@@ -1453,6 +1453,11 @@ BIRAK</translation>
       <translation>en büyük |e|</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="92" />
+      <source>measuring tool T{0}</source>
+      <translation>T{0} takımı ölçülüyor</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/machine_zero.py" line="81" />
       <source>no</source>
       <translation>hayır</translation>
@@ -1463,7 +1468,7 @@ BIRAK</translation>
       <translation>yüklü program yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="88" />
+      <location filename="../../app/controller_text.py" line="101" />
       <source>no program stopped part-way</source>
       <translation>yarıda durmuş bir program yok</translation>
     </message>
@@ -1523,7 +1528,7 @@ BIRAK</translation>
       <translation>program başlamadan önce gerekli</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="90" />
+      <location filename="../../app/controller_text.py" line="103" />
       <source>reset</source>
       <translation>sıfırlama</translation>
     </message>
@@ -1533,7 +1538,7 @@ BIRAK</translation>
       <translation>döner</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="89" />
+      <location filename="../../app/controller_text.py" line="102" />
       <source>run from line {0}</source>
       <translation>{0}. satırdan çalıştırma</translation>
     </message>
@@ -1588,6 +1593,11 @@ BIRAK</translation>
       <translation>sürücülerde mutlak enkoder var: referans bilgisi korundu</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="88" />
+      <source>the fast probe down to the setter</source>
+      <translation>takım ölçere hızlı prob inişi</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="41" />
       <source>the machine configuration changed since it was loaded</source>
       <translation>makine ayarları, program yüklendiğinden beri değişti</translation>
@@ -1598,7 +1608,27 @@ BIRAK</translation>
       <translation>makine, program yüklendiğinden beri hareket etti</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="91" />
+      <source>the move back up</source>
+      <translation>yukarı geri dönüş</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="87" />
+      <source>the move over the tool setter</source>
+      <translation>takım ölçerin üzerine gidiş</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="89" />
+      <source>the move up from the first contact</source>
+      <translation>ilk temastan yukarı çıkış</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="86" />
+      <source>the move up to the clearance height</source>
+      <translation>emniyet yüksekliğine çıkış</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="100" />
       <source>the program stopped at line {0}: resume there or start it again from the beginning (choose one)</source>
       <translation>program {0}. satırda durdu: oradan devam edin ya da baştan başlatın (birini seçin)</translation>
     </message>
@@ -1606,6 +1636,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="37" />
       <source>the program {0} is still being checked (wait until it is loaded)</source>
       <translation>{0} programı hâlâ denetleniyor (yüklenene kadar bekleyin)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="90" />
+      <source>the slow probe down to the setter</source>
+      <translation>takım ölçere yavaş prob inişi</translation>
     </message>
     <message>
       <location filename="../../app/pages/auto.py" line="252" />
@@ -1618,7 +1653,7 @@ BIRAK</translation>
       <translation>iş mili kapalı kalır</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="91" />
+      <location filename="../../app/controller_text.py" line="104" />
       <source>the tool length offset in force changed since it was loaded</source>
       <translation>yüklendiğinden beri geçerli takım boy ofseti değişti</translation>
     </message>
@@ -1653,7 +1688,7 @@ BIRAK</translation>
       <translation>takım {0}boy {1} mm</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="96" />
+      <location filename="../../app/controller_text.py" line="109" />
       <source>touch off {0}: not a number</source>
       <translation>{0} sıfırlama: sayı değil</translation>
     </message>
@@ -1708,6 +1743,31 @@ BIRAK</translation>
       <translation>{0} (satır {1}): sonuçla birlikte, {2}</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="81" />
+      <source>{0} ({1}): contact at {2} (machine)</source>
+      <translation>{0} ({1}): temas {2} konumunda (makine)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="82" />
+      <source>{0} ({1}): no contact</source>
+      <translation>{0} ({1}): temas yok</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="84" />
+      <source>{0} ({1}): the probe already touches where the move starts</source>
+      <translation>{0} ({1}): prob, hareketin başladığı yerde zaten temas ediyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="83" />
+      <source>{0} ({1}): the probe move ended without contact</source>
+      <translation>{0} ({1}): prob hareketi temas olmadan bitti</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="85" />
+      <source>{0} ({1}): with the result, {2}</source>
+      <translation>{0} ({1}): sonuçla birlikte, {2}</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/program.py" line="185" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
@@ -1748,22 +1808,22 @@ BIRAK</translation>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="93" />
+      <location filename="../../app/controller_text.py" line="106" />
       <source>{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı, geçerli takım boy ofsetiyle makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="95" />
+      <location filename="../../app/controller_text.py" line="108" />
       <source>{0} {1} zero would be at machine {2}, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="97" />
+      <location filename="../../app/controller_text.py" line="110" />
       <source>{0}: not a number</source>
       <translation>{0}: sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="459" />
+      <location filename="../../app/pages/auto.py" line="460" />
       <source>{0}: {1}</source>
       <translation>{0}: {1}</translation>
     </message>

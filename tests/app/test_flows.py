@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from PySide6.QtWidgets import QLabel
 
 from app.context import PanelOptions
 from tests.app.conftest import make_window
@@ -172,9 +173,17 @@ def test_measuring_the_tool_in_the_spindle_on_the_setter(demo_window, real_contr
     row = [t.number for t in c.tool_table].index(4)
     page.table.selectRow(row)
     page.buttons["measure"].click()
-    assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=60)
-    assert c.tool_table.get(4).length_mm == pytest.approx(10.0, abs=2e-4)
-    assert page.table.item(row, 2).text() == "10.000"
+    shown: set[str] = set()
+    label = demo_window.findChild(QLabel, "machineState")
+    assert c.run_until(lambda: (shown.add(label.text()),
+                                state(c) == "idle" and c.worker.buffer_level() == 0)[1],
+                       timeout_s=60)
+    assert "Measuring tool T4" in shown                # the header says what runs, not "Running"
+    # the contact is latched at the first sample past the surface: within one sample's travel
+    # at the slow probe's feed (a tenth of max_feed_mm_min)
+    one_sample_mm = c.config.probe.max_feed_mm_min / 10.0 / 60.0 * c.config.machine.planner.ts_s
+    assert c.tool_table.get(4).length_mm == pytest.approx(10.0, abs=one_sample_mm)
+    assert page.table.item(row, 2).text() == f"{c.tool_table.get(4).length_mm:.3f}"
     assert c.machine_position[2] == pytest.approx(c.config.machine.axes[2].max_pos)
     assert "T4 measured on the tool setter: length " in demo_window._message.text()
 

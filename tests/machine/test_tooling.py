@@ -202,3 +202,62 @@ def test_touch_off_length_counts_g92_like_the_work_position(ctl: MachineControll
     assert ctl.tool_table.get(1).length_mm == pytest.approx(-50.0 - g5x - g92, abs=1e-6)
     # with that length the tip reads 0 here
     assert ctl.work_position[2] == pytest.approx(0.0, abs=1e-3)
+
+
+def _measured(ctl: MachineController, number: int = 1) -> float:
+    assert ctl.measure_tool(number)
+    assert ctl.run_until(lambda: ctl.state is not MachineState.RUNNING and ctl.stream.job is None, 60)
+    assert not ctl.active_alarms, [a.cause for a in ctl.active_alarms]
+    return ctl.tool_table.get(number).length_mm
+
+
+def test_the_setter_measures_fifty_times_in_a_row_without_a_failure(qapp, config_path: Path,
+                                                                    state_dir: Path) -> None:
+    # the clearance height just above the stylus' surface: 50 measurements in seconds
+    text = config_path.read_text().replace("[controller]", "[controller]\nrestart_clearance_mm = -40.0", 1)
+    config_path.write_text(text)
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+        lengths = [_measured(ctl) for _ in range(50)]
+    finally:
+        ctl.shutdown()
+    # the simulated stylus touches at machine Z-50, the setter's gauge line is at Z-60
+    assert lengths == pytest.approx([10.0] * 50, abs=2e-3)
+
+
+def test_a_stop_that_comes_late_after_the_first_contact_still_measures(ctl: MachineController) -> None:
+    """A busy computer: the motion is told of the contact only 4 mm past it (the latch itself
+    holds the true contact, as the drive latches it). The move up starts from the contact,
+    not from where the motion stopped, so the slow probe starts clear of the setter."""
+    latch = ctl.drives.probe_latched
+    k = ctl.axes.index("Z")
+
+    def late() -> tuple[float, ...] | None:
+        found = latch()
+        if found is None:
+            return None
+        here = ctl.drives.snapshot().reference_position[k]
+        return found if here <= found[k] - 4.0 else None      # drive units, Z going down
+
+    ctl.drives.probe_latched = late  # type: ignore[method-assign]
+    assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+    assert _measured(ctl) == pytest.approx(10.0, abs=2e-3)
+    assert _measured(ctl) == pytest.approx(10.0, abs=2e-3)
+
+
+def test_the_state_says_which_tool_is_measured_and_an_error_names_the_step(ctl: MachineController) -> None:
+    states: list[tuple[str, str]] = []
+    ctl.stateChanged.connect(lambda s, why: states.append((s.value, why)))
+    assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+    assert ctl.measure_tool(1)
+    assert ("running", "measuring tool T1") in states
+    assert ctl.run_until(lambda: ctl.stream.job is None, 60)
+    # the probe input reads "touching" when the fast probe starts: refused, named by its step
+    ctl.drives.arm_probe = lambda *_a: False  # type: ignore[method-assign]
+    assert ctl.measure_tool(1)
+    assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 60)
+    causes = [a.cause for a in ctl.active_alarms]
+    assert any("G38.2 (the fast probe down to the setter): the probe already touches where the move starts"
+               in c for c in causes), causes
+    assert not any("(line " in c for c in causes), causes

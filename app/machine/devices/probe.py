@@ -94,7 +94,7 @@ class Prober:
         if not 0 <= index < len(probes):
             return f"probe {index} is not in the program"
         req = probes[index]
-        where = f"{req.name} (line {req.line})"
+        where = _where(job, req.name, req.line)
         cfg = self._settings.config.probe
         if cfg.drive is None or not self._drives.attached:
             return f"{where}: this machine has no probe input ([probe] drive in the machine configuration)"
@@ -172,7 +172,7 @@ class Prober:
         if run.trip_position is None and latched is not None:        # changed in the last cycles
             run.trip_position = np.asarray(latched, dtype=float) - home
         req = run.request
-        where = f"{req.name} (line {req.line})"
+        where = _where(job, req.name, req.line)
         stop = np.asarray(snap.reference_position, dtype=float) - home
         tripped = run.trip_position is not None
         if not tripped and req.error_without_trip:
@@ -201,3 +201,10 @@ class Prober:
 
     def fail(self, cause: str) -> None:
         self._reads.stop(cause, "probe")
+
+
+def _where(job: Job, code: str, line: int) -> str:
+    """The probe move as the operator knows it: its line in a program, or in a routine the
+    controller wrote (the tool setter's) what that step does."""
+    step = job.steps.get(line)
+    return f"{code} ({step})" if step else f"{code} (line {line})"

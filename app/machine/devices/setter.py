@@ -21,7 +21,8 @@ class RoutineRunner(Protocol):
     """Runs a few blocks the controller wrote as MDI (``ManualMotion``)."""
 
     def run_routine(self, text: str, name: str, action: str,
-                    when_done: Callable[[Job], None] | None = None) -> CommandResult: ...
+                    when_done: Callable[[Job], None] | None = None, reason: str = "",
+                    steps: dict[int, str] | None = None) -> CommandResult: ...
 
     def show_message(self, text: str) -> None: ...
 
@@ -81,10 +82,15 @@ class ToolSetter:
             f"G53 G0 Z{clear:.4f}",
             f"G53 G0 X{sx:.4f} Y{sy:.4f}",
             f"G38.2 Z{bottom:.4f} F{fast:g}",
-            f"G91 G0 Z{max(2.0, 2.0 * overtravel + 1.0):.4f}",
-            f"G90 G38.2 Z{bottom:.4f} F{fast / 10.0:g}",
+            # up from the contact (#5063), not from where the motion stopped: however late the
+            # stop came (a busy computer), the slow probe starts clear of the setter
+            f"G90 G0 Z[#5063 + {max(2.0, 2.0 * overtravel + 1.0):.4f}]",
+            f"G38.2 Z{bottom:.4f} F{fast / 10.0:g}",
             f"G53 G0 Z{clear:.4f}",
         ))
+        steps = {2: "the move up to the clearance height", 3: "the move over the tool setter",
+                 4: "the fast probe down to the setter", 5: "the move up from the first contact",
+                 6: "the slow probe down to the setter", 7: "the move back up"}
 
         def done(job: Job) -> None:
             results = job.probe_results
@@ -98,5 +104,6 @@ class ToolSetter:
             if res:
                 self._manual.show_message(f"T{number} measured on the tool setter: length {length:.4f} mm")
 
-        return self._manual.run_routine(text, f"measure T{number}", action, done)
+        return self._manual.run_routine(text, f"measure T{number}", action, done,
+                                        reason=f"measuring tool T{number}", steps=steps)
 

@@ -50,6 +50,8 @@ class Job:
     ) -> None:
         self.kind = kind
         self.name = name
+        self.reason = ""          # what the state says while it runs ("": its kind)
+        self.steps: dict[int, str] = {}   # a routine's lines by what they do (its errors name them)
         self.source = ""          # the program's file ("" for a text): what a power loss interrupted
         self.program = program
         # (MSG,...), (DEBUG,...) and user M-code texts, shown when the motion reaches their line

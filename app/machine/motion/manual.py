@@ -175,25 +175,30 @@ class ManualMotion:
         return prog, read
 
     def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,
-               when_done: Callable[[Job], None] | None = None) -> CommandResult:
+               when_done: Callable[[Job], None] | None = None, reason: str = "",
+               steps: dict[int, str] | None = None) -> CommandResult:
         """Run ``prog`` (read by ``_read``) as an MDI job; ``when_done(job)`` once it has all run."""
         try:
             job = self._jobs.make_job(Activity.MDI, prog, name)
         except PlannerError as exc:
             return self._states.refuse(action, f"planner: {exc}")
+        job.reason, job.steps = reason, steps or {}
         job.reread = lambda probes, waits: read(probe_results=probes, input_results=waits)
         job.when_done = when_done
         self._motion.start_job(job)
         return self._states.ok(action)
 
     def run_routine(self, text: str, name: str, action: str,
-                    when_done: Callable[[Job], None] | None = None) -> CommandResult:
+                    when_done: Callable[[Job], None] | None = None, reason: str = "",
+                    steps: dict[int, str] | None = None) -> CommandResult:
         """A few blocks the controller wrote (tool measurement): read, checked and run as MDI
-        is; ``when_done(job)`` once they have all run."""
+        is; ``when_done(job)`` once they have all run. ``reason``: what the state says meanwhile
+        ("measuring tool T1"); ``steps``: what each line does, named in its errors instead of
+        the line of a routine the operator never saw."""
         read = self._read(text, name, action)
         if isinstance(read, CommandResult):
             return read
-        return self._start(*read, name, action, when_done)
+        return self._start(*read, name, action, when_done, reason, steps)
 
     @guarded(Action.MDI)
     def mdi(self, block: str) -> CommandResult:

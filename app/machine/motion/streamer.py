@@ -202,10 +202,11 @@ class Streamer:
             job.serial_base = self._queue.restart_at(int(snap.samples_consumed) + int(snap.buffer_level))
             self.job = job
         self._states.set_activity(job.kind)
+        why = job.reason or job.kind.value
         if self._states.state is not MachineState.RUNNING:
-            self._states.set_state(MachineState.RUNNING, job.kind.value)
+            self._states.set_state(MachineState.RUNNING, why)
         else:
-            self._states.tell_state(job.kind.value)
+            self._states.tell_state(why)
         if self._drives.realtime:
             self.feed()
 
