@@ -215,11 +215,11 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
     readers: list[str] = []
     real_read = program_load.read_program
 
-    def read(p):
+    def read(p, *rest):
         import threading
 
         readers.append(threading.current_thread().name)
-        return real_read(p)
+        return real_read(p, *rest)
 
     monkeypatch.setattr(program_load, "read_program", read)
     with qtbot.waitSignal(ctl.programLoaded, timeout=10_000) as blocker:
@@ -228,7 +228,7 @@ def test_a_file_is_read_by_the_worker_not_the_calling_thread(qtbot, ctl: Machine
     assert blocker.args[0].text == SHORT and blocker.args[0].path == str(path)
     assert len(readers) == 1 and readers[0] != "MainThread"
 
-    def gone(p):
+    def gone(p, *_rest):
         raise program_load.PlannerError(f"{p}: cannot read: No such file or directory")
 
     monkeypatch.setattr(program_load, "read_program", gone)
