@@ -67,6 +67,23 @@ class _Bounded(io.RawIOBase):
     def seekable(self) -> bool:
         return self.regular
 
+    def readall(self) -> bytes:
+        """A regular file at once (its size is known and within the limit): one read, no
+        pieces to join (a 250 MB program read in pieces took three times as long)."""
+        if not self.regular:
+            return super().readall() or b""
+        parts = []
+        while True:
+            # what is left of it, and a byte more to see its end: never a buffer of the limit
+            left = os.fstat(self.fd).st_size - os.lseek(self.fd, 0, os.SEEK_CUR)
+            block = os.read(self.fd, min(max(left, 0), self.limit) + 1)
+            if not block:
+                return b"".join(parts) if len(parts) != 1 else parts[0]
+            self.read_bytes += len(block)
+            if self.read_bytes > self.limit:       # it grew since it was opened
+                raise _too_big(self.path, self.limit)
+            parts.append(block)
+
     def readinto(self, buffer: Any) -> int:
         view = memoryview(buffer).cast("B")
         want = min(len(view), self.limit + 1 - self.read_bytes)
