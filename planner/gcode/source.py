@@ -72,7 +72,7 @@ class _Bounded(io.RawIOBase):
         pieces to join (a 250 MB program read in pieces took three times as long)."""
         if not self.regular:
             return super().readall() or b""
-        parts = []
+        parts: list[bytes] = []
         while True:
             # what is left of it, and a byte more to see its end: never a buffer of the limit
             left = os.fstat(self.fd).st_size - os.lseek(self.fd, 0, os.SEEK_CUR)
