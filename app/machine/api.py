@@ -443,7 +443,15 @@ class MachineApi(Protocol):
         ...
 
     def select_work_offset(self, name: str) -> CommandResult:
-        """Make G54-G59 the active work offset (MDI and work coordinates); persisted."""
+        """Make one of G54-G59.3 the active work offset (MDI and work coordinates); persisted."""
+        ...
+
+    def set_work_rotation(self, name: str, degrees: float) -> CommandResult:
+        """The XY rotation of a coordinate system (G10 L2 R, degrees), persisted."""
+        ...
+
+    def work_rotation(self, name: str) -> float:
+        """The XY rotation (degrees) of coordinate system ``name``."""
         ...
 
     def touch_off(self, axis: str | int, work_value: float = 0.0, offset: str | None = None) -> CommandResult:

@@ -350,8 +350,9 @@ def config_to_toml(config: MachineConfig) -> str:
             out.append(f"output = {output}")
         out += [f"on = {_fmt(on)}", ""]
     out += ["[offsets]"]
-    for name in WORK_OFFSET_NAMES:
-        out.append(f"{name} = {_fmt([float(v) for v in m.offset(name)])}")
+    for name in [n for n in WORK_OFFSET_NAMES if n in m.work_offsets]:
+        key = f'"{name}"' if "." in name else name         # TOML quotes a key with a dot
+        out.append(f"{key} = {_fmt([float(v) for v in m.offset(name)])}")
     h = config.homing
     out += ["", "[homing]", f"required = {_fmt(h.required)}", f"method = {_fmt(h.method)}",
             f"drive_method = {h.drive_method}", f"timeout_s = {_fmt(float(h.timeout_s))}",

@@ -331,6 +331,8 @@ class MachineController(QObject):
     set_machine_zero_here = forward(_homing, Homing.set_machine_zero_here)
     set_work_offset = forward(_coordinates, Coordinates.set_work_offset)
     select_work_offset = forward(_coordinates, Coordinates.select_work_offset)
+    set_work_rotation = forward(_coordinates, Coordinates.set_work_rotation)
+    work_rotation = forward(_coordinates, Coordinates.rotation_of)
     touch_off = forward(_coordinates, Coordinates.touch_off)
     clear_g92 = forward(_coordinates, Coordinates.clear_g92)
     spindle_on = forward(_spindle, SpindleControl.spindle_on)

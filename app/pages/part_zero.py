@@ -1,5 +1,6 @@
-"""Part zero: work offsets G54-G59 (machine coordinates of part zero), select the active one,
-touch off per axis (the current position becomes a chosen work coordinate)."""
+"""Part zero: the nine coordinate systems G54-G59.3 (machine coordinates of part zero, every
+axis, and the XY rotation of G10 L2 R), select the active one, touch off per axis (the current
+position becomes a chosen work coordinate), and the G92/G52 offset in force."""
 
 from __future__ import annotations
 
@@ -39,9 +40,13 @@ class PartZeroPage(QWidget):
             self, select, ((name, QPushButton(name)) for name in WORK_OFFSET_NAMES),
             c.select_work_offset)
         layout.addLayout(select)
-        self.table = QTableWidget(len(WORK_OFFSET_NAMES), len(self.axes))
+        # one column per axis, then the XY rotation (degrees) where the machine has X and Y
+        self.rotation_col = len(self.axes) if {"X", "Y"} <= set(self.axes) else -1
+        columns = len(self.axes) + (1 if self.rotation_col >= 0 else 0)
+        self.table = QTableWidget(len(WORK_OFFSET_NAMES), columns)
         self.table.setVerticalHeaderLabels(list(WORK_OFFSET_NAMES))
-        self.table.setHorizontalHeaderLabels(list(self.axes))
+        self._header_texts()
+        i18n.languageChanged.connect(lambda *_: self._header_texts())
         self.table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
         self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         touch_rows(self.table)
@@ -80,11 +85,14 @@ class PartZeroPage(QWidget):
     def _on_offsets(self, offsets: object, active: str) -> None:
         self._offsets = dict(offsets)  # type: ignore[call-overload]
         self._active = active
+        c = self.ctx.controller
         for r, name in enumerate(WORK_OFFSET_NAMES):
             values = self._offsets.get(name, (0.0,) * len(self.axes))
             for col, value in enumerate(values[: len(self.axes)]):
                 item = QTableWidgetItem(f"{value:+.3f}")
                 self.table.setItem(r, col, item)
+            if self.rotation_col >= 0:
+                self.table.setItem(r, self.rotation_col, QTableWidgetItem(f"{c.work_rotation(name):+.3f}"))
         if active in self.select_buttons:
             self.select_buttons[active].setChecked(True)
             self.table.selectRow(WORK_OFFSET_NAMES.index(active))
@@ -104,8 +112,22 @@ class PartZeroPage(QWidget):
         self.extra_label.setText(text)
         self.clear_g92_button.setEnabled(g92 is not None)
 
+    def _header_texts(self) -> None:
+        labels = list(self.axes)
+        if self.rotation_col >= 0:
+            labels.append(tr("XY rotation (°)"))
+        self.table.setHorizontalHeaderLabels(labels)
+
     def edit_cell(self, row: int, col: int) -> None:
         name = WORK_OFFSET_NAMES[row]
+        if col == self.rotation_col:
+            c = self.ctx.controller
+            value = self.ctx.dialogs.ask_number(self,
+                                                tr("{0} XY rotation (degrees, as G10 L2 R)").format(name),
+                                                c.work_rotation(name), -360.0, 360.0)
+            if value is not None:
+                c.set_work_rotation(name, value)
+            return
         values = list(self._offsets.get(name, (0.0,) * len(self.axes)))
         value = self.ctx.dialogs.ask_number(self, tr("{0} {1} (machine coordinate of part zero)")
                                             .format(name, self.axes[col]), values[col])

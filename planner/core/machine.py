@@ -15,10 +15,15 @@ from pathlib import Path
 from typing import Any
 
 from planner.core.errors import PlannerError
+from planner.core.frames import SYSTEM_NAMES
 from planner.core.rules import SectionRule, check_sections
 from planner.core.schema import Locator, check_complete, validate
 
-WORK_OFFSET_NAMES: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59")
+#: the coordinate systems the machine keeps, G54 ... G59.3 (LinuxCNC's nine)
+WORK_OFFSET_NAMES: tuple[str, ...] = SYSTEM_NAMES
+#: those a machine has a value for even when its file names none (zero). G59.1-G59.3 come from
+#: the file when it names them, else from the parameters a program left (G10 L2 P7-P9)
+TABLE_OFFSET_NAMES: tuple[str, ...] = SYSTEM_NAMES[:6]
 PLANNER_MODES: tuple[str, ...] = ("lookahead", "paper")
 INTERPOLATIONS: tuple[str, ...] = ("exact", "taylor", "classic")
 AXIS_LETTERS: str = "XYZABC"
@@ -132,7 +137,7 @@ class MachineSpec:
             for i, n in enumerate("XYZ")
         )
         return MachineSpec(name="default XYZ", axes=axes,
-                           work_offsets={n: (0.0, 0.0, 0.0) for n in WORK_OFFSET_NAMES})
+                           work_offsets={n: (0.0, 0.0, 0.0) for n in TABLE_OFFSET_NAMES})
 
     def with_limits(self, **changes: float) -> MachineSpec:
         """A copy with path limits replaced (v_max_mm_s=..., a_max_mm_s2=..., ...)."""
@@ -228,7 +233,7 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
                               subroutine_dirs=tuple(pl["subroutine_dirs"]),
                               blend_tolerance_mm=pl["blend_tolerance_mm"],
                               max_program_mb=pl["max_program_mb"])
-    offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in WORK_OFFSET_NAMES}
+    offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in TABLE_OFFSET_NAMES}
     for key, value in valid["offsets"].items():
         if len(value) != len(axes):
             raise loc.fail(("offsets", key),

@@ -111,7 +111,9 @@ MACHINE_FILE = Table("", tables=(
         # the largest program read (MB): a longer file, or a device that goes on, is refused
         Key("max_program_mb", "float", 1024.0, 0.001, 65536.0),
     )),
-    Table("offsets", pattern=r"G5[4-9]", pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
+    # G54 ... G59.3 (a name with a dot is quoted: "G59.1" = [...])
+    Table("offsets", pattern=r"G5[4-8]|G59(?:\.[123])?",
+          pattern_key=Key("", "floats", REQUIRED, -_LIN, _LIN)),
     # digital outputs a program switches (M62-M65 P<number>): a bit of a drive's 0x60FE:1
     # (bits 0 and 1 of the spindle drive switch the spindle)
     Table("outputs", _IO_KEYS, array=True),
@@ -221,7 +223,8 @@ def check_complete(text: str, where: str) -> None:
 
 
 _HEADER_RE = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.-]+)\s*\]\]?")
-_KEY_RE = re.compile(r"^\s*([A-Za-z0-9_-]+)\s*[=.]")   # "a = 1", or a dotted key's first part
+# "a = 1", a dotted key's first part, or a quoted key ("G59.1" = ...)
+_KEY_RE = re.compile(r'^\s*(?:"([A-Za-z0-9_.-]+)"|([A-Za-z0-9_-]+))\s*[=.]')
 
 
 def key_lines(text: str) -> dict[tuple[str | int, ...], int]:
@@ -254,7 +257,7 @@ def key_lines(text: str) -> dict[tuple[str | int, ...], int]:
             continue
         k = _KEY_RE.match(line)
         if k:
-            lines.setdefault((*current, k.group(1)), number)
+            lines.setdefault((*current, k.group(1) or k.group(2)), number)
     return lines
 
 

@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="165" />
+      <location filename="../../app/widgets/status_header.py" line="175" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>/ satırları atlanıyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="166" />
+      <location filename="../../app/widgets/status_header.py" line="176" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -34,7 +34,7 @@
       <translation>Tümünü onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="36" />
+      <location filename="../../app/pages/part_zero.py" line="37" />
       <source>Active:</source>
       <translation>Etkin:</translation>
     </message>
@@ -119,7 +119,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="147" />
+      <location filename="../../app/widgets/status_header.py" line="157" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -174,7 +174,7 @@
       <translation>Temizle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="61" />
+      <location filename="../../app/pages/part_zero.py" line="66" />
       <source>Clear G92</source>
       <translation>G92'yi sil</translation>
     </message>
@@ -299,7 +299,7 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="152" />
+      <location filename="../../app/widgets/status_header.py" line="162" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -379,12 +379,12 @@
       <translation>G-kodu bloğu, ör. G01 X10 F600</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="97" />
+      <location filename="../../app/pages/part_zero.py" line="105" />
       <source>G92 offset: off</source>
       <translation>G92 ofseti: kapalı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="100" />
+      <location filename="../../app/pages/part_zero.py" line="108" />
       <source>G92 offset: {0} (on: every work position is shifted by it)</source>
       <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
@@ -394,7 +394,7 @@
       <translation>Satıra git</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="139" />
+      <location filename="../../app/widgets/status_header.py" line="143" />
       <source>Held by feed override 0 %</source>
       <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
@@ -826,7 +826,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="152" />
+      <location filename="../../app/widgets/status_header.py" line="162" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -863,12 +863,12 @@ BIRAK</translation>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="118" />
+      <location filename="../../app/widgets/status_header.py" line="122" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="119" />
+      <location filename="../../app/widgets/status_header.py" line="123" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -1098,7 +1098,7 @@ BIRAK</translation>
       <translation>Değiştirmek için bir değere dokunun. Birimler: doğrusal eksenlerde mm, döner eksenlerde derece. Değişiklikler Uygula'dan sonra geçerli olur (atomik olarak yazılır).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="52" />
+      <location filename="../../app/pages/part_zero.py" line="57" />
       <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
       <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
     </message>
@@ -1168,7 +1168,7 @@ BIRAK</translation>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="158" />
+      <location filename="../../app/widgets/status_header.py" line="168" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -1183,7 +1183,7 @@ BIRAK</translation>
       <translation>Boyu dokunarak ölç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="70" />
+      <location filename="../../app/pages/part_zero.py" line="75" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
@@ -1193,7 +1193,7 @@ BIRAK</translation>
       <translation>{0} dokunarak ölç: ucun değdiği yüzeyin iş Z'si</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="117" />
+      <location filename="../../app/pages/part_zero.py" line="139" />
       <source>Touch off {0}: work coordinate here</source>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
@@ -1293,7 +1293,12 @@ BIRAK</translation>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="103" />
+      <location filename="../../app/pages/part_zero.py" line="118" />
+      <source>XY rotation (°)</source>
+      <translation>XY dönüşü (°)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="111" />
       <source>XY rotation of {0}: {1} degrees</source>
       <translation>{0} XY döndürmesi: {1} derece</translation>
     </message>
@@ -1768,6 +1773,11 @@ BIRAK</translation>
       <translation>{0} ({1}): sonuçla birlikte, {2}</translation>
     </message>
     <message>
+      <location filename="../../app/pages/part_zero.py" line="126" />
+      <source>{0} XY rotation (degrees, as G10 L2 R)</source>
+      <translation>{0} XY dönüşü (derece, G10 L2 R gibi)</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/program.py" line="185" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
@@ -1803,7 +1813,7 @@ BIRAK</translation>
       <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="110" />
+      <location filename="../../app/pages/part_zero.py" line="132" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>

@@ -101,6 +101,7 @@ class FakeController(QObject):
         self.progress = (0.0, 0.0)
         self.resume_line = 0
         self.run_first_move = 0
+        self.rotations: dict[str, float] = {}
         self.interrupted: tuple[str, int] | None = None
         self.opcua_status = None
         self.opcua_settings = self.config.opcua
@@ -288,6 +289,14 @@ class FakeController(QObject):
         self.work_offsets[name] = tuple(values)
         self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
         return self._ok("set_work_offset", name, tuple(values))
+
+    def set_work_rotation(self, name: str, degrees: float) -> CommandResult:
+        self.rotations[name] = float(degrees)
+        self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
+        return self._ok("set_work_rotation", name, degrees)
+
+    def work_rotation(self, name: str) -> float:
+        return self.rotations.get(name, 0.0)
 
     def select_work_offset(self, name: str) -> CommandResult:
         self.active_offset = name

@@ -306,3 +306,55 @@ def test_the_demo_on_the_papers_machine_runs_its_tyre_mould_sample_to_the_end(qt
         window.close()
     finally:
         c.shutdown()
+
+
+def test_part_zero_shows_and_edits_all_nine_systems_and_their_rotation(demo_window, real_controller,
+                                                                      dialogs) -> None:
+    """G59.1-G59.3 and the XY rotation are the operator's too: edited on the page, selected,
+    kept over a restart, and a program run in G59.2 goes where they say."""
+    c = real_controller
+    page = demo_window.page("part_zero")
+    names = [page.table.verticalHeaderItem(r).text() for r in range(page.table.rowCount())]
+    assert names == ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]
+    assert page.table.horizontalHeaderItem(3).text() == "XY rotation (°)"
+    row = names.index("G59.2")
+    for col, value in enumerate((-100.0, -50.0, -20.0)):
+        dialogs.answers.append(value)
+        page.edit_cell(row, col)
+    dialogs.answers.append(90.0)
+    page.edit_cell(row, 3)
+    assert c.work_offsets["G59.2"] == (-100.0, -50.0, -20.0) and c.work_rotation("G59.2") == 90.0
+    assert page.table.item(row, 3).text() == "+90.000"
+    page.select_buttons["G59.2"].click()
+    assert c.active_offset == "G59.2"
+    assert c.mdi("G0 X10 Y0 Z0")
+    assert c.run_until(lambda: c.state is MachineState.IDLE and c.stream.job is None, 30)
+    # X10 in a system turned 90 degrees about its zero (-100, -50): machine X-100, Y-40
+    assert np.allclose(c.machine_position, (-100.0, -40.0, -20.0), atol=2e-3)
+    assert np.allclose(c.work_position, (10.0, 0.0, 0.0), atol=2e-3)
+
+
+def test_a_g59_1_set_by_a_program_in_an_older_state_folder_is_kept(qapp, tmp_path) -> None:
+    """A state folder whose table holds G54-G59 only, and a G10 L2 P7 in its parameters: the
+    G59.1 the program set is what the machine has, never a zero from the configuration."""
+    import json
+
+    from app.machine.controller import MachineController
+
+    state = tmp_path / "state"
+    first = MachineController(None, state_dir=state, worker_mode="manual")
+    try:
+        assert first.connect_bus() and first.set_machine_zero_here()
+        assert first.mdi("G10 L2 P7 X-5 Y-6 Z-7 R12")
+        assert first.run_until(lambda: first.stream.job is None, 10)
+    finally:
+        first.shutdown()
+    table = json.loads((state / "offsets.json").read_text())
+    assert table["G59.1"] == [-5.0, -6.0, -7.0]
+    (state / "offsets.json").write_text(json.dumps({k: v for k, v in table.items() if "." not in k}))
+    again = MachineController(None, state_dir=state, worker_mode="manual")
+    try:
+        assert again.work_offsets["G59.1"] == (-5.0, -6.0, -7.0)
+        assert again.work_rotation("G59.1") == 12.0
+    finally:
+        again.shutdown()

@@ -245,3 +245,24 @@ def test_bad_drive_settings_name_the_key_and_line(tmp_path: Path, edit: str, key
         load_config(p)
     msg = str(exc.value)
     assert re.search(rf"{re.escape(str(p))}:\d+: bus\.drives\[0\]\.{key}", msg), msg
+
+
+def test_g59_1_to_g59_3_are_read_written_and_refused_with_their_line(tmp_path) -> None:
+    from app.machine.config import MachineConfig, config_to_toml, load_config
+
+    text = config_to_toml(MachineConfig.default()).replace("[offsets]\n",
+                                                           '[offsets]\n"G59.1" = [1.0, 2.0, 3.0]\n', 1)
+    path = tmp_path / "machine.toml"
+    path.write_text(text)
+    cfg = load_config(path)
+    assert cfg.machine.work_offsets["G59.1"] == (1.0, 2.0, 3.0)
+    assert '"G59.1" = [1.0, 2.0, 3.0]' in config_to_toml(cfg)
+    bad = text.replace('"G59.1" = [1.0, 2.0, 3.0]', '"G59.3" = [1.0, 2.0]')
+    path.write_text(bad)
+    with pytest.raises(ConfigError) as err:
+        load_config(path)
+    line = bad.splitlines().index('"G59.3" = [1.0, 2.0]') + 1
+    assert f"machine.toml:{line}: offsets.G59.3: [offsets] G59.3 needs 3 numbers" in str(err.value)
+    path.write_text(text.replace('"G59.1"', '"G59.4"'))
+    with pytest.raises(ConfigError, match=r"offsets.G59.4: unknown key"):
+        load_config(path)

@@ -92,7 +92,7 @@ class Coordinates:
 
     @property
     def offsets(self) -> dict[str, tuple[float, ...]]:
-        """The G54-G59 table (machine coordinates of each system's zero)."""
+        """The G54-G59.3 table (machine coordinates of each system's zero)."""
         return self._offsets
 
     def restore(self, offsets: dict[str, tuple[float, ...]] | None, parameters: dict[int, float],
@@ -101,6 +101,17 @@ class Coordinates:
         if offsets is not None:
             self._offsets.update({k: v for k, v in offsets.items() if k in WORK_OFFSET_NAMES})
         self.parameters = dict(parameters)
+        # a system the kept table lacks (G59.1-G59.3 of a folder from before they were shown)
+        # is what the kept parameters say: a program's G10 L2 P7 is never undone by a zero
+        axes = self._settings.config.axes
+        for k, name in enumerate(WORK_OFFSET_NAMES):
+            if offsets is not None and name in offsets:
+                continue
+            keys = [system_parameter_base(k + 1) + PARAMETER_AXES.index(a) for a in axes]
+            if any(key in self.parameters for key in keys):
+                base = self._offsets.get(name, (0.0,) * len(axes))
+                self._offsets[name] = tuple(float(self.parameters.get(key, base[i]))
+                                            for i, key in enumerate(keys))
         if active in WORK_OFFSET_NAMES:
             self.active_offset = str(active)
 
@@ -224,14 +235,14 @@ class Coordinates:
 
     @guarded(Action.SET_WORK_OFFSET)
     def set_work_offset(self, name: str, values: dict[str, float] | tuple[float, ...]) -> CommandResult:
-        """Set a G54-G59 offset (machine coordinates of part zero; a dict by axis name or one value
+        """Set a G54-G59.3 offset (machine coordinates of part zero; a dict by axis name or one value
         per axis); persisted. Refused when a value is not a number or puts the system's zero
         outside the travel.
         """
         action = Action.SET_WORK_OFFSET
         name = name.upper()
         if name not in WORK_OFFSET_NAMES:
-            return self._states.refuse(action, f"unknown work offset {name!r} (G54-G59)")
+            return self._states.refuse(action, f"unknown work offset {name!r} (G54-G59.3)")
         old = tuple(self._offsets.get(name, (0.0,) * len(self._settings.config.axes)))
         cur = list(old)
         try:
@@ -256,12 +267,44 @@ class Coordinates:
         self._changed()
         return self._states.ok(action)
 
-    @guarded(Action.SELECT_WORK_OFFSET)
-    def select_work_offset(self, name: str) -> CommandResult:
-        """Make G54-G59 the active work offset (MDI and work coordinates); persisted."""
+    def set_work_rotation(self, name: str, degrees: float) -> CommandResult:
+        """The XY rotation of a coordinate system (G10 L2 R: degrees about Z, parameter base + 9);
+        persisted with the parameters, as a program's G10 L2 R sets it."""
+        action = Action.SET_WORK_OFFSET
+        why = self._states.refusal(action)
+        if why:
+            return self._states.refuse(action, why)
         name = name.upper()
         if name not in WORK_OFFSET_NAMES:
-            return self._states.refuse(Action.SELECT_WORK_OFFSET, f"unknown work offset {name!r} (G54-G59)")
+            return self._states.refuse(action, f"unknown work offset {name!r} (G54-G59.3)")
+        try:
+            value = float(degrees) + 0.0
+        except (TypeError, ValueError):
+            return self._states.refuse(action, f"{name} rotation: not a number")
+        if not math.isfinite(value) or abs(value) > 360.0:
+            return self._states.refuse(action, f"{name} rotation: a number of degrees within -360 .. 360")
+        # the rotation's parameter alone: the table's origins are the panel's, whatever older
+        # values the parameters hold for them
+        self.parameters[system_parameter_base(WORK_OFFSET_NAMES.index(name) + 1) + 9] = value
+        try:
+            self._store.save_parameters(self.parameters)
+        except OSError as exc:
+            self._alarms.raise_alarm("persistence", f"cannot save the G-code parameters: {exc}",
+                                     Severity.WARNING, "state_file")
+        self._changed()
+        return self._states.ok(action)
+
+    def rotation_of(self, name: str) -> float:
+        """The XY rotation (degrees) of coordinate system ``name``."""
+        system = WORK_OFFSET_NAMES.index(name) + 1 if name in WORK_OFFSET_NAMES else 1
+        return float(self.parameters.get(system_parameter_base(system) + 9, 0.0))
+
+    @guarded(Action.SELECT_WORK_OFFSET)
+    def select_work_offset(self, name: str) -> CommandResult:
+        """Make one of G54-G59.3 the active work offset (MDI and work coordinates); persisted."""
+        name = name.upper()
+        if name not in WORK_OFFSET_NAMES:
+            return self._states.refuse(Action.SELECT_WORK_OFFSET, f"unknown work offset {name!r} (G54-G59.3)")
         self.active_offset = name
         self._changed()
         return self._states.ok(Action.SELECT_WORK_OFFSET)
@@ -280,7 +323,7 @@ class Coordinates:
             return self._states.refuse(action, str(exc))
         name = (offset or self.active_offset).upper()
         if name not in WORK_OFFSET_NAMES:
-            return self._states.refuse(action, f"unknown work offset {name!r} (G54-G59)")
+            return self._states.refuse(action, f"unknown work offset {name!r} (G54-G59.3)")
         try:
             value = float(work_value) + 0.0          # -0 is 0
         except (TypeError, ValueError):
