@@ -112,6 +112,8 @@ TEMPLATES: tuple[str, ...] = (
        "touched off on"),
     N_("feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again"),
     N_("M06: the spindle stops for the tool change"),
+    # the editor's error marks: where in the line
+    N_("column {0}: {1}"),
 )
 
 

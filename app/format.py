@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 from planner.core.tools import ToolTable
 
@@ -40,3 +41,17 @@ def tool_text(table: ToolTable, number: int) -> str:
     from app.i18n import tr
 
     return table.label(number) if number else tr("none")
+
+
+def with_column(col: int, message: str) -> str:
+    """An error's message as the editor shows it: where in the line it is, when known."""
+    return f"column {col}: {message}" if col > 0 else message
+
+
+def error_column(message: str) -> int:
+    """The column ``with_column`` put in front of a message (0: none)."""
+    m = _COLUMN.match(message)
+    return int(m.group(1)) if m else 0
+
+
+_COLUMN = re.compile(r"column (\d+): ")

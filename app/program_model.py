@@ -10,6 +10,7 @@ from collections.abc import Iterable
 
 from PySide6.QtCore import QObject, Signal
 
+from app.format import with_column
 from app.machine.model import ProgramIssue
 from app.program_lines import line_text
 from app.toolpath import ToolPath, build_toolpath
@@ -25,11 +26,12 @@ def interpret(text: str, name: str, machine: MachineSpec | None) -> Program:
 
 
 def errors_by_line(exc: PlannerError) -> dict[int, str]:
-    """{line: message} from a ProgramError (first message per line) or any planner error."""
+    """{line: message} from a ProgramError (the first message per line, its column in front)
+    or any planner error."""
     out: dict[int, str] = {}
     if isinstance(exc, ProgramError):
         for e in exc.errors:
-            out.setdefault(e.line, e.message)
+            out.setdefault(e.line, with_column(e.col, e.message))
     else:
         out[getattr(exc, "line", 1) or 1] = str(exc)
     return out

@@ -3,6 +3,8 @@ run from line, feed and rapid override, current line kept in view, progress and 
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import (
@@ -66,6 +68,22 @@ class AutoPage(QWidget):
         self._loading_timer.timeout.connect(self._show_loading_progress)
         left.addWidget(self.loading_note)
         left.addWidget(self.loading_bar)
+        # the program's file was saved with other text than the program loaded: said, with a
+        # reload at hand (the machine runs what was loaded, not what the editor shows)
+        stale = QHBoxLayout()
+        self.stale_note = QLabel()
+        self.stale_note.setObjectName("staleNote")
+        self.stale_note.setWordWrap(True)
+        self.reload_button = QPushButton()
+        self.reload_button.setObjectName("reloadButton")
+        self.reload_button.setMinimumHeight(48)
+        i18n.bind(self.reload_button, N_("Reload"))
+        self.reload_button.clicked.connect(self.reload_saved)
+        stale.addWidget(self.stale_note, 1)
+        stale.addWidget(self.reload_button)
+        self.stale_note.hide()
+        self.reload_button.hide()
+        left.addLayout(stale)
         # a view over the loaded text, not a copy of it in a text widget: millions of lines
         # show at once
         self.editor = ProgramView()
@@ -175,6 +193,7 @@ class AutoPage(QWidget):
         for signal in (c.stateChanged, c.homedChanged, c.programErrors, c.alarmsChanged):
             signal.connect(lambda *_: self._update_buttons())
         context.program.changed.connect(self._on_program_model)
+        context.program.changed.connect(self.show_stale)
         i18n.languageChanged.connect(lambda _l: self._update_info())
         self._on_overrides(c.feed_override_pct, c.rapid_override_pct)
         self._on_modes(c.single_block, c.optional_stop, c.block_delete)
@@ -404,6 +423,31 @@ class AutoPage(QWidget):
         self._fraction, self._remaining, self._line, self._finished = 0.0, float("nan"), 0, ""
         self.progress.setValue(0)
         self._update_info()
+
+    def showEvent(self, event) -> None:  # noqa: N802 - Qt override
+        super().showEvent(event)
+        self.show_stale()        # the Program page may have saved the file meanwhile
+
+    def saved_differs(self) -> bool:
+        """The loaded program's file was saved from the editor with other text since it was
+        loaded."""
+        doc, model = self.ctx.document, self.ctx.program
+        if doc is None or doc.path is None or not model.path or model.info is None:
+            return False
+        return Path(model.path).resolve() == doc.path and doc.saved_text != model.text
+
+    def show_stale(self) -> None:
+        stale = self.saved_differs()
+        if stale:
+            self.stale_note.setText(tr("{0} was saved with changes since it was loaded: the machine runs "
+                                       "the program as loaded.").format(self.ctx.program.name))
+        self.stale_note.setVisible(stale)
+        self.reload_button.setVisible(stale)
+
+    def reload_saved(self) -> None:
+        doc = self.ctx.document
+        if doc is not None and doc.path is not None:
+            self.ctx.controller.load_program(doc.path)
 
     def _programmed_feed_and_modal(self) -> tuple[float, str]:
         """F (mm/min) and the modal codes of the move at the current line (0, "" if none)."""

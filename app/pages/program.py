@@ -11,6 +11,8 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QStackedWidget, 
 
 from app import deferred
 from app.context import PanelContext
+from app.controller_text import localize
+from app.format import with_column
 from app.i18n import N_, tr
 from app.machine.model import ProgramIssue
 from app.program_checker import ProgramChecker
@@ -183,16 +185,16 @@ class ProgramPage(QWidget):
         if n and self.error_label.text() == "":
             first = min(errors)
             self.error_label.setText(tr("{0} error(s); first at line {1}: {2}").format(
-                n, first, errors[first]))
+                n, first, localize(errors[first])))
 
     def _show_line_error(self, line: int) -> None:
         errors = self.shown.errors
         if line in errors:
-            self.error_label.setText(tr("Line {0}: {1}").format(line, errors[line]))
+            self.error_label.setText(tr("Line {0}: {1}").format(line, localize(errors[line])))
         elif errors:
             first = min(errors)
             self.error_label.setText(tr("{0} error(s); first at line {1}: {2}").format(
-                len(errors), first, errors[first]))
+                len(errors), first, localize(errors[first])))
         else:
             self.error_label.setText("")
 
@@ -292,9 +294,22 @@ class ProgramPage(QWidget):
             self.set_text(text, checked=text == checked_text, starts=starts)
         self._update_title()
 
+    def _save_with_errors(self) -> bool:
+        """Whether to save a text with errors: asked, naming the first (True when it has none)."""
+        errors = self.shown.errors
+        if not errors:
+            return True
+        first = min(errors)
+        return self.ctx.dialogs.confirm(
+            self, tr("Save with errors?"),
+            tr("{0} has {1} error(s), the first at line {2}: {3}. Save it anyway?").format(
+                self.doc.name, len(errors), first, errors[first]))
+
     def save(self) -> bool:
         if self.doc.path is None:
             return self.save_as()
+        if not self._save_with_errors():
+            return False
         try:
             self.doc.save()
         except OSError as exc:
@@ -304,6 +319,8 @@ class ProgramPage(QWidget):
         return True
 
     def save_as(self) -> bool:
+        if not self._save_with_errors():
+            return False
         folders = self.ctx.folders
         assert folders is not None
         here = self.doc.path.parent if self.doc.path else None
@@ -375,7 +392,7 @@ class ProgramPage(QWidget):
             self.ctx.program.set_errors(issues, self.doc.text, self.doc.name)
         errors: dict[int, str] = {}
         for issue in issues:
-            errors.setdefault(int(issue.line), str(issue.message))
+            errors.setdefault(int(issue.line), with_column(int(issue.col), str(issue.message)))
         self.shown.set_errors(errors)
         self._show_line_error(self.shown.current_line())
 

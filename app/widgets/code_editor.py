@@ -13,12 +13,14 @@ from PySide6.QtGui import (
     QPainter,
     QPaintEvent,
     QResizeEvent,
+    QTextCharFormat,
     QTextCursor,
     QTextDocument,
     QTextFormat,
 )
 from PySide6.QtWidgets import QPlainTextEdit, QTextEdit, QWidget
 
+from app.format import error_column
 from app.widgets.gcode_highlighter import GCodeHighlighter
 
 HIGHLIGHT_MAX_LINES = 5000  # highlighting costs ~20 us a line in the GUI thread: off beyond this
@@ -229,6 +231,25 @@ class CodeEditor(QPlainTextEdit):
         sel.cursor = QTextCursor(block)
         return sel
 
+    def _column_mark(self, line: int) -> QTextEdit.ExtraSelection | None:
+        """The error's column underlined, from there to the end of its word."""
+        col = error_column(self._errors.get(line, ""))
+        block = self.document().findBlockByNumber(line - 1)
+        if col <= 0 or not block.isValid() or col > len(block.text()):
+            return None
+        text = block.text()
+        end = col
+        while end < len(text) and not text[end].isspace():
+            end += 1
+        sel = QTextEdit.ExtraSelection()
+        sel.format.setUnderlineStyle(QTextCharFormat.UnderlineStyle.WaveUnderline)
+        sel.format.setUnderlineColor(QColor("#ff5050"))
+        cursor = QTextCursor(block)
+        cursor.setPosition(block.position() + col - 1)
+        cursor.setPosition(block.position() + end, QTextCursor.MoveMode.KeepAnchor)
+        sel.cursor = cursor
+        return sel
+
     def _refresh_selections(self) -> None:
         selections = []
         current = self.textCursor().blockNumber() + 1
@@ -238,6 +259,10 @@ class CodeEditor(QPlainTextEdit):
                 sel = self._selection(line, color)
                 if sel is not None:
                     selections.append(sel)
+        for line in sorted(self._errors):
+            mark = self._column_mark(line)
+            if mark is not None:
+                selections.append(mark)
         self.setExtraSelections(selections)
 
     def _on_cursor(self) -> None:

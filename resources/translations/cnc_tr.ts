@@ -14,7 +14,7 @@
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="428" />
+      <location filename="../../app/pages/auto.py" line="472" />
       <source>/ lines skipped</source>
       <translation>/ satırları atlanıyor</translation>
     </message>
@@ -59,7 +59,7 @@
       <translation>Amax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="286" />
+      <location filename="../../app/pages/program.py" line="288" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
     </message>
@@ -104,7 +104,7 @@
       <translation>Eksen</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="65" />
+      <location filename="../../app/pages/program.py" line="67" />
       <source>Block delete (/)</source>
       <translation>Blok atlama (/)</translation>
     </message>
@@ -124,7 +124,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="253" />
+      <location filename="../../app/pages/auto.py" line="272" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="253" />
+      <location filename="../../app/pages/auto.py" line="272" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -144,7 +144,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="235" />
+      <location filename="../../app/pages/auto.py" line="254" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -214,12 +214,12 @@
       <translation>Mevcut servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="31" />
+      <location filename="../../app/pages/auto.py" line="33" />
       <source>Cycle start</source>
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="195" />
+      <location filename="../../app/pages/auto.py" line="214" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -274,7 +274,7 @@
       <translation>Yön</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="229" />
+      <location filename="../../app/pages/program.py" line="231" />
       <source>Discard</source>
       <translation>Vazgeç</translation>
     </message>
@@ -339,17 +339,17 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="440" />
+      <location filename="../../app/pages/auto.py" line="484" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="32" />
+      <location filename="../../app/pages/auto.py" line="34" />
       <source>Feed hold</source>
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="113" />
+      <location filename="../../app/pages/auto.py" line="131" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -359,7 +359,7 @@
       <translation>{0} içinde dosya adı:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="34" />
+      <location filename="../../app/pages/program.py" line="36" />
       <source>Find</source>
       <translation>Bul</translation>
     </message>
@@ -389,7 +389,7 @@
       <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="34" />
+      <location filename="../../app/pages/program.py" line="36" />
       <source>Go to line</source>
       <translation>Satıra git</translation>
     </message>
@@ -499,19 +499,19 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="420" />
+      <location filename="../../app/pages/auto.py" line="464" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="210" />
+      <location filename="../../app/pages/auto.py" line="229" />
       <source>Line {0}: {1}</source>
       <translation>Satır {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="35" />
+      <location filename="../../app/pages/program.py" line="37" />
       <source>Load into machine</source>
       <translation>Makineye yükle</translation>
     </message>
@@ -596,7 +596,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="33" />
+      <location filename="../../app/pages/program.py" line="35" />
       <source>New</source>
       <translation>Yeni</translation>
     </message>
@@ -686,12 +686,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="33" />
+      <location filename="../../app/pages/program.py" line="35" />
       <source>Open…</source>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="101" />
+      <location filename="../../app/pages/auto.py" line="119" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -701,7 +701,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>İsteğe bağlı duruş (M1)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="230" />
+      <location filename="../../app/pages/auto.py" line="249" />
       <source>Or start it again from line 1, from where the tool stands now.</source>
       <translation>Ya da programı takımın şu anki yerinden, 1. satırdan yeniden başlatın.</translation>
     </message>
@@ -796,7 +796,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="393" />
+      <location filename="../../app/pages/auto.py" line="412" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -821,7 +821,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="398" />
+      <location filename="../../app/pages/auto.py" line="417" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -843,7 +843,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="116" />
+      <location filename="../../app/pages/auto.py" line="134" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -853,7 +853,7 @@ BIRAK</translation>
       <translation>Hızlı hareket hızı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="286" />
+      <location filename="../../app/pages/program.py" line="288" />
       <source>Recover</source>
       <translation>Geri yükle</translation>
     </message>
@@ -873,6 +873,11 @@ BIRAK</translation>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
     <message>
+      <location filename="../../app/pages/auto.py" line="80" />
+      <source>Reload</source>
+      <translation>Yeniden yükle</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/parameters.py" line="189" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
@@ -888,7 +893,7 @@ BIRAK</translation>
       <translation>Sıfırla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="234" />
+      <location filename="../../app/pages/auto.py" line="253" />
       <source>Resume at line {0}</source>
       <translation>{0}. satırdan devam et</translation>
     </message>
@@ -898,32 +903,32 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="278" />
+      <location filename="../../app/pages/auto.py" line="297" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="283" />
+      <location filename="../../app/pages/auto.py" line="302" />
       <source>Run from line refused: {0}</source>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="463" />
+      <location filename="../../app/pages/auto.py" line="507" />
       <source>Run from line: {0}</source>
       <translation>Satırdan çalıştır: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="107" />
+      <location filename="../../app/pages/auto.py" line="125" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="211" />
+      <location filename="../../app/pages/auto.py" line="230" />
       <source>Run the program anyway?</source>
       <translation>Program yine de çalıştırılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="289" />
+      <location filename="../../app/pages/auto.py" line="308" />
       <source>Run the program from line {0}?</source>
       <translation>Program {0}. satırdan çalıştırılsın mı?</translation>
     </message>
@@ -938,17 +943,17 @@ BIRAK</translation>
       <translation>Örnek sayısı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="33" />
+      <location filename="../../app/pages/program.py" line="35" />
       <source>Save</source>
       <translation>Kaydet</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="33" />
+      <location filename="../../app/pages/program.py" line="35" />
       <source>Save as…</source>
       <translation>Farklı kaydet…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="317" />
+      <location filename="../../app/pages/program.py" line="334" />
       <source>Save failed</source>
       <translation>Kaydetme başarısız</translation>
     </message>
@@ -956,6 +961,11 @@ BIRAK</translation>
       <location filename="../../app/dialogs.py" line="60" />
       <source>Save program as</source>
       <translation>Programı farklı kaydet</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="304" />
+      <source>Save with errors?</source>
+      <translation>Hatalarla kaydedilsin mi?</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="79" />
@@ -1023,7 +1033,7 @@ BIRAK</translation>
       <translation>Programda göster</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="97" />
+      <location filename="../../app/pages/auto.py" line="115" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -1038,12 +1048,12 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="436" />
+      <location filename="../../app/pages/auto.py" line="480" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="119" />
+      <location filename="../../app/pages/auto.py" line="137" />
       <source>Spindle override</source>
       <translation>İş mili oranı</translation>
     </message>
@@ -1053,7 +1063,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="437" />
+      <location filename="../../app/pages/auto.py" line="481" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -1063,7 +1073,7 @@ BIRAK</translation>
       <translation>İş mili: {0}, {1:.0f} dev/dak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="221" />
+      <location filename="../../app/pages/auto.py" line="240" />
       <source>Start from the beginning</source>
       <translation>Baştan başlat</translation>
     </message>
@@ -1073,7 +1083,7 @@ BIRAK</translation>
       <translation>Durum</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="33" />
+      <location filename="../../app/pages/auto.py" line="35" />
       <source>Stop</source>
       <translation>Dur</translation>
     </message>
@@ -1108,12 +1118,12 @@ BIRAK</translation>
       <translation>Kontrol düzgün kapanmadı: program çalıştırmadan önce eksenleri referanslayın (Makine sıfırı, Tüm eksenleri referansla)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="249" />
+      <location filename="../../app/pages/auto.py" line="268" />
       <source>The machine goes there the way drawn</source>
       <translation>Makine oraya çizilen yoldan gider</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="246" />
+      <location filename="../../app/pages/auto.py" line="265" />
       <source>The machine goes up to Z{0:.3f} (machine), across, then down to it the way drawn</source>
       <translation>Makine Z{0:.3f} (makine) yüksekliğine çıkar, yatay gider, sonra çizilen yoldan oraya iner</translation>
     </message>
@@ -1123,12 +1133,12 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="228" />
+      <location filename="../../app/pages/auto.py" line="247" />
       <source>The program stopped at line {0} ({1}).</source>
       <translation>Program {0}. satırda durdu ({1}).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="223" />
+      <location filename="../../app/pages/auto.py" line="242" />
       <source>The program stopped at line {0} and cannot resume there: {1}</source>
       <translation>Program {0}. satırda durdu ve oradan devam edemez: {1}</translation>
     </message>
@@ -1163,7 +1173,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="439" />
+      <location filename="../../app/pages/auto.py" line="483" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -1263,7 +1273,7 @@ BIRAK</translation>
       <translation>Kilidi aç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="227" />
+      <location filename="../../app/pages/program.py" line="229" />
       <source>Unsaved changes</source>
       <translation>Kaydedilmemiş değişiklikler</translation>
     </message>
@@ -1361,6 +1371,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="69" />
       <source>axis {0} did not reach OPERATION ENABLED within {1} s (drive state {2})</source>
       <translation>{0} ekseni {1} s içinde OPERATION ENABLED durumuna geçmedi (sürücü durumu {2})</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="116" />
+      <source>column {0}: {1}</source>
+      <translation>sütun {0}: {1}</translation>
     </message>
     <message>
       <location filename="../../app/widgets/bus_view.py" line="72" />
@@ -1483,7 +1498,7 @@ BIRAK</translation>
       <translation>takım boy ofseti yok</translation>
     </message>
     <message>
-      <location filename="../../app/format.py" line="42" />
+      <location filename="../../app/format.py" line="43" />
       <source>none</source>
       <translation>yok</translation>
     </message>
@@ -1648,12 +1663,12 @@ BIRAK</translation>
       <translation>takım ölçere yavaş prob inişi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="252" />
+      <location filename="../../app/pages/auto.py" line="271" />
       <source>the spindle starts at {0:.0f} rpm {1} before it goes down</source>
       <translation>iş mili inmeden önce {0:.0f} dev/dk {1} döner</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="251" />
+      <location filename="../../app/pages/auto.py" line="270" />
       <source>the spindle stays off</source>
       <translation>iş mili kapalı kalır</translation>
     </message>
@@ -1683,7 +1698,7 @@ BIRAK</translation>
       <translation>takım değişimi (M06, satır {0}): {1} takımını takın ve çevrim başlata basın</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="254" />
+      <location filename="../../app/pages/auto.py" line="273" />
       <source>tool {0}</source>
       <translation>takım {0}</translation>
     </message>
@@ -1778,14 +1793,19 @@ BIRAK</translation>
       <translation>{0} XY dönüşü (derece, G10 L2 R gibi)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="185" />
+      <location filename="../../app/pages/program.py" line="187" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="228" />
+      <location filename="../../app/pages/program.py" line="230" />
       <source>{0} has unsaved changes.</source>
       <translation>{0} dosyasında kaydedilmemiş değişiklikler var.</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/program.py" line="305" />
+      <source>{0} has {1} error(s), the first at line {2}: {3}. Save it anyway?</source>
+      <translation>{0} içinde {1} hata var, ilki {2}. satırda: {3}. Yine de kaydedilsin mi?</translation>
     </message>
     <message>
       <location filename="../../app/pages/tools.py" line="169" />
@@ -1798,7 +1818,7 @@ BIRAK</translation>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/program.py" line="145" />
+      <location filename="../../app/pages/program.py" line="147" />
       <source>{0} lines: shown read-only (edit programs of over {1} lines in CAM or on a PC)</source>
       <translation>{0} satır: yalnızca okunur gösteriliyor ({1} satırdan uzun programları CAM'de ya da bir bilgisayarda düzenleyin)</translation>
     </message>
@@ -1811,6 +1831,11 @@ BIRAK</translation>
       <location filename="../../app/main_window.py" line="168" />
       <source>{0} was running at line {1} when the control stopped (power loss or killed): home the axes, open it and run from line {1}</source>
       <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/auto.py" line="442" />
+      <source>{0} was saved with changes since it was loaded: the machine runs the program as loaded.</source>
+      <translation>{0} yüklendikten sonra değişikliklerle kaydedildi: makine programı yüklendiği haliyle çalıştırır.</translation>
     </message>
     <message>
       <location filename="../../app/pages/part_zero.py" line="132" />
@@ -1833,7 +1858,7 @@ BIRAK</translation>
       <translation>{0}: sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="460" />
+      <location filename="../../app/pages/auto.py" line="504" />
       <source>{0}: {1}</source>
       <translation>{0}: {1}</translation>
     </message>

@@ -106,7 +106,7 @@ def test_a_program_over_the_edit_limit_is_shown_read_only_through_a_view(
     assert not program.buttons["keyboard"].isEnabled()
     demo_window.context.program.lineRequested.emit(600)
     assert program.viewer.current_line() == 600
-    program._on_program_errors([type("Issue", (), {"line": 640, "message": "radius"})()])
+    program._on_program_errors([type("Issue", (), {"line": 640, "col": 0, "message": "radius"})()])
     assert program.viewer.errors == {640: "radius"} and not program.editor.errors
     program.set_text(SHORT)
     assert not program.read_only and program.editor.toPlainText() == SHORT

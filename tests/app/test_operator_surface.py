@@ -358,3 +358,48 @@ def test_a_g59_1_set_by_a_program_in_an_older_state_folder_is_kept(qapp, tmp_pat
         assert again.work_rotation("G59.1") == 12.0
     finally:
         again.shutdown()
+
+
+def test_an_error_shows_its_column_and_a_program_with_errors_is_saved_only_when_confirmed(
+        qtbot, demo_window, dialogs, tmp_path) -> None:
+    program = demo_window.page("program")
+    path = tmp_path / "part.nc"
+    path.write_text("G21 G90\nG0 X0\nM30\n")
+    program.open_file(path)
+    program.editor.setPlainText("G21 G90\nG0 X0 Q5\nM30\n")
+    qtbot.waitUntil(lambda: 2 in program.editor.errors, timeout=20_000)
+    assert program.editor.errors[2].startswith("column 7: ")
+    program.editor.go_to_line(2)
+    assert program.error_label.text().startswith("Line 2: column 7: ")
+    marks = [s for s in program.editor.extraSelections() if s.cursor.hasSelection()]
+    assert [(m.cursor.selectionStart(), m.cursor.selectedText()) for m in marks] == [(len("G21 G90\n") + 6,
+                                                                                      "Q5")]
+    dialogs.answers.append(False)
+    assert program.save() is False
+    assert dialogs.asked[-1][0] == "confirm" and "1 error(s), the first at line 2" in dialogs.asked[-1][1]
+    assert path.read_text() == "G21 G90\nG0 X0\nM30\n"                # refused: the file as it was
+    dialogs.answers.append(True)
+    assert program.save() is True and "Q5" in path.read_text()
+
+
+def test_the_auto_page_says_when_the_loaded_programs_file_was_saved_with_changes(
+        qtbot, demo_window, real_controller, tmp_path) -> None:
+    c = real_controller
+    path = tmp_path / "part.nc"
+    path.write_text("G21 G90\nG0 X1\nM30\n")
+    assert c.load_program(path, wait=True)
+    auto, program = demo_window.page("auto"), demo_window.page("program")
+    qtbot.waitUntil(lambda: program.doc.path == path.resolve(), timeout=10_000)
+    demo_window.show_page("auto")
+    assert not auto.stale_note.isVisible()
+    demo_window.show_page("program")
+    program.editor.setPlainText("G21 G90\nG0 X2\nM30\n")
+    qtbot.waitUntil(lambda: not program.checker.busy, timeout=20_000)
+    assert program.save()
+    demo_window.show_page("auto")
+    assert auto.stale_note.isVisible() and auto.reload_button.isVisible()
+    assert "part.nc was saved with changes since it was loaded" in auto.stale_note.text()
+    assert c.program_info is not None and "X1" in c.program_info.text     # the machine's is unchanged
+    auto.reload_button.click()
+    qtbot.waitUntil(lambda: c.program_info is not None and "X2" in c.program_info.text, timeout=20_000)
+    qtbot.waitUntil(lambda: not auto.stale_note.isVisible(), timeout=10_000)
