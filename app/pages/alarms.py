@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import time
 
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QHBoxLayout,
+    QLabel,
     QPushButton,
     QTableWidget,
     QTableWidgetItem,
@@ -19,6 +21,21 @@ from app.i18n import N_, tr
 from app.widgets.touch import touch_rows
 
 COLUMNS = (N_("Time"), N_("Source"), N_("Cause"), N_("Severity"), N_("State"))
+#: the alarm log's words, shown in the operator's language
+SEVERITY_TEXT = {"INFO": N_("info"), "WARNING": N_("warning"), "STOP": N_("stop"),
+                 "QUICK_STOP": N_("quick stop"), "ESTOP": N_("E-stop")}
+SOURCE_TEXT = {"worker": N_("worker"), "bus": N_("bus"), "planner": N_("planner"),
+               "controller": N_("controller"), "operator": N_("operator"), "config": N_("configuration"),
+               "probe": N_("probe"), "tools": N_("tools"), "persistence": N_("state folder"),
+               "opcua": N_("OPC UA"), "spindle": N_("spindle"), "program": N_("program"),
+               "outputs": N_("outputs"), "homing": N_("homing")}
+
+
+def source_text(source: str) -> str:
+    """An alarm's source in the panel's language ("drive X" keeps its axis)."""
+    if source.startswith("drive "):
+        return tr("drive {0}").format(source[len("drive "):])
+    return tr(SOURCE_TEXT[source]) if source in SOURCE_TEXT else source
 
 
 class AlarmsPage(QWidget):
@@ -53,6 +70,14 @@ class AlarmsPage(QWidget):
         self.table.setColumnWidth(3, 130)
         touch_rows(self.table)
         layout.addWidget(self.table, 1)
+        # the tapped alarm in full: a long cause is cut in its column, never here
+        self.detail = QLabel()
+        self.detail.setObjectName("alarmDetail")
+        self.detail.setWordWrap(True)
+        self.detail.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        layout.addWidget(self.detail)
+        self.table.currentCellChanged.connect(lambda row, *_: self.show_detail(row))
+        self.table.cellClicked.connect(lambda row, _col: self.show_detail(row))
         self._alarms: tuple = tuple(c.alarms)
         self.show_history.toggled.connect(lambda _on: self.refresh())
         self.ack_button.clicked.connect(self.acknowledge_selected)
@@ -77,11 +102,23 @@ class AlarmsPage(QWidget):
         for row, a in enumerate(alarms):
             when = time.strftime("%H:%M:%S", time.localtime(a.time_s)) if a.time_s else "--:--:--"
             state = tr("active") if a.active else tr("acknowledged")
-            values = (when, a.source, localize(a.cause), a.severity.name.replace("_", " ").lower(), state)
+            severity = tr(SEVERITY_TEXT.get(a.severity.name, a.severity.name.lower()))
+            values = (when, source_text(a.source), localize(a.cause), severity, state)
             for col, value in enumerate(values):
                 item = QTableWidgetItem(str(value))
                 item.setData(256, a.id)  # Qt.UserRole
+                item.setToolTip(str(value))
                 self.table.setItem(row, col, item)
+        self.show_detail(self.table.currentRow())
+
+    def show_detail(self, row: int) -> None:
+        """The alarm of ``row`` in full below the table ("" when none is chosen)."""
+        items = [self.table.item(row, col) for col in range(len(COLUMNS))] if row >= 0 else []
+        if not items or any(i is None for i in items):
+            self.detail.setText("")
+            return
+        when, source, cause, severity, state = (i.text() for i in items if i is not None)
+        self.detail.setText(tr("{0} {1} ({2}, {3}): {4}").format(when, source, severity, state, cause))
 
     def acknowledge_selected(self) -> None:
         row = self.table.currentRow()

@@ -24,12 +24,12 @@
       <translation>ALARM: {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="37" />
+      <location filename="../../app/pages/alarms.py" line="54" />
       <source>Acknowledge</source>
       <translation>Onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="39" />
+      <location filename="../../app/pages/alarms.py" line="56" />
       <source>Acknowledge all</source>
       <translation>Tümünü onayla</translation>
     </message>
@@ -149,7 +149,7 @@
       <translation>İptal</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="21" />
+      <location filename="../../app/pages/alarms.py" line="23" />
       <source>Cause</source>
       <translation>Neden</translation>
     </message>
@@ -304,7 +304,7 @@
       <translation>ACİL STOP</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/pages/alarms.py" line="26" />
       <source>E-stop</source>
       <translation>Acil stop</translation>
     </message>
@@ -646,6 +646,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Tamam</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="30" />
+      <source>OPC UA</source>
+      <translation>OPC UA</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/diagnostics.py" line="98" />
       <source>OPC UA server: not serving: {0}</source>
       <translation>OPC UA sunucusu: hizmet vermiyor: {0}</translation>
@@ -888,7 +893,7 @@ BIRAK</translation>
       <translation>Tüm takım tablosu {0} ile değiştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="41" />
+      <location filename="../../app/pages/alarms.py" line="58" />
       <source>Reset</source>
       <translation>Sıfırla</translation>
     </message>
@@ -1018,12 +1023,12 @@ BIRAK</translation>
       <translation>Makine sıfırını ayarla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="21" />
+      <location filename="../../app/pages/alarms.py" line="23" />
       <source>Severity</source>
       <translation>Önem</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="35" />
+      <location filename="../../app/pages/alarms.py" line="52" />
       <source>Show history</source>
       <translation>Geçmişi göster</translation>
     </message>
@@ -1038,7 +1043,7 @@ BIRAK</translation>
       <translation>Tek blok</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="21" />
+      <location filename="../../app/pages/alarms.py" line="23" />
       <source>Source</source>
       <translation>Kaynak</translation>
     </message>
@@ -1078,7 +1083,7 @@ BIRAK</translation>
       <translation>Baştan başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="21" />
+      <location filename="../../app/pages/alarms.py" line="23" />
       <source>State</source>
       <translation>Durum</translation>
     </message>
@@ -1158,7 +1163,7 @@ BIRAK</translation>
       <translation>Bu sayfa henüz hazır değil.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="21" />
+      <location filename="../../app/pages/alarms.py" line="23" />
       <source>Time</source>
       <translation>Zaman</translation>
     </message>
@@ -1333,12 +1338,12 @@ BIRAK</translation>
       <translation>önce etkin alarmları onaylayın</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="79" />
+      <location filename="../../app/pages/alarms.py" line="104" />
       <source>acknowledged</source>
       <translation>onaylandı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="79" />
+      <location filename="../../app/pages/alarms.py" line="104" />
       <source>active</source>
       <translation>etkin</translation>
     </message>
@@ -1373,14 +1378,29 @@ BIRAK</translation>
       <translation>{0} ekseni {1} s içinde OPERATION ENABLED durumuna geçmedi (sürücü durumu {2})</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="27" />
+      <source>bus</source>
+      <translation>veri yolu</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="116" />
       <source>column {0}: {1}</source>
       <translation>sütun {0}: {1}</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="28" />
+      <source>configuration</source>
+      <translation>yapılandırma</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/bus_view.py" line="72" />
       <source>connected</source>
       <translation>bağlı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="28" />
+      <source>controller</source>
+      <translation>denetleyici</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="55" />
@@ -1396,6 +1416,11 @@ BIRAK</translation>
       <location filename="../../app/pages/machine_zero.py" line="83" />
       <source>drive homing method {0}</source>
       <translation>sürücü referanslama yöntemi {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="37" />
+      <source>drive {0}</source>
+      <translation>sürücü {0}</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="55" />
@@ -1446,6 +1471,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="55" />
       <source>idle</source>
       <translation>boşta</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="25" />
+      <source>info</source>
+      <translation>bilgi</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="94" />
@@ -1518,6 +1548,11 @@ BIRAK</translation>
       <translation>kapalı</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="28" />
+      <source>operator</source>
+      <translation>operatör</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/machine_zero.py" line="85" />
       <source>optional</source>
       <translation>isteğe bağlı</translation>
@@ -1528,6 +1563,26 @@ BIRAK</translation>
       <translation>isteğe bağlı duruş (M01, satır {0}): çevrim başlata basın</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="31" />
+      <source>outputs</source>
+      <translation>çıkışlar</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="27" />
+      <source>planner</source>
+      <translation>planlayıcı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="29" />
+      <source>probe</source>
+      <translation>prob</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="30" />
+      <source>program</source>
+      <translation>program</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="29" />
       <source>program end</source>
       <translation>program sonu</translation>
@@ -1536,6 +1591,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="22" />
       <source>program paused (M00, line {0}): press cycle start</source>
       <translation>program duraklatıldı (M00, satır {0}): çevrim başlata basın</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="26" />
+      <source>quick stop</source>
+      <translation>hızlı durdurma</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="65" />
@@ -1583,6 +1643,11 @@ BIRAK</translation>
       <translation>tek blok: {0}. satırın sonu</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="30" />
+      <source>spindle</source>
+      <translation>iş mili</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="45" />
       <source>spindle override must be 50-150 %, got {0}</source>
       <translation>iş mili oranı %50-150 olmalı, {0} verildi</translation>
@@ -1591,6 +1656,16 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="47" />
       <source>spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm</source>
       <translation>iş mili oranı %{0}, %{1} ile sınırlandı: iş milinin en yüksek hızı {2} dev/dk</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="29" />
+      <source>state folder</source>
+      <translation>durum klasörü</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="25" />
+      <source>stop</source>
+      <translation>durdurma</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="28" />
@@ -1708,6 +1783,11 @@ BIRAK</translation>
       <translation>takım {0}boy {1} mm</translation>
     </message>
     <message>
+      <location filename="../../app/pages/alarms.py" line="29" />
+      <source>tools</source>
+      <translation>takımlar</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="109" />
       <source>touch off {0}: not a number</source>
       <translation>{0} sıfırlama: sayı değil</translation>
@@ -1716,6 +1796,16 @@ BIRAK</translation>
       <location filename="../../app/widgets/bus_view.py" line="65" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="25" />
+      <source>warning</source>
+      <translation>uyarı</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="27" />
+      <source>worker</source>
+      <translation>çevrim işçisi</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="60" />
@@ -1841,6 +1931,11 @@ BIRAK</translation>
       <location filename="../../app/pages/part_zero.py" line="132" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/alarms.py" line="121" />
+      <source>{0} {1} ({2}, {3}): {4}</source>
+      <translation>{0} {1} ({2}, {3}): {4}</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="106" />

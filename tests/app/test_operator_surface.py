@@ -403,3 +403,26 @@ def test_the_auto_page_says_when_the_loaded_programs_file_was_saved_with_changes
     auto.reload_button.click()
     qtbot.waitUntil(lambda: c.program_info is not None and "X2" in c.program_info.text, timeout=20_000)
     qtbot.waitUntil(lambda: not auto.stale_note.isVisible(), timeout=10_000)
+
+
+def test_an_alarm_tapped_shows_its_whole_text_in_the_operators_language(demo_window, real_controller) -> None:
+    from app.machine.model import Severity
+
+    c = real_controller
+    cause = ("OPC UA: cannot listen on opc.tcp://0.0.0.0:4840/: Address already in use "
+             "([opcua] port = 4840); the machine runs on without its OPC UA server")
+    c.alarm_log.raise_alarm("opcua", cause, Severity.WARNING, "opcua_failed")
+    page = demo_window.page("alarms")
+    demo_window.show_page("alarms")
+    row = [page.table.item(r, 2).text() for r in range(page.table.rowCount())].index(cause)
+    rect = page.table.visualItemRect(page.table.item(row, 2))
+    assert page.table.fontMetrics().horizontalAdvance(cause) > rect.width()     # cut in its column
+    page.table.cellClicked.emit(row, 2)
+    assert page.detail.text().endswith(f"OPC UA (warning, active): {cause}")
+    demo_window.context.i18n.set_language("tr")
+    try:
+        page.table.cellClicked.emit(row, 2)
+        assert "OPC UA (uyarı, etkin): " in page.detail.text()
+        assert page.table.item(row, 3).text() == "uyarı"
+    finally:
+        demo_window.context.i18n.set_language("en")   # the translator is installed application-wide
