@@ -35,6 +35,8 @@ def touch_rows(view: QAbstractItemView, height_px: int = 48) -> None:
     if header is not None:
         header().setDefaultSectionSize(height_px)
         header().setMinimumSectionSize(height_px)
+    else:              # a list: its rows, as a table's
+        view.setStyleSheet(view.styleSheet() + f" QListView::item {{ min-height: {height_px}px; }}")
     enable_kinetic_scrolling(view)
 
 def exclusive_buttons(

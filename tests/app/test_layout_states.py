@@ -85,3 +85,32 @@ def test_no_button_moves_while_the_real_controller_runs_holds_and_stops(demo_win
         moved = {k: (idle[k], now.get(k)) for k in idle if now.get(k) != idle[k]}
         assert not moved, (step, moved)
         assert not _clipped(demo_window), (step, _clipped(demo_window))
+
+
+def test_the_open_dialogs_rows_and_the_editors_scroll_arrows_are_touch_targets(qtbot, demo_window,
+                                                                              tmp_path) -> None:
+    """48 px at least: a gloved finger hits the row or the arrow it aims at."""
+    from PySide6.QtWidgets import QStyle, QStyleOptionSlider
+
+    from app.widgets.file_picker import FilePicker
+
+    for i in range(30):
+        (tmp_path / f"part{i:02d}.nc").write_text("G0 X1\nM30\n")
+    picker = FilePicker("Open program", tmp_path, demo_window)
+    qtbot.addWidget(picker)
+    picker.resize(800, 600)
+    picker.show()
+    qtbot.waitExposed(picker)
+    rows = [picker.list.visualItemRect(picker.list.item(r)).height() for r in range(3)]
+    assert min(rows) >= 48, rows
+    editor = demo_window.page("program").editor
+    editor.setPlainText("\n".join(f"G1 X{i}" for i in range(500)))
+    demo_window.show_page("program")
+    bar = editor.verticalScrollBar()
+    qtbot.waitUntil(bar.isVisible, timeout=5000)
+    opt = QStyleOptionSlider()
+    bar.initStyleOption(opt)
+    style = bar.style()
+    for control in (QStyle.SubControl.SC_ScrollBarSubLine, QStyle.SubControl.SC_ScrollBarAddLine):
+        rect = style.subControlRect(QStyle.ComplexControl.CC_ScrollBar, opt, control, bar)
+        assert rect.width() >= 48 and rect.height() >= 48, (control, rect)
