@@ -112,6 +112,9 @@ TEMPLATES: tuple[str, ...] = (
        "touched off on"),
     N_("feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again"),
     N_("M06: the spindle stops for the tool change"),
+    # the part counter
+    N_("{0} part(s) made: the target of {1} is reached"),
+    N_("the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again"),
     # the editor's error marks: where in the line
     N_("column {0}: {1}"),
 )

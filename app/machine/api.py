@@ -30,6 +30,7 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
+from app.machine.program.joblog import RunRecord
 from opcua_server.server import ServerStatus
 from opcua_server.settings import OpcUaSettings
 from planner.core.tools import Tool, ToolTable
@@ -280,6 +281,32 @@ class MachineApi(Protocol):
     @property
     def opcua_settings(self) -> OpcUaSettings:
         """What the server was asked to be (the configuration's ``[opcua]`` or the command line's)."""
+        ...
+
+    @property
+    def part_count(self) -> int:
+        """Parts made: program runs to their end, counted in the state folder."""
+        ...
+
+    @property
+    def part_target(self) -> int:
+        """The parts to make (0: no target); reached, cycle start is refused."""
+        ...
+
+    def set_part_target(self, target: int) -> None:
+        """Set the part target (0: none)."""
+        ...
+
+    def reset_part_count(self) -> None:
+        """Start counting parts again from 0."""
+        ...
+
+    def runs(self, newest: int = 500) -> list[RunRecord]:
+        """The run log's complete runs, oldest first."""
+        ...
+
+    def export_runs(self, folder: Path) -> tuple[Path, Path]:
+        """The run log as runs.csv and runs.json in ``folder``."""
         ...
 
     @property

@@ -103,6 +103,7 @@ from app.machine.motion.manual import JOG_INCREMENTS, ManualMotion
 from app.machine.motion.pauses import PauseHandlers
 from app.machine.motion.positions import Positions
 from app.machine.motion.streamer import Streamer
+from app.machine.program.joblog import JobLog
 from app.machine.program.loader import ProgramLoader
 from app.machine.program.runner import ProgramRunner
 from app.machine.session.connection import RAMP_DOWN_TIMEOUT_S, Connection
@@ -140,6 +141,7 @@ _stream, _loader, _run, _manual, _homing = _part("stream"), _part("loader"), _pa
 _spindle, _tools, _setter, _alarms, _conn = _part("spindle_ctl"), _part("tools"), _part("setter"), \
     _part("alarm_log"), _part("conn")
 _poller, _drives, _status, _remote = _part("poller"), _part("drives"), _part("status"), _part("remote")
+_job_log = _part("jobs_log")
 
 
 class MachineController(QObject):
@@ -220,8 +222,9 @@ class MachineController(QObject):
         jobs = stream.jobs
         self.loader = loader = ProgramLoader(settings, states, positions, coords, tools, spindle, stream,
                                              jobs, out, events, self)
+        self.jobs_log = job_log = JobLog(store.dir, alarms, loader, out)
         self.run = run = ProgramRunner(settings, states, positions, tools, loader, stream, jobs, alarms, out,
-                                       events)
+                                       events, job_log.refusal)
         stream.wire(run, loader)
         loader.wire(run)
         read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
@@ -293,6 +296,8 @@ class MachineController(QObject):
     interrupted: reads[tuple[str, int] | None] = reads(_conn, "interrupted")
     worker: reads[CyclicWorker | None] = reads(_drives, "worker")
     opcua_status: reads[ServerStatus | None] = reads(_remote, "status")
+    part_count: reads[int] = reads(_job_log, "count")
+    part_target: reads[int] = reads(_job_log, "target")
     opcua_settings: reads[OpcUaSettings] = reads(_remote, "settings")
 
     # ------------------------------------------------------------------ commands
@@ -346,4 +351,8 @@ class MachineController(QObject):
     import_tool_table = forward(_tools, ToolControl.import_table)
     measure_tool = forward(_setter, ToolSetter.measure_tool)
     acknowledge_alarm = forward(_alarms, AlarmLog.acknowledge_alarm)
+    set_part_target = forward(_job_log, JobLog.set_target)
+    reset_part_count = forward(_job_log, JobLog.reset_count)
+    runs = forward(_job_log, JobLog.runs)
+    export_runs = forward(_job_log, JobLog.export)
     add_trace_sink = forward(_stream, Streamer.add_trace_sink)

@@ -15,6 +15,7 @@ from app.format import format_duration
 from app.i18n import N_, tr
 from app.path_profile import PathProfile, path_profile
 from app.widgets.bus_view import BusView
+from app.widgets.production_view import ProductionView
 from app.widgets.profile_plots import ProfilePlots
 from app.widgets.tracking_view import TrackingView, load_trace
 
@@ -58,7 +59,10 @@ class DiagnosticsPage(QWidget):
         self.tabs.addTab(profile_tab, "")
         self.tabs.addTab(self.tracking, "")
         self.tabs.addTab(self.bus, "")
-        for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"))):
+        self.production = ProductionView(context)
+        self.tabs.addTab(self.production, "")
+        for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"),
+                                      N_("Production"))):
             i18n.bind(self.tabs, text, functools.partial(self.tabs.setTabText, index))
 
         self.profile: PathProfile | None = None

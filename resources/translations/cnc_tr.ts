@@ -9,7 +9,7 @@
       <translation> (+{0} tane daha)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="170" />
+      <location filename="../../app/pages/diagnostics.py" line="174" />
       <source> (first {0:.0f} s shown)</source>
       <translation> (ilk {0:.0f} s gösteriliyor)</translation>
     </message>
@@ -184,7 +184,7 @@
       <translation>Bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="89" />
+      <location filename="../../app/pages/diagnostics.py" line="93" />
       <source>Connect to the drives</source>
       <translation>Sürücülere bağlan</translation>
     </message>
@@ -202,6 +202,11 @@
       <location filename="../../app/pages/parameters.py" line="84" />
       <source>Corner tolerance (G64)</source>
       <translation>Köşe toleransı (G64)</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="107" />
+      <source>Count parts from 0 again ({0} counted)?</source>
+      <translation>Parçalar yeniden 0'dan sayılsın mı ({0} sayıldı)?</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="15" />
@@ -224,12 +229,17 @@
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/production_view.py" line="24" />
+      <source>Cycle time</source>
+      <translation>Çevrim süresi</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/parameters.py" line="79" />
       <source>Cycle time Ts</source>
       <translation>Çevrim süresi Ts</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="167" />
+      <location filename="../../app/pages/diagnostics.py" line="171" />
       <source>Cycle time {0}; limits Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</source>
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
@@ -284,7 +294,7 @@
       <translation>Bağlantıyı kes</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="89" />
+      <location filename="../../app/pages/diagnostics.py" line="93" />
       <source>Disconnect the drives</source>
       <translation>Sürücülerin bağlantısını kes</translation>
     </message>
@@ -329,9 +339,19 @@
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="61" />
+      <location filename="../../app/pages/diagnostics.py" line="64" />
       <source>EtherCAT</source>
       <translation>EtherCAT</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="118" />
+      <source>Export failed</source>
+      <translation>Dışa aktarma başarısız</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="50" />
+      <source>Export log</source>
+      <translation>Kaydı dışa aktar</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="16" />
@@ -499,6 +519,11 @@
       <translation>Boy Z (mm)</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/production_view.py" line="24" />
+      <source>Line</source>
+      <translation>Satır</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/auto.py" line="464" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
@@ -616,7 +641,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="66" />
+      <location filename="../../app/pages/diagnostics.py" line="70" />
       <source>No program loaded.</source>
       <translation>Yüklü program yok.</translation>
     </message>
@@ -651,27 +676,27 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>OPC UA</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="98" />
+      <location filename="../../app/pages/diagnostics.py" line="102" />
       <source>OPC UA server: not serving: {0}</source>
       <translation>OPC UA sunucusu: hizmet vermiyor: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="96" />
+      <location filename="../../app/pages/diagnostics.py" line="100" />
       <source>OPC UA server: off ([opcua] enabled = false)</source>
       <translation>OPC UA sunucusu: kapalı ([opcua] enabled = false)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="106" />
+      <location filename="../../app/pages/diagnostics.py" line="110" />
       <source>OPC UA server: serving {0} ({1}), certificate SHA-1 {2}</source>
       <translation>OPC UA sunucusu: {0} adresinde hizmet veriyor ({1}), sertifika SHA-1 {2}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="102" />
+      <location filename="../../app/pages/diagnostics.py" line="106" />
       <source>OPC UA server: serving {0} with security None: anyone who reaches the port reads the machine</source>
       <translation>OPC UA sunucusu: {0} adresinde güvenliksiz (None) hizmet veriyor: bağlantı noktasına ulaşan herkes makineyi okuyabilir</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="100" />
+      <location filename="../../app/pages/diagnostics.py" line="104" />
       <source>OPC UA server: starting at {0}</source>
       <translation>OPC UA sunucusu: {0} adresinde başlıyor</translation>
     </message>
@@ -721,9 +746,29 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Parametreler</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/production_view.py" line="24" />
+      <source>Part</source>
+      <translation>Parça</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/__init__.py" line="29" />
       <source>Part zero</source>
       <translation>Parça sıfırı</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="98" />
+      <source>Parts to make (0: no target)</source>
+      <translation>Yapılacak parça (0: hedef yok)</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="82" />
+      <source>Parts: {0}</source>
+      <translation>Parça: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="81" />
+      <source>Parts: {0} of {1}</source>
+      <translation>Parça: {0} / {1}</translation>
     </message>
     <message>
       <location filename="../../app/pages/parameters.py" line="29" />
@@ -741,12 +786,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yol hızı Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="61" />
+      <location filename="../../app/pages/diagnostics.py" line="64" />
       <source>Path v / a / j</source>
       <translation>Yol v / a / j</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="139" />
+      <location filename="../../app/pages/diagnostics.py" line="143" />
       <source>Planned when this page is shown.</source>
       <translation>Bu sayfa gösterildiğinde planlanır.</translation>
     </message>
@@ -756,7 +801,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Planlayıcı kipi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="146" />
+      <location filename="../../app/pages/diagnostics.py" line="150" />
       <source>Planning…</source>
       <translation>Planlanıyor…</translation>
     </message>
@@ -794,6 +839,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <location filename="../../app/widgets/bus_view.py" line="11" />
       <source>Product</source>
       <translation>Ürün</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/diagnostics.py" line="65" />
+      <source>Production</source>
+      <translation>Üretim</translation>
     </message>
     <message>
       <location filename="../../app/pages/__init__.py" line="26" />
@@ -898,6 +948,16 @@ BIRAK</translation>
       <translation>Sıfırla</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/production_view.py" line="46" />
+      <source>Reset counter</source>
+      <translation>Sayacı sıfırla</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="24" />
+      <source>Result</source>
+      <translation>Sonuç</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/auto.py" line="253" />
       <source>Resume at line {0}</source>
       <translation>{0}. satırdan devam et</translation>
@@ -926,6 +986,11 @@ BIRAK</translation>
       <location filename="../../app/pages/auto.py" line="125" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="120" />
+      <source>Run log exported</source>
+      <translation>Çalışma kaydı dışa aktarıldı</translation>
     </message>
     <message>
       <location filename="../../app/pages/auto.py" line="230" />
@@ -1078,6 +1143,11 @@ BIRAK</translation>
       <translation>İş mili: {0}, {1:.0f} dev/dak</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/production_view.py" line="24" />
+      <source>Start</source>
+      <translation>Başlangıç</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/auto.py" line="240" />
       <source>Start from the beginning</source>
       <translation>Baştan başlat</translation>
@@ -1116,6 +1186,11 @@ BIRAK</translation>
       <location filename="../../app/pages/part_zero.py" line="57" />
       <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
       <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="42" />
+      <source>Target…</source>
+      <translation>Hedef…</translation>
     </message>
     <message>
       <location filename="../../app/main_window.py" line="172" />
@@ -1161,6 +1236,11 @@ BIRAK</translation>
       <location filename="../../app/pages/placeholder.py" line="19" />
       <source>This page is not built yet.</source>
       <translation>Bu sayfa henüz hazır değil.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="72" />
+      <source>This run ends about {0} ({1} from now)</source>
+      <translation>Bu çalışma yaklaşık {0} saatinde biter ({1} sonra)</translation>
     </message>
     <message>
       <location filename="../../app/pages/alarms.py" line="23" />
@@ -1213,7 +1293,7 @@ BIRAK</translation>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="61" />
+      <location filename="../../app/pages/diagnostics.py" line="64" />
       <source>Tracking</source>
       <translation>Takip</translation>
     </message>
@@ -1383,9 +1463,14 @@ BIRAK</translation>
       <translation>veri yolu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="116" />
+      <location filename="../../app/controller_text.py" line="119" />
       <source>column {0}: {1}</source>
       <translation>sütun {0}: {1}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/production_view.py" line="88" />
+      <source>completed</source>
+      <translation>tamamlandı</translation>
     </message>
     <message>
       <location filename="../../app/pages/alarms.py" line="28" />
@@ -1748,6 +1833,11 @@ BIRAK</translation>
       <translation>iş mili kapalı kalır</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="117" />
+      <source>the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again</source>
+      <translation>{0} parçalık hedefe ulaşıldı: yeniden çalıştırmak için parça sayacını sıfırlayın (ya da hedefi yükseltin)</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="104" />
       <source>the tool length offset in force changed since it was loaded</source>
       <translation>yüklendiğinden beri geçerli takım boy ofseti değişti</translation>
@@ -1883,6 +1973,11 @@ BIRAK</translation>
       <translation>{0} XY dönüşü (derece, G10 L2 R gibi)</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/production_view.py" line="120" />
+      <source>{0} and {1}</source>
+      <translation>{0} ve {1}</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/program.py" line="187" />
       <source>{0} error(s); first at line {1}: {2}</source>
       <translation>{0} hata; ilki {1}. satırda: {2}</translation>
@@ -1916,6 +2011,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="67" />
       <source>{0} lost: not answering process data; trying to recover it when it comes back</source>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="116" />
+      <source>{0} part(s) made: the target of {1} is reached</source>
+      <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
     <message>
       <location filename="../../app/main_window.py" line="168" />

@@ -102,6 +102,9 @@ class FakeController(QObject):
         self.resume_line = 0
         self.run_first_move = 0
         self.rotations: dict[str, float] = {}
+        self.part_count = 0
+        self.part_target = 0
+        self.run_log: list = []
         self.interrupted: tuple[str, int] | None = None
         self.opcua_status = None
         self.opcua_settings = self.config.opcua
@@ -289,6 +292,21 @@ class FakeController(QObject):
         self.work_offsets[name] = tuple(values)
         self.offsetsChanged.emit(dict(self.work_offsets), self.active_offset)
         return self._ok("set_work_offset", name, tuple(values))
+
+    def set_part_target(self, target: int) -> None:
+        self.part_target = int(target)
+        self.calls.append(("set_part_target", int(target)))
+
+    def reset_part_count(self) -> None:
+        self.part_count = 0
+        self.calls.append(("reset_part_count",))
+
+    def runs(self, newest: int = 500) -> list:
+        return list(self.run_log)
+
+    def export_runs(self, folder: Path) -> tuple[Path, Path]:
+        self.calls.append(("export_runs", folder))
+        return folder / "runs.csv", folder / "runs.json"
 
     def set_work_rotation(self, name: str, degrees: float) -> CommandResult:
         self.rotations[name] = float(degrees)

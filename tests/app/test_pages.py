@@ -456,3 +456,29 @@ def test_run_from_line_shows_the_way_before_asking(fake_window, fake_controller,
     assert fake_controller.calls[-1] == ("restart_preview", 9)    # not run
     x, _ = auto.backplot.approach_item.getData()
     assert x is None or len(x) == 0                          # and removed afterwards
+
+
+def test_the_production_tab_counts_parts_sets_a_target_and_exports_the_log(fake_window, fake_controller,
+                                                                          dialogs, tmp_path) -> None:
+    from app.machine.program.joblog import RunRecord
+
+    view = fake_window.page("diagnostics").production
+    fake_controller.part_count = 3
+    fake_controller.run_log = [RunRecord("a.nc", "/p/a.nc", 1_800_000_000.0, 1_800_000_060.0, "completed",
+                                         True,
+                                         6, 58.5, (), 3),
+                               RunRecord("a.nc", "/p/a.nc", 1_800_000_100.0, 1_800_000_120.0,
+                                         "stopped by the operator", False, 4, 20.0,
+                                         ("operator: E-stop pressed",), 0)]
+    dialogs.answers.append(10)
+    view.target_button.click()
+    assert fake_controller.part_target == 10 and view.count_label.text() == "Parts: 3 of 10"
+    assert view.table.rowCount() == 2
+    assert [view.table.item(0, c).text() for c in (1, 2, 3, 5, 6)] == [
+        "a.nc", "stopped by the operator", "4", "", "operator: E-stop pressed"]
+    assert view.table.item(1, 2).text() == "completed" and view.table.item(1, 5).text() == "3"
+    dialogs.answers.append(True)
+    view.reset_button.click()
+    assert fake_controller.calls[-1] == ("reset_part_count",) and view.count_label.text() == "Parts: 0 of 10"
+    view.export_button.click()
+    assert fake_controller.calls[-1][0] == "export_runs" and dialogs.asked[-1][0] == "inform"

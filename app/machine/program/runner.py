@@ -4,6 +4,7 @@ delete, run from line, feed and rapid override (loading: ``app.machine.program.l
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -42,8 +43,10 @@ class ProgramRunner:
 
     def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView, tools: ToolView,
                  loader: ProgramLoader, motion: Streamer, jobs: JobMaker, alarms: AlarmSink,
-                 out: PanelChannels, events: MachineEvents) -> None:
+                 out: PanelChannels, events: MachineEvents, parts: Callable[[], str] | None = None) -> None:
+        """``parts``: why the part counter refuses a new run ("" when it does not)."""
         self._settings = settings
+        self._parts = parts
         self._states = states
         self._positions = positions
         self._tools = tools
@@ -159,6 +162,9 @@ class ProgramRunner:
             return self._states.refuse(action, why)
         if self._alarms.stops_motion():
             return self._states.refuse(action, "acknowledge the active alarms first")
+        counted = self._parts() if self._parts is not None else ""
+        if counted:
+            return self._states.refuse(action, counted)
         point = self._motion.resume_point
         if point is not None:
             if not from_start:
