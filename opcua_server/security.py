@@ -35,7 +35,7 @@ def folder(state_dir: str | os.PathLike[str]) -> Path:
 
 
 async def ensure_certificate(base: Path) -> tuple[Path, Path]:
-    """The key and certificate, made when missing or no longer valid for this host."""
+    """The key and certificate, made when either is missing or the certificate does not name this host."""
     from asyncua.crypto.cert_gen import setup_self_signed_certificate
     from cryptography.x509.oid import ExtendedKeyUsageOID
 
