@@ -17,7 +17,8 @@ from planner.core.files import write_output_via_path
 
 def apply_theme(app: QApplication) -> None:
     """Fusion style + the dark touch theme; set once (re-setting re-polishes every widget)."""
-    qss = (STYLES / "dark.qss").read_text(encoding="utf-8")
+    # the style's pictures (scroll arrows) are found beside it, wherever the package is installed
+    qss = (STYLES / "dark.qss").read_text(encoding="utf-8").replace("@STYLES@", STYLES.as_posix())
     if app.styleSheet() != qss:
         app.setStyle("Fusion")
         app.setStyleSheet(qss)
