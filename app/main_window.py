@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable
 from pathlib import Path
 
 from PySide6.QtCore import QEvent, QObject, QTimer, Signal
@@ -110,15 +111,17 @@ class MainWindow(QMainWindow):
                 self._stack.addWidget(page)
 
         self._message = QLabel()
+        self._message_source: Callable[[], str] | None = None
         self.statusBar().setFixedHeight(52)
         self.statusBar().addWidget(self.header.alarm_banner, 2)
         self.statusBar().addWidget(self._message, 1)
         self._program_label = QLabel()
         self._program_label.setMinimumWidth(220)
         self.statusBar().addPermanentWidget(self._program_label)
-        ctx.controller.message.connect(lambda text: self.show_message(localize(text)))
+        # said again in the other language when the operator switches: the sentence, not its words
+        ctx.controller.message.connect(lambda text: self.show_message(lambda: localize(text)))
         ctx.controller.commandRefused.connect(
-            lambda action, reason: self.show_message(tr("Refused: {0}").format(localize(reason))))
+            lambda action, reason: self.show_message(lambda: tr("Refused: {0}").format(localize(reason))))
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
         ctx.controller.programReadAgain.connect(ctx.program.set_read_again)
@@ -314,9 +317,13 @@ class MainWindow(QMainWindow):
     def _on_language(self, language: str) -> None:
         other = [lang for lang in LANGUAGES if lang != language][0]
         self.language_button.setText(f"{LANGUAGES[other]}")
+        if self._message_source is not None:
+            self._message.setText(self._message_source())
 
-    def show_message(self, text: str) -> None:
-        self._message.setText(text)
+    def show_message(self, text: str | Callable[[], str]) -> None:
+        """The status line: a text, or how to say it (said again when the language changes)."""
+        self._message_source = text if callable(text) else None
+        self._message.setText(text() if callable(text) else text)
 
     def closeEvent(self, event: QCloseEvent) -> None:  # noqa: N802 - Qt override
         for page in self._pages.values():

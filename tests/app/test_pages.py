@@ -482,3 +482,11 @@ def test_the_production_tab_counts_parts_sets_a_target_and_exports_the_log(fake_
     assert fake_controller.calls[-1] == ("reset_part_count",) and view.count_label.text() == "Parts: 0 of 10"
     view.export_button.click()
     assert fake_controller.calls[-1][0] == "export_runs" and dialogs.asked[-1][0] == "inform"
+
+
+def test_the_status_line_is_said_again_in_the_language_switched_to(fake_window, fake_controller) -> None:
+    fake_window.context.i18n.set_language("tr")
+    fake_controller.commandRefused.emit("cycle_start", "axes not homed")
+    assert fake_window._message.text() == "Reddedildi: eksenler referanslanmadı"
+    fake_window.context.i18n.set_language("en")
+    assert fake_window._message.text() == "Refused: axes not homed"
