@@ -19,6 +19,7 @@ under its lock only.
 
 from __future__ import annotations
 
+import collections
 import time
 from collections.abc import Callable
 
@@ -77,6 +78,8 @@ class SetpointQueue:
         self._positions = positions
         self.pushed_total = 0
         self.last_splice: SpliceInfo | None = None
+        # the last splices (diagnostics, tests: how far ahead of the drives each one took effect)
+        self.recent_splices: collections.deque[SpliceInfo] = collections.deque(maxlen=32)
         self._splice_est_s: dict[bool, float] = {}
         self._splice_critical_s = 0.0
 
@@ -169,12 +172,14 @@ class SetpointQueue:
                     self._splice_est_s = {**self._splice_est_s, hold: dt}
                 took = time.perf_counter() - t_start
                 self.last_splice = SpliceInfo(serial, first_consumed, attempt, took, done is None)
+                self.recent_splices.append(self.last_splice)
                 return
             ex.restore_state(current)  # refused: the queue is unchanged, so is the executor
             margin_s = max(2.0 * margin_s, 1.5 * dt + 0.002)
         change(ex)  # the loop kept outrunning us: apply after the queued set-points
         took = time.perf_counter() - t_start
         self.last_splice = SpliceInfo(-1, first_consumed, SPLICE_ATTEMPTS, took, True)
+        self.recent_splices.append(self.last_splice)
 
     def hold(self, job: Job, wait_for_tap: bool, lead: int) -> None:
         """The job's executor to hold (sigma -> 0 / the time-optimal path stop); the operator's

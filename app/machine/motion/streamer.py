@@ -369,6 +369,10 @@ class Streamer:
     def last_splice(self) -> SpliceInfo | None:
         return self._queue.last_splice
 
+    @property
+    def recent_splices(self) -> tuple[SpliceInfo, ...]:
+        return tuple(self._queue.recent_splices)
+
     def feed(self, max_new: int | None = None) -> None:
         """Keep the worker's queue ``lead_s`` ahead (at most ``max_new`` set-points now)."""
         with self._lock:
