@@ -284,6 +284,11 @@ class MachineApi(Protocol):
         ...
 
     @property
+    def distance_to_go(self) -> tuple[float, ...]:
+        """What is left of the move the drives are on, per axis (() at rest)."""
+        ...
+
+    @property
     def part_count(self) -> int:
         """Parts made: program runs to their end, counted in the state folder."""
         ...

@@ -276,6 +276,7 @@ class MachineController(QObject):
     loading_name: reads[str] = reads(_loader, "loading_name")
     loading_progress: reads[float] = reads(_loader, "loading_progress")
     current_line: reads[int] = reads(_stream, "line")
+    distance_to_go: reads[tuple[float, ...]] = reads(_stream, "distance_to_go")
     progress: reads[tuple[float, float]] = reads(_stream, "progress")
     tracking: reads[TrackingReport] = reads(_stream, "tracking")
     last_run: reads[RunSummary | None] = reads(_stream, "last_summary")

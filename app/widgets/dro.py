@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QEvent, QObject, Qt
 from PySide6.QtWidgets import QGridLayout, QLabel, QWidget
 
 from app.i18n import N_, I18n, tr
@@ -55,15 +55,26 @@ class DroWidget(QWidget):
         grid.setContentsMargins(6, 2, 6, 2)
         grid.setHorizontalSpacing(10)
         grid.setVerticalSpacing(0)
-        head_work, head_machine = QLabel(), QLabel()
-        for row, (label, text) in enumerate(((head_work, N_("Work")), (head_machine, N_("Machine"))),
-                                            start=1):
-            label.setObjectName("droHeader")
-            if i18n is not None:
-                i18n.bind(label, text)
-            else:
-                label.setText(text)
-            grid.addWidget(label, row, 0)
+        head_work = QLabel()
+        head_work.setObjectName("droHeader")
+        if i18n is not None:
+            i18n.bind(head_work, N_("Work"))
+        else:
+            head_work.setText(N_("Work"))
+        grid.addWidget(head_work, 1, 0)
+        # the second row: Machine (G53) or the distance to go of the move being run; a tap on
+        # the row (its title or any of its values) switches, and the header keeps its height
+        self.second_button = QLabel()
+        self.second_button.setObjectName("droHeader")
+        self.second_button.installEventFilter(self)
+        grid.addWidget(self.second_button, 2, 0)
+        self._i18n = i18n
+        self.show_to_go = False
+        self._machine: tuple[float, ...] = (0.0,) * len(self.axes)
+        self._to_go: tuple[float, ...] = ()
+        if i18n is not None:
+            i18n.languageChanged.connect(lambda _l: self._second_title())
+        self._second_title()
         self.work_labels: list[QLabel] = []
         self.machine_labels: list[QLabel] = []
         self.axis_labels: list[QLabel] = []
@@ -84,6 +95,7 @@ class DroWidget(QWidget):
             self.axis_labels.append(axis)
             self.work_labels.append(work)
             self.machine_labels.append(machine)
+            machine.installEventFilter(self)
         # what the Work row includes (system, G92, rotation, tool length offset): one line of
         # its own, its height fixed, so that a change never moves the digits
         self.frame_label = QLabel()
@@ -99,14 +111,44 @@ class DroWidget(QWidget):
         self._frame = frame
         self.frame_label.setText(frame_text(frame) if frame is not None else "")
 
+    def _second_title(self) -> None:
+        text = N_("To go") if self.show_to_go else N_("Machine")
+        self.second_button.setText(tr(text))
+
+    def eventFilter(self, obj: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt override
+        if event.type() == QEvent.Type.MouseButtonRelease and (
+                obj is self.second_button or obj in self.machine_labels):
+            self.toggle_second_row()
+            return True
+        return super().eventFilter(obj, event)
+
+    def toggle_second_row(self) -> None:
+        """Machine (G53) <-> distance to go, on the second row."""
+        self.show_to_go = not self.show_to_go
+        self._second_title()
+        self._show_second()
+
+    def set_distance_to_go(self, left: Sequence[float]) -> None:
+        """What is left of the move being run per axis (empty at rest: shown as zero)."""
+        self._to_go = tuple(float(v) for v in left)
+        if self.show_to_go:
+            self._show_second()
+
+    def _show_second(self) -> None:
+        values = self._machine if not self.show_to_go else (self._to_go or (0.0,) * len(self.axes))
+        for i, (rot, wrap) in enumerate(zip(self.rotary, self.wrapped)):
+            # distance to go is a difference: never read modulo 360
+            text = format_position(float(values[i]), rot, wrap and not self.show_to_go)
+            if self.machine_labels[i].text() != text:
+                self.machine_labels[i].setText(text)
+
     def set_positions(self, machine: Sequence[float], work: Sequence[float]) -> None:
+        self._machine = tuple(float(v) for v in machine)
         for i, (rot, wrap) in enumerate(zip(self.rotary, self.wrapped)):
             w = format_position(float(work[i]), rot, wrap)
-            m = format_position(float(machine[i]), rot, wrap)
             if self.work_labels[i].text() != w:
                 self.work_labels[i].setText(w)
-            if self.machine_labels[i].text() != m:
-                self.machine_labels[i].setText(m)
+        self._show_second()
 
     def set_homed(self, homed: Sequence[bool]) -> None:
         for label, name, ok in zip(self.axis_labels, self.axes, homed):

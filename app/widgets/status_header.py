@@ -100,6 +100,7 @@ class StatusHeader(QWidget):
 
     def _on_position(self, machine: tuple[float, ...], work: tuple[float, ...]) -> None:
         self.dro.set_positions(machine, work)
+        self.dro.set_distance_to_go(self.ctx.controller.distance_to_go)
 
     def _on_overrides(self, feed: float, _rapid: float) -> None:
         self._feed_pct = float(feed)

@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="175" />
+      <location filename="../../app/widgets/status_header.py" line="176" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -19,7 +19,7 @@
       <translation>/ satırları atlanıyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="176" />
+      <location filename="../../app/widgets/status_header.py" line="177" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -119,7 +119,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="157" />
+      <location filename="../../app/widgets/status_header.py" line="158" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -159,12 +159,12 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="184" />
+      <location filename="../../app/main_window.py" line="187" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="205" />
+      <location filename="../../app/main_window.py" line="208" />
       <source>Checking {0} … {1} %</source>
       <translation>{0} denetleniyor … %{1}</translation>
     </message>
@@ -309,7 +309,7 @@
       <translation>Sürücü</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="162" />
+      <location filename="../../app/widgets/status_header.py" line="163" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -414,7 +414,7 @@
       <translation>Satıra git</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="143" />
+      <location filename="../../app/widgets/status_header.py" line="144" />
       <source>Held by feed override 0 %</source>
       <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
@@ -566,7 +566,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>MSE</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="59" />
+      <location filename="../../app/widgets/dro.py" line="115" />
       <source>Machine</source>
       <translation>Makine</translation>
     </message>
@@ -856,17 +856,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="219" />
+      <location filename="../../app/main_window.py" line="222" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="215" />
+      <location filename="../../app/main_window.py" line="218" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="232" />
+      <location filename="../../app/main_window.py" line="235" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -881,7 +881,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="162" />
+      <location filename="../../app/widgets/status_header.py" line="163" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -913,17 +913,17 @@ BIRAK</translation>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="121" />
+      <location filename="../../app/main_window.py" line="124" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="122" />
+      <location filename="../../app/widgets/status_header.py" line="123" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="123" />
+      <location filename="../../app/widgets/status_header.py" line="124" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -1048,22 +1048,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="264" />
+      <location filename="../../app/main_window.py" line="267" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="293" />
+      <location filename="../../app/main_window.py" line="296" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="269" />
+      <location filename="../../app/main_window.py" line="272" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="271" />
+      <location filename="../../app/main_window.py" line="274" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -1073,7 +1073,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="264" />
+      <location filename="../../app/main_window.py" line="267" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -1193,7 +1193,7 @@ BIRAK</translation>
       <translation>Hedef…</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="172" />
+      <location filename="../../app/main_window.py" line="175" />
       <source>The control did not shut down cleanly: home the axes (Machine zero, Home all) before running a program</source>
       <translation>Kontrol düzgün kapanmadı: program çalıştırmadan önce eksenleri referanslayın (Makine sıfırı, Tüm eksenleri referansla)</translation>
     </message>
@@ -1248,6 +1248,11 @@ BIRAK</translation>
       <translation>Zaman</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/dro.py" line="115" />
+      <source>To go</source>
+      <translation>Kalan</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/tools.py" line="29" />
       <source>Tool</source>
       <translation>Takım</translation>
@@ -1263,7 +1268,7 @@ BIRAK</translation>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="168" />
+      <location filename="../../app/widgets/status_header.py" line="169" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -1373,7 +1378,7 @@ BIRAK</translation>
       <translation>Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="59" />
+      <location filename="../../app/widgets/dro.py" line="61" />
       <source>Work</source>
       <translation>İş</translation>
     </message>
@@ -1908,7 +1913,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="188" />
+      <location filename="../../app/main_window.py" line="191" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
@@ -2018,7 +2023,7 @@ BIRAK</translation>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="168" />
+      <location filename="../../app/main_window.py" line="171" />
       <source>{0} was running at line {1} when the control stopped (power loss or killed): home the axes, open it and run from line {1}</source>
       <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
     </message>

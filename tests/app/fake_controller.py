@@ -103,6 +103,7 @@ class FakeController(QObject):
         self.run_first_move = 0
         self.rotations: dict[str, float] = {}
         self.part_count = 0
+        self.distance_to_go: tuple[float, ...] = ()
         self.part_target = 0
         self.run_log: list = []
         self.interrupted: tuple[str, int] | None = None

@@ -426,3 +426,27 @@ def test_an_alarm_tapped_shows_its_whole_text_in_the_operators_language(demo_win
         assert page.table.item(row, 3).text() == "uyarı"
     finally:
         demo_window.context.i18n.set_language("en")   # the translator is installed application-wide
+
+
+def test_the_dro_shows_the_distance_to_go_of_the_move_being_run_by_a_tap(qtbot, demo_window,
+                                                                         real_controller) -> None:
+    from PySide6.QtCore import Qt
+
+    c = real_controller
+    dro = demo_window.header.dro
+    assert dro.second_button.text() == "Machine"
+    assert c.mdi("G1 X30 F600")                               # 3 s at 10 mm/s from X0
+    assert c.run_until(lambda: c.reference_position[0] > 10.0, 10)
+    qtbot.mouseClick(dro.second_button, Qt.MouseButton.LeftButton)
+    assert dro.second_button.text() == "To go"
+    here = c.reference_position[0]
+    demo_window.header._on_position(c.machine_position, c.work_position)
+    left = float(dro.machine_text("X"))
+    assert left == pytest.approx(30.0 - here, abs=0.01) and 0.0 < left < 20.0
+    assert float(dro.machine_text("Y")) == 0.0
+    assert c.run_until(lambda: c.state is MachineState.IDLE and c.stream.job is None, 10)
+    demo_window.header._on_position(c.machine_position, c.work_position)
+    assert float(dro.machine_text("X")) == 0.0                # at rest: nothing to go
+    qtbot.mouseClick(dro.machine_labels[1], Qt.MouseButton.LeftButton)      # a value of the row too
+    assert dro.second_button.text() == "Machine"
+    assert float(dro.machine_text("X")) == pytest.approx(30.0, abs=1e-3)

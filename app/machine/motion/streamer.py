@@ -90,6 +90,8 @@ class Streamer:
         self._queue = SetpointQueue(settings, drives, positions)
         self.line = 0
         self.progress = (0.0, 0.0)
+        # what is left of the move the drives are on, per axis (machine units; () at rest)
+        self.distance_to_go: tuple[float, ...] = ()
         self.feed_note = ""          # feedOverrideNote as last emitted
         self.tracking = TrackingReport(axes=settings.config.axes)
         self.last_summary: RunSummary | None = None
@@ -419,6 +421,17 @@ class Streamer:
             for sink in self._sinks:
                 sink(trace.cycle, reference, actual)
 
+    def _distance_to_go(self, job: Job, consumed: int) -> None:
+        """The end of the move the drives are on, less where the set-point is (as LinuxCNC's
+        DTG reads it)."""
+        m = job.move_at(consumed)
+        moves = job.plan.program.moves
+        if m is None or not 0 <= m < len(moves):
+            self.distance_to_go = ()
+            return
+        left = np.asarray(moves[m].end, dtype=float) - self._positions.reference_pos()
+        self.distance_to_go = tuple(float(v) for v in left)
+
     @staticmethod
     def _spin_ups_left(job: Job, tau: float, now_s: float) -> float:
         """The spindle's waits still ahead of planned time ``tau``, and what is left of the one
@@ -446,6 +459,7 @@ class Streamer:
             if job.kind in (Activity.PROGRAM, Activity.MDI):
                 # the DRO reads the tool tip in the program's own frame at this move
                 self._coordinates.follow_program(job.frame_at(consumed))
+            self._distance_to_go(job, consumed)
             while job.messages and job.messages[0][0] <= line:
                 self.show_message(job.messages.popleft()[1])
             if job.kind is Activity.PROGRAM:
@@ -610,6 +624,7 @@ class Streamer:
         """End the current job. Emits programFinished for program jobs."""
         with self._lock:
             job, self.job = self.job, None
+            self.distance_to_go = ()
             if job is None:
                 return None
             if (not completed and job.keep_point and job.kind is Activity.PROGRAM and job.origin is not None
