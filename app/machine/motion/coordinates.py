@@ -286,12 +286,7 @@ class Coordinates:
         # the rotation's parameter alone: the table's origins are the panel's, whatever older
         # values the parameters hold for them
         self.parameters[system_parameter_base(WORK_OFFSET_NAMES.index(name) + 1) + 9] = value
-        try:
-            self._store.save_parameters(self.parameters)
-        except OSError as exc:
-            self._alarms.raise_alarm("persistence", f"cannot save the G-code parameters: {exc}",
-                                     Severity.WARNING, "state_file")
-        self._changed()
+        self._parameters_changed()
         return self._states.ok(action)
 
     def rotation_of(self, name: str) -> float:
@@ -366,6 +361,10 @@ class Coordinates:
                 if key in values:
                     cur[i] = float(values[key])
             self._offsets[name] = tuple(cur)
+        self._parameters_changed()
+
+    def _parameters_changed(self) -> None:
+        """The parameters kept at once, as LinuxCNC writes its var file, then the table."""
         try:
             self._store.save_parameters(self.parameters)
         except OSError as exc:
