@@ -6,6 +6,10 @@ them translated by matching each against the templates below: a template is the 
 sentence with ``{0}``, ``{1}`` ... where the values go; its translation (in the ``.ts``, like
 every other string) takes the same values. Values that are themselves known sentences (a state,
 a reason) are translated too. A sentence no template matches is shown as it is.
+
+The interpreter's messages (a program's errors) come from ``app.gcode_text``, gathered from the
+planner's sources by ``tools.i18n_catalog``; they are tried after the controller's own, the most
+specific (most letters outside the values) first.
 """
 
 from __future__ import annotations
@@ -13,11 +17,28 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
+from app.gcode_text import GCODE_TEMPLATES
 from app.i18n import N_, tr
 
 __all__ = ["TEMPLATES", "localize"]
 
 TEMPLATES: tuple[str, ...] = (
+    # a program's errors, as the planner and the controller wrap the interpreter's messages
+    N_("{0}:{1}:{2}: error: {3}"),
+    N_("{0} error(s) in the program; first: {1}"),
+    N_("line {0}, axis {1}: {2}"),
+    N_("approach move: soft limit: {0}"),
+    N_("soft limit: {0}"),
+    N_("{0}: with the result, line {1} reads: {2}"),
+    N_("{0}: with the result, line {1}: {2}"),
+    N_("line {0}: {1}"),
+    # the interpreter's words that go into its sentences
+    N_("clockwise"), N_("counterclockwise"), N_("enable"), N_("disable"),
+    N_("set an analog output"), N_("set a digital output"), N_("change the plane"),
+    N_("change the path control mode"), N_("change the canned cycle retract mode"),
+    N_("store the G28/G30 position"), N_("change the axis offsets (G52, G92)"),
+    N_("change the coordinate system"), N_("change tools"), N_("change the tool length offset"),
+    N_("use {0}"),
     # program stops and what they ask
     N_("program paused (M00, line {0}): press cycle start"),
     N_("optional stop (M01, line {0}): press cycle start"),
@@ -121,26 +142,59 @@ TEMPLATES: tuple[str, ...] = (
 
 
 @lru_cache(maxsize=1)
-def _compiled() -> tuple[tuple[re.Pattern[str], str], ...]:
+def _compiled() -> tuple[tuple[re.Pattern[str], str, int], ...]:
+    """(pattern, template, how many of its characters are not values) for every template."""
     out = []
-    for template in TEMPLATES:
-        parts = re.split(r"(\{\d\})", template)
-        pattern = "".join("(.*?)" if re.fullmatch(r"\{\d\}", p) else re.escape(p) for p in parts)
-        out.append((re.compile(pattern + r"\Z", re.DOTALL), template))
+    for template in (*TEMPLATES, *GCODE_TEMPLATES):
+        parts = re.split(r"(\{\d+\})", template)
+        literal = [p.replace("{{", "{").replace("}}", "}") for p in parts[::2]]
+        pattern = "".join("(.*?)" if k % 2 else re.escape(literal[k // 2]) for k, _ in enumerate(parts))
+        out.append((re.compile(pattern + r"\Z", re.DOTALL), template, sum(map(len, literal))))
     return tuple(out)
 
 
-def localize(text: str, _depth: int = 0) -> str:
-    """``text`` from the controller in the panel's language (as it is when no template fits)."""
-    if not text or _depth > 3:
-        return text
-    for pattern, template in _compiled():
+_Reading = tuple[int, int, tuple["_Reading", ...]]   # (accounted for, template index or -1, values)
+
+
+@lru_cache(maxsize=4096)
+def _read(text: str, depth: int = 0) -> _Reading:
+    """How ``text`` is made of templates: (characters they account for, the outer template,
+    the readings of its values). Of the templates that match, the one that accounts for the
+    most of the text with its values' own readings wins, the earlier on a tie: "bad.ngc:3:1:
+    error: G82 needs a P word ..." is the location's template around the interpreter's, not the
+    interpreter's with the location taken for the code's name."""
+    best: _Reading = (0, -1, ())
+    if not text or depth > 3:
+        return best
+    for index, (pattern, _, literal) in enumerate(_compiled()):
         m = pattern.match(text)
         if m is None:
             continue
-        translated = tr(template)
-        if translated == template:
-            return text                  # English, or no translation: the original sentence
-        values = [localize(v, _depth + 1) for v in m.groups()]
-        return translated.format(*values)
-    return text
+        values = tuple(_read(v, depth + 1) for v in m.groups())
+        score = literal + sum(v[0] for v in values)
+        if score > best[0]:
+            best = (score, index, values)
+    return best
+
+
+def _say(text: str, reading: _Reading) -> str:
+    _, index, values = reading
+    if index < 0:
+        return text
+    pattern, template, _ = _compiled()[index]
+    translated = tr(template)
+    if translated == template:
+        return text                      # English, or no translation: the original sentence
+    m = pattern.match(text)
+    assert m is not None
+    return translated.format(*(_say(v, r) for v, r in zip(m.groups(), values, strict=True)))
+
+
+def localize(text: str) -> str:
+    """``text`` from the controller in the panel's language (as it is when no template fits);
+    several lines (a program's errors) line by line."""
+    if not text:
+        return text
+    if "\n" in text:
+        return "\n".join(localize(line) for line in text.split("\n"))
+    return _say(text, _read(text))

@@ -9,6 +9,7 @@ text), so the test suite can check that every one has a translation.
 from __future__ import annotations
 
 import ast
+import re
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -16,9 +17,20 @@ from pathlib import Path
 from app.i18n import CONTEXT
 from resources import TRANSLATIONS
 
-APP = Path(__file__).resolve().parent.parent / "app"
+ROOT = Path(__file__).resolve().parent.parent
+APP = ROOT / "app"
 MARKERS = ("tr", "N_")
 EXCLUDED = ("machine",)  # the controller package has its own (English) messages
+
+# The interpreter's messages (planner/gcode, and planner/geometry whose refusals it passes on):
+# the planner imports no Qt, so its sentences are gathered here from its sources and written to
+# app/gcode_text.py as templates, where the panel's catalogue and ``localize`` find them.
+INTERPRETER = (ROOT / "planner" / "gcode", ROOT / "planner" / "geometry")
+GCODE_TEXT = APP / "gcode_text.py"
+# how a message is raised or recorded, and which argument holds it
+MESSAGE_CALLS = {"BlockError": 0, "LexError": 0, "StructureError": 0, "G7xError": 0, "PlannerError": 0,
+                 "GeometryError": 0, "ValueError": 0, "error": -1, "error_in": -1}
+MIN_WORDS = 6  # letters outside the values: "{0}: {1}" would match any sentence
 
 
 def extract_strings(root: Path = APP) -> dict[str, list[str]]:
@@ -38,6 +50,89 @@ def extract_strings(root: Path = APP) -> dict[str, list[str]]:
             if name in MARKERS and isinstance(arg, ast.Constant) and isinstance(arg.value, str):
                 found.setdefault(arg.value, []).append(f"{rel}:{node.lineno}")
     return found
+
+
+def _template(node: ast.expr) -> str | None:
+    """A message expression as a template: literal text kept (braces doubled), each value
+    ``{0}``, ``{1}`` ... in order; None when it is not literal text or an f-string."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value.replace("{", "{{").replace("}", "}}")
+    if isinstance(node, ast.JoinedStr):
+        out: list[str] = []
+        n = 0
+        for value in node.values:
+            if isinstance(value, ast.Constant):
+                out.append(str(value.value).replace("{", "{{").replace("}", "}}"))
+            else:
+                out.append(f"{{{n}}}")
+                n += 1
+        return "".join(out)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
+        left, right = _template(node.left), _template(node.right)
+        if left is None or right is None:
+            return None
+        k = len(_PLACEHOLDER.findall(left))
+        return left + _PLACEHOLDER.sub(lambda m: f"{{{int(m.group(1)) + k}}}", right)
+    return None
+
+
+_PLACEHOLDER = re.compile(r"(?<!\{)\{(\d+)\}")
+
+
+def literal_letters(template: str) -> int:
+    """How many letters a template has outside its values (how specific it is)."""
+    return sum(c.isalpha() for c in _PLACEHOLDER.sub("", template))
+
+
+def interpreter_templates(roots: tuple[Path, ...] = INTERPRETER) -> list[str]:
+    """The interpreter's messages as templates, sorted: each raised error's text, and each
+    module-level constant sentence (ZERO_FEED ...) that one is raised with."""
+    found: set[str] = set()
+    for root in roots:
+        for path in sorted(root.glob("*.py")):
+            tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+            for node in ast.walk(tree):
+                template = None
+                if isinstance(node, ast.Call) and node.args:
+                    name = getattr(node.func, "id", "") or getattr(node.func, "attr", "")
+                    if name in MESSAGE_CALLS:
+                        template = _template(node.args[MESSAGE_CALLS[name]])
+                elif (isinstance(node, ast.Assign) and len(node.targets) == 1
+                      and isinstance(node.targets[0], ast.Name) and node.targets[0].id.isupper()):
+                    template = _template(node.value)
+                    if template is not None and " " not in template:
+                        template = None          # a constant that is no sentence
+                if template is not None and literal_letters(template) >= MIN_WORDS:
+                    found.add(template)
+    return sorted(found)
+
+
+def gcode_text_source(templates: list[str]) -> str:
+    """The text of app/gcode_text.py for ``templates``."""
+    lines = ['"""The interpreter\'s messages as templates for the panel\'s language (``localize``).',
+             "",
+             "Written by ``python -m tools.i18n_catalog`` from planner/gcode and planner/geometry; a",
+             "test fails when a message there is not here. Do not edit: change the interpreter and run",
+             'the tool again."""',
+             "",
+             "from app.i18n import N_",
+             "",
+             '__all__ = ["GCODE_TEMPLATES"]',
+             "",
+             "GCODE_TEMPLATES: tuple[str, ...] = (",
+             *(f"    N_({t!r}),  # noqa: E501" if len(t) > 90 else f"    N_({t!r})," for t in templates),
+             ")",
+             ""]
+    return "\n".join(lines)
+
+
+def write_gcode_text(path: Path = GCODE_TEXT) -> bool:
+    """Write app/gcode_text.py when the interpreter's messages changed; True when written."""
+    text = gcode_text_source(interpreter_templates())
+    if path.exists() and path.read_text(encoding="utf-8") == text:
+        return False
+    path.write_text(text, encoding="utf-8")
+    return True
 
 
 def read_ts(path: Path) -> dict[str, str]:
@@ -76,6 +171,7 @@ def write_ts(path: Path, language: str, strings: dict[str, list[str]], translati
 
 def update(directory: Path = TRANSLATIONS) -> list[str]:
     """Refresh every .ts from the sources; returns the strings still untranslated (all files)."""
+    write_gcode_text()
     strings = extract_strings()
     missing = []
     for ts in sorted(directory.glob("cnc_*.ts")):

@@ -79,6 +79,7 @@ class DiagnosticsPage(QWidget):
         i18n.languageChanged.connect(lambda _l: self._show_opcua())
         c.statusChanged.connect(lambda _snap: self._show_opcua())
         i18n.languageChanged.connect(lambda _l: self._show_profile_state())
+        i18n.languageChanged.connect(lambda _l: self.profile_plots.retranslate())
         self.bus.set_state(c.bus_status, c.config)
         self._show_connect()
         self._show_opcua()

@@ -16,7 +16,7 @@ from PySide6.QtWidgets import (
 
 from app.config_edit import validate, with_bus, with_homing, with_limits, with_planner
 from app.context import PanelContext
-from app.i18n import N_, tr
+from app.i18n import N_, I18n, tr
 from app.machine.config import MachineConfig
 from app.service_access import MIN_LENGTH
 from app.widgets.apply_bar import ApplyBar
@@ -32,14 +32,23 @@ LIMIT_FIELDS = (  # (attribute, label, unit, minimum, maximum, decimals)
 )
 
 
-def _choice_row(values: tuple[str, ...]) -> tuple[QWidget, QButtonGroup, dict[str, QPushButton]]:
+# what the planner's settings are called on the buttons (the configuration keeps its own words)
+CHOICE_NAMES: dict[str, str] = {
+    "lookahead": N_("Look-ahead"), "paper": N_("Paper (per block)"),
+    "exact": N_("Exact"), "taylor": N_("Taylor"), "classic": N_("Classic"),
+    "sim": N_("Simulated"), "soem": N_("EtherCAT (SOEM)"),
+}
+
+
+def _choice_row(values: tuple[str, ...], i18n: I18n) -> tuple[QWidget, QButtonGroup, dict[str, QPushButton]]:
     box = QWidget()
     row = QHBoxLayout(box)
     row.setContentsMargins(0, 0, 0, 0)
     group = QButtonGroup(box)
     buttons = {}
     for v in values:
-        b = QPushButton(v)
+        b = QPushButton()
+        i18n.bind(b, CHOICE_NAMES.get(v, v))
         b.setCheckable(True)
         group.addButton(b)
         row.addWidget(b)
@@ -86,11 +95,11 @@ class ParametersPage(QWidget):
         self.blend_field.valueChanged.connect(
             lambda v: self._set(with_planner(self.pending, blend_tolerance_mm=v)))
         form.addRow(label(N_("Corner tolerance (G64)")), self.blend_field)
-        box, _g, self.mode_buttons = _choice_row(PLANNER_MODES)
+        box, _g, self.mode_buttons = _choice_row(PLANNER_MODES, i18n)
         for mode, b in self.mode_buttons.items():
             b.clicked.connect(lambda _=False, m=mode: self._set(with_planner(self.pending, mode=m)))
         form.addRow(label(N_("Planner mode")), box)
-        box, _g, self.interp_buttons = _choice_row(INTERPOLATIONS)
+        box, _g, self.interp_buttons = _choice_row(INTERPOLATIONS, i18n)
         for interp, b in self.interp_buttons.items():
             b.clicked.connect(lambda _=False, m=interp: self._set(
                 with_planner(self.pending, interpolation=m)))
@@ -100,7 +109,7 @@ class ParametersPage(QWidget):
         i18n.bind(self.homing_required, N_("Homing required before a program"))
         self.homing_required.clicked.connect(lambda on: self._set(with_homing(self.pending, required=on)))
         form.addRow(label(N_("Homing")), self.homing_required)
-        box, _g, self.bus_buttons = _choice_row(("sim", "soem"))
+        box, _g, self.bus_buttons = _choice_row(("sim", "soem"), i18n)
         for kind, b in self.bus_buttons.items():
             b.clicked.connect(lambda _=False, k=kind: self._set(with_bus(self.pending, kind=k)))
         form.addRow(label(N_("Bus")), box)

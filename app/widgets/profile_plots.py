@@ -7,8 +7,10 @@ import pyqtgraph as pg
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QVBoxLayout, QWidget
 
+from app.i18n import N_, tr
 from app.path_profile import PathProfile
 
+RAPID = N_("rapid")
 ROWS = (("v", "mm/s", "#40e0d0"), ("a", "mm/s²", "#4cdf6a"), ("j", "mm/s³", "#ffb347"))
 
 
@@ -45,10 +47,14 @@ class ProfilePlots(QWidget):
         # Path speed is never negative: its lower line marks the rapid limit instead (G00 moves
         # may run above the feed limit Vmax, up to the rapid speed).
         self.limit_lines["v"][0].setPen(pg.mkPen("#ffd27f", width=1, style=Qt.PenStyle.DotLine))
-        self.limit_lines["v"][0].label = pg.InfLineLabel(self.limit_lines["v"][0], "rapid",
+        self.limit_lines["v"][0].label = pg.InfLineLabel(self.limit_lines["v"][0], tr(RAPID),
                                                          position=0.02, color="#ffd27f")
         self.limit_lines["v"][1].label = pg.InfLineLabel(self.limit_lines["v"][1], "Vmax",
                                                          position=0.02, color="#ff4060")
+
+    def retranslate(self) -> None:
+        """The rapid line's label in the panel's language."""
+        self.limit_lines["v"][0].label.setFormat(tr(RAPID))
 
     def set_profile(self, profile: PathProfile | None) -> None:
         if profile is None:

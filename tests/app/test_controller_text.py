@@ -8,7 +8,11 @@ import re
 import pytest
 
 from app.controller_text import TEMPLATES, localize
+from app.gcode_text import GCODE_TEMPLATES
 from app.i18n import tr
+from planner.core.errors import ProgramError
+from planner.gcode.interpreter import parse_program
+from tools.i18n_catalog import GCODE_TEXT, gcode_text_source, interpreter_templates
 
 
 @pytest.fixture
@@ -23,12 +27,12 @@ def turkish(qapp):
 
 
 def _sample(template: str) -> tuple[str, list[str]]:
-    n = len(set(re.findall(r"\{(\d)\}", template)))
+    n = len(set(re.findall(r"\{(\d+)\}", template)))
     values = [f"V{k}x" for k in range(n)]
     return template.format(*values), values
 
 
-@pytest.mark.parametrize("template", TEMPLATES)
+@pytest.mark.parametrize("template", TEMPLATES + GCODE_TEMPLATES)
 def test_every_template_is_translated_with_its_values(turkish, template: str) -> None:
     english, values = _sample(template)
     turkish_text = localize(english)
@@ -65,3 +69,70 @@ def test_the_real_sentences_match(turkish) -> None:
                        (AlarmCode.WORKING_COUNTER, (4, 0b10, 6.0)), (AlarmCode.HOMING_ERROR, (1, 0, 0.0))):
         english = alarm_message(config, code, "X", 0, *args)
         assert localize(english) != english, english
+
+
+def test_the_interpreter_catalogue_is_current() -> None:
+    """Every message the interpreter raises is in app/gcode_text.py (so in the .ts): a new or
+    changed message fails here until ``python -m tools.i18n_catalog`` is run and translated."""
+    assert len(interpreter_templates()) > 200
+    assert GCODE_TEXT.read_text(encoding="utf-8") == gcode_text_source(interpreter_templates())
+
+
+# programs the interpreter refuses, one message family each (values of every kind in them)
+BAD_PROGRAMS = (
+    "G1 X10",                       # feed rate is zero
+    "G99 X1",                       # unknown G code
+    "M123",                         # user M-code not defined
+    "G0 X1 X2",                     # two X words
+    "G2 X10 F100",                  # arc without centre
+    "G1 F-5 X1",                    # negative feed
+    "G81 X1 Y1 F100",               # canned cycle needs R
+    "(unclosed",                    # comment
+    "G0 B5",                        # axis not on this machine
+    "G10 L7 P1",                    # unknown G10
+    "o100 call",                    # no sub
+    "G41 D1 G0 X1\nG83 X1 Y1 Z-1 R1 F10",  # canned cycle with cutter comp
+    "G0 G1 X1 F1",                  # same modal group
+    "M3 M4 S100",                   # same modal group (M)
+    "T1.5 M6",                      # tool number
+    "G4",                           # dwell needs P
+    "G43.2",                        # H or axis words
+)
+
+
+@pytest.mark.parametrize("program", BAD_PROGRAMS)
+def test_the_interpreters_errors_are_said_in_turkish(turkish, program: str) -> None:
+    """A program's errors as the interpreter writes them, not copies of its templates: each
+    is translated, its values kept, and the file:line:col in front stays."""
+    with pytest.raises(ProgramError) as caught:
+        parse_program(program + "\nM2\n", "bad.ngc")
+    english = str(caught.value)
+    for line in english.splitlines():
+        where, message = line.split(": error: ", 1)
+        said_where, said_message = localize(line).split(": hata: ", 1)
+        assert said_where == where
+        assert said_message != message and said_message == localize(message), message
+        for value in re.findall(r"\b[A-Z]\d+(?:\.\d+)?\b", message):
+            assert value in said_message, (value, said_message)
+
+
+def test_the_planner_choices_and_the_plot_are_said_in_turkish(qtbot, fake_window) -> None:
+    """The Parameters page's planner modes and interpolations and the speed plot's rapid
+    line, switched to Turkish at run time and back."""
+    from app.pages.diagnostics import DiagnosticsPage
+    from app.pages.parameters import ParametersPage
+
+    window = fake_window
+    params = window.findChild(ParametersPage)
+    diagnostics = window.findChild(DiagnosticsPage)
+    rapid = diagnostics.profile_plots.limit_lines["v"][0].label
+    assert params.mode_buttons["lookahead"].text() == "Look-ahead"
+    assert rapid.format == "rapid"
+    window.context.i18n.set_language("tr")
+    try:
+        assert params.mode_buttons["lookahead"].text() == "İleriye bakış"
+        assert params.interp_buttons["classic"].text() == "Klasik"
+        assert rapid.format == "hızlı"
+    finally:
+        window.context.i18n.set_language("en")
+    assert params.interp_buttons["exact"].text() == "Exact"
