@@ -7,9 +7,9 @@ sentence with ``{0}``, ``{1}`` ... where the values go; its translation (in the 
 every other string) takes the same values. Values that are themselves known sentences (a state,
 a reason) are translated too. A sentence no template matches is shown as it is.
 
-The interpreter's messages (a program's errors) come from ``app.gcode_text``, gathered from the
-planner's sources by ``tools.i18n_catalog``; they are tried after the controller's own, the most
-specific (most letters outside the values) first.
+Beside the templates written here (those with a comment on how they are used), the controller's
+refusals, alarms and messages and the interpreter's (a program's errors) come from
+``app.message_text``, gathered from their sources by ``tools.i18n_catalog``.
 """
 
 from __future__ import annotations
@@ -17,8 +17,8 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
-from app.gcode_text import GCODE_TEMPLATES
 from app.i18n import N_, tr
+from app.message_text import CONTROLLER_TEMPLATES, GCODE_TEMPLATES
 
 __all__ = ["TEMPLATES", "localize"]
 
@@ -145,7 +145,8 @@ TEMPLATES: tuple[str, ...] = (
 def _compiled() -> tuple[tuple[re.Pattern[str], str, int], ...]:
     """(pattern, template, how many of its characters are not values) for every template."""
     out = []
-    for template in (*TEMPLATES, *GCODE_TEMPLATES):
+    gathered = [t for t in (*CONTROLLER_TEMPLATES, *GCODE_TEMPLATES) if t not in TEMPLATES]
+    for template in (*TEMPLATES, *dict.fromkeys(gathered)):
         parts = re.split(r"(\{\d+\})", template)
         literal = [p.replace("{{", "{").replace("}}", "}") for p in parts[::2]]
         pattern = "".join("(.*?)" if k % 2 else re.escape(literal[k // 2]) for k, _ in enumerate(parts))

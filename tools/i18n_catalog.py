@@ -22,14 +22,18 @@ APP = ROOT / "app"
 MARKERS = ("tr", "N_")
 EXCLUDED = ("machine",)  # the controller package has its own (English) messages
 
-# The interpreter's messages (planner/gcode, and planner/geometry whose refusals it passes on):
-# the planner imports no Qt, so its sentences are gathered here from its sources and written to
-# app/gcode_text.py as templates, where the panel's catalogue and ``localize`` find them.
+# The interpreter's messages (planner/gcode, and planner/geometry whose refusals it passes on) and
+# the controller's (app/machine): neither imports Qt or marks its sentences, so they are gathered
+# here from the sources and written to app/message_text.py as templates, where the panel's
+# catalogue and ``localize`` find them.
 INTERPRETER = (ROOT / "planner" / "gcode", ROOT / "planner" / "geometry")
-GCODE_TEXT = APP / "gcode_text.py"
+CONTROLLER = (ROOT / "app" / "machine",)
+MESSAGE_TEXT = APP / "message_text.py"
 # how a message is raised or recorded, and which argument holds it
 MESSAGE_CALLS = {"BlockError": 0, "LexError": 0, "StructureError": 0, "G7xError": 0, "PlannerError": 0,
                  "GeometryError": 0, "ValueError": 0, "error": -1, "error_in": -1}
+CONTROLLER_CALLS = {"refuse": 1, "raise_alarm": 1, "stop_job": 0, "emit": 0, "fail": 0, "stop": 0,
+                    "ControllerError": 0, "CommandResult": 1}
 MIN_WORDS = 6  # letters outside the values: "{0}: {1}" would match any sentence
 
 
@@ -87,48 +91,71 @@ def literal_letters(template: str) -> int:
 def interpreter_templates(roots: tuple[Path, ...] = INTERPRETER) -> list[str]:
     """The interpreter's messages as templates, sorted: each raised error's text, and each
     module-level constant sentence (ZERO_FEED ...) that one is raised with."""
+    return _templates(roots, MESSAGE_CALLS)
+
+
+def controller_templates(roots: tuple[Path, ...] = CONTROLLER) -> list[str]:
+    """The controller's refusals, alarms and messages as templates, sorted."""
+    return _templates(roots, CONTROLLER_CALLS)
+
+
+def _templates(roots: tuple[Path, ...], calls: dict[str, int]) -> list[str]:
     found: set[str] = set()
     for root in roots:
-        for path in sorted(root.glob("*.py")):
+        for path in sorted(root.rglob("*.py")):
             tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
             for node in ast.walk(tree):
                 template = None
                 if isinstance(node, ast.Call) and node.args:
                     name = getattr(node.func, "id", "") or getattr(node.func, "attr", "")
-                    if name in MESSAGE_CALLS:
-                        template = _template(node.args[MESSAGE_CALLS[name]])
+                    where = calls.get(name)
+                    if where is not None and -len(node.args) <= where < len(node.args):
+                        template = _template(node.args[where])
                 elif (isinstance(node, ast.Assign) and len(node.targets) == 1
                       and isinstance(node.targets[0], ast.Name) and node.targets[0].id.isupper()):
                     template = _template(node.value)
                     if template is not None and " " not in template:
                         template = None          # a constant that is no sentence
-                if template is not None and literal_letters(template) >= MIN_WORDS:
+                if template is not None and " " in template and literal_letters(template) >= MIN_WORDS:
                     found.add(template)
     return sorted(found)
 
 
-def gcode_text_source(templates: list[str]) -> str:
-    """The text of app/gcode_text.py for ``templates``."""
-    lines = ['"""The interpreter\'s messages as templates for the panel\'s language (``localize``).',
+def _entries(templates: list[str]) -> list[str]:
+    return [f"    N_({t!r}),  # noqa: E501" if len(t) > 90 else f"    N_({t!r})," for t in templates]
+
+
+def message_text_source(controller: list[str], interpreter: list[str]) -> str:
+    """The text of app/message_text.py for the controller's and the interpreter's templates."""
+    lines = ['"""The controller\'s and the interpreter\'s messages as templates for the panel\'s',
+             "language (``app.controller_text.localize``).",
              "",
-             "Written by ``python -m tools.i18n_catalog`` from planner/gcode and planner/geometry; a",
-             "test fails when a message there is not here. Do not edit: change the interpreter and run",
-             'the tool again."""',
+             "Written by ``python -m tools.i18n_catalog`` from app/machine, planner/gcode and",
+             "planner/geometry; a test fails when a message there is not here. Do not edit: change the",
+             'sources and run the tool again."""',
              "",
              "from app.i18n import N_",
              "",
-             '__all__ = ["GCODE_TEMPLATES"]',
+             '__all__ = ["CONTROLLER_TEMPLATES", "GCODE_TEMPLATES"]',
+             "",
+             "CONTROLLER_TEMPLATES: tuple[str, ...] = (",
+             *_entries(controller),
+             ")",
              "",
              "GCODE_TEMPLATES: tuple[str, ...] = (",
-             *(f"    N_({t!r}),  # noqa: E501" if len(t) > 90 else f"    N_({t!r})," for t in templates),
+             *_entries(interpreter),
              ")",
              ""]
     return "\n".join(lines)
 
 
-def write_gcode_text(path: Path = GCODE_TEXT) -> bool:
-    """Write app/gcode_text.py when the interpreter's messages changed; True when written."""
-    text = gcode_text_source(interpreter_templates())
+def current_message_text() -> str:
+    return message_text_source(controller_templates(), interpreter_templates())
+
+
+def write_message_text(path: Path = MESSAGE_TEXT) -> bool:
+    """Write app/message_text.py when the messages changed; True when written."""
+    text = current_message_text()
     if path.exists() and path.read_text(encoding="utf-8") == text:
         return False
     path.write_text(text, encoding="utf-8")
@@ -171,7 +198,7 @@ def write_ts(path: Path, language: str, strings: dict[str, list[str]], translati
 
 def update(directory: Path = TRANSLATIONS) -> list[str]:
     """Refresh every .ts from the sources; returns the strings still untranslated (all files)."""
-    write_gcode_text()
+    write_message_text()
     strings = extract_strings()
     missing = []
     for ts in sorted(directory.glob("cnc_*.ts")):

@@ -8,11 +8,11 @@ import re
 import pytest
 
 from app.controller_text import TEMPLATES, localize
-from app.gcode_text import GCODE_TEMPLATES
+from app.message_text import CONTROLLER_TEMPLATES, GCODE_TEMPLATES
 from app.i18n import tr
 from planner.core.errors import ProgramError
 from planner.gcode.interpreter import parse_program
-from tools.i18n_catalog import GCODE_TEXT, gcode_text_source, interpreter_templates
+from tools.i18n_catalog import MESSAGE_TEXT, controller_templates, current_message_text, interpreter_templates
 
 
 @pytest.fixture
@@ -32,7 +32,7 @@ def _sample(template: str) -> tuple[str, list[str]]:
     return template.format(*values), values
 
 
-@pytest.mark.parametrize("template", TEMPLATES + GCODE_TEMPLATES)
+@pytest.mark.parametrize("template", sorted({*TEMPLATES, *CONTROLLER_TEMPLATES, *GCODE_TEMPLATES}))
 def test_every_template_is_translated_with_its_values(turkish, template: str) -> None:
     english, values = _sample(template)
     turkish_text = localize(english)
@@ -71,11 +71,13 @@ def test_the_real_sentences_match(turkish) -> None:
         assert localize(english) != english, english
 
 
-def test_the_interpreter_catalogue_is_current() -> None:
-    """Every message the interpreter raises is in app/gcode_text.py (so in the .ts): a new or
-    changed message fails here until ``python -m tools.i18n_catalog`` is run and translated."""
+def test_the_gathered_catalogue_is_current() -> None:
+    """Every message the interpreter raises and the controller refuses, alarms or says with is in
+    app/message_text.py (so in the .ts): a new or changed message fails here until
+    ``python -m tools.i18n_catalog`` is run and translated."""
     assert len(interpreter_templates()) > 200
-    assert GCODE_TEXT.read_text(encoding="utf-8") == gcode_text_source(interpreter_templates())
+    assert len(controller_templates()) > 60
+    assert MESSAGE_TEXT.read_text(encoding="utf-8") == current_message_text()
 
 
 # programs the interpreter refuses, one message family each (values of every kind in them)

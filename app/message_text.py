@@ -1,12 +1,102 @@
-"""The interpreter's messages as templates for the panel's language (``localize``).
+"""The controller's and the interpreter's messages as templates for the panel's
+language (``app.controller_text.localize``).
 
-Written by ``python -m tools.i18n_catalog`` from planner/gcode and planner/geometry; a
-test fails when a message there is not here. Do not edit: change the interpreter and run
-the tool again."""
+Written by ``python -m tools.i18n_catalog`` from app/machine, planner/gcode and
+planner/geometry; a test fails when a message there is not here. Do not edit: change the
+sources and run the tool again."""
 
 from app.i18n import N_
 
-__all__ = ["GCODE_TEMPLATES"]
+__all__ = ["CONTROLLER_TEMPLATES", "GCODE_TEMPLATES"]
+
+CONTROLLER_TEMPLATES: tuple[str, ...] = (
+    N_('E-stop is not active'),
+    N_('M66 (line {0}): input P{1} is not on this machine ([[inputs]])'),
+    N_('M66 (line {0}): the drive of input P{1} does not send its digital inputs (0x60FD)'),
+    N_('MDI takes one block (one line)'),
+    N_('T{0} is in the spindle: set another tool first'),
+    N_('T{0} is not in the spindle: put it in and set it (In the spindle) first'),
+    N_('T{0} is not in the tool table'),
+    N_('T{0}: the measurement has no second contact'),
+    N_('a probe move ended without the probe armed: the program stops here'),
+    N_('acknowledge the active alarms first'),
+    N_('already connected (machine is {0})'),
+    N_('approach move: soft limit: {0}'),
+    N_('approach move: {0}'),
+    N_('axes changed: reconnect the bus to apply'),
+    N_('axes not homed'),
+    N_('axes not homed: the machine Z is not known'),
+    N_("axes not homed: the setter's position is not known"),
+    N_('axes {0} report another position than saved: homed state cleared, home again'),
+    N_('axis {0} is at its soft limit {1}'),
+    N_('axis {0} would reach {1}, beyond its soft limit [{2}, {3}]'),
+    N_('block delete changes which lines the program has: switch it before cycle start, not during a run'),  # noqa: E501
+    N_('cannot save machine state: {0}'),
+    N_('cannot save the G-code parameters: {0}'),
+    N_('cannot save the part counter: {0}'),
+    N_('cannot save the run trace: {0}'),
+    N_('cannot save the tool in the spindle: {0}'),
+    N_('cannot save the tool table: {0}'),
+    N_('cannot save work offsets: {0}'),
+    N_('cannot start the bus: {0}'),
+    N_('cannot write {0}: {1}'),
+    N_('direction must be +1 or -1, got {0}'),
+    N_('drives cannot be enabled: {0}'),
+    N_('empty block'),
+    N_('feed override must be 0-{0} %, got {1}'),
+    N_("feed override {0} % capped at {1} % here: the machine's speed, acceleration or jerk limit"),
+    N_('feed override {0} % not applied here: the program turned it off (tapping, M49 or M50 P0) and runs its own feed'),  # noqa: E501
+    N_('homing cannot be stopped mid-way: use E-stop'),
+    N_('homing refused: {0}'),
+    N_('increment must be one of {0}, got {1}'),
+    N_('input {0} is not in the program'),
+    N_('jog released'),
+    N_('line {0} comes after {1} at line {2}: what follows depends on what it read; run from line {3} (or before) to read it again'),  # noqa: E501
+    N_('line {0} needs T{1} in the spindle (T{2} is in it): put it in and set it on the Tools page, or run from the M6 line {3}'),  # noqa: E501
+    N_('machine is {0}'),
+    N_('measuring on a tool setter needs X, Y and Z axes'),
+    N_('no active alarm with id {0}'),
+    N_('no tool setter on this machine ([probe] drive, setter_x_mm, setter_y_mm and setter_z_mm in the machine configuration)'),  # noqa: E501
+    N_('nothing is moving'),
+    N_('nothing to stop: machine is {0}'),
+    N_('output {0} could not be switched off: {1}'),
+    N_('planner: {0}'),
+    N_('rapid override must be 0-100 %, got {0}'),
+    N_('reset not possible: machine is {0}'),
+    N_('single block takes effect at the next stop (feed hold, block end, M00)'),
+    N_('soft limit: {0}'),
+    N_('speed must be 0-{0} rpm'),
+    N_('spindle output failed: {0}'),
+    N_('spindle override must be {0}-{1} %, got {2}'),
+    N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
+    N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
+    N_('stopped by the operator'),
+    N_('the drives cannot be re-enabled: {0}'),
+    N_('the machine has no Z axis'),
+    N_('the machine is still stopping: wait for standstill'),
+    N_('the program stopped at line {0}: resume there or start it again from the beginning (choose one)'),  # noqa: E501
+    N_('the surface height must be a number'),
+    N_('this CPU does not keep stores in order: the 1 ms loop runs as a thread of the panel, not in its own process (less punctual under GUI load)'),  # noqa: E501
+    N_('touch off {0}: not a number'),
+    N_('unknown work offset {0} (G54-G59.3)'),
+    N_('{0} needs {1} values'),
+    N_('{0} part(s) made: the target of {1} is reached'),
+    N_('{0} rotation: a number of degrees within -360 .. 360'),
+    N_('{0} rotation: not a number'),
+    N_('{0}: cannot record the run: {1}'),
+    N_('{0}: not a number'),
+    N_('{0}: not a number (offsets are finite numbers)'),
+    N_('{0}: planner: {1}'),
+    N_('{0}: the program cannot be read again with the result'),
+    N_('{0}: the program read again does not go on from where the machine stands'),
+    N_('{0}: the program read again does not have it'),
+    N_('{0}: with the result the program reads: {1}'),
+    N_('{0}: with the result, line {1} reads: {2}'),
+    N_('{0}: with the result, line {1}: {2}'),
+    N_('{0}: with the result, {1}'),
+    N_('{0}; it starts when ready'),
+    N_('{0}; the machine runs on without its OPC UA server'),
+)
 
 GCODE_TEMPLATES: tuple[str, ...] = (
     N_("'%' must be alone on its line"),
