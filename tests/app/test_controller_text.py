@@ -8,8 +8,8 @@ import re
 import pytest
 
 from app.controller_text import TEMPLATES, localize
-from app.message_text import CONTROLLER_TEMPLATES, GCODE_TEMPLATES
 from app.i18n import tr
+from app.message_text import CONTROLLER_TEMPLATES, GCODE_TEMPLATES
 from planner.core.errors import ProgramError
 from planner.gcode.interpreter import parse_program
 from tools.i18n_catalog import MESSAGE_TEXT, controller_templates, current_message_text, interpreter_templates
