@@ -43,6 +43,7 @@ TEMPLATES: tuple[str, ...] = (
     N_("program paused (M00, line {0}): press cycle start"),
     N_("optional stop (M01, line {0}): press cycle start"),
     N_("tool change (M06, line {0}): insert tool {1} and press cycle start"),
+    N_("{0}; {1} is then measured on the tool setter"),
     N_("single block: end of line {0}"),
     N_("feed hold"),
     N_("stopping"),

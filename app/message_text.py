@@ -94,6 +94,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('{0}: with the result, line {1} reads: {2}'),
     N_('{0}: with the result, line {1}: {2}'),
     N_('{0}: with the result, {1}'),
+    N_('{0}: with the result, {1} line {2} reads: {3}'),
     N_('{0}; it starts when ready'),
     N_('{0}; the machine runs on without its OPC UA server'),
 )
@@ -262,6 +263,8 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('the program ends with the NURBS begun at line {0} not ended: program G05.3 to run it'),
     N_('the program ends with this NURBS (G05.2) not ended: program G05.3 to run it'),
     N_('the radius of the cutter compensation entry arc is not greater than the tool radius ({0} mm)'),  # noqa: E501
+    N_('the routine after a tool change ({0}) is not an O-word call'),
+    N_('the routine after a tool change ({0}): {1}'),
     N_('tool T{0} is not in the tool table (add it on the Tools page)'),
     N_('tool number H{0} must be a whole number >= 0'),
     N_('tool number Q{0} must be a whole number >= 0'),

@@ -9,13 +9,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["MACHINES", "PROGRAMS", "ROOT", "STYLES", "TRANSLATIONS", "shipped_machine", "shipped_program"]
+__all__ = ["MACHINES", "PROGRAMS", "ROOT", "STYLES", "SUBROUTINES", "TRANSLATIONS", "shipped_machine",
+           "shipped_program"]
 
 ROOT = Path(__file__).resolve().parent
 MACHINES = ROOT / "machines"
 PROGRAMS = ROOT / "programs"
 STYLES = ROOT / "styles"
 TRANSLATIONS = ROOT / "translations"
+# G-code subroutines shipped with the control (probing wizards, tool measuring after M6)
+SUBROUTINES = ROOT / "subroutines"
 
 
 def shipped_machine(name: str) -> Path:

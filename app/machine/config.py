@@ -40,7 +40,7 @@ from planner.core.files import write_output, write_text
 from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
 from planner.core.rules import drive_tables
 from planner.core.schema import END_MARK, HEADER, Locator, check_complete, validate
-from resources import shipped_machine
+from resources import SUBROUTINES, shipped_machine
 
 if TYPE_CHECKING:
     from ethercat.drive_setup import DriveSetup
@@ -52,6 +52,9 @@ __all__ = [
     "HomingSettings",
     "MachineConfig",
     "ProbeSettings",
+    "ToolChangeSettings",
+    "probe_overtravel_mm",
+    "tool_measure_call",
     "config_from_dict",
     "config_to_toml",
     "load_config",
@@ -148,11 +151,60 @@ class ProbeSettings:
     setter_y_mm: float | None = None
     setter_z_mm: float | None = None
     sim_axis: str = "Z"
+    sim_surface_mm: float | None = None
+    # the probing wizards' defaults (the probe's tool, search distance, clearance, feeds, the
+    # back-off between the fast and the slow probe)
+    tool: int | None = None
+    search_mm: float = 10.0
+    clearance_mm: float = 5.0
+    fast_feed_mm_min: float = 300.0
+    slow_feed_mm_min: float = 30.0
+    retract_mm: float = 1.0
 
     @property
     def has_setter(self) -> bool:
         return self.drive is not None and None not in (self.setter_x_mm, self.setter_y_mm, self.setter_z_mm)
-    sim_surface_mm: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class ToolChangeSettings:
+    """M6 with the new tool measured on the tool setter once the operator has put it in
+    (``measure``); a length differing from the table's by more than ``broken_tolerance_mm``
+    stops the program with an alarm, the table unchanged (0: no check)."""
+
+    measure: bool = False
+    broken_tolerance_mm: float = 0.0
+
+
+def probe_overtravel_mm(feed_mm_min: float, jerk_mm_s3: float, reaction_s: float = 0.015) -> float:
+    """How far the stylus travels past the contact at ``feed_mm_min``: the feed for the reaction
+    (the feeder sees the latch, the stop is spliced a few cycles ahead of the drives), then the
+    jerk-limited stop along the path, v sqrt(v / J)."""
+    v = feed_mm_min / 60.0
+    return v * (reaction_s + math.sqrt(v / jerk_mm_s3))
+
+
+#: the shipped subroutine that measures a tool after M6 (resources/subroutines)
+TOOL_MEASURE = "tool_measure"
+
+
+def tool_measure_call(machine: MachineSpec, probe: ProbeSettings, controller: ControllerSettings,
+                      toolchange: ToolChangeSettings) -> str:
+    """The O-word call M6 runs after a tool change when ``toolchange.measure`` (else ""): the
+    setter's place, the clearance height, the probe feed, the back-off between the two
+    probes (past the first contact's overtravel), the tolerance and the lowest Z, as
+    resources/subroutines/tool_measure.ngc takes them."""
+    if not toolchange.measure or not probe.has_setter or "Z" not in machine.axis_names:
+        return ""
+    assert probe.setter_x_mm is not None and probe.setter_y_mm is not None and probe.setter_z_mm is not None
+    z_axis = machine.axes[machine.axis_index("Z")]
+    clear = z_axis.max_pos if controller.restart_clearance_mm is None else controller.restart_clearance_mm
+    fast = probe.max_feed_mm_min
+    back_off = max(2.0, 2.0 * probe_overtravel_mm(fast, machine.limits.j_max_mm_s3) + 1.0)
+    bottom = max(probe.setter_z_mm - 1.0, z_axis.min_pos)
+    args = (probe.setter_x_mm, probe.setter_y_mm, probe.setter_z_mm, clear, fast, back_off,
+            toolchange.broken_tolerance_mm, bottom)
+    return f"o<{TOOL_MEASURE}> call " + " ".join(f"[{v:.6g}]" for v in args)
 
 
 @dataclass(frozen=True, slots=True)
@@ -193,6 +245,17 @@ class MachineConfig:
     probe: ProbeSettings = field(default_factory=ProbeSettings)
     opcua: OpcUaSettings = field(default_factory=OpcUaSettings)
     path: str = ""  # file it was read from ("" if built in memory)
+    toolchange: ToolChangeSettings = field(default_factory=ToolChangeSettings)
+
+    def __post_init__(self) -> None:
+        # what the interpreter takes from the panel's settings: the shipped subroutines' folder
+        # and the measuring call after M6, derived here so every configuration made (read,
+        # edited, replaced) has them as its settings say
+        machine = replace(self.machine, shipped_subroutine_dir=str(SUBROUTINES),
+                          after_tool_change=tool_measure_call(self.machine, self.probe, self.controller,
+                                                              self.toolchange))
+        if machine != self.machine:
+            object.__setattr__(self, "machine", machine)
 
     @property
     def axes(self) -> tuple[str, ...]:
@@ -224,6 +287,7 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
                       drives=drives)
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
                          probe=ProbeSettings(**valid["probe"]),
+                         toolchange=ToolChangeSettings(**valid["toolchange"]),
                          opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where)
 
 
@@ -381,6 +445,13 @@ def config_to_toml(config: MachineConfig) -> str:
         value = getattr(p, key)
         if value is not None:
             out.append(f"{key} = {_fmt(float(value))}")
+    if p.tool is not None:
+        out.append(f"tool = {p.tool}")
+    out += [f"{key} = {_fmt(float(getattr(p, key)))}" for key in
+            ("search_mm", "clearance_mm", "fast_feed_mm_min", "slow_feed_mm_min", "retract_mm")]
+    t = config.toolchange
+    out += ["", "[toolchange]", f"measure = {_fmt(t.measure)}",
+            f"broken_tolerance_mm = {_fmt(float(t.broken_tolerance_mm))}"]
     u = config.opcua
     out += ["", "[opcua]", f"enabled = {_fmt(u.enabled)}", f"host = {_fmt(u.host)}", f"port = {u.port}",
             f"security = {_fmt([m.value for m in u.security])}", f"anonymous = {_fmt(u.anonymous)}",

@@ -100,6 +100,12 @@ class MachineSpec:
     input_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
     # the spindle's highest speed ([controller] spindle_max_rpm): G96 without D runs at it
     spindle_max_rpm: float = 24000.0
+    # the subroutines shipped with the control (probing, tool measuring): searched after the
+    # configured folders, so an integrator's file of the same name takes their place
+    shipped_subroutine_dir: str = ""
+    # an O-word call run after every M6 that changes the tool ("" none), as LinuxCNC's REMAP
+    # of M6 runs an ngc: ``o<tool_measure> call [...]`` measures the new tool on the setter
+    after_tool_change: str = ""
 
     @property
     def outputs(self) -> tuple[int, ...]:
@@ -110,9 +116,11 @@ class MachineSpec:
         return tuple(sorted(self.input_bits))
 
     def subroutine_paths(self) -> tuple[str, ...]:
-        """The subroutine folders, relative ones taken from the configuration file's folder."""
-        return tuple(d if os.path.isabs(d) or not self.config_dir else os.path.join(self.config_dir, d)
-                     for d in self.planner.subroutine_dirs)
+        """The subroutine folders, relative ones taken from the configuration file's folder,
+        then the shipped subroutines' folder."""
+        configured = tuple(d if os.path.isabs(d) or not self.config_dir else os.path.join(self.config_dir, d)
+                           for d in self.planner.subroutine_dirs)
+        return configured + ((self.shipped_subroutine_dir,) if self.shipped_subroutine_dir else ())
 
     @property
     def axis_names(self) -> tuple[str, ...]:

@@ -123,6 +123,15 @@ def check_sections(valid: dict[str, Any], loc: Locator, axes: tuple[AxisSpec, ..
             where = f"outside the {axis} travel [{spec.min_pos:g}, {spec.max_pos:g}]" if spec else \
                 f"the machine has no {axis} axis"
             raise loc.fail(("probe", key), f"{pr[key]:g} is {where}")
+    if pr["slow_feed_mm_min"] > pr["fast_feed_mm_min"]:
+        raise loc.fail(("probe", "slow_feed_mm_min"), f"{pr['slow_feed_mm_min']:g} is faster than "
+                       f"fast_feed_mm_min ({pr['fast_feed_mm_min']:g})")
+    if pr["fast_feed_mm_min"] > pr["max_feed_mm_min"]:
+        raise loc.fail(("probe", "fast_feed_mm_min"), f"{pr['fast_feed_mm_min']:g} is over "
+                       f"max_feed_mm_min ({pr['max_feed_mm_min']:g}), the fastest probe move allowed")
+    if valid["toolchange"]["measure"] and (pr["drive"] is None or None in setter):
+        raise loc.fail(("toolchange", "measure"), "needs a tool setter: [probe] drive, setter_x_mm, "
+                       "setter_y_mm and setter_z_mm")
     if pr["sim_surface_mm"] is not None and pr["sim_axis"] not in names:
         raise loc.fail(("probe", "sim_axis"), f"{pr['sim_axis']} is not an axis of this machine "
                        f"({', '.join(names)})")

@@ -179,6 +179,23 @@ MACHINE_FILE = Table("", tables=(
         Key("setter_z_mm", "float", None, -_LIN, _LIN),
         Key("sim_axis", "str", "Z", choices=("X", "Y", "Z", "A", "B", "C")),
         Key("sim_surface_mm", "float", None, -_LIN, _LIN),
+        # the probing wizards' defaults: the probe's tool number (its length and tip diameter
+        # from the tool table), how far a probe move searches past where the surface should be,
+        # the distance kept from the part when moving around it, the fast and slow probe feeds
+        # and how far back the stylus goes between them
+        Key("tool", "int", None, 1, 99999),
+        Key("search_mm", "float", 10.0, 0.1, 1000.0),
+        Key("clearance_mm", "float", 5.0, 0.1, 1000.0),
+        Key("fast_feed_mm_min", "float", 300.0, 1.0, 100_000.0),
+        Key("slow_feed_mm_min", "float", 30.0, 0.1, 100_000.0),
+        Key("retract_mm", "float", 1.0, 0.01, 100.0),
+    )),
+    # M6 with the tool measured on the setter ([probe] setter_*) after the operator's change;
+    # a length that differs from the table's by more than broken_tolerance_mm stops the program
+    # (0: no check)
+    Table("toolchange", (
+        Key("measure", "bool", False),
+        Key("broken_tolerance_mm", "float", 0.0, 0.0, 1000.0),
     )),
     Table("controller", (
         Key("jog_speed_mm_s", "float", 10.0, 1e-3, 1e4),

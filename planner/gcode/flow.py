@@ -71,6 +71,20 @@ class FlowCodes(ModeCodes):
                 if stop:
                     return
                 pc += 1
+                if self.calls.tool_changed:      # the machine's routine after the tool change
+                    self.calls.tool_changed = False
+                    try:
+                        callee = self.call_after_tool_change(frame, frames, pc, line_no)
+                    except BlockError as e:
+                        self.error_in(frame, line_no, e.col or 1, e.message)
+                        return
+                    except LexError as e:
+                        self.error_in(frame, line_no, 1, e.message)
+                        return
+                    frames.append(frame)
+                    frame = callee
+                    pc = frame.entry
+                    self.calls.level += 1
                 continue
             try:
                 result = self.statement(stmt, frame, frames)
@@ -272,6 +286,24 @@ class FlowCodes(ModeCodes):
         self.params.named = {}
         self.params.globals["_VALUE"] = 0.0
         self.params.globals["_VALUE_RETURNED"] = 0.0
+        return callee
+
+    def call_after_tool_change(self, frame: Frame, frames: list[Frame], return_pc: int,
+                               line_no: int) -> Frame:
+        """The machine's call after an M6 that changed the tool (``Setup.after_tool_change``, as
+        LinuxCNC's REMAP of M6 runs an ngc): a call statement run as if it stood after the line,
+        its moves carrying the M6's line."""
+        text = self.setup.after_tool_change
+        try:
+            structure = scan([text])
+        except StructureError as e:
+            raise BlockError(f"the routine after a tool change ({text}): {e.message}", col=1) from None
+        st = structure.statements.get(0)
+        if st is None or st.keyword != "CALL":
+            raise BlockError(f"the routine after a tool change ({text}) is not an O-word call", col=1)
+        callee = self.call(st, frame, frames)
+        callee.return_pc = return_pc
+        callee.call_line = frame.call_line or line_no
         return callee
 
     def call_program(self, st: Statement, frame: Frame, frames: list[Frame]) -> Frame | None:

@@ -36,6 +36,7 @@ program's text (``source``); ``Interpreter`` here reads a program line by line t
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -59,6 +60,10 @@ from planner.gcode.source import (
 )
 from planner.gcode.state import MAX_ERRORS, PERSISTENT_PARAMETERS, system_base
 
+# an M6 word (not M60-M69): a program with one goes through the O-word flow when the machine
+# calls a routine after a tool change
+M6_TEXT = re.compile(r"[mM]\s*0*6(?![\s]*[0-9])")
+M6_BYTES = re.compile(rb"[mM]\s*0*6(?![\s]*[0-9])")
 __all__ = ["parse_program", "parse_file", "read_program", "read_program_bytes", "MAX_ERRORS",
            "PERSISTENT_PARAMETERS", "system_base", "Interpreter"]
 
@@ -87,7 +92,7 @@ class Interpreter(Executor, FastPaths):
         if text is None:
             assert utf8 is not None
             if (not (self.use_bulk and self.use_fast) or utf8.startswith(b"\xef\xbb\xbf")
-                    or contains(utf8, b"\r\n") or has_control_flow(utf8)):
+                    or contains(utf8, b"\r\n") or has_control_flow(utf8) or self._calls_after_m6(utf8)):
                 # its text is read from now on: the bytes keep a mark and line ends it has not
                 text, utf8 = decode_utf8(utf8), None
             else:
@@ -103,7 +108,7 @@ class Interpreter(Executor, FastPaths):
             text = text.replace("\r\n", "\n")  # Windows line ends, once for the whole text
             utf8 = None
         self.started = False  # saw content or an opening '%'
-        if has_control_flow(text):
+        if has_control_flow(text) or self._calls_after_m6(text):
             self.run_structured(text.split("\n"))
         elif not (self.use_bulk and self.use_fast and self.run_bulk(text, utf8)):
             line = self.line
@@ -115,6 +120,15 @@ class Interpreter(Executor, FastPaths):
                 if report is not None and line_no % every == 0:
                     report(line_no, len(lines))
         return self._finish(count_lines(text))
+
+    def _calls_after_m6(self, text: str | bytes) -> bool:
+        """Whether an M6 may call the machine's routine (``Setup.after_tool_change``): then the
+        program runs through the O-word flow, which makes the call."""
+        if not self.setup.after_tool_change:
+            return False
+        if isinstance(text, bytes):
+            return M6_BYTES.search(text) is not None
+        return M6_TEXT.search(text) is not None
 
     def _finish(self, line_count: int) -> Program:
         if self.curve.nurbs is not None and not self.ended:

@@ -105,6 +105,7 @@ class Setup:
     probe_results: tuple[ProbeResult | None, ...]   # what the machine's probe did on the first G38.x
     input_results: tuple[float | None, ...]  # what M66 read on the first waits
     blend_default_mm: float                  # G64 without P: the machine's path tolerance
+    after_tool_change: str = ""              # an O-word call run after an M6 that changes the tool
     zero_length: float = ZERO_LEN
     n: int = field(init=False)
     axis_index: dict[str, int] = field(init=False)
@@ -257,6 +258,7 @@ class CallStack:
     sub_files: dict[str, tuple[str, list[str], Structure]] = field(default_factory=dict)
     oword_places: dict[str, tuple[str, int, str]] = field(default_factory=dict)
     sub_places: dict[tuple[str, str], int] = field(default_factory=dict)
+    tool_changed: bool = False       # an M6 changed the tool on the line just read
 
 
 @dataclass(slots=True)
@@ -357,6 +359,7 @@ class InterpBase(ABC):
             mcodes=dict(getattr(machine, "mcodes", {}) or {}),
             probe_results=tuple(probe_results), input_results=tuple(input_results),
             blend_default_mm=blend_default_mm,
+            after_tool_change=str(getattr(machine, "after_tool_change", "") or ""),
             wrapped=tuple(bool(getattr(a, "wrapped", False)) for a in machine.axes))
         setup = self.setup
         self.name = name

@@ -130,6 +130,7 @@ class ToolCodes(MotionCodes):
                 self.rec.events.append(Event(EventKind.SPINDLE, b.line, after, 0.0,
                                              "M06: the spindle stops for the tool change"))
             self.tool = self.selected
+            self.calls.tool_changed = bool(self.setup.after_tool_change)
             self.rec.events.append(Event(
                 EventKind.TOOL_CHANGE, b.line, after, float(self.tool),
                 f"M06: change to tool {self.tool_label(self.tool)} by hand, then press cycle start"))

@@ -3,15 +3,17 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from app.machine.controller import MachineController
 from app.machine.errors import ConfigError
 from app.machine.model import MachineState
 from planner.core.tools import Tool
-from tests.machine.conftest import make_controller, run_to_idle
+from tests.machine.conftest import make_controller, run_to_idle, trace
 
 T1 = Tool(1, 1, (("Z", 40.0),), 6.0, "6 mm flat")
 
@@ -261,3 +263,79 @@ def test_the_state_says_which_tool_is_measured_and_an_error_names_the_step(ctl: 
     assert any("G38.2 (the fast probe down to the setter): the probe already touches where the move starts"
                in c for c in causes), causes
     assert not any("(line " in c for c in causes), causes
+
+
+def _measuring(config_path: Path, tolerance_mm: float) -> None:
+    """[toolchange] measure = true (and the clearance just above the simulated stylus' surface,
+    Z-50, for speed)."""
+    text = config_path.read_text().replace("[controller]", "[controller]\nrestart_clearance_mm = -40.0", 1)
+    config_path.write_text(text + f"\n[toolchange]\nmeasure = true\nbroken_tolerance_mm = {tolerance_mm}\n")
+
+
+M6_PROGRAM = "G21 G90 G54\nT2 M6\nG43 H2\nG0 X5 Y5 Z5\nM30\n"
+
+
+def test_m6_measures_the_new_tool_and_the_program_goes_on_with_its_length(
+        qapp, config_path: Path, state_dir: Path) -> None:
+    """After the operator's change, the new tool is measured on the setter (the shipped
+    tool_measure.ngc, called after M6 as LinuxCNC's REMAP does), its length written, and
+    the program's G43 H2 uses it: the simulated stylus touches at Z-50, the setter's gauge line
+    is at Z-60, so any tool measures 10 mm."""
+    _measuring(config_path, 0.5)
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+        assert ctl.set_tool(Tool(2, 2, (("Z", 10.3),), 8.0, "8 mm"))
+        assert ctl.load_program(M6_PROGRAM, wait=True) and ctl.cycle_start(wait=True)
+        assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 10)
+        assert ctl.state_reason.endswith("; T2 (8 mm) is then measured on the tool setter"), ctl.state_reason
+        assert ctl.cycle_start()                                    # T2 is in
+        run_to_idle(ctl, 60.0)
+        assert ctl.last_run is not None and ctl.last_run.completed, ctl.state_reason
+        length = ctl.tool_table.get(2).length_mm
+        assert length == pytest.approx(10.0, abs=2e-3)
+        assert ctl.tool_in_spindle == 2
+        # G43 H2 with the measured length: the tip at work Z5
+        g5x = ctl.work_offsets["G54"][2]
+        assert ctl.reference_position[2] == pytest.approx(5.0 + g5x + length, abs=1e-3)
+        # it went to the setter: machine X, Y of the setter, down to the stylus' surface
+        t = trace(ctl)["reference"]
+        at_setter = np.flatnonzero((np.abs(t[:, 0] + 230.0) < 1e-3) & (np.abs(t[:, 1] + 180.0) < 1e-3))
+        assert len(at_setter) and t[at_setter, 2].min() < -50.0 + 1e-3
+    finally:
+        ctl.shutdown()
+
+
+def test_a_broken_tool_stops_the_program_and_keeps_the_table(qapp, config_path: Path,
+                                                             state_dir: Path) -> None:
+    """T2's table length 12 mm, measured 10 mm: more than the 0.5 mm tolerance, an alarm
+    that says so; the table keeps 12 and nothing after the M6 runs."""
+    _measuring(config_path, 0.5)
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+        assert ctl.set_tool(Tool(2, 2, (("Z", 12.0),), 8.0, "8 mm"))
+        assert ctl.load_program(M6_PROGRAM, wait=True) and ctl.cycle_start(wait=True)
+        assert ctl.run_until(lambda: ctl.state is MachineState.HOLD, 10)
+        assert ctl.cycle_start()
+        assert ctl.run_until(lambda: ctl.state is MachineState.ALARM, 60), ctl.state_reason
+        assert ctl.run_until(lambda: ctl.stream.job is None, 10)
+        (alarm,) = [a for a in ctl.active_alarms if "broken or wrong tool" in a.cause]
+        assert "with the result, tool_measure.ngc line" in alarm.cause, alarm.cause
+        measured = float(re.search(r"T2\.0+ measures (-?\d+\.\d+) mm", alarm.cause).group(1))
+        assert measured == pytest.approx(10.0, abs=2e-3) and "the table says 12.0" in alarm.cause
+        assert ctl.tool_table.get(2).length_mm == 12.0
+        assert ctl.last_run is not None and not ctl.last_run.completed
+        t = trace(ctl)["reference"]
+        assert not np.any((np.abs(t[:, 0] - 5.0) < 1e-3) & (np.abs(t[:, 1] - 5.0) < 1e-3))  # never at X5 Y5
+    finally:
+        ctl.shutdown()
+
+
+def test_without_measure_m6_reads_as_before(ctl: MachineController) -> None:
+    """The default: no call after M6, the table's length as it is."""
+    assert ctl.config.machine.after_tool_change == ""
+    assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+    assert ctl.set_tool(Tool(2, 2, (("Z", 12.0),), 8.0, "8 mm"))
+    assert ctl.load_program(M6_PROGRAM, wait=True)
+    assert not ctl.program_info.program.probes

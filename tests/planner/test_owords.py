@@ -484,3 +484,44 @@ def test_a_sub_is_defined_where_linuxcnc_defines_it(case: str) -> None:
     assert ours == text.splitlines()[refused_at - 1]
     # a call to a sub not defined: rs274 seeks it ahead and names the block where the file ended
     assert theirs == (text.splitlines()[-1] if case == "inside an if not run" else ours)
+
+
+# ------------------------------------------------------------------ the call after M6
+def _after_m6(tmp_path, body: str = "G0 Z[#1]\nG10 L1 P#5400 Z#1"):
+    """A machine whose M6 calls o<after> [7] (LinuxCNC's REMAP of M6 as an ngc)."""
+    import dataclasses
+
+    from planner.core.machine import MachineSpec
+
+    (tmp_path / "after.ngc").write_text(f"o<after> sub\n{body}\no<after> endsub\n")
+    return dataclasses.replace(MachineSpec.default(), shipped_subroutine_dir=str(tmp_path),
+                               after_tool_change="o<after> call [7]")
+
+
+def test_m6_that_changes_the_tool_calls_the_machines_routine(tmp_path) -> None:
+    from planner.core.program import EventKind
+    from planner.core.tools import Tool, ToolTable
+
+    machine = _after_m6(tmp_path)
+    tools = ToolTable({1: Tool(1, 1, (("Z", 3.0),)), 2: Tool(2, 2, (("Z", 4.0),))})
+    # a plain program (the bulk reader's kind) and the same with the tool already in
+    p = parse_program("G0 X1\nT2 M6\nG43 H2\nG0 X2 Z0\nM2\n", "a.ngc", machine, tools=tools,
+                      tool_in_spindle=1)
+    kinds = [(e.kind, e.line) for e in p.events]
+    assert (EventKind.TOOL_CHANGE, 2) in kinds and (EventKind.TOOL_DATA, 2) in kinds
+    assert p.tool_sets[0].length_mm == 7.0          # the routine's G10 L1, then G43 H2 with it
+    assert p.moves[-1].end[2] == pytest.approx(7.0)
+    assert any(m.line == 2 and m.end[2] == pytest.approx(7.0) for m in p.moves)   # its move, at the M6 line
+    same = parse_program("T1 M6\nG0 X1\nM2\n", "b.ngc", machine, tools=tools, tool_in_spindle=1)
+    assert not any(e.kind is EventKind.TOOL_DATA for e in same.events)
+    # M61 changes the tool without a change: no call
+    m61 = parse_program("M61 Q2\nG0 X1\nM2\n", "c.ngc", machine, tools=tools, tool_in_spindle=1)
+    assert not any(e.kind is EventKind.TOOL_DATA for e in m61.events)
+
+
+def test_an_error_in_the_routine_after_m6_names_its_file_and_line(tmp_path) -> None:
+    machine = _after_m6(tmp_path, "G0 Z1\nG0 X1 X2")
+    with pytest.raises(ProgramError) as caught:
+        parse_program("T2 M6\nG0 X1\nM2\n", "a.ngc", machine)
+    (e,) = caught.value.errors
+    assert e.file.endswith("after.ngc") and e.line == 3 and "two X words" in e.message

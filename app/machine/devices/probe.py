@@ -24,11 +24,11 @@ timeout, as in LinuxCNC.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from app.machine.config import probe_overtravel_mm
 from app.machine.devices.reads import ReadAgain
 from app.machine.infra.drives import DriveLink
 from app.machine.motion.jobs import Job
@@ -40,14 +40,6 @@ from ethercat.worker import WorkerSnapshot
 from planner.core.program import EventKind, ProbeRequest, ProbeResult
 
 __all__ = ["ProbeRun", "Prober", "probe_overtravel_mm"]
-
-
-def probe_overtravel_mm(feed_mm_min: float, jerk_mm_s3: float, reaction_s: float = 0.015) -> float:
-    """How far the stylus travels past the contact at ``feed_mm_min``: the feed for the reaction
-    (the feeder sees the latch, the stop is spliced a few cycles ahead of the drives), then the
-    jerk-limited stop along the path, v sqrt(v / J)."""
-    v = feed_mm_min / 60.0
-    return v * (reaction_s + math.sqrt(v / jerk_mm_s3))
 
 
 @dataclass

@@ -6,6 +6,7 @@ give)."""
 
 from __future__ import annotations
 
+import os
 from dataclasses import replace
 
 import numpy as np
@@ -58,7 +59,10 @@ class ReadAgain:
             full = job.reread(probes, waits)
         except ProgramError as exc:
             e = exc.errors[0]
-            fail(f"{where}: with the result, line {e.line} reads: {e.message}")
+            if os.path.isabs(e.file):            # in a subroutine file (tool_measure.ngc ...)
+                fail(f"{where}: with the result, {os.path.basename(e.file)} line {e.line} reads: {e.message}")
+            else:
+                fail(f"{where}: with the result, line {e.line} reads: {e.message}")
             return
         except PlannerError as exc:
             fail(f"{where}: with the result the program reads: {exc}")

@@ -567,6 +567,8 @@ class Streamer:
                                     "press cycle start"),
             PauseKind.SINGLE_BLOCK: f"single block: end of line {p.line}",
         }.get(kind, str(kind))
+        if kind is PauseKind.TOOL_CHANGE and self._settings.config.machine.after_tool_change:
+            reason += f"; {label} is then measured on the tool setter"
         hold = _OPERATOR_STOPS.get(kind, HoldKind.FEED_HOLD)
         if p.line > 0 and p.line != self.line:   # the line that stopped, not the next one
             self.line = p.line
