@@ -3695,7 +3695,7 @@ BIRAK</translation>
     <message>
       <location filename="../../app/controller_text.py" line="46" />
       <source>{0}; {1} is then measured on the tool setter</source>
-      <translation type="unfinished" />
+      <translation>{0}; {1} ardından takım ayarlayıcıda ölçülür</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="330" />
