@@ -21,6 +21,11 @@ Fault injection (the same names work through `CyclicWorker.inject` in every work
                                              a surface: the bit is on while axis i (its units,
                                              not counts) is at or below `level` (above, when
                                              not `below`)
+    set_probe_part(part, axes, bit, input_drive)
+                                             the same probe touches a simulated workpiece
+                                             (`sim_part.SimPart`: a block, a bore, a boss) with
+                                             a ball-ended stylus; the bit is on while it or the
+                                             surface above touches
 Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
@@ -33,12 +38,27 @@ from .bus import Bus, DriveSpec, SlaveInfo
 from .drive_model import DriveModel, DriveParams
 from .errors import ConfigurationError, SdoAbortError
 from .object_dictionary import ERROR_OVERCURRENT, OBJECTS, decode_object, encode_object
+from .sim_part import PART_VALUES, SimPart
 
 #: injection names accepted by `SimBus.inject`
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
-              "lose_slave", "restore_slave", "probe_surface", "probe_off")
+              "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
+              "probe_part_off")
 #: ``inject("probe_surface", i, value)``: value = ``probe_surface_value(...)``
 PROBE_SURFACE_SCALE = 1e6
+
+
+def probe_part_values(part: SimPart, axes: tuple[int, int, int], bit: int, input_drive: int
+                      ) -> list[tuple[str, int, int]]:
+    """The injections (name, index, value) that place ``part`` (its numbers one by one, then
+    the axes X, Y, Z are drives ``axes`` and the probe is bit ``bit`` of ``input_drive``'s
+    inputs)."""
+    out = [("probe_part_value", 0, k | int(round(v * PROBE_SURFACE_SCALE)) << 5)
+           for k, v in enumerate(part.values())]
+    x, y, z = axes
+    out.append(("probe_part", 0, (int(bit) & 31) | (int(input_drive) & 63) << 5 | (x & 63) << 11
+                | (y & 63) << 17 | (z & 63) << 23))
+    return out
 
 
 def probe_surface_value(bit: int, level_units: float, below: bool = True, input_drive: int = -1) -> int:
@@ -93,6 +113,10 @@ class SimBus(Bus):
         # the simulated probe: (axis watched, drive wired to, bit mask, level in counts, +1
         # contact at or below in counts, -1 at or above), or None
         self._probe: tuple[int, int, int, float, int] | None = None
+        # the simulated workpiece: (part, drives of X, Y, Z, drive wired to, bit mask), or None;
+        # its numbers as the injections bring them
+        self._part: tuple[SimPart, tuple[int, int, int], int, int] | None = None
+        self._part_values: list[float] = [0.0] * PART_VALUES
 
     # ------------------------------------------------------------------ backend
     @property
@@ -140,13 +164,40 @@ class SimBus(Bus):
             self.models[wired].digital_inputs &= ~mask
         self._probe = None
 
+    def set_probe_part(self, part: SimPart, axes: tuple[int, int, int], bit: int, input_drive: int) -> None:
+        """The probe on bit ``bit`` of drive ``input_drive``'s inputs touches ``part`` (its
+        lengths in the units of the drives ``axes`` of X, Y and Z) besides the surface."""
+        if (not all(0 <= a < self.n_drives for a in (*axes, input_drive)) or not 0 <= bit < 32
+                or len(set(axes)) != 3):
+            raise ConfigurationError(f"simulated part on drives {axes}, probe on drive {input_drive} bit "
+                                     f"{bit}: no such drive or bit")
+        self.clear_probe_part()
+        self._part = (part, axes, input_drive, 1 << bit)
+
+    def clear_probe_part(self) -> None:
+        if self._part is not None:
+            self.models[self._part[2]].digital_inputs &= ~self._part[3]
+        self._part = None
+
+    def _units(self, i: int) -> float:
+        d = self.drives[i]
+        return self.models[i].position_actual / (d.counts_per_unit * d.direction)
+
     def _touch(self) -> None:
-        i, wired, mask, level, sign = self._probe  # type: ignore[misc]
-        m = self.models[wired]
-        if sign * self.models[i].position_actual <= sign * level:
-            m.digital_inputs |= mask
-        else:
-            m.digital_inputs &= ~mask
+        touching: dict[tuple[int, int], bool] = {}
+        if self._probe is not None:
+            i, wired, mask, level, sign = self._probe
+            touching[(wired, mask)] = sign * self.models[i].position_actual <= sign * level
+        if self._part is not None:
+            part, (ix, iy, iz), wired, mask = self._part
+            hit = part.touches(self._units(ix), self._units(iy), self._units(iz))
+            touching[(wired, mask)] = touching.get((wired, mask), False) or hit
+        for (wired, mask), on in touching.items():
+            m = self.models[wired]
+            if on:
+                m.digital_inputs |= mask
+            else:
+                m.digital_inputs &= ~mask
 
     def _read_inputs(self, i: int, m: DriveModel) -> None:
         self.statusword[i] = m.statusword
@@ -169,7 +220,7 @@ class SimBus(Bus):
         tp = self.target_position
         mode = self.modes_of_operation
         dout = self.digital_outputs
-        if self._probe is not None:
+        if self._probe is not None or self._part is not None:
             self._touch()
         for i, m in enumerate(self.models):
             if lost_frame or self._lost[i] or self._init[i]:
@@ -294,6 +345,16 @@ class SimBus(Bus):
                                    bool(value >> 5 & 1), (value >> 6 & 63) - 1)
         elif name == "probe_off":
             self.clear_probe_surface()
+        elif name == "probe_part_value":
+            slot = value & 31
+            if slot >= PART_VALUES:
+                raise ConfigurationError(f"simulated part value {slot}: there are {PART_VALUES}")
+            self._part_values[slot] = (value >> 5) / PROBE_SURFACE_SCALE
+        elif name == "probe_part":
+            axes = ((value >> 11) & 63, (value >> 17) & 63, (value >> 23) & 63)
+            self.set_probe_part(SimPart.from_values(self._part_values), axes, value & 31, (value >> 5) & 63)
+        elif name == "probe_part_off":
+            self.clear_probe_part()
         else:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
 

@@ -23,6 +23,8 @@ from app.machine.model import (
     ControllerSnapshot,
     HoldKind,
     MachineState,
+    ProbingRequest,
+    ProbingResult,
     ProgramInfo,
     Prompt,
     RestartPreview,
@@ -31,8 +33,10 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.program.joblog import RunRecord
+from ethercat.sim_part import SimPart
 from opcua_server.server import ServerStatus
 from opcua_server.settings import OpcUaSettings
+from planner.core.program import Program
 from planner.core.tools import Tool, ToolTable
 
 __all__ = ["MachineApi"]
@@ -72,6 +76,7 @@ class MachineApi(Protocol):
     configChanged: SignalInstance  # MachineConfig (after update_config / load)
     commandRefused: SignalInstance  # (action, reason)
     message: SignalInstance  # informational text for the status line
+    probingFinished: SignalInstance  # ProbingResult: what a probing wizard found (and wrote)
     # ControllerSnapshot: the status in one object, published when anything in it changed (at
     # most once an event-loop turn); ``snapshot()`` makes one now
     statusChanged: SignalInstance
@@ -244,6 +249,11 @@ class MachineApi(Protocol):
     @property
     def last_run(self) -> RunSummary | None:
         """Summary of the last program run (None before the first)."""
+        ...
+
+    @property
+    def last_probing(self) -> ProbingResult | None:
+        """What the last probing wizard found (None before one ended, or while one runs)."""
         ...
 
     @property
@@ -530,6 +540,24 @@ class MachineApi(Protocol):
     def measure_tool(self, number: int) -> CommandResult:
         """Measure the length of the tool in the spindle on the tool setter (``[probe] setter_*``):
         the machine moves by itself; the table takes the length when it is done."""
+        ...
+
+    def probe_routine(self, req: ProbingRequest) -> str:
+        """The blocks a probing wizard runs (the shipped routine's call, with the probe's length
+        and the system that takes the result)."""
+        ...
+
+    def preview_probing(self, req: ProbingRequest) -> Program | CommandResult:
+        """A probing wizard's moves as read and checked before it runs (each probe to the end of
+        its search), to draw before the operator confirms; the refusal otherwise."""
+        ...
+
+    def run_probing(self, req: ProbingRequest) -> CommandResult:
+        """Run a probing wizard; ``probingFinished`` says what it found and wrote."""
+        ...
+
+    def simulate_part(self, part: SimPart | None) -> bool:
+        """Simulated drives: a workpiece the probe touches (False on a real bus)."""
         ...
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:

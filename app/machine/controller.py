@@ -57,6 +57,7 @@ faults, alarms, reset, a new configuration and shutdown from ``MachineEvents``):
               tools      ToolControl     tool table, tool in the spindle
               setter     ToolSetter      measuring a tool on the setter
               prober     Prober          G38.x;  waiter  InputWaiter  M66
+              probing    Probing         the probing wizards (a part set up by touch)
     infra/    conn       Connection      the worker's life cycle, persistence, simulated time
               poller     StatusPoller    the poll;  drives  DriveLink  the worker's handle
               settings   MachineSettings the configuration in force
@@ -75,6 +76,7 @@ from app.machine.config import MachineConfig
 from app.machine.devices.inputs import InputWaiter
 from app.machine.devices.outputs import DigitalOutputs
 from app.machine.devices.probe import Prober
+from app.machine.devices.probing import Probing
 from app.machine.devices.reads import ReadAgain
 from app.machine.devices.setter import ToolSetter
 from app.machine.devices.spindle import SpindleControl
@@ -90,6 +92,7 @@ from app.machine.model import (
     BusStatus,
     HoldKind,
     MachineState,
+    ProbingResult,
     ProgramInfo,
     Prompt,
     RunSummary,
@@ -141,7 +144,7 @@ _stream, _loader, _run, _manual, _homing = _part("stream"), _part("loader"), _pa
 _spindle, _tools, _setter, _alarms, _conn = _part("spindle_ctl"), _part("tools"), _part("setter"), \
     _part("alarm_log"), _part("conn")
 _poller, _drives, _status, _remote = _part("poller"), _part("drives"), _part("status"), _part("remote")
-_job_log = _part("jobs_log")
+_job_log, _probing, _prober = _part("jobs_log"), _part("probing"), _part("prober")
 
 
 class MachineController(QObject):
@@ -179,6 +182,7 @@ class MachineController(QObject):
     configChanged = Signal(object)
     commandRefused = Signal(str, str)
     message = Signal(str)
+    probingFinished = Signal(object)
     statusChanged = Signal(object)   # ControllerSnapshot, at most once an event-loop turn
 
     def __init__(
@@ -228,14 +232,16 @@ class MachineController(QObject):
         stream.wire(run, loader)
         loader.wire(run)
         read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
-        self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses)
+        self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses, tools)
         self.waiter = InputWaiter(coords, stream, read_again, pauses)
         self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs, run,
                                             stream, jobs)
         self.setter = ToolSetter(settings, states, tools, positions, coords, manual, alarms)
+        self.probing = Probing(settings, states, tools, positions, coords, manual, out.probingFinished.emit)
         self.poller = poller = StatusPoller(settings, drives, positions, coords, alarms, stream, out, events)
         poller.on_poll(homing.poll)
         poller.on_poll(prober.place_simulated_surface)
+        poller.on_poll(prober.place_simulated_part)
         self.conn = conn = Connection(settings, store, states, drives, positions, coords, alarms, stream,
                                       poller, out, events, worker_factory, poll_hz, self)
         states.wire(loader, stream, run, poller.poll)
@@ -280,6 +286,7 @@ class MachineController(QObject):
     progress: reads[tuple[float, float]] = reads(_stream, "progress")
     tracking: reads[TrackingReport] = reads(_stream, "tracking")
     last_run: reads[RunSummary | None] = reads(_stream, "last_summary")
+    last_probing: reads[ProbingResult | None] = reads(_probing, "last")
     feed_override_pct: reads[float] = reads(_run, "feed_pct")
     rapid_override_pct: reads[float] = reads(_run, "rapid_pct")
     single_block: reads[bool] = reads(_run, "single_block")
@@ -351,6 +358,10 @@ class MachineController(QObject):
     touch_off_tool = forward(_tools, ToolControl.touch_off_tool)
     import_tool_table = forward(_tools, ToolControl.import_table)
     measure_tool = forward(_setter, ToolSetter.measure_tool)
+    probe_routine = forward(_probing, Probing.routine)
+    preview_probing = forward(_probing, Probing.preview_probing)
+    run_probing = forward(_probing, Probing.run_probing)
+    simulate_part = forward(_prober, Prober.simulate_part)
     acknowledge_alarm = forward(_alarms, AlarmLog.acknowledge_alarm)
     set_part_target = forward(_job_log, JobLog.set_target)
     reset_part_count = forward(_job_log, JobLog.reset_count)

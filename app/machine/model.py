@@ -362,3 +362,57 @@ class ResumePoint:
     # what the run's probes and M66 read before it stopped (the program above is read with them)
     probe_results: tuple[ProbeResult | None, ...] = ()
     wait_results: tuple[float | None, ...] = ()
+
+
+# ------------------------------------------------------------------ probing wizards
+class ProbeWizard(enum.StrEnum):
+    """What a wizard finds, by the routine that does it."""
+
+    Z_SURFACE = "probe_z"
+    EDGE = "probe_edge"
+    OUTSIDE_CORNER = "probe_corner_outside"
+    INSIDE_CORNER = "probe_corner_inside"
+    BORE = "probe_bore"
+    BOSS = "probe_boss"
+    ANGLE = "probe_angle"
+
+
+@dataclass(frozen=True, slots=True)
+class ProbingRequest:
+    """One wizard's inputs. ``system``: the coordinate system that takes the result ("" only
+    reports it); ``axis`` and ``x_dir``/``y_dir``: which way the probe moves toward the face
+    (edge, angle) or where the part or the walls are from the probe (corners), +1 or -1;
+    ``diameter_mm`` and ``tolerance_mm``: a bore or boss as expected; ``depth_mm``: how far
+    below the start a boss is probed; ``along_mm``: how far along the faces a corner is probed,
+    or how far apart the angle's two points are; ``value``: what the point found reads after
+    (X, Y, Z). The probe's feeds and distances default to ``[probe]`` (None)."""
+
+    wizard: ProbeWizard
+    system: str = ""
+    axis: str = "X"
+    x_dir: int = 1
+    y_dir: int = 1
+    diameter_mm: float = 20.0
+    tolerance_mm: float = 1.0
+    depth_mm: float = 5.0
+    along_mm: float = 10.0
+    value: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    search_mm: float | None = None
+    clearance_mm: float | None = None
+    fast_feed_mm_min: float | None = None
+    slow_feed_mm_min: float | None = None
+    retract_mm: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class ProbingResult:
+    """What a wizard found (program coordinates of the system in use before it wrote: "X", "Y",
+    "Z", the diameter "D", the angle "A" in degrees) and the system it wrote ("" none)."""
+
+    wizard: ProbeWizard
+    values: dict[str, float] = field(default_factory=dict)
+    written: str = ""
+
+    def text(self) -> str:
+        said = " ".join(f"{k}{v:.4f}" for k, v in self.values.items())
+        return f"probed: {said}" + (f", written to {self.written}" if self.written else " (only reported)")

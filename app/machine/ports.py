@@ -202,6 +202,16 @@ class OutputSwitch(Protocol):
     def set_output(self, number: int, on: bool) -> str: ...
 
 
+class ToolsView(Protocol):
+    """The tool table and the tool in the spindle, read only."""
+
+    @property
+    def table(self) -> ToolTable: ...
+
+    @property
+    def in_spindle(self) -> int: ...
+
+
 class ToolView(Protocol):
     """The tool table and the tool in the spindle."""
 

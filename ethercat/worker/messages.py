@@ -41,7 +41,8 @@ class Result(enum.IntEnum):
 
 #: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox
 INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
-                "lose_slave", "restore_slave", "probe_surface", "probe_off")
+                "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
+                "probe_part_off")
 
 _ERROR_TEXT = {
     0x2310: "continuous over-current",

@@ -24,6 +24,8 @@ from app.machine.model import (
     ControllerSnapshot,
     HoldKind,
     MachineState,
+    ProbingRequest,
+    ProbingResult,
     ProgramInfo,
     ProgramIssue,
     Prompt,
@@ -33,7 +35,9 @@ from app.machine.model import (
     SpindleState,
     TrackingReport,
 )
+from ethercat.sim_part import SimPart
 from planner.core.errors import ProgramError
+from planner.core.program import Program
 from planner.core.tools import Tool, ToolTable
 from planner.gcode.interpreter import parse_program
 
@@ -64,6 +68,7 @@ class FakeController(QObject):
     configChanged = Signal(object)
     commandRefused = Signal(str, str)
     message = Signal(str)
+    probingFinished = Signal(object)
     statusChanged = Signal(object)
 
     def __init__(self, config: MachineConfig | None = None) -> None:
@@ -110,6 +115,7 @@ class FakeController(QObject):
         self.opcua_status = None
         self.opcua_settings = self.config.opcua
         self.last_run: RunSummary | None = None
+        self.last_probing: ProbingResult | None = None
         self.config_path = Path(self.config.path) if self.config.path else Path("machine.toml")
 
     @property
@@ -369,6 +375,21 @@ class FakeController(QObject):
 
     def measure_tool(self, number: int) -> CommandResult:
         return self._ok("measure_tool", number)
+
+    def probe_routine(self, req: ProbingRequest) -> str:
+        return f"o<{req.wizard.value}> call"
+
+    def preview_probing(self, req: ProbingRequest) -> Program | CommandResult:
+        """A square around where the machine stands: what a wizard's preview draws."""
+        self.calls.append(("preview_probing", req))
+        return parse_program("G91 G0 X5\nG0 Y5\nG0 X-5\nG0 Y-5\n", "probe", self.config.machine)
+
+    def run_probing(self, req: ProbingRequest) -> CommandResult:
+        return self._ok("run_probing", req)
+
+    def simulate_part(self, part: SimPart | None) -> bool:
+        self.calls.append(("simulate_part", part))
+        return True
 
     def spindle_speed(self, rpm: float) -> CommandResult:
         self.spindle = replace(self.spindle, rpm=rpm)

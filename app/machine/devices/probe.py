@@ -24,7 +24,7 @@ timeout, as in LinuxCNC.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -35,7 +35,8 @@ from app.machine.motion.jobs import Job
 from app.machine.motion.pauses import PauseHandlers
 from app.machine.motion.streamer import Streamer
 from app.machine.motion.timescale import PauseKind, PausePoint
-from app.machine.ports import PositionsView, Settings
+from app.machine.ports import PositionsView, Settings, ToolsView
+from ethercat.sim_part import SimPart
 from ethercat.worker import WorkerSnapshot
 from planner.core.program import EventKind, ProbeRequest, ProbeResult
 
@@ -56,8 +57,9 @@ class Prober:
     contact, and goes on with the result (the module docstring)."""
 
     def __init__(self, settings: Settings, drives: DriveLink, positions: PositionsView, motion: Streamer,
-                 reads: ReadAgain, pauses: PauseHandlers) -> None:
+                 reads: ReadAgain, pauses: PauseHandlers, tools: ToolsView) -> None:
         self._settings = settings
+        self._tools = tools
         self._drives = drives
         self._positions = positions
         self._motion = motion
@@ -65,6 +67,9 @@ class Prober:
         self.run: ProbeRun | None = None
         # the worker and home offsets the simulated surface was placed for
         self._surface_at: tuple[object, tuple[float, ...]] | None = None
+        # the simulated workpiece (machine coordinates), and what it was placed for
+        self._part: SimPart | None = None
+        self._part_at: tuple[object, ...] | None = None
         motion.on_feed(self.watch)
         motion.on_poll(self.poll)
         motion.on_job_end(self.cancel)
@@ -120,6 +125,43 @@ class Prober:
                                                                     probe.sim_surface_mm + offsets[i],
                                                                      True, probe.drive))
         self._surface_at = (w, offsets)
+
+    def simulate_part(self, part: SimPart | None) -> bool:
+        """Simulated drives: a workpiece the stylus touches (``ethercat.sim_part``, machine
+        coordinates), besides the surface; the ball's radius and length come from the tool in
+        the spindle as the table gives them. Placed at the next poll and again when the home
+        offsets or the tool change; None takes it away. False on a real bus."""
+        cfg = self._settings.config
+        if cfg.bus.kind != "sim" or cfg.probe.drive is None or not {"X", "Y", "Z"} <= set(cfg.axes):
+            return False
+        self._part, self._part_at = part, None
+        return True
+
+    def place_simulated_part(self, _snap: WorkerSnapshot) -> None:
+        """From the poll: the simulated workpiece in the drives' units of now."""
+        cfg = self._settings.config
+        w = self._drives.worker
+        if cfg.bus.kind != "sim" or cfg.probe.drive is None or w is None:
+            return
+        tool = self._tools.table.get(self._tools.in_spindle)
+        length = tool.length_mm if tool is not None else 0.0
+        radius = tool.diameter_mm / 2.0 if tool is not None else 0.0
+        offsets = tuple(float(v) for v in self._positions.home_offset)
+        key = (w, offsets, length, radius, self._part)
+        if self._part_at == key:
+            return
+        self._part_at = key
+        if self._part is None:
+            self._drives.inject("probe_part_off", 0, 0)
+            return
+        from ethercat.sim_bus import probe_part_values
+
+        axes = cfg.axes
+        ix, iy, iz = (axes.index(a) for a in "XYZ")
+        part = replace(self._part, tip_length_mm=length, tip_radius_mm=radius).shifted(
+            offsets[ix], offsets[iy], offsets[iz])
+        for name, index, value in probe_part_values(part, (ix, iy, iz), cfg.probe.bit, cfg.probe.drive):
+            self._drives.inject(name, index, value)
 
     # ------------------------------------------------------------------ during the move
     def watch(self) -> None:

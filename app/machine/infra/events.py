@@ -25,6 +25,7 @@ if TYPE_CHECKING:
         Alarm,
         BusStatus,
         MachineState,
+        ProbingResult,
         ProgramInfo,
         ProgramIssue,
         RunSummary,
@@ -89,6 +90,7 @@ class PanelChannels:
     configChanged: Channel[MachineConfig] = field(default_factory=_ch)
     commandRefused: Channel[str, str] = field(default_factory=_ch)
     message: Channel[str] = field(default_factory=_ch)
+    probingFinished: Channel[ProbingResult] = field(default_factory=_ch)
 
     @classmethod
     def names(cls) -> tuple[str, ...]:

@@ -188,6 +188,12 @@ class ManualMotion:
         self._motion.start_job(job)
         return self._states.ok(action)
 
+    def check_routine(self, text: str, name: str, action: str) -> Program | CommandResult:
+        """A few blocks the controller wrote, read and checked as ``run_routine`` would run
+        them (the path to draw before the operator confirms), or the refusal."""
+        read = self._read(text, name, action)
+        return read if isinstance(read, CommandResult) else read[0]
+
     def run_routine(self, text: str, name: str, action: str,
                     when_done: Callable[[Job], None] | None = None, reason: str = "",
                     steps: dict[int, str] | None = None) -> CommandResult:

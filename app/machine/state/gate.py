@@ -49,6 +49,7 @@ class Action(enum.StrEnum):
     SET_TOOL_IN_SPINDLE = "set_tool_in_spindle"
     TOUCH_OFF_TOOL = "touch_off_tool"
     MEASURE_TOOL = "measure_tool"
+    PROBE = "probe"
     IMPORT_TOOL_TABLE = "import_tool_table"
     ACKNOWLEDGE_ALARM = "acknowledge_alarm"
 

@@ -1,0 +1,184 @@
+"""The probing wizards: a part set up by touch (a surface, an edge, a corner, a bore, a boss,
+the angle of a face), as Probe Basic's and Sinumerik's "measure workpiece" do.
+
+Each wizard is a G-code routine shipped with the control (``resources/subroutines/probe_*.ngc``,
+O-word subroutines an integrator can read and replace from a folder of ``[planner]
+subroutine_dirs``), called from a few blocks this module writes and run as MDI is: read,
+checked against the soft limits and the machine's rules, drawn before the operator confirms,
+and run with the probe read at every contact. Every positioning move of a routine is a G38.3
+that stops on a contact ("probe touched during positioning"); a probe move that finds nothing
+is an alarm (G38.2); a bore or boss whose diameter is not the one expected stops the routine
+before it writes. The result goes into the chosen coordinate system by the routine's own G10
+(L20 for a position, L2 R for an angle), or is only reported.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from typing import Protocol
+
+from app.machine.model import CommandResult, MachineState, ProbeWizard, ProbingRequest, ProbingResult
+from app.machine.motion.jobs import Job
+from app.machine.ports import CoordinatesView, PositionsView, Settings, ToolsView
+from app.machine.state.gate import Action
+from app.machine.state.states import StateMachine
+from planner.core.machine import WORK_OFFSET_NAMES
+from planner.core.program import EventKind, Program
+
+__all__ = ["ProbeWizard", "ProbingRequest", "ProbingResult", "Probing"]
+
+
+_RESULT = re.compile(r"probe result:(.*)")
+_VALUE = re.compile(r"([A-Z])=(-?\d+(?:\.\d+)?)")
+
+
+class RoutineRunner(Protocol):
+    """Reads and runs a few blocks the controller wrote as MDI (``ManualMotion``)."""
+
+    def check_routine(self, text: str, name: str, action: str) -> Program | CommandResult: ...
+
+    def run_routine(self, text: str, name: str, action: str,
+                    when_done: Callable[[Job], None] | None = None, reason: str = "",
+                    steps: dict[int, str] | None = None) -> CommandResult: ...
+
+    def show_message(self, text: str) -> None: ...
+
+
+class Probing:
+    """The probing wizards (``controller.probing``)."""
+
+    def __init__(self, settings: Settings, states: StateMachine, tools: ToolsView, positions: PositionsView,
+                 coordinates: CoordinatesView, manual: RoutineRunner,
+                 finished: Callable[[ProbingResult], None]) -> None:
+        self._settings = settings
+        self._states = states
+        self._tools = tools
+        self._positions = positions
+        self._coordinates = coordinates
+        self._manual = manual
+        self._finished = finished
+        self.last: ProbingResult | None = None
+
+    # ------------------------------------------------------------------ the routine
+    def routine(self, req: ProbingRequest) -> str:
+        """The blocks a wizard runs: into the system that takes the result, the probe's
+        length in force (G43 H), the routine's call, back to the system that was in use."""
+        probe = self._settings.config.probe
+        tool = self._tools.in_spindle
+        active = self._coordinates.active_offset
+        search = probe.search_mm if req.search_mm is None else req.search_mm
+        clear = probe.clearance_mm if req.clearance_mm is None else req.clearance_mm
+        fast = probe.fast_feed_mm_min if req.fast_feed_mm_min is None else req.fast_feed_mm_min
+        slow = probe.slow_feed_mm_min if req.slow_feed_mm_min is None else req.slow_feed_mm_min
+        back = probe.retract_mm if req.retract_mm is None else req.retract_mm
+        write = 1 if req.system else 0
+        vx, vy, vz = req.value
+        along = 0 if req.axis == "X" else 1
+        toward = req.x_dir if req.axis == "X" else req.y_dir
+        specific: dict[ProbeWizard, tuple[float, ...]] = {
+            ProbeWizard.Z_SURFACE: (vz,),
+            ProbeWizard.EDGE: (along, toward, vx if along == 0 else vy),
+            ProbeWizard.OUTSIDE_CORNER: (req.x_dir, req.y_dir, req.along_mm, vx, vy),
+            ProbeWizard.INSIDE_CORNER: (req.x_dir, req.y_dir, 0.0, vx, vy),
+            ProbeWizard.BORE: (req.diameter_mm, req.tolerance_mm, vx, vy),
+            ProbeWizard.BOSS: (req.diameter_mm, req.tolerance_mm, req.depth_mm, vx, vy),
+            ProbeWizard.ANGLE: (along, toward, req.along_mm),
+        }
+        args = (search, fast, slow, back, clear, write, *specific[req.wizard])
+        call = f"o<{req.wizard.value}> call " + " ".join(f"[{v:.6g}]" for v in args)
+        lines = []
+        switch = bool(req.system) and req.system != active
+        if switch:
+            lines.append(req.system)
+        lines += [f"G43 H{tool}", call]
+        if switch:
+            lines.append(active)
+        return "\n".join(lines)
+
+    def refusal(self, req: ProbingRequest) -> str:
+        """Why the wizard cannot run now ("" when it can)."""
+        cfg = self._settings.config
+        probe = cfg.probe
+        if self._states.state is not MachineState.IDLE:
+            return f"machine is {self._states.state.label.lower()}"
+        if probe.drive is None:
+            return "this machine has no probe input ([probe] drive in the machine configuration)"
+        if not {"X", "Y", "Z"} <= set(cfg.axes):
+            return "probing a part needs X, Y and Z axes"
+        if not all(self._positions.homed):
+            return "axes not homed: home them before probing"
+        tool = self._tools.in_spindle
+        if probe.tool is not None and tool != probe.tool:
+            return (f"the probe T{probe.tool} is not in the spindle (T{tool} is): put it in and set it "
+                    "(In the spindle) first")
+        spec = self._tools.table.get(tool)
+        if tool == 0 or spec is None:
+            return "no probe in the spindle: put it in and set it (In the spindle) first"
+        if spec.diameter_mm <= 0.0:
+            return (f"T{tool} has no tip diameter in the tool table: the edges found would be off by "
+                    "the ball's radius")
+        if req.system and req.system not in WORK_OFFSET_NAMES:
+            return f"unknown work offset {req.system} (G54-G59.3)"
+        if req.axis not in ("X", "Y") or req.x_dir not in (-1, 1) or req.y_dir not in (-1, 1):
+            return "the direction is +X, -X, +Y or -Y"
+        for name, v in (("diameter", req.diameter_mm), ("distance along the faces", req.along_mm)):
+            if not v > 0.0:
+                return f"the {name} must be above 0 mm"
+        if req.wizard is ProbeWizard.BOSS and not req.depth_mm > 0.0:
+            return "the depth below the start must be above 0 mm"
+        if not req.tolerance_mm > 0.0:
+            return "the diameter's tolerance must be above 0 mm"
+        return ""
+
+    # ------------------------------------------------------------------ commands
+    def preview_probing(self, req: ProbingRequest) -> Program | CommandResult:
+        """The wizard's moves as they would run without a contact (each probe to the end of its
+        search), read and checked as they will run; the refusal otherwise."""
+        why = self.refusal(req)
+        if why:
+            return self._states.refuse(Action.PROBE, why)
+        return self._manual.check_routine(self.routine(req), _name(req), Action.PROBE)
+
+    def run_probing(self, req: ProbingRequest) -> CommandResult:
+        """Run the wizard; ``finished`` (and ``last``) get what it found when it ends."""
+        why = self.refusal(req)
+        if why:
+            return self._states.refuse(Action.PROBE, why)
+        self.last = None
+
+        def done(job: Job) -> None:
+            result = self._result(req, job)
+            if result is None:
+                return
+            self.last = result
+            self._manual.show_message(result.text())
+            self._finished(result)
+
+        return self._manual.run_routine(self.routine(req), _name(req), Action.PROBE, done,
+                                        reason=f"probing {_name(req)}")
+
+    def _result(self, req: ProbingRequest, job: Job) -> ProbingResult | None:
+        """What the routine reported, read from it with every contact the machine made."""
+        if job.reread is None:
+            return None
+        full = job.reread(job.probe_results, job.wait_results)
+        reported = [e.message for e in full.events
+                    if e.kind is EventKind.MESSAGE and _RESULT.search(e.message)]
+        if not reported:
+            return None
+        found = _RESULT.search(reported[-1])
+        assert found is not None
+        values = {k: float(v) for k, v in _VALUE.findall(found.group(1))}
+        return ProbingResult(req.wizard, values, req.system)
+
+
+_NAMES = {
+    ProbeWizard.Z_SURFACE: "the Z surface", ProbeWizard.EDGE: "an edge",
+    ProbeWizard.OUTSIDE_CORNER: "an outside corner", ProbeWizard.INSIDE_CORNER: "an inside corner",
+    ProbeWizard.BORE: "a bore", ProbeWizard.BOSS: "a boss", ProbeWizard.ANGLE: "the angle of a face",
+}
+
+
+def _name(req: ProbingRequest) -> str:
+    return _NAMES[req.wizard]
