@@ -12,8 +12,9 @@ The block stands from ``top_mm - depth_mm`` up to ``top_mm``, its centre at (``x
 ``y_mm``), ``half_x_mm`` by ``half_y_mm`` from it along its own axes, turned by
 ``angle_deg`` about Z (counter-clockwise seen from above). A bore goes through it; a boss
 stands ``boss_height_mm`` on its top; both at (``feature_x_mm``, ``feature_y_mm``) in the
-machine's frame with radius ``feature_radius_mm``. Lengths are machine coordinates (mm) of the
-axes given by ``axes`` (drive indices of X, Y and Z).
+machine's frame with radius ``feature_radius_mm``. A pocket goes through it there, square to the
+block, ``pocket_half_x_mm`` by ``pocket_half_y_mm`` from its centre. Lengths are machine
+coordinates (mm).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ class Feature(enum.IntEnum):
     NONE = 0
     BORE = 1
     BOSS = 2
+    POCKET = 3
 
 
 @dataclass(frozen=True, slots=True)
@@ -47,13 +49,15 @@ class SimPart:
     boss_height_mm: float = 10.0
     tip_radius_mm: float = 1.0
     tip_length_mm: float = 0.0
+    pocket_half_x_mm: float = 10.0
+    pocket_half_y_mm: float = 10.0
 
     def shifted(self, dx: float, dy: float, dz: float) -> SimPart:
         """The same part ``dx``, ``dy``, ``dz`` further (machine to drive coordinates)."""
         return SimPart(self.x_mm + dx, self.y_mm + dy, self.half_x_mm, self.half_y_mm, self.angle_deg,
                        self.top_mm + dz, self.depth_mm, self.feature, self.feature_x_mm + dx,
                        self.feature_y_mm + dy, self.feature_radius_mm, self.boss_height_mm,
-                       self.tip_radius_mm, self.tip_length_mm)
+                       self.tip_radius_mm, self.tip_length_mm, self.pocket_half_x_mm, self.pocket_half_y_mm)
 
     # ------------------------------------------------------------------ geometry
     def distance(self, x: float, y: float, z: float) -> float:
@@ -66,6 +70,11 @@ class SimPart:
         block = _box(u, v, z - mid, self.half_x_mm, self.half_y_mm, self.depth_mm / 2.0)
         if self.feature is Feature.NONE:
             return block
+        if self.feature is Feature.POCKET:       # through the block, square to it
+            fx, fy = self.feature_x_mm - self.x_mm, self.feature_y_mm - self.y_mm
+            pu, pv = c * fx + s * fy, -s * fx + c * fy
+            pocket = _box(u - pu, v - pv, 0.0, self.pocket_half_x_mm, self.pocket_half_y_mm, math.inf)
+            return max(block, -pocket)
         r = math.hypot(x - self.feature_x_mm, y - self.feature_y_mm) - self.feature_radius_mm
         if self.feature is Feature.BORE:
             return max(block, -r)

@@ -33,7 +33,9 @@ MESSAGE_TEXT = APP / "message_text.py"
 MESSAGE_CALLS = {"BlockError": 0, "LexError": 0, "StructureError": 0, "G7xError": 0, "PlannerError": 0,
                  "GeometryError": 0, "ValueError": 0, "error": -1, "error_in": -1}
 CONTROLLER_CALLS = {"refuse": 1, "raise_alarm": 1, "stop_job": 0, "emit": 0, "fail": 0, "stop": 0,
-                    "ControllerError": 0, "CommandResult": 1}
+                    "ControllerError": 0, "CommandResult": 1, "show_message": 0}
+# functions whose returned text is a refusal (``refusal(...)`` returns "" or why not)
+REFUSAL_FUNCTIONS = re.compile(r"refusal|problem|^_?why")
 MIN_WORDS = 6  # letters outside the values: "{0}: {1}" would match any sentence
 
 
@@ -95,18 +97,36 @@ def interpreter_templates(roots: tuple[Path, ...] = INTERPRETER) -> list[str]:
 
 
 def controller_templates(roots: tuple[Path, ...] = CONTROLLER) -> list[str]:
-    """The controller's refusals, alarms and messages as templates, sorted."""
-    return _templates(roots, CONTROLLER_CALLS)
+    """The controller's refusals, alarms and messages as templates, sorted: what its commands
+    refuse with, raise and say, and what its ``refusal`` functions return."""
+    return _templates(roots, CONTROLLER_CALLS, REFUSAL_FUNCTIONS)
 
 
-def _templates(roots: tuple[Path, ...], calls: dict[str, int]) -> list[str]:
+def _returned(tree: ast.AST, names: re.Pattern[str] | None) -> set[int]:
+    """The ids of the expressions returned by the functions whose name matches ``names``."""
+    out: set[int] = set()
+    if names is None:
+        return out
+    for fn in ast.walk(tree):
+        if isinstance(fn, ast.FunctionDef) and names.search(fn.name):
+            for node in ast.walk(fn):
+                if isinstance(node, ast.Return) and node.value is not None:
+                    out.add(id(node.value))
+    return out
+
+
+def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Pattern[str] | None = None
+               ) -> list[str]:
     found: set[str] = set()
     for root in roots:
         for path in sorted(root.rglob("*.py")):
             tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+            returned = _returned(tree, refusals)
             for node in ast.walk(tree):
                 template = None
-                if isinstance(node, ast.Call) and node.args:
+                if id(node) in returned and isinstance(node, ast.expr):
+                    template = _template(node)
+                elif isinstance(node, ast.Call) and node.args:
                     name = getattr(node.func, "id", "") or getattr(node.func, "attr", "")
                     where = calls.get(name)
                     if where is not None and -len(node.args) <= where < len(node.args):

@@ -18,6 +18,7 @@ import re
 from collections.abc import Callable
 from typing import Protocol
 
+from app.machine.config import ProbeSettings
 from app.machine.model import CommandResult, MachineState, ProbeWizard, ProbingRequest, ProbingResult
 from app.machine.motion.jobs import Job
 from app.machine.ports import CoordinatesView, PositionsView, Settings, ToolsView
@@ -26,7 +27,7 @@ from app.machine.state.states import StateMachine
 from planner.core.machine import WORK_OFFSET_NAMES
 from planner.core.program import EventKind, Program
 
-__all__ = ["ProbeWizard", "ProbingRequest", "ProbingResult", "Probing"]
+__all__ = ["Probing", "probing_routine"]
 
 
 _RESULT = re.compile(r"probe result:(.*)")
@@ -62,39 +63,9 @@ class Probing:
 
     # ------------------------------------------------------------------ the routine
     def routine(self, req: ProbingRequest) -> str:
-        """The blocks a wizard runs: into the system that takes the result, the probe's
-        length in force (G43 H), the routine's call, back to the system that was in use."""
-        probe = self._settings.config.probe
-        tool = self._tools.in_spindle
-        active = self._coordinates.active_offset
-        search = probe.search_mm if req.search_mm is None else req.search_mm
-        clear = probe.clearance_mm if req.clearance_mm is None else req.clearance_mm
-        fast = probe.fast_feed_mm_min if req.fast_feed_mm_min is None else req.fast_feed_mm_min
-        slow = probe.slow_feed_mm_min if req.slow_feed_mm_min is None else req.slow_feed_mm_min
-        back = probe.retract_mm if req.retract_mm is None else req.retract_mm
-        write = 1 if req.system else 0
-        vx, vy, vz = req.value
-        along = 0 if req.axis == "X" else 1
-        toward = req.x_dir if req.axis == "X" else req.y_dir
-        specific: dict[ProbeWizard, tuple[float, ...]] = {
-            ProbeWizard.Z_SURFACE: (vz,),
-            ProbeWizard.EDGE: (along, toward, vx if along == 0 else vy),
-            ProbeWizard.OUTSIDE_CORNER: (req.x_dir, req.y_dir, req.along_mm, vx, vy),
-            ProbeWizard.INSIDE_CORNER: (req.x_dir, req.y_dir, 0.0, vx, vy),
-            ProbeWizard.BORE: (req.diameter_mm, req.tolerance_mm, vx, vy),
-            ProbeWizard.BOSS: (req.diameter_mm, req.tolerance_mm, req.depth_mm, vx, vy),
-            ProbeWizard.ANGLE: (along, toward, req.along_mm),
-        }
-        args = (search, fast, slow, back, clear, write, *specific[req.wizard])
-        call = f"o<{req.wizard.value}> call " + " ".join(f"[{v:.6g}]" for v in args)
-        lines = []
-        switch = bool(req.system) and req.system != active
-        if switch:
-            lines.append(req.system)
-        lines += [f"G43 H{tool}", call]
-        if switch:
-            lines.append(active)
-        return "\n".join(lines)
+        """The blocks the wizard runs with the tool in the spindle (``probing_routine``)."""
+        return probing_routine(req, self._settings.config.probe, self._tools.in_spindle,
+                               self._coordinates.active_offset)
 
     def refusal(self, req: ProbingRequest) -> str:
         """Why the wizard cannot run now ("" when it can)."""
@@ -122,9 +93,10 @@ class Probing:
             return f"unknown work offset {req.system} (G54-G59.3)"
         if req.axis not in ("X", "Y") or req.x_dir not in (-1, 1) or req.y_dir not in (-1, 1):
             return "the direction is +X, -X, +Y or -Y"
-        for name, v in (("diameter", req.diameter_mm), ("distance along the faces", req.along_mm)):
-            if not v > 0.0:
-                return f"the {name} must be above 0 mm"
+        if not req.diameter_mm > 0.0:
+            return "the diameter must be above 0 mm"
+        if not req.along_mm > 0.0:
+            return "the distance along the faces must be above 0 mm"
         if req.wizard is ProbeWizard.BOSS and not req.depth_mm > 0.0:
             return "the depth below the start must be above 0 mm"
         if not req.tolerance_mm > 0.0:
@@ -171,6 +143,38 @@ class Probing:
         assert found is not None
         values = {k: float(v) for k, v in _VALUE.findall(found.group(1))}
         return ProbingResult(req.wizard, values, req.system)
+
+
+def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active: str) -> str:
+    """The blocks a wizard runs: into the system that takes the result, the probe's length in
+    force (G43 H ``tool``), the routine's call with ``[probe]``'s feeds and distances where the
+    request leaves them, back to the system ``active`` that was in use."""
+    search = probe.search_mm if req.search_mm is None else req.search_mm
+    clear = probe.clearance_mm if req.clearance_mm is None else req.clearance_mm
+    fast = probe.fast_feed_mm_min if req.fast_feed_mm_min is None else req.fast_feed_mm_min
+    slow = probe.slow_feed_mm_min if req.slow_feed_mm_min is None else req.slow_feed_mm_min
+    back = probe.retract_mm if req.retract_mm is None else req.retract_mm
+    write = 1 if req.system else 0
+    vx, vy, vz = req.value
+    along = 0 if req.axis == "X" else 1
+    toward = req.x_dir if req.axis == "X" else req.y_dir
+    specific: dict[ProbeWizard, tuple[float, ...]] = {
+        ProbeWizard.Z_SURFACE: (vz,),
+        ProbeWizard.EDGE: (along, toward, vx if along == 0 else vy),
+        ProbeWizard.OUTSIDE_CORNER: (req.x_dir, req.y_dir, req.along_mm, vx, vy),
+        ProbeWizard.INSIDE_CORNER: (req.x_dir, req.y_dir, 0.0, vx, vy),
+        ProbeWizard.BORE: (req.diameter_mm, req.tolerance_mm, vx, vy),
+        ProbeWizard.BOSS: (req.diameter_mm, req.tolerance_mm, req.depth_mm, vx, vy),
+        ProbeWizard.ANGLE: (along, toward, req.along_mm),
+    }
+    args = (search, fast, slow, back, clear, write, *specific[req.wizard])
+    call = f"o<{req.wizard.value}> call " + " ".join(f"[{v:.6g}]" for v in args)
+    switch = bool(req.system) and req.system != active
+    lines = [req.system] if switch else []
+    lines += [f"G43 H{tool}", call]
+    if switch:
+        lines.append(active)
+    return "\n".join(lines)
 
 
 _NAMES = {

@@ -1,0 +1,312 @@
+"""The probing wizards: each shipped routine (resources/subroutines/probe_*.ngc) against a
+simulated part at a known place, from 20 random start positions (the interpreter and the
+simulated contacts of ``probing_sim``), and on the simulated machine (the worker, the drives,
+the probe latched at 1 ms): the offset written within 0.01 mm of the truth, the angle within
+0.01 degree; a missing part, a part not as expected and an obstacle on a positioning move stop
+the routine before it writes."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.machine.config import MachineConfig, ProbeSettings
+from app.machine.controller import MachineController
+from app.machine.devices.probing import probing_routine
+from app.machine.model import MachineState, ProbeWizard, ProbingRequest
+from ethercat.sim_part import Feature, SimPart
+from planner.core.errors import ProgramError
+from planner.core.tools import Tool, ToolTable
+from tests.machine.conftest import make_controller
+from tests.machine.probing_sim import Outcome, ProbeAlarm, run
+
+PROBE = Tool(99, 99, (("Z", 50.0),), 2.0, "3-D probe")
+R = PROBE.diameter_mm / 2.0
+TOP = -60.0                                  # the block's top (the stylus' tip), machine Z
+BLOCK = SimPart(x_mm=20.0, y_mm=10.0, half_x_mm=40.0, half_y_mm=30.0, top_mm=TOP, depth_mm=40.0)
+G55 = 5241                                   # #5241-#5249 X Y Z ..., #5250 the rotation
+STARTS = 20
+
+
+def _with(**kw: object) -> SimPart:
+    return SimPart(**{**{f: getattr(BLOCK, f) for f in BLOCK.__dataclass_fields__}, **kw})  # type: ignore[arg-type]
+
+
+def _run(req: ProbingRequest, start_tip: tuple[float, float, float], part: SimPart | None) -> Outcome:
+    cfg = MachineConfig.default()
+    text = probing_routine(req, ProbeSettings(drive=2), PROBE.number, "G54")
+    x, y, z = start_tip
+    return run(text, cfg.machine, ToolTable({PROBE.number: PROBE}), PROBE.number,
+               (x, y, z + PROBE.length_mm), part)
+
+
+def _starts(seed: int) -> np.random.Generator:
+    return np.random.default_rng(seed)
+
+
+# ------------------------------------------------------------------ each wizard, 20 starts
+def test_z_surface_from_20_starts() -> None:
+    rng = _starts(1)
+    for _ in range(STARTS):
+        start = (20.0 + rng.uniform(-30, 30), 10.0 + rng.uniform(-20, 20), TOP + rng.uniform(2, 8))
+        out = _run(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"), start, BLOCK)
+        assert out.system(G55)[G55 + 2] == pytest.approx(TOP, abs=0.01), start
+        assert out.reported["Z"] == pytest.approx(TOP, abs=0.01)
+
+
+@pytest.mark.parametrize(("axis", "direction", "face"), [("X", 1, -20.0), ("X", -1, 60.0), ("Y", 1, -20.0),
+                                                          ("Y", -1, 40.0)])
+def test_each_edge_from_20_starts(axis: str, direction: int, face: float) -> None:
+    rng = _starts(2)
+    for _ in range(STARTS):
+        gap = rng.uniform(1, 8)
+        if axis == "X":
+            start = (face - direction * (R + gap), 10.0 + rng.uniform(-25, 25), TOP - rng.uniform(3, 8))
+        else:
+            start = (20.0 + rng.uniform(-35, 35), face - direction * (R + gap), TOP - rng.uniform(3, 8))
+        req = ProbingRequest(ProbeWizard.EDGE, system="G55", axis=axis, x_dir=direction, y_dir=direction)
+        out = _run(req, start, BLOCK)
+        k = 0 if axis == "X" else 1
+        assert out.system(G55)[G55 + k] == pytest.approx(face, abs=0.01), start
+        assert out.reported[axis] == pytest.approx(face, abs=0.01)
+
+
+@pytest.mark.parametrize(("xs", "ys"), [(1, 1), (-1, 1), (1, -1), (-1, -1)])
+def test_outside_corners_from_20_starts(xs: int, ys: int) -> None:
+    corner = (20.0 - xs * 40.0, 10.0 - ys * 30.0)        # the part is at +xs, +ys from the probe
+    rng = _starts(3)
+    for _ in range(STARTS):
+        start = (corner[0] - xs * (R + rng.uniform(1, 5)), corner[1] - ys * (R + rng.uniform(1, 5)),
+                 TOP - rng.uniform(3, 8))
+        req = ProbingRequest(ProbeWizard.OUTSIDE_CORNER, system="G55", x_dir=xs, y_dir=ys, along_mm=10.0)
+        out = _run(req, start, BLOCK)
+        got = out.system(G55)
+        assert (got[G55], got[G55 + 1]) == pytest.approx(corner, abs=0.01), start
+
+
+@pytest.mark.parametrize(("xs", "ys"), [(1, 1), (-1, -1)])
+def test_inside_corners_from_20_starts(xs: int, ys: int) -> None:
+    part = _with(feature=Feature.POCKET, feature_x_mm=25.0, feature_y_mm=12.0, pocket_half_x_mm=12.0,
+                 pocket_half_y_mm=9.0)
+    corner = (25.0 + xs * 12.0, 12.0 + ys * 9.0)          # the walls are at +xs, +ys from the probe
+    rng = _starts(4)
+    for _ in range(STARTS):
+        start = (corner[0] - xs * (R + rng.uniform(1, 6)), corner[1] - ys * (R + rng.uniform(1, 6)),
+                 TOP - rng.uniform(3, 8))
+        out = _run(ProbingRequest(ProbeWizard.INSIDE_CORNER, system="G55", x_dir=xs, y_dir=ys), start, part)
+        got = out.system(G55)
+        assert (got[G55], got[G55 + 1]) == pytest.approx(corner, abs=0.01), start
+
+
+def test_bore_centre_and_diameter_from_20_starts() -> None:
+    part = _with(feature=Feature.BORE, feature_x_mm=23.0, feature_y_mm=12.0, feature_radius_mm=10.0)
+    rng = _starts(5)
+    for _ in range(STARTS):
+        start = (23.0 + rng.uniform(-3, 3), 12.0 + rng.uniform(-3, 3), TOP - rng.uniform(3, 8))
+        out = _run(ProbingRequest(ProbeWizard.BORE, system="G55", diameter_mm=20.0, tolerance_mm=0.5),
+                   start, part)
+        got = out.system(G55)
+        assert (got[G55], got[G55 + 1]) == pytest.approx((23.0, 12.0), abs=0.01), start
+        assert out.reported["D"] == pytest.approx(20.0, abs=0.01)
+
+
+def test_boss_centre_and_diameter_from_20_starts() -> None:
+    part = _with(feature=Feature.BOSS, feature_x_mm=23.0, feature_y_mm=12.0, feature_radius_mm=8.0,
+                 boss_height_mm=10.0)
+    rng = _starts(6)
+    for _ in range(STARTS):
+        above = rng.uniform(2, 6)
+        start = (23.0 + rng.uniform(-2, 2), 12.0 + rng.uniform(-2, 2), TOP + 10.0 + above)
+        req = ProbingRequest(ProbeWizard.BOSS, system="G55", diameter_mm=16.0, tolerance_mm=0.5,
+                             depth_mm=above + 5.0)
+        out = _run(req, start, part)
+        got = out.system(G55)
+        assert (got[G55], got[G55 + 1]) == pytest.approx((23.0, 12.0), abs=0.01), start
+        assert out.reported["D"] == pytest.approx(16.0, abs=0.01)
+
+
+def test_the_angle_of_a_face_from_20_starts() -> None:
+    rng = _starts(7)
+    for _ in range(STARTS):
+        angle = rng.uniform(-5, 5)
+        part = _with(angle_deg=angle)
+        x0 = 20.0 + rng.uniform(-30, -5)
+        # the front face (y = -20 turned about the block's centre) at x0, and in front of it
+        a = math.radians(angle)
+        face_y = 10.0 + (x0 - 20.0) * math.tan(a) - 30.0 / math.cos(a)
+        start = (x0, face_y - R - rng.uniform(4.5, 7), TOP - rng.uniform(3, 8))
+        req = ProbingRequest(ProbeWizard.ANGLE, system="G55", axis="Y", y_dir=1, along_mm=30.0,
+                             search_mm=15.0)
+        out = _run(req, start, part)
+        assert out.reported["A"] == pytest.approx(angle, abs=0.01), start
+        assert out.system(G55)[G55 + 9] == pytest.approx(angle, abs=0.01)
+
+
+def test_report_only_writes_nothing() -> None:
+    out = _run(ProbingRequest(ProbeWizard.Z_SURFACE), (20.0, 10.0, TOP + 5.0), BLOCK)
+    assert out.reported["Z"] == pytest.approx(TOP, abs=0.01)
+    assert out.system(G55) == {} and not out.program.parameter_sets
+
+
+# ------------------------------------------------------------------ what stops a wizard
+def test_a_missing_part_is_an_alarm() -> None:
+    with pytest.raises(ProbeAlarm, match="ended without contact"):
+        _run(ProbingRequest(ProbeWizard.BORE, system="G55"), (23.0, 12.0, TOP - 5.0), None)
+
+
+def test_a_bore_not_as_expected_is_refused_before_it_writes() -> None:
+    part = _with(feature=Feature.BORE, feature_x_mm=23.0, feature_y_mm=12.0, feature_radius_mm=10.0)
+    with pytest.raises(ProgramError, match="the bore measures 20.0.* mm across, not 30.0"):
+        _run(ProbingRequest(ProbeWizard.BORE, system="G55", diameter_mm=30.0, tolerance_mm=1.0),
+             (23.0, 12.0, TOP - 5.0), part)
+
+
+def test_an_obstacle_on_a_positioning_move_stops_the_routine() -> None:
+    """An outside corner started too close to the part's side: the move along Y runs into it."""
+    with pytest.raises(ProgramError, match="probe touched during positioning"):
+        _run(ProbingRequest(ProbeWizard.OUTSIDE_CORNER, system="G55", along_mm=10.0),
+             (-20.0 - R - 3.0, -20.0 + 2.0, TOP - 5.0), BLOCK)
+
+
+# ------------------------------------------------------------------ on the simulated machine
+class _Path:
+    """The drives' actual positions, machine coordinates, as the worker reports them."""
+
+    def __init__(self, ctl: MachineController) -> None:
+        self.chunks: list[np.ndarray] = []
+        ctl.add_trace_sink(lambda _cycles, _reference, actual: self.chunks.append(np.array(actual)))
+
+    def actual(self) -> np.ndarray:
+        return np.concatenate(self.chunks)
+
+
+class _Path:
+    """The drives' actual positions, machine coordinates, as the worker reports them."""
+
+    def __init__(self, ctl: MachineController) -> None:
+        self.chunks: list[np.ndarray] = []
+        ctl.add_trace_sink(lambda _cycles, _reference, actual: self.chunks.append(np.array(actual)))
+
+    def actual(self) -> np.ndarray:
+        return np.concatenate(self.chunks)
+
+
+def _machine(qapp, config_path: Path, state_dir: Path) -> MachineController:
+    ctl = make_controller(config_path, state_dir)
+    assert ctl.set_tool(PROBE) and ctl.set_tool_in_spindle(PROBE.number)
+    return ctl
+
+
+def _to(ctl: MachineController, tip: tuple[float, float, float]) -> None:
+    x, y, z = tip
+    for block in (f"G53 G0 Z{z + PROBE.length_mm:.4f}", f"G53 G0 X{x:.4f} Y{y:.4f}"):
+        assert ctl.mdi(block)
+        assert ctl.run_until(lambda: ctl.state is MachineState.IDLE and ctl.stream.job is None, 30)
+
+
+def _probe(ctl: MachineController, req: ProbingRequest) -> None:
+    assert ctl.run_probing(req)
+    assert ctl.run_until(lambda: ctl.state is not MachineState.RUNNING and ctl.stream.job is None, 120)
+
+
+MACHINE_CASES = [
+    (ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"), BLOCK, (20.0, 10.0, TOP + 4.0), {2: TOP}),
+    (ProbingRequest(ProbeWizard.EDGE, system="G55", axis="X", x_dir=1), BLOCK, (-25.0, 12.0, TOP - 4.0),
+     {0: -20.0}),
+    (ProbingRequest(ProbeWizard.OUTSIDE_CORNER, system="G55", x_dir=1, y_dir=1), BLOCK,
+     (-24.0, -24.0, TOP - 4.0), {0: -20.0, 1: -20.0}),
+    (ProbingRequest(ProbeWizard.INSIDE_CORNER, system="G55", x_dir=1, y_dir=1),
+     _with(feature=Feature.POCKET, feature_x_mm=25.0, feature_y_mm=12.0, pocket_half_x_mm=12.0,
+           pocket_half_y_mm=9.0), (33.0, 17.0, TOP - 4.0), {0: 37.0, 1: 21.0}),
+    (ProbingRequest(ProbeWizard.BORE, system="G55", diameter_mm=20.0, tolerance_mm=0.5),
+     _with(feature=Feature.BORE, feature_x_mm=23.0, feature_y_mm=12.0, feature_radius_mm=10.0),
+     (21.0, 13.5, TOP - 5.0), {0: 23.0, 1: 12.0}),
+    (ProbingRequest(ProbeWizard.BOSS, system="G55", diameter_mm=16.0, tolerance_mm=0.5, depth_mm=8.0),
+     _with(feature=Feature.BOSS, feature_x_mm=23.0, feature_y_mm=12.0, feature_radius_mm=8.0,
+           boss_height_mm=10.0), (24.0, 11.0, TOP + 13.0), {0: 23.0, 1: 12.0}),
+    (ProbingRequest(ProbeWizard.ANGLE, system="G55", axis="Y", y_dir=1, along_mm=30.0, search_mm=15.0),
+     _with(angle_deg=3.0), (0.0, -27.0, TOP - 4.0), {9: 3.0}),
+]
+
+
+@pytest.mark.parametrize(("req", "part", "start", "truth"), MACHINE_CASES,
+                         ids=[c[0].wizard.value for c in MACHINE_CASES])
+def test_each_wizard_on_the_simulated_machine(qapp, config_path: Path, state_dir: Path, req: ProbingRequest,
+                                              part: SimPart, start: tuple[float, float, float],
+                                              truth: dict[int, float]) -> None:
+    """The probe latched by the worker at 1 ms, the motion stopped past the contact, the routine
+    read again with each contact: G55 takes what the part says, within 0.01 mm (0.01 degree)."""
+    ctl = _machine(qapp, config_path, state_dir)
+    try:
+        assert ctl.simulate_part(part)
+        _to(ctl, start)
+        path = _Path(ctl)
+        before = ctl.work_offsets["G55"]
+        preview = ctl.preview_probing(req)
+        assert not isinstance(preview, type(ctl.measure_tool(0))), preview
+        assert len(preview.moves) > 2 and preview.probes                 # drawn before it runs
+        _probe(ctl, req)
+        assert not ctl.active_alarms, [a.cause for a in ctl.active_alarms]
+        result = ctl.last_probing
+        assert result is not None and result.written == "G55"
+        for k, value in truth.items():
+            got = ctl.work_rotation("G55") if k == 9 else ctl.work_offsets["G55"][k]
+            assert got == pytest.approx(value, abs=0.01), (k, got, ctl.work_offsets["G55"])
+        for k in range(3):
+            if k not in truth:
+                assert ctl.work_offsets["G55"][k] == before[k]
+        assert ctl.active_offset == "G54"                  # back in the system that was in use
+        # the stylus' ball never went into the part by more than the stops' overtravel
+        tip = path.actual() - np.array([0.0, 0.0, PROBE.length_mm - R])
+        deepest = min(part.distance(*p) for p in tip[::5]) - R
+        assert -0.3 < deepest < 0.0, deepest
+    finally:
+        ctl.shutdown()
+
+
+def test_a_missing_part_on_the_machine_is_an_alarm_and_writes_nothing(qapp, config_path: Path,
+                                                                      state_dir: Path) -> None:
+    ctl = _machine(qapp, config_path, state_dir)
+    try:
+        assert ctl.simulate_part(None)
+        _to(ctl, (23.0, 12.0, TOP - 5.0))
+        before = dict(ctl.work_offsets)
+        _probe(ctl, ProbingRequest(ProbeWizard.BORE, system="G55", diameter_mm=20.0))
+        assert ctl.state is MachineState.ALARM
+        assert any("ended without contact" in a.cause for a in ctl.active_alarms)
+        assert ctl.work_offsets == before and ctl.last_probing is None
+    finally:
+        ctl.shutdown()
+
+
+def test_an_obstacle_on_the_machine_stops_the_move_with_the_alarm(qapp, config_path: Path,
+                                                                  state_dir: Path) -> None:
+    ctl = _machine(qapp, config_path, state_dir)
+    try:
+        assert ctl.simulate_part(BLOCK)
+        _to(ctl, (-20.0 - R - 3.0, -18.0, TOP - 5.0))
+        path = _Path(ctl)
+        before = dict(ctl.work_offsets)
+        _probe(ctl, ProbingRequest(ProbeWizard.OUTSIDE_CORNER, system="G55", along_mm=10.0))
+        assert ctl.state is MachineState.ALARM
+        (alarm,) = [a for a in ctl.active_alarms if "probe touched during positioning" in a.cause]
+        assert "G38.3" in alarm.cause
+        assert ctl.work_offsets == before
+        # it stopped at the contact: the ball touched the part's side and stopped, never further
+        # than the stop's overtravel (the search would have gone 10 mm on)
+        tip = path.actual() - np.array([0.0, 0.0, PROBE.length_mm - R])
+        deepest = min(BLOCK.distance(*p) for p in tip) - R
+        assert -0.3 < deepest < 0.0, deepest
+    finally:
+        ctl.shutdown()
+
+
+def test_a_wizard_is_refused_without_the_probe_in_the_spindle(ctl: MachineController) -> None:
+    r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
+    assert not r and "no probe in the spindle" in r.reason
+    assert ctl.set_tool(Tool(5, 5, (("Z", 40.0),), 0.0, "no tip")) and ctl.set_tool_in_spindle(5)
+    r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
+    assert not r and "has no tip diameter" in r.reason
