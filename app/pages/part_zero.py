@@ -1,6 +1,7 @@
 """Part zero: the nine coordinate systems G54-G59.3 (machine coordinates of part zero, every
 axis, and the XY rotation of G10 L2 R), select the active one, touch off per axis (the current
-position becomes a chosen work coordinate), and the G92/G52 offset in force."""
+position becomes a chosen work coordinate), and the G92/G52 offset in force; on a machine with a
+probe, the probing wizards in a second tab (``app.widgets.probing_panel``)."""
 
 from __future__ import annotations
 
@@ -13,12 +14,14 @@ from PySide6.QtWidgets import (
     QPushButton,
     QTableWidget,
     QTableWidgetItem,
+    QTabWidget,
     QVBoxLayout,
     QWidget,
 )
 
 from app.context import PanelContext
 from app.i18n import N_, tr
+from app.widgets.probing_panel import ProbingPanel
 from app.widgets.touch import exclusive_buttons, touch_rows
 from planner.core.machine import WORK_OFFSET_NAMES
 
@@ -31,7 +34,19 @@ class PartZeroPage(QWidget):
         c = context.controller
         i18n = context.i18n
         self.axes = c.axes
-        layout = QVBoxLayout(self)
+        page = QVBoxLayout(self)
+        page.setContentsMargins(0, 0, 0, 0)
+        self.tabs = QTabWidget()
+        page.addWidget(self.tabs)
+        systems = QWidget()
+        layout = QVBoxLayout(systems)
+        self.tabs.addTab(systems, "")
+        i18n.bind(self.tabs, N_("Coordinate systems"), functools.partial(self.tabs.setTabText, 0))
+        self.probing: ProbingPanel | None = None
+        if c.config.probe.drive is not None and {"X", "Y", "Z"} <= set(self.axes):
+            self.probing = ProbingPanel(context)
+            self.tabs.addTab(self.probing, "")
+            i18n.bind(self.tabs, N_("Probe"), functools.partial(self.tabs.setTabText, 1))
         select = QHBoxLayout()
         active = QLabel()
         i18n.bind(active, N_("Active:"))

@@ -44,7 +44,7 @@
       <translation>Tümünü onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="37" />
+      <location filename="../../app/pages/part_zero.py" line="52" />
       <source>Active:</source>
       <translation>Etkin:</translation>
     </message>
@@ -72,6 +72,11 @@
       <location filename="../../app/pages/program.py" line="288" />
       <source>An autosave of {0} with unsaved changes exists. Recover it?</source>
       <translation>{0} için kaydedilmemiş değişiklikler içeren otomatik bir kayıt var. Geri yüklensin mi?</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="47" />
+      <source>Angle of a face</source>
+      <translation>Yüz açısı</translation>
     </message>
     <message>
       <location filename="../../app/widgets/apply_bar.py" line="20" />
@@ -119,6 +124,16 @@
       <translation>Blok atlama (/)</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="45" />
+      <source>Bore centre</source>
+      <translation>Delik merkezi</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="46" />
+      <source>Boss centre</source>
+      <translation>Çıkıntı merkezi</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/parameters.py" line="115" />
       <source>Bus</source>
       <translation>Veri yolu</translation>
@@ -164,6 +179,11 @@
       <translation>paralel doğrular kesiştirilemez</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="265" />
+      <source>Cannot run: {0}</source>
+      <translation>Çalıştırılamaz: {0}</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/alarms.py" line="23" />
       <source>Cause</source>
       <translation>Neden</translation>
@@ -194,9 +214,14 @@
       <translation>Temizle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="66" />
+      <location filename="../../app/pages/part_zero.py" line="81" />
       <source>Clear G92</source>
       <translation>G92'yi sil</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="109" />
+      <source>Clearance</source>
+      <translation>Emniyet mesafesi</translation>
     </message>
     <message>
       <location filename="../../app/dialogs.py" line="74" />
@@ -217,6 +242,11 @@
       <location filename="../../app/widgets/jog_panel.py" line="36" />
       <source>Continuous</source>
       <translation>Sürekli</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="44" />
+      <source>Coordinate systems</source>
+      <translation>Koordinat sistemleri</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="131" />
@@ -289,6 +319,11 @@
       <translation>{0} takım tablosundan silinsin mi?</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="106" />
+      <source>Depth below the start</source>
+      <translation>Başlangıcın altındaki derinlik</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/tools.py" line="29" />
       <source>Description</source>
       <translation>Açıklama</translation>
@@ -307,6 +342,16 @@
       <location filename="../../app/pages/tools.py" line="29" />
       <source>Diameter (mm)</source>
       <translation>Çap (mm)</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="104" />
+      <source>Diameter as expected</source>
+      <translation>Beklenen çap</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="105" />
+      <source>Diameter tolerance</source>
+      <translation>Çap toleransı</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="14" />
@@ -332,6 +377,11 @@
       <location filename="../../app/widgets/status_header.py" line="18" />
       <source>Disconnected</source>
       <translation>Bağlı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="237" />
+      <source>Distance along the faces</source>
+      <translation>Yüzler boyunca mesafe</translation>
     </message>
     <message>
       <location filename="../../app/pages/axes.py" line="15" />
@@ -379,6 +429,11 @@
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="42" />
+      <source>Edge</source>
+      <translation>Kenar</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/diagnostics.py" line="64" />
       <source>EtherCAT</source>
       <translation>EtherCAT</translation>
@@ -414,6 +469,11 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="110" />
+      <source>Fast probe feed</source>
+      <translation>Hızlı prob ilerlemesi</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/auto.py" line="484" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
@@ -447,6 +507,16 @@
       <location filename="../../app/pages/preview.py" line="37" />
       <source>Fit</source>
       <translation>Sığdır</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="287" />
+      <source>Found: {0} (only reported)</source>
+      <translation>Bulunan: {0} (yalnızca bildirildi)</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="286" />
+      <source>Found: {0}; written to {1}</source>
+      <translation>Bulunan: {0}; {1} sistemine yazıldı</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="77" />
@@ -629,12 +699,12 @@
       <translation>G90.1 (mutlak yay merkezi) hem {0} hem {1} ister</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="105" />
+      <location filename="../../app/pages/part_zero.py" line="120" />
       <source>G92 offset: off</source>
       <translation>G92 ofseti: kapalı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="108" />
+      <location filename="../../app/pages/part_zero.py" line="123" />
       <source>G92 offset: {0} (on: every work position is shifted by it)</source>
       <translation>G92 ofseti: {0} (açık: her iş konumu bu kadar kayar)</translation>
     </message>
@@ -742,6 +812,11 @@
       <location filename="../../app/pages/tools.py" line="96" />
       <source>In the spindle: {0}</source>
       <translation>İş milinde: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="44" />
+      <source>Inside corner</source>
+      <translation>İç köşe</translation>
     </message>
     <message>
       <location filename="../../app/pages/parameters.py" line="106" />
@@ -1041,6 +1116,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="318" />
+      <source>No moves to draw</source>
+      <translation>Çizilecek hareket yok</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/diagnostics.py" line="70" />
       <source>No program loaded.</source>
       <translation>Yüklü program yok.</translation>
@@ -1116,6 +1196,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Kapalı (M05)</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="132" />
+      <source>Only report</source>
+      <translation>Yalnızca bildir</translation>
+    </message>
+    <message>
       <location filename="../../app/dialogs.py" line="51" />
       <source>Open file</source>
       <translation>Dosya aç</translation>
@@ -1149,6 +1234,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <location filename="../../app/widgets/keypad.py" line="99" />
       <source>Out of range: {0} to {1}</source>
       <translation>Aralık dışında: {0} ile {1} arası</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="43" />
+      <source>Outside corner</source>
+      <translation>Dış köşe</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="201" />
@@ -1236,6 +1326,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Cep</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="236" />
+      <source>Points apart along the face</source>
+      <translation>Yüz boyunca noktalar arası</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/bus_view.py" line="11" />
       <source>Position</source>
       <translation>Konum</translation>
@@ -1244,6 +1339,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <location filename="../../app/pages/__init__.py" line="27" />
       <source>Preview</source>
       <translation>Önizleme</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="49" />
+      <source>Probe</source>
+      <translation>Prob</translation>
     </message>
     <message>
       <location filename="../../app/widgets/bus_view.py" line="70" />
@@ -1259,6 +1359,11 @@ Kalan {2}   Yol hızı {3}</translation>
       <location filename="../../app/widgets/bus_view.py" line="70" />
       <source>Probe input: touching</source>
       <translation>Prob girişi: temas ediyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="249" />
+      <source>Probing starts with the machine idle.</source>
+      <translation>Problama makine boştayken başlar.</translation>
     </message>
     <message>
       <location filename="../../app/widgets/bus_view.py" line="11" />
@@ -1438,6 +1543,11 @@ BIRAK</translation>
       <translation>Çalışma kaydı dışa aktarıldı</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="157" />
+      <source>Run the probing</source>
+      <translation>Problamayı çalıştır</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/auto.py" line="230" />
       <source>Run the program anyway?</source>
       <translation>Program yine de çalıştırılsın mı?</translation>
@@ -1481,6 +1591,11 @@ BIRAK</translation>
       <location filename="../../app/pages/program.py" line="304" />
       <source>Save with errors?</source>
       <translation>Hatalarla kaydedilsin mi?</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="108" />
+      <source>Search distance</source>
+      <translation>Arama mesafesi</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="79" />
@@ -1556,6 +1671,11 @@ BIRAK</translation>
       <location filename="../../app/pages/auto.py" line="115" />
       <source>Single block</source>
       <translation>Tek blok</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="111" />
+      <source>Slow probe feed</source>
+      <translation>Yavaş prob ilerlemesi</translation>
     </message>
     <message>
       <location filename="../../app/pages/alarms.py" line="23" />
@@ -1638,7 +1758,7 @@ BIRAK</translation>
       <translation>Değiştirmek için bir değere dokunun. Birimler: doğrusal eksenlerde mm, döner eksenlerde derece. Değişiklikler Uygula'dan sonra geçerli olur (atomik olarak yazılır).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="57" />
+      <location filename="../../app/pages/part_zero.py" line="72" />
       <source>Tap a value to type it. Touch off: the current position becomes the work coordinate you enter, in the selected offset.</source>
       <translation>Yazmak için bir değere dokunun. Dokunarak sıfırlama: şu anki konum, seçili ofsette girdiğiniz iş koordinatı olur.</translation>
     </message>
@@ -1671,6 +1791,26 @@ BIRAK</translation>
       <location filename="../../app/pages/axes.py" line="90" />
       <source>The machine is moving.</source>
       <translation>Makine hareket ediyor.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="269" />
+      <source>The moves drawn run when you press Run; the result goes to {0}.</source>
+      <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç {0} sistemine yazılır.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="271" />
+      <source>The moves drawn run when you press Run; the result is only reported.</source>
+      <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç yalnızca bildirilir.</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="232" />
+      <source>The probe moves toward the face (the second point is along it):</source>
+      <translation>Prob yüze doğru hareket eder (ikinci nokta yüz boyunca):</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="231" />
+      <source>The probe moves toward the face:</source>
+      <translation>Prob yüze doğru hareket eder:</translation>
     </message>
     <message>
       <location filename="../../app/pages/auto.py" line="247" />
@@ -1743,7 +1883,7 @@ BIRAK</translation>
       <translation>Boyu dokunarak ölç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="75" />
+      <location filename="../../app/pages/part_zero.py" line="90" />
       <source>Touch off {0}</source>
       <translation>{0} dokunarak sıfırla</translation>
     </message>
@@ -1753,7 +1893,7 @@ BIRAK</translation>
       <translation>{0} dokunarak ölç: ucun değdiği yüzeyin iş Z'si</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="139" />
+      <location filename="../../app/pages/part_zero.py" line="154" />
       <source>Touch off {0}: work coordinate here</source>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
@@ -1848,6 +1988,16 @@ BIRAK</translation>
       <translation>Vmax</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="233" />
+      <source>Where the part is from the probe:</source>
+      <translation>Parçanın probdan göre yeri:</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="234" />
+      <source>Where the walls are from the probe:</source>
+      <translation>Duvarların probdan göre yeri:</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/dro.py" line="61" />
       <source>Work</source>
       <translation>İş</translation>
@@ -1863,12 +2013,22 @@ BIRAK</translation>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="118" />
+      <location filename="../../app/widgets/probing_panel.py" line="124" />
+      <source>Write the result to:</source>
+      <translation>Sonucu şuraya yaz:</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="112" />
+      <source>X reads after</source>
+      <translation>Sonra X okunur</translation>
+    </message>
+    <message>
+      <location filename="../../app/pages/part_zero.py" line="133" />
       <source>XY rotation (°)</source>
       <translation>XY dönüşü (°)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="111" />
+      <location filename="../../app/pages/part_zero.py" line="126" />
       <source>XY rotation of {0}: {1} degrees</source>
       <translation>{0} XY döndürmesi: {1} derece</translation>
     </message>
@@ -1878,9 +2038,24 @@ BIRAK</translation>
       <translation>XY {0:g}° döndürülmüş</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="113" />
+      <source>Y reads after</source>
+      <translation>Sonra Y okunur</translation>
+    </message>
+    <message>
       <location filename="../../app/dialogs.py" line="25" />
       <source>Yes</source>
       <translation>Evet</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="114" />
+      <source>Z reads after</source>
+      <translation>Sonra Z okunur</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="41" />
+      <source>Z surface</source>
+      <translation>Z yüzeyi</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="207" />
@@ -3428,7 +3603,7 @@ BIRAK</translation>
       <translation>{0} Q{1}: profilin alt program numarası bir tam sayıdır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="126" />
+      <location filename="../../app/pages/part_zero.py" line="141" />
       <source>{0} XY rotation (degrees, as G10 L2 R)</source>
       <translation>{0} XY dönüşü (derece, G10 L2 R gibi)</translation>
     </message>
@@ -3643,7 +3818,7 @@ BIRAK</translation>
       <translation>{0} kelimesini kullanacak {1} yok</translation>
     </message>
     <message>
-      <location filename="../../app/pages/part_zero.py" line="132" />
+      <location filename="../../app/pages/part_zero.py" line="147" />
       <source>{0} {1} (machine coordinate of part zero)</source>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>
