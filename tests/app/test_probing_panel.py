@@ -31,7 +31,8 @@ def _open_probe_tab(window, qtbot):
 @pytest.mark.parametrize(("req", "part", "start", "truth"), MACHINE_CASES,
                          ids=[c[0].wizard.value for c in MACHINE_CASES])
 def test_each_wizard_by_touch(demo_window, real_controller, dialogs, qtbot, req: ProbingRequest,
-                              part: SimPart, start: tuple[float, float, float], truth: dict[int, float]) -> None:
+                              part: SimPart, start: tuple[float, float, float],
+                              truth: dict[int, float]) -> None:
     c = real_controller
     assert c.set_tool(PROBE) and c.set_tool_in_spindle(PROBE.number)
     assert c.simulate_part(part)
