@@ -65,7 +65,7 @@ class ProbingPanel(QWidget):
         outer = QVBoxLayout(self)
         # what to find, by its picture
         row = QHBoxLayout()
-        choices: list[tuple[ProbeWizard, QPushButton]] = []
+        choices: list[tuple[ProbeWizard, QToolButton]] = []
         for wizard, text in WIZARDS:
             b = QToolButton()
             b.setObjectName("wizardButton")
@@ -74,7 +74,7 @@ class ProbingPanel(QWidget):
             b.setIconSize(QSize(ICON_PX, ICON_PX))
             b.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Preferred)
             i18n.bind(b, text)
-            choices.append((wizard, b))  # type: ignore[arg-type]
+            choices.append((wizard, b))
         self.wizard_group, self.wizard_buttons = exclusive_buttons(self, row, choices, self._choose)
         outer.addLayout(row)
         body = QHBoxLayout()
@@ -139,14 +139,14 @@ class ProbingPanel(QWidget):
         self.target_group = QButtonGroup(self)
         self.target_buttons: dict[str, QPushButton] = {}
         for k, name in enumerate((*WORK_OFFSET_NAMES, REPORT_ONLY)):
-            b = QPushButton(name)
+            target = QPushButton(name)
             if name == REPORT_ONLY:
-                i18n.bind(b, N_("Only report"))
-            b.setCheckable(True)
-            self.target_group.addButton(b)
-            b.clicked.connect(lambda _=False: self.refresh())
-            grid.addWidget(b, k // 4, k % 4, 1, 2 if name == REPORT_ONLY else 1)
-            self.target_buttons[name] = b
+                i18n.bind(target, N_("Only report"))
+            target.setCheckable(True)
+            self.target_group.addButton(target)
+            target.clicked.connect(lambda _=False: self.refresh())
+            grid.addWidget(target, k // 4, k % 4, 1, 2 if name == REPORT_ONLY else 1)
+            self.target_buttons[name] = target
         right.addLayout(grid)
         active = c.active_offset
         self.target_buttons.get(active, self.target_buttons["G54"]).setChecked(True)

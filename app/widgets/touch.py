@@ -6,16 +6,17 @@ from collections.abc import Callable, Iterable
 from typing import TypeVar
 
 from PySide6.QtWidgets import (
+    QAbstractButton,
     QAbstractItemView,
     QAbstractScrollArea,
     QBoxLayout,
     QButtonGroup,
-    QPushButton,
     QScroller,
     QWidget,
 )
 
 K = TypeVar("K")
+B = TypeVar("B", bound=QAbstractButton)
 
 
 def enable_kinetic_scrolling(area: QAbstractScrollArea, mouse: bool = True) -> None:
@@ -42,13 +43,13 @@ def touch_rows(view: QAbstractItemView, height_px: int = 48) -> None:
 def exclusive_buttons(
     owner: QWidget,
     layout: QBoxLayout,
-    choices: Iterable[tuple[K, QPushButton]],
+    choices: Iterable[tuple[K, B]],
     on_choose: Callable[[K], object] | None = None,
-) -> tuple[QButtonGroup, dict[K, QPushButton]]:
+) -> tuple[QButtonGroup, dict[K, B]]:
     """A row of checkable buttons of which one is checked at a time: the touch form of a
     radio group (plane, work offset, jog increment). Returns the group and the buttons by key."""
     group = QButtonGroup(owner)
-    buttons: dict[K, QPushButton] = {}
+    buttons: dict[K, B] = {}
     for key, button in choices:
         button.setCheckable(True)
         if on_choose is not None:
