@@ -31,6 +31,7 @@ from app.service_access import IDLE_LOCK_S
 from app.shortcuts import Shortcuts, parse_bindings
 from app.widgets.service_gate import ServiceGate
 from app.widgets.status_header import StatusHeader
+from ethercat.sim_part import Feature, SimPart
 from resources import shipped_program
 
 _INPUT_EVENTS = frozenset({QEvent.Type.MouseButtonPress, QEvent.Type.KeyPress, QEvent.Type.TouchBegin})
@@ -45,6 +46,12 @@ def build_page(info: PageInfo, context: PanelContext) -> QWidget:
             raise
         return PlaceholderPage(info.label)
     return module.create_page(context)
+
+
+# the demo's workpiece (machine coordinates of the stylus' tip): a block 80 x 60 mm, its top at
+# Z-60, a 24 mm bore through it and, beside it, nothing else to touch
+DEMO_PART = SimPart(x_mm=60.0, y_mm=0.0, half_x_mm=40.0, half_y_mm=30.0, top_mm=-60.0, depth_mm=40.0,
+                    feature=Feature.BORE, feature_x_mm=70.0, feature_y_mm=5.0, feature_radius_mm=12.0)
 
 
 class MainWindow(QMainWindow):
@@ -166,6 +173,8 @@ class MainWindow(QMainWindow):
             if not len(ctx.controller.tool_table):   # a first demo: a few tools to look at
                 ctx.controller.import_tool_table(str(shipped_program("demo_tools.tbl")))
                 ctx.controller.set_tool_in_spindle(1)
+            # a workpiece for the simulated probe (the probing wizards with T99 in the spindle)
+            c.simulate_part(DEMO_PART)
         cut = c.interrupted
         if cut is not None:
             self.show_message(tr("{0} was running at line {1} when the control stopped (power loss or "

@@ -2,6 +2,11 @@
 Turkish, into ``resources/screenshots/all/`` (the README's gallery):
 
     python -m tools.screenshots [--out DIR] [--jobs N]
+    python -m tools.screenshots --probing [--out DIR]
+
+``--probing``: each probing wizard run on the demo machine against its simulated workpiece
+(the real controller on a manual clock, in this process), the Probe tab shown with the moves
+and what was found, into ``resources/screenshots/probing/``.
 
 Each picture is the real panel (``cnc-panel --demo --screenshot``), the Auto page after the
 demo program has run a few seconds (backplot, spindle and tool showing). The test suite checks
@@ -39,12 +44,108 @@ def shoot(page: str, size: str, language: str, out: Path) -> str:
     return target.name
 
 
+# each wizard on the demo's workpiece (app.main_window.DEMO_PART, a block with a bore) or on a
+# part of its own: (wizard, inputs, part or None for the demo's, the stylus tip's start)
+PROBING_SHOTS: tuple[tuple[str, dict[str, object], dict[str, object] | None, tuple[float, float, float]], ...] = (
+    ("Z_SURFACE", {}, None, (40.0, -10.0, -55.0)),
+    ("EDGE", {"axis": "X", "x_dir": 1}, None, (15.0, -10.0, -64.0)),
+    ("OUTSIDE_CORNER", {"x_dir": 1, "y_dir": 1}, None, (16.0, -34.0, -64.0)),
+    ("INSIDE_CORNER", {"x_dir": 1, "y_dir": 1},
+     {"feature": "POCKET", "feature_x_mm": 70.0, "feature_y_mm": 5.0, "pocket_half_x_mm": 12.0,
+      "pocket_half_y_mm": 9.0}, (78.0, 10.0, -64.0)),
+    ("BORE", {"diameter_mm": 24.0}, None, (71.0, 6.0, -65.0)),
+    ("BOSS", {"diameter_mm": 16.0, "depth_mm": 8.0},
+     {"feature": "BOSS", "feature_x_mm": 70.0, "feature_y_mm": 5.0, "feature_radius_mm": 8.0,
+      "boss_height_mm": 10.0}, (71.0, 4.0, -47.0)),
+    ("ANGLE", {"axis": "Y", "y_dir": 1, "along_mm": 30.0, "search_mm": 15.0}, {"angle_deg": 2.0},
+     (35.0, -36.0, -64.0)),
+)
+
+
+def shoot_probing(out: Path) -> list[str]:
+    """Each probing wizard run and shown on the Part zero page's Probe tab (1280x800, English)."""
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from dataclasses import replace
+
+    from PySide6.QtWidgets import QApplication
+
+    from app.application import apply_theme
+    from app.context import PanelOptions
+    from app.context_factory import build_context
+    from app.machine.controller import MachineController
+    from app.machine.model import MachineState, ProbeWizard
+    from app.main_window import DEMO_PART, MainWindow
+    from ethercat.sim_part import Feature
+
+    app = QApplication.instance() or QApplication([])
+    written = []
+    for wizard_name, inputs, own_part, (x, y, z) in PROBING_SHOTS:
+        with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
+            ctl = MachineController(None, state_dir=state, worker_mode="manual")
+            options = PanelOptions(demo=True, state_dir=Path(state))
+            apply_theme(app)  # type: ignore[arg-type]
+            window = MainWindow(options, build_context(options, controller=ctl))
+            window.resize(1280, 800)
+            window.show()
+            for _ in range(400):                 # the window's start-up: connect, home, tools
+                app.processEvents()
+                if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
+                    break
+            res = ctl.set_tool_in_spindle(99)
+            assert res, (res.reason, [t.number for t in ctl.tool_table])
+            if own_part is not None:
+                kw = dict(own_part)
+                if "feature" in kw:
+                    kw["feature"] = Feature[str(kw["feature"])]
+                ctl.simulate_part(replace(DEMO_PART, **kw))  # type: ignore[arg-type]
+            for block in (f"G53 G0 Z{z + 50.0:.3f}", f"G53 G0 X{x:.3f} Y{y:.3f}"):
+                assert ctl.mdi(block), block
+                ctl.run_until(lambda: ctl.state is MachineState.IDLE and ctl.stream.job is None, 30)
+            window.show_page("part_zero")
+            page = window.page("part_zero")
+            page.tabs.setCurrentIndex(1)
+            panel = page.probing
+            wizard = ProbeWizard[wizard_name]
+            panel.wizard_buttons[wizard].click()
+            for key, value in inputs.items():
+                if key in ("axis", "x_dir", "y_dir"):
+                    continue
+                field = {"diameter_mm": "diameter", "depth_mm": "depth", "along_mm": "along",
+                         "search_mm": "search"}[key]
+                panel.fields[field].setValue(float(value))  # type: ignore[arg-type]
+            if "axis" in inputs:
+                sign = inputs.get("x_dir" if inputs["axis"] == "X" else "y_dir", 1)
+                panel.move_buttons[f"{inputs['axis']}{'+' if sign == 1 else '-'}"].click()
+            elif "x_dir" in inputs:
+                xs, ys = inputs["x_dir"], inputs["y_dir"]
+                panel.corner_buttons[f"X{'+' if xs == 1 else '-'} Y{'+' if ys == 1 else '-'}"].click()
+            panel.target_buttons["G55"].click()
+            panel.refresh()
+            panel.run_button.click()
+            ctl.run_until(lambda: ctl.state is not MachineState.RUNNING and ctl.stream.job is None, 120)
+            for _ in range(10):
+                app.processEvents()
+            target = out / f"{wizard.value}.png"
+            window.grab().save(str(target))
+            written.append(target.name)
+            window.close()
+            ctl.shutdown()
+    return written
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m tools.screenshots", description=__doc__.split("\n\n")[0])
-    p.add_argument("--out", default=str(ROOT / "resources" / "screenshots" / "all"))
+    p.add_argument("--out", default=None)
     p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--probing", action="store_true", help="the probing wizards instead of the pages")
     args = p.parse_args(argv)
-    out = Path(args.out)
+    if args.probing:
+        out = Path(args.out or ROOT / "resources" / "screenshots" / "probing")
+        out.mkdir(parents=True, exist_ok=True)
+        for name in shoot_probing(out):
+            print(name)
+        return 0
+    out = Path(args.out or ROOT / "resources" / "screenshots" / "all")
     out.mkdir(parents=True, exist_ok=True)
     work = [(page, size, lang) for page in PAGE_NAMES for size in SIZES for lang in LANGUAGES]
     with ThreadPoolExecutor(max_workers=max(args.jobs, 1)) as pool:

@@ -322,10 +322,9 @@ class RoutinePreview(QWidget):
             painter.setPen(QColor("#7f8a94"))
             painter.drawText(self.rect(), Qt.AlignmentFlag.AlignCenter, tr("No moves to draw"))
             return
-        h = self.height() / 2.0
-        for k, (ia, ib, title) in enumerate(((0, 1, "XY"), (0, 2, "XZ"))):
-            box = QRectF(8, 8 + k * h, self.width() - 16, h - 16)
-            self._view(painter, box, ia, ib, title)
+        split = self.height() * 0.68                # from above gets the most room
+        for top, bottom, ia, ib, title in ((0.0, split, 0, 1, "XY"), (split, self.height(), 0, 2, "XZ")):
+            self._view(painter, QRectF(8, top + 4, self.width() - 16, bottom - top - 8), ia, ib, title)
 
     def _view(self, painter: QPainter, box: QRectF, ia: int, ib: int, title: str) -> None:
         pts = self.points[:, [ia, ib]]
