@@ -46,7 +46,8 @@ def shoot(page: str, size: str, language: str, out: Path) -> str:
 
 # each wizard on the demo's workpiece (app.main_window.DEMO_PART, a block with a bore) or on a
 # part of its own: (wizard, inputs, part or None for the demo's, the stylus tip's start)
-PROBING_SHOTS: tuple[tuple[str, dict[str, object], dict[str, object] | None, tuple[float, float, float]], ...] = (
+Shot = tuple[str, dict[str, object], dict[str, object] | None, tuple[float, float, float]]
+PROBING_SHOTS: tuple[Shot, ...] = (
     ("Z_SURFACE", {}, None, (40.0, -10.0, -55.0)),
     ("EDGE", {"axis": "X", "x_dir": 1}, None, (15.0, -10.0, -64.0)),
     ("OUTSIDE_CORNER", {"x_dir": 1, "y_dir": 1}, None, (16.0, -34.0, -64.0)),
@@ -65,9 +66,15 @@ PROBING_SHOTS: tuple[tuple[str, dict[str, object], dict[str, object] | None, tup
 def shoot_probing(out: Path) -> list[str]:
     """Each probing wizard run and shown on the Part zero page's Probe tab (1280x800, English)."""
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
-    from dataclasses import replace
-
     from PySide6.QtWidgets import QApplication
+
+    app = QApplication.instance() or QApplication([])
+    return [_shoot_wizard(app, out, *shot) for shot in PROBING_SHOTS]
+
+
+def _shoot_wizard(app: object, out: Path, wizard_name: str, inputs: dict[str, object],
+                  own_part: dict[str, object] | None, start: tuple[float, float, float]) -> str:
+    from dataclasses import replace
 
     from app.application import apply_theme
     from app.context import PanelOptions
@@ -77,60 +84,59 @@ def shoot_probing(out: Path) -> list[str]:
     from app.main_window import DEMO_PART, MainWindow
     from ethercat.sim_part import Feature
 
-    app = QApplication.instance() or QApplication([])
-    written = []
-    for wizard_name, inputs, own_part, (x, y, z) in PROBING_SHOTS:
-        with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
-            ctl = MachineController(None, state_dir=state, worker_mode="manual")
-            options = PanelOptions(demo=True, state_dir=Path(state))
-            apply_theme(app)  # type: ignore[arg-type]
-            window = MainWindow(options, build_context(options, controller=ctl))
-            window.resize(1280, 800)
-            window.show()
-            for _ in range(400):                 # the window's start-up: connect, home, tools
-                app.processEvents()
-                if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
-                    break
-            res = ctl.set_tool_in_spindle(99)
-            assert res, (res.reason, [t.number for t in ctl.tool_table])
-            if own_part is not None:
-                kw = dict(own_part)
-                if "feature" in kw:
-                    kw["feature"] = Feature[str(kw["feature"])]
-                ctl.simulate_part(replace(DEMO_PART, **kw))  # type: ignore[arg-type]
-            for block in (f"G53 G0 Z{z + 50.0:.3f}", f"G53 G0 X{x:.3f} Y{y:.3f}"):
-                assert ctl.mdi(block), block
-                ctl.run_until(lambda: ctl.state is MachineState.IDLE and ctl.stream.job is None, 30)
-            window.show_page("part_zero")
-            page = window.page("part_zero")
-            page.tabs.setCurrentIndex(1)
-            panel = page.probing
-            wizard = ProbeWizard[wizard_name]
-            panel.wizard_buttons[wizard].click()
-            for key, value in inputs.items():
-                if key in ("axis", "x_dir", "y_dir"):
-                    continue
-                field = {"diameter_mm": "diameter", "depth_mm": "depth", "along_mm": "along",
-                         "search_mm": "search"}[key]
-                panel.fields[field].setValue(float(value))  # type: ignore[arg-type]
-            if "axis" in inputs:
-                sign = inputs.get("x_dir" if inputs["axis"] == "X" else "y_dir", 1)
-                panel.move_buttons[f"{inputs['axis']}{'+' if sign == 1 else '-'}"].click()
-            elif "x_dir" in inputs:
-                xs, ys = inputs["x_dir"], inputs["y_dir"]
-                panel.corner_buttons[f"X{'+' if xs == 1 else '-'} Y{'+' if ys == 1 else '-'}"].click()
-            panel.target_buttons["G55"].click()
-            panel.refresh()
-            panel.run_button.click()
-            ctl.run_until(lambda: ctl.state is not MachineState.RUNNING and ctl.stream.job is None, 120)
-            for _ in range(10):
-                app.processEvents()
-            target = out / f"{wizard.value}.png"
-            window.grab().save(str(target))
-            written.append(target.name)
-            window.close()
-            ctl.shutdown()
-    return written
+    x, y, z = start
+    with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
+        ctl = MachineController(None, state_dir=state, worker_mode="manual")
+        options = PanelOptions(demo=True, state_dir=Path(state))
+        apply_theme(app)  # type: ignore[arg-type]
+        window = MainWindow(options, build_context(options, controller=ctl))
+        window.resize(1280, 800)
+        window.show()
+
+        def idle() -> bool:
+            return ctl.state is MachineState.IDLE and ctl.stream.job is None
+
+        for _ in range(400):                 # the window's start-up: connect, home, tools
+            app.processEvents()  # type: ignore[attr-defined]
+            if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
+                break
+        res = ctl.set_tool_in_spindle(99)
+        assert res, res.reason
+        if own_part is not None:
+            kw = dict(own_part)
+            if "feature" in kw:
+                kw["feature"] = Feature[str(kw["feature"])]
+            ctl.simulate_part(replace(DEMO_PART, **kw))  # type: ignore[arg-type]
+        for block in (f"G53 G0 Z{z + 50.0:.3f}", f"G53 G0 X{x:.3f} Y{y:.3f}"):
+            assert ctl.mdi(block), block
+            ctl.run_until(idle, 30)
+        window.show_page("part_zero")
+        page = window.page("part_zero")
+        page.tabs.setCurrentIndex(1)
+        panel = page.probing
+        wizard = ProbeWizard[wizard_name]
+        panel.wizard_buttons[wizard].click()
+        fields = {"diameter_mm": "diameter", "depth_mm": "depth", "along_mm": "along", "search_mm": "search"}
+        for key, value in inputs.items():
+            if key in fields:
+                panel.fields[fields[key]].setValue(float(value))  # type: ignore[arg-type]
+        if "axis" in inputs:
+            sign = inputs.get("x_dir" if inputs["axis"] == "X" else "y_dir", 1)
+            panel.move_buttons[f"{inputs['axis']}{'+' if sign == 1 else '-'}"].click()
+        elif "x_dir" in inputs:
+            xs, ys = inputs["x_dir"], inputs["y_dir"]
+            panel.corner_buttons[f"X{'+' if xs == 1 else '-'} Y{'+' if ys == 1 else '-'}"].click()
+        panel.target_buttons["G55"].click()
+        panel.refresh()
+        panel.run_button.click()
+        ctl.run_until(lambda: ctl.state is not MachineState.RUNNING and ctl.stream.job is None, 120)
+        for _ in range(10):
+            app.processEvents()  # type: ignore[attr-defined]
+        target = out / f"{wizard.value}.png"
+        window.grab().save(str(target))
+        window.close()
+        ctl.shutdown()
+    return target.name
 
 
 def main(argv: list[str] | None = None) -> int:
