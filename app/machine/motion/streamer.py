@@ -187,6 +187,7 @@ class Streamer:
         """The job ends at rest here, ``rest`` (events only) being what was left of it: what its
         events keep is kept (G10 and G92, G10 L1, M61, M62-M65), as the motion would have done at
         their pause points, then its messages are shown."""
+        output, snap = self._pauses.get(PauseKind.OUTPUT), self._drives.last_snapshot
         for ev in rest.events:
             if ev.kind is EventKind.OFFSETS and 0 <= int(ev.value) < len(rest.parameter_sets):
                 self._coordinates.apply_parameters(rest.parameter_sets[int(ev.value)])
@@ -194,11 +195,8 @@ class Streamer:
                 self._tools.set_by_program(rest.tool_sets[int(ev.value)])
             elif ev.kind is EventKind.TOOL_SET:
                 self._tools.loaded_by_program(int(ev.value))
-            elif ev.kind is EventKind.OUTPUT:
-                handler = self._pauses.get(PauseKind.OUTPUT)
-                snap = self._drives.last_snapshot
-                if handler is not None and snap is not None:
-                    handler(job, PausePoint(0.0, PauseKind.OUTPUT, ev.line, -1, ev.value), snap)
+            elif ev.kind is EventKind.OUTPUT and output is not None and snap is not None:
+                output(job, PausePoint(0.0, PauseKind.OUTPUT, ev.line, -1, ev.value), snap)
         job.messages.clear()
         job.messages.extend((e.line, e.message) for e in rest.events if e.kind is EventKind.MESSAGE)
         self._finish_job(job, self._drives.last_snapshot)
