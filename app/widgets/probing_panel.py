@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 from PySide6.QtCore import QPointF, QRectF, QSize, Qt
-from PySide6.QtGui import QColor, QIcon, QPainter, QPainterPath, QPaintEvent, QPen, QPixmap
+from PySide6.QtGui import QColor, QIcon, QPainter, QPainterPath, QPaintEvent, QPen, QPixmap, QShowEvent
 from PySide6.QtWidgets import (
     QButtonGroup,
     QGridLayout,
@@ -243,8 +243,15 @@ class ProbingPanel(QWidget):
         self._show_status()
 
     # ------------------------------------------------------------------ preview and run
+    def showEvent(self, event: QShowEvent) -> None:  # noqa: N802 - Qt override
+        super().showEvent(event)
+        self.refresh()
+
     def refresh(self) -> None:
-        """Ask the controller for the moves of what is set now and draw them (or say why not)."""
+        """Ask the controller for the moves of what is set now and draw them (or say why not);
+        hidden, nothing is read (the tab shown reads again)."""
+        if not self.isVisible():
+            return
         if self.wizard() is ProbeWizard.EDGE and self.fields["x"].isHidden() == (self._move()[0] == "X"):
             shown = "x" if self._move()[0] == "X" else "y"
             self._place_fields({"search", "clearance", "fast", "slow", shown})

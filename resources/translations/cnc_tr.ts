@@ -179,7 +179,7 @@
       <translation>paralel doğrular kesiştirilemez</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="265" />
+      <location filename="../../app/widgets/probing_panel.py" line="277" />
       <source>Cannot run: {0}</source>
       <translation>Çalıştırılamaz: {0}</translation>
     </message>
@@ -194,12 +194,12 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="187" />
+      <location filename="../../app/main_window.py" line="196" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="208" />
+      <location filename="../../app/main_window.py" line="217" />
       <source>Checking {0} … {1} %</source>
       <translation>{0} denetleniyor … %{1}</translation>
     </message>
@@ -219,7 +219,7 @@
       <translation>G92'yi sil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="109" />
+      <location filename="../../app/widgets/probing_panel.py" line="114" />
       <source>Clearance</source>
       <translation>Emniyet mesafesi</translation>
     </message>
@@ -319,7 +319,7 @@
       <translation>{0} takım tablosundan silinsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="106" />
+      <location filename="../../app/widgets/probing_panel.py" line="111" />
       <source>Depth below the start</source>
       <translation>Başlangıcın altındaki derinlik</translation>
     </message>
@@ -344,12 +344,12 @@
       <translation>Çap (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="104" />
+      <location filename="../../app/widgets/probing_panel.py" line="109" />
       <source>Diameter as expected</source>
       <translation>Beklenen çap</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="105" />
+      <location filename="../../app/widgets/probing_panel.py" line="110" />
       <source>Diameter tolerance</source>
       <translation>Çap toleransı</translation>
     </message>
@@ -379,7 +379,7 @@
       <translation>Bağlı değil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="237" />
+      <location filename="../../app/widgets/probing_panel.py" line="241" />
       <source>Distance along the faces</source>
       <translation>Yüzler boyunca mesafe</translation>
     </message>
@@ -469,7 +469,7 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="110" />
+      <location filename="../../app/widgets/probing_panel.py" line="115" />
       <source>Fast probe feed</source>
       <translation>Hızlı prob ilerlemesi</translation>
     </message>
@@ -509,12 +509,12 @@
       <translation>Sığdır</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="287" />
+      <location filename="../../app/widgets/probing_panel.py" line="299" />
       <source>Found: {0} (only reported)</source>
       <translation>Bulunan: {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="286" />
+      <location filename="../../app/widgets/probing_panel.py" line="298" />
       <source>Found: {0}; written to {1}</source>
       <translation>Bulunan: {0}; {1} sistemine yazıldı</translation>
     </message>
@@ -1116,7 +1116,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="318" />
+      <location filename="../../app/widgets/probing_panel.py" line="330" />
       <source>No moves to draw</source>
       <translation>Çizilecek hareket yok</translation>
     </message>
@@ -1196,7 +1196,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Kapalı (M05)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="132" />
+      <location filename="../../app/widgets/probing_panel.py" line="144" />
       <source>Only report</source>
       <translation>Yalnızca bildir</translation>
     </message>
@@ -1326,7 +1326,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Cep</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="236" />
+      <location filename="../../app/widgets/probing_panel.py" line="240" />
       <source>Points apart along the face</source>
       <translation>Yüz boyunca noktalar arası</translation>
     </message>
@@ -1361,7 +1361,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="249" />
+      <location filename="../../app/widgets/probing_panel.py" line="261" />
       <source>Probing starts with the machine idle.</source>
       <translation>Problama makine boştayken başlar.</translation>
     </message>
@@ -1386,17 +1386,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="222" />
+      <location filename="../../app/main_window.py" line="231" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="218" />
+      <location filename="../../app/main_window.py" line="227" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="235" />
+      <location filename="../../app/main_window.py" line="244" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
@@ -1463,7 +1463,7 @@ BIRAK</translation>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="124" />
+      <location filename="../../app/main_window.py" line="131" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
@@ -1543,7 +1543,7 @@ BIRAK</translation>
       <translation>Çalışma kaydı dışa aktarıldı</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="157" />
+      <location filename="../../app/widgets/probing_panel.py" line="160" />
       <source>Run the probing</source>
       <translation>Problamayı çalıştır</translation>
     </message>
@@ -1593,7 +1593,7 @@ BIRAK</translation>
       <translation>Hatalarla kaydedilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="108" />
+      <location filename="../../app/widgets/probing_panel.py" line="113" />
       <source>Search distance</source>
       <translation>Arama mesafesi</translation>
     </message>
@@ -1608,22 +1608,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="267" />
+      <location filename="../../app/main_window.py" line="276" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="296" />
+      <location filename="../../app/main_window.py" line="305" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="272" />
+      <location filename="../../app/main_window.py" line="281" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="274" />
+      <location filename="../../app/main_window.py" line="283" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -1633,7 +1633,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="267" />
+      <location filename="../../app/main_window.py" line="276" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -1673,7 +1673,7 @@ BIRAK</translation>
       <translation>Tek blok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="111" />
+      <location filename="../../app/widgets/probing_panel.py" line="116" />
       <source>Slow probe feed</source>
       <translation>Yavaş prob ilerlemesi</translation>
     </message>
@@ -1773,7 +1773,7 @@ BIRAK</translation>
       <translation>Taylor</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="175" />
+      <location filename="../../app/main_window.py" line="184" />
       <source>The control did not shut down cleanly: home the axes (Machine zero, Home all) before running a program</source>
       <translation>Kontrol düzgün kapanmadı: program çalıştırmadan önce eksenleri referanslayın (Makine sıfırı, Tüm eksenleri referansla)</translation>
     </message>
@@ -1793,22 +1793,22 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="269" />
+      <location filename="../../app/widgets/probing_panel.py" line="281" />
       <source>The moves drawn run when you press Run; the result goes to {0}.</source>
       <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç {0} sistemine yazılır.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="271" />
+      <location filename="../../app/widgets/probing_panel.py" line="283" />
       <source>The moves drawn run when you press Run; the result is only reported.</source>
       <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç yalnızca bildirilir.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="232" />
+      <location filename="../../app/widgets/probing_panel.py" line="236" />
       <source>The probe moves toward the face (the second point is along it):</source>
       <translation>Prob yüze doğru hareket eder (ikinci nokta yüz boyunca):</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="231" />
+      <location filename="../../app/widgets/probing_panel.py" line="235" />
       <source>The probe moves toward the face:</source>
       <translation>Prob yüze doğru hareket eder:</translation>
     </message>
@@ -1988,12 +1988,12 @@ BIRAK</translation>
       <translation>Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="233" />
+      <location filename="../../app/widgets/probing_panel.py" line="237" />
       <source>Where the part is from the probe:</source>
       <translation>Parçanın probdan göre yeri:</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="234" />
+      <location filename="../../app/widgets/probing_panel.py" line="238" />
       <source>Where the walls are from the probe:</source>
       <translation>Duvarların probdan göre yeri:</translation>
     </message>
@@ -2013,12 +2013,12 @@ BIRAK</translation>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="124" />
+      <location filename="../../app/widgets/probing_panel.py" line="136" />
       <source>Write the result to:</source>
       <translation>Sonucu şuraya yaz:</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="112" />
+      <location filename="../../app/widgets/probing_panel.py" line="117" />
       <source>X reads after</source>
       <translation>Sonra X okunur</translation>
     </message>
@@ -2038,7 +2038,7 @@ BIRAK</translation>
       <translation>XY {0:g}° döndürülmüş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="113" />
+      <location filename="../../app/widgets/probing_panel.py" line="118" />
       <source>Y reads after</source>
       <translation>Sonra Y okunur</translation>
     </message>
@@ -2048,7 +2048,7 @@ BIRAK</translation>
       <translation>Evet</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="114" />
+      <location filename="../../app/widgets/probing_panel.py" line="119" />
       <source>Z reads after</source>
       <translation>Sonra Z okunur</translation>
     </message>
@@ -3528,7 +3528,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="191" />
+      <location filename="../../app/main_window.py" line="200" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
@@ -3788,7 +3788,7 @@ BIRAK</translation>
       <translation>{0} değeri {1} aralık dışında (|değer| &lt; {2})</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="171" />
+      <location filename="../../app/main_window.py" line="180" />
       <source>{0} was running at line {1} when the control stopped (power loss or killed): home the axes, open it and run from line {1}</source>
       <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
     </message>

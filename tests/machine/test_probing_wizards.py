@@ -310,3 +310,26 @@ def test_a_wizard_is_refused_without_the_probe_in_the_spindle(ctl: MachineContro
     assert ctl.set_tool(Tool(5, 5, (("Z", 40.0),), 0.0, "no tip")) and ctl.set_tool_in_spindle(5)
     r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
     assert not r and "has no tip diameter" in r.reason
+
+
+def test_a_preview_says_why_without_a_refusal_and_probe_tool_is_enforced(qapp, config_path: Path,
+                                                                         state_dir: Path) -> None:
+    """The panel asks for the preview at every change: why it cannot run comes back without
+    the refusal the status line shows. With ``[probe] tool`` only that tool probes."""
+    config_path.write_text(config_path.read_text().replace("[probe]", "[probe]\ntool = 99", 1))
+    ctl = make_controller(config_path, state_dir)
+    refused: list[tuple[str, str]] = []
+    ctl.commandRefused.connect(lambda action, why: refused.append((action, why)))
+    try:
+        assert ctl.set_tool(PROBE) and ctl.set_tool(Tool(1, 1, (("Z", 40.0),), 6.0, "mill"))
+        assert ctl.set_tool_in_spindle(1)
+        req = ProbingRequest(ProbeWizard.Z_SURFACE, system="G55")
+        preview = ctl.preview_probing(req)
+        assert not preview and "the probe T99 is not in the spindle (T1 is)" in preview.reason
+        assert refused == []
+        r = ctl.run_probing(req)                          # the command itself is refused, told
+        assert not r and refused and "the probe T99" in refused[-1][1]
+        assert ctl.set_tool_in_spindle(99)
+        assert ctl.preview_probing(req).probes
+    finally:
+        ctl.shutdown()

@@ -106,10 +106,11 @@ class Probing:
     # ------------------------------------------------------------------ commands
     def preview_probing(self, req: ProbingRequest) -> Program | CommandResult:
         """The wizard's moves as they would run without a contact (each probe to the end of its
-        search), read and checked as they will run; the refusal otherwise."""
+        search), read and checked as they will run; why not otherwise (not told to the panel as
+        a refusal: the panel asks at every change of the inputs and shows it itself)."""
         why = self.refusal(req)
         if why:
-            return self._states.refuse(Action.PROBE, why)
+            return CommandResult(False, str(Action.PROBE), why)
         return self._manual.check_routine(self.routine(req), _name(req), Action.PROBE)
 
     def run_probing(self, req: ProbingRequest) -> CommandResult:

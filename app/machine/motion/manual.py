@@ -146,11 +146,12 @@ class ManualMotion:
         self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
         return states.ok(Action.JOG)
 
-    def _read(self, text: str, name: str,
-              action: str) -> tuple[Program, Callable[..., Program]] | CommandResult:
+    def _read(self, text: str, name: str, action: str, quiet: bool = False
+              ) -> tuple[Program, Callable[..., Program]] | CommandResult:
         """``text`` read from where the machine is, as a program is checked: parsed (the reader
         kept, to read it again with what a probe or M66 reads), within the soft limits, its
-        probing possible on this machine. The refusal otherwise."""
+        probing possible on this machine. The refusal otherwise (``quiet``: not told to the
+        panel, for a preview that is only looked at)."""
         machine = self._coordinates.machine()
         spindle = self._spindle.spindle
         read = functools.partial(
@@ -159,19 +160,19 @@ class ManualMotion:
             tool_in_spindle=self._tools.in_spindle, spindle=(spindle.direction, spindle.rpm),
             parameters=dict(self._coordinates.parameters), block_delete=self._modes.block_delete,
             tool_offset=self._coordinates.start_offset())
-        states = self._states
+        refuse = self._states.refuse if not quiet else (lambda a, why: CommandResult(False, str(a), why))
         try:
             prog = read()
         except ProgramError as exc:
-            return states.refuse(action, "; ".join(e.message for e in exc.errors))
+            return refuse(action, "; ".join(e.message for e in exc.errors))
         except PlannerError as exc:
-            return states.refuse(action, str(exc))
+            return refuse(action, str(exc))
         issues = limit_issues(prog, machine)
         if issues:
-            return states.refuse(action, f"soft limit: {issues[0].message}")
+            return refuse(action, f"soft limit: {issues[0].message}")
         _, why = refusal(prog, self._settings.config)
         if why:
-            return states.refuse(action, why)
+            return refuse(action, why)
         return prog, read
 
     def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,
@@ -190,8 +191,9 @@ class ManualMotion:
 
     def check_routine(self, text: str, name: str, action: str) -> Program | CommandResult:
         """A few blocks the controller wrote, read and checked as ``run_routine`` would run
-        them (the path to draw before the operator confirms), or the refusal."""
-        read = self._read(text, name, action)
+        them (the path to draw before the operator confirms), or why not (not told to the
+        panel: a preview is asked for at every change of its inputs)."""
+        read = self._read(text, name, action, quiet=True)
         return read if isinstance(read, CommandResult) else read[0]
 
     def run_routine(self, text: str, name: str, action: str,
