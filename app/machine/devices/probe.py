@@ -28,7 +28,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from app.machine.config import probe_overtravel_mm
 from app.machine.devices.reads import ReadAgain
 from app.machine.infra.drives import DriveLink
 from app.machine.motion.jobs import Job
@@ -40,7 +39,7 @@ from ethercat.sim_part import SimPart
 from ethercat.worker import WorkerSnapshot
 from planner.core.program import EventKind, ProbeRequest, ProbeResult
 
-__all__ = ["ProbeRun", "Prober", "probe_overtravel_mm"]
+__all__ = ["ProbeRun", "Prober"]
 
 
 @dataclass

@@ -27,7 +27,7 @@ from app.machine.state.states import StateMachine
 from planner.core.machine import WORK_OFFSET_NAMES
 from planner.core.program import EventKind, Program
 
-__all__ = ["Probing", "probing_routine"]
+__all__ = ["Probing", "RoutineRunner", "probing_routine"]
 
 
 _RESULT = re.compile(r"probe result:(.*)")
@@ -35,7 +35,8 @@ _VALUE = re.compile(r"([A-Z])=(-?\d+(?:\.\d+)?)")
 
 
 class RoutineRunner(Protocol):
-    """Reads and runs a few blocks the controller wrote as MDI (``ManualMotion``)."""
+    """Reads and runs a few blocks the controller wrote as MDI (``ManualMotion``): the
+    probing wizards' and the tool setter's."""
 
     def check_routine(self, text: str, name: str, action: str) -> Program | CommandResult: ...
 

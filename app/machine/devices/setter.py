@@ -3,10 +3,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Protocol
-
-from app.machine.devices.probe import probe_overtravel_mm
+from app.machine.config import probe_overtravel_mm
+from app.machine.devices.probing import RoutineRunner
 from app.machine.devices.tools import ToolControl
 from app.machine.model import CommandResult, MachineState, Severity
 from app.machine.motion.jobs import Job
@@ -15,16 +13,6 @@ from app.machine.state.gate import Action
 from app.machine.state.states import StateMachine
 
 __all__ = ["ToolSetter"]
-
-
-class RoutineRunner(Protocol):
-    """Runs a few blocks the controller wrote as MDI (``ManualMotion``)."""
-
-    def run_routine(self, text: str, name: str, action: str,
-                    when_done: Callable[[Job], None] | None = None, reason: str = "",
-                    steps: dict[int, str] | None = None) -> CommandResult: ...
-
-    def show_message(self, text: str) -> None: ...
 
 
 class ToolSetter:
