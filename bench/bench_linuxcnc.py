@@ -43,8 +43,9 @@ class LinuxCncUnavailable(RuntimeError):
     """LinuxCNC cannot run here (not installed, or no user to run it as)."""
 
 
-def linuxcnc_time_s(text: str, timeout_s: float = 3600.0) -> tuple[float, np.ndarray]:
-    """LinuxCNC 2.9's motion time of ``text`` (s) and its samples (N, 3) in mm."""
+def linuxcnc_time_s(text: str, timeout_s: float = 3600.0) -> tuple[float, np.ndarray, str]:
+    """LinuxCNC 2.9's motion time of ``text`` (s), its samples (N, 3) in mm, and what it said
+    ("ok", or its errors: one at the end, such as a file without M2, leaves the motion whole)."""
     if shutil.which("linuxcnc") is None or shutil.which("halsampler") is None:
         raise LinuxCncUnavailable("linuxcnc is not installed: apt-get install linuxcnc-uspace")
     with tempfile.TemporaryDirectory(prefix="bench-linuxcnc-") as tmp:
@@ -64,13 +65,14 @@ def linuxcnc_time_s(text: str, timeout_s: float = 3600.0) -> tuple[float, np.nda
         done = subprocess.run(cmd, cwd=tmp, env={**os.environ, **env}, capture_output=True, text=True,
                               timeout=timeout_s + 120)
         status = (work / "done").read_text() if (work / "done").exists() else ""
-        if status != "ok":
+        samples = work / "samples.txt"
+        if not status or not samples.exists() or samples.stat().st_size == 0:
             raise LinuxCncUnavailable(f"linuxcnc: {status or done.stdout[-400:] + done.stderr[-400:]}")
-        q = np.loadtxt(work / "samples.txt", ndmin=2)[:, :3] / 1000.0
+        q = np.loadtxt(samples, ndmin=2)[:, :3] / 1000.0
     moving = np.flatnonzero(np.any(np.abs(np.diff(q, axis=0)) > 1e-9, axis=1))
     if not len(moving):
-        return 0.0, q
-    return float(moving[-1] - moving[0] + 1) * 1e-3, q[moving[0]:moving[-1] + 2]
+        return 0.0, q, status
+    return float(moving[-1] - moving[0] + 1) * 1e-3, q[moving[0]:moving[-1] + 2], status
 
 
 def ours(text: str, name: str, jmax: float) -> dict[str, float | bool]:
@@ -94,6 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tol", type=float, default=0.01, help="G64 P tolerance, mm")
     ap.add_argument("--only", help="a program name (substring)")
+    ap.add_argument("--exclude", action="append", default=[], help="leave out a program (substring)")
     ap.add_argument("--skip-linuxcnc", action="store_true", help="ours only (LinuxCNC runs in real time)")
     args = ap.parse_args(argv)
     if not SHARED_CAM.is_dir():
@@ -101,7 +104,8 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     rows = []
     for path in sorted(SHARED_CAM.glob("*/*")):
-        if path.suffix.lower() not in SUFFIXES or (args.only and args.only not in str(path)):
+        if (path.suffix.lower() not in SUFFIXES or (args.only and args.only not in str(path))
+                or any(x in str(path) for x in args.exclude)):
             continue
         name = f"{path.parent.name}/{path.name}"
         text = with_mode(path.read_text(errors="replace"), f"G64 P{args.tol:g}")
@@ -114,9 +118,10 @@ def main(argv: list[str] | None = None) -> int:
             row["ours"] = f"not read: {str(exc).splitlines()[0]}"
         if not args.skip_linuxcnc:
             try:
-                t, q = linuxcnc_time_s(text)
+                t, q, said = linuxcnc_time_s(text)
                 row["linuxcnc 2.9 s"] = t
                 row["linuxcnc 2.9 jerk x at 1e4"] = jerk_ratio(q, 1e4)
+                row["linuxcnc 2.9 said"] = said
             except (LinuxCncUnavailable, subprocess.TimeoutExpired) as exc:
                 row["linuxcnc 2.9 s"] = f"not run: {exc}"
         rows.append(row)
