@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The DISPLAY program of the bench configuration: machine on, home, run the program named by
-BENCH_PROGRAM, wait for the end, write BENCH_DONE (its text: "ok" or the error), and exit
+BENCH_PROGRAM with optional stops off (an M0 resumed at once), sample the joints with halsampler
+into BENCH_SAMPLES, wait for the end, write BENCH_DONE (its text: "ok" or the errors), and exit
 (LinuxCNC then shuts down). Run by LinuxCNC's own Python (the linuxcnc module is Debian's)."""
 
 import os
@@ -45,6 +46,8 @@ c.mode(linuxcnc.MODE_AUTO)
 c.wait_complete()
 c.program_open(program)
 c.wait_complete()
+c.set_optional_stop(0)                # M1 does not stop, as the planner reads it
+c.wait_complete()
 samples = open(os.environ["BENCH_SAMPLES"], "w")
 sampler = subprocess.Popen(["halsampler", "-c", "0"], stdout=samples)
 time.sleep(0.3)
@@ -59,6 +62,8 @@ while time.monotonic() < end:
         errors.append(err[1])
     if s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0 and s.current_vel == 0.0:
         break
+    if s.paused:                      # M0: go on at once (the planner does not wait either)
+        c.auto(linuxcnc.AUTO_RESUME)
     time.sleep(0.05)
 time.sleep(0.3)
 sampler.terminate()
