@@ -118,7 +118,10 @@ def main(argv: list[str] | None = None) -> int:
             row["ours"] = f"not read: {str(exc).splitlines()[0]}"
         if not args.skip_linuxcnc:
             try:
-                t, q, said = linuxcnc_time_s(text)
+                # LinuxCNC can wait for ever after an error of its own: a bound from ours
+                ours_s = row.get("ours J1e+06 time_s")
+                bound = 120.0 + 3.0 * ours_s if isinstance(ours_s, float) else 600.0
+                t, q, said = linuxcnc_time_s(text, timeout_s=bound)
                 row["linuxcnc 2.9 s"] = t
                 row["linuxcnc 2.9 jerk x at 1e4"] = jerk_ratio(q, 1e4)
                 row["linuxcnc 2.9 said"] = said
