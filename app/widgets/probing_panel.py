@@ -161,7 +161,6 @@ class ProbingPanel(QWidget):
         self.run_button.clicked.connect(self.run)
         right.addWidget(self.run_button)
         self._why = ""
-        self._shown: tuple[ProbingRequest, object] | None = None
         self.wizard_buttons[ProbeWizard.Z_SURFACE].setChecked(True)
         c.probingFinished.connect(self._finished)
         c.stateChanged.connect(lambda *_: self.refresh())
@@ -189,8 +188,8 @@ class ProbingPanel(QWidget):
             value=(f["x"], f["y"], f["z"]), search_mm=f["search"], clearance_mm=f["clearance"],
             fast_feed_mm_min=f["fast"], slow_feed_mm_min=f["slow"])
 
-    def _choose(self, wizard: ProbeWizard) -> None:
-        """Show the inputs ``wizard`` takes."""
+    def _uses(self, wizard: ProbeWizard) -> set[str]:
+        """The inputs ``wizard`` takes (an edge: the coordinate of the axis it probes along)."""
         uses = {
             ProbeWizard.Z_SURFACE: {"z"},
             ProbeWizard.EDGE: {"x", "y"},
@@ -202,6 +201,11 @@ class ProbingPanel(QWidget):
         }[wizard] | {"search", "clearance", "fast", "slow"}
         if wizard is ProbeWizard.EDGE:
             uses -= {"y"} if self._move()[0] == "X" else {"x"}
+        return uses
+
+    def _choose(self, wizard: ProbeWizard) -> None:
+        """Show the inputs ``wizard`` takes."""
+        uses = self._uses(wizard)
         self._place_fields(uses)
         moves = wizard in (ProbeWizard.EDGE, ProbeWizard.ANGLE)
         corners = wizard in (ProbeWizard.OUTSIDE_CORNER, ProbeWizard.INSIDE_CORNER)
@@ -253,8 +257,7 @@ class ProbingPanel(QWidget):
         if not self.isVisible():
             return
         if self.wizard() is ProbeWizard.EDGE and self.fields["x"].isHidden() == (self._move()[0] == "X"):
-            shown = "x" if self._move()[0] == "X" else "y"
-            self._place_fields({"search", "clearance", "fast", "slow", shown})
+            self._place_fields(self._uses(ProbeWizard.EDGE))     # the edge's axis changed
         req = self.request()
         c = self.ctx.controller
         if c.state.value != "idle":
@@ -268,7 +271,6 @@ class ProbingPanel(QWidget):
             else:
                 self._why = ""
                 self.preview.set_program(got)
-        self._shown = (req, self._why)
         self.run_button.setEnabled(not self._why)
         self._show_status()
 
