@@ -1,6 +1,7 @@
-"""Cycle times against LinuxCNC 2.9's trajectory planner on the shared CAM programs, G64 P0.01.
+"""Cycle times against LinuxCNC's trajectory planners on the shared CAM programs, G64 P0.01.
 
-    python -m bench.bench_linuxcnc [--tol 0.01] [--only NAME] [--skip-linuxcnc]
+    python -m bench.bench_linuxcnc [--tol 0.01] [--only NAME] [--skip-linuxcnc] [--skip-210]
+                                   [--linuxcnc-210 DIR]
 
 LinuxCNC 2.9 (Debian's ``linuxcnc-uspace``) runs each program in its own simulator, headless
 (``bench/linuxcnc/``: trivkins XYZ, every axis and the path 100 mm/s and 1000 mm/s^2, a 1 ms
@@ -9,6 +10,12 @@ the program and waits for its end; ``halsampler`` takes the joints' commanded po
 millisecond, times 1000 so its six decimals keep nanometres). Its time is from the first to
 the last sample that moves. It runs in real time, as a user other than root (rtapi refuses
 root: as root the bench runs it as ``nobody``). Nothing of LinuxCNC is part of the project.
+
+LinuxCNC 2.10's S-curve planner (``[TRAJ] PLANNER_TYPE = 1``, the jerk 1e4 mm/s^3 on the path,
+every axis and joint) runs the same way from a run-in-place build of its development branch
+(``../shared/linuxcnc/BUILD-2.10.md``; ``--linuxcnc-210`` or ``$LINUXCNC_210`` names the tree),
+compared with ours at the same jerk; its axis jerk on the samples is reported (largest ratio to
+1e4 and how many stencils exceed it by more than 1 %). Where no build is found, its column says so.
 
 Ours: the same program with the same mode line before its first move (``bench_blend.with_mode``)
 planned at the same speed and acceleration with jerk 1e6 (LinuxCNC's dynamics, practically
@@ -24,6 +31,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -43,20 +51,64 @@ class LinuxCncUnavailable(RuntimeError):
     """LinuxCNC cannot run here (not installed, or no user to run it as)."""
 
 
-def linuxcnc_time_s(text: str, timeout_s: float = 3600.0) -> tuple[float, np.ndarray, str]:
-    """LinuxCNC 2.9's motion time of ``text`` (s), its samples (N, 3) in mm, and what it said
+@dataclass(frozen=True, slots=True)
+class Reference:
+    """A LinuxCNC to compare with: the installed one (``root`` None) or a run-in-place build
+    (``root`` its source tree, run through its ``scripts/rip-environment``); trapezoidal
+    (``jerk_mm_s3`` None) or its S-curve planner at that jerk (``[TRAJ] PLANNER_TYPE = 1``)."""
+
+    label: str
+    root: Path | None = None
+    jerk_mm_s3: float | None = None
+
+
+LINUXCNC_29 = Reference("LinuxCNC 2.9")
+# where BUILD-2.10.md's build is put by default; LINUXCNC_210 names another tree
+LINUXCNC_210_ROOT = Path(os.environ.get("LINUXCNC_210", "/var/tmp/linuxcnc-2.10/src"))
+
+
+def ini_text(ref: Reference) -> str:
+    """The bench configuration for ``ref``: for the S-curve planner, ``PLANNER_TYPE = 1`` and
+    the jerk on the path (``MAX_LINEAR_JERK``) and on every axis and joint (``MAX_JERK``: a
+    move over an axis without it falls back to trapezoidal planning)."""
+    text = (CONFIG / "sim.ini").read_text()
+    if ref.jerk_mm_s3 is None:
+        return text
+    jerk = f"{ref.jerk_mm_s3:g}"
+    out = []
+    for line in text.splitlines():
+        out.append(line)
+        if line == "[TRAJ]":
+            out += ["PLANNER_TYPE = 1", f"MAX_LINEAR_JERK = {jerk}"]
+        elif line.startswith(("[AXIS_", "[JOINT_")):
+            out.append(f"MAX_JERK = {jerk}")
+    return "\n".join(out) + "\n"
+
+
+def linuxcnc_time_s(text: str, timeout_s: float = 3600.0,
+                    ref: Reference = LINUXCNC_29) -> tuple[float, np.ndarray, str]:
+    """LinuxCNC's motion time of ``text`` (s), its samples (N, 3) in mm, and what it said
     ("ok", or its errors: one at the end, such as a file without M2, leaves the motion whole)."""
-    if shutil.which("linuxcnc") is None or shutil.which("halsampler") is None:
-        raise LinuxCncUnavailable("linuxcnc is not installed: apt-get install linuxcnc-uspace")
+    if ref.root is None:
+        if shutil.which("linuxcnc") is None or shutil.which("halsampler") is None:
+            raise LinuxCncUnavailable("linuxcnc is not installed: apt-get install linuxcnc-uspace")
+        launch = ["linuxcnc"]
+    else:
+        rip = ref.root / "scripts" / "rip-environment"
+        if not (rip.is_file() and (ref.root / "bin" / "milltask").is_file()):
+            raise LinuxCncUnavailable(f"no LinuxCNC build at {ref.root} "
+                                      "(see ../shared/linuxcnc/BUILD-2.10.md)")
+        launch = [str(rip), "linuxcnc"]
     with tempfile.TemporaryDirectory(prefix="bench-linuxcnc-") as tmp:
         work = Path(tmp)
         for f in CONFIG.iterdir():
             shutil.copy2(f, work / f.name)
+        (work / "sim.ini").write_text(ini_text(ref))
         (work / "program.ngc").write_text(text)
         env = {"HOME": tmp, "PATH": "/usr/sbin:/usr/bin:/sbin:/bin",
                "BENCH_PROGRAM": str(work / "program.ngc"), "BENCH_DONE": str(work / "done"),
                "BENCH_SAMPLES": str(work / "samples.txt"), "BENCH_TIMEOUT_S": str(timeout_s)}
-        cmd = ["linuxcnc", str(work / "sim.ini")]
+        cmd = [*launch, str(work / "sim.ini")]
         if os.geteuid() == 0:                  # rtapi refuses root
             os.chmod(tmp, 0o777)
             for f in work.iterdir():
@@ -92,13 +144,29 @@ def jerk_ratio(q: np.ndarray, jmax: float) -> float:
     return float(np.max(np.abs(np.diff(q, n=3, axis=0))) / 1e-9 / jmax)
 
 
+def jerk_over(q: np.ndarray, jmax: float, factor: float) -> int:
+    """How many third differences of samples q (axis by axis) exceed ``factor`` times ``jmax``."""
+    if len(q) < 4:
+        return 0
+    return int(np.count_nonzero(np.abs(np.diff(q, n=3, axis=0)) / 1e-9 > factor * jmax))
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tol", type=float, default=0.01, help="G64 P tolerance, mm")
     ap.add_argument("--only", help="a program name (substring)")
     ap.add_argument("--exclude", action="append", default=[], help="leave out a program (substring)")
     ap.add_argument("--skip-linuxcnc", action="store_true", help="ours only (LinuxCNC runs in real time)")
+    ap.add_argument("--skip-210", action="store_true", help="not LinuxCNC 2.10's S-curve planner")
+    ap.add_argument("--linuxcnc-210", type=Path, default=LINUXCNC_210_ROOT,
+                    help="the run-in-place LinuxCNC 2.10 tree (BUILD-2.10.md), default %(default)s")
     args = ap.parse_args(argv)
+    references: list[tuple[Reference, str]] = []
+    if not args.skip_linuxcnc:
+        references.append((LINUXCNC_29, "linuxcnc 2.9"))
+        if not args.skip_210:
+            scurve = Reference("LinuxCNC 2.10 S-curve", args.linuxcnc_210, 1e4)
+            references.append((scurve, "linuxcnc 2.10 J1e4"))
     if not SHARED_CAM.is_dir():
         print(f"no shared CAM programs at {SHARED_CAM}")
         return 1
@@ -116,19 +184,20 @@ def main(argv: list[str] | None = None) -> int:
                     row[f"ours J{jmax:.0e} {key}"] = value
         except (ProgramError, PlannerError) as exc:
             row["ours"] = f"not read: {str(exc).splitlines()[0]}"
-        if not args.skip_linuxcnc:
+        # LinuxCNC can wait for ever after an error of its own: a bound from ours
+        ours_s = row.get("ours J1e+06 time_s")
+        bound = 120.0 + 3.0 * ours_s if isinstance(ours_s, float) else 600.0
+        for ref, key in references:
             try:
-                # LinuxCNC can wait for ever after an error of its own: a bound from ours
-                ours_s = row.get("ours J1e+06 time_s")
-                bound = 120.0 + 3.0 * ours_s if isinstance(ours_s, float) else 600.0
-                t, q, said = linuxcnc_time_s(text, timeout_s=bound)
-                row["linuxcnc 2.9 s"] = t
-                row["linuxcnc 2.9 jerk x at 1e4"] = jerk_ratio(q, 1e4)
-                row["linuxcnc 2.9 said"] = said
+                t, q, said = linuxcnc_time_s(text, timeout_s=bound, ref=ref)
+                row[f"{key} s"] = t
+                row[f"{key} jerk x at 1e4"] = jerk_ratio(q, 1e4)
+                row[f"{key} jerk stencils over 1.01x"] = jerk_over(q, 1e4, 1.01)
+                row[f"{key} said"] = said
             except (LinuxCncUnavailable, subprocess.TimeoutExpired) as exc:
-                row["linuxcnc 2.9 s"] = f"not run: {exc}"
+                row[f"{key} s"] = f"not run: {exc}"
         rows.append(row)
-        lc = row.get("linuxcnc 2.9 s")
+        lc, lc10 = row.get("linuxcnc 2.9 s"), row.get("linuxcnc 2.10 J1e4 s")
         fast, slow = row.get("ours J1e+06 time_s"), row.get("ours J1e+04 time_s")
 
         def fmt(v: object) -> str:
@@ -136,8 +205,11 @@ def main(argv: list[str] | None = None) -> int:
 
         both = isinstance(fast, float) and isinstance(lc, float) and lc
         ratio = f"{fast / lc:6.3f}x" if both else "   -   "  # type: ignore[operator]
-        print(f"{name[:44]:44} LinuxCNC 2.9 {fmt(lc)}  ours J=1e6 {fmt(fast)} ({ratio})  "
-              f"J=1e4 {fmt(slow)}  dev {row.get('ours J1e+04 deviation_mm', 0.0):.4f}  joint jerk x "
+        both10 = isinstance(slow, float) and isinstance(lc10, float) and lc10
+        ratio10 = f"{slow / lc10:6.3f}x" if both10 else "   -   "  # type: ignore[operator]
+        print(f"{name[:40]:40} 2.9 {fmt(lc)} ours J=1e6 {fmt(fast)} ({ratio}) | 2.10 J=1e4 {fmt(lc10)} "
+              f"(jerk x {row.get('linuxcnc 2.10 J1e4 jerk x at 1e4', 0.0):.2f}) ours J=1e4 {fmt(slow)} "
+              f"({ratio10}) dev {row.get('ours J1e+04 deviation_mm', 0.0):.4f} joint jerk x "
               f"{row.get('ours J1e+04 joint_jerk_x', 0.0):.1f}", flush=True)
     print(json.dumps({"tol_mm": args.tol, "rows": rows}))
     return 0

@@ -4,11 +4,13 @@
   Z levels down a hemisphere, G01 step-overs between them), about 3 million set-points;
 * sphere finishing: about 35,000 lines of short G01 chords along parallels of a
   hemisphere (a CAM-style contour finish), about 5.4 million set-points;
+* sphere finishing with helical arcs: about 35,000 lines of G03 helical arcs spiralling down
+  a hemisphere (a CAM-style spiral finish with arc fitting), about 5.3 million set-points;
 * circular pocket: about 1,200 lines, rings of G03 half circles (I/J) with G01 step-overs
   and helical entries, about 1.2 million set-points.
 
 All at F1800 (30 mm/s, the paper's Vmax). ``python -m bench.gen_programs OUTDIR`` writes
-sphere_roughing.nc, sphere_finishing.nc, circular_pocket.nc.
+sphere_roughing.nc, sphere_finishing.nc, sphere_helical.nc, circular_pocket.nc.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import math
 import sys
 from pathlib import Path
 
-__all__ = ["circular_pocket", "sphere_finishing", "sphere_roughing", "write_all"]
+__all__ = ["circular_pocket", "sphere_finishing", "sphere_helical", "sphere_roughing", "write_all"]
 
 HEADER = ["%", "G21 G17 G90 G94 G54", "M03 S12000", "G00 Z5"]
 FOOTER = ["G00 Z5", "M05", "M30", "%"]
@@ -47,6 +49,28 @@ def sphere_finishing(radius: float = 60.0, chord_mm: float = 3.5, stepover_mm: f
             a = 2 * math.pi * k / n
             line = f"X{_f(r * math.cos(a))} Y{_f(r * math.sin(a))}"
             out.append(("G01 " + line + " F1800") if k == 1 else line)
+    return "\n".join(out + FOOTER) + "\n"
+
+
+def sphere_helical(radius: float = 60.0, turns: int = 318, arcs_per_turn: int = 110) -> str:
+    """Spiral finish of a hemisphere from the equator up: G03 helical arcs (R form), each a
+    fraction of a turn at the radius of its middle, dropping in Z as the spiral climbs the
+    latitude; consecutive arcs meet at a slight kink where the radius changes."""
+    out = list(HEADER)
+    n = turns * arcs_per_turn
+    out += [f"G00 X{_f(radius)} Y0", "G01 Z0 F600"]
+
+    def point(k: int) -> tuple[float, float, float, float]:
+        phi = k / n * (math.pi / 2) * 0.98           # latitude, short of the pole
+        a = 2 * math.pi * k / arcs_per_turn
+        r = radius * math.cos(phi)
+        return r * math.cos(a), r * math.sin(a), radius * math.sin(phi), r
+
+    for k in range(1, n + 1):
+        x, y, z, _ = point(k)
+        r_mid = point(k)[3] * 0.5 + point(k - 1)[3] * 0.5
+        words = f"G03 X{_f(x)} Y{_f(y)} Z{_f(z)} R{_f(r_mid)}"
+        out.append(words + (" F1800" if k == 1 else ""))
     return "\n".join(out + FOOTER) + "\n"
 
 
@@ -93,6 +117,7 @@ def circular_pocket(radius: float = 17.0, depth: float = 17.0, dz: float = 0.5,
 PROGRAMS = {
     "sphere_roughing": sphere_roughing,
     "sphere_finishing": sphere_finishing,
+    "sphere_helical": sphere_helical,
     "circular_pocket": circular_pocket,
 }
 

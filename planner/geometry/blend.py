@@ -98,7 +98,8 @@ def _blend_caps(theta: np.ndarray, half: np.ndarray, a_pl: np.ndarray, j_pl: np.
 
 
 def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds, jj: np.ndarray,
-                      v_blend: np.ndarray, tangent_len: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
+                      v_blend: np.ndarray, tangent_len: np.ndarray, j_pl: np.ndarray,
+                      eligible: np.ndarray, v_sharp: np.ndarray) -> np.ndarray:
     """True where the blend cannot make the corner slower than the sharp corner's plan.
 
     The program is planned as it is; a blend holds about one speed over the lines' last and
@@ -106,7 +107,9 @@ def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds,
     from the joint on both sides (bounded above: a ramp at full jerk from the joint's speed, as
     each move's profile starts with zero acceleration, and the lines' peak speeds), the blended
     corner is crossed at least as fast everywhere, provided the corner is where the sharp plan
-    is slowest."""
+    is slowest, or where the plan crosses it at the sharp corner's own cap ``v_sharp`` (then the
+    corner, not a joint beside it, holds the speed down). ``eligible``: the joints whose pair
+    allows more than their sharp corner."""
     v_joint = np.asarray(plan.ve)[jj]
     j = np.minimum(j_pl, machine.limits.j_max_mm_s3)
     v_ramp = _ramp_speed(v_joint, tangent_len, j)
@@ -115,9 +118,40 @@ def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds,
     quicker = (v_blend >= np.minimum(v_ramp, peak[jj])) & (v_blend >= np.minimum(v_ramp, peak[jj + 1]))
     # and only where the sharp corner is what slows the motion (its speed is the lowest of the
     # two lines'): a plan that brakes through the joint for something further on would have to
-    # brake on the blend, whose tangential acceleration is small (its budget goes to the turn)
-    slowest = (v_joint <= np.asarray(plan.vs)[jj]) & (v_joint <= np.asarray(plan.ve)[jj + 1])
-    return quicker & slowest
+    # brake on the blend, whose tangential acceleration is small (its budget goes to the turn).
+    # A slower joint next to it that is blended too no longer slows it: along a run of kinks
+    # (a CAM contour of short chords) each joint is taken where every slower joint it brakes
+    # for, in either direction, is blended as well, down to the run's slowest.
+    at_cap = v_joint >= v_sharp * (1.0 - 1e-6)
+    slower_before = (np.asarray(plan.vs)[jj] < v_joint) & ~at_cap
+    slower_after = (np.asarray(plan.ve)[jj + 1] < v_joint) & ~at_cap
+    taken = quicker & eligible
+    n_joints = max(len(np.asarray(plan.ve)) - 1, 0)
+    return quicker & _through_blended(jj, slower_before, taken, n_joints) \
+        & _through_blended(jj, slower_after, taken, n_joints, after=True)
+
+
+def _through_blended(jj: np.ndarray, slower: np.ndarray, taken: np.ndarray, n_joints: int,
+                     after: bool = False) -> np.ndarray:
+    """Per joint jj[i]: not ``slower[i]`` (its neighbour joint on that side is not slower), or
+    the neighbour is ``taken`` and holds the same, recursively: the joints from jj[i] towards
+    the side, up to the first that is not slower than its own next, all taken."""
+    free = np.ones(n_joints, dtype=bool)        # the joint's side needs nothing
+    free[jj] = ~slower
+    ok_joint = np.zeros(n_joints, dtype=bool)   # taken, and itself through on that side
+    ok_joint[jj] = taken
+    idx = np.arange(n_joints)
+    if after:
+        free, ok_joint = free[::-1], ok_joint[::-1]
+    # through[k] = free[k] | (ok_joint[k-1] & through[k-1]): true where, going back from k, a
+    # free joint comes before any joint that is not ok
+    last_free = np.maximum.accumulate(np.where(free, idx, -1))
+    last_bad = np.maximum.accumulate(np.where(ok_joint, -1, idx))
+    prev_bad = np.concatenate([[-1], last_bad[:-1]])   # the last not-ok joint before k
+    through = free | (last_free > prev_bad)
+    if after:
+        through = through[::-1]
+    return through[jj]
 
 
 def joint_context(program: Program) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -436,7 +470,8 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
         # the pair is crossed at no more than the slower line's feed, over both halves
         feeds = np.array([min(moves[i].feed_mm_s, moves[i + 1].feed_mm_s) for i in jj])
         v_cross = np.minimum(v_blend, np.minimum(feeds, machine.limits.v_max_mm_s))
-        good &= _blend_not_slower(program, machine, speeds(program), jj, v_cross, half * t1, j_pl)
+        good &= _blend_not_slower(program, machine, speeds(program), jj, v_cross, half * t1, j_pl,
+                                  good.copy(), v_break)
     jj, u1, n1, theta, half = jj[good], u1[good], n1[good], theta[good], half[good]
     t1 = t1[good]
     if not jj.size:

@@ -20,6 +20,11 @@ from planner.core.curves import pair_frames, pair_positions
 from planner.core.movestore import MoveStore
 from planner.core.program import Arc, Move, MoveKind, turn_xy
 
+try:  # the sample geometry in C (planner/geometry/_kernels.c), built by `pip install -e .`
+    import planner.geometry._kernels as _kernels
+except ImportError:  # no compiler where it was installed: the NumPy forms, the reference
+    _kernels = None  # type: ignore[assignment]
+
 __all__ = ["MoveTable", "RowJoin", "concat_tables", "contour_error", "join_rows", "take_rows"]
 
 _GL8_X, _GL8_W = np.polynomial.legendre.leggauss(8)
@@ -219,7 +224,23 @@ class MoveTable:
 
     # -- geometry -------------------------------------------------------------------------
     def positions(self, row: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """Exact positions (N, d) of move ``row[k]`` at path length ``u[k]``."""
+        """Exact positions (N, d) of move ``row[k]`` at path length ``u[k]``: lines and plain
+        arcs in C where it is built (``_kernels.positions``), the other rows here."""
+        if _kernels is None or not len(row):
+            return self.positions_numpy(row, u)
+        row = np.ascontiguousarray(row, dtype=np.int64)
+        u = np.ascontiguousarray(u, dtype=float)
+        out = np.empty((len(row), self.n_axes))
+        left = _kernels.positions(self.start, self.delta, self.end, self.length, self.is_arc, self.is_blend,
+                                  self.spiral, self.turn, self.first, self.second, self.cx, self.cy, self.r0,
+                                  self.r1, self.theta0, self.sweep, _FAR_RADIUS_MM, row, u, out)
+        if left:
+            k = np.flatnonzero(np.isnan(out[:, 0]))
+            out[k] = self.positions_numpy(row[k], u[k])
+        return out
+
+    def positions_numpy(self, row: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """``positions`` in NumPy, every kind of row (the reference of the compiled form)."""
         length = self.length[row]
         frac = np.clip(u / length, 0.0, 1.0)
         arc = self.is_arc[row]
@@ -498,6 +519,25 @@ def take_rows(table: MoveTable, sl: slice) -> MoveTable:
 
 
 def contour_error(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Distance (N,) of the points q from the programmed geometry of move ``row[k]``: lines and
+    arcs not in a turned frame in C where it is built (``_kernels.contour_error``), blends and
+    turned arcs by ``contour_error_numpy``."""
+    if _kernels is None or not len(row):
+        return contour_error_numpy(table, row, q, u)
+    row = np.ascontiguousarray(row, dtype=np.int64)
+    q = np.ascontiguousarray(q, dtype=float)
+    u = np.ascontiguousarray(u, dtype=float)
+    out = np.empty(len(row))
+    left = _kernels.contour_error(table.start, table.delta, table.length, table.is_arc, table.is_blend,
+                                  table.turn, table.first, table.second, table.cx, table.cy, table.r0,
+                                  table.r1, table.theta0, table.sweep, row, q, u, out)
+    if left:
+        k = np.flatnonzero(np.isnan(out))
+        out[k] = contour_error_numpy(table, row[k], q[k], u[k])
+    return out
+
+
+def contour_error_numpy(table: MoveTable, row: np.ndarray, q: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Distance (N,) of the points q from the programmed geometry of move ``row[k]``.
 
     ``u`` (the samples' path parameter) only picks the turn of multi-turn arcs.
