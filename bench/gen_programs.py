@@ -4,13 +4,15 @@
   Z levels down a hemisphere, G01 step-overs between them), about 3 million set-points;
 * sphere finishing: about 35,000 lines of short G01 chords along parallels of a
   hemisphere (a CAM-style contour finish), about 5.4 million set-points;
-* sphere finishing with helical arcs: about 35,000 lines of G03 helical arcs spiralling down
-  a hemisphere (a CAM-style spiral finish with arc fitting), about 5.3 million set-points;
+* sphere finishing with helical arcs: about 35,000 lines of G03 helical arcs spiralling up
+  a hemisphere (a CAM-style spiral finish with arc fitting) at F900, about 87 minutes of
+  motion, 5.2 million set-points;
 * circular pocket: about 1,200 lines, rings of G03 half circles (I/J) with G01 step-overs
   and helical entries, about 1.2 million set-points.
 
-All at F1800 (30 mm/s, the paper's Vmax). ``python -m bench.gen_programs OUTDIR`` writes
-sphere_roughing.nc, sphere_finishing.nc, sphere_helical.nc, circular_pocket.nc.
+At F1800 (30 mm/s, the paper's Vmax), the helical finish at F900.
+``python -m bench.gen_programs OUTDIR`` writes sphere_roughing.nc, sphere_finishing.nc,
+sphere_helical.nc, circular_pocket.nc.
 """
 
 from __future__ import annotations
@@ -52,7 +54,8 @@ def sphere_finishing(radius: float = 60.0, chord_mm: float = 3.5, stepover_mm: f
     return "\n".join(out + FOOTER) + "\n"
 
 
-def sphere_helical(radius: float = 60.0, turns: int = 318, arcs_per_turn: int = 110) -> str:
+def sphere_helical(radius: float = 60.0, turns: int = 318, arcs_per_turn: int = 110,
+                   feed_mm_min: float = 900.0) -> str:
     """Spiral finish of a hemisphere from the equator up: G03 helical arcs (R form), each a
     fraction of a turn at the radius of its middle, dropping in Z as the spiral climbs the
     latitude; consecutive arcs meet at a slight kink where the radius changes."""
@@ -70,7 +73,7 @@ def sphere_helical(radius: float = 60.0, turns: int = 318, arcs_per_turn: int = 
         x, y, z, _ = point(k)
         r_mid = point(k)[3] * 0.5 + point(k - 1)[3] * 0.5
         words = f"G03 X{_f(x)} Y{_f(y)} Z{_f(z)} R{_f(r_mid)}"
-        out.append(words + (" F1800" if k == 1 else ""))
+        out.append(words + (f" F{feed_mm_min:g}" if k == 1 else ""))
     return "\n".join(out + FOOTER) + "\n"
 
 

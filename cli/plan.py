@@ -324,6 +324,9 @@ def _print_summary(args, program, parse_s: float, summary: _Summary) -> int:
         "end_error_mm": report.end_error_mm,
         "violations": report.violations,
         "joint_jerk": report.joint_jerk,
+        # joints crossed with a velocity step beyond the jerk limit ([planner]
+        # corner_velocity_step_mm_s): how many, the largest step, their lines
+        "corner_steps": report.corner_steps,
         # how far the path leaves the programmed one: only corner blends do (G64 P)
         "blends": blends.blends,
         "path_deviation_mm": blends.max_corner_deviation_mm,

@@ -401,6 +401,8 @@ def config_to_toml(config: MachineConfig) -> str:
     out.append(f"blend_tolerance_mm = {_fmt(float(m.planner.blend_tolerance_mm))}")
     if m.planner.max_program_mb != 1024.0:
         out.append(f"max_program_mb = {_fmt(float(m.planner.max_program_mb))}")
+    if m.planner.corner_velocity_step_mm_s:
+        out.append(f"corner_velocity_step_mm_s = {_fmt(float(m.planner.corner_velocity_step_mm_s))}")
     out += [""]
     for number, (drive, bit, name) in sorted(m.output_bits.items()):
         out += ["[[outputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",

@@ -12,7 +12,8 @@ import numpy as np
 from planner.core.machine import MachineSpec
 
 __all__ = ["ACCEL_NORMAL_SHARE", "BLEND_CROSS_SHARE", "BLEND_DK_SHARE", "BLEND_NORMAL_SHARE",
-           "JERK_CROSS_SHARE", "JERK_NORMAL_SHARE", "LimitSet"]
+           "JERK_CROSS_SHARE", "JERK_NORMAL_SHARE", "KINK_JERK_FLOOR", "LimitSet", "joint_step_budget",
+           "kink_caps"]
 
 ACCEL_NORMAL_SHARE = math.cos(math.radians(30.0))  # LinuxCNC's BLEND_ACC_RATIO_NORMAL
 JERK_NORMAL_SHARE = 0.5
@@ -23,6 +24,10 @@ JERK_CROSS_SHARE = 0.6
 BLEND_CROSS_SHARE = 0.9
 BLEND_DK_SHARE = 0.8
 BLEND_NORMAL_SHARE = 0.3
+#: the share of an axis' jerk a joint's direction change may always take, however much of it
+#: the moves' own jerk uses there: a tenth of the meter's tolerance, so that kinks the size of
+#: rounding (1e-9 of a turn) are crossed at speed and no sample is over the limit
+KINK_JERK_FLOOR = 1e-5
 
 
 @dataclass(frozen=True, slots=True)
@@ -41,6 +46,7 @@ class LimitSet:
     a_axis: np.ndarray
     j_axis: np.ndarray
     rotary: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    corner_step_mm_s: float = 0.0
     v_path_rot: float = math.inf
     a_path_rot: float = math.inf
     j_path_rot: float = math.inf
@@ -56,6 +62,7 @@ class LimitSet:
             a_axis=np.array([a.a_max for a in machine.axes], dtype=float),
             j_axis=np.array([a.j_max for a in machine.axes], dtype=float),
             rotary=np.array([a.rotary for a in machine.axes], dtype=bool),
+            corner_step_mm_s=machine.planner.corner_velocity_step_mm_s,
             v_path_rot=lim.v_max_deg_s, a_path_rot=lim.a_max_deg_s2, j_path_rot=lim.j_max_deg_s3,
             rapid_v_rot=lim.rapid_deg_s,
         )
@@ -74,3 +81,28 @@ class LimitSet:
 
         return (pick(self.v_path, self.v_path_rot), pick(self.a_path, self.a_path_rot),
                 pick(self.j_path, self.j_path_rot), pick(self.rapid_v, self.rapid_v_rot))
+
+
+def joint_step_budget(lim: LimitSet, j_in: np.ndarray, j_out: np.ndarray, t_in: np.ndarray,
+                      t_out: np.ndarray) -> np.ndarray:
+    """Per joint and axis (n, d): how much the axis' velocity may change in one sample at a
+    joint crossed with a change of direction (mm/s).
+
+    A direction change crossed at speed v changes the axis' velocity by v |dt_k| within one
+    sample: its third difference is up to v |dt_k| Ts, a jerk of v |dt_k| / Ts^2 on top of the
+    jerk the two moves' profiles have there (at most j |t_k|, their path jerk times the axis'
+    share of the tangent on either side). What is left of the axis' limit, times Ts^2, is the
+    budget (at least ``KINK_JERK_FLOOR`` of the limit); a configured corner velocity step
+    (``corner_step_mm_s``) raises it to that step."""
+    ts = lim.ts_s
+    used = np.maximum(j_in[:, None] * np.abs(t_in), j_out[:, None] * np.abs(t_out))
+    room = np.maximum(lim.j_axis[None, :] - used, KINK_JERK_FLOOR * lim.j_axis[None, :])
+    return np.maximum(room * ts * ts, lim.corner_step_mm_s)
+
+
+def kink_caps(dt: np.ndarray, step: np.ndarray) -> np.ndarray:
+    """Per joint: the speed whose one-sample velocity change v |dt_k| keeps within ``step``
+    (``joint_step_budget``) on every axis; dt (n, d) the change of the unit tangent."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = np.where(dt > 0.0, step / dt, np.inf)
+    return v.min(axis=1) if v.shape[0] else np.zeros(0)

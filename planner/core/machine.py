@@ -78,6 +78,9 @@ class PlannerSettings:
     subroutine_dirs: tuple[str, ...] = ()    # as written; relative ones to MachineSpec.config_dir
     blend_tolerance_mm: float = 0.0  # G64 without P: corner blend tolerance (0: programmed path)
     max_program_mb: float = 1024.0   # the largest program read
+    # at a joint that is not blended, the largest change of an axis' velocity in one sample
+    # beyond what its jerk limit allows (0: none, every axis within its jerk limit there)
+    corner_velocity_step_mm_s: float = 0.0
 
     @property
     def max_program_bytes(self) -> int:
@@ -172,6 +175,9 @@ def _validate_planner(p: PlannerSettings, where: str) -> None:
     if not 0.0 <= p.blend_tolerance_mm <= 10.0:
         raise PlannerError(f"{where}: blend_tolerance_mm must be between 0 and 10 mm, "
                            f"got {p.blend_tolerance_mm}")
+    if not 0.0 <= p.corner_velocity_step_mm_s <= 1000.0:
+        raise PlannerError(f"{where}: corner_velocity_step_mm_s must be between 0 and 1000 mm/s, "
+                           f"got {p.corner_velocity_step_mm_s}")
 
 
 #: position counts must stay within int32 (CiA 402 0x607A/0x6064) with this margin over the travel
@@ -240,7 +246,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
     planner = PlannerSettings(ts_s=pl["ts_s"], mode=pl["mode"], interpolation=pl["interpolation"],
                               subroutine_dirs=tuple(pl["subroutine_dirs"]),
                               blend_tolerance_mm=pl["blend_tolerance_mm"],
-                              max_program_mb=pl["max_program_mb"])
+                              max_program_mb=pl["max_program_mb"],
+                              corner_velocity_step_mm_s=pl["corner_velocity_step_mm_s"])
     offsets: dict[str, tuple[float, ...]] = {n: (0.0,) * len(axes) for n in TABLE_OFFSET_NAMES}
     for key, value in valid["offsets"].items():
         if len(value) != len(axes):

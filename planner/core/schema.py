@@ -110,6 +110,12 @@ MACHINE_FILE = Table("", tables=(
         Key("blend_tolerance_mm", "float", 0.0, 0.0, 10.0),
         # the largest program read (MB): a longer file, or a device that goes on, is refused
         Key("max_program_mb", "float", 1024.0, 0.001, 65536.0),
+        # at a joint that is not blended (a corner in G61.1, one the blends leave), how much an
+        # axis' velocity may change in one sample (mm/s or deg/s) beyond what its jerk limit
+        # allows; 0: none (such joints are crossed within every axis' jerk limit: a real corner
+        # is all but a stop); like Klipper's square corner velocity, the axes' acceleration
+        # bounds it too
+        Key("corner_velocity_step_mm_s", "float", 0.0, 0.0, 1000.0),
     )),
     # G54 ... G59.3 (a name with a dot is quoted: "G59.1" = [...])
     Table("offsets", pattern=r"G5[4-8]|G59(?:\.[123])?",

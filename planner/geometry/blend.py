@@ -49,7 +49,14 @@ from typing import Any, Protocol
 import numpy as np
 
 from planner.core.curves import Blend, fresnel, unit_pair
-from planner.core.limits import ACCEL_NORMAL_SHARE, BLEND_DK_SHARE, BLEND_NORMAL_SHARE, LimitSet
+from planner.core.limits import (
+    ACCEL_NORMAL_SHARE,
+    BLEND_DK_SHARE,
+    BLEND_NORMAL_SHARE,
+    LimitSet,
+    joint_step_budget,
+    kink_caps,
+)
 from planner.core.machine import MachineSpec
 from planner.core.movestore import MoveStore
 from planner.core.program import Move, MoveKind, Program
@@ -461,10 +468,18 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
     j_pl = np.where(in_plane, lim_j[None, :], np.inf).min(axis=1)
     v_blend = _blend_caps(theta, half, np.minimum(a_pl, machine.limits.a_max_mm_s2),
                           np.minimum(j_pl, machine.limits.j_max_mm_s3))
+    # the sharp corner's cap, as the look-ahead gives it: acceleration and jerk of the
+    # one-sample direction change (the lines' path jerk: ``joint_step_budget``)
     c_brk = np.maximum(lim_a - 2.0 * ts * lim_j, 0.1 * lim_a)[None, :]
     dt = np.abs(u2 - u1)
     with np.errstate(divide="ignore", invalid="ignore"):
         v_break = np.where(dt > 1e-12, c_brk * ts / dt, np.inf).min(axis=1)
+    limits = LimitSet.from_machine(machine)
+    share = np.abs(direction)               # each axis' share of the line's tangent
+    with np.errstate(divide="ignore"):
+        j_line = np.minimum(limits.j_path, np.min(lim_j[None, :] / share, axis=1))
+    step = joint_step_budget(limits, j_line[jj], j_line[jj + 1], u1, u2)
+    v_break = np.minimum(v_break, kink_caps(np.where(dt > 1e-12, dt, 0.0), step))
     good = v_blend > v_break if speeds is not None else np.ones(v_blend.shape, dtype=bool)
     if speeds is not None and good.any():
         # the pair is crossed at no more than the slower line's feed, over both halves

@@ -62,7 +62,7 @@ move from any start speed; stops always are.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -75,6 +75,8 @@ from planner.core.limits import (
     JERK_CROSS_SHARE,
     JERK_NORMAL_SHARE,
     LimitSet,
+    joint_step_budget,
+    kink_caps,
 )
 from planner.core.program import EventKind, Program
 from planner.geometry.movetable import MoveTable, take_rows
@@ -248,31 +250,35 @@ GROUP_JOINTS = 6
 
 
 def _grouped_breaks(cap: np.ndarray, dt: np.ndarray, length: np.ndarray, kappa: np.ndarray,
-                    c: np.ndarray, ts: float) -> np.ndarray:
+                    c: np.ndarray, ts: float, step: np.ndarray) -> np.ndarray:
     """Breaks at joints less than 2 v Ts apart land in the same or neighbouring samples, where
     their velocity changes add up (a quarter-micrometre move between two corners is one corner
     of twice the turn at any useful speed). For each run of joints j..j+k (k <= GROUP_JOINTS)
     with D the path between the first and the last: either v <= D / (2 Ts) (the breaks are two
-    samples apart or more, each joint's own cap holds) or v obeys the tangent-break rule for
-    the sum of their per-axis direction changes. Every joint of the run gets the larger of the
-    two as a cap."""
+    samples apart or more, each joint's own cap holds) or v obeys the tangent-break rule and
+    the jerk rule (the smallest one-sample step of the run's joints, ``step``) for the sum of
+    their per-axis direction changes. Every joint of the run gets the larger of the two as a
+    cap."""
     m = dt.shape[0]
     if m < 2:
         return cap
     cap = cap.copy()
     inner = length[1:m]                      # the move between joint j and joint j + 1
     total = dt.copy()
+    budget = step.copy()
     dist = np.zeros(m)
     kap = np.maximum(kappa[:m], kappa[1:m + 1])
     for k in range(1, min(GROUP_JOINTS, m - 1) + 1):
         rows = m - k
         total = total[:rows] + dt[k:k + rows]
+        budget = np.minimum(budget[:rows], step[k:k + rows])
         dist = dist[:rows] + inner[k - 1:k - 1 + rows]
         kap = np.maximum(kap[:rows], kappa[k + 1:k + 1 + rows])
         b = total / ts
         kk = kap[:, None]
         with np.errstate(divide="ignore", invalid="ignore"):
             v_g = np.where(b > 0.0, 2.0 * c / (b + np.sqrt(b * b + 4.0 * kk * c)), np.inf).min(axis=1)
+        v_g = np.minimum(v_g, kink_caps(total, budget))
         group_cap = np.maximum(dist / (2.0 * ts), v_g)
         if np.all(group_cap >= cap.max()):
             continue
@@ -295,7 +301,8 @@ def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np
     c_start, c_end = table.end_curvature_vectors()
     _, kappa, _ = table.arc_terms()
     ts = lim.ts_s
-    # Tangent break: kappa v^2 + (|dt_k| / Ts) v <= A_k - 2 Ts J_k, per axis.
+    # Tangent break: kappa v^2 + (|dt_k| / Ts) v <= A_k - 2 Ts J_k, per axis (acceleration),
+    # and v |dt_k| within the joint's one-sample step (jerk: ``joint_step_budget``).
     dt = np.abs(t_start[nxt] - t_end[cur])
     dt = np.where(dt > 1e-12, dt, 0.0)
     b = dt / ts
@@ -304,13 +311,37 @@ def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np
     with np.errstate(divide="ignore", invalid="ignore"):
         v_break = np.where(b > 0.0, 2.0 * c / (b + np.sqrt(b * b + 4.0 * kap * c)), np.inf)
     cap = np.minimum(cap, v_break.min(axis=1))
-    cap = _grouped_breaks(cap, dt, table.length, kappa, c, ts)
-    # Curvature jump: v^2 |d(kappa n)_k| <= J_k Ts.
+    step = joint_step_budget(lim, ml.j_t[cur], ml.j_t[nxt], t_end[cur], t_start[nxt])
+    cap = np.minimum(cap, kink_caps(dt, step))
+    cap = _grouped_breaks(cap, dt, table.length, kappa, c, ts, step)
+    # Curvature jump: v^2 |d(kappa n)_k| in one sample. With a configured corner step, within
+    # J_k Ts on its own; without, the direction change and the curvature jump land in the same
+    # stencils: together within what the moves' own jerk leaves of J_k,
+    # v |dt_k| / Ts^2 + v^2 |d(kappa n)_k| / Ts <= room_k (= step_k / Ts^2).
     dk = np.abs(c_start[nxt] - c_end[cur])
     dk = np.where(dk > 1e-12, dk, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        v_curv = np.where(dk > 0.0, np.sqrt(lim.j_axis[None, :] * ts / dk), np.inf)
+        if lim.corner_step_mm_s:
+            v_curv = np.where(dk > 0.0, np.sqrt(lim.j_axis[None, :] * ts / dk), np.inf)
+        else:
+            qa, qb, room = dk / ts, dt / (ts * ts), step / (ts * ts)
+            v_curv = np.where(qa + qb > 0.0, 2.0 * room / (qb + np.sqrt(qb * qb + 4.0 * qa * room)), np.inf)
     return np.minimum(cap, v_curv.min(axis=1))
+
+
+def corner_steps(table: MoveTable, v_joint: np.ndarray, j_t: np.ndarray, lim: LimitSet) -> np.ndarray:
+    """Per joint of ``table`` (n - 1), crossed at ``v_joint`` by moves of path jerk ``j_t``: the
+    largest one-sample velocity step of an axis beyond what its jerk limit allows there (mm/s;
+    0 where within: without a configured corner velocity step, every joint)."""
+    if len(table) < 2:
+        return np.zeros(0)
+    t_start, t_end = table.end_tangents()
+    dt = np.abs(t_start[1:] - t_end[:-1])
+    dt = np.where(dt > 1e-12, dt, 0.0)
+    room = joint_step_budget(replace(lim, corner_step_mm_s=0.0), j_t[:-1], j_t[1:], t_end[:-1], t_start[1:])
+    step = v_joint[:, None] * dt
+    over = step > room * (1.0 + 1e-9)          # the cap itself, rounded, is no step
+    return np.where(over, step - room, 0.0).max(axis=1)
 
 
 @dataclass(frozen=True)

@@ -32,6 +32,11 @@ import numpy as np
 
 from planner.core.machine import MachineSpec
 
+try:  # the stencils in C (planner/motion/_meter.c), built by `pip install -e .`
+    import planner.motion._meter as _meter
+except ImportError:  # no compiler where it was installed: the NumPy form, the reference
+    _meter = None  # type: ignore[assignment]
+
 __all__ = ["KINDS", "REL_TOL", "LimitMeter", "PathSpeedLimits", "Worst", "check_limits", "path_vaj"]
 
 #: the limit kinds measured, each the worst over time (and over axes for ``axis_*``)
@@ -74,6 +79,15 @@ class Worst:
             self.ratio = float(ratio.flat[i])
             self.value = float(value.flat[i])
             self.line = int(np.broadcast_to(lines, value.shape).flat[i])
+
+    def merge(self, row: np.ndarray) -> None:
+        """``update`` from a summary the compiled meter made of one call's stencils: (largest
+        value, how many over, the worst ratio over, its value, its line, ...)."""
+        if row[1] <= 0:
+            return
+        self.count += int(row[1])
+        if row[2] > self.ratio:
+            self.ratio, self.value, self.line = float(row[2]), float(row[3]), int(row[4])
 
     def as_dict(self) -> dict[str, float]:
         return {"count": self.count, "worst": self.value, "worst_ratio": self.ratio, "line": self.line}
@@ -194,11 +208,61 @@ class LimitMeter:
         self._tail = (q[-3:].copy(), np.asarray(s_mm[-3:], dtype=float).copy(), move[-3:].copy(),
                       line[-3:].copy())
 
-    def _measure(self, q: np.ndarray, s: np.ndarray, move: np.ndarray, line: np.ndarray,
-                 new_from: int) -> None:
+    def _noise(self) -> tuple[float, dict[str, float]]:
+        """The rounding allowance: (eps of a position, the noise of a k-th difference per order)."""
         ts = self.ts
         eps = np.finfo(float).eps * self._scale * 16
-        noise = {"v": eps / ts, "a": 4 * eps / ts**2, "j": 8 * eps / ts**3}
+        return eps, {"v": eps / ts, "a": 4 * eps / ts**2, "j": 8 * eps / ts**3}
+
+    def _measure(self, q: np.ndarray, s: np.ndarray, move: np.ndarray, line: np.ndarray,
+                 new_from: int) -> None:
+        """Measure the stencils that end in the new samples: in C where it is built, the same
+        figures as ``_measure_numpy``, which measures where it is not (and samples with NaN)."""
+        if _meter is None:
+            self._measure_numpy(q, s, move, line, new_from)
+            return
+        d = len(self.names)
+        ts = self.ts
+        eps, noise = self._noise()
+        keys = ("v", "a", "j")
+        params = np.array([new_from, ts, ts**2, ts**3, eps, noise["v"], noise["a"], noise["j"],
+                           REL_TOL["v"], REL_TOL["a"], REL_TOL["j"], float(self.across_joints)])
+        out = np.empty((3, 2 * d + 1, 7))
+        paths = np.array([self.a_path, self.a_path_rot, self.j_path, self.j_path_rot], dtype=float)
+        done = _meter.measure(np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(s, dtype=float),
+                              np.ascontiguousarray(move, dtype=np.int64),
+                              np.ascontiguousarray(line, dtype=np.int64),
+                              np.ascontiguousarray(self._v_limit(move), dtype=float), self.linear,
+                              np.stack([self.v_axis, self.a_axis, self.j_axis]), paths, params, out)
+        if not done:
+            self._measure_numpy(q, s, move, line, new_from)
+            return
+        # the figures in the order the NumPy form updates them
+        for k, key in enumerate(keys):
+            block, limit = out[k], (self.v_axis, self.a_axis, self.j_axis)[k]
+            for i, name in enumerate(self.names):
+                joint, inside = block[d + i], block[i]
+                if joint[5]:
+                    self.axes[name]["j_joint"] = max(self.axes[name]["j_joint"], float(joint[0]))
+                    self.joint.merge(joint)
+                if inside[5]:
+                    self.axes[name][key] = max(self.axes[name][key], float(inside[0]))
+                    self.ratios["axis_" + key] = max(self.ratios["axis_" + key],
+                                                     (float(inside[0]) - noise[key]) / float(limit[i]))
+                    self.worst["axis_" + key].merge(inside)
+            path = block[2 * d]
+            if not path[5]:
+                continue
+            self.tangential[key] = max(self.tangential[key], float(path[0]))
+            if k > 0 and not self.tangential_accel:
+                continue
+            self.ratios["tangential_" + key] = max(self.ratios["tangential_" + key], float(path[6]))
+            self.worst["tangential_" + key].merge(path)
+
+    def _measure_numpy(self, q: np.ndarray, s: np.ndarray, move: np.ndarray, line: np.ndarray,
+                       new_from: int) -> None:
+        ts = self.ts
+        eps, noise = self._noise()
         same1 = move[1:] == move[:-1]
         same = {1: same1, 2: same1[1:] & same1[:-1], 3: same1[2:] & same1[1:-1] & same1[:-2]}
         dq, ds = q, s

@@ -23,7 +23,7 @@ from planner.core.errors import PlannerError
 from planner.core.machine import MachineSpec
 from planner.core.movestore import MoveStore
 from planner.core.program import MoveKind, Program
-from planner.geometry.movetable import MoveTable, contour_error
+from planner.geometry.movetable import MoveTable, concat_tables, contour_error, take_rows
 from planner.motion.interpolate import (
     INTERPOLATIONS,
     Interpolator,
@@ -33,7 +33,14 @@ from planner.motion.interpolate import (
     first_sample_at,
     make_segment,
 )
-from planner.motion.lookahead import MODES, LimitSet, PlannedBlock, plan_blocks, stops_and_dwells
+from planner.motion.lookahead import (
+    MODES,
+    LimitSet,
+    PlannedBlock,
+    corner_steps,
+    plan_blocks,
+    stops_and_dwells,
+)
 from planner.motion.meter import LimitMeter
 from planner.motion.profile import build_profiles
 
@@ -139,6 +146,10 @@ class LimitReport:
     nan: bool
     time_increasing: bool
     samples: int
+    # joints crossed with a velocity step beyond the jerk limit ([planner]
+    # corner_velocity_step_mm_s): how many, the largest step (mm/s), the lines (the first 50)
+    corner_steps: dict[str, object] = field(default_factory=lambda: {"count": 0, "largest_mm_s": 0.0,
+                                                                     "lines": []})
 
     @property
     def ok(self) -> bool:
@@ -151,6 +162,7 @@ class LimitReport:
             "violations": self.violations, "joint_jerk": self.joint_jerk,
             "end_error_mm": self.end_error_mm, "nan": self.nan,
             "time_increasing": self.time_increasing, "samples": self.samples,
+            "corner_steps": self.corner_steps,
         }
 
 
@@ -318,8 +330,10 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
                            meter.joint.as_dict(), 0.0, False, True, meter.samples)
     interp = Interpolator(interpolation, ts)
     k_lo = 0
+    steps = _CornerSteps(lim)
     for seg in segments:
         prof = seg.profiles
+        steps.add(seg)
         lines = seg.table.line
         first = int(seg.table.index[0])
         meter.next_moves(seg.v_prog, first)
@@ -352,4 +366,42 @@ def report_segments(program: Program, machine: MachineSpec, interpolation: str, 
             on_segment(seg)
     end_err = float(np.max(np.abs(last_q - program.end_position))) if last_q is not None else 0.0
     return LimitReport(tangential, dict(meter.tangential), meter.axes, contour, meter.violations,
-                       meter.joint.as_dict(), end_err, nan, increasing, meter.samples)
+                       meter.joint.as_dict(), end_err, nan, increasing, meter.samples, steps.as_dict())
+
+
+class _CornerSteps:
+    """The joints of consecutive segments crossed with a velocity step beyond the jerk limit
+    (``lookahead.corner_steps``), the joint between two segments included."""
+
+    LINES_KEPT = 50
+
+    def __init__(self, lim: LimitSet) -> None:
+        self.lim = lim
+        self.count = 0
+        self.largest = 0.0
+        self.lines: list[int] = []
+        self._last: tuple[MoveTable, float, float] | None = None   # a segment's last move
+
+    def add(self, seg: Segment) -> None:
+        prof = seg.profiles
+        table, v_joint, j_t = seg.table, prof.ve[:-1], prof.j_max
+        if self._last is not None and len(table):
+            last_table, last_ve, last_j = self._last
+            table = concat_tables([last_table, table])
+            v_joint = np.concatenate([[last_ve], v_joint])
+            j_t = np.concatenate([[last_j], j_t])
+        if len(seg.table):
+            self._last = (take_rows(seg.table, slice(len(seg.table) - 1, None)), float(prof.ve[-1]),
+                          float(prof.j_max[-1]))
+        step = corner_steps(table, v_joint, j_t, self.lim)
+        over = np.flatnonzero(step > 0.0)
+        if not over.size:
+            return
+        self.count += int(over.size)
+        self.largest = max(self.largest, float(step[over].max()))
+        room = self.LINES_KEPT - len(self.lines)
+        if room > 0:
+            self.lines += [int(x) for x in table.line[over[:room] + 1]]
+
+    def as_dict(self) -> dict[str, object]:
+        return {"count": self.count, "largest_mm_s": self.largest, "lines": self.lines}

@@ -172,8 +172,13 @@ def test_every_blended_corner_holds_every_axis_limit_without_a_velocity_step() -
     assert rep.violations == {}
     assert rep.joint_jerk["worst_ratio"] <= 1.0 + 1e-6
     assert rep.contour_error_mm < 1e-9
-    sharp_rep = plan_program(sharp, m).limit_report()
-    assert sharp_rep.joint_jerk["worst_ratio"] > 10.0  # what the blends remove
+    # the sharp corners: crossed with a velocity step where one is configured (its jerk is
+    # what the blends remove), nearly stopped at within the jerk limit by default
+    stepping = replace(m, planner=replace(m.planner, corner_velocity_step_mm_s=1.0))
+    assert plan_program(sharp, stepping).limit_report().joint_jerk["worst_ratio"] > 10.0
+    sharp_plan = plan_program(sharp, m)
+    assert max(a["j_joint"] for a in sharp_plan.limit_report().axes.values()) <= 10_000.0 * (1 + 1e-4)
+    assert plan.cycle_time_s < sharp_plan.cycle_time_s
 
 
 def test_small_turns_between_long_lines_get_quicker() -> None:
@@ -185,13 +190,12 @@ def test_small_turns_between_long_lines_get_quicker() -> None:
     sharp = parse_program(polyline_text(pts, 0.01), "s.ngc", m)
     blended = blend_program(sharp, m)
     # every corner, the last one too: it lies on the braking ramp to the program's end, but
-    # the sharp plan crosses it at its own cap (the corner, not the end, holds the speed down)
+    # the sharp plan crosses it at its own cap (the corner, not the end, holds the speed down;
+    # leaving it sharp took 0.05 s more)
     assert blend_report(blended).blends == 6
     t_sharp = plan_program(sharp, m).cycle_time_s
     t_blend = plan_program(blended, m).cycle_time_s
     assert t_blend < 0.95 * t_sharp, (t_blend, t_sharp)
-    # and quicker than the same corners with the last left sharp (1.789 s)
-    assert t_blend < 1.75, t_blend
 
 
 def test_a_run_of_short_kinked_chords_is_blended_throughout() -> None:

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from planner.core.limits import KINK_JERK_FLOOR
 from planner.core.machine import AxisSpec
 from planner.gcode.interpreter import parse_program
 from planner.motion.lookahead import (
@@ -113,13 +114,74 @@ M30
 
 
 # -- lookahead caps ---------------------------------------------------------------------------
-def test_tangent_break_speed_keeps_axis_acceleration_within_one_sample():
-    plan = speeds("G21 G90 F1800\nG01 X10\nG01 Y10\nM30\n")
+def test_tangent_break_with_a_velocity_step_keeps_axis_acceleration_within_one_sample():
+    """A configured corner velocity step: the one-sample direction change within the axes'
+    acceleration (and the step)."""
+    base = paper_machine()
+    m = replace(base, planner=replace(base.planner, corner_velocity_step_mm_s=5.0))
+    plan = speeds("G21 G90 F1800\nG01 X10\nG01 Y10\nM30\n", machine=m)
     # 90 degree corner: |dt_k| = 1 on X and Y: v = (A - 2 Ts J) Ts / 1.
     assert plan.ve[0] == pytest.approx((1000.0 - 2 * 0.001 * 10000.0) * 0.001)
-    plan = speeds("G21 G90 F1800\nG01 X10\nG01 X20 Y0.1745\nM30\n")  # about 1 degree
+    plan = speeds("G21 G90 F1800\nG01 X10\nG01 X20 Y0.1745\nM30\n", machine=m)  # about 1 degree
     dt = np.abs(np.array([20 - 10, 0.1745]) / math.hypot(10, 0.1745) - np.array([1.0, 0.0]))
     assert plan.ve[0] == pytest.approx(min(30.0, 980.0 * 0.001 / dt.max()), rel=1e-9)
+    # a smaller step binds before the acceleration: v |dt_k| <= 0.2 mm/s
+    m = replace(base, planner=replace(base.planner, corner_velocity_step_mm_s=0.2))
+    plan = speeds("G21 G90 F1800\nG01 X10\nG01 X20 Y0.1745\nM30\n", machine=m)
+    assert plan.ve[0] == pytest.approx(0.2 / dt.max(), rel=1e-9)
+
+
+def test_without_a_step_the_direction_change_keeps_axis_jerk_within_limits():
+    """The default (no velocity step): v |dt_k| / Ts^2 within what the moves' own jerk leaves
+    of the axis' limit; a right angle along the axes leaves nothing: all but a stop; a corner
+    between diagonals leaves J (1 - 1/sqrt(2))."""
+    plan = speeds("G21 G90 F1800\nG01 X10\nG01 Y10\nM30\n")
+    assert plan.ve[0] == pytest.approx(KINK_JERK_FLOOR * 10_000.0 * 1e-6)
+    plan = speeds("G21 G90 F1800\nG01 X10 Y10\nG01 X20 Y0\nM30\n")
+    room = 10_000.0 * (1.0 - 1.0 / math.sqrt(2.0)) * 1e-6       # J_k - j_t |t_k|, times Ts^2
+    dt = math.sqrt(2.0)                                           # |dt_y| = 2 / sqrt(2)
+    assert plan.ve[0] == pytest.approx(room / dt, rel=1e-9)
+    # and the samples say so
+    text = "G21 G90 F1800\nG01 X10 Y10\nG01 X20 Y0\nG01 X30 Y0.2\nG01 Y20\nM30\n"
+    machine = paper_machine()
+    rep = plan_program(parse_program(text, "k.ngc", machine), machine).limit_report()
+    assert rep.ok
+    assert max(a["j_joint"] for a in rep.axes.values()) <= 10_000.0 * (1 + 1e-4)
+
+
+def test_arc_joints_with_a_kink_and_a_curvature_jump_hold_every_axis_jerk():
+    """CAM's fitted arcs (grbl's SO2_helloworld.nc, inch): each joint turns a little and steps
+    the curvature; both land in the same samples, so they share what the arcs' own jerk leaves
+    of the limit (each within it alone made 1.19 times the X jerk limit across a joint)."""
+    text = """G20 G90 G17 G61.1 F40
+G0 X7.6986 Y1.1452
+G1 Z-0.01
+G2 X7.7368 Y1.1441 I0 J-0.6209
+G2 X7.7698 Y1.1408 I-0.0288 J-0.4669
+G2 X7.8025 Y1.1351 I-0.0537 J-0.4022
+G2 X7.8304 Y1.1276 I-0.0656 J-0.3011
+G2 X7.8576 Y1.1176 I-0.0975 J-0.3061
+G2 X7.8808 Y1.1064 I-0.0996 J-0.2366
+G2 X7.9028 Y1.0929 I-0.1113 J-0.2042
+G2 X7.9215 Y1.078 I-0.1143 J-0.1635
+G2 X7.9383 Y1.0611 I-0.1312 J-0.1467
+G2 X7.9526 Y1.0425 I-0.1419 J-0.1243
+G2 X7.9645 Y1.0224 I-0.1576 J-0.1068
+G2 X7.9743 Y1.0002 I-0.1832 J-0.0937
+G2 X7.9816 Y0.9769 I-0.2296 J-0.085
+G2 X7.987 Y0.9513 I-0.2735 J-0.0712
+G2 X7.9901 Y0.9253 I-0.3042 J-0.0498
+G2 X7.9912 Y0.8965 I-0.3724 J-0.0288
+M2
+"""
+    base = paper_machine()
+    axes = tuple(replace(a, v_max=100.0, a_max=1000.0, j_max=10_000.0) for a in base.axes)
+    machine = replace(base, axes=axes).with_limits(v_max_mm_s=100.0, a_max_mm_s2=1000.0,
+                                                   j_max_mm_s3=10_000.0, rapid_mm_s=100.0)
+    rep = plan_program(parse_program(text, "so2.ngc", machine), machine).limit_report()
+    assert rep.ok
+    assert rep.joint_jerk["count"] == 0, rep.joint_jerk
+    assert max(a["j_joint"] for a in rep.axes.values()) <= 10_000.0 * (1 + 1e-4)
 
 
 def test_arc_centripetal_acceleration_and_jerk_caps():
@@ -225,3 +287,40 @@ def test_the_stops_and_dwells_of_a_window_are_the_programs(events, a, b):
     np.testing.assert_array_equal(sd.stops(a, b), stop[a:b])
     np.testing.assert_array_equal(sd.dwells(a, b), dwell[a:b])
     assert sd.before_s == before
+
+
+def test_the_corner_step_key_is_read_checked_and_reported(tmp_path) -> None:
+    """``[planner] corner_velocity_step_mm_s``: read, refused out of its range with the key and
+    line, written back by the panel; and what it allows shows in ``cnc-plan --json``'s
+    ``corner_steps`` (none by default)."""
+    import json
+    import subprocess
+    import sys
+
+    from planner.core.errors import PlannerError
+    from planner.core.machine import load_machine
+
+    base = ("[[axes]]\nname = \"X\"\ndrive_position = 0\nmin = -100.0\nmax = 100.0\nv_max = 30.0\n"
+            "a_max = 1000.0\nj_max = 10000.0\n[[axes]]\nname = \"Y\"\ndrive_position = 1\nmin = -100.0\n"
+            "max = 100.0\nv_max = 30.0\na_max = 1000.0\nj_max = 10000.0\n[planner]\n")
+    path = tmp_path / "m.toml"
+    path.write_text(base + "corner_velocity_step_mm_s = 0.5\n", encoding="utf-8")
+    assert load_machine(path).planner.corner_velocity_step_mm_s == 0.5
+    path.write_text(base + "corner_velocity_step_mm_s = -1\n", encoding="utf-8")
+    with pytest.raises(PlannerError, match=r"m.toml:18: planner.corner_velocity_step_mm_s: must be within"):
+        load_machine(path)
+    program = tmp_path / "square.ngc"
+    program.write_text("G21 G90 G61.1 F1200\nG1 X10\nY10\nX0\nY0\nM2\n", encoding="utf-8")
+    found = {}
+    for step in (0.0, 0.5):
+        path.write_text(base + f"corner_velocity_step_mm_s = {step}\n", encoding="utf-8")
+        out = subprocess.run([sys.executable, "-m", "cli.plan", str(program), "--config", str(path),
+                              "--json"], capture_output=True, text=True, check=True)
+        found[step] = json.loads(out.stdout)
+    assert found[0.0]["corner_steps"] == {"count": 0, "largest_mm_s": 0.0, "lines": []}
+    assert found[0.0]["joint_jerk"]["count"] == 0
+    assert found[0.5]["corner_steps"]["count"] == 3
+    assert found[0.5]["corner_steps"]["lines"] == [3, 4, 5]
+    assert found[0.5]["corner_steps"]["largest_mm_s"] == pytest.approx(0.5, rel=1e-6)
+    assert found[0.5]["joint_jerk"]["worst_ratio"] > 10.0
+    assert found[0.5]["cycle_time_s"] < found[0.0]["cycle_time_s"]

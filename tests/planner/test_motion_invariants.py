@@ -83,6 +83,11 @@ def check_program(text: str, machine=None, mode: str = "lookahead") -> None:
     # Finite differences of the samples, contour, end points, NaN, time.
     rep = plan.limit_report()
     assert rep.violations == {}, rep.violations
+    if mode == "lookahead":
+        # no velocity step at any joint (no corner step configured): the jerk of stencils
+        # across joints within every axis' limit too
+        assert rep.joint_jerk["count"] == 0, rep.joint_jerk
+        assert rep.corner_steps["count"] == 0, rep.corner_steps
     # exact geometry: 1 nm, or 1e-12 of the program's extent on metre-scale programs (the
     # rounding of float64 positions of several metres is ~1e-12 of them)
     extent = max(1.0, max(float(np.abs(m.end).max()) for m in prog.moves) if prog.moves else 1.0)
