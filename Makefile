@@ -47,11 +47,11 @@ $(VPY):
 	  apt-get update -qq && apt-get install -y -qq python3-venv >/dev/null && $(PYTHON) -m venv $(VENV); }
 	@$(VPY) -m pip install -q --upgrade pip
 
-$(VENV)/.installed: pyproject.toml planner/_passes.c planner/geometry/_kernels.c planner/motion/_meter.c | $(VPY)
+$(VENV)/.installed: pyproject.toml planner/_passes.c planner/geometry/_kernels.c planner/motion/_meter.c planner/_buffers.h | $(VPY)
 	$(VPY) -m pip install -q -e .
 	@touch $@
 
-$(VENV)/.installed-test: pyproject.toml planner/_passes.c planner/geometry/_kernels.c planner/motion/_meter.c | $(VPY)
+$(VENV)/.installed-test: pyproject.toml planner/_passes.c planner/geometry/_kernels.c planner/motion/_meter.c planner/_buffers.h | $(VPY)
 	$(VPY) -m pip install -q -e '.[test]'
 	@touch $@ $(VENV)/.installed
 

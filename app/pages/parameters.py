@@ -95,6 +95,12 @@ class ParametersPage(QWidget):
         self.blend_field.valueChanged.connect(
             lambda v: self._set(with_planner(self.pending, blend_tolerance_mm=v)))
         form.addRow(label(N_("Corner tolerance (G64)")), self.blend_field)
+        # a velocity step allowed at joints that are not blended (0: within the jerk limit)
+        self.corner_step_field = NumericField(tr("Corner velocity step"), 0.0, 0.0, 1000.0, 3, "mm/s",
+                                              ask=context.dialogs.ask_number)
+        self.corner_step_field.valueChanged.connect(
+            lambda v: self._set(with_planner(self.pending, corner_velocity_step_mm_s=v)))
+        form.addRow(label(N_("Corner velocity step")), self.corner_step_field)
         box, _g, self.mode_buttons = _choice_row(PLANNER_MODES, i18n)
         for mode, b in self.mode_buttons.items():
             b.clicked.connect(lambda _=False, m=mode: self._set(with_planner(self.pending, mode=m)))
@@ -149,6 +155,7 @@ class ParametersPage(QWidget):
             field.setValue(getattr(m.limits, attr))
         self.ts_field.setValue(m.planner.ts_s * 1000.0)
         self.blend_field.setValue(m.planner.blend_tolerance_mm)
+        self.corner_step_field.setValue(m.planner.corner_velocity_step_mm_s)
         for mode, b in self.mode_buttons.items():
             b.setChecked(mode == m.planner.mode)
         for interp, b in self.interp_buttons.items():

@@ -13,45 +13,8 @@
  * installs), checked for their element type and shape; the table's columns may be strided
  * (a column that repeats one row is a broadcast view of stride 0), the outputs are contiguous.
  */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
+#include "../_buffers.h"
 #include <math.h>
-#include <string.h>
-
-typedef struct {
-    Py_buffer view;
-    int held;
-    Py_ssize_t s0, s1; /* strides in bytes */
-} Buf;
-
-/* Take a buffer of element format `fmt` ("d", "q" or "?") with `ndim` dimensions (outputs:
- * writable and C-contiguous). */
-static int take(PyObject *obj, Buf *b, const char *fmt, int ndim, int writable, const char *name)
-{
-    int flags = writable ? (PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | PyBUF_WRITABLE) : (PyBUF_STRIDES | PyBUF_FORMAT);
-    b->held = 0;
-    if (PyObject_GetBuffer(obj, &b->view, flags) < 0)
-        return -1;
-    b->held = 1;
-    const char *f = b->view.format ? b->view.format : "B";
-    if (f[0] == '<' || f[0] == '=' || f[0] == '@')
-        f++;
-    int same = strcmp(f, fmt) == 0 || (fmt[0] == 'q' && strcmp(f, "l") == 0 && sizeof(long) == 8);
-    if (!same || b->view.ndim != ndim) {
-        PyErr_Format(PyExc_TypeError, "%s must be a %d-dimensional array of format '%s'", name, ndim, fmt);
-        return -1;
-    }
-    b->s0 = b->view.strides ? b->view.strides[0] : b->view.itemsize * (ndim > 1 ? b->view.shape[1] : 1);
-    b->s1 = ndim > 1 ? (b->view.strides ? b->view.strides[1] : b->view.itemsize) : 0;
-    return 0;
-}
-
-static void release_all(Buf *bufs, int count)
-{
-    for (int i = 0; i < count; i++)
-        if (bufs[i].held)
-            PyBuffer_Release(&bufs[i].view);
-}
 
 /* element k of 1-D buffer i, and element (r, c) of 2-D buffer i */
 #define AT(i, T, k) (*(const T *)((const char *)b[i].view.buf + (k) * b[i].s0))
@@ -91,7 +54,7 @@ static PyObject *contour_error(PyObject *self, PyObject *args)
     Buf b[18];
     memset(b, 0, sizeof b);
     for (int i = 0; i < 18; i++)
-        if (take(o[i], &b[i], fmt[i], nd[i], i == 17, names[i]) < 0) {
+        if (take(o[i], &b[i], fmt[i], nd[i], i == 17 ? BUF_OUT : BUF_STRIDED_IN, names[i]) < 0) {
             release_all(b, 18);
             return NULL;
         }
@@ -200,7 +163,7 @@ static PyObject *positions(PyObject *self, PyObject *args)
     Buf b[19];
     memset(b, 0, sizeof b);
     for (int i = 0; i < 19; i++)
-        if (take(o[i], &b[i], fmt[i], nd[i], i == 18, names[i]) < 0) {
+        if (take(o[i], &b[i], fmt[i], nd[i], i == 18 ? BUF_OUT : BUF_STRIDED_IN, names[i]) < 0) {
             release_all(b, 19);
             return NULL;
         }

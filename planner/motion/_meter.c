@@ -8,45 +8,13 @@
  * details (how many stencils, the worst ratio, its value and line: the first of equal worst
  * ratios) as Worst.update finds them.
  *
- * Arrays through the buffer protocol (no NumPy headers), C-contiguous, checked.
+ * Arrays through the buffer protocol (planner/_buffers.h), C-contiguous, checked.
  */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
+#include "../_buffers.h"
 #include <math.h>
-#include <string.h>
 
 #define MAX_AXES 16
 #define COLS 7 /* per result row: max, count, ratio, value, line, present, ratio less noise */
-
-typedef struct {
-    Py_buffer view;
-    int held;
-} Buf;
-
-static int take(PyObject *obj, Buf *b, const char *fmt, int ndim, int writable, const char *name)
-{
-    int flags = PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | (writable ? PyBUF_WRITABLE : 0);
-    b->held = 0;
-    if (PyObject_GetBuffer(obj, &b->view, flags) < 0)
-        return -1;
-    b->held = 1;
-    const char *f = b->view.format ? b->view.format : "B";
-    if (f[0] == '<' || f[0] == '=' || f[0] == '@')
-        f++;
-    int same = strcmp(f, fmt) == 0 || (fmt[0] == 'q' && strcmp(f, "l") == 0 && sizeof(long) == 8);
-    if (!same || b->view.ndim != ndim) {
-        PyErr_Format(PyExc_TypeError, "%s must be a %d-dimensional array of format '%s'", name, ndim, fmt);
-        return -1;
-    }
-    return 0;
-}
-
-static void release_all(Buf *bufs, int count)
-{
-    for (int i = 0; i < count; i++)
-        if (bufs[i].held)
-            PyBuffer_Release(&bufs[i].view);
-}
 
 /* One result row: the largest value, and the stencils over their limit (Worst.update). */
 typedef struct {
@@ -124,7 +92,7 @@ static PyObject *measure(PyObject *self, PyObject *args)
     Buf b[10];
     memset(b, 0, sizeof b);
     for (int i = 0; i < 10; i++)
-        if (take(o[i], &b[i], fmt[i], nd[i], i == 9, names[i]) < 0) {
+        if (take(o[i], &b[i], fmt[i], nd[i], i == 9 ? BUF_OUT : BUF_CONTIGUOUS_IN, names[i]) < 0) {
             release_all(b, 10);
             return NULL;
         }

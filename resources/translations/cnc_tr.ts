@@ -89,7 +89,7 @@
       <translation>Eksenleri uygula</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="172" />
+      <location filename="../../app/pages/parameters.py" line="179" />
       <source>Apply parameters</source>
       <translation>Parametreleri uygula</translation>
     </message>
@@ -99,7 +99,7 @@
       <translation>Değiştirilen eksen tanımları uygulansın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="169" />
+      <location filename="../../app/pages/parameters.py" line="176" />
       <source>Apply the changed parameters?</source>
       <translation>Değiştirilen parametreler uygulansın mı?</translation>
     </message>
@@ -134,7 +134,7 @@
       <translation>Çıkıntı merkezi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="115" />
+      <location filename="../../app/pages/parameters.py" line="121" />
       <source>Bus</source>
       <translation>Veri yolu</translation>
     </message>
@@ -179,7 +179,7 @@
       <translation>paralel doğrular kesiştirilemez</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="277" />
+      <location filename="../../app/widgets/probing_panel.py" line="279" />
       <source>Cannot run: {0}</source>
       <translation>Çalıştırılamaz: {0}</translation>
     </message>
@@ -189,7 +189,7 @@
       <translation>Neden</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="121" />
+      <location filename="../../app/pages/parameters.py" line="127" />
       <source>Change service password</source>
       <translation>Servis şifresini değiştir</translation>
     </message>
@@ -259,6 +259,11 @@
       <translation>Köşe toleransı (G64)</translation>
     </message>
     <message>
+      <location filename="../../app/pages/parameters.py" line="99" />
+      <source>Corner velocity step</source>
+      <translation>Köşe hız sıçraması</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/production_view.py" line="107" />
       <source>Count parts from 0 again ({0} counted)?</source>
       <translation>Parçalar yeniden 0'dan sayılsın mı ({0} sayıldı)?</translation>
@@ -269,7 +274,7 @@
       <translation>Sayım/birim</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="191" />
+      <location filename="../../app/pages/parameters.py" line="198" />
       <source>Current service password:</source>
       <translation>Mevcut servis şifresi:</translation>
     </message>
@@ -379,7 +384,7 @@
       <translation>Bağlı değil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="241" />
+      <location filename="../../app/widgets/probing_panel.py" line="245" />
       <source>Distance along the faces</source>
       <translation>Yüzler boyunca mesafe</translation>
     </message>
@@ -509,12 +514,12 @@
       <translation>Sığdır</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="299" />
+      <location filename="../../app/widgets/probing_panel.py" line="301" />
       <source>Found: {0} (only reported)</source>
       <translation>Bulunan: {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="298" />
+      <location filename="../../app/widgets/probing_panel.py" line="300" />
       <source>Found: {0}; written to {1}</source>
       <translation>Bulunan: {0}; {1} sistemine yazıldı</translation>
     </message>
@@ -774,12 +779,12 @@
       <translation>Referanslı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="111" />
+      <location filename="../../app/pages/parameters.py" line="117" />
       <source>Homing</source>
       <translation>Referanslama</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="109" />
+      <location filename="../../app/pages/parameters.py" line="115" />
       <source>Homing required before a program</source>
       <translation>Programdan önce referanslama gerekli</translation>
     </message>
@@ -819,7 +824,7 @@
       <translation>İç köşe</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="106" />
+      <location filename="../../app/pages/parameters.py" line="112" />
       <source>Interpolation</source>
       <translation>İnterpolasyon</translation>
     </message>
@@ -886,7 +891,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Makineye yükle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="124" />
+      <location filename="../../app/pages/parameters.py" line="130" />
       <source>Lock service level</source>
       <translation>Servis seviyesini kilitle</translation>
     </message>
@@ -1086,12 +1091,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>N kelimesi (satır numarası) bloğun başında olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="181" />
+      <location filename="../../app/pages/parameters.py" line="188" />
       <source>Network adapter</source>
       <translation>Ağ bağdaştırıcısı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="182" />
+      <location filename="../../app/pages/parameters.py" line="189" />
       <source>Network interface of the EtherCAT bus:</source>
       <translation>EtherCAT veri yolunun ağ arayüzü:</translation>
     </message>
@@ -1101,7 +1106,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yeni</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="194" />
+      <location filename="../../app/pages/parameters.py" line="201" />
       <source>New service password (at least {0} characters):</source>
       <translation>Yeni servis şifresi (en az {0} karakter):</translation>
     </message>
@@ -1116,7 +1121,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="330" />
+      <location filename="../../app/widgets/probing_panel.py" line="332" />
       <source>No moves to draw</source>
       <translation>Çizilecek hareket yok</translation>
     </message>
@@ -1146,7 +1151,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>monoton değil (bu kontrolün bir hatası: lütfen programı bildirin)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="205" />
+      <location filename="../../app/pages/parameters.py" line="212" />
       <source>Nothing changed: {0}</source>
       <translation>Hiçbir şey değişmedi: {0}</translation>
     </message>
@@ -1311,7 +1316,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Bu sayfa gösterildiğinde planlanır.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="101" />
+      <location filename="../../app/pages/parameters.py" line="107" />
       <source>Planner mode</source>
       <translation>Planlayıcı kipi</translation>
     </message>
@@ -1326,7 +1331,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Cep</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="240" />
+      <location filename="../../app/widgets/probing_panel.py" line="244" />
       <source>Points apart along the face</source>
       <translation>Yüz boyunca noktalar arası</translation>
     </message>
@@ -1361,7 +1366,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="261" />
+      <location filename="../../app/widgets/probing_panel.py" line="264" />
       <source>Probing starts with the machine idle.</source>
       <translation>Problama makine boştayken başlar.</translation>
     </message>
@@ -1483,7 +1488,7 @@ BIRAK</translation>
       <translation>Yeniden yükle</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="198" />
+      <location filename="../../app/pages/parameters.py" line="205" />
       <source>Repeat the new password:</source>
       <translation>Yeni şifreyi tekrarlayın:</translation>
     </message>
@@ -1603,7 +1608,7 @@ BIRAK</translation>
       <translation>Gönder</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="128" />
+      <location filename="../../app/pages/parameters.py" line="134" />
       <source>Service</source>
       <translation>Servis</translation>
     </message>
@@ -1628,7 +1633,7 @@ BIRAK</translation>
       <translation>Servis seviyesi açıldı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="191" />
+      <location filename="../../app/pages/parameters.py" line="198" />
       <source>Service password</source>
       <translation>Servis şifresi</translation>
     </message>
@@ -1793,22 +1798,22 @@ BIRAK</translation>
       <translation>Makine hareket ediyor.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="281" />
+      <location filename="../../app/widgets/probing_panel.py" line="283" />
       <source>The moves drawn run when you press Run; the result goes to {0}.</source>
       <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç {0} sistemine yazılır.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="283" />
+      <location filename="../../app/widgets/probing_panel.py" line="285" />
       <source>The moves drawn run when you press Run; the result is only reported.</source>
       <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç yalnızca bildirilir.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="236" />
+      <location filename="../../app/widgets/probing_panel.py" line="240" />
       <source>The probe moves toward the face (the second point is along it):</source>
       <translation>Prob yüze doğru hareket eder (ikinci nokta yüz boyunca):</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="235" />
+      <location filename="../../app/widgets/probing_panel.py" line="239" />
       <source>The probe moves toward the face:</source>
       <translation>Prob yüze doğru hareket eder:</translation>
     </message>
@@ -1823,7 +1828,7 @@ BIRAK</translation>
       <translation>Program {0}. satırda durdu ve oradan devam edemez: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/parameters.py" line="203" />
+      <location filename="../../app/pages/parameters.py" line="210" />
       <source>The service password was changed.</source>
       <translation>Servis şifresi değiştirildi.</translation>
     </message>
@@ -1988,12 +1993,12 @@ BIRAK</translation>
       <translation>Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="237" />
+      <location filename="../../app/widgets/probing_panel.py" line="241" />
       <source>Where the part is from the probe:</source>
       <translation>Parçanın probdan göre yeri:</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="238" />
+      <location filename="../../app/widgets/probing_panel.py" line="242" />
       <source>Where the walls are from the probe:</source>
       <translation>Duvarların probdan göre yeri:</translation>
     </message>

@@ -278,6 +278,29 @@ def test_parameters_page_sets_the_corner_tolerance(fake_window, fake_controller,
     assert page.blend_field.value() == 0.02
 
 
+def test_parameters_page_sets_the_corner_velocity_step(fake_window, fake_controller, dialogs,
+                                                       tmp_path) -> None:
+    """0 by default (joints within the jerk limit); a step typed in is applied, written to the
+    file as ``[planner] corner_velocity_step_mm_s`` and read back; out of range is refused."""
+    from app.machine.config import config_to_toml, load_config
+
+    page = fake_window.page("parameters")
+    assert page.corner_step_field.value() == 0.0
+    page.corner_step_field.setValue(0.5, emit=True)
+    assert page.apply_bar.apply_button.isEnabled()
+    assert page.apply()
+    assert fake_controller.config.machine.planner.corner_velocity_step_mm_s == 0.5
+    path = tmp_path / "machine.toml"
+    path.write_text(config_to_toml(fake_controller.config), encoding="utf-8")
+    assert "corner_velocity_step_mm_s = 0.5" in path.read_text(encoding="utf-8")
+    assert load_config(path).machine.planner.corner_velocity_step_mm_s == 0.5
+    page.revert()
+    assert page.corner_step_field.value() == 0.5
+    page.corner_step_field.setValue(-1.0, emit=True)
+    assert "corner_velocity_step_mm_s" in page.apply_bar.message.text()
+    assert not page.apply_bar.apply_button.isEnabled()
+
+
 def test_axes_page_edits_and_validates(fake_window, fake_controller, dialogs) -> None:
     page = fake_window.page("axes")
     dialogs.answers.append(-300.0)

@@ -205,6 +205,7 @@ def test_blended_windows_of_real_programs_hold_every_limit(data, scale: float, t
     assume(plan.cycle_time_s < 120.0)
     rep = plan.limit_report()
     assert rep.violations == {}, rep.violations
+    assert rep.joint_jerk["count"] == 0, rep.joint_jerk      # no velocity step at any joint
     assert rep.end_error_mm == 0.0 and not rep.nan and rep.time_increasing
     if any(mv.blend is not None for mv in blended.moves):
         qv, qa, qj = blend_axis_derivatives(plan)
@@ -212,3 +213,28 @@ def test_blended_windows_of_real_programs_hold_every_limit(data, scale: float, t
         assert np.all(np.abs(qv) <= lim.v_axis * (1 + 1e-9))
         assert np.all(np.abs(qa) <= lim.a_axis * (1 + 1e-9))
         assert np.all(np.abs(qj) <= lim.j_axis * (1 + 1e-6))
+
+
+WHOLE = [p for p in sorted(CAM.glob("*/*")) if p.suffix.lower() in (".nc", ".ngc", ".gcode", ".tap")
+         and "heart" not in p.name] if CAM.is_dir() else []
+
+
+@pytest.mark.parametrize("path", WHOLE, ids=[p.name for p in WHOLE])
+def test_whole_shared_programs_hold_every_limit_across_joints(path: Path) -> None:
+    """Each shared CAM program in G64 P0.01 at 100 mm/s, 1000 mm/s^2 and 10,000 mm/s^3 (the
+    LinuxCNC comparison's machine): every limit on the samples, the stencils across joints
+    included, and no joint crossed with a velocity step (heart.ngc, 17 minutes of arcs, is
+    left to ``bench.bench_linuxcnc``)."""
+    from bench.bench_blend import bench_machine, with_mode
+
+    machine = bench_machine(10_000.0)
+    try:
+        program = parse_program(with_mode(path.read_text(errors="replace"), "G64 P0.01"), path.name, machine)
+    except ProgramError:
+        pytest.skip(f"{path.name} is refused at a line, as LinuxCNC refuses it")
+    plan = plan_program(blend_program(program, machine), machine)
+    rep = plan.limit_report()
+    assert rep.ok, rep.violations
+    assert rep.joint_jerk["count"] == 0, rep.joint_jerk
+    assert rep.corner_steps["count"] == 0
+    assert max(v["j_joint"] for v in rep.axes.values()) <= 10_000.0 * (1 + 1e-4)
