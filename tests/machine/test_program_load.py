@@ -269,7 +269,7 @@ def test_the_loaded_program_is_let_go_as_a_check_starts(qtbot, ctl: MachineContr
 
     from tests.machine.conftest import run_to_idle
 
-    assert ctl.load_program(big_program(400), name="a.nc", wait=True)
+    assert ctl.load_program(big_program(150), name="a.nc", wait=True)   # 28 s of motion
     assert ctl.cycle_start()
     run_to_idle(ctl, 60)
     assert ctl.last_run.completed
