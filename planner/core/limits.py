@@ -12,8 +12,8 @@ import numpy as np
 from planner.core.machine import MachineSpec
 
 __all__ = ["ACCEL_NORMAL_SHARE", "BLEND_CROSS_SHARE", "BLEND_DK_SHARE", "BLEND_NORMAL_SHARE",
-           "JERK_CROSS_SHARE", "JERK_NORMAL_SHARE", "KINK_JERK_FLOOR", "LimitSet", "joint_step_budget",
-           "kink_caps"]
+           "JERK_CROSS_SHARE", "JERK_NORMAL_SHARE", "KINK_JERK_FLOOR", "LimitSet", "break_budget",
+           "joint_step_budget", "kink_caps"]
 
 ACCEL_NORMAL_SHARE = math.cos(math.radians(30.0))  # LinuxCNC's BLEND_ACC_RATIO_NORMAL
 JERK_NORMAL_SHARE = 0.5
@@ -81,6 +81,12 @@ class LimitSet:
 
         return (pick(self.v_path, self.v_path_rot), pick(self.a_path, self.a_path_rot),
                 pick(self.j_path, self.j_path_rot), pick(self.rapid_v, self.rapid_v_rot))
+
+
+def break_budget(lim: LimitSet) -> np.ndarray:
+    """Per axis: the acceleration a one-sample direction change may take at a joint (A_k less
+    what the profile's jerk may add over two samples, at least a tenth of A_k)."""
+    return np.maximum(lim.a_axis - 2.0 * lim.ts_s * lim.j_axis, 0.1 * lim.a_axis)
 
 
 def joint_step_budget(lim: LimitSet, j_in: np.ndarray, j_out: np.ndarray, t_in: np.ndarray,

@@ -54,6 +54,7 @@ from planner.core.limits import (
     BLEND_DK_SHARE,
     BLEND_NORMAL_SHARE,
     LimitSet,
+    break_budget,
     joint_step_budget,
     kink_caps,
 )
@@ -460,9 +461,8 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
                       np.minimum(0.5 * lin_len[jj], 0.5 * lin_len[jj + 1]) / t1)
 
     # Worth it only where the blend is faster than the sharp corner (tangent-break rule).
-    lim_a = np.array([a.a_max for a in machine.axes], dtype=float)
-    lim_j = np.array([a.j_max for a in machine.axes], dtype=float)
-    ts = machine.planner.ts_s
+    limits = LimitSet.from_machine(machine)
+    lim_a, lim_j, ts = limits.a_axis, limits.j_axis, limits.ts_s
     in_plane = (np.abs(u1) + np.abs(n1)) > 1e-12
     a_pl = np.where(in_plane, lim_a[None, :], np.inf).min(axis=1)
     j_pl = np.where(in_plane, lim_j[None, :], np.inf).min(axis=1)
@@ -470,11 +470,9 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
                           np.minimum(j_pl, machine.limits.j_max_mm_s3))
     # the sharp corner's cap, as the look-ahead gives it: acceleration and jerk of the
     # one-sample direction change (the lines' path jerk: ``joint_step_budget``)
-    c_brk = np.maximum(lim_a - 2.0 * ts * lim_j, 0.1 * lim_a)[None, :]
     dt = np.abs(u2 - u1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        v_break = np.where(dt > 1e-12, c_brk * ts / dt, np.inf).min(axis=1)
-    limits = LimitSet.from_machine(machine)
+        v_break = np.where(dt > 1e-12, break_budget(limits)[None, :] * ts / dt, np.inf).min(axis=1)
     share = np.abs(direction)               # each axis' share of the line's tangent
     with np.errstate(divide="ignore"):
         j_line = np.minimum(limits.j_path, np.min(lim_j[None, :] / share, axis=1))

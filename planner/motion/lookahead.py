@@ -75,6 +75,7 @@ from planner.core.limits import (
     JERK_CROSS_SHARE,
     JERK_NORMAL_SHARE,
     LimitSet,
+    break_budget,
     joint_step_budget,
     kink_caps,
 )
@@ -306,7 +307,7 @@ def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np
     dt = np.abs(t_start[nxt] - t_end[cur])
     dt = np.where(dt > 1e-12, dt, 0.0)
     b = dt / ts
-    c = np.maximum(lim.a_axis - 2.0 * ts * lim.j_axis, 0.1 * lim.a_axis)[None, :]
+    c = break_budget(lim)[None, :]
     kap = np.maximum(kappa[cur], kappa[nxt])[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
         v_break = np.where(b > 0.0, 2.0 * c / (b + np.sqrt(b * b + 4.0 * kap * c)), np.inf)
