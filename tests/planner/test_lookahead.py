@@ -291,8 +291,7 @@ def test_the_stops_and_dwells_of_a_window_are_the_programs(events, a, b):
 
 def test_the_corner_step_key_is_read_checked_and_reported(tmp_path) -> None:
     """``[planner] corner_velocity_step_mm_s``: read, refused out of its range with the key and
-    line, written back by the panel; and what it allows shows in ``cnc-plan --json``'s
-    ``corner_steps`` (none by default)."""
+    line; what it allows shows in ``cnc-plan --json``'s ``corner_steps`` (none by default)."""
     import json
     import subprocess
     import sys
