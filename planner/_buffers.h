@@ -53,4 +53,18 @@ static void release_all(Buf *bufs, int count)
             PyBuffer_Release(&bufs[i].view);
 }
 
+/* Take `count` arguments: the last one the output, the others inputs of kind `in_kind`;
+ * -1 with everything released when one is refused. */
+static int take_all(PyObject **o, Buf *b, int count, const char **fmt, const int *nd, const char **names,
+                    BufKind in_kind)
+{
+    memset(b, 0, sizeof(Buf) * (size_t)count);
+    for (int i = 0; i < count; i++)
+        if (take(o[i], &b[i], fmt[i], nd[i], i == count - 1 ? BUF_OUT : in_kind, names[i]) < 0) {
+            release_all(b, count);
+            return -1;
+        }
+    return 0;
+}
+
 #endif

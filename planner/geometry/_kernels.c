@@ -52,12 +52,8 @@ static PyObject *contour_error(PyObject *self, PyObject *args)
                                     "second", "cx", "cy", "r0", "r1", "theta0", "sweep", "row", "q", "u",
                                     "out"};
     Buf b[18];
-    memset(b, 0, sizeof b);
-    for (int i = 0; i < 18; i++)
-        if (take(o[i], &b[i], fmt[i], nd[i], i == 17 ? BUF_OUT : BUF_STRIDED_IN, names[i]) < 0) {
-            release_all(b, 18);
-            return NULL;
-        }
+    if (take_all(o, b, 18, fmt, nd, names, BUF_STRIDED_IN) < 0)
+        return NULL;
     Py_ssize_t n_rows = b[0].view.shape[0], d = b[0].view.shape[1];
     Py_ssize_t n = b[15].view.shape[0];
     int bad = b[1].view.shape[0] != n_rows || b[1].view.shape[1] != d || b[15].view.shape[1] != d ||
@@ -161,12 +157,8 @@ static PyObject *positions(PyObject *self, PyObject *args)
                                     "turn", "first", "second", "cx", "cy", "r0", "r1", "theta0", "sweep",
                                     "row", "u", "out"};
     Buf b[19];
-    memset(b, 0, sizeof b);
-    for (int i = 0; i < 19; i++)
-        if (take(o[i], &b[i], fmt[i], nd[i], i == 18 ? BUF_OUT : BUF_STRIDED_IN, names[i]) < 0) {
-            release_all(b, 19);
-            return NULL;
-        }
+    if (take_all(o, b, 19, fmt, nd, names, BUF_STRIDED_IN) < 0)
+        return NULL;
     Py_ssize_t n_rows = b[0].view.shape[0], d = b[0].view.shape[1];
     Py_ssize_t n = b[16].view.shape[0];
     int bad = b[1].view.shape[0] != n_rows || b[1].view.shape[1] != d || b[2].view.shape[0] != n_rows ||

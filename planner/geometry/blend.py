@@ -127,7 +127,7 @@ def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds,
     # and only where the sharp corner is what slows the motion (its speed is the lowest of the
     # two lines'): a plan that brakes through the joint for something further on would have to
     # brake on the blend, whose tangential acceleration is small (its budget goes to the turn).
-    # A slower joint next to it that is blended too no longer slows it: along a run of kinks
+    # A slower joint next to it that is blended too does not slow it: along a run of kinks
     # (a CAM contour of short chords) each joint is taken where every slower joint it brakes
     # for, in either direction, is blended as well, down to the run's slowest.
     at_cap = v_joint >= v_sharp * (1.0 - 1e-6)

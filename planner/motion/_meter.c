@@ -90,12 +90,8 @@ static PyObject *measure(PyObject *self, PyObject *args)
     static const char *names[10] = {"q", "s", "move", "line", "v_limit", "linear", "axis_limits",
                                     "path_limits", "params", "out"};
     Buf b[10];
-    memset(b, 0, sizeof b);
-    for (int i = 0; i < 10; i++)
-        if (take(o[i], &b[i], fmt[i], nd[i], i == 9 ? BUF_OUT : BUF_CONTIGUOUS_IN, names[i]) < 0) {
-            release_all(b, 10);
-            return NULL;
-        }
+    if (take_all(o, b, 10, fmt, nd, names, BUF_CONTIGUOUS_IN) < 0)
+        return NULL;
     Py_ssize_t n = b[0].view.shape[0], d = b[0].view.shape[1];
     int bad = d < 1 || d > MAX_AXES || b[1].view.shape[0] != n || b[2].view.shape[0] != n ||
               b[3].view.shape[0] != n || b[4].view.shape[0] != (n > 0 ? n - 1 : 0) ||
