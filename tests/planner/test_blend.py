@@ -202,7 +202,7 @@ def test_a_run_of_short_kinked_chords_is_blended_throughout() -> None:
     """A CAM contour of 0.4 mm chords turning by 6, 16 and 10 degrees in turn at 20 mm/s: the
     sharp plan is slowest at the 16 degree joints and climbs a little towards the others; each
     joint is blended where every slower joint it brakes for is blended too, so the whole run is
-    (blending only the slowest joints left 27 of 39 sharp and took 2.24 s)."""
+    (taking only the slowest joint of each run leaves 27 of 39 sharp: 2.24 s)."""
     m = fast_machine()
     pts = [(5.0, 5.0, 0.0)]
     heading = 0.0
