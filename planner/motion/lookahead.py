@@ -298,14 +298,12 @@ def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np
     cur = slice(0, n - 1)
     nxt = slice(1, n)
     cap = np.minimum(ml.vc[cur], ml.vc[nxt])
-    t_start, t_end = table.end_tangents()
+    t_start, t_end, dt = tangent_changes(table)
     c_start, c_end = table.end_curvature_vectors()
     _, kappa, _ = table.arc_terms()
     ts = lim.ts_s
     # Tangent break: kappa v^2 + (|dt_k| / Ts) v <= A_k - 2 Ts J_k, per axis (acceleration),
     # and v |dt_k| within the joint's one-sample step (jerk: ``joint_step_budget``).
-    dt = np.abs(t_start[nxt] - t_end[cur])
-    dt = np.where(dt > 1e-12, dt, 0.0)
     b = dt / ts
     c = break_budget(lim)[None, :]
     kap = np.maximum(kappa[cur], kappa[nxt])[:, None]
@@ -330,15 +328,21 @@ def joint_caps(table: MoveTable, ml: MoveLimits, lim: LimitSet, mode: str) -> np
     return np.minimum(cap, v_curv.min(axis=1))
 
 
+def tangent_changes(table: MoveTable) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(unit tangents at each move's start, at its end, and |change| per axis at each of the
+    n - 1 joints, rounding below 1e-12 taken as none)."""
+    t_start, t_end = table.end_tangents()
+    dt = np.abs(t_start[1:] - t_end[:-1])
+    return t_start, t_end, np.where(dt > 1e-12, dt, 0.0)
+
+
 def corner_steps(table: MoveTable, v_joint: np.ndarray, j_t: np.ndarray, lim: LimitSet) -> np.ndarray:
     """Per joint of ``table`` (n - 1), crossed at ``v_joint`` by moves of path jerk ``j_t``: the
     largest one-sample velocity step of an axis beyond what its jerk limit allows there (mm/s;
     0 where within: without a configured corner velocity step, every joint)."""
     if len(table) < 2:
         return np.zeros(0)
-    t_start, t_end = table.end_tangents()
-    dt = np.abs(t_start[1:] - t_end[:-1])
-    dt = np.where(dt > 1e-12, dt, 0.0)
+    t_start, t_end, dt = tangent_changes(table)
     room = joint_step_budget(replace(lim, corner_step_mm_s=0.0), j_t[:-1], j_t[1:], t_end[:-1], t_start[1:])
     step = v_joint[:, None] * dt
     over = step > room * (1.0 + 1e-9)          # the cap itself, rounded, is no step
