@@ -22,11 +22,19 @@ at the tangent length T = X(L_s) + Y(L_s) tan(theta / 2) from the corner C. The 
 lies on the corner's bisector at D = Y(L_s) / cos(theta / 2) from C: that is the deviation
 from the programmed corner, and the distance from the programmed lines is Y(L_s) <= D.
 
-Size: L_s is the largest that keeps D <= P and T <= half of each line (LinuxCNC's rule for its
-blend arcs; the other half is left for the blend at the line's other end). A blend is only
-made where it is quicker: its speed (the planner's limits on kappa_max and on the jerk of the
-changing curvature) must beat the sharp corner's tangent-break speed and what the sharp
-corner's own plan reaches a tangent length away from it. Sharp corners held within a tight
+Size and shape: between the pair (the turn made on the clothoids alone) and a circular arc
+with short clothoids at its ends, the blend is the one of these whose speed is highest with
+D <= P and T <= half of each line (LinuxCNC's rule for its blend arcs; the other half is left
+for the blend at the line's other end): ``corner_sizes``. The pair keeps nearest the corner
+for its largest curvature, an arc turns most for its tangent length; where the jerk allows
+short clothoids, an arc between them is usually quicker (a 1 mm step over between two right
+angles within 0.25 mm at J = 1e6 mm/s^3: 20.7 mm/s, the pair 15.3 mm/s).
+
+A blend is only made where it is quicker: its speed (the planner's limits on kappa_max and on
+the jerk of the changing curvature) must beat the sharp corner's tangent-break speed, and
+either what the sharp corner's own plan reaches a tangent length away from it, or, over the
+two lines, the time of the sharp plan (each line run from the joint's speed, or from the blend's
+after it, at full jerk and acceleration up to its peak). Sharp corners held within a tight
 tolerance are no quicker jerk-limited than by a one-sample velocity step (a 90 degree corner
 within 0.01 mm at J = 10,000 mm/s^3: about 1 mm/s either way; no curve does much better, as
 turning the velocity at speed v with jerk J takes about 2 sqrt(v / J) and strays about
@@ -48,7 +56,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from planner.core.curves import Blend, fresnel, unit_pair
+from planner.core.curves import Blend, fresnel
 from planner.core.limits import (
     ACCEL_NORMAL_SHARE,
     BLEND_DK_SHARE,
@@ -62,8 +70,8 @@ from planner.core.machine import MachineSpec
 from planner.core.movestore import MoveStore
 from planner.core.program import Move, MoveKind, Program
 
-__all__ = ["BlendReport", "JointSpeeds", "SpeedOracle", "blend_corners", "blend_report", "merge_naive_cam",
-           "round_fillets"]
+__all__ = ["BlendReport", "JointSpeeds", "SpeedOracle", "blend_corners", "blend_report", "corner_sizes",
+           "merge_naive_cam", "ramp_speed", "round_fillets", "window_quicker"]
 
 class JointSpeeds(Protocol):
     """A program's plan as blends are judged by it: per move, the speed at its start and end
@@ -100,14 +108,48 @@ def _blend_caps_k(kappa: np.ndarray, dk: np.ndarray, a_pl: np.ndarray, j_pl: np.
     return np.minimum(v, np.cbrt(BLEND_DK_SHARE * j_pl / dk))
 
 
-def _blend_caps(theta: np.ndarray, half: np.ndarray, a_pl: np.ndarray, j_pl: np.ndarray) -> np.ndarray:
-    """``_blend_caps_k`` of clothoid pairs (kappa_max = theta / L_s, dkappa/ds = theta / L_s^2)."""
-    return _blend_caps_k(theta / half, theta / (half * half), a_pl, j_pl)
+#: the share of a corner blend's turn made on its clothoids, tried from a clothoid pair (1) to
+#: all but a circular arc: the best for the corner's speed is taken
+CLOTHOID_SHARES = np.array([1.0, 0.8, 0.6, 0.45, 0.32, 0.22, 0.15, 0.1, 0.06, 0.035, 0.02])
+
+
+def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.ndarray,
+                 j_pl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(clothoid length L_c, arc length L_a, tangent length T, corner deviation D, speed) of
+    the quickest symmetric clothoid-arc-clothoid blend of corners turning theta: D <= ``tol``
+    and T <= ``room``, its speed by the planner's rules for blends (``_blend_caps_k``).
+
+    The blend of middle radius R with clothoids turning f theta in all (L_c = f theta R) scales
+    with R: from the clothoid's end point (X, Y) at R = 1, the shift p = Y - (1 - cos(f theta / 2))
+    and k = X - sin(f theta / 2) give T = R ((1 + p) tan(theta / 2) + k) and
+    D = R ((1 + p) / cos(theta / 2) - 1). For each f in ``CLOTHOID_SHARES`` R is the largest
+    the two bounds allow, and the f of the highest speed is taken (the pair, f = 1, first where
+    speeds tie): short clothoids bind the speed by the jerk of the changing curvature, long ones
+    by the curvature they reach within the bounds."""
+    th = theta[:, None]
+    f = CLOTHOID_SHARES[None, :]
+    vt = f * th                                        # L_c / R, each clothoid's length at R = 1
+    x1, y1 = fresnel(vt, np.ones_like(vt))
+    x1, y1 = x1 * vt, y1 * vt
+    tau = 0.5 * vt
+    shift = y1 - (1.0 - np.cos(tau))
+    k = x1 - np.sin(tau)
+    t_unit = (1.0 + shift) * np.tan(0.5 * th) + k
+    d_unit = (1.0 + shift) / np.cos(0.5 * th) - 1.0
+    radius = np.minimum(tol[:, None] / d_unit, room[:, None] / t_unit)
+    lc = vt * radius
+    v = _blend_caps_k(1.0 / radius, 1.0 / (radius * lc), a_pl[:, None], j_pl[:, None])
+    best = np.argmax(v, axis=1)
+    rows = np.arange(len(theta))
+    r, share = radius[rows, best], CLOTHOID_SHARES[best]
+    lc_b = share * theta * r
+    return lc_b, theta * r - lc_b, t_unit[rows, best] * r, d_unit[rows, best] * r, v[rows, best]
+
 
 
 def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds, jj: np.ndarray,
                       v_blend: np.ndarray, tangent_len: np.ndarray, j_pl: np.ndarray,
-                      eligible: np.ndarray, v_sharp: np.ndarray) -> np.ndarray:
+                      eligible: np.ndarray, v_sharp: np.ndarray, half_len: np.ndarray) -> np.ndarray:
     """True where the blend cannot make the corner slower than the sharp corner's plan.
 
     The program is planned as it is; a blend holds about one speed over the lines' last and
@@ -120,10 +162,11 @@ def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds,
     allows more than their sharp corner."""
     v_joint = np.asarray(plan.ve)[jj]
     j = np.minimum(j_pl, machine.limits.j_max_mm_s3)
-    v_ramp = _ramp_speed(v_joint, tangent_len, j)
+    v_ramp = ramp_speed(v_joint, tangent_len, j, machine.limits.a_max_mm_s2)
     peak = np.asarray(plan.vpeak)
     # each side on its own: the incoming line may run far faster than the outgoing one
     quicker = (v_blend >= np.minimum(v_ramp, peak[jj])) & (v_blend >= np.minimum(v_ramp, peak[jj + 1]))
+    quicker |= window_quicker(program, machine, plan, jj, v_blend, tangent_len, half_len, j)
     # and only where the sharp corner is what slows the motion (its speed is the lowest of the
     # two lines'): a plan that brakes through the joint for something further on would have to
     # brake on the blend, whose tangential acceleration is small (its budget goes to the turn).
@@ -137,6 +180,57 @@ def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds,
     n_joints = max(len(np.asarray(plan.ve)) - 1, 0)
     return quicker & _through_blended(jj, slower_before, taken, n_joints) \
         & _through_blended(jj, slower_after, taken, n_joints, after=True)
+
+
+def window_quicker(program: Program, machine: MachineSpec, plan: JointSpeeds, jj: np.ndarray,
+                    v_blend: np.ndarray, tangent_len: np.ndarray, half_len: np.ndarray,
+                    j: np.ndarray) -> np.ndarray:
+    """True where crossing joint jj (between moves jj and jj + 1) by a blend takes less time
+    than the sharp plan over the two moves: each from the joint to its other end, run from the
+    joint's speed (sharp) or from the blend's (``half_len`` of the blend at its speed, then the
+    rest of the move past the ``tangent_len`` the blend took from it) with a ramp at full jerk
+    up to the path's acceleration, and no faster than the move's peak in the sharp plan."""
+    ve, peak = np.asarray(plan.ve)[jj], np.asarray(plan.vpeak)
+    a = machine.limits.a_max_mm_s2
+    total = np.zeros(len(jj))
+    for side in (jj, jj + 1):
+        length = np.array([program.moves[int(i)].length_mm for i in side])
+        cap = np.maximum(peak[side], 1e-9)
+        rest = np.maximum(length - tangent_len, 0.0)
+        sharp = _ramp_time(np.minimum(ve, cap), length, j, a, cap)
+        blended = (half_len / np.maximum(v_blend, 1e-12)
+                   + _ramp_time(np.minimum(v_blend, cap), rest, j, a, cap))
+        total += blended - sharp
+    return total < 0.0
+
+
+def _ramp_time(v0: np.ndarray, dist: np.ndarray, j: float | np.ndarray, a: float,
+               cap: np.ndarray) -> np.ndarray:
+    """Time to cover ``dist`` from speed v0 and no acceleration: jerk ``j`` up to acceleration
+    ``a``, then ``a``, up to the speed ``cap`` and then at it (bisection on the time)."""
+    v0, dist, cap = np.broadcast_arrays(np.asarray(v0, float), np.asarray(dist, float),
+                                        np.asarray(cap, float))
+    jj = np.broadcast_to(np.asarray(j, float), v0.shape)
+    t_a = a / jj
+    v_a = v0 + 0.5 * a * t_a
+    # when the cap is reached, and the distance by then
+    t_cap = np.where(v_a >= cap, np.sqrt(2.0 * np.maximum(cap - v0, 0.0) / jj), t_a + (cap - v_a) / a)
+
+    def covered(t: np.ndarray) -> np.ndarray:
+        tt = np.minimum(t, t_cap)
+        ramp = np.where(tt <= t_a, v0 * tt + jj * tt**3 / 6.0,
+                        v0 * t_a + jj * t_a**3 / 6.0 + v_a * (tt - t_a) + 0.5 * a * (tt - t_a) ** 2)
+        return ramp + cap * np.maximum(t - t_cap, 0.0)
+
+    lo = np.zeros_like(v0)
+    hi = t_cap + dist / cap + 1e-9
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        far = covered(mid) >= dist
+        hi = np.where(far, mid, hi)
+        lo = np.where(far, lo, mid)
+    return hi
+
 
 
 def _through_blended(jj: np.ndarray, slower: np.ndarray, taken: np.ndarray, n_joints: int,
@@ -405,15 +499,26 @@ def _fillets_not_slower(plan: JointSpeeds, machine: MachineSpec, blends: dict[in
     return {k: mv for k, mv in blends.items() if blend_speed(mv, lim) >= max(vpeak[k], ve[k - 1], ve[k])}
 
 
-def _ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray) -> np.ndarray:
+def ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray,
+                a: float | np.ndarray = math.inf) -> np.ndarray:
     """Upper bound of the speed a distance ``dist`` from a joint crossed at v_joint: each move's
-    profile starts with zero acceleration, so at most a full-jerk ramp, J t^3 / 6 + v t = dist
-    (Newton from above converges monotonically on this convex cubic)."""
+    profile starts with zero acceleration, so at most a full-jerk ramp up to the tangential
+    acceleration ``a``, then ``a`` held. The ramp: J t^3 / 6 + v t = dist (Newton from above
+    converges monotonically on this convex cubic); where it would pass ``a`` (t > a / J), the
+    ramp ends at t_a = a / J, v_a = v + a t_a / 2, and v^2 = v_a^2 + 2 a (dist - d_a) after it."""
     t = np.cbrt(6.0 * dist / j)
     for _ in range(30):
         f = j * t**3 / 6.0 + v_joint * t - dist
         t = t - f / (0.5 * j * t * t + v_joint)
-    return v_joint + 0.5 * j * t * t
+    v_jerk = v_joint + 0.5 * j * t * t
+    t_a = np.broadcast_to(np.asarray(a / j, dtype=float), np.shape(v_jerk))
+    if not np.isfinite(t_a).any():
+        return v_jerk
+    d_a = v_joint * t_a + j * t_a**3 / 6.0
+    v_a = v_joint + 0.5 * a * t_a
+    with np.errstate(invalid="ignore"):
+        v_held = np.sqrt(v_a * v_a + 2.0 * a * np.maximum(dist - d_a, 0.0))
+    return np.where(t > t_a, v_held, v_jerk)
 
 
 def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | None = None) -> Program:
@@ -456,18 +561,17 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
     # inside normal: the part of u2 across u1, normalised
     perp = u2 - cos_t[keep][:, None] * u1
     n1 = perp / np.sqrt((perp * perp).sum(axis=1))[:, None]
-    _, _, t1, d1 = unit_pair(theta)
-    half = np.minimum(p_tol[cand][keep] / d1,
-                      np.minimum(0.5 * lin_len[jj], 0.5 * lin_len[jj + 1]) / t1)
-
-    # Worth it only where the blend is faster than the sharp corner (tangent-break rule).
     limits = LimitSet.from_machine(machine)
     lim_a, lim_j, ts = limits.a_axis, limits.j_axis, limits.ts_s
     in_plane = (np.abs(u1) + np.abs(n1)) > 1e-12
     a_pl = np.where(in_plane, lim_a[None, :], np.inf).min(axis=1)
     j_pl = np.where(in_plane, lim_j[None, :], np.inf).min(axis=1)
-    v_blend = _blend_caps(theta, half, np.minimum(a_pl, machine.limits.a_max_mm_s2),
-                          np.minimum(j_pl, machine.limits.j_max_mm_s3))
+    room = np.minimum(0.5 * lin_len[jj], 0.5 * lin_len[jj + 1])
+    half, arc, tangent_len, deviation, v_blend = corner_sizes(
+        theta, p_tol[cand][keep], room, np.minimum(a_pl, machine.limits.a_max_mm_s2),
+        np.minimum(j_pl, machine.limits.j_max_mm_s3))
+
+    # Worth it only where the blend is faster than the sharp corner (tangent-break rule).
     # the sharp corner's cap, as the look-ahead gives it: acceleration and jerk of the
     # one-sample direction change (the lines' path jerk: ``joint_step_budget``)
     dt = np.abs(u2 - u1)
@@ -483,23 +587,22 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
         # the pair is crossed at no more than the slower line's feed, over both halves
         feeds = np.array([min(moves[i].feed_mm_s, moves[i + 1].feed_mm_s) for i in jj])
         v_cross = np.minimum(v_blend, np.minimum(feeds, machine.limits.v_max_mm_s))
-        good &= _blend_not_slower(program, machine, speeds(program), jj, v_cross, half * t1, j_pl,
-                                  good.copy(), v_break)
-    jj, u1, n1, theta, half = jj[good], u1[good], n1[good], theta[good], half[good]
-    t1 = t1[good]
+        good &= _blend_not_slower(program, machine, speeds(program), jj, v_cross, tangent_len, j_pl,
+                                  good.copy(), v_break, half + 0.5 * arc)
+    jj, u1, n1, theta, half, arc = jj[good], u1[good], n1[good], theta[good], half[good], arc[good]
+    tangent_len, deviation = tangent_len[good], deviation[good]
     if not jj.size:
         return program
 
-    tangent_len = half * t1
     corner = end[jj]
     a_pts = corner - tangent_len[:, None] * u1
     b_pts = corner + tangent_len[:, None] * direction[jj + 1]
-    return _rebuild(program, jj, a_pts, b_pts, u1, n1, half, theta, corner)
+    return _rebuild(program, jj, a_pts, b_pts, u1, n1, half, theta, corner, arc, deviation)
 
 
 def _rebuild(program: Program, joints: np.ndarray, a_pts: np.ndarray, b_pts: np.ndarray,
              u1: np.ndarray, n1: np.ndarray, half: np.ndarray, theta: np.ndarray,
-             corner: np.ndarray) -> Program:
+             corner: np.ndarray, arc: np.ndarray, deviation: np.ndarray) -> Program:
     moves = program.moves
     at_joint = {int(k): i for i, k in enumerate(joints)}
     new: list[Move] = []
@@ -521,14 +624,16 @@ def _rebuild(program: Program, joints: np.ndarray, a_pts: np.ndarray, b_pts: np.
                 origin.append(i)
         if b_i is not None:
             bl = Blend(origin=np.array(a_pts[b_i]), u1=np.array(u1[b_i]), n1=np.array(n1[b_i]),
-                       half_mm=float(half[b_i]), turn_rad=float(theta[b_i]), corner=np.array(corner[b_i]))
+                       half_mm=float(half[b_i]), turn_rad=float(theta[b_i]), corner=np.array(corner[b_i]),
+                       arc_mm=float(arc[b_i]),
+                       measured_deviation_mm=float(deviation[b_i]) if arc[b_i] > 0.0 else math.nan)
             nxt = moves[i + 1]
             # where the motion is: the trimmed line's end, or the previous blend's end when the
             # line between was blended away whole (the same point to rounding)
             b_start = new[-1].end if new else np.array(a_pts[b_i])
             b_end = np.array(b_pts[b_i])
             new.append(Move(index=len(new), line=m.line, kind=MoveKind.BLEND, start=b_start, end=b_end,
-                            feed_mm_s=min(m.feed_mm_s, nxt.feed_mm_s), length_mm=2.0 * float(half[b_i]),
+                            feed_mm_s=min(m.feed_mm_s, nxt.feed_mm_s), length_mm=bl.length_mm,
                             arc=None, exact_stop=False, blend=bl))
             origin.append(i)
             prev_b = b_end

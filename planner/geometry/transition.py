@@ -18,7 +18,11 @@ Made only where its speed beats the speed the sharp plan crosses the joint at.
 
 Joints handled: line-arc, arc-line and arc-arc (not line-line: ``planner.geometry.blend``'s corners),
 both moves in one machine plane (the arc's; no helix), no rotary motion, G64 P on both, no
-exact stop or event at the joint, and at most 30 degrees of kink.
+exact stop or event at the joint, and at most 150 degrees of kink. A joint kinked by more than
+30 degrees is all but a stop when sharp, and its transition is tight (it turns within P): it is
+made only where it also takes less time than the sharp plan over the two moves (the sharp one
+leaves the joint at full acceleration; at J = 1e4 mm/s^3 a 40 degree joint into a 5 mm arc is
+quicker sharp, at 1e6 eased).
 """
 
 from __future__ import annotations
@@ -41,6 +45,7 @@ from planner.geometry.blend import (
     joint_context,
     remap_program,
     segment_distance,
+    window_quicker,
 )
 from planner.geometry.resume import head_move, split_move
 
@@ -50,9 +55,11 @@ _GX, _GW = np.polynomial.legendre.leggauss(24)
 _GX = (_GX + 1.0) * 0.5
 _GW = _GW * 0.5
 
-#: kinks larger than this are corners, not transitions (allowing 90 degrees made the shared CAM
-#: programs slower: 51MeanderAve 169.30 to 170.06 s, arc_rword_test 57.05 to 57.58 s)
-MAX_KINK_RAD = math.radians(30.0)
+#: kinks up to this are eased where the transition beats the sharp joint's own speed; larger
+#: ones where it also beats what the sharp plan reaches over the transition's stretch
+SMALL_KINK_RAD = math.radians(30.0)
+#: kinks larger than this are left sharp (near a reversal no transition keeps within P)
+MAX_KINK_RAD = math.radians(150.0)
 
 
 def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tuple[float, float, float, float]:
@@ -190,6 +197,7 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         return program
     tol, rotary, event_after = joint_context(program)
     made: dict[int, tuple[Move, Move, Move]] = {}
+    kinks: dict[int, tuple[float, float]] = {}
     for j in range(n - 1):
         a, b = moves[j], moves[j + 1]
         p_tol = min(tol[j], tol[j + 1])
@@ -208,7 +216,8 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         f, s = plane
         ta = a.evaluate(np.array([a.length_mm]))[1][0]
         tb = b.evaluate(np.array([0.0]))[1][0]
-        if math.acos(float(np.clip(ta @ tb, -1.0, 1.0))) > MAX_KINK_RAD:
+        kink = math.acos(float(np.clip(ta @ tb, -1.0, 1.0)))
+        if kink > MAX_KINK_RAD:
             continue
         room = min(0.45 * a.length_mm, 0.45 * b.length_mm)   # the rest is for the other ends
         d = min(room, 50.0 * p_tol)
@@ -223,23 +232,37 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         if trio is None:
             continue
         made[j] = trio
+        kinks[j] = (kink, d)
     if not made:
         return program
     if speeds is not None:
-        made = _quicker(speeds(program), machine, made)
+        made = _quicker(program, speeds(program), machine, made, kinks)
         if not made:
             return program
     return _apply(program, made)
 
 
-def _quicker(plan: JointSpeeds, machine: MachineSpec, made: dict[int, tuple[Move, Move, Move]]
+def _quicker(program: Program, plan: JointSpeeds, machine: MachineSpec,
+             made: dict[int, tuple[Move, Move, Move]], kinks: dict[int, tuple[float, float]]
              ) -> dict[int, tuple[Move, Move, Move]]:
-    """The transitions whose speed beats the speed the sharp plan crosses their joint at (not
-    also what it reaches a stretch away, as corner blends ask: that keeps fewer transitions,
-    and the shared CAM programs run slower with it)."""
+    """The transitions whose speed beats the speed the sharp plan crosses their joint at and,
+    for kinks over ``SMALL_KINK_RAD``, that take less time over the two moves than the sharp
+    plan (``window_quicker``; ``kinks``: the kink and the stretch d taken from each move, per
+    joint). Small kinks are not asked the second: the shared CAM programs run slower with it."""
     ve = np.asarray(plan.ve)
     lim = LimitSet.from_machine(machine)
-    return {j: trio for j, trio in made.items() if blend_speed(trio[1], lim) > ve[j]}
+    speed = {j: blend_speed(trio[1], lim) for j, trio in made.items()}
+    big = np.array([j for j in made if kinks[j][0] > SMALL_KINK_RAD and speed[j] > ve[j]], dtype=np.int64)
+    timed: set[int] = set()
+    if big.size:
+        v = np.array([speed[int(j)] for j in big])
+        stretch = np.array([kinks[int(j)][1] for j in big])
+        half = np.array([0.5 * made[int(j)][1].length_mm for j in big])
+        quick = window_quicker(program, machine, plan, big, v, stretch, half,
+                               np.full(big.size, min(lim.j_path, machine.limits.j_max_mm_s3)))
+        timed = {int(j) for j in big[quick]}
+    return {j: trio for j, trio in made.items()
+            if speed[j] > ve[j] and (kinks[j][0] <= SMALL_KINK_RAD or j in timed)}
 
 
 def _apply(program: Program, made: dict[int, tuple[Move, Move, Move]]) -> Program:

@@ -15,19 +15,22 @@ import math
 import subprocess
 import sys
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from planner.core.curves import pair_frames, unit_pair
+from planner.core.curves import Blend, pair_frames, unit_pair
 from planner.core.errors import PlannerError
 from planner.core.machine import MachineSpec, load_machine
 from planner.core.program import EventKind, MoveKind
 from planner.gcode.interpreter import parse_program
 from planner.geometry.blend import (
     blend_report,
+    blend_speed,
+    corner_sizes,
     merge_naive_cam,
     round_fillets,
 )
@@ -146,11 +149,12 @@ def test_a_blend_meets_its_lines_smoothly_and_stays_within_the_tolerance(deg: fl
     assert dist_corner <= tol * (1 + 1e-9)
     assert distance_to_polyline(q, np.array(pts)).max() <= tol * (1 + 1e-9)
     assert line_in.length_mm >= 5.0 - 1e-9 and line_out.length_mm >= 5.0 - 1e-9
-    # the curve is parametrised by its length, its curvature peaks in the middle at theta / L_s
+    # the curve is parametrised by its length, its curvature peaks in the middle at 1 / R, the
+    # clothoids and the arc between them turning theta: R = (L_c + L_a) / theta
     chord = np.sqrt((np.diff(q, axis=0) ** 2).sum(axis=1)).sum()
     assert chord == pytest.approx(bl.length_mm, rel=1e-6)
     np.testing.assert_allclose(np.sqrt((tq * tq).sum(axis=1)), 1.0, atol=1e-12)
-    assert kq.max() == pytest.approx(math.radians(deg) / bl.blend.half_mm, rel=1e-6)
+    assert kq.max() == pytest.approx(math.radians(deg) / (bl.blend.half_mm + bl.blend.arc_mm), rel=1e-6)
     assert blend_report(prog).max_corner_deviation_mm == pytest.approx(dist_corner, rel=1e-6, abs=1e-12)
 
 
@@ -716,3 +720,115 @@ def test_a_resume_inside_a_transition_follows_the_same_curve() -> None:
     prog = ease_joints(parse_program(ARCS.format(tol=0.05), "arcs.ngc", m), m)
     assert prog.moves[1].blend is not None and prog.moves[1].blend.poly is not None
     assert_resume_follows(prog, m, 0.61)
+
+
+def linuxcnc_dynamics() -> MachineSpec:
+    """``fast_machine`` at J = 1e6 mm/s^3: LinuxCNC 2.9's dynamics (no jerk limit to speak of)."""
+    m = fast_machine()
+    axes = tuple(replace(a, j_max=1e6) for a in m.axes)
+    return replace(m, axes=axes).with_limits(v_max_mm_s=100.0, a_max_mm_s2=1000.0, j_max_mm_s3=1e6,
+                                             rapid_mm_s=100.0)
+
+
+def raster_step_text(step_mm: float, tol: str) -> str:
+    """A finishing raster's turn: along X, a short step over in Y, back along X (two right
+    angles a step apart), as blur_torus.ngc of LinuxCNC's tests runs it (G20, P0.01 inch)."""
+    return (f"G21 G90 G64 P{tol} Q0\nG0 X20 Y10\nG1 F6000 X0\nY{10.0 - step_mm:.4f}\nX20\nM2\n")
+
+
+def test_a_short_step_between_right_angles_is_turned_on_an_arc(monkeypatch) -> None:
+    """A 1.016 mm step within 0.254 mm: each right angle may take half the step, so the turn is
+    bound by the room, not the tolerance; an arc with short clothoids turns more for its tangent
+    length than a clothoid pair, and is crossed at 20.7 mm/s (the circle's own bound,
+    sqrt(0.866 A R) with R = 0.508 mm, is 21.0) where the pair allows 15.3 mm/s."""
+    m = linuxcnc_dynamics()
+    sharp = parse_program(raster_step_text(1.016, "0.254"), "step.ngc", m)
+    blended = blend_program(sharp, m)
+    blends = [mv for mv in blended.moves if mv.kind is MoveKind.BLEND]
+    assert len(blends) == 2
+    lim = LimitSet.from_machine(m)
+    speeds = [blend_speed(b, lim) for b in blends]
+    assert min(speeds) > 20.0
+    for b in blends:
+        assert b.blend.arc_mm > 2.0 * b.blend.half_mm           # mostly arc
+        q = b.evaluate(np.linspace(0.0, b.length_mm, 2001))[0]
+        assert distance_to_program(q, sharp).max() <= 0.254 * (1 + 1e-9)
+    assert blend_report(blended).max_corner_deviation_mm <= 0.254 * (1 + 1e-9)
+    plan = plan_program(blended, m)
+    assert plan.limit_report().ok
+    assert plan.cycle_time_s < plan_program(sharp, m).cycle_time_s - 0.02
+    # clothoid pairs only: at 15.3 mm/s they are no quicker than the sharp corners, none is made
+    monkeypatch.setattr("planner.geometry.blend.CLOTHOID_SHARES", np.array([1.0]))
+    assert blend_program(sharp, m) is sharp
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(0.001, 3.0), st.floats(1e-4, 1.0), st.floats(1e-3, 10.0), st.sampled_from([1e-3, 1.0, 1e3]),
+       st.sampled_from([1e3, 1e4, 1e6]))
+def test_corner_sizes_are_within_bounds_and_never_slower_than_the_pair(theta, tol, room, scale, jerk) -> None:
+    """Any turn, tolerance, room, at scales 0.001 to 1000: D <= P, T <= room, the turn made by
+    the clothoids and the arc together, and a speed at least the clothoid pair's."""
+    th, p, r = np.array([theta]), np.array([tol * scale]), np.array([room * scale])
+    a, j = np.array([1000.0 * scale]), np.array([jerk * scale])
+    lc, la, t, d, v = corner_sizes(th, p, r, a, j)
+    assert d[0] <= p[0] * (1 + 1e-9) and t[0] <= r[0] * (1 + 1e-9)
+    assert max(d[0] / p[0], t[0] / r[0]) == pytest.approx(1.0, rel=1e-9)   # as large as allowed
+    assert lc[0] > 0.0 and la[0] >= 0.0
+    radius = (lc[0] + la[0]) / theta
+    # the blend's own speed rule from its geometry, as blend_speed reads it from the Blend
+    bl = Blend(origin=np.zeros(3), u1=np.array([1.0, 0.0, 0.0]), n1=np.array([0.0, 1.0, 0.0]),
+               half_mm=float(lc[0]), turn_rad=theta, corner=np.zeros(3), arc_mm=float(la[0]))
+    assert bl.radius_mm == pytest.approx(radius, rel=1e-12)
+    _, _, t1, d1 = unit_pair(th)
+    half = min(p[0] / d1[0], r[0] / t1[0])
+    pair = Blend(origin=np.zeros(3), u1=np.array([1.0, 0.0, 0.0]), n1=np.array([0.0, 1.0, 0.0]),
+                 half_mm=float(half), turn_rad=theta, corner=np.zeros(3))
+    lim = SimpleNamespace(a_axis=np.full(3, a[0]), j_axis=np.full(3, j[0]), a_path=a[0], j_path=j[0],
+                          v_path=math.inf)
+    mv = SimpleNamespace(blend=pair, feed_mm_s=math.inf)
+    assert v[0] >= blend_speed(mv, lim) * (1 - 1e-9)
+
+
+def test_a_corner_is_blended_where_it_saves_time_over_its_lines() -> None:
+    """12mmflat.ngc's climb out of a pass (LinuxCNC's tests): a 17 mm line, then 0.97 mm lines
+    turning 22.5 and 45 degrees, within 0.01 mm. The 45 degree blend is crossed at 8.9 mm/s,
+    less than the sharp plan reaches a tangent length from that corner (12 mm/s), but the
+    corner is no longer a stop: over the two lines it is quicker, and it is made."""
+    m = linuxcnc_dynamics()
+    text = ("G21 G90 G64 P0.01 Q0\nG0 X176.571 Y37.868 Z0.497\nG1 F3500 X193.40333\n"
+            "X194.30136 Z0.86884\nX194.67333 Z1.76686\nX194.67333 Z6\nM2\n")
+    sharp = parse_program(text, "climb.ngc", m)
+    blended = blend_program(sharp, m)
+    turns = sorted(round(math.degrees(b.blend.turn_rad), 1)
+                   for b in blended.moves if b.kind is MoveKind.BLEND)
+    assert turns[:2] == [22.5, 22.5] and 45.0 in turns
+    plan = plan_program(blended, m)
+    assert plan.limit_report().ok
+    assert plan.cycle_time_s < plan_program(sharp, m).cycle_time_s - 0.01
+
+
+@pytest.mark.parametrize("radius_mm", [5.0, 20.0])
+@pytest.mark.parametrize("kink_deg", [40.0, 60.0, 90.0])
+def test_a_joint_kinked_beyond_30_degrees_is_eased_only_where_quicker(kink_deg: float,
+                                                                      radius_mm: float) -> None:
+    """A line into an arc at a 40-90 degree kink, within 0.01 mm: the transition is made where
+    it takes less time than the sharp joint (a stop) - at 40 and 60 degrees with LinuxCNC's
+    dynamics - and not where the sharp joint is quicker (every kink at J = 1e4, 90 degrees at
+    1e6): either way the program is never slower than sharp."""
+    from planner.geometry.transition import ease_joints
+
+    k = math.radians(kink_deg)
+    phi = k - math.pi / 2.0                          # the start's angle about the centre
+    cx, cy = 10.0 - radius_mm * math.cos(phi), -radius_mm * math.sin(phi)
+    ex, ey = cx + radius_mm * math.cos(phi + 1.0), cy + radius_mm * math.sin(phi + 1.0)
+    text = (f"G21 G90 G64 P0.01 Q0\nG0 X0 Y0\nG1 F3000 X10\n"
+            f"G3 X{ex:.9f} Y{ey:.9f} I{cx - 10.0:.9f} J{cy:.9f}\nM2\n")
+    for m, expect in ((linuxcnc_dynamics(), kink_deg < 90.0), (fast_machine(), False)):
+        sharp = parse_program(text, "kink.ngc", m)
+        eased = ease_joints(sharp, m, planned(m))
+        always = ease_joints(sharp, m)
+        assert [mv.kind for mv in always.moves] == [MoveKind.LINE, MoveKind.BLEND, MoveKind.ARC]
+        t_sharp, t_always = plan_program(sharp, m).cycle_time_s, plan_program(always, m).cycle_time_s
+        made = any(mv.kind is MoveKind.BLEND for mv in eased.moves)
+        assert made == expect and made == (t_always < t_sharp)
+        assert plan_program(eased, m).cycle_time_s <= t_sharp + 1e-9
