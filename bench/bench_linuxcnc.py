@@ -1,7 +1,7 @@
 """Cycle times against LinuxCNC's trajectory planners on the shared CAM programs, G64 P0.01.
 
-    python -m bench.bench_linuxcnc [--tol 0.01] [--only NAME] [--skip-linuxcnc] [--skip-210]
-                                   [--linuxcnc-210 DIR]
+    python -m bench.bench_linuxcnc [--tol 0.01] [--only NAME] [--program FILE ...] [--skip-linuxcnc]
+                                   [--skip-210] [--linuxcnc-210 DIR]
 
 LinuxCNC 2.9 (Debian's ``linuxcnc-uspace``) runs each program in its own simulator, headless
 (``bench/linuxcnc/``: trivkins XYZ, every axis and the path 100 mm/s and 1000 mm/s^2, a 1 ms
@@ -161,6 +161,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--tol", type=float, default=0.01, help="G64 P tolerance, mm")
     ap.add_argument("--only", help="a program name (substring)")
     ap.add_argument("--exclude", action="append", default=[], help="leave out a program (substring)")
+    ap.add_argument("--program", action="append", type=Path, default=[],
+                    help="another program to run beside the shared CAM programs (repeatable), such as "
+                         "those of LinuxCNC's tests/trajectory-planner/circular-arcs/nc_files/performance")
     ap.add_argument("--skip-linuxcnc", action="store_true", help="ours only (LinuxCNC runs in real time)")
     ap.add_argument("--skip-210", action="store_true", help="not LinuxCNC 2.10's S-curve planner")
     ap.add_argument("--linuxcnc-210", type=Path, default=LINUXCNC_210_ROOT,
@@ -172,11 +175,16 @@ def main(argv: list[str] | None = None) -> int:
         if not args.skip_210:
             scurve = Reference("LinuxCNC 2.10 S-curve", args.linuxcnc_210, 1e4)
             references.append((scurve, "linuxcnc 2.10 J1e4"))
-    if not SHARED_CAM.is_dir():
+    if not SHARED_CAM.is_dir() and not args.program:
         print(f"no shared CAM programs at {SHARED_CAM}")
         return 1
+    missing = [str(p) for p in args.program if not p.is_file()]
+    if missing:
+        print(f"no such program: {', '.join(missing)}")
+        return 1
+    shared = sorted(SHARED_CAM.glob("*/*")) if SHARED_CAM.is_dir() else []
     rows = []
-    for path in sorted(SHARED_CAM.glob("*/*")):
+    for path in shared + list(args.program):
         if (path.suffix.lower() not in SUFFIXES or (args.only and args.only not in str(path))
                 or any(x in str(path) for x in args.exclude)):
             continue

@@ -8,6 +8,7 @@ every axis, exact end points, the path kept."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -238,3 +239,19 @@ def test_whole_shared_programs_hold_every_limit_across_joints(path: Path) -> Non
     assert rep.joint_jerk["count"] == 0, rep.joint_jerk
     assert rep.corner_steps["count"] == 0
     assert max(v["j_joint"] for v in rep.axes.values()) <= 10_000.0 * (1 + 1e-4)
+
+
+def test_the_linuxcnc_bench_runs_a_program_given_beside_the_shared_ones(tmp_path, capsys) -> None:
+    """``bench.bench_linuxcnc --program FILE`` plans a program from elsewhere (LinuxCNC's own
+    test programs, say) as it plans the shared ones; a missing file is named, nothing run."""
+    from bench import bench_linuxcnc
+
+    prog = tmp_path / "raster_step.ngc"
+    prog.write_text("G21 G90\nG0 X20 Y10\nG1 F6000 X0\nY9\nX20\nM2\n")
+    assert bench_linuxcnc.main(["--skip-linuxcnc", "--program", str(prog), "--only", "raster_step"]) == 0
+    rows = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["rows"]
+    assert [r["program"] for r in rows] == [f"{tmp_path.name}/raster_step.ngc"]
+    # a 22 mm rapid, 41 mm of feed at 100 mm/s round two right angles within 0.01 mm: 0.99 s
+    assert 0.8 < rows[0]["ours J1e+06 time_s"] < 1.2 and rows[0]["ours J1e+06 ok"] is True
+    assert bench_linuxcnc.main(["--skip-linuxcnc", "--program", str(tmp_path / "none.ngc")]) == 1
+    assert "no such program" in capsys.readouterr().out
