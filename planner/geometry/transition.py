@@ -60,6 +60,9 @@ _GW = _GW * 0.5
 SMALL_KINK_RAD = math.radians(30.0)
 #: kinks larger than this are left sharp (near a reversal no transition keeps within P)
 MAX_KINK_RAD = math.radians(150.0)
+#: a joint turning more than this strays from its moves in proportion to the stretch taken
+#: (less: as its square, the curvature step's share)
+KINKED_RAD = math.radians(1.0)
 
 
 def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tuple[float, float, float, float]:
@@ -141,8 +144,10 @@ def _distance_to(q: np.ndarray, m: Move) -> np.ndarray:
     return arc_distance(q, m)
 
 
-def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float) -> tuple[Move, Move, Move] | None:
-    """(a's head, transition, b's tail) with d taken from each, or None if none fits in tol."""
+def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float
+          ) -> tuple[tuple[Move, Move, Move] | None, float]:
+    """((a's head, transition, b's tail) with d taken from each, or None if none fits in tol;
+    the transition's distance from the moves, NaN where there is no transition to measure)."""
     n_axes = a.start.shape[0]
     u_a = a.length_mm - d
     pa, ta, _ = a.evaluate(np.array([u_a]))
@@ -157,26 +162,26 @@ def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float) -> tuple[Move,
     rel = pb - pa
     sol = solve_transition(_kappa_at(a, u_a), _kappa_at(b, d), dpsi, float(rel @ u1), float(rel @ n1))
     if sol is None:
-        return None
+        return None, math.nan
     length, c = sol
     if not 0.5 * math.hypot(*rel[[f, s]]) < length < 3.0 * math.hypot(*rel[[f, s]]):
-        return None                                       # a loop or a detour, not a transition
+        return None, math.nan                             # a loop or a detour, not a transition
     bl = Blend(origin=pa.copy(), u1=u1, n1=n1, half_mm=0.5 * length, turn_rad=max(abs(dpsi), 1e-12),
                corner=a.end.copy(), poly=c)
     mv = Move(index=0, line=a.line, kind=MoveKind.BLEND, start=pa.copy(), end=pb.copy(),
               feed_mm_s=min(a.feed_mm_s, b.feed_mm_s), length_mm=length, arc=None, exact_stop=False, blend=bl)
     q = mv.evaluate(np.linspace(0.0, length, 49))[0]
     if np.linalg.norm(q[-1] - pb) > 1e-9 * (1.0 + np.abs(pb).max()):
-        return None
+        return None, math.nan
     dev = float(np.minimum(_distance_to(q, a), _distance_to(q, b)).max())
     if dev > tol:
-        return None
+        return None, dev
     mv = replace(mv, blend=replace(bl, measured_deviation_mm=dev))
     head = _head(a, u_a, pa)
     tail = split_move(b, d)
     if head is None or tail.length_mm <= MIN_LINE_MM:
-        return None
-    return head, mv, tail
+        return None, math.nan
+    return (head, mv, tail), dev
 
 
 def _head(m: Move, u: float, end: np.ndarray) -> Move | None:
@@ -222,13 +227,16 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         room = min(0.45 * a.length_mm, 0.45 * b.length_mm)   # the rest is for the other ends
         d = min(room, 50.0 * p_tol)
         trio = None
+        # the stretch shrinks until the transition keeps within 0.9 P: by 0.6 a try, or at once
+        # to where its deviation would fit (about d for a kink, d^2 for a curvature step alone)
+        power = 1.0 if kink > KINKED_RAD else 0.5
         for _ in range(10):
             if d <= 1e-9 * (1.0 + abs(a.end).max()):
                 break
-            trio = _make(a, b, f, s, d, 0.9 * p_tol)
+            trio, dev = _make(a, b, f, s, d, 0.9 * p_tol)
             if trio is not None:
                 break
-            d *= 0.6
+            d *= min(0.6, 0.95 * (0.9 * p_tol / dev) ** power) if dev > 0.0 else 0.6
         if trio is None:
             continue
         made[j] = trio
