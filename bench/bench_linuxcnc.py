@@ -8,7 +8,9 @@ LinuxCNC 2.9 (Debian's ``linuxcnc-uspace``) runs each program in its own simulat
 servo period, arc blends on; a DISPLAY program of ours that turns the machine on, homes, runs
 the program and waits for its end; ``halsampler`` takes the joints' commanded positions every
 millisecond, times 1000 so its six decimals keep nanometres). Its time is from the first to
-the last sample that moves. It runs in real time, as a user other than root (rtapi refuses
+the last sample that moves; its largest path acceleration is reported (over the 1000 mm/s^2 of
+its configuration: it takes a straight move's acceleration from the axes, and overlaps moves
+in its parabolic blends). It runs in real time, as a user other than root (rtapi refuses
 root: as root the bench runs it as ``nobody``). Nothing of LinuxCNC is part of the project.
 
 LinuxCNC 2.10's S-curve planner (``[TRAJ] PLANNER_TYPE = 1``, the jerk 1e4 mm/s^3 on the path,
@@ -156,6 +158,17 @@ def jerk_over(q: np.ndarray, jmax: float, factor: float) -> int:
     return int(np.count_nonzero(np.abs(np.diff(q, n=3, axis=0)) / 1e-9 > factor * jmax))
 
 
+def path_accel_ratio(q: np.ndarray, amax: float) -> tuple[float, int]:
+    """The largest path acceleration of samples q (1 ms apart) over ``amax``, and how many
+    second differences exceed it by more than 1 %: LinuxCNC takes a straight move's
+    acceleration from its axes (up to sqrt(3) ``amax`` on a diagonal at equal axis limits) and
+    overlaps two moves in its parabolic blends, past ``[TRAJ] MAX_LINEAR_ACCELERATION``."""
+    if len(q) < 3:
+        return 0.0, 0
+    a = np.sqrt((np.diff(q, n=2, axis=0) ** 2).sum(axis=1)) / 1e-6
+    return float(a.max() / amax), int(np.count_nonzero(a > 1.01 * amax))
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tol", type=float, default=0.01, help="G64 P tolerance, mm")
@@ -206,6 +219,9 @@ def main(argv: list[str] | None = None) -> int:
                 row[f"{key} s"] = t
                 row[f"{key} jerk x at 1e4"] = jerk_ratio(q, 1e4)
                 row[f"{key} jerk stencils over 1.01x"] = jerk_over(q, 1e4, 1.01)
+                ratio_a, over_a = path_accel_ratio(q, 1000.0)
+                row[f"{key} path accel x"] = ratio_a
+                row[f"{key} path accel samples over 1.01x"] = over_a
                 row[f"{key} said"] = said
             except (LinuxCncUnavailable, subprocess.TimeoutExpired) as exc:
                 row[f"{key} s"] = f"not run: {exc}"
@@ -220,7 +236,8 @@ def main(argv: list[str] | None = None) -> int:
         ratio = f"{fast / lc:6.3f}x" if both else "   -   "  # type: ignore[operator]
         both10 = isinstance(slow, float) and isinstance(lc10, float) and lc10
         ratio10 = f"{slow / lc10:6.3f}x" if both10 else "   -   "  # type: ignore[operator]
-        print(f"{name[:40]:40} 2.9 {fmt(lc)} ours J=1e6 {fmt(fast)} ({ratio}) | 2.10 J=1e4 {fmt(lc10)} "
+        print(f"{name[:40]:40} 2.9 {fmt(lc)} (path accel x {row.get('linuxcnc 2.9 path accel x', 0.0):.2f}) "
+              f"ours J=1e6 {fmt(fast)} ({ratio}) | 2.10 J=1e4 {fmt(lc10)} "
               f"(jerk x {row.get('linuxcnc 2.10 J1e4 jerk x at 1e4', 0.0):.2f}) ours J=1e4 {fmt(slow)} "
               f"({ratio10}) dev {row.get('ours J1e+04 deviation_mm', 0.0):.4f} axis jerk x "
               f"{row.get('ours J1e+04 axis_jerk_x', 0.0):.4f}", flush=True)

@@ -255,3 +255,17 @@ def test_the_linuxcnc_bench_runs_a_program_given_beside_the_shared_ones(tmp_path
     assert 0.8 < rows[0]["ours J1e+06 time_s"] < 1.2 and rows[0]["ours J1e+06 ok"] is True
     assert bench_linuxcnc.main(["--skip-linuxcnc", "--program", str(tmp_path / "none.ngc")]) == 1
     assert "no such program" in capsys.readouterr().out
+
+
+def test_the_linuxcnc_bench_measures_path_acceleration_on_samples() -> None:
+    """A diagonal in XY at 1000 mm/s^2 on each axis is 1414 mm/s^2 on the path: 1.414x, every
+    accelerating sample counted; along X alone 1.0x and none over."""
+    from bench.bench_linuxcnc import path_accel_ratio
+
+    t = np.arange(0.0, 0.1, 1e-3)
+    s = 0.5 * 1000.0 * t * t                               # mm, each axis at 1000 mm/s^2
+    diagonal = np.column_stack([s, s, np.zeros_like(s)])
+    ratio, over = path_accel_ratio(diagonal, 1000.0)
+    assert ratio == pytest.approx(math.sqrt(2.0), rel=1e-6) and over == len(t) - 2
+    along_x = np.column_stack([s, np.zeros_like(s), np.zeros_like(s)])
+    assert path_accel_ratio(along_x, 1000.0) == (pytest.approx(1.0, rel=1e-6), 0)
