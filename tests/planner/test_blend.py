@@ -758,7 +758,11 @@ def test_a_short_step_between_right_angles_is_turned_on_an_arc(monkeypatch) -> N
     assert plan.limit_report().ok
     assert plan.cycle_time_s < plan_program(sharp, m).cycle_time_s - 0.02
     # clothoid pairs only: at 15.3 mm/s they are no quicker than the sharp corners, none is made
+    args = (np.array([math.pi / 2.0]), np.array([0.254]), np.array([0.508]), np.array([1000.0]),
+            np.array([1e6]))
+    assert 20.6 < corner_sizes(*args)[4][0] < 20.8
     monkeypatch.setattr("planner.geometry.blend.CLOTHOID_SHARES", np.array([1.0]))
+    assert 15.2 < corner_sizes(*args)[4][0] < 15.4
     assert blend_program(sharp, m) is sharp
 
 
