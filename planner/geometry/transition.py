@@ -67,10 +67,14 @@ KINKED_RAD = math.radians(1.0)
 
 def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tuple[float, float, float, float]:
     """c1, c2 (given c3) so that kappa(L) = k1 and the heading turns by dpsi over L."""
-    a = np.array([[length, length * length], [length * length / 2.0, length ** 3 / 3.0]])
-    b = np.array([k1 - k0 - c3 * length ** 3, dpsi - k0 * length - c3 * length ** 4 / 4.0])
-    c1, c2 = np.linalg.solve(a, b)
-    return (k0, float(c1), float(c2), c3)
+    # [[L, L^2], [L^2 / 2, L^3 / 3]] (c1, c2) = (b1, b2), by Cramer's rule (determinant -L^4 / 6)
+    l2 = length * length
+    b1 = k1 - k0 - c3 * l2 * length
+    b2 = dpsi - k0 * length - c3 * l2 * l2 / 4.0
+    det = -l2 * l2 / 6.0
+    c1 = (b1 * l2 * length / 3.0 - l2 * b2) / det
+    c2 = (length * b2 - 0.5 * l2 * b1) / det
+    return (k0, c1, c2, c3)
 
 
 def _end(c: tuple[float, float, float, float], length: float) -> np.ndarray:
@@ -97,11 +101,12 @@ def solve_transition(k0: float, k1: float, dpsi: float, bx: float, by: float
             return length, _coeffs(length, c3, k0, k1, dpsi)
         h1 = 1e-7 * length
         h2 = 1e-7 * (abs(c3) + 1.0 / length ** 3)
-        jac = np.column_stack([(residual(length + h1, c3) - f) / h1, (residual(length, c3 + h2) - f) / h2])
-        try:
-            step = np.linalg.solve(jac, -f)
-        except np.linalg.LinAlgError:
+        j1 = (residual(length + h1, c3) - f) / h1
+        j2 = (residual(length, c3 + h2) - f) / h2
+        det = j1[0] * j2[1] - j2[0] * j1[1]
+        if det == 0.0 or not math.isfinite(det):
             return None
+        step = ((-f[0] * j2[1] + j2[0] * f[1]) / det, (-j1[0] * f[1] + f[0] * j1[1]) / det)
         scale = 1.0
         while scale > 1e-4:
             l2, c32 = length + scale * step[0], c3 + scale * step[1]
