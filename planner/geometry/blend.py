@@ -136,7 +136,8 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
     k = x1 - np.sin(tau)
     t_unit = (1.0 + shift) * np.tan(0.5 * th) + k
     d_unit = (1.0 + shift) / np.cos(0.5 * th) - 1.0
-    radius = np.minimum(tol[:, None] / d_unit, room[:, None] / t_unit)
+    # a hair inside both bounds, so that D and T computed back stay within them to rounding
+    radius = np.minimum(tol[:, None] / d_unit, room[:, None] / t_unit) * (1.0 - 1e-12)
     lc = vt * radius
     v = _blend_caps_k(1.0 / radius, 1.0 / (radius * lc), a_pl[:, None], j_pl[:, None])
     best = np.argmax(v, axis=1)

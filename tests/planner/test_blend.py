@@ -775,7 +775,7 @@ def test_corner_sizes_are_within_bounds_and_never_slower_than_the_pair(theta, to
     th, p, r = np.array([theta]), np.array([tol * scale]), np.array([room * scale])
     a, j = np.array([1000.0 * scale]), np.array([jerk * scale])
     lc, la, t, d, v = corner_sizes(th, p, r, a, j)
-    assert d[0] <= p[0] * (1 + 1e-9) and t[0] <= r[0] * (1 + 1e-9)
+    assert d[0] <= p[0] and t[0] <= r[0]                                    # to the last bit
     assert max(d[0] / p[0], t[0] / r[0]) == pytest.approx(1.0, rel=1e-9)   # as large as allowed
     assert lc[0] > 0.0 and la[0] >= 0.0
     radius = (lc[0] + la[0]) / theta
