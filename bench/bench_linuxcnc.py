@@ -21,15 +21,18 @@ compared with ours at the same jerk; its axis jerk on the samples is reported (l
 
 Ours: the same program with the same mode line before its first move (``bench_blend.with_mode``)
 planned at the same speed and acceleration with jerk 1e6 (LinuxCNC's dynamics, practically
-unlimited jerk) and 1e4 mm/s^3, and the limit report of its samples (the largest path deviation
-of the blends, the largest axis jerk over the limit, inside moves and across joints, and the
-joints crossed with a velocity step). The last line is the JSON result.
+unlimited jerk) and 1e4 mm/s^3, at 1e6 also with the path's acceleration taken from the axes
+as LinuxCNC 2.9 takes it (``axis_rule``: the path limit of 1000 mm/s^2 holds in ours, not in
+it), and the limit report of its samples (the largest path deviation of the blends, the
+largest axis jerk over the limit, inside moves and across joints, and the joints crossed with
+a velocity step). The last line is the JSON result.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -41,6 +44,7 @@ import numpy as np
 
 from bench.bench_blend import SHARED_CAM, bench_machine, with_mode
 from planner.core.errors import PlannerError, ProgramError
+from planner.core.machine import MachineSpec
 from planner.gcode.interpreter import parse_program
 from planner.geometry.blend import blend_report
 from planner.motion.blending import blend_program
@@ -130,8 +134,24 @@ def linuxcnc_time_s(text: str, timeout_s: float = 3600.0,
     return float(moving[-1] - moving[0] + 1) * 1e-3, q[moving[0]:moving[-1] + 2], status
 
 
-def ours(text: str, name: str, jmax: float) -> dict[str, float | bool]:
+def axis_rule(machine: MachineSpec) -> MachineSpec:
+    """``machine`` with the path's acceleration and jerk as LinuxCNC 2.9 takes them on a straight
+    move, from the axes alone (``emccanon``'s getStraightAcceleration: each axis at its limit
+    over its share of the move): the path limits raised to what the linear axes allow together,
+    so that they never bind before an axis does. The path speed stays."""
+    linear = [a for a in machine.axes if not a.rotary]
+    a_all = math.sqrt(sum(a.a_max ** 2 for a in linear))
+    j_all = math.sqrt(sum(a.j_max ** 2 for a in linear))
+    return machine.with_limits(v_max_mm_s=machine.limits.v_max_mm_s, a_max_mm_s2=a_all, j_max_mm_s3=j_all,
+                               rapid_mm_s=machine.limits.rapid_mm_s)
+
+
+def ours(text: str, name: str, jmax: float, path_rule: bool = False) -> dict[str, float | bool]:
+    """Our plan of ``text`` on the bench machine at jerk ``jmax`` (``path_rule``: with the path's
+    acceleration and jerk taken from the axes, LinuxCNC 2.9's rule, ``axis_rule``)."""
     machine = bench_machine(jmax)
+    if path_rule:
+        machine = axis_rule(machine)
     program = blend_program(parse_program(text, name, machine), machine)
     plan = plan_program(program, machine)
     report = plan.limit_report()
@@ -208,6 +228,8 @@ def main(argv: list[str] | None = None) -> int:
             for jmax in (1e6, 1e4):
                 for key, value in ours(text, path.name, jmax).items():
                     row[f"ours J{jmax:.0e} {key}"] = value
+            for key, value in ours(text, path.name, 1e6, path_rule=True).items():
+                row[f"ours J1e+06 axis rule {key}"] = value
         except (ProgramError, PlannerError) as exc:
             row["ours"] = f"not read: {str(exc).splitlines()[0]}"
         # LinuxCNC can wait for ever after an error of its own: a bound from ours
@@ -236,8 +258,12 @@ def main(argv: list[str] | None = None) -> int:
         ratio = f"{fast / lc:6.3f}x" if both else "   -   "  # type: ignore[operator]
         both10 = isinstance(slow, float) and isinstance(lc10, float) and lc10
         ratio10 = f"{slow / lc10:6.3f}x" if both10 else "   -   "  # type: ignore[operator]
+        rule = row.get("ours J1e+06 axis rule time_s")
+        both_rule = isinstance(rule, float) and isinstance(lc, float) and lc
+        ratio_rule = f"{rule / lc:6.3f}x" if both_rule else "   -   "  # type: ignore[operator]
         print(f"{name[:40]:40} 2.9 {fmt(lc)} (path accel x {row.get('linuxcnc 2.9 path accel x', 0.0):.2f}) "
-              f"ours J=1e6 {fmt(fast)} ({ratio}) | 2.10 J=1e4 {fmt(lc10)} "
+              f"ours J=1e6 {fmt(fast)} ({ratio}), axis rule {fmt(rule)} ({ratio_rule}) "
+              f"| 2.10 J=1e4 {fmt(lc10)} "
               f"(jerk x {row.get('linuxcnc 2.10 J1e4 jerk x at 1e4', 0.0):.2f}) ours J=1e4 {fmt(slow)} "
               f"({ratio10}) dev {row.get('ours J1e+04 deviation_mm', 0.0):.4f} axis jerk x "
               f"{row.get('ours J1e+04 axis_jerk_x', 0.0):.4f}", flush=True)

@@ -148,26 +148,28 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
 
 
 
-def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds, jj: np.ndarray,
-                      v_blend: np.ndarray, tangent_len: np.ndarray, j_pl: np.ndarray,
-                      eligible: np.ndarray, v_sharp: np.ndarray, half_len: np.ndarray) -> np.ndarray:
+def _blend_not_slower(program: Program, plan: JointSpeeds, jj: np.ndarray, v_blend: np.ndarray,
+                      tangent_len: np.ndarray, eligible: np.ndarray, v_sharp: np.ndarray,
+                      half_len: np.ndarray, accel: tuple[np.ndarray, np.ndarray],
+                      jerk: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
     """True where the blend cannot make the corner slower than the sharp corner's plan.
 
     The program is planned as it is; a blend holds about one speed over the lines' last and
     first T (its tangent length). Where that speed is at least what the sharp plan reaches T
     from the joint on both sides (bounded above: a ramp at full jerk from the joint's speed, as
-    each move's profile starts with zero acceleration, and the lines' peak speeds), the blended
-    corner is crossed at least as fast everywhere, provided the corner is where the sharp plan
-    is slowest, or where the plan crosses it at the sharp corner's own cap ``v_sharp`` (then the
-    corner, not a joint beside it, holds the speed down). ``eligible``: the joints whose pair
-    allows more than their sharp corner."""
+    each move's profile starts with zero acceleration, up to the line's acceleration, and the
+    lines' peak speeds), the blended corner is crossed at least as fast everywhere; or where
+    over the two lines it takes less time (``window_quicker``). Either provided the corner is
+    where the sharp plan is slowest, or where the plan crosses it at the sharp corner's own cap
+    ``v_sharp`` (then the corner, not a joint beside it, holds the speed down). ``eligible``: the
+    joints whose pair allows more than their sharp corner; ``accel``, ``jerk``: the tangential
+    acceleration and jerk the incoming and the outgoing line allow."""
     v_joint = np.asarray(plan.ve)[jj]
-    j = np.minimum(j_pl, machine.limits.j_max_mm_s3)
-    v_ramp = ramp_speed(v_joint, tangent_len, j, machine.limits.a_max_mm_s2)
     peak = np.asarray(plan.vpeak)
     # each side on its own: the incoming line may run far faster than the outgoing one
-    quicker = (v_blend >= np.minimum(v_ramp, peak[jj])) & (v_blend >= np.minimum(v_ramp, peak[jj + 1]))
-    quicker |= window_quicker(program, machine, plan, jj, v_blend, tangent_len, half_len, j)
+    quicker = ((v_blend >= np.minimum(ramp_speed(v_joint, tangent_len, jerk[0], accel[0]), peak[jj]))
+               & (v_blend >= np.minimum(ramp_speed(v_joint, tangent_len, jerk[1], accel[1]), peak[jj + 1])))
+    quicker |= window_quicker(program, plan, jj, v_blend, tangent_len, half_len, accel, jerk)
     # and only where the sharp corner is what slows the motion (its speed is the lowest of the
     # two lines'): a plan that brakes through the joint for something further on would have to
     # brake on the blend, whose tangential acceleration is small (its budget goes to the turn).
@@ -183,18 +185,18 @@ def _blend_not_slower(program: Program, machine: MachineSpec, plan: JointSpeeds,
         & _through_blended(jj, slower_after, taken, n_joints, after=True)
 
 
-def window_quicker(program: Program, machine: MachineSpec, plan: JointSpeeds, jj: np.ndarray,
-                    v_blend: np.ndarray, tangent_len: np.ndarray, half_len: np.ndarray,
-                    j: np.ndarray) -> np.ndarray:
+def window_quicker(program: Program, plan: JointSpeeds, jj: np.ndarray, v_blend: np.ndarray,
+                   tangent_len: np.ndarray, half_len: np.ndarray, accel: tuple[np.ndarray, np.ndarray],
+                   jerk: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
     """True where crossing joint jj (between moves jj and jj + 1) by a blend takes less time
     than the sharp plan over the two moves: each from the joint to its other end, run from the
     joint's speed (sharp) or from the blend's (``half_len`` of the blend at its speed, then the
-    rest of the move past the ``tangent_len`` the blend took from it) with a ramp at full jerk
-    up to the path's acceleration, and no faster than the move's peak in the sharp plan."""
+    rest of the move past the ``tangent_len`` the blend took from it) with a ramp at the move's
+    full jerk up to its acceleration (``accel``, ``jerk``: incoming and outgoing move's), and
+    no faster than the move's peak in the sharp plan."""
     ve, peak = np.asarray(plan.ve)[jj], np.asarray(plan.vpeak)
-    a = machine.limits.a_max_mm_s2
     total = np.zeros(len(jj))
-    for side in (jj, jj + 1):
+    for side, a, j in ((jj, accel[0], jerk[0]), (jj + 1, accel[1], jerk[1])):
         length = np.array([program.moves[int(i)].length_mm for i in side])
         cap = np.maximum(peak[side], 1e-9)
         rest = np.maximum(length - tangent_len, 0.0)
@@ -205,7 +207,7 @@ def window_quicker(program: Program, machine: MachineSpec, plan: JointSpeeds, jj
     return total < 0.0
 
 
-def _ramp_time(v0: np.ndarray, dist: np.ndarray, j: float | np.ndarray, a: float,
+def _ramp_time(v0: np.ndarray, dist: np.ndarray, j: float | np.ndarray, a: float | np.ndarray,
                cap: np.ndarray) -> np.ndarray:
     """Time to cover ``dist`` from speed v0 and no acceleration: jerk ``j`` up to acceleration
     ``a``, then ``a``, up to the speed ``cap`` and then at it (bisection on the time)."""
@@ -581,6 +583,7 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
     share = np.abs(direction)               # each axis' share of the line's tangent
     with np.errstate(divide="ignore"):
         j_line = np.minimum(limits.j_path, np.min(lim_j[None, :] / share, axis=1))
+        a_line = np.minimum(limits.a_path, np.min(lim_a[None, :] / share, axis=1))
     step = joint_step_budget(limits, j_line[jj], j_line[jj + 1], u1, u2)
     v_break = np.minimum(v_break, kink_caps(np.where(dt > 1e-12, dt, 0.0), step))
     good = v_blend > v_break if speeds is not None else np.ones(v_blend.shape, dtype=bool)
@@ -588,8 +591,9 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
         # the pair is crossed at no more than the slower line's feed, over both halves
         feeds = np.array([min(moves[i].feed_mm_s, moves[i + 1].feed_mm_s) for i in jj])
         v_cross = np.minimum(v_blend, np.minimum(feeds, machine.limits.v_max_mm_s))
-        good &= _blend_not_slower(program, machine, speeds(program), jj, v_cross, tangent_len, j_pl,
-                                  good.copy(), v_break, half + 0.5 * arc)
+        good &= _blend_not_slower(program, speeds(program), jj, v_cross, tangent_len, good.copy(), v_break,
+                                  half + 0.5 * arc, (a_line[jj], a_line[jj + 1]),
+                                  (j_line[jj], j_line[jj + 1]))
     jj, u1, n1, theta, half, arc = jj[good], u1[good], n1[good], theta[good], half[good], arc[good]
     tangent_len, deviation = tangent_len[good], deviation[good]
     if not jj.size:

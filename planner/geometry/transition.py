@@ -271,11 +271,26 @@ def _quicker(program: Program, plan: JointSpeeds, machine: MachineSpec,
         v = np.array([speed[int(j)] for j in big])
         stretch = np.array([kinks[int(j)][1] for j in big])
         half = np.array([0.5 * made[int(j)][1].length_mm for j in big])
-        quick = window_quicker(program, machine, plan, big, v, stretch, half,
-                               np.full(big.size, min(lim.j_path, machine.limits.j_max_mm_s3)))
+        limits = [[_tangential_limits(program.moves[int(i)], lim) for i in side] for side in (big, big + 1)]
+        a_in, j_in = (np.array(x) for x in zip(*limits[0]))
+        a_out, j_out = (np.array(x) for x in zip(*limits[1]))
+        quick = window_quicker(program, plan, big, v, stretch, half, (a_in, a_out), (j_in, j_out))
         timed = {int(j) for j in big[quick]}
     return {j: trio for j, trio in made.items()
             if speed[j] > ve[j] and (kinks[j][0] <= SMALL_KINK_RAD or j in timed)}
+
+
+def _tangential_limits(move: Move, lim: LimitSet) -> tuple[float, float]:
+    """(acceleration, jerk) along a line or an arc: the path's, and each axis' over its share
+    of the tangent (a line's direction; an arc's tangent turns through its plane, so at worst
+    along the weaker of the plane's two axes)."""
+    if move.arc is None:
+        share = np.abs(move.end - move.start) / max(move.length_mm, 1e-300)
+        with np.errstate(divide="ignore"):
+            return (min(lim.a_path, float(np.min(lim.a_axis / share))),
+                    min(lim.j_path, float(np.min(lim.j_axis / share))))
+    plane = [move.arc.first_axis, move.arc.second_axis]
+    return (min(lim.a_path, float(lim.a_axis[plane].min())), min(lim.j_path, float(lim.j_axis[plane].min())))
 
 
 def _apply(program: Program, made: dict[int, tuple[Move, Move, Move]]) -> Program:
