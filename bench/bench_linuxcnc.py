@@ -21,11 +21,11 @@ compared with ours at the same jerk; its axis jerk on the samples is reported (l
 
 Ours: the same program with the same mode line before its first move (``bench_blend.with_mode``)
 planned at the same speed and acceleration with jerk 1e6 (LinuxCNC's dynamics, practically
-unlimited jerk) and 1e4 mm/s^3, at 1e6 also with the path's acceleration taken from the axes
-as LinuxCNC 2.9 takes it (``axis_rule``: the path limit of 1000 mm/s^2 holds in ours, not in
-it), and the limit report of its samples (the largest path deviation of the blends, the
-largest axis jerk over the limit, inside moves and across joints, and the joints crossed with
-a velocity step). The last line is the JSON result.
+unlimited jerk) and 1e4 mm/s^3, also with the path's acceleration and jerk taken from the axes
+as LinuxCNC takes them (``axis_rule``: the path limits hold in ours, not in it), and the limit
+report of its samples (the largest path deviation of the blends, the largest axis jerk over the
+limit, inside moves and across joints, and the joints crossed with a velocity step). The last
+line is the JSON result.
 """
 
 from __future__ import annotations
@@ -228,8 +228,9 @@ def main(argv: list[str] | None = None) -> int:
             for jmax in (1e6, 1e4):
                 for key, value in ours(text, path.name, jmax).items():
                     row[f"ours J{jmax:.0e} {key}"] = value
-            for key, value in ours(text, path.name, 1e6, path_rule=True).items():
-                row[f"ours J1e+06 axis rule {key}"] = value
+            for jmax in (1e6, 1e4):
+                for key, value in ours(text, path.name, jmax, path_rule=True).items():
+                    row[f"ours J{jmax:.0e} axis rule {key}"] = value
         except (ProgramError, PlannerError) as exc:
             row["ours"] = f"not read: {str(exc).splitlines()[0]}"
         # LinuxCNC can wait for ever after an error of its own: a bound from ours
@@ -261,11 +262,15 @@ def main(argv: list[str] | None = None) -> int:
         rule = row.get("ours J1e+06 axis rule time_s")
         both_rule = isinstance(rule, float) and isinstance(lc, float) and lc
         ratio_rule = f"{rule / lc:6.3f}x" if both_rule else "   -   "  # type: ignore[operator]
+        rule10 = row.get("ours J1e+04 axis rule time_s")
+        both_rule10 = isinstance(rule10, float) and isinstance(lc10, float) and lc10
+        ratio_rule10 = f"{rule10 / lc10:6.3f}x" if both_rule10 else "   -   "  # type: ignore[operator]
         print(f"{name[:40]:40} 2.9 {fmt(lc)} (path accel x {row.get('linuxcnc 2.9 path accel x', 0.0):.2f}) "
               f"ours J=1e6 {fmt(fast)} ({ratio}), axis rule {fmt(rule)} ({ratio_rule}) "
               f"| 2.10 J=1e4 {fmt(lc10)} "
               f"(jerk x {row.get('linuxcnc 2.10 J1e4 jerk x at 1e4', 0.0):.2f}) ours J=1e4 {fmt(slow)} "
-              f"({ratio10}) dev {row.get('ours J1e+04 deviation_mm', 0.0):.4f} axis jerk x "
+              f"({ratio10}), axis rule {fmt(rule10)} ({ratio_rule10}) "
+              f"dev {row.get('ours J1e+04 deviation_mm', 0.0):.4f} axis jerk x "
               f"{row.get('ours J1e+04 axis_jerk_x', 0.0):.4f}", flush=True)
     print(json.dumps({"tol_mm": args.tol, "rows": rows}))
     return 0
