@@ -135,12 +135,11 @@ def _plane(a: Move, b: Move, n_axes: int) -> tuple[int, int] | None:
     return f, s
 
 
-def _kappa_at(m: Move, u: float) -> float:
-    """Curvature at path length u, positive turning left in the (first, second) frame."""
+def _signed(m: Move, kappa: float) -> float:
+    """Curvature ``kappa`` of ``m`` signed: positive turning left in the (first, second) frame."""
     if m.arc is None:
         return 0.0
-    _, _, k = m.evaluate(np.array([u]))
-    return float(k[0]) * (1.0 if m.arc.sweep_rad > 0.0 else -1.0)
+    return kappa * (1.0 if m.arc.sweep_rad > 0.0 else -1.0)
 
 
 def _distance_to(q: np.ndarray, m: Move) -> np.ndarray:
@@ -155,8 +154,8 @@ def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float
     the transition's distance from the moves, NaN where there is no transition to measure)."""
     n_axes = a.start.shape[0]
     u_a = a.length_mm - d
-    pa, ta, _ = a.evaluate(np.array([u_a]))
-    pb, tb, _ = b.evaluate(np.array([d]))
+    pa, ta, ka = a.evaluate(np.array([u_a]))
+    pb, tb, kb = b.evaluate(np.array([d]))
     pa, ta, pb, tb = pa[0], ta[0], pb[0], tb[0]
     u1 = np.zeros(n_axes)
     u1[[f, s]] = ta[[f, s]] / math.hypot(ta[f], ta[s])
@@ -165,7 +164,8 @@ def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float
     cos_t = float(np.clip(tb @ u1, -1.0, 1.0))
     dpsi = math.atan2(float(tb @ n1), cos_t)
     rel = pb - pa
-    sol = solve_transition(_kappa_at(a, u_a), _kappa_at(b, d), dpsi, float(rel @ u1), float(rel @ n1))
+    sol = solve_transition(_signed(a, float(ka[0])), _signed(b, float(kb[0])), dpsi, float(rel @ u1),
+                           float(rel @ n1))
     if sol is None:
         return None, math.nan
     length, c = sol
@@ -208,6 +208,14 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
     tol, rotary, event_after = joint_context(program)
     made: dict[int, tuple[Move, Move, Move]] = {}
     kinks: dict[int, tuple[float, float]] = {}
+    tangents: dict[int, np.ndarray] = {}
+
+    def end_tangents(i: int) -> np.ndarray:
+        """The unit tangents at the start and the end of move i (each move evaluated once)."""
+        if i not in tangents:
+            tangents[i] = moves[i].evaluate(np.array([0.0, moves[i].length_mm]))[1]
+        return tangents[i]
+
     for j in range(n - 1):
         a, b = moves[j], moves[j + 1]
         p_tol = min(tol[j], tol[j + 1])
@@ -224,8 +232,8 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         if plane is None:
             continue
         f, s = plane
-        ta = a.evaluate(np.array([a.length_mm]))[1][0]
-        tb = b.evaluate(np.array([0.0]))[1][0]
+        ta = end_tangents(j)[1]
+        tb = end_tangents(j + 1)[0]
         kink = math.acos(float(np.clip(ta @ tb, -1.0, 1.0)))
         if kink > MAX_KINK_RAD:
             continue
