@@ -110,7 +110,9 @@ def _blend_caps_k(kappa: np.ndarray, dk: np.ndarray, a_pl: np.ndarray, j_pl: np.
 
 #: the share of a corner blend's turn made on its clothoids, tried from a clothoid pair (1) to
 #: all but a circular arc: the best for the corner's speed is taken
-CLOTHOID_SHARES = np.array([1.0, 0.8, 0.6, 0.45, 0.32, 0.22, 0.15, 0.1, 0.06, 0.035, 0.02])
+CLOTHOID_SHARES = np.array([1.0, 0.8, 0.6, 0.45, 0.32, 0.22, 0.15, 0.1, 0.06, 0.035, 0.02, 0.01, 0.005])
+#: golden-section steps refining the best share between its neighbours (about 1e-3 of the bracket)
+REFINE_STEPS = 14
 
 
 def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.ndarray,
@@ -127,25 +129,45 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
     speeds tie): short clothoids bind the speed by the jerk of the changing curvature, long ones
     by the curvature they reach within the bounds."""
     th = theta[:, None]
-    f = CLOTHOID_SHARES[None, :]
-    vt = f * th                                        # L_c / R, each clothoid's length at R = 1
-    x1, y1 = fresnel(vt, np.ones_like(vt))
-    x1, y1 = x1 * vt, y1 * vt
-    tau = 0.5 * vt
-    shift = y1 - (1.0 - np.cos(tau))
-    k = x1 - np.sin(tau)
-    t_unit = (1.0 + shift) * np.tan(0.5 * th) + k
-    d_unit = (1.0 + shift) / np.cos(0.5 * th) - 1.0
-    # a hair inside both bounds, so that D and T computed back stay within them to rounding
-    radius = np.minimum(tol[:, None] / d_unit, room[:, None] / t_unit) * (1.0 - 1e-12)
-    lc = vt * radius
-    v = _blend_caps_k(1.0 / radius, 1.0 / (radius * lc), a_pl[:, None], j_pl[:, None])
-    best = np.argmax(v, axis=1)
-    rows = np.arange(len(theta))
-    r, share = radius[rows, best], CLOTHOID_SHARES[best]
-    lc_b = share * theta * r
-    return lc_b, theta * r - lc_b, t_unit[rows, best] * r, d_unit[rows, best] * r, v[rows, best]
+    tol_c, room_c, a_c, j_c = tol[:, None], room[:, None], a_pl[:, None], j_pl[:, None]
 
+    def shape(f: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(R, T at R = 1, D at R = 1, speed) for clothoid shares f (rows: the corners)."""
+        vt = f * th                                    # L_c / R, each clothoid's length at R = 1
+        x1, y1 = fresnel(vt, np.ones_like(vt))
+        x1, y1 = x1 * vt, y1 * vt
+        tau = 0.5 * vt
+        shift = y1 - (1.0 - np.cos(tau))
+        k = x1 - np.sin(tau)
+        t_unit = (1.0 + shift) * np.tan(0.5 * th) + k
+        d_unit = (1.0 + shift) / np.cos(0.5 * th) - 1.0
+        # a hair inside both bounds, so that D and T computed back stay within them to rounding
+        radius = np.minimum(tol_c / d_unit, room_c / t_unit) * (1.0 - 1e-12)
+        v = _blend_caps_k(1.0 / radius, 1.0 / (radius * vt * radius), a_c, j_c)
+        return radius, t_unit, d_unit, v
+
+    _, _, _, v = shape(np.broadcast_to(CLOTHOID_SHARES[None, :], (len(theta), len(CLOTHOID_SHARES))))
+    best = np.argmax(v, axis=1)
+    # refined between the best share's neighbours (golden section on log f; the pair, f = 1,
+    # stays where it is best of all)
+    last = len(CLOTHOID_SHARES) - 1
+    lo = np.log(CLOTHOID_SHARES[np.minimum(best + 1, last)])
+    hi = np.log(CLOTHOID_SHARES[np.maximum(best - 1, 0)])
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    for _ in range(REFINE_STEPS):
+        m1, m2 = hi - g * (hi - lo), lo + g * (hi - lo)
+        v1 = shape(np.exp(m1)[:, None])[3][:, 0]
+        v2 = shape(np.exp(m2)[:, None])[3][:, 0]
+        lo = np.where(v1 < v2, m1, lo)
+        hi = np.where(v1 < v2, hi, m2)
+    share = np.exp(0.5 * (lo + hi))
+    rows = np.arange(len(theta))
+    r_ref, t_ref, d_ref, v_ref = (x[:, 0] for x in shape(share[:, None]))
+    keep = v_ref < v[rows, best]                       # the grid's best, where refining did not help
+    share = np.where(keep, CLOTHOID_SHARES[best], share)
+    r_b, t_b, d_b, v_b = (x[:, 0] for x in shape(share[:, None]))
+    lc_b = share * theta * r_b
+    return lc_b, theta * r_b - lc_b, t_b * r_b, d_b * r_b, v_b
 
 
 def _blend_not_slower(program: Program, plan: JointSpeeds, jj: np.ndarray, v_blend: np.ndarray,

@@ -836,3 +836,21 @@ def test_a_joint_kinked_beyond_30_degrees_is_eased_only_where_quicker(kink_deg: 
         made = any(mv.kind is MoveKind.BLEND for mv in eased.moves)
         assert made == expect and made == (t_always < t_sharp)
         assert plan_program(eased, m).cycle_time_s <= t_sharp + 1e-9
+
+
+@pytest.mark.parametrize(("tol", "room", "jerk"), [(0.01, 100.0, 1e6), (0.01, 100.0, 1e4),
+                                                   (0.254, 0.508, 1e6), (0.01, 0.1, 1e6), (0.01, 0.05, 1e4)])
+def test_corner_sizes_find_the_quickest_shape(monkeypatch, tol: float, room: float, jerk: float) -> None:
+    """The share of the turn on the clothoids is refined between the grid's best and its
+    neighbours: the speed is within 0.1 % of the best over 300 shares from 1 to 0.005 (the grid
+    alone falls short by up to 1.8 %)."""
+    import planner.geometry.blend as blend_module
+
+    theta = np.radians([5.0, 15.0, 22.5, 45.0, 70.0, 90.0, 120.0, 150.0])
+    n = len(theta)
+    args = (theta, np.full(n, tol), np.full(n, room), np.full(n, 1000.0), np.full(n, jerk))
+    v = corner_sizes(*args)[4]
+    monkeypatch.setattr(blend_module, "CLOTHOID_SHARES", np.geomspace(1.0, 0.005, 300))
+    monkeypatch.setattr(blend_module, "REFINE_STEPS", 0)
+    v_fine = corner_sizes(*args)[4]
+    assert np.all(v >= v_fine * (1 - 1e-3))
