@@ -71,7 +71,7 @@ from planner.core.movestore import MoveStore
 from planner.core.program import Move, MoveKind, Program
 
 __all__ = ["BlendReport", "JointSpeeds", "SpeedOracle", "blend_corners", "blend_report", "corner_sizes",
-           "merge_naive_cam", "ramp_speed", "round_fillets", "window_quicker"]
+           "line_limits", "merge_naive_cam", "ramp_speed", "round_fillets", "window_quicker"]
 
 class JointSpeeds(Protocol):
     """A program's plan as blends are judged by it: per move, the speed at its start and end
@@ -125,9 +125,9 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
     with R: from the clothoid's end point (X, Y) at R = 1, the shift p = Y - (1 - cos(f theta / 2))
     and k = X - sin(f theta / 2) give T = R ((1 + p) tan(theta / 2) + k) and
     D = R ((1 + p) / cos(theta / 2) - 1). For each f in ``CLOTHOID_SHARES`` R is the largest
-    the two bounds allow, and the f of the highest speed is taken (the pair, f = 1, first where
-    speeds tie): short clothoids bind the speed by the jerk of the changing curvature, long ones
-    by the curvature they reach within the bounds."""
+    the two bounds allow, the f of the highest speed is taken (the pair, f = 1, first where
+    speeds tie) and refined between its neighbours: short clothoids bind the speed by the jerk
+    of the changing curvature, long ones by the curvature they reach within the bounds."""
     th = theta[:, None]
     tol_c, room_c, a_c, j_c = tol[:, None], room[:, None], a_pl[:, None], j_pl[:, None]
 
@@ -162,8 +162,7 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
         hi = np.where(v1 < v2, hi, m2)
     share = np.exp(0.5 * (lo + hi))
     rows = np.arange(len(theta))
-    r_ref, t_ref, d_ref, v_ref = (x[:, 0] for x in shape(share[:, None]))
-    keep = v_ref < v[rows, best]                       # the grid's best, where refining did not help
+    keep = shape(share[:, None])[3][:, 0] < v[rows, best]   # the grid's best, where refining did not help
     share = np.where(keep, CLOTHOID_SHARES[best], share)
     r_b, t_b, d_b, v_b = (x[:, 0] for x in shape(share[:, None]))
     lc_b = share * theta * r_b
@@ -255,7 +254,6 @@ def _ramp_time(v0: np.ndarray, dist: np.ndarray, j: float | np.ndarray, a: float
         hi = np.where(far, mid, hi)
         lo = np.where(far, lo, mid)
     return hi
-
 
 
 def _through_blended(jj: np.ndarray, slower: np.ndarray, taken: np.ndarray, n_joints: int,
@@ -524,6 +522,15 @@ def _fillets_not_slower(plan: JointSpeeds, machine: MachineSpec, blends: dict[in
     return {k: mv for k, mv in blends.items() if blend_speed(mv, lim) >= max(vpeak[k], ve[k - 1], ve[k])}
 
 
+def line_limits(direction: np.ndarray, limits: LimitSet) -> tuple[np.ndarray, np.ndarray]:
+    """(acceleration, jerk) along lines of unit directions ``direction`` (rows): the path's, and
+    each axis' over its share of the line's tangent."""
+    share = np.abs(direction)
+    with np.errstate(divide="ignore"):
+        return (np.minimum(limits.a_path, np.min(limits.a_axis[None, :] / share, axis=1)),
+                np.minimum(limits.j_path, np.min(limits.j_axis[None, :] / share, axis=1)))
+
+
 def ramp_speed(v_joint: np.ndarray, dist: np.ndarray, j: float | np.ndarray,
                 a: float | np.ndarray = math.inf) -> np.ndarray:
     """Upper bound of the speed a distance ``dist`` from a joint crossed at v_joint: each move's
@@ -602,10 +609,7 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
     dt = np.abs(u2 - u1)
     with np.errstate(divide="ignore", invalid="ignore"):
         v_break = np.where(dt > 1e-12, break_budget(limits)[None, :] * ts / dt, np.inf).min(axis=1)
-    share = np.abs(direction)               # each axis' share of the line's tangent
-    with np.errstate(divide="ignore"):
-        j_line = np.minimum(limits.j_path, np.min(lim_j[None, :] / share, axis=1))
-        a_line = np.minimum(limits.a_path, np.min(lim_a[None, :] / share, axis=1))
+    a_line, j_line = line_limits(direction, limits)
     step = joint_step_budget(limits, j_line[jj], j_line[jj + 1], u1, u2)
     v_break = np.minimum(v_break, kink_caps(np.where(dt > 1e-12, dt, 0.0), step))
     good = v_blend > v_break if speeds is not None else np.ones(v_blend.shape, dtype=bool)

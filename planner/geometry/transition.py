@@ -43,6 +43,7 @@ from planner.geometry.blend import (
     arc_distance,
     blend_speed,
     joint_context,
+    line_limits,
     remap_program,
     segment_distance,
     window_quicker,
@@ -56,7 +57,7 @@ _GX = (_GX + 1.0) * 0.5
 _GW = _GW * 0.5
 
 #: kinks up to this are eased where the transition beats the sharp joint's own speed; larger
-#: ones where it also beats what the sharp plan reaches over the transition's stretch
+#: ones where it also takes less time over the two moves (``window_quicker``)
 SMALL_KINK_RAD = math.radians(30.0)
 #: kinks larger than this are left sharp (near a reversal no transition keeps within P)
 MAX_KINK_RAD = math.radians(150.0)
@@ -293,10 +294,8 @@ def _tangential_limits(move: Move, lim: LimitSet) -> tuple[float, float]:
     of the tangent (a line's direction; an arc's tangent turns through its plane, so at worst
     along the weaker of the plane's two axes)."""
     if move.arc is None:
-        share = np.abs(move.end - move.start) / max(move.length_mm, 1e-300)
-        with np.errstate(divide="ignore"):
-            return (min(lim.a_path, float(np.min(lim.a_axis / share))),
-                    min(lim.j_path, float(np.min(lim.j_axis / share))))
+        a, j = line_limits(((move.end - move.start) / max(move.length_mm, 1e-300))[None, :], lim)
+        return float(a[0]), float(j[0])
     plane = [move.arc.first_axis, move.arc.second_axis]
     return (min(lim.a_path, float(lim.a_axis[plane].min())), min(lim.j_path, float(lim.j_axis[plane].min())))
 
