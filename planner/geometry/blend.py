@@ -111,8 +111,8 @@ def _blend_caps_k(kappa: np.ndarray, dk: np.ndarray, a_pl: np.ndarray, j_pl: np.
 #: the share of a corner blend's turn made on its clothoids, tried from a clothoid pair (1) to
 #: all but a circular arc: the best for the corner's speed is taken
 CLOTHOID_SHARES = np.array([1.0, 0.8, 0.6, 0.45, 0.32, 0.22, 0.15, 0.1, 0.06, 0.035, 0.02, 0.01, 0.005])
-#: golden-section steps refining the best share between its neighbours (about 1e-3 of the bracket)
-REFINE_STEPS = 14
+#: golden-section steps refining the best share between its neighbours (to 1 % of the bracket)
+REFINE_STEPS = 10
 
 
 def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.ndarray,
@@ -216,9 +216,10 @@ def window_quicker(program: Program, plan: JointSpeeds, jj: np.ndarray, v_blend:
     full jerk up to its acceleration (``accel``, ``jerk``: incoming and outgoing move's), and
     no faster than the move's peak in the sharp plan."""
     ve, peak = np.asarray(plan.ve)[jj], np.asarray(plan.vpeak)
+    lengths = np.fromiter((m.length_mm for m in program.moves), float, len(program.moves))
     total = np.zeros(len(jj))
     for side, a, j in ((jj, accel[0], jerk[0]), (jj + 1, accel[1], jerk[1])):
-        length = np.array([program.moves[int(i)].length_mm for i in side])
+        length = lengths[side]
         cap = np.maximum(peak[side], 1e-9)
         rest = np.maximum(length - tangent_len, 0.0)
         sharp = _ramp_time(np.minimum(ve, cap), length, j, a, cap)
@@ -615,7 +616,8 @@ def blend_corners(program: Program, machine: MachineSpec, speeds: SpeedOracle | 
     good = v_blend > v_break if speeds is not None else np.ones(v_blend.shape, dtype=bool)
     if speeds is not None and good.any():
         # the pair is crossed at no more than the slower line's feed, over both halves
-        feeds = np.array([min(moves[i].feed_mm_s, moves[i + 1].feed_mm_s) for i in jj])
+        feed = np.fromiter((m.feed_mm_s for m in moves), float, n)
+        feeds = np.minimum(feed[jj], feed[jj + 1])
         v_cross = np.minimum(v_blend, np.minimum(feeds, machine.limits.v_max_mm_s))
         good &= _blend_not_slower(program, speeds(program), jj, v_cross, tangent_len, good.copy(), v_break,
                                   half + 0.5 * arc, (a_line[jj], a_line[jj + 1]),
