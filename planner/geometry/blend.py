@@ -146,8 +146,8 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
         v = _blend_caps_k(1.0 / radius, 1.0 / (radius * vt * radius), a_c, j_c)
         return radius, t_unit, d_unit, v
 
-    _, _, _, v = shape(np.broadcast_to(CLOTHOID_SHARES[None, :], (len(theta), len(CLOTHOID_SHARES))))
-    best = np.argmax(v, axis=1)
+    r_g, t_g, d_g, v_g = shape(np.broadcast_to(CLOTHOID_SHARES[None, :], (len(theta), len(CLOTHOID_SHARES))))
+    best = np.argmax(v_g, axis=1)
     # refined between the best share's neighbours (golden section on log f; the pair, f = 1,
     # stays where it is best of all)
     last = len(CLOTHOID_SHARES) - 1
@@ -161,10 +161,12 @@ def corner_sizes(theta: np.ndarray, tol: np.ndarray, room: np.ndarray, a_pl: np.
         lo = np.where(v1 < v2, m1, lo)
         hi = np.where(v1 < v2, hi, m2)
     share = np.exp(0.5 * (lo + hi))
+    r_r, t_r, d_r, v_r = (x[:, 0] for x in shape(share[:, None]))
     rows = np.arange(len(theta))
-    keep = shape(share[:, None])[3][:, 0] < v[rows, best]   # the grid's best, where refining did not help
+    keep = v_r < v_g[rows, best]                       # the grid's best, where refining did not help
     share = np.where(keep, CLOTHOID_SHARES[best], share)
-    r_b, t_b, d_b, v_b = (x[:, 0] for x in shape(share[:, None]))
+    r_b, t_b, d_b, v_b = (np.where(keep, g[rows, best], r) for g, r in ((r_g, r_r), (t_g, t_r), (d_g, d_r),
+                                                                        (v_g, v_r)))
     lc_b = share * theta * r_b
     return lc_b, theta * r_b - lc_b, t_b * r_b, d_b * r_b, v_b
 

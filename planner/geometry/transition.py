@@ -280,9 +280,8 @@ def _quicker(program: Program, plan: JointSpeeds, machine: MachineSpec,
         v = np.array([speed[int(j)] for j in big])
         stretch = np.array([kinks[int(j)][1] for j in big])
         half = np.array([0.5 * made[int(j)][1].length_mm for j in big])
-        limits = [[_tangential_limits(program.moves[int(i)], lim) for i in side] for side in (big, big + 1)]
-        a_in, j_in = (np.array(x) for x in zip(*limits[0]))
-        a_out, j_out = (np.array(x) for x in zip(*limits[1]))
+        a_in, j_in = np.array([_tangential_limits(program.moves[int(i)], lim) for i in big]).T
+        a_out, j_out = np.array([_tangential_limits(program.moves[int(i)], lim) for i in big + 1]).T
         quick = window_quicker(program, plan, big, v, stretch, half, (a_in, a_out), (j_in, j_out))
         timed = {int(j) for j in big[quick]}
     return {j: trio for j, trio in made.items()
