@@ -17,6 +17,13 @@ from .pdo import PdoMapping
 __all__ = ["DriveSetup", "MappingPolicy", "StartupSdo", "StartupStep", "drive_table_problem"]
 
 
+#: the process data watchdog's range at an ESC's standard divider (0x0400 = 2498: 100 us units
+#: in the 16-bit register 0x0420); a longer one is refused at bring-up when the drive's divider
+#: does not reach it
+MIN_WATCHDOG_MS = 1.0
+MAX_WATCHDOG_MS = 6553.5
+
+
 class MappingPolicy(enum.Enum):
     """What to do with the drive's PDO mapping."""
 
@@ -83,7 +90,10 @@ class StartupSdo:
 class DriveSetup:
     """Start-up settings of one drive. ``mapping`` None: the drive model's known mapping or
     the CSP default. ``complete_access`` None: tried, and not used when the drive does not
-    answer it properly. ``sync_mode`` (0x1C32:1, 2 = DC SYNC0) is written when set."""
+    answer it properly. ``sync_mode`` (0x1C32:1, 2 = DC SYNC0) is written when set.
+    ``watchdog_ms``: the process data (SM) watchdog, register 0x0420, written in PRE-OP when
+    set (None: the drive's own, 100 ms on most ESCs); the drive leaves OP and faults when its
+    outputs stop arriving for this long."""
 
     mapping: PdoMapping | None = None
     policy: MappingPolicy = MappingPolicy.ADAPT
@@ -92,6 +102,7 @@ class DriveSetup:
     sync0_shift_ns: int = 0
     sync_mode: int | None = None
     complete_access: bool | None = None
+    watchdog_ms: float | None = None
 
     def __post_init__(self) -> None:
         if not -1_000_000_000 < self.sync0_shift_ns < 1_000_000_000:
@@ -99,6 +110,10 @@ class DriveSetup:
         if self.sync_mode is not None and self.sync_mode not in (0, 1, 2, 3):
             raise ConfigurationError(f"0x1C32:1 sync mode must be 0 (free run), 1 (SM2 event), 2 (DC SYNC0) "
                                      f"or 3 (DC SYNC1), got {self.sync_mode}")
+        if self.watchdog_ms is not None and not MIN_WATCHDOG_MS <= self.watchdog_ms <= MAX_WATCHDOG_MS:
+            raise ConfigurationError(f"process data watchdog must be {MIN_WATCHDOG_MS:g} to "
+                                     f"{MAX_WATCHDOG_MS:g} ms (0x0420 counts 100 us units), "
+                                     f"got {self.watchdog_ms:g} ms")
 
 
 def drive_table_problem(d: Mapping[str, Any]) -> tuple[tuple[str | int, ...], str] | None:
@@ -126,7 +141,8 @@ def drive_table_problem(d: Mapping[str, Any]) -> tuple[tuple[str | int, ...], st
             if entries["rx"] or entries["tx"] else None
         DriveSetup(mapping=mapping, policy=MappingPolicy(d["mapping"]), startup_sdos=tuple(sdos), dc=d["dc"],
                    sync0_shift_ns=d["sync0_shift_ns"], sync_mode=d["sync_mode"],
-                   complete_access={"auto": None, "on": True, "off": False}[d["complete_access"]])
+                   complete_access={"auto": None, "on": True, "off": False}[d["complete_access"]],
+                   watchdog_ms=d["watchdog_ms"])
     except EtherCATError as exc:
         return ("tx" if "TxPDO" in str(exc) else "rx",), str(exc)
     return None

@@ -191,6 +191,7 @@ class SoemBus(Bus):
         with self._step(StartupStep.STARTUP_SDO):
             for d in self.drives:
                 self._startup_sdos(d.position)
+                self._write_watchdog(d.position)
         with self._step(StartupStep.PROCESS_DATA):
             try:
                 master.config_map()
@@ -317,6 +318,31 @@ class SoemBus(Bus):
         if setup.sync_mode is not None:
             sdo_download(self.master, position, 0x1C32, 1, struct.pack("<H", setup.sync_mode))
 
+    def _write_watchdog(self, position: int) -> None:
+        """The configured process data watchdog (0x0420, in units of the drive's divider at
+        0x0400), read back: a drive that keeps its own time would fault on a shorter stall
+        than the integrator set, or not fault when it should."""
+        ms = self.setup_for(position).watchdog_ms
+        if ms is None:
+            return
+        slave = self.master.slaves[position]
+        label = slave_label(self.master, position)
+        try:
+            longest_ms = float(slave.get_max_watchdog_time())
+            if ms > longest_ms:
+                raise ConfigurationError(f"{label}: process data watchdog {ms:g} ms is longer than the "
+                                         f"{longest_ms:g} ms its divider (0x0400) allows")
+            slave.set_watchdog("processdata", ms)
+            got_ms = float(slave.get_watchdog("processdata"))
+        except ConfigurationError:
+            raise
+        except Exception as exc:                    # pysoem: a register access without an answer
+            raise ConfigurationError(f"{label}: writing the process data watchdog (0x0420) failed: "
+                                     f"{exc}") from exc
+        if abs(got_ms - ms) > max(0.1, 0.01 * ms):
+            raise ConfigurationError(f"{label}: the process data watchdog reads {got_ms:g} ms after "
+                                     f"{ms:g} ms was written to 0x0420")
+
     def _wait_csp_mode(self) -> None:
         """Each drive must show cyclic synchronous position (0x6061 = 8). Some drives report it
         late: keep the process data running and look again until `mode_timeout_s` (in the
@@ -367,6 +393,7 @@ class SoemBus(Bus):
                     ca = mapping.complete_access and self.complete_access.get(position, False)
                     write_mapping(self.master, position, mapping, complete_access=ca)
                 self._startup_sdos(position)
+                self._write_watchdog(position)
             except EtherCATError as exc:
                 self.warnings.append(f"re-configuring {slave_label(self.master, position)}: {exc}")
             return 0

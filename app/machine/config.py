@@ -100,6 +100,7 @@ class DriveIdentity:
     dc: bool = True
     sync0_shift_ns: int = 0
     sync_mode: int | None = None           # 0x1C32:1, written when set
+    watchdog_ms: float | None = None       # SM watchdog (0x0420), written when set
     sdos: tuple[StartupSdoSetting, ...] = ()
 
     def setup(self) -> DriveSetup:
@@ -116,7 +117,7 @@ class DriveIdentity:
                           startup_sdos=tuple(StartupSdo(x.index, x.subindex, x.value, x.size)
                                              for x in self.sdos),
                           dc=self.dc, sync0_shift_ns=self.sync0_shift_ns, sync_mode=self.sync_mode,
-                          complete_access=ca)
+                          complete_access=ca, watchdog_ms=self.watchdog_ms)
 
 
 @dataclass(frozen=True, slots=True)
@@ -518,6 +519,7 @@ def _drive(d: dict[str, Any]) -> DriveIdentity:
         d["position"], d["vendor_id"], d["product_code"], mapping=d["mapping"], rx_pdo=d["rx_pdo"],
         rx=tuple(d["rx"]), tx_pdo=d["tx_pdo"], tx=tuple(d["tx"]), complete_access=d["complete_access"],
         dc=d["dc"], sync0_shift_ns=d["sync0_shift_ns"], sync_mode=d["sync_mode"],
+        watchdog_ms=d["watchdog_ms"],
         sdos=tuple(StartupSdoSetting(x["index"], x["subindex"], x["value"], x["size"]) for x in d["sdo"]))
 
 
@@ -532,6 +534,8 @@ def drive_lines(d: DriveIdentity) -> list[str]:
             f"sync0_shift_ns = {d.sync0_shift_ns}"]
     if d.sync_mode is not None:
         out.append(f"sync_mode = {d.sync_mode}")
+    if d.watchdog_ms is not None:
+        out.append(f"watchdog_ms = {_fmt(d.watchdog_ms)}")
     for x in d.sdos:
         out += ["[[bus.drives.sdo]]", f"index = 0x{x.index:04X}", f"subindex = {x.subindex}",
                 f"value = {x.value}", f"size = {x.size}"]

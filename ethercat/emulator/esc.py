@@ -432,14 +432,18 @@ class EscSlave:
         self.model.step(dt_s)
         self.last_step_ns = now
 
+    def watchdog_ns(self) -> int:
+        """The process data watchdog time: 0x0420 in units of (0x0400 + 2) x 40 ns; 0 = off."""
+        div = struct.unpack_from("<H", self.regs, REG_WD_DIV)[0]
+        wd = struct.unpack_from("<H", self.regs, REG_WD_PD)[0]
+        return int(wd * (div + 2) * 40)
+
     def housekeeping(self) -> None:
         """Called every few ms: process data watchdog and the drive's idle time."""
         now = self.clock_ns()
         if self.al_state == OP:                              # runs on while disconnected too
-            div, wd = struct.unpack_from("<H", self.regs, REG_WD_DIV)[0], \
-                struct.unpack_from("<H", self.regs, REG_WD_PD)[0]
-            wd_ns = wd * (div + 2) * 40
-            if wd and now - self.last_output_ns > wd_ns:
+            wd_ns = self.watchdog_ns()
+            if wd_ns and now - self.last_output_ns > wd_ns:
                 self.watchdog_trips += 1
                 self._enter(SAFEOP)
                 self._fail(AL_SM_WATCHDOG)
@@ -456,7 +460,7 @@ class EscSlave:
                 "statusword": m.statusword, "position_actual": m.position_actual,
                 "target_position": m.target_position, "error_code": m.error_code,
                 "frames": self.frames, "sdo_requests": self.sdo_requests,
-                "watchdog_trips": self.watchdog_trips,
+                "watchdog_trips": self.watchdog_trips, "watchdog_ms": self.watchdog_ns() * 1e-6,
                 "sync0_active": self.regs[REG_DCSYNCACT] & 0x03 == 0x03,
                 "sync0_cycle_ns": struct.unpack_from("<I", self.regs, REG_DCCYCLE0)[0],
                 "rx_mapping": [f"0x{v:08X}" for p in self.objects.assignment(0x1C12)

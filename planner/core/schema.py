@@ -161,6 +161,8 @@ MACHINE_FILE = Table("", tables=(
             Key("dc", "bool", True),
             Key("sync0_shift_ns", "int", 0, -999_999_999, 999_999_999),
             Key("sync_mode", "int", None, 0, 3),
+            # the process data (SM) watchdog written to 0x0420; unset: the drive's own
+            Key("watchdog_ms", "float", None, 1.0, 6553.5),
         ), array=True, tables=(
             Table("sdo", (
                 Key("index", "int", REQUIRED, 0, 0xFFFF),

@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 from ethercat.bus import DriveSpec
+from ethercat.drive_setup import DriveSetup
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
 from ethercat.soem_access import FRAME_TIMEOUT_ENV
 from ethercat.worker import AlarmCode, CyclicWorker, EventCode, ProbeLatch, WorkerConfig, WorkerState
@@ -135,12 +136,17 @@ def test_variant_runs_bench_motion_and_fault_reset(variant_link: EmulatedLink) -
         assert events.count("was in FAULT when the bus came up (error code 0x7500") == 2, events
     else:
         assert "FAULT" not in events, events
+    # the drives' process data watchdog at 1 s, as an integrator sets it for a master on a shared
+    # machine: this test is about motion and fault reset, and a CI machine once held the master
+    # back for over the drives' own 100 ms (their watchdog is tested in test_wire_link)
+    setups = {p: DriveSetup(watchdog_ms=1000.0) for p in range(2)}
     cfg = WorkerConfig(drives=drives2(), bus_kind="soem", adapter=variant_link.master_ifname, mode="process",
-                       wkc_error_limit=20, buffer_capacity=3000)
+                       wkc_error_limit=20, buffer_capacity=3000, bus_options=(("setups", setups),))
     w = CyclicWorker(cfg)
     w.start()
     try:
         motion_and_fault_reset(w)
+        assert [x["watchdog_ms"] for x in variant_link.control("status")["slaves"]] == [1000.0] * 2  # type: ignore[index]
         # the probe on bit 16 of Y's digital inputs, over the wire: latched in the cycle the
         # emulated drive reports it; refused where 0x60FD is not in the process data (the
         # minimal drive has no such object, the fixed drive's own mapping leaves it out)

@@ -189,6 +189,7 @@ def test_open_maps_pdos_sync0_on_every_slave_op_and_shutdown_to_init(link3: Emul
 
 def test_watchdog_when_process_data_stops(link3: EmulatedLink) -> None:
     with SoemBus(DRIVES3, adapter=link3.master_ifname) as bus:
+        assert [x["watchdog_ms"] for x in emulator_slaves(link3)] == [100.0] * 3, "the drives' own time kept"
         enable_all(bus)
         time.sleep(0.3)                                     # no frames: SM watchdog (100 ms)
         states = bus.al_states()
@@ -199,6 +200,27 @@ def test_watchdog_when_process_data_stops(link3: EmulatedLink) -> None:
         assert all(s == Cia402State.FAULT for s in
                    (Cia402State[str(x["drive_state"])] for x in emulator_slaves(link3)))
         assert all(x["error_code"] == 0x8700 for x in emulator_slaves(link3))
+
+
+def test_configured_watchdog_is_written_and_rides_out_a_stall(link3: EmulatedLink) -> None:
+    setups = {p: DriveSetup(watchdog_ms=600.0) for p in range(3)}
+    with SoemBus(DRIVES3, adapter=link3.master_ifname, setups=setups) as bus:
+        assert [x["watchdog_ms"] for x in emulator_slaves(link3)] == pytest.approx([600.0] * 3)
+        for word in (0x00,) * 3 + (0x80,) * 3:              # a fault left by the test before: reset
+            bus.controlword[:] = word
+            bus.exchange()
+        enable_all(bus)
+        t_last = time.monotonic()
+        time.sleep(0.25)                                    # 2.5x the drives' own 100 ms
+        states = bus.al_states()
+        gap_s = time.monotonic() - t_last
+        if gap_s < 0.55:                                    # a stall of this run's machine may be longer
+            assert states == (("OP", 0),) * 3, f"{states} after {gap_s * 1e3:.0f} ms without process data"
+        for _ in range(20):
+            bus.exchange()
+            time.sleep(0.001)
+        time.sleep(0.9)                                     # past the 600 ms: SAFE-OP, as at 100 ms
+        assert bus.al_states() == (("SAFE-OP", 0x001B),) * 3
 
 
 def test_lost_slave_comes_back_and_is_recovered(link3: EmulatedLink) -> None:

@@ -175,6 +175,7 @@ complete_access = "off"
 dc = false
 sync0_shift_ns = -250000
 sync_mode = 2
+watchdog_ms = 250.5
 [[bus.drives.sdo]]
 index = 0x6060
 value = 8
@@ -216,7 +217,7 @@ def test_drive_start_up_settings_are_read_and_kept_on_save(tmp_path: Path) -> No
     cfg = load_config(p)
     setup = cfg.bus.drives[0].setup()
     assert setup.policy is MappingPolicy.WRITE and setup.complete_access is False and not setup.dc
-    assert setup.sync0_shift_ns == -250_000 and setup.sync_mode == 2
+    assert setup.sync0_shift_ns == -250_000 and setup.sync_mode == 2 and setup.watchdog_ms == 250.5
     assert setup.mapping is not None and setup.mapping.rx_pdo == 0x1601
     assert [(e.index, e.subindex, e.bits, e.signed) for e in setup.mapping.rx] == [
         (0x6040, 0, 16, False), (0x607A, 0, 32, True), (0x2010, 1, 32, True)]
@@ -224,7 +225,7 @@ def test_drive_start_up_settings_are_read_and_kept_on_save(tmp_path: Path) -> No
     assert setup.startup_sdos[1].data == b"\xfb\xff\xff\xff"
     default = cfg.bus.drives[1].setup()
     assert default.mapping is None and default.policy is MappingPolicy.ADAPT
-    assert default.complete_access is None
+    assert default.complete_access is None and default.watchdog_ms is None
     again = load_config(save_config(cfg, tmp_path / "saved.toml").path)
     assert again.bus.drives == cfg.bus.drives
 
@@ -236,6 +237,8 @@ def test_drive_start_up_settings_are_read_and_kept_on_save(tmp_path: Path) -> No
     ("size = 1", "sdo", "size = 3"),
     ("value = -5", "sdo", "value = 5000000000"),
     ('mapping = "write"', "mapping", 'mapping = "fixed"'),
+    ("watchdog_ms = 250.5", "watchdog_ms", "watchdog_ms = 0.5"),
+    ("watchdog_ms = 250.5", "watchdog_ms", "watchdog_ms = 7000"),
 ])
 def test_bad_drive_settings_name_the_key_and_line(tmp_path: Path, edit: str, key: str, words: str) -> None:
     p = tmp_path / "machine.toml"
