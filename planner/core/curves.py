@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from planner.core.program import Move
 
 __all__ = ["Blend", "blend_eval", "fresnel", "pair_frames", "pair_positions", "poly_bounds", "poly_heading",
-           "unit_pair"]
+           "poly_positions", "unit_pair"]
 
 _GX, _GW = np.polynomial.legendre.leggauss(16)
 _GX = (_GX + 1.0) * 0.5
@@ -143,6 +143,12 @@ def _poly_eval(origin, u1, n1, c, s):
     normal = -sp * u1 + cp * n1
     kappa = c[:, 0] + s * (c[:, 1] + s * (c[:, 2] + s * c[:, 3]))
     return pos, tangent, kappa[:, None] * normal
+
+
+def poly_positions(origin, u1, n1, c, s) -> np.ndarray:
+    """Positions of transitions (curvature polynomials c (N, 4) from origin along u1, turning
+    towards n1) at arc length s, row-wise."""
+    return _poly_eval(origin, u1, n1, c, s)[0]
 
 
 def _pair_eval(origin, u1, n1, end, half, theta, s, arc=None, poly=None):

@@ -344,19 +344,36 @@ def arc_distance(q: np.ndarray, move: Move) -> np.ndarray:
     """Distance of points q from a circular arc move (its angular range, else its ends)."""
     arc = move.arc
     assert arc is not None
-    f, s = arc.first_axis, arc.second_axis
-    dx, dy = q[:, f] - arc.center[0], q[:, s] - arc.center[1]
-    ang = np.arctan2(dy, dx)
-    rel = np.remainder((ang - arc.start_angle_rad) * np.sign(arc.sweep_rad), 2.0 * np.pi)
-    inside = rel <= abs(arc.sweep_rad)
-    frac = np.clip(rel / abs(arc.sweep_rad), 0.0, 1.0)   # a spiral's radius changes with the angle
-    r_at = arc.radius_start_mm + (arc.radius_end_mm - arc.radius_start_mm) * frac
+    n = q.shape[0]
+
+    def rows(v: float) -> np.ndarray:
+        return np.full(n, v)
+
+    return arc_distance_rows(q, np.full(n, arc.first_axis), np.full(n, arc.second_axis), rows(arc.center[0]),
+                             rows(arc.center[1]), rows(arc.start_angle_rad), rows(arc.sweep_rad),
+                             rows(arc.radius_start_mm), rows(arc.radius_end_mm), move.start[None, :],
+                             move.end[None, :])
+
+
+def arc_distance_rows(q: np.ndarray, f: np.ndarray, s: np.ndarray, cx: np.ndarray, cy: np.ndarray,
+                      theta0: np.ndarray, sweep: np.ndarray, r0: np.ndarray, r1: np.ndarray,
+                      start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """Distance of points q (N, d) from arcs, row by row: plane axes f, s, centre (cx, cy),
+    start angle, sweep, radius at the start and end (a spiral's changes with the angle), start
+    and end points (N, d) or (1, d). Within the arc's angular range the distance from it (in
+    the plane and off it), elsewhere from the nearer end."""
+    i = np.arange(q.shape[0])
+    dx, dy = q[i, f] - cx, q[i, s] - cy
+    rel = np.remainder((np.arctan2(dy, dx) - theta0) * np.sign(sweep), 2.0 * np.pi)
+    inside = rel <= np.abs(sweep)
+    frac = np.clip(rel / np.abs(sweep), 0.0, 1.0)
+    r_at = r0 + (r1 - r0) * frac
     radial = np.abs(np.hypot(dx, dy) - r_at)
-    other = np.ones(q.shape[1], dtype=bool)
-    other[[f, s]] = False
-    off_plane = np.sqrt(((q[:, other] - move.start[other]) ** 2).sum(axis=1))
-    ends = np.minimum(np.sqrt(((q - move.start) ** 2).sum(axis=1)),
-                      np.sqrt(((q - move.end) ** 2).sum(axis=1)))
+    off = q - start
+    off[i, f] = 0.0
+    off[i, s] = 0.0
+    off_plane = np.sqrt((off * off).sum(axis=1))
+    ends = np.minimum(np.sqrt(((q - start) ** 2).sum(axis=1)), np.sqrt(((q - end) ** 2).sum(axis=1)))
     return np.where(inside, np.hypot(radial, off_plane), ends)
 
 

@@ -249,7 +249,7 @@ class MoveTable:
             r = row[k]
             sp = self.spiral[r]
             if sp.any():
-                frac[k[sp]] = self._spiral_param(r[sp], u[k[sp]])
+                frac[k[sp]] = self.spiral_param(r[sp], u[k[sp]])
         q = self.delta[row]
         q *= frac[:, None]
         q += self.start[row]
@@ -321,7 +321,7 @@ class MoveTable:
                            self.bl_turn[k], s, self.bl_arc[k], self.bl_poly[k])
         return k, t, c
 
-    def _spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
+    def spiral_param(self, r: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Angle parameter t in [0, 1] at path length u on spirals.
 
         Nearly circular spirals (all CAM rounding cases): t = x + g(x), x = u / L, with g the
@@ -345,6 +345,49 @@ class MoveTable:
             t[~ok] = _spiral_newton(self.r0[rb], self.r1[rb], self.sweep[rb], self.rise[rb],
                                     length[~ok], u[~ok])
         return np.where(u >= length, 1.0, t)  # the end point exactly
+
+    def plane_frames(self, row: np.ndarray, u: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Positions (N, d), unit tangents dq/du (N, d), curvature (N,) and the fraction of the
+        move (N,; an arc's: of its angle) of lines and of arcs in a machine plane at path length
+        u, as ``Move.evaluate`` gives them; an arc's curvature is signed, positive turning left
+        in its (first, second) plane (0 on lines). Not for helices (the curvature is the
+        plane's) nor arcs in a turned frame (their plane is no machine plane)."""
+        pos = self.positions(row, u)
+        length = self.length[row]
+        tangent = self.delta[row] / length[:, None]
+        kappa = np.zeros(len(row))
+        frac = np.clip(u / length, 0.0, 1.0)
+        k = np.flatnonzero(self.is_arc[row])
+        if k.size:
+            r = row[k]
+            uk = np.clip(u[k], 0.0, length[k])
+            t = np.where(self.spiral[r], 0.0, uk / length[k])
+            sp = np.flatnonzero(self.spiral[r])
+            if sp.size:
+                t[sp] = self.spiral_param(r[sp], uk[sp])
+            w = self.sweep[r]
+            dr = self.r1[r] - self.r0[r]
+            rad = self.r0[r] + dr * t
+            theta = self.theta0[r] + w * t
+            c, sn = np.cos(theta), np.sin(theta)
+            d1f = dr * c - rad * w * sn
+            d1s = dr * sn + rad * w * c
+            d2f = -2.0 * dr * w * sn - rad * w * w * c
+            d2s = 2.0 * dr * w * c - rad * w * w * sn
+            rise = self.rise[r]
+            speed = np.sqrt(d1f * d1f + d1s * d1s + rise * rise)
+            tk = self.delta[r] / speed[:, None]
+            i = np.arange(k.size)
+            tk[i, self.first[r]] = d1f / speed
+            tk[i, self.second[r]] = d1s / speed
+            nrm = self.normal[r]
+            has = nrm >= 0
+            tk[i[has], nrm[has]] = rise[has] / speed[has]
+            tangent[k] = tk
+            kappa[k] = (d1f * d2s - d1s * d2f) / speed ** 3
+            frac[k] = t
+        return pos, tangent, kappa, frac
 
     def end_tangents(self) -> tuple[np.ndarray, np.ndarray]:
         """Unit tangents dq/du (n, d) at the start and at the end of every move."""

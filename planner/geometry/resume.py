@@ -52,16 +52,17 @@ def _path_length(a: np.ndarray, b: np.ndarray, rotary: tuple[bool, ...]) -> floa
     return float(np.linalg.norm(d[~lin])) if (~lin).any() else 0.0
 
 
-def split_move(move: Move, u_mm: float) -> Move:
+def split_move(move: Move, u_mm: float, at: tuple[np.ndarray, float] | None = None) -> Move:
     """The part of ``move`` from path length ``u_mm`` to its end (same end point exactly).
 
     Lines: a line from the point at u. Arcs/helices/spirals: the same circle with the start
     angle advanced, the sweep, rise and (spiral) start radius reduced, so the geometry of the
-    tail is exactly the geometry of the original over [u, length].
+    tail is exactly the geometry of the original over [u, length]. ``at``: the point at u and
+    an arc's angle fraction there, where the caller has them already.
     """
     length = move.length_mm
     u = min(max(float(u_mm), 0.0), length)
-    start = move.evaluate(np.array([u]))[0][0]
+    start = at[0].copy() if at is not None else move.evaluate(np.array([u]))[0][0]
     if u >= length:
         start = move.end.copy()
     rest = max(length - u, 0.0)
@@ -72,7 +73,10 @@ def split_move(move: Move, u_mm: float) -> Move:
     if move.arc is None:
         return replace(move, start=start, length_mm=rest)
     arc = move.arc
-    t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 1.0
+    if at is not None:
+        t = at[1]
+    else:
+        t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 1.0
     new_arc = arc_part(arc, t, 1.0)
     new_len = arc_length_mm(new_arc) if rest > 0.0 else 0.0
     return replace(move, start=start, arc=new_arc, length_mm=new_len)
@@ -93,17 +97,21 @@ def arc_part(arc: Arc, t0: float, t1: float) -> Arc:
     )
 
 
-def head_move(move: Move, u_mm: float) -> Move:
+def head_move(move: Move, u_mm: float, at: tuple[np.ndarray, float] | None = None) -> Move:
     """The part of ``move`` from its start to path length ``u_mm`` (same start exactly):
     lines end at the point at u; arcs keep their circle with the sweep, rise and (spiral) end
-    radius reduced."""
+    radius reduced. ``at``: the point at u and an arc's angle fraction there, where the caller
+    has them already."""
     length = move.length_mm
     u = min(max(float(u_mm), 0.0), length)
-    end = move.evaluate(np.array([u]))[0][0]
+    end = at[0].copy() if at is not None else move.evaluate(np.array([u]))[0][0]
     if move.arc is None:
         return replace(move, end=end, length_mm=u)
     arc = move.arc
-    t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 0.0
+    if at is not None:
+        t = at[1]
+    else:
+        t = float(arc_param_at_length(arc, np.array([u]), length)[0]) if length > 0 else 0.0
     new_arc = arc_part(arc, 0.0, t)
     return replace(move, end=end, arc=new_arc, length_mm=arc_length_mm(new_arc))
 

@@ -32,7 +32,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from planner.core.curves import Blend, poly_heading
+from planner.core.curves import Blend, poly_heading, poly_positions
 from planner.core.limits import LimitSet
 from planner.core.machine import MachineSpec
 from planner.core.program import Move, MoveKind, Program
@@ -40,7 +40,7 @@ from planner.geometry.blend import (
     MIN_LINE_MM,
     JointSpeeds,
     SpeedOracle,
-    arc_distance,
+    arc_distance_rows,
     blend_speed,
     joint_context,
     line_limits,
@@ -48,6 +48,7 @@ from planner.geometry.blend import (
     segment_distance,
     window_quicker,
 )
+from planner.geometry.movetable import MoveTable
 from planner.geometry.resume import head_move, split_move
 
 __all__ = ["ease_joints", "solve_transition"]
@@ -55,6 +56,10 @@ __all__ = ["ease_joints", "solve_transition"]
 _GX, _GW = np.polynomial.legendre.leggauss(24)
 _GX = (_GX + 1.0) * 0.5
 _GW = _GW * 0.5
+#: points along a transition at which its distance from the two moves is measured
+_SAMPLES = 49
+#: joints solved together (bounds the memory their samples take)
+_BATCH = 2048
 
 #: kinks up to this are eased where the transition beats the sharp joint's own speed; larger
 #: ones where it also takes less time over the two moves (``window_quicker``)
@@ -66,8 +71,10 @@ MAX_KINK_RAD = math.radians(150.0)
 KINKED_RAD = math.radians(1.0)
 
 
-def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tuple[float, float, float, float]:
-    """c1, c2 (given c3) so that kappa(L) = k1 and the heading turns by dpsi over L."""
+def _coeffs(length: np.ndarray, c3: np.ndarray, k0: np.ndarray, k1: np.ndarray, dpsi: np.ndarray
+            ) -> np.ndarray:
+    """Coefficients (n, 4): c1, c2 (given c3) so that kappa(L) = k1 and the heading turns by
+    dpsi over L, row by row."""
     # [[L, L^2], [L^2 / 2, L^3 / 3]] (c1, c2) = (b1, b2), by Cramer's rule (determinant -L^4 / 6)
     l2 = length * length
     b1 = k1 - k0 - c3 * l2 * length
@@ -75,51 +82,81 @@ def _coeffs(length: float, c3: float, k0: float, k1: float, dpsi: float) -> tupl
     det = -l2 * l2 / 6.0
     c1 = (b1 * l2 * length / 3.0 - l2 * b2) / det
     c2 = (length * b2 - 0.5 * l2 * b1) / det
-    return (k0, c1, c2, c3)
+    return np.stack([k0, c1, c2, c3], axis=-1)
 
 
-def _end(c: tuple[float, float, float, float], length: float) -> np.ndarray:
-    ps = poly_heading(np.array([c]), np.array([length * _GX]))[0]
-    return length * np.array([np.cos(ps) @ _GW, np.sin(ps) @ _GW])
+def _ends(c: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """End points (n, 2) of the curves of coefficients c (n, 4) over their lengths (n,)."""
+    ps = poly_heading(c, length[:, None] * _GX)
+    return length[:, None] * np.stack([np.cos(ps) @ _GW, np.sin(ps) @ _GW], axis=-1)
+
+
+def solve_transitions(k0: np.ndarray, k1: np.ndarray, dpsi: np.ndarray, bx: np.ndarray, by: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Row by row: (L, coefficients (n, 4), found) of the cubic-curvature curve from (0, 0)
+    heading 0 with curvature k0 to (bx, by) with heading dpsi and curvature k1. Newton on
+    (L, c3), each step halved until the residual falls; not found where no step does, or
+    where it has not converged after 30 steps."""
+    k0, k1, dpsi, bx, by = (np.asarray(v, dtype=float) for v in (k0, k1, dpsi, bx, by))
+    n = k0.shape[0]
+    chord = np.hypot(bx, by)
+    target = np.stack([bx, by], axis=-1)
+    length = chord.copy()
+    c3 = np.zeros(n)
+    found = np.zeros(n, dtype=bool)
+    live = chord > 0.0
+
+    def residual(rows: np.ndarray, length: np.ndarray, c3: np.ndarray) -> np.ndarray:
+        return _ends(_coeffs(length, c3, k0[rows], k1[rows], dpsi[rows]), length) - target[rows]
+
+    f = np.zeros((n, 2))
+    rows = np.flatnonzero(live)
+    f[rows] = residual(rows, length[rows], c3[rows])
+    for _ in range(30):
+        rows = np.flatnonzero(live)
+        conv = np.abs(f[rows]).max(axis=1) <= 1e-13 * (1.0 + chord[rows])
+        found[rows[conv]] = True
+        live[rows[conv]] = False
+        rows = rows[~conv]
+        if not rows.size:
+            break
+        ln, c, fr = length[rows], c3[rows], f[rows]
+        h1 = 1e-7 * ln
+        h2 = 1e-7 * (np.abs(c) + 1.0 / ln ** 3)
+        j1 = (residual(rows, ln + h1, c) - fr) / h1[:, None]
+        j2 = (residual(rows, ln, c + h2) - fr) / h2[:, None]
+        det = j1[:, 0] * j2[:, 1] - j2[:, 0] * j1[:, 1]
+        pending = (det != 0.0) & np.isfinite(det)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step_l = (-fr[:, 0] * j2[:, 1] + j2[:, 0] * fr[:, 1]) / det
+            step_c = (-j1[:, 0] * fr[:, 1] + fr[:, 0] * j1[:, 1]) / det
+        err = np.abs(fr).max(axis=1)
+        scale = 1.0
+        while scale > 1e-4 and pending.any():
+            k = np.flatnonzero(pending)
+            l2, c2 = ln[k] + scale * step_l[k], c[k] + scale * step_c[k]
+            ok = l2 > 0.0
+            k, l2, c2 = k[ok], l2[ok], c2[ok]
+            if k.size:
+                f2 = residual(rows[k], l2, c2)
+                better = np.abs(f2).max(axis=1) < err[k]
+                kb = rows[k[better]]
+                length[kb], c3[kb], f[kb] = l2[better], c2[better], f2[better]
+                pending[k[better]] = False
+            scale *= 0.5
+        live[rows[pending]] = False          # no step lowers the residual: none found
+        live[rows[~((det != 0.0) & np.isfinite(det))]] = False
+    return length, _coeffs(length, c3, k0, k1, dpsi), found
 
 
 def solve_transition(k0: float, k1: float, dpsi: float, bx: float, by: float
                      ) -> tuple[float, tuple[float, float, float, float]] | None:
     """(L, coefficients) of the cubic-curvature curve from (0, 0) heading 0 with curvature k0
     to (bx, by) with heading dpsi and curvature k1; None when Newton does not find it."""
-    chord = math.hypot(bx, by)
-    if chord <= 0.0:
+    length, c, found = solve_transitions(*(np.array([v], dtype=float) for v in (k0, k1, dpsi, bx, by)))
+    if not found[0]:
         return None
-    length, c3 = chord, 0.0
-    target = np.array([bx, by])
-
-    def residual(length: float, c3: float) -> np.ndarray:
-        return _end(_coeffs(length, c3, k0, k1, dpsi), length) - target
-
-    f = residual(length, c3)
-    for _ in range(30):
-        if np.abs(f).max() <= 1e-13 * (1.0 + chord):
-            return length, _coeffs(length, c3, k0, k1, dpsi)
-        h1 = 1e-7 * length
-        h2 = 1e-7 * (abs(c3) + 1.0 / length ** 3)
-        j1 = (residual(length + h1, c3) - f) / h1
-        j2 = (residual(length, c3 + h2) - f) / h2
-        det = j1[0] * j2[1] - j2[0] * j1[1]
-        if det == 0.0 or not math.isfinite(det):
-            return None
-        step = ((-f[0] * j2[1] + j2[0] * f[1]) / det, (-j1[0] * f[1] + f[0] * j1[1]) / det)
-        scale = 1.0
-        while scale > 1e-4:
-            l2, c32 = length + scale * step[0], c3 + scale * step[1]
-            if l2 > 0.0:
-                f2 = residual(l2, c32)
-                if np.abs(f2).max() < np.abs(f).max():
-                    length, c3, f = l2, c32, f2
-                    break
-            scale *= 0.5
-        else:
-            return None
-    return None
+    return float(length[0]), (float(c[0, 0]), float(c[0, 1]), float(c[0, 2]), float(c[0, 3]))
 
 
 def _plane(a: Move, b: Move, n_axes: int) -> tuple[int, int] | None:
@@ -136,91 +173,80 @@ def _plane(a: Move, b: Move, n_axes: int) -> tuple[int, int] | None:
     return f, s
 
 
-def _signed(m: Move, kappa: float) -> float:
-    """Curvature ``kappa`` of ``m`` signed: positive turning left in the (first, second) frame."""
-    if m.arc is None:
-        return 0.0
-    return kappa * (1.0 if m.arc.sweep_rad > 0.0 else -1.0)
+def _distance_rows(q: np.ndarray, table: MoveTable, row: np.ndarray) -> np.ndarray:
+    """Distance of points q (N, d) from moves ``row`` (N,) of the table, lines and plane arcs."""
+    start, end = table.start[row], table.end[row]
+    out = segment_distance(q, start, end)
+    k = np.flatnonzero(table.is_arc[row])
+    if k.size:
+        r = row[k]
+        out[k] = arc_distance_rows(q[k], table.first[r], table.second[r], table.cx[r], table.cy[r],
+                                   table.theta0[r], table.sweep[r], table.r0[r], table.r1[r],
+                                   start[k], end[k])
+    return out
 
 
-def _distance_to(q: np.ndarray, m: Move) -> np.ndarray:
-    if m.arc is None:
-        return segment_distance(q, m.start[None, :], m.end[None, :])
-    return arc_distance(q, m)
-
-
-def _make(a: Move, b: Move, f: int, s: int, d: float, tol: float
-          ) -> tuple[tuple[Move, Move, Move] | None, float]:
-    """((a's head, transition, b's tail) with d taken from each, or None if none fits in tol;
-    the transition's distance from the moves, NaN where there is no transition to measure)."""
-    n_axes = a.start.shape[0]
-    u_a = a.length_mm - d
-    pa, ta, ka = a.evaluate(np.array([u_a]))
-    pb, tb, kb = b.evaluate(np.array([d]))
-    pa, ta, pb, tb = pa[0], ta[0], pb[0], tb[0]
-    u1 = np.zeros(n_axes)
-    u1[[f, s]] = ta[[f, s]] / math.hypot(ta[f], ta[s])
-    n1 = np.zeros(n_axes)
-    n1[f], n1[s] = -u1[s], u1[f]                         # left of u1 in the plane
-    cos_t = float(np.clip(tb @ u1, -1.0, 1.0))
-    dpsi = math.atan2(float(tb @ n1), cos_t)
+def _try(table: MoveTable, ja: np.ndarray, f: np.ndarray, s: np.ndarray, d: np.ndarray, tol: np.ndarray
+         ) -> tuple[np.ndarray, ...]:
+    """Transitions at joints ``ja`` (between moves ja and ja + 1 of the table, in the plane of
+    axes f, s) taking d from each move: (made, deviation (NaN where none was made to measure),
+    length, coefficients (n, 4), turn, the frames (start, u1, n1, end; (n, d) each) stacked
+    (4, n, d), and where the transition leaves a and meets b as fractions of them (2, n))."""
+    jb = ja + 1
+    n, n_axes = ja.size, table.n_axes
+    u_a = table.length[ja] - d
+    pa, ta, ka, fa = table.plane_frames(ja, u_a)
+    pb, tb, kb, fb = table.plane_frames(jb, d)
+    i = np.arange(n)
+    u1 = np.zeros((n, n_axes))
+    norm = np.hypot(ta[i, f], ta[i, s])
+    u1[i, f] = ta[i, f] / norm
+    u1[i, s] = ta[i, s] / norm
+    n1 = np.zeros((n, n_axes))
+    n1[i, f], n1[i, s] = -u1[i, s], u1[i, f]             # left of u1 in the plane
+    cos_t = np.clip((tb * u1).sum(axis=1), -1.0, 1.0)
+    dpsi = np.arctan2((tb * n1).sum(axis=1), cos_t)
     rel = pb - pa
-    sol = solve_transition(_signed(a, float(ka[0])), _signed(b, float(kb[0])), dpsi, float(rel @ u1),
-                           float(rel @ n1))
-    if sol is None:
-        return None, math.nan
-    length, c = sol
-    if not 0.5 * math.hypot(*rel[[f, s]]) < length < 3.0 * math.hypot(*rel[[f, s]]):
-        return None, math.nan                             # a loop or a detour, not a transition
-    bl = Blend(origin=pa.copy(), u1=u1, n1=n1, half_mm=0.5 * length, turn_rad=max(abs(dpsi), 1e-12),
-               corner=a.end.copy(), poly=c)
-    mv = Move(index=0, line=a.line, kind=MoveKind.BLEND, start=pa.copy(), end=pb.copy(),
-              feed_mm_s=min(a.feed_mm_s, b.feed_mm_s), length_mm=length, arc=None, exact_stop=False, blend=bl)
-    q = mv.evaluate(np.linspace(0.0, length, 49))[0]
-    if np.linalg.norm(q[-1] - pb) > 1e-9 * (1.0 + np.abs(pb).max()):
-        return None, math.nan
-    dev = float(np.minimum(_distance_to(q, a), _distance_to(q, b)).max())
-    if dev > tol:
-        return None, dev
-    mv = replace(mv, blend=replace(bl, measured_deviation_mm=dev))
-    head = _head(a, u_a, pa)
-    tail = split_move(b, d)
-    if head is None or tail.length_mm <= MIN_LINE_MM:
-        return None, math.nan
-    return (head, mv, tail), dev
+    length, coeffs, made = solve_transitions(ka, kb, dpsi, (rel * u1).sum(axis=1), (rel * n1).sum(axis=1))
+    chord = np.hypot(rel[i, f], rel[i, s])
+    made &= (0.5 * chord < length) & (length < 3.0 * chord)    # else a loop or a detour
+    # what is left of each move must be a move
+    made &= (u_a > MIN_LINE_MM) & (table.length[jb] - d > MIN_LINE_MM)
+    dev = np.full(n, math.nan)
+    k = np.flatnonzero(made)
+    if k.size:
+        m = _SAMPLES
+        sk = np.linspace(0.0, length[k], m, axis=1).ravel()
+        rep = np.repeat(k, m)
+        q = poly_positions(pa[rep], u1[rep], n1[rep], coeffs[rep], sk).reshape(k.size, m, n_axes)
+        q[:, -1] = pb[k]                                  # its end is b's point exactly
+        flat = q.reshape(-1, n_axes)
+        near = np.minimum(_distance_rows(flat, table, ja[rep]), _distance_rows(flat, table, jb[rep]))
+        dev[k] = near.reshape(k.size, m).max(axis=1)
+        made[k] = dev[k] <= tol[k]
+    return made, dev, length, coeffs, dpsi, np.stack([pa, u1, n1, pb]), np.stack([fa, fb])
 
 
-def _head(m: Move, u: float, end: np.ndarray) -> Move | None:
+def _head(m: Move, u: float, end: np.ndarray, frac: float | None = None) -> Move | None:
+    """``m`` up to path length u, ending at ``end`` (an arc: at angle fraction ``frac``, found
+    again where not given); None where too short to be a move."""
     if u <= MIN_LINE_MM:
         return None
     if m.arc is None:
         return replace(m, end=end.copy(), length_mm=float(np.linalg.norm(end - m.start)))
-    return head_move(m, u)
+    return head_move(m, u, (end, frac) if frac is not None else None)
 
 
-def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | None = None) -> Program:
-    """The program with its line-arc, arc-line and arc-arc joints under G64 P eased (see the
-    module's text; with ``speeds``, only where the transition is quicker than the sharp
-    joint's plan); ``program`` itself when none is."""
+def _candidates(program: Program, table: MoveTable, tol: np.ndarray, rotary: np.ndarray,
+                event_after: np.ndarray) -> list[tuple[int, int, int, float, float]]:
+    """The joints a transition may ease: (joint j, plane axes f, s, P there, kink)."""
     moves = program.moves
-    n = len(moves)
-    if n < 2 or not any(v > 0 for _, v in program.blend_tolerance):
-        return program
-    tol, rotary, event_after = joint_context(program)
-    made: dict[int, tuple[Move, Move, Move]] = {}
-    kinks: dict[int, tuple[float, float]] = {}
-    tangents: dict[int, np.ndarray] = {}
-
-    def end_tangents(i: int) -> np.ndarray:
-        """The unit tangents at the start and the end of move i (each move evaluated once)."""
-        if i not in tangents:
-            tangents[i] = moves[i].evaluate(np.array([0.0, moves[i].length_mm]))[1]
-        return tangents[i]
-
-    for j in range(n - 1):
+    t_start, t_end = table.end_tangents()
+    out = []
+    curve = (MoveKind.LINE, MoveKind.ARC)
+    for j in range(len(moves) - 1):
         a, b = moves[j], moves[j + 1]
         p_tol = min(tol[j], tol[j + 1])
-        curve = (MoveKind.LINE, MoveKind.ARC)
         if (p_tol <= 0.0 or a.kind not in curve or b.kind not in curve
                 or (a.arc is None and b.arc is None) or a.blend is not None or b.blend is not None
                 or a.exact_stop or event_after[j]
@@ -232,29 +258,57 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         plane = _plane(a, b, len(program.axes))
         if plane is None:
             continue
-        f, s = plane
-        ta = end_tangents(j)[1]
-        tb = end_tangents(j + 1)[0]
-        kink = math.acos(float(np.clip(ta @ tb, -1.0, 1.0)))
-        if kink > MAX_KINK_RAD:
-            continue
-        room = min(0.45 * a.length_mm, 0.45 * b.length_mm)   # the rest is for the other ends
-        d = min(room, 50.0 * p_tol)
-        trio = None
+        kink = math.acos(float(np.clip(t_end[j] @ t_start[j + 1], -1.0, 1.0)))
+        if kink <= MAX_KINK_RAD:
+            out.append((j, plane[0], plane[1], p_tol, kink))
+    return out
+
+
+def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | None = None) -> Program:
+    """The program with its line-arc, arc-line and arc-arc joints under G64 P eased (see the
+    module's text; with ``speeds``, only where the transition is quicker than the sharp
+    joint's plan); ``program`` itself when none is. The joints are solved together, a batch
+    at a time."""
+    moves = program.moves
+    n = len(moves)
+    if n < 2 or not any(v > 0 for _, v in program.blend_tolerance):
+        return program
+    tol, rotary, event_after = joint_context(program)
+    table = MoveTable.from_moves(moves, len(program.axes))
+    cands = _candidates(program, table, tol, rotary, event_after)
+    made: dict[int, tuple[Move, Move, Move]] = {}
+    kinks: dict[int, tuple[float, float]] = {}
+    for lo in range(0, len(cands), _BATCH):
+        part = cands[lo:lo + _BATCH]
+        ja = np.array([c[0] for c in part], dtype=np.int64)
+        f = np.array([c[1] for c in part], dtype=np.int64)
+        s = np.array([c[2] for c in part], dtype=np.int64)
+        p_tol = np.array([c[3] for c in part])
+        kink = np.array([c[4] for c in part])
+        room = 0.45 * np.minimum(table.length[ja], table.length[ja + 1])   # the rest is for the other ends
+        d = np.minimum(room, 50.0 * p_tol)
         # the stretch shrinks until the transition keeps within 0.9 P: by 0.6 a try, or at once
         # to where its deviation would fit (about d for a kink, d^2 for a curvature step alone)
-        power = 1.0 if kink > KINKED_RAD else 0.5
+        power = np.where(kink > KINKED_RAD, 1.0, 0.5)
+        small = 1e-9 * (1.0 + np.abs(table.end[ja]).max(axis=1))
+        live = np.ones(ja.size, dtype=bool)
         for _ in range(10):
-            if d <= 1e-9 * (1.0 + abs(a.end).max()):
+            live &= d > small
+            k = np.flatnonzero(live)
+            if not k.size:
                 break
-            trio, dev = _make(a, b, f, s, d, 0.9 * p_tol)
-            if trio is not None:
-                break
-            d *= min(0.6, 0.95 * (0.9 * p_tol / dev) ** power) if dev > 0.0 else 0.6
-        if trio is None:
-            continue
-        made[j] = trio
-        kinks[j] = (kink, d)
+            ok, dev, length, coeffs, turn, frames, fracs = _try(table, ja[k], f[k], s[k], d[k],
+                                                                0.9 * p_tol[k])
+            for x in np.flatnonzero(ok):
+                j = int(ja[k[x]])
+                trio = _trio(moves[j], moves[j + 1], float(d[k[x]]), float(length[x]), coeffs[x],
+                             float(turn[x]), frames[:, x], fracs[:, x], float(dev[x]))
+                if trio is not None:
+                    made[j] = trio
+                    kinks[j] = (float(kink[k[x]]), float(d[k[x]]))
+            live[k[ok]] = False
+            fit = 0.9 * p_tol[k] / np.where(dev > 0.0, dev, 1.0)
+            d[k] *= np.where(dev > 0.0, np.minimum(0.6, 0.95 * fit ** power[k]), 0.6)
     if not made:
         return program
     if speeds is not None:
@@ -262,6 +316,22 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
         if not made:
             return program
     return _apply(program, made)
+
+
+def _trio(a: Move, b: Move, d: float, length: float, coeffs: np.ndarray, turn: float, frames: np.ndarray,
+          fracs: np.ndarray, dev: float) -> tuple[Move, Move, Move] | None:
+    """(a's head, the transition, b's tail) of a joint solved by ``_try``."""
+    pa, u1, n1, pb = (v.copy() for v in frames)
+    c = (float(coeffs[0]), float(coeffs[1]), float(coeffs[2]), float(coeffs[3]))
+    bl = Blend(origin=pa, u1=u1, n1=n1, half_mm=0.5 * length, turn_rad=max(abs(turn), 1e-12),
+               corner=a.end.copy(), poly=c, measured_deviation_mm=dev)
+    mv = Move(index=0, line=a.line, kind=MoveKind.BLEND, start=pa.copy(), end=pb,
+              feed_mm_s=min(a.feed_mm_s, b.feed_mm_s), length_mm=length, arc=None, exact_stop=False, blend=bl)
+    head = _head(a, a.length_mm - d, pa, float(fracs[0]))
+    tail = split_move(b, d, (pb, float(fracs[1])))
+    if head is None or tail.length_mm <= MIN_LINE_MM:
+        return None
+    return head, mv, tail
 
 
 def _quicker(program: Program, plan: JointSpeeds, machine: MachineSpec,
@@ -311,7 +381,11 @@ def _apply(program: Program, made: dict[int, tuple[Move, Move, Move]]) -> Progra
         if i in made:
             head, mv, tail = made[i]
             if i in tail_of:                    # both ends eased: cut the tail at this head's end
-                cur_head = _head(cur, cur.length_mm - (m.length_mm - head.length_mm), head.end)
+                frac = None
+                if cur.arc is not None and head.arc is not None and m.arc is not None and cur.arc.sweep_rad:
+                    # angle fractions: the tail is m from t_b on, the head m up to t_a
+                    frac = (head.arc.sweep_rad - m.arc.sweep_rad + cur.arc.sweep_rad) / cur.arc.sweep_rad
+                cur_head = _head(cur, cur.length_mm - (m.length_mm - head.length_mm), head.end, frac)
                 if cur_head is None:
                     continue
                 head = cur_head

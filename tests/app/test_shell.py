@@ -1,4 +1,4 @@
-"""The main window shell: navigation to every page, and `cnc-panel --screenshot` for each."""
+"""The main window shell: navigation to every page, each drawn, and `cnc-panel --screenshot`."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ import pytest
 
 from app.context import PanelOptions
 from app.main_window import MainWindow
-from app.pages import PAGE_NAMES, PAGES
+from app.pages import PAGE_NAMES, PAGES, page_info
 from tests.shm import shm_before, wait_for_new_blocks
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -52,8 +52,33 @@ def test_demo_window_on_the_real_controller(qtbot, qapp, tmp_path: Path) -> None
         window.context.controller.shutdown()
 
 
-@pytest.mark.parametrize("page", PAGE_NAMES)
-def test_screenshot_of_every_page(tmp_path: Path, page: str) -> None:
+def test_every_page_of_the_demo_renders_to_a_screenshot(qtbot, qapp, tmp_path: Path) -> None:
+    """Each page of the demo panel, connected and with its sample loaded, drawn to a 1280x800
+    PNG in one panel (the command line's ``--screenshot`` is run below for two of them)."""
+    from app.application import apply_theme, create_window, save_screenshot
+
+    apply_theme(qapp)
+    window = create_window(PanelOptions(demo=True, state_dir=tmp_path / "state"))
+    qtbot.addWidget(window)
+    controller = window.context.controller
+    try:
+        window.show()
+        qtbot.waitUntil(lambda: controller.bus_status.connected and controller.program_info is not None,
+                        timeout=20_000)
+        for page in PAGE_NAMES:
+            if page_info(page).service:              # the integrator's pages, behind the default password
+                assert window.context.access is not None and window.context.access.unlock("1234")
+            assert window.show_page(page, ask_password=False), page
+            out = tmp_path / f"{page}.png"
+            save_screenshot(window, out)
+            assert window.current_page_name == page
+            assert png_size(out) == (1280, 800), page
+    finally:
+        controller.shutdown()
+
+
+@pytest.mark.parametrize("page", ["auto", "parameters"])        # an operator's page, a service page
+def test_screenshot_from_the_command_line(tmp_path: Path, page: str) -> None:
     out = tmp_path / f"{page}.png"
     result = subprocess.run(
         [sys.executable, "-m", "app", "--demo", "--screenshot", str(out), "--page", page,

@@ -119,7 +119,7 @@ def test_a_tool_change_stops_the_spindle_until_the_programs_own_m3(tmp_path: Pat
 
 
 def test_150_percent_override_ends_a_feed_bound_program_a_quarter_sooner(tmp_path: Path, capsys) -> None:
-    program = "G21 G90\nG1 X100 F600\nG1 Y100\nG1 X0\nG1 Y0\nM30\n"
+    program = "G21 G90\nG1 X50 F600\nG1 Y50\nG1 X0\nG1 Y0\nM30\n"
     code, base, _ = run(tmp_path, capsys, program, [])
     assert code == 0
     code, fast, _ = run(tmp_path, capsys, program, [{"after_s": 0, "op": "feed_override", "percent": 150}])

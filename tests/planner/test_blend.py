@@ -617,6 +617,55 @@ def test_the_transition_curve_meets_both_ends() -> None:
         assert psi[-1] == pytest.approx(dpsi, abs=1e-9) and kappa[-1] == pytest.approx(k1, abs=1e-12)
 
 
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.floats(-1.0, 1.0), st.floats(-1.0, 1.0), st.floats(-0.6, 0.6),
+                          st.floats(0.1, 10.0), st.floats(-0.3, 0.3)), min_size=1, max_size=12),
+       st.sampled_from([0.001, 0.1, 1.0, 30.0, 1000.0]))
+def test_transitions_solved_together_are_each_solved_alone(rows, scale) -> None:
+    """The joints of a program are solved a batch at a time: each row's curve is the one it
+    has alone (found or not alike), at every scale (lengths x scale, curvatures / scale)."""
+    from planner.geometry.transition import solve_transition, solve_transitions
+
+    k0 = np.array([r[0] for r in rows]) / scale
+    k1 = np.array([r[1] for r in rows]) / scale
+    dpsi = np.array([r[2] for r in rows])
+    chord = np.array([r[3] for r in rows]) * scale
+    aim = dpsi / 2.0 + np.array([r[4] for r in rows])
+    bx, by = chord * np.cos(aim), chord * np.sin(aim)
+    length, coeffs, found = solve_transitions(k0, k1, dpsi, bx, by)
+    assert length.shape == found.shape == (len(rows),) and coeffs.shape == (len(rows), 4)
+    for i in range(len(rows)):
+        alone = solve_transition(k0[i], k1[i], dpsi[i], bx[i], by[i])
+        assert (alone is not None) == bool(found[i])
+        if alone is not None:
+            assert length[i] == pytest.approx(alone[0], rel=1e-9)
+            # the curvature each gives along the curve (not its coefficients one by one), alike
+            # within what Newton's end tolerance (1e-13 mm, 1e-9 of a 0.1 um curve) leaves open
+            s = np.linspace(0.0, length[i], 9)
+            kb = np.polynomial.polynomial.polyval(s, coeffs[i])
+            ka = np.polynomial.polynomial.polyval(s, alone[1])
+            assert np.abs(kb - ka).max() * length[i] <= 1e-7 * (1.0 + np.abs(ka).max() * length[i])
+
+
+def test_head_and_tail_given_their_point_are_the_moves_found_without_it() -> None:
+    """The transitions hand the point and the angle fraction they found to the head and tail
+    of the moves they ease: the same moves as when those are found again."""
+    from planner.core.program import arc_param_at_length
+    from planner.geometry.resume import head_move, split_move
+
+    m = fast_machine()
+    prog = parse_program("G21 G90\nG1 X10 F3000\nG3 X14 Y4 I0.0005 J4\nM2\n", "spiral.ngc", m)
+    arc = prog.moves[1]
+    assert arc.arc is not None and arc.arc.radius_end_mm != arc.arc.radius_start_mm   # a spiral
+    for u in (0.01, 1.7, arc.length_mm - 0.02):
+        point = arc.evaluate(np.array([u]))[0][0]
+        t = float(arc_param_at_length(arc.arc, np.array([u]), arc.length_mm)[0])
+        for cut in (head_move, split_move):
+            mine, again = cut(arc, u, (point, t)), cut(arc, u)
+            assert np.array_equal(mine.start, again.start) and np.array_equal(mine.end, again.end)
+            assert mine.arc == again.arc and mine.length_mm == again.length_mm
+
+
 def test_joints_of_arcs_get_curvature_continuous_transitions() -> None:
     from planner.geometry.transition import ease_joints
 

@@ -153,7 +153,39 @@ def test_spiral_polynomial_parameter_equals_newton():
     assert rows.size > 10
     row = np.repeat(rows, 50)
     u = np.tile(np.linspace(0, 1, 50), rows.size) * table.length[row]
-    t_poly = table._spiral_param(row, u)
+    t_poly = table.spiral_param(row, u)
     t_newton = _spiral_newton(table.r0[row], table.r1[row], table.sweep[row], table.rise[row],
                               table.length[row], u)
     assert np.max(np.abs(t_poly - t_newton) * table.length[row]) < 1e-12
+
+
+def test_plane_frames_are_what_each_move_evaluates():
+    """Row by row, MoveTable.plane_frames gives what Move.evaluate gives on lines and plane arcs
+    (CAM's spirals among them): position, unit tangent, curvature signed by the arc's turn, and
+    the arc's angle fraction at u."""
+    from planner.core.program import MoveKind, arc_param_at_length
+
+    m = paper_machine()
+    moves = []
+    for seed in range(8):
+        moves += [mv for mv in parse(random_program(seed, n_blocks=40), m).moves
+                  if mv.kind in (MoveKind.LINE, MoveKind.ARC)
+                  and (mv.arc is None or (mv.arc.rise_mm == 0.0 and mv.arc.xy_turn_rad == 0.0))]
+    n_arcs = sum(mv.arc is not None for mv in moves)
+    assert n_arcs > 20 and len(moves) - n_arcs > 20
+    assert any(mv.arc is not None and mv.arc.radius_end_mm != mv.arc.radius_start_mm for mv in moves)
+    table = MoveTable.from_moves(moves, 3)
+    x = np.array([0.0, 0.013, 0.31, 0.5, 0.77, 0.999])
+    row = np.repeat(np.arange(len(moves)), x.size)
+    u = np.tile(x, len(moves)) * table.length[row]
+    pos, tangent, kappa, frac = table.plane_frames(row, u)
+    for i, mv in enumerate(moves):
+        k = slice(i * x.size, (i + 1) * x.size)
+        p, t, c = mv.evaluate(u[k])
+        np.testing.assert_allclose(pos[k], p, rtol=0, atol=1e-9 * (1.0 + np.abs(p).max()))
+        np.testing.assert_allclose(tangent[k], t, rtol=0, atol=1e-12)
+        if mv.arc is None:
+            assert (kappa[k] == 0.0).all() and frac[k] == pytest.approx(x, abs=1e-15)
+        else:
+            np.testing.assert_allclose(kappa[k], np.sign(mv.arc.sweep_rad) * c, rtol=1e-9)
+            np.testing.assert_allclose(frac[k], arc_param_at_length(mv.arc, u[k], mv.length_mm), atol=1e-12)

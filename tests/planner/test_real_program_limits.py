@@ -285,3 +285,22 @@ def test_the_linuxcnc_bench_takes_the_path_acceleration_from_the_axes(tmp_path, 
     assert row["ours J1e+06 time_s"] == pytest.approx(length / 100.0 + 100.0 / 1000.0, abs=3e-3)
     assert row["ours J1e+06 axis rule time_s"] == pytest.approx(length / 100.0 + 100.0 / 1414.2, abs=3e-3)
     assert row["ours J1e+06 axis rule ok"] is True
+
+
+def test_the_blend_bench_times_each_pass_on_a_program_repeated(capsys) -> None:
+    """``bench.bench_blend --passes NAME --repeat N``: the program's moves N times over, and the
+    seconds of each pass of the blending (``blend_program``'s own account); a name that is no
+    shared program is said so."""
+    from bench import bench_blend
+
+    assert bench_blend.main(["--passes", "51MeanderAve", "--repeat", "2"]) == 0
+    row = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    text = bench_blend.with_mode(next(CAM.rglob("51MeanderAve.ngc")).read_text(errors="replace"), "G64 P0.01")
+    once = parse_program(text, "once", bench_blend.bench_machine(10_000.0))
+    # twice over (where the copies meet, a move that goes nowhere is not one)
+    assert 2 * len(once.moves) - 4 <= row["moves"] <= 2 * len(once.moves)
+    assert row["moves_after"] > row["moves"]                # the joints of its arcs eased
+    assert row["arc_joints_s"] > 0.0 and all(row[f"{name}_s"] >= 0.0 for name in ("parse", "merge", "fillets",
+                                                                                 "corners"))
+    assert bench_blend.main(["--passes", "no_such_program"]) == 1
+    assert "no shared CAM program" in capsys.readouterr().out
