@@ -189,7 +189,6 @@ def test_open_maps_pdos_sync0_on_every_slave_op_and_shutdown_to_init(link3: Emul
 
 def test_watchdog_when_process_data_stops(link3: EmulatedLink) -> None:
     with SoemBus(DRIVES3, adapter=link3.master_ifname) as bus:
-        assert [x["watchdog_ms"] for x in emulator_slaves(link3)] == [100.0] * 3, "the drives' own time kept"
         enable_all(bus)
         time.sleep(0.3)                                     # no frames: SM watchdog (100 ms)
         states = bus.al_states()
@@ -221,10 +220,16 @@ def test_configured_watchdog_is_written_and_rides_out_a_stall(link3: EmulatedLin
             time.sleep(0.001)
         time.sleep(0.9)                                     # past the 600 ms: SAFE-OP, as at 100 ms
         assert bus.al_states() == (("SAFE-OP", 0x001B),) * 3
+    # the registers keep what was written until a power cycle: the drives' 100 ms again
+    again = {p: DriveSetup(watchdog_ms=100.0) for p in range(3)}
+    with SoemBus(DRIVES3, adapter=link3.master_ifname, setups=again):
+        assert [x["watchdog_ms"] for x in emulator_slaves(link3)] == pytest.approx([100.0] * 3)
 
 
 def test_lost_slave_comes_back_and_is_recovered(link3: EmulatedLink) -> None:
-    with SoemBus(DRIVES3, adapter=link3.master_ifname) as bus:
+    setups = {2: DriveSetup(watchdog_ms=250.0)}
+    with SoemBus(DRIVES3, adapter=link3.master_ifname, setups=setups) as bus:
+        assert emulator_slaves(link3)[2]["watchdog_ms"] == pytest.approx(250.0)
         link3.control("lose", slave=2)
         assert [bus.exchange() for _ in range(3)] == [6, 6, 6]
         assert bus.lost_slaves() == (2,)
@@ -238,6 +243,10 @@ def test_lost_slave_comes_back_and_is_recovered(link3: EmulatedLink) -> None:
         assert wkcs[-1] == 9 and bus.lost_slaves() == ()
         assert [s.state for s in bus.slaves()] == ["OP"] * 3
         assert emulator_slaves(link3)[2]["sync0_active"]
+        # its settings again after the power cycle (which set 0x0420 back to 100 ms)
+        assert emulator_slaves(link3)[2]["watchdog_ms"] == pytest.approx(250.0)
+    with SoemBus(DRIVES3, adapter=link3.master_ifname, setups={2: DriveSetup(watchdog_ms=100.0)}):
+        pass                                        # the link's drives as the other tests find them
 
 
 # ---------------------------------------------------------------------- SoemBus + worker
