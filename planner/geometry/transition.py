@@ -126,7 +126,8 @@ def solve_transitions(k0: np.ndarray, k1: np.ndarray, dpsi: np.ndarray, bx: np.n
         j1 = (residual(rows, ln + h1, c) - fr) / h1[:, None]
         j2 = (residual(rows, ln, c + h2) - fr) / h2[:, None]
         det = j1[:, 0] * j2[:, 1] - j2[:, 0] * j1[:, 1]
-        pending = (det != 0.0) & np.isfinite(det)
+        solvable = (det != 0.0) & np.isfinite(det)
+        pending = solvable.copy()
         with np.errstate(divide="ignore", invalid="ignore"):
             step_l = (-fr[:, 0] * j2[:, 1] + j2[:, 0] * fr[:, 1]) / det
             step_c = (-j1[:, 0] * fr[:, 1] + fr[:, 0] * j1[:, 1]) / det
@@ -144,8 +145,7 @@ def solve_transitions(k0: np.ndarray, k1: np.ndarray, dpsi: np.ndarray, bx: np.n
                 length[kb], c3[kb], f[kb] = l2[better], c2[better], f2[better]
                 pending[k[better]] = False
             scale *= 0.5
-        live[rows[pending]] = False          # no step lowers the residual: none found
-        live[rows[~((det != 0.0) & np.isfinite(det))]] = False
+        live[rows[pending | ~solvable]] = False      # no step lowers the residual: none found
     return length, _coeffs(length, c3, k0, k1, dpsi), found
 
 
