@@ -237,11 +237,10 @@ def _head(m: Move, u: float, end: np.ndarray, frac: float | None = None) -> Move
     return head_move(m, u, (end, frac) if frac is not None else None)
 
 
-def _candidates(program: Program, table: MoveTable, tol: np.ndarray, rotary: np.ndarray,
-                event_after: np.ndarray) -> list[tuple[int, int, int, float, float]]:
-    """The joints a transition may ease: (joint j, plane axes f, s, P there, kink)."""
+def _candidates(program: Program, tol: np.ndarray, rotary: np.ndarray, event_after: np.ndarray
+                ) -> list[tuple[int, int, int, float]]:
+    """The joints a transition may ease but for their kink: (joint j, plane axes f, s, P there)."""
     moves = program.moves
-    t_start, t_end = table.end_tangents()
     out = []
     curve = (MoveKind.LINE, MoveKind.ARC)
     for j in range(len(moves) - 1):
@@ -256,11 +255,8 @@ def _candidates(program: Program, table: MoveTable, tol: np.ndarray, rotary: np.
         if any(m.arc is not None and abs(m.arc.sweep_rad) > 2.0 * math.pi for m in (a, b)):
             continue
         plane = _plane(a, b, len(program.axes))
-        if plane is None:
-            continue
-        kink = math.acos(float(np.clip(t_end[j] @ t_start[j + 1], -1.0, 1.0)))
-        if kink <= MAX_KINK_RAD:
-            out.append((j, plane[0], plane[1], p_tol, kink))
+        if plane is not None:
+            out.append((j, plane[0], plane[1], p_tol))
     return out
 
 
@@ -268,36 +264,45 @@ def ease_joints(program: Program, machine: MachineSpec, speeds: SpeedOracle | No
     """The program with its line-arc, arc-line and arc-arc joints under G64 P eased (see the
     module's text; with ``speeds``, only where the transition is quicker than the sharp
     joint's plan); ``program`` itself when none is. The joints are solved together, a batch
-    at a time."""
+    at a time, on a table of their moves alone."""
     moves = program.moves
     n = len(moves)
     if n < 2 or not any(v > 0 for _, v in program.blend_tolerance):
         return program
     tol, rotary, event_after = joint_context(program)
-    table = MoveTable.from_moves(moves, len(program.axes))
-    cands = _candidates(program, table, tol, rotary, event_after)
+    cands = _candidates(program, tol, rotary, event_after)
+    if not cands:
+        return program
+    joint = np.array([c[0] for c in cands], dtype=np.int64)
+    rows = np.unique(np.concatenate([joint, joint + 1]))
+    table = MoveTable.from_moves([moves[int(i)] for i in rows], len(program.axes))
+    row_a = np.searchsorted(rows, joint)                  # the joint's first move; the next row its second
+    t_start, t_end = table.end_tangents()
+    kink_all = np.arccos(np.clip((t_end[row_a] * t_start[row_a + 1]).sum(axis=1), -1.0, 1.0))
+    keep = np.flatnonzero(kink_all <= MAX_KINK_RAD)
+    joint, row_a, kink_all = joint[keep], row_a[keep], kink_all[keep]
+    plane_f = np.array([cands[i][1] for i in keep], dtype=np.int64)
+    plane_s = np.array([cands[i][2] for i in keep], dtype=np.int64)
+    tol_all = np.array([cands[i][3] for i in keep])
     made: dict[int, tuple[Move, Move, Move]] = {}
     kinks: dict[int, tuple[float, float]] = {}
-    for lo in range(0, len(cands), _BATCH):
-        part = cands[lo:lo + _BATCH]
-        ja = np.array([c[0] for c in part], dtype=np.int64)
-        f = np.array([c[1] for c in part], dtype=np.int64)
-        s = np.array([c[2] for c in part], dtype=np.int64)
-        p_tol = np.array([c[3] for c in part])
-        kink = np.array([c[4] for c in part])
-        room = 0.45 * np.minimum(table.length[ja], table.length[ja + 1])   # the rest is for the other ends
+    for lo in range(0, joint.size, _BATCH):
+        part = slice(lo, lo + _BATCH)
+        ja, ra, f, s = joint[part], row_a[part], plane_f[part], plane_s[part]
+        p_tol, kink = tol_all[part], kink_all[part]
+        room = 0.45 * np.minimum(table.length[ra], table.length[ra + 1])   # the rest is for the other ends
         d = np.minimum(room, 50.0 * p_tol)
         # the stretch shrinks until the transition keeps within 0.9 P: by 0.6 a try, or at once
         # to where its deviation would fit (about d for a kink, d^2 for a curvature step alone)
         power = np.where(kink > KINKED_RAD, 1.0, 0.5)
-        small = 1e-9 * (1.0 + np.abs(table.end[ja]).max(axis=1))
+        small = 1e-9 * (1.0 + np.abs(table.end[ra]).max(axis=1))
         live = np.ones(ja.size, dtype=bool)
         for _ in range(10):
             live &= d > small
             k = np.flatnonzero(live)
             if not k.size:
                 break
-            ok, dev, length, coeffs, turn, frames, fracs = _try(table, ja[k], f[k], s[k], d[k],
+            ok, dev, length, coeffs, turn, frames, fracs = _try(table, ra[k], f[k], s[k], d[k],
                                                                 0.9 * p_tol[k])
             for x in np.flatnonzero(ok):
                 j = int(ja[k[x]])
