@@ -26,7 +26,7 @@ steps Eq. 16 over the actual increments of planned time.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -74,22 +74,29 @@ class Segment:
     t_end: float  # end of the segment's time span (after the last move's dwell)
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
+    # the boundary tables ``state`` made last, with the rows they are of: the machine asks for
+    # a few set-points at a time, mostly within the same one or two moves
+    # (one item, read and replaced whole: threads may share a segment)
+    _tables_memo: list[tuple[int, int, tuple[np.ndarray, ...]]] = field(
+        default_factory=lambda: [(-1, -1, ())], init=False, repr=False, compare=False)
 
     def state(self, t: np.ndarray, need_va: bool = False):
         """(row, s) or (row, s, v, a) at global times t (closed form, vectorised)."""
-        if t.shape[0] > 1 and t[0] <= t[-1] and np.all(t[1:] >= t[:-1]):
+        prof = self.profiles
+        if t.shape[0] > 0 and (t.shape[0] == 1 or (t[0] <= t[-1] and np.all(t[1:] >= t[:-1]))):
             # times in order (the usual case): the moves from the first time's to the last's
             r0, r1 = np.searchsorted(self.t0, t[[0, -1]], side="right") - 1
-            uniq = np.arange(max(int(r0), 0), max(int(r1), 0) + 1)
+            lo, hi = max(int(r0), 0), max(int(r1), 0)
+            uniq = np.arange(lo, hi + 1)
+            lo_m, hi_m, tables = self._tables_memo[0]
+            if lo_m != lo or hi_m != hi:
+                tables = self._tables(prof, uniq)
+                self._tables_memo[0] = (lo, hi, tables)
+            t_b, s_b, v_b, a_b, ph = tables
         else:
             row = np.searchsorted(self.t0, t, side="right") - 1
             uniq = np.unique(np.clip(row, 0, None))
-        # the boundary tables of the moves these times fall in, each made once, and the
-        # absolute start of each of their phases (in time order): one search finds move and
-        # phase, the last phase started by t
-        prof = self.profiles
-        t_b, s_b, v_b, a_b = prof.tables(uniq)
-        ph = (self.t0[uniq][:, None] + t_b[:, :7]).ravel()
+            t_b, s_b, v_b, a_b, ph = self._tables(prof, uniq)
         idx = np.searchsorted(ph, t, side="right") - 1
         np.clip(idx, 0, None, out=idx)
         local = idx // 7
@@ -109,6 +116,14 @@ class Segment:
         v = v0 + dt * (a0 + 3.0 * j6 * dt)
         a = a0 + 6.0 * j6 * dt
         return row, s, v, a
+
+    def _tables(self, prof: Profiles, uniq: np.ndarray) -> tuple[np.ndarray, ...]:
+        """The boundary tables of the moves ``uniq`` these times fall in, each made once, and
+        the absolute start of each of their phases (in time order): one search finds move and
+        phase, the last phase started by t."""
+        t_b, s_b, v_b, a_b = prof.tables(uniq)
+        ph = (self.t0[uniq][:, None] + t_b[:, :7]).ravel()
+        return t_b, s_b, v_b, a_b, ph
 
 
 def first_sample_at(t: float, ts: float) -> int:

@@ -40,10 +40,12 @@ def machine():
 
 
 def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budget: Budget | None = None,
-        window_moves: int | None = None, held: list[int] | None = None):
-    """The executor through ``program_text`` with ``actions`` at set-point numbers. With
-    ``window_moves`` it plays a plan made as it runs, in segments of that many moves (``held``
-    collects how many moves the window holds at each step)."""
+        window_moves: int | None = None, held: list[int] | None = None, chunk: int = 10,
+        forget: bool = False):
+    """The executor through ``program_text`` with ``actions`` at set-point numbers, ``chunk``
+    set-points a call. With ``window_moves`` it plays a plan made as it runs, in segments of
+    that many moves (``held`` collects how many moves the window holds at each step). With
+    ``forget`` what it keeps from one call to the next is dropped before each."""
     budget = budget or Budget()
     prog = parse_program(program_text, machine=machine)
     if window_moves is None:
@@ -66,7 +68,9 @@ def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budge
                     ex.hold, ex.hold_waits_for_tap = bool(value), False
                 elif what == "feed_hold":         # the operator's: after a tap in the hole
                     ex.hold, ex.hold_waits_for_tap = bool(value), True
-        ch = ex.generate(10)
+        if forget:
+            forget_kept(ex)
+        ch = ex.generate(chunk)
         if ch is None:
             assert ex.paused is not None
             ex.release_pause()
@@ -82,6 +86,13 @@ def run(machine, program_text: str, actions: dict[int, tuple[str, float]], budge
         assert k < 200_000, "did not finish"
     return prog, plan, ex, np.vstack(q), np.concatenate(s), np.concatenate(mv), np.concatenate(sig), \
         np.concatenate(tau)
+
+
+def forget_kept(ex: TimeScaledExecutor) -> None:
+    """Drop the bounds, envelope and profile tables the executor and its plan keep between calls."""
+    ex._bounds_memo = (None, ex._bounds)
+    ex._envelope_memo = (None, None)
+    ex.seg._tables_memo[0] = (-1, -1, ())
 
 
 def assert_within(result: dict[str, float]) -> None:
@@ -161,6 +172,24 @@ def random_program(rng: np.random.Generator, n: int) -> str:
         x, y = tx, ty
     out.append("M30")
     return "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize(("chunk", "window_moves"), [(2, None), (37, 3)])
+def test_what_the_executor_keeps_between_calls_changes_no_set_point(machine, chunk: int,
+                                                                     window_moves: int | None) -> None:
+    """The bounds and braking envelope kept for a window of blocks, and the profile tables kept
+    for the moves last asked about, give the set-points made afresh at each call, bit for bit,
+    through overrides, a hold and pause points, a few set-points a call as the feeder asks."""
+    rng = np.random.default_rng(77)
+    text = random_program(rng, 8).replace("M30", "M0\nG1 X5 Y5 F900\nM30")
+    # through the rapid, the arcs and the feed: every kind of block meets a change
+    actions = {500: ("rapid", 0.3), 3000: ("feed", 1.7), 6500: ("rapid", 0.8), 9000: ("feed", 0.4),
+               12000: ("hold", 1.0), 12800: ("hold", 0.0), 16000: ("feed", 1.2), 20000: ("feed", 1.0),
+               20001: ("rapid", 1.0)}
+    kept = run(machine, text, dict(actions), window_moves=window_moves, chunk=chunk)
+    fresh = run(machine, text, dict(actions), window_moves=window_moves, chunk=chunk, forget=True)
+    for a, b in zip(kept[3:], fresh[3:], strict=True):
+        np.testing.assert_array_equal(a, b)
 
 
 @pytest.mark.parametrize("seed", range(6))

@@ -131,6 +131,20 @@ class ScaledChunk:
     pause: PausePoint | None  # set when the chunk ends at a pause point
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class _Envelope:
+    """The braking envelope over a window of blocks (``TimeScaledExecutor._envelope``)."""
+
+    start_tau: np.ndarray  # planned time each block starts at
+    env: np.ndarray  # the highest sigma at each block from which every cap ahead is met
+    env_min: float
+    d1_first: float  # the braking rate D1 at the window's first block
+    x_max: float  # the highest cap of the window, at most SIGMA_MAX
+    has_fixed: np.ndarray  # per block: a move with the feed override off
+    has_feed: np.ndarray
+    has_rapid: np.ndarray
+
+
 class TimeScaledExecutor:
     """Runs a plan at a time scale sigma (override / hold), producing set-points every Ts."""
 
@@ -188,6 +202,10 @@ class TimeScaledExecutor:
         self._win_valid_until = -1.0
         self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
         self._target_cache = 1.0
+        # what ``_local_bounds`` found for a key (the window's blocks and what else it reads)
+        self._bounds_memo: tuple[object, tuple[float, float, float, float, float, float]] = \
+            (None, self._bounds)
+        self._envelope_memo: tuple[object, _Envelope | None] = (None, None)
         self.capped_to: float | None = None  # the time scale the limits allow, when below the override
         self.override_off_here = False  # the program runs its own feed here (tapping, M49, M50 P0)
         self.sigma_start = True  # at a standstill of the plan (start or pause point)
@@ -335,20 +353,61 @@ class TimeScaledExecutor:
         horizon = max(0.3, 1.2 * SIGMA_MAX * self.time_to_ramp_s)
         st.ensure(self.tau + horizon + 0.1)
         w = st.window(self.tau, self.tau + 0.25)
-        c = st.cols
-        if w.stop <= w.start:
-            self._bounds = (0.0, 0.0, 0.0, 1e-9, 1e-9, 1e-9)
-        else:
-            self._bounds = (float(c["rv"][w].max()), float(c["ra"][w].max()), float(c["rj"][w].max()),
-                            max(float(c["alpha"][w].max()), 1e-9), max(float(c["beta"][w].max()), 1e-9),
-                            max(float(c["gamma"][w].max()), 1e-9))
+        # both results below are functions of the blocks a window covers (computed once, never
+        # changed) and of the key they are kept under: the feeder asks every few set-points,
+        # the blocks change every 16
+        key_b = (w.start, w.stop)
+        if self._bounds_memo[0] != key_b:
+            self._bounds_memo = (key_b, self._window_bounds(w))
+        self._bounds = self._bounds_memo[1]
         # target: override per block kind, capped (3), over the braking distance ahead
-        k_a, k_j = self.budget.k_a, self.budget.k_j
         w2 = st.window(self.tau, self.tau + horizon)
         holding = self.holding
         if w2.stop <= w2.start:
             self._target_cache = 0.0 if holding else min(self.feed_override, 1.0)
             return
+        bt = self.ts * BLOCK
+        nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
+        key_e = (w2.start, w2.stop, int(self.tau / bt) if self.sigma_start else -1, self.sigma_start,
+                 self.feed_override, self.rapid_override, nxt.tau_s if nxt is not None else None,
+                 self.budget.k_a, self.budget.k_j)
+        if self._envelope_memo[0] != key_e:
+            self._envelope_memo = (key_e, self._envelope(w2, nxt))
+        e = self._envelope_memo[1]
+        assert e is not None
+        dist = e.start_tau - self.tau
+        sig = max(self.sigma, 1e-3, 0.0 if holding else e.x_max)
+        # braking starts only after sigma_dot has ramped up: at most D1 / (0.7 d2_ref) of real
+        # time, less for a small drop (a triangle: 2 sqrt(drop / (0.7 d2_ref))); the envelope is
+        # honoured over the planned time sigma covers meanwhile
+        dl = 0.7 * self.d2_ref
+        drop = max(sig - e.env_min, 0.0)
+        lead = sig * min(e.d1_first / dl, 2.0 * np.sqrt(drop / dl)) * 1.3 + 2 * bt
+        ahead = dist <= lead
+        self._target_cache = float(e.env[ahead].min()) if ahead.any() else float(e.env[0])
+        binding = ahead
+        # what the operator asked for and the limits refuse here (reported, not an error)
+        fixed = bool(e.has_fixed[binding].any())
+        self.override_off_here = fixed
+        asked = (1.0 if fixed else self.feed_override) if e.has_feed[binding].any() \
+            or not e.has_rapid[binding].any() else self.rapid_override
+        self.capped_to = self._target_cache if not holding and self._target_cache < asked - 1e-3 \
+            and self._target_cache >= 1.0 else None
+
+    def _window_bounds(self, w: slice) -> tuple[float, float, float, float, float, float]:
+        """The largest normalised v, a, j and alpha, beta, gamma over the blocks ``w``."""
+        c = self.stats.cols
+        if w.stop <= w.start:
+            return (0.0, 0.0, 0.0, 1e-9, 1e-9, 1e-9)
+        return (float(c["rv"][w].max()), float(c["ra"][w].max()), float(c["rj"][w].max()),
+                max(float(c["alpha"][w].max()), 1e-9), max(float(c["beta"][w].max()), 1e-9),
+                max(float(c["gamma"][w].max()), 1e-9))
+
+    def _envelope(self, w2: slice, nxt: PausePoint | None) -> _Envelope:
+        """The highest sigma at each block of ``w2`` from which every cap ahead can be met."""
+        st = self.stats
+        c = st.cols
+        k_a, k_j = self.budget.k_a, self.budget.k_j
         rv = c["rv"][w2]
         ra = c["ra"][w2]
         rj = c["rj"][w2]
@@ -365,7 +424,6 @@ class TimeScaledExecutor:
         x = np.minimum(cap, tgt)
         bt = self.ts * BLOCK
         start_tau = (np.arange(w2.start, w2.stop) * bt)
-        nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
         if nxt is not None:
             # the plan stands at a pause point, and sigma starts again from the target there:
             # nothing after it is braked for (a tap at 100 % runs so to its end, its exact stop)
@@ -373,8 +431,6 @@ class TimeScaledExecutor:
         if self.sigma_start:
             # starting from a standstill of the plan: what the blocks behind it ran at is past
             x = np.where(start_tau + bt <= self.tau, SIGMA_MAX, x)
-        dist = start_tau - self.tau
-        sig = max(self.sigma, 1e-3, 0.0 if holding else min(float(x.max()), SIGMA_MAX))
         # The highest sigma at each block from which every cap ahead can still be met: braking at
         # the rate D1 the step bounds will allow there (for sigma >= 1 the worst of (1): the
         # largest |q'|/A and |q''|/J over the 0.25 s window the steps look at), in planned time
@@ -390,22 +446,8 @@ class TimeScaledExecutor:
         suffix = np.minimum.accumulate((x * x + 2.0 * cum)[::-1])[::-1]
         env = np.sqrt(np.maximum(suffix - 2.0 * cum, 0.0))
         env = np.where(env >= x * (1.0 - 1e-12), x, env)     # its own cap, exactly (no rounding)
-        # braking starts only after sigma_dot has ramped up: at most D1 / (0.7 d2_ref) of real
-        # time, less for a small drop (a triangle: 2 sqrt(drop / (0.7 d2_ref))); the envelope is
-        # honoured over the planned time sigma covers meanwhile
-        dl = 0.7 * self.d2_ref
-        drop = max(sig - float(env.min()), 0.0)
-        lead = sig * min(float(d1_w[0]) / dl, 2.0 * np.sqrt(drop / dl)) * 1.3 + 2 * bt
-        ahead = dist <= lead
-        self._target_cache = float(env[ahead].min()) if ahead.any() else float(env[0])
-        binding = ahead
-        # what the operator asked for and the limits refuse here (reported, not an error)
-        fixed = bool(st.has_fixed[w2][binding].any())
-        self.override_off_here = fixed
-        asked = (1.0 if fixed else self.feed_override) if hf[binding].any() or not hr[binding].any() \
-            else self.rapid_override
-        self.capped_to = self._target_cache if not holding and self._target_cache < asked - 1e-3 \
-            and self._target_cache >= 1.0 else None
+        return _Envelope(start_tau, env, float(env.min()), float(d1_w[0]), min(float(x.max()), SIGMA_MAX),
+                         st.has_fixed[w2].copy(), hf.copy(), hr.copy())
 
     def _step_bounds(self, sigma: float) -> tuple[float, float]:
         rv, ra, rj, alpha, beta, gamma = self._bounds
