@@ -71,6 +71,8 @@ from .object_dictionary import (
 )
 
 S = Cia402State
+# the states in which the drive controls its position and reports a following error
+_FE_STATES = frozenset((S.OPERATION_ENABLED, S.QUICK_STOP_ACTIVE, S.FAULT_REACTION_ACTIVE))
 
 @dataclass(frozen=True, slots=True)
 class DriveParams:
@@ -185,9 +187,20 @@ class DriveModel:
     @property
     def following_error_actual(self) -> int:
         """0x60F4: position demand - position actual, counts."""
-        if self.state not in (S.OPERATION_ENABLED, S.QUICK_STOP_ACTIVE, S.FAULT_REACTION_ACTIVE):
+        if self.state not in _FE_STATES:
             return 0
         return self.position_demand - self.position_actual
+
+    def process_inputs(self) -> tuple[int, int, int]:
+        """(statusword, position actual, following error actual) as the TxPDO carries them,
+        the position computed once for both."""
+        res = self.params.encoder_resolution_counts
+        actual = int(math.floor(self._motor_counts / res + 0.5)) * res + self._offset_counts
+        if self.state in _FE_STATES:
+            fe = int(round(self._demand_counts)) + self._offset_counts - actual
+        else:
+            fe = 0
+        return self.statusword, actual, fe
 
     @property
     def velocity_actual(self) -> int:

@@ -200,9 +200,7 @@ class SimBus(Bus):
                 m.digital_inputs &= ~mask
 
     def _read_inputs(self, i: int, m: DriveModel) -> None:
-        self.statusword[i] = m.statusword
-        self.position_actual[i] = m.position_actual
-        self.following_error[i] = m.following_error_actual
+        self.statusword[i], self.position_actual[i], self.following_error[i] = m.process_inputs()
         if self._map_error_code:
             self.error_code[i] = m.error_code
         self.modes_display[i] = m.modes_of_operation_display
@@ -216,25 +214,27 @@ class SimBus(Bus):
         if lost_frame:
             self._drop_frames -= 1
         wkc = 0
-        cw = self.controlword
-        tp = self.target_position
-        mode = self.modes_of_operation
-        dout = self.digital_outputs
+        # the outputs as Python ints once a cycle (indexing the arrays drive by drive costs more)
+        cw = self.controlword.tolist()
+        tp = self.target_position.tolist()
+        mode = self.modes_of_operation.tolist()
+        dout = self.digital_outputs.tolist()
         if self._probe is not None or self._part is not None:
             self._touch()
+        lost, init, silent = self._lost, self._init, self._silent_s
         for i, m in enumerate(self.models):
-            if lost_frame or self._lost[i] or self._init[i]:
-                self._silent_s[i] += dt
-                if self._silent_s[i] >= self.watchdog_s:
+            if lost_frame or lost[i] or init[i]:
+                silent[i] += dt
+                if silent[i] >= self.watchdog_s:
                     m.watchdog_expired()
                 m.step(dt)
                 continue
-            self._silent_s[i] = 0.0
+            silent[i] = 0.0
             self._read_inputs(i, m)          # inputs latched before the drive takes the outputs
-            m.controlword = int(cw[i])
-            m.target_position = int(tp[i])
-            m.modes_of_operation = int(mode[i])
-            m.digital_outputs = int(dout[i])
+            m.controlword = cw[i]
+            m.target_position = tp[i]
+            m.modes_of_operation = mode[i]
+            m.digital_outputs = dout[i]
             m.step(dt)
             wkc += 3
         return -1 if lost_frame else wkc
