@@ -122,7 +122,7 @@ def decode_states(statusword: np.ndarray, out: np.ndarray, scratch: np.ndarray) 
     `scratch` is an integer array of the same shape used for the masked bits.
     """
     np.bitwise_and(statusword, 0x7F, out=scratch, casting="unsafe")
-    np.take(STATE_LUT, scratch, out=out)
+    STATE_LUT.take(scratch, out=out)
     return out
 
 

@@ -133,7 +133,7 @@ class CycleLoop:
         try:
             if bus.is_open:
                 for _ in range(5):          # leave drives disabled (best effort)
-                    np.take(cia402.DISABLE_LUT, self.states, out=bus.controlword)
+                    cia402.DISABLE_LUT.take(self.states, out=bus.controlword)
                     bus.target_position[:] = bus.position_actual
                     bus.exchange()
                     cia402.decode_states(bus.statusword, self.states, self.scratch_i)
@@ -385,9 +385,9 @@ class CycleLoop:
         else:
             self._target_from_actual()
             if st is WorkerState.ENABLING:
-                np.take(cia402.ENABLE_LUT, states, out=bus.controlword)
+                cia402.ENABLE_LUT.take(states, out=bus.controlword)
             elif st is WorkerState.DISABLED:
-                np.take(cia402.DISABLE_LUT, states, out=bus.controlword)
+                cia402.DISABLE_LUT.take(states, out=bus.controlword)
             elif st is WorkerState.FAULT_RESET:
                 self.fault_reset_cycle += 1
                 cw = cia402.fault_reset_controlword(self.fault_reset_cycle)
@@ -395,7 +395,7 @@ class CycleLoop:
                     faulted = states[i] == Cia402State.FAULT
                     bus.controlword[i] = cw if faulted else cia402.DISABLE_LUT[states[i]]
             else:  # QUICK_STOP, FAULT, ERROR
-                np.take(cia402.QUICK_STOP_LUT, states, out=bus.controlword)
+                cia402.QUICK_STOP_LUT.take(states, out=bus.controlword)
         np.copyto(self.ref_rows[cycle % REF_HISTORY], self.ref)
         # ---- exchange
         wkc = bus.exchange()
@@ -429,7 +429,7 @@ class CycleLoop:
         np.subtract(self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY], self.act,
                     out=self.fe)
         # drive faults (FAULT or FAULT REACTION ACTIVE)
-        np.take(_FAULTED_LUT, states, out=self.bool_tmp)
+        _FAULTED_LUT.take(states, out=self.bool_tmp)
         if self.bool_tmp.any():
             if (not self.startup_reset_tried and cycle * self.cfg.ts_s < STARTUP_RESET_WINDOW_S
                     and (self.state is WorkerState.DISABLED or self.state is WorkerState.ENABLING)):
@@ -451,7 +451,7 @@ class CycleLoop:
         if st is WorkerState.ENABLED or st is WorkerState.HOMING:
             self._supervise_enabled(bus, st)
         elif st is WorkerState.ENABLING:
-            np.take(_NOT_ENABLED_LUT, states, out=self.bool_tmp)
+            _NOT_ENABLED_LUT.take(states, out=self.bool_tmp)
             # a drive answers a controlword a cycle or more later: OPERATION ENABLED seen right
             # after a disable may be the state from before it. Enabled means seen so for
             # enable_confirm_cycles in a row while enable operation is being sent.
@@ -464,7 +464,7 @@ class CycleLoop:
                 i = int(np.argmax(self.bool_tmp))
                 self._reaction(AlarmCode.ENABLE_TIMEOUT, i, int(states[i]), state=WorkerState.DISABLED)
         elif st is WorkerState.FAULT_RESET:
-            np.take(_FAULTED_LUT, states, out=self.bool_tmp)
+            _FAULTED_LUT.take(states, out=self.bool_tmp)
             if not self.bool_tmp.any():
                 self.fault_seen[:] = False
                 self._hold_actual()
@@ -553,7 +553,7 @@ class CycleLoop:
             return
         if st is WorkerState.ENABLED:
             # a drive leaving OPERATION ENABLED on its own (e.g. its quick stop input)
-            np.take(_NOT_ENABLED_LUT, self.states, out=self.bool_tmp)
+            _NOT_ENABLED_LUT.take(self.states, out=self.bool_tmp)
             if self.bool_tmp.any():
                 i = int(np.argmax(self.bool_tmp))
                 self._reaction(AlarmCode.DRIVE_FAULT, i, int(bus.error_code[i]), int(self.states[i]) + 1)
