@@ -180,12 +180,10 @@ def test_what_the_executor_keeps_between_calls_changes_no_set_point(machine, chu
     """The bounds and braking envelope kept for a window of blocks, and the profile tables kept
     for the moves last asked about, give the set-points made afresh at each call, bit for bit,
     through overrides, a hold and pause points, a few set-points a call as the feeder asks."""
-    rng = np.random.default_rng(77)
-    text = random_program(rng, 8).replace("M30", "M0\nG1 X5 Y5 F900\nM30")
-    # through the rapid, the arcs and the feed: every kind of block meets a change
-    actions = {500: ("rapid", 0.3), 3000: ("feed", 1.7), 6500: ("rapid", 0.8), 9000: ("feed", 0.4),
-               12000: ("hold", 1.0), 12800: ("hold", 0.0), 16000: ("feed", 1.2), 20000: ("feed", 1.0),
-               20001: ("rapid", 1.0)}
+    text = PROGRAM.replace("M30", "M0\nG0 X40 Y-10\nM30")
+    # through the rapids, the arcs and the feeds: every kind of block meets a change
+    actions = {60: ("rapid", 0.3), 1500: ("feed", 1.7), 3200: ("feed", 0.4), 4800: ("hold", 1.0),
+               5300: ("hold", 0.0), 6500: ("feed", 1.2), 8000: ("rapid", 0.6)}
     kept = run(machine, text, dict(actions), window_moves=window_moves, chunk=chunk)
     fresh = run(machine, text, dict(actions), window_moves=window_moves, chunk=chunk, forget=True)
     for a, b in zip(kept[3:], fresh[3:], strict=True):
