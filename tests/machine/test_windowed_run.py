@@ -250,3 +250,16 @@ def test_a_window_already_moved_cannot_give_its_pause_points(machine) -> None:
     win.ensure(1.0)
     with pytest.raises(ValueError, match="not yet moved"):
         TimeScaledExecutor(win, machine, Budget(), pause_feed=PauseFeed(prog, False, True))
+
+
+def test_the_window_benchmark_asks_for_the_set_points_it_is_told(tmp_path) -> None:
+    from bench import bench_window
+
+    program = tmp_path / "square.ngc"
+    program.write_text("G1 X10 F600\nG1 Y10\nG1 X0\nG1 Y0\nM30\n", encoding="utf-8")
+    report = bench_window.run(program, 60.0, call_samples=3)
+    # 40 mm at 10 mm/s with three stops: a little over 4 s of motion, all of it, 3 set-points a call
+    assert report["call_samples"] == 3 and 4.0 < report["motion_s"] < 5.0
+    assert report["calls"] >= report["motion_s"] / (3 * 0.001)
+    with pytest.raises(SystemExit):
+        bench_window.main(["--program", str(program), "--call-samples", "0"])
