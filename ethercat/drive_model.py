@@ -194,12 +194,8 @@ class DriveModel:
     def process_inputs(self) -> tuple[int, int, int]:
         """(statusword, position actual, following error actual) as the TxPDO carries them,
         the position computed once for both."""
-        res = self.params.encoder_resolution_counts
-        actual = int(math.floor(self._motor_counts / res + 0.5)) * res + self._offset_counts
-        if self.state in _FE_STATES:
-            fe = int(round(self._demand_counts)) + self._offset_counts - actual
-        else:
-            fe = 0
+        actual = self.position_actual
+        fe = self.position_demand - actual if self.state in _FE_STATES else 0
         return self.statusword, actual, fe
 
     @property

@@ -74,9 +74,9 @@ class Segment:
     t_end: float  # end of the segment's time span (after the last move's dwell)
     s0: np.ndarray  # (n,) cumulative path length at each move's start
     s_end: float
-    # the boundary tables ``state`` made last, with the rows they are of: the machine asks for
-    # a few set-points at a time, mostly within the same one or two moves
-    # (one item, read and replaced whole: threads may share a segment)
+    # the boundary tables ``state`` made last, with the rows they are of (the machine asks for
+    # a few set-points at a time, mostly within the same one or two moves); one item, read and
+    # replaced whole, as threads may share a segment
     _tables_memo: list[tuple[int, int, tuple[np.ndarray, ...]]] = field(
         default_factory=lambda: [(-1, -1, ())], init=False, repr=False, compare=False)
 

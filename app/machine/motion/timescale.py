@@ -368,8 +368,9 @@ class TimeScaledExecutor:
             return
         bt = self.ts * BLOCK
         nxt = self.pauses[self._pause_i] if self._pause_i < len(self.pauses) else None
-        key_e = (w2.start, w2.stop, int(self.tau / bt) if self.sigma_start else -1, self.sigma_start,
-                 self.feed_override, self.rapid_override, nxt.tau_s if nxt is not None else None,
+        # (the block tau is in matters only when starting from a standstill of the plan)
+        key_e = (w2.start, w2.stop, int(self.tau / bt) if self.sigma_start else -1, self.feed_override,
+                 self.rapid_override, nxt.tau_s if nxt is not None else None,
                  self.budget.k_a, self.budget.k_j)
         if self._envelope_memo[0] != key_e:
             self._envelope_memo = (key_e, self._envelope(w2, nxt))
