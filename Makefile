@@ -64,8 +64,11 @@ lint: $(VENV)/.installed-test
 	$(VENV)/bin/lint-imports
 	$(VENV)/bin/mypy
 
+# the suite a test file per worker, one worker per core (4 at most); then the EtherCAT link
+# tests (marker "root": network namespaces, a slave process, 100 ms watchdogs) alone
 test: sysdeps $(VENV)/.installed-test lint
-	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest
+	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -n auto --maxprocesses 4 --dist loadfile -m "not root"
+	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -m root
 
 bench: $(VENV)/.installed-test
 	$(VPY) -m bench
