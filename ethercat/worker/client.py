@@ -30,6 +30,7 @@ import atexit
 import collections
 import contextlib
 import multiprocessing as mp
+import os
 import threading
 import time
 from collections.abc import Sequence
@@ -119,7 +120,8 @@ class CyclicWorker:
             if cfg.mode == "process":
                 assert self._shm is not None
                 ctx = mp.get_context("spawn")
-                self._process = ctx.Process(target=process_main, args=(cfg, self._shm.name, self._layout),
+                self._process = ctx.Process(target=process_main,
+                                            args=(cfg, self._shm.name, self._layout, os.getpid()),
                                             name="ethercat-worker", daemon=True)
                 start_without_main(self._process)
                 self._wait_status(cfg.start_timeout_s)

@@ -21,13 +21,21 @@ from .types import WorkerConfig
 __all__ = ["process_main", "start_without_main"]
 
 
-def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int]) -> None:
-    """Run the loop in this (spawned) process until told to stop or orphaned."""
+def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int], parent_pid: int) -> None:
+    """Run the loop in this (spawned) process until told to stop or orphaned.
+
+    ``parent_pid`` is the process that started it, told by that process: one that died while
+    this one was starting (a panel killed during its start-up) leaves it orphaned already, and
+    the parent it would find for itself is then init or a subreaper, never seen to go."""
     shm = shared_memory.SharedMemory(name=shm_name)
     block = SharedBlock(shm.buf, *layout)
     loop = CycleLoop(cfg, block)
     lock_fd: int | None = None
     try:
+        if os.getppid() != parent_pid:      # orphaned before the bus was opened: nothing to do
+            block.write_msg(f"the process that started the worker ({parent_pid}) is gone")
+            block.ctl.status[...] = Status.FAILED
+            return
         try:
             applied, lock_fd = set_realtime(cfg)
             loop.open_bus()
@@ -46,7 +54,7 @@ def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int])
         # helper threads (parent watch, acyclic calls) must not keep the GIL from the cycle
         # for the default 5 ms switch interval
         sys.setswitchinterval(0.0002)
-        watcher = threading.Thread(target=_parent_watch, args=(loop, os.getppid()), daemon=True)
+        watcher = threading.Thread(target=_parent_watch, args=(loop, parent_pid), daemon=True)
         watcher.start()
         loop.run_realtime(default_spin_s=PROCESS_SPIN_S)
     finally:
@@ -61,11 +69,12 @@ def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int])
 
 
 def _parent_watch(loop: CycleLoop, parent_pid: int) -> None:
-    """Stop the loop when the parent process is gone (checked every 0.2 s)."""
+    """Stop the loop when the parent process is gone (checked at once, then every 0.2 s)."""
     while not loop.stop_requested:
-        time.sleep(0.2)
         if os.getppid() != parent_pid:
             loop.stop_requested = True
+            break
+        time.sleep(0.2)
 
 
 def start_without_main(process: Any) -> None:

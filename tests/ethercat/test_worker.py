@@ -872,3 +872,42 @@ def test_replace_is_bounded_by_the_ring() -> None:
         assert w.push(_ramp(q0, 80)) == 80
         assert w.replace(c + 30, _ramp(q0, 200)) == (ReplaceResult.DONE, 70)   # 30 kept + 70 fill 100 slots
         assert w.buffer_level() == 100 and w.free_space() == 0
+
+
+def test_a_worker_orphaned_while_it_starts_ends_at_once_without_opening_its_bus() -> None:
+    """A panel killed while its worker process starts: the worker, orphaned before its loop
+    runs, ends at once and says why, instead of running on with no one to stop it (the process
+    that started it is told to it, not looked up when it is already gone)."""
+    import multiprocessing as mp
+    from multiprocessing import shared_memory
+
+    from ethercat.worker.process import process_main, start_without_main
+    from ethercat.worker.shared import SharedBlock, Status
+
+    ctx = mp.get_context("spawn")
+    gone = ctx.Process(target=time.sleep, args=(0.0,))
+    gone.start()
+    gone.join(10)
+    assert gone.exitcode == 0 and gone.pid is not None
+    cfg = config(mode="process")
+    layout = (cfg.n_axes, cfg.buffer_capacity, cfg.trace_capacity)
+    shm = shared_memory.SharedMemory(create=True, size=SharedBlock.size(*layout))
+    try:
+        block = SharedBlock(shm.buf, *layout)
+        block.clear_control()
+        # started by this process, but told another one, which has ended, started it
+        proc = ctx.Process(target=process_main, args=(cfg, shm.name, layout, gone.pid), daemon=True)
+        start_without_main(proc)
+        proc.join(30)
+        alive = proc.is_alive()
+        if alive:
+            proc.kill()
+            proc.join(10)
+        assert not alive, "the orphaned worker ran on"
+        assert int(block.ctl.status) == Status.FAILED
+        assert f"the process that started the worker ({gone.pid}) is gone" in block.read_msg()
+        assert int(block.ctl.pid) == 0                  # never reached its loop
+        del block
+    finally:
+        shm.close()
+        shm.unlink()
