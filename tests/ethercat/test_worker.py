@@ -6,6 +6,7 @@ one runs the real-time thread (no drift), one the separate process.
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time
 import tracemalloc
@@ -911,3 +912,47 @@ def test_a_worker_orphaned_while_it_starts_ends_at_once_without_opening_its_bus(
     finally:
         shm.close()
         shm.unlink()
+
+
+def _start_a_worker_and_wait(found: Any) -> None:
+    """In a process of its own: start a worker process, tell its pid and block, then wait to be killed."""
+    w = CyclicWorker(config(mode="process"))
+    w.start()
+    assert w._process is not None and w._shm is not None
+    found.put((w._process.pid, w._shm.name))
+    time.sleep(120)
+
+
+def test_a_worker_ends_when_the_process_that_started_it_is_killed() -> None:
+    """kill -9 of the panel: its worker process sees it gone and ends (its bus closed) within a
+    second, instead of cycling on with no one to stop it."""
+    import multiprocessing as mp
+    import os
+    import signal
+    from pathlib import Path
+
+    from ethercat.worker.process import start_without_main
+
+    ctx = mp.get_context("spawn")
+    found = ctx.Queue()
+    parent = ctx.Process(target=_start_a_worker_and_wait, args=(found,))   # not a daemon: it has a child
+    start_without_main(parent)
+    worker_pid, shm_name = found.get(timeout=60)
+    try:
+        os.kill(parent.pid, signal.SIGKILL)        # type: ignore[arg-type]
+        parent.join(10)
+        deadline = time.monotonic() + 10.0
+        while time.monotonic() < deadline:
+            status = Path(f"/proc/{worker_pid}/status")
+            if not status.exists() or "State:\tZ" in status.read_text():
+                break
+            time.sleep(0.05)
+        ended_after_s = 10.0 - (deadline - time.monotonic())
+        running = Path(f"/proc/{worker_pid}/status").exists() and \
+            "State:\tZ" not in Path(f"/proc/{worker_pid}/status").read_text()
+        assert not running, "the worker ran on after the process that started it was killed"
+        assert ended_after_s < 5.0
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(worker_pid, signal.SIGKILL)
+        Path("/dev/shm", shm_name).unlink(missing_ok=True)
