@@ -20,44 +20,24 @@ def shm_before() -> set[Path]:
     return set(SHM.iterdir())
 
 
-def _process_tree(pid: int) -> set[int]:
-    """``pid`` and every process descended from it (read from /proc)."""
-    parent: dict[int, int] = {}
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            text = stat.read_text()
-        except OSError:                 # the process ended meanwhile
-            continue
-        # pid (comm) state ppid ...: comm may hold spaces and parentheses, so after the last ")"
-        parent[int(stat.parent.name)] = int(text[text.rindex(")") + 2:].split()[1])
-    tree = {pid}
-    grew = True
-    while grew:
-        new = {child for child, ppid in parent.items() if ppid in tree} - tree
-        tree |= new
-        grew = bool(new)
-    return tree
-
-
 def _mapped_by(pid: int) -> set[Path]:
-    """The worker blocks (``psm_*``) that ``pid`` or a process descended from it has mapped."""
+    """The worker blocks (``psm_*``) process ``pid`` has mapped (the one that makes a block maps it)."""
+    try:
+        maps = Path(f"/proc/{pid}/maps").read_text()
+    except OSError:                     # the process ended meanwhile
+        return set()
     found: set[Path] = set()
-    for p in _process_tree(pid):
-        try:
-            maps = Path(f"/proc/{p}/maps").read_text()
-        except OSError:
-            continue
-        for line in maps.splitlines():
-            fields = line.split(maxsplit=5)         # address perms offset dev inode [path]
-            path = fields[5] if len(fields) == 6 else ""
-            if path.startswith(f"{SHM}/psm_"):
-                found.add(Path(path.removesuffix(" (deleted)")))
+    for line in maps.splitlines():
+        fields = line.split(maxsplit=5)         # address perms offset dev inode [path]
+        path = fields[5] if len(fields) == 6 else ""
+        if path.startswith(f"{SHM}/psm_"):
+            found.add(Path(path.removesuffix(" (deleted)")))
     return found
 
 
 def wait_for_new_blocks(before: set[Path], proc: subprocess.Popen, timeout_s: float = 60.0) -> set[Path]:
-    """The worker blocks (``psm_*``) that appeared since ``before`` and that ``proc`` or its
-    children have mapped (other tests running at the same time make blocks of their own),
+    """The worker blocks (``psm_*``) that appeared since ``before`` and that ``proc`` has mapped
+    (other tests running at the same time make blocks of their own),
     waited for while ``proc`` runs; empty when none came within the time."""
     deadline = time.monotonic() + timeout_s
     mine: set[Path] = set()
