@@ -45,7 +45,7 @@ def main(argv: list[str] | None = None) -> int:
     from app.machine.config import MachineConfig, load_config
     from app.machine.errors import ConfigError
     from app.paths import DEFAULT_STATE_DIR
-    from opcua_server.security import UserFile, ensure_certificate, folder, thumbprint
+    from opcua_server.security import UserFile, ensure_certificate, folder, installation_id, thumbprint
 
     state = args.state_dir or DEFAULT_STATE_DIR
     try:
@@ -65,12 +65,14 @@ def main(argv: list[str] | None = None) -> int:
         if args.add_user:
             users.add(args.add_user, _password(f"password for {args.add_user}: "))
             print(f"user {args.add_user} added to {users.path}")
-        _, cert = asyncio.run(ensure_certificate(base))
+        application_uri = s.application_uri_for(installation_id(base))
+        _, cert = asyncio.run(ensure_certificate(base, application_uri))
     except OpcUaError as exc:
         print(f"cnc-opcua: {exc}", file=sys.stderr)
         return 2
     print(f"OPC UA server: {'enabled' if s.enabled else 'disabled ([opcua] enabled = false)'}")
     print(f"endpoint:      {s.describe()}")
+    print(f"application:   {application_uri}")
     print(f"certificate:   {cert} (SHA-1 {thumbprint(cert)})")
     print(f"users:         {', '.join(users.names) or 'none (cnc-opcua --add-user NAME)'}")
     for kind in ("trusted", "rejected"):

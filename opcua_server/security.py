@@ -14,6 +14,7 @@ import hmac
 import os
 import secrets
 import socket
+import uuid
 from pathlib import Path
 from typing import Any
 
@@ -21,9 +22,8 @@ from asyncua.server.user_managers import UserManager
 
 from opcua_server.errors import OpcUaError
 
-__all__ = ["APPLICATION_URI", "UserFile", "ensure_certificate", "folder", "thumbprint"]
+__all__ = ["UserFile", "ensure_certificate", "folder", "installation_id", "thumbprint"]
 
-APPLICATION_URI = "urn:cnc-panel:opcua-server"
 _ITERATIONS = 200_000
 
 
@@ -34,8 +34,29 @@ def folder(state_dir: str | os.PathLike[str]) -> Path:
     return path
 
 
-async def ensure_certificate(base: Path) -> tuple[Path, Path]:
-    """The key and certificate, made when either is missing or the certificate does not name this host."""
+def installation_id(base: Path) -> str:
+    """This installation's own id (a UUID made on first start, kept in ``<state>/opcua/installation``):
+    two panels, on one host or on copies of one disk image, serve different ApplicationUris and
+    ProductInstanceUris unless the configuration names them."""
+    path = base / "installation"
+    try:
+        text = path.read_text(encoding="ascii").strip()
+        return str(uuid.UUID(text))
+    except (OSError, ValueError, UnicodeDecodeError):
+        pass
+    made = str(uuid.uuid4())
+    tmp = path.with_suffix(".tmp")
+    try:
+        tmp.write_text(made + "\n", encoding="ascii")
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise OpcUaError(f"cannot keep this installation's id in {path}: {exc.strerror or exc}") from None
+    return made
+
+
+async def ensure_certificate(base: Path, application_uri: str) -> tuple[Path, Path]:
+    """The key and certificate, made when either is missing or the certificate does not name
+    this host and ``application_uri``."""
     from asyncua.crypto.cert_gen import setup_self_signed_certificate
     from cryptography.x509.oid import ExtendedKeyUsageOID
 
@@ -43,7 +64,7 @@ async def ensure_certificate(base: Path) -> tuple[Path, Path]:
     old_umask = os.umask(0o077)
     try:
         await setup_self_signed_certificate(
-            key, cert, APPLICATION_URI, socket.gethostname(),
+            key, cert, application_uri, socket.gethostname(),
             [ExtendedKeyUsageOID.CLIENT_AUTH, ExtendedKeyUsageOID.SERVER_AUTH],
             {"countryName": "TR", "organizationName": "cnc-panel", "commonName": "cnc-panel OPC UA server"})
     except (OSError, ValueError) as exc:

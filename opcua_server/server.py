@@ -17,9 +17,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from asyncua import Server
+from asyncua import Server, ua
+from asyncua.crypto.security_policies import SecurityPolicyBasic256Sha256, SecurityPolicyNone
 
 from app.machine.model import ControllerSnapshot
+from opcua_server.channel import GuardedServer, SessionGuard, TrustedClients
 from opcua_server.errors import OpcUaError
 from opcua_server.ids import nid
 from opcua_server.mapping import MessageTracker, ProgramTracker, view_of
@@ -30,6 +32,15 @@ from planner.core.gcpause import gc_paused
 __all__ = ["OpcUaServer", "ServerStatus"]
 
 _log = logging.getLogger(__name__)
+
+_POLICY_TYPES = {SecurityMode.SIGN_AND_ENCRYPT: ua.SecurityPolicyType.Basic256Sha256_SignAndEncrypt,
+                 SecurityMode.SIGN: ua.SecurityPolicyType.Basic256Sha256_Sign,
+                 SecurityMode.NONE: ua.SecurityPolicyType.NoSecurity}
+#: the secure channel each mode's endpoint takes: its policy URI and message security mode
+_SECURE = SecurityPolicyBasic256Sha256.URI
+_CHANNELS = {SecurityMode.SIGN_AND_ENCRYPT: (_SECURE, ua.MessageSecurityMode.SignAndEncrypt),
+             SecurityMode.SIGN: (_SECURE, ua.MessageSecurityMode.Sign),
+             SecurityMode.NONE: (SecurityPolicyNone.URI, ua.MessageSecurityMode.None_)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -70,10 +81,10 @@ class _ReadOnlyRules:
 
 
 class OpcUaServer:
-    def __init__(self, settings: OpcUaSettings, identity: Identity, axes: tuple[tuple[str, bool], ...],
+    def __init__(self, settings: OpcUaSettings, software_revision: str, axes: tuple[tuple[str, bool], ...],
                  machine_name: str, state_dir: str | Path,
                  on_status: Callable[[ServerStatus], None] | None = None) -> None:
-        self.settings, self.identity, self.axes = settings, identity, axes
+        self.settings, self.software_revision, self.axes = settings, software_revision, axes
         self.machine_name = machine_name or "Machine"
         self.state_dir = Path(state_dir)
         self._on_status = on_status
@@ -86,6 +97,9 @@ class OpcUaServer:
         self._started_at = time.monotonic()
         self.updates = 0               # snapshots written into the address space
         self.model: MachineToolModel | None = None    # the address space, once built (its thread)
+        self.identity: Identity | None = None         # what it serves as Identification, once built
+        self.application_uri = ""                     # its ApplicationUri, once built
+        self.guard: SessionGuard | None = None        # who may open a session, once built
 
     # ------------------------------------------------------------------ the controller's side
     def publish(self, snapshot: ControllerSnapshot) -> None:
@@ -151,24 +165,30 @@ class OpcUaServer:
     async def _build(self) -> tuple[Server, MachineToolModel, str]:
         """The server with its endpoint, security and address space (not yet listening), and
         its certificate's thumbprint ("" without one)."""
-        from asyncua import ua
-
         from opcua_server.model import build_model
-        from opcua_server.security import ReadOnlyUsers, UserFile, ensure_certificate, folder, thumbprint
+        from opcua_server.security import (
+            ReadOnlyUsers,
+            UserFile,
+            ensure_certificate,
+            folder,
+            installation_id,
+            thumbprint,
+        )
 
         s = self.settings
         base = folder(self.state_dir)
+        installation = installation_id(base)
+        self.identity = s.identity(self.machine_name, self.software_revision, installation)
+        self.application_uri = s.application_uri_for(installation)
         users = UserFile(base / "users")
-        server = Server(user_manager=ReadOnlyUsers(users, s.anonymous))
+        server = GuardedServer(user_manager=ReadOnlyUsers(users, s.anonymous))
         await server.init()
         server.iserver.max_session_timeout_ms = s.session_timeout_s * 1000.0
         server.iserver.max_connections = s.max_clients
         server.set_endpoint(s.bind_endpoint)
         server.set_server_name(f"cnc-panel OPC UA server ({self.machine_name})")
-        policies = {SecurityMode.SIGN_AND_ENCRYPT: ua.SecurityPolicyType.Basic256Sha256_SignAndEncrypt,
-                    SecurityMode.SIGN: ua.SecurityPolicyType.Basic256Sha256_Sign,
-                    SecurityMode.NONE: ua.SecurityPolicyType.NoSecurity}
-        server.set_security_policy([policies[m] for m in s.security],
+        await server.set_application_uri(self.application_uri)
+        server.set_security_policy([_POLICY_TYPES[m] for m in s.security],
                                    permission_ruleset=_ReadOnlyRules())  # type: ignore[arg-type]
         tokens: list[type] = [ua.UserNameIdentityToken]
         if s.anonymous:
@@ -177,14 +197,12 @@ class OpcUaServer:
         print_ = ""
         secure = any(m is not SecurityMode.NONE for m in s.security)
         if secure:
-            from opcua_server.security import APPLICATION_URI
-
-            key, cert = await ensure_certificate(base)
-            await server.set_application_uri(APPLICATION_URI)
+            key, cert = await ensure_certificate(base, self.application_uri)
             await server.load_certificate(str(cert))
             await server.load_private_key(str(key))
-            server.set_certificate_validator(_TrustedClients(base / "trusted", base / "rejected"))
             print_ = thumbprint(cert)
+        trusted = TrustedClients(base / "trusted", base / "rejected") if secure else None
+        server.guard = self.guard = SessionGuard({_CHANNELS[m] for m in s.security}, trusted)
         model = self.model = await build_model(server, self.identity, self.axes, self.machine_name)
         return server, model, print_
 
@@ -237,46 +255,3 @@ class OpcUaServer:
 
 async def _drain(tasks: set[asyncio.Task[object]]) -> None:
     await asyncio.gather(*tasks, return_exceptions=True)
-
-
-class _TrustedClients:
-    """The client certificate check: valid in time, for its application URI and use, and
-    trusted (a file in ``trusted/``, read again when that folder changes). A refused client's
-    certificate is kept in ``rejected/`` so the integrator can trust it by moving the file."""
-
-    def __init__(self, trusted: Path, rejected: Path) -> None:
-        self.trusted, self.rejected = trusted, rejected
-        self._validator: object | None = None
-        self._stamp: float = -1.0
-
-    async def _current(self) -> object:
-        from asyncua.crypto.truststore import TrustStore
-        from asyncua.crypto.validator import CertificateValidator, CertificateValidatorOptions
-
-        stamp = self.trusted.stat().st_mtime
-        if self._validator is None or stamp != self._stamp:
-            store = TrustStore([self.trusted], [])
-            await store.load()
-            options = CertificateValidatorOptions.TRUSTED_VALIDATION | CertificateValidatorOptions.PEER_CLIENT
-            self._validator, self._stamp = CertificateValidator(options, store), stamp
-        return self._validator
-
-    async def __call__(self, cert: object, app_description: object) -> None:
-        validator = await self._current()
-        try:
-            await validator(cert, app_description)  # type: ignore[operator]
-        except Exception:
-            self._keep(cert)
-            raise
-
-    def _keep(self, cert: object) -> None:
-        import hashlib
-
-        from cryptography.hazmat.primitives.serialization import Encoding
-
-        try:
-            der = cert.public_bytes(Encoding.DER)  # type: ignore[attr-defined]
-            if len(list(self.rejected.glob("*.der"))) < 100:
-                (self.rejected / f"{hashlib.sha1(der).hexdigest().upper()}.der").write_bytes(der)
-        except (OSError, AttributeError):
-            pass

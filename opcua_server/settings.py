@@ -14,7 +14,14 @@ from typing import Any
 
 from planner.core.rules import host_problem
 
-__all__ = ["Identity", "OpcUaOverride", "OpcUaSettings", "SecurityMode", "host_problem"]
+__all__ = ["IDENTIFICATION_KEYS", "Identity", "OpcUaOverride", "OpcUaSettings", "SecurityMode",
+           "host_problem"]
+
+#: the optional Identification fields the ``[opcua]`` section may fill (a shop's MES and the
+#: umati dashboard show them)
+IDENTIFICATION_KEYS = ("product_code", "year_of_construction", "month_of_construction", "location",
+                       "manufacturer_uri", "hardware_revision", "device_class", "asset_id")
+
 
 class SecurityMode(enum.StrEnum):
     """An endpoint's security: the policy and message mode, as OPC UA names them."""
@@ -34,6 +41,14 @@ class Identity:
     serial_number: str
     product_instance_uri: str
     software_revision: str
+    product_code: str = ""
+    year_of_construction: int = 0     # 0: not given (the node is left out)
+    month_of_construction: int = 0    # 0: not given
+    location: str = ""
+    manufacturer_uri: str = ""
+    hardware_revision: str = ""
+    device_class: str = ""
+    asset_id: str = ""
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,6 +63,16 @@ class OpcUaSettings:
     model: str = ""
     serial_number: str = ""
     product_instance_uri: str = ""
+    product_code: str = ""
+    year_of_construction: int = 0
+    month_of_construction: int = 0
+    location: str = ""
+    manufacturer_uri: str = ""
+    hardware_revision: str = ""
+    device_class: str = ""
+    asset_id: str = ""
+    # the server's ApplicationUri ("": one made for this installation, see ``application_uri_for``)
+    application_uri: str = ""
     # a session whose client vanished (no CloseSession) is closed after this long, with its
     # subscriptions; at most ``max_clients`` connections at once
     session_timeout_s: float = 60.0
@@ -61,7 +86,9 @@ class OpcUaSettings:
             security=tuple(SecurityMode(s) for s in dict.fromkeys(section["security"])),
             anonymous=section["anonymous"], rate_hz=section["rate_hz"],
             manufacturer=section["manufacturer"], model=section["model"],
-            serial_number=section["serial_number"], product_instance_uri=section["product_instance_uri"])
+            serial_number=section["serial_number"], product_instance_uri=section["product_instance_uri"],
+            **{key: section[key] for key in IDENTIFICATION_KEYS},
+            application_uri=section["application_uri"])
 
     def insecure_local(self, port: int) -> OpcUaSettings:
         """``--opcua-insecure``: security None and anonymous reading, on 127.0.0.1 only."""
@@ -82,12 +109,21 @@ class OpcUaSettings:
     def bind_endpoint(self) -> str:
         return f"opc.tcp://{self.host}:{self.port}/"
 
-    def identity(self, machine_name: str, software_revision: str) -> Identity:
+    def identity(self, machine_name: str, software_revision: str, installation: str) -> Identity:
+        """The Identification; ``installation`` is this installation's own id (its state
+        folder's), which makes the default ProductInstanceUri differ between installations
+        even on one host and with one machine name."""
         host = socket.gethostname()
         serial = self.serial_number or f"{host}-{machine_name}"
-        uri = self.product_instance_uri or f"urn:cnc-panel:{host}:{machine_name}"
+        uri = self.product_instance_uri or f"urn:cnc-panel:{host}:{installation}"
         return Identity(manufacturer=self.manufacturer or "cnc-panel", model=self.model or machine_name,
-                        serial_number=serial, product_instance_uri=uri, software_revision=software_revision)
+                        serial_number=serial, product_instance_uri=uri, software_revision=software_revision,
+                        **{key: getattr(self, key) for key in IDENTIFICATION_KEYS})
+
+    def application_uri_for(self, installation: str) -> str:
+        """The server's ApplicationUri: the configured one, or one of this host and this
+        installation (OPC UA asks every server application instance for its own)."""
+        return self.application_uri or f"urn:{socket.gethostname()}:cnc-panel:{installation}"
 
     def describe(self) -> str:
         """One line for the operator and the log: where and how it serves."""

@@ -34,7 +34,7 @@ import tomlkit.items
 
 from app.machine.errors import ConfigError
 from ethercat.drive_setup import drive_table_problem
-from opcua_server.settings import OpcUaSettings
+from opcua_server.settings import IDENTIFICATION_KEYS, OpcUaSettings
 from planner.core.errors import PlannerError
 from planner.core.files import write_output, write_text
 from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
@@ -459,7 +459,8 @@ def config_to_toml(config: MachineConfig) -> str:
     out += ["", "[opcua]", f"enabled = {_fmt(u.enabled)}", f"host = {_fmt(u.host)}", f"port = {u.port}",
             f"security = {_fmt([m.value for m in u.security])}", f"anonymous = {_fmt(u.anonymous)}",
             f"rate_hz = {_fmt(float(u.rate_hz))}"]
-    for key in ("manufacturer", "model", "serial_number", "product_instance_uri"):
+    for key in ("manufacturer", "model", "serial_number", "product_instance_uri", *IDENTIFICATION_KEYS,
+                "application_uri"):
         if getattr(u, key):
             out.append(f"{key} = {_fmt(getattr(u, key))}")
     out += ["", END_MARK, ""]

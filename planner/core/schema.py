@@ -218,7 +218,9 @@ MACHINE_FILE = Table("", tables=(
     )),
     # the OPC UA server (OPC 40501 Machine Tools): read-only monitoring for a shop's clients.
     # Security "None" is only what the file asks for by name; identification fills the
-    # MachineTool's Identification ("" takes the machine name and the host)
+    # MachineTool's Identification ("" takes the machine name and the host; a year or month of
+    # construction of 0 is not given); application_uri "" is made from the host and the
+    # installation (its state folder)
     Table("opcua", (
         Key("enabled", "bool", False),
         Key("host", "str", "0.0.0.0"),
@@ -231,6 +233,15 @@ MACHINE_FILE = Table("", tables=(
         Key("model", "str", ""),
         Key("serial_number", "str", ""),
         Key("product_instance_uri", "str", ""),
+        Key("product_code", "str", ""),
+        Key("year_of_construction", "int", 0, 0, 9999),
+        Key("month_of_construction", "int", 0, 0, 12),
+        Key("location", "str", ""),
+        Key("manufacturer_uri", "str", ""),
+        Key("hardware_revision", "str", ""),
+        Key("device_class", "str", ""),
+        Key("asset_id", "str", ""),
+        Key("application_uri", "str", ""),
     )),
 ))
 

@@ -68,7 +68,7 @@ class RemoteMonitoring:
         cfg = self._settings.config
         axes = tuple((a.name, a.rotary) for a in cfg.machine.axes)
         name = cfg.machine.name or "Machine"
-        self._server = OpcUaServer(s, s.identity(name, software_revision()), axes, name, self._state_dir,
+        self._server = OpcUaServer(s, software_revision(), axes, name, self._state_dir,
                                    on_status=self._told)
         if snapshot is not None:
             self._server.publish(snapshot)
