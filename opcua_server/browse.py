@@ -14,6 +14,8 @@ from opcua_server.ids import nid
 __all__ = ["Conformance", "check_mandatory", "find_machine", "tree"]
 
 _MANDATORY = nid(ua.ObjectIds.ModellingRule_Mandatory)
+_PLACEHOLDERS = {nid(ua.ObjectIds.ModellingRule_OptionalPlaceholder),
+                 nid(ua.ObjectIds.ModellingRule_MandatoryPlaceholder)}
 _HAS_INTERFACE = 17603
 _NUMERIC = {ua.VariantType.SByte, ua.VariantType.Byte, ua.VariantType.Int16, ua.VariantType.UInt16,
             ua.VariantType.Int32, ua.VariantType.UInt32, ua.VariantType.Int64, ua.VariantType.UInt64,
@@ -63,11 +65,48 @@ class Conformance:
     problems: list[str] = field(default_factory=list)
 
 
+@dataclass(frozen=True)
+class _Decl:
+    """An instance declaration: a child of a type, or of another declaration."""
+
+    node: Node
+    name: ua.QualifiedName
+    cls: ua.NodeClass
+    rule: ua.NodeId | None
+    datatype: ua.NodeId | None
+    typedef: ua.NodeId | None
+
+    @property
+    def key(self) -> tuple[int, str]:
+        return (self.name.NamespaceIndex, self.name.Name)
+
+    @property
+    def placeholder(self) -> bool:
+        return self.rule in _PLACEHOLDERS
+
+
+@dataclass
+class _Decls:
+    """The declarations that apply to one instance's children: by browse name, and the
+    placeholders (``<OrderedObject>``), which stand for any number of children of their type."""
+
+    named: dict[tuple[int, str], _Decl] = field(default_factory=dict)
+    placeholders: list[_Decl] = field(default_factory=list)
+
+    def over(self, base: _Decls) -> _Decls:
+        """These declarations before ``base``'s: a nested declaration of a parent type is more
+        derived than the child type's own."""
+        named = dict(base.named)
+        named.update(self.named)
+        return _Decls(named, self.placeholders + base.placeholders)
+
+
 class _Types:
     def __init__(self, client: Client) -> None:
         self.client = client
         self._supers: dict[ua.NodeId, list[ua.NodeId]] = {}
-        self._decls: dict[ua.NodeId, list[tuple[ua.QualifiedName, ua.NodeClass, ua.NodeId | None]]] = {}
+        self._decls: dict[ua.NodeId, _Decls] = {}
+        self._children: dict[ua.NodeId, _Decls] = {}
 
     async def ancestors(self, type_id: ua.NodeId) -> list[ua.NodeId]:
         """The type, its supertypes, and the interfaces any of them has."""
@@ -86,41 +125,73 @@ class _Types:
         self._supers[type_id] = out
         return out
 
-    async def mandatory(self, type_id: ua.NodeId) -> list[tuple[ua.QualifiedName, ua.NodeClass,
-                                                                ua.NodeId | None]]:
+    async def _declared(self, parent: Node) -> list[_Decl]:
+        out = []
+        for child in await parent.get_children(refs=ua.ObjectIds.HierarchicalReferences):
+            rules = await child.get_referenced_nodes(refs=ua.ObjectIds.HasModellingRule)
+            if not rules:
+                continue            # not an instance declaration
+            cls = await child.read_node_class()
+            dt = await child.read_data_type() if cls == ua.NodeClass.Variable else None
+            typedef = await child.read_type_definition() if cls in (ua.NodeClass.Object,
+                                                                     ua.NodeClass.Variable) else None
+            out.append(_Decl(child, await child.read_browse_name(), cls, rules[0].nodeid, dt, typedef))
+        return out
+
+    async def of_type(self, type_id: ua.NodeId) -> _Decls:
+        """The declarations of a type, its supertypes and interfaces; the most derived
+        declaration of a name counts."""
         if type_id in self._decls:
             return self._decls[type_id]
-        out = []
-        declared: set[tuple[int, str]] = set()   # the most derived declaration of a name counts
+        decls = _Decls()
         for t in await self.ancestors(type_id):
-            for child in await self.client.get_node(t).get_children(refs=ua.ObjectIds.HierarchicalReferences):
-                qn = await child.read_browse_name()
-                if (qn.NamespaceIndex, qn.Name) in declared:
-                    continue
-                declared.add((qn.NamespaceIndex, qn.Name))
-                rules = await child.get_referenced_nodes(refs=ua.ObjectIds.HasModellingRule)
-                if not rules or rules[0].nodeid != _MANDATORY:
-                    continue
-                cls = await child.read_node_class()
-                dt = await child.read_data_type() if cls == ua.NodeClass.Variable else None
-                out.append((qn, cls, dt))
-        self._decls[type_id] = out
-        return out
+            for d in await self._declared(self.client.get_node(t)):
+                if d.placeholder:
+                    decls.placeholders.append(d)
+                elif d.key not in decls.named:
+                    decls.named[d.key] = d
+        self._decls[type_id] = decls
+        return decls
+
+    async def nested(self, decl: _Decl) -> _Decls:
+        """What a declaration declares for its own children (a parent type's nested
+        declarations, a placeholder's children included)."""
+        if decl.node.nodeid in self._children:
+            return self._children[decl.node.nodeid]
+        decls = _Decls()
+        for d in await self._declared(decl.node):
+            if d.placeholder:
+                decls.placeholders.append(d)
+            else:
+                decls.named[d.key] = d
+        self._children[decl.node.nodeid] = decls
+        return decls
 
     async def is_subtype(self, dt: ua.NodeId, of: ua.NodeId) -> bool:
         return of in await self.ancestors(dt)
 
 
 async def check_mandatory(client: Client, root: Node) -> Conformance:
-    """Walk the instance from ``root``: each node's type's Mandatory declarations exist, each
-    variable's value is there and of the declared data type; no method anywhere."""
+    """Walk the instance from ``root``: each node's Mandatory declarations exist (its type's,
+    its supertypes' and interfaces', and those nested in the declaration it instantiates, a
+    placeholder's included); each variable's value is there and of the declared data type;
+    no method anywhere."""
     result = Conformance()
     types = _Types(client)
     seen: set[ua.NodeId] = set()
     valued: set[ua.NodeId] = set()          # variables whose value was checked already
     own_ns = root.nodeid.NamespaceIndex
 
-    async def visit(node: Node, path: str) -> None:
+    async def declaration_of(child: Node, key: tuple[int, str], decls: _Decls) -> _Decl | None:
+        if key in decls.named:
+            return decls.named[key]
+        typedef = await child.read_type_definition()
+        for d in decls.placeholders:
+            if typedef is None or d.typedef is None or await types.is_subtype(typedef, d.typedef):
+                return d
+        return None
+
+    async def visit(node: Node, path: str, nested: _Decls) -> None:
         if node.nodeid in seen:
             return
         seen.add(node.nodeid)
@@ -136,23 +207,28 @@ async def check_mandatory(client: Client, root: Node) -> Conformance:
             names[(qn.NamespaceIndex, qn.Name)] = child
         typedef = await node.read_type_definition() if cls in (ua.NodeClass.Object,
                                                                ua.NodeClass.Variable) else None
-        if typedef is not None:
-            for bname, decl_cls, dt in await types.mandatory(typedef):
-                result.checked_declarations += 1
-                found = names.get((bname.NamespaceIndex, bname.Name))
-                if found is None:
-                    result.problems.append(f"{path}: mandatory {bname.to_string()} is missing")
-                    continue
-                if decl_cls == ua.NodeClass.Variable and dt is not None:
-                    valued.add(found.nodeid)
-                    await _check_value(types, found, f"{path}/{bname.Name}", dt, result)
+        decls = nested.over(await types.of_type(typedef)) if typedef is not None else nested
+        for key, d in decls.named.items():
+            if d.rule != _MANDATORY:
+                continue
+            result.checked_declarations += 1
+            found = names.get(key)
+            if found is None:
+                result.problems.append(f"{path}: mandatory {d.name.to_string()} is missing")
+                continue
+            if d.cls == ua.NodeClass.Variable and d.datatype is not None:
+                valued.add(found.nodeid)
+                await _check_value(types, found, f"{path}/{d.name.Name}", d.datatype, result)
         if cls == ua.NodeClass.Variable and node.nodeid not in valued:
             await _check_value(types, node, path, await node.read_data_type(), result)
-        for (_, name), child in names.items():
-            if child.nodeid.NamespaceIndex == own_ns:
-                await visit(child, f"{path}/{name}")
+        for key, child in names.items():
+            if child.nodeid.NamespaceIndex != own_ns:
+                continue
+            decl = await declaration_of(child, key, decls)
+            inner = await types.nested(decl) if decl is not None else _Decls()
+            await visit(child, f"{path}/{key[1]}", inner)
 
-    await visit(root, (await root.read_browse_name()).Name)
+    await visit(root, (await root.read_browse_name()).Name, _Decls())
     return result
 
 

@@ -46,6 +46,7 @@ _log = logging.getLogger(__name__)
 
 _CREATE = nid(ua.ObjectIds.CreateSessionRequest_Encoding_DefaultBinary)
 _ACTIVATE = nid(ua.ObjectIds.ActivateSessionRequest_Encoding_DefaultBinary)
+_CLOSE = nid(ua.ObjectIds.CloseSessionRequest_Encoding_DefaultBinary)
 #: certificates kept in ``rejected/`` at the most (a client retrying with new ones fills no disk)
 KEEP_REJECTED = 100
 
@@ -109,9 +110,14 @@ class TrustedClients:
 
 @dataclass
 class GuardCounts:
-    """What the guard refused, for the server's diagnostics."""
+    """What passed through the guarded connections, for the server's diagnostics
+    (ServerDiagnosticsSummary)."""
 
-    security_rejected: int = 0
+    security_rejected: int = 0      # sessions refused for the channel's security or certificate
+    rejected_sessions: int = 0      # sessions refused for any reason (those above included)
+    created_sessions: int = 0
+    closed_sessions: int = 0        # ended by the client's CloseSession
+    rejected_requests: int = 0      # requests answered with a service fault
 
 
 class SessionGuard:
@@ -152,6 +158,7 @@ class SessionGuard:
                 raise self._refuse(exc.code, f"the client certificate is not accepted ({exc})") from None
 
     def created(self, session: Any, policy: Any) -> None:
+        self.counts.created_sessions += 1
         self._created[session] = _certificate(policy)
 
     def admit_activate(self, policy: Any, session: Any) -> None:
@@ -173,6 +180,16 @@ class _GuardedProcessor(UaProcessor):
         self._guard = guard
 
     async def _process_message(self, typeid: Any, requesthdr: Any, seqhdr: Any, body: Any) -> Any:
+        counts = self._guard.counts
+        try:
+            return await self._guarded(typeid, requesthdr, seqhdr, body)
+        except Exception:
+            counts.rejected_requests += 1
+            if typeid in (_CREATE, _ACTIVATE):
+                counts.rejected_sessions += 1
+            raise
+
+    async def _guarded(self, typeid: Any, requesthdr: Any, seqhdr: Any, body: Any) -> Any:
         policy = self._connection.security_policy
         if typeid == _CREATE:
             params = struct_from_binary(ua.CreateSessionParameters, body.copy())
@@ -186,6 +203,8 @@ class _GuardedProcessor(UaProcessor):
             if session is None:
                 session = self.iserver.lookup_external_session(requesthdr.AuthenticationToken)
             self._guard.admit_activate(policy, session)
+        elif typeid == _CLOSE and self.session is not None:
+            self._guard.counts.closed_sessions += 1
         return await super()._process_message(typeid, requesthdr, seqhdr, body)
 
 

@@ -31,8 +31,9 @@ from app.machine.model import (
     Severity,
 )
 
-__all__ = ["AlarmEvent", "ChannelMode", "ChannelState", "MachineOperationMode", "MessageTracker",
-           "ProgramState", "ProgramTracker", "Stacklight", "UaView", "severity_of", "view_of"]
+__all__ = ["AlarmEvent", "ChannelMode", "ChannelState", "ConditionClass", "MachineOperationMode",
+           "MessageTracker", "ProgramState", "ProgramTracker", "Stacklight", "UaView", "condition_class",
+           "severity_of", "view_of"]
 
 
 class MachineOperationMode(enum.IntEnum):
@@ -204,26 +205,71 @@ def severity_of(severity: Severity) -> int:
     return _SEVERITY[severity]
 
 
+class ConditionClass(enum.Enum):
+    """What an alarm is about (OPC 10000-9's condition classes): the machine's safety chain,
+    its own equipment (drives, bus, server, configuration), or the process it runs."""
+
+    PROCESS = "process"
+    SYSTEM = "system"
+    SAFETY = "safety"
+
+
+_SYSTEM_SOURCES = ("worker", "drive", "bus", "opcua", "config")
+
+
+def condition_class(alarm: Alarm) -> ConditionClass:
+    if alarm.severity is Severity.ESTOP:
+        return ConditionClass.SAFETY
+    if alarm.source.startswith(_SYSTEM_SOURCES):
+        return ConditionClass.SYSTEM
+    return ConditionClass.PROCESS
+
+
 @dataclass(frozen=True, slots=True)
 class AlarmEvent:
-    """One event for the Messages object: an alarm raised or acknowledged (AlertType), or a
-    program message (NotificationEventType, ``alarm`` None)."""
+    """One event for the notifiers: a state of an alarm's condition (``alarm`` set), or a
+    program prompt (``alarm`` None).
+
+    An alarm's condition is Active while the alarm is active at the panel. Alarms that stopped
+    the machine (STOP and above) wait for the operator's acknowledgement: Unacknowledged while
+    active, and acknowledging at the panel makes them Acknowledged and Inactive at once.
+    Warnings and records need no acknowledgement: Acknowledged from the start, Inactive when
+    the operator clears them (a record, cleared as it is raised, is told as both). A condition
+    is retained (replayed by ConditionRefresh) while it is Active or Unacknowledged."""
 
     identifier: str
     message: str
     severity: int
     alarm: Alarm | None = None
     acknowledged: bool = False
+    active: bool = True
 
     @property
     def needs_acknowledgement(self) -> bool:
-        """Alarms that stopped the machine wait for the operator's acknowledgement at the panel."""
         return self.alarm is not None and self.alarm.severity >= Severity.STOP
+
+    @property
+    def acked_state(self) -> bool:
+        return self.acknowledged or not self.needs_acknowledgement
+
+    @property
+    def retain(self) -> bool:
+        return self.active or not self.acked_state
+
+    @property
+    def condition_class(self) -> ConditionClass:
+        assert self.alarm is not None
+        return condition_class(self.alarm)
+
+
+def _alarm_event(alarm: Alarm, cleared: bool) -> AlarmEvent:
+    return AlarmEvent(f"alarm-{alarm.id}", f"{alarm.source}: {alarm.cause}", severity_of(alarm.severity),
+                      alarm, acknowledged=cleared, active=not cleared)
 
 
 class MessageTracker:
     """What happened since the last snapshot, as events: each alarm once when raised and once
-    when acknowledged, and each program prompt (M0/M1 message, tool change) once."""
+    when acknowledged or cleared, and each program prompt (M0/M1 message, tool change) once."""
 
     def __init__(self) -> None:
         self._seen: dict[int, bool] = {}
@@ -233,15 +279,15 @@ class MessageTracker:
     def events(self, snap: ControllerSnapshot) -> list[AlarmEvent]:
         out: list[AlarmEvent] = []
         for alarm in snap.alarms:
-            acked = not alarm.active
+            cleared = not alarm.active
             before = self._seen.get(alarm.id)
-            if before is None and not (self._first and acked):
-                out.append(AlarmEvent(f"alarm-{alarm.id}", f"{alarm.source}: {alarm.cause}",
-                                      severity_of(alarm.severity), alarm, acked))
-            elif before is False and acked:
-                out.append(AlarmEvent(f"alarm-{alarm.id}", f"{alarm.source}: {alarm.cause}",
-                                      severity_of(alarm.severity), alarm, True))
-            self._seen[alarm.id] = acked
+            if before is None and not (self._first and cleared):
+                out.append(_alarm_event(alarm, False))
+                if cleared:                  # raised and cleared between two snapshots
+                    out.append(_alarm_event(alarm, True))
+            elif before is False and cleared:
+                out.append(_alarm_event(alarm, True))
+            self._seen[alarm.id] = cleared
         prompt = snap.prompt
         if prompt is not None and prompt != self._prompt:
             text = prompt.text or prompt.kind.value.replace("_", " ")

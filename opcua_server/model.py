@@ -12,12 +12,14 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, field
+from datetime import UTC, datetime
 from importlib import resources
 from typing import Any
 
 from asyncua import Node, Server, ua
 from asyncua.common.instantiate_util import instantiate
 
+from opcua_server.conditions import Conditions, build_conditions
 from opcua_server.errors import OpcUaError
 from opcua_server.ids import nid
 from opcua_server.mapping import AlarmEvent, ProgramState, UaView
@@ -50,6 +52,8 @@ _BASIC_STACKLIGHT_TYPE = 1002         # IA
 _STACK_ELEMENT_LIGHT_TYPE = 1006      # IA
 _SIGNAL_COLOR_TYPE = 3004            # IA: the SignalColor enumeration
 _SIGNAL_COLOR = {"red": 1, "yellow": 4, "green": 2}
+_SIGNAL_MODE_LIGHT_TYPE = 3005       # IA: the SignalModeLight enumeration
+_SIGNAL_MODE_CONTINUOUS = 0          # the lamps light steadily when on
 
 #: UNECE codes (OPC 10000-8 EngineeringUnits): the unit id is the code's letters as bytes
 _UNECE = "http://www.opcfoundation.org/UA/units/un/cefact"
@@ -87,8 +91,7 @@ class MachineToolModel:
     values: dict[str, Node] = field(default_factory=dict)
     program_state: Node | None = None
     state_ids: dict[ProgramState, tuple[ua.NodeId, int]] = field(default_factory=dict)
-    alert_type: Node | None = None
-    notification_type: Node | None = None
+    conditions: Conditions | None = None
     _last: dict[str, Any] = field(default_factory=dict)
     _state: ProgramState | None = None
     _power_on: int = -1
@@ -98,8 +101,9 @@ class MachineToolModel:
             return
         self._last[key] = value
         # the address space itself: it answers with the status (a value of the wrong type is refused)
-        status = await self.server.iserver.aspace.write_attribute_value(
-            self.values[key].nodeid, ua.AttributeIds.Value, ua.DataValue(ua.Variant(value, variant)))
+        stamped = _stamped(ua.Variant(value, variant), datetime.now(UTC))
+        status = await self.server.iserver.aspace.write_attribute_value(self.values[key].nodeid,
+                                                                        ua.AttributeIds.Value, stamped)
         if status.is_bad():
             raise OpcUaError(f"OPC UA: {key} refused {value!r}: {status.name}")
 
@@ -142,39 +146,18 @@ class MachineToolModel:
             await self.write("ProgramStateNumber", number, u32)
 
     async def emit(self, event: AlarmEvent) -> None:
-        """An alarm as an AlertType event (ActiveState, AckedState), a message as a
-        NotificationEventType event; both with their Identifier / ErrorCode."""
-        assert self.alert_type is not None and self.notification_type is not None
-        if event.alarm is None:
-            gen = await self.server.get_event_generator(self.notification_type, self.messages.nodeid)
-            _set(gen.event, "Identifier", event.identifier, ua.VariantType.String)
-        else:
-            gen = await self.server.get_event_generator(self.alert_type, self.messages.nodeid)
-            _set(gen.event, "ErrorCode", event.alarm.code or event.identifier, ua.VariantType.String)
-            _set(gen.event, "ConditionName", event.identifier, ua.VariantType.String)
-            active = not event.acknowledged or not event.needs_acknowledgement
-            _set(gen.event, "ActiveState", ua.LocalizedText("Active" if active else "Inactive", "en"),
-                 ua.VariantType.LocalizedText)
-            _set(gen.event, "ActiveState/Id", active, ua.VariantType.Boolean)
-            acked = event.acknowledged or not event.needs_acknowledgement
-            _set(gen.event, "AckedState", ua.LocalizedText("Acknowledged" if acked else "Unacknowledged",
-                                                           "en"),
-                 ua.VariantType.LocalizedText)
-            _set(gen.event, "AckedState/Id", acked, ua.VariantType.Boolean)
-            _set(gen.event, "Retain", not acked, ua.VariantType.Boolean)
-        gen.event.Message = ua.LocalizedText(event.message, "en")
-        gen.event.Severity = event.severity
-        await gen.trigger()
+        """An alarm's condition event (AlertType) or a prompt event, to every notifier."""
+        assert self.conditions is not None
+        await self.conditions.emit(event)
 
 
 _UNSET = object()
 
 
-def _set(event: Any, name: str, value: Any, variant: ua.VariantType) -> None:
-    # the event object types a property from its data type node and leaves Null where that
-    # is not a built-in type: the value is typed here
-    setattr(event, name, value)
-    event.data_types[name] = variant
+def _stamped(value: ua.Variant, when: datetime) -> ua.DataValue:
+    """The value as set at ``when``: its source and server timestamps."""
+    at = ua.DateTime.fromtimestamp(when.timestamp(), UTC)
+    return ua.DataValue(value, SourceTimestamp=at, ServerTimestamp=at)
 
 
 class _Builder:
@@ -269,6 +252,7 @@ async def build_model(server: Server, identity: Identity, axes: tuple[tuple[str,
     await (await _child(ident, ("ProductInstanceUri", ns[NS_DI]))).write_value(identity.product_instance_uri)
     await b.prop(ident, "Model", NS_DI, ua.LocalizedText(identity.model, "en"), ua.VariantType.LocalizedText)
     await b.prop(ident, "SoftwareRevision", NS_DI, identity.software_revision, ua.VariantType.String)
+    await _identification(b, ident, identity)
 
     # Monitoring: the machine, a stack light, the channel with its axes, the spindle
     monitoring = await _child(machine, ("Monitoring", mt))
@@ -333,13 +317,50 @@ async def build_model(server: Server, identity: Identity, axes: tuple[tuple[str,
     # Notification: the Messages object, the source of every alarm and message event
     notification = await _child(machine, ("Notification", mt))
     messages = await b.object(notification, NS_MT, _MESSAGES_TYPE, "Messages")
-    await messages.set_event_notifier([ua.EventNotifier.SubscribeToEvents])
-    await machine.set_event_notifier([ua.EventNotifier.SubscribeToEvents])
-    await server.nodes.server.add_reference(messages.nodeid, ua.ObjectIds.HasNotifier)
     model.messages = messages
-    model.alert_type = b.type_node(NS_MT, _ALERT_TYPE)
-    model.notification_type = b.type_node(NS_MT, _NOTIFICATION_EVENT_TYPE)
+    model.conditions = await build_conditions(server, machine, machine_name, messages,
+                                              b.type_node(NS_MT, _ALERT_TYPE),
+                                              b.type_node(NS_MT, _NOTIFICATION_EVENT_TYPE), idx)
+    await _stamp_values(server, machine)
     return model
+
+
+async def _identification(b: _Builder, ident: Node, identity: Identity) -> None:
+    """The optional Identification fields the configuration gives (an empty one is left out)."""
+    texts = (("ProductCode", NS_DI, identity.product_code),
+             ("ManufacturerUri", NS_DI, identity.manufacturer_uri),
+             ("HardwareRevision", NS_DI, identity.hardware_revision),
+             ("DeviceClass", NS_DI, identity.device_class),
+             ("AssetId", NS_DI, identity.asset_id),
+             ("Location", NS_MACHINERY, identity.location))
+    for name, uri, text in texts:
+        if text:
+            await b.prop(ident, name, uri, text, ua.VariantType.String)
+    if identity.year_of_construction:
+        await b.prop(ident, "YearOfConstruction", NS_MACHINERY, identity.year_of_construction,
+                     ua.VariantType.UInt16)
+    if identity.month_of_construction:
+        await b.prop(ident, "MonthOfConstruction", NS_MACHINERY, identity.month_of_construction,
+                     ua.VariantType.Byte)
+
+
+async def _stamp_values(server: Server, root: Node) -> None:
+    """Every value under ``root`` gets a source and a server timestamp (the time it was set),
+    as a client reads and subscribes to them."""
+    aspace = server.iserver.aspace
+    now = datetime.now(UTC)
+    todo, seen = [root], {root.nodeid}
+    while todo:
+        node = todo.pop()
+        for child in await node.get_children(refs=ua.ObjectIds.HierarchicalReferences):
+            if child.nodeid in seen or child.nodeid.NamespaceIndex != root.nodeid.NamespaceIndex:
+                continue
+            seen.add(child.nodeid)
+            todo.append(child)
+            dv = aspace.read_attribute_value(child.nodeid, ua.AttributeIds.Value)
+            if dv.Value is None or dv.Value.Value is None or dv.SourceTimestamp is not None:
+                continue                # an object, a variable with no value, or one stamped already
+            await aspace.write_attribute_value(child.nodeid, ua.AttributeIds.Value, _stamped(dv.Value, now))
 
 
 async def _stacklight(b: _Builder, monitoring: Node, v: dict[str, Node]) -> None:
@@ -357,4 +378,6 @@ async def _stacklight(b: _Builder, monitoring: Node, v: dict[str, Node]) -> None
             ua.Variant(number, ua.VariantType.UInt32))
         await b.variable(element, "SignalColor", NS_IA, _SIGNAL_COLOR[colour], ua.VariantType.Int32,
                          nid(_SIGNAL_COLOR_TYPE, b.ns[NS_IA]))
+        await b.variable(element, "SignalMode", NS_IA, _SIGNAL_MODE_CONTINUOUS, ua.VariantType.Int32,
+                         nid(_SIGNAL_MODE_LIGHT_TYPE, b.ns[NS_IA]))
         v[f"Light{colour}"] = await b.prop(element, "SignalOn", NS_IA, False, ua.VariantType.Boolean)

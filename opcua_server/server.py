@@ -16,12 +16,14 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from asyncua import Server, ua
 from asyncua.crypto.security_policies import SecurityPolicyBasic256Sha256, SecurityPolicyNone
 
 from app.machine.model import ControllerSnapshot
 from opcua_server.channel import GuardedServer, SessionGuard, TrustedClients
+from opcua_server.diagnostics import Diagnostics
 from opcua_server.errors import OpcUaError
 from opcua_server.ids import nid
 from opcua_server.mapping import MessageTracker, ProgramTracker, view_of
@@ -32,6 +34,9 @@ from planner.core.gcpause import gc_paused
 __all__ = ["OpcUaServer", "ServerStatus"]
 
 _log = logging.getLogger(__name__)
+
+#: how often the server's diagnostics summary is counted again
+_DIAGNOSTICS_PERIOD_S = 1.0
 
 _POLICY_TYPES = {SecurityMode.SIGN_AND_ENCRYPT: ua.SecurityPolicyType.Basic256Sha256_SignAndEncrypt,
                  SecurityMode.SIGN: ua.SecurityPolicyType.Basic256Sha256_Sign,
@@ -54,12 +59,13 @@ class ServerStatus:
 
 
 class _ReadOnlyRules:
-    """Every request of a reading client and none that changes anything: no write, no method
-    call, no node added or deleted, no history update. Opening a session is open to anyone;
-    the rest needs a session activated by a user (or anonymously, when that is allowed)."""
+    """Every request of a reading client and none that changes anything: no write, no node
+    added or deleted, no history update, and no method call but ConditionRefresh and
+    ConditionRefresh2 (which replay the active alarms to the caller's subscription). Opening a
+    session is open to anyone; the rest needs a session activated by a user (or anonymously,
+    when that is allowed)."""
 
     def __init__(self) -> None:
-        from asyncua import ua
         from asyncua.crypto.permission_rules import USER_TYPES, UserRole
 
         ids = ua.ObjectIds
@@ -72,12 +78,28 @@ class _ReadOnlyRules:
         refused = {ids.WriteRequest_Encoding_DefaultBinary, ids.CallRequest_Encoding_DefaultBinary}
         self._open = {nid(t) for t in session}
         self._reading = {nid(t) for t in USER_TYPES if t not in refused}
+        self._call = nid(ids.CallRequest_Encoding_DefaultBinary)
+        self._refresh = {nid(ids.ConditionType_ConditionRefresh), nid(ids.ConditionType_ConditionRefresh2)}
         self._user = UserRole.User
 
-    def check_validity(self, user: object, action_type_id: object, body: object) -> bool:
+    def check_validity(self, user: object, action_type_id: object, body: Any) -> bool:
         if action_type_id in self._open:
             return True
-        return action_type_id in self._reading and getattr(user, "role", None) is self._user
+        if getattr(user, "role", None) is not self._user:
+            return False
+        if action_type_id == self._call:
+            return self._refreshes_only(body)
+        return action_type_id in self._reading
+
+    def _refreshes_only(self, body: Any) -> bool:
+        from asyncua.ua.ua_binary import struct_from_binary
+
+        try:
+            params = struct_from_binary(ua.CallParameters, body.copy())
+        except Exception:  # noqa: BLE001 - a request that does not decode calls nothing allowed
+            return False
+        methods = params.MethodsToCall or []
+        return bool(methods) and all(m.MethodId in self._refresh for m in methods)
 
 
 class OpcUaServer:
@@ -228,14 +250,21 @@ class OpcUaServer:
         self._set_status(ServerStatus(running=True, endpoint=s.endpoint, thumbprint=print_,
                                       security=s.describe()))
         self._ready.set()
+        assert self.guard is not None
+        diagnostics = Diagnostics(server, self.guard.counts)
+        await diagnostics.enable()
         period = 1.0 / s.rate_hz
         last = snap
+        counted = time.monotonic()
         try:
             while not self._stop.is_set():
                 try:
                     await asyncio.wait_for(self._stop.wait(), period)
                 except TimeoutError:
                     pass
+                if time.monotonic() - counted >= _DIAGNOSTICS_PERIOD_S:
+                    counted = time.monotonic()
+                    await diagnostics.update()
                 snap = self._latest
                 if snap is None or snap is last:
                     continue
