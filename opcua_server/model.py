@@ -321,7 +321,6 @@ async def build_model(server: Server, identity: Identity, axes: tuple[tuple[str,
     model.conditions = await build_conditions(server, machine, machine_name, messages,
                                               b.type_node(NS_MT, _ALERT_TYPE),
                                               b.type_node(NS_MT, _NOTIFICATION_EVENT_TYPE), idx)
-    await _stamp_values(server, machine)
     return model
 
 
@@ -342,25 +341,6 @@ async def _identification(b: _Builder, ident: Node, identity: Identity) -> None:
     if identity.month_of_construction:
         await b.prop(ident, "MonthOfConstruction", NS_MACHINERY, identity.month_of_construction,
                      ua.VariantType.Byte)
-
-
-async def _stamp_values(server: Server, root: Node) -> None:
-    """Every value under ``root`` gets a source and a server timestamp (the time it was set),
-    as a client reads and subscribes to them."""
-    aspace = server.iserver.aspace
-    now = datetime.now(UTC)
-    todo, seen = [root], {root.nodeid}
-    while todo:
-        node = todo.pop()
-        for child in await node.get_children(refs=ua.ObjectIds.HierarchicalReferences):
-            if child.nodeid in seen or child.nodeid.NamespaceIndex != root.nodeid.NamespaceIndex:
-                continue
-            seen.add(child.nodeid)
-            todo.append(child)
-            dv = aspace.read_attribute_value(child.nodeid, ua.AttributeIds.Value)
-            if dv.Value is None or dv.Value.Value is None or dv.SourceTimestamp is not None:
-                continue                # an object, a variable with no value, or one stamped already
-            await aspace.write_attribute_value(child.nodeid, ua.AttributeIds.Value, _stamped(dv.Value, now))
 
 
 async def _stacklight(b: _Builder, monitoring: Node, v: dict[str, Node]) -> None:
