@@ -83,12 +83,13 @@ class Served:
         time.sleep(0.15)
 
 
-def make_served(qapp: Any, state_dir: Path, secure: bool = False, **changes: Any) -> Served:
+def make_served(qapp: Any, state_dir: Path, secure: bool = False, cfg: Any = None, **changes: Any) -> Served:
+    """The default machine (or ``cfg``) serving on a free port, with ``changes`` to its ``[opcua]``."""
     from app.machine.config import MachineConfig
     from app.machine.controller import MachineController
 
     port = free_port()
-    cfg = MachineConfig.default()
+    cfg = cfg or MachineConfig.default()
     opcua = cfg.opcua.insecure_local(port) if not secure else replace(cfg.opcua, enabled=True,
                                                                       host="127.0.0.1",
                                                                       port=port)
