@@ -27,7 +27,8 @@ async def _who(url: str) -> tuple[str, str]:
     async with Client(url, timeout=10) as s:
         machine = await find_machine(s)
         di = await s.get_namespace_index(DI)
-        uri = await (await machine.get_child([f"{di}:Identification", f"{di}:ProductInstanceUri"])).read_value()
+        instance = await machine.get_child([f"{di}:Identification", f"{di}:ProductInstanceUri"])
+        uri = await instance.read_value()
         server_array = await s.get_node("i=2254").read_value()
     assert {e.Server.ApplicationUri for e in endpoints} == {server_array[0]}
     return server_array[0], str(uri)
