@@ -33,6 +33,11 @@ sysdeps:
 	  echo "installing Debian's libtinyxml2-9 for the EtherCAT link tests"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtinyxml2-9 >/dev/null; \
 	fi
+	@if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && ! command -v npm >/dev/null; then \
+	  echo "installing Debian's nodejs and npm for the OPC UA tests' second client (node-opcua)"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null \
+	    || echo "nodejs and npm not installed: the node-opcua tests skip"; \
+	fi
 	@# LinuxCNC's own interpreter (rs274) reads the random programs of the G-code tests beside
 	@# ours; only root installs it (others skip those tests, saying how to install it)
 	@if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && ! command -v rs274 >/dev/null; then \
@@ -40,6 +45,15 @@ sysdeps:
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
 	    linuxcnc-uspace >/dev/null || echo "linuxcnc-uspace not installed: the tests against rs274 skip"; \
 	fi
+
+# node-opcua, an OPC UA client written by others, for the server's tests (tests/opcua/node_client);
+# without node and npm those tests skip saying so (as root, sysdeps installs Debian's nodejs and npm)
+NODE_CLIENT := tests/opcua/node_client
+$(NODE_CLIENT)/node_modules/.installed: $(NODE_CLIENT)/package.json $(NODE_CLIENT)/package-lock.json
+	@if command -v npm >/dev/null 2>&1; then \
+	  npm ci --prefix $(NODE_CLIENT) --no-audit --no-fund --loglevel=error >/dev/null && touch $@ \
+	    || echo "npm ci in $(NODE_CLIENT) failed: the node-opcua tests skip"; \
+	else echo "npm not found: the node-opcua tests skip (apt-get install nodejs npm)"; fi
 
 $(VPY):
 	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \
@@ -66,7 +80,7 @@ lint: $(VENV)/.installed-test
 
 # the suite a test file per worker, one worker per core (4 at most); then the EtherCAT link
 # tests (marker "root": network namespaces, a slave process, 100 ms watchdogs) alone
-test: sysdeps $(VENV)/.installed-test lint
+test: sysdeps $(VENV)/.installed-test $(NODE_CLIENT)/node_modules/.installed lint
 	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -n auto --maxprocesses 4 --dist loadfile -m "not root"
 	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -m root
 
@@ -74,4 +88,4 @@ bench: $(VENV)/.installed-test
 	$(VPY) -m bench
 
 clean:
-	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis
+	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis $(NODE_CLIENT)/node_modules
