@@ -103,3 +103,29 @@ def test_each_alarm_is_told_once_raised_and_once_acknowledged_and_a_prompt_once(
     told = m.events(snap(prompt=prompt))
     assert [e.message for e in told] == ["line 7: insert tool (tool T2)"]
     assert m.events(snap(prompt=prompt)) == []
+
+
+def test_an_alarm_s_condition_is_active_until_cleared_and_retained_until_acknowledged() -> None:
+    m = MessageTracker()
+    m.events(snap())
+    stop, warning = _alarm(5, Severity.STOP), _alarm(6, Severity.WARNING)
+    raised = m.events(snap(alarms=(stop, warning)))
+    assert [(e.identifier, e.active, e.acked_state, e.retain) for e in raised] == \
+        [("alarm-5", True, False, True), ("alarm-6", True, True, True)]
+    cleared = m.events(snap(alarms=(replace(stop, state=AlarmState.ACKNOWLEDGED),
+                                    replace(warning, state=AlarmState.ACKNOWLEDGED))))
+    assert [(e.identifier, e.active, e.acked_state, e.retain) for e in cleared] == \
+        [("alarm-5", False, True, False), ("alarm-6", False, True, False)]
+    # a record (raised acknowledged) is told as raised, then cleared
+    record = _alarm(7, Severity.INFO, active=False)
+    told = m.events(snap(alarms=(record,)))
+    assert [(e.identifier, e.active, e.retain) for e in told] == [("alarm-7", True, True), ("alarm-7", False, False)]
+
+
+def test_each_alarm_has_the_condition_class_of_what_it_is_about() -> None:
+    from opcua_server.mapping import ConditionClass, condition_class
+
+    assert condition_class(replace(_alarm(1, Severity.ESTOP), source="operator")) is ConditionClass.SAFETY
+    assert condition_class(replace(_alarm(2, Severity.QUICK_STOP), source="drive X")) is ConditionClass.SYSTEM
+    assert condition_class(replace(_alarm(3, Severity.WARNING), source="opcua")) is ConditionClass.SYSTEM
+    assert condition_class(replace(_alarm(4, Severity.STOP), source="planner")) is ConditionClass.PROCESS
