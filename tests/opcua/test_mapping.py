@@ -119,7 +119,8 @@ def test_an_alarm_s_condition_is_active_until_cleared_and_retained_until_acknowl
     # a record (raised acknowledged) is told as raised, then cleared
     record = _alarm(7, Severity.INFO, active=False)
     told = m.events(snap(alarms=(record,)))
-    assert [(e.identifier, e.active, e.retain) for e in told] == [("alarm-7", True, True), ("alarm-7", False, False)]
+    assert [(e.identifier, e.active, e.retain) for e in told] == \
+        [("alarm-7", True, True), ("alarm-7", False, False)]
 
 
 def test_each_alarm_has_the_condition_class_of_what_it_is_about() -> None:
