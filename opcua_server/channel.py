@@ -49,6 +49,9 @@ _ACTIVATE = nid(ua.ObjectIds.ActivateSessionRequest_Encoding_DefaultBinary)
 _CLOSE = nid(ua.ObjectIds.CloseSessionRequest_Encoding_DefaultBinary)
 #: certificates kept in ``rejected/`` at the most (a client retrying with new ones fills no disk)
 KEEP_REJECTED = 100
+#: connections that wait for an activated session at once, at the most, and how long one may wait
+PENDING_CONNECTIONS = 16
+PENDING_S = 10.0
 
 
 class TrustedClients:
@@ -114,6 +117,7 @@ class GuardCounts:
     (ServerDiagnosticsSummary)."""
 
     security_rejected: int = 0      # sessions refused for the channel's security or certificate
+    evicted: int = 0                # connections closed that waited for a session while new ones came
     rejected_sessions: int = 0      # sessions refused for any reason (those above included)
     created_sessions: int = 0
     closed_sessions: int = 0        # ended by the client's CloseSession
@@ -122,12 +126,16 @@ class GuardCounts:
 
 class SessionGuard:
     """The checks above, for the endpoints the server offers: ``offered`` holds (policy URI,
-    message security mode) pairs."""
+    message security mode) pairs; at most ``max_sessions`` connections hold an activated
+    session, and at most ``max_pending`` connections wait for one (a new one closes the
+    oldest that waits: idle sockets cannot lock real clients out)."""
 
     def __init__(self, offered: set[tuple[str, ua.MessageSecurityMode]],
-                 trusted: TrustedClients | None) -> None:
+                 trusted: TrustedClients | None, max_sessions: int = 64,
+                 max_pending: int = PENDING_CONNECTIONS) -> None:
         self.offered = offered
         self.trusted = trusted
+        self.max_sessions, self.max_pending = max_sessions, max_pending
         self.counts = GuardCounts()
         # the certificate each live session was created with (None over security None)
         self._created: weakref.WeakKeyDictionary[Any, bytes | None] = weakref.WeakKeyDictionary()
@@ -174,10 +182,16 @@ def _certificate(policy: Any) -> bytes | None:
     return None if policy.URI == SecurityPolicyNone.URI else policy.peer_certificate
 
 
+def _activated(protocol: OPCUAProtocol) -> bool:
+    session = protocol.processor.session if protocol.processor is not None else None
+    return session is not None and bool(session.is_activated())
+
+
 class _GuardedProcessor(UaProcessor):
-    def __init__(self, guard: SessionGuard, *args: Any) -> None:
+    def __init__(self, guard: SessionGuard, clients: list[OPCUAProtocol], *args: Any) -> None:
         super().__init__(*args)
         self._guard = guard
+        self._clients = clients
 
     async def _process_message(self, typeid: Any, requesthdr: Any, seqhdr: Any, body: Any) -> Any:
         counts = self._guard.counts
@@ -203,6 +217,10 @@ class _GuardedProcessor(UaProcessor):
             if session is None:
                 session = self.iserver.lookup_external_session(requesthdr.AuthenticationToken)
             self._guard.admit_activate(policy, session)
+            if session is None or not session.is_activated():
+                held = sum(1 for c in self._clients if _activated(c))
+                if held >= self._guard.max_sessions:
+                    raise ServiceError(ua.StatusCodes.BadTooManySessions)
         elif typeid == _CLOSE and self.session is not None:
             self._guard.counts.closed_sessions += 1
         return await super()._process_message(typeid, requesthdr, seqhdr, body)
@@ -212,9 +230,14 @@ class _GuardedProtocol(OPCUAProtocol):
     guard: SessionGuard
 
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
+        waiting = [c for c in self.clients if not _activated(c)]
+        for old in waiting[:max(0, len(waiting) - self.guard.max_pending + 1)]:
+            if old.transport is not None:
+                self.guard.counts.evicted += 1
+                old.transport.close()
         super().connection_made(transport)
         if self.processor is not None:           # accepted (not over the connection limit)
-            processor = _GuardedProcessor(self.guard, self.iserver, self.transport, self.limits)
+            processor = _GuardedProcessor(self.guard, self.clients, self.iserver, self.transport, self.limits)
             processor.set_policies(self.policies)
             self.processor = processor
 
@@ -237,6 +260,10 @@ class GuardedServer(Server):
     guard: SessionGuard
 
     async def start(self) -> None:
+        # the guard keeps the sessions and the waiting connections within their own bounds;
+        # asyncua's count of connections is their sum
+        self.iserver.max_connections = self.guard.max_sessions + self.guard.max_pending
+        self.iserver.max_pending_activation_seconds = PENDING_S
         if self.iserver.certificate is not None:
             uacrypto.check_certificate(self.iserver.certificate, self._application_uri, socket.gethostname())
         await self._setup_server_nodes()

@@ -163,6 +163,7 @@ class OpcUaServer:
         library = logging.getLogger("asyncua")
         if library.level == logging.NOTSET:     # its notes on the nodesets are not the operator's
             library.setLevel(logging.ERROR)
+        one_line_logs()
         loop = asyncio.new_event_loop()
         self._loop = loop
         try:
@@ -206,7 +207,6 @@ class OpcUaServer:
         server = GuardedServer(user_manager=ReadOnlyUsers(users, s.anonymous))
         await server.init()
         server.iserver.max_session_timeout_ms = s.session_timeout_s * 1000.0
-        server.iserver.max_connections = s.max_clients
         server.set_endpoint(s.bind_endpoint)
         server.set_server_name(f"cnc-panel OPC UA server ({self.machine_name})")
         await server.set_application_uri(self.application_uri)
@@ -224,7 +224,8 @@ class OpcUaServer:
             await server.load_private_key(str(key))
             print_ = thumbprint(cert)
         trusted = TrustedClients(base / "trusted", base / "rejected") if secure else None
-        server.guard = self.guard = SessionGuard({_CHANNELS[m] for m in s.security}, trusted)
+        server.guard = self.guard = SessionGuard({_CHANNELS[m] for m in s.security}, trusted,
+                                                 max_sessions=s.max_clients)
         model = self.model = await build_model(server, self.identity, self.axes, self.machine_name)
         return server, model, print_
 
@@ -280,6 +281,36 @@ class OpcUaServer:
         finally:
             await server.stop()
             self._set_status(ServerStatus(endpoint=s.endpoint, security=s.describe()))
+
+
+class _OneLine(logging.Filter):
+    """asyncua's records as one short line: no traceback, nothing of a client's bytes beyond
+    ``_LOG_CHARS`` (a malformed message would otherwise be logged whole, with its stack)."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.exc_info or record.exc_text:
+            exc = record.exc_info[1] if record.exc_info else None
+            record.msg = f"{record.getMessage()} ({type(exc).__name__})" if exc else record.getMessage()
+            record.args, record.exc_info, record.exc_text = (), None, None
+        text = record.getMessage()
+        if len(text) > _LOG_CHARS or "\n" in text:
+            text = " ".join(text.split())
+            record.msg = text[:_LOG_CHARS] + (" ..." if len(text) > _LOG_CHARS else "")
+            record.args = ()
+        return True
+
+
+_LOG_CHARS = 200
+_ONE_LINE = _OneLine()
+
+
+def one_line_logs() -> None:
+    """Every asyncua logger (their modules are imported by now) logs through ``_OneLine``."""
+    names = [n for n in logging.root.manager.loggerDict if n == "asyncua" or n.startswith("asyncua.")]
+    for name in names:
+        logger = logging.getLogger(name)
+        if _ONE_LINE not in logger.filters:
+            logger.addFilter(_ONE_LINE)
 
 
 async def _drain(tasks: set[asyncio.Task[object]]) -> None:

@@ -74,7 +74,8 @@ class OpcUaSettings:
     # the server's ApplicationUri ("": one made for this installation, see ``application_uri_for``)
     application_uri: str = ""
     # a session whose client vanished (no CloseSession) is closed after this long, with its
-    # subscriptions; at most ``max_clients`` connections at once
+    # subscriptions; at most ``max_clients`` sessions at once (connections that have not
+    # activated one do not count: they have a bound of their own, ``channel.PENDING_CONNECTIONS``)
     session_timeout_s: float = 60.0
     max_clients: int = 64
 

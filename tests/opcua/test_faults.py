@@ -116,3 +116,51 @@ def test_random_bytes_and_cut_messages_on_the_socket_are_dropped_and_the_server_
     assert client_thread.run(_read_name(served.url)) == served.ctl.config.machine.name
     assert _wait(lambda: _fds() <= fds + 2), (fds, _fds())
     assert served.ctl.state.value == "idle"
+
+
+def test_idle_sockets_do_not_lock_real_clients_out(served: Served, client_thread: ClientThread) -> None:
+    """200 idle connections (none sends a byte), more than may wait for a session and more
+    than the sessions allowed: each new one closes the oldest that waits, and a real client
+    still reads the machine."""
+    from opcua_server.channel import PENDING_CONNECTIONS
+
+    server = served.ctl.remote.server
+    assert server is not None and server.guard is not None
+    idle = [socket.create_connection(("127.0.0.1", served.port), timeout=5)
+            for _ in range(200)]
+    try:
+        served.step(0.2)
+        assert client_thread.run(_read_name(served.url)) == served.ctl.config.machine.name
+        assert server.guard.counts.evicted >= 200 - PENDING_CONNECTIONS
+    finally:
+        for s in idle:
+            s.close()
+
+
+def _opn_with_policy(uri: bytes) -> bytes:
+    """An OpenSecureChannel message naming the security policy ``uri`` (then cut short)."""
+    body = struct.pack("<I", 0) + struct.pack("<i", len(uri)) + uri + struct.pack("<ii", -1, -1)
+    body += struct.pack("<II", 1, 1) + b"\x01\x00\xbe\x01" + b"\x00" * 40
+    return b"OPNF" + struct.pack("<I", 8 + len(body)) + body
+
+
+def test_a_malformed_message_is_logged_in_one_short_line_without_the_client_s_bytes(
+        served: Served, client_thread: ClientThread, caplog: pytest.LogCaptureFixture) -> None:
+    import logging
+
+    secret = b"x" * 100_000
+    caplog.set_level(logging.ERROR, logger="asyncua")
+    with socket.create_connection(("127.0.0.1", served.port), timeout=5) as s:
+        s.sendall(_hello() + _opn_with_policy(b"http://opcfoundation.org/UA/SecurityPolicy#" + secret))
+        s.settimeout(2)
+        try:
+            while s.recv(65536):
+                pass
+        except (TimeoutError, ConnectionError):
+            pass
+    served.step(0.2)
+    records = [r for r in caplog.records if r.name.startswith("asyncua")]
+    assert records, "the malformed message was not logged at all"
+    lines = [caplog.handler.format(r) for r in records]
+    assert all("\n" not in line and len(line) < 400 and "xxxxxxxxxx" * 30 not in line for line in lines), lines
+    assert client_thread.run(_read_name(served.url)) == served.ctl.config.machine.name
