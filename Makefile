@@ -6,7 +6,7 @@ VENV   := .venv
 VPY    := $(VENV)/bin/python
 ARGS   ?=
 
-.PHONY: demo test lint bench sysdeps clean
+.PHONY: demo test explore lint bench sysdeps clean
 
 # Debian packages Qt needs even offscreen (GL, EGL, fonts, xkb) and iproute2 for the
 # EtherCAT link tests. Installed only when something is missing, and only as root.
@@ -83,6 +83,10 @@ lint: $(VENV)/.installed-test
 test: sysdeps $(VENV)/.installed-test $(NODE_CLIENT)/node_modules/.installed lint
 	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -n auto --maxprocesses 4 --dist loadfile -m "not root"
 	QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -m root
+
+# the property tests with new random examples each run (make test draws the same ones every run)
+explore: $(VENV)/.installed-test
+	HYPOTHESIS_PROFILE=explore QT_QPA_PLATFORM=$${QT_QPA_PLATFORM:-offscreen} $(VPY) -m pytest -n auto --maxprocesses 4 --dist loadfile -m "not root" $(ARGS) $$(grep -rl "@given" tests)
 
 bench: $(VENV)/.installed-test
 	$(VPY) -m bench
