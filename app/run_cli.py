@@ -23,6 +23,7 @@ import json
 import signal
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -98,6 +99,34 @@ def main(argv: list[str] | None = None) -> int:
     if not args.program:
         print("cnc-run: a G-code program is needed (or --status)", file=sys.stderr)
         return 2
+    # SIGTERM and Ctrl+C are caught from the start: one that comes while the run is set up ends
+    # it before the program starts, one that comes while it runs stops it along the path; both
+    # end as a run ends, the worker and its shared memory given back
+    stop_requested: list[int] = []
+    previous = _catch_stop_signals(stop_requested)
+    try:
+        return _run(args, stop_requested)
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+def _catch_stop_signals(requested: list[int]) -> dict[int, Any]:
+    """Record SIGTERM and SIGINT in ``requested`` (in the main thread; elsewhere signals cannot
+    be caught); the handlers they had."""
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+
+    def on_signal(signum: int, _frame: object) -> None:
+        requested.append(signum)
+
+    previous: dict[int, Any] = {}
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        previous[sig] = signal.signal(sig, on_signal)
+    return previous
+
+
+def _run(args: argparse.Namespace, stop_requested: list[int]) -> int:
     from planner.core.files import OutputClash, check_outputs
 
     outputs = {"--trace": args.trace, "--json": "-" if args.json else None}
@@ -203,21 +232,23 @@ def main(argv: list[str] | None = None) -> int:
             runner = ScenarioRunner(ctl, ops, ctl.machine_time_s)
             max_s = args.max_s if args.max_s is not None else 3.0 * info.cycle_time_s + 60.0
             max_s += runner.last_t
+        if stop_requested:
+            name = signal.Signals(stop_requested[0]).name
+            print(f"cnc-run: stopped by signal {name} before the program started", file=sys.stderr)
+            if args.json:
+                print(json.dumps({"program": str(args.program), "completed": False, "reason": "signal",
+                                  "notes": [f"stopped by signal {name} before the program started"]},
+                                 indent=1))
+            return 1
         started = time.monotonic()
         res = ctl.cycle_start(wait=True)
         if not res:
             print(f"cnc-run: {res.reason}", file=sys.stderr)
             return 2
+        print("cnc-run: running; SIGTERM or Ctrl+C stops it along the path", file=sys.stderr, flush=True)
         last_print = 0.0
         loop = QEventLoop()
-        stop_requested: list[int] = []
 
-        def on_signal(signum: int, _frame: object) -> None:
-            # SIGTERM / Ctrl+C: stop along the path, then the normal end (shutdown releases the worker)
-            stop_requested.append(signum)
-
-        for sig in (signal.SIGTERM, signal.SIGINT):
-            signal.signal(sig, on_signal)
         def tick() -> None:
             if args.worker == "manual":
                 ctl.advance(0.01 if runner is not None else 0.1)

@@ -116,7 +116,13 @@ def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
     try:
         mine = wait_for_new_blocks(before, proc)
         assert mine, "the worker never started"
-        time.sleep(2.0)
+        assert proc.stderr is not None
+        for line in iter(proc.stderr.readline, ""):   # its handlers are in place once it runs
+            if "running;" in line:
+                break
+        else:
+            raise AssertionError("the run never said it was running")
+        time.sleep(1.0)
         proc.send_signal(signal.SIGTERM)
         out, err = proc.communicate(timeout=60)
     finally:
@@ -130,6 +136,36 @@ def test_sigterm_stops_a_headless_run_cleanly(tmp_path: Path) -> None:
     assert result["reason"] == "signal" and result["last_line"] == 1
     assert 1.0 < result["cycle_time_s"] < 20.0 and result["limits_ok"] is True and result["limits"]
     assert result["final_state"] == "idle"
+    assert not [p for p in mine if p.exists()], "shared memory left behind"
+
+
+def test_a_sigterm_while_the_run_is_set_up_ends_it_cleanly_before_the_program_starts(tmp_path: Path) -> None:
+    """The signal comes as soon as the worker exists, while a long program is still read (the
+    worker starts first): the run ends by itself (not killed by the signal), says so, and gives
+    its shared memory back."""
+    import signal
+    import subprocess
+    import sys
+
+    prog = tmp_path / "long.nc"
+    prog.write_text("G21 G90 F600\n" + "".join(f"G1 X{i % 100} Y{i % 7}\n" for i in range(300_000)) + "M30\n")
+    before = shm_before()
+    proc = subprocess.Popen([sys.executable, "-m", "app.run_cli", str(prog), "--sim", "--json",
+                             "--worker", "process"], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        mine = wait_for_new_blocks(before, proc)
+        assert mine, "the worker never started"
+        proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=10)
+    assert proc.returncode == 1, err                 # its own end, not -15
+    result = json.loads(out)
+    assert result["completed"] is False and result["reason"] == "signal"
+    assert "stopped by signal SIGTERM before the program started" in err
     assert not [p for p in mine if p.exists()], "shared memory left behind"
 
 
