@@ -74,7 +74,7 @@ demo: sysdeps $(VENV)/.installed
 
 # ruff, the import-linter layering contracts (pyproject.toml), and the type checker
 lint: $(VENV)/.installed-test
-	$(VENV)/bin/ruff check app planner ethercat cli resources tools tests bench
+	$(VENV)/bin/ruff check app planner ethercat cli opcua_server machine_status resources tools tests bench
 	$(VENV)/bin/lint-imports
 	$(VENV)/bin/mypy
 

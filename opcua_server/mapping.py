@@ -21,7 +21,7 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass
 
-from app.machine.model import (
+from machine_status import (
     Activity,
     Alarm,
     ControllerSnapshot,

@@ -21,7 +21,7 @@ from typing import Any
 from asyncua import Server, ua
 from asyncua.crypto.security_policies import SecurityPolicyBasic256Sha256, SecurityPolicyNone
 
-from app.machine.model import ControllerSnapshot
+from machine_status import ControllerSnapshot
 from opcua_server.channel import GuardedServer, SessionGuard, TrustedClients
 from opcua_server.diagnostics import Diagnostics
 from opcua_server.errors import OpcUaError

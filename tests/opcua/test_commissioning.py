@@ -115,7 +115,7 @@ def test_cnc_run_refuses_a_port_outside_the_tcp_range(qapp: Any, capsys: pytest.
 def test_cnc_opcua_tells_the_endpoint_certificate_and_users_and_browses_the_model(
         qapp: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str],
         monkeypatch: pytest.MonkeyPatch) -> None:
-    from opcua_server.cli import main
+    from app.opcua_cli import main
 
     state = tmp_path / "state"
     monkeypatch.setenv("CNC_OPCUA_PASSWORD", "correct horse")
