@@ -18,6 +18,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('MDI takes one block (one line)'),
     N_("S{0} is over the spindle's maximum of {1} rpm ([controller] spindle_max_rpm)"),
     N_("T{0} has no tip diameter in the tool table: the edges found would be off by the ball's radius"),  # noqa: E501
+    N_('T{0} is in the spindle, not the probe T{1}: a probing move would feed it into the part; put the probe in and say so (In the spindle, or M61 Q{2})'),  # noqa: E501
     N_('T{0} is in the spindle: set another tool first'),
     N_('T{0} is not in the spindle: put it in and set it (In the spindle) first'),
     N_('T{0} is not in the tool table'),
@@ -64,7 +65,9 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('measuring on a tool setter needs X, Y and Z axes'),
     N_('no active alarm with id {0}'),
     N_('no probe in the spindle: put it in and set it (In the spindle) first'),
+    N_("no probe is named: set [probe] tool to the probe's number in the tool table (only the probe may make probing moves)"),  # noqa: E501
     N_('no program loaded'),
+    N_('no tool is in the spindle, not the probe T{0}: put the probe in and say so (In the spindle, or M61 Q{1})'),  # noqa: E501
     N_('no tool setter on this machine ([probe] drive, setter_x_mm, setter_y_mm and setter_z_mm in the machine configuration)'),  # noqa: E501
     N_('not while the machine is {0}'),
     N_('nothing is moving'),
@@ -93,7 +96,6 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the drives cannot be re-enabled: {0}'),
     N_('the machine has no Z axis'),
     N_('the machine is still stopping: wait for standstill'),
-    N_('the probe T{0} is not in the spindle (T{1} is): put it in and set it (In the spindle) first'),  # noqa: E501
     N_('the program stopped at line {0}: resume there or start it again from the beginning (choose one)'),  # noqa: E501
     N_('the program {0} is being planned for single block (wait until it is ready)'),
     N_('the program {0} is still being checked (wait until it is loaded)'),

@@ -166,6 +166,21 @@ class ProbeSettings:
     def has_setter(self) -> bool:
         return self.drive is not None and None not in (self.setter_x_mm, self.setter_y_mm, self.setter_z_mm)
 
+    def probe_refusal(self, tool_in_spindle: int) -> str:
+        """Why a probing move (a wizard's, or G38.x typed in MDI) may not run with this tool in
+        the spindle ("" when it is the probe): only the tool ``[probe] tool`` names is a probe; a
+        cutter would feed into whatever is below it until the end of the search."""
+        if self.tool is None:
+            return ("no probe is named: set [probe] tool to the probe's number in the tool table "
+                    "(only the probe may make probing moves)")
+        if tool_in_spindle == 0:
+            return (f"no tool is in the spindle, not the probe T{self.tool}: put the probe in and say so "
+                    f"(In the spindle, or M61 Q{self.tool})")
+        if tool_in_spindle != self.tool:
+            return (f"T{tool_in_spindle} is in the spindle, not the probe T{self.tool}: a probing move would "
+                    f"feed it into the part; put the probe in and say so (In the spindle, or M61 Q{self.tool})")
+        return ""
+
 
 @dataclass(frozen=True, slots=True)
 class ToolChangeSettings:

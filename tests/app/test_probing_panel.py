@@ -5,6 +5,7 @@ overtravel, and a refusal said on the panel."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 
@@ -90,10 +91,29 @@ def test_a_wizard_that_cannot_run_says_why_and_run_is_off(demo_window, real_cont
     panel = _open_probe_tab(demo_window, qtbot)
     qtbot.mouseClick(panel.wizard_buttons[ProbeWizard.BORE], LEFT)
     assert not panel.run_button.isEnabled()
-    assert panel.status.text() == ("Cannot run: no probe in the spindle: put it in and set it "
-                                   "(In the spindle) first")
+    assert panel.status.text() == ("Cannot run: no tool is in the spindle, not the probe T99: put the "
+                                   "probe in and say so (In the spindle, or M61 Q99)")
     assert len(panel.preview.points) == 0
     # the probe put in: the reason goes, the moves are drawn
     assert c.set_tool(PROBE) and c.set_tool_in_spindle(PROBE.number)
     assert panel.run_button.isEnabled(), panel.status.text()
     assert len(panel.preview.points) > 3
+
+
+def test_the_demo_s_end_mill_is_no_probe_the_z_surface_wizard_moves_nothing(
+        demo_window, real_controller, qtbot) -> None:
+    """The demo as it starts (T1, the 6 mm end mill, in the spindle): Part zero, Probe, Z
+    surface, Run. Run stays off and says why, naming the probe; a touch on it moves nothing."""
+    c = real_controller
+    assert c.tool_in_spindle == 1 and c.config.probe.tool == 99
+    panel = _open_probe_tab(demo_window, qtbot)
+    qtbot.mouseClick(panel.wizard_buttons[ProbeWizard.Z_SURFACE], LEFT)
+    assert not panel.run_button.isEnabled()
+    assert "T1 is in the spindle, not the probe T99" in panel.status.text()
+    path = _Path(c)
+    before = tuple(c.machine_position)
+    qtbot.mouseClick(panel.run_button, LEFT)
+    c.run_until(lambda: False, timeout_s=1.0)
+    assert c.state is MachineState.IDLE and tuple(c.machine_position) == before
+    actual = path.actual()                    # the drives' positions over that second, every cycle
+    assert len(actual) > 100 and float(np.abs(actual - np.array(before)).max()) == 0.0

@@ -14,6 +14,7 @@ import pytest
 
 from app.machine.controller import MachineController
 from app.machine.model import MachineState, Severity
+from planner.core.tools import Tool
 from tests.machine.conftest import make_controller, refused_load, run_to_idle, trace
 
 SURFACE_Z = -50.0
@@ -130,6 +131,8 @@ def test_the_rest_is_checked_against_the_soft_limits_with_the_result(ctl: Machin
 
 def test_probing_in_mdi_stops_at_the_contact(ctl: MachineController) -> None:
     said = _messages(ctl)
+    # the probe (only it may probe), its length 0 here: the tip is at the spindle's gauge line
+    assert ctl.set_tool(Tool(99, 99, (("Z", 0.0),), 2.0, "3-D probe")) and ctl.set_tool_in_spindle(99)
     assert ctl.mdi("G0 Z-45")
     run_to_idle(ctl)
     assert ctl.mdi("G38.2 Z-60 F60")

@@ -183,17 +183,6 @@ class _Path:
         return np.concatenate(self.chunks)
 
 
-class _Path:
-    """The drives' actual positions, machine coordinates, as the worker reports them."""
-
-    def __init__(self, ctl: MachineController) -> None:
-        self.chunks: list[np.ndarray] = []
-        ctl.add_trace_sink(lambda _cycles, _reference, actual: self.chunks.append(np.array(actual)))
-
-    def actual(self) -> np.ndarray:
-        return np.concatenate(self.chunks)
-
-
 def _machine(qapp, config_path: Path, state_dir: Path) -> MachineController:
     ctl = make_controller(config_path, state_dir)
     assert ctl.set_tool(PROBE) and ctl.set_tool_in_spindle(PROBE.number)
@@ -306,18 +295,49 @@ def test_an_obstacle_on_the_machine_stops_the_move_with_the_alarm(qapp, config_p
 
 def test_a_wizard_is_refused_without_the_probe_in_the_spindle(ctl: MachineController) -> None:
     r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
-    assert not r and "no probe in the spindle" in r.reason
-    assert ctl.set_tool(Tool(5, 5, (("Z", 40.0),), 0.0, "no tip")) and ctl.set_tool_in_spindle(5)
+    assert not r and "no tool is in the spindle, not the probe T99" in r.reason
+    assert ctl.set_tool(Tool(99, 99, (("Z", 40.0),), 0.0, "no tip")) and ctl.set_tool_in_spindle(99)
     r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
     assert not r and "has no tip diameter" in r.reason
+
+
+def test_a_cutter_in_the_spindle_makes_no_probing_move_in_a_wizard_or_in_mdi(ctl: MachineController) -> None:
+    """The end mill T1 in the spindle: the wizard and a G38.2 typed in MDI are refused, naming
+    the probe, and no axis moves; the probe itself is let through."""
+    assert ctl.set_tool(PROBE) and ctl.set_tool(Tool(1, 1, (("Z", 40.0),), 6.0, "6 mm flat end mill"))
+    assert ctl.set_tool_in_spindle(1)
+    before = tuple(ctl.machine_position)
+    r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
+    assert not r and "T1 is in the spindle, not the probe T99" in r.reason
+    r = ctl.mdi("G38.2 Z-10 F300")
+    assert not r and "T1 is in the spindle, not the probe T99" in r.reason and "M61 Q99" in r.reason
+    ctl.advance(1.0)
+    assert tuple(ctl.machine_position) == before and ctl.state is MachineState.IDLE
+    assert ctl.set_tool_in_spindle(99)
+    assert ctl.mdi("G91 G38.3 Z-1 F300")                 # the probe may
+    ctl.advance(2.0)
+    assert ctl.machine_position[2] == pytest.approx(before[2] - 1.0, abs=1e-3)
+
+
+def test_without_a_probe_named_no_tool_probes(qapp, config_path: Path, state_dir: Path) -> None:
+    config_path.write_text(config_path.read_text().replace("\ntool = 99 ", "\n# tool = 99 ", 1))
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.config.probe.tool is None
+        assert ctl.set_tool(PROBE) and ctl.set_tool_in_spindle(99)
+        r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55"))
+        assert not r and "no probe is named: set [probe] tool" in r.reason
+        r = ctl.mdi("G38.3 Z-1 F300")
+        assert not r and "no probe is named" in r.reason
+    finally:
+        ctl.shutdown()
 
 
 def test_a_preview_says_why_without_a_refusal_and_probe_tool_is_enforced(qapp, config_path: Path,
                                                                          state_dir: Path) -> None:
     """The panel asks for the preview at every change: why it cannot run comes back without
     the refusal the status line shows. With ``[probe] tool`` only that tool probes."""
-    config_path.write_text(config_path.read_text().replace("[probe]", "[probe]\ntool = 99", 1))
-    ctl = make_controller(config_path, state_dir)
+    ctl = make_controller(config_path, state_dir)       # the shipped mill names T99 the probe
     refused: list[tuple[str, str]] = []
     ctl.commandRefused.connect(lambda action, why: refused.append((action, why)))
     try:
@@ -325,10 +345,10 @@ def test_a_preview_says_why_without_a_refusal_and_probe_tool_is_enforced(qapp, c
         assert ctl.set_tool_in_spindle(1)
         req = ProbingRequest(ProbeWizard.Z_SURFACE, system="G55")
         preview = ctl.preview_probing(req)
-        assert not preview and "the probe T99 is not in the spindle (T1 is)" in preview.reason
+        assert not preview and "T1 is in the spindle, not the probe T99" in preview.reason
         assert refused == []
         r = ctl.run_probing(req)                          # the command itself is refused, told
-        assert not r and refused and "the probe T99" in refused[-1][1]
+        assert not r and refused and "not the probe T99" in refused[-1][1]
         assert ctl.set_tool_in_spindle(99)
         assert ctl.preview_probing(req).probes
     finally:

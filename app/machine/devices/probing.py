@@ -81,9 +81,9 @@ class Probing:
         if not all(self._positions.homed):
             return "axes not homed: home them before probing"
         tool = self._tools.in_spindle
-        if probe.tool is not None and tool != probe.tool:
-            return (f"the probe T{probe.tool} is not in the spindle (T{tool} is): put it in and set it "
-                    "(In the spindle) first")
+        why = probe.probe_refusal(tool)
+        if why:
+            return why
         spec = self._tools.table.get(tool)
         if tool == 0 or spec is None:
             return "no probe in the spindle: put it in and set it (In the spindle) first"

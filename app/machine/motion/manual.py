@@ -226,8 +226,10 @@ class ManualMotion:
         if isinstance(checked, CommandResult):
             return checked
         prog, read = checked
-        why = (_mdi_refusal(prog, self._settings.config.controller.spindle_max_rpm)
-               or _mdi_stands_alone(prog, block))
+        cfg = self._settings.config
+        why = (_mdi_refusal(prog, cfg.controller.spindle_max_rpm) or _mdi_stands_alone(prog, block))
+        if not why and any(ev.kind in (EventKind.PROBE_START, EventKind.PROBE) for ev in prog.events):
+            why = cfg.probe.probe_refusal(self._tools.in_spindle)
         if why:
             return states.refuse(action, why)
         if not prog.moves:
