@@ -167,6 +167,11 @@ def _run(args: argparse.Namespace, stop_requested: list[int]) -> int:
         return 2
     # in-memory configuration: the state directory's machine.toml is never written by a run
     cfg = replace(cfg, path="")
+    try:            # a subroutine is an input too: the trace never lands in their folders
+        check_outputs(outputs, inputs, input_dirs=cfg.machine.subroutine_paths())
+    except OutputClash as exc:
+        print(f"cnc-run: {exc}", file=sys.stderr)
+        return 2
     try:
         opcua = OpcUaOverride(args.opcua_port, args.opcua_insecure) \
             if args.opcua_port is not None or args.opcua_insecure else None

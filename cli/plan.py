@@ -35,6 +35,7 @@ from planner.core.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, loa
 from planner.core.rules import drive_tables
 from planner.motion.meter import path_vaj
 from planner.motion.plan import LimitReport
+from resources import SUBROUTINES
 
 __all__ = ["build_machine", "main"]
 
@@ -95,7 +96,7 @@ def build_machine(config: str | None, vmax: float | None, amax: float | None, jm
             machine = machine.with_limits(**changes)
         if ts is not None:
             machine = machine.with_planner(ts_s=ts)
-        return machine
+        return replace(machine, shipped_subroutine_dir=str(SUBROUTINES))
     v = PAPER_V if vmax is None else vmax
     a = PAPER_A if amax is None else amax
     j = PAPER_J if jmax is None else jmax
@@ -103,7 +104,9 @@ def build_machine(config: str | None, vmax: float | None, amax: float | None, jm
     axes = tuple(replace(ax, v_max=v, a_max=a, j_max=j) for ax in base.axes)
     machine = replace(base, axes=axes).with_limits(v_max_mm_s=v, a_max_mm_s2=a, j_max_mm_s3=j,
                                                    rapid_mm_s=v)
-    return machine.with_planner(ts_s=PAPER_TS if ts is None else ts)
+    # the shipped subroutines (probing, tool measurement) are found as the panel finds them
+    return replace(machine.with_planner(ts_s=PAPER_TS if ts is None else ts),
+                   shipped_subroutine_dir=str(SUBROUTINES))
 
 
 class _Sinks:
@@ -372,7 +375,7 @@ def main(argv: list[str] | None = None) -> int:
         try:
             machine = build_machine(args.config, args.vmax, args.amax, args.jmax, args.ts)
             try:      # a subroutine file is an input too (the machine names their folders)
-                check_outputs(outputs, inputs, input_dirs=tuple(machine.planner.subroutine_dirs))
+                check_outputs(outputs, inputs, input_dirs=machine.subroutine_paths())
             except OutputClash as exc:
                 print(f"cnc-plan: error: {exc}", file=sys.stderr)
                 return 2

@@ -177,8 +177,9 @@ class ProbeSettings:
             return (f"no tool is in the spindle, not the probe T{self.tool}: put the probe in and say so "
                     f"(In the spindle, or M61 Q{self.tool})")
         if tool_in_spindle != self.tool:
-            return (f"T{tool_in_spindle} is in the spindle, not the probe T{self.tool}: a probing move would "
-                    f"feed it into the part; put the probe in and say so (In the spindle, or M61 Q{self.tool})")
+            return (f"T{tool_in_spindle} is in the spindle, not the probe T{self.tool}: a probing move "
+                    "would feed it into the part; put the probe in and say so (In the spindle, or "
+                    f"M61 Q{self.tool})")
         return ""
 
 

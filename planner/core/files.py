@@ -32,7 +32,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
-__all__ = ["OutputClash", "check_outputs", "remove_stale_temporaries", "write_output",
+__all__ = ["OutputClash", "check_outputs", "protect_input", "remove_stale_temporaries", "write_output",
            "write_output_via_path", "write_text"]
 
 STDOUT = "-"
@@ -54,30 +54,44 @@ def _identity(path: str) -> tuple[str, object]:
         return ("path", os.path.realpath(path))
 
 
+def _stdout_identity() -> tuple[str, object] | None:
+    """What standard output is (a file, a pipe, a terminal), by device and inode."""
+    try:
+        st = os.fstat(sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        return None
+    return ("inode", (st.st_dev, st.st_ino))
+
+
 def check_outputs(outputs: dict[str, str | None], inputs: dict[str, str | None], *,
                   input_dirs: tuple[str, ...] = (), make_dirs: bool = False) -> None:
     """Refuse, before anything is written, an output (``{option: path}``, None when not asked
     for) that is empty, that names the same file as an input (``{what: path}``) or as another
     output (through links, by device and inode), that is a file in one of ``input_dirs`` (the
     program's subroutine folders), or whose folder is missing (unless ``make_dirs``).
-    ``-`` (standard output) may be one output only. Raises ``OutputClash``."""
+    Standard output may be one output only, however it is named (``-``, ``/dev/stdout``,
+    ``/proc/self/fd/1``, or the file it is redirected to). The inputs are kept from the
+    clean-up of stale temporaries for as long as the process runs. Raises ``OutputClash``."""
     seen: dict[tuple[str, object], tuple[str, str]] = {}   # identity: (name, "an input" or "another output")
     for what, path in inputs.items():
         if path:
             seen.setdefault(_identity(path), (what, "an input"))
             seen.setdefault(("path", os.path.realpath(path)), (what, "an input"))
+            protect_input(path)
     folders = [os.path.realpath(d) for d in input_dirs if d]
+    stdout = _stdout_identity()
     stdout_taken = ""
     for option, path in outputs.items():
         if path is None:
             continue
         if not path.strip():
             raise OutputClash(f"{option}: an empty path (name a file, or - for standard output)")
-        if path == STDOUT:
+        if path == STDOUT or (stdout is not None and _identity(path) == stdout):
             if stdout_taken:
-                raise OutputClash(f"{option} -: standard output is already {stdout_taken}'s")
+                raise OutputClash(f"{option} {path}: standard output is already {stdout_taken}'s")
             stdout_taken = option
-            continue
+            if path == STDOUT:
+                continue
         if os.path.isdir(path):
             raise OutputClash(f"{option} {path}: is a folder, not a file")
         try:
@@ -225,10 +239,36 @@ def _alive(pid: int) -> bool:
     return True
 
 
+#: the inputs of this process (device and inode): never taken for a stale temporary
+_INPUTS: set[tuple[int, int]] = set()
+
+
+def protect_input(path: str | os.PathLike[str]) -> None:
+    """Keep ``path`` (a program, a configuration, a tool table the process reads) from the
+    clean-up of stale temporaries, whatever its name."""
+    with contextlib.suppress(OSError):
+        st = os.stat(path)
+        _INPUTS.add((st.st_dev, st.st_ino))
+
+
+def _made_here(entry: Path) -> bool:
+    """Whether ``entry`` is what a killed writer leaves: a regular file of this user with the
+    0600 a temporary is made with (its own mode comes only just before the rename), and no
+    input of this process."""
+    try:
+        st = entry.lstat()
+    except OSError:
+        return False
+    return (stat.S_ISREG(st.st_mode) and stat.S_IMODE(st.st_mode) == 0o600
+            and st.st_uid == os.getuid() and (st.st_dev, st.st_ino) not in _INPUTS)
+
+
 def remove_stale_temporaries(target: str | os.PathLike[str], *, whole_folder: bool = False) -> list[Path]:
     """Remove the temporaries of ``target`` (with ``whole_folder``: of every file in its
     folder, ``target`` being the folder) left by writers whose process is gone (killed in the
-    middle of a save); returns what was removed."""
+    middle of a save); returns what was removed. A file is taken for one only when it has a
+    temporary's name, the process named in it is gone, and it is what a writer makes (see
+    ``_made_here``): a program that merely has such a name is left alone."""
     target = Path(target)
     folder = target if whole_folder else target.parent
     removed: list[Path] = []
@@ -239,6 +279,8 @@ def remove_stale_temporaries(target: str | os.PathLike[str], *, whole_folder: bo
     for entry in entries:
         m = _TMP_RE.match(entry.name)
         if m is None or (not whole_folder and m.group("name") != target.name) or _alive(int(m.group("pid"))):
+            continue
+        if not _made_here(entry):
             continue
         with contextlib.suppress(OSError):
             entry.unlink()

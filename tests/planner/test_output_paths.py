@@ -97,6 +97,107 @@ def test_cnc_run_refuses_a_trace_over_its_program_or_its_script(qapp: object, fi
         assert target.read_bytes() == before
 
 
+def _subroutine_machine(tmp_path: Path, relative: bool) -> tuple[Path, Path, Path]:
+    """A configuration whose subroutine folder is named relative to it (or absolute), its
+    subroutine, and a program that calls it."""
+    from app.machine.config import MachineConfig, config_to_toml
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    sub = subs / "sub1.ngc"
+    sub.write_text("o<sub1> sub\nG0 X0\no<sub1> endsub\n")
+    name = "subs" if relative else str(subs)
+    text = config_to_toml(MachineConfig.default()).replace(
+        'blend_tolerance_mm', f'subroutine_dirs = ["{name}"]\nblend_tolerance_mm', 1)
+    config = tmp_path / "machine.toml"
+    config.write_text(text)
+    program = tmp_path / "prog.ngc"
+    program.write_text("o<sub1> call\nM30\n")
+    return config, program, sub
+
+
+def test_a_subroutine_folder_named_relative_to_the_configuration_is_kept_from_any_folder(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    config, program, sub = _subroutine_machine(tmp_path, relative=True)
+    before = sub.read_bytes()
+    monkeypatch.chdir("/")                                  # run from elsewhere than the configuration
+    assert plan_main([str(program), "--config", str(config), "--csv", str(sub)]) == 2
+    assert "a file in the subroutine folder" in capsys.readouterr().err
+    assert sub.read_bytes() == before
+
+
+def test_cnc_run_keeps_its_trace_out_of_the_subroutine_folders_through_a_link_too(
+        qapp: object, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from app.run_cli import main as run_main
+
+    config, program, sub = _subroutine_machine(tmp_path, relative=True)
+    before = sub.read_bytes()
+    link = tmp_path / "trace.npz"
+    link.symlink_to(sub)
+    for target in (sub, link):
+        code = run_main([str(program), "--config", str(config), "--sim", "--worker", "manual",
+                         "--trace", str(target), "--json"])
+        assert code == 2
+        assert "a file in the subroutine folder" in capsys.readouterr().err
+        assert sub.read_bytes() == before
+
+
+def test_a_shipped_subroutine_is_found_by_cnc_plan_as_by_cnc_run(tmp_path: Path,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    from app.machine.config import MachineConfig, config_to_toml
+
+    config = tmp_path / "machine.toml"
+    config.write_text(config_to_toml(MachineConfig.default()))
+    program = tmp_path / "probe.ngc"
+    program.write_text("G21 G90\nG0 Z10\no<probe_move> call [2] [-5] [100]\nM30\n")
+    for args in ([str(program), "--config", str(config), "--canon", "-"], [str(program), "--canon", "-"]):
+        code = plan_main(args)
+        captured = capsys.readouterr()
+        assert code == 0, captured.err
+        assert "\"straight_probe\"" in captured.out
+
+
+def test_standard_output_named_by_its_path_is_one_output_too(
+        files: dict[str, Path], tmp_path: Path) -> None:
+    """``--json`` with ``--csv /dev/stdout`` while standard output is redirected to a file: the
+    report would be lost in the CSV. Run as a user runs it, with the shell's redirection."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "report.txt"
+    for name in ("/dev/stdout", "/proc/self/fd/1", str(out)):
+        with out.open("w") as fh:
+            proc = subprocess.run([sys.executable, "-m", "cli.plan", str(files["program"]), "--json",
+                                   "--csv", name], stdout=fh, stderr=subprocess.PIPE, text=True,
+                                  cwd=Path(__file__).resolve().parents[2])
+        assert proc.returncode == 2, proc.stderr
+        assert "--json -: standard output is already --csv's" in proc.stderr
+
+
+def test_a_program_named_like_a_temporary_is_never_taken_for_one(tmp_path: Path,
+                                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    """``.out.csv.999999.abcdefabcdef.tmp`` has the name of a temporary of out.csv left by a
+    writer (pid 999999) that is gone: as the program read, or as a user's file beside the
+    output, it stays; a real leftover (0600, this user's) is cleaned up."""
+    monkeypatch.chdir(tmp_path)
+    program = tmp_path / ".out.csv.999999.abcdefabcdef.tmp"
+    program.write_text("G0 X1\nM2\n")
+    program.chmod(0o600)                   # even with a temporary's mode: it is the input
+    assert plan_main([program.name, "--csv", "out.csv"]) == 0
+    assert program.read_text() == "G0 X1\nM2\n" and (tmp_path / "out.csv").is_file()
+    # beside the output, not an input of this run: a user's file (0644) stays; a leftover goes
+    mine = tmp_path / ".out.csv.999998.abcdefabcdef.tmp"
+    mine.write_text("a user's notes\n")
+    mine.chmod(0o644)
+    left = tmp_path / ".out.csv.999997.0123456789ab.tmp"
+    left.write_text("half a CSV")
+    left.chmod(0o600)
+    other = tmp_path / "P.ngc"
+    other.write_text(PROGRAM)
+    assert plan_main([str(other), "--csv", "out.csv"]) == 0
+    assert mine.read_text() == "a user's notes\n" and not left.exists()
+
+
 @settings(max_examples=40)
 @given(picks=st.lists(st.sampled_from(["program", "link", "hard", "tools", "new1", "new2", "-", ""]),
                       min_size=1, max_size=4),
