@@ -332,6 +332,7 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('{0} needs a Q word (the peck depth) the first time'),
     N_('{0} needs a {1} word (the bottom of the hole) the first time in {2}'),
     N_('{0} needs an R word (the retract plane) the first time'),
+    N_('{0} needs an axis word (all axes missing with G52 or G92)'),
     N_('{0} requires a Q word (the number of the subroutine with the profile)'),
     N_('{0} value {1} out of range (|value| < {2})'),
     N_('{0} with the lathe tool {1} (orientation Q{2}): lathe tool orientations are not supported on this machine'),  # noqa: E501

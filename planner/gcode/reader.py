@@ -233,6 +233,8 @@ def _check_words(vals: dict[str, float], groups: dict[int, int], mgroups: dict[i
     is_cycle = motion in CYCLES
     if g1 in (G.G5, G.G5_1) and not axis_words:
         raise BlockError(f"{gname(g1)} needs X or Y (all axes missing with a motion code)", gname(g1))
+    if g0 in (G.G52, G.G92) and not axis_words:        # LinuxCNC: all axes missing with g52 or g92
+        raise BlockError(f"{gname(g0)} needs an axis word (all axes missing with G52 or G92)", gname(g0))
     if motion in (G.G33, G.G33_1):
         name = gname(motion)
         if "K" not in vals:

@@ -3773,6 +3773,11 @@ BIRAK</translation>
       <translation>{0} ilk seferde bir R kelimesi ister (geri çekme düzlemi)</translation>
     </message>
     <message>
+      <location filename="../../app/message_text.py" line="335" />
+      <source>{0} needs an axis word (all axes missing with G52 or G92)</source>
+      <translation>{0} bir eksen kelimesi ister (G52 ya da G92 ile hiçbir eksen yok)</translation>
+    </message>
+    <message>
       <location filename="../../app/message_text.py" line="109" />
       <source>{0} needs {1} values</source>
       <translation>{0}, {1} değer ister</translation>
@@ -3783,7 +3788,7 @@ BIRAK</translation>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="335" />
+      <location filename="../../app/message_text.py" line="336" />
       <source>{0} requires a Q word (the number of the subroutine with the profile)</source>
       <translation>{0} bir Q kelimesi gerektirir (profili içeren alt programın numarası)</translation>
     </message>
@@ -3798,7 +3803,7 @@ BIRAK</translation>
       <translation>{0} döndürme: sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="336" />
+      <location filename="../../app/message_text.py" line="337" />
       <source>{0} value {1} out of range (|value| &lt; {2})</source>
       <translation>{0} değeri {1} aralık dışında (|değer| &lt; {2})</translation>
     </message>
@@ -3813,22 +3818,22 @@ BIRAK</translation>
       <translation>{0} yüklendikten sonra değişikliklerle kaydedildi: makine programı yüklendiği haliyle çalıştırır.</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="337" />
+      <location filename="../../app/message_text.py" line="338" />
       <source>{0} with the lathe tool {1} (orientation Q{2}): lathe tool orientations are not supported on this machine</source>
       <translation>{1} torna takımıyla {0} (yönelim Q{2}): torna takımı yönelimleri bu makinede desteklenmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="338" />
+      <location filename="../../app/message_text.py" line="339" />
       <source>{0} with the spindle at S0: the feed, the pitch times the speed, would be 0</source>
       <translation>iş mili S0'dayken {0}: ilerleme, yani hatve çarpı hız, 0 olurdu</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="339" />
+      <location filename="../../app/message_text.py" line="340" />
       <source>{0} word given for arc in the {1} plane ({2})</source>
       <translation>{1} düzlemindeki yay ({2}) için {0} kelimesi verildi</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="340" />
+      <location filename="../../app/message_text.py" line="341" />
       <source>{0} word with no {1} to use it</source>
       <translation>{0} kelimesini kullanacak {1} yok</translation>
     </message>
@@ -3853,32 +3858,32 @@ BIRAK</translation>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="341" />
+      <location filename="../../app/message_text.py" line="342" />
       <source>{0}: I (the depth of cut) must be greater than zero</source>
       <translation>{0}: I (kesme derinliği) sıfırdan büyük olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="342" />
+      <location filename="../../app/message_text.py" line="343" />
       <source>{0}: Q{1} over a depth of {2} makes more than {3} pecks</source>
       <translation>{0}: {2} derinlik boyunca Q{1}, {3} gagalamadan fazlasını yapar</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="343" />
+      <location filename="../../app/message_text.py" line="344" />
       <source>{0}: a curve moves in X and Y only, not {1}</source>
       <translation>{0}: bir eğri yalnızca X ve Y'de hareket eder, {1} içinde değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="344" />
+      <location filename="../../app/message_text.py" line="345" />
       <source>{0}: a pipe is read once: its program is not UTF-8</source>
       <translation>{0}: bir boru bir kez okunur: programı UTF-8 değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="345" />
+      <location filename="../../app/message_text.py" line="346" />
       <source>{0}: binary data (a NUL byte), not a G-code program</source>
       <translation>{0}: ikili veri (bir NUL baytı), G kodu programı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="346" />
+      <location filename="../../app/message_text.py" line="347" />
       <source>{0}: cannot read: {1}</source>
       <translation>{0}: okunamıyor: {1}</translation>
     </message>
@@ -3888,32 +3893,32 @@ BIRAK</translation>
       <translation>{0}: çalışma kaydedilemiyor: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="347" />
+      <location filename="../../app/message_text.py" line="348" />
       <source>{0}: curves only in the XY plane (G17)</source>
       <translation>{0}: eğriler yalnızca XY düzleminde (G17)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="348" />
+      <location filename="../../app/message_text.py" line="349" />
       <source>{0}: is a folder, not a program</source>
       <translation>{0}: bir klasör, program değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="349" />
+      <location filename="../../app/message_text.py" line="350" />
       <source>{0}: more than {1} MB, the most a program may have ([planner] max_program_mb)</source>
       <translation>{0}: {1} MB'tan büyük, bir programın olabileceği en büyük boyut ([planner] max_program_mb)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="350" />
+      <location filename="../../app/message_text.py" line="351" />
       <source>{0}: more than {1} profile blocks read (an endless loop?)</source>
       <translation>{0}: {1} profil bloğundan fazlası okundu (sonsuz döngü mü?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="351" />
+      <location filename="../../app/message_text.py" line="352" />
       <source>{0}: negative or zero Q (peck depth)</source>
       <translation>{0}: negatif ya da sıfır Q (gagalama derinliği)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="352" />
+      <location filename="../../app/message_text.py" line="353" />
       <source>{0}: not UTF-8, and a pipe cannot be read again as Latin-1</source>
       <translation>{0}: UTF-8 değil ve bir boru Latin-1 olarak yeniden okunamaz</translation>
     </message>
@@ -3928,12 +3933,12 @@ BIRAK</translation>
       <translation>{0}: sayı değil (ofsetler sonlu sayılardır)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="353" />
+      <location filename="../../app/message_text.py" line="354" />
       <source>{0}: nothing came for {1} s (a pipe with no writer?)</source>
       <translation>{0}: {1} s boyunca hiçbir şey gelmedi (yazanı olmayan bir boru mu?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="354" />
+      <location filename="../../app/message_text.py" line="355" />
       <source>{0}: o{1} {2} ({3}) is not supported: a profile's calls are written out</source>
       <translation>{0}: o{1} {2} ({3}) desteklenmiyor: bir profilin çağrıları açık yazılır</translation>
     </message>
@@ -3943,12 +3948,12 @@ BIRAK</translation>
       <translation>{0}: planlayıcı: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="355" />
+      <location filename="../../app/message_text.py" line="356" />
       <source>{0}: start point too close to probe point (the move has no length)</source>
       <translation>{0}: başlangıç noktası prob noktasına çok yakın (hareketin boyu yok)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="356" />
+      <location filename="../../app/message_text.py" line="357" />
       <source>{0}: the profile cannot be offset or cut (a segment of no length, or the cycle's start on the profile)</source>
       <translation>{0}: profil ötelenemiyor ya da kesilemiyor (boyu olmayan bir parça ya da çevrimin başlangıcı profilin üzerinde)</translation>
     </message>
@@ -4023,32 +4028,32 @@ BIRAK</translation>
       <translation>{0}; {1} ardından takım ayarlayıcıda ölçülür</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="357" />
+      <location filename="../../app/message_text.py" line="358" />
       <source>{0}both A and C on a corner{1}</source>
       <translation>{0}bir köşede hem A hem C{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="358" />
+      <location filename="../../app/message_text.py" line="359" />
       <source>{0}both R and I or K for an arc{1}</source>
       <translation>{0}bir yay için hem R hem I ya da K{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="359" />
+      <location filename="../../app/message_text.py" line="360" />
       <source>{0}cannot use {1} and {2} in the same block{3}</source>
       <translation>{0}{1} ve {2} aynı blokta kullanılamaz{3}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="360" />
+      <location filename="../../app/message_text.py" line="361" />
       <source>{0}cannot use {1} in incremental mode (G91){2}</source>
       <translation>{0}{1} artımsal kipte (G91) kullanılamaz{2}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="361" />
+      <location filename="../../app/message_text.py" line="362" />
       <source>{0}either I or K must be present for an arc{1}</source>
       <translation>{0}bir yay için I ya da K bulunmalı{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="362" />
+      <location filename="../../app/message_text.py" line="363" />
       <source>{0}radius R{1} too small for the arc{2}</source>
       <translation>{0}R{1} yarıçapı yay için fazla küçük{2}</translation>
     </message>

@@ -219,3 +219,19 @@ def test_g92_1_to_g92_3_go_beside_a_code_of_group_0_after_it(block: str) -> None
     # LinuxCNC 2.9 has them in a group of their own, run after G10, G28, G52 and G92
     text = f"G21 G90 F600\nG0 X1 Y1 Z1\n{block}\nG1 X2 Y3\nG0 X5 Y-1\nM2\n"
     motion_alike(text)
+
+
+@pytest.mark.parametrize("code", ["G92", "G52"])
+def test_g92_and_g52_without_an_axis_word_are_refused_as_linuxcnc_refuses_them(code: str) -> None:
+    with pytest.raises(ProgramError) as info:
+        parse_program(f"G21 G90\n{code}\nM2\n")
+    err = info.value.errors[0]
+    assert (err.line, err.col) == (2, 1)
+    assert f"{code} needs an axis word (all axes missing with G52 or G92)" in err.message
+
+
+@pytest.mark.skipif(RS274 is None, reason="LinuxCNC's rs274 is not installed (make test installs it as root)")
+@pytest.mark.parametrize("code", ["G92", "G52"])
+def test_linuxcnc_refuses_the_same_bare_g92_and_g52(code: str) -> None:
+    theirs, ours = refused_alike(f"G21 G90\n{code}\nM2\n")
+    assert theirs == ours == code
