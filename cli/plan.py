@@ -417,10 +417,15 @@ def main(argv: list[str] | None = None) -> int:
             print(f"cnc-plan: cannot write: {exc}", file=sys.stderr)
             return 1
 
-    if summary is not None and not summary.cycle_time_s <= args.max_cycle_h * 3600.0:
+    over = summary is not None and not summary.cycle_time_s <= args.max_cycle_h * 3600.0
+    if over and summary is not None and not (args.samples or args.csv or args.plot):
+        # a long program (a mould's finish) is no error: its cycle time is the answer
+        summary.not_sampled = (f"the cycle time is {summary.cycle_time_s / 3600.0:.1f} h, more than "
+                               f"--max-cycle-h {args.max_cycle_h:g}: not interpolated")
+    elif over and summary is not None:
         print(f"{args.program}: error: the cycle time is {summary.cycle_time_s / 3600.0:.1f} h, more than "
-              f"--max-cycle-h {args.max_cycle_h:g}: not interpolated (a feed too low or a move too long?)",
-              file=sys.stderr)
+              f"--max-cycle-h {args.max_cycle_h:g}: not interpolated, so the samples asked for are not made "
+              "(a feed too low or a move too long? --max-cycle-h raises the bound)", file=sys.stderr)
         if args.json:
             json.dump({"program": str(args.program), "cycle_time_s": summary.cycle_time_s, "ok": False,
                        "refused": f"cycle time over {args.max_cycle_h:g} h"}, sys.stdout)

@@ -193,6 +193,20 @@ def test_a_run_over_the_cycle_bound_is_reported_not_interpolated(tmp_path, capsy
     assert not out.exists()
 
 
+def test_a_program_longer_than_the_bound_is_reported_with_its_cycle_time_when_no_samples_are_asked(
+        tmp_path, capsys) -> None:
+    prog = tmp_path / "finish.nc"
+    prog.write_text("G21 G90\nG1 X10 F0.005\nM30\n")        # 2,000 min: 33.3 h
+    assert main([str(prog), "--json"]) == 0
+    captured = capsys.readouterr()
+    report = json.loads(captured.out)
+    assert report["ok"] is True and report["sampled"] is False
+    assert report["cycle_time_s"] == pytest.approx(2000 * 60, rel=1e-3)
+    assert "the cycle time is 33.3 h, more than --max-cycle-h 24: not interpolated" in report["note"]
+    assert main([str(prog)]) == 0
+    assert "cycle time 120000" in capsys.readouterr().out
+
+
 @pytest.mark.parametrize("value", ["0", "-1", "nan", "inf"])
 def test_max_cycle_bound_must_be_a_positive_number(tmp_path, capsys, value: str) -> None:
     prog = tmp_path / "p.nc"
