@@ -187,8 +187,8 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('M66: zero timeout with a wait mode other than immediate (give Q, seconds)'),
     N_('M72: no modal state saved at this level (M70 or M73 first)'),
     N_('M73 saves the state for the return of a subroutine: use M70 in the main program'),
-    N_('M98 L{0}: the runs of a subprogram are a whole number of 0 or more'),
-    N_('M98 P{0}: a subprogram number is a whole number'),
+    N_('M98 L{0}: the runs of a subprogram are a whole number from 0 to 1e9'),
+    N_('M98 P{0}: a subprogram number is a whole number from 0 to 1e9'),
     N_('M98 P{0}: no O{1} in this program'),
     N_('M98 needs a P word (the number of the O subprogram to run)'),
     N_('M98 takes only P and L words, not {0}'),
@@ -266,7 +266,8 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('o{0} call with {1} arguments (at most 30: #1-#30)'),
     N_('o{0} call: no o{1} sub in this program'),
     N_('o{0} call: the o{1} sub at line {2} is not defined here: the program did not run through it (a sub inside an if is defined only when that branch runs) and no other is ahead of the call'),  # noqa: E501
-    N_('o{0} call: the subroutine number {1} is not a whole number'),
+    N_('o{0} call: the subroutine number {1} is not a whole number from 0 to 1e9'),
+    N_('o{0} repeat [{1}]: the count is out of range (|count| < 1e9)'),
     N_('o{0} repeat needs one count in brackets'),
     N_('o{0} sub is defined twice: already at line {1}'),
     N_('o{0} sub met a second time: a sub is defined once, as the program runs through it or a call finds it ahead (not inside a loop, nor after a call to it)'),  # noqa: E501

@@ -13,6 +13,7 @@ from planner.gcode.modes import ModeCodes
 from planner.gcode.oword import Statement, Structure, StructureError, scan
 from planner.gcode.source import statement_col, through_closing_percent
 from planner.gcode.state import (
+    VALUE_LIMIT,
     Frame,
 )
 
@@ -22,6 +23,9 @@ MAX_EXECUTED = 10_000_000   # blocks run by one program with O-word loops
 MAX_IDLE = 1 << 19
 _IDLE_CHECK = 1 << 15        # blocks between two looks at what was made
 MAX_CALL_DEPTH = 50
+#: a count or a number an expression gives (repeats, M98 P and L, O[...] call) is held to the
+#: bound every word of a block has: a whole number a run can hold
+MAX_COUNT = VALUE_LIMIT
 RETURN = -2                  # ``statement``: the subroutine returns
 
 
@@ -148,6 +152,9 @@ class FlowCodes(ModeCodes):
             values = evaluate_brackets(st.rest, self.params, 0)
             if len(values) != 1:
                 raise BlockError(f"o{st.label} repeat needs one count in brackets", col=1)
+            if not abs(values[0]) < MAX_COUNT:         # nan and inf too
+                raise BlockError(f"o{st.label} repeat [{values[0]:g}]: the count is out of range "
+                                 f"(|count| < 1e9)", col=1)
             count = int(round(values[0]))
             if count <= 0:
                 return st.end + 1
@@ -253,9 +260,9 @@ class FlowCodes(ModeCodes):
         label = st.label
         if label.startswith(("[", "#")):     # O[expression] call, O#<name> call: its number
             (value,) = evaluate_brackets(label if label.startswith("[") else f"[{label}]", self.params, 0)
-            if value != round(value) or value < 0:
-                raise BlockError(f"o{label} call: the subroutine number {value:g} is not a whole number",
-                                 col=1)
+            if not abs(value) < MAX_COUNT or value != round(value) or value < 0:
+                raise BlockError(f"o{label} call: the subroutine number {value:g} is not a whole number "
+                                 f"from 0 to 1e9", col=1)
             label = str(int(round(value)))
         target = self.find_sub(label, st, frame)
         file, lines, structure = frame.file, frame.lines, frame.structure
@@ -321,10 +328,12 @@ class FlowCodes(ModeCodes):
         if "P" not in vals:
             raise BlockError("M98 needs a P word (the number of the O subprogram to run)", "M98")
         p, loops = vals["P"], vals.get("L", 1.0)
-        if p != int(p) or p < 0:
-            raise BlockError(f"M98 P{p:g}: a subprogram number is a whole number", "P")
-        if loops != int(loops) or loops < 0:
-            raise BlockError(f"M98 L{loops:g}: the runs of a subprogram are a whole number of 0 or more",
+        if not abs(p) < MAX_COUNT or p != int(p) or p < 0:      # nan and inf first: int() takes neither
+            raise BlockError(f"M98 P{p:g}: a subprogram number is a whole number from 0 to 1e9",
+                             "P")
+        if not abs(loops) < MAX_COUNT or loops != int(loops) or loops < 0:
+            raise BlockError(f"M98 L{loops:g}: the runs of a subprogram are a whole number from 0 to "
+                             f"1e9",
                              "L")
         target = frame.structure.programs.get(str(int(p)))
         if target is None:

@@ -977,13 +977,13 @@ Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="190" />
-      <source>M98 L{0}: the runs of a subprogram are a whole number of 0 or more</source>
-      <translation>M98 L{0}: bir alt programın çalıştırma sayısı 0 ya da daha büyük bir tam sayıdır</translation>
+      <source>M98 L{0}: the runs of a subprogram are a whole number from 0 to 1e9</source>
+      <translation>M98 L{0}: bir alt programın çalıştırma sayısı 0 ile 1e9 arasında bir tam sayıdır</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="191" />
-      <source>M98 P{0}: a subprogram number is a whole number</source>
-      <translation>M98 P{0}: alt program numarası bir tam sayıdır</translation>
+      <source>M98 P{0}: a subprogram number is a whole number from 0 to 1e9</source>
+      <translation>M98 P{0}: alt program numarası 0 ile 1e9 arasında bir tam sayıdır</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="192" />
@@ -2909,31 +2909,36 @@ BIRAK</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="269" />
-      <source>o{0} call: the subroutine number {1} is not a whole number</source>
-      <translation>o{0} call: {1} alt program numarası bir tam sayı değil</translation>
+      <source>o{0} call: the subroutine number {1} is not a whole number from 0 to 1e9</source>
+      <translation>o{0} call: {1} alt program numarası 0 ile 1e9 arasında bir tam sayı değil</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="270" />
+      <source>o{0} repeat [{1}]: the count is out of range (|count| &lt; 1e9)</source>
+      <translation>o{0} repeat [{1}]: sayı aralığın dışında (|sayı| &lt; 1e9)</translation>
+    </message>
+    <message>
+      <location filename="../../app/message_text.py" line="271" />
       <source>o{0} repeat needs one count in brackets</source>
       <translation>o{0} repeat köşeli parantez içinde bir sayı ister</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="271" />
+      <location filename="../../app/message_text.py" line="272" />
       <source>o{0} sub is defined twice: already at line {1}</source>
       <translation>o{0} sub iki kez tanımlanmış: {1}. satırda zaten var</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="272" />
+      <location filename="../../app/message_text.py" line="273" />
       <source>o{0} sub met a second time: a sub is defined once, as the program runs through it or a call finds it ahead (not inside a loop, nor after a call to it)</source>
       <translation>o{0} sub ikinci kez görüldü: bir sub bir kez tanımlanır, program içinden geçerken ya da bir çağrı onu ileride bulurken (bir döngü içinde değil, ona yapılan bir çağrıdan sonra da değil)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="273" />
+      <location filename="../../app/message_text.py" line="274" />
       <source>o{0} {1} is not supported</source>
       <translation>o{0} {1} desteklenmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="274" />
+      <location filename="../../app/message_text.py" line="275" />
       <source>o{0} {1} needs one condition in brackets</source>
       <translation>o{0} {1} köşeli parantez içinde bir koşul ister</translation>
     </message>
@@ -2948,17 +2953,17 @@ BIRAK</translation>
       <translation>planlayıcı: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="275" />
+      <location filename="../../app/message_text.py" line="276" />
       <source>polar coordinates (@ ^) can only be used for motion</source>
       <translation>kutupsal koordinatlar (@ ^) yalnızca hareket için kullanılabilir</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="276" />
+      <location filename="../../app/message_text.py" line="277" />
       <source>polar coordinates (@ ^) need X and Y axes</source>
       <translation>kutupsal koordinatlar (@ ^) X ve Y eksenlerini ister</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="277" />
+      <location filename="../../app/message_text.py" line="278" />
       <source>polar coordinates (@ ^) only in the XY plane (G17)</source>
       <translation>kutupsal koordinatlar (@ ^) yalnızca XY düzleminde (G17)</translation>
     </message>
@@ -2968,7 +2973,7 @@ BIRAK</translation>
       <translation>prob</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="278" />
+      <location filename="../../app/message_text.py" line="279" />
       <source>probe result {0} has positions for {1} axes, the machine has {2}</source>
       <translation>{0} prob sonucunda {1} eksen için konum var, makinede {2} eksen var</translation>
     </message>
@@ -3108,22 +3113,22 @@ BIRAK</translation>
       <translation>iş mili başlatılamıyor: makine {0} durumunda</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="279" />
+      <location filename="../../app/message_text.py" line="280" />
       <source>spindle not turning in G33.1 (rigid tapping needs M3 or M4 and S)</source>
       <translation>G33.1'de iş mili dönmüyor (rijit kılavuz çekme M3 ya da M4 ve S ister)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="280" />
+      <location filename="../../app/message_text.py" line="281" />
       <source>spindle not turning in G86</source>
       <translation>G86'da iş mili dönmüyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="281" />
+      <location filename="../../app/message_text.py" line="282" />
       <source>spindle not turning in {0} (M3 or M4 first)</source>
       <translation>{0} içinde iş mili dönmüyor (önce M3 ya da M4)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="282" />
+      <location filename="../../app/message_text.py" line="283" />
       <source>spindle not turning in {0} (tapping needs M0{1})</source>
       <translation>{0} içinde iş mili dönmüyor (kılavuz çekme M0{1} ister)</translation>
     </message>
@@ -3153,12 +3158,12 @@ BIRAK</translation>
       <translation>iş mili oranı %{0} şimdi uygulanmıyor: program onu kapattı (kılavuz çekme, M49 ya da M51 P0); program açınca uygulanır</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="283" />
+      <location filename="../../app/message_text.py" line="284" />
       <source>spindle turning {0} in {1}</source>
       <translation>{1} içinde iş mili {0} dönüyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="284" />
+      <location filename="../../app/message_text.py" line="285" />
       <source>start_position has {0} values for {1} axes</source>
       <translation>start_position, {1} eksen için {0} değer içeriyor</translation>
     </message>
@@ -3188,12 +3193,12 @@ BIRAK</translation>
       <translation>G28/G30 konumunu kaydetmek</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="285" />
+      <location filename="../../app/message_text.py" line="286" />
       <source>subprogram calls nested deeper than {0} (endless recursion?)</source>
       <translation>alt program çağrıları {0} düzeyden derin (sonsuz özyineleme mi?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="286" />
+      <location filename="../../app/message_text.py" line="287" />
       <source>subroutine calls nested deeper than {0} (endless recursion?)</source>
       <translation>alt yordam çağrıları {0} düzeyden derin (sonsuz özyineleme mi?)</translation>
     </message>
@@ -3213,7 +3218,7 @@ BIRAK</translation>
       <translation>kontrol düzgün kapanmadı (elektrik kesintisi ya da zorla sonlandırma; konum en son {0} tarihinde kaydedildi): {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="287" />
+      <location filename="../../app/message_text.py" line="288" />
       <source>the cutter compensation entry move ({0} mm in the plane) is not longer than the tool radius ({1} mm)</source>
       <translation>kesici telafisi giriş hareketi (düzlemde {0} mm) takım yarıçapından ({1} mm) uzun değil</translation>
     </message>
@@ -3283,7 +3288,7 @@ BIRAK</translation>
       <translation>yukarı geri dönüş</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="288" />
+      <location filename="../../app/message_text.py" line="289" />
       <source>the move just after turning cutter compensation off (G40) must be a straight line, not an arc</source>
       <translation>kesici telafisi kapatıldıktan (G40) hemen sonraki hareket yay değil, doğru olmalı</translation>
     </message>
@@ -3303,17 +3308,17 @@ BIRAK</translation>
       <translation>emniyet yüksekliğine çıkış</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="289" />
+      <location filename="../../app/message_text.py" line="290" />
       <source>the program aborts here (ABORT comment): {0}</source>
       <translation>program burada durduruluyor (ABORT açıklaması): {0}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="290" />
+      <location filename="../../app/message_text.py" line="291" />
       <source>the program ends with the NURBS begun at line {0} not ended: program G05.3 to run it</source>
       <translation>program, {0}. satırda başlayan NURBS bitirilmeden sona eriyor: çalıştırmak için G05.3 programlayın</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="291" />
+      <location filename="../../app/message_text.py" line="292" />
       <source>the program ends with this NURBS (G05.2) not ended: program G05.3 to run it</source>
       <translation>program bu NURBS (G05.2) bitirilmeden sona eriyor: çalıştırmak için G05.3 programlayın</translation>
     </message>
@@ -3333,17 +3338,17 @@ BIRAK</translation>
       <translation>{0} programı hâlâ denetleniyor (yüklenene kadar bekleyin)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="292" />
+      <location filename="../../app/message_text.py" line="293" />
       <source>the radius of the cutter compensation entry arc is not greater than the tool radius ({0} mm)</source>
       <translation>kesici telafisi giriş yayının yarıçapı takım yarıçapından ({0} mm) büyük değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="293" />
+      <location filename="../../app/message_text.py" line="294" />
       <source>the routine after a tool change ({0}) is not an O-word call</source>
       <translation>takım değişiminden sonraki yordam ({0}) bir O-kelimesi çağrısı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="294" />
+      <location filename="../../app/message_text.py" line="295" />
       <source>the routine after a tool change ({0}): {1}</source>
       <translation>takım değişiminden sonraki yordam ({0}): {1}</translation>
     </message>
@@ -3403,7 +3408,7 @@ BIRAK</translation>
       <translation>bu makinede prob girişi yok (makine yapılandırmasında [probe] drive)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="295" />
+      <location filename="../../app/message_text.py" line="296" />
       <source>tool T{0} is not in the tool table (add it on the Tools page)</source>
       <translation>T{0} takımı takım tablosunda yok (Takımlar sayfasında ekleyin)</translation>
     </message>
@@ -3413,32 +3418,32 @@ BIRAK</translation>
       <translation>takım değişimi (M06, satır {0}): {1} takımını takın ve çevrim başlata basın</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="296" />
+      <location filename="../../app/message_text.py" line="297" />
       <source>tool number H{0} must be a whole number &gt;= 0</source>
       <translation>takım numarası H{0}, &gt;= 0 bir tam sayı olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="297" />
+      <location filename="../../app/message_text.py" line="298" />
       <source>tool number Q{0} must be a whole number &gt;= 0</source>
       <translation>takım numarası Q{0}, &gt;= 0 bir tam sayı olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="298" />
+      <location filename="../../app/message_text.py" line="299" />
       <source>tool number T{0} must be a whole number &gt;= 0</source>
       <translation>takım numarası T{0}, &gt;= 0 bir tam sayı olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="299" />
+      <location filename="../../app/message_text.py" line="300" />
       <source>tool radius ({0} mm) not less than the arc radius ({1} mm) with cutter compensation</source>
       <translation>kesici telafisiyle takım yarıçapı ({0} mm) yay yarıçapından ({1} mm) küçük değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="300" />
+      <location filename="../../app/message_text.py" line="301" />
       <source>tool radius ({0} mm) not less than the arc radius with cutter compensation</source>
       <translation>kesici telafisiyle takım yarıçapı ({0} mm) yay yarıçapından küçük değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="301" />
+      <location filename="../../app/message_text.py" line="302" />
       <source>tool radius not less than the arc radius with cutter compensation</source>
       <translation>kesici telafisiyle takım yarıçapı yay yarıçapından küçük değil</translation>
     </message>
@@ -3453,7 +3458,7 @@ BIRAK</translation>
       <translation>takım {0}boy {1} mm</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="302" />
+      <location filename="../../app/message_text.py" line="303" />
       <source>tool_offset {0}: G43, G43.1, G43.2 or G49 and {1} values</source>
       <translation>tool_offset {0}: G43, G43.1, G43.2 ya da G49 ve {1} değer</translation>
     </message>
@@ -3468,12 +3473,12 @@ BIRAK</translation>
       <translation>{0} sıfırlama: sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="303" />
+      <location filename="../../app/message_text.py" line="304" />
       <source>two {0} words in one block</source>
       <translation>bir blokta iki {0} kelimesi</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="304" />
+      <location filename="../../app/message_text.py" line="305" />
       <source>unclosed comment: '(' without ')'</source>
       <translation>kapanmamış açıklama: ')' olmadan '('</translation>
     </message>
@@ -3483,17 +3488,17 @@ BIRAK</translation>
       <translation>bilinmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="305" />
+      <location filename="../../app/message_text.py" line="306" />
       <source>unknown G code G{0}</source>
       <translation>bilinmeyen G kodu G{0}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="306" />
+      <location filename="../../app/message_text.py" line="307" />
       <source>unknown G code {0}</source>
       <translation>bilinmeyen G kodu {0}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="307" />
+      <location filename="../../app/message_text.py" line="308" />
       <source>unknown M code M{0}</source>
       <translation>bilinmeyen M kodu M{0}</translation>
     </message>
@@ -3513,12 +3518,12 @@ BIRAK</translation>
       <translation>uyarı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="308" />
+      <location filename="../../app/message_text.py" line="309" />
       <source>with cutter compensation this arc would turn a whole circle more than programmed: the arc is too short for the tool's radius</source>
       <translation>kesici telafisiyle bu yay programlanandan bir tam tur fazla dönerdi: yay takımın yarıçapı için fazla kısa</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="309" />
+      <location filename="../../app/message_text.py" line="310" />
       <source>word {0} is not supported</source>
       <translation>{0} kelimesi desteklenmiyor</translation>
     </message>
@@ -3533,7 +3538,7 @@ BIRAK</translation>
       <translation>çalışma sayacı {2} çevrimden uzun süre {1} yerine {0}: tüm eksenler hızlı durduruldu{3}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="310" />
+      <location filename="../../app/message_text.py" line="311" />
       <source>x too large in straight dive</source>
       <translation>düz dalışta x fazla büyük</translation>
     </message>
@@ -3603,17 +3608,17 @@ BIRAK</translation>
       <translation>{0} ({1}): sonuçla birlikte, {2}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="311" />
+      <location filename="../../app/message_text.py" line="312" />
       <source>{0} L{1}: lathe tool orientations are not supported on this machine (L0 or L9: the centre of the tool)</source>
       <translation>{0} L{1}: torna takımı yönelimleri bu makinede desteklenmiyor (L0 ya da L9: takımın merkezi)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="312" />
+      <location filename="../../app/message_text.py" line="313" />
       <source>{0} Q{1}: no o{2} sub in this program (the profile)</source>
       <translation>{0} Q{1}: bu programda o{2} sub yok (profil)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="313" />
+      <location filename="../../app/message_text.py" line="314" />
       <source>{0} Q{1}: the profile's subroutine number is a whole number</source>
       <translation>{0} Q{1}: profilin alt program numarası bir tam sayıdır</translation>
     </message>
@@ -3628,47 +3633,47 @@ BIRAK</translation>
       <translation>{0} ve {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="314" />
+      <location filename="../../app/message_text.py" line="315" />
       <source>{0} and {1} are in the same modal group (one per block)</source>
       <translation>{0} ve {1} aynı kip grubunda (blok başına bir tane)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="315" />
+      <location filename="../../app/message_text.py" line="316" />
       <source>{0} before the NURBS begun at line {1} is ended: program G05.3 to run it first</source>
       <translation>{1}. satırda başlayan NURBS bitmeden {0}: önce onu çalıştırmak için G05.3 programlayın</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="316" />
+      <location filename="../../app/message_text.py" line="317" />
       <source>{0} beside G05.3: between G05.2 and G05.3 only G05.2 blocks</source>
       <translation>G05.3 yanında {0}: G05.2 ile G05.3 arasında yalnızca G05.2 blokları olur</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="317" />
+      <location filename="../../app/message_text.py" line="318" />
       <source>{0} blocks run without a move (an endless loop?)</source>
       <translation>hareketsiz {0} blok çalıştı (sonsuz döngü mü?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="318" />
+      <location filename="../../app/message_text.py" line="319" />
       <source>{0} can only be used in the XZ plane (G18)</source>
       <translation>{0} yalnızca XZ düzleminde (G18) kullanılabilir</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="319" />
+      <location filename="../../app/message_text.py" line="320" />
       <source>{0} canned cycle is not possible on a machine without {1} axis</source>
       <translation>{0} sabit çevrimi {1} ekseni olmayan bir makinede yapılamaz</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="320" />
+      <location filename="../../app/message_text.py" line="321" />
       <source>{0} cannot be used with cutter compensation enabled: program G40 first</source>
       <translation>{0}, kesici telafisi açıkken kullanılamaz: önce G40 programlayın</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="321" />
+      <location filename="../../app/message_text.py" line="322" />
       <source>{0} cuts in X and Z: this machine has no {1} axis</source>
       <translation>{0}, X ve Z'de keser: bu makinede {1} ekseni yok</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="322" />
+      <location filename="../../app/message_text.py" line="323" />
       <source>{0} does not define o{1} sub</source>
       <translation>{0}, o{1} sub tanımlamıyor</translation>
     </message>
@@ -3693,12 +3698,12 @@ BIRAK</translation>
       <translation>{0} içinde {1} hata var, ilki {2}. satırda: {3}. Yine de kaydedilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="323" />
+      <location filename="../../app/message_text.py" line="324" />
       <source>{0} in a concave corner cannot be reached by the tool without gouging (the corner's sides are shorter than the tool needs)</source>
       <translation>içbükey köşedeki {0} hareketine takım oyuk açmadan ulaşamaz (köşenin kenarları takımın gerektirdiğinden kısa)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="324" />
+      <location filename="../../app/message_text.py" line="325" />
       <source>{0} in inverse time feed mode (G93): program G94 or G95 for curves</source>
       <translation>ters zaman ilerleme kipinde (G93) {0}: eğriler için G94 ya da G95 programlayın</translation>
     </message>
@@ -3708,7 +3713,7 @@ BIRAK</translation>
       <translation>İş milinde {0} var, {1} seçili. Hangisinin boyu ölçülüyor?</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="325" />
+      <location filename="../../app/message_text.py" line="326" />
       <source>{0} is not a motion this interpreter runs</source>
       <translation>{0}, bu yorumlayıcının çalıştırdığı bir hareket değil</translation>
     </message>
@@ -3718,7 +3723,7 @@ BIRAK</translation>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="326" />
+      <location filename="../../app/message_text.py" line="327" />
       <source>{0} is not supported ({1})</source>
       <translation>{0} desteklenmiyor ({1})</translation>
     </message>
@@ -3733,47 +3738,47 @@ BIRAK</translation>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="327" />
+      <location filename="../../app/message_text.py" line="328" />
       <source>{0} needs D to be a tool number (a whole number &gt;= 0), got D{1}</source>
       <translation>{0}, D'nin bir takım numarası olmasını ister (&gt;= 0 bir tam sayı), D{1} verildi</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="328" />
+      <location filename="../../app/message_text.py" line="329" />
       <source>{0} needs X or Y (all axes missing with a motion code)</source>
       <translation>{0}, X ya da Y ister (hareket koduyla birlikte tüm eksenler eksik)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="329" />
+      <location filename="../../app/message_text.py" line="330" />
       <source>{0} needs a D word (the tool diameter)</source>
       <translation>{0} bir D kelimesi ister (takım çapı)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="330" />
+      <location filename="../../app/message_text.py" line="331" />
       <source>{0} needs a K word (the thread pitch, length per turn)</source>
       <translation>{0} bir K kelimesi ister (diş hatvesi, tur başına boy)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="331" />
+      <location filename="../../app/message_text.py" line="332" />
       <source>{0} needs a P word (the dwell at the bottom, s) the first time</source>
       <translation>{0} ilk seferde bir P kelimesi ister (tabanda bekleme, s)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="332" />
+      <location filename="../../app/message_text.py" line="333" />
       <source>{0} needs a Q word (the peck depth) the first time</source>
       <translation>{0} ilk seferde bir Q kelimesi ister (gagalama derinliği)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="333" />
+      <location filename="../../app/message_text.py" line="334" />
       <source>{0} needs a {1} word (the bottom of the hole) the first time in {2}</source>
       <translation>{0}, {2} içinde ilk seferde bir {1} kelimesi ister (deliğin tabanı)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="334" />
+      <location filename="../../app/message_text.py" line="335" />
       <source>{0} needs an R word (the retract plane) the first time</source>
       <translation>{0} ilk seferde bir R kelimesi ister (geri çekme düzlemi)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="335" />
+      <location filename="../../app/message_text.py" line="336" />
       <source>{0} needs an axis word (all axes missing with G52 or G92)</source>
       <translation>{0} bir eksen kelimesi ister (G52 ya da G92 ile hiçbir eksen yok)</translation>
     </message>
@@ -3788,7 +3793,7 @@ BIRAK</translation>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="336" />
+      <location filename="../../app/message_text.py" line="337" />
       <source>{0} requires a Q word (the number of the subroutine with the profile)</source>
       <translation>{0} bir Q kelimesi gerektirir (profili içeren alt programın numarası)</translation>
     </message>
@@ -3803,7 +3808,7 @@ BIRAK</translation>
       <translation>{0} döndürme: sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="337" />
+      <location filename="../../app/message_text.py" line="338" />
       <source>{0} value {1} out of range (|value| &lt; {2})</source>
       <translation>{0} değeri {1} aralık dışında (|değer| &lt; {2})</translation>
     </message>
@@ -3818,22 +3823,22 @@ BIRAK</translation>
       <translation>{0} yüklendikten sonra değişikliklerle kaydedildi: makine programı yüklendiği haliyle çalıştırır.</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="338" />
+      <location filename="../../app/message_text.py" line="339" />
       <source>{0} with the lathe tool {1} (orientation Q{2}): lathe tool orientations are not supported on this machine</source>
       <translation>{1} torna takımıyla {0} (yönelim Q{2}): torna takımı yönelimleri bu makinede desteklenmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="339" />
+      <location filename="../../app/message_text.py" line="340" />
       <source>{0} with the spindle at S0: the feed, the pitch times the speed, would be 0</source>
       <translation>iş mili S0'dayken {0}: ilerleme, yani hatve çarpı hız, 0 olurdu</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="340" />
+      <location filename="../../app/message_text.py" line="341" />
       <source>{0} word given for arc in the {1} plane ({2})</source>
       <translation>{1} düzlemindeki yay ({2}) için {0} kelimesi verildi</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="341" />
+      <location filename="../../app/message_text.py" line="342" />
       <source>{0} word with no {1} to use it</source>
       <translation>{0} kelimesini kullanacak {1} yok</translation>
     </message>
@@ -3858,32 +3863,32 @@ BIRAK</translation>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="342" />
+      <location filename="../../app/message_text.py" line="343" />
       <source>{0}: I (the depth of cut) must be greater than zero</source>
       <translation>{0}: I (kesme derinliği) sıfırdan büyük olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="343" />
+      <location filename="../../app/message_text.py" line="344" />
       <source>{0}: Q{1} over a depth of {2} makes more than {3} pecks</source>
       <translation>{0}: {2} derinlik boyunca Q{1}, {3} gagalamadan fazlasını yapar</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="344" />
+      <location filename="../../app/message_text.py" line="345" />
       <source>{0}: a curve moves in X and Y only, not {1}</source>
       <translation>{0}: bir eğri yalnızca X ve Y'de hareket eder, {1} içinde değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="345" />
+      <location filename="../../app/message_text.py" line="346" />
       <source>{0}: a pipe is read once: its program is not UTF-8</source>
       <translation>{0}: bir boru bir kez okunur: programı UTF-8 değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="346" />
+      <location filename="../../app/message_text.py" line="347" />
       <source>{0}: binary data (a NUL byte), not a G-code program</source>
       <translation>{0}: ikili veri (bir NUL baytı), G kodu programı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="347" />
+      <location filename="../../app/message_text.py" line="348" />
       <source>{0}: cannot read: {1}</source>
       <translation>{0}: okunamıyor: {1}</translation>
     </message>
@@ -3893,32 +3898,32 @@ BIRAK</translation>
       <translation>{0}: çalışma kaydedilemiyor: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="348" />
+      <location filename="../../app/message_text.py" line="349" />
       <source>{0}: curves only in the XY plane (G17)</source>
       <translation>{0}: eğriler yalnızca XY düzleminde (G17)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="349" />
+      <location filename="../../app/message_text.py" line="350" />
       <source>{0}: is a folder, not a program</source>
       <translation>{0}: bir klasör, program değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="350" />
+      <location filename="../../app/message_text.py" line="351" />
       <source>{0}: more than {1} MB, the most a program may have ([planner] max_program_mb)</source>
       <translation>{0}: {1} MB'tan büyük, bir programın olabileceği en büyük boyut ([planner] max_program_mb)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="351" />
+      <location filename="../../app/message_text.py" line="352" />
       <source>{0}: more than {1} profile blocks read (an endless loop?)</source>
       <translation>{0}: {1} profil bloğundan fazlası okundu (sonsuz döngü mü?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="352" />
+      <location filename="../../app/message_text.py" line="353" />
       <source>{0}: negative or zero Q (peck depth)</source>
       <translation>{0}: negatif ya da sıfır Q (gagalama derinliği)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="353" />
+      <location filename="../../app/message_text.py" line="354" />
       <source>{0}: not UTF-8, and a pipe cannot be read again as Latin-1</source>
       <translation>{0}: UTF-8 değil ve bir boru Latin-1 olarak yeniden okunamaz</translation>
     </message>
@@ -3933,12 +3938,12 @@ BIRAK</translation>
       <translation>{0}: sayı değil (ofsetler sonlu sayılardır)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="354" />
+      <location filename="../../app/message_text.py" line="355" />
       <source>{0}: nothing came for {1} s (a pipe with no writer?)</source>
       <translation>{0}: {1} s boyunca hiçbir şey gelmedi (yazanı olmayan bir boru mu?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="355" />
+      <location filename="../../app/message_text.py" line="356" />
       <source>{0}: o{1} {2} ({3}) is not supported: a profile's calls are written out</source>
       <translation>{0}: o{1} {2} ({3}) desteklenmiyor: bir profilin çağrıları açık yazılır</translation>
     </message>
@@ -3948,12 +3953,12 @@ BIRAK</translation>
       <translation>{0}: planlayıcı: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="356" />
+      <location filename="../../app/message_text.py" line="357" />
       <source>{0}: start point too close to probe point (the move has no length)</source>
       <translation>{0}: başlangıç noktası prob noktasına çok yakın (hareketin boyu yok)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="357" />
+      <location filename="../../app/message_text.py" line="358" />
       <source>{0}: the profile cannot be offset or cut (a segment of no length, or the cycle's start on the profile)</source>
       <translation>{0}: profil ötelenemiyor ya da kesilemiyor (boyu olmayan bir parça ya da çevrimin başlangıcı profilin üzerinde)</translation>
     </message>
@@ -4028,32 +4033,32 @@ BIRAK</translation>
       <translation>{0}; {1} ardından takım ayarlayıcıda ölçülür</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="358" />
+      <location filename="../../app/message_text.py" line="359" />
       <source>{0}both A and C on a corner{1}</source>
       <translation>{0}bir köşede hem A hem C{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="359" />
+      <location filename="../../app/message_text.py" line="360" />
       <source>{0}both R and I or K for an arc{1}</source>
       <translation>{0}bir yay için hem R hem I ya da K{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="360" />
+      <location filename="../../app/message_text.py" line="361" />
       <source>{0}cannot use {1} and {2} in the same block{3}</source>
       <translation>{0}{1} ve {2} aynı blokta kullanılamaz{3}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="361" />
+      <location filename="../../app/message_text.py" line="362" />
       <source>{0}cannot use {1} in incremental mode (G91){2}</source>
       <translation>{0}{1} artımsal kipte (G91) kullanılamaz{2}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="362" />
+      <location filename="../../app/message_text.py" line="363" />
       <source>{0}either I or K must be present for an arc{1}</source>
       <translation>{0}bir yay için I ya da K bulunmalı{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="363" />
+      <location filename="../../app/message_text.py" line="364" />
       <source>{0}radius R{1} too small for the arc{2}</source>
       <translation>{0}R{1} yarıçapı yay için fazla küçük{2}</translation>
     </message>

@@ -167,6 +167,12 @@ def test_an_error_in_a_subroutine_file_names_that_file_and_its_line(tmp_path: Pa
     ("G21 F100\nM98 P1 L1.5\nM2\nO1\nM99\n", 2, "M98 L1.5"),
     ("G21 F100\nM98 P1 Q2\nM2\nO1\nM99\n", 2, "M98 takes only P and L words, not Q"),
     ("G21 F100\no1 sub\nM99\no1 endsub\no1 call\nM2\n", 3, "M99 inside an O-word subroutine"),
+    # a count or a number that is infinite, or too large for a whole number, is refused at its word
+    ("o1 repeat [10**308*10]\no1 endrepeat\n", 1, "o1 repeat [inf]: the count is out of range"),
+    ("o1 repeat [10**10]\no1 endrepeat\n", 1, "the count is out of range (|count| < 1e9)"),
+    ("o1 sub\no1 endsub\no[10**308*10] call\n", 3, "the subroutine number inf is not a whole number"),
+    ("G21 F100\nM98 P[10**308*10]\nM2\n", 2, "M98 Pinf: a subprogram number is a whole number from 0"),
+    ("G21 F100\nM98 P1 L[10**308*10]\nM2\nO1\nM99\n", 2, "M98 Linf: the runs of a subprogram"),
 ])
 def test_refusals_name_the_line_and_what_is_wrong(text: str, line: int, words: str) -> None:
     with pytest.raises(ProgramError) as exc:
