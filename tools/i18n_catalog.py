@@ -22,11 +22,13 @@ APP = ROOT / "app"
 MARKERS = ("tr", "N_")
 EXCLUDED = ("machine",)  # the controller package has its own (English) messages
 
-# The interpreter's messages (planner/gcode, and planner/geometry whose refusals it passes on) and
+# The interpreter's messages (planner/gcode, planner/geometry whose refusals it passes on, and the
+# bounded reading of its files in planner/core/reading.py) and
 # the controller's (app/machine): neither imports Qt or marks its sentences, so they are gathered
 # here from the sources and written to app/message_text.py as templates, where the panel's
 # catalogue and ``localize`` find them.
-INTERPRETER = (ROOT / "planner" / "gcode", ROOT / "planner" / "geometry")
+INTERPRETER = (ROOT / "planner" / "gcode", ROOT / "planner" / "geometry",
+               ROOT / "planner" / "core" / "reading.py")
 CONTROLLER = (ROOT / "app" / "machine",)
 MESSAGE_TEXT = APP / "message_text.py"
 # how a message is raised or recorded, and which argument holds it
@@ -119,7 +121,7 @@ def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Patt
                ) -> list[str]:
     found: set[str] = set()
     for root in roots:
-        for path in sorted(root.rglob("*.py")):
+        for path in [root] if root.is_file() else sorted(root.rglob("*.py")):
             tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
             returned = _returned(tree, refusals)
             for node in ast.walk(tree):

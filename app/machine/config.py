@@ -38,6 +38,7 @@ from opcua_server.settings import IDENTIFICATION_KEYS, OpcUaSettings
 from planner.core.errors import PlannerError
 from planner.core.files import write_output, write_text
 from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
+from planner.core.reading import CONFIGURATION, parse_toml, read_text
 from planner.core.rules import drive_tables
 from planner.core.schema import END_MARK, HEADER, Locator, check_complete, validate
 from resources import SUBROUTINES, shipped_machine
@@ -309,18 +310,14 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
 
 
 def _parse(path: Path) -> MachineConfig:
+    if not path.exists() and not path.is_symlink():
+        raise ConfigError(f"{path}: machine configuration file not found", str(path))
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: machine configuration file not found", str(path)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: cannot read: {exc}", str(path)) from None
-    try:
+        text = read_text(path, CONFIGURATION)
         check_complete(text, str(path))
+        data = parse_toml(text, str(path))
     except PlannerError as exc:
         raise ConfigError(str(exc), str(path)) from None
-    try:
-        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: damaged file, not valid TOML: {exc}", str(path)) from None
     return config_from_dict(data, str(path), text)

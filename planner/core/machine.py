@@ -16,6 +16,7 @@ from typing import Any
 
 from planner.core.errors import PlannerError
 from planner.core.frames import SYSTEM_NAMES
+from planner.core.reading import CONFIGURATION, parse_toml, read_text
 from planner.core.rules import SectionRule, check_sections
 from planner.core.schema import Locator, check_complete, validate
 
@@ -300,17 +301,13 @@ def load_machine(path: str | Path, extra: SectionRule | None = None) -> MachineS
     """Read and validate a machine configuration TOML file (``extra``: the caller's rules for
     its own sections, as ``machine_from_valid`` takes them)."""
     p = Path(path)
+    if not p.exists() and not p.is_symlink():
+        raise PlannerError(f"{p}: machine configuration file not found")
+    text = read_text(p, CONFIGURATION)
     try:
-        text = p.read_text(encoding="utf-8")
         check_complete(text, str(p))
-        data = tomllib.loads(text)
-    except FileNotFoundError:
-        raise PlannerError(f"{p}: machine configuration file not found") from None
-    except IsADirectoryError:
-        raise PlannerError(f"{p}: is a directory, not a machine configuration file") from None
-    except OSError as exc:
-        raise PlannerError(f"{p}: cannot read the machine configuration: {exc.strerror or exc}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        data = parse_toml(text, str(p))
+    except tomllib.TOMLDecodeError as exc:
         raise PlannerError(f"{p}: not a valid TOML file: {exc}") from None
     return machine_from_dict(data, str(p), text, extra)
 

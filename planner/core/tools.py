@@ -16,9 +16,9 @@ import os
 import re
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 
 from planner.core.errors import PlannerError
+from planner.core.reading import TOOL_TABLE, read_text
 
 __all__ = ["OFFSET_AXES", "Tool", "ToolTable", "format_tbl", "parse_tbl", "read_tbl"]
 
@@ -175,11 +175,7 @@ def parse_tbl(text: str, where: str = "<tool table>") -> ToolTable:
 
 def read_tbl(path: str | os.PathLike[str]) -> ToolTable:
     """Read a tool table file (PlannerError naming the file when it cannot be read)."""
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise PlannerError(f"{path}: cannot read the tool table: {exc}") from None
-    return parse_tbl(text, str(path))
+    return parse_tbl(read_text(path, TOOL_TABLE), str(path))
 
 
 def _num(v: float) -> str:

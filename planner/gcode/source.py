@@ -8,11 +8,10 @@ from __future__ import annotations
 import codecs
 import io
 import os
-import select
-import stat
 from typing import Any
 
 from planner.core.errors import PlannerError
+from planner.core.reading import PROGRAM, SILENT_PIPE_S, Bounded
 from planner.gcode.lexer import LexError, compact, original_column
 
 __all__ = ["MAX_PROGRAM_BYTES", "SILENT_PIPE_S", "compact_or_none", "contains", "count_lines", "decode_utf8",
@@ -26,105 +25,12 @@ DECODE_PIECE = 1 << 20
 #: the largest program read, by default ([planner] max_program_mb): four times the 252 MB of
 #: the 10,000,000-line programs the panel runs; a file or a device that goes on is refused
 MAX_PROGRAM_BYTES = 1024 << 20
-#: a pipe or device that delivers nothing for this long is given up (a FIFO with no writer)
-SILENT_PIPE_S = 10.0
-
-
-def _too_big(path: object, limit: int) -> PlannerError:
-    return PlannerError(f"{path}: more than {limit / (1 << 20):g} MB, the most a program may have "
-                        "([planner] max_program_mb)")
-
-
-class _Bounded(io.RawIOBase):
-    """A program's file as a stream that ends at ``limit`` bytes (refused beyond) and, for a
-    pipe or a device, after ``SILENT_PIPE_S`` without data (refused), whatever the file is: a
-    regular file's size is looked at before it is read, /dev/zero ends at the limit, a FIFO
-    with no writer ends at the timeout."""
-
-    def __init__(self, path: str | os.PathLike[str], limit: int) -> None:
-        self.path, self.limit, self.read_bytes = path, limit, 0
-        try:
-            # without O_NONBLOCK, opening a FIFO waits for a writer, for ever
-            self.fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
-        except OSError as exc:
-            raise PlannerError(f"{path}: cannot read: {exc.strerror or exc}") from None
-        try:
-            st = os.fstat(self.fd)
-            if stat.S_ISDIR(st.st_mode):
-                raise PlannerError(f"{path}: is a folder, not a program")
-            self.regular = stat.S_ISREG(st.st_mode)
-            if self.regular:
-                if st.st_size > limit:
-                    raise _too_big(path, limit)
-                os.set_blocking(self.fd, True)
-        except BaseException:
-            os.close(self.fd)
-            raise
-
-    def readable(self) -> bool:
-        return True
-
-    def seekable(self) -> bool:
-        return self.regular
-
-    def readall(self) -> bytes:
-        """A regular file at once (its size is known and within the limit): one read, no
-        pieces to join (a 250 MB program read in pieces took three times as long)."""
-        if not self.regular:
-            return super().readall() or b""
-        parts: list[bytes] = []
-        while True:
-            # what is left of it, and a byte more to see its end: never a buffer of the limit
-            left = os.fstat(self.fd).st_size - os.lseek(self.fd, 0, os.SEEK_CUR)
-            block = os.read(self.fd, min(max(left, 0), self.limit) + 1)
-            if not block:
-                return b"".join(parts) if len(parts) != 1 else parts[0]
-            self.read_bytes += len(block)
-            if self.read_bytes > self.limit:       # it grew since it was opened
-                raise _too_big(self.path, self.limit)
-            parts.append(block)
-
-    def readinto(self, buffer: Any) -> int:
-        view = memoryview(buffer).cast("B")
-        want = min(len(view), self.limit + 1 - self.read_bytes)
-        if want <= 0:
-            raise _too_big(self.path, self.limit)
-        while True:
-            if not self.regular:
-                ready, _, _ = select.select([self.fd], [], [], SILENT_PIPE_S)
-                if not ready:
-                    raise PlannerError(f"{self.path}: nothing came for {SILENT_PIPE_S:g} s (a pipe with no "
-                                       "writer?)")
-            try:
-                n = os.readv(self.fd, [view[:want]])
-            except BlockingIOError:
-                continue
-            except OSError as exc:
-                raise PlannerError(f"{self.path}: cannot read: {exc.strerror or exc}") from None
-            self.read_bytes += n
-            if self.read_bytes > self.limit:
-                raise _too_big(self.path, self.limit)
-            if not self.regular and view[:n].tobytes().find(b"\0") >= 0:
-                # a device of bytes (/dev/zero, /dev/urandom) is no program: said at once
-                raise PlannerError(f"{self.path}: binary data (a NUL byte), not a G-code program")
-            return n
-
-    def seek(self, offset: int, whence: int = 0) -> int:
-        if not self.regular:
-            raise PlannerError(f"{self.path}: a pipe is read once: its program is not UTF-8")
-        self.read_bytes = 0 if whence == 0 else self.read_bytes
-        return os.lseek(self.fd, offset, whence)
-
-    def close(self) -> None:
-        if not self.closed:
-            os.close(self.fd)
-        super().close()
 
 
 def open_program(path: str | os.PathLike[str], limit: int = MAX_PROGRAM_BYTES) -> io.BufferedReader:
-    """A program's file for reading, bounded (``_Bounded``). Raises PlannerError naming the
+    """A program's file for reading, bounded (``Bounded``). Raises PlannerError naming the
     file and why."""
-    return io.BufferedReader(_Bounded(path, limit), buffer_size=DECODE_PIECE)
+    return io.BufferedReader(Bounded(path, limit, PROGRAM), buffer_size=DECODE_PIECE)
 
 
 def statement_col(raw: str, index: int) -> int:

@@ -146,12 +146,16 @@ def test_probing_from_the_mdi_line_shows_the_probe_and_where_it_touched(demo_win
     c = real_controller
     probe = demo_window.page("diagnostics").bus.probe
     page = demo_window.page("manual")
-    page.mdi_line.setText("G0 Z-45")
+    # only the probe probes: the demo's T99 put in (its length aside: G49 in the probing block)
+    page.mdi_line.setText("M61 Q99")
+    page.send_mdi()
+    assert c.tool_in_spindle == 99
+    page.mdi_line.setText("G49 G0 Z-45")
     page.send_mdi()
     assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=20)
     c.advance(0.1)
     assert probe.text() == "Probe input: free"
-    page.mdi_line.setText("G38.2 Z-60 F120")
+    page.mdi_line.setText("G49 G38.2 Z-60 F120")
     page.send_mdi()
     assert c.run_until(lambda: state(c) == "idle" and c.worker.buffer_level() == 0, timeout_s=20)
     c.advance(0.1)

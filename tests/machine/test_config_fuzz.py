@@ -69,8 +69,11 @@ def test_a_mutated_configuration_is_read_or_refused_with_file_and_key(tmp_path_f
     except ConfigError as exc:
         message = str(exc)
         where = re.escape(str(path))
-        # the TOML reader's own line and column, or the line and key of what is wrong
-        syntax = re.match(rf"{where}: damaged file, not valid TOML: .+\(at line \d+", message)
-        assert syntax or re.match(rf"{where}:\d+: [A-Za-z_][\w\[\]\.-]*: \S", message), message
+        # the TOML reader's own line and column, the line of a byte no text has, or the line
+        # and key of what is wrong
+        located = (rf"{where}: damaged file, not valid TOML: .+\(at line \d+"
+                   rf"|{where}:\d+: (binary data \(a NUL byte\)|not UTF-8 text)"
+                   rf"|{where}:\d+: [A-Za-z_][\w\[\]\.-]*: \S")
+        assert re.match(located, message), message
         return
     assert cfg.machine.axis_names                       # a configuration a machine can run

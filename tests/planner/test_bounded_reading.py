@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-import planner.gcode.source as source
+import planner.core.reading as reading
 from cli.plan import main as plan_main
 from planner.core.errors import PlannerError
 from planner.gcode.source import read_program, read_program_bytes
@@ -65,7 +65,7 @@ def test_a_silent_pipe_is_given_up_and_a_pipe_that_delivers_is_read(tmp_path: Pa
                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
     fifo = tmp_path / "p.fifo"
     os.mkfifo(fifo)
-    monkeypatch.setattr(source, "SILENT_PIPE_S", 0.5)
+    monkeypatch.setattr(reading, "SILENT_PIPE_S", 0.5)
     started = time.perf_counter()
     with pytest.raises(PlannerError, match=r"nothing came for 0.5 s \(a pipe with no writer\?\)"):
         read_program(fifo)
@@ -131,3 +131,83 @@ def test_a_long_move_is_sampled_when_asked(tmp_path: Path, capsys: pytest.Captur
     out = json.loads(capsys.readouterr().out)
     assert out["ok"] is True and "sampled" not in out and out["cycle_time_s"] == pytest.approx(6000.0,
                                                                                                rel=1e-2)
+
+
+def _deep_toml(path: Path) -> Path:
+    path.write_text("a = " + "[" * 500 + "]" * 500 + "\n")
+    return path
+
+
+def _huge(path: Path) -> Path:
+    with path.open("wb") as f:                     # a sparse file: 17 MB that take no disk
+        f.truncate(17 << 20)
+    return path
+
+
+@pytest.mark.parametrize("option", ["--config", "--tools"])
+@pytest.mark.parametrize("make", ["zero", "huge", "nul", "deep"])
+def test_cnc_plan_reads_every_file_it_is_given_within_bounds(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], option: str, make: str) -> None:
+    program = tmp_path / "p.ngc"
+    program.write_text("G21\nG1 X1 F100\nM2\n")
+    named = {"zero": lambda: Path("/dev/zero"), "huge": lambda: _huge(tmp_path / "huge.txt"),
+             "nul": lambda: _write(tmp_path / "nul.txt", b"[machine]\nname = \"a\"\n\0\n"),
+             "deep": lambda: _deep_toml(tmp_path / "deep.toml")}[make]()
+    started = time.perf_counter()
+    assert plan_main([str(program), option, str(named)]) == 2
+    assert time.perf_counter() - started < 30
+    err = capsys.readouterr().err
+    what = "a machine configuration" if option == "--config" else "a tool table"
+    expected = {"zero": f"{named}: binary data (a NUL byte), not {what}",
+                "huge": f"{named}: more than 16 MB, the most {what} may have",
+                "nul": f"{named}:3: binary data (a NUL byte), not {what}",
+                "deep": "nested too deeply to read" if option == "--config" else "deep.toml:1:"}[make]
+    assert expected in err and "Traceback" not in err, err
+
+
+def _write(path: Path, data: bytes) -> Path:
+    path.write_bytes(data)
+    return path
+
+
+def test_a_fifo_with_no_writer_as_a_configuration_is_given_up(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(reading, "SILENT_PIPE_S", 0.5)
+    fifo = tmp_path / "machine.toml"
+    os.mkfifo(fifo)
+    program = tmp_path / "p.ngc"
+    program.write_text("G21\nG1 X1 F100\nM2\n")
+    assert plan_main([str(program), "--config", str(fifo)]) == 2
+    assert "nothing came for 0.5 s (a pipe with no writer?)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("make", ["zero", "huge", "deep"])
+def test_cnc_run_reads_its_configuration_and_script_within_bounds(qapp: object, tmp_path: Path, make: str,
+                                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    from app.run_cli import main as run_main
+
+    program = tmp_path / "p.ngc"
+    program.write_text("G21\nG1 X1 F100\nM2\n")
+    named = {"zero": lambda: Path("/dev/zero"), "huge": lambda: _huge(tmp_path / "huge.txt"),
+             "deep": lambda: _deep_toml(tmp_path / "deep.toml")}[make]()
+    assert run_main([str(program), "--sim", "--worker", "manual", "--config", str(named)]) == 2
+    err = capsys.readouterr().err
+    assert str(named) in err and "Traceback" not in err
+    if make != "deep":                            # a script is JSON lines: its depth is its own
+        assert run_main([str(program), "--sim", "--worker", "manual", "--script", str(named)]) == 2
+        err = capsys.readouterr().err
+        assert "a script of operator actions" in err and "Traceback" not in err
+
+
+def test_a_script_number_too_large_for_a_float_is_refused_at_its_line(
+        qapp: object, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from app.run_cli import main as run_main
+
+    program = tmp_path / "p.ngc"
+    program.write_text("G21\nG1 X1 F100\nM2\n")
+    script = tmp_path / "ops.jsonl"
+    script.write_text('{"after_s": 0.1, "op": "feed_hold"}\n{"at_line": 1' + "0" * 400 + ', "op": "stop"}\n')
+    assert run_main([str(program), "--sim", "--worker", "manual", "--script", str(script)]) == 2
+    err = capsys.readouterr().err
+    assert f"{script}:2: at_line must be a whole number of at most 1e12, got 100000000000... (401 digits)" \
+        in err

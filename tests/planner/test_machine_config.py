@@ -120,7 +120,7 @@ def test_errors_carry_the_line_of_the_key(tmp_path) -> None:
 
 
 def test_a_directory_or_unreadable_file_is_a_clear_error(tmp_path) -> None:
-    with pytest.raises(PlannerError, match="is a directory"):
+    with pytest.raises(PlannerError, match="is a folder, not a machine configuration"):
         load_machine(tmp_path)
 
 

@@ -35,6 +35,8 @@ import numpy as np
 from app.machine.api import MachineApi
 from app.machine.errors import MachineError
 from app.machine.model import CommandResult, HoldKind, MachineState, SpindleState
+from planner.core.errors import PlannerError
+from planner.core.reading import SCRIPT, read_text
 
 __all__ = ["OPS", "Recorder", "ScenarioOp", "ScenarioRunner", "read_script"]
 
@@ -62,9 +64,18 @@ class ScenarioOp:
         return f"{self.op}{extra} {trigger}"
 
 
+#: the largest number a script's key takes (a line, seconds, a percentage): JSON's integers
+#: have no bound, and one beyond a float's range would not even compare
+MAX_SCRIPT_NUMBER = 1e12
+
+
 def _number(value: Any, where: str, key: str, integer: bool) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise MachineError(f"{where}: {key} must be a {'whole ' if integer else ''}number, got {value!r}")
+    if not abs(value) <= MAX_SCRIPT_NUMBER:          # nan too; a huge integer compares exactly
+        shown = str(value) if len(str(value)) <= 24 else f"{str(value)[:12]}... ({len(str(value))} digits)"
+        raise MachineError(f"{where}: {key} must be a {'whole ' if integer else ''}number of at most "
+                           f"1e12, got {shown}")
     if integer and value != int(value):
         raise MachineError(f"{where}: {key} must be a whole number, got {value!r}")
     if value < 0:
@@ -111,9 +122,9 @@ def read_script(path: str | Path) -> tuple[ScenarioOp, ...]:
     """The operator actions of a script file (MachineError naming file and line if wrong)."""
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MachineError(f"{p}: cannot read the script: {exc}") from None
+        text = read_text(p, SCRIPT)
+    except PlannerError as exc:
+        raise MachineError(str(exc)) from None
     ops = []
     for number, line in enumerate(text.splitlines(), 1):
         stripped = line.strip()
