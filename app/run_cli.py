@@ -29,7 +29,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-__all__ = ["main"]
+__all__ = ["command", "main"]
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -317,9 +317,16 @@ def _run(args: argparse.Namespace, stop_requested: list[int]) -> int:
             result["actions"] = runner.results
             result["prompts"] = recorder.prompts
             result["spindle"] = recorder.spindle
+        trace_failed = False
         if args.trace and recorder is not None:
-            recorder.save(args.trace)
-            result["trace"] = args.trace
+            try:
+                recorder.save(args.trace)
+                result["trace"] = args.trace
+            except OSError as exc:         # a full disk, a folder gone meanwhile: said, the run reported
+                trace_failed = True
+                why = f"cannot write the trace {args.trace}: {exc.strerror or exc}"
+                result["notes"] = [*result.get("notes", []), why]
+                print(f"cnc-run: {why}", file=sys.stderr)
         if opcua is not None and ctl.opcua_status is not None and ctl.opcua_status.running:
             ctl.status.publish()          # the run's end, served a moment for the clients to read
             end = time.monotonic() + OPCUA_LINGER_S
@@ -329,6 +336,8 @@ def _run(args: argparse.Namespace, stop_requested: list[int]) -> int:
             print(json.dumps(result, indent=1))
         else:
             _print_text(result)
+        if trace_failed:
+            return 1
         if runner is not None:      # a script may stop the run on purpose: it is done when it ran
             return 0 if runner.done and all(r["ok"] for r in runner.results) else 1
         return 0 if result["completed"] else 1
@@ -419,5 +428,12 @@ def _print_text(r: dict[str, Any]) -> None:
         print(f"note: {n}")
 
 
+def command() -> int:
+    """``cnc-run`` as installed: ``main`` with its last word said in one line."""
+    from planner.core.command import run_command
+
+    return run_command("cnc-run", main)
+
+
 if __name__ == "__main__":
-    raise SystemExit(main())
+    raise SystemExit(command())

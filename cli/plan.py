@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from ethercat.drive_setup import drive_table_problem
+from planner.core.command import run_command
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.files import OutputClash, check_outputs, write_output, write_output_via_path
 from planner.core.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
@@ -37,7 +38,7 @@ from planner.motion.meter import path_vaj
 from planner.motion.plan import LimitReport
 from resources import SUBROUTINES
 
-__all__ = ["build_machine", "main"]
+__all__ = ["build_machine", "command", "main"]
 
 PAPER_V, PAPER_A, PAPER_J, PAPER_TS = 30.0, 1000.0, 10_000.0, 0.001
 # A program that runs longer than this is almost always a mistake (a feed of 0.0001, a circle
@@ -452,5 +453,10 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     return _print_summary(args, program, parse_s, summary)
 
+def command() -> int:
+    """``cnc-plan`` as installed: ``main`` with its last word said in one line."""
+    return run_command("cnc-plan", main)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(command())

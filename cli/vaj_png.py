@@ -74,6 +74,9 @@ def export_vaj_png(path: str, t: np.ndarray, v: np.ndarray, a: np.ndarray, j: np
     app.processEvents()
     exporter = pg.exporters.ImageExporter(win.scene())
     exporter.parameters()["width"] = width
-    exporter.export(path)
+    # PNG whatever the name ends with: a device or a pipe (/dev/null, -) has no suffix to go by
+    image = exporter.export(toBytes=True)
+    if not image.save(path, "PNG"):
+        raise OSError(f"cannot write the plot to {path}")
     win.close()
     win.deleteLater()

@@ -114,7 +114,11 @@ def check_outputs(outputs: dict[str, str | None], inputs: dict[str, str | None],
         if not os.path.isdir(parent):
             if not make_dirs:
                 raise OutputClash(f"{option} {path}: the folder {parent} does not exist (--mkdir creates it)")
-            os.makedirs(parent, exist_ok=True)
+            try:
+                os.makedirs(parent, exist_ok=True)
+            except OSError as exc:          # a file where a folder should be, a read-only folder
+                raise OutputClash(f"{option} {path}: cannot make the folder {parent}: "
+                                  f"{exc.strerror or exc}") from None
         for key in keys:
             seen[key] = (option, "another output")
 

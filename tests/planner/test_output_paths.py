@@ -222,3 +222,97 @@ def test_fuzz_output_paths_drawn_among_the_inputs_never_touch_an_input(
     code = plan_main(argv)
     assert program.read_text() == PROGRAM and tools.read_text() == "T1 P1 Z10 D6\n"
     assert (code == 2) == clash, (argv, code)
+
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_mkdir_where_a_file_stands_is_refused_by_both_commands(qapp: object, files: dict[str, Path],
+                                                                tmp_path: Path,
+                                                                capsys: pytest.CaptureFixture[str]) -> None:
+    from app.run_cli import main as run_main
+
+    blocker = tmp_path / "afile"
+    blocker.write_text("a file, not a folder\n")
+    out = blocker / "sub" / "out.csv"
+    assert plan_main([str(files["program"]), "--csv", str(out), "--mkdir"]) == 2
+    assert f"cannot make the folder {blocker / 'sub'}: Not a directory" in capsys.readouterr().err
+    assert run_main([str(files["program"]), "--sim", "--worker", "manual", "--trace", str(out),
+                     "--mkdir"]) == 2
+    assert f"cannot make the folder {blocker / 'sub'}: Not a directory" in capsys.readouterr().err
+    assert blocker.read_text() == "a file, not a folder\n"
+
+
+def test_a_plot_goes_to_a_device_or_a_pipe_as_a_png(files: dict[str, Path], tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    assert plan_main([str(files["program"]), "--plot", "/dev/null"]) == 0
+    proc = subprocess.run([sys.executable, "-m", "cli.plan", str(files["program"]), "--plot", "-"],
+                          capture_output=True, cwd=ROOT, timeout=120)
+    assert proc.returncode == 0 and proc.stdout.startswith(b"\x89PNG\r\n"), proc.stderr
+    bare = tmp_path / "plot"                         # no suffix to tell the format: PNG all the same
+    assert plan_main([str(files["program"]), "--plot", str(bare)]) == 0
+    assert bare.read_bytes().startswith(b"\x89PNG\r\n")
+
+
+def test_a_reader_that_stops_early_ends_the_command_in_one_line(tmp_path: Path) -> None:
+    """``cnc-plan long.ngc --json | head -c 10``: the rest is not wanted; no traceback."""
+    import subprocess
+    import sys
+
+    program = tmp_path / "long.ngc"
+    lines = "".join(f"G1 X{i % 50} Y{i % 7}\n" for i in range(20_000))
+    program.write_text("G21 G90 F1000\n" + lines + "M2\n")
+    for args in (["--json"], ["--canon", "-"]):
+        proc = subprocess.Popen([sys.executable, "-m", "cli.plan", str(program), *args], cwd=ROOT,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        assert proc.stdout is not None and proc.stderr is not None
+        assert proc.stdout.read(10)
+        proc.stdout.close()                          # as head does once it has its bytes
+        err = proc.stderr.read().decode()
+        assert proc.wait(timeout=120) == 1
+        assert "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_a_trace_that_cannot_be_written_after_the_run_is_said_and_the_run_reported(
+        qapp: object, files: dict[str, Path], capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    from app.run_cli import main as run_main
+
+    assert run_main([str(files["program"]), "--sim", "--worker", "manual", "--trace", "/dev/full",
+                     "--json"]) == 1
+    captured = capsys.readouterr()
+    assert "cnc-run: cannot write the trace /dev/full: No space left on device" in captured.err
+    assert json.loads(captured.out)["completed"] is True
+
+
+@pytest.mark.parametrize("text", ["G21\nM98 P[10**308*10]\nM2\n", "G21\nG92\nM2\n", "\0\0\0",
+                                  "G21\no1 repeat [10**308*10]\no1 endrepeat\nM2\n",
+                                  "G21\nG1 X[1/0] F100\nM2\n"])
+def test_no_traceback_reaches_a_user_of_cnc_plan(tmp_path: Path, text: str) -> None:
+    import subprocess
+    import sys
+
+    program = tmp_path / "bad.ngc"
+    program.write_text(text)
+    proc = subprocess.run([sys.executable, "-m", "cli.plan", str(program), "--json"], capture_output=True,
+                          text=True, cwd=ROOT, timeout=120)
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr and str(program) in proc.stderr, proc.stderr
+
+
+def test_an_unexpected_error_is_one_line_naming_the_input(monkeypatch: pytest.MonkeyPatch,
+                                                          capsys: pytest.CaptureFixture[str]) -> None:
+    import cli.plan as plan
+
+    def broken(argv: list[str] | None = None) -> int:
+        raise OverflowError("cannot convert float infinity to integer\n(and more)")
+
+    monkeypatch.setattr(plan, "main", broken)
+    monkeypatch.setattr("sys.argv", ["cnc-plan", "prog.ngc", "--json"])
+    assert plan.command() == 2
+    err = capsys.readouterr().err
+    assert err == ("cnc-plan: prog.ngc: internal error, OverflowError: cannot convert float infinity to "
+                   "integer (and more)\n")
