@@ -21,16 +21,22 @@ the suffix) use ``write_output_via_path``. Errors are ``OSError`` as from ``open
 from __future__ import annotations
 
 import contextlib
+import errno
+import io
 import os
 import re
 import secrets
+import select
 import shutil
 import stat
 import sys
 import tempfile
+import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import BinaryIO
+from typing import Any, BinaryIO
+
+from planner.core import reading
 
 __all__ = ["OutputClash", "check_outputs", "protect_input", "remove_stale_temporaries", "write_output",
            "write_output_via_path", "write_text"]
@@ -142,10 +148,50 @@ def write_output(path: str | os.PathLike[str], write: Callable[[BinaryIO], objec
     if target.is_symlink():
         target = Path(os.path.realpath(target))
     if _is_special(target):
-        with open(target, "wb") as fh:
+        with io.BufferedWriter(_StallBounded(target), buffer_size=1 << 16) as fh:
             write(fh)
         return
     _atomic(target, lambda tmp: _write_file(tmp, write))
+
+
+class _StallBounded(io.RawIOBase):
+    """A FIFO, socket or device written to with a bound on how long it may stall: opened
+    without waiting for a reader (a FIFO no one reads is given up after ``SILENT_PIPE_S``), and
+    each write waits at most as long for the reader to take more."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        deadline = time.monotonic() + reading.SILENT_PIPE_S
+        while True:
+            try:
+                self.fd = os.open(path, os.O_WRONLY | os.O_NONBLOCK)
+                break
+            except OSError as exc:
+                if exc.errno != errno.ENXIO or time.monotonic() > deadline:   # ENXIO: no reader yet
+                    if exc.errno == errno.ENXIO:
+                        raise OSError(errno.ETIMEDOUT, f"no one read the pipe {path} for "
+                                      f"{reading.SILENT_PIPE_S:g} s") from None
+                    raise
+                time.sleep(0.05)
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, data: Any) -> int:
+        view = memoryview(data).cast("B")
+        _, ready, _ = select.select([], [self.fd], [], reading.SILENT_PIPE_S)
+        if not ready:
+            raise OSError(errno.ETIMEDOUT, f"nothing was read from {self.path} for "
+                          f"{reading.SILENT_PIPE_S:g} s")
+        try:
+            return os.write(self.fd, view)
+        except BlockingIOError:
+            return 0
+
+    def close(self) -> None:
+        if not self.closed:
+            os.close(self.fd)
+        super().close()
 
 
 def write_output_via_path(path: str | os.PathLike[str], produce: Callable[[str], object]) -> None:

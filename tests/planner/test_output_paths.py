@@ -316,3 +316,23 @@ def test_an_unexpected_error_is_one_line_naming_the_input(monkeypatch: pytest.Mo
     err = capsys.readouterr().err
     assert err == ("cnc-plan: prog.ngc: internal error, OverflowError: cannot convert float infinity to "
                    "integer (and more)\n")
+
+
+def test_an_output_fifo_no_one_reads_is_given_up(qapp: object, files: dict[str, Path], tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str],
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    import time
+
+    from app.run_cli import main as run_main
+    from planner.core import reading
+
+    monkeypatch.setattr(reading, "SILENT_PIPE_S", 0.5)
+    fifo = tmp_path / "out.fifo"
+    os.mkfifo(fifo)
+    started = time.monotonic()
+    assert plan_main([str(files["program"]), "--csv", str(fifo)]) == 1
+    assert f"no one read the pipe {fifo} for 0.5 s" in capsys.readouterr().err
+    assert run_main([str(files["program"]), "--sim", "--worker", "manual", "--trace", str(fifo)]) == 1
+    assert f"cannot write the trace {fifo}: no one read the pipe" in capsys.readouterr().err
+    assert time.monotonic() - started < 30
+    assert fifo.is_fifo()                                  # still the FIFO, never replaced by a file
