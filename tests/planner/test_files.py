@@ -152,6 +152,7 @@ def test_the_state_folder_is_cleaned_of_stale_temporaries_at_start(tmp_path: Pat
                           text=True).stdout.strip()
     stale = state / f".state.json.{dead}.0123456789ab.tmp"
     stale.write_text("{half")
+    stale.chmod(0o600)                             # as a writer makes its temporary
     mine = state / f".alarms.json.{os.getpid()}.0123456789ab.tmp"   # a live writer's: kept
     mine.write_text("{")
     StateStore(state)
