@@ -34,6 +34,7 @@ from planner.core.errors import PlannerError, ProgramError
 from planner.core.files import OutputClash, check_outputs, write_output, write_output_via_path
 from planner.core.machine import INTERPOLATIONS, PLANNER_MODES, MachineSpec, load_machine
 from planner.core.rules import drive_tables
+from planner.core.schema import table_keys
 from planner.motion.meter import path_vaj
 from planner.motion.plan import LimitReport
 from resources import SUBROUTINES
@@ -41,6 +42,10 @@ from resources import SUBROUTINES
 __all__ = ["build_machine", "command", "main"]
 
 PAPER_V, PAPER_A, PAPER_J, PAPER_TS = 30.0, 1000.0, 10_000.0, 0.001
+LIMIT_RANGE = {key.name: (float(key.lo), float(key.hi)) for key in table_keys("limits")
+               if key.lo is not None and key.hi is not None}
+TS_RANGE = next((float(k.lo), float(k.hi)) for k in table_keys("planner") if k.name == "ts_s"
+                and k.lo is not None and k.hi is not None)
 # A program that runs longer than this is almost always a mistake (a feed of 0.0001, a circle
 # of radius 1e6); interpolating it blindly would take hours and gigabytes for nothing.
 DEFAULT_MAX_CYCLE_H = 24.0
@@ -86,9 +91,16 @@ def _parser() -> argparse.ArgumentParser:
 def build_machine(config: str | None, vmax: float | None, amax: float | None, jmax: float | None,
                   ts: float | None) -> MachineSpec:
     """The machine of the command line (see the module docstring)."""
-    for name, value in (("--vmax", vmax), ("--amax", amax), ("--jmax", jmax), ("--ts", ts)):
+    # the configuration's own bounds ([limits] and [planner] ts_s): beyond them planning has no
+    # meaning left (a cycle of 1e47 s) and would not end
+    for name, value, (lo, hi) in (("--vmax", vmax, LIMIT_RANGE["v_max_mm_s"]),
+                                  ("--amax", amax, LIMIT_RANGE["a_max_mm_s2"]),
+                                  ("--jmax", jmax, LIMIT_RANGE["j_max_mm_s3"]), ("--ts", ts, TS_RANGE)):
         if value is not None and not (np.isfinite(value) and value > 0):
             raise PlannerError(f"{name} must be a positive number, got {value}")
+        if value is not None and not lo <= value <= hi:
+            raise PlannerError(f"{name} {value:g} is out of range ({lo:g} to {hi:g}, as in the machine "
+                               "configuration)")
     if config:
         machine = load_machine(config, drive_tables(drive_table_problem))
         changes = {k: v for k, v in (("v_max_mm_s", vmax), ("a_max_mm_s2", amax),

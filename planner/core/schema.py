@@ -252,6 +252,12 @@ HEADER = "# Machine configuration (written by the CNC panel). Units: mm or deg, 
 END_MARK = "# end of machine configuration"
 
 
+def table_keys(name: str) -> tuple[Key, ...]:
+    """The keys of the machine file's table ``name`` (its ranges, for the command line's
+    overrides of the same values)."""
+    return next(t.keys for t in MACHINE_FILE.tables if t.name == name)
+
+
 def check_complete(text: str, where: str) -> None:
     """Refuse a panel-written file whose end mark is missing (truncated)."""
     if text.startswith(HEADER) and END_MARK not in text[-200:]:

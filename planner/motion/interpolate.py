@@ -127,12 +127,17 @@ class Segment:
 
 
 def first_sample_at(t: float, ts: float) -> int:
-    """Smallest k with k * ts >= t (exact in floating point)."""
+    """Smallest k with k * ts >= t (exact in floating point). The quotient's rounding moves
+    k by a step or two at the most; the corrections are bounded, so that a time beyond a
+    float's resolution of whole samples (where k * ts no longer changes with k) still ends."""
     k = max(math.ceil(t / ts), 0)
-    while k > 0 and (k - 1) * ts >= t:
-        k -= 1
-    while k * ts < t:
-        k += 1
+    for _ in range(4):
+        if k > 0 and (k - 1) * ts >= t:
+            k -= 1
+        elif k * ts < t:
+            k += 1
+        else:
+            break
     return k
 
 

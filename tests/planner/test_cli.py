@@ -146,6 +146,25 @@ def test_missing_file_and_bad_flags_exit_2(tmp_path, capsys):
     assert exc.value.code == 2
 
 
+@pytest.mark.parametrize(("option", "value"), [("--vmax", "1e100"), ("--amax", "1e8"), ("--jmax", "1e11"),
+                                               ("--ts", "0.00001"), ("--vmax", "0.0001")])
+def test_a_limit_beyond_the_configuration_s_range_is_refused_and_planning_ends(
+        tmp_path, capsys, option: str, value: str) -> None:
+    program = tmp_path / "p.ngc"
+    program.write_text("G21 G90\nG0 X100\nG1 X0 Y50 F1000\nG2 X10 Y60 I5 J5\nM30\n")
+    started = time.perf_counter()
+    assert main([str(program), option, value]) == 2
+    assert time.perf_counter() - started < 10
+    assert f"{option} {float(value):g} is out of range" in capsys.readouterr().err
+
+
+def test_the_first_sample_of_a_time_past_a_float_s_whole_samples_is_found_at_once() -> None:
+    from planner.motion.interpolate import first_sample_at
+
+    assert first_sample_at(8.464383728825633e47, 0.001) > 8e50        # looped for ever
+    assert first_sample_at(0.0025, 0.001) == 3 and first_sample_at(0.003, 0.001) == 3
+
+
 def test_default_machine_has_axis_limits_equal_to_path_limits():
     m = build_machine(None, 20.0, 800.0, 9000.0, None)
     assert all((a.v_max, a.a_max, a.j_max) == (20.0, 800.0, 9000.0) for a in m.axes)
