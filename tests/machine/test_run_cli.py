@@ -273,3 +273,22 @@ def test_the_end_position_is_read_once_the_axes_are_in_position() -> None:
     t0 = time.monotonic()
     run_cli._settle(stuck, lambda: time.sleep(0.01))
     assert run_cli.SETTLE_S <= time.monotonic() - t0 < run_cli.SETTLE_S + 0.5
+
+
+@pytest.mark.parametrize("worker", ["manual", "thread"])
+def test_the_shortest_cycle_the_configuration_allows_runs(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                          worker: str) -> None:
+    """[planner] ts_s = 0.0001, the documented minimum: the 0.5 s lead is 5,000 set-points,
+    and the worker's ring holds twice that."""
+    from resources import shipped_machine
+
+    text = shipped_machine("xyz_mill").read_text()
+    config = tmp_path / "machine.toml"
+    config.write_text(text.replace("\nts_s = 0.001", "\nts_s = 0.0001", 1))
+    assert "ts_s = 0.0001" in config.read_text()
+    program = tmp_path / "p.ngc"
+    program.write_text("G21 G90\nG1 X5 Y3 F600\nM30\n")
+    code = run_cli.main([str(program), "--sim", "--worker", worker, "--config", str(config), "--json",
+                         "--state-dir", str(tmp_path / "state")])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["completed"] and out["limits_ok"]

@@ -24,7 +24,6 @@ the worker's clock in s, the same in all three.
 from __future__ import annotations
 
 import json
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path

@@ -9,6 +9,7 @@ time in worker mode "manual".
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 import threading
@@ -42,6 +43,16 @@ RAMP_DOWN_TIMEOUT_S = 3.0  # disconnect/shutdown mid-run: longest wait for the s
 PERSIST_EVERY_S = 1.0  # position and homed flags saved this often while the axes may move
 _MOVING = frozenset({MachineState.RUNNING, MachineState.HOLD, MachineState.HOMING})
 _SAVED_ON = frozenset({MachineState.IDLE, MachineState.DISCONNECTED, MachineState.ALARM, MachineState.ESTOP})
+
+
+#: the worker's ring holds this long of set-points at the least (2000 at 1 ms), and twice the
+#: lead the feeder keeps, whatever the cycle: at 0.1 ms the 0.5 s lead is 5,000 set-points
+RING_S = 2.0
+
+
+def ring_capacity(ts_s: float, lead_s: float) -> int:
+    """Set-points the worker's ring holds for a cycle of ``ts_s`` and a lead of ``lead_s``."""
+    return int(math.ceil(max(RING_S, 2.0 * lead_s) / ts_s))
 
 
 class Connection:
@@ -225,6 +236,7 @@ class Connection:
             mode=mode,
             bus_options=options,
             homing_timeout_s=cfg.homing.timeout_s,
+            buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s),
         )
 
     def connect_bus(self) -> CommandResult:
