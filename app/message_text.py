@@ -370,4 +370,5 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('{0}cannot use {1} in incremental mode (G91){2}'),
     N_('{0}either I or K must be present for an arc{1}'),
     N_('{0}radius R{1} too small for the arc{2}'),
+    N_('{0}{1} value {2} out of range (|value| < 1e9){3}'),
 )

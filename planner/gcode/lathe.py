@@ -17,6 +17,7 @@ from planner.gcode.flow import MAX_EXECUTED, FlowCodes
 from planner.gcode.lexer import LexError, read_line
 from planner.gcode.motion import MotionCodes
 from planner.gcode.oword import Statement
+from planner.gcode.state import VALUE_LIMIT
 
 
 class LatheCodes(MotionCodes, FlowCodes):
@@ -157,10 +158,13 @@ class LatheCodes(MotionCodes, FlowCodes):
         mode and the point it ends at returned."""
         w: dict[str, float] = {}
         for letter, value in words:
-            if letter == "G" and float(value) in (0.0, 1.0, 2.0, 3.0):
-                mode = int(float(value)) * 10
+            v = float(value)
+            if not -VALUE_LIMIT < v < VALUE_LIMIT:      # as every block's words (inf and nan too)
+                raise BlockError(f"{head}{letter} value {v:g} out of range (|value| < 1e9){where}", "Q")
+            if letter == "G" and v in (0.0, 1.0, 2.0, 3.0):
+                mode = int(v) * 10
             else:
-                w[letter] = float(value)
+                w[letter] = v
         end = complex(0.0, 0.0) if incremental else start
         for word, axis in (("U", "X"), ("W", "Z")):
             if word in w:

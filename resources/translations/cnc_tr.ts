@@ -4102,5 +4102,10 @@ BIRAK</translation>
       <source>{0}radius R{1} too small for the arc{2}</source>
       <translation>{0}R{1} yarıçapı yay için fazla küçük{2}</translation>
     </message>
+    <message>
+      <location filename="../../app/message_text.py" line="373" />
+      <source>{0}{1} value {2} out of range (|value| &lt; 1e9){3}</source>
+      <translation>{0}{1} değeri {2} aralığın dışında (|değer| &lt; 1e9){3}</translation>
+    </message>
   </context>
 </TS>

@@ -143,3 +143,15 @@ def test_any_profile_is_cut_or_refused_with_its_line(text: str) -> None:
         assert all(e.line >= 1 and e.message for e in exc.errors)
         return
     assert all(np.isfinite(m.end).all() for m in p.moves)
+
+
+@pytest.mark.parametrize("value", ["10**300", "10**308*10", "[0-10**300]"])
+def test_a_profile_coordinate_out_of_range_is_refused_at_its_cycle(value: str) -> None:
+    from planner.core.errors import ProgramError
+
+    text = (HEAD + f"O100 SUB\nG0 X0 Z3\nG1 X2 Z0\nG1 X[{value}] Z-5\nG1 Z-10\nG0 X12\nO100 ENDSUB\n"
+            "G71 Q100 X12 Z3 D0.3 I0.7 R0.3\nM2\n")
+    with pytest.raises(ProgramError) as info:
+        parse_program(text)
+    err = info.value.errors[0]
+    assert err.line == 9 and "out of range (|value| < 1e9) (line 5, in the profile)" in err.message
