@@ -172,6 +172,10 @@ def _run(args: argparse.Namespace, stop_requested: list[int]) -> int:
     except OutputClash as exc:
         print(f"cnc-run: {exc}", file=sys.stderr)
         return 2
+    if not 0.0 <= args.feed_override <= 200.0:       # nan too
+        print(f"cnc-run: --feed-override {args.feed_override:g}: the feed override is 0 to 200 %",
+              file=sys.stderr)
+        return 2
     try:
         opcua = OpcUaOverride(args.opcua_port, args.opcua_insecure) \
             if args.opcua_port is not None or args.opcua_insecure else None

@@ -146,12 +146,22 @@ def check_sections(valid: dict[str, Any], loc: Locator, axes: tuple[AxisSpec, ..
         extra(valid, loc)
 
 
+def _ordinal(n: int) -> str:
+    return f"{n}{'th' if 10 <= n % 100 <= 20 else {1: 'st', 2: 'nd', 3: 'rd'}.get(n % 10, 'th')}"
+
+
 def drive_tables(problem_of: Callable[[dict[str, Any]], tuple[tuple[str | int, ...], str] | None]
                  ) -> SectionRule:
     """The rule that asks ``problem_of`` (the bus package's reading of a ``[[bus.drives]]``
     table) about each drive table and refuses the first problem at its key."""
     def rule(valid: dict[str, Any], loc: Locator) -> None:
+        first: dict[int, int] = {}                 # slave position: the table that named it first
         for i, d in enumerate(valid["bus"]["drives"]):
+            if d["position"] in first:
+                raise loc.fail(("bus", "drives", i, "position"),
+                               f"slave position {d['position']} already has a [[bus.drives]] table (the "
+                               f"{_ordinal(first[d['position']] + 1)}): one table a drive")
+            first[d["position"]] = i
             found = problem_of(d)
             if found is not None:
                 key, why = found

@@ -126,7 +126,7 @@ def _check_tool(tool: Tool, where: str) -> None:
 def parse_tbl(text: str, where: str = "<tool table>") -> ToolTable:
     """Read a LinuxCNC tool table (PlannerError ``file:line:col: ...`` at the first mistake)."""
     tools: dict[int, Tool] = {}
-    for number, raw in enumerate(text.splitlines(), 1):
+    for number, raw in enumerate(text.split("\n"), 1):
         code, _, comment = raw.partition(";")
         if not code.strip():
             continue

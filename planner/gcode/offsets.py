@@ -13,7 +13,7 @@ from planner.core.program import (
     Event,
     EventKind,
 )
-from planner.core.tools import ToolTable
+from planner.core.tools import Tool, ToolTable
 from planner.gcode.codes import (
     SYSTEMS,
     G,
@@ -175,6 +175,8 @@ class OffsetCodes(MotionCodes):
         if self.tools is None:
             self.tools = ToolTable()
         tool = self.tools.get(number)
+        if tool is None and self.any_tool:            # no table given: every tool is known, at 0
+            tool = Tool(number, number, (), 0.0, "")
         if tool is None:
             raise BlockError(f"G10 L{l_word} P{number}: tool T{number} is not in the tool table (add it "
                              "on the Tools page first)", "P")

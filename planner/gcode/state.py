@@ -413,8 +413,11 @@ class InterpBase(ABC):
         self.motion: int | None = None
         self.css_max_rpm: float | None = None
         # None: no tool table (every tool number known, offsets 0: the reference set-up);
-        # a table: a tool must be in it to be selected, loaded or used for an offset
+        # a table: a tool must be in it to be selected, loaded or used for an offset. Without
+        # one, a G10 L1/L10/L11 makes the table of the tools it sets, and every other number is
+        # still known (``any_tool``)
         self.tools = tools
+        self.any_tool = tools is None
         self.tool = int(tool_in_spindle)   # in the spindle (M6, M61)
         self.selected = self.tool          # T word: prepared for the next M6
         self.comp = CutterComp()

@@ -25,7 +25,7 @@ from planner.gcode.reader import Block
 class ToolCodes(MotionCodes):
     def known_tool(self, number: int, letter: str) -> int:
         """``number`` if the tool table has it (T0, the empty spindle, always)."""
-        if number and self.tools is not None and number not in self.tools:
+        if number and not self.any_tool and self.tools is not None and number not in self.tools:
             raise BlockError(f"tool T{number} is not in the tool table (add it on the Tools page)", letter)
         return number
 

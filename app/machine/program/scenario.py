@@ -125,7 +125,7 @@ def read_script(path: str | Path) -> tuple[ScenarioOp, ...]:
     except PlannerError as exc:
         raise MachineError(str(exc)) from None
     ops = []
-    for number, line in enumerate(text.splitlines(), 1):
+    for number, line in enumerate(text.split("\n"), 1):
         stripped = line.strip()
         if stripped and not stripped.startswith("#"):
             ops.append(parse_op(stripped, f"{p}:{number}"))
