@@ -25,6 +25,9 @@ from planner.gcode.state import (
 )
 
 TRIM_BYTES = 32 << 20   # program bytes read in bulk between two trims of the heap
+#: passes that drop the zero-length moves of a run (each may make the next line's move short);
+#: a run that still has one after them is cut there, and the line path reads on
+_DROP_PASSES = 4
 #: G00-G03 as the fast paths read them: their digit, by their text
 FAST_G = {"0": "0", "00": "0", "1": "1", "01": "1", "2": "2", "02": "2", "3": "3", "03": "3"}
 
@@ -160,27 +163,42 @@ class FastPaths(MotionCodes):
         cut = int(np.argmax(stop)) if stop.any() else n_lines
         # targets: absent words keep the axis where the last line put it
         pos = self.pos
-        targets = np.empty((cut + 1, self.setup.n))
-        targets[:] = pos
+        lin = list(self.setup.linear_idx)
         if self.modal.absolute:
-            for c, i in enumerate(cols):
-                given = ax[:cut, c] * scale + self.offsets.total[i]
-                targets[1:, i] = self._ffill(given, pos[i])
+            # a move of zero length is dropped, the position left where it was (as ``straight``
+            # does): its words are taken as never given, and the lines after it measured again
+            # from there, until no move left is short (a few passes: repeated points)
+            given = ax[:cut] * scale + np.array([self.offsets.total[i] for i in cols])
+            dropped = np.zeros(cut, bool)
+            for _ in range(_DROP_PASSES):
+                targets, length = self._absolute_targets(given, cols, pos, lin)
+                short = has_axes[:cut] & ~dropped & (length <= ZERO_LEN)
+                if not short.any():
+                    break
+                dropped |= short
+                given[short] = np.nan
+            else:
+                targets, length = self._absolute_targets(given, cols, pos, lin)
+                short = has_axes[:cut] & ~dropped & (length <= ZERO_LEN)
+                if short.any():
+                    cut = int(np.argmax(short))
         else:
+            dropped = np.zeros(cut, bool)
+            targets = np.empty((cut + 1, self.setup.n))
+            targets[:] = pos
             for c, i in enumerate(cols):
                 step = np.nan_to_num(ax[:cut, c] * scale, nan=0.0)
                 targets[0, i] = pos[i]
                 targets[1:, i] = step
                 np.cumsum(targets[:, i], out=targets[:, i])
-        lin = list(self.setup.linear_idx)
-        delta = np.diff(targets[:, lin], axis=0)
-        length = np.sqrt(np.einsum("ij,ij->i", delta, delta))
-        short = has_axes[:cut] & (length <= ZERO_LEN)
-        if short.any():
-            cut = int(np.argmax(short))
+            delta = np.diff(targets[:, lin], axis=0)
+            length = np.sqrt(np.einsum("ij,ij->i", delta, delta))
+            short = has_axes[:cut] & (length <= ZERO_LEN)
+            if short.any():     # incremental: a dropped step would move every later target
+                cut = int(np.argmax(short))
         if cut == 0:
             return 0
-        moving = np.flatnonzero(has_axes[:cut])
+        moving = np.flatnonzero(has_axes[:cut] & ~dropped[:cut])
         if words[:cut].any():
             self.started = True
         if has_g[:cut].any():
@@ -306,6 +324,17 @@ class FastPaths(MotionCodes):
             if self.progress is not None:
                 self.progress(offset + int(ends[b1 - 1]), total)
         return False
+
+    def _absolute_targets(self, given: np.ndarray, cols: list[int], pos: list[float], lin: list[int]
+                          ) -> tuple[np.ndarray, np.ndarray]:
+        """Where each line of an absolute run goes (``given``: machine values of the words, NaN
+        where absent) and each move's length over the linear axes."""
+        targets = np.empty((given.shape[0] + 1, self.setup.n))
+        targets[:] = pos
+        for c, i in enumerate(cols):
+            targets[1:, i] = self._ffill(given[:, c], pos[i])
+        delta = np.diff(targets[:, lin], axis=0)
+        return targets, np.sqrt(np.einsum("ij,ij->i", delta, delta))
 
     @staticmethod
     def _ffill(values: np.ndarray, before: float) -> np.ndarray:

@@ -151,6 +151,43 @@ def test_zero_length_lines_inside_a_run_are_dropped_as_one_by_one():
     assert len(a.moves) == 60
 
 
+@settings(max_examples=200, deadline=None)
+@given(program(1.0), st.lists(st.integers(0, 3), min_size=60, max_size=60),
+       st.sampled_from(["", "G1 F300\n", "G91 G1 F100\n"]))
+def test_repeated_points_read_in_bulk_as_the_line_reader(lines, repeats, head):
+    """Every line written again up to three times (CAM's repeated points): each copy a move of
+    zero length, dropped where it stands, in bulk as line by line."""
+    text = head + "\n".join(x for line, n in zip(lines, repeats) for x in [line] * (n + 1)) + "\n"
+    assert_same_reading(_read(text, True), _read(text, False))
+
+
+def test_a_program_of_repeated_points_stays_in_the_bulk_reader():
+    """600,000 ``G1 X0`` lines: each a move of zero length after the first. Read line by line
+    (as the bulk reader left every one of them to the line reader) they took minutes; in bulk,
+    the run is not cut at each one."""
+    import time
+
+    from planner.gcode.fast import FastPaths
+
+    text = "G21 G90 G1 F300\nX1\n" + "G1 X0\n" * 20_000 + "X2\n"
+    calls: list[int] = []
+    original = FastPaths.bulk_lines
+
+    def counting(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202 - a spy on the method
+        calls.append(1)
+        return original(self, *args, **kwargs)
+
+    FastPaths.bulk_lines = counting  # type: ignore[method-assign]
+    try:
+        started = time.process_time()
+        program = parse_program(text, "p.ngc")
+        spent = time.process_time() - started
+    finally:
+        FastPaths.bulk_lines = original  # type: ignore[method-assign]
+    assert len(program.moves) == 3 and len(calls) < 10, len(calls)
+    assert spent < 30
+
+
 def test_an_error_inside_a_run_has_its_line():
     # F0 alone moves nothing; the first line of the run after it is the G01 with no feed
     text = "G1 F100\n" + "".join(f"X{i}\n" for i in range(1, 20)) + "F0\n"
