@@ -73,6 +73,8 @@ class ModeCodes(InterpBase):
             self.modal.feed_override_on = on
         elif code == M.M51:
             self.modal.spindle_override_on = on
+        elif code == M.M53:
+            self.modal.feed_hold_on = on
         # M52 P0: adaptive feed off, as it is; M53: the feed stop switch, which this machine
         # does not have (the panel's feed hold is LinuxCNC's pause, which M53 leaves alone)
         what: dict[int, str] = {

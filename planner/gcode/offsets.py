@@ -272,6 +272,7 @@ class OffsetCodes(MotionCodes):
             i = self.setup.axis_index[axis]
             value = self.program_position(self.pos)[i]
             return value if self.setup.rotary[i] else value / self.modal.scale
+        modal = self.modal
         return {
             "_LINE": float(self.current_line),
             "_METRIC": 0.0 if self.modal.inch else 1.0,
@@ -291,7 +292,37 @@ class OffsetCodes(MotionCodes):
             "_TASK": 1.0,
             "_VALUE": 0.0,
             "_VALUE_RETURNED": 0.0,
+            # LinuxCNC 2.9's version as its interpreter reads it ("2.9" major, 0 minor)
+            "_VMAJOR": 2.9,
+            "_VMINOR": 0.0,
+            "_CCOMP": float(modal.comp_code),
+            "_INVERSE_TIME": float(modal.feed_mode == G.G93),
+            "_UNITS_PER_MINUTE": float(modal.feed_mode == G.G94),
+            "_UNITS_PER_REV": float(modal.feed_mode == G.G95),
+            "_COORD_SYSTEM": float(modal.work_code),
+            "_TOOL_OFFSET": float(modal.tlo_code != G.G49),
+            "_SPINDLE_RPM_MODE": float(self.css_max_rpm is None),
+            "_SPINDLE_CSS_MODE": float(self.css_max_rpm is not None),
+            "_IJK_ABSOLUTE_MODE": float(modal.arc_absolute),
+            "_SPINDLE_ON": float(modal.spindle_dir != 0),
+            "_SPINDLE_CW": float(modal.spindle_dir > 0),
+            "_MIST": float(bool(modal.coolant & 1)),
+            "_FLOOD": float(bool(modal.coolant & 2)),
+            "_SPEED_OVERRIDE": float(modal.spindle_override_on),
+            "_FEED_OVERRIDE": float(modal.feed_override_on),
+            "_ADAPTIVE_FEED": 0.0,         # M52 P1 is refused: no input scales the feed here
+            "_FEED_HOLD": float(modal.feed_hold_on),
+            "_CURRENT_POCKET": float(self.pocket_of(self.tool)),
+            "_SELECTED_POCKET": float(self.pocket_of(self.selected)) if self.selected else -1.0,
+            "_CALL_LEVEL": float(self.calls.level),
+            "_REMAP_LEVEL": 0.0,           # no remapping: every code is the interpreter's own
         }.get(name)
+
+    def pocket_of(self, number: int) -> int:
+        """The pocket of tool ``number`` in the tool table (its number where there is no table
+        or the tool is not in it; 0, the spindle, for T0)."""
+        tool = self.tools.get(number) if self.tools is not None and number else None
+        return tool.pocket if tool is not None else number
 
     def convert_coord_system(self, b: Block) -> None:
         """G54-G59.3: the system in use, its offsets and XY rotation (#5220 its number)."""

@@ -175,6 +175,7 @@ class Modal:
     # M48-M51: whether the operator's feed and spindle overrides act on what follows
     feed_override_on: bool = True
     spindle_override_on: bool = True
+    feed_hold_on: bool = True          # M53: what LinuxCNC's #<_feed_hold> reads (no switch here)
 
 
 @dataclass(slots=True)
