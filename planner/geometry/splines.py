@@ -75,21 +75,44 @@ def _basis(u: np.ndarray, k: int, knots: np.ndarray, count: int) -> list[np.ndar
     return prev[:count]
 
 
+#: parameters evaluated at a time: the basis functions of a piece of the curve, not of all of it
+#: at every parameter (5,000 control points took 1.6 GB that way)
+NURBS_CHUNK = 512
+
+
 def nurbs_points(points: np.ndarray, k: int, u: np.ndarray) -> np.ndarray:
     """The curve of control points ``points`` (rows x, y, weight) and order k at parameters
-    ``u`` (0 to n - k + 2), as LinuxCNC's ``nurbs_point``: rows (x, y)."""
+    ``u`` (0 to n - k + 2), as LinuxCNC's ``nurbs_point``: rows (x, y).
+
+    The parameters a chunk at a time, in increasing order, each with only the basis functions
+    that are not zero somewhere in its range (function i lives on knots[i] to knots[i + k]):
+    the recursion is local, so each is the value the whole recursion gives, and the functions
+    left out add exact zeros: the same sums, in the same order, bit for bit."""
     n = len(points) - 1
     knots = knot_vector(n, k)
-    basis = _basis(np.asarray(u, dtype=float), k, knots, n + 1)
-    den = np.zeros(len(u))
-    for i in range(n + 1):
-        den = den + basis[i] * points[i, 2]
-    x = np.zeros(len(u))
-    y = np.zeros(len(u))
-    for i in range(n + 1):
-        x = x + points[i, 0] * basis[i] * points[i, 2] / den
-        y = y + points[i, 1] * basis[i] * points[i, 2] / den
-    return np.column_stack([x, y])
+    u = np.asarray(u, dtype=float)
+    out = np.empty((len(u), 2))
+    order = np.argsort(u, kind="stable")
+    first, last = knots[: n + 1], knots[k: n + 1 + k]
+    for start in range(0, len(u), NURBS_CHUNK):
+        rows = order[start: start + NURBS_CHUNK]
+        uc = u[rows]
+        live = np.flatnonzero((first <= uc.max()) & (last >= uc.min()))
+        if live.size == 0:
+            out[rows] = np.nan              # outside every function: 0 / 0, as the whole sum gives
+            continue
+        i0, i1 = int(live[0]), int(live[-1]) + 1
+        basis = _basis(uc, k, knots[i0: i1 + k], i1 - i0)
+        den = np.zeros(len(uc))
+        for b, w in zip(basis, points[i0:i1, 2]):
+            den = den + b * w
+        x = np.zeros(len(uc))
+        y = np.zeros(len(uc))
+        for b, (px, py, w) in zip(basis, points[i0:i1]):
+            x = x + px * b * w / den
+            y = y + py * b * w / den
+        out[rows, 0], out[rows, 1] = x, y
+    return out
 
 
 def nurbs_tangents(points: np.ndarray, k: int, u: np.ndarray) -> np.ndarray:

@@ -214,3 +214,39 @@ def test_each_refusal_names_its_place_and_reason(text: str, line: int, col: int,
 def test_linuxcnc_refuses_the_same_block(text: str) -> None:
     theirs, ours = refused_alike(text)
     assert theirs == ours
+
+
+def _nurbs_points_whole(points: np.ndarray, k: int, u: np.ndarray) -> np.ndarray:
+    """The curve with every basis function at every parameter (LinuxCNC's sums, in its order)."""
+    from planner.geometry.splines import _basis, knot_vector
+
+    n = len(points) - 1
+    basis = _basis(u, k, knot_vector(n, k), n + 1)
+    den = np.zeros(len(u))
+    for i in range(n + 1):
+        den = den + basis[i] * points[i, 2]
+    x, y = np.zeros(len(u)), np.zeros(len(u))
+    for i in range(n + 1):
+        x = x + points[i, 0] * basis[i] * points[i, 2] / den
+        y = y + points[i, 1] * basis[i] * points[i, 2] / den
+    return np.column_stack([x, y])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(2, 5).flatmap(lambda k: st.tuples(
+           st.just(k),
+           st.lists(st.tuples(st.floats(-500, 500), st.floats(-500, 500), st.floats(0.1, 10)),
+                    min_size=k, max_size=1400),
+           st.integers(0, 10**6))))
+def test_the_curve_a_piece_at_a_time_is_the_whole_recursion_bit_for_bit(case) -> None:
+    """Only the basis functions alive in a chunk of parameters (a few, not thousands): the same
+    values, to the last bit, at the knots (where LinuxCNC's closed intervals overlap) too."""
+    from planner.geometry.splines import NURBS_CHUNK
+
+    k, rows, seed = case
+    points = np.array(rows, dtype=float)
+    umax = len(points) - 1 - k + 2
+    rng = np.random.default_rng(seed)
+    u = np.concatenate([np.linspace(0.0, umax, 3 * NURBS_CHUNK + 7), np.arange(umax + 1.0),
+                        rng.uniform(0.0, umax, 50)])
+    np.testing.assert_array_equal(nurbs_points(points, k, u), _nurbs_points_whole(points, k, u))
