@@ -324,6 +324,7 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('{0} can only be used in the XZ plane (G18)'),
     N_('{0} canned cycle is not possible on a machine without {1} axis'),
     N_('{0} cannot be used with cutter compensation enabled: program G40 first'),
+    N_('{0} characters of code in one block (comments aside): more than {1}, the most a block may have (LinuxCNC reads 255 a line)'),  # noqa: E501
     N_('{0} cuts in X and Z: this machine has no {1} axis'),
     N_('{0} does not define o{1} sub'),
     N_("{0} in a concave corner cannot be reached by the tool without gouging (the corner's sides are shorter than the tool needs)"),  # noqa: E501

@@ -59,6 +59,20 @@ def newline_offsets(data: np.ndarray) -> np.ndarray:
     return np.concatenate(parts) if parts else np.zeros(0, dtype=np.intp)
 
 
+#: the longest line the bulk reader scans: a plain CAM line is a few words (80 bytes in the
+#: longest of the shared CAM programs); a longer one goes to the line reader unscanned
+MAX_PLAIN_BYTES = 1024
+
+
+def _without_lines(arr: np.ndarray, starts: np.ndarray, ends: np.ndarray, drop: np.ndarray) -> np.ndarray:
+    """``arr`` with the content of the lines ``drop`` taken out (their newlines kept): the same
+    lines, those empty."""
+    mark = np.zeros(arr.shape[0] + 1, np.int32)
+    np.add.at(mark, starts[drop], 1)
+    np.add.at(mark, ends[drop], -1)
+    return arr[np.cumsum(mark[:-1]) == 0]
+
+
 def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: str) -> PlainBlock:
     """Classify and read the lines ``data[starts[k]:ends[k]]`` (uint8; lines separated by one
     newline byte each, ``starts[0] == 0``; ``letters`` upper case, among them ``"N"`` and ``"G"``)."""
@@ -68,10 +82,17 @@ def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: 
     if n_lines == 0:
         return PlainBlock(np.zeros(0, bool), values, np.zeros(0, np.int64))
     arr = data[: int(ends[-1])]
-    size = arr.shape[0]
     bad_line = np.zeros(n_lines + 1, bool)  # one spare slot: bytes past the last line
+    long = (ends - starts) > MAX_PLAIN_BYTES
+    if long.any():
+        # no plain line is that long (a comment, a word list): its bytes are left out of the
+        # arrays below, each of which costs bytes for every byte scanned, the line kept as an
+        # empty one and refused
+        arr = _without_lines(arr, starts, ends, long)
+        bad_line[:n_lines] = long
+    size = arr.shape[0]
     if size == 0:
-        return PlainBlock(np.ones(n_lines, bool), values, np.zeros(n_lines, np.int64))
+        return PlainBlock(~bad_line[:n_lines], values, np.zeros(n_lines, np.int64))
     is_nl = arr == _NL
     line_of = np.cumsum(is_nl, dtype=np.int32)  # line of each byte (a newline belongs to the next line)
     lut = np.full(256, -1, np.int8)
@@ -92,6 +113,10 @@ def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: 
     next_is_num[:-1] = is_num[1:]
     wrong = ~ok_byte | (is_num & ~prev_num_ok) | (is_letter & ~next_is_num)
     bad_line[line_of[wrong]] = True
+    # the words of good lines alone: a bad line is read by the line reader, and its letters
+    # (every x of a comment) would each cost a token's arrays
+    in_good = ~bad_line[line_of]
+    is_letter &= in_good
 
     pos = np.flatnonzero(is_letter)
     n_tok = pos.shape[0]
@@ -101,7 +126,6 @@ def scan_plain(data: np.ndarray, starts: np.ndarray, ends: np.ndarray, letters: 
     # when that line is good (a number byte follows a letter or a number byte); the bytes of
     # bad lines are left out
     tok_of = np.cumsum(is_letter, dtype=np.int32) - 1
-    in_good = ~bad_line[line_of]
     is_digit &= in_good
     is_dot &= in_good
     is_sign &= in_good

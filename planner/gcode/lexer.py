@@ -116,6 +116,12 @@ def compact(raw: str) -> str:
     return "".join(code.split()).upper()
 
 
+#: the longest block of code read (its words and expressions, comments aside): LinuxCNC refuses
+#: any line over 255 characters; a longer one here is most likely a file that is no program,
+#: and its words would each cost a Python object
+MAX_CODE_CHARS = 4096
+
+
 def read_line(raw: str, params: Params | None) -> tuple[list, list[tuple[object, float]]]:
     """Words of one line (block delete and '%' handled by the caller).
 
@@ -124,6 +130,9 @@ def read_line(raw: str, params: Params | None) -> tuple[list, list[tuple[object,
     as (key, value) for parameter settings, applied after the line (LinuxCNC rule).
     """
     code = compact(raw)
+    if len(code) > MAX_CODE_CHARS:
+        raise LexError(f"{len(code):,} characters of code in one block (comments aside): more than "
+                       f"{MAX_CODE_CHARS:,}, the most a block may have (LinuxCNC reads 255 a line)", 0)
     if "#" in code or "[" in code or "O" in code:
         return _Reader(code, params).read()
     m = _LINE_RE.match(code)

@@ -3694,11 +3694,16 @@ BIRAK</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="327" />
+      <source>{0} characters of code in one block (comments aside): more than {1}, the most a block may have (LinuxCNC reads 255 a line)</source>
+      <translation>bir blokta {0} karakter kod (yorumlar hariç): bir bloğun olabileceği en çok {1} karakterden fazla (LinuxCNC bir satırda 255 okur)</translation>
+    </message>
+    <message>
+      <location filename="../../app/message_text.py" line="328" />
       <source>{0} cuts in X and Z: this machine has no {1} axis</source>
       <translation>{0}, X ve Z'de keser: bu makinede {1} ekseni yok</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="328" />
+      <location filename="../../app/message_text.py" line="329" />
       <source>{0} does not define o{1} sub</source>
       <translation>{0}, o{1} sub tanımlamıyor</translation>
     </message>
@@ -3723,12 +3728,12 @@ BIRAK</translation>
       <translation>{0} içinde {1} hata var, ilki {2}. satırda: {3}. Yine de kaydedilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="329" />
+      <location filename="../../app/message_text.py" line="330" />
       <source>{0} in a concave corner cannot be reached by the tool without gouging (the corner's sides are shorter than the tool needs)</source>
       <translation>içbükey köşedeki {0} hareketine takım oyuk açmadan ulaşamaz (köşenin kenarları takımın gerektirdiğinden kısa)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="330" />
+      <location filename="../../app/message_text.py" line="331" />
       <source>{0} in inverse time feed mode (G93): program G94 or G95 for curves</source>
       <translation>ters zaman ilerleme kipinde (G93) {0}: eğriler için G94 ya da G95 programlayın</translation>
     </message>
@@ -3738,7 +3743,7 @@ BIRAK</translation>
       <translation>İş milinde {0} var, {1} seçili. Hangisinin boyu ölçülüyor?</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="331" />
+      <location filename="../../app/message_text.py" line="332" />
       <source>{0} is not a motion this interpreter runs</source>
       <translation>{0}, bu yorumlayıcının çalıştırdığı bir hareket değil</translation>
     </message>
@@ -3748,7 +3753,7 @@ BIRAK</translation>
       <translation>{0} program klasörlerinde bir takım tablosu değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="332" />
+      <location filename="../../app/message_text.py" line="333" />
       <source>{0} is not supported ({1})</source>
       <translation>{0} desteklenmiyor ({1})</translation>
     </message>
@@ -3763,47 +3768,47 @@ BIRAK</translation>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="333" />
+      <location filename="../../app/message_text.py" line="334" />
       <source>{0} needs D to be a tool number (a whole number &gt;= 0), got D{1}</source>
       <translation>{0}, D'nin bir takım numarası olmasını ister (&gt;= 0 bir tam sayı), D{1} verildi</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="334" />
+      <location filename="../../app/message_text.py" line="335" />
       <source>{0} needs X or Y (all axes missing with a motion code)</source>
       <translation>{0}, X ya da Y ister (hareket koduyla birlikte tüm eksenler eksik)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="335" />
+      <location filename="../../app/message_text.py" line="336" />
       <source>{0} needs a D word (the tool diameter)</source>
       <translation>{0} bir D kelimesi ister (takım çapı)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="336" />
+      <location filename="../../app/message_text.py" line="337" />
       <source>{0} needs a K word (the thread pitch, length per turn)</source>
       <translation>{0} bir K kelimesi ister (diş hatvesi, tur başına boy)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="337" />
+      <location filename="../../app/message_text.py" line="338" />
       <source>{0} needs a P word (the dwell at the bottom, s) the first time</source>
       <translation>{0} ilk seferde bir P kelimesi ister (tabanda bekleme, s)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="338" />
+      <location filename="../../app/message_text.py" line="339" />
       <source>{0} needs a Q word (the peck depth) the first time</source>
       <translation>{0} ilk seferde bir Q kelimesi ister (gagalama derinliği)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="339" />
+      <location filename="../../app/message_text.py" line="340" />
       <source>{0} needs a {1} word (the bottom of the hole) the first time in {2}</source>
       <translation>{0}, {2} içinde ilk seferde bir {1} kelimesi ister (deliğin tabanı)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="340" />
+      <location filename="../../app/message_text.py" line="341" />
       <source>{0} needs an R word (the retract plane) the first time</source>
       <translation>{0} ilk seferde bir R kelimesi ister (geri çekme düzlemi)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="341" />
+      <location filename="../../app/message_text.py" line="342" />
       <source>{0} needs an axis word (all axes missing with G52 or G92)</source>
       <translation>{0} bir eksen kelimesi ister (G52 ya da G92 ile hiçbir eksen yok)</translation>
     </message>
@@ -3818,7 +3823,7 @@ BIRAK</translation>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="342" />
+      <location filename="../../app/message_text.py" line="343" />
       <source>{0} requires a Q word (the number of the subroutine with the profile)</source>
       <translation>{0} bir Q kelimesi gerektirir (profili içeren alt programın numarası)</translation>
     </message>
@@ -3833,7 +3838,7 @@ BIRAK</translation>
       <translation>{0} döndürme: sayı değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="343" />
+      <location filename="../../app/message_text.py" line="344" />
       <source>{0} value {1} out of range (|value| &lt; {2})</source>
       <translation>{0} değeri {1} aralık dışında (|değer| &lt; {2})</translation>
     </message>
@@ -3848,22 +3853,22 @@ BIRAK</translation>
       <translation>{0} yüklendikten sonra değişikliklerle kaydedildi: makine programı yüklendiği haliyle çalıştırır.</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="344" />
+      <location filename="../../app/message_text.py" line="345" />
       <source>{0} with the lathe tool {1} (orientation Q{2}): lathe tool orientations are not supported on this machine</source>
       <translation>{1} torna takımıyla {0} (yönelim Q{2}): torna takımı yönelimleri bu makinede desteklenmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="345" />
+      <location filename="../../app/message_text.py" line="346" />
       <source>{0} with the spindle at S0: the feed, the pitch times the speed, would be 0</source>
       <translation>iş mili S0'dayken {0}: ilerleme, yani hatve çarpı hız, 0 olurdu</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="346" />
+      <location filename="../../app/message_text.py" line="347" />
       <source>{0} word given for arc in the {1} plane ({2})</source>
       <translation>{1} düzlemindeki yay ({2}) için {0} kelimesi verildi</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="347" />
+      <location filename="../../app/message_text.py" line="348" />
       <source>{0} word with no {1} to use it</source>
       <translation>{0} kelimesini kullanacak {1} yok</translation>
     </message>
@@ -3888,32 +3893,32 @@ BIRAK</translation>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="348" />
+      <location filename="../../app/message_text.py" line="349" />
       <source>{0}: I (the depth of cut) must be greater than zero</source>
       <translation>{0}: I (kesme derinliği) sıfırdan büyük olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="349" />
+      <location filename="../../app/message_text.py" line="350" />
       <source>{0}: Q{1} over a depth of {2} makes more than {3} pecks</source>
       <translation>{0}: {2} derinlik boyunca Q{1}, {3} gagalamadan fazlasını yapar</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="350" />
+      <location filename="../../app/message_text.py" line="351" />
       <source>{0}: a curve moves in X and Y only, not {1}</source>
       <translation>{0}: bir eğri yalnızca X ve Y'de hareket eder, {1} içinde değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="351" />
+      <location filename="../../app/message_text.py" line="352" />
       <source>{0}: a pipe is read once: what it gave is not UTF-8</source>
       <translation>{0}: bir boru bir kez okunur: verdiği UTF-8 değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="352" />
+      <location filename="../../app/message_text.py" line="353" />
       <source>{0}: binary data (a NUL byte), not {1}</source>
       <translation>{0}: ikili veri (bir NUL baytı), {1} değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="353" />
+      <location filename="../../app/message_text.py" line="354" />
       <source>{0}: cannot read: {1}</source>
       <translation>{0}: okunamıyor: {1}</translation>
     </message>
@@ -3923,32 +3928,32 @@ BIRAK</translation>
       <translation>{0}: çalışma kaydedilemiyor: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="354" />
+      <location filename="../../app/message_text.py" line="355" />
       <source>{0}: curves only in the XY plane (G17)</source>
       <translation>{0}: eğriler yalnızca XY düzleminde (G17)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="355" />
+      <location filename="../../app/message_text.py" line="356" />
       <source>{0}: is a folder, not {1}</source>
       <translation>{0}: bir klasör, {1} değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="356" />
+      <location filename="../../app/message_text.py" line="357" />
       <source>{0}: more than {1} MB, the most {2} may have{3}</source>
       <translation>{0}: {1} MB'tan büyük, {2} için en büyük boyut{3}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="357" />
+      <location filename="../../app/message_text.py" line="358" />
       <source>{0}: more than {1} profile blocks read (an endless loop?)</source>
       <translation>{0}: {1} profil bloğundan fazlası okundu (sonsuz döngü mü?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="358" />
+      <location filename="../../app/message_text.py" line="359" />
       <source>{0}: negative or zero Q (peck depth)</source>
       <translation>{0}: negatif ya da sıfır Q (gagalama derinliği)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="359" />
+      <location filename="../../app/message_text.py" line="360" />
       <source>{0}: not UTF-8, and a pipe cannot be read again as Latin-1</source>
       <translation>{0}: UTF-8 değil ve bir boru Latin-1 olarak yeniden okunamaz</translation>
     </message>
@@ -3963,12 +3968,12 @@ BIRAK</translation>
       <translation>{0}: sayı değil (ofsetler sonlu sayılardır)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="360" />
+      <location filename="../../app/message_text.py" line="361" />
       <source>{0}: nothing came for {1} s (a pipe with no writer?)</source>
       <translation>{0}: {1} s boyunca hiçbir şey gelmedi (yazanı olmayan bir boru mu?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="361" />
+      <location filename="../../app/message_text.py" line="362" />
       <source>{0}: o{1} {2} ({3}) is not supported: a profile's calls are written out</source>
       <translation>{0}: o{1} {2} ({3}) desteklenmiyor: bir profilin çağrıları açık yazılır</translation>
     </message>
@@ -3978,17 +3983,17 @@ BIRAK</translation>
       <translation>{0}: planlayıcı: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="362" />
+      <location filename="../../app/message_text.py" line="363" />
       <source>{0}: start point too close to probe point (the move has no length)</source>
       <translation>{0}: başlangıç noktası prob noktasına çok yakın (hareketin boyu yok)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="363" />
+      <location filename="../../app/message_text.py" line="364" />
       <source>{0}: tables or arrays nested too deeply to read (a damaged file?)</source>
       <translation>{0}: tablolar ya da diziler okunamayacak kadar derin iç içe (bozuk bir dosya mı?)</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="364" />
+      <location filename="../../app/message_text.py" line="365" />
       <source>{0}: the profile cannot be offset or cut (a segment of no length, or the cycle's start on the profile)</source>
       <translation>{0}: profil ötelenemiyor ya da kesilemiyor (boyu olmayan bir parça ya da çevrimin başlangıcı profilin üzerinde)</translation>
     </message>
@@ -4043,12 +4048,12 @@ BIRAK</translation>
       <translation>{0}: {1} yeniden denetleniyor; hazır olunca başlayacak</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="365" />
+      <location filename="../../app/message_text.py" line="366" />
       <source>{0}:{1}: binary data (a NUL byte), not {2}</source>
       <translation>{0}:{1}: ikili veri (bir NUL baytı), {2} değil</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="366" />
+      <location filename="../../app/message_text.py" line="367" />
       <source>{0}:{1}: not UTF-8 text ({2} is)</source>
       <translation>{0}:{1}: UTF-8 metin değil ({2} öyledir)</translation>
     </message>
@@ -4073,37 +4078,37 @@ BIRAK</translation>
       <translation>{0}; {1} ardından takım ayarlayıcıda ölçülür</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="367" />
+      <location filename="../../app/message_text.py" line="368" />
       <source>{0}both A and C on a corner{1}</source>
       <translation>{0}bir köşede hem A hem C{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="368" />
+      <location filename="../../app/message_text.py" line="369" />
       <source>{0}both R and I or K for an arc{1}</source>
       <translation>{0}bir yay için hem R hem I ya da K{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="369" />
+      <location filename="../../app/message_text.py" line="370" />
       <source>{0}cannot use {1} and {2} in the same block{3}</source>
       <translation>{0}{1} ve {2} aynı blokta kullanılamaz{3}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="370" />
+      <location filename="../../app/message_text.py" line="371" />
       <source>{0}cannot use {1} in incremental mode (G91){2}</source>
       <translation>{0}{1} artımsal kipte (G91) kullanılamaz{2}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="371" />
+      <location filename="../../app/message_text.py" line="372" />
       <source>{0}either I or K must be present for an arc{1}</source>
       <translation>{0}bir yay için I ya da K bulunmalı{1}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="372" />
+      <location filename="../../app/message_text.py" line="373" />
       <source>{0}radius R{1} too small for the arc{2}</source>
       <translation>{0}R{1} yarıçapı yay için fazla küçük{2}</translation>
     </message>
     <message>
-      <location filename="../../app/message_text.py" line="373" />
+      <location filename="../../app/message_text.py" line="374" />
       <source>{0}{1} value {2} out of range (|value| &lt; 1e9){3}</source>
       <translation>{0}{1} değeri {2} aralığın dışında (|değer| &lt; 1e9){3}</translation>
     </message>

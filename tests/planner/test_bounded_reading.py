@@ -211,3 +211,30 @@ def test_a_script_number_too_large_for_a_float_is_refused_at_its_line(
     err = capsys.readouterr().err
     assert f"{script}:2: at_line must be a whole number of at most 1e12, got 100000000000... (401 digits)" \
         in err
+
+
+def test_a_long_comment_line_is_read_without_its_bytes_in_the_bulk_arrays() -> None:
+    """A comment of 3,000,000 characters: its bytes left out of the bulk reader's per-byte and
+    per-word arrays (each x was a word: 160 bytes of arrays per byte of the program)."""
+    import tracemalloc
+
+    from planner.gcode.interpreter import parse_program
+
+    text = "G21 G90\n(" + "x" * 3_000_000 + ")\nG1 X1 F100\nM2\n"
+    tracemalloc.start()
+    try:
+        program = parse_program(text)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert len(program.moves) == 1
+    assert peak < 40 * len(text), peak / len(text)          # was 160 bytes a byte
+
+
+def test_a_block_of_more_code_than_a_block_may_have_is_refused_at_once() -> None:
+    from planner.core.errors import ProgramError
+    from planner.gcode.interpreter import parse_program
+
+    with pytest.raises(ProgramError) as info:
+        parse_program("G21 G90 F100 G1 " + " ".join(f"X{i}" for i in range(500_000)) + "\nM2\n")
+    assert "characters of code in one block (comments aside): more than 4,096" in info.value.errors[0].message

@@ -78,7 +78,6 @@ def test_offsets_events_stop_the_motion_and_carry_every_persistent_parameter() -
 
 @pytest.mark.parametrize("text, col, words", [
     ("G10 P1 X1\n", 1, "G10 needs an L word"),
-    ("G10 L1 P1 Z1\n", 8, "tool T1 is not in the tool table"),
     ("G10 L2 P10 X1\n", 8, "needs P0-P9"),
     ("G10 L20 P1 X0 R30\n", 15, "R not allowed in G10 L20"),
     ("G10 L3 P1 X1\n", 5, "not a G10 this control knows"),

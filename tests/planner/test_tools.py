@@ -114,6 +114,7 @@ def test_the_work_position_subtracts_the_tool_offset_like_linuxcncs_relative_dro
     ("T1 M6\nG43.2 H9\n", "t.nc:2:7: error: tool T9 is not in the tool table"),
     ("M61\n", "t.nc:1:1: error: M61 needs a Q word"),
     ("M61 Q4\n", "t.nc:1:5: error: tool T4 is not in the tool table"),
+    ("G10 L1 P3 Z1\n", "t.nc:1:8: error: G10 L1 P3: tool T3 is not in the tool table"),
     ("G1 G43.1 Z1 F100\n", "t.nc:1:4: error: cannot use two G codes that both use axis values"),
     ("G43.2\n", "t.nc:1:1: error: G43.2 needs an H word or axis words"),
     ("G43 H1.5\n", "t.nc:1:5: error: tool number H1.5 must be a whole number"),
