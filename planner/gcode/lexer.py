@@ -148,6 +148,8 @@ def _bad_char_message(code: str, i: int) -> str:
         return f"letter '{ch}' without a number"
     if ch.isdigit() or ch in ".+-":
         return f"unexpected number text '{code[i:i + 8]}' (two decimal points, or a number without a letter?)"
+    if not ch.isprintable():            # a NUL or a control byte is named, never written raw
+        return f"unexpected character U+{ord(ch):04X}"
     return f"unexpected character '{ch}'"
 
 
@@ -217,7 +219,8 @@ class _Reader:
                 self.i += 1
                 words.append((ch, self.value()))
             else:
-                raise self.fail(f"unexpected character '{ch}'")
+                raise self.fail(_bad_char_message(self.s, self.i) if not ch.isprintable()
+                                else f"unexpected character '{ch}'")
         return words, assigns
 
     # value: number | [expr] | #param | FUNC[expr] | sign + one of those

@@ -194,3 +194,9 @@ def test_a_byte_order_mark_before_the_first_line_is_no_gcode(tmp_path) -> None:
         parse_program("\ufeffG21 G1 X1 Q5 F100\n")
     (err,) = ei.value.errors
     assert (err.line, err.col) == (1, 11)
+
+
+@pytest.mark.parametrize("text", ["G1 X1\0 F100", "#1=1\nG1 X#1\x01 F100", "G1 X1 \x7f"])
+def test_a_control_byte_in_a_program_is_named_not_written_raw(text: str) -> None:
+    message = one_error(text).message
+    assert message.startswith("unexpected character U+00") and message.isprintable(), repr(message)
