@@ -32,8 +32,19 @@ class SourceError:
     col: int  # 1-based
     message: str
 
+    def __post_init__(self) -> None:
+        # a message quotes the program, which may hold any byte: a control character is named
+        # (U+0000), never written raw to a terminal, a log or the panel
+        if not self.message.isprintable():
+            object.__setattr__(self, "message", printable(self.message))
+
     def __str__(self) -> str:
         return f"{self.file}:{self.line}:{self.col}: error: {self.message}"
+
+
+def printable(text: str) -> str:
+    """``text`` with each character that is not printable named as U+XXXX."""
+    return "".join(c if c.isprintable() else f"U+{ord(c):04X}" for c in text)
 
 
 class ProgramError(PlannerError):
