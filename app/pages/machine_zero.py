@@ -5,6 +5,7 @@ from __future__ import annotations
 from PySide6.QtWidgets import QGridLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app.context import PanelContext
+from app.controller_text import localize
 from app.i18n import N_, tr
 from app.widgets.dro import format_position
 
@@ -55,10 +56,23 @@ class MachineZeroPage(QWidget):
         layout.addStretch(1)
         self._homed = c.homed
         c.homedChanged.connect(self._on_homed)
+        for signal in (c.stateChanged, c.homedChanged, c.alarmsChanged):
+            signal.connect(lambda *_: self._update_buttons())
+        i18n.languageChanged.connect(lambda _l: self._update_buttons())
         c.positionChanged.connect(self._on_position)
         i18n.languageChanged.connect(lambda _l: self._on_homed(self._homed))
         self._on_homed(c.homed)
         self._on_position(c.machine_position, c.work_position)
+        self._update_buttons()
+
+    def _update_buttons(self) -> None:
+        """Home enabled when the controller would take it (never in E-stop, never while the
+        machine moves); disabled, it says why in its tooltip, before anyone is asked to confirm."""
+        reason = self.ctx.controller.refusal("home")
+        tip = tr("{0}: {1}").format(tr("Home"), localize(reason)) if reason else ""
+        for button in (*self.home_buttons.values(), self.home_all_button):
+            button.setEnabled(not reason)
+            button.setToolTip(tip)
 
     def home(self, axis: str) -> None:
         if self.ctx.dialogs.confirm(self, tr("Home axis"),

@@ -114,7 +114,7 @@
       <translation>Eksenler</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="24" />
+      <location filename="../../app/pages/machine_zero.py" line="25" />
       <source>Axis</source>
       <translation>Eksen</translation>
     </message>
@@ -749,32 +749,32 @@
       <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="38" />
+      <location filename="../../app/pages/machine_zero.py" line="39" />
       <source>Home</source>
       <translation>Referansla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="51" />
+      <location filename="../../app/pages/machine_zero.py" line="52" />
       <source>Home all axes</source>
       <translation>Tüm eksenleri referansla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="69" />
+      <location filename="../../app/pages/machine_zero.py" line="83" />
       <source>Home all axes? The axes may move.</source>
       <translation>Tüm eksenler referanslansın mı? Eksenler hareket edebilir.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="64" />
+      <location filename="../../app/pages/machine_zero.py" line="78" />
       <source>Home axis</source>
       <translation>Ekseni referansla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="65" />
+      <location filename="../../app/pages/machine_zero.py" line="79" />
       <source>Home axis {0}? The axis may move.</source>
       <translation>{0} ekseni referanslansın mı? Eksen hareket edebilir.</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="24" />
+      <location filename="../../app/pages/machine_zero.py" line="25" />
       <source>Homed</source>
       <translation>Referanslı</translation>
     </message>
@@ -789,7 +789,7 @@
       <translation>Programdan önce referanslama gerekli</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="86" />
+      <location filename="../../app/pages/machine_zero.py" line="100" />
       <source>Homing: {0}; {1}.</source>
       <translation>Referanslama: {0}; {1}.</translation>
     </message>
@@ -1026,7 +1026,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Makine</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="24" />
+      <location filename="../../app/pages/machine_zero.py" line="25" />
       <source>Machine position</source>
       <translation>Makine konumu</translation>
     </message>
@@ -1036,7 +1036,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Makine sıfırı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="74" />
+      <location filename="../../app/pages/machine_zero.py" line="88" />
       <source>Make the current position of {0} its machine zero?</source>
       <translation>{0} ekseninin şu anki konumu makine sıfırı yapılsın mı?</translation>
     </message>
@@ -1643,12 +1643,12 @@ BIRAK</translation>
       <translation>Servis şifresi:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="40" />
+      <location filename="../../app/pages/machine_zero.py" line="41" />
       <source>Set here as zero</source>
       <translation>Burayı sıfır yap</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="73" />
+      <location filename="../../app/pages/machine_zero.py" line="87" />
       <source>Set machine zero</source>
       <translation>Makine sıfırını ayarla</translation>
     </message>
@@ -2553,7 +2553,7 @@ BIRAK</translation>
       <translation>{0} ekseninde sürücü hatası (bağımlı {1}): hata kodu {2}: tüm eksenler hızlı durduruldu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="83" />
+      <location filename="../../app/pages/machine_zero.py" line="97" />
       <source>drive homing method {0}</source>
       <translation>sürücü referanslama yöntemi {0}</translation>
     </message>
@@ -2798,7 +2798,7 @@ BIRAK</translation>
       <translation>iç içe açıklama: açıklama içinde '('</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="81" />
+      <location filename="../../app/pages/machine_zero.py" line="95" />
       <source>no</source>
       <translation>hayır</translation>
     </message>
@@ -2898,7 +2898,7 @@ BIRAK</translation>
       <translation>operatör</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="85" />
+      <location filename="../../app/pages/machine_zero.py" line="99" />
       <source>optional</source>
       <translation>isteğe bağlı</translation>
     </message>
@@ -3058,7 +3058,7 @@ BIRAK</translation>
       <translation>hızlı hareket oranı %0-100 olmalı, {0} verildi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="85" />
+      <location filename="../../app/pages/machine_zero.py" line="99" />
       <source>required before a program may start</source>
       <translation>program başlamadan önce gerekli</translation>
     </message>
@@ -3098,7 +3098,7 @@ BIRAK</translation>
       <translation>analog çıkış ayarlamak</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="84" />
+      <location filename="../../app/pages/machine_zero.py" line="98" />
       <source>set current position as zero</source>
       <translation>şu anki konumu sıfır yap</translation>
     </message>
@@ -3568,7 +3568,7 @@ BIRAK</translation>
       <translation>düz dalışta x fazla büyük</translation>
     </message>
     <message>
-      <location filename="../../app/pages/machine_zero.py" line="81" />
+      <location filename="../../app/pages/machine_zero.py" line="95" />
       <source>yes</source>
       <translation>evet</translation>
     </message>

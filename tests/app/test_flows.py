@@ -208,3 +208,28 @@ def test_after_a_probe_the_preview_draws_the_path_the_machine_takes(demo_window,
     assert model.program.moves[2].end[2] == pytest.approx(-45.0, abs=0.01)
     assert preview.path is model.toolpath and demo_window.page("auto").backplot.path is model.toolpath
     assert c.program_info.program.moves[2].end[2] == pytest.approx(-65.0)   # the check's own stays
+
+
+def test_home_is_off_in_e_stop_and_says_why_before_any_question(demo_window, real_controller, dialogs,
+                                                               qtbot) -> None:
+    """In E-stop nothing may move: Home and Home all are disabled with the reason in their
+    tooltip, so no one is asked "The axes may move" to be refused after; released, they are on."""
+    from PySide6.QtCore import Qt
+
+    c = real_controller
+    assert demo_window.show_page("machine_zero")
+    page = demo_window.page("machine_zero")
+    assert page.home_all_button.isEnabled()
+    c.estop()
+    c.advance(0.1)
+    assert state(c) == "estop"
+    buttons = [*page.home_buttons.values(), page.home_all_button]
+    assert not any(b.isEnabled() for b in buttons)
+    assert all(b.toolTip().startswith("Home: machine is e-stop") for b in buttons), buttons[0].toolTip()
+    homed = tuple(c.homed)
+    qtbot.mouseClick(page.home_all_button, Qt.MouseButton.LeftButton)
+    assert dialogs.asked == [] and tuple(c.homed) == homed
+    assert c.estop_release()
+    c.advance(0.2)
+    assert state(c) == "idle"
+    assert all(b.isEnabled() and b.toolTip() == "" for b in buttons)
