@@ -552,6 +552,19 @@ class Program:
         _first, _line, system, work, g92, tlo, rotation = parts[k]
         return Frame(tuple(self.axes), tuple(work), tuple(g92), tuple(tlo), float(rotation), int(system))
 
+    def frame_before(self, index: int, line: int) -> Frame:
+        """The offsets in force at a stop on ``line`` before move ``index`` runs (an M6, an M0):
+        those set before the stop, not those the lines after it set for that move (the G43 of
+        the new tool after an M6)."""
+        parts = self.offset_parts
+        if not parts:
+            return Frame.identity(self.axes)
+        k = bisect.bisect_right([p[0] for p in parts], max(index, 0)) - 1
+        while k > 0 and parts[k][0] == index and parts[k][1] > line:
+            k -= 1
+        _first, _line, system, work, g92, tlo, rotation = parts[max(k, 0)]
+        return Frame(tuple(self.axes), tuple(work), tuple(g92), tuple(tlo), float(rotation), int(system))
+
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""
         text = ""

@@ -233,3 +233,27 @@ def test_home_is_off_in_e_stop_and_says_why_before_any_question(demo_window, rea
     c.advance(0.2)
     assert state(c) == "idle"
     assert all(b.isEnabled() and b.toolTip() == "" for b in buttons)
+
+
+def test_the_dro_at_an_m6_stop_shows_the_tip_of_the_tool_still_in_the_spindle(demo_window, real_controller,
+                                                                              tmp_path) -> None:
+    """T1 (length 0) in, then M6 T2 (length -12.5) and G43 H2 after it: stopped at the M6, the
+    Work Z is where T1's tip is (20), not where T2's would be (32.5); once T2 is in and its G43
+    run, the tip of T2 again."""
+    from resources import PROGRAMS
+
+    c = real_controller
+    assert c.import_tool_table(PROGRAMS / "demo_tools.tbl") and c.set_tool_in_spindle(1)
+    program = tmp_path / "two_tools.ngc"
+    program.write_text("G21 G90\nT1 M6\nG43 H1\nG0 X0 Y0 Z20\nT2 M6\nG43 H2\nG0 Z20\nM30\n")
+    assert c.load_program(program, wait=True) and c.cycle_start(wait=True)
+    assert c.run_until(lambda: c.prompt is not None and c.prompt.tool == 2, timeout_s=60)
+    c.advance(0.3)
+    dro = demo_window.header.dro
+    assert c.tool_in_spindle == 1 and c.machine_position[2] == pytest.approx(20.0, abs=1e-3)
+    assert dro.work_text("Z") == "+20.000"                     # T1's tip, not +32.500
+    assert c.cycle_start(wait=True)                            # T2 put in
+    assert c.run_until(lambda: state(c) == "idle" and c.last_run is not None, timeout_s=60)
+    c.advance(0.3)
+    assert c.machine_position[2] == pytest.approx(7.5, abs=1e-3)   # G43 H2: Z20 at T2's tip
+    assert dro.work_text("Z") == "+20.000"

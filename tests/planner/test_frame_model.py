@@ -135,3 +135,17 @@ def test_touch_off_then_g0_to_the_touched_value_lands_there(case) -> None:
                          tool_offset=(G.G43_1, frame.tool))
     assert len(prog.moves) == 1
     np.testing.assert_allclose(prog.moves[-1].end, point, atol=tol)
+
+
+def test_the_frame_at_a_stop_is_what_the_lines_before_it_set() -> None:
+    """Stopped on a line before move k: an offset set on a later line for move k is not in
+    force yet (the G43 after an M6), one set on an earlier line is (a G43 before an M0)."""
+    from planner.core.tools import Tool, ToolTable
+    from planner.gcode.interpreter import parse_program
+
+    table = ToolTable({1: Tool(1, 1, (("Z", 5.0),), 0.0, ""), 2: Tool(2, 2, (("Z", -12.5),), 0.0, "")})
+    prog = parse_program("G21 G90\nG43 H1\nG0 Z20\nM0\nG43 H2\nG0 Z30\nM2\n", tools=table, tool_in_spindle=1)
+    k = len(prog.moves) - 1                        # the move after the M0 and the second G43
+    assert prog.frame_before(k, 4).tool[2] == 5.0          # at the M0 (line 4): H1 still
+    assert prog.frame_before(k, 5).tool[2] == -12.5        # at line 5 the G43 H2 is in
+    assert prog.frame_at(k).tool[2] == -12.5

@@ -149,6 +149,13 @@ class Job:
             return prog.frame_at(base + m)
         return self.plan.program.frame_at(m)
 
+    def frame_at_pause(self, pause: PausePoint) -> Frame:
+        """The offsets in force where the job stands at ``pause`` (``Program.frame_before``)."""
+        if self.origin is not None:
+            prog, base, _u0 = self.origin
+            return prog.frame_before(base + pause.move, pause.line)
+        return self.plan.program.frame_before(pause.move, pause.line)
+
     def left_at(self, consumed: int, completed: bool) -> tuple[Program, int]:
         """The program this job ran and the move it ended with (``len(moves)`` when it ran to
         its end): what it leaves in force is the program's state there."""
