@@ -339,3 +339,21 @@ def test_without_measure_m6_reads_as_before(ctl: MachineController) -> None:
     assert ctl.set_tool(Tool(2, 2, (("Z", 12.0),), 8.0, "8 mm"))
     assert ctl.load_program(M6_PROGRAM, wait=True)
     assert not ctl.program_info.program.probes
+
+
+def test_the_measuring_routine_s_probe_moves_are_not_taken_for_cuts_with_the_spindle_stopped(
+        qapp, config_path: Path, state_dir: Path) -> None:
+    """With the tool measured after each M6, its G38.2 moves are feed moves made with the
+    spindle stopped on purpose: no question about them; a real cut without M3 is still asked."""
+    _measuring(config_path, 0.5)
+    ctl = make_controller(config_path, state_dir)
+    try:
+        assert ctl.set_tool(T1) and ctl.set_tool_in_spindle(1)
+        assert ctl.set_tool(Tool(2, 2, (("Z", 10.3),), 8.0, "8 mm"))
+        assert ctl.load_program(M6_PROGRAM, wait=True)
+        assert ctl.program_info is not None and ctl.program_info.warnings == ()
+        assert ctl.load_program("G21 G90 G54\nT2 M6\nG43 H2\nG0 X5 Y5 Z5\nG1 X10 F100\nM30\n", wait=True)
+        warnings = ctl.program_info.warnings
+        assert [(w.line, "feed move with the spindle stopped" in w.message) for w in warnings] == [(5, True)]
+    finally:
+        ctl.shutdown()

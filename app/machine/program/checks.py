@@ -194,6 +194,10 @@ def spindle_stopped_cuts(program: Program, start: SpindleState) -> tuple[Program
         kinds = np.fromiter((int(m.kind) for m in moves), np.int8, n)
         lines = np.fromiter((m.line for m in moves), np.int64, n)
     feed = np.flatnonzero(kinds != int(MoveKind.RAPID))
+    # a probe move is made with the spindle stopped on purpose (the tool measured on the setter
+    # after the M6, a probe's search): no cut to ask about
+    probing = np.fromiter((e.after_move for e in program.events if e.kind is EventKind.PROBE), np.int64)
+    feed = np.setdiff1d(feed, probing)
     found: list[ProgramIssue] = []
     on = start.on
     stopped_by = 0
