@@ -52,6 +52,17 @@ def _append(block: str) -> Callable[[str], str]:
     return lambda text: text.replace("[controller]", block + "\n[controller]", 1)
 
 
+def _replace_drive(position: int, block: str) -> Callable[[str], str]:
+    """The shipped table of slave ``position`` taken out (one table a drive) and ``block`` added."""
+    def edit(text: str) -> str:
+        lines = text.splitlines()
+        start = next(i for i, line in enumerate(lines)
+                     if line == "[[bus.drives]]" and lines[i + 1] == f"position = {position}")
+        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("[")), len(lines))
+        return _append(block)("\n".join(lines[:start] + lines[end:]) + "\n")
+    return edit
+
+
 def cases(refused: bool) -> list[Case]:
     f = 0.98 if refused else 1.02
     window = (0.5 if refused else 1.0) / X.counts_per_unit
@@ -69,10 +80,11 @@ def cases(refused: bool) -> list[Case]:
              _set("probe", "setter_x_mm", repr(X.min_pos - (0.001 if refused else 0.0)))),
         Case("controller.spindle_drive", _set("controller", "spindle_drive", "3" if refused else "2")),
         Case(f"bus.drives[{NEW_DRIVE}].position",
-             _append(f"[[bus.drives]]\nposition = {7 if refused else 1}\n")),
-        Case(f"bus.drives[{NEW_DRIVE}].rx[0]",
-             _append('[[bus.drives]]\nposition = 0\nrx = ["0x6040:0:%s", "0x607A:0:32"]\n'
-                     'tx = ["0x6041:0:16", "0x6064:0:32"]\n' % ("17" if refused else "16"))),
+             _append(f"[[bus.drives]]\nposition = {7 if refused else 1}\n") if refused
+             else _replace_drive(1, "[[bus.drives]]\nposition = 1\n")),
+        Case(f"bus.drives[{NEW_DRIVE - 1}].rx[0]",
+             _replace_drive(0, '[[bus.drives]]\nposition = 0\nrx = ["0x6040:0:%s", "0x607A:0:32"]\n'
+                            'tx = ["0x6041:0:16", "0x6064:0:32"]\n' % ("17" if refused else "16"))),
         Case("opcua.host", _set("opcua", "host", '"bad host!"' if refused else '"cnc-7.shop.local"')),
     ]
 
