@@ -107,7 +107,7 @@ def test_a_client_that_connects_late_learns_the_active_alarm_by_condition_refres
         found = w.on["server"].conditions(alarm.cause)
         assert len(found) == 1 and found[0].Retain is True and getattr(found[0], "ActiveState/Id") is True
         assert w.on["machine"].conditions(alarm.cause) == []             # only the caller's subscription
-        # acknowledged at the panel: told once, and no longer replayed
+        # acknowledged at the panel: told once, and left out of the replay after
         ctl.acknowledge_alarm(alarm.id)
         served.step(0.2)
         served.settle()
