@@ -353,3 +353,18 @@ def test_a_preview_says_why_without_a_refusal_and_probe_tool_is_enforced(qapp, c
         assert ctl.preview_probing(req).probes
     finally:
         ctl.shutdown()
+
+
+def test_a_slow_probe_feed_not_below_the_fast_one_is_refused(ctl: MachineController) -> None:
+    """The edge is read at the slow probe: a slow feed above the fast one (the edge then read
+    0.0039 mm off on the simulated machine) is refused, and nothing moves."""
+    assert ctl.set_tool(PROBE) and ctl.set_tool_in_spindle(PROBE.number)
+    before = tuple(ctl.machine_position)
+    for slow in (400.0, 300.0):
+        r = ctl.run_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55", fast_feed_mm_min=300.0,
+                                           slow_feed_mm_min=slow))
+        assert not r and f"the slow probe feed F{slow:g} must be below the fast one F300 mm/min" in r.reason
+    ctl.advance(0.5)
+    assert tuple(ctl.machine_position) == before
+    assert ctl.preview_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55", fast_feed_mm_min=300.0,
+                                              slow_feed_mm_min=30.0)).probes

@@ -102,6 +102,13 @@ class Probing:
             return "the depth below the start must be above 0 mm"
         if not req.tolerance_mm > 0.0:
             return "the diameter's tolerance must be above 0 mm"
+        fast = probe.fast_feed_mm_min if req.fast_feed_mm_min is None else req.fast_feed_mm_min
+        slow = probe.slow_feed_mm_min if req.slow_feed_mm_min is None else req.slow_feed_mm_min
+        if not slow < fast:
+            # the edge is read at the slow probe, after the fast one found it: slower is what
+            # makes it exact (the stylus' overtravel grows with the feed)
+            return (f"the slow probe feed F{slow:g} must be below the fast one F{fast:g} mm/min: the edge "
+                    "is read at the slow one")
         return ""
 
     # ------------------------------------------------------------------ commands
