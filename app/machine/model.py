@@ -237,6 +237,14 @@ class ProbingResult:
     values: dict[str, float] = field(default_factory=dict)
     written: str = ""
 
+    def said(self, diameter: str = "diameter", angle: str = "angle") -> str:
+        """The values as the operator reads them: positions by their axis, the diameter and the
+        angle by name (an "A" would read as the A axis of a machine that has one); the names in
+        the panel's language when it gives them."""
+        named = {"D": (diameter, ""), "A": (angle, "°")}
+        return " ".join(f"{named.get(k, (k, ''))[0]} {v:.4f}{named.get(k, ('', ''))[1]}"
+                        for k, v in self.values.items())
+
     def text(self) -> str:
-        said = " ".join(f"{k}{v:.4f}" for k, v in self.values.items())
-        return f"probed: {said}" + (f", written to {self.written}" if self.written else " (only reported)")
+        where = f", written to {self.written}" if self.written else " (only reported)"
+        return f"probed: {self.said()}{where}"

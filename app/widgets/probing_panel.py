@@ -296,7 +296,7 @@ class ProbingPanel(QWidget):
     def _finished(self, result: object) -> None:
         if not isinstance(result, ProbingResult):
             return
-        said = " ".join(f"{k} {v:.4f}" for k, v in result.values.items())
+        said = result.said(tr("diameter"), tr("angle"))
         self.result.setText(tr("Found: {0}; written to {1}").format(said, result.written) if result.written
                             else tr("Found: {0} (only reported)").format(said))
 

@@ -2163,6 +2163,11 @@ BIRAK</translation>
       <translation>bir dış köşe</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/probing_panel.py" line="299" />
+      <source>angle</source>
+      <translation>açı</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="65" />
       <source>another tool is in the spindle since it was loaded</source>
       <translation>program yüklendiğinden beri iş milinde başka bir takım var</translation>
@@ -2531,6 +2536,11 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="252" />
       <source>cutter compensation works in the XY (G17) or XZ (G18) plane, not in {0}</source>
       <translation>kesici telafisi XY (G17) ya da XZ (G18) düzleminde çalışır, {0} içinde değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/probing_panel.py" line="299" />
+      <source>diameter</source>
+      <translation>çap</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="51" />

@@ -368,3 +368,11 @@ def test_a_slow_probe_feed_not_below_the_fast_one_is_refused(ctl: MachineControl
     assert tuple(ctl.machine_position) == before
     assert ctl.preview_probing(ProbingRequest(ProbeWizard.Z_SURFACE, system="G55", fast_feed_mm_min=300.0,
                                               slow_feed_mm_min=30.0)).probes
+
+
+def test_a_result_names_the_angle_and_the_diameter_never_an_axis_letter() -> None:
+    from app.machine.model import ProbingResult
+
+    res = ProbingResult(ProbeWizard.ANGLE, {"X": 1.0, "A": 12.3456, "D": 20.0}, "G55")
+    assert res.said() == "X 1.0000 angle 12.3456° diameter 20.0000"
+    assert res.text() == "probed: X 1.0000 angle 12.3456° diameter 20.0000, written to G55"
