@@ -149,8 +149,13 @@ class Job:
             return prog.frame_at(base + m)
         return self.plan.program.frame_at(m)
 
-    def frame_at_pause(self, pause: PausePoint) -> Frame:
-        """The offsets in force where the job stands at ``pause`` (``Program.frame_before``)."""
+    def frame_in_force(self, consumed: int) -> Frame | None:
+        """The offsets in force at the set-point the drives reached (``frame_at``); stopped at a
+        pause point they reached, those in force there (``Program.frame_before``: at an M6 the
+        old tool's length, not that of the G43 after it)."""
+        pause = self.pause
+        if pause is None or consumed < self.pause_serial:
+            return self.frame_at(consumed)
         if self.origin is not None:
             prog, base, _u0 = self.origin
             return prog.frame_before(base + pause.move, pause.line)

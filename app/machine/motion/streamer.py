@@ -469,11 +469,8 @@ class Streamer:
                 self.line = line
                 self._out.lineChanged.emit(line)
             if job.kind in (Activity.PROGRAM, Activity.MDI):
-                # the DRO reads the tool tip in the program's own frame at this move; stopped
-                # at a pause, in the one in force there (at an M6 the old tool is still in)
-                pause = job.pause if job.pause is not None and consumed >= job.pause_serial else None
-                self._coordinates.follow_program(job.frame_at_pause(pause) if pause is not None
-                                                 else job.frame_at(consumed))
+                # the DRO reads the tool tip in the program's own frame where the drives are
+                self._coordinates.follow_program(job.frame_in_force(consumed))
             self._distance_to_go(job, consumed)
             while job.messages and job.messages[0][0] <= line:
                 self.show_message(job.messages.popleft()[1])
