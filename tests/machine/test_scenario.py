@@ -118,6 +118,17 @@ def test_a_tool_change_stops_the_spindle_until_the_programs_own_m3(tmp_path: Pat
     assert (rpm[after & (line == 6)] == 6000.0).all()
 
 
+def test_a_tool_changed_at_the_m6_s_own_line_waits_for_the_change_stop(tmp_path: Path, capsys) -> None:
+    """``{"at_line": 4, "op": "tool_changed"}`` on the M6's line: the line is reached while the
+    motion still slows down to the stop; the action is the operator's, taken at the stop."""
+    program = "G21 G90\nG0 X10 Y0\nG1 X30 F3000\nT2 M6\nG1 X20 F600\nM30\n"
+    (tmp_path / "t.tbl").write_text("T2 P2 Z0 D6 ;6 mm flat\n")
+    code, out, _ = run(tmp_path, capsys, program, [{"at_line": 4, "op": "tool_changed"}],
+                       "--tools", str(tmp_path / "t.tbl"))
+    assert code == 0 and out["completed"], out
+    assert out["actions"][0]["ok"] is True, out["actions"]
+
+
 def test_150_percent_override_ends_a_feed_bound_program_a_quarter_sooner(tmp_path: Path, capsys) -> None:
     program = "G21 G90\nG1 X50 F600\nG1 Y50\nG1 X0\nG1 Y0\nM30\n"
     code, base, _ = run(tmp_path, capsys, program, [])

@@ -228,7 +228,13 @@ class ScenarioRunner:
         if op.after_s is not None:
             return self.now() - self.last_t >= op.after_s - 1e-9
         status = self.ctl.snapshot()
-        return status.line >= (op.at_line or 0) and status.state in (MachineState.RUNNING, MachineState.HOLD)
+        reached = (status.line >= (op.at_line or 0)
+                   and status.state in (MachineState.RUNNING, MachineState.HOLD))
+        if op.op == "tool_changed":
+            # the operator puts the tool in once the machine stands at the change: the M6's own
+            # line is reached while the motion still slows down to it
+            return reached and status.hold_kind is HoldKind.TOOL_CHANGE
+        return reached
 
     def _fire(self, op: ScenarioOp) -> CommandResult | _Refused:
         c = self.ctl
