@@ -99,6 +99,10 @@ class NumericKeypad(QDialog):
             self.message.setText(tr("Out of range: {0} to {1}").format(
                 self._fmt(self.minimum), self._fmt(self.maximum)))
             return False
+        if self.decimals == 0 and value != int(value):
+            # a count (parts, a tool number): taken as typed, never cut to a whole number unsaid
+            self.message.setText(tr("A whole number: {0} has a fraction").format(self.display.text()))
+            return False
         self.accept()
         return True
 

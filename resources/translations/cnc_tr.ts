@@ -29,6 +29,11 @@
       <translation>/ satırları atlanıyor</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/keypad.py" line="104" />
+      <source>A whole number: {0} has a fraction</source>
+      <translation>Bir tam sayı olmalı: {0} kesirli</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/status_header.py" line="177" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>

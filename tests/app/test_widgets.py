@@ -51,6 +51,20 @@ def test_dro_shows_machine_and_work(qtbot) -> None:
     assert dro.axis_labels[0].text().startswith("X") and "?" in dro.axis_labels[1].text()
 
 
+def test_a_count_keypad_refuses_a_fraction_and_says_so(qtbot) -> None:
+    """A parts target of 2.5 is refused with why, not stored as 2 without a word."""
+    pad = NumericKeypad("Parts to make", 0.0, 0.0, 1_000_000.0, 0)
+    qtbot.addWidget(pad)
+    pad.press("C")
+    for key in ("2", ".", "5"):
+        pad.press(key)
+    assert not pad.try_accept()
+    assert pad.message.text() == "A whole number: 2.5 has a fraction"
+    pad.press("⌫")
+    pad.press("⌫")
+    assert pad.display.text() == "2" and pad.try_accept() and pad.value() == 2.0
+
+
 def test_keypad_enters_and_validates(qtbot) -> None:
     pad = NumericKeypad("Feed", 100.0, 0.0, 150.0, 1)
     qtbot.addWidget(pad)
