@@ -543,19 +543,17 @@ class Program:
     def frame_at(self, index: int) -> Frame:
         """The offsets in force for move ``index`` (before the first move: at the start), as
         the program set them (``offset_parts``); no offsets when it recorded none."""
-        parts = self.offset_parts
-        k = bisect.bisect_right([p[0] for p in parts], max(index, 0)) - 1 if parts else -1
-        if k < 0:
-            if not parts:
-                return Frame.identity(self.axes)
-            k = 0
-        _first, _line, system, work, g92, tlo, rotation = parts[k]
-        return Frame(tuple(self.axes), tuple(work), tuple(g92), tuple(tlo), float(rotation), int(system))
+        return self._frame_in_force(index, math.inf)
 
     def frame_before(self, index: int, line: int) -> Frame:
         """The offsets in force at a stop on ``line`` before move ``index`` runs (an M6, an M0):
         those set before the stop, not those the lines after it set for that move (the G43 of
         the new tool after an M6)."""
+        return self._frame_in_force(index, line)
+
+    def _frame_in_force(self, index: int, line: float) -> Frame:
+        """The last offset part for move ``index`` set on or before ``line`` (the first part
+        before any move)."""
         parts = self.offset_parts
         if not parts:
             return Frame.identity(self.axes)

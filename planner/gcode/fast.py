@@ -170,18 +170,16 @@ class FastPaths(MotionCodes):
             # from there, until no move left is short (a few passes: repeated points)
             given = ax[:cut] * scale + np.array([self.offsets.total[i] for i in cols])
             dropped = np.zeros(cut, bool)
-            for _ in range(_DROP_PASSES):
+            for passes_left in range(_DROP_PASSES, -1, -1):
                 targets, length = self._absolute_targets(given, cols, pos, lin)
                 short = has_axes[:cut] & ~dropped & (length <= ZERO_LEN)
                 if not short.any():
                     break
+                if not passes_left:                   # still short after every pass: cut there
+                    cut = int(np.argmax(short))
+                    break
                 dropped |= short
                 given[short] = np.nan
-            else:
-                targets, length = self._absolute_targets(given, cols, pos, lin)
-                short = has_axes[:cut] & ~dropped & (length <= ZERO_LEN)
-                if short.any():
-                    cut = int(np.argmax(short))
         else:
             dropped = np.zeros(cut, bool)
             targets = np.empty((cut + 1, self.setup.n))
