@@ -242,8 +242,11 @@ class ProbingResult:
         angle by name (an "A" would read as the A axis of a machine that has one); the names in
         the panel's language when it gives them."""
         named = {"D": (diameter, ""), "A": (angle, "°")}
-        return " ".join(f"{named.get(k, (k, ''))[0]} {v:.4f}{named.get(k, ('', ''))[1]}"
-                        for k, v in self.values.items())
+        said = []
+        for key, value in self.values.items():
+            name, unit = named.get(key, (key, ""))
+            said.append(f"{name} {value:.4f}{unit}")
+        return " ".join(said)
 
     def text(self) -> str:
         where = f", written to {self.written}" if self.written else " (only reported)"

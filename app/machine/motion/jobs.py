@@ -138,16 +138,19 @@ class Job:
         m = self._mark_at(consumed - 1)
         return m[3] if m is not None else None
 
+    def _source(self) -> tuple[Program, int]:
+        """The program whose moves this job's move numbers count from, and where they start in
+        it (a run from a line runs a piece of the loaded program: its ``origin``)."""
+        return (self.origin[0], self.origin[1]) if self.origin is not None else (self.plan.program, 0)
+
     def frame_at(self, consumed: int) -> Frame | None:
         """The offsets in force (the program's own, ``Program.frame_at``) at the set-point the
         drives reached; None before the first."""
         m = self.move_at(consumed)
         if m is None:
             return None
-        if self.origin is not None:
-            prog, base, _u0 = self.origin
-            return prog.frame_at(base + m)
-        return self.plan.program.frame_at(m)
+        prog, base = self._source()
+        return prog.frame_at(base + m)
 
     def frame_in_force(self, consumed: int) -> Frame | None:
         """The offsets in force at the set-point the drives reached (``frame_at``); stopped at a
@@ -156,15 +159,13 @@ class Job:
         pause = self.pause
         if pause is None or consumed < self.pause_serial:
             return self.frame_at(consumed)
-        if self.origin is not None:
-            prog, base, _u0 = self.origin
-            return prog.frame_before(base + pause.move, pause.line)
-        return self.plan.program.frame_before(pause.move, pause.line)
+        prog, base = self._source()
+        return prog.frame_before(base + pause.move, pause.line)
 
     def left_at(self, consumed: int, completed: bool) -> tuple[Program, int]:
         """The program this job ran and the move it ended with (``len(moves)`` when it ran to
         its end): what it leaves in force is the program's state there."""
-        prog, base = (self.origin[0], self.origin[1]) if self.origin is not None else (self.plan.program, 0)
+        prog, base = self._source()
         if completed:
             return prog, len(prog.moves)
         m = self.move_at(consumed)
