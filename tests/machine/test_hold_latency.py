@@ -169,9 +169,12 @@ def test_a_splice_that_changes_nothing_keeps_the_queue_bit_identical(ctl: Machin
     """The executor is rewound to the pushed chunk holding the splice serial and regenerates
     the part before it exactly: with no change, the new queue equals the old one bit for bit."""
     def queue() -> np.ndarray:
+        """The queued set-points before the braking tail behind them."""
         w = ctl.worker
         block, cap = w._block, w.config.buffer_capacity
-        return block.ring[(int(block.ctl.tail) + np.arange(w.buffer_level())) % cap].copy()
+        n = ctl.stream.pushed_total - w.samples_consumed()
+        assert 0 < n <= w.buffer_level()                   # the tail (if moving) follows them
+        return block.ring[(int(block.ctl.tail) + np.arange(n)) % cap].copy()
 
     start(ctl)
     for t in (0.3, 0.437, 0.61, 0.9):                      # lines 2 and 3, various chunk phases

@@ -13,6 +13,7 @@ import pytest
 from app.machine.config import config_to_toml, load_config
 from app.machine.motion.timescale import Budget, reduced_machine
 from cli.plan import main as cnc_plan
+from ethercat.worker import ReplaceResult
 from tests.machine.conftest import make_controller, run_to_idle
 
 # arcs, lines and a helix: many profile phase switches, where Eq. 16 drifts from the exact s(t)
@@ -47,20 +48,32 @@ def _cnc_plan(tmp_path: Path, config: Path, interpolation: str) -> np.ndarray:
 def _run_on_the_machine(config: Path, state_dir: Path) -> np.ndarray:
     ctl = make_controller(config, state_dir)
     try:
-        pushed: list[np.ndarray] = []
-        real_push = ctl.worker.push
+        # the worker's queue by serial, as pushed and replaced (a replace drops what follows)
+        queued: dict[int, np.ndarray] = {}
+        worker = ctl.worker
+        real_push, real_replace = worker.push, worker.replace
 
         def recording_push(q: np.ndarray) -> int:
+            first = ctl.stream.pushed_total      # a push follows the last set-point recorded
             n = real_push(q)
-            pushed.append(np.array(q[:n], dtype=float))
+            queued.update((first + i, np.array(q[i], dtype=float)) for i in range(n))
             return n
 
-        ctl.worker.push = recording_push
+        def recording_replace(serial: int, q: np.ndarray) -> tuple[ReplaceResult, int]:
+            result, n = real_replace(serial, q)
+            if result is ReplaceResult.DONE:
+                for k in [k for k in queued if k >= serial]:
+                    del queued[k]
+                queued.update((serial + i, np.array(q[i], dtype=float)) for i in range(n))
+            return result, n
+
+        worker.push, worker.replace = recording_push, recording_replace
         assert ctl.load_program(PROGRAM, wait=True)
         assert ctl.cycle_start()
         run_to_idle(ctl, 60)
         assert ctl.last_run.completed
-        return np.vstack(pushed)
+        assert sorted(queued) == list(range(len(queued)))
+        return np.vstack([queued[k] for k in range(len(queued))])
     finally:
         ctl.shutdown()
 

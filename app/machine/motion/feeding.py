@@ -13,6 +13,15 @@ is retried from a later serial; after ``SPLICE_ATTEMPTS`` it falls back to apply
 after the queued set-points. So a hold starts decelerating within ~5-10 ms of the request
 instead of after the lead.
 
+The braking tail: behind the last set-point pushed, the queue always holds a stop along the
+path from there (the executor's hold, made on a copy of its state: the time-optimal path stop
+or sigma -> 0, within every limit). Each top-up replaces the tail with new set-points and a
+new tail. The queue is topped up in steps of ``REFILL_S`` (each step pays for one tail).
+Should the feeder fall behind (the panel's process stalled longer than the lead), the worker
+plays the tail and the axes come to rest on the path instead of stopping dead; the queue then
+takes the tail as executed (``take_tail``): the executor stands held where it ended, and the
+streamer raises the alarm.
+
 ``SetpointQueue`` belongs to the streamer (``app.machine.motion.streamer``), which calls it
 under its lock only.
 """
@@ -22,6 +31,7 @@ from __future__ import annotations
 import collections
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -32,11 +42,34 @@ from app.machine.motion.timescale import ScaledChunk, TimeScaledExecutor
 from app.machine.ports import PositionsView, Settings
 from ethercat.worker import ReplaceResult
 
-__all__ = ["CHUNK", "SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "SetpointQueue", "SpliceInfo"]
+__all__ = ["CHUNK", "REFILL_S", "SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "RanDry", "SetpointQueue", "SpliceInfo"]
 
 SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
 SPLICE_ATTEMPTS = 6
 CHUNK = 20  # executor samples per pushed chunk
+TAIL_CHUNK = 100  # executor samples per chunk of the braking tail
+#: the queue is topped up once this much of the lead was taken (at most a fifth of the lead)
+REFILL_S = 0.1
+
+_Made = tuple[tuple, ScaledChunk, np.ndarray]   # (executor state before, chunk, set-points)
+
+
+@dataclass(frozen=True, slots=True)
+class _Tail:
+    """The braking tail queued behind the last set-point pushed (serial ``serial`` on)."""
+
+    serial: int
+    made: tuple[_Made, ...]
+    end_state: tuple   # the executor held where the tail ends
+
+
+@dataclass(frozen=True, slots=True)
+class RanDry:
+    """The worker ran into the braking tail: at ``serial`` (set-points taken), found late by
+    ``late_s`` (how long the drives ran on the tail before the feeder came back)."""
+
+    serial: int
+    late_s: float
 
 
 class SpliceInfo:
@@ -82,19 +115,31 @@ class SetpointQueue:
         self.recent_splices: collections.deque[SpliceInfo] = collections.deque(maxlen=32)
         self._splice_est_s: dict[bool, float] = {}
         self._splice_critical_s = 0.0
+        self._tail: _Tail | None = None
+        #: the worker ran into the braking tail (the streamer raises the alarm and clears it)
+        self.ran_dry: RanDry | None = None
 
     def restart_at(self, serial: int) -> int:
         """The next set-point pushed gets ``serial`` (a new job, a new worker)."""
         self.pushed_total = serial
+        self._tail = None
         return serial
 
     def feed(self, job: Job, lead: int, max_new: int | None = None) -> None:
-        """Keep the worker's queue ``lead`` set-points ahead (at most ``max_new`` now)."""
+        """Keep the worker's queue ``lead`` set-points ahead (at most ``max_new`` now), its
+        braking tail behind them (module docstring)."""
         self._prune_chunks(job)
-        want = lead - self._drives.buffer_level()
+        consumed = self._drives.samples_consumed()
+        if consumed is None or self.take_tail(job, consumed):
+            return
+        want = lead - max(self.pushed_total - consumed, 0)
         if max_new is not None:
             want = min(want, max_new)
+        elif self._tail is not None and want < min(self._refill(), lead // 5 + 1):
+            return                  # the queued set-points and their tail still reach far enough
         ex = job.executor
+        before = ex.save_state()
+        made: list[_Made] = []
         while want > 0 and job.pause is None:
             if ex.held:
                 break  # held still on the path: the worker keeps the last set-point
@@ -103,13 +148,81 @@ class SetpointQueue:
             if ch is None:
                 break
             raw = self._chunk_raw(ch)
-            n = self._drives.push(raw)
+            made.append((state, ch, raw))
+            want -= len(raw)
+            if ch.pause is not None:
+                break
+        if not made:
+            return
+        tail = self._braking_tail(ex)
+        q = np.vstack([m[2] for m in made] + [m[2] for m in tail[0]])
+        if self._tail is None:
+            n = self._drives.push(q)
             if n < 0:
+                ex.restore_state(before)
                 return              # disconnected meanwhile
-            if n < len(raw):  # pragma: no cover - lead is far below the ring capacity
-                raise MachineError("worker buffer full")
+        else:
+            result, n = self._drives.replace(self.pushed_total, q)
+            if result is not ReplaceResult.DONE:
+                ex.restore_state(before)
+                if result is ReplaceResult.TOO_LATE:
+                    self.take_tail(job, self._drives.samples_consumed() or consumed)
+                else:
+                    self._tail = None  # the worker dropped its queue (quick stop, flush)
+                return
+        if n < len(q):  # pragma: no cover - the ring holds the lead and the longest tail
+            raise MachineError("worker buffer full")
+        for state, ch, raw in made:
             self._record_chunk(job, ch, state, len(raw))
-            want -= n
+        self._tail = _Tail(self.pushed_total, tail[0], tail[1]) if tail[0] else None
+
+    def _refill(self) -> int:
+        return max(int(REFILL_S / self._settings.config.machine.planner.ts_s), CHUNK)
+
+    def _braking_tail(self, ex: TimeScaledExecutor) -> tuple[tuple[_Made, ...], tuple]:
+        """The stop along the path from where the executor is (made on its state, which is put
+        back): its chunks and the executor's state at its end; none when it stands still."""
+        if ex.finished or ex.paused is not None or ex.held:
+            return (), ()
+        cap = int(1.1 * ex.time_to_ramp_s / self._settings.config.machine.planner.ts_s) + CHUNK
+        start = ex.save_state()
+        _set_hold(ex)
+        made: list[_Made] = []
+        total = 0
+        while total < cap and not ex.held:
+            state = ex.save_state()
+            ch = ex.generate(TAIL_CHUNK)
+            if ch is None:
+                break
+            raw = self._chunk_raw(ch)
+            made.append((state, ch, raw))
+            total += len(raw)
+            if ch.pause is not None:
+                break
+        end = ex.save_state()
+        ex.restore_state(start)
+        return tuple(made), end
+
+    def ran_into_tail(self, job: Job, consumed: int) -> RanDry | None:
+        """``take_tail``, and the worker's run into the tail (once; None when it did not)."""
+        self.take_tail(job, consumed)
+        ran, self.ran_dry = self.ran_dry, None
+        return ran
+
+    def take_tail(self, job: Job, consumed: int) -> bool:
+        """When the worker has run into the braking tail (set-points taken beyond the last one
+        pushed), take the tail as executed: its chunks recorded, the executor held where it
+        ends, ``ran_dry`` set. Whether it had."""
+        tail = self._tail
+        if tail is None or consumed <= tail.serial:
+            return False
+        self._tail = None
+        ts = self._settings.config.machine.planner.ts_s
+        self.ran_dry = RanDry(tail.serial, (consumed - tail.serial) * ts)
+        for state, ch, raw in tail.made:
+            self._record_chunk(job, ch, state, len(raw))
+        job.executor.restore_state(tail.end_state)
+        return True
 
     def _chunk_raw(self, ch: ScaledChunk) -> np.ndarray:
         """Set-points of a chunk in drive units; at a pause point the plan stands still, so the
@@ -130,6 +243,11 @@ class SetpointQueue:
             job.pause_serial = self.pushed_total  # before .pause: the poll reads both
             job.pause = ch.pause
 
+    def release(self, job: Job) -> None:
+        """The motion goes on from the pause point it stands at (under the streamer's lock)."""
+        job.pause = None
+        job.executor.release_pause()
+
     def _prune_chunks(self, job: Job) -> None:
         consumed = self._drives.samples_consumed()
         if consumed is None:
@@ -144,8 +262,12 @@ class SetpointQueue:
         a queue the change simply applies to the next set-points generated."""
         ex = job.executor
         consumed = self._drives.samples_consumed() if not job.aborted else None
+        if consumed is not None:
+            self.take_tail(job, consumed)
         if consumed is None or consumed >= self.pushed_total:
             change(ex)
+            if self._tail is not None:
+                self.feed(job, lead, max_new=self._refill())
             return
         current = ex.save_state()
         ts = self._settings.config.machine.planner.ts_s
@@ -164,12 +286,16 @@ class SetpointQueue:
             done = self._splice_at(job, serial, change, lead)
             dt = self._splice_critical_s
             if done is ReplaceResult.BEYOND_END:  # the worker dropped its queue (quick stop, flush)
+                self._tail = None
                 ex.restore_state(current)
                 change(ex)
                 done = None
             if done is None or done is ReplaceResult.DONE:
                 if done is ReplaceResult.DONE:
                     self._splice_est_s = {**self._splice_est_s, hold: dt}
+                elif self._tail is not None:
+                    # changed after the last set-point queued: its tail goes with the change
+                    self.feed(job, lead, max_new=self._refill())
                 took = time.perf_counter() - t_start
                 self.last_splice = SpliceInfo(serial, first_consumed, attempt, took, done is None)
                 self.recent_splices.append(self.last_splice)
@@ -224,8 +350,12 @@ class SetpointQueue:
             return result
         if n < len(q):  # pragma: no cover - lead is far below the ring capacity
             raise MachineError("worker buffer full")
-        job.rewind(rec.serial)
+        dropped, pause = job.rewind(rec.serial)
+        job.samples -= dropped
+        if pause:
+            job.pause, job.pause_serial = None, 0
         self.pushed_total = rec.serial
+        self._tail = None           # the replace dropped it with the rest of the queue
         if prefix is not None:
             self._record_chunk(job, prefix, rec.state, p)
         for state, ch, raw in new:

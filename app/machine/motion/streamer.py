@@ -32,7 +32,7 @@ from app.machine.model import (
     TrackingReport,
 )
 from app.machine.motion.feeding import SetpointQueue, SpliceInfo
-from app.machine.motion.jobs import Job, ResumePoint, merge_max
+from app.machine.motion.jobs import Job, Reads, ResumePoint, merge_max
 from app.machine.motion.making import JobMaker
 from app.machine.motion.pauses import PauseHandlers
 from app.machine.motion.runs import save_trace, tracking_report
@@ -45,7 +45,6 @@ from app.machine.motion.timescale import (
 from app.machine.ports import (
     AlarmSink,
     CoordinatesView,
-    LoaderView,
     PositionsView,
     RunModes,
     Settings,
@@ -72,8 +71,9 @@ class Streamer:
     """The job under way and its set-points (``controller.motion``)."""
 
     def __init__(self, settings: Settings, states: StateMachine, drives: DriveLink, positions: PositionsView,
-                 coordinates: CoordinatesView, spindle: SpindleDrive, tools: ToolView, alarms: AlarmSink,
-                 pauses: PauseHandlers, trace_path: str, out: PanelChannels, events: MachineEvents) -> None:
+                 coordinates: CoordinatesView, spindle: SpindleDrive, tools: ToolView, modes: RunModes,
+                 alarms: AlarmSink, pauses: PauseHandlers, trace_path: str, out: PanelChannels,
+                 events: MachineEvents) -> None:
         self._settings = settings
         self._states = states
         self._drives = drives
@@ -102,9 +102,9 @@ class Streamer:
         self._poll_hooks: list[Callable[[Job, bool], None]] = []
         self._end_hooks: list[Callable[[], None]] = []
         self._sinks: list[TraceSink] = []
-        self._modes: RunModes | None = None
+        self._modes = modes
         #: how jobs are made (plans, overrides, spin-ups) for this machine
-        self.jobs = JobMaker(settings, coordinates, spindle)
+        self.jobs = JobMaker(settings, coordinates, spindle, modes, events)
         events.estop.connect(lambda reason: self.abandon(f"E-stop: {reason}", keep_point=reason))
         events.fault.connect(lambda cause: self.abandon(cause, keep_point=cause))
         events.alarm_stop.connect(self._alarm_stop)
@@ -112,11 +112,6 @@ class Streamer:
         events.program_let_go.connect(self.forget_resume_point)
         events.program_loaded.connect(lambda _info: self.forget_resume_point())
         events.program_refused.connect(self.forget_resume_point)
-
-    def wire(self, modes: RunModes, loader: LoaderView) -> None:
-        """The runner's switches (overrides, single block) and the loaded program."""
-        self._modes = modes
-        self.jobs.wire(modes, loader)
 
     # ------------------------------------------------------------------ registrations
     def on_feed(self, hook: Callable[[], None]) -> None:
@@ -171,12 +166,14 @@ class Streamer:
         self.line = line
         self.start_job(job)
 
-    def follow(self, job: Job, rest: Program, origin: tuple[Program, int, float], held: bool = False) -> Job:
+    def follow(self, job: Job, rest: Program, origin: tuple[Program, int, float], held: bool = False,
+               reads: Reads | None = None) -> Job:
         """At rest on the path: run ``rest`` (what is left of the program from here, planned
         anew) in place of ``job``, as the same run (time, progress, trace, limits); ``held``:
-        it waits for cycle start (the operator's feed hold). Raises PlannerError when the rest
-        cannot be planned (``job`` is then unchanged)."""
-        new = self.jobs.successor(job, rest, origin, held)
+        it waits for cycle start (the operator's feed hold); ``reads``: the probe and input
+        results so far. Raises PlannerError when the rest cannot be planned (``job`` is then
+        unchanged)."""
+        new = self.jobs.successor(job, rest, origin, held, reads)
         with self._lock:                  # the feeder thread reads the job under the lock
             self.job = new
         if self._drives.realtime:
@@ -433,34 +430,14 @@ class Streamer:
             for sink in self._sinks:
                 sink(trace.cycle, reference, actual)
 
-    def _distance_to_go(self, job: Job, consumed: int) -> None:
-        """The end of the move the drives are on, less where the set-point is (as LinuxCNC's
-        DTG reads it)."""
-        m = job.move_at(consumed)
-        moves = job.plan.program.moves
-        if m is None or not 0 <= m < len(moves):
-            self.distance_to_go = ()
-            return
-        left = np.asarray(moves[m].end, dtype=float) - self._positions.reference_pos()
-        self.distance_to_go = tuple(float(v) for v in left)
-
-    @staticmethod
-    def _spin_ups_left(job: Job, tau: float, now_s: float) -> float:
-        """The spindle's waits still ahead of planned time ``tau``, and what is left of the one
-        under way (the motion stands meanwhile: the time left counts them)."""
-        left = sum(wait for at, wait in job.spin_ups if at > tau)
-        if job.spinup_until is not None:
-            left += max(job.spinup_until - now_s, 0.0)
-        return left
-
     def poll(self, snap: WorkerSnapshot) -> None:
         """The job as the drives run it (the poll): line, progress, notes, pause points, end."""
         job = self.job
         if job is None:
             return
         modes = self._modes
-        assert modes is not None
         consumed = int(snap.samples_consumed)
+        self._ran_dry(job, consumed)
         info = job.info_at(consumed)
         if info is not None:
             line, tau = info
@@ -471,7 +448,7 @@ class Streamer:
             if job.kind in (Activity.PROGRAM, Activity.MDI):
                 # the DRO reads the tool tip in the program's own frame where the drives are
                 self._coordinates.follow_program(job.frame_in_force(consumed))
-            self._distance_to_go(job, consumed)
+            self.distance_to_go = job.distance_to_go(consumed, self._positions.reference_pos())
             while job.messages and job.messages[0][0] <= line:
                 self.show_message(job.messages.popleft()[1])
             if job.kind is Activity.PROGRAM:
@@ -480,7 +457,7 @@ class Streamer:
                 frac = min(tau_g / t_end, 1.0) if t_end > 0 else 1.0
                 capped = job.executor.capped_to
                 ovr = max(modes.feed_pct / 100.0 if capped is None else capped, 1e-3)
-                remaining = max(t_end - tau_g, 0.0) / ovr + self._spin_ups_left(job, tau, float(snap.time_s))
+                remaining = max(t_end - tau_g, 0.0) / ovr + job.spin_ups_left(tau, float(snap.time_s))
                 self.progress = (frac, remaining)
                 self._out.progressChanged.emit(frac, remaining)
         capped = job.executor.capped_to
@@ -514,6 +491,16 @@ class Streamer:
             return
         if job.stopping and job.executor.standing and all_done:
             self._finish_stop(job)
+
+    def _ran_dry(self, job: Job, consumed: int) -> None:
+        """The drives ran into the braking tail (the feeder fell behind): the job stops where
+        the tail brought it to rest, with the alarm (resumable from there)."""
+        with self._lock:
+            ran = self._queue.ran_into_tail(job, max(self._drives.samples_consumed() or 0, consumed))
+        if ran is not None:
+            self._alarms.alarm_stop(
+                f"the set-points ran out after {ran.serial} (the control's process fell behind): the axes "
+                "braked to rest along the path within their limits", "controller", "setpoints_ran_out")
 
     def _spindle_lock_at(self, job: Job, move: int | None) -> None:
         """The spindle override as the program wants it for ``move`` (off in a tap, after M49)."""
@@ -556,7 +543,7 @@ class Streamer:
         elif handler is not None:
             if handler(job, p, snap):
                 self.release(job)
-        elif kind is PauseKind.OPTIONAL_PAUSE and not (self._modes is not None and self._modes.optional_stop):
+        elif kind is PauseKind.OPTIONAL_PAUSE and not self._modes.optional_stop:
             self.release(job)
         elif not job.waiting:
             self._operator_stop(job, p)
@@ -602,9 +589,12 @@ class Streamer:
 
     def release(self, job: Job) -> None:
         with self._lock:
-            job.pause = None
             job.waiting = False
-            job.executor.release_pause()
+            self._queue.release(job)
+
+    def count_wait(self, job: Job, seconds: float) -> None:
+        """A wait at a pause point (M66) counts in the run's time, as a dwell does."""
+        job.dwell_total_s += seconds
 
     def show_message(self, text: str) -> None:
         """A program's message for the operator: the status line and the alarm log (information)."""

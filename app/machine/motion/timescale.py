@@ -100,8 +100,8 @@ from planner.motion.plan import Plan
 from planner.motion.stopping import PathStop, plan_path_stop
 from planner.motion.window import PlanWindow
 
-__all__ = ["Budget", "PauseKind", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "pause_points",
-           "reduced_machine"]
+__all__ = ["Budget", "PauseKind", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "braking_rates",
+           "pause_points", "ramp_bound_s", "reduced_machine"]
 
 SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap it (3)
 # planned time a plan made as it runs is held behind tau: a splice rewinds to the first
@@ -118,6 +118,27 @@ def reduced_machine(machine: MachineSpec, budget: Budget) -> MachineSpec:
     lim = replace(machine.limits, a_max_mm_s2=machine.limits.a_max_mm_s2 * budget.k_a,
                   j_max_mm_s3=machine.limits.j_max_mm_s3 * budget.k_j)
     return replace(machine, axes=axes, limits=lim)
+
+
+def braking_rates(machine: MachineSpec, budget: Budget) -> tuple[float, float]:
+    """The worst-case bounds D1_ref (|sigma_dot|, 1/s) and D2_ref (|sigma_ddot|, 1/s^2) of the
+    braking law, from the machine's limits and the share the plan leaves to the time scale."""
+    lim = machine.limits
+    v_lin = max(lim.v_max_mm_s, lim.rapid_mm_s)
+    t1 = max([v_lin / lim.a_max_mm_s2] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.a_max
+                                          for a in machine.axes])
+    t2 = max([lim.a_max_mm_s2 / lim.j_max_mm_s3] + [a.a_max / a.j_max for a in machine.axes])
+    t3 = max([v_lin / lim.j_max_mm_s3] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.j_max
+                                          for a in machine.axes])
+    k_a, k_j = budget.k_a, budget.k_j
+    return min((1.0 - k_a) / t1, (1.0 - k_j) / (6.0 * k_a * t2)), (1.0 - k_j) / (2.0 * t3)
+
+
+def ramp_bound_s(machine: MachineSpec, budget: Budget) -> float:
+    """Upper bound of the time the braking law takes to change sigma by ``SIGMA_MAX``: no hold
+    takes longer (a stop from 200 % included)."""
+    d1, d2 = braking_rates(machine, budget)
+    return SIGMA_MAX / d1 + d1 / d2
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -189,16 +210,7 @@ class TimeScaledExecutor:
         self.paused: PausePoint | None = None
         self.finished = self.n_moves == 0
         # worst-case (global) bounds for the braking law and the look-ahead distance
-        lim = machine.limits
-        v_lin = max(lim.v_max_mm_s, lim.rapid_mm_s)
-        t1 = max([v_lin / lim.a_max_mm_s2] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.a_max
-                                              for a in machine.axes])
-        t2 = max([lim.a_max_mm_s2 / lim.j_max_mm_s3] + [a.a_max / a.j_max for a in machine.axes])
-        t3 = max([v_lin / lim.j_max_mm_s3] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.j_max
-                                              for a in machine.axes])
-        k_a, k_j = budget.k_a, budget.k_j
-        self.d1_ref = min((1.0 - k_a) / t1, (1.0 - k_j) / (6.0 * k_a * t2))
-        self.d2_ref = (1.0 - k_j) / (2.0 * t3)
+        self.d1_ref, self.d2_ref = braking_rates(machine, budget)
         self._win_valid_until = -1.0
         self._bounds = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
         self._target_cache = 1.0
@@ -278,7 +290,7 @@ class TimeScaledExecutor:
     # ------------------------------------------------------------------ commands
     @property
     def time_to_ramp_s(self) -> float:
-        """Upper bound of the time to change sigma by 1.5 with the worst-case bounds."""
+        """Upper bound of the time to change sigma by ``SIGMA_MAX`` (``ramp_bound_s``)."""
         return SIGMA_MAX / self.d1_ref + self.d1_ref / self.d2_ref
 
     def set_overrides(self, feed: float | None = None, rapid: float | None = None) -> None:

@@ -30,6 +30,7 @@ from app.machine.model import Activity, BusStatus, CommandResult, MachineState, 
 from app.machine.motion.coordinates import Coordinates
 from app.machine.motion.positions import Positions
 from app.machine.motion.streamer import Streamer
+from app.machine.motion.timescale import ramp_bound_s
 from app.machine.ports import AlarmSink
 from app.machine.session.poller import StatusPoller
 from app.machine.state.gate import Action, guarded
@@ -46,13 +47,14 @@ _SAVED_ON = frozenset({MachineState.IDLE, MachineState.DISCONNECTED, MachineStat
 
 
 #: the worker's ring holds this long of set-points at the least (2000 at 1 ms), and twice the
-#: lead the feeder keeps, whatever the cycle: at 0.1 ms the 0.5 s lead is 5,000 set-points
+#: lead the feeder keeps plus the longest braking tail behind it, whatever the cycle
 RING_S = 2.0
 
 
-def ring_capacity(ts_s: float, lead_s: float) -> int:
-    """Set-points the worker's ring holds for a cycle of ``ts_s`` and a lead of ``lead_s``."""
-    return int(math.ceil(max(RING_S, 2.0 * lead_s) / ts_s))
+def ring_capacity(ts_s: float, lead_s: float, stop_s: float = 0.0) -> int:
+    """Set-points the worker's ring holds for a cycle of ``ts_s``, a lead of ``lead_s`` and a
+    braking tail of at most ``stop_s`` (``app.machine.motion.timescale.ramp_bound_s``)."""
+    return int(math.ceil(max(RING_S, 2.0 * lead_s + 1.2 * stop_s) / ts_s))
 
 
 class Connection:
@@ -236,7 +238,8 @@ class Connection:
             mode=mode,
             bus_options=options,
             homing_timeout_s=cfg.homing.timeout_s,
-            buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s),
+            buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s,
+                                          ramp_bound_s(cfg.machine, self._settings.budget)),
         )
 
     def connect_bus(self) -> CommandResult:
