@@ -122,6 +122,59 @@ def test_a_part_writes_only_its_own_fields() -> None:
     assert not offenders, "\n".join(offenders)
 
 
+def _job_fields() -> set[str]:
+    """The fields ``Job.__init__`` makes (``self.<field> = ...``)."""
+    tree = ast.parse((MACHINE / "motion" / "jobs.py").read_text(encoding="utf-8"))
+    job = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Job")
+    init = next(n for n in job.body if isinstance(n, ast.FunctionDef) and n.name == "__init__")
+    return {t.attr for n in ast.walk(init) if isinstance(n, (ast.Assign, ast.AnnAssign))
+            for t in (n.targets if isinstance(n, ast.Assign) else [n.target])
+            if isinstance(t, ast.Attribute) and isinstance(t.value, ast.Name) and t.value.id == "self"}
+
+
+#: how the controller's code names a job it holds: ``job``, ``new``, ``nxt``, ``main``, ``self.job``
+_A_JOB = re.compile(r"^(job|new|nxt|main|self\.job)$")
+
+
+def test_a_field_of_a_job_has_its_writers_in_one_file() -> None:
+    """Once made (``Job.__init__``, called by the job maker alone), each field of a job is
+    written from one file: its terms by none, the run's progress by the streamer's set-point
+    queue (samples, pause points) or by the streamer (the rest). Writes are ``<job>.<field> =``
+    anywhere in ``app.machine`` and ``self.<field> =`` in the job's own methods."""
+    fields = _job_fields()
+    assert {"samples", "pause", "dwell_total_s", "origin", "when_done"} <= fields
+    writers: dict[str, set[str]] = {}
+    for path in _machine_modules():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        skip: set[int] = set()
+        if path.name == "jobs.py":
+            job = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Job")
+            init = next(n for n in job.body if isinstance(n, ast.FunctionDef) and n.name == "__init__")
+            skip = {id(n) for n in ast.walk(init)}
+        for node in ast.walk(tree):
+            if id(node) in skip or not isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)):
+                continue
+            for t in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                for leaf in (t.elts if isinstance(t, ast.Tuple) else [t]):
+                    if not (isinstance(leaf, ast.Attribute) and leaf.attr in fields):
+                        continue
+                    owner = ast.unparse(leaf.value)
+                    if _A_JOB.match(owner) or (owner == "self" and path.name == "jobs.py"):
+                        writers.setdefault(leaf.attr, set()).add(str(path.relative_to(ROOT)))
+    assert len(writers) > 15                                  # the run's progress is written
+    shared = {f: sorted(files) for f, files in writers.items() if len(files) > 1}
+    assert not shared, shared
+
+
+def test_no_part_is_wired_after_it_is_made() -> None:
+    """A part gets what it reads when it is made, or hears it as events: no ``wire(`` call
+    that hands it higher parts afterwards."""
+    found = [f"{p.relative_to(ROOT)}:{i}" for p in _machine_modules()
+             for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+             if re.search(r"\bwire\(", line)]
+    assert not found, found
+
+
 def test_no_lock_is_taken_from_outside_its_owner() -> None:
     """A lock is its owner's: ``x._lock`` is read only as ``self._lock``."""
     offenders = []

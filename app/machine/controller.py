@@ -109,6 +109,7 @@ from app.machine.motion.streamer import Streamer
 from app.machine.program.joblog import JobLog
 from app.machine.program.loader import ProgramLoader
 from app.machine.program.runner import ProgramRunner
+from app.machine.program.switches import RunSwitches
 from app.machine.session.connection import RAMP_DOWN_TIMEOUT_S, Connection
 from app.machine.session.monitoring import RemoteMonitoring
 from app.machine.session.poller import StatusPoller
@@ -144,7 +145,8 @@ _stream, _loader, _run, _manual, _homing = _part("stream"), _part("loader"), _pa
 _spindle, _tools, _setter, _alarms, _conn = _part("spindle_ctl"), _part("tools"), _part("setter"), \
     _part("alarm_log"), _part("conn")
 _poller, _drives, _status, _remote = _part("poller"), _part("drives"), _part("status"), _part("remote")
-_job_log, _probing, _prober = _part("jobs_log"), _part("probing"), _part("prober")
+_job_log, _probing, _prober, _switches = _part("jobs_log"), _part("probing"), _part("prober"), \
+    _part("switches")
 
 
 class MachineController(QObject):
@@ -214,28 +216,26 @@ class MachineController(QObject):
         self.alarm_log = alarms = AlarmLog(store, out, events)
         self.positions = positions = Positions(settings, out, events, drives)
         self.states = states = StateMachine(settings, out, events, drives, positions, alarms)
-        alarms.wire(states)
         self.coordinates = coords = Coordinates(settings, states, positions, store, alarms, out, events,
                                                 pauses)
         self.homing = homing = Homing(settings, states, drives, positions, alarms, events)
         self.outputs = outputs = DigitalOutputs(settings, drives, alarms, events, pauses)
         self.spindle_ctl = spindle = SpindleControl(settings, states, drives, outputs, alarms, out, events)
         self.tools = tools = ToolControl(settings, states, positions, coords, store, alarms, out, pauses)
-        self.stream = stream = Streamer(settings, states, drives, positions, coords, spindle, tools, alarms,
-                                        pauses, str(store.path("last_run.npz")), out, events)
+        self.switches = switches = RunSwitches(out, events)
+        self.stream = stream = Streamer(settings, states, drives, positions, coords, spindle, tools, switches,
+                                        alarms, pauses, str(store.path("last_run.npz")), out, events)
         jobs = stream.jobs
         self.loader = loader = ProgramLoader(settings, states, positions, coords, tools, spindle, stream,
-                                             jobs, out, events, self)
+                                             jobs, switches, out, events, self)
         self.jobs_log = job_log = JobLog(store.dir, alarms, loader, out)
-        self.run = run = ProgramRunner(settings, states, positions, tools, loader, stream, jobs, alarms, out,
-                                       events, job_log.refusal)
-        stream.wire(run, loader)
-        loader.wire(run)
+        self.run = run = ProgramRunner(settings, states, positions, tools, loader, stream, jobs, switches,
+                                       alarms, out, events, job_log.refusal)
         read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
         self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses, tools)
         self.waiter = InputWaiter(coords, stream, read_again, pauses)
-        self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs, run,
-                                            stream, jobs)
+        self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs,
+                                            switches, stream, jobs)
         self.setter = ToolSetter(settings, states, tools, positions, coords, manual, alarms)
         self.probing = Probing(settings, states, tools, positions, coords, manual, out.probingFinished.emit)
         self.poller = poller = StatusPoller(settings, drives, positions, coords, alarms, stream, out, events)
@@ -244,8 +244,7 @@ class MachineController(QObject):
         poller.on_poll(prober.place_simulated_part)
         self.conn = conn = Connection(settings, store, states, drives, positions, coords, alarms, stream,
                                       poller, out, events, worker_factory, poll_hz, self)
-        states.wire(loader, stream, run, poller.poll)
-        self.status = StatusBoard(settings, states, positions, coords, stream, run, run, loader, spindle,
+        self.status = StatusBoard(settings, states, positions, coords, stream, switches, run, loader, spindle,
                                   tools, alarms, poller, out, self)
         self.status.published.connect(self.statusChanged.emit)
         self.remote = remote = RemoteMonitoring(settings, store.dir, alarms, events, opcua)
@@ -287,11 +286,11 @@ class MachineController(QObject):
     tracking: reads[TrackingReport] = reads(_stream, "tracking")
     last_run: reads[RunSummary | None] = reads(_stream, "last_summary")
     last_probing: reads[ProbingResult | None] = reads(_probing, "last")
-    feed_override_pct: reads[float] = reads(_run, "feed_pct")
-    rapid_override_pct: reads[float] = reads(_run, "rapid_pct")
-    single_block: reads[bool] = reads(_run, "single_block")
-    optional_stop: reads[bool] = reads(_run, "optional_stop")
-    block_delete: reads[bool] = reads(_run, "block_delete")
+    feed_override_pct: reads[float] = reads(_switches, "feed_pct")
+    rapid_override_pct: reads[float] = reads(_switches, "rapid_pct")
+    single_block: reads[bool] = reads(_switches, "single_block")
+    optional_stop: reads[bool] = reads(_switches, "optional_stop")
+    block_delete: reads[bool] = reads(_switches, "block_delete")
     resume_line: reads[int] = reads(_run, "resume_line")
     run_first_move: reads[int] = reads(_run, "first_move")
     spindle: reads[SpindleState] = reads(_spindle, "spindle")
@@ -310,8 +309,8 @@ class MachineController(QObject):
 
     # ------------------------------------------------------------------ commands
     snapshot = forward(_status, StatusBoard.current)
-    refusal = forward(_states, StateMachine.refusal)
-    reset = forward(_states, StateMachine.reset)
+    refusal = forward(_run, ProgramRunner.refusal)
+    reset = forward(_run, ProgramRunner.reset)
     estop = forward(_states, StateMachine.estop)
     estop_release = forward(_states, StateMachine.estop_release)
     update_config = forward(_conn, Connection.update_config)

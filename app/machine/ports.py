@@ -17,7 +17,6 @@ if TYPE_CHECKING:
         Alarm,
         Budget,
         CommandResult,
-        MachineState,
         ProgramInfo,
         ResumePoint,
         Severity,
@@ -36,7 +35,6 @@ __all__ = [
     "MotionState",
     "OutputSwitch",
     "PositionsView",
-    "Reactions",
     "RunModes",
     "Settings",
     "SpindleDrive",
@@ -75,21 +73,6 @@ class AlarmStore(Protocol):
     def load_alarms(self) -> list[Alarm]: ...
 
     def save_alarms(self, alarms: list[Alarm]) -> None: ...
-
-
-class Reactions(Protocol):
-    """The state machine's answers to alarms that stop the machine."""
-
-    @property
-    def state(self) -> MachineState: ...
-
-    def enter_estop(self, reason: str) -> None: ...
-
-    def fault(self, cause: str) -> None: ...
-
-    def alarm_stop(self, cause: str, resumable: bool = True) -> None: ...
-
-    def homing_failed(self, cause: str) -> None: ...
 
 
 class PositionsView(Protocol):
@@ -161,7 +144,7 @@ class MotionState(Protocol):
 
 
 class RunModes(Protocol):
-    """The operator's switches for a run (the runner owns them)."""
+    """The operator's switches for a run (``app.machine.program.switches`` owns them)."""
 
     @property
     def feed_pct(self) -> float: ...

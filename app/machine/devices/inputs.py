@@ -82,7 +82,7 @@ class InputWaiter:
         if value is None:
             return
         self.wait = None
-        job.dwell_total_s += float(snap.time_s) - w.since_s   # the run's time, as a dwell's
+        self._motion.count_wait(job, float(snap.time_s) - w.since_s)   # the run's time, as a dwell's
         req = w.request
         if value < 0:
             self._motion.show_message(f"M66 (line {req.line}): input P{req.number} timed out after "

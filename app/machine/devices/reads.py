@@ -88,12 +88,11 @@ class ReadAgain:
             return
         try:
             # after an operator's feed hold, the rest waits for cycle start
-            new = self._motion.follow(job, rest, (full, len(full.moves) - len(rest.moves), 0.0),
-                                      held=self._states.state is MachineState.HOLD)
+            self._motion.follow(job, rest, (full, len(full.moves) - len(rest.moves), 0.0),
+                                held=self._states.state is MachineState.HOLD, reads=(probes, waits))
         except PlannerError as exc:
             fail(f"{where}: planner: {exc}")
             return
-        new.probe_results, new.wait_results = probes, waits
         if job.kind is Activity.PROGRAM:
             self._out.programReadAgain.emit(full)        # the preview draws the path the machine takes
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
+from enum import Enum
 from typing import TYPE_CHECKING, Any, Generic, TypeVarTuple, Unpack
 
 if TYPE_CHECKING:
@@ -35,7 +36,7 @@ if TYPE_CHECKING:
     from planner.core.program import Program
     from planner.core.tools import ToolTable
 
-__all__ = ["Channel", "MachineEvents", "PanelChannels"]
+__all__ = ["AlarmReaction", "Channel", "MachineEvents", "PanelChannels"]
 
 Ts = TypeVarTuple("Ts")
 
@@ -97,9 +98,22 @@ class PanelChannels:
         return tuple(f.name for f in fields(cls))
 
 
+class AlarmReaction(Enum):
+    """What an alarm calls for from the state machine (``MachineEvents.alarm_reaction``)."""
+
+    ESTOP = "estop"                    # the machine in E-stop
+    FAULT = "fault"                    # the drives stopped by themselves: ALARM
+    STOP = "stop"                      # a stop along the path: ALARM
+    HOMING_FAILED = "homing_failed"    # homing ends: ALARM in HOMING or IDLE
+
+
 @dataclass(frozen=True, eq=False)
 class MachineEvents:
     """What the parts tell each other."""
+
+    # an alarm that stops the machine was raised (what it calls for, its cause, whether a
+    # program may resume where it stopped): the state machine reacts
+    alarm_reaction: Channel[AlarmReaction, str, bool] = field(default_factory=_ch)
 
     # a real change of the machine state (old, new), before the panel is told
     transition: Channel[MachineState, MachineState] = field(default_factory=_ch)
@@ -121,6 +135,8 @@ class MachineEvents:
     config_applied: Channel[bool] = field(default_factory=_ch)
     # the control is closing, its motion at rest: what runs by itself (the spindle) stops
     shutdown: Channel[()] = field(default_factory=_ch)
+    # the drives' status is wanted at once (a command changed them): the poller polls
+    poll_now: Channel[()] = field(default_factory=_ch)
     # the worker was started and its drives are about to be enabled
     connecting: Channel[()] = field(default_factory=_ch)
     # the bus is up: every part tells the panel all it shows

@@ -18,7 +18,8 @@ from planner.motion.meter import LimitMeter, PathSpeedLimits
 from planner.motion.plan import Plan
 from planner.motion.window import PlanWindow
 
-__all__ = ["ChunkRecord", "Job", "SentLimits", "ResumePoint", "merge_max"]
+__all__ = ["NO_TERMS", "ChunkRecord", "Job", "JobTerms", "Reads", "Reread", "ResumePoint", "SentLimits",
+           "merge_max"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -34,8 +35,40 @@ class ChunkRecord:
     pause: bool
 
 
+#: the probe results and the values of the inputs read so far in a run (by index)
+Reads = tuple[tuple[ProbeResult | None, ...], tuple[float | None, ...]]
+#: reads the whole program again with the probe results and the values of the inputs so far
+Reread = Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program]
+
+
+@dataclass(frozen=True, slots=True)
+class JobTerms:
+    """What a job is part of and what follows it, fixed when the job maker makes it."""
+
+    reason: str = ""                 # what the state says while it runs ("": its kind)
+    steps: tuple[tuple[int, str], ...] = ()   # a routine's lines by what they do (its errors name them)
+    source: str = ""                 # the program's file ("" for a text): what a power loss interrupted
+    # the program whose moves this job's count from, the move and the distance into it it starts at
+    origin: tuple[Program, int, float] | None = None
+    # G38.x and M66: the whole program read again with the results (None: the job cannot)
+    reread: Reread | None = None
+    probe_results: tuple[ProbeResult | None, ...] = ()
+    wait_results: tuple[float | None, ...] = ()
+    # called with the job (the last of its followers) once it has run to its end
+    when_done: Callable[[Job], None] | None = None
+    then: Job | None = None          # the job that runs once this one has (an approach's program)
+    offset_s: float = 0.0            # where the job starts on its whole program's timeline
+
+
+#: a job that is no part of anything else (a jog)
+NO_TERMS = JobTerms()
+
+
 class Job:
-    """One motion being executed (program, MDI block, jog, approach); owned by the controller."""
+    """One motion being executed (program, MDI block, jog, approach). Its terms are fixed when
+    the job maker (``app.machine.motion.making``) makes it; what the run does to it is the
+    streamer's to write (its set-point queue the samples and pause points, the streamer the
+    rest), and a job that goes on from another (``follows``) carries that run's progress."""
 
     def __init__(
         self,
@@ -47,12 +80,16 @@ class Job:
         overrides: bool,
         estimated_s: float,
         machine: MachineSpec,
+        single_block: bool = False,
+        spin_ups: list[tuple[float, float]] | None = None,
+        terms: JobTerms = NO_TERMS,
+        follows: Job | None = None,
     ) -> None:
         self.kind = kind
         self.name = name
-        self.reason = ""          # what the state says while it runs ("": its kind)
-        self.steps: dict[int, str] = {}   # a routine's lines by what they do (its errors name them)
-        self.source = ""          # the program's file ("" for a text): what a power loss interrupted
+        self.reason = terms.reason
+        self.steps = dict(terms.steps)
+        self.source = terms.source
         self.program = program
         # (MSG,...), (DEBUG,...) and user M-code texts, shown when the motion reaches their line
         self.messages: collections.deque[tuple[int, str]] = collections.deque(
@@ -61,62 +98,65 @@ class Job:
         self.executor = executor
         self.overrides = overrides
         self.estimated_s = estimated_s
-        self.serial_base = 0
-        self.start_time_s = -1.0
+        # the run's progress: carried over from the job this one goes on from
+        self.serial_base: int = follows.serial_base if follows is not None else 0
+        self.start_time_s: float = follows.start_time_s if follows is not None else -1.0
+        self.samples: int = follows.samples if follows is not None else 0
+        self.dwell_total_s: float = follows.dwell_total_s if follows is not None else 0.0
+        self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = \
+            follows.trace if follows is not None else []
+        self.carried_limits: dict[str, float] = (merge_max(follows.carried_limits, follows.meter.final())
+                                                 if follows is not None else {})
+        if follows is not None:
+            self.estimated_s = follows.estimated_s
         self.pause: PausePoint | None = None
         self.pause_serial = 0
         self.waiting = False
         self.dwell_until: float | None = None
-        self.dwell_total_s = 0.0
-        self.samples = 0
         self.stopping = False
         self.stop_reason = ""
         self.aborted = False
-        self.then: Job | None = None
+        self.then = terms.then
         self.keep_point = False   # stopped by the operator: the point where it rests is kept to resume
         self.spinup_until: float | None = None   # worker time the spindle is at speed
         # (planned time, wait) of each spin-up of the spindle the run will wait for
-        self.spin_ups: list[tuple[float, float]] = []
+        self.spin_ups = spin_ups if spin_ups is not None else []
         self.cap_reported = False  # the operator was told the limits cap the feed override here
         self.override_off_reported = False  # ... that the program turned the feed override off here
         locks = plan.program.override_locks
         # moves the program runs with the spindle override off (None: none)
         self.spindle_locked = None if locks is None else (locks & SPINDLE_OVERRIDE_OFF).astype(bool)
-        self.origin: tuple[Program, int, float] | None = None
+        self.origin = terms.origin
         # G38.x and M66: reads the whole program again with the probe results and the values of
-        # the inputs (None: the job cannot), and those so far by index (None: not run in this job)
-        self.reread: Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program] | None \
-            = None
-        self.probe_results: tuple[ProbeResult | None, ...] = ()
-        self.wait_results: tuple[float | None, ...] = ()
-        # called with the job (the last of its followers) once it has run to its end
-        self.when_done: Callable[[Job], None] | None = None
-        self.single_block = False
-        self.carried_limits: dict[str, float] = {}
-        self.tau_offset_s = 0.0
-        self.time_offset_s = 0.0
-        self.trace: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-        self.meter = SentLimits(machine, plan.ts_s, plan.program.rapid_moves, plan.program.rotary_only_moves)
+        # the inputs (None: the job cannot), and those so far by index
+        self.reread = terms.reread
+        self.probe_results = terms.probe_results
+        self.wait_results = terms.wait_results
+        self.when_done = terms.when_done
+        self.single_block = single_block
+        self.tau_offset_s = terms.offset_s
+        self.time_offset_s = terms.offset_s
+        self.meter: SentLimits = SentLimits(machine, plan.ts_s, plan.program.rapid_moves,
+                                            plan.program.rotary_only_moves)
         # per pushed chunk: serial of its last sample, line, tau, move, u within the move
         self._marks: collections.deque[tuple[int, int, float, int, float]] = collections.deque()
         self._last_mark: tuple[int, int, float, int, float] | None = None
         # pushed chunks still (partly) queued in the worker, oldest first
         self.chunks: collections.deque[ChunkRecord] = collections.deque()
 
-    def rewind(self, serial: int) -> None:
+    def rewind(self, serial: int) -> tuple[int, bool]:
         """Forget what was pushed from ``serial`` on (a chunk start; the worker's queue is being
-        replaced from there): marks, chunk records, metered and counted samples, pause point."""
+        replaced from there): marks, chunk records and metered samples. The samples dropped,
+        and whether a chunk that ended at a pause point was among them."""
         while self._marks and self._marks[-1][0] >= serial:
             self._marks.pop()
-        dropped = 0
+        dropped, pause = 0, False
         while self.chunks and self.chunks[-1].serial >= serial:
             rec = self.chunks.pop()
             dropped += rec.samples
-            if rec.pause:
-                self.pause = None
-                self.pause_serial = 0
-        self.samples -= dropped
+            pause = pause or rec.pause
         self.meter.rewind(dropped)
+        return dropped, pause
 
     def record(self, ch: ScaledChunk, serial_start: int) -> None:
         end = serial_start + len(ch.q) - 1
@@ -170,6 +210,23 @@ class Job:
             return prog, len(prog.moves)
         m = self.move_at(consumed)
         return prog, base + (m if m is not None else 0)
+
+    def distance_to_go(self, consumed: int, reference: np.ndarray) -> tuple[float, ...]:
+        """The end of the move the drives are on, less where the set-point ``reference`` is (as
+        LinuxCNC's DTG reads it); () when they are on none."""
+        m = self.move_at(consumed)
+        moves = self.plan.program.moves
+        if m is None or not 0 <= m < len(moves):
+            return ()
+        return tuple(float(v) for v in np.asarray(moves[m].end, dtype=float) - reference)
+
+    def spin_ups_left(self, tau: float, now_s: float) -> float:
+        """The spindle's waits still ahead of planned time ``tau``, and what is left of the one
+        under way (the motion stands meanwhile: the time left counts them)."""
+        left = sum(wait for at, wait in self.spin_ups if at > tau)
+        if self.spinup_until is not None:
+            left += max(self.spinup_until - now_s, 0.0)
+        return left
 
     def _mark_at(self, serial: int) -> tuple[int, int, float, int, float] | None:
         marks = self._marks

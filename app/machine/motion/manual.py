@@ -12,7 +12,7 @@ import numpy as np
 
 from app.machine.errors import MachineError
 from app.machine.model import Activity, CommandResult, SpindleState
-from app.machine.motion.jobs import Job
+from app.machine.motion.jobs import Job, JobTerms
 from app.machine.motion.making import JobMaker
 from app.machine.motion.refusals import limit_issues, refusal
 from app.machine.motion.streamer import Streamer
@@ -179,13 +179,12 @@ class ManualMotion:
                when_done: Callable[[Job], None] | None = None, reason: str = "",
                steps: dict[int, str] | None = None) -> CommandResult:
         """Run ``prog`` (read by ``_read``) as an MDI job; ``when_done(job)`` once it has all run."""
+        terms = JobTerms(reason=reason, steps=tuple(sorted((steps or {}).items())), when_done=when_done,
+                         reread=lambda probes, waits: read(probe_results=probes, input_results=waits))
         try:
-            job = self._jobs.make_job(Activity.MDI, prog, name)
+            job = self._jobs.make_job(Activity.MDI, prog, name, terms=terms)
         except PlannerError as exc:
             return self._states.refuse(action, f"planner: {exc}")
-        job.reason, job.steps = reason, steps or {}
-        job.reread = lambda probes, waits: read(probe_results=probes, input_results=waits)
-        job.when_done = when_done
         self._motion.start_job(job)
         return self._states.ok(action)
 

@@ -92,7 +92,8 @@ class ProgramLoader:
 
     def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView,
                  coordinates: CoordinatesView, tools: ToolView, spindle: SpindleView, motion: MotionState,
-                 jobs: JobMaker, out: PanelChannels, events: MachineEvents, qt_parent: QObject) -> None:
+                 jobs: JobMaker, switches: RunModes, out: PanelChannels, events: MachineEvents,
+                 qt_parent: QObject) -> None:
         self._settings = settings
         self._states = states
         self._positions = positions
@@ -103,7 +104,7 @@ class ProgramLoader:
         self._jobs = jobs
         self._out = out
         self._events = events
-        self._modes: RunModes | None = None
+        self._modes = switches      # block delete and single block, as a check reads them
         self.program_info: ProgramInfo | None = None
         self._program_text = ""
         self._program_path = ""
@@ -126,17 +127,13 @@ class ProgramLoader:
         self._run_plans = Background("program-run-plan", self._on_run_plan_done, qt_parent)
         events.config_applied.connect(self._config_applied)
 
-    def wire(self, modes: RunModes) -> None:
-        """The runner's switches a check reads (block delete, single block)."""
-        self._modes = modes
-
     @property
     def gate(self) -> StateMachine:
         return self._states
 
     @property
     def _block_delete(self) -> bool:
-        return self._modes.block_delete if self._modes is not None else False
+        return self._modes.block_delete
 
     @property
     def program(self) -> Program | None:
@@ -386,7 +383,7 @@ class ProgramLoader:
         self._program_path = info.path
         self._load_reason = ""
         self._out.programLoaded.emit(info)
-        if self._modes is not None and self._modes.single_block and not self._motion.busy:
+        if self._modes.single_block and not self._motion.busy:
             self.start_run_plan(True)  # ready by the time cycle start is pressed
         self._events.program_loaded.emit(info)    # a cycle start waiting for it starts it
         return self._states.ok(Action.LOAD_PROGRAM)

@@ -11,13 +11,14 @@ import numpy as np
 
 from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.model import Activity, CommandResult, HoldKind, MachineState, ProgramInfo, RestartPreview
-from app.machine.motion.jobs import ResumePoint
+from app.machine.motion.jobs import JobTerms, ResumePoint
 from app.machine.motion.making import JobMaker
 from app.machine.motion.refusals import limit_issues
 from app.machine.motion.streamer import Streamer
 from app.machine.motion.timescale import SIGMA_MAX
 from app.machine.ports import AlarmSink, PositionsView, Settings, ToolView
 from app.machine.program.loader import ProgramLoader
+from app.machine.program.switches import RunSwitches
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError
@@ -42,8 +43,9 @@ class ProgramRunner:
     and rapid override, single block, optional stop, block delete (``controller.run``)."""
 
     def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView, tools: ToolView,
-                 loader: ProgramLoader, motion: Streamer, jobs: JobMaker, alarms: AlarmSink,
-                 out: PanelChannels, events: MachineEvents, parts: Callable[[], str] | None = None) -> None:
+                 loader: ProgramLoader, motion: Streamer, jobs: JobMaker, switches: RunSwitches,
+                 alarms: AlarmSink, out: PanelChannels, events: MachineEvents,
+                 parts: Callable[[], str] | None = None) -> None:
         """``parts``: why the part counter refuses a new run ("" when it does not)."""
         self._settings = settings
         self._parts = parts
@@ -55,13 +57,8 @@ class ProgramRunner:
         self._jobs = jobs
         self._alarms = alarms
         self._out = out
-        self.feed_pct = 100.0
-        self.rapid_pct = 100.0
-        self.single_block = False
-        self.optional_stop = False
-        # lines starting with '/' skipped; off as LinuxCNC starts. The program is read whole
-        # before it runs, so the switch changes the program loaded: it is read again
-        self.block_delete = False
+        self._events = events
+        self._switches = switches
         self.start_pending = False  # cycle start pressed while the program is checked again
         self.pending_line = 0       # ... or run from this line
         self.first_move = 0         # the move the program's current (or last) run began with
@@ -73,11 +70,53 @@ class ProgramRunner:
         events.reset.connect(lambda _state: self._cancel_pending())
         events.program_loaded.connect(lambda _info: self.pending_start())
         events.run_plan_done.connect(self._run_plan_done)
-        events.announce.connect(self._announce)
 
     @property
-    def gate(self) -> StateMachine:
-        return self._states
+    def gate(self) -> ProgramRunner:
+        return self
+
+    def refusal(self, action: str) -> str:
+        """Why ``action`` would be refused now (``StateMachine.refusal``), with what the program
+        loaded and the point a stopped program resumes from add: cycle start and run from line
+        need a program that is loaded, not being checked, nor (cycle start) being planned for
+        single block; resume in IDLE needs a point to resume from. "" when allowed."""
+        why = self._states.refusal(action)
+        if why:
+            return why
+        st, loader = self._states.state, self._loader
+        if action in (Action.CYCLE_START, Action.RUN_FROM_LINE) and st is not MachineState.HOLD:
+            if loader.checking_name:
+                return f"the program {loader.checking_name} is still being checked (wait until it is loaded)"
+            if action == Action.CYCLE_START and loader.planning_name:
+                return (f"the program {loader.planning_name} is being planned for single block "
+                        "(wait until it is ready)")
+            if loader.program_info is None:
+                return "no program loaded"
+        if action == Action.RESUME and st is MachineState.IDLE and self._motion.resume_point is None:
+            return f"nothing to resume: machine is {st.label.lower()}"
+        return ""
+
+    def refuse(self, action: str, reason: str) -> CommandResult:
+        return self._states.refuse(action, reason)
+
+    def ok(self, action: str) -> CommandResult:
+        return self._states.ok(action)
+
+    def reset(self) -> CommandResult:
+        """HOLD: abandon the program (after standstill; while moving, the stop first) -> IDLE.
+        ALARM: once the motion has stopped, ``StateMachine.reset`` (acknowledge, re-enable ->
+        IDLE, the resume point kept); IDLE: forget the resume point. Also cancels a cycle start
+        waiting for a check."""
+        st = self._states.state
+        if st is MachineState.HOLD:
+            if not self._motion.standing():
+                return self.stop()
+            self._events.reset.emit(st)
+            self._states.set_state(MachineState.IDLE, "reset")
+            return self._states.ok(Action.RESET)
+        if st is MachineState.ALARM and self._motion.busy:
+            return self._states.refuse(Action.RESET, "the machine is still stopping: wait for standstill")
+        return self._states.reset()
 
     @property
     def resume_point(self) -> ResumePoint | None:
@@ -85,13 +124,6 @@ class ProgramRunner:
 
     def _cancel_pending(self) -> None:
         self.start_pending = False
-
-    def _announce(self) -> None:
-        self._out.overridesChanged.emit(self.feed_pct, self.rapid_pct)
-        self._modes_changed()
-
-    def _modes_changed(self) -> None:
-        self._out.modesChanged.emit(self.single_block, self.optional_stop, self.block_delete)
 
     def _run_plan_done(self, ok: bool) -> None:
         if not ok:
@@ -157,7 +189,7 @@ class ProgramRunner:
             if self._loader.load_request is not None:
                 self._loader.wait_loaded(None)
             self._loader.wait_run_plan(None)
-        why = self._states.refusal(action)
+        why = self.refusal(action)
         if why:
             return self._states.refuse(action, why)
         if self._alarms.stops_motion():
@@ -179,18 +211,17 @@ class ProgramRunner:
             return self._states.refuse(action, prog)
         info = self._loader.program_info
         assert info is not None
-        single = self.single_block
+        single = self._switches.single_block
         plan = self._loader.run_plan(single)
         if plan is None and not wait:
             self._loader.start_run_plan(single)
             return self._start_when_ready(f"{info.name} is being planned for single block")
         try:
             job = self._jobs.make_job(Activity.PROGRAM, prog, info.name, single_block=single, plan=plan,
-                                      stops=None if single else info.stops)
+                                      stops=None if single else info.stops,
+                                      terms=JobTerms(origin=(prog, 0, 0.0), source=info.path))
         except PlannerError as exc:
             return self._states.refuse(action, f"planner: {exc}")
-        job.origin = (prog, 0, 0.0)
-        job.source = info.path
         self.first_move = 0
         self._motion.run_program(job, 0)
         return self._states.ok(action)
@@ -220,7 +251,7 @@ class ProgramRunner:
         point = self._motion.resume_point
         if self._states.state is MachineState.IDLE and point is not None:
             return self._resume_from_point(point)
-        why = self._motion.continue_held(self.single_block)
+        why = self._motion.continue_held(self._switches.single_block)
         if why:
             return self._states.refuse(Action.RESUME, why)
         job = self._motion.job
@@ -249,12 +280,11 @@ class ProgramRunner:
         """Single block: the plan stops at every block end (HOLD there; cycle start goes on).
         Switched while running, it takes effect at the next standstill (feed hold, pause point):
         the rest of the program is planned again from there."""
-        self.single_block = bool(on)
+        self._switches.set_modes(single_block=bool(on))
         loader = self._loader
-        if (self.single_block and not self._motion.busy and loader.program_info is not None
+        if (on and not self._motion.busy and loader.program_info is not None
                 and not loader.program_stale() and loader.load_request is None):
             loader.start_run_plan(True)  # ready by the time cycle start is pressed
-        self._modes_changed()
         job = self._motion.job
         if job is not None and job.kind is Activity.PROGRAM:
             self._out.message.emit("single block takes effect at the next stop (feed hold, block end, M00)")
@@ -262,8 +292,7 @@ class ProgramRunner:
 
     def set_optional_stop(self, on: bool) -> CommandResult:
         """Honour M01 (optional pause); may change while running."""
-        self.optional_stop = bool(on)
-        self._modes_changed()
+        self._switches.set_modes(optional_stop=bool(on))
         return self._states.ok(Action.SET_OPTIONAL_STOP)
 
     def set_block_delete(self, on: bool) -> CommandResult:
@@ -272,15 +301,14 @@ class ProgramRunner:
         program or MDI runs or holds. A loaded program is checked again with it (the preview
         then shows the path it gives), as after an offset change."""
         on = bool(on)
-        if on == self.block_delete:
+        if on == self._switches.block_delete:
             return self._states.ok(Action.SET_BLOCK_DELETE)
         if self._motion.busy:
-            self._modes_changed()
+            self._switches.set_modes()
             return self._states.refuse(Action.SET_BLOCK_DELETE,
                                        "block delete changes which lines the program "
                                        "has: switch it before cycle start, not during a run")
-        self.block_delete = on
-        self._modes_changed()
+        self._switches.set_modes(block_delete=on)
         loader = self._loader
         if loader.program_info is not None and loader.load_request is None:
             loader.recheck_program(wait=False)
@@ -296,7 +324,7 @@ class ProgramRunner:
         action = Action.RUN_FROM_LINE
         if wait and self._loader.load_request is not None:
             self._loader.wait_loaded(None)
-        why = self._states.refusal(action)
+        why = self.refusal(action)
         if why:
             return self._states.refuse(action, why)
         self.pending_line = int(line)
@@ -368,24 +396,20 @@ class ProgramRunner:
         name = info.name if info is not None else prog.name
         # a long rest is planned as it runs: its time estimated by the share of moves left
         left = 1.0 - point.move_index / max(len(prog.moves), 1)
+        terms = JobTerms(origin=(prog, point.move_index, point.u_mm),
+                         source=info.path if info is not None else "", probe_results=point.probe_results,
+                         wait_results=point.wait_results)
         try:
-            main = self._jobs.make_job(Activity.PROGRAM, rest, name, single_block=self.single_block,
-                                       estimate_s=info.cycle_time_s * left if info else math.nan)
+            # progress relative to the whole program
+            main = self._jobs.make_job(Activity.PROGRAM, rest, name, single_block=self._switches.single_block,
+                                       estimate_s=info.cycle_time_s * left if info else math.nan, terms=terms,
+                                       whole_s=info.cycle_time_s if info else math.nan)
+            if way is not None:
+                main = self._jobs.make_job(Activity.APPROACH, way, "approach", overrides=True,
+                                           terms=JobTerms(then=main))
         except PlannerError as exc:
             return self._states.refuse(action, f"planner: {exc}")
-        # progress relative to the whole program
-        full_t = info.cycle_time_s if info else main.estimated_s
-        main.tau_offset_s = max(full_t - main.executor.planned_end_s, 0.0)
-        main.time_offset_s = main.tau_offset_s
-        main.origin = (prog, point.move_index, point.u_mm)
-        main.source = info.path if info is not None else ""
-        main.probe_results, main.wait_results = point.probe_results, point.wait_results
-        if way is not None:
-            job = self._jobs.make_job(Activity.APPROACH, way, "approach", overrides=True)
-            job.then = main
-            self._motion.run_program(job, point.line)
-        else:
-            self._motion.run_program(main, point.line)
+        self._motion.run_program(main, point.line)
         return self._states.ok(action)
 
     def _approach(self, prog: Program, move_index: int, cur: np.ndarray, target: np.ndarray,
@@ -458,9 +482,8 @@ class ProgramRunner:
         if not 0.0 <= p <= top:
             return self._states.refuse(Action.SET_FEED_OVERRIDE,
                                        f"feed override must be 0-{top:g} %, got {p:g}")
-        self.feed_pct = p
+        self._switches.set_overrides(feed_pct=p)
         self._motion.set_overrides(feed=p / 100.0)
-        self._out.overridesChanged.emit(self.feed_pct, self.rapid_pct)
         return self._states.ok(Action.SET_FEED_OVERRIDE)
 
     def set_rapid_override(self, percent: float) -> CommandResult:
@@ -469,7 +492,6 @@ class ProgramRunner:
         if not 0.0 <= p <= 100.0:
             return self._states.refuse(Action.SET_RAPID_OVERRIDE,
                                        f"rapid override must be 0-100 %, got {p:g}")
-        self.rapid_pct = p
+        self._switches.set_overrides(rapid_pct=p)
         self._motion.set_overrides(rapid=p / 100.0)
-        self._out.overridesChanged.emit(self.feed_pct, self.rapid_pct)
         return self._states.ok(Action.SET_RAPID_OVERRIDE)

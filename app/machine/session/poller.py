@@ -40,6 +40,7 @@ class StatusPoller:
         self._hooks: list[Callable[[WorkerSnapshot], None]] = []
         events.coordinates_changed.connect(self.emit_positions)
         events.announce.connect(self.emit_positions)
+        events.poll_now.connect(self.poll)
 
     def on_poll(self, hook: Callable[[WorkerSnapshot], None]) -> None:
         """``hook(snapshot)`` at every poll, before the job is polled (homing, the simulated

@@ -1,6 +1,7 @@
 """Alarms: raised with time, source, cause and severity, persisted, acknowledged; the worker's
-alarms classified and handed to the state machine's reactions (E-stop; quick-stop class: the
-drives stopped, the resume point kept; STOP class: a stop along the path; homing errors).
+alarms classified; an alarm that stops the machine is announced for the state machine to react
+(``MachineEvents.alarm_reaction``: E-stop; quick-stop class: the drives stopped, the resume
+point kept; STOP class: a stop along the path; homing errors).
 """
 
 from __future__ import annotations
@@ -8,9 +9,9 @@ from __future__ import annotations
 import time
 from dataclasses import replace
 
-from app.machine.infra.events import MachineEvents, PanelChannels
+from app.machine.infra.events import AlarmReaction, MachineEvents, PanelChannels
 from app.machine.model import Alarm, AlarmState, CommandResult, MachineState, Severity
-from app.machine.ports import AlarmStore, Reactions
+from app.machine.ports import AlarmStore
 from app.machine.state.gate import Action, Answers
 from ethercat.worker import AlarmCode, WorkerEvent, WorkerSnapshot
 
@@ -26,17 +27,18 @@ class AlarmLog:
     def __init__(self, store: AlarmStore, out: PanelChannels, events: MachineEvents) -> None:
         self._store = store
         self._out = out
+        self._events = events
+        self._state = MachineState.DISCONNECTED      # the machine's, as its transitions tell
         self._answers = Answers(out)
         self.alarms: list[Alarm] = store.load_alarms()
         self._next_alarm_id = max((a.id for a in self.alarms), default=0) + 1
         self._seen_worker: set[tuple[int, int, str]] = set()
-        self._reactions: Reactions | None = None
         events.announce.connect(lambda: self._out.alarmsChanged.emit(tuple(self.alarms)))
         events.connecting.connect(self._seen_worker.clear)
+        events.transition.connect(self._transition)
 
-    def wire(self, reactions: Reactions) -> None:
-        """The state machine, which reacts to the alarms that stop the machine."""
-        self._reactions = reactions
+    def _transition(self, _old: MachineState, new: MachineState) -> None:
+        self._state = new
 
     @property
     def all(self) -> tuple[Alarm, ...]:
@@ -109,8 +111,7 @@ class AlarmLog:
 
     # ------------------------------------------------------------------ the worker's alarms
     def handle_worker_alarms(self, snap: WorkerSnapshot) -> None:
-        reactions = self._reactions
-        assert reactions is not None
+        react = self._events.alarm_reaction.emit
         for a in snap.alarms:
             key = (int(a.code), int(a.cycle), a.axis)
             if key in self._seen_worker:
@@ -120,14 +121,14 @@ class AlarmLog:
             if a.code is AlarmCode.UNDERRUN:
                 self.raise_alarm(source, a.message, Severity.WARNING, "underrun")
             elif a.code is AlarmCode.ESTOP:
-                if reactions.state is not MachineState.ESTOP:
+                if self._state is not MachineState.ESTOP:
                     self.raise_alarm(source, a.message, Severity.ESTOP, "estop")
-                    reactions.enter_estop(a.message)
-            elif a.code is AlarmCode.QUICK_STOP and reactions.state is MachineState.ESTOP:
+                    react(AlarmReaction.ESTOP, a.message, True)
+            elif a.code is AlarmCode.QUICK_STOP and self._state is MachineState.ESTOP:
                 continue
             elif a.code is AlarmCode.HOMING_ERROR:
                 self.raise_alarm(source, a.message, Severity.STOP, "homing_error")
-                reactions.homing_failed(a.message)
+                react(AlarmReaction.HOMING_FAILED, a.message, False)
             else:
                 self.fault(a.message, source, a.code.name.lower())
 
@@ -146,12 +147,10 @@ class AlarmLog:
         """A quick-stop class alarm: the worker already stopped the drives (the machine keeps
         the point to resume from)."""
         self.raise_alarm(source, cause, Severity.QUICK_STOP, code)
-        assert self._reactions is not None
-        self._reactions.fault(cause)
+        self._events.alarm_reaction.emit(AlarmReaction.FAULT, cause, True)
 
     def alarm_stop(self, cause: str, source: str, code: str, resumable: bool = True) -> None:
         """A STOP-class alarm: a jerk-limited stop along the path, the program abandoned (its
         point to resume from kept when ``resumable``), state ALARM."""
         self.raise_alarm(source, cause, Severity.STOP, code)
-        assert self._reactions is not None
-        self._reactions.alarm_stop(cause, resumable)
+        self._events.alarm_reaction.emit(AlarmReaction.STOP, cause, resumable)

@@ -10,14 +10,11 @@ state changes; a reset is told the same way once accepted.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Protocol
-
 from app.machine.errors import MachineError
 from app.machine.infra.drives import DriveLink
-from app.machine.infra.events import MachineEvents, PanelChannels
+from app.machine.infra.events import AlarmReaction, MachineEvents, PanelChannels
 from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Prompt, Severity
-from app.machine.ports import AlarmSink, LoaderView, MotionState, PositionsView, Settings
+from app.machine.ports import AlarmSink, PositionsView, Settings
 from app.machine.state.gate import Action, Answers
 
 __all__ = ["StateMachine", "TRANSITIONS"]
@@ -45,10 +42,6 @@ _TOOL_EDITS = frozenset({Action.SET_TOOL, Action.REMOVE_TOOL, Action.SET_TOOL_IN
                          Action.IMPORT_TOOL_TABLE})
 
 
-class _Stopper(Protocol):
-    def stop(self) -> CommandResult: ...
-
-
 class StateMachine:
     """States, transitions, refusals, E-stop, faults, alarms and reset (``controller.states``).
 
@@ -69,15 +62,7 @@ class StateMachine:
         self.hold_kind = HoldKind.NONE
         self.prompt: Prompt | None = None
         self.activity = Activity.NONE
-        self._loader: LoaderView | None = None
-        self._motion: MotionState | None = None
-        self._runner: _Stopper | None = None
-        self._poll: Callable[[], None] = lambda: None
-
-    def wire(self, loader: LoaderView, motion: MotionState, runner: _Stopper, poll: Callable[[],
-                                                                                             None]) -> None:
-        """The parts built after this one that its refusals and reset read."""
-        self._loader, self._motion, self._runner, self._poll = loader, motion, runner, poll
+        events.alarm_reaction.connect(self._react)
 
     @property
     def gate(self) -> StateMachine:
@@ -142,7 +127,6 @@ class StateMachine:
         """
         st = self.state
         cfg = self._settings.config
-        loader, motion = self._loader, self._motion
         if action == Action.CYCLE_START and st is MachineState.HOLD:
             return ""
         if action in _TOOL_EDITS:
@@ -159,18 +143,9 @@ class StateMachine:
             if cfg.homing.required and not all(homed):
                 missing = [a for a, h in zip(cfg.axes, homed) if not h]
                 return f"axes not homed: {' '.join(missing)} (home them or set machine zero first)"
-        if loader is not None:
-            if action in (Action.CYCLE_START, Action.RUN_FROM_LINE) and loader.checking_name:
-                return f"the program {loader.checking_name} is still being checked (wait until it is loaded)"
-            if action == Action.CYCLE_START and loader.planning_name:
-                return (f"the program {loader.planning_name} is being planned for single block "
-                        "(wait until it is ready)")
-            if action in (Action.CYCLE_START, Action.RUN_FROM_LINE) and loader.program_info is None:
-                return "no program loaded"
         if action == Action.FEED_HOLD and st is not MachineState.RUNNING:
             return f"nothing to hold: machine is {st.label.lower()}"
-        if action == Action.RESUME and st is not MachineState.HOLD and not (
-                st is MachineState.IDLE and motion is not None and motion.resume_point is not None):
+        if action == Action.RESUME and st not in (MachineState.HOLD, MachineState.IDLE):
             return f"nothing to resume: machine is {st.label.lower()}"
         if action in (Action.TOUCH_OFF, Action.SET_WORK_OFFSET, Action.SELECT_WORK_OFFSET,
                       Action.CLEAR_G92) and st in (MachineState.RUNNING, MachineState.HOLD,
@@ -182,29 +157,19 @@ class StateMachine:
 
     # ------------------------------------------------------------------ safety
     def reset(self) -> CommandResult:
-        """HOLD: abandon the program (after standstill) -> IDLE. ALARM: acknowledge the alarms,
-        fault-reset and re-enable the drives -> IDLE (the resume point is kept). IDLE: forget the
-        resume point. Spindle and the program's outputs go off. Also cancels a cycle start
-        waiting for a check.
+        """ALARM: acknowledge the alarms, fault-reset and re-enable the drives -> IDLE (the
+        resume point is kept). IDLE: forget the resume point. Spindle and the program's outputs
+        go off. (A hold, and an alarm whose motion is still stopping, are the runner's:
+        ``ProgramRunner.reset``.)
         """
         st = self.state
-        motion = self._motion
-        assert motion is not None and self._runner is not None
-        if st is MachineState.HOLD:
-            if not motion.standing():
-                return self._runner.stop()
-            self._events.reset.emit(st)
-            self.set_state(MachineState.IDLE, "reset")
-            return self.ok(Action.RESET)
         if st is MachineState.ALARM:
-            if motion.busy:
-                return self.refuse(Action.RESET, "the machine is still stopping: wait for standstill")
             self._alarms.acknowledge_all()
             try:
                 self._drives.enable_drives()
             except Exception as exc:  # noqa: BLE001
                 return self.refuse(Action.RESET, f"the drives cannot be re-enabled: {exc}")
-            self._poll()
+            self._events.poll_now.emit()
             if self.state is not MachineState.ALARM:
                 return self.refuse(Action.RESET, f"machine is {self.state.label.lower()}")
             self._events.reset.emit(st)
@@ -233,7 +198,7 @@ class StateMachine:
         self._alarms.raise_alarm("operator" if by_operator else "controller", cause, Severity.ESTOP, "estop")
         self.enter_estop(reason)
         if self._drives.attached:
-            self._poll()
+            self._events.poll_now.emit()
         return self.ok("estop")
 
     def estop_release(self) -> CommandResult:
@@ -251,6 +216,17 @@ class StateMachine:
         self._drives.snapshot()
         self.set_state(MachineState.IDLE, "E-stop released")
         return self.ok(Action.ESTOP_RELEASE)
+
+    def _react(self, reaction: AlarmReaction, cause: str, resumable: bool) -> None:
+        """An alarm that stops the machine (``AlarmLog``)."""
+        if reaction is AlarmReaction.ESTOP:
+            self.enter_estop(cause)
+        elif reaction is AlarmReaction.FAULT:
+            self.fault(cause)
+        elif reaction is AlarmReaction.STOP:
+            self.alarm_stop(cause, resumable)
+        else:
+            self.homing_failed(cause)
 
     def fault(self, cause: str) -> None:
         """A quick-stop class alarm: the drives stopped by themselves. Motion (its point to
