@@ -123,6 +123,8 @@ TEMPLATES: tuple[str, ...] = (
     N_("no program stopped part-way"),
     N_("run from line {0}"),
     N_("reset"),
+    N_("power loss or killed"),
+    N_("interrupted at line {0}: the control stopped (power loss or killed)"),
     N_("the tool length offset in force changed since it was loaded"),
     # the longer first: the shorter would take its words as a value
     N_("{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel "

@@ -228,7 +228,7 @@ class MachineController(QObject):
         jobs = stream.jobs
         self.loader = loader = ProgramLoader(settings, states, positions, coords, tools, spindle, stream,
                                              jobs, switches, out, events, self)
-        self.jobs_log = job_log = JobLog(store.dir, alarms, loader, out)
+        self.jobs_log = job_log = JobLog(store.dir, alarms, loader, out, events)
         self.run = run = ProgramRunner(settings, states, positions, tools, loader, stream, jobs, switches,
                                        alarms, out, events, job_log.refusal)
         read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
@@ -300,7 +300,7 @@ class MachineController(QObject):
     active_alarms: reads[tuple[Alarm, ...]] = reads(_alarms, "active")
     bus_status: reads[BusStatus] = reads(_poller, "bus_status")
     config_path: reads[Path] = reads(_conn, "config_path")
-    interrupted: reads[tuple[str, int] | None] = reads(_conn, "interrupted")
+    interrupted: reads[tuple[str, int] | None] = reads(_run, "interrupted")
     worker: reads[CyclicWorker | None] = reads(_drives, "worker")
     opcua_status: reads[ServerStatus | None] = reads(_remote, "status")
     part_count: reads[int] = reads(_job_log, "count")

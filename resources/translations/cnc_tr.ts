@@ -916,7 +916,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>L{0}: bir çevrimin tekrarları 1 ya da daha büyük bir tam sayıdır</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="136" />
+      <location filename="../../app/controller_text.py" line="138" />
       <source>M06: the spindle stops for the tool change</source>
       <translation>M06: takım değişimi için iş mili durur</translation>
     </message>
@@ -1953,7 +1953,7 @@ BIRAK</translation>
       <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="133" />
+      <location filename="../../app/controller_text.py" line="135" />
       <source>T{0} length {1} mm is longer than the Z travel ({2} mm): check the value and the surface it was touched off on</source>
       <translation>T{0} boyu {1} mm, Z hareket aralığından ({2} mm) uzun: değeri ve dokundurulduğu yüzeyi kontrol edin</translation>
     </message>
@@ -2083,12 +2083,12 @@ BIRAK</translation>
       <translation>L = {0} dereceli bir NURBS, başlangıç dahil en az {1} kontrol noktası ister; {2} tane var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="139" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>a bore</source>
       <translation>bir delik</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="140" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>a boss</source>
       <translation>bir çıkıntı</translation>
     </message>
@@ -2153,17 +2153,17 @@ BIRAK</translation>
       <translation>zaten bağlı (makine {0} durumunda)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="139" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>an edge</source>
       <translation>bir kenar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="139" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>an inside corner</source>
       <translation>bir iç köşe</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="139" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>an outside corner</source>
       <translation>bir dış köşe</translation>
     </message>
@@ -2498,7 +2498,7 @@ BIRAK</translation>
       <translation>saat yönünde</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="145" />
+      <location filename="../../app/controller_text.py" line="147" />
       <source>column {0}: {1}</source>
       <translation>sütun {0}: {1}</translation>
     </message>
@@ -2618,7 +2618,7 @@ BIRAK</translation>
       <translation>ilerleme durduruldu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="135" />
+      <location filename="../../app/controller_text.py" line="137" />
       <source>feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again</source>
       <translation>iş mili dururken ilerleme hareketi: {0}. satırdaki M6 onu durdurdu ve hiçbir M3/M4 yeniden başlatmadı</translation>
     </message>
@@ -2701,6 +2701,11 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="60" />
       <source>input {0} is not in the program</source>
       <translation>{0} girişi programda yok</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="127" />
+      <source>interrupted at line {0}: the control stopped (power loss or killed)</source>
+      <translation>{0}. satırda kesildi: kontrol durdu (elektrik kesintisi veya sonlandırma)</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="61" />
@@ -3008,6 +3013,11 @@ BIRAK</translation>
       <translation>kutupsal koordinatlar (@ ^) yalnızca XY düzleminde (G17)</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="126" />
+      <source>power loss or killed</source>
+      <translation>elektrik kesintisi veya sonlandırma</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/alarms.py" line="29" />
       <source>probe</source>
       <translation>prob</translation>
@@ -3018,12 +3028,12 @@ BIRAK</translation>
       <translation>{0} prob sonucunda {1} eksen için konum var, makinede {2} eksen var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="138" />
+      <location filename="../../app/controller_text.py" line="140" />
       <source>probed: {0} (only reported)</source>
       <translation>problandı: {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="138" />
+      <location filename="../../app/controller_text.py" line="140" />
       <source>probed: {0}, written to {1}</source>
       <translation>problandı: {0}, {1} sistemine yazıldı</translation>
     </message>
@@ -3033,7 +3043,7 @@ BIRAK</translation>
       <translation>bir parçayı problamak X, Y ve Z eksenlerini ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="138" />
+      <location filename="../../app/controller_text.py" line="140" />
       <source>probing {0}</source>
       <translation>prob ölçümü: {0}</translation>
     </message>
@@ -3243,12 +3253,12 @@ BIRAK</translation>
       <translation>alt yordam çağrıları {0} düzeyden derin (sonsuz özyineleme mi?)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="139" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>the Z surface</source>
       <translation>Z yüzeyi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="140" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>the angle of a face</source>
       <translation>bir yüzün açısı</translation>
     </message>
@@ -3423,12 +3433,12 @@ BIRAK</translation>
       <translation>yüzey yüksekliği bir sayı olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="143" />
+      <location filename="../../app/controller_text.py" line="145" />
       <source>the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again</source>
       <translation>{0} parçalık hedefe ulaşıldı: yeniden çalıştırmak için parça sayacını sıfırlayın (ya da hedefi yükseltin)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="126" />
+      <location filename="../../app/controller_text.py" line="128" />
       <source>the tool length offset in force changed since it was loaded</source>
       <translation>yüklendiğinden beri geçerli takım boy ofseti değişti</translation>
     </message>
@@ -3518,7 +3528,7 @@ BIRAK</translation>
       <translation>takımlar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="131" />
+      <location filename="../../app/controller_text.py" line="133" />
       <source>touch off {0}: not a number</source>
       <translation>{0} sıfırlama: sayı değil</translation>
     </message>
@@ -3843,7 +3853,7 @@ BIRAK</translation>
       <translation>{0}, {1} değer ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="142" />
+      <location filename="../../app/controller_text.py" line="144" />
       <source>{0} part(s) made: the target of {1} is reached</source>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
@@ -3908,12 +3918,12 @@ BIRAK</translation>
       <translation>{0} {1} ({2}, {3}): {4}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="128" />
+      <location filename="../../app/controller_text.py" line="130" />
       <source>{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı, geçerli takım boy ofsetiyle makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="130" />
+      <location filename="../../app/controller_text.py" line="132" />
       <source>{0} {1} zero would be at machine {2}, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
@@ -3983,7 +3993,7 @@ BIRAK</translation>
       <translation>{0}: UTF-8 değil ve bir boru Latin-1 olarak yeniden okunamaz</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="132" />
+      <location filename="../../app/controller_text.py" line="134" />
       <source>{0}: not a number</source>
       <translation>{0}: sayı değil</translation>
     </message>

@@ -450,3 +450,51 @@ def test_the_dro_shows_the_distance_to_go_of_the_move_being_run_by_a_tap(qtbot, 
     qtbot.mouseClick(dro.machine_labels[1], Qt.MouseButton.LeftButton)      # a value of the row too
     assert dro.second_button.text() == "Machine"
     assert float(dro.machine_text("X")) == pytest.approx(30.0, abs=1e-3)
+
+
+def test_a_program_a_power_loss_cut_asks_to_resume_at_its_line_when_loaded_again(
+        qtbot, qapp, state_dir, tmp_path, dialogs) -> None:
+    """Killed mid-run, restarted, homed, the program loaded again: Cycle start asks (resume at
+    the line it was cut at, or from the beginning), nothing moves until the operator chooses,
+    and the run log holds the run that was cut."""
+    import shutil
+
+    from app.machine.controller import MachineController
+
+    first = MachineController(None, state_dir=state_dir, worker_mode="manual")
+    try:
+        assert first.connect_bus() and first.set_machine_zero_here()
+        assert first.load_program(LONG, name="long.nc", wait=True) and first.cycle_start(wait=True)
+        assert first.run_until(lambda: first.current_line >= 5, 30)
+        time.sleep(PERSIST_EVERY_S)              # saved every so often (real time) while moving
+        first.advance(0.1)
+        line = first.current_line
+        after = tmp_path / "after_kill"
+        shutil.copytree(state_dir, after)
+    finally:
+        first.shutdown()
+    second = MachineController(None, state_dir=after, worker_mode="manual")
+    try:
+        window = make_window(qtbot, qapp, PanelOptions(state_dir=after), dialogs, second)
+        assert second.connect_bus() and second.set_machine_zero_here()
+        (cut,) = [r for r in second.runs() if not r.completed]
+        assert cut.program == "long.nc" and cut.last_line == line and cut.result.startswith(
+            f"interrupted at line {line}")
+        assert second.load_program(LONG, name="long.nc", wait=True)
+        qapp.processEvents()
+        assert second.resume_line == line
+        start = window.page("auto").buttons["start"]
+        where = np.array(second.machine_position)
+        dialogs.answers.append(2)                                     # Cancel
+        start.click()
+        kind, text = dialogs.asked[-1]
+        assert kind == "choose" and f"stopped at line {line}" in text and "power loss" in text
+        second.advance(0.5)
+        assert second.state is MachineState.IDLE and np.allclose(second.machine_position, where)
+        dialogs.answers.append(0)                                     # Resume at the line
+        lines = _lines_after(qtbot, second, start.click)
+        assert second.last_run.completed
+        assert lines and min(lines) >= line                           # it went on from there, not from line 1
+        window.close()
+    finally:
+        second.shutdown()

@@ -135,6 +135,9 @@ class MachineEvents:
     config_applied: Channel[bool] = field(default_factory=_ch)
     # the control is closing, its motion at rest: what runs by itself (the spindle) stops
     shutdown: Channel[()] = field(default_factory=_ch)
+    # at start: the last run was cut by a power loss or a kill (its program's file, the line it
+    # was at, when the position was last saved)
+    run_interrupted: Channel[str, int, float] = field(default_factory=_ch)
     # the drives' status is wanted at once (a command changed them): the poller polls
     poll_now: Channel[()] = field(default_factory=_ch)
     # the worker was started and its drives are about to be enabled

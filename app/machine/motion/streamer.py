@@ -151,6 +151,11 @@ class Streamer:
         snap = self._drives.last_snapshot
         return int(snap.samples_consumed) if snap is not None else 0
 
+    def keep_resume_point(self, point: ResumePoint) -> None:
+        """A point to resume the loaded program from that no run of this control left (the run
+        a power loss cut)."""
+        self.resume_point = point
+
     def forget_resume_point(self) -> None:
         self.resume_point = None
 

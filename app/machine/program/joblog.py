@@ -4,7 +4,10 @@ further cycle starts with the reason) and the run log (one line per run, in the 
 The log is ``<state>/runs.jsonl``: each run a line of JSON (program, file, start and end,
 result, the line it stopped at, its cycle time, the alarms raised during it), appended and
 synced to the disk at the run's end. A power cut or kill -9 while a line is written leaves at
-most that line incomplete: reading skips it, every complete run before it is kept. The counter
+most that line incomplete: reading skips it, every complete run before it is kept. A run under
+way is marked in ``<state>/run.open`` (its start, program and file); a run that a power loss or
+a kill cut is logged at the next start from that mark and the line the saved state names
+(result "interrupted ...", its cycle time unknown). The counter
 is ``<state>/parts.json``, written whole and atomically. ``export`` writes both forms (CSV and
 JSON) where the operator saves programs.
 """
@@ -14,6 +17,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 import os
 import time
 from collections.abc import Callable
@@ -21,13 +25,14 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Protocol
 
-from app.machine.infra.events import PanelChannels
+from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.model import Activity, Alarm, ProgramInfo, RunSummary, Severity
 from planner.core.files import write_text
 
 __all__ = ["JobLog", "RunRecord"]
 
 LOG_NAME = "runs.jsonl"
+OPEN_NAME = "run.open"
 PARTS_NAME = "parts.json"
 #: the runs the page shows and ``runs`` returns: the newest (the file keeps them all)
 SHOWN_RUNS = 500
@@ -46,8 +51,15 @@ class RunRecord:
     alarms: tuple[str, ...]      # "source: cause" of each alarm raised during the run
     part: int                    # the part counter after the run (0 when it made none)
 
+    def as_json(self) -> dict[str, object]:
+        """The record as JSON values: an unknown cycle time (a run a power loss cut) is null."""
+        data: dict[str, object] = asdict(self)
+        if not math.isfinite(self.cycle_time_s):
+            data["cycle_time_s"] = None
+        return data
+
     def line(self) -> str:
-        return json.dumps(asdict(self), ensure_ascii=False)
+        return json.dumps(self.as_json(), ensure_ascii=False)
 
 
 class _Alarms(Protocol):
@@ -66,13 +78,14 @@ class JobLog:
     """The counter and the log (``controller.jobs_log``)."""
 
     def __init__(self, state_dir: Path, alarms: _Alarms, loader: _Loaded, out: PanelChannels,
-                 clock: Callable[[], float] = time.time) -> None:
+                 events: MachineEvents, clock: Callable[[], float] = time.time) -> None:
         self._dir, self._alarms, self._loader, self._clock = Path(state_dir), alarms, loader, clock
         self._out = out
         self.count, self.target = self._read_parts()
         self._open: tuple[float, int, str, str] | None = None    # start, last alarm id, name, path
         out.activityChanged.connect(self._on_activity)
         out.programFinished.connect(self._on_finished)
+        events.run_interrupted.connect(self._on_interrupted)
 
     # ------------------------------------------------------------------ the counter
     def _read_parts(self) -> tuple[int, int]:
@@ -114,12 +127,19 @@ class JobLog:
             info = self._loader.program_info
             last = max((a.id for a in self._alarms.all), default=0)
             self._open = (self._clock(), last, info.name if info else "", info.path if info else "")
+            start, _, name, path = self._open
+            try:
+                write_text(self._dir / OPEN_NAME,
+                           json.dumps({"start_s": start, "program": name, "path": path}))
+            except OSError:
+                pass                 # the run is logged at its end all the same
 
     def _on_finished(self, summary: RunSummary) -> None:
         start, last, name, path = self._open or (self._clock(), max((a.id for a in self._alarms.all),
                                                                     default=0),
                                                  summary.name, "")
         self._open = None
+        _remove(self._dir / OPEN_NAME)
         part = 0
         if summary.completed:
             self.count += 1
@@ -133,6 +153,21 @@ class JobLog:
                            completed=summary.completed, last_line=int(summary.last_line),
                            cycle_time_s=float(summary.cycle_time_s), alarms=alarms, part=part)
         self._append(record)
+
+    def _on_interrupted(self, path: str, line: int, saved_s: float) -> None:
+        """The last run was cut by a power loss or a kill: logged from its mark (its start) and
+        the line and time of the last position saved."""
+        mark_path = self._dir / OPEN_NAME
+        try:
+            mark = json.loads(mark_path.read_text(encoding="utf-8"))
+            start, name = float(mark["start_s"]), str(mark["program"])
+        except (OSError, ValueError, TypeError, KeyError):
+            start, name = saved_s, ""
+        _remove(mark_path)
+        why = f"interrupted at line {line}: the control stopped (power loss or killed)"
+        self._append(RunRecord(program=name or os.path.basename(path), path=path, start_s=start,
+                               end_s=saved_s, result=why, completed=False, last_line=int(line),
+                               cycle_time_s=float("nan"), alarms=(), part=0))
 
     def _append(self, record: RunRecord) -> None:
         path = self._dir / LOG_NAME
@@ -162,7 +197,9 @@ class JobLog:
         for text in lines[-newest:] if newest else lines:
             try:
                 data = json.loads(text)
-                out.append(RunRecord(**{**data, "alarms": tuple(data.get("alarms", ()))}))
+                cycle_s = data.get("cycle_time_s")
+                out.append(RunRecord(**{**data, "alarms": tuple(data.get("alarms", ())),
+                                        "cycle_time_s": math.nan if cycle_s is None else float(cycle_s)}))
             except (ValueError, TypeError):
                 continue                 # a line a crash cut short
         return out
@@ -178,11 +215,19 @@ class JobLog:
         for r in runs:
             writer.writerow([r.program, r.path, _iso(r.start_s), _iso(r.end_s), r.result, r.completed,
                              r.last_line,
-                             f"{r.cycle_time_s:.3f}", "; ".join(r.alarms), r.part])
+                             f"{r.cycle_time_s:.3f}" if math.isfinite(r.cycle_time_s) else "",
+                             "; ".join(r.alarms), r.part])
         csv_path, json_path = folder / "runs.csv", folder / "runs.json"
         write_text(csv_path, buf.getvalue())
-        write_text(json_path, json.dumps([asdict(r) for r in runs], ensure_ascii=False, indent=1))
+        write_text(json_path, json.dumps([r.as_json() for r in runs], ensure_ascii=False, indent=1))
         return csv_path, json_path
+
+
+def _remove(path: Path) -> None:
+    try:
+        path.unlink()
+    except OSError:
+        pass
 
 
 def _iso(t: float) -> str:

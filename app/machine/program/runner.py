@@ -68,6 +68,11 @@ class ProgramRunner:
         events.load_requested.connect(self._cancel_pending)
         events.program_refused.connect(self._cancel_pending)
         events.reset.connect(lambda _state: self._cancel_pending())
+        # the run a power loss or a kill cut (its program's file and line) until a program runs
+        self.interrupted: tuple[str, int] | None = None
+        events.run_interrupted.connect(self._run_interrupted)
+        events.transition.connect(self._transition)
+        events.program_loaded.connect(self._resume_interrupted)
         events.program_loaded.connect(lambda _info: self.pending_start())
         events.run_plan_done.connect(self._run_plan_done)
 
@@ -121,6 +126,28 @@ class ProgramRunner:
     @property
     def resume_point(self) -> ResumePoint | None:
         return self._motion.resume_point
+
+    def _run_interrupted(self, path: str, line: int, _saved_s: float) -> None:
+        self.interrupted = (path, line)
+
+    def _transition(self, _old: MachineState, new: MachineState) -> None:
+        if new is MachineState.RUNNING and self._states.activity in (Activity.PROGRAM, Activity.APPROACH):
+            self.interrupted = None          # a program runs again: what a power loss cut is past
+
+    def _resume_interrupted(self, info: ProgramInfo) -> None:
+        """The program a power loss or a kill cut is loaded again: it stopped part-way, as after
+        an E-stop, so cycle start asks to resume at its line (the safe approach) or to start
+        again from the beginning, never runs it from line 1 by itself."""
+        cut = self.interrupted
+        if cut is None or cut[0] not in (info.path, info.name) or self._motion.resume_point is not None:
+            return
+        try:
+            index = locate(info.program, cut[1])
+        except PlannerError:
+            return                  # no motion from that line on: nothing to resume
+        line = info.program.moves[index].line
+        self._motion.keep_resume_point(ResumePoint(program=info.program, move_index=index, u_mm=0.0,
+                                                   line=line, cause="power loss or killed"))
 
     def _cancel_pending(self) -> None:
         self.start_pending = False

@@ -80,7 +80,6 @@ class Connection:
         self._worker_factory = worker_factory
         self.unclean_shutdown = False   # the state folder says the last run did not end cleanly
         # the program (path, or name for a text) and line running when it did: (program, line)
-        self.interrupted: tuple[str, int] | None = None
         self.persisted_at = 0.0         # time.monotonic() of the last save of the machine state
         self._feeder: threading.Thread | None = None
         self._feeder_stop = threading.Event()
@@ -124,11 +123,13 @@ class Connection:
                 when = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(st["saved"])) if st["saved"] else "?"
                 cause = (f"the control did not shut down cleanly (power loss or killed; position last "
                          f"saved {when}): {why}")
-                if st["program"] and st["line"] > 0:
-                    self.interrupted = (st["program"], int(st["line"]))
+                cut = st["program"] and st["line"] > 0
+                if cut:
                     cause += (f"; {os.path.basename(st['program'])} was running at line {st['line']}: "
                               f"load it and run from line {st['line']} once homed")
                 self._alarms.raise_alarm("controller", cause, Severity.WARNING, "unclean_shutdown")
+                if cut:
+                    self._events.run_interrupted.emit(st["program"], int(st["line"]), float(st["saved"]))
             active = st["active_offset"] if st["active_offset"] in WORK_OFFSET_NAMES else None
         self._coordinates.restore(self.store.load_offsets(len(axes)), self.store.load_parameters(), active)
 
@@ -156,8 +157,6 @@ class Connection:
                                      "state_file")
 
     def _transition(self, _old: MachineState, new: MachineState) -> None:
-        if new is MachineState.RUNNING and self._states.activity in (Activity.PROGRAM, Activity.APPROACH):
-            self.interrupted = None          # a program runs again: what a power loss cut is past
         if new in _SAVED_ON:
             self.persist_state()
 
