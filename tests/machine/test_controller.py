@@ -1049,3 +1049,12 @@ def test_block_delete_switched_while_a_program_is_checked_is_caught_at_cycle_sta
     assert ctl.cycle_start(wait=True)             # checked again first, then run
     run_to_idle(ctl)
     np.testing.assert_array_equal(ctl.reference_position, (10.0, 0.0, 0.0))
+
+
+def test_a_program_has_as_many_lines_as_an_editor_shows(ctl: MachineController) -> None:
+    """1,000 lines each ended by a line end are 1,000 lines (not 1,001), as with no end on the last."""
+    body = "".join(f"G1 X{i % 50} F600\n" for i in range(1000))
+    assert ctl.load_program(body, wait=True)
+    assert ctl.program_info.line_count == 1000
+    assert ctl.load_program(body.rstrip("\n"), wait=True)
+    assert ctl.program_info.line_count == 1000

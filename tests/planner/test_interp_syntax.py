@@ -164,7 +164,7 @@ def test_fanuc_program_number_and_trailing_dots():
 
 def test_comments_before_opening_percent():
     p = parse_program("(header)\n\n%\nG0 X1\n%\nG0 X2\n")
-    assert len(p.moves) == 1 and p.line_count == 7
+    assert len(p.moves) == 1 and p.line_count == 6
 
 
 def test_text_after_end_is_ignored():

@@ -30,6 +30,7 @@ from planner.core.movestore import MoveStore
 from planner.core.program import EventKind, MoveKind, Program
 from planner.core.tools import ToolTable
 from planner.gcode.interpreter import read_program
+from planner.gcode.source import count_lines
 from planner.motion.plan import Plan
 from planner.motion.window import PlanWindow
 from planner.pipeline import Refused, SoftLimitError, load
@@ -157,7 +158,7 @@ def check_text(
         name=name,
         path=req.path,
         text=text,
-        line_count=program.line_count or text.count("\n") + 1,
+        line_count=program.line_count or count_lines(text),
         move_count=len(program.moves),
         cycle_time_s=plan_end_s + sum(wait for _tau, wait in spin_up_waits(stops, req.spindle,
                                                                            req.spin_up_s)),
