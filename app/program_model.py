@@ -20,9 +20,12 @@ from planner.core.program import Program
 
 
 def interpret(text: str, name: str, machine: MachineSpec | None) -> Program:
-    from planner.gcode.interpreter import parse_program  # lands with the interpreter issue
+    """``text`` read as the editor shows it: the one load (``planner.pipeline.load``) without the
+    machine's state, refusals, blending or travel (those are the controller's check's)."""
+    from planner.pipeline import load
 
-    return parse_program(text, name=name, machine=machine)
+    return load(text, name, machine or MachineSpec.default(), lambda p: p, blend=False, check_travel=False,
+                require_motion=False).program
 
 
 def errors_by_line(exc: PlannerError) -> dict[int, str]:

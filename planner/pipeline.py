@@ -112,14 +112,15 @@ class Loaded(Generic[P]):
 
 def load(source: str | os.PathLike[str], name: str, machine: MachineSpec, plan: Callable[[Program], P], *,
          start_position: Sequence[float] | np.ndarray | None = None, tools: ToolTable | None = None,
-         tool_in_spindle: int = 0, parameters: dict[int, float] | None = None, block_delete: bool = False,
+         tool_in_spindle: int = 0, spindle: tuple[int, float] = (0, 0.0),
+         parameters: dict[int, float] | None = None, block_delete: bool = False,
          tool_offset: tuple[int, Sequence[float]] | None = None, abilities: Abilities | None = None,
          blend: bool | None = None, check_travel: bool = True,
          require_motion: bool = True, progress: Callable[[int, int], None] | None = None,
          between: Callable[[], None] = lambda: None) -> Loaded[P]:
     """Read ``source`` (a program's text, or its file: read from its bytes) as ``name`` (every
-    message names it) for ``machine`` (from ``start_position`` with the tools, parameters and
-    tool length offset the machine has in force), refuse what the machine
+    message names it) for ``machine`` (from ``start_position`` with the tools, the spindle
+    (direction, rpm), parameters and tool length offset the machine has in force), refuse what the machine
     cannot run (``abilities``), blend it (``blend``: the machine's look-ahead mode decides when
     None), check the path that will run against the travel (``check_travel``), refuse a program
     that moves nothing (``require_motion``), and plan it (``plan``). ``between`` runs between
@@ -137,7 +138,8 @@ def load(source: str | os.PathLike[str], name: str, machine: MachineSpec, plan: 
     def read(probes: tuple[ProbeResult | None, ...] = (), waits: tuple[float | None, ...] = (),
              report: Callable[[int, int], None] | None = None) -> Program:
         return parse_program(text, name, machine=machine, start_position=start_position, tools=tools,
-                             tool_in_spindle=tool_in_spindle, parameters=parameters, probe_results=probes,
+                             tool_in_spindle=tool_in_spindle, spindle=spindle, parameters=parameters,
+                             probe_results=probes,
                              input_results=waits, block_delete=block_delete, progress=report, utf8=utf8,
                              tool_offset=tool_offset)
 

@@ -175,6 +175,26 @@ def test_no_part_is_wired_after_it_is_made() -> None:
     assert not found, found
 
 
+def test_programs_are_read_by_the_one_load_alone() -> None:
+    """A program, an MDI block, a wizard's routine and the editor's text are read through
+    ``planner.pipeline.load`` (read, refuse, blend, limits, plan, in that order, each stage an
+    option): no part of the panel, the controller or the tools calls the interpreter itself."""
+    calls = []
+    for root in ("app", "cli", "planner"):
+        for path in sorted((ROOT / root).rglob("*.py")):
+            if path.parent.name == "gcode" or path.name == "pipeline.py":
+                continue
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+                if isinstance(node, ast.Call):
+                    f = node.func
+                    name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else ""
+                    if name in ("parse_program", "parse_file"):
+                        calls.append(f"{path.relative_to(ROOT)}:{node.lineno}")
+    pipeline = (ROOT / "planner" / "pipeline.py").read_text(encoding="utf-8")
+    assert "parse_program(" in pipeline
+    assert not calls, calls
+
+
 def test_no_lock_is_taken_from_outside_its_owner() -> None:
     """A lock is its owner's: ``x._lock`` is read only as ``self._lock``."""
     offenders = []

@@ -5,16 +5,15 @@ lost release stops there.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable
 
 import numpy as np
 
 from app.machine.errors import MachineError
 from app.machine.model import Activity, CommandResult, SpindleState
-from app.machine.motion.jobs import Job, JobTerms
+from app.machine.motion.jobs import Job, JobTerms, Reread
 from app.machine.motion.making import JobMaker
-from app.machine.motion.refusals import limit_issues, refusal
+from app.machine.motion.refusals import machine_abilities, violation_issues
 from app.machine.motion.streamer import Streamer
 from app.machine.ports import (
     CoordinatesView,
@@ -29,8 +28,8 @@ from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.program import EventKind, Move, MoveKind, Program
-from planner.gcode.interpreter import parse_program
 from planner.gcode.lexer import LexError, compact
+from planner.pipeline import SoftLimitError, load
 
 __all__ = ["JOG_INCREMENTS", "ManualMotion"]
 
@@ -147,40 +146,38 @@ class ManualMotion:
         return states.ok(Action.JOG)
 
     def _read(self, text: str, name: str, action: str, quiet: bool = False
-              ) -> tuple[Program, Callable[..., Program]] | CommandResult:
+              ) -> tuple[Program, Reread] | CommandResult:
         """``text`` read from where the machine is, as a program is checked: parsed (the reader
         kept, to read it again with what a probe or M66 reads), within the soft limits, its
         probing possible on this machine. The refusal otherwise (``quiet``: not told to the
         panel, for a preview that is only looked at)."""
-        machine = self._coordinates.machine()
         spindle = self._spindle.spindle
-        read = functools.partial(
-            parse_program, text, name, machine=machine,
-            start_position=self._positions.machine_pos(), tools=self._tools.table,
-            tool_in_spindle=self._tools.in_spindle, spindle=(spindle.direction, spindle.rpm),
-            parameters=dict(self._coordinates.parameters), block_delete=self._modes.block_delete,
-            tool_offset=self._coordinates.start_offset())
         refuse = self._states.refuse if not quiet else (lambda a, why: CommandResult(False, str(a), why))
         try:
-            prog = read()
+            # the one load, as a program's (its order: read, refuse, limits), without blending
+            # and for blocks that need not move
+            loaded = load(text, name, self._coordinates.machine(), lambda p: p,
+                          start_position=self._positions.machine_pos(), tools=self._tools.table,
+                          tool_in_spindle=self._tools.in_spindle,
+                          spindle=(spindle.direction, spindle.rpm),
+                          parameters=dict(self._coordinates.parameters),
+                          block_delete=self._modes.block_delete, tool_offset=self._coordinates.start_offset(),
+                          abilities=machine_abilities(self._settings.config), blend=False,
+                          require_motion=False)
+        except SoftLimitError as exc:
+            return refuse(action, f"soft limit: {violation_issues([exc.violations[0]])[0].message}")
         except ProgramError as exc:
             return refuse(action, "; ".join(e.message for e in exc.errors))
         except PlannerError as exc:
             return refuse(action, str(exc))
-        issues = limit_issues(prog, machine)
-        if issues:
-            return refuse(action, f"soft limit: {issues[0].message}")
-        _, why = refusal(prog, self._settings.config)
-        if why:
-            return refuse(action, why)
-        return prog, read
+        return loaded.program, loaded.reread
 
-    def _start(self, prog: Program, read: Callable[..., Program], name: str, action: str,
+    def _start(self, prog: Program, read: Reread, name: str, action: str,
                when_done: Callable[[Job], None] | None = None, reason: str = "",
                steps: dict[int, str] | None = None) -> CommandResult:
         """Run ``prog`` (read by ``_read``) as an MDI job; ``when_done(job)`` once it has all run."""
         terms = JobTerms(reason=reason, steps=tuple(sorted((steps or {}).items())), when_done=when_done,
-                         reread=lambda probes, waits: read(probe_results=probes, input_results=waits))
+                         reread=read)
         try:
             job = self._jobs.make_job(Activity.MDI, prog, name, terms=terms)
         except PlannerError as exc:
