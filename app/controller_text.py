@@ -137,7 +137,8 @@ TEMPLATES: tuple[str, ...] = (
     N_("feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again"),
     N_("M06: the spindle stops for the tool change"),
     # the probing wizards: what runs and what it found (the values as "X12.0000 Y3.5000")
-    N_("probing {0}"), N_("probed: {0}, written to {1}"), N_("probed: {0} (only reported)"),
+    N_("probing {0}"), N_("probed (machine): {0}, written to {1}"),
+    N_("probed (machine): {0} (only reported)"),
     N_("the Z surface"), N_("an edge"), N_("an outside corner"), N_("an inside corner"), N_("a bore"),
     N_("a boss"), N_("the angle of a face"),
     # the part counter

@@ -230,8 +230,9 @@ class ProbingRequest:
 
 @dataclass(frozen=True, slots=True)
 class ProbingResult:
-    """What a wizard found (program coordinates of the system in use before it wrote: "X", "Y",
-    "Z", the diameter "D", the angle "A" in degrees) and the system it wrote ("" none)."""
+    """What a wizard found (machine positions "X", "Y", "Z", the diameter "D", the angle "A" of
+    a face against the machine's X axis, degrees: the same whatever system it wrote) and the
+    system it wrote ("" none)."""
 
     wizard: ProbeWizard
     values: dict[str, float] = field(default_factory=dict)
@@ -250,4 +251,4 @@ class ProbingResult:
 
     def text(self) -> str:
         where = f", written to {self.written}" if self.written else " (only reported)"
-        return f"probed: {self.said()}{where}"
+        return f"probed (machine): {self.said()}{where}"

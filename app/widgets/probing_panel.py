@@ -297,8 +297,8 @@ class ProbingPanel(QWidget):
         if not isinstance(result, ProbingResult):
             return
         said = result.said(tr("diameter"), tr("angle"))
-        self.result.setText(tr("Found: {0}; written to {1}").format(said, result.written) if result.written
-                            else tr("Found: {0} (only reported)").format(said))
+        self.result.setText(tr("Found (machine): {0}; written to {1}").format(said, result.written)
+                            if result.written else tr("Found (machine): {0} (only reported)").format(said))
 
 
 class RoutinePreview(QWidget):

@@ -520,13 +520,13 @@
     </message>
     <message>
       <location filename="../../app/widgets/probing_panel.py" line="301" />
-      <source>Found: {0} (only reported)</source>
-      <translation>Bulunan: {0} (yalnızca bildirildi)</translation>
+      <source>Found (machine): {0} (only reported)</source>
+      <translation>Bulunan (makine): {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
       <location filename="../../app/widgets/probing_panel.py" line="300" />
-      <source>Found: {0}; written to {1}</source>
-      <translation>Bulunan: {0}; {1} sistemine yazıldı</translation>
+      <source>Found (machine): {0}; written to {1}</source>
+      <translation>Bulunan (makine): {0}; {1} sistemine yazıldı</translation>
     </message>
     <message>
       <location filename="../../app/pages/manual.py" line="77" />
@@ -2083,12 +2083,12 @@ BIRAK</translation>
       <translation>L = {0} dereceli bir NURBS, başlangıç dahil en az {1} kontrol noktası ister; {2} tane var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>a bore</source>
       <translation>bir delik</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="142" />
+      <location filename="../../app/controller_text.py" line="143" />
       <source>a boss</source>
       <translation>bir çıkıntı</translation>
     </message>
@@ -2153,17 +2153,17 @@ BIRAK</translation>
       <translation>zaten bağlı (makine {0} durumunda)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>an edge</source>
       <translation>bir kenar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>an inside corner</source>
       <translation>bir iç köşe</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>an outside corner</source>
       <translation>bir dış köşe</translation>
     </message>
@@ -2498,7 +2498,7 @@ BIRAK</translation>
       <translation>saat yönünde</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="147" />
+      <location filename="../../app/controller_text.py" line="148" />
       <source>column {0}: {1}</source>
       <translation>sütun {0}: {1}</translation>
     </message>
@@ -3028,14 +3028,14 @@ BIRAK</translation>
       <translation>{0} prob sonucunda {1} eksen için konum var, makinede {2} eksen var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="140" />
-      <source>probed: {0} (only reported)</source>
-      <translation>problandı: {0} (yalnızca bildirildi)</translation>
+      <location filename="../../app/controller_text.py" line="141" />
+      <source>probed (machine): {0} (only reported)</source>
+      <translation>problandı (makine): {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="140" />
-      <source>probed: {0}, written to {1}</source>
-      <translation>problandı: {0}, {1} sistemine yazıldı</translation>
+      <source>probed (machine): {0}, written to {1}</source>
+      <translation>problandı (makine): {0}, {1} sistemine yazıldı</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="79" />
@@ -3253,12 +3253,12 @@ BIRAK</translation>
       <translation>alt yordam çağrıları {0} düzeyden derin (sonsuz özyineleme mi?)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>the Z surface</source>
       <translation>Z yüzeyi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="142" />
+      <location filename="../../app/controller_text.py" line="143" />
       <source>the angle of a face</source>
       <translation>bir yüzün açısı</translation>
     </message>
@@ -3433,7 +3433,7 @@ BIRAK</translation>
       <translation>yüzey yüksekliği bir sayı olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="145" />
+      <location filename="../../app/controller_text.py" line="146" />
       <source>the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again</source>
       <translation>{0} parçalık hedefe ulaşıldı: yeniden çalıştırmak için parça sayacını sıfırlayın (ya da hedefi yükseltin)</translation>
     </message>
@@ -3853,7 +3853,7 @@ BIRAK</translation>
       <translation>{0}, {1} değer ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="144" />
+      <location filename="../../app/controller_text.py" line="145" />
       <source>{0} part(s) made: the target of {1} is reached</source>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>

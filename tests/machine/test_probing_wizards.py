@@ -8,6 +8,7 @@ the routine before it writes."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -256,6 +257,32 @@ def test_each_wizard_on_the_simulated_machine(qapp, config_path: Path, state_dir
         ctl.shutdown()
 
 
+@pytest.mark.parametrize("rotation_deg", [0.0, 10.0])
+def test_a_result_says_where_the_corner_is_on_the_machine_whatever_the_system_was(
+        qapp, config_path: Path, state_dir: Path, rotation_deg: float) -> None:
+    """An outside corner found into a G55 that stood elsewhere (turned as the block is): the
+    result reads the corner's machine position, not coordinates of the system as it was before
+    the wizard wrote it."""
+    c, s = math.cos(math.radians(rotation_deg)), math.sin(math.radians(rotation_deg))
+    part = replace(BLOCK, angle_deg=rotation_deg)
+    corner = (BLOCK.x_mm - 40.0 * c + 30.0 * s, BLOCK.y_mm - 40.0 * s - 30.0 * c)   # its -X -Y corner
+    start = (corner[0] - 4.0 * c + 4.0 * s, corner[1] - 4.0 * s - 4.0 * c)        # off it diagonally
+    ctl = _machine(qapp, config_path, state_dir)
+    try:
+        assert ctl.simulate_part(part)
+        assert ctl.set_work_offset("G55", {"X": 100.0, "Y": 50.0})
+        assert ctl.set_work_rotation("G55", rotation_deg)
+        _to(ctl, (*start, TOP - 4.0))
+        _probe(ctl, ProbingRequest(ProbeWizard.OUTSIDE_CORNER, system="G55", x_dir=1, y_dir=1))
+        assert not ctl.active_alarms, [a.cause for a in ctl.active_alarms]
+        result = ctl.last_probing
+        assert result is not None and result.written == "G55"
+        assert (result.values["X"], result.values["Y"]) == pytest.approx(corner, abs=0.01)
+        assert (ctl.work_offsets["G55"][0], ctl.work_offsets["G55"][1]) == pytest.approx(corner, abs=0.01)
+    finally:
+        ctl.shutdown()
+
+
 def test_a_missing_part_on_the_machine_is_an_alarm_and_writes_nothing(qapp, config_path: Path,
                                                                       state_dir: Path) -> None:
     ctl = _machine(qapp, config_path, state_dir)
@@ -375,4 +402,4 @@ def test_a_result_names_the_angle_and_the_diameter_never_an_axis_letter() -> Non
 
     res = ProbingResult(ProbeWizard.ANGLE, {"X": 1.0, "A": 12.3456, "D": 20.0}, "G55")
     assert res.said() == "X 1.0000 angle 12.3456° diameter 20.0000"
-    assert res.text() == "probed: X 1.0000 angle 12.3456° diameter 20.0000, written to G55"
+    assert res.text() == "probed (machine): X 1.0000 angle 12.3456° diameter 20.0000, written to G55"

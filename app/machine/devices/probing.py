@@ -18,6 +18,8 @@ import re
 from collections.abc import Callable
 from typing import Protocol
 
+import numpy as np
+
 from app.machine.config import ProbeSettings
 from app.machine.model import CommandResult, MachineState, ProbeWizard, ProbingRequest, ProbingResult
 from app.machine.motion.jobs import Job
@@ -31,6 +33,7 @@ __all__ = ["Probing", "RoutineRunner", "probing_routine"]
 
 
 _RESULT = re.compile(r"probe result:(.*)")
+_POSITIONS = ("X", "Y", "Z")   # what the routines report as positions (the wizards probe in X, Y, Z)
 _VALUE = re.compile(r"([A-Z])=(-?\d+(?:\.\d+)?)")
 
 
@@ -151,7 +154,29 @@ class Probing:
         found = _RESULT.search(reported[-1])
         assert found is not None
         values = {k: float(v) for k, v in _VALUE.findall(found.group(1))}
-        return ProbingResult(req.wizard, values, req.system)
+        return ProbingResult(req.wizard, self._in_machine(full, job, values), req.system)
+
+    def _in_machine(self, full: Program, job: Job, values: dict[str, float]) -> dict[str, float]:
+        """The routine's positions (in the work frame it probed in: the system before the result
+        was written to it) as machine positions, and its angle against the machine's X axis: what
+        the result says does not depend on the frame it changed. An axis the routine does not
+        report is taken from the last contact (an edge found in X in a turned frame lies where
+        that contact's Y is)."""
+        axes = self._settings.config.axes
+        contacts = [(i, r) for i, r in enumerate(job.probe_results) if r is not None and i < len(full.probes)]
+        if not contacts:
+            return values
+        i, contact = contacts[-1]
+        frame = full.frame_at(max(full.probes[i].move_index, 0))
+        work = frame.to_program(np.array(contact.trip_position, dtype=float))
+        placed = [k for k in values if k in _POSITIONS and k in axes]   # "A" is an angle, "D" a diameter
+        for k in placed:
+            work[axes.index(k)] = values[k]
+        machine = frame.to_machine(work)
+        out = {k: float(machine[axes.index(k)]) if k in placed else v for k, v in values.items()}
+        if "A" in out:
+            out["A"] = values["A"] + frame.rotation_deg
+        return out
 
 
 def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active: str) -> str:
