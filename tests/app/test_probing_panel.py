@@ -72,7 +72,8 @@ def test_each_wizard_by_touch(demo_window, real_controller, dialogs, qtbot, req:
     for k in range(3):
         if k not in truth:
             assert c.work_offsets["G55"][k] == before[k]
-    assert panel.result.text().startswith("Found (machine): ") and panel.result.text().endswith("written to G55")
+    text = panel.result.text()
+    assert text.startswith("Found (machine): ") and text.endswith("written to G55")
     # the trace: the ball touched the part and stopped within the overtravel of a stop
     actual = path.actual()
     tip = actual - [0.0, 0.0, PROBE.length_mm - R]
