@@ -137,6 +137,10 @@ TEMPLATES: tuple[str, ...] = (
     N_("feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again"),
     N_("M06: the spindle stops for the tool change"),
     # the probing wizards: what runs and what it found (the values as "X12.0000 Y3.5000")
+    N_("probing {0}: {1}"),
+    N_("the bore measures {0} mm across, not {1} mm within {2} mm: nothing written"),
+    N_("the boss measures {0} mm across, not {1} mm within {2} mm: nothing written"),
+    N_("probe touched during positioning"),
     N_("probing {0}"), N_("probed (machine): {0}, written to {1}"),
     N_("probed (machine): {0} (only reported)"),
     N_("the Z surface"), N_("an edge"), N_("an outside corner"), N_("an inside corner"), N_("a bore"),

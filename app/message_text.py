@@ -131,6 +131,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
 GCODE_TEMPLATES: tuple[str, ...] = (
     N_("'%' must be alone on its line"),
     N_("')' without '('"),
+    N_('(ABORT comment): '),
     N_('Cannot intersect parallel lines'),
     N_('Corner finish failed at ({0},{1})'),
     N_('D word with no G41, G41.1, G42, G42.1 or G96 to use it'),

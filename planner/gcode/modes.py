@@ -27,6 +27,9 @@ from planner.gcode.state import (
 MESSAGE_RE = re.compile(r"\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,([^)]*)\)", re.IGNORECASE)
 PARAM_TEXT_RE = re.compile(r"#<([^>]*)>|#(\d+)")
 
+#: what an (ABORT,text) comment's error says before its text
+ABORT_MARK = "(ABORT comment): "
+
 
 class ModeCodes(InterpBase):
     def modal_text(self) -> str:

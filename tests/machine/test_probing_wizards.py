@@ -8,6 +8,7 @@ the routine before it writes."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -283,6 +284,27 @@ def test_a_result_says_where_the_corner_is_on_the_machine_whatever_the_system_wa
         ctl.shutdown()
 
 
+def test_a_wrong_bore_says_so_under_the_wizard_s_name_not_its_subroutine_s_lines(
+        qapp, config_path: Path, state_dir: Path) -> None:
+    """The bore measures 24 mm where 20 were asked for: the alarm says what the wizard found,
+    as "probing a bore: ...", without the subroutine file and line the operator never saw."""
+    part = replace(BLOCK, feature=Feature.BORE, feature_x_mm=25.0, feature_y_mm=12.0, feature_radius_mm=12.0)
+    ctl = _machine(qapp, config_path, state_dir)
+    try:
+        assert ctl.simulate_part(part)
+        _to(ctl, (23.0, 12.0, TOP - 5.0))
+        before = dict(ctl.work_offsets)
+        _probe(ctl, ProbingRequest(ProbeWizard.BORE, system="G55", diameter_mm=20.0, tolerance_mm=0.5))
+        assert ctl.state is MachineState.ALARM
+        (alarm,) = [a for a in ctl.active_alarms if "the bore measures" in a.cause]
+        assert re.fullmatch(r"probing a bore: the bore measures 24\.00\d+ mm across, not 20\.0+ mm within "
+                            r"0\.50+ mm: nothing written", alarm.cause), alarm.cause
+        assert ".ngc" not in alarm.cause and "line" not in alarm.cause and "ABORT" not in alarm.cause
+        assert ctl.work_offsets == before
+    finally:
+        ctl.shutdown()
+
+
 def test_a_missing_part_on_the_machine_is_an_alarm_and_writes_nothing(qapp, config_path: Path,
                                                                       state_dir: Path) -> None:
     ctl = _machine(qapp, config_path, state_dir)
@@ -309,7 +331,8 @@ def test_an_obstacle_on_the_machine_stops_the_move_with_the_alarm(qapp, config_p
         _probe(ctl, ProbingRequest(ProbeWizard.OUTSIDE_CORNER, system="G55", along_mm=10.0))
         assert ctl.state is MachineState.ALARM
         (alarm,) = [a for a in ctl.active_alarms if "probe touched during positioning" in a.cause]
-        assert "G38.3" in alarm.cause
+        # under the wizard's name, not the positioning subroutine's file and line
+        assert alarm.cause == "probing an outside corner: probe touched during positioning"
         assert ctl.work_offsets == before
         # it stopped at the contact: the ball touched the part's side and stopped, never further
         # than the stop's overtravel (the search would have gone 10 mm on)

@@ -237,7 +237,8 @@ class Prober:
 
 
 def _where(job: Job, code: str, line: int) -> str:
-    """The probe move as the operator knows it: its line in a program, or in a routine the
-    controller wrote (the tool setter's) what that step does."""
-    step = job.steps.get(line)
+    """The probe move as the operator knows it: its line in a program; in a routine the
+    controller wrote, what that step does (the tool setter's), else what the routine does
+    (a probing wizard: its lines are in subroutines the operator never saw)."""
+    step = job.steps.get(line) or job.reason
     return f"{code} ({step})" if step else f"{code} (line {line})"

@@ -20,6 +20,7 @@ from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Setting
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.program import EventKind, ProbeResult, Program
+from planner.gcode.modes import ABORT_MARK
 from planner.geometry.resume import carry_overrides, program_from_moves
 
 __all__ = ["ReadAgain"]
@@ -59,7 +60,11 @@ class ReadAgain:
             full = job.reread(probes, waits)
         except ProgramError as exc:
             e = exc.errors[0]
-            if os.path.isabs(e.file):            # in a subroutine file (tool_measure.ngc ...)
+            if job.reason and not job.steps and os.path.isabs(e.file):
+                # a routine the controller wrote (a probing wizard): what it says, under its name,
+                # not the lines of its subroutines, which the operator never saw
+                fail(f"{job.reason}: {e.message.partition(ABORT_MARK)[2] or e.message}")
+            elif os.path.isabs(e.file):            # in a subroutine file (tool_measure.ngc ...)
                 fail(f"{where}: with the result, {os.path.basename(e.file)} line {e.line} reads: {e.message}")
             else:
                 fail(f"{where}: with the result, line {e.line} reads: {e.message}")

@@ -120,8 +120,8 @@ class JobMaker:
         at_s = job.tau_offset_s + job.executor.tau
         full_t = info.cycle_time_s if info is not None and job.kind is Activity.PROGRAM else math.nan
         probes, waits = reads if reads is not None else (job.probe_results, job.wait_results)
-        terms = JobTerms(origin=origin, reread=job.reread, when_done=job.when_done, probe_results=probes,
-                         wait_results=waits)
+        terms = JobTerms(reason=job.reason, steps=tuple(job.steps.items()), origin=origin, reread=job.reread,
+                         when_done=job.when_done, probe_results=probes, wait_results=waits)
         new = self.make_job(job.kind, rest, job.name,
                             single_block=modes.single_block and job.kind is Activity.PROGRAM,
                             estimate_s=max(job.executor.planned_end_s + job.tau_offset_s - at_s, 0.0),
