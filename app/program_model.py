@@ -40,10 +40,10 @@ def errors_by_line(exc: PlannerError) -> dict[int, str]:
     return out
 
 
-#: A program shown of at least this many moves is let go when the controller lets it go (a
-#: load or a check again has started): its moves, tool path and preview copies are about 50 MB
-#: a million moves of a CAM raster, and kept on screen while its successor was read the panel
-#: held two programs. Smaller ones stay on screen until the outcome, which comes within seconds.
+#: A program shown of at least this many moves is let go when the controller lets it go for a
+#: check again of itself: its moves, tool path and preview copies are about 50 MB a million
+#: moves of a CAM raster, and kept on screen while its successor was read the panel held two
+#: programs. Smaller ones stay on screen through their check again, which comes within seconds.
 LET_GO_MOVES = 1_000_000
 
 
@@ -122,15 +122,21 @@ class ProgramModel(QObject):
         self.changed.emit()
 
     def let_go(self, successor: str) -> bool:
-        """The controller has let the loaded program go (a load or a check again started): a big
-        one's geometry goes too, and its text when the panel asked for a program (``expect``) or
-        ``successor`` (the name of the program being checked) is another's: a check again keeps
-        it on screen. ``changed`` tells the pages. True when it went."""
-        if self.toolpath is None or self.toolpath.move_count < LET_GO_MOVES:
+        """The controller has let the loaded program go (a load or a check again started). When
+        another program comes (the panel asked for one, ``expect``, or ``successor``, the name of
+        the program being checked, is another's), all of it goes: nothing of the old one is shown
+        as if it were the new one (its name, text, path, line). A check again of the same program
+        keeps it on screen, but for a big one's geometry. ``changed`` tells the pages. True when
+        something went."""
+        another = self._expected or successor != self.name
+        big = self.toolpath is not None and self.toolpath.move_count >= LET_GO_MOVES
+        if not another and not big:
             return False
         self.info, self.program, self.toolpath = None, None, None
-        if self._expected or successor != self.name:
+        if another:
             self.text, self.name, self.path = "", successor, ""
+            self.errors = {}
+            self.errorsChanged.emit(self.errors)
         self.changed.emit()
         return True
 

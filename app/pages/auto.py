@@ -24,7 +24,7 @@ from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
 from app.machine.model import RestartPreview, SpindleState
 from app.widgets.override_control import OverrideControl
-from app.widgets.preview_plot import PreviewPlot
+from app.widgets.preview_plot import PreviewPlot, usable_planes
 from app.widgets.program_view import ProgramView
 from app.widgets.touch import enable_kinetic_scrolling
 from planner.core.tools import ToolTable
@@ -92,6 +92,7 @@ class AutoPage(QWidget):
         # the backplot: the path (XY, work coordinates), what has been cut, where the tool is
         self.backplot = PreviewPlot()
         self.backplot.setObjectName("autoBackplot")
+        self.backplot.set_plane((usable_planes(context.controller.axes) or ["XY"])[0])   # YZ on Y-Z-C-A
         self.backplot.setMinimumHeight(160)
         left.addWidget(self.backplot, 2)
         layout.addLayout(left, 3)
@@ -353,9 +354,14 @@ class AutoPage(QWidget):
     def _on_program_model(self) -> None:
         model = self.ctx.program
         self._refused = ""
+        if model.info is None and model.name != self.program_label.text():
+            # another program is being checked: nothing of the one before stays as if it were it
+            self._line, self._fraction, self._remaining, self._finished = 0, 0.0, float("nan"), ""
+            self.progress.setValue(0)
+            self.editor.set_run_line(0)
         self._update_info()       # the feed and modal codes come from the loaded program
         if model.info is None and self.editor.toPlainText() != model.text:
-            self.editor.load_text(model.text)   # a refused program's text, or none: a big one let go
+            self.editor.load_text(model.text)   # a refused program's text, or none: one let go
             self.program_label.setText(model.name)
         self.editor.set_errors(model.errors)
         self._update_buttons()

@@ -36,7 +36,7 @@ class ManualPage(QWidget):
         jog_box = QGroupBox()
         i18n.bind(jog_box, N_("Jog"), jog_box.setTitle)
         jog_layout = QVBoxLayout(jog_box)
-        self.jog = JogPanel(c.axes, i18n)
+        self.jog = JogPanel(c.axes, i18n, rotary=[a.rotary for a in c.config.machine.axes])
         jog_layout.addWidget(self.jog)
         self.jog.jogStart.connect(lambda axis, d: c.jog_start(axis, d, self.jog.speed_fraction))
         self.jog.jogStop.connect(lambda axis: c.jog_stop(axis or None))

@@ -9,7 +9,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWi
 
 from app.context import PanelContext
 from app.i18n import N_, tr
-from app.widgets.preview_plot import PLANES, VIEW_3D, PreviewPlot
+from app.widgets.preview_plot import PLANES, VIEW_3D, PreviewPlot, usable_planes
 from app.widgets.touch import exclusive_buttons
 
 
@@ -66,8 +66,7 @@ class PreviewPage(QWidget):
         context.controller.offsetsChanged.connect(lambda *_: self._update_frame())
         context.controller.lineChanged.connect(self._on_line)
         context.controller.programFinished.connect(self._on_finished)
-        axes = set(context.controller.axes)
-        usable = [p for p, (a, b) in PLANES.items() if a in axes and b in axes]
+        usable = usable_planes(context.controller.axes)
         for plane, button in self.plane_buttons.items():
             button.setEnabled(plane in usable or not usable or plane == VIEW_3D)
         i18n.languageChanged.connect(lambda _l: self._update_frame())

@@ -13,8 +13,9 @@ from planner.core.frames import Frame
 
 
 def format_position(value: float, rotary: bool = False, wrapped: bool = False) -> str:
-    """Signed, fixed width: mm with 3 decimals, degrees with 3 (rotary) and a unit-free look; a
-    wrapped rotary axis (turning without end) reads modulo 360, in [0, 360)."""
+    """Signed, fixed width: mm with 3 decimals (no unit: the DRO's linear axes all read mm),
+    degrees with 3 and their sign (rotary: "+12.345°", never read as mm); a wrapped rotary axis
+    (turning without end) reads modulo 360, in [0, 360)."""
     if not math.isfinite(value):
         return "---.---"
     if wrapped:
@@ -22,7 +23,8 @@ def format_position(value: float, rotary: bool = False, wrapped: bool = False) -
         if value >= 359.9995:       # shown to 3 decimals: 359.9999 reads as 0.000, not 360.000
             value = 0.0
     text = f"{value:+.3f}"
-    return "+0.000" if text == "-0.000" else text
+    text = "+0.000" if text == "-0.000" else text
+    return text + "°" if rotary else text
 
 
 def frame_text(frame: Frame) -> str:

@@ -27,15 +27,19 @@ class JogPanel(QWidget):
     jogStop = Signal(str)              # axis ("" = all)
     jogStep = Signal(str, float, int)  # axis, step, direction
 
-    def __init__(self, axes: Sequence[str], i18n: I18n, parent: QWidget | None = None) -> None:
+    def __init__(self, axes: Sequence[str], i18n: I18n, parent: QWidget | None = None,
+                 rotary: Sequence[bool] | None = None) -> None:
+        """``rotary``: which axes turn (their steps are degrees; the buttons say mm, ° or both)."""
         super().__init__(parent)
         self.axes = tuple(axes)
+        turns = tuple(rotary) if rotary is not None else (False,) * len(self.axes)
+        unit = " mm/°" if any(turns) and not all(turns) else "°" if all(turns) and turns else " mm"
         layout = QVBoxLayout(self)
         modes = QHBoxLayout()
         cont = QPushButton()
         i18n.bind(cont, N_("Continuous"))
         self.mode_group, self.mode_buttons = exclusive_buttons(
-            self, modes, [(0.0, cont)] + [(s, QPushButton(f"{s:g}")) for s in INCREMENTS])
+            self, modes, [(0.0, cont)] + [(s, QPushButton(f"{s:g}{unit}")) for s in INCREMENTS])
         cont.setChecked(True)
         layout.addLayout(modes)
         grid = QGridLayout()

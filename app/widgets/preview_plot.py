@@ -11,6 +11,7 @@ empties the executed part).
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 
 import numpy as np
 import pyqtgraph as pg
@@ -44,6 +45,13 @@ ENVELOPE_COLOR = QColor(140, 150, 165)
 ZERO_COLOR = QColor(255, 255, 255)
 PICK_RADIUS_PX = 24.0
 LOD_REDRAW_MS = 40  # the view settles this long before the detail follows it (app.path_lod)
+
+
+def usable_planes(axes: Iterable[str]) -> list[str]:
+    """The view planes whose two axes the machine has, XY first (YZ alone on the paper's
+    Y-Z-C-A machine)."""
+    have = set(axes)
+    return [p for p, (a, b) in PLANES.items() if a in have and b in have]
 
 
 def kind_pen(kind: MoveKind) -> QPen:

@@ -498,3 +498,29 @@ def test_a_program_a_power_loss_cut_asks_to_resume_at_its_line_when_loaded_again
         window.close()
     finally:
         second.shutdown()
+
+
+def test_while_another_program_is_checked_auto_shows_nothing_of_the_one_before(
+        qtbot, demo_window, real_controller) -> None:
+    """Opening another program: while it is checked, the Auto page shows its name, no text, no
+    path and no line of the program before (not "Line 6" of a file that is gone)."""
+    c = real_controller
+    auto = demo_window.page("auto")
+    assert c.load_program(LONG, name="first.nc", wait=True)
+    qtbot.waitUntil(lambda: auto.program_label.text() == "first.nc", timeout=10_000)
+    auto._on_line(6)
+    assert "Line 6" in auto.info_label.text() and auto.editor.toPlainText() == LONG
+    seen: dict[str, object] = {}
+
+    def checking(loading: bool, _name: str) -> None:
+        if loading and not seen:
+            seen.update(label=auto.program_label.text(), text=auto.editor.toPlainText(),
+                        info=auto.info_label.text(), path=auto.backplot.path)
+
+    c.loadingChanged.connect(checking)
+    other = LONG.replace("X20", "X30")
+    assert c.load_program(other, name="second.nc")
+    qtbot.waitUntil(lambda: c.program_info is not None and c.program_info.name == "second.nc", timeout=20_000)
+    assert seen["label"] == "second.nc" and seen["text"] == "" and seen["path"] is None
+    assert "Line 0" in str(seen["info"])
+    qtbot.waitUntil(lambda: auto.editor.toPlainText() == other, timeout=10_000)

@@ -379,6 +379,11 @@ def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> N
     _y, z = preview.plot.items[MoveKind.ARC].getData()
     assert z.max() == pytest.approx(5.0)
     assert [label.text()[0] for label in window.header.dro.axis_labels] == ["Y", "Z", "C", "A"]
+    # the Auto page's backplot in the same plane; rotary values and jog steps in degrees
+    assert window.page("auto").backplot.plane == "YZ"
+    dro = window.header.dro
+    assert [w.text().endswith("°") for w in dro.work_labels] == [False, False, True, True]
+    assert window.page("manual").jog.mode_buttons[0.1].text() == "0.1 mm/°"
 
 
 def test_block_delete_is_switched_on_the_program_page_and_shown_on_the_auto_page(

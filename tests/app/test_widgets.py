@@ -24,6 +24,26 @@ def test_format_position(value: float, text: str) -> None:
     assert format_position(value) == text
 
 
+@pytest.mark.parametrize(("value", "wrapped", "text"), [
+    (12.3456, False, "+12.346°"), (-90.0, False, "-90.000°"), (-90.0, True, "+270.000°"), (359.9999, True, "+0.000°"),
+])
+def test_a_rotary_position_reads_in_degrees(value: float, wrapped: bool, text: str) -> None:
+    assert format_position(value, rotary=True, wrapped=wrapped) == text
+
+
+def test_jog_steps_say_their_unit(qtbot) -> None:
+    """Millimetres on a mill, degrees on a rotary table, both on the paper's Y-Z-C-A machine."""
+    from app.i18n import I18n
+    from app.widgets.jog_panel import JogPanel
+
+    for axes, rotary, unit in ((("X", "Y", "Z"), (False, False, False), " mm"), (("C",), (True,), "°"),
+                               (("Y", "Z", "C", "A"), (False, False, True, True), " mm/°")):
+        panel = JogPanel(axes, I18n(), rotary=rotary)
+        qtbot.addWidget(panel)
+        assert panel.mode_buttons[0.001].text() == f"0.001{unit}"
+        assert panel.mode_buttons[1.0].text() == f"1{unit}"
+
+
 @pytest.mark.parametrize(("seconds", "text"), [
     (0, "0:00"), (59.6, "1:00"), (125, "2:05"), (3600 + 61, "1:01:01"), (math.nan, "--:--"), (-1, "--:--"),
 ])

@@ -39,7 +39,7 @@ def test_absolute_targets_go_the_short_way_and_read_in_0_360(targets: list[float
         assert -180.0 < turn <= 180.0 + 1e-9                           # the short way
         assert (move.end[C] - target) % 360.0 == pytest.approx(0.0, abs=1e-6) or \
             (move.end[C] - target) % 360.0 == pytest.approx(360.0, abs=1e-6)
-        shown = float(format_position(move.end[C], True, True))
+        shown = float(format_position(move.end[C], True, True).rstrip("°"))
         assert 0.0 <= shown < 360.0
         assert shown == pytest.approx(target % 360.0, abs=1e-3) or shown == pytest.approx(0.0, abs=1e-3)
         here = move.end[C]
