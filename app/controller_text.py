@@ -124,6 +124,10 @@ TEMPLATES: tuple[str, ...] = (
     N_("run from line {0}"),
     N_("reset"),
     N_("power loss or killed"),
+    N_("E-stop: {0}"),
+    # a path beyond the travel (``planner.geometry.softlimits.LimitViolation``)
+    N_("axis {0} reaches {1} ({2}), beyond its soft limit {3} {4}"),
+    N_("end point"), N_("arc extreme"), N_("path"), N_("max"), N_("min"),
     N_("interrupted at line {0}: the control stopped (power loss or killed)"),
     N_("the tool length offset in force changed since it was loaded"),
     # the longer first: the shorter would take its words as a value
@@ -158,7 +162,8 @@ def _compiled() -> tuple[tuple[re.Pattern[str], str, int], ...]:
     """(pattern, template, how many of its characters are not values) for every template."""
     out = []
     gathered = [t for t in (*CONTROLLER_TEMPLATES, *GCODE_TEMPLATES) if t not in TEMPLATES]
-    for template in (*TEMPLATES, *dict.fromkeys(gathered)):
+    # an alarm's source stands for itself where a sentence names it ("E-stop: operator")
+    for template in (*TEMPLATES, *SOURCE_TEXT.values(), *dict.fromkeys(gathered)):
         parts = re.split(r"(\{\d+\})", template)
         literal = [p.replace("{{", "{").replace("}}", "}") for p in parts[::2]]
         pattern = "".join("(.*?)" if k % 2 else re.escape(literal[k // 2]) for k, _ in enumerate(parts))
@@ -211,3 +216,18 @@ def localize(text: str) -> str:
     if "\n" in text:
         return "\n".join(localize(line) for line in text.split("\n"))
     return _say(text, _read(text))
+
+
+#: where an alarm comes from, shown in the operator's language
+SOURCE_TEXT = {"worker": N_("worker"), "bus": N_("bus"), "planner": N_("planner"),
+               "controller": N_("controller"), "operator": N_("operator"), "config": N_("configuration"),
+               "probe": N_("probe"), "tools": N_("tools"), "persistence": N_("state folder"),
+               "opcua": N_("OPC UA"), "spindle": N_("spindle"), "program": N_("program"),
+               "outputs": N_("outputs"), "homing": N_("homing"), "input": N_("input")}
+
+
+def source_text(source: str) -> str:
+    """An alarm's source in the panel's language ("drive X" keeps its axis)."""
+    if source.startswith("drive "):
+        return tr("drive {0}").format(source[len("drive "):])
+    return tr(SOURCE_TEXT[source]) if source in SOURCE_TEXT else source

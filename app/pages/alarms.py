@@ -16,7 +16,7 @@ from PySide6.QtWidgets import (
 )
 
 from app.context import PanelContext
-from app.controller_text import localize
+from app.controller_text import localize, source_text
 from app.i18n import N_, tr
 from app.widgets.touch import touch_rows
 
@@ -24,18 +24,6 @@ COLUMNS = (N_("Time"), N_("Source"), N_("Cause"), N_("Severity"), N_("State"))
 #: the alarm log's words, shown in the operator's language
 SEVERITY_TEXT = {"INFO": N_("info"), "WARNING": N_("warning"), "STOP": N_("stop"),
                  "QUICK_STOP": N_("quick stop"), "ESTOP": N_("E-stop")}
-SOURCE_TEXT = {"worker": N_("worker"), "bus": N_("bus"), "planner": N_("planner"),
-               "controller": N_("controller"), "operator": N_("operator"), "config": N_("configuration"),
-               "probe": N_("probe"), "tools": N_("tools"), "persistence": N_("state folder"),
-               "opcua": N_("OPC UA"), "spindle": N_("spindle"), "program": N_("program"),
-               "outputs": N_("outputs"), "homing": N_("homing")}
-
-
-def source_text(source: str) -> str:
-    """An alarm's source in the panel's language ("drive X" keeps its axis)."""
-    if source.startswith("drive "):
-        return tr("drive {0}").format(source[len("drive "):])
-    return tr(SOURCE_TEXT[source]) if source in SOURCE_TEXT else source
 
 
 class AlarmsPage(QWidget):

@@ -57,7 +57,7 @@ class ManualPage(QWidget):
             self.spindle_buttons[key] = button
         sp.addLayout(row)
         max_rpm = float(c.config.controller.spindle_max_rpm)
-        self.rpm = NumericField(tr("Spindle speed"), c.spindle.rpm or 1000.0, 0.0, max_rpm, 0, "rpm",
+        self.rpm = NumericField(tr("Spindle speed"), c.spindle.rpm or 1000.0, 0.0, max_rpm, 0, tr("rpm"),
                                 ask=context.dialogs.ask_number)
         sp.addWidget(self.rpm)
         self.spindle_label = QLabel()

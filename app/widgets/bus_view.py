@@ -32,14 +32,13 @@ class BusView(QWidget):
         layout.addWidget(self.histogram_title)
         self.histogram = pg.PlotWidget(background="#0a0d10")
         self.histogram.getPlotItem().hideButtons()
-        self.histogram.setLabel("bottom", "jitter (µs)")
-        self.histogram.setLabel("left", "cycles")
         self.bars = pg.BarGraphItem(x=[], height=[], width=1.0, brush="#40e0d0")
         self.histogram.addItem(self.bars)
         layout.addWidget(self.histogram, 1)
         self._bus: object | None = None
         self._config: object | None = None
         i18n.languageChanged.connect(lambda _l: self.refresh())
+        self.refresh()
 
     def set_state(self, bus: object, config: object) -> None:
         self._bus, self._config = bus, config
@@ -48,6 +47,8 @@ class BusView(QWidget):
     def refresh(self) -> None:
         bus, config = self._bus, self._config
         self.table.setHorizontalHeaderLabels([tr(c) for c in SLAVE_COLUMNS])
+        self.histogram.setLabel("bottom", tr(N_("start jitter (µs)")))
+        self.histogram.setLabel("left", tr(N_("cycles")))
         if bus is None or config is None:
             return
         drives = tuple(getattr(getattr(config, "bus", None), "drives", ()) or ())

@@ -6,7 +6,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
 
 from app.context import PanelContext
-from app.controller_text import localize
+from app.controller_text import localize, source_text
 from app.dialogs import connect_or_disconnect
 from app.format import tool_text
 from app.i18n import N_, tr
@@ -174,5 +174,6 @@ class StatusHeader(QWidget):
         if alarms:
             last = alarms[-1]
             more = tr(" (+{0} more)").format(len(alarms) - 1) if len(alarms) > 1 else ""
-            self.alarm_banner.setText(tr("ALARM: {0}: {1}").format(last.source, localize(last.cause)) + more)
+            said = tr("ALARM: {0}: {1}").format(source_text(last.source), localize(last.cause))
+            self.alarm_banner.setText(said + more)
         self.alarm_banner.setVisible(bool(alarms))

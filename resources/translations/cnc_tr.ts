@@ -29,7 +29,7 @@
       <translation>(ABORT açıklaması): </translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="472" />
+      <location filename="../../app/pages/auto.py" line="478" />
       <source>/ lines skipped</source>
       <translation>/ satırları atlanıyor</translation>
     </message>
@@ -44,12 +44,12 @@
       <translation>ALARM: {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="54" />
+      <location filename="../../app/pages/alarms.py" line="42" />
       <source>Acknowledge</source>
       <translation>Onayla</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="56" />
+      <location filename="../../app/pages/alarms.py" line="44" />
       <source>Acknowledge all</source>
       <translation>Tümünü onayla</translation>
     </message>
@@ -149,7 +149,7 @@
       <translation>Veri yolu</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="73" />
+      <location filename="../../app/widgets/bus_view.py" line="74" />
       <source>Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}</source>
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
@@ -159,7 +159,7 @@
       <translation>Veri yolu {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="272" />
+      <location filename="../../app/pages/auto.py" line="273" />
       <source>CCW</source>
       <translation>Saat yönü tersi</translation>
     </message>
@@ -169,7 +169,7 @@
       <translation>Sol (M04)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="272" />
+      <location filename="../../app/pages/auto.py" line="273" />
       <source>CW</source>
       <translation>Saat yönü</translation>
     </message>
@@ -179,7 +179,7 @@
       <translation>Sağ (M03)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="254" />
+      <location filename="../../app/pages/auto.py" line="255" />
       <source>Cancel</source>
       <translation>İptal</translation>
     </message>
@@ -249,7 +249,7 @@
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/jog_panel.py" line="36" />
+      <location filename="../../app/widgets/jog_panel.py" line="40" />
       <source>Continuous</source>
       <translation>Sürekli</translation>
     </message>
@@ -294,7 +294,7 @@
       <translation>Çevrim başlat</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="214" />
+      <location filename="../../app/pages/auto.py" line="215" />
       <source>Cycle start refused: the program has errors (line {0})</source>
       <translation>Çevrim başlatma reddedildi: programda hata var (satır {0})</translation>
     </message>
@@ -444,6 +444,11 @@
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="127" />
+      <source>E-stop: {0}</source>
+      <translation>Acil stop: {0}</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/probing_panel.py" line="42" />
       <source>Edge</source>
       <translation>Kenar</translation>
@@ -489,7 +494,7 @@
       <translation>Hızlı prob ilerlemesi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="484" />
+      <location filename="../../app/pages/auto.py" line="490" />
       <source>Feed F{0:.0f} programmed, {1} now</source>
       <translation>İlerleme F{0:.0f} programlanan, şimdi {1}</translation>
     </message>
@@ -499,7 +504,7 @@
       <translation>İlerleme durdur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="131" />
+      <location filename="../../app/pages/auto.py" line="132" />
       <source>Feed override</source>
       <translation>İlerleme oranı</translation>
     </message>
@@ -849,7 +854,7 @@
       <translation>Elle hareket</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/jog_panel.py" line="56" />
+      <location filename="../../app/widgets/jog_panel.py" line="60" />
       <source>Jog speed</source>
       <translation>Elle hareket hızı</translation>
     </message>
@@ -884,14 +889,14 @@
       <translation>Satır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="464" />
+      <location filename="../../app/pages/auto.py" line="470" />
       <source>Line {0}   Progress {1:.0f} %
 Remaining {2}   Path speed {3}</source>
       <translation>Satır {0}   Tamamlanan %{1:.0f}
 Kalan {2}   Yol hızı {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="229" />
+      <location filename="../../app/pages/auto.py" line="230" />
       <source>Line {0}: {1}</source>
       <translation>Satır {0}: {1}</translation>
     </message>
@@ -921,7 +926,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>L{0}: bir çevrimin tekrarları 1 ya da daha büyük bir tam sayıdır</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="138" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>M06: the spindle stops for the tool change</source>
       <translation>M06: takım değişimi için iş mili durur</translation>
     </message>
@@ -1031,7 +1036,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>MSE</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="115" />
+      <location filename="../../app/widgets/dro.py" line="117" />
       <source>Machine</source>
       <translation>Makine</translation>
     </message>
@@ -1176,7 +1181,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Tamam</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="30" />
+      <location filename="../../app/controller_text.py" line="224" />
       <source>OPC UA</source>
       <translation>OPC UA</translation>
     </message>
@@ -1231,7 +1236,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Aç…</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="119" />
+      <location filename="../../app/pages/auto.py" line="120" />
       <source>Optional stop</source>
       <translation>İsteğe bağlı duruş</translation>
     </message>
@@ -1241,7 +1246,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>İsteğe bağlı duruş (M1)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="249" />
+      <location filename="../../app/pages/auto.py" line="250" />
       <source>Or start it again from line 1, from where the tool stands now.</source>
       <translation>Ya da programı takımın şu anki yerinden, 1. satırdan yeniden başlatın.</translation>
     </message>
@@ -1361,17 +1366,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="70" />
+      <location filename="../../app/widgets/bus_view.py" line="71" />
       <source>Probe input: free</source>
       <translation>Prob girişi: serbest</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="71" />
+      <location filename="../../app/widgets/bus_view.py" line="72" />
       <source>Probe input: none ([probe] drive in the machine configuration)</source>
       <translation>Prob girişi: yok (makine yapılandırmasında [probe] drive)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="70" />
+      <location filename="../../app/widgets/bus_view.py" line="71" />
       <source>Probe input: touching</source>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
@@ -1396,7 +1401,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="412" />
+      <location filename="../../app/pages/auto.py" line="418" />
       <source>Program finished in {0}</source>
       <translation>Program {0} sürede bitti</translation>
     </message>
@@ -1421,7 +1426,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program duruşu (M0)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="417" />
+      <location filename="../../app/pages/auto.py" line="423" />
       <source>Program stopped at line {0}: {1}</source>
       <translation>Program {0}. satırda durdu: {1}</translation>
     </message>
@@ -1463,7 +1468,7 @@ BIRAK</translation>
       <translation>Aralık: {0} ile {1} arası</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="134" />
+      <location filename="../../app/pages/auto.py" line="135" />
       <source>Rapid override</source>
       <translation>Hızlı hareket oranı</translation>
     </message>
@@ -1508,7 +1513,7 @@ BIRAK</translation>
       <translation>Tüm takım tablosu {0} ile değiştirilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="58" />
+      <location filename="../../app/pages/alarms.py" line="46" />
       <source>Reset</source>
       <translation>Sıfırla</translation>
     </message>
@@ -1523,7 +1528,7 @@ BIRAK</translation>
       <translation>Sonuç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="253" />
+      <location filename="../../app/pages/auto.py" line="254" />
       <source>Resume at line {0}</source>
       <translation>{0}. satırdan devam et</translation>
     </message>
@@ -1533,22 +1538,22 @@ BIRAK</translation>
       <translation>Geri al</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="297" />
+      <location filename="../../app/pages/auto.py" line="298" />
       <source>Run from line</source>
       <translation>Satırdan çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="302" />
+      <location filename="../../app/pages/auto.py" line="303" />
       <source>Run from line refused: {0}</source>
       <translation>Satırdan çalıştırma reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="507" />
+      <location filename="../../app/pages/auto.py" line="513" />
       <source>Run from line: {0}</source>
       <translation>Satırdan çalıştır: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="125" />
+      <location filename="../../app/pages/auto.py" line="126" />
       <source>Run from line…</source>
       <translation>Satırdan çalıştır…</translation>
     </message>
@@ -1563,12 +1568,12 @@ BIRAK</translation>
       <translation>Problamayı çalıştır</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="230" />
+      <location filename="../../app/pages/auto.py" line="231" />
       <source>Run the program anyway?</source>
       <translation>Program yine de çalıştırılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="308" />
+      <location filename="../../app/pages/auto.py" line="309" />
       <source>Run the program from line {0}?</source>
       <translation>Program {0}. satırdan çalıştırılsın mı?</translation>
     </message>
@@ -1668,7 +1673,7 @@ BIRAK</translation>
       <translation>Önem</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="52" />
+      <location filename="../../app/pages/alarms.py" line="40" />
       <source>Show history</source>
       <translation>Geçmişi göster</translation>
     </message>
@@ -1683,7 +1688,7 @@ BIRAK</translation>
       <translation>Benzetim</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="115" />
+      <location filename="../../app/pages/auto.py" line="116" />
       <source>Single block</source>
       <translation>Tek blok</translation>
     </message>
@@ -1703,12 +1708,12 @@ BIRAK</translation>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="480" />
+      <location filename="../../app/pages/auto.py" line="486" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="137" />
+      <location filename="../../app/pages/auto.py" line="138" />
       <source>Spindle override</source>
       <translation>İş mili oranı</translation>
     </message>
@@ -1718,7 +1723,7 @@ BIRAK</translation>
       <translation>İş mili devri</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="481" />
+      <location filename="../../app/pages/auto.py" line="487" />
       <source>Spindle {0} {1:.0f} rpm</source>
       <translation>İş mili {0} {1:.0f} dev/dk</translation>
     </message>
@@ -1733,7 +1738,7 @@ BIRAK</translation>
       <translation>Başlangıç</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="240" />
+      <location filename="../../app/pages/auto.py" line="241" />
       <source>Start from the beginning</source>
       <translation>Baştan başlat</translation>
     </message>
@@ -1793,12 +1798,12 @@ BIRAK</translation>
       <translation>Kontrol düzgün kapanmadı: program çalıştırmadan önce eksenleri referanslayın (Makine sıfırı, Tüm eksenleri referansla)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="268" />
+      <location filename="../../app/pages/auto.py" line="269" />
       <source>The machine goes there the way drawn</source>
       <translation>Makine oraya çizilen yoldan gider</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="265" />
+      <location filename="../../app/pages/auto.py" line="266" />
       <source>The machine goes up to Z{0:.3f} (machine), across, then down to it the way drawn</source>
       <translation>Makine Z{0:.3f} (makine) yüksekliğine çıkar, yatay gider, sonra çizilen yoldan oraya iner</translation>
     </message>
@@ -1828,12 +1833,12 @@ BIRAK</translation>
       <translation>Prob yüze doğru hareket eder:</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="247" />
+      <location filename="../../app/pages/auto.py" line="248" />
       <source>The program stopped at line {0} ({1}).</source>
       <translation>Program {0}. satırda durdu ({1}).</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="242" />
+      <location filename="../../app/pages/auto.py" line="243" />
       <source>The program stopped at line {0} and cannot resume there: {1}</source>
       <translation>Program {0}. satırda durdu ve oradan devam edemez: {1}</translation>
     </message>
@@ -1863,7 +1868,7 @@ BIRAK</translation>
       <translation>Zaman</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="115" />
+      <location filename="../../app/widgets/dro.py" line="117" />
       <source>To go</source>
       <translation>Kalan</translation>
     </message>
@@ -1878,7 +1883,7 @@ BIRAK</translation>
       <translation>Takım değişimi</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="483" />
+      <location filename="../../app/pages/auto.py" line="489" />
       <source>Tool {0}</source>
       <translation>Takım {0}</translation>
     </message>
@@ -1958,7 +1963,7 @@ BIRAK</translation>
       <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="135" />
+      <location filename="../../app/controller_text.py" line="139" />
       <source>T{0} length {1} mm is longer than the Z travel ({2} mm): check the value and the surface it was touched off on</source>
       <translation>T{0} boyu {1} mm, Z hareket aralığından ({2} mm) uzun: değeri ve dokundurulduğu yüzeyi kontrol edin</translation>
     </message>
@@ -2018,17 +2023,17 @@ BIRAK</translation>
       <translation>Duvarların probdan göre yeri:</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="61" />
+      <location filename="../../app/widgets/dro.py" line="63" />
       <source>Work</source>
       <translation>İş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="42" />
+      <location filename="../../app/widgets/dro.py" line="44" />
       <source>Work = tool tip in {0}</source>
       <translation>İş = takım ucu, {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="105" />
+      <location filename="../../app/pages/preview.py" line="104" />
       <source>Work coordinates ({0}): the cross is the work zero, the dashed box the machine's travel.</source>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
@@ -2053,7 +2058,7 @@ BIRAK</translation>
       <translation>{0} XY döndürmesi: {1} derece</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="35" />
+      <location filename="../../app/widgets/dro.py" line="37" />
       <source>XY turned {0:g}°</source>
       <translation>XY {0:g}° döndürülmüş</translation>
     </message>
@@ -2088,12 +2093,12 @@ BIRAK</translation>
       <translation>L = {0} dereceli bir NURBS, başlangıç dahil en az {1} kontrol noktası ister; {2} tane var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="146" />
+      <location filename="../../app/controller_text.py" line="150" />
       <source>a bore</source>
       <translation>bir delik</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="147" />
+      <location filename="../../app/controller_text.py" line="151" />
       <source>a boss</source>
       <translation>bir çıkıntı</translation>
     </message>
@@ -2138,12 +2143,12 @@ BIRAK</translation>
       <translation>önce etkin alarmları onaylayın</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="104" />
+      <location filename="../../app/pages/alarms.py" line="92" />
       <source>acknowledged</source>
       <translation>onaylandı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="104" />
+      <location filename="../../app/pages/alarms.py" line="92" />
       <source>active</source>
       <translation>etkin</translation>
     </message>
@@ -2158,17 +2163,17 @@ BIRAK</translation>
       <translation>zaten bağlı (makine {0} durumunda)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="146" />
+      <location filename="../../app/controller_text.py" line="150" />
       <source>an edge</source>
       <translation>bir kenar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="146" />
+      <location filename="../../app/controller_text.py" line="150" />
       <source>an inside corner</source>
       <translation>bir iç köşe</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="146" />
+      <location filename="../../app/controller_text.py" line="150" />
       <source>an outside corner</source>
       <translation>bir dış köşe</translation>
     </message>
@@ -2196,6 +2201,11 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="31" />
       <source>approach move: {0}</source>
       <translation>yaklaşma hareketi: {0}</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="130" />
+      <source>arc extreme</source>
+      <translation>yayın uç noktası</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="221" />
@@ -2293,6 +2303,11 @@ BIRAK</translation>
       <translation>{0} ekseni bu makinede yok (eksenler: {1})</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="129" />
+      <source>axis {0} reaches {1} ({2}), beyond its soft limit {3} {4}</source>
+      <translation>{0} ekseni {1} değerine ulaşıyor ({2}), yazılım sınırının ötesinde: {3} {4}</translation>
+    </message>
+    <message>
       <location filename="../../app/message_text.py" line="40" />
       <source>axis {0} would reach {1}, beyond its soft limit [{2}, {3}]</source>
       <translation>{0} ekseni {1} konumuna, yazılım sınırının [{2}, {3}] ötesine giderdi</translation>
@@ -2303,7 +2318,7 @@ BIRAK</translation>
       <translation>blok atlama programın hangi satırlara sahip olduğunu değiştirir: çevrim başlatmadan önce değiştirin, çalışırken değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="27" />
+      <location filename="../../app/controller_text.py" line="221" />
       <source>bus</source>
       <translation>veri yolu</translation>
     </message>
@@ -2503,7 +2518,7 @@ BIRAK</translation>
       <translation>saat yönünde</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="152" />
+      <location filename="../../app/controller_text.py" line="156" />
       <source>column {0}: {1}</source>
       <translation>sütun {0}: {1}</translation>
     </message>
@@ -2513,17 +2528,17 @@ BIRAK</translation>
       <translation>tamamlandı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="28" />
+      <location filename="../../app/controller_text.py" line="222" />
       <source>configuration</source>
       <translation>yapılandırma</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="72" />
+      <location filename="../../app/widgets/bus_view.py" line="73" />
       <source>connected</source>
       <translation>bağlı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="28" />
+      <location filename="../../app/controller_text.py" line="222" />
       <source>controller</source>
       <translation>denetleyici</translation>
     </message>
@@ -2546,6 +2561,11 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="254" />
       <source>cutter compensation works in the XY (G17) or XZ (G18) plane, not in {0}</source>
       <translation>kesici telafisi XY (G17) ya da XZ (G18) düzleminde çalışır, {0} içinde değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="51" />
+      <source>cycles</source>
+      <translation>çevrim</translation>
     </message>
     <message>
       <location filename="../../app/widgets/probing_panel.py" line="299" />
@@ -2578,7 +2598,7 @@ BIRAK</translation>
       <translation>sürücü referanslama yöntemi {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="37" />
+      <location filename="../../app/controller_text.py" line="231" />
       <source>drive {0}</source>
       <translation>sürücü {0}</translation>
     </message>
@@ -2608,6 +2628,11 @@ BIRAK</translation>
       <translation>açmak</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="130" />
+      <source>end point</source>
+      <translation>bitiş noktası</translation>
+    </message>
+    <message>
       <location filename="../../app/message_text.py" line="256" />
       <source>every NURBS control point needs a positive weight P</source>
       <translation>her NURBS kontrol noktası pozitif bir P ağırlığı ister</translation>
@@ -2623,7 +2648,7 @@ BIRAK</translation>
       <translation>ilerleme durduruldu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="137" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again</source>
       <translation>iş mili dururken ilerleme hareketi: {0}. satırdaki M6 onu durdurdu ve hiçbir M3/M4 yeniden başlatmadı</translation>
     </message>
@@ -2703,12 +2728,17 @@ BIRAK</translation>
       <translation>bilgi</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="225" />
+      <source>input</source>
+      <translation>giriş</translation>
+    </message>
+    <message>
       <location filename="../../app/message_text.py" line="60" />
       <source>input {0} is not in the program</source>
       <translation>{0} girişi programda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="127" />
+      <location filename="../../app/controller_text.py" line="131" />
       <source>interrupted at line {0}: the control stopped (power loss or killed)</source>
       <translation>{0}. satırda kesildi: kontrol durdu (elektrik kesintisi veya sonlandırma)</translation>
     </message>
@@ -2763,6 +2793,11 @@ BIRAK</translation>
       <translation>makine iş ofseti {0}, {2} eksen için {1} değer içeriyor</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="130" />
+      <source>max</source>
+      <translation>maks</translation>
+    </message>
+    <message>
       <location filename="../../app/widgets/tracking_view.py" line="104" />
       <source>max |e|</source>
       <translation>en büyük |e|</translation>
@@ -2776,6 +2811,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="114" />
       <source>measuring tool T{0}</source>
       <translation>T{0} takımı ölçülüyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="130" />
+      <source>min</source>
+      <translation>min</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="263" />
@@ -2863,7 +2903,7 @@ BIRAK</translation>
       <translation>iş milinde takım yok, prob T{0} de yok: probu takın ve bildirin (İş milinde ya da M61 Q{1})</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="41" />
+      <location filename="../../app/widgets/dro.py" line="43" />
       <source>no tool length offset</source>
       <translation>takım boy ofseti yok</translation>
     </message>
@@ -2878,7 +2918,7 @@ BIRAK</translation>
       <translation>yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="72" />
+      <location filename="../../app/widgets/bus_view.py" line="73" />
       <source>not connected</source>
       <translation>bağlı değil</translation>
     </message>
@@ -2918,7 +2958,7 @@ BIRAK</translation>
       <translation>kapalı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="28" />
+      <location filename="../../app/controller_text.py" line="222" />
       <source>operator</source>
       <translation>operatör</translation>
     </message>
@@ -2938,7 +2978,7 @@ BIRAK</translation>
       <translation>{0} çıkışı kapatılamadı: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="31" />
+      <location filename="../../app/controller_text.py" line="225" />
       <source>outputs</source>
       <translation>çıkışlar</translation>
     </message>
@@ -2993,7 +3033,12 @@ BIRAK</translation>
       <translation>o{0} {1} köşeli parantez içinde bir koşul ister</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="27" />
+      <location filename="../../app/controller_text.py" line="130" />
+      <source>path</source>
+      <translation>yol</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="221" />
       <source>planner</source>
       <translation>planlayıcı</translation>
     </message>
@@ -3023,7 +3068,7 @@ BIRAK</translation>
       <translation>elektrik kesintisi veya sonlandırma</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="29" />
+      <location filename="../../app/controller_text.py" line="223" />
       <source>probe</source>
       <translation>prob</translation>
     </message>
@@ -3033,17 +3078,17 @@ BIRAK</translation>
       <translation>{0} prob sonucunda {1} eksen için konum var, makinede {2} eksen var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="143" />
+      <location filename="../../app/controller_text.py" line="147" />
       <source>probe touched during positioning</source>
       <translation>konumlanma sırasında prob temas etti</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="145" />
+      <location filename="../../app/controller_text.py" line="149" />
       <source>probed (machine): {0} (only reported)</source>
       <translation>problandı (makine): {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="144" />
+      <location filename="../../app/controller_text.py" line="148" />
       <source>probed (machine): {0}, written to {1}</source>
       <translation>problandı (makine): {0}, {1} sistemine yazıldı</translation>
     </message>
@@ -3053,17 +3098,17 @@ BIRAK</translation>
       <translation>bir parçayı problamak X, Y ve Z eksenlerini ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="144" />
+      <location filename="../../app/controller_text.py" line="148" />
       <source>probing {0}</source>
       <translation>prob ölçümü: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="140" />
+      <location filename="../../app/controller_text.py" line="144" />
       <source>probing {0}: {1}</source>
       <translation>prob ölçümü: {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="30" />
+      <location filename="../../app/controller_text.py" line="224" />
       <source>program</source>
       <translation>program</translation>
     </message>
@@ -3118,6 +3163,11 @@ BIRAK</translation>
       <translation>döner</translation>
     </message>
     <message>
+      <location filename="../../app/pages/manual.py" line="60" />
+      <source>rpm</source>
+      <translation>dev/dk</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="124" />
       <source>run from line {0}</source>
       <translation>{0}. satırdan çalıştırma</translation>
@@ -3168,7 +3218,7 @@ BIRAK</translation>
       <translation>hız 0-{0} dev/dak olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="30" />
+      <location filename="../../app/controller_text.py" line="224" />
       <source>spindle</source>
       <translation>iş mili</translation>
     </message>
@@ -3228,12 +3278,17 @@ BIRAK</translation>
       <translation>{1} içinde iş mili {0} dönüyor</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/bus_view.py" line="50" />
+      <source>start jitter (µs)</source>
+      <translation>başlangıç sapması (µs)</translation>
+    </message>
+    <message>
       <location filename="../../app/message_text.py" line="293" />
       <source>start_position has {0} values for {1} axes</source>
       <translation>start_position, {1} eksen için {0} değer içeriyor</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="29" />
+      <location filename="../../app/controller_text.py" line="223" />
       <source>state folder</source>
       <translation>durum klasörü</translation>
     </message>
@@ -3268,22 +3323,22 @@ BIRAK</translation>
       <translation>alt yordam çağrıları {0} düzeyden derin (sonsuz özyineleme mi?)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="146" />
+      <location filename="../../app/controller_text.py" line="150" />
       <source>the Z surface</source>
       <translation>Z yüzeyi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="147" />
+      <location filename="../../app/controller_text.py" line="151" />
       <source>the angle of a face</source>
       <translation>bir yüzün açısı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="145" />
       <source>the bore measures {0} mm across, not {1} mm within {2} mm: nothing written</source>
       <translation>delik çapı {0} mm ölçüldü, {2} mm içinde {1} mm değil: hiçbir şey yazılmadı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="142" />
+      <location filename="../../app/controller_text.py" line="146" />
       <source>the boss measures {0} mm across, not {1} mm within {2} mm: nothing written</source>
       <translation>pim çapı {0} mm ölçüldü, {2} mm içinde {1} mm değil: hiçbir şey yazılmadı</translation>
     </message>
@@ -3443,12 +3498,12 @@ BIRAK</translation>
       <translation>yavaş prob ilerlemesi F{0}, hızlı olan F{1} mm/dk değerinin altında olmalı: kenar yavaş olanla okunur</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="271" />
+      <location filename="../../app/pages/auto.py" line="272" />
       <source>the spindle starts at {0:.0f} rpm {1} before it goes down</source>
       <translation>iş mili inmeden önce {0:.0f} dev/dk {1} döner</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="270" />
+      <location filename="../../app/pages/auto.py" line="271" />
       <source>the spindle stays off</source>
       <translation>iş mili kapalı kalır</translation>
     </message>
@@ -3458,12 +3513,12 @@ BIRAK</translation>
       <translation>yüzey yüksekliği bir sayı olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="150" />
+      <location filename="../../app/controller_text.py" line="154" />
       <source>the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again</source>
       <translation>{0} parçalık hedefe ulaşıldı: yeniden çalıştırmak için parça sayacını sıfırlayın (ya da hedefi yükseltin)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="128" />
+      <location filename="../../app/controller_text.py" line="132" />
       <source>the tool length offset in force changed since it was loaded</source>
       <translation>yüklendiğinden beri geçerli takım boy ofseti değişti</translation>
     </message>
@@ -3533,12 +3588,12 @@ BIRAK</translation>
       <translation>kesici telafisiyle takım yarıçapı yay yarıçapından küçük değil</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="273" />
+      <location filename="../../app/pages/auto.py" line="274" />
       <source>tool {0}</source>
       <translation>takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/dro.py" line="39" />
+      <location filename="../../app/widgets/dro.py" line="41" />
       <source>tool {0}length {1} mm</source>
       <translation>takım {0}boy {1} mm</translation>
     </message>
@@ -3548,12 +3603,12 @@ BIRAK</translation>
       <translation>tool_offset {0}: G43, G43.1, G43.2 ya da G49 ve {1} değer</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="29" />
+      <location filename="../../app/controller_text.py" line="223" />
       <source>tools</source>
       <translation>takımlar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="133" />
+      <location filename="../../app/controller_text.py" line="137" />
       <source>touch off {0}: not a number</source>
       <translation>{0} sıfırlama: sayı değil</translation>
     </message>
@@ -3568,7 +3623,7 @@ BIRAK</translation>
       <translation>kapanmamış açıklama: ')' olmadan '('</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="65" />
+      <location filename="../../app/widgets/bus_view.py" line="66" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
     </message>
@@ -3613,7 +3668,7 @@ BIRAK</translation>
       <translation>{0} kelimesi desteklenmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="27" />
+      <location filename="../../app/controller_text.py" line="221" />
       <source>worker</source>
       <translation>çevrim işçisi</translation>
     </message>
@@ -3878,7 +3933,7 @@ BIRAK</translation>
       <translation>{0}, {1} değer ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="149" />
+      <location filename="../../app/controller_text.py" line="153" />
       <source>{0} part(s) made: the target of {1} is reached</source>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
@@ -3908,7 +3963,7 @@ BIRAK</translation>
       <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="442" />
+      <location filename="../../app/pages/auto.py" line="448" />
       <source>{0} was saved with changes since it was loaded: the machine runs the program as loaded.</source>
       <translation>{0} yüklendikten sonra değişikliklerle kaydedildi: makine programı yüklendiği haliyle çalıştırır.</translation>
     </message>
@@ -3938,17 +3993,17 @@ BIRAK</translation>
       <translation>{0} {1} (parça sıfırının makine koordinatı)</translation>
     </message>
     <message>
-      <location filename="../../app/pages/alarms.py" line="121" />
+      <location filename="../../app/pages/alarms.py" line="109" />
       <source>{0} {1} ({2}, {3}): {4}</source>
       <translation>{0} {1} ({2}, {3}): {4}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="130" />
+      <location filename="../../app/controller_text.py" line="134" />
       <source>{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı, geçerli takım boy ofsetiyle makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="132" />
+      <location filename="../../app/controller_text.py" line="136" />
       <source>{0} {1} zero would be at machine {2}, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
@@ -4018,7 +4073,7 @@ BIRAK</translation>
       <translation>{0}: UTF-8 değil ve bir boru Latin-1 olarak yeniden okunamaz</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="134" />
+      <location filename="../../app/controller_text.py" line="138" />
       <source>{0}: not a number</source>
       <translation>{0}: sayı değil</translation>
     </message>
@@ -4098,7 +4153,7 @@ BIRAK</translation>
       <translation>{0}: sonuçla birlikte {1} dosyasının {2}. satırı şöyle okunuyor: {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="504" />
+      <location filename="../../app/pages/auto.py" line="510" />
       <source>{0}: {1}</source>
       <translation>{0}: {1}</translation>
     </message>

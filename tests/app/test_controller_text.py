@@ -138,3 +138,30 @@ def test_the_planner_choices_and_the_plot_are_said_in_turkish(qtbot, fake_window
     finally:
         window.context.i18n.set_language("en")
     assert params.interp_buttons["exact"].text() == "Exact"
+
+
+def test_a_soft_limit_an_e_stop_by_the_operator_and_the_alarm_banner_are_said_in_turkish(
+        qtbot, turkish, fake_window, fake_controller) -> None:
+    """Sentences the planner and the controller make of parts: a path beyond the travel (read
+    from a program), the run log's "E-stop: operator", and the banner's source."""
+    from app.machine.model import Alarm, AlarmState, Severity
+    from planner.core.machine import MachineSpec
+    from planner.pipeline import SoftLimitError, load
+
+    with pytest.raises(SoftLimitError) as caught:
+        load("G0 X5000\n", "far.nc", MachineSpec.default(), lambda p: p)
+    said = localize(f"soft limit: {str(caught.value.violations[0]).split(': ', 1)[1]}")
+    assert "reaches" not in said and "beyond" not in said and "end point" not in said, said
+    assert "X ekseni 5000.0000 değerine ulaşıyor (bitiş noktası)" in said
+    assert localize("E-stop: operator") == "Acil stop: operatör"
+    fake_window.context.i18n.set_language("tr")
+    try:
+        fake_controller.alarmsChanged.emit((Alarm(1, 0.0, "operator", "E-stop pressed", Severity.ESTOP,
+                                                  AlarmState.ACTIVE, "estop"),))
+        banner = fake_window.header.alarm_banner.text()
+        assert "operatör" in banner and "operator" not in banner, banner
+        plot = fake_window.page("diagnostics").bus.histogram.getPlotItem()
+        assert [plot.getAxis(side).labelText for side in ("bottom", "left")] == [
+            "başlangıç sapması (µs)", "çevrim"]
+    finally:
+        fake_window.context.i18n.set_language("en")
