@@ -25,7 +25,8 @@ def test_format_position(value: float, text: str) -> None:
 
 
 @pytest.mark.parametrize(("value", "wrapped", "text"), [
-    (12.3456, False, "+12.346°"), (-90.0, False, "-90.000°"), (-90.0, True, "+270.000°"), (359.9999, True, "+0.000°"),
+    (12.3456, False, "+12.346°"), (-90.0, False, "-90.000°"), (-90.0, True, "+270.000°"),
+    (359.9999, True, "+0.000°"),
 ])
 def test_a_rotary_position_reads_in_degrees(value: float, wrapped: bool, text: str) -> None:
     assert format_position(value, rotary=True, wrapped=wrapped) == text
