@@ -12,11 +12,17 @@ __all__ = ["CONTROLLER_TEMPLATES", "GCODE_TEMPLATES"]
 CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('E-stop is not active'),
     N_('G4 dwells between the moves of a program; a block without motion has nothing to wait for'),
+    N_('M0 pauses a running program; an MDI block has nothing to pause'),
+    N_('M1 pauses a running program; an MDI block has nothing to pause'),
+    N_('M6 runs in a program; in MDI put the tool in by hand and say which it is with M61 Q<n> (or on the Tools page)'),  # noqa: E501
     N_('M66 (line {0}): input P{1} is not on this machine ([[inputs]])'),
     N_('M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1'),
     N_('M66 (line {0}): the drive of input P{1} does not send its digital inputs (0x60FD)'),
+    N_('M66 reads an input for the program that follows it; an MDI block keeps no value for the next one (the Diagnostics page shows the inputs)'),  # noqa: E501
+    N_('M7/M8/M9: no coolant output is configured on this machine'),
     N_('MDI takes one block (one line)'),
     N_("S{0} is over the spindle's maximum of {1} rpm ([controller] spindle_max_rpm)"),
+    N_("T selects the tool for a program's M6; in MDI say which tool is in the spindle with M61 Q<n>"),  # noqa: E501
     N_("T{0} has no tip diameter in the tool table: the edges found would be off by the ball's radius"),  # noqa: E501
     N_('T{0} is in the spindle, not the probe T{1}: a probing move would feed it into the part; put the probe in and say so (In the spindle, or M61 Q{2})'),  # noqa: E501
     N_('T{0} is in the spindle: set another tool first'),
@@ -27,6 +33,9 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('a probe move ended without the probe armed: the program stops here'),
     N_('acknowledge the active alarms first'),
     N_('already connected (machine is {0})'),
+    N_('an edge'),
+    N_('an inside corner'),
+    N_('an outside corner'),
     N_('approach move: soft limit: {0}'),
     N_('approach move: {0}'),
     N_('axes changed: reconnect the bus to apply'),
@@ -88,6 +97,8 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
     N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
     N_('stopped by the operator'),
+    N_('the Z surface'),
+    N_('the angle of a face'),
     N_('the depth below the start must be above 0 mm'),
     N_('the diameter must be above 0 mm'),
     N_("the diameter's tolerance must be above 0 mm"),
@@ -151,6 +162,11 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('G10 L{0} is not a G10 this control knows (L0, L1, L2, L10, L11, L20)'),
     N_('G10 L{0} needs P with the tool number (1 or more)'),
     N_('G10 needs an L word (L2 or L20: coordinate system; L1, L10, L11: tool table)'),
+    N_('G15 polar coordinates'),
+    N_('G16 polar coordinates'),
+    N_('G17.1 selects the UV plane, of U and V axes this machine does not have'),
+    N_('G18.1 selects the WU plane, of U and W axes this machine does not have'),
+    N_('G19.1 selects the VW plane, of V and W axes this machine does not have'),
     N_("G33.1 in G96: the tap's pitch needs a known speed; program G97 and S in rpm"),
     N_('G33.1 moves the linear axes only'),
     N_('G33.1: the pitch K{0} must be above 0'),
@@ -159,6 +175,8 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('G53 cannot be used in incremental mode (G91)'),
     N_('G53 needs G00 or G01'),
     N_('G53 needs G00 or G01 with axis words'),
+    N_('G68 coordinate rotation'),
+    N_('G69 coordinate rotation'),
     N_("G76 needs I, J and K words (the thread's offset, first cut and depth): {0} missing"),
     N_('G76 needs a P word (the thread pitch, length per turn)'),
     N_('G76 threads along Z and cuts in X: this machine has no {0} axis'),
@@ -170,6 +188,8 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('G76: K (the full thread depth) must be greater than J'),
     N_('G76: L{0} (taper ends) must be a whole number of 0 or more'),
     N_('G76: the pitch P{0} must be above 0'),
+    N_("G87 back boring: it needs an oriented spindle stop (M19), which this machine's spindle does not have"),  # noqa: E501
+    N_('G88 boring with a manual retract: the operator would jog the spindle out during a program stop; use G86 or G89'),  # noqa: E501
     N_('G90.1 (absolute arc centre) needs both {0} and {1}'),
     N_('G93 inverse time: every feed move needs its F word (1/F minutes)'),
     N_('G95 feed per revolution in G96: the speed would follow X, and this spindle has no speed output to follow it; program G97 and S in rpm'),  # noqa: E501
@@ -181,7 +201,9 @@ GCODE_TEMPLATES: tuple[str, ...] = (
     N_('L word with no canned cycle, G05.2, G10, G76 or M66 to use it'),
     N_('L{0}: more than {1} repeats in one block'),
     N_('L{0}: the repeats of a cycle are a whole number of 1 or more'),
+    N_("M19 orients the spindle, which this machine's spindle cannot"),
     N_('M52 (adaptive feed) scales the feed by an input this machine does not have'),
+    N_('M60 exchanges pallets and pauses; this machine has no pallet shuttle'),
     N_('M61 needs a Q word (the tool now in the spindle)'),
     N_('M66 E (an analog input): this machine has no analog inputs'),
     N_('M66 L{0}: the wait mode is 0 (now), 1 (rise), 2 (fall), 3 (high) or 4 (low)'),

@@ -127,6 +127,15 @@ def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Patt
             returned = _returned(tree, refusals)
             for node in ast.walk(tree):
                 template = None
+                if (isinstance(node, ast.Assign) and len(node.targets) == 1
+                        and isinstance(node.value, ast.Dict) and isinstance(node.targets[0], ast.Name)
+                        and node.targets[0].id.isupper()):
+                    # a table of sentences (what an MDI block may not do, and why): each value
+                    for value in node.value.values:
+                        said = _template(value)
+                        if said is not None and " " in said and literal_letters(said) >= MIN_WORDS:
+                            found.add(said)
+                    continue
                 if id(node) in returned and isinstance(node, ast.expr):
                     template = _template(node)
                 elif isinstance(node, ast.Call) and node.args:

@@ -152,7 +152,7 @@ def test_a_soft_limit_an_e_stop_by_the_operator_and_the_alarm_banner_are_said_in
         load("G0 X5000\n", "far.nc", MachineSpec.default(), lambda p: p)
     said = localize(f"soft limit: {str(caught.value.violations[0]).split(': ', 1)[1]}")
     assert "reaches" not in said and "beyond" not in said and "end point" not in said, said
-    assert "X ekseni 5000.0000 değerine ulaşıyor (bitiş noktası)" in said
+    assert "X ekseni 5000.0000 değerine ulaşıyor (bitiş noktası), yazılım sınırının ötesinde: üst" in said
     assert localize("E-stop: operator") == "Acil stop: operatör"
     fake_window.context.i18n.set_language("tr")
     try:
