@@ -127,8 +127,14 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self._program_label)
         # said again in the other language when the operator switches: the sentence, not its words
         ctx.controller.message.connect(lambda text: self.show_message(lambda: localize(text)))
-        ctx.controller.commandRefused.connect(
-            lambda action, reason: self.show_message(lambda: tr("Refused: {0}").format(localize(reason))))
+        ctx.controller.commandRefused.connect(self._on_refused)
+        self._refusal_shown = False
+        # a refusal is not left standing once something was done since: a change of state,
+        # activity, offsets, tools, homing, overrides, modes or the program loaded clears it
+        c = ctx.controller
+        for done in (c.stateChanged, c.activityChanged, c.offsetsChanged, c.toolsChanged, c.homedChanged,
+                     c.overridesChanged, c.modesChanged, c.programLoaded):
+            done.connect(lambda *_args: self._clear_refusal())
         ctx.controller.programLoaded.connect(self._on_program_loaded)
         ctx.controller.programErrors.connect(self._on_program_errors)
         ctx.controller.programReadAgain.connect(ctx.program.set_read_again)
@@ -331,8 +337,17 @@ class MainWindow(QMainWindow):
 
     def show_message(self, text: str | Callable[[], str]) -> None:
         """The status line: a text, or how to say it (said again when the language changes)."""
+        self._refusal_shown = False
         self._message_source = text if callable(text) else None
         self._message.setText(text() if callable(text) else text)
+
+    def _on_refused(self, _action: str, reason: str) -> None:
+        self.show_message(lambda: tr("Refused: {0}").format(localize(reason)))
+        self._refusal_shown = True
+
+    def _clear_refusal(self) -> None:
+        if self._refusal_shown:
+            self.show_message("")
 
     def closeEvent(self, event: QCloseEvent) -> None:  # noqa: N802 - Qt override
         for page in self._pages.values():

@@ -204,8 +204,6 @@ class MachineController(QObject):
         the command line's ``--opcua-port`` / ``--opcua-insecure`` over it."""
         super().__init__(parent)
         out, events, pauses = PanelChannels(), MachineEvents(), PauseHandlers()
-        for name in PanelChannels.names():
-            getattr(out, name).connect(getattr(self, name).emit)
         store = StateStore(state_dir if state_dir is not None else DEFAULT_STATE_DIR, exclusive=True)
         try:
             self.settings = settings = MachineSettings(config, store)
@@ -250,6 +248,10 @@ class MachineController(QObject):
         self.remote = remote = RemoteMonitoring(settings, store.dir, alarms, events, opcua)
         self.status.published.connect(remote.publish)
         poller.on_poll(remote.poll)
+        # the panel hears each fact after the parts have (the run log has the run that ended
+        # when programFinished reaches the pages)
+        for name in PanelChannels.names():
+            getattr(out, name).connect(getattr(self, name).emit)
         conn.restore_persisted()
         for text in store.problems:
             alarms.raise_alarm("persistence", text, Severity.WARNING, "state_file")

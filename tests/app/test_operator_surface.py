@@ -524,3 +524,29 @@ def test_while_another_program_is_checked_auto_shows_nothing_of_the_one_before(
     assert seen["label"] == "second.nc" and seen["text"] == "" and seen["path"] is None
     assert "Line 0" in str(seen["info"])
     qtbot.waitUntil(lambda: auto.editor.toPlainText() == other, timeout=10_000)
+
+
+def test_the_production_log_shows_a_run_as_soon_as_it_ends(qtbot, demo_window, real_controller) -> None:
+    """The run log is written before the panel hears that the run ended: the Production table
+    has the run at once (not one run behind until something else refreshes it)."""
+    c = real_controller
+    production = demo_window.page("diagnostics").production
+    rows = production.table.rowCount()
+    assert c.load_program(LONG, name="logged.nc", wait=True) and c.cycle_start(wait=True)
+    assert c.run_until(lambda: c.state is MachineState.IDLE and c.last_run is not None, 60)
+    assert production.table.rowCount() == rows + 1
+    assert production.table.item(0, 1).text() == "logged.nc"           # newest first
+
+
+def test_a_refusal_does_not_stay_in_the_status_line_once_something_was_done(demo_window,
+                                                                            real_controller) -> None:
+    """Refused, then done: the status line no longer says the old refusal (a later message stays)."""
+    c = real_controller
+    assert not c.set_feed_override(500.0)
+    assert demo_window._message.text().startswith("Refused: feed override must be 0-200 %")
+    assert c.set_feed_override(80.0)                         # done: the refusal is past
+    assert demo_window._message.text() == ""
+    assert not c.set_feed_override(-1.0)
+    assert demo_window._message.text().startswith("Refused:")
+    assert c.mdi("G91 G0 X1")                                 # the machine moves: past too
+    assert demo_window._message.text() == ""
