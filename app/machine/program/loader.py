@@ -45,7 +45,6 @@ from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.model import CommandResult, ProgramInfo, ProgramIssue
 from app.machine.motion.making import JobMaker
 from app.machine.motion.plans import single_block_program
-from app.machine.motion.refusals import limit_issues
 from app.machine.ports import (
     CoordinatesView,
     MotionState,
@@ -247,10 +246,6 @@ class ProgramLoader:
         return self._states.ok(Action.LOAD_PROGRAM)
 
     # --- internals -----------------------------------------------------------------------
-    def check_program_limits(self, program: Program) -> list[ProgramIssue]:
-        """Soft-limit issues of a program's whole path (also used by MDI and run from line)."""
-        return limit_issues(program, self._coordinates.machine())
-
     def _let_go(self) -> None:
         """A load replaces the loaded program whatever its outcome (a refused one unloads it,
         as LinuxCNC drops a file it failed to open), so the program is let go as the load
