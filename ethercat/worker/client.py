@@ -44,7 +44,7 @@ from ..errors import ConfigurationError, WorkerError, WorkerTimeoutError
 from .cycle import CycleLoop
 from .messages import INJECT_NAMES, Command, Result, alarm_message, event_message
 from .process import process_main, start_without_main
-from .shared import ALARM_SLOTS, HIST_BIN_S, SharedBlock, Status, require_ordered_stores
+from .shared import ALARM_SLOTS, HIST_BIN_S, SharedBlock, Status, require_ordered_stores, trace_columns
 from .types import (
     Alarm,
     AlarmCode,
@@ -579,9 +579,10 @@ class CyclicWorker:
         start = max(self._trace_read, head - cap)
         dropped = start - self._trace_read
         idx = np.arange(start, head) % cap if cap else np.zeros(0, dtype=np.int64)
-        rows = block.trace[idx].copy() if cap else np.zeros((0, 1 + 2 * n))
+        rows = block.trace[idx].copy() if cap else np.zeros((0, trace_columns(n)))
         self._trace_read = head
-        return TraceChunk(rows[:, 0].astype(np.int64), rows[:, 1:1 + n], rows[:, 1 + n:], dropped)
+        return TraceChunk(rows[:, 0].astype(np.int64), rows[:, 1:1 + n], rows[:, 1 + n:1 + 2 * n], dropped,
+                          rows[:, -1].astype(np.int64))
 
 
 def _percentile(hist: np.ndarray, q: float) -> float:

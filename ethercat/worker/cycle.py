@@ -65,6 +65,8 @@ class CycleLoop:
         self.ref_hist = np.zeros((REF_HISTORY, n))
         # row views made once, so the cycle indexes lists instead of creating array views
         self.ref_rows = [self.ref_hist[i] for i in range(REF_HISTORY)]
+        # the serial of the set-point in ``ref`` at each of those cycles (-1: none taken yet)
+        self.serial_hist = np.full(REF_HISTORY, -1, dtype=np.int64)
         self.ring_rows = [self.ring[i] for i in range(config.buffer_capacity)]
         self.tmp = np.zeros(n)
         self.tmp2 = np.zeros(n)
@@ -397,6 +399,7 @@ class CycleLoop:
             else:  # QUICK_STOP, FAULT, ERROR
                 cia402.QUICK_STOP_LUT.take(states, out=bus.controlword)
         np.copyto(self.ref_rows[cycle % REF_HISTORY], self.ref)
+        self.serial_hist[cycle % REF_HISTORY] = int(lv.consumed) - 1
         # ---- exchange
         wkc = bus.exchange()
         lv.wkc[...] = wkc
@@ -581,14 +584,16 @@ class CycleLoop:
         """Tracking error per axis against the set-point of ``tracking_delay_cycles`` ago (the
         following error computed in ``cycle``), and its trace row."""
         cycle = int(self.lv.cycle)
-        ref_d = self.ref_rows[(cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY]
+        back = (cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY
+        ref_d = self.ref_rows[back]
         self.tracker.add(self.fe)
         if self.trace_cap:
             h = int(self.ctl.trace_head)
             row = self.trace[h % self.trace_cap]
             row[0] = cycle
             row[1:1 + self.n] = ref_d
-            row[1 + self.n:] = self.act
+            row[1 + self.n:1 + 2 * self.n] = self.act
+            row[-1] = self.serial_hist[back]
             self.ctl.trace_head[...] = h + 1
 
     # ------------------------------------------------------------------ running

@@ -83,13 +83,20 @@ def live_dtype(n: int) -> np.dtype:
     ], align=True)
 
 
+
+def trace_columns(n: int) -> int:
+    """Columns of a trace row for n axes: cycle, reference (n), actual (n), the serial of the
+    reference's set-point."""
+    return 2 + 2 * n
+
+
 def block_dtype(n: int, capacity: int, trace_capacity: int) -> np.dtype:
     """The whole shared block for n axes, a ring of `capacity` set-points and a trace ring."""
     live = live_dtype(n)
     return np.dtype([
         ("control", _CONTROL), ("msg", "u1", (MSG_BYTES,)), ("live", live), ("snap", live),
         ("ring", "f8", (capacity, n)), ("stage", "f8", (capacity, n)),
-        ("alarm", _ALARM, (ALARM_SLOTS,)), ("trace", "f8", (max(trace_capacity, 1), 1 + 2 * n)),
+        ("alarm", _ALARM, (ALARM_SLOTS,)), ("trace", "f8", (max(trace_capacity, 1), trace_columns(n))),
     ], align=True)
 
 

@@ -195,13 +195,16 @@ class TraceChunk:
     """Per-cycle reference and actual positions drained from the worker (axis units).
 
     `reference[k]` is the set-point the actual position of cycle `cycle[k]` answers
-    (`tracking_delay_cycles` earlier), so `reference - actual` is the tracking error of Eq. 18.
+    (`tracking_delay_cycles` earlier), so `reference - actual` is the tracking error of Eq. 18;
+    `serial[k]` is that set-point's serial (the k-th taken since start; -1 before the first): a
+    producer tells from it which of its set-points each row is.
     """
 
     cycle: np.ndarray          # (N,) int64
     reference: np.ndarray      # (N, n_axes)
     actual: np.ndarray         # (N, n_axes)
     dropped: int               # cycles overwritten before they were drained
+    serial: np.ndarray | None = None   # (N,) int64
 
 
 @dataclass(frozen=True, slots=True)

@@ -164,7 +164,8 @@ def test_a_big_program_shown_goes_as_soon_as_another_is_checked(demo_window, rea
     leaves every page and the preview's thinned copies at that moment, not at the outcome (a
     10,000,000-line program checked again after a touch-off took the panel to 1.4 GB). Checked
     again, its text stays on screen; a program the panel opens, even the same one, takes the
-    text too. A small program stays on screen until the outcome."""
+    text too. Another program takes a small one off the screen too (nothing of it is shown as the
+    new one's); a small one checked again stays on screen until the outcome."""
     import gc
     import weakref
     from dataclasses import replace
@@ -225,8 +226,13 @@ def test_a_big_program_shown_goes_as_soon_as_another_is_checked(demo_window, rea
     small = model.toolpath
     assert small is not None and small.move_count < 5000
     with qtbot.waitSignal(c.programLoaded, timeout=20_000):
-        assert c.load_program(SHORT, name="again.nc")
+        assert c.update_config(cfg)                     # the same small program checked again
         assert c.loading and model.toolpath is small and preview.plot.path is small
+    qtbot.waitUntil(lambda: model.info is c.program_info, timeout=20_000)
+    with qtbot.waitSignal(c.programLoaded, timeout=20_000):
+        assert c.load_program(SHORT, name="again.nc")   # another program, small: it goes too
+        assert c.loading and model.toolpath is None and preview.plot.path is None
+        assert model.name == "again.nc" and auto.editor.toPlainText() == ""
 
 
 def test_a_configuration_change_leaves_a_big_program_to_the_controller_s_check(

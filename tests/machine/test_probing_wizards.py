@@ -179,7 +179,7 @@ class _Path:
 
     def __init__(self, ctl: MachineController) -> None:
         self.chunks: list[np.ndarray] = []
-        ctl.add_trace_sink(lambda _cycles, _reference, actual: self.chunks.append(np.array(actual)))
+        ctl.add_trace_sink(lambda _cycles, _reference, actual, _lines: self.chunks.append(np.array(actual)))
 
     def actual(self) -> np.ndarray:
         return np.concatenate(self.chunks)

@@ -184,3 +184,23 @@ def test_cnc_run_refuses_a_bad_script_before_running(tmp_path: Path, capsys) -> 
     script.write_text('{"op": "stop"}\n')
     assert run_cli.main([str(prog), "--sim", "--worker", "manual", "--script", str(script)]) == 2
     assert f"{script}:1: give exactly one of at_line or after_s" in capsys.readouterr().err
+
+
+def test_every_row_of_the_trace_carries_its_own_set_point_s_line(tmp_path: Path, capsys) -> None:
+    """Each row of the headless trace is tagged with the line of the set-point it sent (not the
+    line shown when its chunk was drained): the lines only ever go forward through a program
+    without jumps back, a row at rest at the M6 is the M6's line, and every motion line has
+    rows whose set-points lie on it."""
+    program = ("G21 G90\nG0 X10 Y0\nG1 X30 F3000\nG1 Y10\nT2 M6\nG1 X20 F600\nG1 Y0\nG0 X0\nM30\n")
+    (tmp_path / "t.tbl").write_text("T2 P2 Z0 D6 ;6 mm flat\n")
+    code, out, tr = run(tmp_path, capsys, program, [{"at_line": 5, "op": "tool_changed"}],
+                        "--tools", str(tmp_path / "t.tbl"))
+    assert code == 0 and out["completed"], out
+    line, ref = tr["line"], tr["reference"]
+    moving = np.flatnonzero(line > 0)
+    assert np.all(np.diff(line[moving]) >= 0), np.unique(line[moving])     # never back
+    assert set(np.unique(line[moving])) >= {2, 3, 4, 5, 6, 7, 8}
+    # where the set-points of each line lie: line 4 (G1 Y10) at X30, line 6 (G1 X20) at Y10
+    assert np.allclose(ref[line == 4][:, 0], 30.0, atol=1e-9)
+    assert np.allclose(ref[line == 6][:, 1], 10.0, atol=1e-9)
+    assert np.allclose(ref[line == 7][:, 0], 20.0, atol=1e-9)

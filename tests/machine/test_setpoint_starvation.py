@@ -25,7 +25,7 @@ ARC = "G1 X60 F1800\nG3 X60 Y40 R20\nM30\n"     # the arc: centre (60, 20), radi
 def _record(ctl: MachineController) -> list[np.ndarray]:
     """Every reference set-point the drives received (machine XY), in order."""
     rows: list[np.ndarray] = []
-    ctl.stream.add_trace_sink(lambda _cycles, ref, _act: rows.append(np.array(ref[:, :2])))
+    ctl.stream.add_trace_sink(lambda _cycles, ref, _act, _lines: rows.append(np.array(ref[:, :2])))
     return rows
 
 

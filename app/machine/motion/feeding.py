@@ -235,7 +235,7 @@ class SetpointQueue:
     def _record_chunk(self, job: Job, ch: ScaledChunk, state: tuple[object, ...], pushed: int) -> None:
         """Bookkeeping of a chunk the worker queued at serial ``pushed_total`` (under the lock)."""
         serial = self.pushed_total
-        job.record(ch, serial)
+        job.record(ch, serial, pushed)
         job.samples += len(ch.q)
         job.chunks.append(ChunkRecord(serial, len(ch.q), pushed, state, ch.pause is not None))
         self.pushed_total = serial + pushed

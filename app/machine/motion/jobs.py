@@ -60,6 +60,10 @@ class JobTerms:
     offset_s: float = 0.0            # where the job starts on its whole program's timeline
 
 
+#: pushed chunks whose lines a job keeps (20 set-points a chunk: seconds of set-points, more
+#: than the lead queued and the trace drained between two polls)
+LINES_KEPT = 512
+
 #: a job that is no part of anything else (a jog)
 NO_TERMS = JobTerms()
 
@@ -143,6 +147,9 @@ class Job:
         self._last_mark: tuple[int, int, float, int, float] | None = None
         # pushed chunks still (partly) queued in the worker, oldest first
         self.chunks: collections.deque[ChunkRecord] = collections.deque()
+        # the source line of each set-point pushed lately: (first serial, set-points, lines), so
+        # that every row of the drives' trace is told its own line (``lines_of``)
+        self._lines: collections.deque[tuple[int, int, np.ndarray]] = collections.deque(maxlen=LINES_KEPT)
 
     def rewind(self, serial: int) -> tuple[int, bool]:
         """Forget what was pushed from ``serial`` on (a chunk start; the worker's queue is being
@@ -150,6 +157,8 @@ class Job:
         and whether a chunk that ended at a pause point was among them."""
         while self._marks and self._marks[-1][0] >= serial:
             self._marks.pop()
+        while self._lines and self._lines[-1][0] >= serial:
+            self._lines.pop()
         dropped, pause = 0, False
         while self.chunks and self.chunks[-1].serial >= serial:
             rec = self.chunks.pop()
@@ -158,7 +167,16 @@ class Job:
         self.meter.rewind(dropped)
         return dropped, pause
 
-    def record(self, ch: ScaledChunk, serial_start: int) -> None:
+    def record(self, ch: ScaledChunk, serial_start: int, pushed: int) -> None:
+        """A chunk queued from ``serial_start`` (``pushed`` set-points: its samples, and the
+        repeats of a pause point's). Its last sample at a pause point and the repeats stand for
+        the line that stops there (an M6's, an M0's): the sample lies at the end of the move
+        before, where the plan's own lookup already names the move after the stop."""
+        lines = ch.line
+        if ch.pause is not None:
+            stop = np.full(pushed - len(lines) + 1, ch.pause.line, dtype=lines.dtype)
+            lines = np.concatenate([lines[:-1], stop])
+        self._lines.append((serial_start, pushed, lines))
         end = serial_start + len(ch.q) - 1
         move = int(ch.move[-1])
         u = float(ch.s_mm[-1] - self.executor.move_start_s(move)) if self.executor.n_moves else 0.0
@@ -166,6 +184,20 @@ class Job:
         if len(self._marks) > 4096:
             self._marks.popleft()
         self.meter.update(ch.q, ch.s_mm, ch.move)
+
+    def lines_of(self, serials: np.ndarray) -> np.ndarray:
+        """The source line of each set-point serial (0: not one of this job's, or too old)."""
+        out = np.zeros(len(serials), dtype=np.int64)
+        if not self._lines or not len(serials):
+            return out
+        starts = np.fromiter((c[0] for c in self._lines), np.int64, len(self._lines))
+        pushed = np.fromiter((c[1] for c in self._lines), np.int64, len(self._lines))
+        at = np.searchsorted(starts, serials, side="right") - 1
+        ok = (at >= 0) & (serials - starts[np.maximum(at, 0)] < pushed[np.maximum(at, 0)])
+        for k in np.flatnonzero(ok):
+            start, _, lines = self._lines[int(at[k])]
+            out[k] = lines[min(int(serials[k]) - start, len(lines) - 1)]   # a pause's repeats: its line
+        return out
 
     def info_at(self, consumed: int) -> tuple[int, float] | None:
         """(line, tau) of the set-point the drives reached (the last consumed one)."""

@@ -59,7 +59,8 @@ from planner.geometry.resume import remaining_program
 
 __all__ = ["Streamer"]
 
-TraceSink = Callable[[np.ndarray, np.ndarray, np.ndarray], None]
+#: (cycles, reference, actual, line of each row's set-point; machine coordinates)
+TraceSink = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], None]
 
 _OPERATOR_STOPS = {
     PauseKind.PAUSE: HoldKind.PROGRAM_STOP, PauseKind.OPTIONAL_PAUSE: HoldKind.OPTIONAL_STOP,
@@ -128,7 +129,8 @@ class Streamer:
         self._end_hooks.append(hook)
 
     def add_trace_sink(self, sink: TraceSink) -> None:
-        """Every drained set-point chunk (cycles, reference, actual; machine coordinates)."""
+        """Every drained set-point chunk (cycles, reference, actual, the source line of each
+        row's set-point; machine coordinates)."""
         self._sinks.append(sink)
 
     # ------------------------------------------------------------------ views
@@ -432,8 +434,11 @@ class Streamer:
         if self._sinks and len(trace.cycle):
             offset = self._positions.home_offset
             reference, actual = trace.reference - offset, trace.actual - offset
+            job = self.job
+            lines = (job.lines_of(trace.serial) if job is not None and trace.serial is not None
+                     else np.zeros(len(trace.cycle), dtype=np.int64))
             for sink in self._sinks:
-                sink(trace.cycle, reference, actual)
+                sink(trace.cycle, reference, actual, lines)
 
     def poll(self, snap: WorkerSnapshot) -> None:
         """The job as the drives run it (the poll): line, progress, notes, pause points, end."""

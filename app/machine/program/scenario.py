@@ -138,7 +138,8 @@ class ScriptedMachine(MachineApi, Protocol):
 
     def machine_time_s(self) -> float: ...
 
-    def add_trace_sink(self, sink: Callable[[np.ndarray, np.ndarray, np.ndarray], None]) -> None: ...
+    def add_trace_sink(self, sink: Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], None]
+                       ) -> None: ...
 
 
 class Recorder:
@@ -148,7 +149,7 @@ class Recorder:
     def __init__(self, ctl: ScriptedMachine) -> None:
         self.ctl = ctl
         self.ts_s = float(ctl.config.machine.planner.ts_s)
-        self._chunks: list[tuple[np.ndarray, np.ndarray, np.ndarray, int, float]] = []
+        self._chunks: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]] = []
         self.prompts: list[dict[str, object]] = []
         # every change of the commanded spindle, at its machine time (the set-point trace has
         # no samples while the drives are disabled, after an E-stop for one)
@@ -162,10 +163,13 @@ class Recorder:
         t = float(self.ctl.machine_time_s())
         self.spindle.append({"t_s": round(t, 6), "rpm": float(sp.direction * sp.rpm)})
 
-    def _chunk(self, cycles: np.ndarray, reference: np.ndarray, actual: np.ndarray) -> None:
-        """A drained chunk of the trace (machine coordinates)."""
+    def _chunk(self, cycles: np.ndarray, reference: np.ndarray, actual: np.ndarray,
+               lines: np.ndarray) -> None:
+        """A drained chunk of the trace (machine coordinates), each row with its set-point's line
+        (a row of no program's set-point, at rest before it: the line shown)."""
         sp = self.ctl.spindle
-        self._chunks.append((cycles.copy(), reference.copy(), actual.copy(), int(self.ctl.current_line),
+        tagged = np.where(lines > 0, lines, int(self.ctl.current_line))
+        self._chunks.append((cycles.copy(), reference.copy(), actual.copy(), tagged,
                              float(sp.direction * sp.rpm)))
 
     def _on_state(self, state: MachineState, _reason: str) -> None:
@@ -187,7 +191,7 @@ class Recorder:
             "reference": np.concatenate([c[1] for c in self._chunks]),
             "actual": np.concatenate([c[2] for c in self._chunks]),
             "axes": np.array(self.ctl.axes),
-            "line": np.concatenate([np.full(len(c[0]), c[3], dtype=np.int64) for c in self._chunks]),
+            "line": np.concatenate([c[3] for c in self._chunks]).astype(np.int64),
             "spindle_rpm": np.concatenate([np.full(len(c[0]), c[4]) for c in self._chunks]),
         }
 
