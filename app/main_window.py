@@ -15,6 +15,7 @@ from PySide6.QtWidgets import (
     QLabel,
     QMainWindow,
     QPushButton,
+    QSizePolicy,
     QStackedWidget,
     QVBoxLayout,
     QWidget,
@@ -118,6 +119,9 @@ class MainWindow(QMainWindow):
                 self._stack.addWidget(page)
 
         self._message = QLabel()
+        # a long message wraps in its own share of the bar: it never squeezes the alarm banner
+        self._message.setWordWrap(True)
+        self._message.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
         self._message_source: Callable[[], str] | None = None
         self.statusBar().setFixedHeight(52)
         self.statusBar().addWidget(self.header.alarm_banner, 2)

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+from PySide6.QtGui import QResizeEvent
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QSizePolicy, QVBoxLayout, QWidget
 
 from app.context import PanelContext
 from app.controller_text import localize, source_text
@@ -30,6 +31,35 @@ STATE_COLOR = {
 
 #: the reasons that only repeat the activity: the state reads "Running" with them
 _ACTIVITIES = frozenset({"program", "mdi", "jog", "approach", "homing", "none"})
+
+
+#: the alarm banner's least width: "ALARM: <source>: <the start of its cause>" stays readable
+BANNER_MIN_PX = 320
+
+
+class AlarmBanner(QPushButton):
+    """The newest alarm in the status bar: its whole text in the tooltip, shown cut with "…" to
+    the width it gets (never clipped mid-letter, never squeezed below ``BANNER_MIN_PX``)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.full_text = ""
+        self.setMinimumWidth(BANNER_MIN_PX)
+        self.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+
+    def set_full_text(self, text: str) -> None:
+        self.full_text = text
+        self.setToolTip(text)
+        self._fit()
+
+    def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt override
+        super().resizeEvent(event)
+        self._fit()
+
+    def _fit(self) -> None:
+        room = max(self.contentsRect().width() - 24, 0)          # the button's own padding
+        self.setText(self.fontMetrics().elidedText(self.full_text, Qt.TextElideMode.ElideRight, room))
+
 
 class StatusHeader(QWidget):
     def __init__(self, context: PanelContext, parent: QWidget | None = None) -> None:
@@ -69,7 +99,7 @@ class StatusHeader(QWidget):
         outer.addLayout(row)
         # the window puts the banner in its status bar (fixed height): an alarm appearing never
         # moves a control, so a tap lands where the operator aimed
-        self.alarm_banner = QPushButton()
+        self.alarm_banner = AlarmBanner()
         self.alarm_banner.setObjectName("alarmBanner")
         self.alarm_banner.setVisible(False)
 
@@ -175,5 +205,5 @@ class StatusHeader(QWidget):
             last = alarms[-1]
             more = tr(" (+{0} more)").format(len(alarms) - 1) if len(alarms) > 1 else ""
             said = tr("ALARM: {0}: {1}").format(source_text(last.source), localize(last.cause))
-            self.alarm_banner.setText(said + more)
+            self.alarm_banner.set_full_text(said + more)
         self.alarm_banner.setVisible(bool(alarms))

@@ -550,3 +550,19 @@ def test_a_refusal_does_not_stay_in_the_status_line_once_something_was_done(demo
     assert demo_window._message.text().startswith("Refused:")
     assert c.mdi("G91 G0 X1")                                 # the machine moves: past too
     assert demo_window._message.text() == ""
+
+
+def test_a_long_message_never_squeezes_the_alarm_banner(qtbot, demo_window, real_controller) -> None:
+    """At 1280x800, a long status message beside a long alarm: the banner keeps its width and
+    shows "ALARM: ..." cut with "…" (its whole text in the tooltip), the message wraps in its share."""
+    demo_window.resize(1280, 800)
+    c = real_controller
+    c.estop()
+    demo_window.show_message("a very long message " * 12)
+    qtbot.wait(50)
+    banner = demo_window.header.alarm_banner
+    assert banner.width() >= 320
+    shown = banner.text()
+    assert shown.startswith("ALARM: operator: E-stop")
+    assert banner.fontMetrics().horizontalAdvance(shown) <= banner.contentsRect().width()
+    assert banner.toolTip() == banner.full_text and banner.full_text.startswith(shown.rstrip("…"))
