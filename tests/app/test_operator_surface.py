@@ -540,7 +540,7 @@ def test_the_production_log_shows_a_run_as_soon_as_it_ends(qtbot, demo_window, r
 
 def test_a_refusal_does_not_stay_in_the_status_line_once_something_was_done(demo_window,
                                                                             real_controller) -> None:
-    """Refused, then done: the status line no longer says the old refusal (a later message stays)."""
+    """Refused, then done: the status line says nothing of the old refusal (a later message stays)."""
     c = real_controller
     assert not c.set_feed_override(500.0)
     assert demo_window._message.text().startswith("Refused: feed override must be 0-200 %")
