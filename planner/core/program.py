@@ -525,6 +525,15 @@ class Program:
         return np.fromiter((m.kind is MoveKind.RAPID for m in moves), bool, len(moves))
 
     @functools.cached_property
+    def move_lines(self) -> np.ndarray:
+        """Per move, its source line (a MoveStore's line column as it is)."""
+        moves = self.moves
+        columns = getattr(moves, "columns", None)
+        if columns is not None:
+            return np.asarray(columns().line)
+        return np.fromiter((m.line for m in moves), np.int64, len(moves))
+
+    @functools.cached_property
     def rotary_only_moves(self) -> np.ndarray:
         """Per move, whether only rotary axes move in it: its feed is in deg/min along the
         rotary distance, and the angular path limits hold it (LinuxCNC 2.9's rule)."""

@@ -233,11 +233,13 @@ def modal_state_before_move(program: Program, move_index: int) -> ModalState:
 
 
 def locate(program: Program, line: int) -> int:
-    """Index of the first move at or after source line ``line`` (PlannerError if none)."""
-    for m in program.moves:
-        if m.line >= line:
-            return m.index
-    raise PlannerError(f"no motion at or after line {line}")
+    """Index of the first move at or after source line ``line`` (PlannerError if none), found
+    in the program's line column (no Move made for the moves before it: a restart near the end
+    of a 10,000,000-line program)."""
+    at = np.flatnonzero(program.move_lines >= line)
+    if not len(at):
+        raise PlannerError(f"no motion at or after line {line}")
+    return int(program.moves[int(at[0])].index)
 
 
 @dataclass(frozen=True, slots=True)

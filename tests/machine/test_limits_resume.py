@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from app.machine.config import load_config
+from planner.core.errors import PlannerError
 from planner.core.program import MoveKind
 from planner.gcode.interpreter import parse_program
 from planner.geometry.resume import approach_moves, locate, modal_state_at, remaining_program, split_move
@@ -125,3 +126,20 @@ def test_an_approach_never_moves_sideways_below_the_clearance(machine, cur, tgt,
     for m in a.moves:                                               # below the program's own
         if m.end[2] < rapid_floor - 1e-12:                          # retract plane: at feed
             assert m.kind is MoveKind.LINE
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.sampled_from(["G1 X{v} F600", "G0 Y{v}", "M3 S1000", "(note)", "G4 P0.1",
+                                 "G1 Z-{v} F300"]), min_size=1, max_size=40),
+       st.integers(min_value=-2, max_value=60))
+def test_a_line_is_found_as_the_first_move_at_or_after_it(machine, blocks: list[str], line: int) -> None:
+    """``locate`` (the line column) against reading the moves one by one: the same move, or
+    the same refusal past the last motion."""
+    text = "\n".join(b.format(v=(k % 7) * 5) for k, b in enumerate(blocks)) + "\n"
+    prog = parse_program(text, machine=machine)
+    expected = next((m.index for m in prog.moves if m.line >= line), None)
+    if expected is None:
+        with pytest.raises(PlannerError, match=f"no motion at or after line {line}"):
+            locate(prog, line)
+    else:
+        assert locate(prog, line) == expected
