@@ -137,7 +137,11 @@ def braking_rates(machine: MachineSpec, budget: Budget) -> tuple[float, float]:
 def ramp_bound_s(machine: MachineSpec, budget: Budget) -> float:
     """Upper bound of the time the braking law takes to change sigma by ``SIGMA_MAX``: no hold
     takes longer (a stop from 200 % included)."""
-    d1, d2 = braking_rates(machine, budget)
+    return _ramp_s(*braking_rates(machine, budget))
+
+
+def _ramp_s(d1: float, d2: float) -> float:
+    """The braking law's time to change sigma by ``SIGMA_MAX`` at the rates D1, D2."""
     return SIGMA_MAX / d1 + d1 / d2
 
 
@@ -291,7 +295,7 @@ class TimeScaledExecutor:
     @property
     def time_to_ramp_s(self) -> float:
         """Upper bound of the time to change sigma by ``SIGMA_MAX`` (``ramp_bound_s``)."""
-        return SIGMA_MAX / self.d1_ref + self.d1_ref / self.d2_ref
+        return _ramp_s(self.d1_ref, self.d2_ref)
 
     def set_overrides(self, feed: float | None = None, rapid: float | None = None) -> None:
         if feed is not None:
