@@ -58,6 +58,7 @@ _Made = tuple[tuple, ScaledChunk, np.ndarray]   # (executor state before, chunk,
 class _Tail:
     """The braking tail queued behind the last set-point pushed (serial ``serial`` on)."""
 
+    job: Job           # whose executor made it (a successor's is another: its tail is its own)
     serial: int
     made: tuple[_Made, ...]
     end_state: tuple   # the executor held where the tail ends
@@ -174,7 +175,7 @@ class SetpointQueue:
             raise MachineError("worker buffer full")
         for state, ch, raw in made:
             self._record_chunk(job, ch, state, len(raw))
-        self._tail = _Tail(self.pushed_total, tail[0], tail[1]) if tail[0] else None
+        self._tail = _Tail(job, self.pushed_total, tail[0], tail[1]) if tail[0] else None
 
     def _refill(self) -> int:
         return max(int(REFILL_S / self._settings.config.machine.planner.ts_s), CHUNK)
@@ -214,6 +215,9 @@ class SetpointQueue:
         pushed), take the tail as executed: its chunks recorded, the executor held where it
         ends, ``ran_dry`` set. Whether it had."""
         tail = self._tail
+        if tail is not None and tail.job is not job:
+            # another job's (a successor goes on only from rest, where no tail is queued)
+            self._tail = tail = None
         if tail is None or consumed <= tail.serial:
             return False
         self._tail = None
