@@ -9,6 +9,11 @@ from PySide6.QtWidgets import QLabel, QTableWidget, QTableWidgetItem, QVBoxLayou
 from app.i18n import N_, I18n, tr
 
 SLAVE_COLUMNS = (N_("Position"), N_("Axis"), N_("Vendor"), N_("Product"), N_("State"))
+#: the worker's state as the panel says it (``BusStatus.state``: the state's name in lower case)
+WORKER_STATE_TEXT = {"disconnected": N_("disconnected"), "stopped": N_("stopped"), "starting": N_("starting"),
+                     "disabled": N_("disabled"), "enabling": N_("enabling"), "enabled": N_("enabled"),
+                     "homing": N_("homing"), "quick_stop": N_("quick stop"), "fault": N_("fault"),
+                     "fault_reset": N_("fault reset"), "error": N_("error")}
 
 
 class BusView(QWidget):
@@ -73,7 +78,7 @@ class BusView(QWidget):
         connected = tr("connected") if getattr(bus, "connected", False) else tr("not connected")
         self.summary.setText(tr("Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, "
                                 "period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}").format(
-            str(getattr(bus, "kind", "")).upper(), getattr(bus, "state", ""), connected,
+            str(getattr(bus, "kind", "")).upper(), _worker_state(str(getattr(bus, "state", ""))), connected,
             getattr(bus, "buffer_level", 0), getattr(bus, "late_cycles", 0),
             float(getattr(bus, "period_p99_us", 0.0)), getattr(bus, "message", ""),
             float(getattr(bus, "jitter_max_us", 0.0))))
@@ -82,3 +87,7 @@ class BusView(QWidget):
         if width_us > 0 and len(counts):  # bins from 0 us; the last one collects the overflow
             centres = (np.arange(len(counts)) + 0.5) * width_us
             self.bars.setOpts(x=centres, height=counts, width=width_us * 0.9)
+
+
+def _worker_state(state: str) -> str:
+    return tr(WORKER_STATE_TEXT[state]) if state in WORKER_STATE_TEXT else state

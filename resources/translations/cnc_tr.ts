@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="176" />
+      <location filename="../../app/widgets/status_header.py" line="206" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -39,7 +39,7 @@
       <translation>Bir tam sayı olmalı: {0} kesirli</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="177" />
+      <location filename="../../app/widgets/status_header.py" line="207" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -64,7 +64,7 @@
       <translation>Takım ekle</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/widgets/status_header.py" line="20" />
       <source>Alarm</source>
       <translation>Alarm</translation>
     </message>
@@ -149,12 +149,12 @@
       <translation>Veri yolu</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="74" />
+      <location filename="../../app/widgets/bus_view.py" line="79" />
       <source>Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}</source>
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="158" />
+      <location filename="../../app/widgets/status_header.py" line="188" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -204,12 +204,12 @@
       <translation>Servis şifresini değiştir</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="196" />
+      <location filename="../../app/main_window.py" line="206" />
       <source>Checking {0} …</source>
       <translation>{0} denetleniyor …</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="217" />
+      <location filename="../../app/main_window.py" line="227" />
       <source>Checking {0} … {1} %</source>
       <translation>{0} denetleniyor … %{1}</translation>
     </message>
@@ -314,7 +314,7 @@
       <translation>Çevrim süresi {0}; sınırlar Vmax {1:g} mm/s, Amax {2:g} mm/s², Jmax {3:g} mm/s³</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="31" />
+      <location filename="../../app/widgets/bus_view.py" line="36" />
       <source>Cycle timing: start jitter histogram (µs)</source>
       <translation>Çevrim zamanlaması: başlangıç sapması histogramı (µs)</translation>
     </message>
@@ -389,7 +389,7 @@
       <translation>Sürücülerin bağlantısını kes</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="18" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Disconnected</source>
       <translation>Bağlı değil</translation>
     </message>
@@ -409,7 +409,7 @@
       <translation>E kelimesini kullanacak G33, G33.1, G76, M67 ya da M68 yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="163" />
+      <location filename="../../app/widgets/status_header.py" line="193" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
@@ -804,7 +804,7 @@
       <translation>H kelimesini kullanacak G43, G43.2 ya da G76 yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="144" />
+      <location filename="../../app/widgets/status_header.py" line="174" />
       <source>Held by feed override 0 %</source>
       <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
@@ -859,7 +859,7 @@
       <translation>Buraya nasıl gelindi? (bu kontrolün bir hatası: lütfen programı bildirin)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="18" />
+      <location filename="../../app/widgets/status_header.py" line="19" />
       <source>Idle</source>
       <translation>Hazır</translation>
     </message>
@@ -1321,7 +1321,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>İsteğe bağlı duruş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="23" />
+      <location filename="../../app/widgets/status_header.py" line="24" />
       <source>Optional stop (M1)</source>
       <translation>İsteğe bağlı duruş (M1)</translation>
     </message>
@@ -1446,17 +1446,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="71" />
+      <location filename="../../app/widgets/bus_view.py" line="76" />
       <source>Probe input: free</source>
       <translation>Prob girişi: serbest</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="72" />
+      <location filename="../../app/widgets/bus_view.py" line="77" />
       <source>Probe input: none ([probe] drive in the machine configuration)</source>
       <translation>Prob girişi: yok (makine yapılandırmasında [probe] drive)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="71" />
+      <location filename="../../app/widgets/bus_view.py" line="76" />
       <source>Probe input: touching</source>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
@@ -1486,22 +1486,22 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Program {0} sürede bitti</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="231" />
+      <location filename="../../app/main_window.py" line="241" />
       <source>Program loaded: {0}</source>
       <translation>Program yüklendi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="227" />
+      <location filename="../../app/main_window.py" line="237" />
       <source>Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed path</source>
       <translation>Program yüklendi: {0}; G64: {1} köşe yumuşatıldı, programlanan yoldan en çok {2:.3f} mm</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="244" />
+      <location filename="../../app/main_window.py" line="254" />
       <source>Program refused: {0} error(s)</source>
       <translation>Program reddedildi: {0} hata</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="22" />
+      <location filename="../../app/widgets/status_header.py" line="23" />
       <source>Program stop (M0)</source>
       <translation>Program duruşu (M0)</translation>
     </message>
@@ -1531,7 +1531,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>G10 L20'de R kullanılamaz (döndürme G10 L2 R ile ayarlanır)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="163" />
+      <location filename="../../app/widgets/status_header.py" line="193" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -1563,17 +1563,17 @@ BIRAK</translation>
       <translation>Geri yükle</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="131" />
+      <location filename="../../app/main_window.py" line="349" />
       <source>Refused: {0}</source>
       <translation>Reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="123" />
+      <location filename="../../app/widgets/status_header.py" line="153" />
       <source>Release E-stop</source>
       <translation>Acil stopu bırak</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="124" />
+      <location filename="../../app/widgets/status_header.py" line="154" />
       <source>Release the emergency stop and enable the drives?</source>
       <translation>Acil stop bırakılıp sürücüler etkinleştirilsin mi?</translation>
     </message>
@@ -1658,7 +1658,7 @@ BIRAK</translation>
       <translation>Program {0}. satırdan çalıştırılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="19" />
+      <location filename="../../app/widgets/status_header.py" line="20" />
       <source>Running</source>
       <translation>Çalışıyor</translation>
     </message>
@@ -1708,22 +1708,22 @@ BIRAK</translation>
       <translation>Servis</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="276" />
+      <location filename="../../app/main_window.py" line="286" />
       <source>Service level</source>
       <translation>Servis seviyesi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="305" />
+      <location filename="../../app/main_window.py" line="315" />
       <source>Service level locked after {0} minutes without input</source>
       <translation>Servis seviyesi {0} dakika işlem yapılmadığı için kilitlendi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="281" />
+      <location filename="../../app/main_window.py" line="291" />
       <source>Service level refused: {0}</source>
       <translation>Servis seviyesi reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="283" />
+      <location filename="../../app/main_window.py" line="293" />
       <source>Service level unlocked</source>
       <translation>Servis seviyesi açıldı</translation>
     </message>
@@ -1733,7 +1733,7 @@ BIRAK</translation>
       <translation>Servis şifresi</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="276" />
+      <location filename="../../app/main_window.py" line="286" />
       <source>Service password:</source>
       <translation>Servis şifresi:</translation>
     </message>
@@ -1838,7 +1838,7 @@ BIRAK</translation>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="23" />
+      <location filename="../../app/widgets/status_header.py" line="24" />
       <source>Stopping</source>
       <translation>Duruyor</translation>
     </message>
@@ -1878,7 +1878,7 @@ BIRAK</translation>
       <translation>Taylor</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="184" />
+      <location filename="../../app/main_window.py" line="194" />
       <source>The control did not shut down cleanly: home the axes (Machine zero, Home all) before running a program</source>
       <translation>Kontrol düzgün kapanmadı: program çalıştırmadan önce eksenleri referanslayın (Makine sıfırı, Tüm eksenleri referansla)</translation>
     </message>
@@ -1963,7 +1963,7 @@ BIRAK</translation>
       <translation>Takım</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="23" />
+      <location filename="../../app/widgets/status_header.py" line="24" />
       <source>Tool change</source>
       <translation>Takım değişimi</translation>
     </message>
@@ -1973,7 +1973,7 @@ BIRAK</translation>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="169" />
+      <location filename="../../app/widgets/status_header.py" line="199" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -2618,7 +2618,7 @@ BIRAK</translation>
       <translation>yapılandırma</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="73" />
+      <location filename="../../app/widgets/bus_view.py" line="78" />
       <source>connected</source>
       <translation>bağlı</translation>
     </message>
@@ -2648,7 +2648,7 @@ BIRAK</translation>
       <translation>kesici telafisi XY (G17) ya da XZ (G18) düzleminde çalışır, {0} içinde değil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="51" />
+      <location filename="../../app/widgets/bus_view.py" line="56" />
       <source>cycles</source>
       <translation>çevrim</translation>
     </message>
@@ -2666,6 +2666,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="36" />
       <source>disable</source>
       <translation>kapatmak</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="14" />
+      <source>disabled</source>
+      <translation>devre dışı</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="77" />
@@ -2713,9 +2718,24 @@ BIRAK</translation>
       <translation>açmak</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/bus_view.py" line="14" />
+      <source>enabled</source>
+      <translation>etkin</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="14" />
+      <source>enabling</source>
+      <translation>etkinleştiriliyor</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="130" />
       <source>end point</source>
       <translation>bitiş noktası</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="16" />
+      <source>error</source>
+      <translation>hata</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="278" />
@@ -2726,6 +2746,16 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="279" />
       <source>expression nested too deeply</source>
       <translation>ifade çok derin iç içe</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="15" />
+      <source>fault</source>
+      <translation>arıza</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="16" />
+      <source>fault reset</source>
+      <translation>arıza sıfırlama</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="48" />
@@ -3003,7 +3033,7 @@ BIRAK</translation>
       <translation>yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="73" />
+      <location filename="../../app/widgets/bus_view.py" line="78" />
       <source>not connected</source>
       <translation>bağlı değil</translation>
     </message>
@@ -3363,7 +3393,7 @@ BIRAK</translation>
       <translation>{1} içinde iş mili {0} dönüyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="50" />
+      <location filename="../../app/widgets/bus_view.py" line="55" />
       <source>start jitter (µs)</source>
       <translation>başlangıç sapması (µs)</translation>
     </message>
@@ -3371,6 +3401,11 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="315" />
       <source>start_position has {0} values for {1} axes</source>
       <translation>start_position, {1} eksen için {0} değer içeriyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="13" />
+      <source>starting</source>
+      <translation>başlıyor</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="224" />
@@ -3381,6 +3416,11 @@ BIRAK</translation>
       <location filename="../../app/pages/alarms.py" line="25" />
       <source>stop</source>
       <translation>durdurma</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/bus_view.py" line="13" />
+      <source>stopped</source>
+      <translation>durdu</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="50" />
@@ -3708,7 +3748,7 @@ BIRAK</translation>
       <translation>kapanmamış açıklama: ')' olmadan '('</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="66" />
+      <location filename="../../app/widgets/bus_view.py" line="71" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
     </message>
@@ -3773,7 +3813,7 @@ BIRAK</translation>
       <translation>evet</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="200" />
+      <location filename="../../app/main_window.py" line="210" />
       <source>{0} (checking…)</source>
       <translation>{0} (denetleniyor…)</translation>
     </message>
@@ -4043,7 +4083,7 @@ BIRAK</translation>
       <translation>{0} değeri {1} aralık dışında (|değer| &lt; {2})</translation>
     </message>
     <message>
-      <location filename="../../app/main_window.py" line="180" />
+      <location filename="../../app/main_window.py" line="190" />
       <source>{0} was running at line {1} when the control stopped (power loss or killed): home the axes, open it and run from line {1}</source>
       <translation>Kontrol durduğunda {0} {1}. satırda çalışıyordu (elektrik kesintisi veya sonlandırma): eksenleri referanslayın, programı açın ve {1}. satırdan çalıştırın</translation>
     </message>

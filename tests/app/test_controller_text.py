@@ -144,7 +144,7 @@ def test_a_soft_limit_an_e_stop_by_the_operator_and_the_alarm_banner_are_said_in
         qtbot, turkish, fake_window, fake_controller) -> None:
     """Sentences the planner and the controller make of parts: a path beyond the travel (read
     from a program), the run log's "E-stop: operator", and the banner's source."""
-    from app.machine.model import Alarm, AlarmState, Severity
+    from app.machine.model import Alarm, AlarmState, BusStatus, Severity
     from planner.core.machine import MachineSpec
     from planner.pipeline import SoftLimitError, load
 
@@ -160,7 +160,10 @@ def test_a_soft_limit_an_e_stop_by_the_operator_and_the_alarm_banner_are_said_in
                                                   AlarmState.ACTIVE, "estop"),))
         banner = fake_window.header.alarm_banner.text()
         assert "operatör" in banner and "operator" not in banner, banner
-        plot = fake_window.page("diagnostics").bus.histogram.getPlotItem()
+        bus = fake_window.page("diagnostics").bus
+        bus.set_state(BusStatus(kind="sim", state="enabled", connected=True), fake_controller.config)
+        assert "(etkin)" in bus.summary.text() and "enabled" not in bus.summary.text(), bus.summary.text()
+        plot = bus.histogram.getPlotItem()
         assert [plot.getAxis(side).labelText for side in ("bottom", "left")] == [
             "başlangıç sapması (µs)", "çevrim"]
     finally:
