@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtWidgets import QMessageBox, QWidget
+from PySide6.QtWidgets import QMessageBox, QPushButton, QWidget
 
 from app.i18n import tr
 from app.program_folders import GCODE_SUFFIXES, ProgramFolders
@@ -29,9 +29,7 @@ class Dialogs:
 
     def choose(self, parent: QWidget | None, title: str, text: str, options: list[str]) -> int:
         """Index of the chosen option, -1 when cancelled (e.g. Save / Discard / Cancel)."""
-        box = QMessageBox(QMessageBox.Icon.Question, title, text, QMessageBox.StandardButton.NoButton,
-                          parent)
-        buttons = [box.addButton(o, QMessageBox.ButtonRole.ActionRole) for o in options]
+        box, buttons = choice_box(parent, title, text, options)
         box.exec()
         clicked = box.clickedButton()
         return buttons.index(clicked) if clicked in buttons else -1
@@ -62,6 +60,17 @@ class Dialogs:
 
     def inform(self, parent: QWidget | None, title: str, text: str) -> None:
         QMessageBox.information(parent, title, text)
+
+
+def choice_box(parent: QWidget | None, title: str, text: str,
+               options: list[str]) -> tuple[QMessageBox, list[QPushButton]]:
+    """The question with a button per option, each as wide as its text needs: the box grows to
+    them (squeezed to the box's width, "Resume at line 12" read "esume at line 1")."""
+    box = QMessageBox(QMessageBox.Icon.Question, title, text, QMessageBox.StandardButton.NoButton, parent)
+    buttons = [box.addButton(o, QMessageBox.ButtonRole.ActionRole) for o in options]
+    for button in buttons:
+        button.setMinimumWidth(button.sizeHint().width())
+    return box, buttons
 
 
 def connect_or_disconnect(parent: QWidget | None, dialogs: Dialogs, controller: object,

@@ -203,3 +203,25 @@ def test_the_header_names_the_hold(fake_window, fake_controller, kind: str, text
 
     fake_controller._set_state(MachineState.HOLD, "", HoldKind(kind))
     assert fake_window.header.state_label.text() == text
+
+
+@pytest.mark.parametrize("options", [
+    ["Resume at line 12", "Start from the beginning", "Cancel"],
+    ["12. satırda devam et", "Baştan başlat", "İptal"],
+    ["T2 6 mm flat", "T3 10 mm ball nose", "T99 probe", "Cancel"],
+])
+def test_a_choice_shows_each_button_s_whole_text(qtbot, qapp, options: list[str]) -> None:
+    """With the panel's style at 1280x800, every button of a choice is as wide as its text: the
+    box grows to them ("Resume at line 12" was cut to "esume at line 1")."""
+    from app.application import apply_theme
+    from app.dialogs import choice_box
+
+    apply_theme(qapp)
+    box, buttons = choice_box(None, "Cycle start", "The program stopped at line 12 (reset).", options)
+    qtbot.addWidget(box)
+    box.show()
+    qapp.processEvents()
+    for button in buttons:
+        needed = button.fontMetrics().horizontalAdvance(button.text())
+        assert button.contentsRect().width() >= needed, button.text()
+    box.close()
