@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
+import threading
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -110,7 +111,18 @@ def _listen(served: Served, tmp: Path, refresh: bool) -> subprocess.Popen[str]:
 
 
 def _events(proc: subprocess.Popen[str]) -> list[dict[str, Any]]:
-    out, _ = proc.communicate(timeout=60)
+    """Everything the listener says after it subscribed, to its end. Read through the same
+    text stream as the subscription line: what that read took in ahead of it (the refresh's
+    result comes right after) is in the stream's buffer, which ``communicate`` (reading the
+    pipe itself) would skip."""
+    assert proc.stdout is not None
+    killer = threading.Timer(60.0, proc.kill)
+    killer.start()
+    try:
+        out = proc.stdout.read()
+        proc.wait()
+    finally:
+        killer.cancel()
     return _lines(out)
 
 

@@ -8,6 +8,7 @@
 // how long to listen).
 "use strict";
 
+const fs = require("fs");
 const path = require("path");
 const opcua = require("node-opcua-client");
 const { OPCUACertificateManager } = require("node-opcua-certificate-manager");
@@ -17,7 +18,8 @@ const MACHINERY = "http://opcfoundation.org/UA/Machinery/";
 const MT = "http://opcfoundation.org/UA/MachineTool/";
 
 function say(obj) {
-  process.stdout.write("@@ " + JSON.stringify(obj) + "\n");
+  // written at once: a pipe's asynchronous write is lost when process.exit follows it
+  fs.writeSync(1, "@@ " + JSON.stringify(obj) + "\n");
 }
 
 function plain(value) {
