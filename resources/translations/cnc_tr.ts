@@ -234,7 +234,7 @@
       <translation>Emniyet mesafesi</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="74" />
+      <location filename="../../app/dialogs.py" line="83" />
       <source>Connect</source>
       <translation>Bağlan</translation>
     </message>
@@ -244,7 +244,7 @@
       <translation>Sürücülere bağlan</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="74" />
+      <location filename="../../app/dialogs.py" line="83" />
       <source>Connect to the drives and enable them?</source>
       <translation>Sürücülere bağlanılıp etkinleştirilsin mi?</translation>
     </message>
@@ -379,7 +379,7 @@
       <translation>Vazgeç</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="72" />
+      <location filename="../../app/dialogs.py" line="81" />
       <source>Disconnect</source>
       <translation>Bağlantıyı kes</translation>
     </message>
@@ -509,7 +509,7 @@
       <translation>İlerleme oranı</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="60" />
+      <location filename="../../app/dialogs.py" line="58" />
       <source>File name in {0}:</source>
       <translation>{0} içinde dosya adı:</translation>
     </message>
@@ -1301,12 +1301,12 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yalnızca bildir</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="51" />
+      <location filename="../../app/dialogs.py" line="49" />
       <source>Open file</source>
       <translation>Dosya aç</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="51" />
+      <location filename="../../app/dialogs.py" line="49" />
       <source>Open program</source>
       <translation>Program aç</translation>
     </message>
@@ -1683,7 +1683,7 @@ BIRAK</translation>
       <translation>Kaydetme başarısız</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="60" />
+      <location filename="../../app/dialogs.py" line="58" />
       <source>Save program as</source>
       <translation>Programı farklı kaydet</translation>
     </message>
@@ -1833,7 +1833,7 @@ BIRAK</translation>
       <translation>Dur</translation>
     </message>
     <message>
-      <location filename="../../app/dialogs.py" line="72" />
+      <location filename="../../app/dialogs.py" line="81" />
       <source>Stop and disable the drives?</source>
       <translation>Sürücüler durdurulup devre dışı bırakılsın mı?</translation>
     </message>

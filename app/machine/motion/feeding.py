@@ -42,7 +42,7 @@ from app.machine.motion.timescale import ScaledChunk, TimeScaledExecutor
 from app.machine.ports import PositionsView, Settings
 from ethercat.worker import ReplaceResult
 
-__all__ = ["CHUNK", "REFILL_S", "SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "RanDry", "SetpointQueue", "SpliceInfo"]
+__all__ = ["CHUNK", "REFILL_S", "SPLICE_ATTEMPTS", "SPLICE_MARGIN_S", "SetpointQueue", "SpliceInfo"]
 
 SPLICE_MARGIN_S = 0.005  # splice this far ahead of the drives (the worker takes ~1 set-point/ms)
 SPLICE_ATTEMPTS = 6
@@ -62,15 +62,6 @@ class _Tail:
     serial: int
     made: tuple[_Made, ...]
     end_state: tuple   # the executor held where the tail ends
-
-
-@dataclass(frozen=True, slots=True)
-class RanDry:
-    """The worker ran into the braking tail: at ``serial`` (set-points taken), found late by
-    ``late_s`` (how long the drives ran on the tail before the feeder came back)."""
-
-    serial: int
-    late_s: float
 
 
 class SpliceInfo:
@@ -117,8 +108,8 @@ class SetpointQueue:
         self._splice_est_s: dict[bool, float] = {}
         self._splice_critical_s = 0.0
         self._tail: _Tail | None = None
-        #: the worker ran into the braking tail (the streamer raises the alarm and clears it)
-        self.ran_dry: RanDry | None = None
+        # the serial the worker ran into the braking tail at, until ``ran_into_tail`` tells it
+        self._ran_dry: int | None = None
 
     def restart_at(self, serial: int) -> int:
         """The next set-point pushed gets ``serial`` (a new job, a new worker)."""
@@ -204,16 +195,17 @@ class SetpointQueue:
         ex.restore_state(start)
         return tuple(made), end
 
-    def ran_into_tail(self, job: Job, consumed: int) -> RanDry | None:
-        """``take_tail``, and the worker's run into the tail (once; None when it did not)."""
+    def ran_into_tail(self, job: Job, consumed: int) -> int | None:
+        """``take_tail``, and the serial the worker ran into the tail at (told once; None when
+        it did not)."""
         self.take_tail(job, consumed)
-        ran, self.ran_dry = self.ran_dry, None
+        ran, self._ran_dry = self._ran_dry, None
         return ran
 
     def take_tail(self, job: Job, consumed: int) -> bool:
         """When the worker has run into the braking tail (set-points taken beyond the last one
         pushed), take the tail as executed: its chunks recorded, the executor held where it
-        ends, ``ran_dry`` set. Whether it had."""
+        ends, the serial kept for ``ran_into_tail``. Whether it had."""
         tail = self._tail
         if tail is not None and tail.job is not job:
             # another job's (a successor goes on only from rest, where no tail is queued)
@@ -221,8 +213,7 @@ class SetpointQueue:
         if tail is None or consumed <= tail.serial:
             return False
         self._tail = None
-        ts = self._settings.config.machine.planner.ts_s
-        self.ran_dry = RanDry(tail.serial, (consumed - tail.serial) * ts)
+        self._ran_dry = tail.serial
         for state, ch, raw in tail.made:
             self._record_chunk(job, ch, state, len(raw))
         job.executor.restore_state(tail.end_state)

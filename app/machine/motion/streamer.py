@@ -509,7 +509,7 @@ class Streamer:
             ran = self._queue.ran_into_tail(job, max(self._drives.samples_consumed() or 0, consumed))
         if ran is not None:
             self._alarms.alarm_stop(
-                f"the set-points ran out after {ran.serial} (the control's process fell behind): the axes "
+                f"the set-points ran out after {ran} (the control's process fell behind): the axes "
                 "braked to rest along the path within their limits", "controller", "setpoints_ran_out")
 
     def _spindle_lock_at(self, job: Job, move: int | None) -> None:
