@@ -8,6 +8,11 @@ element per drive (index = position in `drives`, not necessarily the slave posit
     inputs  (TxPDO, drive -> master)   statusword u16, position_actual i32, following_error i32,
                                        error_code u16, modes_display i8, digital_inputs u32 (0x60FD)
 
+Terminals beside the drives (``terminals``: couplers, digital I/O, encoders; see
+``ethercat.terminals``) have one word per terminal in each direction: ``terminal_inputs``,
+``terminal_outputs``, and an encoder's ``terminal_counts`` / ``terminal_latches`` /
+``terminal_set_counts``; index = position in ``terminals``.
+
 The worker writes the output arrays in place, calls `exchange()` once per cycle (send
 and receive one frame; returns the working counter, -1 when no frame came back) and
 reads the input arrays in place. Inputs are only updated when the frame came back.
@@ -42,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from .errors import BusFeatureError, BusStateError, ConfigurationError
+from .terminals import TerminalSpec, check_terminals
 
 
 @dataclass(frozen=True, slots=True)
@@ -112,8 +118,10 @@ class Bus(abc.ABC):
     #: registry name of the backend ("sim", "soem")
     kind: str = ""
 
-    def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001) -> None:
+    def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001,
+                 terminals: Sequence[TerminalSpec] = ()) -> None:
         self.drives = check_drives(drives)
+        self.terminals = check_terminals(terminals, [d.position for d in self.drives])
         #: what the start-up adapted to (a drive's own mapping, objects it lacks), one line each
         self.notes: list[str] = []
         if not 0.000_1 <= cycle_time_s <= 0.1:
@@ -132,12 +140,23 @@ class Bus(abc.ABC):
         self.error_code = np.zeros(n, dtype=np.uint16)
         self.modes_display = np.zeros(n, dtype=np.int8)
         self.digital_inputs = np.zeros(n, dtype=np.uint32)
+        # terminals
+        m = len(self.terminals)
+        self.terminal_inputs = np.zeros(m, dtype=np.uint32)
+        self.terminal_outputs = np.zeros(m, dtype=np.uint32)
+        self.terminal_counts = np.zeros(m, dtype=np.int32)
+        self.terminal_latches = np.zeros(m, dtype=np.int32)
+        self.terminal_set_counts = np.zeros(m, dtype=np.int32)
         self._is_open = False
 
     # ------------------------------------------------------------------ life cycle
     @property
     def n_drives(self) -> int:
         return len(self.drives)
+
+    @property
+    def n_terminals(self) -> int:
+        return len(self.terminals)
 
     @property
     def is_open(self) -> bool:

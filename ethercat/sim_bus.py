@@ -26,6 +26,10 @@ Fault injection (the same names work through `CyclicWorker.inject` in every work
                                              (`sim_part.SimPart`: a block, a bore, a boss) with
                                              a ball-ended stylus; the bit is on while it or the
                                              surface above touches
+Terminals and the simulated machine's switches and buttons (``ethercat.sim_io``):
+    terminal_input k, input_value(bit, level[, release])   force (or release) a terminal input
+    drive_input i, input_value(...)                         the same on a drive's 0x60FD
+    encoder_add k, n                                        an encoder terminal counts n more
 Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
@@ -34,16 +38,20 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+import numpy as np
+
 from .bus import Bus, DriveSpec, SlaveInfo
 from .drive_model import DriveModel, DriveParams
 from .errors import ConfigurationError, SdoAbortError
 from .object_dictionary import ERROR_OVERCURRENT, OBJECTS, decode_object, encode_object
+from .sim_io import SimIo, SimSwitch
 from .sim_part import PART_VALUES, SimPart
+from .terminals import TerminalSpec
 
 #: injection names accepted by `SimBus.inject`
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
               "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
-              "probe_part_off")
+              "probe_part_off", "terminal_input", "drive_input", "encoder_add")
 #: ``inject("probe_surface", i, value)``: value = ``probe_surface_value(...)``
 PROBE_SURFACE_SCALE = 1e6
 
@@ -80,8 +88,11 @@ class SimBus(Bus):
                  drive_params: DriveParams | Sequence[DriveParams] | None = None,
                  initial_positions_counts: Sequence[float] | None = None,
                  watchdog_s: float = 0.1, unmapped_objects: Sequence[int] = (),
-                 **_ignored: object) -> None:
-        super().__init__(drives, cycle_time_s)
+                 terminals: Sequence[TerminalSpec] = (), switches: Sequence[SimSwitch] = (),
+                 input_rest: Sequence[int] = (), **_ignored: object) -> None:
+        super().__init__(drives, cycle_time_s, terminals)
+        self.io = SimIo(self.terminals, self.n_drives,
+                        [1.0 / (d.counts_per_unit * d.direction) for d in self.drives], switches, input_rest)
         # objects left out of the simulated process data, as a drive that cannot map them
         self.unmapped_objects = frozenset(unmapped_objects)
         self._map_error_code = 0x603F not in self.unmapped_objects
@@ -121,7 +132,7 @@ class SimBus(Bus):
     # ------------------------------------------------------------------ backend
     @property
     def expected_wkc(self) -> int:
-        return 3 * self.n_drives
+        return 3 * self.n_drives + sum(t.type.working_counter for t in self.terminals)
 
     def _open(self) -> None:
         for m in self.models:
@@ -221,6 +232,7 @@ class SimBus(Bus):
         dout = self.digital_outputs.tolist()
         if self._probe is not None or self._part is not None:
             self._touch()
+        io_words = self._io_words() if not lost_frame else None
         lost, init, silent = self._lost, self._init, self._silent_s
         for i, m in enumerate(self.models):
             if lost_frame or lost[i] or init[i]:
@@ -237,10 +249,38 @@ class SimBus(Bus):
             m.digital_outputs = dout[i]
             m.step(dt)
             wkc += 3
+        if io_words is not None:
+            wkc += self._exchange_terminals(io_words)
         return -1 if lost_frame else wkc
 
+    def _io_words(self) -> np.ndarray | None:
+        """This cycle's input words of the terminals and drives, None without terminals or
+        simulated inputs (the drives' own words stand)."""
+        io = self.io
+        if not self.terminals and not io.active:
+            return None
+        drive_words = np.array([m.digital_inputs for m in self.models], dtype=np.int64)
+        counts = np.array([m.position_actual for m in self.models], dtype=float)
+        return io.words(counts, drive_words)
+
+    def _exchange_terminals(self, words: np.ndarray) -> int:
+        """Terminals' inputs latched, their outputs taken; the drives' 0x60FD with the
+        switches laid over (as the drives' inputs were read this cycle). Returns their share
+        of the working counter."""
+        io = self.io
+        m = len(self.terminals)
+        if io.active:
+            for i in range(self.n_drives):
+                if not (self._lost[i] or self._init[i]):
+                    self.digital_inputs[i] = int(words[m + i]) & 0xFFFF_FFFF
+        np.copyto(self.terminal_inputs, words[:m] & 0xFFFF_FFFF, casting="unsafe")
+        np.copyto(self.terminal_counts, io.counts, casting="unsafe")
+        np.copyto(io.outputs, self.terminal_outputs)
+        return sum(t.type.working_counter for t in self.terminals)
+
     def _slaves(self) -> tuple[SlaveInfo, ...]:
-        out = []
+        out = [SlaveInfo(position=t.position, name=t.type.name, vendor_id=t.type.vendor_id,
+                         product_code=t.type.product_code, state="OP") for t in self.terminals]
         for i, (d, m) in enumerate(zip(self.drives, self.models)):
             out.append(SlaveInfo(
                 position=d.position, name=f"SimServo {d.axis_name}",
@@ -249,7 +289,7 @@ class SimBus(Bus):
                 revision=m.params.revision, serial=m.params.serial,
                 state="INIT" if self._init[i] else "SAFE-OP" if self._lost[i] else "OP",
                 al_status_code=0x001B if self._lost[i] else 0))
-        return tuple(out)
+        return tuple(sorted(out, key=lambda s: s.position))
 
     def _model_at(self, position: int) -> DriveModel:
         try:
@@ -355,6 +395,16 @@ class SimBus(Bus):
             self.set_probe_part(SimPart.from_values(self._part_values), axes, value & 31, (value >> 5) & 63)
         elif name == "probe_part_off":
             self.clear_probe_part()
+        elif name == "terminal_input":
+            if not 0 <= index < self.n_terminals:
+                raise ConfigurationError(f"terminal {index}: there are {self.n_terminals}")
+            self.io.force(index, value)
+        elif name == "drive_input":
+            if not 0 <= index < self.n_drives:
+                raise ConfigurationError(f"drive {index}: there are {self.n_drives}")
+            self.io.force(self.n_terminals + index, value)
+        elif name == "encoder_add":
+            self.io.encoder_add(index, value - (1 << 31) if value >= 1 << 31 else value)
         else:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
 

@@ -81,6 +81,7 @@ from .soem_access import (
     write_assignment,
     write_mapping,
 )
+from .terminals import TerminalIo, TerminalSpec
 
 DEFAULT_SETUP = DriveSetup()
 
@@ -105,8 +106,9 @@ class SoemBus(Bus):
                  safeop_timeout_s: float = 2.0, op_timeout_s: float = 3.0, init_timeout_s: float = 2.0,
                  receive_timeout_us: int = 2000,
                  setups: Mapping[int, DriveSetup] | Sequence[tuple[int, DriveSetup]] | None = None,
-                 mode_timeout_s: float = 1.0, **_ignored: object) -> None:
-        super().__init__(drives, cycle_time_s)
+                 mode_timeout_s: float = 1.0, terminals: Sequence[TerminalSpec] = (),
+                 **_ignored: object) -> None:
+        super().__init__(drives, cycle_time_s, terminals)
         self.adapter = adapter
         self.mappings: dict[tuple[int, int], PdoMapping] = {**DRIVE_MAPPINGS, **(mappings or {})}
         self.default_mapping = default_mapping
@@ -127,6 +129,7 @@ class SoemBus(Bus):
         self._expected_wkc = 0
         self.wkc_errors = 0                 # cycles whose working counter was not the expected one
         self._io: list[DriveIo] = []
+        self._terminal_io: list[TerminalIo] = []
         self._dc_active = False
         self._io_ready = False              # True between a finished open() and close()
 
@@ -173,6 +176,11 @@ class SoemBus(Bus):
                     raise ConfigurationError(f"drive {d.axis_name} is configured at slave position "
                                              f"{d.position}, but only {n} slave(s) answered on "
                                              f"{self.adapter!r}")
+            for t in self.terminals:
+                if t.position >= n:
+                    raise ConfigurationError(f"terminal {t.label} is configured at slave position "
+                                             f"{t.position}, but only {n} slave(s) answered on "
+                                             f"{self.adapter!r}")
             self._wait_state(AL_PREOP, self.safeop_timeout_s, "PRE-OP")
         # identity check (0 in the configuration = do not check that field)
         with self._step(StartupStep.IDENTITY):
@@ -182,6 +190,11 @@ class SoemBus(Bus):
                 if ((d.vendor_id and d.vendor_id != found[0])
                         or (d.product_code and d.product_code != found[1])):
                     raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
+            for t in self.terminals:
+                s = master.slaves[t.position]
+                found = (int(s.man), int(s.id))
+                if found != (t.type.vendor_id, t.type.product_code):
+                    raise SlaveIdentityError(t.position, (t.type.vendor_id, t.type.product_code), found)
         with self._step(StartupStep.MAILBOX):
             for d in self.drives:
                 self._check_complete_access(d.position)
@@ -434,6 +447,15 @@ class SoemBus(Bus):
                     f"input bytes, the PDO mapping needs {rx.size} / {tx.size}"
                     + (f" (SOEM reported: {'; '.join(self.warnings)})" if self.warnings else ""))
             self._io.append(DriveIo(self, i, s, mapping))
+        self._terminal_io = []
+        for k, t in enumerate(self.terminals):
+            s = master.slaves[t.position]
+            if len(s.output) != t.type.rx_bytes or len(s.input) != t.type.tx_bytes:
+                raise ConfigurationError(
+                    f"slave {t.position} ({s.name}): process data is {len(s.output)} output / {len(s.input)} "
+                    f"input bytes; a {t.type.name} has {t.type.rx_bytes} / {t.type.tx_bytes} in its default "
+                    "PDO assignment")
+            self._terminal_io.append(TerminalIo(self, k, s, t.type))
         self._expected_wkc = 2 * outputs_slaves + inputs_slaves
         reported = int(getattr(master, "expected_wkc", self._expected_wkc))
         if reported and reported != self._expected_wkc:
@@ -487,11 +509,15 @@ class SoemBus(Bus):
         master = self.master
         for io in self._io:
             io.write()
+        for tio in self._terminal_io:
+            tio.write()
         master.send_processdata()
         wkc = int(master.receive_processdata(self.receive_timeout_us))
         if wkc == self._expected_wkc:
             for io in self._io:
                 io.read()
+            for tio in self._terminal_io:
+                tio.read()
         else:
             self.wkc_errors += 1            # inputs keep their last good values
         return wkc
@@ -522,6 +548,7 @@ class SoemBus(Bus):
         finally:
             self.master = None
             self._io = []
+            self._terminal_io = []
             master.close()
 
     # ------------------------------------------------------------------ acyclic

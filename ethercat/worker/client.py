@@ -50,6 +50,7 @@ from .types import (
     AlarmCode,
     EventCode,
     HomingState,
+    HomingStep,
     ProbeLatch,
     ProbeState,
     ReplaceResult,
@@ -72,7 +73,8 @@ class CyclicWorker:
 
     def __init__(self, config: WorkerConfig) -> None:
         self.config = config
-        self._layout = (config.n_axes, config.buffer_capacity, config.trace_capacity)
+        self._layout = (config.n_axes, config.buffer_capacity, config.trace_capacity, config.n_terminals,
+                        len(config.watches))
         self._shm: shared_memory.SharedMemory | None = None
         self._block: SharedBlock | None = None
         self._loop: CycleLoop | None = None
@@ -289,6 +291,32 @@ class CyclicWorker:
             raise WorkerError(f"homing axis {self.config.axis_names[i]} refused in state {self.state().name} "
                               "(needs ENABLED, buffer empty, no other acyclic transfer under way)")
 
+    def home_to_switches(self, axes: Sequence[int | str]) -> None:
+        """Home ``axes`` together to their switches (``WorkerConfig.switch_homing``), in
+        position mode with set-points made by the loop. Only when ENABLED and at rest; watch
+        ``snapshot().homing_steps`` and ``home_latched``; a failure is an alarm HOMING_SWITCH."""
+        self._live()
+        mask = 0
+        for axis in axes:
+            mask |= 1 << self._axis_index(axis)
+        if not self._command(Command.HOME_SWITCH, mask):
+            names = " ".join(self.config.axis_names[i] for i in range(self.config.n_axes) if mask >> i & 1)
+            raise WorkerError(f"homing {names} to switches refused in state {self.state().name} "
+                              "(needs ENABLED, at rest, and switch homing configured for each)")
+
+    def set_terminal_output(self, terminal: int, word: int) -> None:
+        """Terminal ``terminal``'s outputs (index in ``WorkerConfig.terminals``), from the next
+        cycle on."""
+        self._live()
+        if not self._command(Command.TOUT, int(terminal), int(word)):
+            raise WorkerError(f"terminal {terminal} does not exist ({self.config.n_terminals} configured)")
+
+    def override_limits(self, on: bool) -> None:
+        """While on, an axis on a limit switch may be enabled and move away from it (never
+        toward it); off by itself once no limit switch reads active."""
+        self._live()
+        self._command(Command.OVERRIDE_LIMITS, int(bool(on)))
+
     def set_digital_output(self, axis: int | str, value: int) -> None:
         """The drive's digital outputs 0x60FE:1 (spindle on/direction bits), sent in the
         process data from the next cycle on."""
@@ -297,8 +325,9 @@ class CyclicWorker:
             raise WorkerError(f"digital outputs of axis {axis} are not in the drive's process data "
                               "(0x60FE:1 not mapped)")
 
-    def arm_probe(self, axis: int | str, bit: int, level: bool) -> bool:
-        """Watch bit ``bit`` of the digital inputs (0x60FD) of ``axis``'s drive from the next
+    def arm_probe(self, axis: int | str, bit: int, level: bool, terminal: int = -1) -> bool:
+        """Watch bit ``bit`` of the digital inputs (0x60FD) of ``axis``'s drive (of terminal
+        ``terminal``'s inputs when >= 0) from the next
         cycle on: the first cycle it reads ``level`` latches the actual positions and the
         set-points consumed (``snapshot().probe``). False, and nothing armed, when it reads
         ``level`` already (G38.2 with the probe touching) or the inputs are not in the drive's
@@ -306,7 +335,8 @@ class CyclicWorker:
         self._live()
         if not 0 <= int(bit) < 32:
             raise ConfigurationError(f"probe input bit {bit} outside 0..31 of 0x60FD")
-        return self._command(Command.PROBE, self._axis_index(axis), 1 | int(bit) << 1 | int(bool(level)) << 6)
+        word = self.config.n_axes + int(terminal) if terminal >= 0 else self._axis_index(axis)
+        return self._command(Command.PROBE, word, 1 | int(bit) << 1 | int(bool(level)) << 6)
 
     def disarm_probe(self) -> None:
         """Stop watching the probe input; the latch reads OFF."""
@@ -320,7 +350,9 @@ class CyclicWorker:
         if name not in INJECT_NAMES:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECT_NAMES}")
         code = INJECT_NAMES.index(name) | (int(value) << 8)
-        if not self._command(Command.INJECT, self._axis_index(axis), code):
+        # a terminal's injections name the terminal's index, the others an axis
+        index = int(axis) if name in ("terminal_input", "encoder_add") else self._axis_index(axis)
+        if not self._command(Command.INJECT, index, code):
             raise WorkerError(f"injection {name!r} needs bus_kind='sim'")
 
     def flush(self) -> None:
@@ -549,6 +581,7 @@ class CyclicWorker:
         )
         level = int(ctl.head) - int(ctl.tail)
         lost = int(s["lost"])
+        m = cfg.n_terminals
         return WorkerSnapshot(
             state=WorkerState(int(s["state"])), cycle=int(s["cycle"]), time_s=float(s["time_s"]),
             axis_names=cfg.axis_names,
@@ -568,6 +601,13 @@ class CyclicWorker:
             digital_inputs=tuple(int(x) for x in s["din"]),
             probe=ProbeState(ProbeLatch(int(s["probe_state"])), int(s["probe_consumed"]),
                              tuple(float(x) for x in s["probe_pos"])),
+            terminal_inputs=tuple(int(x) for x in s["tin"][:m]),
+            terminal_outputs=tuple(int(x) for x in s["tout"][:m]),
+            terminal_counts=tuple(int(x) for x in s["tcount"][:m]),
+            watches_active=tuple(bool(x) for x in s["watch"][:len(cfg.watches)]),
+            limits_overridden=bool(s["override"]),
+            homing_steps=tuple(HomingStep(int(x)) for x in s["home_step"]),
+            home_latched=tuple(float(x) for x in s["home_latch"]),
         )
 
     def drain_trace(self) -> TraceChunk:

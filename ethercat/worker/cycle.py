@@ -15,7 +15,6 @@ Nothing in the cycle allocates arrays, logs or makes an SDO.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
@@ -24,12 +23,14 @@ from ..bus import Bus, make_bus
 from ..cia402 import Cia402State
 from ..errors import EtherCATError
 from .acyclic import AcyclicHelper
+from .clocked import run_clocked
 from .homing import Homing, HomingPhase, HomingResult
 from .messages import INJECT_NAMES, Command, Result
-from .realtime import AbsoluteSleep, set_timer_slack_ns
-from .shared import ALARM_SLOTS, HIST_BIN_S, HIST_BINS, SharedBlock
+from .shared import ALARM_SLOTS, SharedBlock
+from .switch_homing import SwitchHomer
 from .tracking import Tracker
 from .types import REF_HISTORY, AlarmCode, EventCode, WorkerConfig, WorkerState
+from .watches import Watches
 
 __all__ = ["CycleLoop"]
 
@@ -106,6 +107,15 @@ class CycleLoop:
         self.error_code_axis = -1
         self.enable_after_reset = False
         self.enable_confirmed = 0
+        # every input word of a cycle: the drives' 0x60FD, then the terminals' inputs
+        m = config.n_terminals
+        self.m = m
+        self.words = np.zeros(n + m, dtype=np.int64)
+        self.words_d, self.words_t = self.words[:n], self.words[n:]
+        self.watches = Watches(config.watches, lv.watch)
+        self.switch_homer = SwitchHomer(config.switch_homing, n, config.ts_s, lv.homing, lv.homed,
+                                        lv.home_step, lv.home_latch,
+                                        int(config.homing_timeout_s / config.ts_s))
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -113,7 +123,8 @@ class CycleLoop:
         options = dict(cfg.bus_options)
         if cfg.bus_kind == "soem":
             options.setdefault("adapter", cfg.adapter)
-        self.bus = make_bus(cfg.bus_kind, cfg.drives, cycle_time_s=cfg.ts_s, **options)
+        self.bus = make_bus(cfg.bus_kind, cfg.drives, cycle_time_s=cfg.ts_s, terminals=cfg.terminals,
+                            **options)
         self.bus.open()
         bus = self.bus
         self.lv.wkc_expected[...] = bus.expected_wkc
@@ -212,7 +223,8 @@ class CycleLoop:
         if code == Command.ENABLE:
             if st in (WorkerState.ENABLED, WorkerState.ENABLING):
                 return Result.OK
-            if st not in (WorkerState.DISABLED, WorkerState.QUICK_STOP) or self.fault_seen.any():
+            if (st not in (WorkerState.DISABLED, WorkerState.QUICK_STOP) or self.fault_seen.any()
+                    or self.watches.chain_open()):
                 return Result.REFUSED
             self._flush()
             self.fe_count[:] = 0
@@ -232,6 +244,7 @@ class CycleLoop:
             self.wkc_alarmed = False
             self._set_state(WorkerState.FAULT_RESET)
         elif code in (Command.QUICK_STOP, Command.ESTOP):
+            self.switch_homer.cancel()
             self._reaction(AlarmCode.ESTOP if code == Command.ESTOP else AlarmCode.QUICK_STOP,
                            state=WorkerState.FAULT if st is WorkerState.FAULT else WorkerState.QUICK_STOP)
         elif code == Command.HOME:
@@ -242,6 +255,19 @@ class CycleLoop:
             self.homing.begin(a, b)
             self._set_state(WorkerState.HOMING)
             self.helper.submit(_HOMING_METHOD, lambda: bus.sdo_write(position, 0x6098, 0, "<b", b))
+        elif code == Command.HOME_SWITCH:
+            if st is not WorkerState.ENABLED or self.moving or not self.switch_homer.begin(a, self.words):
+                return Result.REFUSED
+            self._flush()
+            self._set_state(WorkerState.HOMING)
+        elif code == Command.TOUT:
+            if not 0 <= a < self.m:
+                return Result.REFUSED
+            bus.terminal_outputs[a] = b
+            self.lv.tout[a] = b
+        elif code == Command.OVERRIDE_LIMITS:
+            self.watches.override = bool(a)
+            self.lv.override[...] = int(bool(a))
         elif code == Command.DOUT:
             if not 0 <= a < self.n or not bus.digital_outputs_mapped(a):
                 return Result.REFUSED
@@ -269,21 +295,23 @@ class CycleLoop:
             return Result.REFUSED
         return Result.OK
 
-    def _arm_probe(self, axis: int, how: int) -> Result:
-        """``how``: bit 0 arm (else disarm), bits 1-5 the input bit of 0x60FD, bit 6 the level
-        that trips. Refused when the input reads that level already, or is not mapped."""
+    def _arm_probe(self, word: int, how: int) -> Result:
+        """``word``: the input word (a drive's 0x60FD, or n + a terminal's inputs); ``how``: bit 0
+        arm (else disarm), bits 1-5 the bit, bit 6 the level that trips. Refused when the input
+        reads that level already, or is not mapped."""
         lv = self.lv
         lv.probe_state[...] = 0
         self.probe_axis = -1
         if not how & 1:
             return Result.OK
         bus = self.bus
-        if not 0 <= axis < self.n or bus is None or not bus.maps_object(axis, 0x60FD):
+        if (not 0 <= word < self.n + self.m or bus is None
+                or (word < self.n and not bus.maps_object(word, 0x60FD))):
             return Result.REFUSED
         mask, level = 1 << (how >> 1 & 31), how >> 6 & 1
-        if (int(bus.digital_inputs[axis]) & mask != 0) == bool(level):
+        if (int(self.words[word]) & mask != 0) == bool(level):
             return Result.REFUSED
-        self.probe_axis, self.probe_mask, self.probe_level = axis, mask, bool(level)
+        self.probe_axis, self.probe_mask, self.probe_level = word, mask, bool(level)
         lv.probe_state[...] = 1
         return Result.OK
 
@@ -381,9 +409,14 @@ class CycleLoop:
             cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
             bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
         elif st is WorkerState.HOMING:
+            if self.switch_homer.active:
+                np.copyto(self.prev_ref, self.ref)
+                if not self.switch_homer.step(self.ref, self.act, self.words):
+                    self._homing_failed()
             cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
             bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
-            self.homing.outputs(bus)
+            if self.homing.active:
+                self.homing.outputs(bus)
         else:
             self._target_from_actual()
             if st is WorkerState.ENABLING:
@@ -420,7 +453,14 @@ class CycleLoop:
         np.copyto(lv.error_code, bus.error_code)
         np.copyto(lv.drive_state, states)
         np.copyto(lv.din, bus.digital_inputs)
-        if self.probe_axis >= 0 and (int(bus.digital_inputs[self.probe_axis]) & self.probe_mask != 0) \
+        np.copyto(self.words_d, bus.digital_inputs, casting="unsafe")
+        if self.m:
+            np.copyto(self.words_t, bus.terminal_inputs, casting="unsafe")
+            np.copyto(lv.tin[:self.m], bus.terminal_inputs, casting="unsafe")
+            np.copyto(lv.tcount[:self.m], bus.terminal_counts, casting="unsafe")
+        if self.watches.evaluate(self.words):
+            self._watched_inputs()
+        if self.probe_axis >= 0 and (int(self.words[self.probe_axis]) & self.probe_mask != 0) \
                 == self.probe_level:
             # latched in the cycle the input is read: where the axes were, and how far along
             # the set-points; the controller stops the motion from there
@@ -481,6 +521,32 @@ class CycleLoop:
         if self.state is not WorkerState.ENABLED and self.state is not WorkerState.HOMING:
             np.copyto(self.ref, self.act)
             self.fe.fill(0.0)
+
+    def _watched_inputs(self) -> None:
+        """An E-stop chain open or a limit switch active this cycle: the reaction (once; the
+        state it leaves refuses enabling until the chain closes or limits are overridden)."""
+        st = self.state
+        watches = self.watches
+        if watches.chain_open():
+            if st not in (WorkerState.QUICK_STOP, WorkerState.FAULT, WorkerState.DISABLED):
+                self.switch_homer.cancel()
+                self._reaction(AlarmCode.ESTOP_CHAIN)
+            return
+        if st is not WorkerState.ENABLED and st is not WorkerState.HOMING:
+            watches.limit_hit(self.tmp)          # ends an override once no limit reads active
+            return
+        np.subtract(self.ref, self.prev_ref, out=self.tmp)
+        w = watches.limit_hit(self.tmp)
+        if w is None:
+            return
+        if st is WorkerState.HOMING and self.switch_homer.active:
+            if self.switch_homer.limit_tripped(w.axis):
+                return                           # this axis homes with its limits ignored
+        self._reaction(AlarmCode.LIMIT_SWITCH, w.axis, w.side)
+
+    def _homing_failed(self) -> None:
+        h = self.switch_homer
+        self._reaction(AlarmCode.HOMING_SWITCH, h.failed_axis, int(h.failed_step), h.failure)
 
     def _startup_fault_reset(self, bus: Bus) -> None:
         """Drives in FAULT as the bus comes up (before anything was commanded) get one fault
@@ -564,6 +630,10 @@ class CycleLoop:
                 self._track()
             return
         if not homing.active:
+            if st is WorkerState.HOMING and not self.switch_homer.active:
+                np.copyto(self.prev_ref, self.ref)       # stopped at the latch: holds there
+                self.ref_hist[:] = self.ref
+                self._set_state(WorkerState.ENABLED)
             return
         a = homing.axis
         self.ref[a] = self.act[a]
@@ -606,77 +676,5 @@ class CycleLoop:
         self.publish()
 
     def run_realtime(self, default_spin_s: float = 0.0) -> None:
-        """The cyclic loop on absolute deadlines until Command.STOP."""
-        cfg = self.cfg
-        ts = cfg.ts_s
-        spin = cfg.spin_s if cfg.spin_s is not None else default_spin_s
-        min_sleep = cfg.min_sleep_s
-        late_s = cfg.late_threshold_s
-        lv = self.lv
-        hist = lv.hist
-        perf = time.perf_counter
-        sleep_until = AbsoluteSleep().until
-        set_timer_slack_ns(1)                    # normal threads: 50 us slack by default
-        inv_bin = 1.0 / HIST_BIN_S
-        last_bin = HIST_BINS - 1
-        every = self.snapshot_every
-        deadline = perf() + ts
-        prev_start = 0.0
-        k_snap = 0
-        missed = 0
-        self.publish_now = True                  # publish after the first cycle
-        while not self.stop_requested:
-            # sleep to `spin` before the deadline (absolute), and always at least min_sleep,
-            # then busy-wait the rest: bounded by `spin`, none when already late
-            wake = deadline - spin
-            earliest = perf() + min_sleep
-            sleep_until(wake if wake > earliest else earliest)
-            while perf() < deadline:
-                pass
-            start = perf()
-            jitter = start - deadline
-            if missed:
-                lv.missed[...] = int(lv.missed) + missed   # counted when the deadline after them starts
-                missed = 0
-            try:
-                self.cycle()
-            except Exception as exc:  # noqa: BLE001 - any bus failure ends the loop with an alarm
-                self.block.write_msg(f"{type(exc).__name__}: {exc}")
-                self._alarm(AlarmCode.BUS_ERROR)
-                self._set_state(WorkerState.ERROR)
-                self.publish()
-                return
-            end = perf()
-            # timing records
-            if prev_start > 0.0:
-                period = start - prev_start
-                lv.period_sum[...] = float(lv.period_sum) + period
-                if period < lv.period_min:
-                    lv.period_min[...] = period
-                if period > lv.period_max:
-                    lv.period_max[...] = period
-                lv.timed[...] = int(lv.timed) + 1
-                b = int(jitter * inv_bin)
-                hist[b if b < last_bin else last_bin] += 1
-                if jitter > lv.jitter_max:
-                    lv.jitter_max[...] = jitter
-                if jitter > late_s:
-                    lv.late[...] = int(lv.late) + 1
-                ex = end - start
-                lv.exec_sum[...] = float(lv.exec_sum) + ex
-                if ex > lv.exec_max:
-                    lv.exec_max[...] = ex
-            else:
-                lv.first_start[...] = start
-            lv.last_start[...] = start
-            prev_start = start
-            deadline += ts
-            if end - deadline >= ts:              # overran by whole periods: skip them, stay on grid
-                missed = int((end - deadline) / ts)
-                deadline += missed * ts
-            k_snap += 1
-            if k_snap >= every or self.publish_now:
-                k_snap = 0
-                self.publish_now = False
-                self.publish()
-        self.publish()
+        """The cyclic loop on absolute deadlines until Command.STOP (``clocked.run_clocked``)."""
+        run_clocked(self, default_spin_s)

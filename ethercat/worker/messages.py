@@ -9,7 +9,7 @@ from __future__ import annotations
 import enum
 
 from ..cia402 import Cia402State
-from .types import AlarmCode, EventCode, WorkerConfig
+from .types import AlarmCode, EventCode, HomingStep, WorkerConfig
 
 __all__ = ["INJECT_NAMES", "Command", "Result", "alarm_message", "error_code_text", "event_message"]
 
@@ -29,6 +29,9 @@ class Command(enum.IntEnum):
     STOP = 11
     REPLACE = 12
     PROBE = 13
+    HOME_SWITCH = 14        # a: the axes (bit mask) that home to their switches together
+    TOUT = 15               # a: terminal index, b: its output word
+    OVERRIDE_LIMITS = 16    # a: 1 on, 0 off
 
 
 class Result(enum.IntEnum):
@@ -42,7 +45,7 @@ class Result(enum.IntEnum):
 #: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox
 INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
                 "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
-                "probe_part_off")
+                "probe_part_off", "terminal_input", "drive_input", "encoder_add")
 
 _ERROR_TEXT = {
     0x2310: "continuous over-current",
@@ -130,6 +133,18 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
     if code is AlarmCode.SLAVE_LOST:
         return (f"{slave_text(config, a)} lost: not answering process data; "
                 "trying to recover it when it comes back")
+    if code is AlarmCode.ESTOP_CHAIN:
+        return ("E-stop chain open (the machine's safety circuit): quick stop of all axes; "
+                "the drives cannot be enabled until it is closed again")
+    if code is AlarmCode.LIMIT_SWITCH:
+        side = "positive" if a > 0 else "negative"
+        return (f"axis {axis} on its {side} limit switch: quick stop of all axes; "
+                f"override limits to jog it off the switch (toward {'-' if a > 0 else '+'})")
+    if code is AlarmCode.HOMING_SWITCH:
+        step = HomingStep(a).name.lower().replace("_", " ") if 0 <= a < len(HomingStep) else str(a)
+        why = {1: "the switch did not change within the search travel",
+               2: "a limit switch tripped", 3: "timeout"}.get(b, "unknown cause")
+        return f"homing of axis {axis} failed at step '{step}': {why}; quick stop of all axes"
     if code is AlarmCode.BUS_ERROR:
         return f"bus error in the cyclic loop ({detail}): worker stopped"
     return code.name

@@ -21,7 +21,7 @@ from .types import WorkerConfig
 __all__ = ["process_main", "start_without_main"]
 
 
-def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, int, int], parent_pid: int) -> None:
+def process_main(cfg: WorkerConfig, shm_name: str, layout: tuple[int, ...], parent_pid: int) -> None:
     """Run the loop in this (spawned) process until told to stop or orphaned.
 
     ``parent_pid`` is the process that started it, told by that process: one that died while

@@ -63,8 +63,10 @@ _ALARM = np.dtype([("code", "i8"), ("axis", "i8"), ("cycle", "i8"), ("a", "i8"),
                    ("command", "i8"), ("f", "f8")])
 
 
-def live_dtype(n: int) -> np.dtype:
-    """What the loop updates every cycle (and what a snapshot copies)."""
+def live_dtype(n: int, m: int = 0, w: int = 0) -> np.dtype:
+    """What the loop updates every cycle (and what a snapshot copies): n axes, m terminals,
+    w watched inputs (arrays of the last two hold at least one element)."""
+    m1, w1 = max(m, 1), max(w, 1)
     return np.dtype([
         ("cycle", "i8"), ("state", "i8"), ("consumed", "i8"), ("underruns", "i8"), ("wkc", "i8"),
         ("wkc_expected", "i8"), ("wkc_errors", "i8"), ("late", "i8"), ("missed", "i8"),
@@ -80,6 +82,10 @@ def live_dtype(n: int) -> np.dtype:
         ("act", "f8", (n,)), ("ref", "f8", (n,)), ("fe", "f8", (n,)),
         ("sum_e2", "f8", (n,)), ("win_e2", "f8", (n,)), ("max_e", "f8", (n,)),
         ("hist", "i8", (HIST_BINS,)),
+        # terminals: inputs, outputs, encoder counts; watched inputs active; limits overridden;
+        # homing to switches: step and latched position per axis
+        ("tin", "i8", (m1,)), ("tout", "i8", (m1,)), ("tcount", "i8", (m1,)), ("watch", "i8", (w1,)),
+        ("override", "i8"), ("home_step", "i8", (n,)), ("home_latch", "f8", (n,)),
     ], align=True)
 
 
@@ -90,9 +96,10 @@ def trace_columns(n: int) -> int:
     return 2 + 2 * n
 
 
-def block_dtype(n: int, capacity: int, trace_capacity: int) -> np.dtype:
-    """The whole shared block for n axes, a ring of `capacity` set-points and a trace ring."""
-    live = live_dtype(n)
+def block_dtype(n: int, capacity: int, trace_capacity: int, m: int = 0, w: int = 0) -> np.dtype:
+    """The whole shared block for n axes, a ring of `capacity` set-points and a trace ring
+    (m terminals, w watched inputs)."""
+    live = live_dtype(n, m, w)
     return np.dtype([
         ("control", _CONTROL), ("msg", "u1", (MSG_BYTES,)), ("live", live), ("snap", live),
         ("ring", "f8", (capacity, n)), ("stage", "f8", (capacity, n)),
@@ -171,16 +178,23 @@ class LiveFields(_Fields):
     win_e2: np.ndarray
     max_e: np.ndarray
     hist: np.ndarray
+    tin: np.ndarray
+    tout: np.ndarray
+    tcount: np.ndarray
+    watch: np.ndarray
+    override: np.ndarray
+    home_step: np.ndarray
+    home_latch: np.ndarray
 
 
 class SharedBlock:
     """Typed views of one shared block, made once."""
 
     def __init__(self, buf: bytearray | memoryview | None, n: int, capacity: int,
-                 trace_capacity: int) -> None:
+                 trace_capacity: int, m: int = 0, w: int = 0) -> None:
         if buf is None:
             raise WorkerError("shared memory block is closed")
-        self.dtype = block_dtype(n, capacity, trace_capacity)
+        self.dtype = block_dtype(n, capacity, trace_capacity, m, w)
         self.root = np.ndarray((), dtype=self.dtype, buffer=buf)
         self.ctl = ControlFields(self.root["control"])
         self.live_record = self.root["live"]
@@ -193,8 +207,8 @@ class SharedBlock:
         self.trace = self.root["trace"]
 
     @staticmethod
-    def size(n: int, capacity: int, trace_capacity: int) -> int:
-        return block_dtype(n, capacity, trace_capacity).itemsize
+    def size(n: int, capacity: int, trace_capacity: int, m: int = 0, w: int = 0) -> int:
+        return block_dtype(n, capacity, trace_capacity, m, w).itemsize
 
     def clear_control(self) -> None:
         self.root["control"] = 0

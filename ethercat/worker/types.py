@@ -12,9 +12,11 @@ import numpy as np
 from ..bus import DriveSpec, check_drives
 from ..cia402 import Cia402State
 from ..errors import ConfigurationError
+from ..terminals import TerminalSpec, check_terminals
 
 __all__ = [
-    "Alarm", "AlarmCode", "DriveSpec", "EventCode", "HomingState", "ReplaceResult", "TimingStats",
+    "Alarm", "AlarmCode", "DriveSpec", "EventCode", "HomingState", "HomingStep", "InputWatch", "SwitchHoming",
+    "WatchAction", "ReplaceResult", "TimingStats",
     "TraceChunk", "TrackingStats", "WorkerConfig", "WorkerEvent", "WorkerSnapshot", "WorkerState",
     "REF_HISTORY",
 ]
@@ -51,6 +53,9 @@ class AlarmCode(enum.IntEnum):
     BUS_ERROR = 9
     FAULT_RESET_FAILED = 10
     SLAVE_LOST = 11
+    ESTOP_CHAIN = 12       # the machine's E-stop chain (safety relay) opened
+    LIMIT_SWITCH = 13      # an axis ran onto a limit switch (a: +1 / -1 the side)
+    HOMING_SWITCH = 14     # homing to the switch failed (a: the step, b: why)
 
 
 class EventCode(enum.IntEnum):
@@ -66,6 +71,65 @@ class HomingState(enum.IntEnum):
     RUNNING = 1
     DONE = 2
     ERROR = 3
+
+
+class HomingStep(enum.IntEnum):
+    """Where an axis homing to its switch is (LinuxCNC's homing sequence)."""
+
+    IDLE = 0
+    OFF_SWITCH = 1     # it started on the switch: moving off it against the search direction
+    SEARCH = 2         # moving at the search velocity until the switch trips
+    BACK_OFF = 3       # off the switch again (latch in the search direction)
+    LATCH = 4          # at the latch velocity until the switch edge: the position latched
+    DONE = 5
+
+
+class WatchAction(enum.IntEnum):
+    """What the loop does, in the cycle it reads an input, about a stop condition."""
+
+    ESTOP_CHAIN = 1    # active = the chain is open: quick stop, no enable while it stays open
+    LIMIT = 2          # active = the axis is on its limit switch: quick stop unless overridden
+
+
+@dataclass(frozen=True, slots=True)
+class InputWatch:
+    """One input the loop watches every cycle: bit ``bit`` of input word ``word`` (words
+    0..n-1 the drives' 0x60FD, n.. the terminals' inputs) is *active* when it reads
+    ``level``. ``axis`` and ``side`` (+1 positive, -1 negative end) for a limit switch."""
+
+    action: WatchAction
+    word: int
+    bit: int
+    level: bool = True
+    axis: int = -1
+    side: int = 0
+    name: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class SwitchHoming:
+    """How one axis homes to its switch in position mode (LinuxCNC's HOME_* keys), velocities in
+    axis units/s with their signs: search (the direction to the switch), latch (the same sign:
+    off the switch and back onto it slowly; opposite: latched as it leaves the switch).
+    ``max_travel`` bounds every move; ``accel``/``jerk`` the ramps. The switch is bit ``bit`` of
+    input word ``word`` (as ``InputWatch``), closed when it reads ``level``."""
+
+    axis: int
+    word: int
+    bit: int
+    level: bool
+    search_vel: float
+    latch_vel: float
+    max_travel: float
+    accel: float
+    jerk: float
+    ignore_limits: bool = False
+
+    def __post_init__(self) -> None:
+        if self.search_vel == 0.0 or self.latch_vel == 0.0:
+            raise ConfigurationError(f"homing of axis {self.axis}: search and latch velocities must not be 0")
+        if not (self.max_travel > 0.0 and self.accel > 0.0 and self.jerk > 0.0):
+            raise ConfigurationError(f"homing of axis {self.axis}: travel, acceleration and jerk must be > 0")
 
 
 @dataclass(frozen=True, slots=True)
@@ -184,6 +248,13 @@ class WorkerSnapshot:
     events: tuple[WorkerEvent, ...] = ()   # recent events (e.g. slave recovered), oldest first
     digital_inputs: tuple[int, ...] = ()   # 0x60FD per drive, from the process data
     probe: ProbeState = ProbeState()       # the probe input's latch (``CyclicWorker.arm_probe``)
+    terminal_inputs: tuple[int, ...] = ()  # per terminal: its input bits (an encoder's status)
+    terminal_outputs: tuple[int, ...] = ()
+    terminal_counts: tuple[int, ...] = ()  # per terminal: an encoder's counter (0 otherwise)
+    watches_active: tuple[bool, ...] = ()  # per ``WorkerConfig.watches``: active this cycle
+    limits_overridden: bool = False        # ``CyclicWorker.override_limits`` in force
+    homing_steps: tuple[HomingStep, ...] = ()    # per axis: the step of its homing to a switch
+    home_latched: tuple[float, ...] = ()         # per axis: the position latched at the switch
 
     @property
     def enabled(self) -> bool:
@@ -272,9 +343,22 @@ class WorkerConfig:
     command_timeout_s: float = 2.0
     trace_capacity: int = 1 << 16
     bus_options: tuple[tuple[str, Any], ...] = field(default=())
+    terminals: tuple[TerminalSpec, ...] = ()
+    watches: tuple[InputWatch, ...] = ()
+    switch_homing: tuple[SwitchHoming, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "drives", check_drives(self.drives))
+        object.__setattr__(self, "terminals",
+                           check_terminals(self.terminals, [d.position for d in self.drives]))
+        n_words = len(self.drives) + len(self.terminals)
+        inputs: list[InputWatch | SwitchHoming] = [*self.watches, *self.switch_homing]
+        for w in inputs:
+            if not 0 <= w.word < n_words or not 0 <= w.bit < 32:
+                raise ConfigurationError(f"{w}: input word {w.word} bit {w.bit} does not exist "
+                                         f"({n_words} input words of 32 bits)")
+            if w.axis >= len(self.drives):
+                raise ConfigurationError(f"{w}: axis {w.axis} does not exist")
         if not 0.0001 <= self.ts_s <= 0.1:
             raise ConfigurationError(f"ts_s must be within [0.0001, 0.1] s, got {self.ts_s}")
         if self.mode not in ("process", "thread", "manual"):
@@ -297,6 +381,10 @@ class WorkerConfig:
     @property
     def n_axes(self) -> int:
         return len(self.drives)
+
+    @property
+    def n_terminals(self) -> int:
+        return len(self.terminals)
 
     @property
     def axis_names(self) -> tuple[str, ...]:

@@ -1,0 +1,204 @@
+"""Homing to a switch in position mode, cycle by cycle, as LinuxCNC's motion controller homes.
+
+Per axis (``SwitchHoming``): if the axis starts on its switch it first moves off it against
+the search direction; then it searches at ``search_vel`` until the switch closes and stops;
+with a latch velocity of the search's sign it backs off until the switch opens and comes back
+at ``latch_vel`` until it closes, with the opposite sign it leaves the switch at
+``latch_vel``; the actual position of the cycle the switch changes is *latched*, and the
+axis stops. Every change of velocity is a jerk-limited ramp (``accel``, ``jerk``). Each move
+is bounded by ``max_travel`` (a switch that never changes is an error naming the step).
+
+The set-point of a homing axis is made here, one per cycle, from its velocity; several axes
+home at once (LinuxCNC's equal HOME_SEQUENCE). What the latched position means (the switch's
+machine coordinate, where to go next) is the controller's: the loop only reports it.
+
+The positions here are axis units of the drive's own count (``act``/``ref``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .types import HomingState, HomingStep, SwitchHoming
+
+__all__ = ["SwitchHomer", "FAIL_NOT_FOUND", "FAIL_LIMIT", "FAIL_TIMEOUT"]
+
+FAIL_NOT_FOUND = 1      # the switch did not change within max_travel
+FAIL_LIMIT = 2          # a limit switch tripped (and the axis does not ignore limits)
+FAIL_TIMEOUT = 3
+
+
+class _Axis:
+    """One axis' homing: its step, velocity and acceleration, the position its move began."""
+
+    __slots__ = ("spec", "step", "v", "a", "v_target", "stopping", "start", "mask", "closed_level",
+                 "next_step")
+
+    def __init__(self, spec: SwitchHoming) -> None:
+        self.spec = spec
+        self.step = HomingStep.IDLE
+        self.v = 0.0
+        self.a = 0.0
+        self.v_target = 0.0
+        self.stopping = False
+        self.start = 0.0
+        self.mask = 1 << spec.bit
+        self.closed_level = spec.level
+        self.next_step = HomingStep.IDLE
+
+
+class SwitchHomer:
+    """Homing to switches of the axes asked (see the module docstring)."""
+
+    def __init__(self, specs: tuple[SwitchHoming, ...], n: int, ts_s: float, homing_state: np.ndarray,
+                 homed: np.ndarray, steps: np.ndarray, latched: np.ndarray, timeout_cycles: int) -> None:
+        self.ts = ts_s
+        self.by_axis: dict[int, SwitchHoming] = {s.axis: s for s in specs}
+        self.axes: list[_Axis] = []
+        self.state = homing_state
+        self.homed = homed
+        self.steps = steps
+        self.latched = latched
+        self.timeout_cycles = timeout_cycles
+        self.cycles = 0
+        self.failure = 0                   # FAIL_* of the axis that failed
+        self.failed_axis = -1
+        self.failed_step = HomingStep.IDLE
+
+    @property
+    def active(self) -> bool:
+        return bool(self.axes)
+
+    def has(self, axis: int) -> bool:
+        return axis in self.by_axis
+
+    def ignores_limits(self, axis: int) -> bool:
+        """Whether ``axis`` homes now with its limit switches ignored (its HOME_IGNORE_LIMITS)."""
+        for h in self.axes:
+            if h.spec.axis == axis:
+                return h.spec.ignore_limits
+        return False
+
+    def begin(self, axis_mask: int, words: np.ndarray) -> bool:
+        """Start the axes of ``axis_mask`` together; False (nothing started) when one of them has
+        no switch homing configured."""
+        wanted = [a for a in range(63) if axis_mask >> a & 1]
+        if not wanted or any(a not in self.by_axis for a in wanted):
+            return False
+        self.axes = [_Axis(self.by_axis[a]) for a in wanted]
+        self.cycles = 0
+        self.failure = 0
+        self.failed_axis = -1
+        for h in self.axes:
+            a = h.spec.axis
+            self.state[a] = HomingState.RUNNING
+            self.homed[a] = 0
+            on_switch = self._closed(h, words)
+            self._go(h, HomingStep.OFF_SWITCH if on_switch else HomingStep.SEARCH, 0.0)
+        return True
+
+    def cancel(self) -> None:
+        for h in self.axes:
+            a = h.spec.axis
+            if self.state[a] == HomingState.RUNNING:
+                self.state[a] = HomingState.ERROR
+            self.steps[a] = HomingStep.IDLE
+        self.axes = []
+
+    # ------------------------------------------------------------------ per cycle
+    def _closed(self, h: _Axis, words: np.ndarray) -> bool:
+        return (int(words[h.spec.word]) & h.mask != 0) == h.closed_level
+
+    def _go(self, h: _Axis, step: HomingStep, position: float) -> None:
+        spec = h.spec
+        h.step = step
+        self.steps[spec.axis] = step
+        h.stopping = False
+        h.start = position
+        if step is HomingStep.OFF_SWITCH or step is HomingStep.BACK_OFF:
+            h.v_target = -spec.search_vel
+        elif step is HomingStep.SEARCH:
+            h.v_target = spec.search_vel
+        elif step is HomingStep.LATCH:
+            h.v_target = spec.latch_vel
+        else:
+            h.v_target = 0.0
+
+    def _stop_then(self, h: _Axis, step: HomingStep) -> None:
+        h.v_target = 0.0
+        h.stopping = True
+        h.next_step = step
+
+    def _ramp(self, h: _Axis) -> None:
+        """One cycle of a jerk-limited velocity ramp toward ``v_target``: the acceleration goes
+        toward the largest that still lets it come back to 0 as the velocity arrives."""
+        spec, ts = h.spec, self.ts
+        dv = h.v_target - h.v
+        brake = h.a * abs(h.a) / (2.0 * spec.jerk)
+        jt = spec.jerk * ts
+        if abs(dv) <= jt * ts and abs(h.a) <= jt:
+            h.v, h.a = h.v_target, 0.0
+            return
+        want = spec.accel if dv - brake > 0.0 else -spec.accel
+        da = want - h.a
+        h.a += jt if da > jt else -jt if da < -jt else da
+        h.v += h.a * ts
+
+    def step(self, ref: np.ndarray, act: np.ndarray, words: np.ndarray) -> bool:
+        """Advance every homing axis one cycle and write its set-point into ``ref``. Returns
+        False when an axis failed (``failure``, ``failed_axis``, ``failed_step``): the caller
+        stops the motion and raises the alarm."""
+        self.cycles += 1
+        if self.cycles > self.timeout_cycles:
+            return self._fail(self.axes[0], FAIL_TIMEOUT)
+        done = 0
+        for h in self.axes:
+            spec = h.spec
+            a = spec.axis
+            step = h.step
+            if step is HomingStep.DONE:
+                done += 1
+                continue
+            closed = self._closed(h, words)
+            if not h.stopping:
+                if step is HomingStep.SEARCH and closed:
+                    self._stop_then(h, HomingStep.BACK_OFF if spec.latch_vel * spec.search_vel > 0
+                                    else HomingStep.LATCH)
+                elif (step is HomingStep.OFF_SWITCH or step is HomingStep.BACK_OFF) and not closed:
+                    self._stop_then(h, HomingStep.SEARCH if step is HomingStep.OFF_SWITCH
+                                    else HomingStep.LATCH)
+                elif step is HomingStep.LATCH and closed == (spec.latch_vel * spec.search_vel > 0):
+                    # the edge: closing when latching toward the switch, opening when leaving it
+                    self.latched[a] = act[a]
+                    self._stop_then(h, HomingStep.DONE)
+                elif abs(ref[a] - h.start) > spec.max_travel:
+                    return self._fail(h, FAIL_NOT_FOUND)
+            self._ramp(h)
+            ref[a] += h.v * self.ts
+            if h.stopping and h.v == 0.0 and h.a == 0.0:
+                nxt = h.next_step
+                if nxt is HomingStep.DONE:
+                    h.step = HomingStep.DONE
+                    self.steps[a] = HomingStep.DONE
+                    self.state[a] = HomingState.DONE
+                    self.homed[a] = 1
+                else:
+                    self._go(h, nxt, float(ref[a]))
+        if done == len(self.axes):
+            self.axes = []
+        return True
+
+    def limit_tripped(self, axis: int) -> bool:
+        """A limit switch of ``axis`` tripped while it homes: the homing fails (False) unless the
+        axis ignores its limits."""
+        for h in self.axes:
+            if h.spec.axis == axis and not h.spec.ignore_limits:
+                return self._fail(h, FAIL_LIMIT)
+        return True
+
+    def _fail(self, h: _Axis, why: int) -> bool:
+        self.failure = why
+        self.failed_axis = h.spec.axis
+        self.failed_step = h.step
+        self.cancel()
+        return False
