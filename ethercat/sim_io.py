@@ -131,9 +131,15 @@ class SimIo:
         if self.switches:
             pos = position_counts[self._sw_axis] * self._sw_upc
             inside = (pos >= self._sw_lo) & (pos <= self._sw_hi)
-            on = inside == self._sw_level
-            for w, mask, bit_on in zip(self._sw_word.tolist(), self._sw_mask.tolist(), on.tolist()):
-                out[w] = out[w] | mask if bit_on else out[w] & ~mask
+            # switches on one bit are in parallel (normally open) or in series (normally
+            # closed): the bit reads its switches' level while any of them is closed
+            closed: dict[tuple[int, int], tuple[bool, bool]] = {}
+            for w, mask, level, hit in zip(self._sw_word.tolist(), self._sw_mask.tolist(),
+                                           self._sw_level.tolist(), inside.tolist()):
+                was = closed.get((w, mask))
+                closed[(w, mask)] = (level, hit or (was is not None and was[1]))
+            for (w, mask), (level, hit) in closed.items():
+                out[w] = out[w] | mask if hit == level else out[w] & ~mask
         out = (out & ~self.forced_mask) | (self.forced_bits & self.forced_mask)
         return out
 

@@ -33,6 +33,14 @@ import tomlkit.exceptions
 import tomlkit.items
 
 from app.machine.errors import ConfigError
+from app.machine.wiring import (
+    Direction,
+    MachineWiring,
+    homing_lines,
+    signal_lines,
+    terminal_lines,
+    wiring_from_valid,
+)
 from ethercat.drive_setup import drive_table_problem
 from opcua_server.settings import IDENTIFICATION_KEYS, OpcUaSettings
 from planner.core.errors import PlannerError
@@ -264,6 +272,8 @@ class MachineConfig:
     opcua: OpcUaSettings = field(default_factory=OpcUaSettings)
     path: str = ""  # file it was read from ("" if built in memory)
     toolchange: ToolChangeSettings = field(default_factory=ToolChangeSettings)
+    # terminals, named signals, homing to switches, interlocks (``app.machine.wiring``)
+    wiring: MachineWiring = field(default_factory=MachineWiring)
 
     def __post_init__(self) -> None:
         # what the interpreter takes from the panel's settings: the shipped subroutines' folder
@@ -303,10 +313,36 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     drives = tuple(_drive(d) for d in b["drives"])
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
-    return MachineConfig(machine=machine, homing=homing, bus=bus, controller=ControllerSettings(**c),
-                         probe=ProbeSettings(**valid["probe"]),
+    controller, probe = ControllerSettings(**c), ProbeSettings(**valid["probe"])
+    try:
+        wiring = wiring_from_valid(valid, machine, loc, homing.method,
+                                   _reserved_bits(machine, controller, probe))
+    except PlannerError as exc:
+        raise ConfigError(str(exc), where) from None
+    return MachineConfig(machine=machine, homing=homing, bus=bus, controller=controller, probe=probe,
                          toolchange=ToolChangeSettings(**valid["toolchange"]),
-                         opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where)
+                         opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where, wiring=wiring)
+
+
+def _reserved_bits(machine: MachineSpec, controller: ControllerSettings, probe: ProbeSettings
+                   ) -> list[tuple[str, Direction, int, int]]:
+    """The drives' bits the program's inputs and outputs, the probe and the spindle use (no
+    signal may take them): (what, direction, slave position, bit)."""
+    slave = [a.drive_position for a in machine.axes]
+    out: list[tuple[str, Direction, int, int]] = []
+    for number, (drive, bit, _name) in machine.output_bits.items():
+        if 0 <= drive < len(slave):
+            out.append((f"[[outputs]] number {number}", Direction.OUT, slave[drive], bit))
+    for number, (drive, bit, _name) in machine.input_bits.items():
+        if 0 <= drive < len(slave):
+            out.append((f"[[inputs]] number {number}", Direction.IN, slave[drive], bit))
+    if probe.drive is not None and 0 <= probe.drive < len(slave):
+        out.append(("the probe ([probe] drive, bit)", Direction.IN, slave[probe.drive], probe.bit))
+    if 0 <= controller.spindle_drive < len(slave):
+        for bit in (0, 1):
+            out.append(("the spindle's ([controller] spindle_drive)", Direction.OUT,
+                        slave[controller.spindle_drive], bit))
+    return out
 
 
 def _parse(path: Path) -> MachineConfig:
@@ -437,11 +473,14 @@ def config_to_toml(config: MachineConfig) -> str:
     out += ["", "[homing]", f"required = {_fmt(h.required)}", f"method = {_fmt(h.method)}",
             f"drive_method = {h.drive_method}", f"timeout_s = {_fmt(float(h.timeout_s))}",
             f"absolute_encoders = {_fmt(h.absolute_encoders)}", ""]
+    out += homing_lines(config.wiring)
     b = config.bus
-    out += ["[bus]", f"kind = {_fmt(b.kind)}", f"adapter = {_fmt(b.adapter)}",
+    out += ["", "[bus]", f"kind = {_fmt(b.kind)}", f"adapter = {_fmt(b.adapter)}",
             f"wkc_error_limit = {b.wkc_error_limit}", ""]
     for d in b.drives:
         out += drive_lines(d)
+    out += terminal_lines(config.wiring)
+    out += [""] + signal_lines(config.wiring)
     c = config.controller
     out += ["", "[controller]", f"jog_speed_mm_s = {_fmt(float(c.jog_speed_mm_s))}",
             f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",

@@ -2,7 +2,9 @@
 controller through a bounded ring, with supervision, tracking and timing records.
 
 One file per concern: ``types`` (states, codes, records, configuration), ``shared`` (the one
-shared block and its ordering rules), ``cycle`` (the loop), ``homing`` (drive-side homing),
+shared block and its ordering rules), ``cycle`` (the loop), ``clocked`` (the loop on its clock),
+``homing`` (drive-side homing), ``switch_homing`` (homing to switches in position mode),
+``watches`` (E-stop chain, limits),
 ``acyclic`` (SDO and recovery beside the cycle), ``realtime`` (core, priority, sleeping),
 ``process`` (the worker's own process), ``messages`` (commands and alarm texts) and
 ``client`` (``CyclicWorker``, the controller's handle).
@@ -17,12 +19,16 @@ from .types import (
     AlarmCode,
     EventCode,
     HomingState,
+    HomingStep,
+    InputWatch,
     ProbeLatch,
     ProbeState,
     ReplaceResult,
+    SwitchHoming,
     TimingStats,
     TraceChunk,
     TrackingStats,
+    WatchAction,
     WorkerConfig,
     WorkerEvent,
     WorkerSnapshot,
@@ -31,7 +37,8 @@ from .types import (
 
 __all__ = [
     "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HomingState",
-    "ProbeLatch", "ProbeState", "ReplaceResult", "TimingStats", "TraceChunk", "TrackingStats",
+    "HomingStep", "InputWatch", "ProbeLatch", "ProbeState", "ReplaceResult", "SwitchHoming", "TimingStats",
+    "TraceChunk", "TrackingStats", "WatchAction",
     "WorkerConfig", "WorkerEvent",
     "WorkerSnapshot", "WorkerState", "error_code_text",
 ]

@@ -18,8 +18,8 @@ from typing import Any
 
 from planner.core.errors import PlannerError
 
-__all__ = ["END_MARK", "HEADER", "MACHINE_FILE", "REQUIRED", "Key", "Locator", "Table", "check_complete",
-           "key_lines", "validate"]
+__all__ = ["END_MARK", "HEADER", "MACHINE_FILE", "REQUIRED", "SIGNAL_NAMES", "Key", "Locator", "Table",
+           "check_complete", "key_lines", "validate"]
 
 
 class _Required:
@@ -59,6 +59,11 @@ class Table:
 
 
 _LIN = 1e6        # mm: positions and travel
+#: the machine's named signals (``[signals]``; ``app.machine.wiring`` says what each does)
+SIGNAL_NAMES = (
+    "estop_chain_ok", "cycle_start", "feed_hold", "stop", "door_closed", "air_ok", "lube_ok",
+    "spindle_at_speed", "coolant_flood", "coolant_mist", "lube_pump", "work_light", "spindle_enable",
+)
 #: a digital output or input: its number in a program (M62-M66 P), the axis index of the drive
 #: that carries it, the bit of the drive's 0x60FE:1 / 0x60FD, a name for the operator
 _IO_KEYS = (
@@ -135,11 +140,33 @@ MACHINE_FILE = Table("", tables=(
     ), array=True),
     Table("homing", (
         Key("required", "bool", True),
-        Key("method", "str", "set_here", choices=("set_here", "drive")),
+        # "switches": each axis homes to its home switch ([[homing.axes]], the signal home_<axis>);
+        # "drive": the drive's own CiA 402 homing; "set_here": where the axes stand is machine
+        # zero (a machine without reference switches: after a power loss the control cannot
+        # know where the machine is)
+        Key("method", "str", "set_here", choices=("set_here", "drive", "switches")),
         Key("drive_method", "int", 35, -128, 127),
         Key("timeout_s", "float", 60.0, 0.1, 3600.0),
         # drives that keep their position through a power cut stay homed after one
         Key("absolute_encoders", "bool", False),
+    ), tables=(
+        # homing to a switch, per axis, as LinuxCNC's HOME_* keys (units/s, the sign of the
+        # search velocity the direction to the switch; the latch velocity's sign the same:
+        # off the switch and back onto it slowly, opposite: latched as it leaves the switch);
+        # offset: the switch's machine coordinate; home: where the axis goes after; sequence:
+        # the order (equal values home together); max_travel: the longest search (default the
+        # axis' travel and a fifth)
+        Table("axes", (
+            Key("axis", "str", REQUIRED, choices=("X", "Y", "Z", "A", "B", "C")),
+            Key("search_vel", "float", REQUIRED, -1e5, 1e5),
+            Key("latch_vel", "float", REQUIRED, -1e5, 1e5),
+            Key("final_vel", "float", 0.0, 0.0, 1e5),
+            Key("offset", "float", 0.0, -_LIN, _LIN),
+            Key("home", "float", 0.0, -_LIN, _LIN),
+            Key("sequence", "int", 0, 0, 9),
+            Key("ignore_limits", "bool", False),
+            Key("max_travel", "float", None, 1e-3, _LIN),
+        ), array=True),
     )),
     Table("bus", (
         Key("kind", "str", "sim", choices=("sim", "soem")),
@@ -171,6 +198,28 @@ MACHINE_FILE = Table("", tables=(
                 Key("size", "int", REQUIRED, choices=(1, 2, 4, 8)),
             ), array=True),
         )),
+        # terminals beside the drives (ethercat.terminals): slave position, type ("EK1100",
+        # "EL1008", "EL2008", "EL5101", ...), a name for the operator
+        Table("terminals", (
+            Key("position", "int", REQUIRED, 0, 65535),
+            Key("type", "str", REQUIRED),
+            Key("name", "str", ""),
+        ), array=True),
+    )),
+    # the machine's signals, each wired to a bit: "<slave>:<bit>" (the slave's bus position;
+    # a terminal's channel counted from 0, a drive's bit of 0x60FD in / 0x60FE:1 out), "!" in
+    # front when the bit reads 0 while the signal is true (a normally closed contact); ""
+    # not wired. limit_pos_<axis>, limit_neg_<axis> and home_<axis> default to bits 1, 0 and 2
+    # of the axis' drive's 0x60FD (CiA 402)
+    Table("signals", tuple(Key(name, "str", "") for name in SIGNAL_NAMES),
+          pattern=r"(?:limit_pos|limit_neg|home)_[XYZABC]", pattern_key=Key("", "str", None)),
+    # what the machine's interlocks do: air or lube pressure lost ("stop": the motion stops
+    # along its path, an alarm; "warning": an alarm only); the jog speed allowed with the
+    # door open (mm/s; 0: no jog with the door open)
+    Table("interlocks", (
+        Key("air_lost", "str", "stop", choices=("stop", "warning")),
+        Key("lube_lost", "str", "warning", choices=("stop", "warning")),
+        Key("door_open_jog_mm_s", "float", 0.0, 0.0, 1e4),
     )),
     # the probe G38.2-G38.5 read: a bit of the digital inputs (0x60FD) of an axis' drive, and
     # its level while the stylus touches; with simulated drives, a surface it touches
