@@ -20,7 +20,7 @@ import numpy as np
 from planner.core.errors import PlannerError, ProgramError, SourceError
 from planner.core.heap import trim_heap
 from planner.core.machine import MachineSpec
-from planner.core.program import ProbeResult, Program
+from planner.core.program import EventKind, ProbeResult, Program
 from planner.core.tools import ToolTable
 from planner.gcode.interpreter import parse_program, read_program_bytes
 from planner.geometry.blend import BlendReport, blend_report
@@ -41,6 +41,8 @@ class Abilities:
     probe_max_feed_mm_min: float = math.inf   # the fastest a probe move may be (its overtravel)
     spindle_encoder: bool = True              # G33, G76: each pass starts at the same angle
     analog_outputs: bool = True               # M67, M68
+    coolant_mist: bool = True                 # M7
+    coolant_flood: bool = True                # M8
 
 
 class Refused(ProgramError):
@@ -75,6 +77,17 @@ def refusal(program: Program, abilities: Abilities) -> tuple[int, str, str]:
         return motion.line, motion.code, (
             f"{motion.code} is spindle-synchronised motion: every pass of a thread must start at the same "
             "spindle angle, and this machine's spindle has no encoder to give it; it cannot run here")
+    if not (abilities.coolant_mist and abilities.coolant_flood):
+        for ev in program.events:
+            if ev.kind is not EventKind.COOLANT:
+                continue
+            bits = int(ev.value)
+            if bits & 1 and not abilities.coolant_mist:
+                return ev.line, "M7", ("M7 switches mist coolant on, and this machine has no mist coolant "
+                                       "output ([signals] coolant_mist in the machine configuration)")
+            if bits & 2 and not abilities.coolant_flood:
+                return ev.line, "M8", ("M8 switches flood coolant on, and this machine has no flood coolant "
+                                       "output ([signals] coolant_flood in the machine configuration)")
     if program.analog_outputs and not abilities.analog_outputs:
         out = program.analog_outputs[0]
         return out.line, out.code, (f"{out.code} E{out.index} sets an analog output, and this machine has "

@@ -74,11 +74,13 @@ from PySide6.QtCore import QObject, Signal
 
 from app.machine.config import MachineConfig
 from app.machine.devices.inputs import InputWaiter
+from app.machine.devices.machine_io import MachineIo
 from app.machine.devices.outputs import DigitalOutputs
 from app.machine.devices.probe import Prober
 from app.machine.devices.probing import Probing
 from app.machine.devices.reads import ReadAgain
 from app.machine.devices.setter import ToolSetter
+from app.machine.devices.signals import MachineSignals
 from app.machine.devices.spindle import SpindleControl
 from app.machine.devices.tools import ToolControl
 from app.machine.infra.drives import DriveLink
@@ -147,6 +149,7 @@ _spindle, _tools, _setter, _alarms, _conn = _part("spindle_ctl"), _part("tools")
 _poller, _drives, _status, _remote = _part("poller"), _part("drives"), _part("status"), _part("remote")
 _job_log, _probing, _prober, _switches = _part("jobs_log"), _part("probing"), _part("prober"), \
     _part("switches")
+_io, _signals = _part("io"), _part("signals")
 
 
 class MachineController(QObject):
@@ -213,10 +216,10 @@ class MachineController(QObject):
         self.drives = drives = DriveLink(worker_mode)
         self.alarm_log = alarms = AlarmLog(store, out, events)
         self.positions = positions = Positions(settings, out, events, drives)
-        self.states = states = StateMachine(settings, out, events, drives, positions, alarms)
+        self.signals = signals = MachineSignals(settings, drives)
+        self.states = states = StateMachine(settings, out, events, drives, positions, alarms, signals)
         self.coordinates = coords = Coordinates(settings, states, positions, store, alarms, out, events,
                                                 pauses)
-        self.homing = homing = Homing(settings, states, drives, positions, alarms, events)
         self.outputs = outputs = DigitalOutputs(settings, drives, alarms, events, pauses)
         self.spindle_ctl = spindle = SpindleControl(settings, states, drives, outputs, alarms, out, events)
         self.tools = tools = ToolControl(settings, states, positions, coords, store, alarms, out, pauses)
@@ -233,10 +236,14 @@ class MachineController(QObject):
         self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses, tools)
         self.waiter = InputWaiter(coords, stream, read_again, pauses)
         self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs,
-                                            switches, stream, jobs)
+                                            switches, stream, jobs, signals)
         self.setter = ToolSetter(settings, states, tools, positions, coords, manual, alarms)
+        self.homing = homing = Homing(settings, states, drives, positions, alarms, events, manual)
         self.probing = Probing(settings, states, tools, positions, coords, manual, out.probingFinished.emit)
         self.poller = poller = StatusPoller(settings, drives, positions, coords, alarms, stream, out, events)
+        self.io = io = MachineIo(settings, states, signals, drives, spindle, outputs, alarms, stream, events,
+                                 run)
+        poller.on_poll(io.poll)
         poller.on_poll(homing.poll)
         poller.on_poll(prober.place_simulated_surface)
         poller.on_poll(prober.place_simulated_part)
@@ -308,6 +315,7 @@ class MachineController(QObject):
     part_count: reads[int] = reads(_job_log, "count")
     part_target: reads[int] = reads(_job_log, "target")
     opcua_settings: reads[OpcUaSettings] = reads(_remote, "settings")
+    coolant: reads[tuple[bool, bool]] = reads(_io, "coolant")
 
     # ------------------------------------------------------------------ commands
     snapshot = forward(_status, StatusBoard.current)
@@ -369,3 +377,7 @@ class MachineController(QObject):
     runs = forward(_job_log, JobLog.runs)
     export_runs = forward(_job_log, JobLog.export)
     add_trace_sink = forward(_stream, Streamer.add_trace_sink)
+    override_limits = forward(_io, MachineIo.override_limits)
+    set_coolant = forward(_io, MachineIo.set_coolant)
+    set_work_light = forward(_io, MachineIo.set_work_light)
+    signal_readings = forward(_signals, MachineSignals.readings)

@@ -178,11 +178,32 @@ class SpindleDrive(SpindleView, Protocol):
 
     def spin_up_s(self, new: SpindleState) -> float: ...
 
+    def restart_after_hold(self) -> float: ...
+
+
+class Interlocks(Protocol):
+    """What the machine's signals refuse now (the door open, the E-stop chain open): "" when
+    nothing."""
+
+    def refusal(self, action: str) -> str: ...
+
+
+class JogInterlocks(Protocol):
+    """What the machine's signals allow a jog: the speed with the door open (None: closed), the
+    limit switch an axis stands on (+1 / -1, 0: none)."""
+
+    def jog_speed_cap(self) -> float | None: ...
+
+    def limit_side(self, axis: int) -> int: ...
+
 
 class OutputSwitch(Protocol):
-    """The program's digital outputs (M62-M65): "" when switched, else why not."""
+    """The program's digital outputs (M62-M65) and coolant (M7-M9): "" when switched, else why
+    not."""
 
     def set_output(self, number: int, on: bool) -> str: ...
+
+    def set_coolant(self, bits: int) -> str: ...
 
 
 class ToolsView(Protocol):

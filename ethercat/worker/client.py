@@ -57,6 +57,7 @@ from .types import (
     TimingStats,
     TraceChunk,
     TrackingStats,
+    WatchAction,
     WorkerConfig,
     WorkerEvent,
     WorkerSnapshot,
@@ -257,7 +258,21 @@ class CyclicWorker:
         watch ``snapshot().state`` for ENABLED. Refused (WorkerError) in FAULT: fault_reset()."""
         self._live()
         if not self._command(Command.ENABLE):
-            raise WorkerError(f"enable refused in state {self.state().name}")
+            raise WorkerError(self._enable_refusal())
+
+    def _enable_refusal(self) -> str:
+        """Why the loop refused to enable: the E-stop chain open, an axis on a limit switch, or
+        its state."""
+        snap = self.snapshot()
+        for w, active in zip(self.config.watches, snap.watches_active):
+            if active and w.action is WatchAction.ESTOP_CHAIN:
+                return f"the E-stop chain is open ({w.name or 'its input'}): close it first"
+        for w, active in zip(self.config.watches, snap.watches_active):
+            if active and w.action is WatchAction.LIMIT and not snap.limits_overridden:
+                side = "positive" if w.side > 0 else "negative"
+                return (f"axis {self.config.axis_names[w.axis]} is on its {side} limit switch: override "
+                        "limits to jog it off the switch")
+        return f"enable refused in state {snap.state.name}"
 
     def disable(self) -> None:
         """Shut the drives down to READY TO SWITCH ON; the buffer is flushed."""

@@ -224,7 +224,7 @@ class CycleLoop:
             if st in (WorkerState.ENABLED, WorkerState.ENABLING):
                 return Result.OK
             if (st not in (WorkerState.DISABLED, WorkerState.QUICK_STOP) or self.fault_seen.any()
-                    or self.watches.chain_open()):
+                    or self.watches.chain_open() or self.watches.blocking_limit()):
                 return Result.REFUSED
             self._flush()
             self.fe_count[:] = 0
@@ -458,7 +458,7 @@ class CycleLoop:
             np.copyto(self.words_t, bus.terminal_inputs, casting="unsafe")
             np.copyto(lv.tin[:self.m], bus.terminal_inputs, casting="unsafe")
             np.copyto(lv.tcount[:self.m], bus.terminal_counts, casting="unsafe")
-        if self.watches.evaluate(self.words):
+        if self.watches.evaluate(self.words) or self.watches.chain_was_open:
             self._watched_inputs()
         if self.probe_axis >= 0 and (int(self.words[self.probe_axis]) & self.probe_mask != 0) \
                 == self.probe_level:
@@ -527,10 +527,15 @@ class CycleLoop:
         state it leaves refuses enabling until the chain closes or limits are overridden)."""
         st = self.state
         watches = self.watches
-        if watches.chain_open():
-            if st not in (WorkerState.QUICK_STOP, WorkerState.FAULT, WorkerState.DISABLED):
+        chain = watches.chain_open()
+        if chain != watches.chain_was_open:
+            watches.chain_was_open = chain
+            if chain and st in (WorkerState.ENABLED, WorkerState.ENABLING, WorkerState.HOMING):
                 self.switch_homer.cancel()
                 self._reaction(AlarmCode.ESTOP_CHAIN)
+            elif chain:
+                self._alarm(AlarmCode.ESTOP_CHAIN)       # told, though the drives are off already
+        if chain:
             return
         if st is not WorkerState.ENABLED and st is not WorkerState.HOMING:
             watches.limit_hit(self.tmp)          # ends an override once no limit reads active

@@ -37,6 +37,7 @@ class Watches:
         self.chain = [i for i, w in enumerate(watches) if w.action is WatchAction.ESTOP_CHAIN]
         self.limits = [i for i, w in enumerate(watches) if w.action is WatchAction.LIMIT]
         self.override = False
+        self.chain_was_open = False
 
     def evaluate(self, words: np.ndarray) -> bool:
         """This cycle's state of every watch; True when one is active."""
@@ -52,6 +53,11 @@ class Watches:
     def chain_open(self) -> bool:
         active = self.active
         return any(active[i] for i in self.chain)
+
+    def blocking_limit(self) -> bool:
+        """An axis on a limit switch while limits are not overridden (the drives stay off)."""
+        active = self.active
+        return not self.override and any(active[i] for i in self.limits)
 
     def limit_hit(self, moved: np.ndarray) -> InputWatch | None:
         """The limit switch that stops the machine this cycle, or None: an active one when limits

@@ -41,9 +41,12 @@ class SpindleControl:
         # the running program turned the spindle override off here (tapping, M49, M51 P0): the
         # spindle turns at S whatever the knob says, and back at the knob once it turns it on
         self.program_lock = False
-        events.estop.connect(lambda _reason: self.stop_spindle())
-        events.fault.connect(lambda _cause: self.stop_spindle())
-        events.reset.connect(lambda _state: self.stop_spindle())
+        # what turned before the door opened in a hold: it turns again, at speed, before the
+        # program goes on (``restart_after_hold``)
+        self.stopped_for_hold: SpindleState | None = None
+        events.estop.connect(lambda _reason: self._stop_for_good())
+        events.fault.connect(lambda _cause: self._stop_for_good())
+        events.reset.connect(lambda _state: self._stop_for_good())
         events.shutdown.connect(self.stop_spindle)
         events.announce.connect(self.announce)
 
@@ -74,8 +77,31 @@ class SpindleControl:
                 else:
                     self._alarms.raise_alarm("spindle", f"spindle output failed: {exc}", Severity.WARNING,
                                              "spindle")
+            if self._settings.config.wiring.has("spindle_enable"):
+                self._outputs.set_signal("spindle_enable", sp.on)
         self.spindle = sp
         self._out.spindleChanged.emit(sp)
+
+    def _stop_for_good(self) -> None:
+        self.stopped_for_hold = None
+        self.stop_spindle()
+
+    def stop_for_hold(self) -> None:
+        """The door opened in a hold: the spindle stops, and turns again on the way out of the
+        hold (``restart_after_hold``)."""
+        if self.spindle.on:
+            self.stopped_for_hold = self.spindle
+            self.stop_spindle()
+
+    def restart_after_hold(self) -> float:
+        """Leaving a hold in which the door stopped the spindle: it turns again as before;
+        returns how long the motion waits for it to be at speed (0: nothing to restart)."""
+        before, self.stopped_for_hold = self.stopped_for_hold, None
+        if before is None or self.spindle.on:
+            return 0.0
+        wait = self.spin_up_s(before)
+        self.apply_spindle(SpindleState(direction=before.direction, rpm=before.rpm))
+        return wait
 
     def set_program_lock(self, locked: bool) -> None:
         """The program turned the spindle override off (True) or on again from here: the speed

@@ -168,6 +168,22 @@ class DriveLink:
                 raise RuntimeError("not connected")
             self._worker.home(axis, method)
 
+    def home_to_switches(self, axes: Sequence[int]) -> None:
+        with self._lock:
+            if self._worker is None:
+                raise RuntimeError("not connected")
+            self._worker.home_to_switches(list(axes))
+
+    def set_terminal_output(self, terminal: int, word: int) -> None:
+        with self._lock:
+            if self._worker is not None:
+                self._worker.set_terminal_output(terminal, word)
+
+    def override_limits(self, on: bool) -> None:
+        with self._lock:
+            if self._worker is not None:
+                self._worker.override_limits(on)
+
     def set_digital_output(self, drive: int, word: int) -> None:
         with self._lock:
             if self._worker is not None:

@@ -123,6 +123,7 @@ class Job:
         self.then = terms.then
         self.keep_point = False   # stopped by the operator: the point where it rests is kept to resume
         self.spinup_until: float | None = None   # worker time the spindle is at speed
+        self.resume_at_s: float | None = None    # worker time a hold ends (the spindle at speed again)
         # (planned time, wait) of each spin-up of the spindle the run will wait for
         self.spin_ups = spin_ups if spin_ups is not None else []
         self.cap_reported = False  # the operator was told the limits cap the feed override here

@@ -17,6 +17,7 @@ from app.machine.motion.refusals import machine_abilities, violation_issues
 from app.machine.motion.streamer import Streamer
 from app.machine.ports import (
     CoordinatesView,
+    JogInterlocks,
     OutputSwitch,
     PositionsView,
     RunModes,
@@ -41,8 +42,10 @@ class ManualMotion:
 
     def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView,
                  coordinates: CoordinatesView, tools: ToolView, spindle: SpindleDrive,
-                 outputs: OutputSwitch, modes: RunModes, motion: Streamer, jobs: JobMaker) -> None:
+                 outputs: OutputSwitch, modes: RunModes, motion: Streamer, jobs: JobMaker,
+                 interlocks: JogInterlocks) -> None:
         self._settings = settings
+        self._interlocks = interlocks
         self._states = states
         self._positions = positions
         self._coordinates = coordinates
@@ -108,11 +111,30 @@ class ManualMotion:
         limit = cur + direction * 36_000.0 if ax.wrapped else ax.max_pos if direction > 0 else ax.min_pos
         if (limit - cur) * direction <= 1e-9:
             return states.refuse(Action.JOG, f"axis {ax.name} is at its soft limit {limit:g}")
+        why = self._toward_limit(i, direction)
+        if why:
+            return states.refuse(Action.JOG, why)
         frac = min(max(float(speed_fraction), 0.01), 1.0)
-        feed = min(cfg.controller.jog_speed_mm_s * frac, ax.v_max)
+        feed = self._jog_feed(cfg.controller.jog_speed_mm_s * frac, ax.v_max)
         prog = self._single_axis_program(i, limit, feed, f"jog {ax.name}{'+' if direction > 0 else '-'}")
         self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
         return states.ok(Action.JOG)
+
+    def _toward_limit(self, i: int, direction: int) -> str:
+        """Why a jog of axis ``i`` toward ``direction`` is refused by a limit switch ("" when not):
+        an axis on its switch moves only away from it."""
+        side = self._interlocks.limit_side(i)
+        if side and side == direction:
+            name = self._settings.config.axes[i]
+            return (f"axis {name} is on its {'positive' if side > 0 else 'negative'} limit switch: it may "
+                    f"only jog away from it ({name}{'-' if side > 0 else '+'})")
+        return ""
+
+    def _jog_feed(self, feed: float, v_max: float) -> float:
+        """The jog's speed: the one asked, within the axis' and, with the door open, the setup
+        speed."""
+        cap = self._interlocks.jog_speed_cap()
+        return min(feed, v_max, cap if cap is not None and cap > 0.0 else feed)
 
     def jog_stop(self, axis: str | int | None = None) -> CommandResult:
         """Release: jerk-limited stop of the jog (harmless when nothing jogs)."""
@@ -133,6 +155,9 @@ class ManualMotion:
         if not any(abs(step - s) < 1e-12 for s in JOG_INCREMENTS):
             return states.refuse(Action.JOG, f"increment must be one of {JOG_INCREMENTS}, got {step:g}")
         ax = cfg.machine.axes[i]
+        why = self._toward_limit(i, 1 if direction > 0 else -1)
+        if why:
+            return states.refuse(Action.JOG, why)
         target = float(self._positions.machine_pos()[i]) + (1 if direction > 0 else -1) * step
         if not ax.wrapped and not ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9:
             return states.refuse(
@@ -140,7 +165,7 @@ class ManualMotion:
                 f"axis {ax.name} would reach {target:.4f}, beyond its soft limit "
                 f"[{ax.min_pos:g}, {ax.max_pos:g}]",
             )
-        prog = self._single_axis_program(i, target, min(cfg.controller.jog_speed_mm_s, ax.v_max),
+        prog = self._single_axis_program(i, target, self._jog_feed(cfg.controller.jog_speed_mm_s, ax.v_max),
                                          f"jog {ax.name} {step:g}")
         self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
         return states.ok(Action.JOG)
@@ -242,6 +267,10 @@ class ManualMotion:
                     why = self._outputs.set_output(number, ev.value >= 0)
                     if why:
                         return states.refuse(action, why)
+                elif ev.kind is EventKind.COOLANT:     # M7, M8, M9 typed in MDI
+                    why = self._outputs.set_coolant(int(ev.value))
+                    if why:
+                        return states.refuse(action, why)
                 elif ev.kind is EventKind.MESSAGE:     # (MSG,...) typed in MDI
                     self._motion.show_message(ev.message)
                 elif ev.kind is EventKind.TOOL_DATA:   # G10 L1/L10/L11 typed in MDI
@@ -263,7 +292,6 @@ _NOT_IN_MDI = {
     EventKind.OPTIONAL_PAUSE: "M1 pauses a running program; an MDI block has nothing to pause",
     EventKind.TOOL: "T selects the tool for a program's M6; in MDI say which tool is in the spindle with "
                     "M61 Q<n>",
-    EventKind.COOLANT: "M7/M8/M9: no coolant output is configured on this machine",
     # an MDI block is read on its own: #5399 would end with it (the Diagnostics page shows the inputs)
     EventKind.INPUT: "M66 reads an input for the program that follows it; an MDI block keeps no "
                      "value for the next one (the Diagnostics page shows the inputs)",

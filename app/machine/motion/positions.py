@@ -103,6 +103,13 @@ class Positions:
         self._homed[i] = True
         self._out.homedChanged.emit(self.homed)
 
+    def homed_at_switch(self, i: int, home_offset: float) -> None:
+        """Axis ``i`` homed to its switch: ``home_offset`` makes the latched position the switch's
+        machine coordinate."""
+        self._home_offset[i] = home_offset
+        self._homed[i] = True
+        self._out.homedChanged.emit(self.homed)
+
     def zero_here(self, axes: Sequence[int]) -> None:
         """The current position is machine zero on ``axes``; they are homed."""
         for i in axes:

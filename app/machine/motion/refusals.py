@@ -17,11 +17,13 @@ __all__ = ["limit_issues", "machine_abilities", "refusal", "violation_issues"]
 
 def machine_abilities(cfg: MachineConfig) -> Abilities:
     """What this machine can do that a program may ask for: its spindle is switched by a drive's
-    digital outputs (no encoder, so no threading), its outputs are digital, and it probes when
-    the configuration names the probe's input."""
+    digital outputs (no encoder, so no threading), its outputs are digital, it probes when the
+    configuration names the probe's input, and switches coolant where its signals are wired."""
     probe = cfg.probe
     return Abilities(probe_input=probe.drive is not None, probe_max_feed_mm_min=probe.max_feed_mm_min,
-                     spindle_encoder=False, analog_outputs=False)
+                     spindle_encoder=False, analog_outputs=False,
+                     coolant_mist=cfg.wiring.has("coolant_mist"),
+                     coolant_flood=cfg.wiring.has("coolant_flood"))
 
 
 def refusal(program: Program, cfg: MachineConfig) -> tuple[int, str]:

@@ -3,6 +3,8 @@ set-point sent with the drives' actual positions (``last_run.npz`` in the state 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from app.machine.model import TrackingReport
@@ -26,9 +28,19 @@ def tracking_report(snap: WorkerSnapshot, axes: tuple[str, ...], trace_path: str
     )
 
 
-def save_trace(job: Job, path: str, home_offset: np.ndarray, axes: tuple[str, ...], ts_s: float) -> str:
+def save_trace(job: Job, path: str, home_offset: np.ndarray, axes: tuple[str, ...], ts_s: float,
+               failed: Callable[[str], object]) -> str:
     """The job's trace in machine coordinates to ``path`` (NPZ: t, reference, actual, axes,
-    rmse, mse); the path, or "" when the job recorded nothing. Raises OSError."""
+    rmse, mse); the path, or "" when the job recorded nothing or it could not be written
+    (``failed`` is then told why)."""
+    try:
+        return _write_trace(job, path, home_offset, axes, ts_s)
+    except OSError as exc:
+        failed(f"cannot save the run trace: {exc}")
+        return ""
+
+
+def _write_trace(job: Job, path: str, home_offset: np.ndarray, axes: tuple[str, ...], ts_s: float) -> str:
     if not job.trace:
         return ""
     cyc = np.concatenate([c for c, _, _ in job.trace])

@@ -221,10 +221,10 @@ class Streamer:
             self.job = job
         self._states.set_activity(job.kind)
         why = job.reason or job.kind.value
-        if self._states.state is not MachineState.RUNNING:
-            self._states.set_state(MachineState.RUNNING, why)
-        else:
+        if self._states.state in (MachineState.RUNNING, MachineState.HOMING):  # homing: to the home position
             self._states.tell_state(why)
+        else:
+            self._states.set_state(MachineState.RUNNING, why)
         if self._drives.realtime:
             self.feed()
 
@@ -309,9 +309,9 @@ class Streamer:
 
     def continue_held(self, single_block: bool) -> str:
         """Cycle start in HOLD: go on after a feed hold, a single-block stop or M00/M01/M06 (a
-        tool change: the tool is in; the spindle stays stopped until the program's M3/M4). With
-        single block switched meanwhile the rest is planned again from here. "" when it goes
-        on, else why not."""
+        tool change: the tool is in; the spindle stays off until the program's M3/M4; a
+        spindle the door stopped turns again, at speed before the motion goes on), with single
+        block switched meanwhile planned again from here. "" when it goes on, else why not."""
         with self._lock:
             job = self.job
             if job is None:
@@ -325,6 +325,11 @@ class Streamer:
                 and self.consumed() >= self.pushed_total
                 and self._replan_here(job) is not None
             ):
+                return ""
+            wait = self._spindle.restart_after_hold() if job.executor.hold else 0.0
+            snap = self._drives.last_snapshot
+            if wait > 0.0 and snap is not None:     # the door stopped the spindle: at speed first
+                job.resume_at_s = float(snap.time_s) + wait
                 return ""
             job.executor.hold = False
             if job.pause is not None and job.waiting:
@@ -446,6 +451,9 @@ class Streamer:
         if job is None:
             return
         modes = self._modes
+        if job.resume_at_s is not None and snap.time_s >= job.resume_at_s:
+            job.resume_at_s = None
+            self.change_motion(lambda ex: setattr(ex, "hold", False))
         consumed = int(snap.samples_consumed)
         self._ran_dry(job, consumed)
         info = job.info_at(consumed)
@@ -665,8 +673,9 @@ class Streamer:
             snap = self._drives.last_snapshot
         # motion time: set-points sent (holds included) plus dwells; waits for the operator excluded
         measured = job.samples * job.plan.ts_s + job.dwell_total_s
-        trace_path = self._save_trace(job)
-        axes = self._settings.config.axes
+        axes, alarm = self._settings.config.axes, self._alarms.raise_alarm
+        trace_path = save_trace(job, self._trace_path, self._positions.home_offset, axes, job.plan.ts_s,
+                                lambda why: alarm("persistence", why, Severity.WARNING, "trace"))
         tracking = (tracking_report(snap, axes, trace_path or self.tracking.trace_path) if snap is not None
                     else TrackingReport())
         self.tracking = tracking
@@ -686,14 +695,4 @@ class Streamer:
             self._out.progressChanged.emit(1.0, 0.0)
         self._out.programFinished.emit(summary)
         return summary
-
-    def _save_trace(self, job: Job) -> str:
-        cfg = self._settings.config
-        try:
-            return save_trace(job, self._trace_path, self._positions.home_offset, cfg.axes,
-                              cfg.machine.planner.ts_s)
-        except OSError as exc:
-            self._alarms.raise_alarm("persistence", f"cannot save the run trace: {exc}", Severity.WARNING,
-                                     "trace")
-            return ""
 

@@ -35,6 +35,7 @@ from app.machine.ports import AlarmSink
 from app.machine.session.poller import StatusPoller
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
+from app.machine.wiring import worker_io
 from ethercat.worker import CyclicWorker, DriveSpec, WorkerConfig, WorkerSnapshot
 from planner.core.machine import WORK_OFFSET_NAMES
 
@@ -208,6 +209,7 @@ class Connection:
             )
             for a in cfg.machine.axes
         )
+        io = worker_io(cfg.wiring, cfg.machine, cfg.homing.method, cfg.bus.kind == "sim")
         options: tuple[tuple[str, Any], ...] = ()
         if cfg.bus.kind == "soem":
             options = (("setups", tuple((d.position, d.setup()) for d in cfg.bus.drives)),)
@@ -216,7 +218,9 @@ class Connection:
                 float(a.direction * a.counts_per_unit * x)
                 for a, x in zip(cfg.machine.axes, self._positions.raw_pos)
             )
-            options = (("initial_positions_counts", counts),)
+            # the simulated machine's switches and the rest state of its inputs
+            options = (("initial_positions_counts", counts), ("switches", io.sim_switches),
+                       ("input_rest", io.input_rest))
         # core, real-time priority and spin: the WorkerConfig defaults (the worker picks a free
         # core itself and uses SCHED_FIFO 49, below PREEMPT_RT's interrupt threads)
         mode = self.worker_mode
@@ -237,6 +241,9 @@ class Connection:
             mode=mode,
             bus_options=options,
             homing_timeout_s=cfg.homing.timeout_s,
+            terminals=io.terminals,
+            watches=io.watches,
+            switch_homing=io.switch_homing,
             buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s,
                                           ramp_bound_s(cfg.machine, self._settings.budget)),
         )

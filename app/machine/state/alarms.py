@@ -124,9 +124,14 @@ class AlarmLog:
                 if self._state is not MachineState.ESTOP:
                     self.raise_alarm(source, a.message, Severity.ESTOP, "estop")
                     react(AlarmReaction.ESTOP, a.message, True)
+            elif a.code is AlarmCode.ESTOP_CHAIN:
+                # the machine's E-stop chain: an E-stop, told even when one is in force already
+                self.raise_alarm("E-stop chain", a.message, Severity.ESTOP, "estop_chain")
+                if self._state is not MachineState.ESTOP:
+                    react(AlarmReaction.ESTOP, "E-stop chain open", True)
             elif a.code is AlarmCode.QUICK_STOP and self._state is MachineState.ESTOP:
                 continue
-            elif a.code is AlarmCode.HOMING_ERROR:
+            elif a.code in (AlarmCode.HOMING_ERROR, AlarmCode.HOMING_SWITCH):
                 self.raise_alarm(source, a.message, Severity.STOP, "homing_error")
                 react(AlarmReaction.HOMING_FAILED, a.message, False)
             else:

@@ -14,7 +14,7 @@ from app.machine.errors import MachineError
 from app.machine.infra.drives import DriveLink
 from app.machine.infra.events import AlarmReaction, MachineEvents, PanelChannels
 from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Prompt, Severity
-from app.machine.ports import AlarmSink, PositionsView, Settings
+from app.machine.ports import AlarmSink, Interlocks, PositionsView, Settings
 from app.machine.state.gate import Action, Answers
 
 __all__ = ["StateMachine", "TRANSITIONS"]
@@ -49,8 +49,9 @@ class StateMachine:
     part changes them through ``set_state`` and ``set_activity``."""
 
     def __init__(self, settings: Settings, out: PanelChannels, events: MachineEvents, drives: DriveLink,
-                 positions: PositionsView, alarms: AlarmSink) -> None:
+                 positions: PositionsView, alarms: AlarmSink, interlocks: Interlocks) -> None:
         self._settings = settings
+        self._interlocks = interlocks
         self._out = out
         self._events = events
         self._drives = drives
@@ -127,6 +128,9 @@ class StateMachine:
         """
         st = self.state
         cfg = self._settings.config
+        blocked = self._interlocks.refusal(action)
+        if blocked and st is not MachineState.DISCONNECTED:
+            return blocked
         if action == Action.CYCLE_START and st is MachineState.HOLD:
             return ""
         if action in _TOOL_EDITS:
@@ -205,6 +209,9 @@ class StateMachine:
         """Release the E-stop: fault reset and re-enable the drives, -> IDLE."""
         if self.state is not MachineState.ESTOP:
             return self.refuse(Action.ESTOP_RELEASE, "E-stop is not active")
+        blocked = self._interlocks.refusal(Action.ESTOP_RELEASE)
+        if blocked:
+            return self.refuse(Action.ESTOP_RELEASE, blocked)
         if not self._drives.attached:
             self.set_state(MachineState.DISCONNECTED, "E-stop released; not connected")
             return self.ok(Action.ESTOP_RELEASE)
@@ -213,6 +220,7 @@ class StateMachine:
         except Exception as exc:  # noqa: BLE001
             return self.refuse(Action.ESTOP_RELEASE, f"the drives cannot be re-enabled: {exc}")
         self._alarms.acknowledge_code("estop")
+        self._alarms.acknowledge_code("estop_chain")
         self._drives.snapshot()
         self.set_state(MachineState.IDLE, "E-stop released")
         return self.ok(Action.ESTOP_RELEASE)
