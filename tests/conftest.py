@@ -32,3 +32,27 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if "slow" in item.keywords:
             item.add_marker(skip_slow)
+
+
+def _shipped_files() -> dict[str, str]:
+    """The hash of every file shipped with the control (machines, programs, subroutines)."""
+    import hashlib
+
+    from resources import MACHINES, PROGRAMS, SUBROUTINES
+
+    out = {}
+    for folder in (MACHINES, PROGRAMS, SUBROUTINES):
+        for path in sorted(folder.rglob("*")):
+            if path.is_file():
+                out[str(path)] = hashlib.sha256(path.read_bytes()).hexdigest()
+    return out
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _shipped_files_stay_as_shipped():
+    """No test may write into the control's own files (a save landing on a sample program)."""
+    before = _shipped_files()
+    yield
+    after = _shipped_files()
+    changed = sorted(p for p in set(before) | set(after) if before.get(p) != after.get(p))
+    assert not changed, f"tests changed files shipped with the control: {changed}"

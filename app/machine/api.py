@@ -29,6 +29,7 @@ from app.machine.model import (
     Prompt,
     RestartPreview,
     RunSummary,
+    SignalReading,
     SpindleState,
     TrackingReport,
 )
@@ -562,4 +563,31 @@ class MachineApi(Protocol):
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         """Acknowledge one alarm (all active ones when None); persisted."""
+        ...
+
+    # ------------------------------------------------------------------ the machine around the drives
+    @property
+    def coolant(self) -> tuple[bool, bool]:
+        """(flood, mist) as switched now."""
+        ...
+
+    def set_coolant(self, flood: bool | None = None, mist: bool | None = None) -> CommandResult:
+        """The coolant buttons (M8, M7; both off: M9); None leaves one as it is."""
+        ...
+
+    def set_work_light(self, on: bool) -> CommandResult:
+        """The work light on or off (refused when it is not wired)."""
+        ...
+
+    def override_limits(self, on: bool = True) -> CommandResult:
+        """Let an axis standing on a limit switch be reset and jogged off it (never toward it);
+        ends by itself once no limit switch reads active."""
+        ...
+
+    def signal_readings(self) -> tuple[SignalReading, ...]:
+        """Every wired signal: where it is wired and what it reads now."""
+        ...
+
+    def simulate_input(self, key: str, value: bool | None) -> CommandResult:
+        """Simulated drives: signal ``key`` reads ``value`` until released with None."""
         ...

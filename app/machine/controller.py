@@ -380,4 +380,5 @@ class MachineController(QObject):
     override_limits = forward(_io, MachineIo.override_limits)
     set_coolant = forward(_io, MachineIo.set_coolant)
     set_work_light = forward(_io, MachineIo.set_work_light)
+    simulate_input = forward(_io, MachineIo.simulate_input)
     signal_readings = forward(_signals, MachineSignals.readings)

@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 __all__ = ["Activity", "Alarm", "AlarmState", "Budget", "BusStatus", "CommandResult", "ControllerSnapshot",
            "HoldKind", "MachineState", "PauseKind", "PausePoint", "ProbeWizard", "ProbingRequest",
            "ProbingResult", "ProgramInfo", "ProgramIssue", "Prompt", "RestartPreview", "ResumePoint",
-           "RunSummary", "Severity", "SpindleState", "TrackingReport"]
+           "RunSummary", "Severity", "SignalReading", "SpindleState", "TrackingReport"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -252,3 +252,17 @@ class ProbingResult:
     def text(self) -> str:
         where = f", written to {self.written}" if self.written else " (only reported)"
         return f"probed (machine): {self.said()}{where}"
+
+
+@dataclass(frozen=True, slots=True)
+class SignalReading:
+    """One signal as the Diagnostics page lists it: key, direction, where it is wired (the
+    slave's name, its channel or bit), and its state now (None: not known, the bus is down)."""
+
+    key: str
+    direction: str
+    where: str
+    wire: str
+    value: bool | None
+    meaning: str
+    hal: str

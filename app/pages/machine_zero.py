@@ -1,4 +1,5 @@
-"""Machine zero: per-axis homed state, home one or all, set the current position as machine zero."""
+"""Machine zero: per-axis homed state, home one or all (to the home switches, by the drive, or
+"set here"), the homing step under way, set the current position as machine zero."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ from PySide6.QtWidgets import QGridLayout, QLabel, QPushButton, QVBoxLayout, QWi
 from app.context import PanelContext
 from app.controller_text import localize
 from app.i18n import N_, tr
+from app.machine.model import MachineState
 from app.widgets.dro import format_position
 
 
@@ -21,6 +23,11 @@ class MachineZeroPage(QWidget):
         self.method_label = QLabel()
         self.method_label.setWordWrap(True)
         layout.addWidget(self.method_label)
+        # which axes home and the step they are at (searching, latching ...), while homing
+        self.step_label = QLabel()
+        self.step_label.setObjectName("homingStep")
+        self.step_label.setWordWrap(True)
+        layout.addWidget(self.step_label)
         grid = QGridLayout()
         for col, text in enumerate((N_("Axis"), N_("Homed"), N_("Machine position"))):
             head = QLabel()
@@ -56,6 +63,7 @@ class MachineZeroPage(QWidget):
         layout.addStretch(1)
         self._homed = c.homed
         c.homedChanged.connect(self._on_homed)
+        c.stateChanged.connect(self._on_state)
         for signal in (c.stateChanged, c.homedChanged, c.alarmsChanged):
             signal.connect(lambda *_: self._update_buttons())
         i18n.languageChanged.connect(lambda _l: self._update_buttons())
@@ -94,10 +102,17 @@ class MachineZeroPage(QWidget):
         for label, ok in zip(self.homed_labels, self._homed):
             label.setText(tr("yes") if ok else tr("no"))
             label.setStyleSheet(f"color: {'#7fe0a0' if ok else '#ff9080'}; font-weight: 700;")
-        method = tr("drive homing method {0}").format(homing.drive_method) if homing.method == "drive" \
-            else tr("set current position as zero")
+        method = {"drive": tr("drive homing method {0}").format(homing.drive_method),
+                  "switches": tr("to the home switches, in the configured sequence")}.get(
+            homing.method, tr("set current position as zero (no reference switches: after a power loss the "
+                              "part zero must be touched off again)"))
         required = tr("required before a program may start") if homing.required else tr("optional")
         self.method_label.setText(tr("Homing: {0}; {1}.").format(method, required))
+
+    def _on_state(self, state: MachineState, reason: str) -> None:
+        homing = state is MachineState.HOMING or (state is MachineState.RUNNING
+                                                   and reason.startswith("homing"))
+        self.step_label.setText(localize(reason) if homing else "")
 
     def _on_position(self, machine: object, _work: object) -> None:
         for label, value in zip(self.pos_labels, machine):  # type: ignore[call-overload]

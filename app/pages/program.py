@@ -21,6 +21,7 @@ from app.widgets.find_bar import FindBar
 from app.widgets.keyboard import OnScreenKeyboard
 from app.widgets.program_view import ProgramView
 from app.widgets.touch import enable_kinetic_scrolling
+from resources import PROGRAMS
 
 AUTOSAVE_MS = 5000
 # Above this many lines a program is shown read-only, through a view over its text: a text
@@ -306,7 +307,9 @@ class ProgramPage(QWidget):
                 self.doc.name, len(errors), first, errors[first]))
 
     def save(self) -> bool:
-        if self.doc.path is None:
+        """Save to the file it came from; a new text, or a sample shipped with the control (kept as
+        shipped, for every later start), asks for a name."""
+        if self.doc.path is None or self.doc.path.resolve().is_relative_to(PROGRAMS.resolve()):
             return self.save_as()
         if not self._save_with_errors():
             return False

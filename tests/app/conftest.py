@@ -116,9 +116,13 @@ def make_window(qtbot, qapp, options, dialogs, controller):
 
 @pytest.fixture
 def demo_window(qtbot, qapp, state_dir, dialogs, real_controller):
-    """``cnc-panel --demo`` on the real controller (manual clock): connected, homed, pocket.nc loaded."""
+    """``cnc-panel --demo`` on the real controller (manual clock): connected, pocket.nc loaded, and
+    machine zero set where the axes stand."""
     from app.context import PanelOptions
 
     window = make_window(qtbot, qapp, PanelOptions(demo=True, state_dir=state_dir), dialogs, real_controller)
     qtbot.waitUntil(lambda: real_controller.program_info is not None, timeout=20000)
+    # the demo machine homes to its switches when the operator asks (test_flows shows it); the
+    # pages' tests start from a homed machine
+    assert all(real_controller.homed) or real_controller.set_machine_zero_here()
     return window

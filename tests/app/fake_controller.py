@@ -32,6 +32,7 @@ from app.machine.model import (
     RestartPreview,
     RunSummary,
     Severity,
+    SignalReading,
     SpindleState,
     TrackingReport,
 )
@@ -117,6 +118,8 @@ class FakeController(QObject):
         self.last_run: RunSummary | None = None
         self.last_probing: ProbingResult | None = None
         self.config_path = Path(self.config.path) if self.config.path else Path("machine.toml")
+        self.coolant = (False, False)
+        self.readings: tuple[SignalReading, ...] = ()
 
     @property
     def program(self) -> object | None:
@@ -395,6 +398,23 @@ class FakeController(QObject):
         self.spindle = replace(self.spindle, rpm=rpm)
         self.spindleChanged.emit(self.spindle)
         return self._ok("spindle_speed", rpm)
+
+    def set_coolant(self, flood: bool | None = None, mist: bool | None = None) -> CommandResult:
+        f, m = self.coolant
+        self.coolant = (f if flood is None else bool(flood), m if mist is None else bool(mist))
+        return self._ok("set_coolant", flood, mist)
+
+    def set_work_light(self, on: bool) -> CommandResult:
+        return self._ok("set_work_light", on)
+
+    def override_limits(self, on: bool = True) -> CommandResult:
+        return self._ok("override_limits", on)
+
+    def signal_readings(self) -> tuple[SignalReading, ...]:
+        return self.readings
+
+    def simulate_input(self, key: str, value: bool | None) -> CommandResult:
+        return self._ok("simulate_input", key, value)
 
     def acknowledge_alarm(self, alarm_id: int | None = None) -> CommandResult:
         self.alarms = tuple(replace(a, state=AlarmState.ACKNOWLEDGED)

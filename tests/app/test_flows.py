@@ -17,12 +17,31 @@ def state(controller) -> str:
     return controller.state.value
 
 
-def test_demo_starts_connected_homed_with_the_pocket(demo_window, real_controller) -> None:
-    assert state(real_controller) == "idle" and all(real_controller.homed)
-    assert real_controller.program_info.name == "pocket.nc"
-    assert demo_window.page("auto").buttons["start"].isEnabled()
-    assert "pocket" in demo_window.page("program").title.text()
-    assert demo_window.page("preview").plot.path.all.count == len(real_controller.program_info.program.moves)
+def test_demo_starts_connected_unhomed_and_homes_to_its_switches(qtbot, qapp, state_dir, dialogs,
+                                                                  real_controller) -> None:
+    """The demo machine has home switches: it starts connected with the pocket loaded and not
+    homed (cycle start says so); Home all on Machine zero homes Z, then X and Y together, to
+    their switches, the page naming the step, and the axes end at their home positions."""
+    c = real_controller
+    window = make_window(qtbot, qapp, PanelOptions(demo=True, state_dir=state_dir), dialogs, c)
+    qtbot.waitUntil(lambda: c.program_info is not None, timeout=20000)
+    assert state(c) == "idle" and not any(c.homed)
+    assert c.program_info.name == "pocket.nc"
+    assert "not homed" in c.refusal("cycle_start")
+    assert not window.page("auto").buttons["start"].isEnabled()
+    page = window.page("machine_zero")
+    steps: list[str] = []
+    c.stateChanged.connect(lambda _s, _r: steps.append(page.step_label.text()))
+    page.home_all_button.click()
+    assert state(c) == "homing"
+    assert c.run_until(lambda: state(c) == "idle" and all(c.homed), timeout_s=120)
+    z_first = [t for t in steps if "searching the switch" in t]
+    assert z_first[0].startswith("homing Z") and any("X searching" in t and "Y searching" in t for t in steps)
+    assert any("latching" in t for t in steps)
+    assert c.machine_position == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
+    assert window.page("auto").buttons["start"].isEnabled()
+    assert "pocket" in window.page("program").title.text()
+    assert window.page("preview").plot.path.all.count == len(c.program_info.program.moves)
 
 
 def test_run_program_to_the_end(demo_window, real_controller) -> None:

@@ -348,7 +348,6 @@ def test_incremental_jog(ctl: MachineController) -> None:
     ("T5", "T selects the tool for a program's M6"),
     ("M61 Q9", "tool T9 is not in the tool table"),
     ("G43 H9 G0 Z1", "tool T9 is not in the tool table"),
-    ("M8", "no coolant output"),
 ])
 def test_mdi_refuses_what_it_cannot_do_with_the_reason(ctl: MachineController, block: str,
                                                        reason: str) -> None:

@@ -36,6 +36,8 @@ from app.machine.motion.jobs import Job
 from app.machine.motion.streamer import Streamer
 from app.machine.ports import AlarmSink, Settings
 from app.machine.state.states import StateMachine
+from app.machine.wiring import Direction
+from ethercat.sim_io import input_value
 from ethercat.worker import WorkerSnapshot
 from planner.core.program import EventKind
 
@@ -154,6 +156,29 @@ class MachineIo:
     def set_work_light(self, on: bool) -> CommandResult:
         why = self._outputs.set_signal("work_light", on)
         return self._states.refuse("work_light", why) if why else self._states.ok("work_light")
+
+    def simulate_input(self, key: str, value: bool | None) -> CommandResult:
+        """Simulated drives: signal ``key`` reads ``value`` (the door opened, a button pressed,
+        the E-stop chain cut) until released with None (back to what the simulated machine
+        gives: its switches, its rest state). Refused on a real bus."""
+        cfg = self._settings.config
+        s = cfg.wiring.get(key)
+        if cfg.bus.kind != "sim":
+            return self._states.refuse("simulate_input", "only a simulated machine's inputs can be set")
+        if s is None or s.signal.direction is not Direction.IN:
+            known = " ".join(x.key for x in cfg.wiring.signals if x.signal.direction is Direction.IN)
+            return self._states.refuse("simulate_input", f"{key!r} is not a wired input (inputs: {known})")
+        if not self._drives.attached:
+            return self._states.refuse("simulate_input", "not connected")
+        k = cfg.wiring.terminal_index(s.wire.slave)
+        level = value is not None and value != s.wire.inverted
+        code = input_value(s.wire.bit, level, release=value is None)
+        if k >= 0:
+            self._drives.inject("terminal_input", k, code)
+        else:
+            axis = next(i for i, a in enumerate(cfg.machine.axes) if a.drive_position == s.wire.slave)
+            self._drives.inject("drive_input", axis, code)
+        return self._states.ok("simulate_input")
 
     @property
     def coolant(self) -> tuple[bool, bool]:

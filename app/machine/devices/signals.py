@@ -9,33 +9,18 @@ the cycle itself (an E-stop chain opening, a limit switch) is the worker's.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from app.machine.infra.drives import DriveLink
+from app.machine.model import SignalReading
 from app.machine.ports import Settings
 from app.machine.state.gate import Action
 from app.machine.wiring import SIGNALS, Direction, SignalWire
 from ethercat.worker import WorkerSnapshot
 
-__all__ = ["MachineSignals", "SignalReading"]
+__all__ = ["MachineSignals"]
 
 #: what the door, when open, refuses (the jog: unless a setup speed is configured)
 _DOOR_REFUSES = frozenset({Action.CYCLE_START, Action.RESUME, Action.RUN_FROM_LINE, Action.MDI, Action.HOME,
                            Action.SPINDLE_ON, Action.PROBE, Action.MEASURE_TOOL})
-
-
-@dataclass(frozen=True, slots=True)
-class SignalReading:
-    """One signal as the Diagnostics page lists it: key, direction, where it is wired (the
-    slave's name, its channel or bit), and its state now (None: not known, the bus is down)."""
-
-    key: str
-    direction: str
-    where: str
-    wire: str
-    value: bool | None
-    meaning: str
-    hal: str
 
 
 class MachineSignals:

@@ -11,7 +11,10 @@ Actions run in the order written, each when its trigger comes after the one befo
 ``feed_hold``, ``resume``, ``stop``, ``reset``, ``estop``, ``estop_release``, ``cycle_start``,
 ``run_from_line`` (``line``), ``feed_override`` / ``rapid_override`` / ``spindle_override``
 (``percent``) and
-``tool_changed`` (the operator has put in the tool: cycle start at a tool-change stop). Blank
+``tool_changed`` (the operator has put in the tool: cycle start at a tool-change stop),
+``override_limits``, and ``input`` (simulated drives: a machine signal reads ``value``, true or
+false, or null to release it: ``{"after_s": 1, "op": "input", "signal": "door_closed", "value":
+false}``). Blank
 lines and lines starting with ``#`` are skipped. Every mistake is an error naming the file,
 the line and the key.
 
@@ -43,7 +46,8 @@ __all__ = ["OPS", "Recorder", "ScenarioOp", "ScenarioRunner", "read_script"]
 OPS: dict[str, str] = {
     "feed_hold": "", "resume": "", "stop": "", "reset": "", "estop": "", "estop_release": "",
     "cycle_start": "", "restart": "", "run_from_line": "line", "feed_override": "percent",
-    "rapid_override": "percent", "spindle_override": "percent", "tool_changed": "",
+    "rapid_override": "percent", "spindle_override": "percent", "tool_changed": "", "override_limits": "",
+    "input": "signal",
 }
 _TRIGGERS = ("at_line", "after_s")
 
@@ -56,10 +60,14 @@ class ScenarioOp:
     after_s: float | None = None
     line: int = 0                # run_from_line
     percent: float = 100.0       # overrides
+    signal: str = ""             # input: the signal and the value it reads (None: released)
+    value: bool | None = None
 
     def describe(self) -> str:
         trigger = f"at line {self.at_line}" if self.at_line is not None else f"after {self.after_s:g} s"
-        extra = {"line": f" {self.line}", "percent": f" {self.percent:g} %", "": ""}[OPS[self.op]]
+        extra = {"line": f" {self.line}", "percent": f" {self.percent:g} %",
+                 "signal": f" {self.signal}={'released' if self.value is None else str(self.value).lower()}",
+                 "": ""}[OPS[self.op]]
         return f"{self.op}{extra} {trigger}"
 
 
@@ -93,7 +101,8 @@ def parse_op(text: str, where: str) -> ScenarioOp:
     if not isinstance(op, str) or op not in OPS:
         raise MachineError(f"{where}: op must be one of {', '.join(OPS)}, got {op!r}")
     extra = OPS[op]
-    unknown = sorted(set(data) - {"op", *_TRIGGERS} - ({extra} if extra else set()))
+    allowed = {extra, "value"} if extra == "signal" else {extra} if extra else set()
+    unknown = sorted(set(data) - {"op", *_TRIGGERS} - allowed)
     if unknown:
         raise MachineError(f"{where}: unknown key {unknown[0]!r} for op {op!r}")
     triggers = [k for k in _TRIGGERS if k in data]
@@ -110,6 +119,13 @@ def parse_op(text: str, where: str) -> ScenarioOp:
         kw["line"] = int(_number(data["line"], where, "line", True))
         if kw["line"] < 1:
             raise MachineError(f"{where}: line must be 1 or more")
+    elif extra == "signal":
+        if not isinstance(data.get("signal"), str) or "value" not in data:
+            raise MachineError(f"{where}: input needs \"signal\" (its name) and \"value\" (true, false or "
+                               "null)")
+        if data["value"] is not None and not isinstance(data["value"], bool):
+            raise MachineError(f"{where}: value must be true, false or null, got {data['value']!r}")
+        kw["signal"], kw["value"] = data["signal"], data["value"]
     elif extra == "percent":
         if "percent" not in data:
             raise MachineError(f"{where}: {op} needs \"percent\"")
@@ -256,6 +272,8 @@ class ScenarioRunner:
             return c.cycle_start(wait=True, from_start=True)
         if op.op == "estop":
             return c.estop("operator (script)")
+        if op.op == "input":
+            return c.simulate_input(op.signal, op.value)
         if op.op == "tool_changed":
             if c.hold_kind is not HoldKind.TOOL_CHANGE:
                 return _Refused(f"no tool change is waiting (machine {c.state.value})")
