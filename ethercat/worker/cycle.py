@@ -458,8 +458,10 @@ class CycleLoop:
             np.copyto(self.words_t, bus.terminal_inputs, casting="unsafe")
             np.copyto(lv.tin[:self.m], bus.terminal_inputs, casting="unsafe")
             np.copyto(lv.tcount[:self.m], bus.terminal_counts, casting="unsafe")
-        if self.watches.evaluate(self.words) or self.watches.chain_was_open:
+        watches = self.watches
+        if watches.evaluate(self.words) or watches.chain_was_open or watches.override:
             self._watched_inputs()
+            self.lv.override[...] = int(watches.override)
         if self.probe_axis >= 0 and (int(self.words[self.probe_axis]) & self.probe_mask != 0) \
                 == self.probe_level:
             # latched in the cycle the input is read: where the axes were, and how far along
@@ -545,8 +547,9 @@ class CycleLoop:
         if w is None:
             return
         if st is WorkerState.HOMING and self.switch_homer.active:
-            if self.switch_homer.limit_tripped(w.axis):
-                return                           # this axis homes with its limits ignored
+            if not self.switch_homer.limit_tripped(w.axis):
+                self._homing_failed()            # (an axis homing with its limits ignored goes on)
+            return
         self._reaction(AlarmCode.LIMIT_SWITCH, w.axis, w.side)
 
     def _homing_failed(self) -> None:

@@ -17,6 +17,8 @@ The positions here are axis units of the drive's own count (``act``/``ref``).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .types import HomingState, HomingStep, SwitchHoming
@@ -130,19 +132,22 @@ class SwitchHomer:
         h.next_step = step
 
     def _ramp(self, h: _Axis) -> None:
-        """One cycle of a jerk-limited velocity ramp toward ``v_target``: the acceleration goes
-        toward the largest that still lets it come back to 0 as the velocity arrives."""
+        """One cycle of a jerk-limited velocity ramp toward ``v_target``: along the way to it, the
+        largest acceleration that the jerk limit can still bring back to 0 before the velocity
+        passes the target (the continuous bound a^2 / 2j, above the discrete ramp's), within
+        one jerk step of the last and the acceleration limit."""
         spec, ts = h.spec, self.ts
+        j = spec.jerk
         dv = h.v_target - h.v
-        brake = h.a * abs(h.a) / (2.0 * spec.jerk)
-        jt = spec.jerk * ts
-        if abs(dv) <= jt * ts and abs(h.a) <= jt:
-            h.v, h.a = h.v_target, 0.0
-            return
-        want = spec.accel if dv - brake > 0.0 else -spec.accel
-        da = want - h.a
-        h.a += jt if da > jt else -jt if da < -jt else da
+        s = 1.0 if dv > 0.0 else -1.0 if dv < 0.0 else (-1.0 if h.a > 0.0 else 1.0)
+        a_s = s * h.a
+        room = max(abs(dv), 0.0)
+        bound = j * (math.sqrt(ts * ts + 2.0 * room / j) - ts)
+        a_next = min(max(bound, a_s - j * ts), a_s + j * ts, spec.accel)
+        h.a = s * a_next
         h.v += h.a * ts
+        if h.v_target == 0.0 and abs(h.v) < 1e-12 and abs(h.a) <= j * ts:
+            h.v, h.a = 0.0, 0.0               # at rest: exactly
 
     def step(self, ref: np.ndarray, act: np.ndarray, words: np.ndarray) -> bool:
         """Advance every homing axis one cycle and write its set-point into ``ref``. Returns
