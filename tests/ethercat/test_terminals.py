@@ -12,7 +12,7 @@ from ethercat.bus import DriveSpec
 from ethercat.errors import ConfigurationError, WorkerError
 from ethercat.sim_bus import SimBus
 from ethercat.sim_io import SimSwitch, input_value
-from ethercat.terminals import TERMINAL_TYPES, TerminalIo, TerminalKind, TerminalSpec, type_of_identity
+from ethercat.terminals import TERMINAL_TYPES, TerminalIo, TerminalSpec, type_of_identity
 from ethercat.worker import (
     AlarmCode,
     CyclicWorker,
@@ -110,11 +110,12 @@ def test_terminals_count_in_the_working_counter_and_are_listed() -> None:
     bus = SimBus(DRIVES, terminals=TERMINALS)
     bus.open()
     names = [(x.position, x.name, x.product_code) for x in bus.slaves()]
-    assert names == [(0, "SimServo X", names[0][2]), (1, "SimServo Z", names[1][2]), (2, "EK1100", 0x044C2C52),
-                     (3, "EL1008", 0x03F03052), (4, "EL2008", 0x07D83052), (5, "EL5101", 0x13ED3052)]
+    assert names == [(0, "SimServo X", names[0][2]), (1, "SimServo Z", names[1][2]),
+                     (2, "EK1100", 0x044C2C52), (3, "EL1008", 0x03F03052), (4, "EL2008", 0x07D83052),
+                     (5, "EL5101", 0x13ED3052)]
 
 
-def test_an_input_changed_in_the_slave_reaches_the_loop_within_two_cycles_and_outputs_reach_the_slave() -> None:
+def test_an_input_changed_in_a_slave_reaches_the_loop_within_two_cycles_and_outputs_reach_it() -> None:
     w = _worker()
     try:
         w.step(2)
@@ -227,7 +228,8 @@ def test_a_limit_switch_stops_the_machine_and_only_a_move_away_is_allowed_with_t
 EDGE_X = 5.0
 
 
-def _homing(latch_vel: float, switch: SimSwitch, travel: float = 40.0, jerk: float = 400_000.0) -> SwitchHoming:
+def _homing(latch_vel: float, switch: SimSwitch, travel: float = 40.0,
+            jerk: float = 400_000.0) -> SwitchHoming:
     return SwitchHoming(0, IN, switch.bit, switch.level, 20.0, latch_vel, travel, 2000.0, jerk)
 
 
