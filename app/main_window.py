@@ -186,7 +186,12 @@ class MainWindow(QMainWindow):
             # a workpiece for the simulated probe (the probing wizards with T99 in the spindle)
             c.simulate_part(DEMO_PART)
         cut = c.interrupted
-        if cut is not None:
+        if unclean and c.config.homing.method == "set_here":
+            self.show_message(tr("The control stopped without shutting down (power loss or killed), and this "
+                                 "machine has no reference switches: where the axes stand is not known. Set "
+                                 "machine zero, touch off the part zero again, then run the program from its "
+                                 "start"))
+        elif cut is not None:
             self.show_message(tr("{0} was running at line {1} when the control stopped (power loss or "
                                  "killed): home the axes, open it and run from line {1}").format(
                                      Path(cut[0]).name, cut[1]))

@@ -395,7 +395,12 @@ def _result(ctl: Any, info: Any, summary: Any, wall: float, snap: Any, notes: li
             v <= 1.0 + 1e-6 for k, v in summary.limits.items() if not k.endswith("_max"))),
         "tracking": {}, "alarms": [f"{a.source}: {a.cause}" for a in status.alarms], "notes": notes,
         "final_state": status.state.value,
+        "homing_method": ctl.config.homing.method,
     }
+    if ctl.config.homing.method == "set_here":
+        from app.machine.session.connection import NO_REFERENCE
+
+        out["notes"] = [*notes, NO_REFERENCE]
     if summary is not None:
         t = summary.tracking
         out["tracking"] = {a: {"rmse": t.rmse[i], "mse": t.mse[i], "max_abs": t.max_abs[i]}

@@ -284,13 +284,14 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
             if h.search_vel == 0.0 or h.latch_vel == 0.0:
                 raise loc.fail(("homing", "axes", i), "search_vel and latch_vel must not be 0 (their signs "
                                                       "say the directions)")
+        seen = [h.axis for h in homing]
+        twice = sorted({a for a in seen if seen.count(a) > 1})
+        if twice:
+            raise loc.fail(("homing", "axes"), f"an axis has two [[homing.axes]] tables: {' '.join(twice)}")
         missing = [a for a in axes if not any(h.axis == a for h in homing)]
         if missing:
             raise loc.fail(("homing", "method"), "homing to switches needs a [[homing.axes]] table for every "
                                                  f"axis; missing: {' '.join(missing)}")
-        seen = [h.axis for h in homing]
-        if len(set(seen)) != len(seen):
-            raise loc.fail(("homing", "axes"), "an axis has two [[homing.axes]] tables")
     return MachineWiring(tuple(terminals), tuple(signals), homing, interlocks)
 
 

@@ -146,11 +146,11 @@ class MachineIo:
 
     def set_coolant(self, flood: bool | None = None, mist: bool | None = None) -> CommandResult:
         """The operator's coolant buttons (as M8 / M7 / M9); None leaves one as it is."""
-        bits = (2 if (self._outputs.signal_on("coolant_flood") if flood is None else flood) else 0) | \
-            (1 if (self._outputs.signal_on("coolant_mist") if mist is None else mist) else 0)
-        if self._states.state in (MachineState.ESTOP, MachineState.DISCONNECTED) and bits:
+        f = self._outputs.signal_on("coolant_flood") if flood is None else bool(flood)
+        m = self._outputs.signal_on("coolant_mist") if mist is None else bool(mist)
+        if self._states.state in (MachineState.ESTOP, MachineState.DISCONNECTED) and (f or m):
             return self._states.refuse("coolant", f"machine is {self._states.state.label.lower()}")
-        why = self._outputs.set_coolant(bits)
+        why = self._outputs.set_coolant_state(f, m)
         return self._states.refuse("coolant", why) if why else self._states.ok("coolant")
 
     def set_work_light(self, on: bool) -> CommandResult:
@@ -224,5 +224,5 @@ class MachineIo:
             return
         ended, self._ended = self._ended, None
         if ended is not None and ended.kind is Activity.PROGRAM and any(self.coolant):
-            self._switch(0)
+            self._switch(0)                   # M9
 

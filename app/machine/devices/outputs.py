@@ -75,10 +75,16 @@ class DigitalOutputs:
         return ""
 
     def set_coolant(self, bits: int) -> str:
-        """M7 (bit 1: mist), M8 (bit 2: flood) on, what is not in ``bits`` off (M9: 0). "" when
-        done, else why not."""
-        for key, bit in (("coolant_mist", 1), ("coolant_flood", 2)):
-            on = bool(bits & bit)
+        """As a program's coolant event: M7 (bit 1) switches mist on, M8 (bit 2) flood, the other
+        stays as it is; M9 (0) switches both off. "" when done, else why not."""
+        if bits:
+            return self.set_coolant_state(bool(bits & 2) or self.signal_on("coolant_flood"),
+                                          bool(bits & 1) or self.signal_on("coolant_mist"))
+        return self.set_coolant_state(False, False)
+
+    def set_coolant_state(self, flood: bool, mist: bool) -> str:
+        """Flood and mist coolant as given. "" when done, else why not."""
+        for key, on in (("coolant_mist", mist), ("coolant_flood", flood)):
             if self._settings.config.wiring.has(key):
                 why = self.set_signal(key, on)
                 if why:

@@ -58,6 +58,12 @@ def ring_capacity(ts_s: float, lead_s: float, stop_s: float = 0.0) -> int:
     return int(math.ceil(max(RING_S, 2.0 * lead_s + 1.2 * stop_s) / ts_s))
 
 
+#: what a machine homed by "set here" is after a power loss or a kill
+NO_REFERENCE = ("this machine has no reference switches ([homing] method = \"set_here\"): where its axes "
+                "stand after the cut is not known, so machine zero set now would not be the old one; "
+                "the part zero must be touched off again")
+
+
 class Connection:
     """Worker and feeder life cycle, persistence of the machine state, simulated time
     (``controller.conn``)."""
@@ -116,20 +122,26 @@ class Connection:
             if st["running"]:
                 # the last run ended without a shutdown (power loss, kill): the drives may have
                 # moved or lost their count since the position was saved
+                no_reference = cfg.homing.method == "set_here"
                 if not cfg.homing.absolute_encoders and any(self._positions.homed):
                     self._positions.unhome_all()
                     why = "axes are not homed any more: home them before running a program"
                 else:
                     why = "the drives have absolute encoders: homed flags kept"
+                if no_reference:
+                    why = NO_REFERENCE
                 when = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(st["saved"])) if st["saved"] else "?"
                 cause = (f"the control did not shut down cleanly (power loss or killed; position last "
                          f"saved {when}): {why}")
                 cut = st["program"] and st["line"] > 0
-                if cut:
+                if cut and no_reference:
+                    cause += (f"; {os.path.basename(st['program'])} was running at line {st['line']}: "
+                              "touch off the part zero again and run it from its start")
+                elif cut:
                     cause += (f"; {os.path.basename(st['program'])} was running at line {st['line']}: "
                               f"load it and run from line {st['line']} once homed")
                 self._alarms.raise_alarm("controller", cause, Severity.WARNING, "unclean_shutdown")
-                if cut:
+                if cut and not no_reference:
                     self._events.run_interrupted.emit(st["program"], int(st["line"]), float(st["saved"]))
             active = st["active_offset"] if st["active_offset"] in WORK_OFFSET_NAMES else None
         self._coordinates.restore(self.store.load_offsets(len(axes)), self.store.load_parameters(), active)
