@@ -184,17 +184,7 @@ class SoemBus(Bus):
             self._wait_state(AL_PREOP, self.safeop_timeout_s, "PRE-OP")
         # identity check (0 in the configuration = do not check that field)
         with self._step(StartupStep.IDENTITY):
-            for d in self.drives:
-                s = master.slaves[d.position]
-                found = (int(s.man), int(s.id))
-                if ((d.vendor_id and d.vendor_id != found[0])
-                        or (d.product_code and d.product_code != found[1])):
-                    raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
-            for t in self.terminals:
-                s = master.slaves[t.position]
-                found = (int(s.man), int(s.id))
-                if found != (t.type.vendor_id, t.type.product_code):
-                    raise SlaveIdentityError(t.position, (t.type.vendor_id, t.type.product_code), found)
+            self._check_identities()
         with self._step(StartupStep.MAILBOX):
             for d in self.drives:
                 self._check_complete_access(d.position)
@@ -243,6 +233,22 @@ class SoemBus(Bus):
         with self._step(StartupStep.MODE):
             self._wait_csp_mode()
         self._io_ready = True
+
+    def _check_identities(self) -> None:
+        """Every configured drive is what its table says (0: not checked) and every terminal is
+        of its type, by vendor id and product code."""
+        master = self.master
+        for d in self.drives:
+            s = master.slaves[d.position]
+            found = (int(s.man), int(s.id))
+            if ((d.vendor_id and d.vendor_id != found[0])
+                    or (d.product_code and d.product_code != found[1])):
+                raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
+        for t in self.terminals:
+            s = master.slaves[t.position]
+            found = (int(s.man), int(s.id))
+            if found != (t.type.vendor_id, t.type.product_code):
+                raise SlaveIdentityError(t.position, (t.type.vendor_id, t.type.product_code), found)
 
     def _check_complete_access(self, position: int) -> None:
         """SOEM reads a drive's PDO mapping with complete access when the drive's SII says it

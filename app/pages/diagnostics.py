@@ -1,5 +1,6 @@
 """Diagnostics: v/a/j of the loaded program against time (Fig. 14), reference vs actual per
-axis with RMSE/MSE (Fig. 17, Table 4), EtherCAT slaves and states, cycle-timing histogram."""
+axis with RMSE/MSE (Fig. 17, Table 4), EtherCAT slaves and states, cycle-timing histogram, the
+production log, and the machine's signals live with where each is wired."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ from app.path_profile import PathProfile, path_profile
 from app.widgets.bus_view import BusView
 from app.widgets.production_view import ProductionView
 from app.widgets.profile_plots import ProfilePlots
+from app.widgets.signals_view import SignalsView
 from app.widgets.tracking_view import TrackingView, load_trace
 
 REDRAW_MS = 33  # 30 Hz
@@ -61,8 +63,10 @@ class DiagnosticsPage(QWidget):
         self.tabs.addTab(self.bus, "")
         self.production = ProductionView(context)
         self.tabs.addTab(self.production, "")
+        self.signals = SignalsView(i18n)
+        self.tabs.addTab(self.signals, "")
         for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"),
-                                      N_("Production"))):
+                                      N_("Production"), N_("Signals"))):
             i18n.bind(self.tabs, text, functools.partial(self.tabs.setTabText, index))
 
         self.profile: PathProfile | None = None
@@ -87,7 +91,12 @@ class DiagnosticsPage(QWidget):
         self.timer = QTimer(self)
         self.timer.setInterval(REDRAW_MS)
         self.timer.timeout.connect(self.tracking.redraw)
+        self.timer.timeout.connect(self._show_signals)
         self.compute_profile()
+
+    def _show_signals(self) -> None:
+        if self.tabs.currentWidget() is self.signals:
+            self.signals.show_readings(self.ctx.controller.signal_readings())
 
     def _show_connect(self) -> None:
         connected = bool(self.ctx.controller.bus_status.connected)

@@ -1,4 +1,5 @@
-"""Manual: jog per axis (hold / increments), spindle on/off and speed, MDI with history."""
+"""Manual: jog per axis (hold / increments), spindle on/off and speed, coolant and work light,
+MDI with history."""
 
 from __future__ import annotations
 
@@ -68,6 +69,30 @@ class ManualPage(QWidget):
         self.rpm.valueChanged.connect(lambda rpm: c.spindle_speed(rpm))
         right.addWidget(spindle_box)
 
+        # coolant (as M8 / M7; both off as M9) and the work light, where the machine has them
+        self.coolant_box = QGroupBox()
+        i18n.bind(self.coolant_box, N_("Coolant"), self.coolant_box.setTitle)
+        cool = QHBoxLayout(self.coolant_box)
+        wiring = c.config.wiring
+        self.coolant_buttons: dict[str, QPushButton] = {}
+        for key, label, signal in (("flood", N_("Flood (M08)"), "coolant_flood"),
+                                   ("mist", N_("Mist (M07)"), "coolant_mist"),
+                                   ("light", N_("Work light"), "work_light")):
+            button = QPushButton()
+            button.setCheckable(True)
+            button.setMinimumHeight(48)
+            i18n.bind(button, label)
+            button.setVisible(wiring.has(signal))
+            cool.addWidget(button)
+            self.coolant_buttons[key] = button
+        self.coolant_buttons["flood"].clicked.connect(lambda on: c.set_coolant(flood=on))
+        self.coolant_buttons["mist"].clicked.connect(lambda on: c.set_coolant(mist=on))
+        self.coolant_buttons["light"].clicked.connect(lambda on: c.set_work_light(on))
+        wired = ("coolant_flood", "coolant_mist", "work_light")
+        self.coolant_box.setVisible(any(wiring.has(k) for k in wired))
+        right.addWidget(self.coolant_box)
+        c.statusChanged.connect(lambda _snap: self._on_coolant())
+
         mdi_box = QGroupBox()
         i18n.bind(mdi_box, N_("MDI"), mdi_box.setTitle)
         mdi = QVBoxLayout(mdi_box)
@@ -127,6 +152,14 @@ class ManualPage(QWidget):
         would not fit in 1280 px, and nobody jogs while typing a block."""
         self.jog_box.setVisible(not on)
         self.keyboard.setVisible(on)
+
+    def _on_coolant(self) -> None:
+        """The buttons as the outputs are switched now (a program's M8, E-stop switching off)."""
+        flood, mist = self.ctx.controller.coolant
+        for key, on in (("flood", flood), ("mist", mist)):
+            button = self.coolant_buttons[key]
+            if button.isChecked() != on:
+                button.setChecked(on)
 
     def _on_spindle(self, spindle: object) -> None:
         direction = int(getattr(spindle, "direction", 0))

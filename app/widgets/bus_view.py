@@ -60,7 +60,8 @@ class BusView(QWidget):
         axes = getattr(config, "axes", ())
         states = tuple(getattr(bus, "drive_states", ()) or ())
         n = max(len(drives), len(states), len(axes))
-        self.table.setRowCount(n)
+        terminals = tuple(getattr(getattr(config, "wiring", None), "terminals", ()) or ())
+        self.table.setRowCount(n + len(terminals))
         for row in range(n):
             d = drives[row] if row < len(drives) else None
             values = (
@@ -72,6 +73,13 @@ class BusView(QWidget):
             )
             for col, text in enumerate(values):
                 self.table.setItem(row, col, QTableWidgetItem(text))
+        up = bool(getattr(bus, "connected", False))
+        for k, t in enumerate(terminals):        # the terminals beside the drives
+            tt = t.terminal_type
+            values = (str(t.position), f"{t.name} ({tt.name})" if t.name else tt.name,
+                      f"0x{tt.vendor_id:08X}", f"0x{tt.product_code:08X}", "OP" if up else tr("unknown"))
+            for col, text in enumerate(values):
+                self.table.setItem(n + k, col, QTableWidgetItem(text))
         probe = str(getattr(bus, "probe", "") or "")
         self.probe.setText({"touching": tr("Probe input: touching"), "free": tr("Probe input: free")}.get(
             probe, tr("Probe input: none ([probe] drive in the machine configuration)")))

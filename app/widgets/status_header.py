@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QResizeEvent
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QSizePolicy, QVBoxLayout, QWidget
 
@@ -86,9 +86,15 @@ class StatusHeader(QWidget):
         self.tool_label.setObjectName("toolLabel")
         self.tool_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self.tool_label.setFixedWidth(240)      # a long description never widens the header
+        # the machine's E-stop chain and door, where they are wired (read 5 times a second)
+        self.safety_label = QLabel()
+        self.safety_label.setObjectName("safetyState")
+        self.safety_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.safety_label.setFixedWidth(240)
         status.addWidget(self.state_label)
         status.addWidget(self.bus_label)
         status.addWidget(self.tool_label)
+        status.addWidget(self.safety_label)
         row.addLayout(status)
         self.estop_button = QPushButton()
         self.estop_button.setObjectName("estopButton")
@@ -117,6 +123,11 @@ class StatusHeader(QWidget):
         self._tools, self._tool = c.tool_table, c.tool_in_spindle
         c.toolsChanged.connect(self._on_tools)
         context.i18n.languageChanged.connect(lambda _lang: self.refresh())
+        self._safety: tuple[bool | None, bool | None] = (None, None)
+        self._safety_timer = QTimer(self)
+        self._safety_timer.setInterval(200)
+        self._safety_timer.timeout.connect(self._poll_safety)
+        self._safety_timer.start()
         self.dro.set_positions(c.machine_position, c.work_position)
         self.dro.set_homed(c.homed)
         self.dro.set_frame(c.snapshot().frame)
@@ -160,11 +171,34 @@ class StatusHeader(QWidget):
         self._tools, self._tool = table, int(in_spindle)
         self.refresh()
 
+    def _poll_safety(self) -> None:
+        values = {r.key: r.value for r in self.ctx.controller.signal_readings()
+                  if r.key in ("estop_chain_ok", "door_closed")}
+        now = (values.get("estop_chain_ok"), values.get("door_closed"))
+        if now != self._safety or not self.safety_label.text():
+            self._safety = now
+            self._show_safety()
+
+    def _show_safety(self) -> None:
+        chain, door = self._safety
+        parts, bad = [], False
+        if chain is not None:
+            parts.append(tr("E-stop chain closed") if chain else tr("E-STOP CHAIN OPEN"))
+            bad = bad or not chain
+        if door is not None:
+            parts.append(tr("door closed") if door else tr("DOOR OPEN"))
+            bad = bad or not door
+        self.safety_label.setVisible(bool(parts))
+        self.safety_label.setText(" · ".join(parts))
+        self.safety_label.setStyleSheet("color: %s; font-weight: 700; font-size: 13px;"
+                                        % ("#ff9080" if bad else "#7fe0a0"))
+
     # --- display -------------------------------------------------------------------------
     def _state_value(self) -> str:
         return str(getattr(self._state, "value", self._state))
 
     def refresh(self) -> None:
+        self._show_safety()
         value = self._state_value()
         text = STATE_TEXT.get(value, value)
         if value == "hold":

@@ -208,3 +208,33 @@ def test_emulated_drive_variants_at_the_object_level() -> None:
         assert exc.value.abort_code == SdoAbortError.OBJECT_DOES_NOT_EXIST
     assert objects("standard").read_complete(0x1C12, 0) == b"\x01\x00\x00\x16"
     assert objects("picky").read_complete(0x1C12, 0) == b"\x01\x00\x16"      # no pad byte, as KickCAT
+
+
+def test_a_terminal_of_another_identity_or_image_is_refused_naming_the_slave() -> None:
+    """A terminal is checked by identity (vendor 2, its type's product code) and by the bytes of
+    its default PDO assignment SOEM mapped; either wrong stops the start-up naming the slave."""
+    from ethercat.errors import SlaveIdentityError
+    from ethercat.terminals import TerminalSpec
+
+    bus = SoemBus(DRIVES, adapter="unused", terminals=(TerminalSpec(2, "EL1008"), TerminalSpec(3, "EL2008")))
+
+    def slave(man: int, pid: int, n_out: int, n_in: int) -> SimpleNamespace:
+        return SimpleNamespace(man=man, id=pid, output=bytes(n_out), input=bytes(n_in), name=f"0x{pid:08X}")
+
+    drives = [slave(0, 0, CSP_MAPPING.rx_struct.size, CSP_MAPPING.tx_struct.size) for _ in DRIVES]
+    bus.master = SimpleNamespace(slaves=[*drives, slave(2, 0x03F03052, 0, 1), slave(2, 0x07D43052, 1, 0)])
+    with pytest.raises(SlaveIdentityError, match="slave 3"):
+        bus._check_identities()                          # an EL2004 where an EL2008 belongs
+    bus.master.slaves[3] = slave(2, 0x07D83052, 2, 0)
+    bus._check_identities()
+    bus.slave_mappings = {0: CSP_MAPPING, 1: CSP_MAPPING}
+    with pytest.raises(ConfigurationError, match="slave 3 .*2 output / 0 input bytes; a EL2008 has 1 / 0"):
+        bus._build_io()
+    bus.master.slaves[3] = slave(2, 0x07D83052, 1, 0)
+    bus._build_io()
+    bus.terminal_outputs[1] = 0b1001
+    bus.master.slaves[2].input = bytes([0b0100_0001])
+    for tio in bus._terminal_io:
+        tio.write()
+        tio.read()
+    assert bus.master.slaves[3].output == bytes([0b1001]) and int(bus.terminal_inputs[0]) == 0b0100_0001

@@ -148,6 +148,8 @@ def test_150_percent_override_ends_a_feed_bound_program_a_quarter_sooner(tmp_pat
     ('{"op": "stop", "after_s": -1}', "must not be negative"),
     ("[1, 2]", "not a JSON object"),
     ("stop at 3", "not a JSON object"),
+    ('{"op": "input", "after_s": 1, "signal": "door_closed"}', 'input needs "signal"'),
+    ('{"op": "input", "after_s": 1, "signal": "door_closed", "value": 1}', "value must be true"),
 ])
 def test_a_bad_script_line_is_named(tmp_path: Path, line: str, words: str) -> None:
     script = tmp_path / "ops.jsonl"
@@ -162,7 +164,7 @@ _JSON = st.recursive(
     | st.sampled_from([float("nan"), float("inf"), 1e308, -0.5, 2.5, 150]),
     lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=6), inner, max_size=3),
     max_leaves=6)
-_KEYS = st.sampled_from(["op", "at_line", "after_s", "line", "percent", "when", "Op"])
+_KEYS = st.sampled_from(["op", "at_line", "after_s", "line", "percent", "when", "Op", "signal", "value"])
 _OPS = st.sampled_from([*OPS, "jump", ""]) | _JSON
 
 
@@ -175,6 +177,26 @@ def test_any_script_line_is_an_action_or_refused_with_its_line(data: dict, op: o
         parse_op(json.dumps(data), "ops.jsonl:7")
     except MachineError as exc:
         assert str(exc).startswith("ops.jsonl:7: "), str(exc)
+
+
+def test_a_script_opens_and_closes_the_door_and_the_program_waits_for_it(tmp_path: Path, capsys) -> None:
+    """The door opened mid-move holds the program (no motion while it is open, cycle start
+    refused); closed again, cycle start finishes it."""
+    code, out, tr = run(tmp_path, capsys, "G21 G90\nG1 X40 F600\nM30\n", [
+        {"after_s": 1.0, "op": "input", "signal": "door_closed", "value": False},
+        {"after_s": 1.0, "op": "cycle_start"},
+        {"after_s": 1.0, "op": "input", "signal": "door_closed", "value": None},
+        {"after_s": 0.2, "op": "cycle_start"},
+    ])
+    assert code == 1, out                  # a refused action: the script did not run as written
+    assert [a["ok"] for a in out["actions"]] == [True, False, True, True]
+    assert "the door is open" in out["actions"][1]["reason"]
+    assert out["completed"] and out["end_position"][0] == pytest.approx(40.0, abs=2e-4)
+    t, x = tr["t"], tr["reference"][:, 0]
+    t_open = out["actions"][0]["t_s"]
+    t_close = out["actions"][2]["t_s"]
+    still = (t > t_open + 0.5) & (t < t_close)
+    assert still.sum() > 500 and np.ptp(x[still]) == 0.0
 
 
 def test_cnc_run_refuses_a_bad_script_before_running(tmp_path: Path, capsys) -> None:

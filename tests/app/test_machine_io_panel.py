@@ -1,0 +1,85 @@
+"""The machine's signals on the panel, through the real widgets against the real controller on
+simulated drives: the Signals tab, the header's E-stop chain and door, the coolant buttons, the
+E-stop release refused while the chain is open, the homing method named on Machine zero."""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import QPushButton
+
+
+def _advance(qtbot, c, seconds: float = 0.3) -> None:
+    c.advance(seconds)
+    qtbot.wait(250)            # the header reads the signals 5 times a second
+
+
+def test_the_signals_tab_lists_every_signal_where_it_is_wired_and_marks_the_open_door(
+        qtbot, demo_window, real_controller) -> None:
+    c = real_controller
+    diag = demo_window.page("diagnostics")
+    demo_window.show_page("diagnostics")
+    diag.tabs.setCurrentWidget(diag.signals)
+    qtbot.waitUntil(lambda: diag.signals.table.rowCount() > 10, timeout=5000)
+    rows = {diag.signals.table.item(r, 0).text(): r for r in range(diag.signals.table.rowCount())}
+    door = rows["door_closed"]
+    assert diag.signals.table.item(door, 2).text() == "machine inputs (slave 4) channel 1"
+    assert diag.signals.table.item(door, 3).text() == "on"
+    assert c.simulate_input("door_closed", False)
+    _advance(qtbot, c)
+    qtbot.waitUntil(lambda: diag.signals.table.item(door, 3).text() == "off", timeout=5000)
+    assert diag.signals.table.item(door, 3).background().color().name() == "#7a3b1d"
+    assert diag.signals.table.item(rows["estop_chain_ok"], 3).background().color().name() != "#7a3b1d"
+    # the EtherCAT tab lists the terminals with the drives
+    table = diag.bus.table
+    named = [table.item(r, 1).text() for r in range(table.rowCount())]
+    assert "machine inputs (EL1008)" in named and "coupler (EK1100)" in named
+
+
+def test_the_header_shows_the_chain_and_the_door_and_release_is_refused_while_the_chain_is_open(
+        qtbot, demo_window, real_controller, dialogs) -> None:
+    c = real_controller
+    header = demo_window.header
+    qtbot.waitUntil(lambda: header.safety_label.text() == "E-stop chain closed · door closed", timeout=5000)
+    assert c.simulate_input("estop_chain_ok", False)
+    _advance(qtbot, c)
+    qtbot.waitUntil(lambda: "E-STOP CHAIN OPEN" in header.safety_label.text(), timeout=5000)
+    assert c.state.value == "estop"
+    assert header.estop_button.text() == "RELEASE\nE-STOP"
+    refused: list[tuple[str, str]] = []
+    c.commandRefused.connect(lambda action, why: refused.append((action, why)))
+    dialogs.answers.append(True)
+    header.estop_button.click()                 # release, confirmed: refused, saying why
+    assert c.state.value == "estop"
+    assert refused and "the E-stop chain is open" in refused[-1][1]
+    assert c.simulate_input("estop_chain_ok", None)
+    _advance(qtbot, c)
+    dialogs.answers.append(True)
+    header.estop_button.click()
+    assert c.state.value == "idle"
+    qtbot.waitUntil(lambda: header.safety_label.text() == "E-stop chain closed · door closed", timeout=5000)
+
+
+def test_the_coolant_buttons_switch_the_outputs_and_follow_a_programs_m8(qtbot, demo_window,
+                                                                        real_controller) -> None:
+    c = real_controller
+    manual = demo_window.page("manual")
+    demo_window.show_page("manual")
+    flood: QPushButton = manual.coolant_buttons["flood"]
+    assert manual.coolant_box.isVisible() and flood.isVisible()
+    flood.click()
+    _advance(qtbot, c, 0.05)
+    assert c.coolant == (True, False)
+    assert c.worker.snapshot().terminal_outputs[3] & 1
+    flood.click()
+    _advance(qtbot, c, 0.05)
+    assert c.coolant == (False, False) and not c.worker.snapshot().terminal_outputs[3] & 1
+    assert c.load_program("G21 G90\nM8\nG1 X20 F600\nM30\n", name="m8.nc", wait=True)
+    assert c.cycle_start(wait=True)
+    assert c.run_until(lambda: c.coolant[0], 2)
+    qtbot.waitUntil(flood.isChecked, timeout=5000)   # the button follows the program
+    assert c.run_until(lambda: c.state.value == "idle", 10)
+    qtbot.waitUntil(lambda: not flood.isChecked(), timeout=5000)   # off at the program's end
+
+
+def test_machine_zero_names_homing_to_the_switches(demo_window) -> None:
+    page = demo_window.page("machine_zero")
+    assert "to the home switches" in page.method_label.text()
