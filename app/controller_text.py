@@ -92,6 +92,23 @@ TEMPLATES: tuple[str, ...] = (
     N_("the control did not shut down cleanly (power loss or killed; position last saved {0}): {1}"),
     N_("axes are not homed any more: home them before running a program"),
     N_("the drives have absolute encoders: homed flags kept"),
+    # the machine around the drives
+    N_("E-stop chain open (the machine's safety circuit): quick stop of all axes; the drives cannot be "
+       "enabled until it is closed again"),
+    N_("axis {0} on its positive limit switch: quick stop of all axes; override limits to jog it off the "
+       "switch (toward -)"),
+    N_("axis {0} on its negative limit switch: quick stop of all axes; override limits to jog it off the "
+       "switch (toward +)"),
+    N_("the drives cannot be re-enabled: axis {0} is on its positive limit switch: override limits to jog "
+       "it off the switch"),
+    N_("the drives cannot be re-enabled: axis {0} is on its negative limit switch: override limits to jog "
+       "it off the switch"),
+    N_("axis {0} is on its positive limit switch: it may only jog away from it ({1})"),
+    N_("axis {0} is on its negative limit switch: it may only jog away from it ({1})"),
+    N_("homing of axis {0} failed at step '{1}': {2}; quick stop of all axes"),
+    N_("homing {0}"),
+    N_("{0} lost ({1} reads false)"),
+    N_("{0} lost ({1} reads false): the motion stops"),
     # probing, inputs and the tool setter
     N_("{0} (line {1}): contact at {2} (machine)"),
     N_("{0} (line {1}): contact lost at {2} (machine)"),
@@ -223,7 +240,9 @@ SOURCE_TEXT = {"worker": N_("worker"), "bus": N_("bus"), "planner": N_("planner"
                "controller": N_("controller"), "operator": N_("operator"), "config": N_("configuration"),
                "probe": N_("probe"), "tools": N_("tools"), "persistence": N_("state folder"),
                "opcua": N_("OPC UA"), "spindle": N_("spindle"), "program": N_("program"),
-               "outputs": N_("outputs"), "homing": N_("homing"), "input": N_("input")}
+               "outputs": N_("outputs"), "homing": N_("homing"), "input": N_("input"),
+               "E-stop chain": N_("E-stop chain"), "door": N_("door"), "coolant": N_("coolant"),
+               "air_ok": N_("air"), "lube_ok": N_("lubrication")}
 
 
 def source_text(source: str) -> str:

@@ -19,7 +19,6 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1'),
     N_('M66 (line {0}): the drive of input P{1} does not send its digital inputs (0x60FD)'),
     N_('M66 reads an input for the program that follows it; an MDI block keeps no value for the next one (the Diagnostics page shows the inputs)'),  # noqa: E501
-    N_('M7/M8/M9: no coolant output is configured on this machine'),
     N_('MDI takes one block (one line)'),
     N_("S{0} is over the spindle's maximum of {1} rpm ([controller] spindle_max_rpm)"),
     N_("T selects the tool for a program's M6; in MDI say which tool is in the spindle with M61 Q<n>"),  # noqa: E501
@@ -38,6 +37,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('an outside corner'),
     N_('approach move: soft limit: {0}'),
     N_('approach move: {0}'),
+    N_('at the switch'),
     N_('axes changed: reconnect the bus to apply'),
     N_('axes not homed'),
     N_('axes not homed: home them before probing'),
@@ -47,11 +47,11 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('axes {0} report another position than saved: homed state cleared, home again'),
     N_('axis {0} is at its soft limit {1}'),
     N_('axis {0} would reach {1}, beyond its soft limit [{2}, {3}]'),
+    N_('backing off the switch'),
     N_('block delete changes which lines the program has: switch it before cycle start, not during a run'),  # noqa: E501
     N_('cannot save machine state: {0}'),
     N_('cannot save the G-code parameters: {0}'),
     N_('cannot save the part counter: {0}'),
-    N_('cannot save the run trace: {0}'),
     N_('cannot save the tool in the spindle: {0}'),
     N_('cannot save the tool table: {0}'),
     N_('cannot save work offsets: {0}'),
@@ -68,26 +68,31 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('increment must be one of {0}, got {1}'),
     N_('input {0} is not in the program'),
     N_('jog released'),
+    N_('latching the switch edge'),
     N_('line {0} comes after {1} at line {2}: what follows depends on what it read; run from line {3} (or before) to read it again'),  # noqa: E501
     N_('line {0} needs T{1} in the spindle (T{2} is in it): put it in and set it on the Tools page, or run from the M6 line {3}'),  # noqa: E501
     N_('machine is {0}'),
     N_('measuring on a tool setter needs X, Y and Z axes'),
+    N_('moving off the switch'),
     N_('no active alarm with id {0}'),
     N_('no probe in the spindle: put it in and set it (In the spindle) first'),
     N_("no probe is named: set [probe] tool to the probe's number in the tool table (only the probe may make probing moves)"),  # noqa: E501
     N_('no program loaded'),
     N_('no tool is in the spindle, not the probe T{0}: put the probe in and say so (In the spindle, or M61 Q{1})'),  # noqa: E501
     N_('no tool setter on this machine ([probe] drive, setter_x_mm, setter_y_mm and setter_z_mm in the machine configuration)'),  # noqa: E501
+    N_('not connected'),
     N_('not while the machine is {0}'),
     N_('nothing is moving'),
     N_('nothing to hold: machine is {0}'),
     N_('nothing to resume: machine is {0}'),
     N_('nothing to stop: machine is {0}'),
+    N_("only a simulated machine's inputs can be set"),
     N_('output {0} could not be switched off: {1}'),
     N_('planner: {0}'),
     N_('probing a part needs X, Y and Z axes'),
     N_('rapid override must be 0-100 %, got {0}'),
     N_('reset not possible: machine is {0}'),
+    N_('searching the switch'),
     N_('single block takes effect at the next stop (feed hold, block end, M00)'),
     N_('soft limit: {0}'),
     N_('speed must be 0-{0} rpm'),
@@ -97,6 +102,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
     N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
     N_('stopped by the operator'),
+    N_('the E-stop chain is open: release the E-stop buttons and close the safety circuit first'),
     N_('the Z surface'),
     N_('the angle of a face'),
     N_('the depth below the start must be above 0 mm'),
@@ -104,9 +110,14 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("the diameter's tolerance must be above 0 mm"),
     N_('the direction is +X, -X, +Y or -Y'),
     N_('the distance along the faces must be above 0 mm'),
+    N_('the door is open: close it first'),
+    N_('the door is open: jogging needs it closed on this machine ([interlocks] door_open_jog_mm_s)'),  # noqa: E501
+    N_('the door was opened while homing'),
+    N_('the door was opened: the spindle stopped'),
     N_('the drives cannot be re-enabled: {0}'),
     N_('the machine has no Z axis'),
     N_('the machine is still stopping: wait for standstill'),
+    N_('the move to the home position was refused: {0}'),
     N_('the program stopped at line {0}: resume there or start it again from the beginning (choose one)'),  # noqa: E501
     N_('the program {0} is being planned for single block (wait until it is ready)'),
     N_('the program {0} is still being checked (wait until it is loaded)'),
@@ -117,8 +128,10 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked'),  # noqa: E501
     N_('this CPU does not keep stores in order: the 1 ms loop runs as a thread of the panel, not in its own process (less punctual under GUI load)'),  # noqa: E501
     N_('this machine has no probe input ([probe] drive in the machine configuration)'),
+    N_('this machine has no reference switches ([homing] method = "set_here"): where its axes stand after the cut is not known, so machine zero set now would not be the old one; the part zero must be touched off again'),  # noqa: E501
     N_('touch off {0}: not a number'),
     N_('unknown work offset {0} (G54-G59.3)'),
+    N_('{0} is not a wired input (inputs: {1})'),
     N_('{0} needs {1} values'),
     N_('{0} part(s) made: the target of {1} is reached'),
     N_('{0} rotation: a number of degrees within -360 .. 360'),
