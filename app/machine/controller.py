@@ -221,7 +221,8 @@ class MachineController(QObject):
         self.coordinates = coords = Coordinates(settings, states, positions, store, alarms, out, events,
                                                 pauses)
         self.outputs = outputs = DigitalOutputs(settings, drives, alarms, events, pauses)
-        self.spindle_ctl = spindle = SpindleControl(settings, states, drives, outputs, alarms, out, events)
+        self.spindle_ctl = spindle = SpindleControl(settings, states, drives, outputs, alarms, out, events,
+                                                    signals)
         self.tools = tools = ToolControl(settings, states, positions, coords, store, alarms, out, pauses)
         self.switches = switches = RunSwitches(out, events)
         self.stream = stream = Streamer(settings, states, drives, positions, coords, spindle, tools, switches,

@@ -180,6 +180,14 @@ class SpindleDrive(SpindleView, Protocol):
 
     def restart_after_hold(self) -> float: ...
 
+    def at_speed(self, now_s: float, until_s: float) -> bool: ...
+
+
+class SignalValues(Protocol):
+    """What a machine signal reads now (None: not wired, or the bus is down)."""
+
+    def value(self, key: str) -> bool | None: ...
+
 
 class Interlocks(Protocol):
     """What the machine's signals refuse now (the door open, the E-stop chain open): "" when

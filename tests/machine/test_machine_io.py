@@ -363,3 +363,30 @@ def test_no_motion_while_a_stop_condition_holds(qapp, tmp_path_factory, steps: l
                 assert moved <= 2.0 * 0.3 + 1e-9, (step, moved, c.state, c.state_reason)
     finally:
         c.shutdown()
+
+
+def test_with_at_speed_wired_the_motion_waits_for_it_after_m3(qapp, state_dir: Path) -> None:
+    """The spindle drive's at-speed signal gates the feed after M3 instead of the fixed spin-up
+    time: the axes stand until it reads true; it never coming is a STOP alarm."""
+    text = MILL.replace('home_Z = "4:7"', 'home_Z = "4:7"\nspindle_at_speed = "5:7"').replace(
+        'home_Y = "5:7"\n', "")
+    text = text.replace('[[homing.axes]]\naxis = "Y"', '[[homing.axes]]\naxis = "Y"\n', 1)
+    c = make_controller(_config(text.replace('method = "switches"', 'method = "set_here"', 1)), state_dir)
+    try:
+        assert c.load_program("G21 G90\nM3 S5000\nG1 X10 F600\nM5\nM30\n", name="s.nc", wait=True)
+        assert c.cycle_start(wait=True)
+        c.advance(3.0)                      # longer than spindle_spinup_s: still waiting
+        assert c.spindle.on and c.machine_position[0] == 0.0
+        assert c.simulate_input("spindle_at_speed", True)
+        assert c.run_until(lambda: c.machine_position[0] > 1.0, 1.0)
+        run_to_idle(c)
+        assert c.last_run.completed
+        assert c.simulate_input("spindle_at_speed", False)
+        assert c.load_program("G21 G90\nM3 S5000\nG1 X0 F600\nM30\n", name="s2.nc", wait=True)
+        assert c.cycle_start(wait=True)
+        c.advance(11.0)
+        assert c.state is MachineState.ALARM
+        assert any(a.code == "spindle_at_speed" for a in c.active_alarms)
+        assert c.machine_position[0] == pytest.approx(10.0, abs=1e-3)
+    finally:
+        c.shutdown()

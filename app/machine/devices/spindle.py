@@ -13,7 +13,7 @@ from app.machine.infra.drives import DriveLink
 from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.model import CommandResult, MachineState, Severity, SpindleState
 from app.machine.motion.spinup import spins_up
-from app.machine.ports import AlarmSink, Settings
+from app.machine.ports import AlarmSink, Settings, SignalValues
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 
@@ -24,13 +24,23 @@ OVERRIDE_MIN_PCT = 50.0
 OVERRIDE_MAX_PCT = 150.0
 
 
+#: with the at-speed signal wired: the least wait after a spin-up command (the drive sees it)
+AT_SPEED_MIN_S = 0.1
+
+
+def at_speed_timeout_s(spinup_s: float) -> float:
+    """How long a spin-up may take before the missing at-speed signal is an alarm."""
+    return max(10.0, 5.0 * spinup_s)
+
+
 class SpindleControl:
     """The spindle: its state, the operator's override, and whether the program turned the
     override off (``controller.spindle_ctl``). It stops on E-stop, faults and reset."""
 
     def __init__(self, settings: Settings, states: StateMachine, drives: DriveLink, outputs: DigitalOutputs,
-                 alarms: AlarmSink, out: PanelChannels, events: MachineEvents) -> None:
+                 alarms: AlarmSink, out: PanelChannels, events: MachineEvents, signals: SignalValues) -> None:
         self._settings = settings
+        self._signals = signals
         self._states = states
         self._drives = drives
         self._outputs = outputs
@@ -44,6 +54,7 @@ class SpindleControl:
         # what turned before the door opened in a hold: it turns again, at speed, before the
         # program goes on (``restart_after_hold``)
         self.stopped_for_hold: SpindleState | None = None
+        self._at_speed_late = False
         events.estop.connect(lambda _reason: self._stop_for_good())
         events.fault.connect(lambda _cause: self._stop_for_good())
         events.reset.connect(lambda _state: self._stop_for_good())
@@ -113,9 +124,32 @@ class SpindleControl:
 
     def spin_up_s(self, new: SpindleState) -> float:
         """How long the motion waits after switching to ``new``: the configured spin-up time
-        when the spindle starts, reverses or speeds up, else 0."""
-        return float(self._settings.config.controller.spindle_spinup_s) if spins_up(self.spindle,
-                                                                                    new) else 0.0
+        when the spindle starts, reverses or speeds up, else 0. With ``spindle_at_speed`` wired,
+        the motion waits for that signal instead (``at_speed``), at least ``AT_SPEED_MIN_S``: the
+        time the drive takes to see the new speed (its signal may still be true from before)."""
+        if not spins_up(self.spindle, new):
+            return 0.0
+        if self._settings.config.wiring.has("spindle_at_speed"):
+            return AT_SPEED_MIN_S
+        return float(self._settings.config.controller.spindle_spinup_s)
+
+    def at_speed(self, now_s: float, until_s: float) -> bool:
+        """Whether the motion may go on after a spin-up that waits until ``until_s``: then, and
+        with ``spindle_at_speed`` wired, once it reads true. It not reading true within
+        ``at_speed_timeout_s`` of that is a STOP alarm (the motion stays at rest)."""
+        if now_s < until_s:
+            return False
+        if not self._settings.config.wiring.has("spindle_at_speed"):
+            return True
+        if self._signals.value("spindle_at_speed"):
+            self._at_speed_late = False
+            return True
+        timeout = at_speed_timeout_s(self._settings.config.controller.spindle_spinup_s)
+        if now_s > until_s + timeout and not self._at_speed_late:
+            self._at_speed_late = True
+            self._alarms.alarm_stop(f"the spindle did not report at speed (spindle_at_speed) within "
+                                    f"{timeout:g} s", "spindle", "spindle_at_speed")
+        return False
 
     def set_override(self, percent: float) -> CommandResult:
         """Spindle override 50-150 %: the speed the program asks for times this, at once

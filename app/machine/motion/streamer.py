@@ -451,7 +451,7 @@ class Streamer:
         if job is None:
             return
         modes = self._modes
-        if job.resume_at_s is not None and snap.time_s >= job.resume_at_s:
+        if job.resume_at_s is not None and self._spindle.at_speed(float(snap.time_s), job.resume_at_s):
             job.resume_at_s = None
             self.change_motion(lambda ex: setattr(ex, "hold", False))
         consumed = int(snap.samples_consumed)
@@ -540,7 +540,7 @@ class Streamer:
             self._finish_stop(job)
             return
         if job.spinup_until is not None:      # a spindle started here: on at speed first
-            if snap.time_s >= job.spinup_until:
+            if self._spindle.at_speed(float(snap.time_s), job.spinup_until):
                 job.spinup_until = None
                 self.release(job)
             return
