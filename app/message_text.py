@@ -123,6 +123,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the program {0} is still being checked (wait until it is loaded)'),
     N_("the set-points ran out after {0} (the control's process fell behind): the axes braked to rest along the path within their limits"),  # noqa: E501
     N_('the slow probe feed F{0} must be below the fast one F{1} mm/min: the edge is read at the slow one'),  # noqa: E501
+    N_('the spindle did not report at speed (spindle_at_speed) within {0} s'),
     N_('the surface height must be a number'),
     N_('the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again'),  # noqa: E501
     N_('the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked'),  # noqa: E501

@@ -88,8 +88,8 @@ class ManualPage(QWidget):
         self.coolant_buttons["flood"].clicked.connect(lambda on: c.set_coolant(flood=on))
         self.coolant_buttons["mist"].clicked.connect(lambda on: c.set_coolant(mist=on))
         self.coolant_buttons["light"].clicked.connect(lambda on: c.set_work_light(on))
-        wired = ("coolant_flood", "coolant_mist", "work_light")
-        self.coolant_box.setVisible(any(wiring.has(k) for k in wired))
+        self._coolant_wired = any(wiring.has(k) for k in ("coolant_flood", "coolant_mist", "work_light"))
+        self.coolant_box.setVisible(self._coolant_wired)
         right.addWidget(self.coolant_box)
         c.statusChanged.connect(lambda _snap: self._on_coolant())
 
@@ -148,9 +148,10 @@ class ManualPage(QWidget):
             self.mdi_line.clear()
 
     def _show_keyboard(self, on: bool) -> None:
-        """The keyboard takes the jog panel's place while it is open: beside the jog panel it
-        would not fit in 1280 px, and nobody jogs while typing a block."""
+        """The keyboard takes the jog panel's place while it is open (and the coolant buttons'):
+        beside the jog panel it would not fit in 1280 px, and nobody jogs while typing a block."""
         self.jog_box.setVisible(not on)
+        self.coolant_box.setVisible(not on and self._coolant_wired)
         self.keyboard.setVisible(on)
 
     def _on_coolant(self) -> None:

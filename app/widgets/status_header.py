@@ -86,15 +86,9 @@ class StatusHeader(QWidget):
         self.tool_label.setObjectName("toolLabel")
         self.tool_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self.tool_label.setFixedWidth(240)      # a long description never widens the header
-        # the machine's E-stop chain and door, where they are wired (read 5 times a second)
-        self.safety_label = QLabel()
-        self.safety_label.setObjectName("safetyState")
-        self.safety_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
-        self.safety_label.setFixedWidth(240)
         status.addWidget(self.state_label)
         status.addWidget(self.bus_label)
         status.addWidget(self.tool_label)
-        status.addWidget(self.safety_label)
         row.addLayout(status)
         self.estop_button = QPushButton()
         self.estop_button.setObjectName("estopButton")
@@ -123,7 +117,11 @@ class StatusHeader(QWidget):
         self._tools, self._tool = c.tool_table, c.tool_in_spindle
         c.toolsChanged.connect(self._on_tools)
         context.i18n.languageChanged.connect(lambda _lang: self.refresh())
+        # the machine's E-stop chain and door, where they are wired (read 5 times a second): a
+        # second line of the bus button, red when one is open
         self._safety: tuple[bool | None, bool | None] = (None, None)
+        self.safety_text = ""
+        self._safety_bad = False
         self._safety_timer = QTimer(self)
         self._safety_timer.setInterval(200)
         self._safety_timer.timeout.connect(self._poll_safety)
@@ -175,9 +173,9 @@ class StatusHeader(QWidget):
         values = {r.key: r.value for r in self.ctx.controller.signal_readings()
                   if r.key in ("estop_chain_ok", "door_closed")}
         now = (values.get("estop_chain_ok"), values.get("door_closed"))
-        if now != self._safety or not self.safety_label.text():
+        if now != self._safety:
             self._safety = now
-            self._show_safety()
+            self.refresh()
 
     def _show_safety(self) -> None:
         chain, door = self._safety
@@ -188,10 +186,7 @@ class StatusHeader(QWidget):
         if door is not None:
             parts.append(tr("door closed") if door else tr("DOOR OPEN"))
             bad = bad or not door
-        self.safety_label.setVisible(bool(parts))
-        self.safety_label.setText(" · ".join(parts))
-        self.safety_label.setStyleSheet("color: %s; font-weight: 700; font-size: 13px;"
-                                        % ("#ff9080" if bad else "#7fe0a0"))
+        self.safety_text, self._safety_bad = " · ".join(parts), bad
 
     # --- display -------------------------------------------------------------------------
     def _state_value(self) -> str:
@@ -219,11 +214,12 @@ class StatusHeader(QWidget):
         bus = self._bus
         kind = str(getattr(bus, "kind", "")).upper()
         connected = bool(getattr(bus, "connected", False))
-        self.bus_label.setText(tr("Bus {0}: {1}").format(
-            kind, tr("connected") if connected else tr("not connected")))
-        self.bus_label.setProperty("ok", connected)
+        bus_text = tr("Bus {0}: {1}").format(kind, tr("connected") if connected else tr("not connected"))
+        self.bus_label.setText(bus_text + ("\n" + self.safety_text if self.safety_text else ""))
+        ok = connected and not self._safety_bad
+        self.bus_label.setProperty("ok", ok)
         self.bus_label.setStyleSheet("color: %s; font-weight: 700; background: transparent; border: 0;"
-                                     % ("#7fe0a0" if connected else "#ff9080"))
+                                     % ("#7fe0a0" if ok else "#ff9080"))
         self.estop_button.setText(tr("RELEASE\nE-STOP") if value == "estop" else tr("E-STOP"))
         # as wide as the wider of its two texts in this language: pressing it never moves the header
         fm = self.estop_button.fontMetrics()

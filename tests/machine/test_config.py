@@ -47,7 +47,7 @@ def test_save_is_atomic_and_keeps_the_previous_file(config_path: Path) -> None:
 
 @pytest.mark.parametrize("edit, words", [
     (lambda t: t.replace("v_max = 100.0", "v_max = -1.0", 1), ["v_max", "-1"]),
-    (lambda t: t.replace('method = "set_here"', 'method = "magic"'), ["method", "magic"]),
+    (lambda t: t.replace('method = "switches"', 'method = "magic"'), ["method", "magic"]),
     (lambda t: t.replace('kind = "sim"', 'kind = "can"'), ["kind", "can"]),
     (lambda t: re.sub(r"lead_s = [0-9.]+", "lead_s = 5.0", t), ["lead_s", "5.0"]),
     # the probe: an axis index the machine has, a bit of 0x60FD, an axis for the simulated surface
