@@ -10,6 +10,7 @@ from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QApplication
 
 from app.context import PanelOptions
+from app.machine.model import MachineState
 from app.main_window import MainWindow
 from app.paths import STYLES
 from planner.core.files import write_output_via_path
@@ -84,7 +85,8 @@ def quit_on_signals(app: QApplication) -> None:
 
 
 def schedule_screenshot(app: QApplication, window: MainWindow, options: PanelOptions) -> None:
-    """Shoot once the demo is connected (at most 5 s), or ``run_for_s`` after cycle start."""
+    """Shoot once the demo is connected (at most 5 s), or ``run_for_s`` after cycle start (the
+    demo machine homed to its switches first, at most 2 minutes)."""
     controller = window.context.controller
     started = time.monotonic()
 
@@ -98,9 +100,22 @@ def schedule_screenshot(app: QApplication, window: MainWindow, options: PanelOpt
         if not ready and time.monotonic() - started < 5.0:
             QTimer.singleShot(100, wait_ready)
         elif options.run_for_s > 0 and ready:
+            if not all(controller.homed):      # the demo machine homes to its switches first
+                controller.home_all()
+                QTimer.singleShot(200, wait_homed)
+                return
             controller.cycle_start()
             QTimer.singleShot(round(options.run_for_s * 1000), shoot)
         else:
+            QTimer.singleShot(200, shoot)
+
+    def wait_homed() -> None:
+        if all(controller.homed) and controller.state is MachineState.IDLE:
+            controller.cycle_start()
+            QTimer.singleShot(round(options.run_for_s * 1000), shoot)
+        elif time.monotonic() - started < 120.0 and controller.state is MachineState.HOMING:
+            QTimer.singleShot(200, wait_homed)
+        else:                                   # homing refused or failed: the panel says why
             QTimer.singleShot(200, shoot)
 
     QTimer.singleShot(300, wait_ready)

@@ -69,6 +69,10 @@ def run(minutes: float, lines: int, busy: int, size: str, switch_s: float) -> di
         result["load_s"] = round(time.monotonic() - t0, 1)
         if not loaded:
             raise SystemExit("the program did not load within 10 minutes")
+        if not all(ctl.homed):                 # the demo machine homes to its switches
+            ctl.home_all()
+            if not _wait(app, lambda: all(ctl.homed) and ctl.state.value == "idle", 120.0):
+                raise SystemExit(f"homing did not end within 2 minutes: {ctl.state_reason}")
         started = ctl.cycle_start()
         if not started:
             raise SystemExit(f"cycle start refused: {started.reason}")

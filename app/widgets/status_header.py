@@ -179,14 +179,15 @@ class StatusHeader(QWidget):
 
     def _show_safety(self) -> None:
         chain, door = self._safety
-        parts, bad = [], False
-        if chain is not None:
-            parts.append(tr("E-stop chain closed") if chain else tr("E-STOP CHAIN OPEN"))
-            bad = bad or not chain
-        if door is not None:
-            parts.append(tr("door closed") if door else tr("DOOR OPEN"))
-            bad = bad or not door
-        self.safety_text, self._safety_bad = " · ".join(parts), bad
+        # short enough for the button's 240 px: what is open, in capitals, or all closed
+        open_ = [text for value, text in ((chain, tr("E-STOP CHAIN OPEN")), (door, tr("DOOR OPEN")))
+                 if value is False]
+        if open_:
+            self.safety_text, self._safety_bad = " · ".join(open_), True
+            return
+        closed = {(True, True): tr("chain and door closed"), (True, None): tr("E-stop chain closed"),
+                  (None, True): tr("door closed")}
+        self.safety_text, self._safety_bad = closed.get((chain, door), ""), False
 
     # --- display -------------------------------------------------------------------------
     def _state_value(self) -> str:

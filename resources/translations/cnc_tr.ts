@@ -4,7 +4,7 @@
   <context>
     <name>cnc</name>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="236" />
+      <location filename="../../app/widgets/status_header.py" line="237" />
       <source> (+{0} more)</source>
       <translation> (+{0} tane daha)</translation>
     </message>
@@ -39,7 +39,7 @@
       <translation>Bir tam sayı olmalı: {0} kesirli</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="237" />
+      <location filename="../../app/widgets/status_header.py" line="238" />
       <source>ALARM: {0}: {1}</source>
       <translation>ALARM: {0}: {1}</translation>
     </message>
@@ -154,7 +154,7 @@
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="217" />
+      <location filename="../../app/widgets/status_header.py" line="218" />
       <source>Bus {0}: {1}</source>
       <translation>Veri yolu {0}: {1}</translation>
     </message>
@@ -329,7 +329,7 @@
       <translation>D kelimesini kullanacak G41, G41.1, G42, G42.1 ya da G96 yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="187" />
+      <location filename="../../app/widgets/status_header.py" line="183" />
       <source>DOOR OPEN</source>
       <translation>KAPI AÇIK</translation>
     </message>
@@ -419,12 +419,12 @@
       <translation>E kelimesini kullanacak G33, G33.1, G76, M67 ya da M68 yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="223" />
+      <location filename="../../app/widgets/status_header.py" line="224" />
       <source>E-STOP</source>
       <translation>ACİL STOP</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="184" />
+      <location filename="../../app/widgets/status_header.py" line="183" />
       <source>E-STOP CHAIN OPEN</source>
       <translation>ACİL STOP DEVRESİ AÇIK</translation>
     </message>
@@ -439,7 +439,7 @@
       <translation>Acil stop devresi</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="184" />
+      <location filename="../../app/widgets/status_header.py" line="188" />
       <source>E-stop chain closed</source>
       <translation>Acil stop devresi kapalı</translation>
     </message>
@@ -839,7 +839,7 @@
       <translation>H kelimesini kullanacak G43, G43.2 ya da G76 yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="203" />
+      <location filename="../../app/widgets/status_header.py" line="204" />
       <source>Held by feed override 0 %</source>
       <translation>İlerleme ayarı %0 ile bekliyor</translation>
     </message>
@@ -1581,7 +1581,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>G10 L20'de R kullanılamaz (döndürme G10 L2 R ile ayarlanır)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="223" />
+      <location filename="../../app/widgets/status_header.py" line="224" />
       <source>RELEASE
 E-STOP</source>
       <translation>ACİL STOP
@@ -2043,7 +2043,7 @@ BIRAK</translation>
       <translation>Takım {0}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="229" />
+      <location filename="../../app/widgets/status_header.py" line="230" />
       <source>Tool: {0}</source>
       <translation>Takım: {0}</translation>
     </message>
@@ -2673,6 +2673,11 @@ BIRAK</translation>
       <translation>kesici telafisi açıkken ({1}) şu yapılamaz: {0}; önce G40 programlayın</translation>
     </message>
     <message>
+      <location filename="../../app/widgets/status_header.py" line="188" />
+      <source>chain and door closed</source>
+      <translation>devre ve kapı kapalı</translation>
+    </message>
+    <message>
       <location filename="../../app/controller_text.py" line="39" />
       <source>change the axis offsets (G52, G92)</source>
       <translation>eksen ofsetlerini değiştirmek (G52, G92)</translation>
@@ -2798,7 +2803,7 @@ BIRAK</translation>
       <translation>kapı</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/status_header.py" line="187" />
+      <location filename="../../app/widgets/status_header.py" line="189" />
       <source>door closed</source>
       <translation>kapı kapalı</translation>
     </message>

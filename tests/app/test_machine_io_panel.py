@@ -38,10 +38,12 @@ def test_the_header_shows_the_chain_and_the_door_and_release_is_refused_while_th
         qtbot, demo_window, real_controller, dialogs) -> None:
     c = real_controller
     header = demo_window.header
-    qtbot.waitUntil(lambda: header.safety_text == "E-stop chain closed · door closed", timeout=5000)
+    qtbot.waitUntil(lambda: header.safety_text == "chain and door closed", timeout=5000)
     assert c.simulate_input("estop_chain_ok", False)
     _advance(qtbot, c)
-    qtbot.waitUntil(lambda: "E-STOP CHAIN OPEN" in header.safety_text, timeout=5000)
+    qtbot.waitUntil(lambda: header.safety_text == "E-STOP CHAIN OPEN", timeout=5000)
+    assert header.bus_label.text() == "Bus SIM: connected\nE-STOP CHAIN OPEN"
+    assert header.bus_label.fontMetrics().horizontalAdvance("E-STOP CHAIN OPEN") < header.bus_label.width()
     assert c.state.value == "estop"
     assert header.estop_button.text() == "RELEASE\nE-STOP"
     refused: list[tuple[str, str]] = []
@@ -55,7 +57,7 @@ def test_the_header_shows_the_chain_and_the_door_and_release_is_refused_while_th
     dialogs.answers.append(True)
     header.estop_button.click()
     assert c.state.value == "idle"
-    qtbot.waitUntil(lambda: header.safety_text == "E-stop chain closed · door closed", timeout=5000)
+    qtbot.waitUntil(lambda: header.safety_text == "chain and door closed", timeout=5000)
 
 
 def test_the_coolant_buttons_switch_the_outputs_and_follow_a_programs_m8(qtbot, demo_window,
