@@ -6,7 +6,7 @@
     cnc-ethercat esi FILE.xml --check IFNAME         live slaves compared with their ESI
     cnc-ethercat upload IFNAME POS INDEX SUB         SDO read (value by the object's type)
     cnc-ethercat download IFNAME POS INDEX SUB VALUE SDO write
-    cnc-ethercat emulate IFNAME --drives N           software slaves on IFNAME (see ethercat.emulator)
+    cnc-ethercat emulate IFNAME --drives N [--terminals EK1100,EL1008]   software slaves on IFNAME
     cnc-ethercat bench [--sim | IFNAME] --seconds S --json   cycle timing of the worker
 
 The bus commands need root (raw socket). They leave the slaves in PRE-OP, as found after
@@ -192,8 +192,9 @@ def cmd_esi(args: argparse.Namespace) -> int:
 def cmd_emulate(args: argparse.Namespace) -> int:
     from .emulator import run
 
+    terminals = [t for t in args.terminals.split(",") if t] if args.terminals else []
     return run(args.ifname, args.drives, control_path=args.control, realtime=args.realtime,
-               counts_per_unit=args.counts_per_unit, variant=args.variant)
+               counts_per_unit=args.counts_per_unit, variant=args.variant, terminals=terminals)
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
@@ -264,6 +265,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--counts-per-unit", type=float, default=10_000.0)
     s.add_argument("--variant", choices=tuple(VARIANTS), default="standard",
                    help="how the drives differ from the project's own (see ethercat.emulator.variants)")
+    s.add_argument("--terminals", default="",
+                   help="terminals behind the drives, comma-separated (e.g. EK1100,EL1008,EL2008)")
     s.set_defaults(func=cmd_emulate)
     s = sub.add_parser("bench", help="cycle timing of the worker (simulated drives or a real link)")
     s.add_argument("ifname", nargs="?", default="")

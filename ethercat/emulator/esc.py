@@ -26,6 +26,7 @@ from ..drive_model import DriveModel
 from ..errors import SdoAbortError
 from .coe import DriveObjects
 from .sii import SiiLayout, build_sii
+from .terminal import TerminalObjects
 from .variants import VARIANTS, DriveVariant
 
 INIT, PREOP, BOOT, SAFEOP, OP = 1, 2, 3, 4, 8
@@ -80,13 +81,20 @@ _SM_STATUS = tuple(REG_SM0 + 8 * k + 5 for k in range(8))
 class EscSlave:
     """One slave: registers, SII, AL state machine, mailbox, FMMU, DC, watchdog, drive."""
 
-    def __init__(self, position: int, model: DriveModel, layout: SiiLayout, last_in_line: bool,
-                 clock_ns: Callable[[], int], variant: DriveVariant = VARIANTS["standard"]) -> None:
+    def __init__(self, position: int, model: DriveModel | None, layout: SiiLayout, last_in_line: bool,
+                 clock_ns: Callable[[], int], variant: DriveVariant = VARIANTS["standard"],
+                 objects: TerminalObjects | None = None) -> None:
+        """``model`` None: a terminal (``objects`` its process image, no mailbox)."""
         self.position = position
         self.model = model
         self.layout = layout
         self.sii = build_sii(layout)
-        self.objects = DriveObjects(model, layout.name, lambda: self.al_state, variant)
+        self.objects: DriveObjects | TerminalObjects
+        if objects is not None:
+            self.objects = objects
+        else:
+            assert model is not None, "a drive's slave needs its model"
+            self.objects = DriveObjects(model, layout.name, lambda: self.al_state, variant)
         self.clock_ns = clock_ns
         self.last_in_line = last_in_line
         self.n_after = 0          # slaves behind this one in the line (DC delay latches)
@@ -95,7 +103,8 @@ class EscSlave:
         self.frames = 0
         self.sdo_requests = 0
         self._reset_registers()
-        model.step(0.001)         # power-on self test: NOT READY -> SWITCH ON DISABLED
+        if model is not None:
+            model.step(0.001)     # power-on self test: NOT READY -> SWITCH ON DISABLED
 
     # ------------------------------------------------------------------ power-on state
     def _reset_registers(self) -> None:
@@ -140,6 +149,8 @@ class EscSlave:
         reset, AL state INIT, the drive restarts (faults cleared, power stage off)."""
         self._reset_registers()
         m = self.model
+        if m is None:
+            return
         m.controlword = 0
         m.error_code = 0
         m.state = Cia402State.NOT_READY_TO_SWITCH_ON
@@ -202,6 +213,8 @@ class EscSlave:
     def _outputs_invalid(self) -> None:
         """Leaving OP: the drive loses its set-points (a running drive faults, 0x8700)."""
         m = self.model
+        if m is None:
+            return
         if m.state in (Cia402State.OPERATION_ENABLED, Cia402State.QUICK_STOP_ACTIVE):
             m.watchdog_expired()
         m.controlword = 0
@@ -209,6 +222,8 @@ class EscSlave:
     def _check_mailbox(self) -> int:
         sm0, sm1 = self.sms[0], self.sms[1]
         lay = self.layout
+        if not lay.has_mailbox:
+            return AL_OK
         ok = (sm0[0] == lay.mbx_out_start and sm0[1] == lay.mbx_out_size and sm0[3] & 1
               and sm1[0] == lay.mbx_in_start and sm1[1] == lay.mbx_in_size and sm1[3] & 1)
         return AL_OK if ok else AL_INVALID_MAILBOX_CONFIG
@@ -356,6 +371,7 @@ class EscSlave:
             return
         service = struct.unpack_from("<H", payload)[0] >> 12
         if service == COE_SDO_REQUEST:
+            assert isinstance(self.objects, DriveObjects)       # a terminal has no mailbox
             answer = self.objects.handle_sdo(payload[2:], self.sms[1][1] - 6)
             if not answer:
                 return
@@ -429,7 +445,8 @@ class EscSlave:
             dt_s = cycle_ns * 1e-9
         else:
             dt_s = min(0.01, max(0.000_1, (now - self.last_step_ns) * 1e-9))
-        self.model.step(dt_s)
+        if self.model is not None:
+            self.model.step(dt_s)
         self.last_step_ns = now
 
     def watchdog_ns(self) -> int:
@@ -447,13 +464,22 @@ class EscSlave:
                 self.watchdog_trips += 1
                 self._enter(SAFEOP)
                 self._fail(AL_SM_WATCHDOG)
-        if now - self.last_step_ns > 20_000_000:
+        if now - self.last_step_ns > 20_000_000 and self.model is not None:
             self.model.step(min(0.1, (now - self.last_step_ns) * 1e-9))
             self.last_step_ns = now
 
     # ------------------------------------------------------------------ diagnostics
     def status(self) -> dict[str, object]:
         m = self.model
+        objects = self.objects
+        if m is None:
+            assert isinstance(objects, TerminalObjects)
+            return {"position": self.position, "station_address": self.station_address,
+                    "al_state": STATE_NAMES.get(self.al_state, str(self.al_state)), "al_error": self.al_error,
+                    "al_status_code": self.al_code, "lost": self.lost, "terminal": objects.type.name,
+                    "inputs": objects.inputs, "outputs": objects.outputs, "counter": objects.counter,
+                    "frames": self.frames, "watchdog_trips": self.watchdog_trips}
+        assert isinstance(objects, DriveObjects)
         return {"position": self.position, "station_address": self.station_address,
                 "al_state": STATE_NAMES.get(self.al_state, str(self.al_state)), "al_error": self.al_error,
                 "al_status_code": self.al_code, "lost": self.lost, "drive_state": m.state.name,
@@ -463,7 +489,7 @@ class EscSlave:
                 "watchdog_trips": self.watchdog_trips, "watchdog_ms": self.watchdog_ns() * 1e-6,
                 "sync0_active": self.regs[REG_DCSYNCACT] & 0x03 == 0x03,
                 "sync0_cycle_ns": struct.unpack_from("<I", self.regs, REG_DCCYCLE0)[0],
-                "rx_mapping": [f"0x{v:08X}" for p in self.objects.assignment(0x1C12)
-                               for v in self.objects.mapping(p)],
-                "tx_mapping": [f"0x{v:08X}" for p in self.objects.assignment(0x1C13)
-                               for v in self.objects.mapping(p)]}
+                "rx_mapping": [f"0x{v:08X}" for p in objects.assignment(0x1C12)
+                               for v in objects.mapping(p)],
+                "tx_mapping": [f"0x{v:08X}" for p in objects.assignment(0x1C13)
+                               for v in objects.mapping(p)]}

@@ -53,7 +53,7 @@ class EmulatedLink:
     """Namespace + veth pair + `python -m ethercat emulate s0 --drives N` on the far end."""
 
     def __init__(self, n_drives: int = 3, realtime: bool = False, start_timeout_s: float = 15.0,
-                 variant: str = "standard") -> None:
+                 variant: str = "standard", terminals: tuple[str, ...] = ()) -> None:
         k = next(_counter)
         pid = os.getpid()
         self.netns = f"cncec{pid}x{k}"
@@ -61,6 +61,7 @@ class EmulatedLink:
         self.slave_ifname = "s0"
         self.n_drives = n_drives
         self.variant = variant
+        self.terminals = terminals
         self.realtime = realtime
         self.start_timeout_s = start_timeout_s
         self.control_path = os.path.join(tempfile.gettempdir(), f"{self.netns}.sock")
@@ -93,6 +94,8 @@ class EmulatedLink:
         if self.realtime:
             cmd.append("--realtime")
         cmd += ["--variant", self.variant]
+        if self.terminals:
+            cmd += ["--terminals", ",".join(self.terminals)]
         self._log = tempfile.NamedTemporaryFile(prefix=f"{self.netns}-", suffix=".log", delete=False)
         self.log_path = self._log.name
         env = dict(os.environ)

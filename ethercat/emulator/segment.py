@@ -24,8 +24,10 @@ import time
 from collections.abc import Callable, Sequence
 
 from ..drive_model import DriveModel, DriveParams
+from ..terminals import TerminalType
 from .esc import EscSlave
 from .sii import SiiLayout
+from .terminal import TerminalObjects, terminal_layout
 from .variants import VARIANTS, DriveVariant
 
 ETHERTYPE_ECAT = 0x88A4
@@ -48,15 +50,21 @@ class Segment:
 
     def __init__(self, models: Sequence[DriveModel], layouts: Sequence[SiiLayout] | None = None,
                  clock_ns: Callable[[], int] | None = None,
-                 variant: DriveVariant = VARIANTS["standard"]) -> None:
+                 variant: DriveVariant = VARIANTS["standard"],
+                 terminals: Sequence[TerminalType] = ()) -> None:
+        """The drives first, then ``terminals`` (couplers, I/O) behind them in the line."""
         t0 = time.monotonic_ns()
         self.clock_ns = clock_ns if clock_ns is not None else (lambda: time.monotonic_ns() - t0)
-        n = len(models)
+        n = len(models) + len(terminals)
         if layouts is None:
             layouts = [default_layout(m.params, i) for i, m in enumerate(models)]
         self.variant = variant
         self.slaves = [EscSlave(i, m, lay, last_in_line=(i == n - 1), clock_ns=self.clock_ns, variant=variant)
                        for i, (m, lay) in enumerate(zip(models, layouts))]
+        for k, t in enumerate(terminals):
+            i = len(models) + k
+            self.slaves.append(EscSlave(i, None, terminal_layout(t, i), last_in_line=(i == n - 1),
+                                        clock_ns=self.clock_ns, objects=TerminalObjects(t)))
         for i, s in enumerate(self.slaves):
             s.n_after = n - 1 - i
         self.frames_in = 0
@@ -65,7 +73,8 @@ class Segment:
 
     @classmethod
     def of_drives(cls, n_drives: int, params: DriveParams | None = None,
-                  variant: DriveVariant = VARIANTS["standard"]) -> Segment:
+                  variant: DriveVariant = VARIANTS["standard"],
+                  terminals: Sequence[TerminalType] = ()) -> Segment:
         """`n_drives` drives with the default drive parameters (serial = position), each
         behaving as `variant` says."""
         p = params if params is not None else DriveParams.for_axis(10_000.0)
@@ -74,7 +83,7 @@ class Segment:
                     mode_display_delay_s=variant.mode_display_delay_s,
                     enable_target_window_counts=variant.enable_target_window_counts)
         models = [DriveModel(replace(p, serial=i + 1), position=i) for i in range(n_drives)]
-        return cls(models, variant=variant)
+        return cls(models, variant=variant, terminals=terminals)
 
     # ------------------------------------------------------------------ frames
     def process_frame(self, frame: bytes | bytearray | memoryview) -> bytearray | None:

@@ -10,7 +10,8 @@ connection) lets tests and integrators inject faults without touching the link:
     {"op": "fault", "slave": 1, "code": 8976, "persistent": true} / {"op": "clear_fault", "slave": 1}
     {"op": "jam", "slave": 0, "on": true}           -> load blocked (following error)
     {"op": "lose", "slave": 2} / {"op": "restore", "slave": 2}  -> slave gone / back (power cycled)
-    {"op": "inputs", "slave": 1, "value": 65536}   -> the drive's digital inputs 0x60FD (a probe ...)
+    {"op": "inputs", "slave": 1, "value": 65536}   -> the drive's digital inputs 0x60FD (a probe ...),
+                                                       a terminal's input channels
     {"op": "stop"}                                  -> the emulator exits
 """
 
@@ -23,10 +24,12 @@ import select
 import signal
 import socket
 import threading
+from collections.abc import Sequence
 from typing import Any
 
 from ..errors import AdapterError, ConfigurationError
 from .segment import ETHERTYPE_ECAT, Segment
+from .terminal import TerminalObjects
 
 HOUSEKEEPING_NS = 2_000_000
 
@@ -146,19 +149,24 @@ class EmulatorServer:
             self.stop()
             return {"ok": True}
         slave = seg.slaves[int(req["slave"])]
-        if op == "fault":
-            slave.model.inject_fault(int(req.get("code", 0x2310)), bool(req.get("persistent", False)))
-        elif op == "clear_fault":
-            slave.model.clear_fault()
-        elif op == "jam":
-            slave.model.set_jam(bool(req.get("on", True)))
+        model, objects = slave.model, slave.objects
+        if op in ("fault", "clear_fault", "jam") and model is None:
+            raise ConfigurationError(f"slave {slave.position} is a terminal: {op!r} is a drive's")
+        if op == "fault" and model is not None:
+            model.inject_fault(int(req.get("code", 0x2310)), bool(req.get("persistent", False)))
+        elif op == "clear_fault" and model is not None:
+            model.clear_fault()
+        elif op == "jam" and model is not None:
+            model.set_jam(bool(req.get("on", True)))
         elif op == "lose":
             slave.lost = True
         elif op == "restore":
             slave.power_cycle()
             slave.lost = False
-        elif op == "inputs":
-            slave.model.digital_inputs = int(req["value"]) & 0xFFFF_FFFF
+        elif op == "inputs" and model is not None:
+            model.digital_inputs = int(req["value"]) & 0xFFFF_FFFF
+        elif op == "inputs" and isinstance(objects, TerminalObjects):
+            objects.inputs = int(req["value"]) & 0xFFFF_FFFF
         else:
             raise ConfigurationError(f"unknown control op {op!r}")
         return {"ok": True}
@@ -183,7 +191,8 @@ def control(path: str, op: str, timeout_s: float = 2.0, **kwargs: Any) -> dict[s
 
 
 def run(ifname: str, n_drives: int, control_path: str | None = None, realtime: bool = False,
-        counts_per_unit: float = 10_000.0, quiet: bool = False, variant: str = "standard") -> int:
+        counts_per_unit: float = 10_000.0, quiet: bool = False, variant: str = "standard",
+        terminals: Sequence[str] = ()) -> int:
     """Entry point of `cnc-ethercat emulate`: serve until SIGINT/SIGTERM."""
     from ..drive_model import DriveParams
 
@@ -193,7 +202,10 @@ def run(ifname: str, n_drives: int, control_path: str | None = None, realtime: b
 
     if variant not in VARIANTS:
         raise ConfigurationError(f"--variant must be one of {', '.join(VARIANTS)}, got {variant!r}")
-    segment = Segment.of_drives(n_drives, DriveParams.for_axis(counts_per_unit), VARIANTS[variant])
+    from ..terminals import terminal_type
+
+    segment = Segment.of_drives(n_drives, DriveParams.for_axis(counts_per_unit), VARIANTS[variant],
+                                terminals=[terminal_type(t) for t in terminals])
     server = EmulatorServer(segment, ifname, control_path)
     if realtime:
         try:
@@ -207,7 +219,8 @@ def run(ifname: str, n_drives: int, control_path: str | None = None, realtime: b
     gc.freeze()
     gc.disable()
     if not quiet:
-        print(f"emulating {n_drives} CiA 402 drive(s) on {ifname} (pid {os.getpid()}, variant {variant})",
-              flush=True)
+        more = f" and {', '.join(terminals)}" if terminals else ""
+        print(f"emulating {n_drives} CiA 402 drive(s){more} on {ifname} (pid {os.getpid()}, "
+              f"variant {variant})", flush=True)
     server.serve_forever()
     return 0
