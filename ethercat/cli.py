@@ -3,6 +3,7 @@
     cnc-ethercat slaves IFNAME                       position, AL state, vendor, product, name
     cnc-ethercat pdos IFNAME [--esi FILE]            PDO assignment and mapping per slave
     cnc-ethercat esi FILE.xml [--positions P ...]    [[bus.drives]] tables from a drive's ESI file
+                                                     ([[bus.terminals]] from a terminal's)
     cnc-ethercat esi FILE.xml --check IFNAME         live slaves compared with their ESI
     cnc-ethercat upload IFNAME POS INDEX SUB         SDO read (value by the object's type)
     cnc-ethercat download IFNAME POS INDEX SUB VALUE SDO write
@@ -154,7 +155,8 @@ def cmd_download(args: argparse.Namespace) -> int:
 def cmd_esi(args: argparse.Namespace) -> int:
     """The ``[[bus.drives]]`` tables for the devices of an ESI file, or with --check, the
     live slaves compared with it."""
-    from .esi import check_slave, propose_drive_block, read_esi
+    from .esi import check_slave, propose_drive_block, propose_terminal_block, read_esi
+    from .terminals import type_of_identity
 
     devices = read_esi(args.file)
     if args.check:
@@ -184,8 +186,9 @@ def cmd_esi(args: argparse.Namespace) -> int:
     device = devices[0]
     if len(devices) > 1:
         print(f"# {args.file} describes {len(devices)} devices; this is the first (choose with --product)")
+    terminal = type_of_identity(device.vendor_id, device.product_code) is not None
     for pos in args.positions:
-        print(propose_drive_block(device, pos))
+        print(propose_terminal_block(device, pos) if terminal else propose_drive_block(device, pos))
     return 0
 
 

@@ -323,3 +323,26 @@ def check_slave(device: EsiDevice, identity: tuple[int, int, int],
                     problems.append(f"{key.upper()}PDO 0x{pdo:04X} maps 0x{index:04X}:{sub}, which the ESI's "
                                     "dictionary does not have")
     return problems
+
+
+def propose_terminal_block(device: EsiDevice, position: int) -> str:
+    """The ``[[bus.terminals]]`` table for this terminal at slave ``position``: its type known by
+    identity (``ethercat.terminals``), and its ESI's default process data (the PDOs assigned to a
+    sync manager) the image the control reads; EsiError saying what differs otherwise."""
+    from .terminals import TERMINAL_TYPES, TerminalKind, type_of_identity
+
+    t = type_of_identity(device.vendor_id, device.product_code)
+    if t is None:
+        raise EsiError(f"{device.source}: {device.label} is not a terminal this control knows "
+                       f"(known: {', '.join(sorted(TERMINAL_TYPES))})")
+    tx_bits = sum(e.bits for p in device.tx_pdos if p.sm is not None for e in p.entries)
+    rx_bits = sum(e.bits for p in device.rx_pdos if p.sm is not None for e in p.entries)
+    want_tx = t.channels if t.kind is TerminalKind.DIGITAL_IN else 8 * t.tx_bytes
+    want_rx = t.channels if t.kind is TerminalKind.DIGITAL_OUT else 8 * t.rx_bytes
+    if (tx_bits, rx_bits) != (want_tx, want_rx):
+        raise EsiError(f"{device.source}: {device.label} assigns {tx_bits} input and {rx_bits} output bits "
+                       f"by default; the control reads a {t.name} as {want_tx} and {want_rx}: set its "
+                       "default PDOs, or it is not that terminal")
+    return "\n".join([
+        f"# {device.label}: {t.description}; {tx_bits} input, {rx_bits} output bits as its ESI assigns them",
+        "[[bus.terminals]]", f"position = {position}", f'type = "{t.name}"', ""])

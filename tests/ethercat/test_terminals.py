@@ -326,3 +326,44 @@ def test_a_limit_switch_while_homing_fails_the_homing_unless_the_axis_ignores_it
                 assert "a limit switch tripped" in s.alarms[-1].message
         finally:
             w.stop()
+
+
+def _terminal_esi(tmp_path, product: str, name: str, n_channels: int, direction: str) -> object:
+    """An ESI file of a digital terminal as Beckhoff writes them: no mailbox, one PDO of one bit
+    per channel, each assigned to the process data sync manager."""
+    pdo, index, sm = ("TxPdo", 0x1A00, 0) if direction == "in" else ("RxPdo", 0x1600, 0)
+    obj = 0x6000 if direction == "in" else 0x7000
+    pdos = "".join(
+        f'<{pdo} Fixed="1" Sm="{sm}"><Index>#x{index + c:04x}</Index><Name>Channel {c + 1}</Name>'
+        f"<Entry><Index>#x{obj + 0x10 * c:04x}</Index><SubIndex>1</SubIndex><BitLen>1</BitLen>"
+        f"<Name>Input</Name><DataType>BOOL</DataType></Entry></{pdo}>" for c in range(n_channels))
+    text = (f'<?xml version="1.0"?><EtherCATInfo><Vendor><Id>2</Id><Name>Beckhoff Automation GmbH</Name>'
+            f'</Vendor><Descriptions><Devices><Device Physics="YY"><Type ProductCode="{product}" '
+            f'RevisionNo="#x00120000">{name}</Type><Name>{name}</Name>{pdos}</Device></Devices>'
+            f"</Descriptions></EtherCATInfo>")
+    p = tmp_path / f"{name}.xml"
+    p.write_text(text)
+    return p
+
+
+def test_cnc_ethercat_esi_writes_a_terminals_table_from_its_esi_and_refuses_another_image(tmp_path, capsys
+                                                                                         ) -> None:
+    from ethercat.cli import main
+    from ethercat.esi import EsiError
+
+    esi = _terminal_esi(tmp_path, "#x03f03052", "EL1008", 8, "in")
+    assert main(["esi", str(esi), "--positions", "4"]) == 0
+    out = capsys.readouterr().out
+    assert '[[bus.terminals]]\nposition = 4\ntype = "EL1008"' in out
+    assert "8 input, 0 output bits as its ESI assigns them" in out
+    esi = _terminal_esi(tmp_path, "#x07d83052", "EL2008", 8, "out")
+    assert main(["esi", str(esi), "--positions", "6"]) == 0
+    assert 'type = "EL2008"' in capsys.readouterr().out
+    short = _terminal_esi(tmp_path, "#x03f03052", "EL1008", 4, "in")      # not an EL1008's image
+    assert main(["esi", str(short), "--positions", "4"]) != 0
+    err = capsys.readouterr().err
+    assert "assigns 4 input and 0 output bits by default; the control reads a EL1008 as 8 and 0" in err
+    with pytest.raises(EsiError, match="is not a terminal this control knows"):
+        from ethercat.esi import propose_terminal_block, read_esi
+
+        propose_terminal_block(read_esi(_terminal_esi(tmp_path, "#x0bf83052", "EL3064", 4, "in"))[0], 3)
