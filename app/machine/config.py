@@ -45,7 +45,7 @@ from ethercat.drive_setup import drive_table_problem
 from opcua_server.settings import IDENTIFICATION_KEYS, OpcUaSettings
 from planner.core.errors import PlannerError
 from planner.core.files import write_output, write_text
-from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, machine_from_valid
+from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec, io_place, machine_from_valid
 from planner.core.reading import CONFIGURATION, parse_toml, read_text
 from planner.core.rules import drive_tables
 from planner.core.schema import END_MARK, HEADER, Locator, check_complete, validate
@@ -330,12 +330,13 @@ def _reserved_bits(machine: MachineSpec, controller: ControllerSettings, probe: 
     signal may take them): (what, direction, slave position, bit)."""
     slave = [a.drive_position for a in machine.axes]
     out: list[tuple[str, Direction, int, int]] = []
-    for number, (drive, bit, _name) in machine.output_bits.items():
-        if 0 <= drive < len(slave):
-            out.append((f"[[outputs]] number {number}", Direction.OUT, slave[drive], bit))
-    for number, (drive, bit, _name) in machine.input_bits.items():
-        if 0 <= drive < len(slave):
-            out.append((f"[[inputs]] number {number}", Direction.IN, slave[drive], bit))
+    for table, direction, bits in (("outputs", Direction.OUT, machine.output_bits),
+                                   ("inputs", Direction.IN, machine.input_bits)):
+        for number, (drive, bit, _name) in bits.items():
+            kind, where = io_place(drive)
+            position = where if kind == "slave" else slave[where] if where < len(slave) else -1
+            if position >= 0:
+                out.append((f"[[{table}]] number {number}", direction, position, bit))
     if probe.drive is not None and 0 <= probe.drive < len(slave):
         out.append(("the probe ([probe] drive, bit)", Direction.IN, slave[probe.drive], probe.bit))
     if 0 <= controller.spindle_drive < len(slave):
@@ -454,12 +455,11 @@ def config_to_toml(config: MachineConfig) -> str:
     if m.planner.corner_velocity_step_mm_s:
         out.append(f"corner_velocity_step_mm_s = {_fmt(float(m.planner.corner_velocity_step_mm_s))}")
     out += [""]
-    for number, (drive, bit, name) in sorted(m.output_bits.items()):
-        out += ["[[outputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",
-                f"name = {_fmt(name)}", ""]
-    for number, (drive, bit, name) in sorted(m.input_bits.items()):
-        out += ["[[inputs]]", f"number = {number}", f"drive = {drive}", f"bit = {bit}",
-                f"name = {_fmt(name)}", ""]
+    for table, bits in (("outputs", m.output_bits), ("inputs", m.input_bits)):
+        for number, (drive, bit, name) in sorted(bits.items()):
+            kind, where = io_place(drive)
+            out += [f"[[{table}]]", f"number = {number}", f"{kind} = {where}", f"bit = {bit}",
+                    f"name = {_fmt(name)}", ""]
     for code, (action, message, output, on) in sorted(m.mcodes.items()):
         out += ["[[mcodes]]", f"code = {code}", f"action = {_fmt(action)}", f"message = {_fmt(message)}"]
         if output >= 0:

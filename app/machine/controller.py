@@ -235,7 +235,7 @@ class MachineController(QObject):
                                        alarms, out, events, job_log.refusal)
         read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
         self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses, tools)
-        self.waiter = InputWaiter(coords, stream, read_again, pauses)
+        self.waiter = InputWaiter(settings, coords, stream, read_again, pauses)
         self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs,
                                             switches, stream, jobs, signals)
         self.setter = ToolSetter(settings, states, tools, positions, coords, manual, alarms)

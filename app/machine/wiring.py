@@ -219,6 +219,19 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
             raise loc.fail((*path, "position"), f"slave {setting.position} is given twice")
         terminals.append(setting)
     by_position = {t.position: t for t in terminals}
+    for table, kind in (("outputs", TerminalKind.DIGITAL_OUT), ("inputs", TerminalKind.DIGITAL_IN)):
+        for i, o in enumerate(valid[table]):
+            if o["slave"] is None:
+                continue
+            term = by_position.get(o["slave"])
+            if term is None or term.terminal_type.kind is not kind:
+                what = "outputs" if kind is TerminalKind.DIGITAL_OUT else "inputs"
+                found = f"a {term.terminal_type.name}" if term is not None else "no terminal"
+                raise loc.fail((table, i, "slave"), f"slave {o['slave']} is {found}, not a terminal with "
+                                                    f"digital {what} ([[bus.terminals]])")
+            if not 0 <= o["bit"] < term.terminal_type.channels:
+                raise loc.fail((table, i, "bit"), f"a {term.terminal_type.name} has channels "
+                                                  f"0..{term.terminal_type.channels - 1}, not {o['bit']}")
     interlocks = InterlockSettings(**valid["interlocks"])
     homing = tuple(AxisHoming(**h) for h in valid["homing"]["axes"])
 

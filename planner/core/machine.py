@@ -96,11 +96,12 @@ class MachineSpec:
     planner: PlannerSettings = field(default_factory=PlannerSettings)
     work_offsets: dict[str, tuple[float, ...]] = field(default_factory=dict)
     config_dir: str = ""        # folder of the configuration file ("" when not read from a file)
-    # digital outputs: number -> (drive index, bit, name); user M-codes: code -> (action,
-    # message, output number, on)
+    # digital outputs: number -> (drive index, bit, name), a terminal's channel as drive
+    # -(its slave position + 1) (``io_place``); user M-codes: code -> (action, message, output
+    # number, on)
     output_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
     mcodes: dict[int, tuple[str, str, int, bool]] = field(default_factory=dict)
-    # digital inputs (M66): number -> (drive index, bit of its 0x60FD, name)
+    # digital inputs (M66): number -> (drive index, bit of its 0x60FD, name), as outputs
     input_bits: dict[int, tuple[int, int, str]] = field(default_factory=dict)
     # the spindle's highest speed ([controller] spindle_max_rpm): G96 without D runs at it
     spindle_max_rpm: float = 24000.0
@@ -281,19 +282,31 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
                        spindle_max_rpm=float(valid["controller"]["spindle_max_rpm"]))
 
 
+def io_place(drive: int) -> tuple[str, int]:
+    """Where an ``[[outputs]]`` / ``[[inputs]]`` bit is: ("drive", axis index) or ("slave", the
+    terminal's bus position)."""
+    return ("drive", drive) if drive >= 0 else ("slave", -drive - 1)
+
+
 def _io_bits(loc: Locator, entries: list[dict[str, Any]], table: str, what: str, n_axes: int,
              exclusive: bool) -> dict[int, tuple[int, int, str]]:
     """``[[outputs]]`` / ``[[inputs]]``: number -> (drive index, bit, name), each number once,
-    each drive one of the axes'; ``exclusive``: each (drive, bit) once."""
+    each drive one of the axes, or a terminal's channel (``io_place``; the terminal checked with
+    the bus); ``exclusive``: each bit once."""
     bits: dict[int, tuple[int, int, str]] = {}
     for i, o in enumerate(entries):
         if o["number"] in bits:
             raise loc.fail((table, i, "number"), f"{what} {o['number']} is defined twice")
-        if o["drive"] >= n_axes:
+        if (o["drive"] is None) == (o["slave"] is None):
+            raise loc.fail((table, i), f"give the drive (an axis index) or the slave (a terminal's bus "
+                                       f"position) of {what} {o['number']}, one of them")
+        if o["drive"] is not None and o["drive"] >= n_axes:
             raise loc.fail((table, i, "drive"), f"{o['drive']} must be below the axis count {n_axes}")
-        if exclusive and any((d, b) == (o["drive"], o["bit"]) for d, b, _ in bits.values()):
-            raise loc.fail((table, i, "bit"), f"bit {o['bit']} of drive {o['drive']} is already an {what}")
-        bits[o["number"]] = (o["drive"], o["bit"], o["name"])
+        place = o["drive"] if o["drive"] is not None else -int(o["slave"]) - 1
+        if exclusive and any((d, b) == (place, o["bit"]) for d, b, _ in bits.values()):
+            where = f"drive {o['drive']}" if o["drive"] is not None else f"slave {o['slave']}"
+            raise loc.fail((table, i, "bit"), f"bit {o['bit']} of {where} is already an {what}")
+        bits[o["number"]] = (place, o["bit"], o["name"])
     return bits
 
 

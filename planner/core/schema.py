@@ -64,11 +64,13 @@ SIGNAL_NAMES = (
     "estop_chain_ok", "cycle_start", "feed_hold", "stop", "door_closed", "air_ok", "lube_ok",
     "spindle_at_speed", "coolant_flood", "coolant_mist", "lube_pump", "work_light", "spindle_enable",
 )
-#: a digital output or input: its number in a program (M62-M66 P), the axis index of the drive
-#: that carries it, the bit of the drive's 0x60FE:1 / 0x60FD, a name for the operator
+#: a digital output or input: its number in a program (M62-M66 P), where it is (the axis index of
+#: the drive that carries it, bit ``bit`` of its 0x60FE:1 / 0x60FD; or ``slave``: the bus position
+#: of a terminal, ``bit`` its channel), a name for the operator
 _IO_KEYS = (
     Key("number", "int", REQUIRED, 0, 63),
-    Key("drive", "int", REQUIRED, 0, 63),
+    Key("drive", "int", None, 0, 63),
+    Key("slave", "int", None, 0, 65535),
     Key("bit", "int", REQUIRED, 0, 31),
     Key("name", "str", ""),
 )

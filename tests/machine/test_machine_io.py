@@ -390,3 +390,38 @@ def test_with_at_speed_wired_the_motion_waits_for_it_after_m3(qapp, state_dir: P
         assert c.machine_position[0] == pytest.approx(10.0, abs=1e-3)
     finally:
         c.shutdown()
+
+
+def test_a_programs_inputs_and_outputs_may_be_terminal_channels(qapp, state_dir: Path) -> None:
+    """``[[outputs]]`` / ``[[inputs]]`` with ``slave`` (a terminal's bus position) and its
+    channel: M64/M65 switch the terminal's output, M66 reads its input; a slave that is not such
+    a terminal is refused naming the key."""
+    from ethercat.sim_io import input_value
+
+    text = MILL.replace('stop = "4:6"\n', "") + (
+        '\n[[outputs]]\nnumber = 5\nslave = 6\nbit = 5\nname = "clamp"\n'
+        '\n[[inputs]]\nnumber = 3\nslave = 4\nbit = 6\nname = "clamped"\n')
+    bad = text.replace("number = 5\nslave = 6", "number = 5\nslave = 4")
+    with pytest.raises(ConfigError, match="outputs\\[0\\].slave: slave 4 is a EL1008, not a terminal with "
+                                          "digital outputs"):
+        config_from_dict(tomllib.loads(bad), "m.toml", bad)
+    both = text.replace("number = 5\nslave = 6", "number = 5\ndrive = 0\nslave = 6")
+    with pytest.raises(ConfigError, match="give the drive .* or the slave .* of output 5, one of them"):
+        config_from_dict(tomllib.loads(both), "m.toml", both)
+    cfg = config_from_dict(tomllib.loads(text), "m.toml", text)
+    assert config_from_dict(tomllib.loads(config_to_toml(cfg)), "again").machine.output_bits == \
+        cfg.machine.output_bits == {5: (-7, 5, "clamp")}
+    c = make_controller(_config(text.replace('method = "switches"', 'method = "set_here"', 1)), state_dir)
+    try:
+        assert c.load_program("G21 G90\nM64 P5\nG1 X2 F600\nM66 P3 L3 Q5\nM65 P5\nG1 X4\nM30\n", name="io.nc",
+                              wait=True)
+        assert c.cycle_start(wait=True)
+        assert c.run_until(lambda: _outputs(c) >> 5 & 1, 2)
+        assert c.run_until(lambda: c.machine_position[0] >= 2.0 - 1e-6, 5)
+        c.advance(0.5)
+        assert _outputs(c) >> 5 & 1 and c.machine_position[0] == pytest.approx(2.0, abs=1e-6)  # waits
+        c.drives.inject("terminal_input", 1, input_value(6, True))
+        run_to_idle(c)
+        assert c.last_run.completed and not _outputs(c) >> 5 & 1
+    finally:
+        c.shutdown()

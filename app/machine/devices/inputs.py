@@ -12,8 +12,9 @@ from app.machine.motion.jobs import Job
 from app.machine.motion.pauses import PauseHandlers
 from app.machine.motion.streamer import Streamer
 from app.machine.motion.timescale import PauseKind, PausePoint
-from app.machine.ports import CoordinatesView
+from app.machine.ports import CoordinatesView, Settings
 from ethercat.worker import WorkerSnapshot
+from planner.core.machine import io_place
 from planner.core.program import EventKind, InputRequest, WaitMode
 
 __all__ = ["InputWaiter"]
@@ -32,8 +33,9 @@ class _Wait:
 class InputWaiter:
     """M66: the wait under way, polled at rest (``controller.waiter``)."""
 
-    def __init__(self, coordinates: CoordinatesView, motion: Streamer, reads: ReadAgain,
+    def __init__(self, settings: Settings, coordinates: CoordinatesView, motion: Streamer, reads: ReadAgain,
                  pauses: PauseHandlers) -> None:
+        self._settings = settings
         self._coordinates = coordinates
         self._motion = motion
         self._reads = reads
@@ -67,7 +69,8 @@ class InputWaiter:
             level = self._level(snap, bits[0], bits[1])
             if level is None:
                 self.fail(f"M66 (line {req.line}): the drive of input P{req.number} does not send its "
-                          "digital inputs (0x60FD)")
+                          "digital inputs (0x60FD)" if bits[0] >= 0 else
+                          f"M66 (line {req.line}): the terminal of input P{req.number} is not on the bus")
                 return
             w = self.wait = _Wait(index, req, bits[0], bits[1], float(snap.time_s), level)
             if req.mode is not WaitMode.IMMEDIATE:
@@ -93,10 +96,16 @@ class InputWaiter:
         self._reads.continue_after(job, EventKind.INPUT, index, f"M66 (line {req.line})", job.probe_results,
                                    tuple(results), "input")
 
-    @staticmethod
-    def _level(snap: WorkerSnapshot, drive: int, bit: int) -> int | None:
-        inputs = tuple(getattr(snap, "digital_inputs", ()) or ())
-        return int(inputs[drive]) >> bit & 1 if drive < len(inputs) else None
+    def _level(self, snap: WorkerSnapshot, drive: int, bit: int) -> int | None:
+        """An ``[[inputs]]`` bit now: of a drive's 0x60FD, or a terminal's channel (``io_place``);
+        None when it is not in the process data."""
+        kind, where = io_place(drive)
+        if kind == "slave":
+            where = self._settings.config.wiring.terminal_index(where)
+            inputs = tuple(snap.terminal_inputs)
+        else:
+            inputs = tuple(getattr(snap, "digital_inputs", ()) or ())
+        return int(inputs[where]) >> bit & 1 if 0 <= where < len(inputs) else None
 
     @staticmethod
     def _value(w: _Wait, level: int | None, now_s: float) -> float | None:

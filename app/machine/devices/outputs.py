@@ -19,6 +19,7 @@ from app.machine.motion.pauses import PauseHandlers
 from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import AlarmSink, Settings
 from app.machine.wiring import Direction
+from planner.core.machine import io_place
 
 __all__ = ["DigitalOutputs"]
 
@@ -122,7 +123,7 @@ class DigitalOutputs:
         else:
             drive, bit, _name = spec
             try:
-                self.set_bits(drive, 1 << bit, (1 << bit) if on else 0)
+                self._set_place(drive, bit, on)
                 self.on[number] = on
                 return ""
             except Exception as exc:  # noqa: BLE001 - reported to the operator
@@ -138,7 +139,19 @@ class DigitalOutputs:
 
     def label(self, number: int) -> str:
         spec = self._settings.config.machine.output_bits.get(number)
-        return (spec[2] or f"drive {spec[0]} bit {spec[1]}") if spec else f"output {number}"
+        if spec is None:
+            return f"output {number}"
+        kind, where = io_place(spec[0])
+        return spec[2] or f"{kind} {where} {'bit' if kind == 'drive' else 'channel'} {spec[1]}"
+
+    def _set_place(self, drive: int, bit: int, on: bool) -> None:
+        """An ``[[outputs]]`` bit: of a drive's word, or a terminal's channel (``io_place``)."""
+        kind, where = io_place(drive)
+        if kind == "drive":
+            self.set_bits(where, 1 << bit, (1 << bit) if on else 0)
+            return
+        k = self._settings.config.wiring.terminal_index(where)
+        self.set_terminal_bits(k, 1 << bit, (1 << bit) if on else 0)
 
     def all_off(self) -> None:
         """E-stop and reset: the coolant and every program output off (best effort; the spindle
@@ -156,7 +169,7 @@ class DigitalOutputs:
                 continue
             drive, bit, _ = spec
             try:
-                self.set_bits(drive, 1 << bit, 0)
+                self._set_place(drive, bit, False)
                 self.on[number] = False
             except Exception as exc:  # noqa: BLE001
                 self._alarms.raise_alarm("outputs", f"output {number} could not be switched off: {exc}",
