@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from app.machine.config import config_from_dict, config_to_toml, load_config
 from app.machine.controller import MachineController
 from app.machine.errors import ConfigError
-from app.machine.model import MachineState
+from app.machine.model import MachineState, Severity
 from ethercat.worker import HomingStep, WorkerState
 from resources import shipped_machine
 from tests.machine.conftest import make_controller, run_to_idle
@@ -425,3 +425,22 @@ def test_a_programs_inputs_and_outputs_may_be_terminal_channels(qapp, state_dir:
         assert c.last_run.completed and not _outputs(c) >> 5 & 1
     finally:
         c.shutdown()
+
+
+def test_air_lost_stops_the_motion_and_lube_lost_warns_as_configured(ctl: MachineController) -> None:
+    assert ctl.load_program("G21 G90\nG1 X30 F600\nM30\n", name="a.nc", wait=True)
+    assert ctl.cycle_start(wait=True)
+    ctl.advance(0.5)
+    assert ctl.simulate_input("lube_ok", False)               # [interlocks] lube_lost = "warning"
+    ctl.advance(0.3)
+    assert ctl.state is MachineState.RUNNING
+    lube = next(a for a in ctl.active_alarms if a.code == "lube_ok_lost")
+    assert lube.severity is Severity.WARNING and "lubrication lost" in lube.cause
+    assert ctl.simulate_input("air_ok", False)                # [interlocks] air_lost = "stop"
+    ctl.advance(0.05)
+    assert ctl.state is MachineState.ALARM
+    assert any(a.code == "air_ok_lost" and "air pressure lost" in a.cause for a in ctl.active_alarms)
+    ctl.advance(1.0)
+    p = ctl.machine_position
+    ctl.advance(0.5)
+    assert ctl.machine_position == p and 0.0 < p[0] < 30.0     # stopped along the path, not at its end
