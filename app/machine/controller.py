@@ -49,11 +49,13 @@ faults, alarms, reset, a new configuration and shutdown from ``MachineEvents``):
               run        ProgramRunner   cycle start, hold, resume, stop, run from line, overrides
     motion/   stream     Streamer        jobs, set-point streaming, pause points, the resume point
               positions  Positions       drive positions, home offsets, homed flags
-              homing     Homing          machine zero (drive homing or set here)
+              homing     Homing          machine zero (to the switches, by the drive, or set here)
               coordinates Coordinates    work offsets, G-code parameters, the frame in force
               manual     ManualMotion    jog, MDI
-    devices/  spindle_ctl SpindleControl the spindle
-              outputs    DigitalOutputs  the drives' digital outputs (M62-M65)
+    devices/  spindle_ctl SpindleControl the spindle (its restart after the door, at-speed)
+              outputs    DigitalOutputs  the drives' and terminals' outputs (M62-M65, coolant, signals)
+              signals    MachineSignals  what the machine's signals read now, the refusals they call for
+              io         MachineIo       buttons, door, air, lube, the program's coolant
               tools      ToolControl     tool table, tool in the spindle
               setter     ToolSetter      measuring a tool on the setter
               prober     Prober          G38.x;  waiter  InputWaiter  M66
