@@ -18,6 +18,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('M66 (line {0}): input P{1} is not on this machine ([[inputs]])'),
     N_('M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1'),
     N_('M66 (line {0}): the drive of input P{1} does not send its digital inputs (0x60FD)'),
+    N_('M66 (line {0}): the terminal of input P{1} is not on the bus'),
     N_('M66 reads an input for the program that follows it; an MDI block keeps no value for the next one (the Diagnostics page shows the inputs)'),  # noqa: E501
     N_('MDI takes one block (one line)'),
     N_("S{0} is over the spindle's maximum of {1} rpm ([controller] spindle_max_rpm)"),

@@ -180,10 +180,12 @@ class StatusHeader(QWidget):
     def _show_safety(self) -> None:
         chain, door = self._safety
         # short enough for the button's 240 px: what is open, in capitals, or all closed
-        open_ = [text for value, text in ((chain, tr("E-STOP CHAIN OPEN")), (door, tr("DOOR OPEN")))
-                 if value is False]
-        if open_:
-            self.safety_text, self._safety_bad = " · ".join(open_), True
+        if chain is False and door is False:
+            opened = tr("CHAIN & DOOR OPEN")
+        else:
+            opened = tr("E-STOP CHAIN OPEN") if chain is False else tr("DOOR OPEN") if door is False else ""
+        if opened:
+            self.safety_text, self._safety_bad = opened, True
             return
         closed = {(True, True): tr("chain and door closed"), (True, None): tr("E-stop chain closed"),
                   (None, True): tr("door closed")}

@@ -85,3 +85,27 @@ def test_the_coolant_buttons_switch_the_outputs_and_follow_a_programs_m8(qtbot, 
 def test_machine_zero_names_homing_to_the_switches(demo_window) -> None:
     page = demo_window.page("machine_zero")
     assert "to the home switches" in page.method_label.text()
+
+
+def test_the_new_texts_fit_in_english_and_turkish(qtbot, demo_window, real_controller) -> None:
+    """At 1280x800 the header's chain and door line fits its button, the coolant buttons and the
+    Signals tab's headers show whole, in both languages."""
+    c = real_controller
+    header, manual = demo_window.header, demo_window.page("manual")
+    demo_window.show_page("manual")
+    try:
+        for language in ("en", "tr"):
+            demo_window.context.i18n.set_language(language)
+            for open_ in (False, True):
+                assert c.simulate_input("estop_chain_ok", None if not open_ else False)
+                assert c.simulate_input("door_closed", None if not open_ else False)
+                _advance(qtbot, c)
+                qtbot.waitUntil(lambda: bool(header.safety_text), timeout=5000)
+                fm = header.bus_label.fontMetrics()
+                for line in header.bus_label.text().split("\n"):
+                    assert fm.horizontalAdvance(line) <= header.bus_label.width() - 8, (language, line)
+            for button in manual.coolant_buttons.values():
+                assert button.fontMetrics().horizontalAdvance(button.text()) <= button.width() - 8, \
+                    (language, button.text())
+    finally:
+        demo_window.context.i18n.set_language("en")

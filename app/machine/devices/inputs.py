@@ -68,9 +68,11 @@ class InputWaiter:
                 return
             level = self._level(snap, bits[0], bits[1])
             if level is None:
-                self.fail(f"M66 (line {req.line}): the drive of input P{req.number} does not send its "
-                          "digital inputs (0x60FD)" if bits[0] >= 0 else
-                          f"M66 (line {req.line}): the terminal of input P{req.number} is not on the bus")
+                if bits[0] >= 0:
+                    self.fail(f"M66 (line {req.line}): the drive of input P{req.number} does not send its "
+                              "digital inputs (0x60FD)")
+                else:
+                    self.fail(f"M66 (line {req.line}): the terminal of input P{req.number} is not on the bus")
                 return
             w = self.wait = _Wait(index, req, bits[0], bits[1], float(snap.time_s), level)
             if req.mode is not WaitMode.IMMEDIATE:
