@@ -37,7 +37,7 @@ from planner.core.schema import Locator
 
 __all__ = [
     "AXIS_SIGNALS", "SIGNALS", "AxisHoming", "InterlockSettings", "MachineWiring", "SignalDef", "SignalWire",
-    "TerminalSetting", "Wire", "WorkerIo", "wiring_from_valid", "worker_io",
+    "TerminalSetting", "Wire", "WorkerIo", "axis_at", "wiring_from_valid", "worker_io",
 ]
 
 
@@ -377,6 +377,11 @@ SIM_LIMIT_MARGIN = 2.0
 _FAR = 1e9
 
 
+def axis_at(machine: MachineSpec, position: int) -> int:
+    """The index of the axis whose drive is the slave at bus ``position``; -1 when none is."""
+    return next((i for i, a in enumerate(machine.axes) if a.drive_position == position), -1)
+
+
 def input_word(wiring: MachineWiring, machine: MachineSpec, s: SignalWire) -> tuple[int, int, bool]:
     """Where the worker reads a wired input: (word, bit, level read while the signal is true);
     words 0..n-1 the axes' drives' 0x60FD, n.. the terminals'."""
@@ -384,7 +389,7 @@ def input_word(wiring: MachineWiring, machine: MachineSpec, s: SignalWire) -> tu
     if k >= 0:
         word = len(machine.axes) + k
     else:
-        word = next(i for i, a in enumerate(machine.axes) if a.drive_position == s.wire.slave)
+        word = axis_at(machine, s.wire.slave)
     return word, s.wire.bit, not s.wire.inverted
 
 

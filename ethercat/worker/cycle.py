@@ -113,7 +113,7 @@ class CycleLoop:
         self.words = np.zeros(n + m, dtype=np.int64)
         self.words_d, self.words_t = self.words[:n], self.words[n:]
         self.watches = Watches(config.watches, lv.watch)
-        self.switch_homer = SwitchHomer(config.switch_homing, n, config.ts_s, lv.homing, lv.homed,
+        self.switch_homer = SwitchHomer(config.switch_homing, config.ts_s, lv.homing, lv.homed,
                                         lv.home_step, lv.home_latch,
                                         int(config.homing_timeout_s / config.ts_s))
 

@@ -52,7 +52,7 @@ class _Axis:
 class SwitchHomer:
     """Homing to switches of the axes asked (see the module docstring)."""
 
-    def __init__(self, specs: tuple[SwitchHoming, ...], n: int, ts_s: float, homing_state: np.ndarray,
+    def __init__(self, specs: tuple[SwitchHoming, ...], ts_s: float, homing_state: np.ndarray,
                  homed: np.ndarray, steps: np.ndarray, latched: np.ndarray, timeout_cycles: int) -> None:
         self.ts = ts_s
         self.by_axis: dict[int, SwitchHoming] = {s.axis: s for s in specs}

@@ -36,7 +36,7 @@ from app.machine.motion.jobs import Job
 from app.machine.motion.streamer import Streamer
 from app.machine.ports import AlarmSink, Settings
 from app.machine.state.states import StateMachine
-from app.machine.wiring import Direction
+from app.machine.wiring import Direction, axis_at
 from ethercat.sim_io import input_value
 from ethercat.worker import WorkerSnapshot
 from planner.core.program import EventKind
@@ -176,8 +176,7 @@ class MachineIo:
         if k >= 0:
             self._drives.inject("terminal_input", k, code)
         else:
-            axis = next(i for i, a in enumerate(cfg.machine.axes) if a.drive_position == s.wire.slave)
-            self._drives.inject("drive_input", axis, code)
+            self._drives.inject("drive_input", axis_at(cfg.machine, s.wire.slave), code)
         return self._states.ok("simulate_input")
 
     @property

@@ -18,7 +18,7 @@ from app.machine.model import MachineState, Severity
 from app.machine.motion.pauses import PauseHandlers
 from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import AlarmSink, Settings
-from app.machine.wiring import Direction
+from app.machine.wiring import Direction, axis_at
 from planner.core.machine import io_place
 
 __all__ = ["DigitalOutputs"]
@@ -68,8 +68,7 @@ class DigitalOutputs:
             if k >= 0:
                 self.set_terminal_bits(k, mask, mask if level else 0)
             else:
-                axis = next(i for i, a in enumerate(cfg.machine.axes) if a.drive_position == s.wire.slave)
-                self.set_bits(axis, mask, mask if level else 0)
+                self.set_bits(axis_at(cfg.machine, s.wire.slave), mask, mask if level else 0)
         except Exception as exc:  # noqa: BLE001 - told to the caller
             return f"{key} could not be switched: {exc}"
         self.signals_on[key] = on

@@ -13,7 +13,7 @@ from app.machine.infra.drives import DriveLink
 from app.machine.model import SignalReading
 from app.machine.ports import Settings
 from app.machine.state.gate import Action
-from app.machine.wiring import SIGNALS, Direction, SignalWire
+from app.machine.wiring import SIGNALS, Direction, SignalWire, axis_at
 from ethercat.worker import WorkerSnapshot
 
 __all__ = ["MachineSignals"]
@@ -41,7 +41,7 @@ class MachineSignals:
             index = k
         else:
             words = snap.digital_outputs if out else snap.digital_inputs
-            index = next((i for i, a in enumerate(cfg.machine.axes) if a.drive_position == s.wire.slave), -1)
+            index = axis_at(cfg.machine, s.wire.slave)
         if not 0 <= index < len(words):
             return None
         return bool(int(words[index]) >> s.wire.bit & 1)
@@ -72,7 +72,8 @@ class MachineSignals:
                 t = wiring.terminals[k]
                 where = f"{t.name or t.type} (slave {t.position}) channel {s.wire.bit}"
             else:
-                axis = next((a.name for a in cfg.machine.axes if a.drive_position == s.wire.slave), "?")
+                i = axis_at(cfg.machine, s.wire.slave)
+                axis = cfg.machine.axes[i].name if i >= 0 else "?"
                 obj = "0x60FE:1" if s.signal.direction is Direction.OUT else "0x60FD"
                 where = f"drive {axis} (slave {s.wire.slave}) {obj} bit {s.wire.bit}"
             if s.wire.inverted:
