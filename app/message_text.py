@@ -93,6 +93,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('probing a part needs X, Y and Z axes'),
     N_('rapid override must be 0-100 %, got {0}'),
     N_('reset not possible: machine is {0}'),
+    N_('searching the index pulse'),
     N_('searching the switch'),
     N_('single block takes effect at the next stop (feed hold, block end, M00)'),
     N_('soft limit: {0}'),

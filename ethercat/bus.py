@@ -133,6 +133,7 @@ class Bus(abc.ABC):
         self.target_position = np.zeros(n, dtype=np.int32)
         self.modes_of_operation = np.full(n, 8, dtype=np.int8)
         self.digital_outputs = np.zeros(n, dtype=np.uint32)
+        self.touch_probe_function = np.zeros(n, dtype=np.uint16)
         # inputs (TxPDO)
         self.statusword = np.zeros(n, dtype=np.uint16)
         self.position_actual = np.zeros(n, dtype=np.int32)
@@ -140,6 +141,8 @@ class Bus(abc.ABC):
         self.error_code = np.zeros(n, dtype=np.uint16)
         self.modes_display = np.zeros(n, dtype=np.int8)
         self.digital_inputs = np.zeros(n, dtype=np.uint32)
+        self.touch_probe_status = np.zeros(n, dtype=np.uint16)
+        self.touch_probe_value = np.zeros(n, dtype=np.int32)
         # terminals
         m = len(self.terminals)
         self.terminal_inputs = np.zeros(m, dtype=np.uint32)

@@ -75,6 +75,15 @@ SW_HOMING_ATTAINED = SW_OP_SPECIFIC_12
 SW_HOMING_ERROR = SW_OP_SPECIFIC_13
 SW_FOLLOWING_ERROR = SW_OP_SPECIFIC_13
 
+# Touch probe 1 (0x60B8 function, 0x60B9 status), CiA 402 / IEC 61800-7-201
+TP_ENABLE = 1 << 0             # function: touch probe 1 on
+TP_CONTINUOUS = 1 << 1         # function: every event (0: the first only, until re-armed)
+TP_SOURCE_INDEX = 1 << 2       # function bits 2-3 = 01: the encoder's zero impulse (00: probe input)
+TP_POSITIVE_EDGE = 1 << 4      # function: sample at the positive edge
+TP_INDEX_FIRST_POSITIVE = TP_ENABLE | TP_SOURCE_INDEX | TP_POSITIVE_EDGE   # 0x15
+TP_ENABLED = 1 << 0            # status: touch probe 1 is on
+TP_POSITIVE_STORED = 1 << 1    # status: a positive-edge position is in 0x60BA
+
 # Statusword pattern of each state (bits 0-3, 5, 6), CiA 402 "state coding".
 STATE_STATUSWORD: dict[Cia402State, int] = {
     Cia402State.NOT_READY_TO_SWITCH_ON: 0x00,

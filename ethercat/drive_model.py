@@ -34,9 +34,11 @@ Dynamics (per `step`, sub-stepped at <= 1 ms): velocity command = feed-forward o
 demand + kp * (demand - position); the motor follows it with a first-order lag
 `velocity_lag_s`, limited to `a_max_counts_s2` and `v_max_counts_s`; CSP targets are
 interpolated linearly over the cycle. The encoder reads the nearest multiple of
-`encoder_resolution_counts`. With the defaults (kp 200 1/s, 90 % velocity feed-forward)
-the following error is about 0.1 * v / kp: 7.5 um at 15 mm/s, the order of the paper's
-Table 4 (RMSE 1-40 um).
+`encoder_resolution_counts`. The encoder gives a zero impulse (index) every
+`index_pitch_counts` (0: none), which touch probe 1 (0x60B8/0x60B9/0x60BA) latches when its
+function selects the zero impulse and the positive edge. With the defaults (kp 200 1/s,
+90 % velocity feed-forward) the following error is about 0.1 * v / kp: 7.5 um at 15 mm/s,
+the order of the paper's Table 4 (RMSE 1-40 um).
 """
 
 from __future__ import annotations
@@ -56,6 +58,11 @@ from .cia402 import (
     SW_REMOTE,
     SW_TARGET_REACHED,
     SW_VOLTAGE_ENABLED,
+    TP_CONTINUOUS,
+    TP_ENABLE,
+    TP_ENABLED,
+    TP_POSITIVE_EDGE,
+    TP_POSITIVE_STORED,
     Cia402State,
     ModeOfOperation,
 )
@@ -99,6 +106,8 @@ class DriveParams:
     fault_reaction_s: float = 0.005        # time spent in FAULT REACTION ACTIVE (at least)
     home_switch_counts: float = 0.0        # where the home switch edge is (motor counts)
     homing_max_travel_counts: float = 1e9  # homing error when the switch is not found
+    index_pitch_counts: float = 0.0        # the encoder's zero impulse every this many counts (0: none)
+    index_phase_counts: float = 0.0        # where one of them is (motor counts)
     substep_s: float = 0.001               # largest integration step
     # behaviours of third-party drives the master must cope with (off by default)
     fault_at_power_up: int = 0             # error code the drive starts in FAULT with (0: none)
@@ -132,6 +141,12 @@ class DriveModel:
         self.modes_of_operation = 0
         self.digital_outputs = 0
         self.digital_inputs = 0          # 0x60FD: limit switches, home switch, probe (bits 0-2, 16+)
+        self.touch_probe_function = 0    # 0x60B8 (touch probe 1: bits 0, 1, 2-3, 4)
+        # touch probe 1: status 0x60B9 (bit 0 enabled, bit 1 positive edge stored), its value
+        # 0x60BA, and the function it was armed with (re-armed when that changes)
+        self.touch_probe_status = 0
+        self.touch_probe_value = 0
+        self._tp_armed_with = 0
         # Parameters (SDO)
         self._rw: dict[tuple[int, int], int] = {
             (0x605A, 0): p.quick_stop_option_code,
@@ -300,6 +315,9 @@ class DriveModel:
             (0x607A, 0): self.target_position,
             (0x6099, 0): 2,
             (0x60F4, 0): self.following_error_actual,
+            (0x60B8, 0): self.touch_probe_function,
+            (0x60B9, 0): self.touch_probe_status,
+            (0x60BA, 0): self.touch_probe_value,
             (0x60FD, 0): self.digital_inputs,
             (0x60FE, 0): 1,
             (0x60FE, 1): self.digital_outputs,
@@ -325,6 +343,8 @@ class DriveModel:
             self.modes_of_operation = value
         elif index == 0x60FE:
             self.digital_outputs = value
+        elif index == 0x60B8:
+            self.touch_probe_function = value
         else:
             self._rw[(index, subindex)] = value
 
@@ -336,9 +356,43 @@ class DriveModel:
         n = max(1, int(math.ceil(dt_s / self.params.substep_s - 1e-9)))
         h = dt_s / n
         self._csp_start_counts = self._demand_counts
+        if self.touch_probe_function != self._tp_armed_with:
+            self._arm_touch_probe()
+        before = self._motor_counts
         for j in range(n):
             self._step_motion(h, (j + 1) / n)
+        if self.touch_probe_status & TP_ENABLED:
+            self._sample_index(before)
         self.time_s += dt_s
+
+    # ------------------------------------------------------------------ touch probe 1
+    def _arm_touch_probe(self) -> None:
+        """A new 0x60B8: touch probe 1 on (its stored edge cleared) or off. The model samples
+        the encoder's zero impulse at the positive edge (bits 2-3 = 01, bit 4), first event or
+        continuous (bit 1); the probe input as the source (bits 2-3 = 00) is the worker's own
+        latch of 0x60FD here, so the model leaves it enabled and never triggered."""
+        f = self.touch_probe_function
+        self._tp_armed_with = f
+        self.touch_probe_status = TP_ENABLED if f & TP_ENABLE else 0
+
+    def _sample_index(self, before: float) -> None:
+        """The positive-edge latch of touch probe 1 on a zero impulse passed in this step:
+        the position actual (0x6064's coding) where the index lies."""
+        f = self.touch_probe_function
+        pitch = self.params.index_pitch_counts
+        if pitch <= 0.0 or (f >> 2) & 3 != 1 or not f & TP_POSITIVE_EDGE:
+            return
+        if self.touch_probe_status & TP_POSITIVE_STORED and not f & TP_CONTINUOUS:
+            return                                       # first event: kept until re-armed
+        phase = self.params.index_phase_counts
+        k0 = math.floor((before - phase) / pitch)
+        k1 = math.floor((self._motor_counts - phase) / pitch)
+        if k0 == k1:
+            return
+        at = phase + pitch * max(k0, k1)
+        res = self.params.encoder_resolution_counts
+        self.touch_probe_value = int(math.floor(at / res + 0.5)) * res + self._offset_counts
+        self.touch_probe_status = TP_ENABLED | TP_POSITIVE_STORED
 
     def _trip(self, code: int) -> None:
         self.error_code = code

@@ -31,6 +31,9 @@ OPTIONAL_OBJECTS = {
     0x603F: "error code read by SDO when the drive reports a fault",
     0x6061: "mode display read by SDO at start-up",
     0x60FD: "no limit, home or probe inputs through this drive",
+    0x60B8: "no homing to the encoder's index (touch probe function)",
+    0x60B9: "no homing to the encoder's index (touch probe status)",
+    0x60BA: "no homing to the encoder's index (touch probe position)",
 }
 
 
@@ -165,13 +168,15 @@ class PdoMapping:
 
 #: CSP mapping used unless a drive model has its own: controlword, target position, mode and
 #: digital outputs (spindle enable/direction); statusword, position actual, following error,
-#: error code, mode display and digital inputs (switches, probe). The digital I/O travels in
-#: the process data so that nothing in the cycle needs an SDO.
+#: error code, mode display and digital inputs (switches, probe); touch probe 1 (function,
+#: status, position: the encoder's index for homing). The digital I/O travels in the process
+#: data so that nothing in the cycle needs an SDO.
 CSP_MAPPING = PdoMapping(
     rx=(PdoEntry(0x6040, 0, 16), PdoEntry(0x607A, 0, 32, True), PdoEntry(0x6060, 0, 8, True),
-        PdoEntry(0x60FE, 1, 32)),
+        PdoEntry(0x60FE, 1, 32), PdoEntry(0x60B8, 0, 16)),
     tx=(PdoEntry(0x6041, 0, 16), PdoEntry(0x6064, 0, 32, True), PdoEntry(0x60F4, 0, 32, True),
-        PdoEntry(0x603F, 0, 16), PdoEntry(0x6061, 0, 8, True), PdoEntry(0x60FD, 0, 32)),
+        PdoEntry(0x603F, 0, 16), PdoEntry(0x6061, 0, 8, True), PdoEntry(0x60FD, 0, 32),
+        PdoEntry(0x60B9, 0, 16), PdoEntry(0x60BA, 0, 32, True)),
 )
 
 #: drive model (vendor id, product code) -> mapping; extend for real drives. The
@@ -183,9 +188,10 @@ DRIVE_MAPPINGS: dict[tuple[int, int], PdoMapping] = {
 
 # bus array attribute per object (outputs / inputs)
 _RX_ARRAYS = {0x6040: "controlword", 0x607A: "target_position", 0x6060: "modes_of_operation",
-              0x60FE: "digital_outputs"}
+              0x60FE: "digital_outputs", 0x60B8: "touch_probe_function"}
 _TX_ARRAYS = {0x6041: "statusword", 0x6064: "position_actual", 0x60F4: "following_error",
-              0x603F: "error_code", 0x6061: "modes_display", 0x60FD: "digital_inputs"}
+              0x603F: "error_code", 0x6061: "modes_display", 0x60FD: "digital_inputs",
+              0x60B9: "touch_probe_status", 0x60BA: "touch_probe_value"}
 
 
 @dataclass(slots=True)

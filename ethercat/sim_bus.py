@@ -89,7 +89,8 @@ class SimBus(Bus):
                  initial_positions_counts: Sequence[float] | None = None,
                  watchdog_s: float = 0.1, unmapped_objects: Sequence[int] = (),
                  terminals: Sequence[TerminalSpec] = (), switches: Sequence[SimSwitch] = (),
-                 input_rest: Sequence[int] = (), **_ignored: object) -> None:
+                 input_rest: Sequence[int] = (), index_pitch_units: Sequence[float] = (),
+                 **_ignored: object) -> None:
         super().__init__(drives, cycle_time_s, terminals)
         self.io = SimIo(self.terminals, self.n_drives,
                         [1.0 / (d.counts_per_unit * d.direction) for d in self.drives], switches, input_rest)
@@ -111,6 +112,11 @@ class SimBus(Bus):
             if len(initial_positions_counts) != n:
                 raise ConfigurationError(f"{len(initial_positions_counts)} initial positions for {n} drives")
             params = [_replace_initial(p, float(x)) for p, x in zip(params, initial_positions_counts)]
+        if index_pitch_units:
+            if len(index_pitch_units) != n:
+                raise ConfigurationError(f"{len(index_pitch_units)} index pitches for {n} drives")
+            params = [_replace_index(p, float(x) * d.counts_per_unit)
+                      for p, x, d in zip(params, index_pitch_units, self.drives)]
         self.models: tuple[DriveModel, ...] = tuple(
             DriveModel(p, position=d.position) for p, d in zip(params, self.drives))
         self._by_position = {d.position: i for i, d in enumerate(self.drives)}
@@ -216,6 +222,8 @@ class SimBus(Bus):
             self.error_code[i] = m.error_code
         self.modes_display[i] = m.modes_of_operation_display
         self.digital_inputs[i] = m.digital_inputs
+        self.touch_probe_status[i] = m.touch_probe_status
+        self.touch_probe_value[i] = m.touch_probe_value
 
     def _exchange(self) -> int:
         self._check_open()
@@ -230,6 +238,7 @@ class SimBus(Bus):
         tp = self.target_position.tolist()
         mode = self.modes_of_operation.tolist()
         dout = self.digital_outputs.tolist()
+        tpf = self.touch_probe_function.tolist()
         if self._probe is not None or self._part is not None:
             self._touch()
         io_words = self._io_words() if not lost_frame else None
@@ -247,6 +256,7 @@ class SimBus(Bus):
             m.target_position = tp[i]
             m.modes_of_operation = mode[i]
             m.digital_outputs = dout[i]
+            m.touch_probe_function = tpf[i]
             m.step(dt)
             wkc += 3
         if io_words is not None:
@@ -407,6 +417,17 @@ class SimBus(Bus):
             self.io.encoder_add(index, value - (1 << 31) if value >= 1 << 31 else value)
         else:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
+
+
+def _replace_index(p: DriveParams, pitch_counts: float) -> DriveParams:
+    """The drive's encoder with a zero impulse every ``pitch_counts`` (0: none), one of them a
+    third of a pitch from the counts' zero (an index is never where a switch is put)."""
+    from dataclasses import replace
+
+    pitch = abs(pitch_counts)
+    if not math.isfinite(pitch):
+        raise ConfigurationError(f"index pitch {pitch_counts} is not finite")
+    return replace(p, index_pitch_counts=pitch, index_phase_counts=pitch / 3.0)
 
 
 def _replace_initial(p: DriveParams, initial_counts: float) -> DriveParams:

@@ -139,7 +139,7 @@ class TerminalSetting:
 @dataclass(frozen=True, slots=True)
 class AxisHoming:
     """One ``[[homing.axes]]`` (LinuxCNC's HOME_SEARCH_VEL, HOME_LATCH_VEL, HOME_FINAL_VEL,
-    HOME_OFFSET, HOME, HOME_SEQUENCE, HOME_IGNORE_LIMITS)."""
+    HOME_OFFSET, HOME, HOME_SEQUENCE, HOME_IGNORE_LIMITS, HOME_USE_INDEX)."""
 
     axis: str
     search_vel: float
@@ -150,6 +150,7 @@ class AxisHoming:
     sequence: int = 0
     ignore_limits: bool = False
     max_travel: float | None = None
+    use_index: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -356,6 +357,8 @@ def homing_lines(wiring: MachineWiring) -> list[str]:
                 f"ignore_limits = {'true' if h.ignore_limits else 'false'}"]
         if h.max_travel is not None:
             out.append(f"max_travel = {float(h.max_travel)!r}")
+        if h.use_index:
+            out.append("use_index = true")
     return out
 
 
@@ -370,10 +373,13 @@ class WorkerIo:
     switch_homing: tuple[SwitchHoming, ...]
     sim_switches: tuple[SimSwitch, ...]
     input_rest: tuple[int, ...]
+    sim_index_pitch: tuple[float, ...] = ()
 
 
 #: how far beyond its soft limit a simulated axis' limit switch closes (mm or deg)
 SIM_LIMIT_MARGIN = 2.0
+#: the simulated encoders' index pulse: one per this much travel (a 5 mm screw's turn, or 5°)
+SIM_INDEX_PITCH = 5.0
 _FAR = 1e9
 
 
@@ -420,7 +426,7 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
             if not math.isfinite(travel) or travel <= 0.0:
                 travel = 720.0                    # a rotary axis without end: two turns
             homing.append(SwitchHoming(i, word, bit, level, h.search_vel, h.latch_vel, travel,
-                                       float(ax.a_max), float(ax.j_max), h.ignore_limits))
+                                       float(ax.a_max), float(ax.j_max), h.ignore_limits, h.use_index))
     switches: list[SimSwitch] = []
     rest = [0] * len(wiring.terminals)
     if simulated:
@@ -440,8 +446,10 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
                 continue
             place = {"terminal": k} if k >= 0 else {"drive": i}
             switches.append(SimSwitch(i, s.wire.bit, lo, hi, not s.wire.inverted, **place))
+    pitch = tuple(SIM_INDEX_PITCH if simulated and any(h.axis == i and h.use_index for h in homing) else 0.0
+                  for i in range(len(axes)))
     return WorkerIo(tuple(t.spec() for t in wiring.terminals), tuple(watches), tuple(homing), tuple(switches),
-                    tuple(rest))
+                    tuple(rest), pitch if any(pitch) else ())
 
 
 def _sim_range(name: str, lo: float, hi: float,

@@ -316,7 +316,10 @@ class CyclicWorker:
             mask |= 1 << self._axis_index(axis)
         if not self._command(Command.HOME_SWITCH, mask):
             names = " ".join(self.config.axis_names[i] for i in range(self.config.n_axes) if mask >> i & 1)
-            raise WorkerError(f"homing {names} to switches refused in state {self.state().name} "
+            snap = self.snapshot()
+            if snap.alarms and snap.alarms[-1].code is AlarmCode.HOMING_SWITCH:
+                raise WorkerError(snap.alarms[-1].message)     # an axis cannot home as configured
+            raise WorkerError(f"homing {names} to switches refused in state {snap.state.name} "
                               "(needs ENABLED, at rest, and switch homing configured for each)")
 
     def set_terminal_output(self, terminal: int, word: int) -> None:

@@ -129,6 +129,7 @@ class CycleLoop:
         bus = self.bus
         self.lv.wkc_expected[...] = bus.expected_wkc
         self.error_code_by_sdo = [not bus.maps_object(i, 0x603F) for i in range(self.n)]
+        self.switch_homer.bind(bus, self.gain, self.offset)
         bus.modes_of_operation[:] = cia402.CSP
         self._read_actual()
         np.copyto(self.ref, self.act)
@@ -257,6 +258,8 @@ class CycleLoop:
             self.helper.submit(_HOMING_METHOD, lambda: bus.sdo_write(position, 0x6098, 0, "<b", b))
         elif code == Command.HOME_SWITCH:
             if st is not WorkerState.ENABLED or self.moving or not self.switch_homer.begin(a, self.words):
+                if self.switch_homer.failure:
+                    self._homing_failed()            # an axis cannot home as configured: why
                 return Result.REFUSED
             self._flush()
             self._set_state(WorkerState.HOMING)

@@ -142,8 +142,11 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
                 f"override limits to jog it off the switch (toward {'-' if a > 0 else '+'})")
     if code is AlarmCode.HOMING_SWITCH:
         step = HomingStep(a).name.lower().replace("_", " ") if 0 <= a < len(HomingStep) else str(a)
-        why = {1: "the switch did not change within the search travel",
-               2: "a limit switch tripped", 3: "timeout"}.get(b, "unknown cause")
+        why = {1: ("no index pulse within the search travel" if a == HomingStep.INDEX
+                   else "the switch did not change within the search travel"),
+               2: "a limit switch tripped", 3: "timeout",
+               4: ("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data "
+                   "for the index")}.get(b, "unknown cause")
         return f"homing of axis {axis} failed at step '{step}': {why}; quick stop of all axes"
     if code is AlarmCode.BUS_ERROR:
         return f"bus error in the cyclic loop ({detail}): worker stopped"

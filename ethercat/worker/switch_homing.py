@@ -5,8 +5,12 @@ the search direction; then it searches at ``search_vel`` until the switch closes
 with a latch velocity of the search's sign it backs off until the switch opens and comes back
 at ``latch_vel`` until it closes, with the opposite sign it leaves the switch at
 ``latch_vel``; the actual position of the cycle the switch changes is *latched*, and the
-axis stops. Every change of velocity is a jerk-limited ramp (``accel``, ``jerk``). Each move
-is bounded by ``max_travel`` (a switch that never changes is an error naming the step).
+axis stops. With ``use_index`` it does not stop at the edge: it arms its drive's touch probe 1
+on the encoder's zero impulse (0x60B8 = 0x15) and goes on at the latch velocity until the drive
+reports the edge stored (0x60B9 bits 0 and 1); the drive's latched position (0x60BA) is then
+the one reported, exact to a count whatever the cycle time. Every change of velocity is a
+jerk-limited ramp (``accel``, ``jerk``). Each move is bounded by ``max_travel`` (a switch or an
+index that never comes is an error naming the step).
 
 The set-point of a homing axis is made here, one per cycle, from its velocity; several axes
 home at once (LinuxCNC's equal HOME_SEQUENCE). What the latched position means (the switch's
@@ -21,13 +25,19 @@ import math
 
 import numpy as np
 
+from ..bus import Bus
+from ..cia402 import TP_ENABLED, TP_INDEX_FIRST_POSITIVE, TP_POSITIVE_STORED
 from .types import HomingState, HomingStep, SwitchHoming
 
-__all__ = ["SwitchHomer", "FAIL_NOT_FOUND", "FAIL_LIMIT", "FAIL_TIMEOUT"]
+__all__ = ["SwitchHomer", "FAIL_NOT_FOUND", "FAIL_LIMIT", "FAIL_TIMEOUT", "FAIL_NO_INDEX"]
 
-FAIL_NOT_FOUND = 1      # the switch did not change within max_travel
+FAIL_NOT_FOUND = 1      # the switch (or the index) did not change within max_travel
 FAIL_LIMIT = 2          # a limit switch tripped (and the axis does not ignore limits)
 FAIL_TIMEOUT = 3
+FAIL_NO_INDEX = 4       # homing to the index on a drive without touch probe 1 in its process data
+
+_INDEX_STORED = TP_ENABLED | TP_POSITIVE_STORED
+_TOUCH_PROBE_OBJECTS = (0x60B8, 0x60B9, 0x60BA)
 
 
 class _Axis:
@@ -66,6 +76,23 @@ class SwitchHomer:
         self.failure = 0                   # FAIL_* of the axis that failed
         self.failed_axis = -1
         self.failed_step = HomingStep.IDLE
+        # the bus' touch probe arrays and the counts -> units scale (``bind``)
+        self.tp_function = np.zeros(0, dtype=np.uint16)
+        self.tp_status = np.zeros(0, dtype=np.uint16)
+        self.tp_value = np.zeros(0, dtype=np.int32)
+        self.gain = np.ones(0)
+        self.offset = np.zeros(0)
+        self.has_touch_probe: tuple[bool, ...] = ()
+
+    def bind(self, bus: Bus, gain: np.ndarray, offset: np.ndarray) -> None:
+        """Use ``bus``' touch probe arrays (the index of homing with ``use_index``) and the
+        axes' scale (units = (counts - offset) / gain)."""
+        self.tp_function = bus.touch_probe_function
+        self.tp_status = bus.touch_probe_status
+        self.tp_value = bus.touch_probe_value
+        self.gain, self.offset = gain, offset
+        self.has_touch_probe = tuple(all(bus.maps_object(i, o) for o in _TOUCH_PROBE_OBJECTS)
+                                     for i in range(bus.n_drives))
 
     @property
     def active(self) -> bool:
@@ -85,12 +112,18 @@ class SwitchHomer:
         """Start the axes of ``axis_mask`` together; False (nothing started) when one of them has
         no switch homing configured."""
         wanted = [a for a in range(63) if axis_mask >> a & 1]
-        if not wanted or any(a not in self.by_axis for a in wanted):
-            return False
-        self.axes = [_Axis(self.by_axis[a]) for a in wanted]
-        self.cycles = 0
         self.failure = 0
         self.failed_axis = -1
+        if not wanted or any(a not in self.by_axis for a in wanted):
+            return False
+        for a in wanted:
+            if self.by_axis[a].use_index and not (a < len(self.has_touch_probe) and self.has_touch_probe[a]):
+                self.failure, self.failed_axis, self.failed_step = FAIL_NO_INDEX, a, HomingStep.INDEX
+                return False                      # refused, and ``failure`` says why
+        self.axes = [_Axis(self.by_axis[a]) for a in wanted]
+        self.cycles = 0
+        for h in self.axes:
+            self.tp_function[h.spec.axis] = 0
         for h in self.axes:
             a = h.spec.axis
             self.state[a] = HomingState.RUNNING
@@ -102,6 +135,8 @@ class SwitchHomer:
     def cancel(self) -> None:
         for h in self.axes:
             a = h.spec.axis
+            if a < len(self.tp_function):
+                self.tp_function[a] = 0
             if self.state[a] == HomingState.RUNNING:
                 self.state[a] = HomingState.ERROR
             self.steps[a] = HomingStep.IDLE
@@ -121,7 +156,7 @@ class SwitchHomer:
             h.v_target = -spec.search_vel
         elif step is HomingStep.SEARCH:
             h.v_target = spec.search_vel
-        elif step is HomingStep.LATCH:
+        elif step is HomingStep.LATCH or step is HomingStep.INDEX:
             h.v_target = spec.latch_vel
         else:
             h.v_target = 0.0
@@ -175,6 +210,16 @@ class SwitchHomer:
                 elif step is HomingStep.LATCH and closed == (spec.latch_vel * spec.search_vel > 0):
                     # the edge: closing when latching toward the switch, opening when leaving it
                     self.latched[a] = act[a]
+                    if spec.use_index:
+                        self._go(h, HomingStep.INDEX, float(ref[a]))
+                        self.tp_function[a] = TP_INDEX_FIRST_POSITIVE
+                    else:
+                        self._stop_then(h, HomingStep.DONE)
+                elif step is HomingStep.INDEX and int(self.tp_status[a]) & _INDEX_STORED == _INDEX_STORED:
+                    # enabled and stored: the drive saw this arming (its status was 0 while the
+                    # function was 0), so the edge is this search's
+                    self.latched[a] = (float(self.tp_value[a]) - self.offset[a]) / self.gain[a]
+                    self.tp_function[a] = 0
                     self._stop_then(h, HomingStep.DONE)
                 elif abs(ref[a] - h.start) > spec.max_travel:
                     return self._fail(h, FAIL_NOT_FOUND)

@@ -82,6 +82,7 @@ class HomingStep(enum.IntEnum):
     BACK_OFF = 3       # off the switch again (latch in the search direction)
     LATCH = 4          # at the latch velocity until the switch edge: the position latched
     DONE = 5
+    INDEX = 6          # on at the latch velocity past the edge to the encoder's index: latched there
 
 
 class WatchAction(enum.IntEnum):
@@ -112,7 +113,9 @@ class SwitchHoming:
     axis units/s with their signs: search (the direction to the switch), latch (the same sign:
     off the switch and back onto it slowly; opposite: latched as it leaves the switch).
     ``max_travel`` bounds every move; ``accel``/``jerk`` the ramps. The switch is bit ``bit`` of
-    input word ``word`` (as ``InputWatch``), closed when it reads ``level``."""
+    input word ``word`` (as ``InputWatch``), closed when it reads ``level``. ``use_index``
+    (LinuxCNC's HOME_USE_INDEX): past the switch edge the axis goes on at the latch velocity to
+    the next index pulse of its drive's encoder, latched by the drive's touch probe 1."""
 
     axis: int
     word: int
@@ -124,6 +127,7 @@ class SwitchHoming:
     accel: float
     jerk: float
     ignore_limits: bool = False
+    use_index: bool = False
 
     def __post_init__(self) -> None:
         if self.search_vel == 0.0 or self.latch_vel == 0.0:

@@ -157,7 +157,7 @@ MACHINE_FILE = Table("", tables=(
         # off the switch and back onto it slowly, opposite: latched as it leaves the switch);
         # offset: the switch's machine coordinate; home: where the axis goes after; sequence:
         # the order (equal values home together); max_travel: the longest search (default the
-        # axis' travel and a fifth)
+        # axis' travel and a fifth); use_index: latch at the encoder's index past the switch
         Table("axes", (
             Key("axis", "str", REQUIRED, choices=("X", "Y", "Z", "A", "B", "C")),
             Key("search_vel", "float", REQUIRED, -1e5, 1e5),
@@ -168,6 +168,9 @@ MACHINE_FILE = Table("", tables=(
             Key("sequence", "int", 0, 0, 9),
             Key("ignore_limits", "bool", False),
             Key("max_travel", "float", None, 1e-3, _LIN),
+            # HOME_USE_INDEX: past the switch edge on to the encoder's index pulse (latched by
+            # the drive's touch probe 1, 0x60B8-0x60BA); offset is then the index' coordinate
+            Key("use_index", "bool", False),
         ), array=True),
     )),
     Table("bus", (

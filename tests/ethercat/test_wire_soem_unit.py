@@ -25,10 +25,10 @@ DRIVES = (DriveSpec(0, "X"), DriveSpec(1, "Y", direction=-1))
 
 
 def test_csp_mapping_sizes_and_entries() -> None:
-    assert CSP_MAPPING.rx_struct.size == 11 and CSP_MAPPING.tx_struct.size == 17
-    assert [e.value for e in CSP_MAPPING.rx] == [0x60400010, 0x607A0020, 0x60600008, 0x60FE0120]
+    assert CSP_MAPPING.rx_struct.size == 13 and CSP_MAPPING.tx_struct.size == 23
+    assert [e.value for e in CSP_MAPPING.rx] == [0x60400010, 0x607A0020, 0x60600008, 0x60FE0120, 0x60B80010]
     assert [e.value for e in CSP_MAPPING.tx] == [0x60410010, 0x60640020, 0x60F40020, 0x603F0010, 0x60610008,
-                                                 0x60FD0020]
+                                                 0x60FD0020, 0x60B90010, 0x60BA0020]
     assert (0x0000_0A5E, 0x0402_0001) in DRIVE_MAPPINGS
 
 
@@ -54,18 +54,20 @@ def test_process_data_packed_exactly_in_mapping_order() -> None:
     bus.target_position[:] = [-123456, 7]
     bus.modes_of_operation[:] = [8, 6]
     bus.digital_outputs[:] = [0x0003_0000, 0]
-    inputs = struct.pack("<HiiHbI", 0x1237, -5, 3, 0x2310, 8, 0x0001_0004)
-    slaves = [FakeSlave(inputs), FakeSlave(bytes(17))]
+    bus.touch_probe_function[:] = [0x15, 0]
+    inputs = struct.pack("<HiiHbIHi", 0x1237, -5, 3, 0x2310, 8, 0x0001_0004, 0x0003, -70_000)
+    slaves = [FakeSlave(inputs), FakeSlave(bytes(23))]
     ios = [DriveIo(bus, i, s, CSP_MAPPING) for i, s in enumerate(slaves)]
     for io in ios:
         io.write()
         io.read()
-    assert slaves[0].output == struct.pack("<HibI", 0x0F, -123456, 8, 0x0003_0000)
-    assert slaves[1].output == struct.pack("<HibI", 0x06, 7, 6, 0)
-    assert all(len(s.output) == 11 for s in slaves), "never more than the slave's output size"
+    assert slaves[0].output == struct.pack("<HibIH", 0x0F, -123456, 8, 0x0003_0000, 0x15)
+    assert slaves[1].output == struct.pack("<HibIH", 0x06, 7, 6, 0, 0)
+    assert all(len(s.output) == 13 for s in slaves), "never more than the slave's output size"
     assert bus.statusword[0] == 0x1237 and bus.position_actual[0] == -5
     assert bus.following_error[0] == 3 and bus.error_code[0] == 0x2310 and bus.modes_display[0] == 8
     assert bus.digital_inputs[0] == 0x0001_0004
+    assert bus.touch_probe_status[0] == 0x0003 and bus.touch_probe_value[0] == -70_000
     np.testing.assert_array_equal(bus.statusword, [0x1237, 0])
 
 

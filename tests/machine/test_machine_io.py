@@ -285,6 +285,29 @@ def test_home_all_homes_in_sequence_z_first_then_x_and_y_together(qapp, config_p
         c.shutdown()
 
 
+def test_an_axis_with_use_index_homes_to_the_encoders_index_past_its_switch(qapp, state_dir: Path) -> None:
+    """Z with ``use_index``: past its switch edge (machine 95, left downward) it goes on to the
+    simulated encoder's index (one per 5 mm, the one below 95 at drive Z 93.3333) and that
+    index becomes machine Z 95 (the offset, as HOME_OFFSET with HOME_USE_INDEX). The step is
+    shown while it searches."""
+    z_table = 'axis = "Z"\nsearch_vel = 10.0\nlatch_vel = -0.1\n'
+    assert z_table in MILL
+    text = MILL.replace(z_table, 'axis = "Z"\nsearch_vel = 10.0\nlatch_vel = -2.0\nuse_index = true\n')
+    c = make_controller(_config(text), state_dir, zero=False)
+    try:
+        steps: list[HomingStep] = []
+        c.poller.on_poll(lambda snap: steps.append(snap.homing_steps[2]))
+        assert c.home_all()
+        assert c.run_until(lambda: c.state is MachineState.IDLE and all(c.homed), 120)
+        assert HomingStep.INDEX in steps
+        home = c.positions.home_offset
+        assert home[2] == pytest.approx(93.3333 - 95.0, abs=1e-4 + 1e-9)   # the index, not the edge
+        assert np.all(np.abs(home[:2]) <= 1e-4 + 1e-12)                  # X, Y: their switch edges
+        assert c.machine_position == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
+    finally:
+        c.shutdown()
+
+
 @pytest.mark.parametrize("method", ["set_here", "switches"])
 def test_after_a_power_loss_a_machine_without_reference_switches_never_offers_run_from_line(
         qapp, state_dir: Path, method: str) -> None:

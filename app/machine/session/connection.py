@@ -232,7 +232,7 @@ class Connection:
             )
             # the simulated machine's switches and the rest state of its inputs
             options = (("initial_positions_counts", counts), ("switches", io.sim_switches),
-                       ("input_rest", io.input_rest))
+                       ("input_rest", io.input_rest), ("index_pitch_units", io.sim_index_pitch))
         # core, real-time priority and spin: the WorkerConfig defaults (the worker picks a free
         # core itself and uses SCHED_FIFO 49, below PREEMPT_RT's interrupt threads)
         mode = self.worker_mode
