@@ -198,11 +198,14 @@ class Interlocks(Protocol):
 
 class JogInterlocks(Protocol):
     """What the machine's signals allow a jog: the speed with the door open (None: closed), the
-    limit switch an axis stands on (+1 / -1, 0: none)."""
+    limit switch an axis stands on (+1 / -1, 0: none), whether both its limit switches are
+    wired."""
 
     def jog_speed_cap(self) -> float | None: ...
 
     def limit_side(self, axis: int) -> int: ...
+
+    def has_limit_switches(self, axis: int) -> bool: ...
 
 
 class OutputSwitch(Protocol):

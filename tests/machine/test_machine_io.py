@@ -285,6 +285,44 @@ def test_home_all_homes_in_sequence_z_first_then_x_and_y_together(qapp, config_p
         c.shutdown()
 
 
+@pytest.mark.parametrize("switches", [True, False])
+def test_an_unhomed_axis_jogs_between_its_limit_switches_not_its_soft_limits(qapp, state_dir: Path,
+                                                                             switches: bool) -> None:
+    """Unhomed, X stands at machine 0 where its soft limit (min = 0 here) would stop it. With
+    both limit switches wired it jogs on (its machine coordinates mean nothing until homed; the
+    switches guard it, as LinuxCNC jogs an unhomed joint); without them the soft limit refuses
+    the jog, saying so."""
+    text = MILL.replace('name = "X"\nkind = "linear"\ndrive_position = 0\ncounts_per_unit = 10000        '
+                        '# encoder counts per mm\ndirection = 1\nmin = -250.0',
+                        'name = "X"\nkind = "linear"\ndrive_position = 0\ncounts_per_unit = 10000\n'
+                        'direction = 1\nmin = 0.0')
+    text = text.replace("setter_x_mm = -230.0", "setter_x_mm = 230.0")
+    assert "min = 0.0" in text and "setter_x_mm = 230.0" in text
+    if not switches:
+        text = text.replace('limit_neg_X = "!5:0"', 'limit_neg_X = ""').replace('limit_pos_X = "!5:1"',
+                                                                                'limit_pos_X = ""')
+    c = make_controller(_config(text), state_dir, zero=False)
+    try:
+        assert c.signals.has_limit_switches(0) is switches
+        r = c.jog_increment("X", 1.0, -1)
+        assert bool(r) is switches, r
+        if switches:
+            assert c.run_until(lambda: c.state is MachineState.IDLE
+                               and abs(c.machine_position[0] + 1.0) < 1e-6, 10)
+            assert c.jog_start("X", -1)
+            # on past "min" until the simulated switch (2 mm beyond it) stops it as a limit
+            assert c.run_until(lambda: c.state is MachineState.ALARM, 20)
+            alarm = next(a for a in c.active_alarms if a.code == "limit_switch")
+            assert "axis X on its negative limit switch" in alarm.cause
+            assert -2.0 - 0.5 < c.machine_position[0] < -2.0
+        else:
+            assert "beyond its soft limit" in r.reason
+            assert not c.jog_start("X", -1)
+            assert c.machine_position[0] == 0.0
+    finally:
+        c.shutdown()
+
+
 def test_an_axis_with_use_index_homes_to_the_encoders_index_past_its_switch(qapp, state_dir: Path) -> None:
     """Z with ``use_index``: past its switch edge (machine 95, left downward) it goes on to the
     simulated encoder's index (one per 5 mm, the one below 95 at drive Z 93.3333) and that

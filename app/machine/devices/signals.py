@@ -101,6 +101,12 @@ class MachineSignals:
             return self._settings.config.wiring.interlocks.door_open_jog_mm_s
         return None
 
+    def has_limit_switches(self, axis: int) -> bool:
+        """Whether axis ``axis`` has both its limit switches wired."""
+        name = self._settings.config.axes[axis]
+        wiring = self._settings.config.wiring
+        return wiring.has(f"limit_pos_{name}") and wiring.has(f"limit_neg_{name}")
+
     def limit_side(self, axis: int) -> int:
         """+1 / -1 when axis ``axis`` stands on its positive / negative limit switch, else 0."""
         name = self._settings.config.axes[axis]

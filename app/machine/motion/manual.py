@@ -108,7 +108,12 @@ class ManualMotion:
         ax = cfg.machine.axes[i]
         cur = float(self._positions.machine_pos()[i])
         # a wrapped rotary axis turns without end: the jog runs until released (100 turns at most)
-        limit = cur + direction * 36_000.0 if ax.wrapped else ax.max_pos if direction > 0 else ax.min_pos
+        if ax.wrapped:
+            limit = cur + direction * 36_000.0
+        elif self._between_switches(i):
+            limit = cur + direction * (ax.max_pos - ax.min_pos)     # to the limit switch from anywhere
+        else:
+            limit = ax.max_pos if direction > 0 else ax.min_pos
         if (limit - cur) * direction <= 1e-9:
             return states.refuse(Action.JOG, f"axis {ax.name} is at its soft limit {limit:g}")
         why = self._toward_limit(i, direction)
@@ -119,6 +124,13 @@ class ManualMotion:
         prog = self._single_axis_program(i, limit, feed, f"jog {ax.name}{'+' if direction > 0 else '-'}")
         self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
         return states.ok(Action.JOG)
+
+    def _between_switches(self, i: int) -> bool:
+        """An unhomed axis with both limit switches jogs between them, not between its soft
+        limits: those are machine coordinates, which mean nothing until it is homed (LinuxCNC
+        jogs an unhomed joint the same way). Without both switches the soft limits stay, taken
+        from the position the control last knew."""
+        return not self._positions.homed[i] and self._interlocks.has_limit_switches(i)
 
     def _toward_limit(self, i: int, direction: int) -> str:
         """Why a jog of axis ``i`` toward ``direction`` is refused by a limit switch ("" when not):
@@ -144,7 +156,8 @@ class ManualMotion:
     @guarded(Action.JOG)
     def jog_increment(self, axis: str | int, step: float, direction: int = 1) -> CommandResult:
         """Move one axis by ``direction * step`` (0.001 / 0.01 / 0.1 / 1 mm or degrees), refused
-        when the target is beyond the soft limit.
+        when the target is beyond the soft limit (an unhomed axis between limit switches: by
+        them).
         """
         states, cfg = self._states, self._settings.config
         try:
@@ -159,7 +172,8 @@ class ManualMotion:
         if why:
             return states.refuse(Action.JOG, why)
         target = float(self._positions.machine_pos()[i]) + (1 if direction > 0 else -1) * step
-        if not ax.wrapped and not ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9:
+        within = ax.min_pos - 1e-9 <= target <= ax.max_pos + 1e-9
+        if not ax.wrapped and not self._between_switches(i) and not within:
             return states.refuse(
                 Action.JOG,
                 f"axis {ax.name} would reach {target:.4f}, beyond its soft limit "
