@@ -111,6 +111,8 @@ TEMPLATES: tuple[str, ...] = (
     N_("timeout"), N_("no index pulse within the search travel"),
     N_("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data for the index"),
     N_("homing {0}"),
+    # where a signal is wired (the Signals tab)
+    N_("{0} (slave {1}) channel {2}"), N_("drive {0} (slave {1}) {2} bit {3}"), N_("{0}, normally closed"),
     N_("{0} lost ({1} reads false)"),
     N_("{0} lost ({1} reads false): the motion stops"),
     # probing, inputs and the tool setter

@@ -20,12 +20,9 @@ from app.widgets.text_dialog import TextDialog
 
 class Dialogs:
     def confirm(self, parent: QWidget | None, title: str, text: str) -> bool:
-        box = QMessageBox(QMessageBox.Icon.Warning, title, text,
-                          QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.No, parent)
-        box.button(QMessageBox.StandardButton.Yes).setText(tr("Yes"))
-        box.button(QMessageBox.StandardButton.No).setText(tr("No"))
-        box.setDefaultButton(QMessageBox.StandardButton.No)
-        return box.exec() == QMessageBox.StandardButton.Yes
+        box, yes = confirm_box(parent, title, text)
+        box.exec()
+        return box.clickedButton() is yes
 
     def choose(self, parent: QWidget | None, title: str, text: str, options: list[str]) -> int:
         """Index of the chosen option, -1 when cancelled (e.g. Save / Discard / Cancel)."""
@@ -46,8 +43,7 @@ class Dialogs:
     def ask_open_file(self, parent: QWidget | None, directory: str,
                       folders: ProgramFolders | None = None,
                       suffixes: tuple[str, ...] = GCODE_SUFFIXES) -> str | None:
-        title = tr("Open program") if suffixes == GCODE_SUFFIXES else tr("Open file")
-        picker = FilePicker(title, Path(directory), parent, folders, suffixes)
+        picker = file_picker(parent, directory, folders, suffixes)
         if picker.exec() == FilePicker.DialogCode.Accepted and picker.selected is not None:
             return str(picker.selected)
         return None
@@ -59,7 +55,33 @@ class Dialogs:
         return name.strip() if name and name.strip() else None
 
     def inform(self, parent: QWidget | None, title: str, text: str) -> None:
-        QMessageBox.information(parent, title, text)
+        inform_box(parent, title, text).exec()
+
+
+def file_picker(parent: QWidget | None, directory: str, folders: ProgramFolders | None = None,
+                suffixes: tuple[str, ...] = GCODE_SUFFIXES) -> FilePicker:
+    """The file picker of ``ask_open_file``, titled for programs or for any file."""
+    title = tr("Open program") if suffixes == GCODE_SUFFIXES else tr("Open file")
+    return FilePicker(title, Path(directory), parent, folders, suffixes)
+
+
+def confirm_box(parent: QWidget | None, title: str, text: str) -> tuple[QMessageBox, QPushButton]:
+    """A yes/no question and its "Yes" button; "No" the default and the escape (the safe answer
+    to a dangerous action). The buttons are the panel's own, in its language: Qt's standard
+    buttons would be named again in Qt's words at a language change."""
+    box = QMessageBox(QMessageBox.Icon.Warning, title, text, QMessageBox.StandardButton.NoButton, parent)
+    yes = box.addButton(tr("Yes"), QMessageBox.ButtonRole.YesRole)
+    no = box.addButton(tr("No"), QMessageBox.ButtonRole.NoRole)
+    box.setDefaultButton(no)
+    box.setEscapeButton(no)
+    return box, yes
+
+
+def inform_box(parent: QWidget | None, title: str, text: str) -> QMessageBox:
+    """A message to read, closed with OK in the panel's language."""
+    box = QMessageBox(QMessageBox.Icon.Information, title, text, QMessageBox.StandardButton.NoButton, parent)
+    box.setEscapeButton(box.addButton(tr("OK"), QMessageBox.ButtonRole.AcceptRole))
+    return box
 
 
 def choice_box(parent: QWidget | None, title: str, text: str,

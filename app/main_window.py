@@ -30,6 +30,7 @@ from app.pages import PAGES, PageInfo, page_info
 from app.pages.placeholder import PlaceholderPage
 from app.service_access import IDLE_LOCK_S
 from app.shortcuts import Shortcuts, parse_bindings
+from app.widgets.elided_label import ElidedLabel
 from app.widgets.service_gate import ServiceGate
 from app.widgets.status_header import StatusHeader
 from ethercat.sim_part import Feature, SimPart
@@ -126,8 +127,7 @@ class MainWindow(QMainWindow):
         self.statusBar().setFixedHeight(52)
         self.statusBar().addWidget(self.header.alarm_banner, 2)
         self.statusBar().addWidget(self._message, 1)
-        self._program_label = QLabel()
-        self._program_label.setMinimumWidth(220)
+        self._program_label = ElidedLabel(min_chars=16)
         self.statusBar().addPermanentWidget(self._program_label)
         # said again in the other language when the operator switches: the sentence, not its words
         ctx.controller.message.connect(lambda text: self.show_message(lambda: localize(text)))
@@ -187,17 +187,19 @@ class MainWindow(QMainWindow):
             c.simulate_part(DEMO_PART)
         cut = c.interrupted
         if unclean and c.config.homing.method == "set_here":
-            self.show_message(tr("The control stopped without shutting down (power loss or killed), and this "
-                                 "machine has no reference switches: where the axes stand is not known. Set "
-                                 "machine zero, touch off the part zero again, then run the program from its "
-                                 "start"))
+            self.show_message(lambda: tr(
+                "The control stopped without shutting down (power loss or killed), and this machine has "
+                "no reference switches: where the axes stand is not known. Set machine zero, touch off "
+                "the part zero again, then run the program from its start"))
         elif cut is not None:
-            self.show_message(tr("{0} was running at line {1} when the control stopped (power loss or "
-                                 "killed): home the axes, open it and run from line {1}").format(
-                                     Path(cut[0]).name, cut[1]))
+            cut_name, cut_line = Path(cut[0]).name, cut[1]
+            self.show_message(lambda: tr(
+                "{0} was running at line {1} when the control stopped (power loss or killed): home the "
+                "axes, open it and run from line {1}").format(cut_name, cut_line))
         elif unclean:
-            self.show_message(tr("The control did not shut down cleanly: home the axes (Machine zero, "
-                                 "Home all) before running a program"))
+            self.show_message(lambda: tr(
+                "The control did not shut down cleanly: home the axes (Machine zero, Home all) before "
+                "running a program"))
         program = self.options.effective_program
         if self.options.demo and self.options.program_path is None and "X" not in c.axes:
             # the paper's Y-Z-C-A machine: its own sample (rotary and linear mixed, G93 blocks)
@@ -239,11 +241,12 @@ class MainWindow(QMainWindow):
         blends = int(getattr(info, "blends", 0) or 0)
         if blends:
             # the operator sees that the path is not exactly the programmed one, and by how much
-            self.show_message(tr("Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm "
-                                 "from the programmed path").format(
-                name, blends, float(getattr(info, "path_deviation_mm", 0.0))))
+            deviation = float(getattr(info, "path_deviation_mm", 0.0))
+            self.show_message(lambda: tr(
+                "Program loaded: {0}; G64: {1} corners smoothed, at most {2:.3f} mm from the programmed "
+                "path").format(name, blends, deviation))
         else:
-            self.show_message(tr("Program loaded: {0}").format(name))
+            self.show_message(lambda: tr("Program loaded: {0}").format(name))
         if deferred.is_big(info):  # the tool path of a big program: in its own event-loop turn
             deferred.run_soon("program-model", lambda: self._apply_program(info))
         else:
@@ -256,7 +259,7 @@ class MainWindow(QMainWindow):
         deferred.cancel("program-model")  # an older program not shown yet: never show it now
         self.context.program.set_errors(issues)
         n = len(issues)
-        self.show_message(tr("Program refused: {0} error(s)").format(n))
+        self.show_message(lambda: tr("Program refused: {0} error(s)").format(n))
 
     # --- navigation ----------------------------------------------------------------------
     def show_page(self, name: str, ask_password: bool = True) -> bool:
@@ -293,9 +296,9 @@ class MainWindow(QMainWindow):
             return False
         outcome = access.unlock(password)
         if not outcome:
-            self.show_message(tr("Service level refused: {0}").format(outcome.reason))
+            self.show_message(lambda: tr("Service level refused: {0}").format(outcome.reason))
             return False
-        self.show_message(tr("Service level unlocked"))
+        self.show_message(lambda: tr("Service level unlocked"))
         return True
 
     def lock_service(self) -> None:
@@ -317,7 +320,7 @@ class MainWindow(QMainWindow):
         access = self.context.access
         if access is not None and access.lock_if_idle():
             self.lock_service()
-            self.show_message(tr("Service level locked after {0} minutes without input").format(
+            self.show_message(lambda: tr("Service level locked after {0} minutes without input").format(
                 int(IDLE_LOCK_S // 60)))
 
     def page(self, name: str) -> QWidget:

@@ -32,6 +32,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('T{0}: the measurement has no second contact'),
     N_('a probe move ended without the probe armed: the program stops here'),
     N_('acknowledge the active alarms first'),
+    N_('air pressure present'),
     N_('already connected (machine is {0})'),
     N_('an edge'),
     N_('an inside corner'),
@@ -64,6 +65,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('feed override must be 0-{0} %, got {1}'),
     N_("feed override {0} % capped at {1} % here: the machine's speed, acceleration or jerk limit"),
     N_('feed override {0} % not applied here: the program turned it off (tapping, M49 or M50 P0) and runs its own feed'),  # noqa: E501
+    N_('flood coolant (M8)'),
     N_('homing cannot be stopped mid-way: use E-stop'),
     N_('homing refused: {0}'),
     N_('increment must be one of {0}, got {1}'),
@@ -72,8 +74,10 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('latching the switch edge'),
     N_('line {0} comes after {1} at line {2}: what follows depends on what it read; run from line {3} (or before) to read it again'),  # noqa: E501
     N_('line {0} needs T{1} in the spindle (T{2} is in it): put it in and set it on the Tools page, or run from the M6 line {3}'),  # noqa: E501
+    N_('lubricant level or pressure present'),
     N_('machine is {0}'),
     N_('measuring on a tool setter needs X, Y and Z axes'),
+    N_('mist coolant (M7)'),
     N_('moving off the switch'),
     N_('no active alarm with id {0}'),
     N_('no probe in the spindle: put it in and set it (In the spindle) first'),
@@ -87,6 +91,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('nothing to hold: machine is {0}'),
     N_('nothing to resume: machine is {0}'),
     N_('nothing to stop: machine is {0}'),
+    N_('on while the spindle turns'),
     N_("only a simulated machine's inputs can be set"),
     N_('output {0} could not be switched off: {1}'),
     N_('planner: {0}'),
@@ -104,6 +109,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
     N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
     N_('stopped by the operator'),
+    N_('the E-stop chain (safety relay) is closed; open: E-stop, no reset until closed'),
     N_('the E-stop chain is open: release the E-stop buttons and close the safety circuit first'),
     N_('the Z surface'),
     N_('the angle of a face'),
@@ -117,18 +123,28 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the door was opened while homing'),
     N_('the door was opened: the spindle stopped'),
     N_('the drives cannot be re-enabled: {0}'),
+    N_('the guard door is closed; open: a program holds and the spindle stops'),
+    N_('the home switch'),
+    N_('the lube pump, on while the drives are on'),
     N_('the machine has no Z axis'),
     N_('the machine is still stopping: wait for standstill'),
+    N_("the machine's Cycle start button"),
+    N_("the machine's Feed hold button"),
+    N_("the machine's Stop button"),
     N_('the move to the home position was refused: {0}'),
+    N_('the negative limit switch'),
+    N_('the positive limit switch'),
     N_('the program stopped at line {0}: resume there or start it again from the beginning (choose one)'),  # noqa: E501
     N_('the program {0} is being planned for single block (wait until it is ready)'),
     N_('the program {0} is still being checked (wait until it is loaded)'),
     N_("the set-points ran out after {0} (the control's process fell behind): the axes braked to rest along the path within their limits"),  # noqa: E501
     N_('the slow probe feed F{0} must be below the fast one F{1} mm/min: the edge is read at the slow one'),  # noqa: E501
     N_('the spindle did not report at speed (spindle_at_speed) within {0} s'),
+    N_('the spindle drive reports the commanded speed'),
     N_('the surface height must be a number'),
     N_('the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again'),  # noqa: E501
     N_('the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked'),  # noqa: E501
+    N_('the work light'),
     N_('this CPU does not keep stores in order: the 1 ms loop runs as a thread of the panel, not in its own process (less punctual under GUI load)'),  # noqa: E501
     N_('this machine has no probe input ([probe] drive in the machine configuration)'),
     N_('this machine has no reference switches ([homing] method = "set_here"): where its axes stand after the cut is not known, so machine zero set now would not be the old one; the part zero must be touched off again'),  # noqa: E501

@@ -36,7 +36,7 @@ MESSAGE_CALLS = {"BlockError": 0, "LexError": 0, "StructureError": 0, "G7xError"
                  "GeometryError": 0, "ValueError": 0, "error": -1, "error_in": -1}
 CONTROLLER_CALLS = {"refuse": 1, "raise_alarm": 1, "stop_job": 0, "emit": 0, "fail": 0, "stop": 0,
                     "ControllerError": 0, "CommandResult": 1, "show_message": 0,
-                    "alarm_stop": 0}
+                    "alarm_stop": 0, "SignalDef": 4}
 # functions whose returned text is a refusal (``refusal(...)`` returns "" or why not)
 REFUSAL_FUNCTIONS = re.compile(r"refusal|problem|^_?why")
 MIN_WORDS = 6  # letters outside the values: "{0}: {1}" would match any sentence

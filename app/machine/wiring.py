@@ -49,7 +49,7 @@ class Direction(enum.Enum):
 @dataclass(frozen=True, slots=True)
 class SignalDef:
     """One signal: its direction, the value a healthy machine at rest shows (inputs), what
-    LinuxCNC calls it, and what it does here."""
+    LinuxCNC calls it ("" where LinuxCNC has no such signal), and what it does here."""
 
     name: str
     direction: Direction
@@ -62,9 +62,9 @@ class SignalDef:
 SIGNALS: tuple[SignalDef, ...] = (
     SignalDef("estop_chain_ok", Direction.IN, True, "iocontrol.0.emc-enable-in",
               "the E-stop chain (safety relay) is closed; open: E-stop, no reset until closed"),
-    SignalDef("door_closed", Direction.IN, True, "(interlock)",
+    SignalDef("door_closed", Direction.IN, True, "",
               "the guard door is closed; open: a program holds and the spindle stops"),
-    SignalDef("air_ok", Direction.IN, True, "(interlock)", "air pressure present"),
+    SignalDef("air_ok", Direction.IN, True, "", "air pressure present"),
     SignalDef("lube_ok", Direction.IN, True, "iocontrol.0.lube_level", "lubricant level or pressure present"),
     SignalDef("cycle_start", Direction.IN, False, "halui.program.run", "the machine's Cycle start button"),
     SignalDef("feed_hold", Direction.IN, False, "halui.program.pause", "the machine's Feed hold button"),
@@ -78,7 +78,7 @@ SIGNALS: tuple[SignalDef, ...] = (
     SignalDef("coolant_mist", Direction.OUT, False, "iocontrol.0.coolant-mist", "mist coolant (M7)"),
     SignalDef("lube_pump", Direction.OUT, False, "iocontrol.0.lube",
               "the lube pump, on while the drives are on"),
-    SignalDef("work_light", Direction.OUT, False, "(output)", "the work light"),
+    SignalDef("work_light", Direction.OUT, False, "", "the work light"),
     SignalDef("spindle_enable", Direction.OUT, False, "spindle.0.on", "on while the spindle turns"),
 )
 _BY_NAME = {s.name: s for s in SIGNALS}

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from PySide6.QtCore import QTimer
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtWidgets import (
     QGridLayout,
     QHBoxLayout,
@@ -23,6 +23,7 @@ from app.controller_text import localize
 from app.format import format_duration, format_speed, tool_text
 from app.i18n import N_, tr
 from app.machine.model import RestartPreview, SpindleState
+from app.widgets.elided_label import ElidedLabel
 from app.widgets.override_control import OverrideControl
 from app.widgets.preview_plot import PreviewPlot, usable_planes
 from app.widgets.program_view import ProgramView
@@ -46,12 +47,13 @@ class AutoPage(QWidget):
         i18n = context.i18n
         layout = QHBoxLayout(self)
         left = QVBoxLayout()
-        self.program_label = QLabel()
+        self.program_label = ElidedLabel()
         self.program_label.setObjectName("programName")
         title = QHBoxLayout()
         self._title_row = title
         title.addWidget(self.program_label)
-        self.modal_label = QLabel()              # the modal codes in force at the current line
+        # the modal codes in force at the current line (cut at the end where the row is short)
+        self.modal_label = ElidedLabel(min_chars=4, mode=Qt.TextElideMode.ElideRight)
         self.modal_label.setObjectName("modalCodes")
         title.addWidget(self.modal_label, 1)
         left.addLayout(title)
@@ -125,7 +127,11 @@ class AutoPage(QWidget):
         self.run_from = QPushButton()
         i18n.bind(self.run_from, N_("Run from line…"))
         self.run_from.clicked.connect(self.run_from_line)
-        self._title_row.addWidget(self.run_from)   # beside the program: it starts at an editor line
+        # beside the program (it starts at an editor line), never narrower than its text in the
+        # language shown (a long program name is cut instead)
+        self._title_row.addWidget(self.run_from)
+        self._keep_run_from_whole()
+        i18n.languageChanged.connect(lambda _l: self._keep_run_from_whole())
         right.addLayout(grid)
 
         self.feed = OverrideControl("")
@@ -143,19 +149,21 @@ class AutoPage(QWidget):
         self.progress = QProgressBar()
         self.progress.setRange(0, 1000)
         self.progress.setTextVisible(False)
-        self.progress.setMinimumHeight(24)
+        self.progress.setFixedHeight(16)
         right.addWidget(self.progress)
         # the two labels below hold a few lines each, their heights fixed: a longer text (a
         # refusal, the end of a run) never moves the buttons above them
         self.info_label = QLabel()
         self.info_label.setObjectName("runInfo")
         self.info_label.setWordWrap(True)
+        self.info_label.ensurePolished()         # its font is the style sheet's
         self.info_label.setFixedHeight(self.info_label.fontMetrics().lineSpacing() * 3 + 4)
         right.addWidget(self.info_label)
         # what the machine does and is set to: spindle, feed, tool, the modal codes in force
         self.machine_label = QLabel()
         self.machine_label.setObjectName("machineInfo")
         self.machine_label.setWordWrap(True)
+        self.machine_label.ensurePolished()
         self.machine_label.setFixedHeight(self.machine_label.fontMetrics().lineSpacing() * 2 + 4)
         right.addWidget(self.machine_label)
         # what a program stop asks of the operator (tool change, M0), in words
@@ -283,6 +291,9 @@ class AutoPage(QWidget):
         frame = c.snapshot().frame
         way = np.asarray(path, float)
         self.backplot.set_approach(frame.to_program(way) if frame is not None else way)
+
+    def _keep_run_from_whole(self) -> None:
+        self.run_from.setMinimumWidth(self.run_from.sizeHint().width())
 
     def run_from_line(self) -> None:
         ctx = self.ctx

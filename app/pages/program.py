@@ -17,6 +17,7 @@ from app.i18n import N_, tr
 from app.machine.model import ProgramIssue
 from app.program_checker import ProgramChecker
 from app.widgets.code_editor import CodeEditor
+from app.widgets.elided_label import ElidedLabel
 from app.widgets.find_bar import FindBar
 from app.widgets.keyboard import OnScreenKeyboard
 from app.widgets.program_view import ProgramView
@@ -57,7 +58,7 @@ class ProgramPage(QWidget):
         self.buttons["keyboard"].setCheckable(True)
         self.buttons["load"].setObjectName("cycleStart")
         layout.addLayout(bar)
-        self.title = QLabel()
+        self.title = ElidedLabel()
         self.title.setObjectName("programName")
         title_row = QHBoxLayout()
         title_row.addWidget(self.title, 1)

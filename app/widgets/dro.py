@@ -76,6 +76,7 @@ class DroWidget(QWidget):
         self._to_go: tuple[float, ...] = ()
         if i18n is not None:
             i18n.languageChanged.connect(lambda _l: self._second_title())
+            i18n.languageChanged.connect(lambda _l: self.set_frame(self._frame))   # said anew
         self._second_title()
         self.work_labels: list[QLabel] = []
         self.machine_labels: list[QLabel] = []

@@ -6,9 +6,11 @@ as with a real keyboard. Buttons never take focus away from the target.
 
 from __future__ import annotations
 
-from PySide6.QtCore import QCoreApplication, Qt
+from PySide6.QtCore import QCoreApplication, QEvent, Qt
 from PySide6.QtGui import QKeyEvent
 from PySide6.QtWidgets import QGridLayout, QPushButton, QSizePolicy, QWidget
+
+from app.i18n import N_, tr
 
 ROWS: tuple[tuple[str, ...], ...] = (
     ("1", "2", "3", "4", "5", "6", "7", "8", "9", "0", "-", ".", "⌫"),
@@ -23,6 +25,8 @@ SPECIAL: dict[str, tuple[int, str]] = {
     "Space": (Qt.Key.Key_Space, " "),
     "Enter": (Qt.Key.Key_Return, "\r"),
 }
+#: the keys named in words, in the panel's language
+KEY_TEXT = {"Space": N_("Space"), "Enter": N_("Enter")}
 
 
 class OnScreenKeyboard(QWidget):
@@ -40,7 +44,7 @@ class OnScreenKeyboard(QWidget):
         self.buttons: dict[str, QPushButton] = {}
         for r, row in enumerate(ROWS):
             for c, key in enumerate(row):
-                button = QPushButton(key)
+                button = QPushButton(tr(KEY_TEXT[key]) if key in KEY_TEXT else key)
                 button.setFocusPolicy(Qt.FocusPolicy.NoFocus)
                 button.setMinimumSize(48, 48)
                 button.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
@@ -48,6 +52,12 @@ class OnScreenKeyboard(QWidget):
                 button.clicked.connect(lambda _=False, k=key: self.press(k))
                 grid.addWidget(button, r, c)
                 self.buttons[key] = button
+
+    def changeEvent(self, event: QEvent) -> None:  # noqa: N802 - Qt override
+        if event.type() == QEvent.Type.LanguageChange:
+            for key, text in KEY_TEXT.items():
+                self.buttons[key].setText(tr(text))
+        super().changeEvent(event)
 
     def set_target(self, widget: QWidget | None) -> None:
         self._target = widget

@@ -153,6 +153,10 @@ class ProbingPanel(QWidget):
         self.status = QLabel()
         self.status.setWordWrap(True)
         self.status.setObjectName("probingStatus")
+        # three lines, fixed: a shorter or longer reason never moves the buttons around it (the
+        # whole text in the tooltip)
+        self.status.ensurePolished()
+        self.status.setFixedHeight(self.status.fontMetrics().lineSpacing() * 3 + 4)
         right.addWidget(self.status)
         self.run_button = QPushButton()
         self.run_button.setObjectName("probingRun")
@@ -275,15 +279,20 @@ class ProbingPanel(QWidget):
         self._show_status()
 
     def _show_status(self) -> None:
+        self._set_status(self._status_text())
+
+    def _set_status(self, text: str) -> None:
+        self.status.setText(text)
+        self.status.setToolTip(text)
+
+    def _status_text(self) -> str:
         if self._why:
-            self.status.setText(tr("Cannot run: {0}").format(self._why))
+            return tr("Cannot run: {0}").format(self._why)
         else:
             target = self.request().system
             if target:
-                text = tr("The moves drawn run when you press Run; the result goes to {0}.").format(target)
-            else:
-                text = tr("The moves drawn run when you press Run; the result is only reported.")
-            self.status.setText(text)
+                return tr("The moves drawn run when you press Run; the result goes to {0}.").format(target)
+            return tr("The moves drawn run when you press Run; the result is only reported.")
 
     def run(self) -> None:
         req = self.request()
@@ -308,7 +317,7 @@ class RoutinePreview(QWidget):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setObjectName("routinePreview")
-        self.setMinimumSize(200, 120)
+        self.setMinimumSize(200, 80)          # it gives the status its three lines at 800 px
         self.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
         self.points: np.ndarray = np.zeros((0, 3))
         self.probe_moves: set[int] = set()

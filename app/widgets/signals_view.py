@@ -8,6 +8,7 @@ from __future__ import annotations
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QTableWidget, QTableWidgetItem, QVBoxLayout, QWidget
 
+from app.controller_text import localize
 from app.i18n import N_, I18n, tr
 from app.machine.model import SignalReading
 
@@ -46,11 +47,12 @@ class SignalsView(QWidget):
             now = tr("unknown") if r.value is None else tr("on") if r.value else tr("off")
             healthy = r.key in HEALTHY_TRUE
             odd = r.direction == "in" and r.value is not None and r.value != healthy
-            values = (r.key, tr(DIRECTION_TEXT.get(r.direction, r.direction)), r.where, now, r.hal)
+            values = (r.key, tr(DIRECTION_TEXT.get(r.direction, r.direction)), localize(r.where), now,
+                      r.hal or "—")
             for col, text in enumerate(values):
                 item = QTableWidgetItem(text)
                 if odd:
                     item.setBackground(QColor("#7a3b1d"))
-                item.setToolTip(r.meaning)
+                item.setToolTip(localize(r.meaning))
                 self.table.setItem(row, col, item)
         self.table.resizeColumnsToContents()

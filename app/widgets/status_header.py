@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from PySide6.QtCore import Qt, QTimer
-from PySide6.QtGui import QResizeEvent
+from PySide6.QtGui import QFont, QFontMetrics, QResizeEvent
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QSizePolicy, QVBoxLayout, QWidget
 
 from app.context import PanelContext
@@ -79,6 +79,11 @@ class StatusHeader(QWidget):
         self.state_label.setObjectName("machineState")
         self.state_label.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self.state_label.setFixedWidth(240)     # as the tool's: a long state never moves the header
+        # and as high as its larger font's line: a long state (in 16 px) never shrinks the header
+        big = QFont(self.state_label.font())
+        big.setPixelSize(22)
+        big.setWeight(QFont.Weight.ExtraBold)
+        self.state_label.setFixedHeight(QFontMetrics(big).height() + 12)      # the 6 px padding
         self.bus_label = QPushButton()  # tap: connect / disconnect the drives (confirmed)
         self.bus_label.setObjectName("busState")
         self.bus_label.clicked.connect(self._bus_clicked)
@@ -192,6 +197,18 @@ class StatusHeader(QWidget):
         self.safety_text, self._safety_bad = closed.get((chain, door), ""), False
 
     # --- display -------------------------------------------------------------------------
+    def _state_font_px(self, text: str) -> int:
+        """The largest of the state label's font sizes that shows ``text`` whole in one line of
+        its 240 px (its padding aside): "Held by feed override 0 %" needs 16 px, in Turkish 14."""
+        font = QFont(self.state_label.font())
+        font.setWeight(QFont.Weight.ExtraBold)
+        room = self.state_label.width() - 12
+        for px in (22, 18, 16, 15, 14, 13, 12):
+            font.setPixelSize(px)
+            if QFontMetrics(font).horizontalAdvance(text) <= room:
+                return px
+        return 11
+
     def _state_value(self) -> str:
         return str(getattr(self._state, "value", self._state))
 
@@ -210,7 +227,7 @@ class StatusHeader(QWidget):
             said = localize(reason)                 # what runs, named: "Measuring tool T1"
             text = said[:1].upper() + said[1:]
         self.state_label.setText(text)
-        size = 22 if len(text) <= 16 else 16       # "Measuring tool T1" in one line of the label
+        size = self._state_font_px(text)
         self.state_label.setStyleSheet(
             f"background: {STATE_COLOR.get(value, '#26303b')}; color: white; font-size: {size}px;"
             "font-weight: 800; padding: 6px; border-radius: 6px;")
