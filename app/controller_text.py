@@ -111,6 +111,11 @@ TEMPLATES: tuple[str, ...] = (
     N_("timeout"), N_("no index pulse within the search travel"),
     N_("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data for the index"),
     N_("homing {0}"),
+    # the homing steps as Machine zero shows them ("homing Z searching the switch")
+    N_("{0} moving off the switch"), N_("{0} searching the switch"), N_("{0} backing off the switch"),
+    N_("{0} latching the switch edge"), N_("{0} searching the index pulse"), N_("{0} at the switch"),
+    # lists, causes and places: each part said in the panel's language
+    N_("{0}, {1}"), N_("{0}: {1}"), N_("{0} ({1})"),
     # where a signal is wired (the Signals tab)
     N_("{0} (slave {1}) channel {2}"), N_("drive {0} (slave {1}) {2} bit {3}"), N_("{0}, normally closed"),
     N_("{0} lost ({1} reads false)"),
@@ -224,11 +229,14 @@ def _say(text: str, reading: _Reading) -> str:
         return text
     pattern, template, _ = _compiled()[index]
     translated = tr(template)
-    if translated == template:
-        return text                      # English, or no translation: the original sentence
     m = pattern.match(text)
     assert m is not None
-    return translated.format(*(_say(v, r) for v, r in zip(m.groups(), values, strict=True)))
+    said = [_say(v, r) for v, r in zip(m.groups(), values, strict=True)]
+    if translated == template and said == list(m.groups()):
+        return text                      # English, or no translation: the original sentence
+    # a template that reads the same in both languages ("{0}, {1}") still says its values in
+    # the panel's language
+    return translated.format(*said)
 
 
 def localize(text: str) -> str:

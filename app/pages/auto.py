@@ -432,7 +432,7 @@ class AutoPage(QWidget):
             self.progress.setValue(1000)
         else:
             self._finished = tr("Program stopped at line {0}: {1}").format(
-                int(getattr(summary, "last_line", 0)), str(getattr(summary, "reason", "")))
+                int(getattr(summary, "last_line", 0)), localize(str(getattr(summary, "reason", ""))))
         self._update_info()
 
     def _on_errors(self, _issues: object) -> None:

@@ -439,7 +439,7 @@
       <translation>Acil stop</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="250" />
+      <location filename="../../app/controller_text.py" line="258" />
       <source>E-stop chain</source>
       <translation>Acil stop devresi</translation>
     </message>
@@ -479,7 +479,7 @@
       <translation>Acil stop: tüm eksenler hızlı durduruldu ({0})</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="150" />
+      <location filename="../../app/controller_text.py" line="155" />
       <source>E-stop: {0}</source>
       <translation>Acil stop: {0}</translation>
     </message>
@@ -1026,7 +1026,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>M0 çalışan bir programı duraklatır; bir MDI bloğunun duraklatacağı bir şey yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="165" />
+      <location filename="../../app/controller_text.py" line="170" />
       <source>M06: the spindle stops for the tool change</source>
       <translation>M06: takım değişimi için iş mili durur</translation>
     </message>
@@ -1066,7 +1066,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>M66 ({0}. satır): P{1} girişi bu makinede yok ([[inputs]])</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="141" />
+      <location filename="../../app/controller_text.py" line="146" />
       <source>M66 (line {0}): input P{1} timed out after {2} s: #5399 = -1</source>
       <translation>M66 (satır {0}): P{1} girişi {2} s sonra zaman aşımına uğradı: #5399 = -1</translation>
     </message>
@@ -1326,7 +1326,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Tamam</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="248" />
+      <location filename="../../app/controller_text.py" line="256" />
       <source>OPC UA</source>
       <translation>OPC UA</translation>
     </message>
@@ -2128,7 +2128,7 @@ BIRAK</translation>
       <translation>T{0} iş milinde: önce başka bir takım seçin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="143" />
+      <location filename="../../app/controller_text.py" line="148" />
       <source>T{0} is not in the spindle: put it in and set it (In the spindle) first</source>
       <translation>T{0} iş milinde değil: önce takın ve ayarlayın (İş milinde)</translation>
     </message>
@@ -2138,12 +2138,12 @@ BIRAK</translation>
       <translation>T{0} takım tablosunda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="162" />
+      <location filename="../../app/controller_text.py" line="167" />
       <source>T{0} length {1} mm is longer than the Z travel ({2} mm): check the value and the surface it was touched off on</source>
       <translation>T{0} boyu {1} mm, Z hareket aralığından ({2} mm) uzun: değeri ve dokundurulduğu yüzeyi kontrol edin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="142" />
+      <location filename="../../app/controller_text.py" line="147" />
       <source>T{0} measured on the tool setter: length {1} mm</source>
       <translation>T{0} takım ayarlayıcıda ölçüldü: boy {1} mm</translation>
     </message>
@@ -2278,19 +2278,19 @@ BIRAK</translation>
       <translation>L = {0} dereceli bir NURBS, başlangıç dahil en az {1} kontrol noktası ister; {2} tane var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="173" />
+      <location filename="../../app/controller_text.py" line="178" />
       <source>a bore</source>
       <translation>bir delik</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="174" />
+      <location filename="../../app/controller_text.py" line="179" />
       <source>a boss</source>
       <translation>bir çıkıntı</translation>
     </message>
     <message>
       <location filename="../../app/controller_text.py" line="110" />
       <source>a limit switch tripped</source>
-      <translation>bir limit şalteri tetiklendi</translation>
+      <translation>bir sınır anahtarı tetiklendi</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="268" />
@@ -2298,7 +2298,7 @@ BIRAK</translation>
       <translation>makine yapılandırması</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="138" />
+      <location filename="../../app/controller_text.py" line="143" />
       <source>a probe move ended without the probe armed: the program stops here</source>
       <translation>bir prob hareketi prob kurulmadan bitti: program burada durur</translation>
     </message>
@@ -2343,7 +2343,7 @@ BIRAK</translation>
       <translation>etkin</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="251" />
+      <location filename="../../app/controller_text.py" line="259" />
       <source>air</source>
       <translation>hava</translation>
     </message>
@@ -2363,17 +2363,17 @@ BIRAK</translation>
       <translation>zaten bağlı (makine {0} durumunda)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="173" />
+      <location filename="../../app/controller_text.py" line="178" />
       <source>an edge</source>
       <translation>bir kenar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="173" />
+      <location filename="../../app/controller_text.py" line="178" />
       <source>an inside corner</source>
       <translation>bir iç köşe</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="173" />
+      <location filename="../../app/controller_text.py" line="178" />
       <source>an outside corner</source>
       <translation>bir dış köşe</translation>
     </message>
@@ -2403,7 +2403,7 @@ BIRAK</translation>
       <translation>yaklaşma hareketi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="153" />
+      <location filename="../../app/controller_text.py" line="158" />
       <source>arc extreme</source>
       <translation>yayın uç noktası</translation>
     </message>
@@ -2528,7 +2528,7 @@ BIRAK</translation>
       <translation>{0} ekseni pozitif sınır anahtarında: tüm eksenler hızlı durduruldu; anahtardan çıkarmak için sınırları geçersiz kılın (- yönüne)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="152" />
+      <location filename="../../app/controller_text.py" line="157" />
       <source>axis {0} reaches {1} ({2}), beyond its soft limit {3} {4}</source>
       <translation>{0} ekseni {1} değerine ulaşıyor ({2}), yazılım sınırının ötesinde: {3} {4}</translation>
     </message>
@@ -2540,7 +2540,7 @@ BIRAK</translation>
     <message>
       <location filename="../../app/controller_text.py" line="109" />
       <source>back off</source>
-      <translation>şalterden geri çekilme</translation>
+      <translation>anahtardan geri çekilme</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="52" />
@@ -2553,7 +2553,7 @@ BIRAK</translation>
       <translation>blok atlama programın hangi satırlara sahip olduğunu değiştirir: çevrim başlatmadan önce değiştirin, çalışırken değil</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="245" />
+      <location filename="../../app/controller_text.py" line="253" />
       <source>bus</source>
       <translation>veri yolu</translation>
     </message>
@@ -2753,7 +2753,7 @@ BIRAK</translation>
       <translation>saat yönünde</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="179" />
+      <location filename="../../app/controller_text.py" line="184" />
       <source>column {0}: {1}</source>
       <translation>sütun {0}: {1}</translation>
     </message>
@@ -2763,7 +2763,7 @@ BIRAK</translation>
       <translation>tamamlandı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="246" />
+      <location filename="../../app/controller_text.py" line="254" />
       <source>configuration</source>
       <translation>yapılandırma</translation>
     </message>
@@ -2773,12 +2773,12 @@ BIRAK</translation>
       <translation>bağlı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="246" />
+      <location filename="../../app/controller_text.py" line="254" />
       <source>controller</source>
       <translation>denetleyici</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="250" />
+      <location filename="../../app/controller_text.py" line="258" />
       <source>coolant</source>
       <translation>soğutma sıvısı</translation>
     </message>
@@ -2833,7 +2833,7 @@ BIRAK</translation>
       <translation>bağlı değil</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="250" />
+      <location filename="../../app/controller_text.py" line="258" />
       <source>door</source>
       <translation>kapı</translation>
     </message>
@@ -2853,12 +2853,12 @@ BIRAK</translation>
       <translation>sürücü referanslama yöntemi {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="257" />
+      <location filename="../../app/controller_text.py" line="265" />
       <source>drive {0}</source>
       <translation>sürücü {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="115" />
+      <location filename="../../app/controller_text.py" line="120" />
       <source>drive {0} (slave {1}) {2} bit {3}</source>
       <translation>{0} sürücüsü (bağımlı {1}) {2} bit {3}</translation>
     </message>
@@ -2898,7 +2898,7 @@ BIRAK</translation>
       <translation>etkinleştiriliyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="153" />
+      <location filename="../../app/controller_text.py" line="158" />
       <source>end point</source>
       <translation>bitiş noktası</translation>
     </message>
@@ -2933,7 +2933,7 @@ BIRAK</translation>
       <translation>ilerleme durduruldu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="164" />
+      <location filename="../../app/controller_text.py" line="169" />
       <source>feed move with the spindle stopped: the M6 at line {0} stopped it and no M3/M4 started it again</source>
       <translation>iş mili dururken ilerleme hareketi: {0}. satırdaki M6 onu durdurdu ve hiçbir M3/M4 yeniden başlatmadı</translation>
     </message>
@@ -3033,7 +3033,7 @@ BIRAK</translation>
       <translation>bilgi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="249" />
+      <location filename="../../app/controller_text.py" line="257" />
       <source>input</source>
       <translation>giriş</translation>
     </message>
@@ -3043,7 +3043,7 @@ BIRAK</translation>
       <translation>{0} girişi programda yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="154" />
+      <location filename="../../app/controller_text.py" line="159" />
       <source>interrupted at line {0}: the control stopped (power loss or killed)</source>
       <translation>{0}. satırda kesildi: kontrol durdu (elektrik kesintisi veya sonlandırma)</translation>
     </message>
@@ -3073,7 +3073,7 @@ BIRAK</translation>
       <translation>anahtar kenarı yakalanıyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="139" />
+      <location filename="../../app/controller_text.py" line="144" />
       <source>line {0} comes after the probe at line {1}: what follows depends on what it read; run from line {1} (or before) to read it again</source>
       <translation>satır {0}, satır {1}'deki probdan sonra geliyor: devamı onun okuduğuna bağlı; yeniden okumak için satır {1}'den (veya öncesinden) çalıştırın</translation>
     </message>
@@ -3108,7 +3108,7 @@ BIRAK</translation>
       <translation>yağ seviyesi veya basıncı var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="251" />
+      <location filename="../../app/controller_text.py" line="259" />
       <source>lubrication</source>
       <translation>yağlama</translation>
     </message>
@@ -3123,7 +3123,7 @@ BIRAK</translation>
       <translation>makine iş ofseti {0}, {2} eksen için {1} değer içeriyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="153" />
+      <location filename="../../app/controller_text.py" line="158" />
       <source>max</source>
       <translation>üst</translation>
     </message>
@@ -3138,12 +3138,12 @@ BIRAK</translation>
       <translation>takım ayarlayıcıda ölçüm X, Y ve Z eksenlerini ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="137" />
+      <location filename="../../app/controller_text.py" line="142" />
       <source>measuring tool T{0}</source>
       <translation>T{0} takımı ölçülüyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="153" />
+      <location filename="../../app/controller_text.py" line="158" />
       <source>min</source>
       <translation>alt</translation>
     </message>
@@ -3238,7 +3238,7 @@ BIRAK</translation>
       <translation>yüklü program yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="146" />
+      <location filename="../../app/controller_text.py" line="151" />
       <source>no program stopped part-way</source>
       <translation>yarıda durmuş bir program yok</translation>
     </message>
@@ -3305,7 +3305,7 @@ BIRAK</translation>
     <message>
       <location filename="../../app/controller_text.py" line="109" />
       <source>off switch</source>
-      <translation>şalterden çıkma</translation>
+      <translation>anahtardan çıkma</translation>
     </message>
     <message>
       <location filename="../../app/widgets/signals_view.py" line="47" />
@@ -3323,7 +3323,7 @@ BIRAK</translation>
       <translation>yalnızca benzetimli bir makinenin girişleri ayarlanabilir</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="246" />
+      <location filename="../../app/controller_text.py" line="254" />
       <source>operator</source>
       <translation>operatör</translation>
     </message>
@@ -3348,7 +3348,7 @@ BIRAK</translation>
       <translation>{0} çıkışı kapatılamadı: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="249" />
+      <location filename="../../app/controller_text.py" line="257" />
       <source>outputs</source>
       <translation>çıkışlar</translation>
     </message>
@@ -3403,12 +3403,12 @@ BIRAK</translation>
       <translation>o{0} {1} köşeli parantez içinde bir koşul ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="153" />
+      <location filename="../../app/controller_text.py" line="158" />
       <source>path</source>
       <translation>yol</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="245" />
+      <location filename="../../app/controller_text.py" line="253" />
       <source>planner</source>
       <translation>planlayıcı</translation>
     </message>
@@ -3433,12 +3433,12 @@ BIRAK</translation>
       <translation>kutupsal koordinatlar (@ ^) yalnızca XY düzleminde (G17)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="149" />
+      <location filename="../../app/controller_text.py" line="154" />
       <source>power loss or killed</source>
       <translation>elektrik kesintisi veya sonlandırma</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="247" />
+      <location filename="../../app/controller_text.py" line="255" />
       <source>probe</source>
       <translation>prob</translation>
     </message>
@@ -3448,17 +3448,17 @@ BIRAK</translation>
       <translation>{0} prob sonucunda {1} eksen için konum var, makinede {2} eksen var</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="170" />
+      <location filename="../../app/controller_text.py" line="175" />
       <source>probe touched during positioning</source>
       <translation>konumlanma sırasında prob temas etti</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="172" />
+      <location filename="../../app/controller_text.py" line="177" />
       <source>probed (machine): {0} (only reported)</source>
       <translation>problandı (makine): {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="171" />
+      <location filename="../../app/controller_text.py" line="176" />
       <source>probed (machine): {0}, written to {1}</source>
       <translation>problandı (makine): {0}, {1} sistemine yazıldı</translation>
     </message>
@@ -3468,17 +3468,17 @@ BIRAK</translation>
       <translation>bir parçayı problamak X, Y ve Z eksenlerini ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="171" />
+      <location filename="../../app/controller_text.py" line="176" />
       <source>probing {0}</source>
       <translation>prob ölçümü: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="167" />
+      <location filename="../../app/controller_text.py" line="172" />
       <source>probing {0}: {1}</source>
       <translation>prob ölçümü: {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="248" />
+      <location filename="../../app/controller_text.py" line="256" />
       <source>program</source>
       <translation>program</translation>
     </message>
@@ -3518,7 +3518,7 @@ BIRAK</translation>
       <translation>program başlamadan önce gerekli</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="148" />
+      <location filename="../../app/controller_text.py" line="153" />
       <source>reset</source>
       <translation>sıfırlama</translation>
     </message>
@@ -3538,7 +3538,7 @@ BIRAK</translation>
       <translation>dev/dk</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="147" />
+      <location filename="../../app/controller_text.py" line="152" />
       <source>run from line {0}</source>
       <translation>{0}. satırdan çalıştırma</translation>
     </message>
@@ -3603,7 +3603,7 @@ BIRAK</translation>
       <translation>hız 0-{0} dev/dak olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="248" />
+      <location filename="../../app/controller_text.py" line="256" />
       <source>spindle</source>
       <translation>iş mili</translation>
     </message>
@@ -3678,7 +3678,7 @@ BIRAK</translation>
       <translation>başlıyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="247" />
+      <location filename="../../app/controller_text.py" line="255" />
       <source>state folder</source>
       <translation>durum klasörü</translation>
     </message>
@@ -3728,22 +3728,22 @@ BIRAK</translation>
       <translation>acil stop devresi açık: önce acil stop düğmelerini bırakın ve güvenlik devresini kapatın</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="173" />
+      <location filename="../../app/controller_text.py" line="178" />
       <source>the Z surface</source>
       <translation>Z yüzeyi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="174" />
+      <location filename="../../app/controller_text.py" line="179" />
       <source>the angle of a face</source>
       <translation>bir yüzün açısı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="168" />
+      <location filename="../../app/controller_text.py" line="173" />
       <source>the bore measures {0} mm across, not {1} mm within {2} mm: nothing written</source>
       <translation>delik çapı {0} mm ölçüldü, {2} mm içinde {1} mm değil: hiçbir şey yazılmadı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="169" />
+      <location filename="../../app/controller_text.py" line="174" />
       <source>the boss measures {0} mm across, not {1} mm within {2} mm: nothing written</source>
       <translation>pim çapı {0} mm ölçüldü, {2} mm içinde {1} mm değil: hiçbir şey yazılmadı</translation>
     </message>
@@ -3823,7 +3823,7 @@ BIRAK</translation>
       <translation>sürücülerde mutlak enkoder var: referans bilgisi korundu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="133" />
+      <location filename="../../app/controller_text.py" line="138" />
       <source>the fast probe down to the setter</source>
       <translation>takım ölçere hızlı prob inişi</translation>
     </message>
@@ -3835,7 +3835,7 @@ BIRAK</translation>
     <message>
       <location filename="../../app/message_text.py" line="127" />
       <source>the home switch</source>
-      <translation>referans şalteri</translation>
+      <translation>referans anahtarı</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="128" />
@@ -3878,7 +3878,7 @@ BIRAK</translation>
       <translation>makinenin Dur düğmesi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="136" />
+      <location filename="../../app/controller_text.py" line="141" />
       <source>the move back up</source>
       <translation>yukarı geri dönüş</translation>
     </message>
@@ -3888,7 +3888,7 @@ BIRAK</translation>
       <translation>kesici telafisi kapatıldıktan (G40) hemen sonraki hareket yay değil, doğru olmalı</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="132" />
+      <location filename="../../app/controller_text.py" line="137" />
       <source>the move over the tool setter</source>
       <translation>takım ölçerin üzerine gidiş</translation>
     </message>
@@ -3898,24 +3898,24 @@ BIRAK</translation>
       <translation>referans konumuna hareket reddedildi: {0}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="134" />
+      <location filename="../../app/controller_text.py" line="139" />
       <source>the move up from the first contact</source>
       <translation>ilk temastan yukarı çıkış</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="131" />
+      <location filename="../../app/controller_text.py" line="136" />
       <source>the move up to the clearance height</source>
       <translation>emniyet yüksekliğine çıkış</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="135" />
       <source>the negative limit switch</source>
-      <translation>negatif limit şalteri</translation>
+      <translation>negatif sınır anahtarı</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="136" />
       <source>the positive limit switch</source>
-      <translation>pozitif limit şalteri</translation>
+      <translation>pozitif sınır anahtarı</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="352" />
@@ -3933,7 +3933,7 @@ BIRAK</translation>
       <translation>program bu NURBS (G05.2) bitirilmeden sona eriyor: çalıştırmak için G05.3 programlayın</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="145" />
+      <location filename="../../app/controller_text.py" line="150" />
       <source>the program stopped at line {0}: resume there or start it again from the beginning (choose one)</source>
       <translation>program {0}. satırda durdu: oradan devam edin ya da baştan başlatın (birini seçin)</translation>
     </message>
@@ -3968,7 +3968,7 @@ BIRAK</translation>
       <translation>referans noktaları {0} sonrasında tükendi (kontrolün işlemi geride kaldı): eksenler yol boyunca sınırları içinde frenlenerek durdu</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="135" />
+      <location filename="../../app/controller_text.py" line="140" />
       <source>the slow probe down to the setter</source>
       <translation>takım ölçere yavaş prob inişi</translation>
     </message>
@@ -4005,15 +4005,15 @@ BIRAK</translation>
     <message>
       <location filename="../../app/controller_text.py" line="110" />
       <source>the switch did not change within the search travel</source>
-      <translation>şalter arama mesafesi içinde değişmedi</translation>
+      <translation>anahtar arama mesafesi içinde değişmedi</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="177" />
+      <location filename="../../app/controller_text.py" line="182" />
       <source>the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again</source>
       <translation>{0} parçalık hedefe ulaşıldı: yeniden çalıştırmak için parça sayacını sıfırlayın (ya da hedefi yükseltin)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="155" />
+      <location filename="../../app/controller_text.py" line="160" />
       <source>the tool length offset in force changed since it was loaded</source>
       <translation>yüklendiğinden beri geçerli takım boy ofseti değişti</translation>
     </message>
@@ -4118,12 +4118,12 @@ BIRAK</translation>
       <translation>tool_offset {0}: G43, G43.1, G43.2 ya da G49 ve {1} değer</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="247" />
+      <location filename="../../app/controller_text.py" line="255" />
       <source>tools</source>
       <translation>takımlar</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="160" />
+      <location filename="../../app/controller_text.py" line="165" />
       <source>touch off {0}: not a number</source>
       <translation>{0} sıfırlama: sayı değil</translation>
     </message>
@@ -4183,7 +4183,7 @@ BIRAK</translation>
       <translation>{0} kelimesi desteklenmiyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="245" />
+      <location filename="../../app/controller_text.py" line="253" />
       <source>worker</source>
       <translation>çevrim işçisi</translation>
     </message>
@@ -4208,62 +4208,67 @@ BIRAK</translation>
       <translation>{0} (denetleniyor…)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="119" />
+      <location filename="../../app/controller_text.py" line="124" />
       <source>{0} (line {1}): contact at {2} (machine)</source>
       <translation>{0} (satır {1}): temas {2} konumunda (makine)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="120" />
+      <location filename="../../app/controller_text.py" line="125" />
       <source>{0} (line {1}): contact lost at {2} (machine)</source>
       <translation>{0} (satır {1}): temas {2} konumunda kesildi (makine)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="121" />
+      <location filename="../../app/controller_text.py" line="126" />
       <source>{0} (line {1}): no contact</source>
       <translation>{0} (satır {1}): temas yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="123" />
+      <location filename="../../app/controller_text.py" line="128" />
       <source>{0} (line {1}): the probe already touches where the move starts</source>
       <translation>{0} (satır {1}): prob, hareketin başladığı yerde zaten temas ediyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="122" />
+      <location filename="../../app/controller_text.py" line="127" />
       <source>{0} (line {1}): the probe move ended without contact</source>
       <translation>{0} (satır {1}): prob hareketi temas olmadan bitti</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="124" />
+      <location filename="../../app/controller_text.py" line="129" />
       <source>{0} (line {1}): with the result, {2}</source>
       <translation>{0} (satır {1}): sonuçla birlikte, {2}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="115" />
+      <location filename="../../app/controller_text.py" line="120" />
       <source>{0} (slave {1}) channel {2}</source>
       <translation>{0} (bağımlı {1}) kanal {2}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="126" />
+      <location filename="../../app/controller_text.py" line="118" />
+      <source>{0} ({1})</source>
+      <translation>{0} ({1})</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="131" />
       <source>{0} ({1}): contact at {2} (machine)</source>
       <translation>{0} ({1}): temas {2} konumunda (makine)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="127" />
+      <location filename="../../app/controller_text.py" line="132" />
       <source>{0} ({1}): no contact</source>
       <translation>{0} ({1}): temas yok</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="129" />
+      <location filename="../../app/controller_text.py" line="134" />
       <source>{0} ({1}): the probe already touches where the move starts</source>
       <translation>{0} ({1}): prob, hareketin başladığı yerde zaten temas ediyor</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="128" />
+      <location filename="../../app/controller_text.py" line="133" />
       <source>{0} ({1}): the probe move ended without contact</source>
       <translation>{0} ({1}): prob hareketi temas olmadan bitti</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="130" />
+      <location filename="../../app/controller_text.py" line="135" />
       <source>{0} ({1}): with the result, {2}</source>
       <translation>{0} ({1}): sonuçla birlikte, {2}</translation>
     </message>
@@ -4296,6 +4301,16 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="377" />
       <source>{0} and {1} are in the same modal group (one per block)</source>
       <translation>{0} ve {1} aynı kip grubunda (blok başına bir tane)</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="116" />
+      <source>{0} at the switch</source>
+      <translation>{0} anahtarda</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="115" />
+      <source>{0} backing off the switch</source>
+      <translation>{0} anahtardan geri çekiliyor</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="378" />
@@ -4398,17 +4413,22 @@ BIRAK</translation>
       <translation>{0} desteklenmiyor ({1})</translation>
     </message>
     <message>
+      <location filename="../../app/controller_text.py" line="116" />
+      <source>{0} latching the switch edge</source>
+      <translation>{0} anahtar kenarı yakalanıyor</translation>
+    </message>
+    <message>
       <location filename="../../app/pages/program.py" line="149" />
       <source>{0} lines: shown read-only (edit programs of over {1} lines in CAM or on a PC)</source>
       <translation>{0} satır: yalnızca okunur gösteriliyor ({1} satırdan uzun programları CAM'de ya da bir bilgisayarda düzenleyin)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="116" />
+      <location filename="../../app/controller_text.py" line="121" />
       <source>{0} lost ({1} reads false)</source>
       <translation>{0} kayboldu ({1} yanlış okuyor)</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="117" />
+      <location filename="../../app/controller_text.py" line="122" />
       <source>{0} lost ({1} reads false): the motion stops</source>
       <translation>{0} kayboldu ({1} yanlış okuyor): hareket duruyor</translation>
     </message>
@@ -4416,6 +4436,11 @@ BIRAK</translation>
       <location filename="../../app/controller_text.py" line="89" />
       <source>{0} lost: not answering process data; trying to recover it when it comes back</source>
       <translation>{0} kayboldu: süreç verisine yanıt vermiyor; geri geldiğinde kurtarılmaya çalışılacak</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="115" />
+      <source>{0} moving off the switch</source>
+      <translation>{0} anahtardan çıkıyor</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="391" />
@@ -4468,7 +4493,7 @@ BIRAK</translation>
       <translation>{0}, {1} değer ister</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="176" />
+      <location filename="../../app/controller_text.py" line="181" />
       <source>{0} part(s) made: the target of {1} is reached</source>
       <translation>{0} parça yapıldı: {1} hedefine ulaşıldı</translation>
     </message>
@@ -4486,6 +4511,16 @@ BIRAK</translation>
       <location filename="../../app/message_text.py" line="157" />
       <source>{0} rotation: not a number</source>
       <translation>{0} döndürme: sayı değil</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="116" />
+      <source>{0} searching the index pulse</source>
+      <translation>{0} indeks darbesini arıyor</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="115" />
+      <source>{0} searching the switch</source>
+      <translation>{0} anahtar aranıyor</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="401" />
@@ -4533,19 +4568,24 @@ BIRAK</translation>
       <translation>{0} {1} ({2}, {3}): {4}</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="157" />
+      <location filename="../../app/controller_text.py" line="162" />
       <source>{0} {1} zero would be at machine {2} with the tool length offset in force, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı, geçerli takım boy ofsetiyle makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="159" />
+      <location filename="../../app/controller_text.py" line="164" />
       <source>{0} {1} zero would be at machine {2}, outside the travel {3} .. {4} {5}</source>
       <translation>{0} {1} sıfırı makinede {2} konumunda olurdu, {3} .. {4} {5} hareket aralığının dışında</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="115" />
+      <location filename="../../app/controller_text.py" line="120" />
       <source>{0}, normally closed</source>
       <translation>{0}, normalde kapalı</translation>
+    </message>
+    <message>
+      <location filename="../../app/controller_text.py" line="118" />
+      <source>{0}, {1}</source>
+      <translation>{0}, {1}</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="406" />
@@ -4613,7 +4653,7 @@ BIRAK</translation>
       <translation>{0}: UTF-8 değil ve bir boru Latin-1 olarak yeniden okunamaz</translation>
     </message>
     <message>
-      <location filename="../../app/controller_text.py" line="161" />
+      <location filename="../../app/controller_text.py" line="166" />
       <source>{0}: not a number</source>
       <translation>{0}: sayı değil</translation>
     </message>
@@ -4693,7 +4733,7 @@ BIRAK</translation>
       <translation>{0}: sonuçla birlikte {1} dosyasının {2}. satırı şöyle okunuyor: {3}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/auto.py" line="521" />
+      <location filename="../../app/controller_text.py" line="118" />
       <source>{0}: {1}</source>
       <translation>{0}: {1}</translation>
     </message>

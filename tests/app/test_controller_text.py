@@ -37,7 +37,8 @@ def test_every_template_is_translated_with_its_values(turkish, template: str) ->
     english, values = _sample(template)
     turkish_text = localize(english)
     assert turkish_text == tr(template).format(*values)
-    assert turkish_text != english or template in ("alarm",)   # "alarm" is the same word
+    # "alarm" is the same word; the joiners read the same and say their parts in Turkish
+    assert turkish_text != english or template in ("alarm", "{0}, {1}", "{0}: {1}", "{0} ({1})")
     for v in values:
         assert v in turkish_text
 
@@ -54,6 +55,17 @@ def test_values_that_are_sentences_are_translated_too(turkish) -> None:
     assert localize("the machine moved since it was loaded: pocket.nc is being checked again; it starts "
                      "when ready") == ("makine, program yüklendiğinden beri hareket etti: pocket.nc yeniden "
                                        "denetleniyor; hazır olunca başlayacak")
+
+
+def test_a_joiner_says_each_of_its_parts_in_the_panels_language(turkish) -> None:
+    """A list, a cause after its source and a reason in brackets: the parts the templates know
+    are said in Turkish, the rest stays as it is."""
+    assert localize("operator: E-stop pressed") == f"{tr('operator')}: {tr('E-stop pressed')}"
+    assert localize("machine is hold (feed hold)") == tr("machine is {0}").format(
+        f"{tr('hold')} ({tr('feed hold')})")
+    assert localize("homing X searching the switch, Y latching the switch edge") == tr("homing {0}").format(
+        tr("{0} searching the switch").format("X") + ", " + tr("{0} latching the switch edge").format("Y"))
+    assert localize("pocket.nc (copy): x") == "pocket.nc (copy): x"
 
 
 def test_the_real_sentences_match(turkish) -> None:

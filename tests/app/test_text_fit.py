@@ -172,6 +172,7 @@ def english_words(text: str, data: set[str]) -> list[str]:
     """The English words in ``text``: file names, paths and the machine's own data aside."""
     for d in data:
         text = text.replace(d, " ")
+    text = _KEYS.sub(" ", text)
     found = []
     for token in text.split():
         if not _CODE.search(token):
@@ -338,3 +339,93 @@ def test_every_dialog_the_pages_ask_fits_and_is_in_the_panels_language(qtbot, qa
     assert {"confirm", "number", "text", "open", "inform"} <= kinds, asked.shown
     assert len(set(asked.shown)) >= 15, asked.shown
     assert not asked.problems, "\n".join(asked.problems[:40])
+
+
+# ------------------------------------------------------------------------------ a shift in Turkish
+def test_a_shift_in_turkish_shows_no_english_word(qtbot, qapp, state_dir, real_controller) -> None:
+    """The demo machine in Turkish from its start: unhomed, homing to its switches, a run, feed
+    hold, stop and the restart question, E-stop and its release, the door opened during a run,
+    refusals (a move beyond the travel, an MDI M6), probing with the end mill in the spindle and
+    the alarm log. At each step every visible text (and a disabled button's reason) of the
+    window, and every page and tab at the start and after the alarms, is read for English."""
+    from app.context import PanelOptions
+
+    c = real_controller
+    asked = RenderingDialogs(qtbot, "tr", set())
+    asked.default_confirm = True                      # the shift answers its questions with yes
+    window = make_window(qtbot, qapp, PanelOptions(demo=True, state_dir=state_dir), asked, c)
+    window.context.i18n.set_language("tr")
+    try:
+        qtbot.waitUntil(lambda: c.program_info is not None, timeout=20000)
+        data = asked.data = machine_data(c)
+        problems: list[str] = []
+        steps: list[str] = []
+
+        def look(step: str, every_view: bool = False) -> None:
+            qtbot.wait(30)
+            steps.append(step)
+            for view in views(window, qtbot) if every_view else [window.current_page_name]:
+                for where, text in shown_texts(window):
+                    problems.extend(f"{step} ({view}) {where}: {w} in {text[:100]!r}"
+                                    for w in english_words(text, data))
+                for b in window.findChildren(QAbstractButton):
+                    if b.isVisibleTo(window) and not b.isEnabled() and b.toolTip():
+                        problems.extend(f"{step} ({view}) tooltip of {b.text()!r}: {w} in "
+                                        f"{b.toolTip()[:100]!r}" for w in english_words(b.toolTip(), data))
+
+        look("the start, unhomed", every_view=True)
+        window.show_page("machine_zero")
+        window.page("machine_zero").home_all_button.click()
+        c.advance(0.5)
+        look("homing")
+        assert c.run_until(lambda: c.state is MachineState.IDLE and all(c.homed), 120)
+        window.show_page("auto")
+        auto = window.page("auto")
+        auto.buttons["start"].click()
+        c.advance(1.0)
+        look("running")
+        auto.buttons["hold"].click()
+        c.advance(1.5)
+        look("feed hold")
+        auto.buttons["stop"].click()
+        assert c.run_until(lambda: c.state is MachineState.IDLE, 10)
+        look("stopped")
+        asked.answers.append(-1)                      # the restart question: cancelled
+        auto.buttons["start"].click()
+        look("the restart question")
+        window.header.estop_button.click()
+        c.advance(0.2)
+        look("E-stop", every_view=True)
+        assert c.estop_release()
+        c.advance(0.2)
+        auto.buttons["reset"].click()
+        c.advance(0.2)
+        look("released")
+        window.show_page("auto")
+        asked.answers.append(1)                       # the restart question, if asked: from the start
+        auto.buttons["start"].click()
+        asked.answers.clear()
+        c.advance(0.5)
+        c.simulate_input("door_closed", False)
+        c.advance(1.0)
+        look("the door open in a run")
+        auto.buttons["start"].click()
+        look("cycle start with the door open")
+        c.simulate_input("door_closed", None)
+        auto.buttons["stop"].click()
+        c.run_until(lambda: c.state is MachineState.IDLE, 10)
+        c.mdi("G53 G0 X1000")
+        look("a move beyond the travel")
+        c.mdi("M6 T2")
+        look("M6 from MDI")
+        window.show_page("part_zero")
+        part_zero = window.page("part_zero")
+        part_zero.tabs.setCurrentWidget(part_zero.probing)
+        part_zero.probing.run_button.click()
+        look("probing with the end mill in the spindle")
+        look("the alarm log", every_view=True)
+    finally:
+        window.context.i18n.set_language("en")
+    assert len(steps) == 14 and len(asked.shown) >= 2, (steps, asked.shown)
+    assert not asked.problems, "\n".join(asked.problems[:40])
+    assert not problems, "\n".join(sorted(set(problems))[:60])
