@@ -147,6 +147,20 @@ def test_the_angle_of_a_face_from_20_starts() -> None:
         assert out.system(G55)[G55 + 9] == pytest.approx(angle, abs=0.01)
 
 
+def test_the_routine_writes_into_the_system_by_its_number_and_selects_it_only_when_turned_otherwise() -> None:
+    """Into G55 from G54: G10 with P2, G54 stays in use; a G55 turned otherwise than G54 (a
+    distance along one is not along the other's axes): the routine runs in G55, then G54 again."""
+    req = ProbingRequest(ProbeWizard.EDGE, system="G55", axis="X", x_dir=1)
+    same = probing_routine(req, ProbeSettings(drive=2), PROBE.number, "G54", same_turn=True)
+    assert same.splitlines()[0] == f"G43 H{PROBE.number}" and "G54" not in same and "G55" not in same
+    assert same.splitlines()[-1].split()[7] == "[2]"                  # #6: G10's P of G55
+    turned = probing_routine(req, ProbeSettings(drive=2), PROBE.number, "G54", same_turn=False)
+    assert turned.splitlines()[0] == "G55" and turned.splitlines()[-1] == "G54"
+    only = probing_routine(ProbingRequest(ProbeWizard.EDGE, system="", axis="X", x_dir=1),
+                           ProbeSettings(drive=2), PROBE.number, "G54")
+    assert only.splitlines()[-1].split()[7] == "[0]"                  # only reported
+
+
 def test_report_only_writes_nothing() -> None:
     out = _run(ProbingRequest(ProbeWizard.Z_SURFACE), (20.0, 10.0, TOP + 5.0), BLOCK)
     assert out.reported["Z"] == pytest.approx(TOP, abs=0.01)
@@ -198,9 +212,17 @@ def _to(ctl: MachineController, tip: tuple[float, float, float]) -> None:
         assert ctl.run_until(lambda: ctl.state is MachineState.IDLE and ctl.stream.job is None, 30)
 
 
-def _probe(ctl: MachineController, req: ProbingRequest) -> None:
+def _probe(ctl: MachineController, req: ProbingRequest) -> set[str]:
+    """Run the wizard to its end; the systems the machine was in while it ran."""
     assert ctl.run_probing(req)
-    assert ctl.run_until(lambda: ctl.state is not MachineState.RUNNING and ctl.stream.job is None, 120)
+    systems: set[str] = set()
+
+    def ended() -> bool:
+        systems.add(ctl.active_offset)
+        return ctl.state is not MachineState.RUNNING and ctl.stream.job is None
+
+    assert ctl.run_until(ended, 120)
+    return systems
 
 
 MACHINE_CASES = [
@@ -239,8 +261,9 @@ def test_each_wizard_on_the_simulated_machine(qapp, config_path: Path, state_dir
         preview = ctl.preview_probing(req)
         assert not isinstance(preview, type(ctl.measure_tool(0))), preview
         assert len(preview.moves) > 2 and preview.probes                 # drawn before it runs
-        _probe(ctl, req)
+        systems = _probe(ctl, req)
         assert not ctl.active_alarms, [a.cause for a in ctl.active_alarms]
+        assert systems == {"G54"}          # the DRO names the system in use all along, not G55
         result = ctl.last_probing
         assert result is not None and result.written == "G55"
         for k, value in truth.items():

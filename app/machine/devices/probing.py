@@ -68,8 +68,10 @@ class Probing:
     # ------------------------------------------------------------------ the routine
     def routine(self, req: ProbingRequest) -> str:
         """The blocks the wizard runs with the tool in the spindle (``probing_routine``)."""
-        return probing_routine(req, self._settings.config.probe, self._tools.in_spindle,
-                               self._coordinates.active_offset)
+        coordinates = self._coordinates
+        active = coordinates.active_offset
+        same_turn = not req.system or coordinates.rotation_of(req.system) == coordinates.rotation_of(active)
+        return probing_routine(req, self._settings.config.probe, self._tools.in_spindle, active, same_turn)
 
     def refusal(self, req: ProbingRequest) -> str:
         """Why the wizard cannot run now ("" when it can)."""
@@ -179,16 +181,20 @@ class Probing:
         return out
 
 
-def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active: str) -> str:
-    """The blocks a wizard runs: into the system that takes the result, the probe's length in
-    force (G43 H ``tool``), the routine's call with ``[probe]``'s feeds and distances where the
-    request leaves them, back to the system ``active`` that was in use."""
+def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active: str,
+                    same_turn: bool = True) -> str:
+    """The blocks a wizard runs: the probe's length in force (G43 H ``tool``) and the routine's
+    call with ``[probe]``'s feeds and distances where the request leaves them; the routine writes
+    the result into the system that takes it (G10 with its P number) while the system ``active``
+    stays in use, as the DRO shows it. Only when that system is turned otherwise than the one in
+    use (``same_turn`` False: a distance measured in one is not one along the other's axes) the
+    routine runs in it and the system in use is selected again after."""
     search = probe.search_mm if req.search_mm is None else req.search_mm
     clear = probe.clearance_mm if req.clearance_mm is None else req.clearance_mm
     fast = probe.fast_feed_mm_min if req.fast_feed_mm_min is None else req.fast_feed_mm_min
     slow = probe.slow_feed_mm_min if req.slow_feed_mm_min is None else req.slow_feed_mm_min
     back = probe.retract_mm if req.retract_mm is None else req.retract_mm
-    write = 1 if req.system else 0
+    write = WORK_OFFSET_NAMES.index(req.system) + 1 if req.system else 0     # G10's P, 0: only reported
     vx, vy, vz = req.value
     along = 0 if req.axis == "X" else 1
     toward = req.x_dir if req.axis == "X" else req.y_dir
@@ -203,7 +209,7 @@ def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active
     }
     args = (search, fast, slow, back, clear, write, *specific[req.wizard])
     call = f"o<{req.wizard.value}> call " + " ".join(f"[{v:.6g}]" for v in args)
-    switch = bool(req.system) and req.system != active
+    switch = bool(req.system) and req.system != active and not same_turn
     lines = [req.system] if switch else []
     lines += [f"G43 H{tool}", call]
     if switch:
