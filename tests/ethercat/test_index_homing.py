@@ -24,6 +24,7 @@ from ethercat.worker import (
     WorkerConfig,
     WorkerState,
 )
+from tests.ethercat.test_terminals import _home
 
 TERMINALS = (TerminalSpec(2, "EK1100"), TerminalSpec(3, "EL1008"))
 DRIVES = (DriveSpec(0, "X"), DriveSpec(1, "Z", direction=-1))
@@ -52,17 +53,6 @@ def _worker(spec: SwitchHoming, x0: float, pitch: float = PITCH, **options: obje
 
 def _spec(latch_vel: float, travel: float = 40.0) -> SwitchHoming:
     return SwitchHoming(0, IN, 3, True, 20.0, latch_vel, travel, 2000.0, 400_000.0, use_index=True)
-
-
-def _home(w: CyclicWorker, cycles: int = 20_000) -> None:
-    """Home axis 0 (until the homing ends or ``cycles`` ran)."""
-    w.enable()
-    w.step(20)
-    w.home_to_switches([0])
-    for _ in range(cycles // 50):
-        w.step(50)
-        if w.state() is not WorkerState.HOMING:
-            return
 
 
 @pytest.mark.parametrize("latch_vel, expected", [(-2.0, "below"), (2.0, "above")])
