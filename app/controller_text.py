@@ -175,8 +175,7 @@ TEMPLATES: tuple[str, ...] = (
     N_("probe touched during positioning"),
     N_("probing {0}"), N_("probed (machine): {0}, written to {1}"),
     N_("probed (machine): {0} (only reported)"),
-    N_("the Z surface"), N_("an edge"), N_("an outside corner"), N_("an inside corner"), N_("a bore"),
-    N_("a boss"), N_("the angle of a face"),
+    # (the wizards' names: app.machine.model.WIZARDS, gathered from there)
     # the part counter
     N_("{0} part(s) made: the target of {1} is reached"),
     N_("the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again"),

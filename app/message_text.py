@@ -10,8 +10,13 @@ from app.i18n import N_
 __all__ = ["CONTROLLER_TEMPLATES", "GCODE_TEMPLATES"]
 
 CONTROLLER_TEMPLATES: tuple[str, ...] = (
+    N_('Angle of a face'),
+    N_('Bore centre'),
+    N_('Boss centre'),
     N_('E-stop is not active'),
+    N_('Edge'),
     N_('G4 dwells between the moves of a program; a block without motion has nothing to wait for'),
+    N_('Inside corner'),
     N_('M0 pauses a running program; an MDI block has nothing to pause'),
     N_('M1 pauses a running program; an MDI block has nothing to pause'),
     N_('M6 runs in a program; in MDI put the tool in by hand and say which it is with M61 Q<n> (or on the Tools page)'),  # noqa: E501
@@ -21,8 +26,12 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('M66 (line {0}): the terminal of input P{1} is not on the bus'),
     N_('M66 reads an input for the program that follows it; an MDI block keeps no value for the next one (the Diagnostics page shows the inputs)'),  # noqa: E501
     N_('MDI takes one block (one line)'),
+    N_('Outside corner'),
+    N_('Points apart along the face'),
     N_("S{0} is over the spindle's maximum of {1} rpm ([controller] spindle_max_rpm)"),
     N_("T selects the tool for a program's M6; in MDI say which tool is in the spindle with M61 Q<n>"),  # noqa: E501
+    N_('The probe moves toward the face (the second point is along it):'),
+    N_('The probe moves toward the face:'),
     N_("T{0} has no tip diameter in the tool table: the edges found would be off by the ball's radius"),  # noqa: E501
     N_('T{0} is in the spindle, not the probe T{1}: a probing move would feed it into the part; put the probe in and say so (In the spindle, or M61 Q{2})'),  # noqa: E501
     N_('T{0} is in the spindle: set another tool first'),
@@ -30,6 +39,11 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('T{0} is not in the tool table'),
     N_('T{0} measured on the tool setter: length {1} mm'),
     N_('T{0}: the measurement has no second contact'),
+    N_('Where the part is from the probe:'),
+    N_('Where the walls are from the probe:'),
+    N_('Z surface'),
+    N_('a bore'),
+    N_('a boss'),
     N_('a probe move ended without the probe armed: the program stops here'),
     N_('acknowledge the active alarms first'),
     N_('air pressure present'),

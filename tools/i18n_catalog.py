@@ -37,6 +37,9 @@ MESSAGE_CALLS = {"BlockError": 0, "LexError": 0, "StructureError": 0, "G7xError"
 CONTROLLER_CALLS = {"refuse": 1, "raise_alarm": 1, "stop_job": 0, "emit": 0, "fail": 0, "stop": 0,
                     "ControllerError": 0, "CommandResult": 1, "show_message": 0,
                     "alarm_stop": 0, "SignalDef": 4}
+# declarations whose keyword arguments are the operator's words, short as they may be (a
+# probing wizard's button title, its name in sentences, what its aim's buttons mean)
+KEYWORD_CALLS = {"WizardSpec": ("title", "name", "prompt", "along_title")}
 # functions whose returned text is a refusal (``refusal(...)`` returns "" or why not)
 REFUSAL_FUNCTIONS = re.compile(r"refusal|problem|^_?why")
 MIN_WORDS = 6  # letters outside the values: "{0}: {1}" would match any sentence
@@ -134,6 +137,14 @@ def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Patt
                     for value in node.value.values:
                         said = _template(value)
                         if said is not None and " " in said and literal_letters(said) >= MIN_WORDS:
+                            found.add(said)
+                    continue
+                if isinstance(node, ast.Call) and (getattr(node.func, "id", "") or
+                                                   getattr(node.func, "attr", "")) in KEYWORD_CALLS:
+                    said_words = KEYWORD_CALLS[getattr(node.func, "id", "") or getattr(node.func, "attr", "")]
+                    for keyword in node.keywords:
+                        said = _template(keyword.value) if keyword.arg in said_words else None
+                        if said:
                             found.add(said)
                     continue
                 if id(node) in returned and isinstance(node, ast.expr):

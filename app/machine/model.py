@@ -36,7 +36,8 @@ if TYPE_CHECKING:
     from planner.core.program import ProbeResult, Program
     from planner.motion.plan import Plan
 
-__all__ = ["Activity", "Alarm", "AlarmState", "Budget", "BusStatus", "CommandResult", "ControllerSnapshot",
+__all__ = ["WIZARD", "WIZARDS", "WizardAim", "WizardSpec",
+           "Activity", "Alarm", "AlarmState", "Budget", "BusStatus", "CommandResult", "ControllerSnapshot",
            "HoldKind", "MachineState", "PauseKind", "PausePoint", "ProbeWizard", "ProbingRequest",
            "ProbingResult", "ProgramInfo", "ProgramIssue", "Prompt", "RestartPreview", "ResumePoint",
            "RunSummary", "Severity", "SignalReading", "SpindleState", "TrackingReport"]
@@ -199,6 +200,70 @@ class ProbeWizard(enum.StrEnum):
     BORE = "probe_bore"
     BOSS = "probe_boss"
     ANGLE = "probe_angle"
+
+
+class WizardAim(enum.Enum):
+    """Which way a wizard is aimed: not at all (straight down, all around), toward a face along
+    an axis (the axis and its sign), or at a corner (where the part or the walls are: the X and
+    Y signs)."""
+
+    NONE = "none"
+    ALONG_AXIS = "along_axis"
+    CORNER = "corner"
+
+
+@dataclass(frozen=True, slots=True)
+class WizardSpec:
+    """One probing wizard, declared once (``WIZARDS``): its routine (``resources/subroutines/
+    <wizard>.ngc``), its button's title, its name in the operator's sentences ("probing an
+    edge: ..."), the inputs it takes beside the probe's distances and feeds, how it is aimed and
+    what the aim's buttons mean, and the routine's own arguments (after the distances, feeds and
+    the system that takes the result). ``one_value``: it reads one coordinate, the one of the
+    axis it probes along; ``along_title``: what its "along" input means, where not the default."""
+
+    wizard: ProbeWizard
+    title: str
+    name: str
+    inputs: frozenset[str]
+    aim: WizardAim
+    prompt: str
+    args: Callable[[ProbingRequest], tuple[float, ...]]
+    one_value: bool = False
+    along_title: str = ""
+
+
+def _along(req: ProbingRequest) -> tuple[int, int]:
+    """An edge's or a face's axis (0 X, 1 Y) and the sign it moves toward the face."""
+    return (0, req.x_dir) if req.axis == "X" else (1, req.y_dir)
+
+
+#: every probing wizard, in the order the panel offers them
+WIZARDS: tuple[WizardSpec, ...] = (
+    WizardSpec(ProbeWizard.Z_SURFACE, title="Z surface", name="the Z surface", inputs=frozenset({"z"}),
+               aim=WizardAim.NONE, prompt="", args=lambda r: (r.value[2],)),
+    WizardSpec(ProbeWizard.EDGE, title="Edge", name="an edge", inputs=frozenset({"x", "y"}),
+               aim=WizardAim.ALONG_AXIS, prompt="The probe moves toward the face:",
+               args=lambda r: (*_along(r), r.value[_along(r)[0]]), one_value=True),
+    WizardSpec(ProbeWizard.OUTSIDE_CORNER, title="Outside corner", name="an outside corner",
+               inputs=frozenset({"along", "x", "y"}), aim=WizardAim.CORNER,
+               prompt="Where the part is from the probe:",
+               args=lambda r: (r.x_dir, r.y_dir, r.along_mm, r.value[0], r.value[1])),
+    WizardSpec(ProbeWizard.INSIDE_CORNER, title="Inside corner", name="an inside corner",
+               inputs=frozenset({"x", "y"}), aim=WizardAim.CORNER,
+               prompt="Where the walls are from the probe:",
+               args=lambda r: (r.x_dir, r.y_dir, 0.0, r.value[0], r.value[1])),
+    WizardSpec(ProbeWizard.BORE, title="Bore centre", name="a bore",
+               inputs=frozenset({"diameter", "tolerance", "x", "y"}), aim=WizardAim.NONE, prompt="",
+               args=lambda r: (r.diameter_mm, r.tolerance_mm, r.value[0], r.value[1])),
+    WizardSpec(ProbeWizard.BOSS, title="Boss centre", name="a boss",
+               inputs=frozenset({"diameter", "tolerance", "depth", "x", "y"}), aim=WizardAim.NONE, prompt="",
+               args=lambda r: (r.diameter_mm, r.tolerance_mm, r.depth_mm, r.value[0], r.value[1])),
+    WizardSpec(ProbeWizard.ANGLE, title="Angle of a face", name="the angle of a face",
+               inputs=frozenset({"along"}), aim=WizardAim.ALONG_AXIS,
+               prompt="The probe moves toward the face (the second point is along it):",
+               args=lambda r: (*_along(r), r.along_mm), along_title="Points apart along the face"),
+)
+WIZARD: dict[ProbeWizard, WizardSpec] = {w.wizard: w for w in WIZARDS}
 
 
 @dataclass(frozen=True, slots=True)

@@ -29,7 +29,15 @@ from PySide6.QtWidgets import (
 from app.context import PanelContext
 from app.controller_text import localize
 from app.i18n import N_, tr
-from app.machine.model import CommandResult, ProbeWizard, ProbingRequest, ProbingResult
+from app.machine.model import (
+    WIZARD,
+    WIZARDS,
+    CommandResult,
+    ProbeWizard,
+    ProbingRequest,
+    ProbingResult,
+    WizardAim,
+)
 from app.widgets.numeric_field import NumericField
 from app.widgets.touch import exclusive_buttons
 from planner.core.machine import WORK_OFFSET_NAMES
@@ -37,15 +45,6 @@ from planner.core.program import Program
 
 __all__ = ["ProbingPanel", "RoutinePreview", "wizard_icon"]
 
-WIZARDS: tuple[tuple[ProbeWizard, str], ...] = (
-    (ProbeWizard.Z_SURFACE, N_("Z surface")),
-    (ProbeWizard.EDGE, N_("Edge")),
-    (ProbeWizard.OUTSIDE_CORNER, N_("Outside corner")),
-    (ProbeWizard.INSIDE_CORNER, N_("Inside corner")),
-    (ProbeWizard.BORE, N_("Bore centre")),
-    (ProbeWizard.BOSS, N_("Boss centre")),
-    (ProbeWizard.ANGLE, N_("Angle of a face")),
-)
 # which way: an edge or a face as the direction the probe moves (axis, sign); a corner as where
 # the part (outside) or the walls (inside) are from the probe (x sign, y sign)
 MOVES = (("X", 1, "X+"), ("X", -1, "X-"), ("Y", 1, "Y+"), ("Y", -1, "Y-"))
@@ -66,14 +65,15 @@ class ProbingPanel(QWidget):
         # what to find, by its picture
         row = QHBoxLayout()
         choices: list[tuple[ProbeWizard, QToolButton]] = []
-        for wizard, text in WIZARDS:
+        for spec in WIZARDS:
+            wizard = spec.wizard
             b = QToolButton()
             b.setObjectName("wizardButton")
             b.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextUnderIcon)
             b.setIcon(QIcon(wizard_icon(wizard, ICON_PX)))
             b.setIconSize(QSize(ICON_PX, ICON_PX))
             b.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Preferred)
-            i18n.bind(b, text)
+            i18n.bind(b, spec.title)
             choices.append((wizard, b))
         self.wizard_group, self.wizard_buttons = exclusive_buttons(self, row, choices, self._choose)
         outer.addLayout(row)
@@ -165,13 +165,13 @@ class ProbingPanel(QWidget):
         self.run_button.clicked.connect(self.run)
         right.addWidget(self.run_button)
         self._why = ""
-        self.wizard_buttons[ProbeWizard.Z_SURFACE].setChecked(True)
+        self.wizard_buttons[WIZARDS[0].wizard].setChecked(True)
         c.probingFinished.connect(self._finished)
         c.stateChanged.connect(lambda *_: self.refresh())
         c.toolsChanged.connect(lambda *_: self.refresh())
         c.offsetsChanged.connect(lambda *_: self.refresh())
         i18n.languageChanged.connect(lambda *_: self._show_texts())
-        self._choose(ProbeWizard.Z_SURFACE)
+        self._choose(WIZARDS[0].wizard)
 
     # ------------------------------------------------------------------ the request
     def wizard(self) -> ProbeWizard:
@@ -183,7 +183,7 @@ class ProbingPanel(QWidget):
         move = next(m for m in MOVES if self.move_buttons[m[2]].isChecked())
         corner = next(m for m in CORNERS if self.corner_buttons[m[2]].isChecked())
         target = next(name for name, b in self.target_buttons.items() if b.isChecked())
-        corners = wizard in (ProbeWizard.OUTSIDE_CORNER, ProbeWizard.INSIDE_CORNER)
+        corners = WIZARD[wizard].aim is WizardAim.CORNER
         axis, sign = move[0], move[1]
         return ProbingRequest(
             wizard, system=target, axis=axis,
@@ -193,17 +193,11 @@ class ProbingPanel(QWidget):
             fast_feed_mm_min=f["fast"], slow_feed_mm_min=f["slow"])
 
     def _uses(self, wizard: ProbeWizard) -> set[str]:
-        """The inputs ``wizard`` takes (an edge: the coordinate of the axis it probes along)."""
-        uses = {
-            ProbeWizard.Z_SURFACE: {"z"},
-            ProbeWizard.EDGE: {"x", "y"},
-            ProbeWizard.OUTSIDE_CORNER: {"along", "x", "y"},
-            ProbeWizard.INSIDE_CORNER: {"x", "y"},
-            ProbeWizard.BORE: {"diameter", "tolerance", "x", "y"},
-            ProbeWizard.BOSS: {"diameter", "tolerance", "depth", "x", "y"},
-            ProbeWizard.ANGLE: {"along"},
-        }[wizard] | {"search", "clearance", "fast", "slow"}
-        if wizard is ProbeWizard.EDGE:
+        """The inputs ``wizard`` takes (one that reads one coordinate: the one of the axis it
+        probes along)."""
+        spec = WIZARD[wizard]
+        uses = set(spec.inputs) | {"search", "clearance", "fast", "slow"}
+        if spec.one_value:
             uses -= {"y"} if self._move()[0] == "X" else {"x"}
         return uses
 
@@ -211,8 +205,8 @@ class ProbingPanel(QWidget):
         """Show the inputs ``wizard`` takes."""
         uses = self._uses(wizard)
         self._place_fields(uses)
-        moves = wizard in (ProbeWizard.EDGE, ProbeWizard.ANGLE)
-        corners = wizard in (ProbeWizard.OUTSIDE_CORNER, ProbeWizard.INSIDE_CORNER)
+        moves = WIZARD[wizard].aim is WizardAim.ALONG_AXIS
+        corners = WIZARD[wizard].aim is WizardAim.CORNER
         for b in self.move_buttons.values():
             b.setVisible(moves)
         for b in self.corner_buttons.values():
@@ -238,15 +232,9 @@ class ProbingPanel(QWidget):
         return next(m for m in MOVES if self.move_buttons[m[2]].isChecked())
 
     def _show_texts(self) -> None:
-        wizard = self.wizard()
-        self.direction_label.setText({
-            ProbeWizard.EDGE: tr("The probe moves toward the face:"),
-            ProbeWizard.ANGLE: tr("The probe moves toward the face (the second point is along it):"),
-            ProbeWizard.OUTSIDE_CORNER: tr("Where the part is from the probe:"),
-            ProbeWizard.INSIDE_CORNER: tr("Where the walls are from the probe:"),
-        }.get(wizard, ""))
-        self.fields["along"].title = tr("Points apart along the face") if wizard is ProbeWizard.ANGLE else \
-            tr("Distance along the faces")
+        spec = WIZARD[self.wizard()]
+        self.direction_label.setText(tr(spec.prompt) if spec.prompt else "")
+        self.fields["along"].title = tr(spec.along_title or N_("Distance along the faces"))
         self.labels["along"].setText(self.fields["along"].title)
         self._show_status()
 
@@ -260,8 +248,9 @@ class ProbingPanel(QWidget):
         hidden, nothing is read (the tab shown reads again)."""
         if not self.isVisible():
             return
-        if self.wizard() is ProbeWizard.EDGE and self.fields["x"].isHidden() == (self._move()[0] == "X"):
-            self._place_fields(self._uses(ProbeWizard.EDGE))     # the edge's axis changed
+        wizard = self.wizard()
+        if WIZARD[wizard].one_value and self.fields["x"].isHidden() == (self._move()[0] == "X"):
+            self._place_fields(self._uses(wizard))     # the axis it probes along changed
         req = self.request()
         c = self.ctx.controller
         if c.state.value != "idle":

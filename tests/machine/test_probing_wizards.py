@@ -18,7 +18,7 @@ import pytest
 from app.machine.config import MachineConfig, ProbeSettings
 from app.machine.controller import MachineController
 from app.machine.devices.probing import probing_routine
-from app.machine.model import MachineState, ProbeWizard, ProbingRequest
+from app.machine.model import WIZARD, WIZARDS, MachineState, ProbeWizard, ProbingRequest
 from ethercat.sim_part import Feature, SimPart
 from planner.core.errors import ProgramError
 from planner.core.tools import Tool, ToolTable
@@ -159,6 +159,29 @@ def test_the_routine_writes_into_the_system_by_its_number_and_selects_it_only_wh
     only = probing_routine(ProbingRequest(ProbeWizard.EDGE, system="", axis="X", x_dir=1),
                            ProbeSettings(drive=2), PROBE.number, "G54")
     assert only.splitlines()[-1].split()[7] == "[0]"                  # only reported
+
+
+def test_each_wizard_is_declared_once() -> None:
+    """``WIZARDS`` declares each wizard (title, name, inputs, aim, the routine's arguments) and
+    its routine is a shipped subroutine; apart from that declaration only the panel's pictures
+    name a wizard: a new one is a routine, a row and a picture."""
+    root = Path(__file__).resolve().parents[2]
+    assert [w.wizard for w in WIZARDS] == list(ProbeWizard) and set(WIZARD) == set(ProbeWizard)
+    for spec in WIZARDS:
+        assert (root / "resources" / "subroutines" / f"{spec.wizard.value}.ngc").is_file()
+        assert len({spec.title, spec.name}) == 2 and spec.inputs <= {"diameter", "tolerance", "depth",
+                                                                    "along", "x", "y", "z"}
+    named = {}
+    for path in sorted((root / "app").rglob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        if path.name == "model.py" and path.parent.name == "machine":
+            continue
+        if path.name == "probing_panel.py":          # the pictures, drawn by wizard
+            text = text[:text.index("def wizard_icon")]
+        members = set(re.findall(r"ProbeWizard\.([A-Z_]+)", text))
+        if members:
+            named[str(path.relative_to(root))] = members
+    assert named == {}, named
 
 
 def test_report_only_writes_nothing() -> None:

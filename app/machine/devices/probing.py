@@ -21,7 +21,7 @@ from typing import Protocol
 import numpy as np
 
 from app.machine.config import ProbeSettings
-from app.machine.model import CommandResult, MachineState, ProbeWizard, ProbingRequest, ProbingResult
+from app.machine.model import WIZARD, CommandResult, MachineState, ProbingRequest, ProbingResult
 from app.machine.motion.jobs import Job
 from app.machine.ports import CoordinatesView, PositionsView, Settings, ToolsView
 from app.machine.state.gate import Action
@@ -103,7 +103,7 @@ class Probing:
             return "the diameter must be above 0 mm"
         if not req.along_mm > 0.0:
             return "the distance along the faces must be above 0 mm"
-        if req.wizard is ProbeWizard.BOSS and not req.depth_mm > 0.0:
+        if "depth" in WIZARD[req.wizard].inputs and not req.depth_mm > 0.0:
             return "the depth below the start must be above 0 mm"
         if not req.tolerance_mm > 0.0:
             return "the diameter's tolerance must be above 0 mm"
@@ -195,19 +195,7 @@ def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active
     slow = probe.slow_feed_mm_min if req.slow_feed_mm_min is None else req.slow_feed_mm_min
     back = probe.retract_mm if req.retract_mm is None else req.retract_mm
     write = WORK_OFFSET_NAMES.index(req.system) + 1 if req.system else 0     # G10's P, 0: only reported
-    vx, vy, vz = req.value
-    along = 0 if req.axis == "X" else 1
-    toward = req.x_dir if req.axis == "X" else req.y_dir
-    specific: dict[ProbeWizard, tuple[float, ...]] = {
-        ProbeWizard.Z_SURFACE: (vz,),
-        ProbeWizard.EDGE: (along, toward, vx if along == 0 else vy),
-        ProbeWizard.OUTSIDE_CORNER: (req.x_dir, req.y_dir, req.along_mm, vx, vy),
-        ProbeWizard.INSIDE_CORNER: (req.x_dir, req.y_dir, 0.0, vx, vy),
-        ProbeWizard.BORE: (req.diameter_mm, req.tolerance_mm, vx, vy),
-        ProbeWizard.BOSS: (req.diameter_mm, req.tolerance_mm, req.depth_mm, vx, vy),
-        ProbeWizard.ANGLE: (along, toward, req.along_mm),
-    }
-    args = (search, fast, slow, back, clear, write, *specific[req.wizard])
+    args = (search, fast, slow, back, clear, write, *WIZARD[req.wizard].args(req))
     call = f"o<{req.wizard.value}> call " + " ".join(f"[{v:.6g}]" for v in args)
     switch = bool(req.system) and req.system != active and not same_turn
     lines = [req.system] if switch else []
@@ -217,12 +205,5 @@ def probing_routine(req: ProbingRequest, probe: ProbeSettings, tool: int, active
     return "\n".join(lines)
 
 
-_NAMES = {
-    ProbeWizard.Z_SURFACE: "the Z surface", ProbeWizard.EDGE: "an edge",
-    ProbeWizard.OUTSIDE_CORNER: "an outside corner", ProbeWizard.INSIDE_CORNER: "an inside corner",
-    ProbeWizard.BORE: "a bore", ProbeWizard.BOSS: "a boss", ProbeWizard.ANGLE: "the angle of a face",
-}
-
-
 def _name(req: ProbingRequest) -> str:
-    return _NAMES[req.wizard]
+    return WIZARD[req.wizard].name
