@@ -121,6 +121,11 @@ def _returned(tree: ast.AST, names: re.Pattern[str] | None) -> set[int]:
     return out
 
 
+def _called(node: ast.Call) -> str:
+    """The name of what ``node`` calls: ``f(...)`` or ``x.f(...)`` -> "f"."""
+    return getattr(node.func, "id", "") or getattr(node.func, "attr", "")
+
+
 def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Pattern[str] | None = None
                ) -> list[str]:
     found: set[str] = set()
@@ -139,9 +144,8 @@ def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Patt
                         if said is not None and " " in said and literal_letters(said) >= MIN_WORDS:
                             found.add(said)
                     continue
-                if isinstance(node, ast.Call) and (getattr(node.func, "id", "") or
-                                                   getattr(node.func, "attr", "")) in KEYWORD_CALLS:
-                    said_words = KEYWORD_CALLS[getattr(node.func, "id", "") or getattr(node.func, "attr", "")]
+                if isinstance(node, ast.Call) and _called(node) in KEYWORD_CALLS:
+                    said_words = KEYWORD_CALLS[_called(node)]
                     for keyword in node.keywords:
                         said = _template(keyword.value) if keyword.arg in said_words else None
                         if said:
@@ -150,8 +154,7 @@ def _templates(roots: tuple[Path, ...], calls: dict[str, int], refusals: re.Patt
                 if id(node) in returned and isinstance(node, ast.expr):
                     template = _template(node)
                 elif isinstance(node, ast.Call) and node.args:
-                    name = getattr(node.func, "id", "") or getattr(node.func, "attr", "")
-                    where = calls.get(name)
+                    where = calls.get(_called(node))
                     if where is not None and -len(node.args) <= where < len(node.args):
                         template = _template(node.args[where])
                 elif (isinstance(node, ast.Assign) and len(node.targets) == 1

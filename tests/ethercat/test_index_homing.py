@@ -24,7 +24,7 @@ from ethercat.worker import (
     WorkerConfig,
     WorkerState,
 )
-from tests.ethercat.test_terminals import _home
+from tests.ethercat.test_terminals import _home, _home_traced
 
 TERMINALS = (TerminalSpec(2, "EK1100"), TerminalSpec(3, "EL1008"))
 DRIVES = (DriveSpec(0, "X"), DriveSpec(1, "Z", direction=-1))
@@ -79,19 +79,8 @@ def test_the_home_is_the_index_past_the_switch_edge_to_one_count_from_random_sta
 
 def test_the_index_step_is_shown_and_every_set_point_keeps_the_limits() -> None:
     w = _worker(_spec(-2.0), 0.0)
-    steps = set()
     try:
-        w.enable()
-        w.step(20)
-        w.home_to_switches([0])
-        refs = []
-        for _ in range(20_000):
-            w.step(1)
-            s = w.snapshot()
-            steps.add(s.homing_steps[0])
-            refs.append(s.reference_position[0])
-            if w.state() is not WorkerState.HOMING:
-                break
+        refs, steps = _home_traced(w, 20_000)
         assert w.snapshot().homing[0] is HomingState.DONE
     finally:
         w.stop()

@@ -243,6 +243,23 @@ def _home(w: CyclicWorker, cycles: int = 20_000) -> None:
             return
 
 
+def _home_traced(w: CyclicWorker, cycles: int) -> tuple[list[float], set[HomingStep]]:
+    """Home axis 0 cycle by cycle: its reference position at every cycle and the steps seen."""
+    w.enable()
+    w.step(20)
+    w.home_to_switches([0])
+    refs: list[float] = []
+    steps: set[HomingStep] = set()
+    for _ in range(cycles):
+        w.step(1)
+        s = w.snapshot()
+        refs.append(s.reference_position[0])
+        steps.add(s.homing_steps[0])
+        if w.state() is not WorkerState.HOMING:
+            break
+    return refs, steps
+
+
 @pytest.mark.parametrize("latch_vel, n", [(-0.1, 50), (0.1, 10)])
 def test_homing_finds_the_switch_edge_within_one_count_from_fifty_start_positions(latch_vel: float, n: int
                                                                                    ) -> None:
@@ -273,15 +290,7 @@ def test_homing_steps_keep_the_axis_limits() -> None:
     w = _worker(switch_homing=(_homing(-1.0, switch, jerk=j_max),), bus_options=(("switches", (switch,)),))
     try:
         w.step(3)
-        w.enable()
-        w.step(20)
-        w.home_to_switches([0])
-        refs = []
-        for _ in range(3000):
-            w.step(1)
-            refs.append(w.snapshot().reference_position[0])
-            if w.state() is not WorkerState.HOMING:
-                break
+        refs, _steps = _home_traced(w, 3000)
         assert w.snapshot().homing[0] is HomingState.DONE
     finally:
         w.stop()
