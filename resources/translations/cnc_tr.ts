@@ -194,7 +194,7 @@
       <translation>paralel doğrular kesiştirilemez</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="271" />
+      <location filename="../../app/widgets/probing_panel.py" line="279" />
       <source>Cannot run: {0}</source>
       <translation>Çalıştırılamaz: {0}</translation>
     </message>
@@ -234,7 +234,7 @@
       <translation>G92'yi sil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="106" />
+      <location filename="../../app/widgets/probing_panel.py" line="114" />
       <source>Clearance</source>
       <translation>Emniyet mesafesi</translation>
     </message>
@@ -349,7 +349,7 @@
       <translation>{0} takım tablosundan silinsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="103" />
+      <location filename="../../app/widgets/probing_panel.py" line="111" />
       <source>Depth below the start</source>
       <translation>Başlangıcın altındaki derinlik</translation>
     </message>
@@ -374,12 +374,12 @@
       <translation>Çap (mm)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="101" />
+      <location filename="../../app/widgets/probing_panel.py" line="109" />
       <source>Diameter as expected</source>
       <translation>Beklenen çap</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="102" />
+      <location filename="../../app/widgets/probing_panel.py" line="110" />
       <source>Diameter tolerance</source>
       <translation>Çap toleransı</translation>
     </message>
@@ -409,7 +409,7 @@
       <translation>Bağlı değil</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="104" />
+      <location filename="../../app/widgets/probing_panel.py" line="112" />
       <source>Distance along the faces</source>
       <translation>Yüzler boyunca mesafe</translation>
     </message>
@@ -529,7 +529,7 @@
       <translation>Takip hatası penceresi</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="107" />
+      <location filename="../../app/widgets/probing_panel.py" line="115" />
       <source>Fast probe feed</source>
       <translation>Hızlı prob ilerlemesi</translation>
     </message>
@@ -574,12 +574,12 @@
       <translation>Bol sıvı (M08)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="291" />
+      <location filename="../../app/widgets/probing_panel.py" line="299" />
       <source>Found (machine): {0} (only reported)</source>
       <translation>Bulunan (makine): {0} (yalnızca bildirildi)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="290" />
+      <location filename="../../app/widgets/probing_panel.py" line="298" />
       <source>Found (machine): {0}; written to {1}</source>
       <translation>Bulunan (makine): {0}; {1} sistemine yazıldı</translation>
     </message>
@@ -1271,7 +1271,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Hayır</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="322" />
+      <location filename="../../app/widgets/probing_panel.py" line="330" />
       <source>No moves to draw</source>
       <translation>Çizilecek hareket yok</translation>
     </message>
@@ -1361,7 +1361,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Kapalı (M05)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="136" />
+      <location filename="../../app/widgets/probing_panel.py" line="144" />
       <source>Only report</source>
       <translation>Yalnızca bildir</translation>
     </message>
@@ -1526,7 +1526,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="249" />
+      <location filename="../../app/widgets/probing_panel.py" line="257" />
       <source>Probing starts with the machine idle.</source>
       <translation>Problama makine boştayken başlar.</translation>
     </message>
@@ -1708,7 +1708,7 @@ BIRAK</translation>
       <translation>Çalışma kaydı dışa aktarıldı</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="156" />
+      <location filename="../../app/widgets/probing_panel.py" line="164" />
       <source>Run the probing</source>
       <translation>Problamayı çalıştır</translation>
     </message>
@@ -1758,7 +1758,7 @@ BIRAK</translation>
       <translation>Hatalarla kaydedilsin mi?</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="105" />
+      <location filename="../../app/widgets/probing_panel.py" line="113" />
       <source>Search distance</source>
       <translation>Arama mesafesi</translation>
     </message>
@@ -1848,7 +1848,7 @@ BIRAK</translation>
       <translation>Tek blok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="108" />
+      <location filename="../../app/widgets/probing_panel.py" line="116" />
       <source>Slow probe feed</source>
       <translation>Yavaş prob ilerlemesi</translation>
     </message>
@@ -1988,12 +1988,12 @@ BIRAK</translation>
       <translation>Sürücülerin ve terminallerin bildirdiği makine sinyalleri (makine yapılandırmasında [signals]). İşaretli: durağan bir makinenin okuduğu değer değil.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="275" />
+      <location filename="../../app/widgets/probing_panel.py" line="283" />
       <source>The moves drawn run when you press Run; the result goes to {0}.</source>
       <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç {0} sistemine yazılır.</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="276" />
+      <location filename="../../app/widgets/probing_panel.py" line="284" />
       <source>The moves drawn run when you press Run; the result is only reported.</source>
       <translation>Çizilen hareketler Çalıştır'a basınca yapılır; sonuç yalnızca bildirilir.</translation>
     </message>
@@ -2223,12 +2223,12 @@ BIRAK</translation>
       <translation>Çalışma lambası</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="128" />
+      <location filename="../../app/widgets/probing_panel.py" line="136" />
       <source>Write the result to:</source>
       <translation>Sonucu şuraya yaz:</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="109" />
+      <location filename="../../app/widgets/probing_panel.py" line="117" />
       <source>X reads after</source>
       <translation>Sonra X okunur</translation>
     </message>
@@ -2248,7 +2248,7 @@ BIRAK</translation>
       <translation>XY {0:g}° döndürülmüş</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="110" />
+      <location filename="../../app/widgets/probing_panel.py" line="118" />
       <source>Y reads after</source>
       <translation>Sonra Y okunur</translation>
     </message>
@@ -2258,7 +2258,7 @@ BIRAK</translation>
       <translation>Evet</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="111" />
+      <location filename="../../app/widgets/probing_panel.py" line="119" />
       <source>Z reads after</source>
       <translation>Sonra Z okunur</translation>
     </message>
@@ -2378,7 +2378,7 @@ BIRAK</translation>
       <translation>bir dış köşe</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="289" />
+      <location filename="../../app/widgets/probing_panel.py" line="297" />
       <source>angle</source>
       <translation>açı</translation>
     </message>
@@ -2808,7 +2808,7 @@ BIRAK</translation>
       <translation>çevrim</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/probing_panel.py" line="289" />
+      <location filename="../../app/widgets/probing_panel.py" line="297" />
       <source>diameter</source>
       <translation>çap</translation>
     </message>
