@@ -111,6 +111,11 @@ TEMPLATES: tuple[str, ...] = (
     N_("timeout"), N_("no index pulse within the search travel"),
     N_("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data for the index"),
     N_("homing {0}"),
+    # the handwheel
+    N_("handwheel on axis {0}: its counter jumped by {1} counts in one cycle (a terminal restarted or a wire "
+       "is loose): the jump moved nothing, the axis stopped; select the axis again to go on"),
+    N_("handwheel on axis {0}: its encoder terminal stopped answering: the axis stopped; select the axis "
+       "again once it answers"),
     # the homing steps as Machine zero shows them ("homing Z searching the switch")
     N_("{0} moving off the switch"), N_("{0} searching the switch"), N_("{0} backing off the switch"),
     N_("{0} latching the switch edge"), N_("{0} searching the index pulse"), N_("{0} at the switch"),

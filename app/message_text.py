@@ -62,6 +62,8 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('axes not homed: {0} (home them or set machine zero first)'),
     N_('axes {0} report another position than saved: homed state cleared, home again'),
     N_('axis {0} is at its soft limit {1}'),
+    N_('axis {0} is not homed: home it first'),
+    N_('axis {0} stands outside its soft limits [{1}, {2}]'),
     N_('axis {0} would reach {1}, beyond its soft limit [{2}, {3}]'),
     N_('backing off the switch'),
     N_('block delete changes which lines the program has: switch it before cycle start, not during a run'),  # noqa: E501
@@ -106,6 +108,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('nothing to resume: machine is {0}'),
     N_('nothing to stop: machine is {0}'),
     N_('on while the spindle turns'),
+    N_("only a simulated machine's handwheel can be turned"),
     N_("only a simulated machine's inputs can be set"),
     N_('output {0} could not be switched off: {1}'),
     N_('planner: {0}'),
@@ -123,6 +126,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
     N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
     N_('stopped by the operator'),
+    N_('the 1 ms loop refused the handwheel (the axis is moving, or set-points are queued)'),
     N_('the E-stop chain (safety relay) is closed; open: E-stop, no reset until closed'),
     N_('the E-stop chain is open: release the E-stop buttons and close the safety circuit first'),
     N_('the Z surface'),
@@ -134,19 +138,26 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the distance along the faces must be above 0 mm'),
     N_('the door is open: close it first'),
     N_('the door is open: jogging needs it closed on this machine ([interlocks] door_open_jog_mm_s)'),  # noqa: E501
+    N_('the door is open: the handwheel needs it closed on this machine'),
     N_('the door was opened while homing'),
     N_('the door was opened: the spindle stopped'),
     N_('the drives cannot be re-enabled: {0}'),
     N_('the guard door is closed; open: a program holds and the spindle stops'),
+    N_('the handwheel is still moving axis {0}: let it stand, then try again'),
+    N_("the handwheel's axis selector stands on this axis"),
+    N_("the handwheel's step selector stands on x10"),
+    N_("the handwheel's step selector stands on x100"),
     N_('the home switch'),
     N_('the lube pump, on while the drives are on'),
     N_('the machine has no Z axis'),
     N_('the machine is still stopping: wait for standstill'),
+    N_('the machine is {0}'),
     N_("the machine's Cycle start button"),
     N_("the machine's Feed hold button"),
     N_("the machine's Stop button"),
     N_('the move to the home position was refused: {0}'),
     N_('the negative limit switch'),
+    N_("the pendant's selector chooses the handwheel's axis and step on this machine"),
     N_('the positive limit switch'),
     N_('the program stopped at line {0}: resume there or start it again from the beginning (choose one)'),  # noqa: E501
     N_('the program {0} is being planned for single block (wait until it is ready)'),
@@ -160,6 +171,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked'),  # noqa: E501
     N_('the work light'),
     N_('this CPU does not keep stores in order: the 1 ms loop runs as a thread of the panel, not in its own process (less punctual under GUI load)'),  # noqa: E501
+    N_('this machine has no handwheel ([handwheel] terminal)'),
     N_('this machine has no probe input ([probe] drive in the machine configuration)'),
     N_('this machine has no reference switches ([homing] method = "set_here"): where its axes stand after the cut is not known, so machine zero set now would not be the old one; the part zero must be touched off again'),  # noqa: E501
     N_('touch off {0}: not a number'),

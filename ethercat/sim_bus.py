@@ -30,6 +30,8 @@ Terminals and the simulated machine's switches and buttons (``ethercat.sim_io``)
     terminal_input k, input_value(bit, level[, release])   force (or release) a terminal input
     drive_input i, input_value(...)                         the same on a drive's 0x60FD
     encoder_add k, n                                        an encoder terminal counts n more
+    lose_terminal k / restore_terminal k                    terminal k stops answering / is back,
+                                                            powered again (an encoder counts from 0)
 Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
@@ -51,7 +53,8 @@ from .terminals import TerminalSpec
 #: injection names accepted by `SimBus.inject`
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
               "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
-              "probe_part_off", "terminal_input", "drive_input", "encoder_add")
+              "probe_part_off", "terminal_input", "drive_input", "encoder_add", "lose_terminal",
+              "restore_terminal")
 #: ``inject("probe_surface", i, value)``: value = ``probe_surface_value(...)``
 PROBE_SURFACE_SCALE = 1e6
 
@@ -121,6 +124,8 @@ class SimBus(Bus):
             DriveModel(p, position=d.position) for p, d in zip(params, self.drives))
         self._by_position = {d.position: i for i, d in enumerate(self.drives)}
         self._lost = [False] * n
+        self._terminal_lost = np.zeros(len(self.terminals), dtype=bool)
+        self._terminal_wkc = np.array([t.type.working_counter for t in self.terminals], dtype=np.int64)
         self._init = [False] * n             # back after a power cycle: INIT until recovered
         self._silent_s = [0.0] * n
         self._drop_frames = 0
@@ -145,6 +150,7 @@ class SimBus(Bus):
             m.controlword = 0
             m.step(self.cycle_time_s)            # NOT READY -> SWITCH ON DISABLED
         self._lost = [False] * self.n_drives
+        self._terminal_lost[:] = False
         self._init = [False] * self.n_drives
         self._drop_frames = 0
         self._read_inputs_all()
@@ -283,10 +289,11 @@ class SimBus(Bus):
             for i in range(self.n_drives):
                 if not (self._lost[i] or self._init[i]):
                     self.digital_inputs[i] = int(words[m + i]) & 0xFFFF_FFFF
-        np.copyto(self.terminal_inputs, words[:m] & 0xFFFF_FFFF, casting="unsafe")
-        np.copyto(self.terminal_counts, io.counts, casting="unsafe")
-        np.copyto(io.outputs, self.terminal_outputs)
-        return sum(t.type.working_counter for t in self.terminals)
+        alive = ~self._terminal_lost             # a lost terminal neither reads nor is written
+        np.copyto(self.terminal_inputs, words[:m] & 0xFFFF_FFFF, casting="unsafe", where=alive)
+        np.copyto(self.terminal_counts, io.counts, casting="unsafe", where=alive)
+        np.copyto(io.outputs, self.terminal_outputs, where=alive)
+        return int(self._terminal_wkc[alive].sum())
 
     def _slaves(self) -> tuple[SlaveInfo, ...]:
         out = [SlaveInfo(position=t.position, name=t.type.name, vendor_id=t.type.vendor_id,
@@ -326,7 +333,8 @@ class SimBus(Bus):
         m.write_object(index, subindex, value)
 
     def lost_slaves(self) -> tuple[int, ...]:
-        return tuple(d.position for d, lost, init in zip(self.drives, self._lost, self._init) if lost or init)
+        drives = [d.position for d, lost, init in zip(self.drives, self._lost, self._init) if lost or init]
+        return tuple(drives + [t.position for t, lost in zip(self.terminals, self._terminal_lost) if lost])
 
     def recover_slaves(self) -> tuple[int, ...]:
         """Bring slaves that came back in INIT to OP again (as `SoemBus.recover_slaves`);
@@ -415,6 +423,12 @@ class SimBus(Bus):
             self.io.force(self.n_terminals + index, value)
         elif name == "encoder_add":
             self.io.encoder_add(index, value - (1 << 31) if value >= 1 << 31 else value)
+        elif name in ("lose_terminal", "restore_terminal"):
+            if not 0 <= index < self.n_terminals:
+                raise ConfigurationError(f"terminal {index}: there are {self.n_terminals}")
+            self._terminal_lost[index] = name == "lose_terminal"
+            if name == "restore_terminal":
+                self.io.counts[index] = 0          # powered again: its counter starts from 0
         else:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
 

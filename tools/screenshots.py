@@ -3,10 +3,12 @@ Turkish, into ``resources/screenshots/all/`` (the README's gallery):
 
     python -m tools.screenshots [--out DIR] [--jobs N]
     python -m tools.screenshots --probing [--out DIR]
+    python -m tools.screenshots --handwheel [--out DIR]
 
 ``--probing``: each probing wizard run on the demo machine against its simulated workpiece
 (the real controller on a manual clock, in this process), the Probe tab shown with the moves
-and what was found, into ``resources/screenshots/probing/``.
+and what was found, into ``resources/screenshots/probing/``. ``--handwheel``: the Manual page with
+the handwheel live on X at x10, after 50 detents turned, into ``resources/screenshots/``.
 
 Each picture is the real panel (``cnc-panel --demo --screenshot``), the Auto page after the
 demo program has run a few seconds (backplot, spindle and tool showing). The test suite checks
@@ -139,12 +141,59 @@ def _shoot_wizard(app: object, out: Path, wizard_name: str, inputs: dict[str, ob
     return target.name
 
 
+def shoot_handwheel(out: Path) -> str:
+    """The Manual page with the handwheel live (1280x800, English)."""
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from PySide6.QtWidgets import QApplication
+
+    from app.application import apply_theme
+    from app.context import PanelOptions
+    from app.context_factory import build_context
+    from app.machine.controller import MachineController
+    from app.main_window import MainWindow
+
+    app = QApplication.instance() or QApplication([])
+    with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
+        ctl = MachineController(None, state_dir=state, worker_mode="manual")
+        options = PanelOptions(demo=True, state_dir=Path(state))
+        apply_theme(app)  # type: ignore[arg-type]
+        window = MainWindow(options, build_context(options, controller=ctl))
+        window.resize(1280, 800)
+        window.show()
+        for _ in range(400):                 # the window's start-up: connect, home, tools
+            app.processEvents()  # type: ignore[attr-defined]
+            if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
+                break
+        if not all(ctl.homed):               # the demo starts unhomed: Home all, as the operator would
+            assert ctl.home_all()
+            ctl.run_until(lambda: all(ctl.homed) and ctl.state.value == "idle", 120)
+        window.show_page("manual")
+        box = window.page("manual").handwheel
+        box.axis_buttons["X"].click()
+        box.step_buttons[1].click()
+        ctl.advance(0.1)
+        ctl.turn_handwheel(4 * 50)
+        ctl.advance(1.5)
+        for _ in range(10):
+            app.processEvents()  # type: ignore[attr-defined]
+        target = out / "manual_handwheel.png"
+        window.grab().save(str(target))
+        window.close()
+        ctl.shutdown()
+    return target.name
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m tools.screenshots", description=__doc__.split("\n\n")[0])
     p.add_argument("--out", default=None)
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--probing", action="store_true", help="the probing wizards instead of the pages")
+    p.add_argument("--handwheel", action="store_true", help="the Manual page with the handwheel live")
     args = p.parse_args(argv)
+    if args.handwheel:
+        out = Path(args.out or ROOT / "resources" / "screenshots")
+        print(shoot_handwheel(out))
+        return 0
     if args.probing:
         out = Path(args.out or ROOT / "resources" / "screenshots" / "probing")
         out.mkdir(parents=True, exist_ok=True)

@@ -21,6 +21,7 @@ from app.machine.model import (
     BusStatus,
     CommandResult,
     ControllerSnapshot,
+    HandwheelStatus,
     HoldKind,
     MachineState,
     ProbingRequest,
@@ -78,6 +79,7 @@ class MachineApi(Protocol):
     commandRefused: SignalInstance  # (action, reason)
     message: SignalInstance  # informational text for the status line
     probingFinished: SignalInstance  # ProbingResult: what a probing wizard found (and wrote)
+    handwheelChanged: SignalInstance  # HandwheelStatus: its axis, step, whether it is live and why not
     # ControllerSnapshot: the status in one object, published when anything in it changed (at
     # most once an event-loop turn); ``snapshot()`` makes one now
     statusChanged: SignalInstance
@@ -590,4 +592,22 @@ class MachineApi(Protocol):
 
     def simulate_input(self, key: str, value: bool | None) -> CommandResult:
         """Simulated drives: signal ``key`` reads ``value`` until released with None."""
+        ...
+
+    @property
+    def handwheel(self) -> HandwheelStatus:
+        """The handwheel: its axis and step, whether it moves the axis now and why not."""
+        ...
+
+    def select_handwheel(self, axis: str) -> CommandResult:
+        """Give the handwheel axis ``axis`` ("": off); refused when the machine has none or its
+        pendant's selector chooses."""
+        ...
+
+    def set_handwheel_step(self, scale_index: int) -> CommandResult:
+        """The handwheel's step per detent: 0 x1, 1 x10, 2 x100 (``[handwheel] steps``)."""
+        ...
+
+    def turn_handwheel(self, counts: int) -> CommandResult:
+        """A simulated machine's handwheel turned by ``counts`` (refused on a real bus)."""
         ...

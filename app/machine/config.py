@@ -36,6 +36,7 @@ from app.machine.errors import ConfigError
 from app.machine.wiring import (
     Direction,
     MachineWiring,
+    handwheel_lines,
     homing_lines,
     signal_lines,
     terminal_lines,
@@ -480,7 +481,7 @@ def config_to_toml(config: MachineConfig) -> str:
     for d in b.drives:
         out += drive_lines(d)
     out += terminal_lines(config.wiring)
-    out += [""] + signal_lines(config.wiring)
+    out += [""] + signal_lines(config.wiring) + handwheel_lines(config.wiring)
     c = config.controller
     out += ["", "[controller]", f"jog_speed_mm_s = {_fmt(float(c.jog_speed_mm_s))}",
             f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",

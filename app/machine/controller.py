@@ -56,6 +56,7 @@ faults, alarms, reset, a new configuration and shutdown from ``MachineEvents``):
               outputs    DigitalOutputs  the drives' and terminals' outputs (M62-M65, coolant, signals)
               signals    MachineSignals  what the machine's signals read now, the refusals they call for
               io         MachineIo       buttons, door, air, lube, the program's coolant
+              handwheel_ctl HandwheelControl the handwheel's axis, step and when it is live
               tools      ToolControl     tool table, tool in the spindle
               setter     ToolSetter      measuring a tool on the setter
               prober     Prober          G38.x;  waiter  InputWaiter  M66
@@ -75,6 +76,7 @@ from typing import Any
 from PySide6.QtCore import QObject, Signal
 
 from app.machine.config import MachineConfig
+from app.machine.devices.handwheel import HandwheelControl
 from app.machine.devices.inputs import InputWaiter
 from app.machine.devices.machine_io import MachineIo
 from app.machine.devices.outputs import DigitalOutputs
@@ -94,6 +96,7 @@ from app.machine.model import (
     Activity,
     Alarm,
     BusStatus,
+    HandwheelStatus,
     HoldKind,
     MachineState,
     ProbingResult,
@@ -151,7 +154,7 @@ _spindle, _tools, _setter, _alarms, _conn = _part("spindle_ctl"), _part("tools")
 _poller, _drives, _status, _remote = _part("poller"), _part("drives"), _part("status"), _part("remote")
 _job_log, _probing, _prober, _switches = _part("jobs_log"), _part("probing"), _part("prober"), \
     _part("switches")
-_io, _signals = _part("io"), _part("signals")
+_io, _signals, _wheel = _part("io"), _part("signals"), _part("handwheel_ctl")
 
 
 class MachineController(QObject):
@@ -190,6 +193,7 @@ class MachineController(QObject):
     commandRefused = Signal(str, str)
     message = Signal(str)
     probingFinished = Signal(object)
+    handwheelChanged = Signal(object)
     statusChanged = Signal(object)   # ControllerSnapshot, at most once an event-loop turn
 
     def __init__(
@@ -219,7 +223,8 @@ class MachineController(QObject):
         self.alarm_log = alarms = AlarmLog(store, out, events)
         self.positions = positions = Positions(settings, out, events, drives)
         self.signals = signals = MachineSignals(settings, drives)
-        self.states = states = StateMachine(settings, out, events, drives, positions, alarms, signals)
+        self.handwheel_ctl = wheel = HandwheelControl(settings, drives, positions, signals, events, out)
+        self.states = states = StateMachine(settings, out, events, drives, positions, alarms, signals, wheel)
         self.coordinates = coords = Coordinates(settings, states, positions, store, alarms, out, events,
                                                 pauses)
         self.outputs = outputs = DigitalOutputs(settings, drives, alarms, events, pauses)
@@ -247,6 +252,7 @@ class MachineController(QObject):
         self.io = io = MachineIo(settings, states, signals, drives, spindle, outputs, alarms, stream, events,
                                  run)
         poller.on_poll(io.poll)
+        poller.on_poll(wheel.poll)
         poller.on_poll(homing.poll)
         poller.on_poll(prober.place_simulated_surface)
         poller.on_poll(prober.place_simulated_part)
@@ -319,6 +325,7 @@ class MachineController(QObject):
     part_target: reads[int] = reads(_job_log, "target")
     opcua_settings: reads[OpcUaSettings] = reads(_remote, "settings")
     coolant: reads[tuple[bool, bool]] = reads(_io, "coolant")
+    handwheel: reads[HandwheelStatus] = reads(_wheel, "status")
 
     # ------------------------------------------------------------------ commands
     snapshot = forward(_status, StatusBoard.current)
@@ -385,3 +392,6 @@ class MachineController(QObject):
     set_work_light = forward(_io, MachineIo.set_work_light)
     simulate_input = forward(_io, MachineIo.simulate_input)
     signal_readings = forward(_signals, MachineSignals.readings)
+    select_handwheel = forward(_wheel, HandwheelControl.select_handwheel)
+    set_handwheel_step = forward(_wheel, HandwheelControl.set_handwheel_step)
+    turn_handwheel = forward(_wheel, HandwheelControl.turn_handwheel)

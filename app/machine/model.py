@@ -38,9 +38,10 @@ if TYPE_CHECKING:
 
 __all__ = ["WIZARD", "WIZARDS", "WizardAim", "WizardSpec",
            "Activity", "Alarm", "AlarmState", "Budget", "BusStatus", "CommandResult", "ControllerSnapshot",
-           "HoldKind", "MachineState", "PauseKind", "PausePoint", "ProbeWizard", "ProbingRequest",
-           "ProbingResult", "ProgramInfo", "ProgramIssue", "Prompt", "RestartPreview", "ResumePoint",
-           "RunSummary", "Severity", "SignalReading", "SpindleState", "TrackingReport"]
+           "HANDWHEEL_SCALES", "HandwheelStatus", "HoldKind", "MachineState", "PauseKind", "PausePoint",
+           "ProbeWizard", "ProbingRequest", "ProbingResult", "ProgramInfo", "ProgramIssue", "Prompt",
+           "RestartPreview", "ResumePoint", "RunSummary", "Severity", "SignalReading", "SpindleState",
+           "TrackingReport"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -331,3 +332,23 @@ class SignalReading:
     value: bool | None
     meaning: str
     hal: str
+
+
+#: the handwheel's step selector positions, as the pendant names them
+HANDWHEEL_SCALES = ("x1", "x10", "x100")
+
+
+@dataclass(frozen=True, slots=True)
+class HandwheelStatus:
+    """The handwheel as the Manual page shows it: whether the machine has one, the axis it is
+    given ("" none), its step per detent (mm or deg) and which of x1/x10/x100 that is, whether
+    it moves the axis now (``live``) and why not while an axis is given, and whether the
+    pendant's selector inputs choose axis and step (the panel's buttons then only show them)."""
+
+    configured: bool = False
+    axis: str = ""
+    step: float = 0.0
+    scale_index: int = 0
+    live: bool = False
+    why: str = ""
+    selector: bool = False

@@ -198,6 +198,13 @@ class Interlocks(Protocol):
     def refusal(self, action: str) -> str: ...
 
 
+class MotionClaim(Protocol):
+    """What must let go of the axes before a motion starts (the handwheel): "" when they are
+    free, else why the motion must wait."""
+
+    def claim(self, action: str) -> str: ...
+
+
 class JogInterlocks(Protocol):
     """What the machine's signals allow a jog: the speed with the door open (None: closed), the
     limit switch an axis stands on (+1 / -1, 0: none), whether both its limit switches are

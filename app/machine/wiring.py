@@ -31,13 +31,14 @@ from typing import Any
 from ethercat.errors import ConfigurationError as BusConfigurationError
 from ethercat.sim_io import SimSwitch
 from ethercat.terminals import TerminalKind, TerminalSpec, TerminalType, terminal_type
-from ethercat.worker import InputWatch, SwitchHoming, WatchAction
+from ethercat.worker import HandwheelSpec, InputWatch, SwitchHoming, WatchAction
 from planner.core.machine import MachineSpec
 from planner.core.schema import Locator
 
 __all__ = [
-    "AXIS_SIGNALS", "SIGNALS", "AxisHoming", "InterlockSettings", "MachineWiring", "SignalDef", "SignalWire",
-    "TerminalSetting", "Wire", "WorkerIo", "axis_at", "wiring_from_valid", "worker_io",
+    "AXIS_SIGNALS", "SIGNALS", "AxisHoming", "HandwheelSettings", "InterlockSettings", "MachineWiring",
+    "SignalDef", "SignalWire", "TerminalSetting", "WheelMode", "Wire", "WorkerIo", "axis_at",
+    "wiring_from_valid", "worker_io",
 ]
 
 
@@ -80,9 +81,13 @@ SIGNALS: tuple[SignalDef, ...] = (
               "the lube pump, on while the drives are on"),
     SignalDef("work_light", Direction.OUT, False, "", "the work light"),
     SignalDef("spindle_enable", Direction.OUT, False, "spindle.0.on", "on while the spindle turns"),
+    SignalDef("jog_enable", Direction.IN, False, "axis.L.jog-enable",
+              "the handwheel's axis selector stands on this axis"),
+    SignalDef("jog_scale_x10", Direction.IN, False, "", "the handwheel's step selector stands on x10"),
+    SignalDef("jog_scale_x100", Direction.IN, False, "", "the handwheel's step selector stands on x100"),
 )
 _BY_NAME = {s.name: s for s in SIGNALS}
-AXIS_SIGNALS = ("limit_pos", "limit_neg", "home")
+AXIS_SIGNALS = ("limit_pos", "limit_neg", "home", "jog_enable")
 #: CiA 402's bits of 0x60FD for an axis' switches
 DRIVE_SWITCH_BITS = {"limit_neg": 0, "limit_pos": 1, "home": 2}
 _WIRE = re.compile(r"\s*(!?)\s*(\d+)\s*:\s*(\d+)\s*")
@@ -160,14 +165,33 @@ class InterlockSettings:
     door_open_jog_mm_s: float = 0.0
 
 
+class WheelMode(enum.Enum):
+    POSITION = "position"     # every detent moves its step (LinuxCNC's jog-vel-mode false)
+    VELOCITY = "velocity"     # counts the axis cannot follow are dropped (jog-vel-mode true)
+
+
+@dataclass(frozen=True, slots=True)
+class HandwheelSettings:
+    """``[handwheel]``: the encoder terminal (bus position; None: no handwheel), counts per
+    detent, the mode, the step of one detent at x1, x10, x100, the largest count change of one
+    cycle that is a turn."""
+
+    terminal: int | None = None
+    counts_per_detent: int = 4
+    mode: WheelMode = WheelMode.POSITION
+    steps: tuple[float, float, float] = (0.001, 0.01, 0.1)
+    max_counts_per_cycle: int = 256
+
+
 @dataclass(frozen=True, slots=True)
 class MachineWiring:
-    """Terminals, wired signals (by key), homing to switches and interlocks."""
+    """Terminals, wired signals (by key), homing to switches, interlocks and the handwheel."""
 
     terminals: tuple[TerminalSetting, ...] = ()
     signals: tuple[SignalWire, ...] = ()
     homing: tuple[AxisHoming, ...] = ()
     interlocks: InterlockSettings = InterlockSettings()
+    handwheel: HandwheelSettings = HandwheelSettings()
 
     def get(self, key: str) -> SignalWire | None:
         for s in self.signals:
@@ -306,7 +330,22 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
         if missing:
             raise loc.fail(("homing", "method"), "homing to switches needs a [[homing.axes]] table for every "
                                                  f"axis; missing: {' '.join(missing)}")
-    return MachineWiring(tuple(terminals), tuple(signals), homing, interlocks)
+    return MachineWiring(tuple(terminals), tuple(signals), homing, interlocks,
+                         _handwheel(valid["handwheel"], by_position, loc))
+
+
+def _handwheel(h: dict[str, Any], by_position: dict[int, TerminalSetting], loc: Locator) -> HandwheelSettings:
+    """``[handwheel]``, its terminal an encoder terminal of ``[[bus.terminals]]``."""
+    steps = tuple(float(x) for x in h["steps"])
+    if len(steps) != 3:
+        raise loc.fail(("handwheel", "steps"), f"three steps (x1, x10, x100), not {len(steps)}")
+    term = by_position.get(h["terminal"]) if h["terminal"] is not None else None
+    if h["terminal"] is not None and (term is None or term.terminal_type.kind is not TerminalKind.ENCODER):
+        found = f"a {term.terminal_type.name}" if term is not None else "no terminal"
+        raise loc.fail(("handwheel", "terminal"), f"slave {h['terminal']} is {found}, not an encoder "
+                                                  "terminal (an EL5101 in [[bus.terminals]])")
+    return HandwheelSettings(h["terminal"], h["counts_per_detent"], WheelMode(h["mode"]),
+                             (steps[0], steps[1], steps[2]), h["max_counts_per_cycle"])
 
 
 def _may_share(s: SignalWire, other: str, homing: tuple[AxisHoming, ...]) -> bool:
@@ -348,6 +387,16 @@ def terminal_lines(wiring: MachineWiring) -> list[str]:
     return out
 
 
+def handwheel_lines(wiring: MachineWiring) -> list[str]:
+    h = wiring.handwheel
+    out = ["[handwheel]"]
+    if h.terminal is not None:
+        out.append(f"terminal = {h.terminal}")
+    return out + [f"counts_per_detent = {h.counts_per_detent}", f'mode = "{h.mode.value}"',
+                  f"steps = [{', '.join(repr(float(x)) for x in h.steps)}]",
+                  f"max_counts_per_cycle = {h.max_counts_per_cycle}"]
+
+
 def homing_lines(wiring: MachineWiring) -> list[str]:
     out: list[str] = []
     for h in wiring.homing:
@@ -374,6 +423,7 @@ class WorkerIo:
     sim_switches: tuple[SimSwitch, ...]
     input_rest: tuple[int, ...]
     sim_index_pitch: tuple[float, ...] = ()
+    handwheel: HandwheelSpec | None = None
 
 
 #: how far beyond its soft limit a simulated axis' limit switch closes (mm or deg)
@@ -448,8 +498,11 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
             switches.append(SimSwitch(i, s.wire.bit, lo, hi, not s.wire.inverted, **place))
     pitch = tuple(SIM_INDEX_PITCH if simulated and any(h.axis == i and h.use_index for h in homing) else 0.0
                   for i in range(len(axes)))
+    wheel = wiring.handwheel
+    spec = None if wheel.terminal is None else HandwheelSpec(wiring.terminal_index(wheel.terminal),
+                                                             max_counts_per_cycle=wheel.max_counts_per_cycle)
     return WorkerIo(tuple(t.spec() for t in wiring.terminals), tuple(watches), tuple(homing), tuple(switches),
-                    tuple(rest), pitch if any(pitch) else ())
+                    tuple(rest), pitch if any(pitch) else (), spec)
 
 
 def _sim_range(name: str, lo: float, hi: float,

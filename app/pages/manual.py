@@ -1,5 +1,5 @@
-"""Manual: jog per axis (hold / increments), spindle on/off and speed, coolant and work light,
-MDI with history."""
+"""Manual: jog per axis (hold / increments), the handwheel's axis and step, spindle on/off and
+speed, coolant and work light, MDI with history."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from PySide6.QtWidgets import (
 
 from app.context import PanelContext
 from app.i18n import N_, tr
+from app.widgets.handwheel_box import HandwheelBox
 from app.widgets.jog_panel import JogPanel
 from app.widgets.keyboard import OnScreenKeyboard
 from app.widgets.numeric_field import NumericField
@@ -42,8 +43,12 @@ class ManualPage(QWidget):
         self.jog.jogStart.connect(lambda axis, d: c.jog_start(axis, d, self.jog.speed_fraction))
         self.jog.jogStop.connect(lambda axis: c.jog_stop(axis or None))
         self.jog.jogStep.connect(lambda axis, step, d: c.jog_increment(axis, step, d))
-        layout.addWidget(jog_box, 1)
         self.jog_box = jog_box
+        self.handwheel = HandwheelBox(c, i18n)
+        left = QVBoxLayout()
+        left.addWidget(jog_box, 1)
+        left.addWidget(self.handwheel)
+        layout.addLayout(left, 1)
 
         right = QVBoxLayout()
         spindle_box = QGroupBox()
@@ -151,6 +156,7 @@ class ManualPage(QWidget):
         """The keyboard takes the jog panel's place while it is open (and the coolant buttons'):
         beside the jog panel it would not fit in 1280 px, and nobody jogs while typing a block."""
         self.jog_box.setVisible(not on)
+        self.handwheel.allow(not on)
         self.coolant_box.setVisible(not on and self._coolant_wired)
         self.keyboard.setVisible(on)
 

@@ -12,6 +12,8 @@ connection) lets tests and integrators inject faults without touching the link:
     {"op": "lose", "slave": 2} / {"op": "restore", "slave": 2}  -> slave gone / back (power cycled)
     {"op": "inputs", "slave": 1, "value": 65536}   -> the drive's digital inputs 0x60FD (a probe ...),
                                                        a terminal's input channels
+    {"op": "encoder", "slave": 3, "add": 40}       -> an encoder terminal counts 40 more (a
+                                                       handwheel turned; its 16-bit counter wraps)
     {"op": "stop"}                                  -> the emulator exits
 """
 
@@ -167,6 +169,8 @@ class EmulatorServer:
             model.digital_inputs = int(req["value"]) & 0xFFFF_FFFF
         elif op == "inputs" and isinstance(objects, TerminalObjects):
             objects.inputs = int(req["value"]) & 0xFFFF_FFFF
+        elif op == "encoder" and isinstance(objects, TerminalObjects):
+            objects.counter = (objects.counter + int(req["add"])) & 0xFFFF
         else:
             raise ConfigurationError(f"unknown control op {op!r}")
         return {"ok": True}

@@ -4,7 +4,8 @@ controller through a bounded ring, with supervision, tracking and timing records
 One file per concern: ``types`` (states, codes, records, configuration), ``shared`` (the one
 shared block and its ordering rules), ``cycle`` (the loop), ``clocked`` (the loop on its clock),
 ``homing`` (drive-side homing), ``switch_homing`` (homing to switches in position mode),
-``watches`` (E-stop chain, limits),
+``watches`` (E-stop chain, limits), ``handwheel`` (an encoder's counts moving one axis),
+``ring`` (replacing queued set-points),
 ``acyclic`` (SDO and recovery beside the cycle), ``realtime`` (core, priority, sleeping),
 ``process`` (the worker's own process), ``messages`` (commands and alarm texts) and
 ``client`` (``CyclicWorker``, the controller's handle).
@@ -12,12 +13,14 @@ shared block and its ordering rules), ``cycle`` (the loop), ``clocked`` (the loo
 
 from ..bus import DriveSpec
 from .client import CyclicWorker
+from .handwheel import HandwheelMode, WheelState, stop_distance
 from .messages import error_code_text
 from .realtime import PROCESS_SPIN_S
 from .types import (
     Alarm,
     AlarmCode,
     EventCode,
+    HandwheelSpec,
     HomingState,
     HomingStep,
     InputWatch,
@@ -36,9 +39,10 @@ from .types import (
 )
 
 __all__ = [
-    "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HomingState",
+    "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HandwheelMode",
+    "HandwheelSpec", "HomingState",
     "HomingStep", "InputWatch", "ProbeLatch", "ProbeState", "ReplaceResult", "SwitchHoming", "TimingStats",
     "TraceChunk", "TrackingStats", "WatchAction",
     "WorkerConfig", "WorkerEvent",
-    "WorkerSnapshot", "WorkerState", "error_code_text",
+    "WheelState", "WorkerSnapshot", "WorkerState", "error_code_text", "stop_distance",
 ]

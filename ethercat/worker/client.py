@@ -69,6 +69,10 @@ __all__ = ["CyclicWorker"]
 _EVENTS_KEPT = 32
 
 
+#: the injections whose index is a terminal's (in ``WorkerConfig.terminals``), not an axis
+_TERMINAL_INJECTIONS = frozenset({"terminal_input", "encoder_add", "lose_terminal", "restore_terminal"})
+
+
 class CyclicWorker:
     """The controller-facing handle of the cyclic worker. See the module docstring."""
 
@@ -222,7 +226,8 @@ class CyclicWorker:
     def _command(self, code: Command, a: int = 0, b: int = 0, reason: str = "") -> bool:
         return self._command_result(code, a, b, reason) is Result.OK
 
-    def _command_result(self, code: Command, a: int = 0, b: int = 0, reason: str = "") -> Result:
+    def _command_result(self, code: Command, a: int = 0, b: int = 0, reason: str = "",
+                        reals: Sequence[float] = ()) -> Result:
         block = self._block
         if block is None:
             raise WorkerError("worker is not running")
@@ -231,6 +236,7 @@ class CyclicWorker:
             ctl.cmd_code[...] = int(code)
             ctl.cmd_a[...] = a
             ctl.cmd_b[...] = b
+            ctl.cmd_f[:len(reals)] = reals
             seq = int(ctl.cmd_seq) + 1
             if reason:
                 self._reasons[seq] = reason
@@ -335,6 +341,25 @@ class CyclicWorker:
         self._live()
         self._command(Command.OVERRIDE_LIMITS, int(bool(on)))
 
+    def handwheel(self, axis: int | str, mode: int, scale: float, limits: Sequence[float]) -> bool:
+        """Axis ``axis`` follows the handwheel's counts from where it stands: ``scale`` axis units
+        per count, ``mode`` 0 position or 1 velocity (``handwheel.HandwheelMode``), ``limits`` its
+        (v, a, j, lowest, highest position) in axis units. False when refused: no handwheel
+        configured, not ENABLED, set-points queued, the axis outside those positions, or
+        another axis' wheel still stopping."""
+        self._live()
+        reals = [float(scale), *(float(x) for x in limits)]
+        if len(reals) != 6:
+            raise WorkerError(f"handwheel limits are (v, a, j, lowest, highest), got {tuple(limits)}")
+        return self._command_result(Command.HANDWHEEL, self._axis_index(axis), int(mode),
+                                    reals=reals) is Result.OK
+
+    def handwheel_off(self) -> bool:
+        """The handwheel lets its axis go: True when the axis stood (the wheel is off now),
+        False while it brakes to rest (off once it stands)."""
+        self._live()
+        return self._command(Command.HANDWHEEL, -1)
+
     def set_digital_output(self, axis: int | str, value: int) -> None:
         """The drive's digital outputs 0x60FE:1 (spindle on/direction bits), sent in the
         process data from the next cycle on."""
@@ -369,7 +394,7 @@ class CyclicWorker:
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECT_NAMES}")
         code = INJECT_NAMES.index(name) | (int(value) << 8)
         # a terminal's injections name the terminal's index, the others an axis
-        index = int(axis) if name in ("terminal_input", "encoder_add") else self._axis_index(axis)
+        index = int(axis) if name in _TERMINAL_INJECTIONS else self._axis_index(axis)
         if not self._command(Command.INJECT, index, code):
             raise WorkerError(f"injection {name!r} needs bus_kind='sim'")
 
@@ -626,6 +651,7 @@ class CyclicWorker:
             limits_overridden=bool(s["override"]),
             homing_steps=tuple(HomingStep(int(x)) for x in s["home_step"]),
             home_latched=tuple(float(x) for x in s["home_latch"]),
+            handwheel_state=int(s["wheel_state"]), handwheel_axis=int(s["wheel_axis"]),
         )
 
     def drain_trace(self) -> TraceChunk:

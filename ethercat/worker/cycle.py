@@ -24,8 +24,10 @@ from ..cia402 import Cia402State
 from ..errors import EtherCATError
 from .acyclic import AcyclicHelper
 from .clocked import run_clocked
+from .handwheel import Handwheel, WheelFault, WheelState
 from .homing import Homing, HomingPhase, HomingResult
 from .messages import INJECT_NAMES, Command, Result
+from .ring import replace_queued
 from .shared import ALARM_SLOTS, SharedBlock
 from .switch_homing import SwitchHomer
 from .tracking import Tracker
@@ -116,6 +118,11 @@ class CycleLoop:
         self.switch_homer = SwitchHomer(config.switch_homing, config.ts_s, lv.homing, lv.homed,
                                         lv.home_step, lv.home_latch,
                                         int(config.homing_timeout_s / config.ts_s))
+        spec = config.handwheel
+        self.wheel = Handwheel(config.ts_s, spec.counter_bits if spec else 16,
+                               spec.max_counts_per_cycle if spec else 1, lv.wheel_state, lv.wheel_axis)
+        self.wheel_terminal = spec.terminal if spec else -1
+        self.wheel_slave = config.terminals[spec.terminal].position if spec else -1
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -199,6 +206,7 @@ class CycleLoop:
         """Quick stop of all axes, buffer flushed, alarm raised."""
         self._alarm(code, axis, a, b, f)
         self._flush()
+        self.wheel.off()
         self.homing.cancel()
         if self.bus is not None:
             self.bus.modes_of_operation[:] = cia402.CSP
@@ -234,6 +242,7 @@ class CycleLoop:
             self._set_state(WorkerState.ENABLING)
         elif code == Command.DISABLE:
             self._flush()
+            self.wheel.off()
             bus.modes_of_operation[:] = cia402.CSP
             self.homing.cancel()
             if st not in (WorkerState.FAULT, WorkerState.FAULT_RESET, WorkerState.ERROR):
@@ -249,7 +258,8 @@ class CycleLoop:
             self._reaction(AlarmCode.ESTOP if code == Command.ESTOP else AlarmCode.QUICK_STOP,
                            state=WorkerState.FAULT if st is WorkerState.FAULT else WorkerState.QUICK_STOP)
         elif code == Command.HOME:
-            if st is not WorkerState.ENABLED or self.moving or not 0 <= a < self.n or self.helper.busy:
+            if st is not WorkerState.ENABLED or self.moving or self.wheel.state or not 0 <= a < self.n \
+                    or self.helper.busy:
                 return Result.REFUSED
             self._flush()
             position = self.cfg.drives[a].position
@@ -257,7 +267,8 @@ class CycleLoop:
             self._set_state(WorkerState.HOMING)
             self.helper.submit(_HOMING_METHOD, lambda: bus.sdo_write(position, 0x6098, 0, "<b", b))
         elif code == Command.HOME_SWITCH:
-            if st is not WorkerState.ENABLED or self.moving or not self.switch_homer.begin(a, self.words):
+            if (st is not WorkerState.ENABLED or self.moving or self.wheel.state
+                    or not self.switch_homer.begin(a, self.words)):
                 if self.switch_homer.failure:
                     self._homing_failed()            # an axis cannot home as configured: why
                 return Result.REFUSED
@@ -287,11 +298,13 @@ class CycleLoop:
         elif code == Command.FLUSH:
             self._flush()
         elif code == Command.REPLACE:
-            return self._replace(a, b)
+            return replace_queued(self.block, self.cap, a, b)
         elif code == Command.RESET_TRACKING:
             self.tracker.reset()
         elif code == Command.PROBE:
             return self._arm_probe(a, b)
+        elif code == Command.HANDWHEEL:
+            return self._handwheel(a, b)
         elif code == Command.STOP:
             self.stop_requested = True
         else:
@@ -318,31 +331,18 @@ class CycleLoop:
         lv.probe_state[...] = 1
         return Result.OK
 
-    def _replace(self, from_serial: int, n: int) -> Result:
-        """Applied between two cycles: the queued set-points with serial >= `from_serial` are
-        dropped and the `n` staged ones take their place. Serial k = the k-th set-point taken
-        since start (``live.consumed`` is the serial taken next; it sits at ring index
-        ``tail``). Refused (nothing changed) when that serial was already taken or lies past
-        the queue's end. At most two block copies of the staging area into the ring."""
-        ctl = self.ctl
-        consumed = int(self.lv.consumed)
-        tail = int(ctl.tail)
-        head = int(ctl.head)
-        if from_serial < consumed:
-            return Result.TOO_LATE
-        start = tail + (from_serial - consumed)
-        if start > head:
-            return Result.BEYOND_END
-        cap = self.cap
-        n = max(0, min(n, cap - (start - tail)))
-        i0 = start % cap
-        first = min(n, cap - i0)
-        stage = self.block.stage
-        if first > 0:
-            np.copyto(self.ring[i0:i0 + first], stage[:first])
-        if n > first:
-            np.copyto(self.ring[:n - first], stage[first:n])
-        ctl.head[...] = start + n          # the producer waits for our ack before touching head
+    def _handwheel(self, axis: int, mode: int) -> Result:
+        """Axis ``axis`` follows the handwheel (``Handwheel.arm``, the reals: scale, v, a, j, lowest,
+        highest), refused unless ENABLED with nothing queued; -1: ``Handwheel.release``."""
+        wheel = self.wheel
+        if axis < 0:
+            return Result.OK if wheel.release() else Result.REFUSED
+        f, bus = self.ctl.cmd_f, self.bus
+        if (self.wheel_terminal < 0 or self.state is not WorkerState.ENABLED or not axis < self.n
+                or int(self.ctl.head) > int(self.ctl.tail) or bus is None
+                or not wheel.arm(axis, mode, float(f[0]), f[1:6], float(self.ref[axis]),
+                                 int(bus.terminal_counts[self.wheel_terminal]))):
+            return Result.REFUSED
         return Result.OK
 
     def _axis_of(self, position: int) -> int:
@@ -397,7 +397,13 @@ class CycleLoop:
             head = int(ctl.head)
             tail = int(ctl.tail)
             np.copyto(self.prev_ref, self.ref)
-            if head > tail:
+            wheel = self.wheel
+            if wheel.state is not WheelState.OFF:
+                if head > tail:
+                    wheel.disarm()               # queued set-points wait until its axis stands
+                if not wheel.step(int(bus.terminal_counts[self.wheel_terminal]), self.ref):
+                    self._alarm(AlarmCode.HANDWHEEL, wheel.axis, int(WheelFault.JUMP), wheel.fault_counts)
+            elif head > tail:
                 np.copyto(self.ref, self.ring_rows[tail % self.cap])
                 ctl.tail[...] = tail + 1
                 lv.consumed[...] = int(lv.consumed) + 1
@@ -607,6 +613,8 @@ class CycleLoop:
             lost = 0
             for pos in bus.lost_slaves():
                 lost |= 1 << min(pos, 62)
+            if self.wheel.state is WheelState.LIVE and lost >> self.wheel_slave & 1:
+                self._alarm(AlarmCode.HANDWHEEL, self.wheel.axis, int(WheelFault.LOST))
             self._reaction(AlarmCode.WORKING_COUNTER, -1, wkc, lost, float(lv.wkc_expected))
             new = lost & ~self.lost_mask
             self.lost_mask |= lost

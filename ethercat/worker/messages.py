@@ -32,6 +32,7 @@ class Command(enum.IntEnum):
     HOME_SWITCH = 14        # a: the axes (bit mask) that home to their switches together
     TOUT = 15               # a: terminal index, b: its output word
     OVERRIDE_LIMITS = 16    # a: 1 on, 0 off
+    HANDWHEEL = 17          # a: the axis (-1: off), b: the mode; cmd_f: scale, v, a, j, lowest, highest
 
 
 class Result(enum.IntEnum):
@@ -45,7 +46,8 @@ class Result(enum.IntEnum):
 #: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox
 INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
                 "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
-                "probe_part_off", "terminal_input", "drive_input", "encoder_add")
+                "probe_part_off", "terminal_input", "drive_input", "encoder_add", "lose_terminal",
+                "restore_terminal")
 
 _ERROR_TEXT = {
     0x2310: "continuous over-current",
@@ -148,6 +150,13 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
                4: ("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data "
                    "for the index")}.get(b, "unknown cause")
         return f"homing of axis {axis} failed at step '{step}': {why}; quick stop of all axes"
+    if code is AlarmCode.HANDWHEEL:
+        if a == 1:
+            return (f"handwheel on axis {axis}: its counter jumped by {b} counts in one cycle (a terminal "
+                    "restarted or a wire is loose): the jump moved nothing, the axis stopped; select the "
+                    "axis again to go on")
+        return (f"handwheel on axis {axis}: its encoder terminal stopped answering: the axis stopped; "
+                "select the axis again once it answers")
     if code is AlarmCode.BUS_ERROR:
         return f"bus error in the cyclic loop ({detail}): worker stopped"
     return code.name

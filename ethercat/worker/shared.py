@@ -28,13 +28,14 @@ import numpy as np
 
 from ..errors import WorkerError
 
-__all__ = ["ALARM_SLOTS", "HIST_BINS", "HIST_BIN_S", "MSG_BYTES", "SharedBlock", "Status", "block_dtype",
-           "ordered_stores", "require_ordered_stores"]
+__all__ = ["ALARM_SLOTS", "CMD_FLOATS", "HIST_BINS", "HIST_BIN_S", "MSG_BYTES", "SharedBlock", "Status",
+           "block_dtype", "ordered_stores", "require_ordered_stores"]
 
 HIST_BIN_S = 5e-6
 HIST_BINS = 401              # 0 .. 2 ms in 5 us bins, last = overflow
 ALARM_SLOTS = 64
 MSG_BYTES = 1024
+CMD_FLOATS = 8               # a command's real-valued arguments (the handwheel's scale and limits)
 
 #: CPUs whose stores become visible to other cores in program order
 TSO_MACHINES = frozenset({"x86_64", "amd64", "i386", "i486", "i586", "i686", "x86"})
@@ -50,7 +51,7 @@ _CONTROL = np.dtype([
     ("status", "i8"), ("pid", "i8"),
     # command mailbox: the controller writes code, a, b, then seq; the loop answers result, ack
     ("cmd_seq", "i8"), ("cmd_ack", "i8"), ("cmd_code", "i8"), ("cmd_a", "i8"), ("cmd_b", "i8"),
-    ("cmd_result", "i8"),
+    ("cmd_result", "i8"), ("cmd_f", "f8", (CMD_FLOATS,)),
     # set-point ring: head written by the controller (and by the loop during a replace, while
     # the controller waits for the acknowledgement), tail by the loop
     ("head", "i8"), ("tail", "i8"),
@@ -86,6 +87,8 @@ def live_dtype(n: int, m: int = 0, w: int = 0) -> np.dtype:
         # homing to switches: step and latched position per axis
         ("tin", "i8", (m1,)), ("tout", "i8", (m1,)), ("tcount", "i8", (m1,)), ("watch", "i8", (w1,)),
         ("override", "i8"), ("home_step", "i8", (n,)), ("home_latch", "f8", (n,)),
+        # the handwheel: its state (``handwheel.WheelState``) and the axis it moves (-1: none)
+        ("wheel_state", "i8"), ("wheel_axis", "i8"),
     ], align=True)
 
 
@@ -130,6 +133,7 @@ class ControlFields(_Fields):
     cmd_a: np.ndarray
     cmd_b: np.ndarray
     cmd_result: np.ndarray
+    cmd_f: np.ndarray
     head: np.ndarray
     tail: np.ndarray
     snap_seq: np.ndarray
@@ -185,6 +189,8 @@ class LiveFields(_Fields):
     override: np.ndarray
     home_step: np.ndarray
     home_latch: np.ndarray
+    wheel_state: np.ndarray
+    wheel_axis: np.ndarray
 
 
 class SharedBlock:

@@ -12,7 +12,7 @@ import numpy as np
 from ..bus import DriveSpec, check_drives
 from ..cia402 import Cia402State
 from ..errors import ConfigurationError
-from ..terminals import TerminalSpec, check_terminals
+from ..terminals import TerminalKind, TerminalSpec, check_terminals
 
 __all__ = [
     "Alarm", "AlarmCode", "DriveSpec", "EventCode", "HomingState", "HomingStep", "InputWatch", "SwitchHoming",
@@ -56,6 +56,7 @@ class AlarmCode(enum.IntEnum):
     ESTOP_CHAIN = 12       # the machine's E-stop chain (safety relay) opened
     LIMIT_SWITCH = 13      # an axis ran onto a limit switch (a: +1 / -1 the side)
     HOMING_SWITCH = 14     # homing to the switch failed (a: the step, b: why)
+    HANDWHEEL = 15         # the handwheel stopped (a: ``WheelFault``, b: the counts of a jump)
 
 
 class EventCode(enum.IntEnum):
@@ -134,6 +135,24 @@ class SwitchHoming:
             raise ConfigurationError(f"homing of axis {self.axis}: search and latch velocities must not be 0")
         if not (self.max_travel > 0.0 and self.accel > 0.0 and self.jerk > 0.0):
             raise ConfigurationError(f"homing of axis {self.axis}: travel, acceleration and jerk must be > 0")
+
+
+@dataclass(frozen=True, slots=True)
+class HandwheelSpec:
+    """The handwheel's encoder: terminal ``terminal`` (an index into ``WorkerConfig.terminals``,
+    an encoder terminal), its counter's width, and the largest change of the counter in one
+    cycle that is a turn of the wheel (more is a jump: the wheel stops, nothing moves)."""
+
+    terminal: int
+    counter_bits: int = 16
+    max_counts_per_cycle: int = 256
+
+    def __post_init__(self) -> None:
+        if self.counter_bits not in (16, 32):
+            raise ConfigurationError(f"handwheel counter of {self.counter_bits} bits: 16 or 32")
+        if not 1 <= self.max_counts_per_cycle < 1 << (self.counter_bits - 1):
+            raise ConfigurationError(f"handwheel max_counts_per_cycle {self.max_counts_per_cycle}: "
+                                     f"1 .. {(1 << (self.counter_bits - 1)) - 1}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -259,6 +278,8 @@ class WorkerSnapshot:
     limits_overridden: bool = False        # ``CyclicWorker.override_limits`` in force
     homing_steps: tuple[HomingStep, ...] = ()    # per axis: the step of its homing to a switch
     home_latched: tuple[float, ...] = ()         # per axis: the position latched at the switch
+    handwheel_state: int = 0           # ``handwheel.WheelState``: off, live, stopping
+    handwheel_axis: int = -1           # the axis it moves (-1: none)
 
     @property
     def enabled(self) -> bool:
@@ -350,11 +371,16 @@ class WorkerConfig:
     terminals: tuple[TerminalSpec, ...] = ()
     watches: tuple[InputWatch, ...] = ()
     switch_homing: tuple[SwitchHoming, ...] = ()
+    handwheel: HandwheelSpec | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "drives", check_drives(self.drives))
         object.__setattr__(self, "terminals",
                            check_terminals(self.terminals, [d.position for d in self.drives]))
+        wheel = self.handwheel
+        if wheel is not None and not (0 <= wheel.terminal < len(self.terminals)
+                                      and self.terminals[wheel.terminal].kind is TerminalKind.ENCODER):
+            raise ConfigurationError(f"the handwheel's terminal {wheel.terminal} is not an encoder terminal")
         n_words = len(self.drives) + len(self.terminals)
         inputs: list[InputWatch | SwitchHoming] = [*self.watches, *self.switch_homing]
         for w in inputs:

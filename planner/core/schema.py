@@ -63,6 +63,7 @@ _LIN = 1e6        # mm: positions and travel
 SIGNAL_NAMES = (
     "estop_chain_ok", "cycle_start", "feed_hold", "stop", "door_closed", "air_ok", "lube_ok",
     "spindle_at_speed", "coolant_flood", "coolant_mist", "lube_pump", "work_light", "spindle_enable",
+    "jog_scale_x10", "jog_scale_x100",
 )
 #: a digital output or input: its number in a program (M62-M66 P), where it is (the axis index of
 #: the drive that carries it, bit ``bit`` of its 0x60FE:1 / 0x60FD; or ``slave``: the bus position
@@ -217,7 +218,22 @@ MACHINE_FILE = Table("", tables=(
     # not wired. limit_pos_<axis>, limit_neg_<axis> and home_<axis> default to bits 1, 0 and 2
     # of the axis' drive's 0x60FD (CiA 402)
     Table("signals", tuple(Key(name, "str", "") for name in SIGNAL_NAMES),
-          pattern=r"(?:limit_pos|limit_neg|home)_[XYZABC]", pattern_key=Key("", "str", None)),
+          pattern=r"(?:limit_pos|limit_neg|home|jog_enable)_[XYZABC]", pattern_key=Key("", "str", None)),
+    # the handwheel (MPG): the bus position of the encoder terminal it is wired to (an EL5101 of
+    # [[bus.terminals]]; unset: no handwheel), the counts of one detent (a wheel read in
+    # quadrature: 4), "position" (every detent moves its step; turned faster than the axis
+    # follows, it catches up within the limits) or "velocity" (counts the axis cannot follow are
+    # dropped: it stops soon after the wheel), the step of one detent at x1, x10 and x100 (mm or
+    # deg), and the largest change of its counter in one cycle taken as a turn (more is a jump:
+    # nothing moves, the wheel stops). Its axis and step come from the panel, or from the
+    # signals jog_enable_<axis>, jog_scale_x10 and jog_scale_x100 when they are wired
+    Table("handwheel", (
+        Key("terminal", "int", None, 0, 65535),
+        Key("counts_per_detent", "int", 4, 1, 10_000),
+        Key("mode", "str", "position", choices=("position", "velocity")),
+        Key("steps", "floats", [0.001, 0.01, 0.1], 1e-6, 100.0),
+        Key("max_counts_per_cycle", "int", 256, 1, 32_767),
+    )),
     # what the machine's interlocks do: air or lube pressure lost ("stop": the motion stops
     # along its path, an alarm; "warning": an alarm only); the jog speed allowed with the
     # door open (mm/s; 0: no jog with the door open)

@@ -22,6 +22,7 @@ from app.machine.model import (
     BusStatus,
     CommandResult,
     ControllerSnapshot,
+    HandwheelStatus,
     HoldKind,
     MachineState,
     ProbingRequest,
@@ -70,6 +71,7 @@ class FakeController(QObject):
     commandRefused = Signal(str, str)
     message = Signal(str)
     probingFinished = Signal(object)
+    handwheelChanged = Signal(object)
     statusChanged = Signal(object)
 
     def __init__(self, config: MachineConfig | None = None) -> None:
@@ -120,6 +122,8 @@ class FakeController(QObject):
         self.config_path = Path(self.config.path) if self.config.path else Path("machine.toml")
         self.coolant = (False, False)
         self.readings: tuple[SignalReading, ...] = ()
+        wheel = self.config.wiring.handwheel
+        self.handwheel = HandwheelStatus(configured=wheel.terminal is not None, step=wheel.steps[0])
 
     @property
     def program(self) -> object | None:
@@ -426,6 +430,20 @@ class FakeController(QObject):
         self.config = config
         self.configChanged.emit(config)
         return self._ok("update_config")
+
+    def select_handwheel(self, axis: str) -> CommandResult:
+        self.handwheel = replace(self.handwheel, axis=axis.upper(), live=bool(axis))
+        self.handwheelChanged.emit(self.handwheel)
+        return self._ok("select_handwheel", axis)
+
+    def set_handwheel_step(self, scale_index: int) -> CommandResult:
+        steps = self.config.wiring.handwheel.steps
+        self.handwheel = replace(self.handwheel, scale_index=scale_index, step=steps[scale_index])
+        self.handwheelChanged.emit(self.handwheel)
+        return self._ok("set_handwheel_step", scale_index)
+
+    def turn_handwheel(self, counts: int) -> CommandResult:
+        return self._ok("turn_handwheel", counts)
 
     # test helpers
     def raise_alarm(self, cause: str, source: str = "drive X") -> None:

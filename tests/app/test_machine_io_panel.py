@@ -4,6 +4,7 @@ E-stop release refused while the chain is open, the homing method named on Machi
 
 from __future__ import annotations
 
+import pytest
 from PySide6.QtWidgets import QPushButton
 
 
@@ -109,3 +110,39 @@ def test_the_new_texts_fit_in_english_and_turkish(qtbot, demo_window, real_contr
                     (language, button.text())
     finally:
         demo_window.context.i18n.set_language("en")
+
+
+def test_the_handwheel_box_gives_the_wheel_an_axis_and_lights_while_it_moves_it(
+        qtbot, demo_window, real_controller) -> None:
+    """On the Manual page: X and x100 touched, the lamp lit and the DRO following the wheel's
+    detents; E-stop puts the wheel off (the Off button checked, the lamp dark) and its counts
+    then move nothing; a jog from the page while the wheel stands takes X and gives it back."""
+    c = real_controller
+    manual = demo_window.page("manual")
+    demo_window.show_page("manual")
+    box = manual.handwheel
+    assert box.isVisible() and box.axis_buttons[""].isChecked()
+    assert box.lamp.text() == "Off: choose an axis (0.001 a detent)"
+    box.axis_buttons["X"].click()
+    box.step_buttons[2].click()
+    _advance(qtbot, c, 0.1)
+    qtbot.waitUntil(lambda: box.lamp.text() == "Live: a detent moves X by 0.1", timeout=5000)
+    x0 = c.machine_position[0]
+    c.turn_handwheel(4 * 7)
+    _advance(qtbot, c, 1.5)
+    assert c.machine_position[0] == pytest.approx(x0 + 0.7, abs=1e-3)
+    dro = demo_window.header.dro
+    qtbot.waitUntil(lambda: dro.machine_text("X").strip().endswith(f"{x0 + 0.7:.3f}"), timeout=5000)
+    manual.jog.jogStep.emit("Y", 1.0, 1)               # the page's jog: X is taken, then given back
+    assert c.run_until(lambda: c.state.value == "idle", 5)
+    _advance(qtbot, c, 0.2)
+    qtbot.waitUntil(lambda: box.lamp.text() == "Live: a detent moves X by 0.1", timeout=5000)
+    assert c.machine_position[1] == pytest.approx(1.0, abs=1e-3)
+    demo_window.header.estop_button.click()
+    _advance(qtbot, c, 0.2)
+    qtbot.waitUntil(lambda: box.axis_buttons[""].isChecked(), timeout=5000)
+    assert box.lamp.text() == "Off: choose an axis (0.1 a detent)" and c.state.value == "estop"
+    x1 = c.reference_position[0]
+    c.turn_handwheel(40)
+    _advance(qtbot, c, 1.0)
+    assert c.reference_position[0] == x1

@@ -353,7 +353,7 @@ def test_diagnostics_profile_and_bus(fake_window, fake_controller, qtbot) -> Non
     assert p.cycle_time_s > 1.0 and len(p.t) > 1000
     assert abs(p.a).max() <= p.limits[1] * 1.01
     assert len(page.profile_plots.curves["v"].xData) == len(p.t)
-    assert page.bus.table.rowCount() == 3 + 4       # three drives, a coupler and three terminals
+    assert page.bus.table.rowCount() == 3 + 5       # three drives, a coupler and four terminals
     for i in range(5):
         fake_controller.trackingSample.emit(i / 30, (float(i) + 0.1, 0.0, 0.0), (float(i), 0.0, 0.0))
     page.tracking.redraw()

@@ -174,6 +174,18 @@ class DriveLink:
                 raise RuntimeError("not connected")
             self._worker.home_to_switches(list(axes))
 
+    def handwheel(self, axis: int, mode: int, scale: float, limits: Sequence[float]) -> bool:
+        """Axis ``axis`` follows the handwheel (``CyclicWorker.handwheel``); False when refused
+        or disconnected."""
+        with self._lock:
+            return self._worker.handwheel(axis, mode, scale, limits) if self._worker is not None else False
+
+    def handwheel_off(self) -> bool:
+        """The handwheel lets its axis go: True when it stood (or nothing was connected), False
+        while it brakes to rest."""
+        with self._lock:
+            return self._worker.handwheel_off() if self._worker is not None else True
+
     def set_terminal_output(self, terminal: int, word: int) -> None:
         with self._lock:
             if self._worker is not None:

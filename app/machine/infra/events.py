@@ -25,6 +25,7 @@ if TYPE_CHECKING:
         Activity,
         Alarm,
         BusStatus,
+        HandwheelStatus,
         MachineState,
         ProbingResult,
         ProgramInfo,
@@ -92,6 +93,7 @@ class PanelChannels:
     commandRefused: Channel[str, str] = field(default_factory=_ch)
     message: Channel[str] = field(default_factory=_ch)
     probingFinished: Channel[ProbingResult] = field(default_factory=_ch)
+    handwheelChanged: Channel[HandwheelStatus] = field(default_factory=_ch)
 
     @classmethod
     def names(cls) -> tuple[str, ...]:

@@ -238,6 +238,9 @@ class ManualMotion:
         is; ``when_done(job)`` once they have all run. ``reason``: what the state says meanwhile
         ("measuring tool T1"); ``steps``: what each line does, named in its errors instead of
         the line of a routine the operator never saw."""
+        why = self._states.claim(action)
+        if why:
+            return self._states.refuse(action, why)
         read = self._read(text, name, action)
         if isinstance(read, CommandResult):
             return read

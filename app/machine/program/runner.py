@@ -101,6 +101,9 @@ class ProgramRunner:
             return f"nothing to resume: machine is {st.label.lower()}"
         return ""
 
+    def claim(self, action: str) -> str:
+        return self._states.claim(action)
+
     def refuse(self, action: str, reason: str) -> CommandResult:
         return self._states.refuse(action, reason)
 
@@ -224,6 +227,9 @@ class ProgramRunner:
         counted = self._parts() if self._parts is not None else ""
         if counted:
             return self._states.refuse(action, counted)
+        why = self._states.claim(action)
+        if why:
+            return self._states.refuse(action, why)
         point = self._motion.resume_point
         if point is not None:
             if not from_start:
@@ -351,7 +357,7 @@ class ProgramRunner:
         action = Action.RUN_FROM_LINE
         if wait and self._loader.load_request is not None:
             self._loader.wait_loaded(None)
-        why = self.refusal(action)
+        why = self.refusal(action) or self._states.claim(action)
         if why:
             return self._states.refuse(action, why)
         self.pending_line = int(line)

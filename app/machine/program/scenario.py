@@ -12,9 +12,11 @@ Actions run in the order written, each when its trigger comes after the one befo
 ``run_from_line`` (``line``), ``feed_override`` / ``rapid_override`` / ``spindle_override``
 (``percent``) and
 ``tool_changed`` (the operator has put in the tool: cycle start at a tool-change stop),
-``override_limits``, and ``input`` (simulated drives: a machine signal reads ``value``, true or
+``override_limits``, ``input`` (simulated drives: a machine signal reads ``value``, true or
 false, or null to release it: ``{"after_s": 1, "op": "input", "signal": "door_closed", "value":
-false}``). Blank
+false}``), and the handwheel: ``handwheel`` (``axis``: give it an axis, "" none),
+``handwheel_step`` (``scale``: 0 x1, 1 x10, 2 x100) and ``mpg`` (simulated drives: the wheel
+turned by ``counts``, either way: ``{"after_s": 0.5, "op": "mpg", "counts": 100}``). Blank
 lines and lines starting with ``#`` are skipped. Every mistake is an error naming the file,
 the line and the key.
 
@@ -47,7 +49,7 @@ OPS: dict[str, str] = {
     "feed_hold": "", "resume": "", "stop": "", "reset": "", "estop": "", "estop_release": "",
     "cycle_start": "", "restart": "", "run_from_line": "line", "feed_override": "percent",
     "rapid_override": "percent", "spindle_override": "percent", "tool_changed": "", "override_limits": "",
-    "input": "signal",
+    "input": "signal", "handwheel": "axis", "handwheel_step": "scale", "mpg": "counts",
 }
 _TRIGGERS = ("at_line", "after_s")
 
@@ -62,15 +64,21 @@ class ScenarioOp:
     percent: float = 100.0       # overrides
     signal: str = ""             # input: the signal and the value it reads (None: released)
     value: bool | None = None
+    axis: str = ""               # handwheel: the axis given to it ("" none)
+    scale: int = 0               # handwheel_step: 0 x1, 1 x10, 2 x100
+    counts: int = 0              # mpg: the counts the wheel is turned by (- the other way)
 
     def describe(self) -> str:
         trigger = f"at line {self.at_line}" if self.at_line is not None else f"after {self.after_s:g} s"
         extra = {"line": f" {self.line}", "percent": f" {self.percent:g} %",
                  "signal": f" {self.signal}={'released' if self.value is None else str(self.value).lower()}",
-                 "": ""}[OPS[self.op]]
+                 "axis": f" {self.axis or 'off'}", "scale": f" {('x1', 'x10', 'x100')[self.scale]}",
+                 "counts": f" {self.counts:+d}", "": ""}[OPS[self.op]]
         return f"{self.op}{extra} {trigger}"
 
 
+#: the most counts one ``mpg`` turns the wheel by (10,000 turns of a 100-detent wheel)
+MAX_WHEEL_COUNTS = 4_000_000
 #: the largest number a script's key takes (a line, seconds, a percentage): JSON's integers
 #: have no bound, and one beyond a float's range would not even compare
 MAX_SCRIPT_NUMBER = 1e12
@@ -126,6 +134,21 @@ def parse_op(text: str, where: str) -> ScenarioOp:
         if data["value"] is not None and not isinstance(data["value"], bool):
             raise MachineError(f"{where}: value must be true, false or null, got {data['value']!r}")
         kw["signal"], kw["value"] = data["signal"], data["value"]
+    elif extra == "axis":
+        if not isinstance(data.get("axis"), str):
+            raise MachineError(f"{where}: handwheel needs \"axis\" (its name, \"\" for none)")
+        kw["axis"] = data["axis"]
+    elif extra == "scale":
+        if data.get("scale") not in (0, 1, 2) or isinstance(data.get("scale"), bool):
+            raise MachineError(f"{where}: scale must be 0 (x1), 1 (x10) or 2 (x100), got "
+                               f"{data.get('scale')!r}")
+        kw["scale"] = int(data["scale"])
+    elif extra == "counts":
+        counts = data.get("counts")
+        if isinstance(counts, bool) or not isinstance(counts, int) or abs(counts) > MAX_WHEEL_COUNTS:
+            raise MachineError(f"{where}: counts must be a whole number within +-{MAX_WHEEL_COUNTS}, got "
+                               f"{counts!r}")
+        kw["counts"] = counts
     elif extra == "percent":
         if "percent" not in data:
             raise MachineError(f"{where}: {op} needs \"percent\"")
@@ -274,6 +297,12 @@ class ScenarioRunner:
             return c.estop("operator (script)")
         if op.op == "input":
             return c.simulate_input(op.signal, op.value)
+        if op.op == "handwheel":
+            return c.select_handwheel(op.axis)
+        if op.op == "handwheel_step":
+            return c.set_handwheel_step(op.scale)
+        if op.op == "mpg":
+            return c.turn_handwheel(op.counts)
         if op.op == "tool_changed":
             if c.hold_kind is not HoldKind.TOOL_CHANGE:
                 return _Refused(f"no tool change is waiting (machine {c.state.value})")

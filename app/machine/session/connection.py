@@ -256,6 +256,7 @@ class Connection:
             terminals=io.terminals,
             watches=io.watches,
             switch_homing=io.switch_homing,
+            handwheel=io.handwheel,
             buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s,
                                           ramp_bound_s(cfg.machine, self._settings.budget)),
         )

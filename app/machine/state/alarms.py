@@ -131,6 +131,8 @@ class AlarmLog:
                     react(AlarmReaction.ESTOP, "E-stop chain open", True)
             elif a.code is AlarmCode.QUICK_STOP and self._state is MachineState.ESTOP:
                 continue
+            elif a.code is AlarmCode.HANDWHEEL:       # the wheel stopped; nothing else did
+                self.raise_alarm("handwheel", a.message, Severity.WARNING, "handwheel")
             elif a.code in (AlarmCode.HOMING_ERROR, AlarmCode.HOMING_SWITCH):
                 self.raise_alarm(source, a.message, Severity.STOP, "homing_error")
                 react(AlarmReaction.HOMING_FAILED, a.message, False)

@@ -73,6 +73,8 @@ class Gate(Protocol):
 
     def refusal(self, action: str) -> str: ...
 
+    def claim(self, action: str) -> str: ...
+
     def refuse(self, action: str, reason: str) -> CommandResult: ...
 
     def ok(self, action: str) -> CommandResult: ...
@@ -92,12 +94,13 @@ G = TypeVar("G", bound=Guarded)
 def guarded(action: Action) -> Callable[[Callable[Concatenate[G, P], CommandResult]],
                                         Callable[Concatenate[G, P], CommandResult]]:
     """The command is refused with the gate's reason when the machine's state forbids
-    ``action`` (``StateMachine.refusal``); otherwise its body decides."""
+    ``action`` (``StateMachine.refusal``) or the axes cannot be taken for it
+    (``StateMachine.claim``); otherwise its body decides."""
 
     def wrap(fn: Callable[Concatenate[G, P], CommandResult]) -> Callable[Concatenate[G, P], CommandResult]:
         @functools.wraps(fn)
         def command(self: G, /, *args: P.args, **kwargs: P.kwargs) -> CommandResult:
-            why = self.gate.refusal(action)
+            why = self.gate.refusal(action) or self.gate.claim(action)
             if why:
                 return self.gate.refuse(action, why)
             return fn(self, *args, **kwargs)

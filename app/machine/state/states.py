@@ -14,7 +14,7 @@ from app.machine.errors import MachineError
 from app.machine.infra.drives import DriveLink
 from app.machine.infra.events import AlarmReaction, MachineEvents, PanelChannels
 from app.machine.model import Activity, CommandResult, HoldKind, MachineState, Prompt, Severity
-from app.machine.ports import AlarmSink, Interlocks, PositionsView, Settings
+from app.machine.ports import AlarmSink, Interlocks, MotionClaim, PositionsView, Settings
 from app.machine.state.gate import Action, Answers
 
 __all__ = ["StateMachine", "TRANSITIONS"]
@@ -49,9 +49,11 @@ class StateMachine:
     part changes them through ``set_state`` and ``set_activity``."""
 
     def __init__(self, settings: Settings, out: PanelChannels, events: MachineEvents, drives: DriveLink,
-                 positions: PositionsView, alarms: AlarmSink, interlocks: Interlocks) -> None:
+                 positions: PositionsView, alarms: AlarmSink, interlocks: Interlocks,
+                 claims: MotionClaim) -> None:
         self._settings = settings
         self._interlocks = interlocks
+        self._claims = claims
         self._out = out
         self._events = events
         self._drives = drives
@@ -158,6 +160,11 @@ class StateMachine:
         if action == Action.SPINDLE_ON and st not in (MachineState.IDLE, MachineState.HOLD):
             return f"spindle cannot start: machine is {st.label.lower()}"
         return ""
+
+    def claim(self, action: str) -> str:
+        """Once ``action`` is allowed: the axes taken from what else moves them (the handwheel)
+        before the motion is planned; "" when free, else why it must wait."""
+        return self._claims.claim(action)
 
     # ------------------------------------------------------------------ safety
     def reset(self) -> CommandResult:
