@@ -24,6 +24,7 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+from typing import Any
 
 from app.pages import PAGE_NAMES
 
@@ -74,34 +75,43 @@ def shoot_probing(out: Path) -> list[str]:
     return [_shoot_wizard(app, out, *shot) for shot in PROBING_SHOTS]
 
 
-def _shoot_wizard(app: object, out: Path, wizard_name: str, inputs: dict[str, object],
-                  own_part: dict[str, object] | None, start: tuple[float, float, float]) -> str:
-    from dataclasses import replace
-
+def _demo_window(app: Any, state: str) -> tuple[Any, Any]:
+    """The demo panel (1280x800) on the real controller with a manual clock, through its
+    start-up (connected, the program loaded, the axes homed where the demo homes them)."""
     from app.application import apply_theme
     from app.context import PanelOptions
     from app.context_factory import build_context
     from app.machine.controller import MachineController
+    from app.main_window import MainWindow
+
+    ctl = MachineController(None, state_dir=state, worker_mode="manual")
+    options = PanelOptions(demo=True, state_dir=Path(state))
+    apply_theme(app)
+    window = MainWindow(options, build_context(options, controller=ctl))
+    window.resize(1280, 800)
+    window.show()
+    for _ in range(400):                 # the window's start-up: connect, home, tools
+        app.processEvents()
+        if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
+            break
+    return ctl, window
+
+
+def _shoot_wizard(app: object, out: Path, wizard_name: str, inputs: dict[str, object],
+                  own_part: dict[str, object] | None, start: tuple[float, float, float]) -> str:
+    from dataclasses import replace
+
     from app.machine.model import MachineState, ProbeWizard
-    from app.main_window import DEMO_PART, MainWindow
+    from app.main_window import DEMO_PART
     from ethercat.sim_part import Feature
 
     x, y, z = start
     with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
-        ctl = MachineController(None, state_dir=state, worker_mode="manual")
-        options = PanelOptions(demo=True, state_dir=Path(state))
-        apply_theme(app)  # type: ignore[arg-type]
-        window = MainWindow(options, build_context(options, controller=ctl))
-        window.resize(1280, 800)
-        window.show()
+        ctl, window = _demo_window(app, state)
 
         def idle() -> bool:
             return ctl.state is MachineState.IDLE and ctl.stream.job is None
 
-        for _ in range(400):                 # the window's start-up: connect, home, tools
-            app.processEvents()  # type: ignore[attr-defined]
-            if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
-                break
         res = ctl.set_tool_in_spindle(99)
         assert res, res.reason
         if own_part is not None:
@@ -146,24 +156,9 @@ def shoot_handwheel(out: Path) -> str:
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     from PySide6.QtWidgets import QApplication
 
-    from app.application import apply_theme
-    from app.context import PanelOptions
-    from app.context_factory import build_context
-    from app.machine.controller import MachineController
-    from app.main_window import MainWindow
-
     app = QApplication.instance() or QApplication([])
     with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
-        ctl = MachineController(None, state_dir=state, worker_mode="manual")
-        options = PanelOptions(demo=True, state_dir=Path(state))
-        apply_theme(app)  # type: ignore[arg-type]
-        window = MainWindow(options, build_context(options, controller=ctl))
-        window.resize(1280, 800)
-        window.show()
-        for _ in range(400):                 # the window's start-up: connect, home, tools
-            app.processEvents()  # type: ignore[attr-defined]
-            if ctl.run_until(lambda: ctl.program_info is not None and all(ctl.homed), 0.05):
-                break
+        ctl, window = _demo_window(app, state)
         if not all(ctl.homed):               # the demo starts unhomed: Home all, as the operator would
             assert ctl.home_all()
             ctl.run_until(lambda: all(ctl.homed) and ctl.state.value == "idle", 120)

@@ -33,13 +33,18 @@ class JogPanel(QWidget):
         super().__init__(parent)
         self.axes = tuple(axes)
         turns = tuple(rotary) if rotary is not None else (False,) * len(self.axes)
-        unit = " mm/°" if any(turns) and not all(turns) else "°" if all(turns) and turns else " mm"
+        unit = "mm/°" if any(turns) and not all(turns) else "°" if all(turns) and turns else "mm"
         layout = QVBoxLayout(self)
         modes = QHBoxLayout()
         cont = QPushButton()
         i18n.bind(cont, N_("Continuous"))
         self.mode_group, self.mode_buttons = exclusive_buttons(
-            self, modes, [(0.0, cont)] + [(s, QPushButton(f"{s:g}{unit}")) for s in INCREMENTS])
+            self, modes, [(0.0, cont)] + [(s, QPushButton(f"{s:g}")) for s in INCREMENTS])
+        # the steps' unit once, after them: in each button it would not fit beside the jog panel
+        self.unit_label = QLabel(unit)
+        modes.addWidget(self.unit_label)
+        for button in self.mode_buttons.values():
+            button.setObjectName("jogStep")
         cont.setChecked(True)
         layout.addLayout(modes)
         grid = QGridLayout()

@@ -63,7 +63,7 @@ def test_run_program_to_the_end(demo_window, real_controller) -> None:
     assert len(diagnostics.tracking.buffer) > 5  # live reference/actual samples arrived
     table = diagnostics.tracking.table
     assert table.item(0, 0).text() not in ("---", "")  # RMSE of X after the run (Table 4)
-    assert diagnostics.bus.table.rowCount() == 3 + 4   # three drives, a coupler and three terminals
+    assert diagnostics.bus.table.rowCount() == 3 + 5   # three drives, a coupler and four terminals
 
 
 def test_feed_hold_and_resume(demo_window, real_controller) -> None:

@@ -383,7 +383,7 @@ def test_preview_on_the_paper_yzca_machine(qtbot, qapp, state_dir, dialogs) -> N
     assert window.page("auto").backplot.plane == "YZ"
     dro = window.header.dro
     assert [w.text().endswith("°") for w in dro.work_labels] == [False, False, True, True]
-    assert window.page("manual").jog.mode_buttons[0.1].text() == "0.1 mm/°"
+    assert window.page("manual").jog.unit_label.text() == "mm/°"
 
 
 def test_block_delete_is_switched_on_the_program_page_and_shown_on_the_auto_page(

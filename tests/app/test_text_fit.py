@@ -30,6 +30,8 @@ from PySide6.QtWidgets import (
     QGroupBox,
     QLabel,
     QPushButton,
+    QStyle,
+    QStyleOptionButton,
     QRadioButton,
     QTabBar,
     QTableWidget,
@@ -61,6 +63,10 @@ def cut_texts(root: QWidget) -> list[str]:
             fm = w.fontMetrics()
             wide = max(fm.horizontalAdvance(line) for line in w.text().replace("&&", "&").split("\n"))
             room = w.width() - (24 if isinstance(w, (QCheckBox, QRadioButton)) else 4)
+            if isinstance(w, QPushButton):      # within its border and the style sheet's padding
+                opt = QStyleOptionButton()
+                w.initStyleOption(opt)
+                room = w.style().subElementRect(QStyle.SubElement.SE_PushButtonContents, opt, w).width()
             if wide > room:
                 cut.append(f"{type(w).__name__} {w.text()!r}: {wide} px in {room} px")
         elif isinstance(w, QLabel) and not isinstance(w, ElidedLabel) and w.text() and w.pixmap().isNull():

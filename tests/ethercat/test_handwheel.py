@@ -319,3 +319,46 @@ def test_without_a_handwheel_or_outside_its_limits_it_is_refused() -> None:
         assert w.snapshot().handwheel_state == WheelState.OFF
     finally:
         w.stop()
+
+
+@settings(max_examples=40, deadline=None)
+@given(scale=st.sampled_from([0.001, 1.0, 1000.0]), bits=st.sampled_from([16, 32]),
+       start=st.integers(0, (1 << 16) - 1),
+       bursts=st.lists(st.tuples(st.integers(-40, 40), st.integers(1, 300), st.integers(0, 300)),
+                       min_size=1, max_size=8),
+       velocity=st.booleans())
+def test_any_turning_of_the_wheel_keeps_the_limits_and_ends_where_its_mode_says(
+        scale: float, bits: int, start: int, bursts: list[tuple[int, int, int]], velocity: bool) -> None:
+    """The wheel alone at the scales x0.001 to x1000: bursts of counts per cycle (for some
+    cycles, then still for some), its counter starting anywhere and wrapping. Position mode
+    ends at the sum of the counts times the step; velocity mode, once the wheel stops, goes
+    on no further than ``stop_distance``; every sample within v, a, j either way."""
+    v, a, j = V * scale, A * scale, J * scale
+    step = SCALE * scale
+    wheel = Handwheel(TS, bits, 256)
+    ref = np.zeros(1)
+    count, total = start, 0
+    assert wheel.arm(0, int(velocity), step, np.array((v, a, j, -1e9, 1e9)), 0.0, count)
+    ys = [0.0]
+    for per_cycle, cycles, still in bursts:
+        for _ in range(cycles):
+            count = (count + per_cycle) % (1 << bits)
+            total += per_cycle
+            wheel.step(count, ref)
+            ys.append(float(ref[0]))
+        at_stop = float(ref[0])
+        for _ in range(still):
+            wheel.step(count, ref)
+            ys.append(float(ref[0]))
+    f = wheel.follower
+    for _ in range(int(2 * (abs(total) * step / v + v / a + a / j) / TS) + 4 * f.n + 100):
+        if f.at_rest:
+            break
+        wheel.step(count, ref)
+        ys.append(float(ref[0]))
+    assert f.at_rest
+    if velocity:
+        assert abs(float(ref[0]) - at_stop) <= stop_distance(v, a, j, TS) * (1 + 1e-9) + 1e-12 * scale
+    else:
+        assert float(ref[0]) == pytest.approx(total * step, abs=1e-9 * scale)
+    _within(np.array(ys), v, a, j)

@@ -15,9 +15,9 @@ import pytest
 from ethercat.bus import DriveSpec
 from ethercat.drive_model import DriveParams
 from ethercat.emulator.link import EmulatedLink, link_unavailable_reason
-from ethercat.soem_access import FRAME_TIMEOUT_ENV
 from ethercat.terminals import TerminalSpec
 from ethercat.worker import CyclicWorker, HandwheelMode, HandwheelSpec, WheelState, WorkerConfig, WorkerState
+from tests.ethercat.test_wire_terminals import emulated_link
 
 REASON = link_unavailable_reason()
 pytestmark = [pytest.mark.root,
@@ -32,19 +32,7 @@ SCALE = 0.01 / 4
 
 @pytest.fixture(scope="module")
 def link() -> Iterator[EmulatedLink]:
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv(FRAME_TIMEOUT_ENV, "20000")
-        lk = EmulatedLink(2, realtime=True, terminals=("EK1100", "EL5101"))
-        try:
-            lk.start()
-            yield lk
-        finally:
-            lk.close()
-            print(f"\nemulator log ({lk.log_path}):\n{lk.log()}")
-            lk.remove_log()
-    import pysoem
-
-    pysoem.settings.timeouts.ret = 2000
+    yield from emulated_link(("EK1100", "EL5101"))
 
 
 def _wait(w: CyclicWorker, predicate, timeout_s: float = 5.0) -> None:

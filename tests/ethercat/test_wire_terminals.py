@@ -29,11 +29,12 @@ DRIVES = tuple(DriveSpec(i, "XY"[i], vendor_id=P.vendor_id, product_code=P.produ
 TERMINALS = (TerminalSpec(2, "EK1100"), TerminalSpec(3, "EL1008"), TerminalSpec(4, "EL2008"))
 
 
-@pytest.fixture(scope="module")
-def link() -> Iterator[EmulatedLink]:
+def emulated_link(terminals: tuple[str, ...]) -> Iterator[EmulatedLink]:
+    """Two emulated drives and ``terminals`` behind them on a link, for a module's tests (the
+    emulator's log printed at the end)."""
     with pytest.MonkeyPatch.context() as mp:
         mp.setenv(FRAME_TIMEOUT_ENV, "20000")
-        lk = EmulatedLink(2, realtime=True, terminals=("EK1100", "EL1008", "EL2008"))
+        lk = EmulatedLink(2, realtime=True, terminals=terminals)
         try:
             lk.start()
             yield lk
@@ -44,6 +45,11 @@ def link() -> Iterator[EmulatedLink]:
     import pysoem
 
     pysoem.settings.timeouts.ret = 2000
+
+
+@pytest.fixture(scope="module")
+def link() -> Iterator[EmulatedLink]:
+    yield from emulated_link(("EK1100", "EL1008", "EL2008"))
 
 
 def test_terminals_come_up_beside_the_drives_and_carry_inputs_and_outputs(link: EmulatedLink) -> None:

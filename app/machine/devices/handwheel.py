@@ -67,9 +67,10 @@ class HandwheelControl:
         self._why = ""
         self._live = False
         self._last_selector: tuple[int | None, int] | None = None
-        self.status = HandwheelStatus(configured=self._configured)
+        self.status = HandwheelStatus()
         events.transition.connect(self._transition)
         events.config_changed.connect(self._config_changed)
+        self._tell()
 
     # ------------------------------------------------------------------ the operator's
     @property
