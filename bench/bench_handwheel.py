@@ -24,8 +24,9 @@ WHEEL = 1
 
 def _worker() -> CyclicWorker:
     drives = tuple(DriveSpec(i, "XYZ"[i]) for i in range(3))
-    cfg = WorkerConfig(drives, mode="manual", terminals=(TerminalSpec(3, "EK1100"), TerminalSpec(4, "EL5101")),
-                       handwheel=HandwheelSpec(WHEEL), trace_capacity=1 << 10)
+    terminals = (TerminalSpec(3, "EK1100"), TerminalSpec(4, "EL5101"))
+    cfg = WorkerConfig(drives, mode="manual", terminals=terminals, handwheel=HandwheelSpec(WHEEL),
+                       trace_capacity=1 << 10)
     w = CyclicWorker(cfg)
     w.start()
     w.step(3)
