@@ -187,9 +187,14 @@ class Handwheel:
             count: int) -> bool:
         """Axis ``axis`` follows the wheel from ``position`` (its set-point now) with ``scale``
         units per count; ``limits``: v, a, j, lowest and highest position. False (nothing
-        changes) when the arguments cannot be followed, or another axis is still stopping."""
+        changes) when the arguments cannot be followed; False too while another axis moves,
+        which then brakes to rest (ask again once it stands)."""
         v, a, j, lo, hi = (float(x) for x in limits[:5])
-        if (self.state is WheelState.STOPPING and axis != self.axis) or mode not in (0, 1):
+        if mode not in (0, 1):
+            return False
+        if self.state is not WheelState.OFF and axis != self.axis and not (
+                self.state is WheelState.LIVE and self.follower.at_rest):
+            self.disarm()                    # the other axis brakes to rest first
             return False
         tol = 1e-9 * max(1.0, abs(position))          # the rounding of a home offset added to a limit
         if not (scale != 0.0 and math.isfinite(scale) and v > 0.0 and a > 0.0 and j > 0.0

@@ -949,7 +949,7 @@
       <translation>Elle hareket</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/jog_panel.py" line="60" />
+      <location filename="../../app/widgets/jog_panel.py" line="65" />
       <source>Jog speed</source>
       <translation>Elle hareket hızı</translation>
     </message>

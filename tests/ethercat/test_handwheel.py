@@ -362,3 +362,22 @@ def test_any_turning_of_the_wheel_keeps_the_limits_and_ends_where_its_mode_says(
     else:
         assert float(ref[0]) == pytest.approx(total * step, abs=1e-9 * scale)
     _within(np.array(ys), v, a, j)
+
+
+def test_another_axis_waits_for_the_first_to_stand() -> None:
+    """The wheel given to Z while X still moves: refused, X brakes to rest within its limits
+    (no set-point left behind mid-motion), and Z is taken once X stands."""
+    w = _worker()
+    try:
+        assert w.handwheel(0, HandwheelMode.POSITION, SCALE, LIMITS)
+        _turn(w, [40] * 20)                                  # 2 mm asked, moving
+        assert not w.handwheel(1, HandwheelMode.POSITION, SCALE, LIMITS)
+        assert w.snapshot().handwheel_state == WheelState.STOPPING
+        _settle(w)
+        _within(w.drain_trace().reference[:, 0], V, A, J)
+        assert w.handwheel(1, HandwheelMode.POSITION, SCALE, LIMITS)
+        _turn(w, [4] * 10)
+        _settle(w, axis=1)
+        assert float(w.snapshot().reference_position[1]) == pytest.approx(40 * SCALE, abs=1e-12)
+    finally:
+        w.stop()

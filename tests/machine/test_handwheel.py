@@ -261,3 +261,19 @@ def test_a_motion_right_after_the_wheel_starts_where_the_wheel_left_the_axis(ctl
     assert _x(ctl) == pytest.approx(0.2, abs=1e-12)
     ref = np.concatenate(rows)
     assert float(np.abs(np.diff(ref[:, 0])).max()) < 0.01        # no step of X between two samples
+
+
+def test_giving_the_wheel_another_axis_while_it_moves_one_waits_for_it_to_stand(
+        ctl: MachineController) -> None:
+    assert ctl.select_handwheel("X") and ctl.set_handwheel_step(2)
+    _rest(ctl, 0.1)
+    ctl.turn_handwheel(40 * 4)
+    ctl.advance(0.15)                                                          # X moving
+    assert ctl.select_handwheel("Y")
+    ctl.advance(0.05)
+    assert not ctl.handwheel.live and ctl.handwheel.axis == "Y"
+    assert ctl.run_until(lambda: ctl.handwheel.live, 5.0)                     # once X stands
+    x = _x(ctl)
+    ctl.turn_handwheel(4 * 3)
+    _rest(ctl)
+    assert float(ctl.reference_position[1]) == pytest.approx(0.3, abs=COUNT_MM) and _x(ctl) == x

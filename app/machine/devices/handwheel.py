@@ -24,6 +24,7 @@ the counts reach the simulated encoder terminal a few detents per poll, as a han
 from __future__ import annotations
 
 import math
+import time
 
 from app.machine.devices.signals import MachineSignals
 from app.machine.infra.drives import DriveLink
@@ -42,6 +43,9 @@ _MOTION = frozenset({Action.JOG, Action.MDI, Action.HOME, Action.CYCLE_START, Ac
 #: a simulated wheel turned by hand: counts per poll (at 30 Hz and 4 counts a detent, 300
 #: detents a second, three turns of a 100-detent wheel)
 SIM_COUNTS_PER_POLL = 40
+#: a wheel the loop refused for another reason than another axis braking (set-points queued) is
+#: asked again this often while it stays wanted
+RETRY_S = 1.0
 #: what the loop is asked to follow: axis, mode, scale (units per count), (v, a, j, lowest, highest)
 _Follow = tuple[int, int, float, tuple[float, ...]]
 
@@ -62,7 +66,9 @@ class HandwheelControl:
         self._scale = 0
         self._machine = MachineState.DISCONNECTED
         self._armed: _Follow | None = None      # what the loop follows
-        self._refused: _Follow | None = None
+        self._refused: _Follow | None = None   # what the loop refused last, and when
+        self._refused_at = 0.0
+        self._refused_busy = False
         self._sim_pending = 0
         self._why = ""
         self._live = False
@@ -178,14 +184,16 @@ class HandwheelControl:
         wanted = self._follow() if not why and self._axis is not None else None
         if wanted != self._armed:
             if wanted is None:
-                if self._armed is not None and self._drives.handwheel_off():
-                    self._armed = None
-            elif wanted != self._refused:
+                self._drives.handwheel_off()     # at rest at once, or braking first: off either way
+                self._armed = None
+            elif wanted != self._refused or self._retry(snap, fresh):
                 axis, mode, scale, limits = wanted
+                busy = self._armed is not None           # another axis' wheel: it brakes first
                 if self._drives.handwheel(axis, mode, scale, limits):
                     self._armed, self._refused = wanted, None
                 else:
-                    self._refused = wanted
+                    self._armed = None
+                    self._refused, self._refused_at, self._refused_busy = wanted, time.monotonic(), busy
         if wanted is not None and wanted == self._refused:
             why = self._why_refused()
         self._why = why
@@ -220,6 +228,13 @@ class HandwheelControl:
         if not ax.wrapped and not ax.min_pos - 1e-9 <= pos <= ax.max_pos + 1e-9:
             return f"axis {ax.name} stands outside its soft limits [{ax.min_pos:g}, {ax.max_pos:g}]"
         return ""
+
+    def _retry(self, snap: WorkerSnapshot | None, fresh: bool) -> bool:
+        """Ask again for what the loop refused: once the other axis it braked stands, or every
+        ``RETRY_S`` while the loop's wheel is off."""
+        if not fresh or snap is None or snap.handwheel_state != WheelState.OFF:
+            return False
+        return self._refused_busy or time.monotonic() - self._refused_at > RETRY_S
 
     def _why_refused(self) -> str:
         return "the 1 ms loop refused the handwheel (the axis is moving, or set-points are queued)"
