@@ -346,7 +346,7 @@ class CyclicWorker:
         per count, ``mode`` 0 position or 1 velocity (``handwheel.HandwheelMode``), ``limits`` its
         (v, a, j, lowest, highest position) in axis units. False when refused: no handwheel
         configured, not ENABLED, set-points queued, the axis outside those positions, or
-        another axis' wheel still stopping."""
+        another axis still moving (which then brakes to rest: ask again once it stands)."""
         self._live()
         reals = [float(scale), *(float(x) for x in limits)]
         if len(reals) != 6:

@@ -9,6 +9,7 @@ from __future__ import annotations
 import enum
 
 from ..cia402 import Cia402State
+from ..sim_bus import INJECTIONS
 from .types import AlarmCode, EventCode, HomingStep, WorkerConfig
 
 __all__ = ["INJECT_NAMES", "Command", "Result", "alarm_message", "error_code_text", "event_message"]
@@ -43,11 +44,8 @@ class Result(enum.IntEnum):
     BEYOND_END = 4
 
 
-#: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox
-INJECT_NAMES = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
-                "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
-                "probe_part_off", "terminal_input", "drive_input", "encoder_add", "lose_terminal",
-                "restore_terminal")
+#: fault injections the simulated bus knows (``Bus.inject``), by index in the mailbox: its own list
+INJECT_NAMES = INJECTIONS
 
 _ERROR_TEXT = {
     0x2310: "continuous over-current",
