@@ -6,6 +6,7 @@ so the pages accept exactly what the configuration file accepts, with the same m
 
 from __future__ import annotations
 
+import os
 import tomllib
 from dataclasses import replace
 from typing import Any
@@ -29,7 +30,9 @@ AXIS_FIELDS: tuple[tuple[str, str, str, int, float, float], ...] = (
 def validate(config: MachineConfig) -> str:
     """"" when the configuration is valid, else the reader's message (names key and value)."""
     try:
-        config_from_dict(tomllib.loads(config_to_toml(config)), "<edited>")
+        config_from_dict(tomllib.loads(config_to_toml(config)), "<edited>",
+                         base=None if config.path.startswith("<") or not config.path
+                         else os.path.dirname(os.path.abspath(config.path)))
     except ConfigError as exc:
         return str(exc)
     except (ValueError, TypeError, KeyError) as exc:

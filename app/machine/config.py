@@ -32,6 +32,7 @@ import tomlkit
 import tomlkit.exceptions
 import tomlkit.items
 
+from app.machine.compensation import compensation_of
 from app.machine.errors import ConfigError
 from app.machine.wiring import (
     Direction,
@@ -54,6 +55,7 @@ from resources import SUBROUTINES, shipped_machine
 
 if TYPE_CHECKING:
     from ethercat.drive_setup import DriveSetup
+    from ethercat.worker import CompSpec
 
 __all__ = [
     "BusSettings",
@@ -275,6 +277,8 @@ class MachineConfig:
     toolchange: ToolChangeSettings = field(default_factory=ToolChangeSettings)
     # terminals, named signals, homing to switches, interlocks (``app.machine.wiring``)
     wiring: MachineWiring = field(default_factory=MachineWiring)
+    # the compensated axes' corrections, read with the file (``app.machine.compensation``)
+    compensation: tuple[CompSpec, ...] = ()
 
     def __post_init__(self) -> None:
         # what the interpreter takes from the panel's settings: the shipped subroutines' folder
@@ -297,14 +301,19 @@ class MachineConfig:
 
 
 # ------------------------------------------------------------------------------ reading
-def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | None = None) -> MachineConfig:
+def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | None = None,
+                     base: str | os.PathLike[str] | None = None) -> MachineConfig:
     """Validate a parsed configuration against the one schema (``planner.core.schema``, strict:
     unknown keys, wrong types and values out of range are errors naming the file, the line
-    when ``text`` is given, the key and the value) and build it."""
+    when ``text`` is given, the key and the value) and build it. ``base``: the folder relative
+    file names (a ``comp_file``) are in; the folder of ``where`` when it is a file."""
     loc = Locator(where, text)
+    if base is None and not where.startswith("<"):
+        base = os.path.dirname(os.path.abspath(where))
     try:
         valid = validate(data, loc)
         machine = machine_from_valid(valid, loc, drive_tables(drive_table_problem))
+        compensation = compensation_of(machine, loc, base)
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
     h = valid["homing"]
@@ -322,7 +331,8 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         raise ConfigError(str(exc), where) from None
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=controller, probe=probe,
                          toolchange=ToolChangeSettings(**valid["toolchange"]),
-                         opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where, wiring=wiring)
+                         opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where, wiring=wiring,
+                         compensation=compensation)
 
 
 def _reserved_bits(machine: MachineSpec, controller: ControllerSettings, probe: ProbeSettings
@@ -437,6 +447,12 @@ def config_to_toml(config: MachineConfig) -> str:
                 f"v_max = {_fmt(float(a.v_max))}", f"a_max = {_fmt(float(a.a_max))}",
                 f"j_max = {_fmt(float(a.j_max))}",
                 f"following_error_window = {_fmt(float(a.following_error_window))}"]
+        if a.backlash > 0.0:
+            out.append(f"backlash = {_fmt(float(a.backlash))}")
+        if a.comp_file:
+            out += [f"comp_file = {_fmt(a.comp_file)}", f"comp_file_type = {a.comp_file_type}"]
+        if a.compensated:
+            out.append(f"comp_reserve = {_fmt(float(a.comp_reserve))}")
         out += ["wrapped = true", ""] if a.wrapped else [""]
     lim = m.limits
     out += ["[limits]", f"v_max_mm_s = {_fmt(float(lim.v_max_mm_s))}",

@@ -57,6 +57,7 @@ faults, alarms, reset, a new configuration and shutdown from ``MachineEvents``):
               signals    MachineSignals  what the machine's signals read now, the refusals they call for
               io         MachineIo       buttons, door, air, lube, the program's coolant
               handwheel_ctl HandwheelControl the handwheel's axis, step and when it is live
+              compensation Compensation  the leadscrew compensation, on while an axis is homed
               tools      ToolControl     tool table, tool in the spindle
               setter     ToolSetter      measuring a tool on the setter
               prober     Prober          G38.x;  waiter  InputWaiter  M66
@@ -76,6 +77,7 @@ from typing import Any
 from PySide6.QtCore import QObject, Signal
 
 from app.machine.config import MachineConfig
+from app.machine.devices.compensation import Compensation
 from app.machine.devices.handwheel import HandwheelControl
 from app.machine.devices.inputs import InputWaiter
 from app.machine.devices.machine_io import MachineIo
@@ -224,6 +226,7 @@ class MachineController(QObject):
         self.positions = positions = Positions(settings, out, events, drives)
         self.signals = signals = MachineSignals(settings, drives)
         self.handwheel_ctl = wheel = HandwheelControl(settings, drives, positions, signals, events, out)
+        self.compensation = Compensation(settings, drives, positions, out, events)
         self.states = states = StateMachine(settings, out, events, drives, positions, alarms, signals, wheel)
         self.coordinates = coords = Coordinates(settings, states, positions, store, alarms, out, events,
                                                 pauses)

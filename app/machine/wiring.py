@@ -476,7 +476,7 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
             if not math.isfinite(travel) or travel <= 0.0:
                 travel = 720.0                    # a rotary axis without end: two turns
             homing.append(SwitchHoming(i, word, bit, level, h.search_vel, h.latch_vel, travel,
-                                       float(ax.a_max), float(ax.j_max), h.ignore_limits, h.use_index))
+                                       float(ax.a_motion), float(ax.j_motion), h.ignore_limits, h.use_index))
     switches: list[SimSwitch] = []
     rest = [0] * len(wiring.terminals)
     if simulated:

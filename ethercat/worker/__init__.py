@@ -13,6 +13,7 @@ shared block and its ordering rules), ``cycle`` (the loop), ``clocked`` (the loo
 
 from ..bus import DriveSpec
 from .client import CyclicWorker
+from .compensation import CompSpec
 from .handwheel import HandwheelMode, WheelState, stop_distance
 from .messages import error_code_text
 from .realtime import PROCESS_SPIN_S
@@ -39,7 +40,8 @@ from .types import (
 )
 
 __all__ = [
-    "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CyclicWorker", "DriveSpec", "EventCode", "HandwheelMode",
+    "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CompSpec", "CyclicWorker", "DriveSpec", "EventCode",
+    "HandwheelMode",
     "HandwheelSpec", "HomingState",
     "HomingStep", "InputWatch", "ProbeLatch", "ProbeState", "ReplaceResult", "SwitchHoming", "TimingStats",
     "TraceChunk", "TrackingStats", "WatchAction",

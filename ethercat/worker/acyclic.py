@@ -69,3 +69,41 @@ class AcyclicHelper:
         if self._thread is not None:
             self._thread.join(timeout=timeout_s)
             self._thread = None
+
+
+_RECOVERY = "recover"
+
+
+class SlaveRecovery:
+    """Lost slaves brought back beside the cycle: every ``every`` cycles while some are lost,
+    the bus's ``recover_slaves()`` (find the slave again, check identity, remap, SYNC0, OP) runs
+    on the helper, so the cycle goes on for the others (as SOEM's ecatcheck). ``recovered``:
+    the positions it brought back (a bit each)."""
+
+    def __init__(self, helper: AcyclicHelper, every: int) -> None:
+        self.helper = helper
+        self.every = every
+        self.countdown = 0
+        self.recovered = 0
+        self.calls = 0
+
+    def attempt(self, recover: Callable[[], object]) -> None:
+        if self.countdown > 0:
+            self.countdown -= 1
+            return
+        self.countdown = self.every
+        self.collect()
+        if self.helper.submit(_RECOVERY, recover):
+            self.calls += 1
+            self.collect()       # inline mode: already done
+
+    def collect(self) -> None:
+        helper = self.helper
+        if helper.kind == _RECOVERY and not helper.busy and isinstance(helper.value, tuple):
+            for pos in helper.value:
+                self.recovered |= 1 << min(int(pos), 62)
+            helper.value = None
+
+    @property
+    def running(self) -> bool:
+        return self.helper.busy and self.helper.kind == _RECOVERY

@@ -360,6 +360,14 @@ class CyclicWorker:
         self._live()
         return self._command(Command.HANDWHEEL, -1)
 
+    def compensate(self, axis: int | str, on: bool, home_offset: float = 0.0) -> bool:
+        """Leadscrew compensation of ``axis`` on (the axis is homed: its machine position is the
+        set-point less ``home_offset``) or off; the step it makes is taken up within the axis'
+        limits (``compensation``). False: the axis has no compensation configured."""
+        self._live()
+        return self._command_result(Command.COMPENSATE, self._axis_index(axis), int(bool(on)),
+                                    reals=[float(home_offset)]) is Result.OK
+
     def set_digital_output(self, axis: int | str, value: int) -> None:
         """The drive's digital outputs 0x60FE:1 (spindle on/direction bits), sent in the
         process data from the next cycle on."""
@@ -652,6 +660,8 @@ class CyclicWorker:
             homing_steps=tuple(HomingStep(int(x)) for x in s["home_step"]),
             home_latched=tuple(float(x) for x in s["home_latch"]),
             handwheel_state=int(s["wheel_state"]), handwheel_axis=int(s["wheel_axis"]),
+            compensation=tuple(float(x) for x in s["comp"]),
+            compensation_on=tuple(bool(x) for x in s["comp_on"]),
         )
 
     def drain_trace(self) -> TraceChunk:

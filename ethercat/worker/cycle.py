@@ -22,8 +22,9 @@ from .. import cia402
 from ..bus import Bus, make_bus
 from ..cia402 import Cia402State
 from ..errors import EtherCATError
-from .acyclic import AcyclicHelper
+from .acyclic import AcyclicHelper, SlaveRecovery
 from .clocked import run_clocked
+from .compensation import Compensation
 from .handwheel import Handwheel, WheelFault, WheelState
 from .homing import Homing, HomingPhase, HomingResult
 from .messages import INJECT_NAMES, Command, Result
@@ -38,7 +39,6 @@ __all__ = ["CycleLoop"]
 
 _FAULTED_LUT = np.array([s in (Cia402State.FAULT, Cia402State.FAULT_REACTION_ACTIVE) for s in Cia402State])
 _NOT_ENABLED_LUT = np.array([s is not Cia402State.OPERATION_ENABLED for s in Cia402State])
-_RECOVERY = "recover"
 _HOMING_METHOD = "homing method"
 _ERROR_CODE = "error code"
 #: a drive found in FAULT this soon after the bus came up gets one fault reset by itself
@@ -72,6 +72,8 @@ class CycleLoop:
         self.serial_hist = np.full(REF_HISTORY, -1, dtype=np.int64)
         self.ring_rows = [self.ring[i] for i in range(config.buffer_capacity)]
         self.tmp = np.zeros(n)
+        self.cmd = np.zeros(n)             # the set-points sent: ref + leadscrew compensation
+        self.comp = Compensation(config.compensation, n, config.ts_s, REF_HISTORY, lv.comp, lv.comp_on)
         self.tmp2 = np.zeros(n)
         self.states = np.zeros(n, dtype=np.int8)
         self.scratch_i = np.zeros(n, dtype=np.int64)
@@ -96,10 +98,8 @@ class CycleLoop:
         self.helper = AcyclicHelper(inline=config.mode == "manual")
         # slave loss and recovery
         self.lost_mask = 0
-        self.recover_every = max(1, int(round(config.recover_interval_s / config.ts_s)))
-        self.recover_countdown = 0
-        self.recovered_mask = 0
-        self.recover_calls = 0
+        every = max(1, int(round(config.recover_interval_s / config.ts_s)))
+        self.recovery = SlaveRecovery(self.helper, every)
         # drives without 0x603F in their process data: read by SDO after a fault
         self.error_code_by_sdo: list[bool] = [False] * n
         self.error_code_pending: list[int] = []
@@ -171,8 +171,10 @@ class CycleLoop:
         self.lv.state[...] = int(st)
 
     def _read_actual(self) -> None:
+        """Actual positions, less the compensation sent with the set-points they answer."""
         assert self.bus is not None
         cia402.counts_to_units(self.bus.position_actual, self.gain, self.offset, self.act)
+        self.comp.nominal(self.act, (int(self.lv.cycle) - self.cfg.tracking_delay_cycles) % REF_HISTORY)
 
     def _target_from_actual(self) -> None:
         assert self.bus is not None
@@ -305,6 +307,8 @@ class CycleLoop:
             return self._arm_probe(a, b)
         elif code == Command.HANDWHEEL:
             return self._handwheel(a, b)
+        elif code == Command.COMPENSATE:
+            return Result.OK if self.comp.switch(a, bool(b), float(self.ctl.cmd_f[0])) else Result.REFUSED
         elif code == Command.STOP:
             self.stop_requested = True
         else:
@@ -345,38 +349,15 @@ class CycleLoop:
             return Result.REFUSED
         return Result.OK
 
+    def _send_ref(self, bus: Bus, row: int) -> None:
+        self.comp.command(self.ref, self.cmd, row)
+        cia402.units_to_counts(self.cmd, self.gain, self.offset, bus.target_position, self.tmp2)
+
     def _axis_of(self, position: int) -> int:
         for i, d in enumerate(self.cfg.drives):
             if d.position == position:
                 return i
         return -1
-
-    # ------------------------------------------------------------------ slave recovery
-    def _try_recover(self) -> None:
-        """Every ``recover_interval_s`` while slaves are lost: the bus's ``recover_slaves()``
-        (find the slave again, check identity, remap, SYNC0, OP) on the acyclic helper, so the
-        cycle goes on for the others (as SOEM's ecatcheck)."""
-        if self.recover_countdown > 0:
-            self.recover_countdown -= 1
-            return
-        self.recover_countdown = self.recover_every
-        bus = self.bus
-        if bus is None:
-            return
-        self._collect_recovery()
-        if self.helper.submit(_RECOVERY, bus.recover_slaves):
-            self.recover_calls += 1
-            self._collect_recovery()       # inline mode: already done
-
-    def _collect_recovery(self) -> None:
-        helper = self.helper
-        if helper.kind == _RECOVERY and not helper.busy and isinstance(helper.value, tuple):
-            for pos in helper.value:
-                self.recovered_mask |= 1 << min(int(pos), 62)
-            helper.value = None
-
-    def _recovery_running(self) -> bool:
-        return self.helper.busy and self.helper.kind == _RECOVERY
 
     # ------------------------------------------------------------------ the cycle
     def cycle(self) -> None:
@@ -415,19 +396,20 @@ class CycleLoop:
                 self.moving = False
                 lv.underruns[...] = int(lv.underruns) + 1
                 self._alarm(AlarmCode.UNDERRUN, -1, int(lv.consumed))
-            cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
+            self._send_ref(bus, cycle % REF_HISTORY)
             bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
         elif st is WorkerState.HOMING:
             if self.switch_homer.active:
                 np.copyto(self.prev_ref, self.ref)
                 if not self.switch_homer.step(self.ref, self.act, self.words):
                     self._homing_failed()
-            cia402.units_to_counts(self.ref, self.gain, self.offset, bus.target_position, self.tmp2)
+            self._send_ref(bus, cycle % REF_HISTORY)
             bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
             if self.homing.active:
                 self.homing.outputs(bus)
         else:
             self._target_from_actual()
+            self.comp.hold(cycle % REF_HISTORY)
             if st is WorkerState.ENABLING:
                 cia402.ENABLE_LUT.take(states, out=bus.controlword)
             elif st is WorkerState.DISABLED:
@@ -449,11 +431,11 @@ class CycleLoop:
             self._bad_working_counter(bus, wkc)
             return
         self.wkc_bad_run = 0
-        if self.lost_mask and not self._recovery_running():  # every slave answers again
-            self._collect_recovery()
-            self._alarm(EventCode.SLAVE_RECOVERED, -1, self.lost_mask, self.recovered_mask)
+        if self.lost_mask and not self.recovery.running:  # every slave answers again
+            self.recovery.collect()
+            self._alarm(EventCode.SLAVE_RECOVERED, -1, self.lost_mask, self.recovery.recovered)
             self.lost_mask = 0
-            self.recovered_mask = 0
+            self.recovery.recovered = 0
             lv.lost[...] = 0
         # ---- inputs and supervision
         cia402.decode_states(bus.statusword, states, self.scratch_i)
@@ -622,9 +604,9 @@ class CycleLoop:
             for pos in range(63):
                 if new >> pos & 1:
                     self._alarm(AlarmCode.SLAVE_LOST, self._axis_of(pos), pos)
-            self.recover_countdown = 0
+            self.recovery.countdown = 0
         if self.lost_mask:
-            self._try_recover()
+            self.recovery.attempt(bus.recover_slaves)
 
     def _supervise_enabled(self, bus: Bus, st: WorkerState) -> None:
         """Following error over its window, drives leaving OPERATION ENABLED, tracking, homing."""

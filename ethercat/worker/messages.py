@@ -34,6 +34,7 @@ class Command(enum.IntEnum):
     TOUT = 15               # a: terminal index, b: its output word
     OVERRIDE_LIMITS = 16    # a: 1 on, 0 off
     HANDWHEEL = 17          # a: the axis (-1: off), b: the mode; cmd_f: scale, v, a, j, lowest, highest
+    COMPENSATE = 18         # a: the axis, b: 1 on (homed) / 0 off; cmd_f[0]: its home offset
 
 
 class Result(enum.IntEnum):

@@ -89,6 +89,8 @@ def live_dtype(n: int, m: int = 0, w: int = 0) -> np.dtype:
         ("override", "i8"), ("home_step", "i8", (n,)), ("home_latch", "f8", (n,)),
         # the handwheel: its state (``handwheel.WheelState``) and the axis it moves (-1: none)
         ("wheel_state", "i8"), ("wheel_axis", "i8"),
+        # leadscrew compensation: the correction sent last per axis, and whether it is on
+        ("comp", "f8", (n,)), ("comp_on", "i8", (n,)),
     ], align=True)
 
 
@@ -191,6 +193,8 @@ class LiveFields(_Fields):
     home_latch: np.ndarray
     wheel_state: np.ndarray
     wheel_axis: np.ndarray
+    comp: np.ndarray
+    comp_on: np.ndarray
 
 
 class SharedBlock:

@@ -13,6 +13,7 @@ from ..bus import DriveSpec, check_drives
 from ..cia402 import Cia402State
 from ..errors import ConfigurationError
 from ..terminals import TerminalKind, TerminalSpec, check_terminals
+from .compensation import CompSpec
 
 __all__ = [
     "Alarm", "AlarmCode", "DriveSpec", "EventCode", "HomingState", "HomingStep", "InputWatch", "SwitchHoming",
@@ -280,6 +281,8 @@ class WorkerSnapshot:
     home_latched: tuple[float, ...] = ()         # per axis: the position latched at the switch
     handwheel_state: int = 0           # ``handwheel.WheelState``: off, live, stopping
     handwheel_axis: int = -1           # the axis it moves (-1: none)
+    compensation: tuple[float, ...] = ()       # per axis: the leadscrew correction sent last
+    compensation_on: tuple[bool, ...] = ()     # per axis: compensation on (the axis homed)
 
     @property
     def enabled(self) -> bool:
@@ -372,6 +375,7 @@ class WorkerConfig:
     watches: tuple[InputWatch, ...] = ()
     switch_homing: tuple[SwitchHoming, ...] = ()
     handwheel: HandwheelSpec | None = None
+    compensation: tuple[CompSpec, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "drives", check_drives(self.drives))
@@ -381,6 +385,10 @@ class WorkerConfig:
         if wheel is not None and not (0 <= wheel.terminal < len(self.terminals)
                                       and self.terminals[wheel.terminal].kind is TerminalKind.ENCODER):
             raise ConfigurationError(f"the handwheel's terminal {wheel.terminal} is not an encoder terminal")
+        axes = [c.axis for c in self.compensation]
+        if len(set(axes)) != len(axes) or any(i >= len(self.drives) for i in axes):
+            raise ConfigurationError(f"compensation for axes {axes}: at most one each, of "
+                                     f"{len(self.drives)} axes")
         n_words = len(self.drives) + len(self.terminals)
         inputs: list[InputWatch | SwitchHoming] = [*self.watches, *self.switch_homing]
         for w in inputs:

@@ -58,9 +58,9 @@ class LimitSet:
         return LimitSet(
             v_path=lim.v_max_mm_s, a_path=lim.a_max_mm_s2, j_path=lim.j_max_mm_s3,
             rapid_v=lim.rapid_mm_s, ts_s=machine.planner.ts_s if ts_s is None else ts_s,
-            v_axis=np.array([a.v_max for a in machine.axes], dtype=float),
-            a_axis=np.array([a.a_max for a in machine.axes], dtype=float),
-            j_axis=np.array([a.j_max for a in machine.axes], dtype=float),
+            v_axis=np.array([a.v_motion for a in machine.axes], dtype=float),
+            a_axis=np.array([a.a_motion for a in machine.axes], dtype=float),
+            j_axis=np.array([a.j_motion for a in machine.axes], dtype=float),
             rotary=np.array([a.rotary for a in machine.axes], dtype=bool),
             corner_step_mm_s=machine.planner.corner_velocity_step_mm_s,
             v_path_rot=lim.v_max_deg_s, a_path_rot=lim.a_max_deg_s2, j_path_rot=lim.j_max_deg_s3,

@@ -48,10 +48,38 @@ class AxisSpec:
     a_max: float = 1000.0
     j_max: float = 10_000.0
     following_error_window: float = 1.0
+    # leadscrew compensation: backlash, or a table file (LinuxCNC's COMP_FILE of type 0 or 1);
+    # a compensated axis moves with (1 - comp_reserve) of its limits (``motion``)
+    backlash: float = 0.0
+    comp_file: str = ""
+    comp_file_type: int = 0
+    comp_reserve: float = 0.1
 
     @property
     def unit(self) -> str:
         return "deg" if self.rotary else "mm"
+
+    @property
+    def compensated(self) -> bool:
+        return self.backlash > 0.0 or bool(self.comp_file)
+
+    @property
+    def motion_share(self) -> float:
+        """The share of ``v_max``, ``a_max`` and ``j_max`` that motion (programs, jogs, homing,
+        the handwheel, holds) may use: all of it, or what the compensation leaves."""
+        return 1.0 - self.comp_reserve if self.compensated else 1.0
+
+    @property
+    def v_motion(self) -> float:
+        return self.v_max * self.motion_share
+
+    @property
+    def a_motion(self) -> float:
+        return self.a_max * self.motion_share
+
+    @property
+    def j_motion(self) -> float:
+        return self.j_max * self.motion_share
 
 
 @dataclass(frozen=True, slots=True)
@@ -227,7 +255,13 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
             counts_per_unit=a["counts_per_unit"], direction=a["direction"], min_pos=lo, max_pos=hi,
             v_max=a["v_max"], a_max=a["a_max"], j_max=a["j_max"],
             following_error_window=a["following_error_window"],
+            backlash=a["backlash"], comp_file=a["comp_file"], comp_file_type=a["comp_file_type"],
+            comp_reserve=a["comp_reserve"],
         ))
+        if a["backlash"] > 0.0 and a["comp_file"]:
+            raise loc.fail(("axes", i, "backlash"),
+                           f"backlash and comp_file together (axis {name}): the table's forward and "
+                           "reverse columns hold the backlash (LinuxCNC ignores BACKLASH beside COMP_FILE)")
     names = [a.name for a in axes]
     j = _first_repeat(names)           # the copy's line is named
     if j is not None:

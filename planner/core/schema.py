@@ -93,6 +93,13 @@ MACHINE_FILE = Table("", tables=(
         # a rotary axis that turns without end (LinuxCNC's WRAPPED_ROTARY): absolute moves the
         # short way, the position read modulo 360, no travel limits
         Key("wrapped", "bool", False),
+        # leadscrew compensation (LinuxCNC's BACKLASH, COMP_FILE and COMP_FILE_TYPE), sent to the
+        # drive once the axis is homed; motion plans with (1 - comp_reserve) of v_max, a_max and
+        # j_max on a compensated axis, the rest is the compensation's
+        Key("backlash", "float", 0.0, 0.0, 1.0),
+        Key("comp_file", "str", ""),
+        Key("comp_file_type", "int", 0, choices=(0, 1)),
+        Key("comp_reserve", "float", 0.1, 0.02, 0.5),
     ), array=True, required=True),
     Table("limits", (
         Key("v_max_mm_s", "float", 30.0, 1e-3, 1e5),

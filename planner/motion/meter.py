@@ -136,9 +136,9 @@ class LimitMeter:
                  position_scale: float | None = None) -> None:
         self.ts = float(ts_s)
         self.names = machine.axis_names
-        self.v_axis = np.array([a.v_max for a in machine.axes], dtype=float)
-        self.a_axis = np.array([a.a_max for a in machine.axes], dtype=float)
-        self.j_axis = np.array([a.j_max for a in machine.axes], dtype=float)
+        self.v_axis = np.array([a.v_motion for a in machine.axes], dtype=float)
+        self.a_axis = np.array([a.a_motion for a in machine.axes], dtype=float)
+        self.j_axis = np.array([a.j_motion for a in machine.axes], dtype=float)
         self.a_path = machine.limits.a_max_mm_s2
         self.j_path = machine.limits.j_max_mm_s3
         # a stencil where no linear axis moves is along the rotary distance (deg): the angular

@@ -185,9 +185,9 @@ def plan_path_stop(plan: Plan | PlanWindow, machine: MachineSpec, tau0: float, s
     if v0 <= 0.0:
         return None
     lim = machine.limits
-    v_ax = np.array([a.v_max for a in machine.axes])
-    a_ax = np.array([a.a_max for a in machine.axes])
-    j_ax = np.array([a.j_max for a in machine.axes])
+    v_ax = np.array([a.v_motion for a in machine.axes])
+    a_ax = np.array([a.a_motion for a in machine.axes])
+    j_ax = np.array([a.j_motion for a in machine.axes])
     a_t, j_t = lim.a_max_mm_s2 * SAFETY, lim.j_max_mm_s3 * SAFETY
     prof = stop_profile(v0, a0, a_t, j_t)
     window = (prof.distance if prof is not None else v0 * (v0 / a_t + 2 * a_t / j_t)) * 1.25 + 1e-6

@@ -249,8 +249,8 @@ class HandwheelControl:
         offset = float(self._positions.home_offset[i])
         lo, hi = (-math.inf, math.inf) if ax.wrapped else (float(ax.min_pos), float(ax.max_pos))
         wheel = cfg.wiring.handwheel
-        v = float(ax.v_max) if cap is None else min(float(ax.v_max), cap)
-        limits = (v, float(ax.a_max), float(ax.j_max), lo + offset, hi + offset)
+        v = float(ax.v_motion) if cap is None else min(float(ax.v_motion), cap)
+        limits = (v, float(ax.a_motion), float(ax.j_motion), lo + offset, hi + offset)
         mode = 1 if wheel.mode is WheelMode.VELOCITY else 0
         return i, mode, wheel.steps[self._scale] / wheel.counts_per_detent, limits
 

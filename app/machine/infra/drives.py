@@ -186,6 +186,12 @@ class DriveLink:
         with self._lock:
             return self._worker.handwheel_off() if self._worker is not None else True
 
+    def compensate(self, axis: int, on: bool, home_offset: float) -> bool:
+        """Leadscrew compensation of ``axis`` on or off (``CyclicWorker.compensate``); False when
+        the axis has none or nothing is connected."""
+        with self._lock:
+            return self._worker.compensate(axis, on, home_offset) if self._worker is not None else False
+
     def set_terminal_output(self, terminal: int, word: int) -> None:
         with self._lock:
             if self._worker is not None:

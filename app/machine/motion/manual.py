@@ -120,7 +120,7 @@ class ManualMotion:
         if why:
             return states.refuse(Action.JOG, why)
         frac = min(max(float(speed_fraction), 0.01), 1.0)
-        feed = self._jog_feed(cfg.controller.jog_speed_mm_s * frac, ax.v_max)
+        feed = self._jog_feed(cfg.controller.jog_speed_mm_s * frac, ax.v_motion)
         prog = self._single_axis_program(i, limit, feed, f"jog {ax.name}{'+' if direction > 0 else '-'}")
         self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
         return states.ok(Action.JOG)
@@ -179,7 +179,8 @@ class ManualMotion:
                 f"axis {ax.name} would reach {target:.4f}, beyond its soft limit "
                 f"[{ax.min_pos:g}, {ax.max_pos:g}]",
             )
-        prog = self._single_axis_program(i, target, self._jog_feed(cfg.controller.jog_speed_mm_s, ax.v_max),
+        feed = self._jog_feed(cfg.controller.jog_speed_mm_s, ax.v_motion)
+        prog = self._single_axis_program(i, target, feed,
                                          f"jog {ax.name} {step:g}")
         self._motion.start_job(self._jobs.make_job(Activity.JOG, prog, prog.name, overrides=False))
         return states.ok(Action.JOG)

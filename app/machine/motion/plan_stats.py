@@ -30,9 +30,9 @@ class BlockStats:
         self.ts = ts
         lin = np.array([not a.rotary for a in machine.axes])
         self.lin = lin
-        self.v_ax = np.array([a.v_max for a in machine.axes])
-        self.a_ax = np.array([a.a_max for a in machine.axes])
-        self.j_ax = np.array([a.j_max for a in machine.axes])
+        self.v_ax = np.array([a.v_motion for a in machine.axes])
+        self.a_ax = np.array([a.a_motion for a in machine.axes])
+        self.j_ax = np.array([a.j_motion for a in machine.axes])
         lim = machine.limits
         self.v_feed, self.v_rapid = lim.v_max_mm_s, lim.rapid_mm_s
         self.a_path, self.j_path = lim.a_max_mm_s2, lim.j_max_mm_s3

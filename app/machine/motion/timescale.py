@@ -125,10 +125,10 @@ def braking_rates(machine: MachineSpec, budget: Budget) -> tuple[float, float]:
     braking law, from the machine's limits and the share the plan leaves to the time scale."""
     lim = machine.limits
     v_lin = max(lim.v_max_mm_s, lim.rapid_mm_s)
-    t1 = max([v_lin / lim.a_max_mm_s2] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.a_max
+    t1 = max([v_lin / lim.a_max_mm_s2] + [min(a.v_motion, v_lin if not a.rotary else a.v_motion) / a.a_motion
                                           for a in machine.axes])
-    t2 = max([lim.a_max_mm_s2 / lim.j_max_mm_s3] + [a.a_max / a.j_max for a in machine.axes])
-    t3 = max([v_lin / lim.j_max_mm_s3] + [min(a.v_max, v_lin if not a.rotary else a.v_max) / a.j_max
+    t2 = max([lim.a_max_mm_s2 / lim.j_max_mm_s3] + [a.a_motion / a.j_motion for a in machine.axes])
+    t3 = max([v_lin / lim.j_max_mm_s3] + [min(a.v_motion, v_lin if not a.rotary else a.v_motion) / a.j_motion
                                           for a in machine.axes])
     k_a, k_j = budget.k_a, budget.k_j
     return min((1.0 - k_a) / t1, (1.0 - k_j) / (6.0 * k_a * t2)), (1.0 - k_j) / (2.0 * t3)

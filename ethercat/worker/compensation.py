@@ -1,0 +1,141 @@
+"""Leadscrew compensation in the loop: what is added to each axis' set-point on its way to
+the drive, and taken off its actual position on the way back, so that everything above the
+loop (the planner, the DRO, the following error) stays in nominal positions.
+
+For a compensated axis (``CompSpec``) the drive is sent
+
+    set-point + curve(x) + take-up          x = set-point - home offset (machine position)
+
+where ``curve`` is the forward or reverse correction (``ScrewComp``), chosen by the direction
+the set-point last moved (it keeps its direction while standing, as LinuxCNC's), and
+``take-up`` absorbs every step: when the direction reverses (forward to reverse at x: the
+backlash, the difference of the two curves) or the compensation is switched on or off, the
+take-up is shifted by the step so that the sum does not jump, and then runs to 0 along a
+``Follower`` (acceleration and jerk limited, lands exactly) with the limits ``take_up`` leaves
+from the axis' reserve. The compensation is on only for a homed axis (the table is in machine
+positions); switched off, its last value stays as a constant offset (a new homing latches
+through it). Nothing here allocates per cycle."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ConfigurationError
+from ..screw_comp import ScrewComp
+from .handwheel import Follower
+
+__all__ = ["CompSpec", "Compensation"]
+
+
+@dataclass(frozen=True, slots=True)
+class CompSpec:
+    """Axis ``axis``'s corrections and the velocity, acceleration and jerk its take-up may use
+    (``screw_comp.take_up_limits``)."""
+
+    axis: int
+    comp: ScrewComp
+    take_up: tuple[float, float, float]
+
+    def __post_init__(self) -> None:
+        if self.axis < 0 or not all(x > 0.0 for x in self.take_up):
+            raise ConfigurationError(f"compensation of axis {self.axis}: take-up limits {self.take_up} "
+                                     "must be > 0")
+
+
+class _Axis:
+    """One compensated axis' state."""
+
+    def __init__(self, spec: CompSpec, ts_s: float) -> None:
+        self.i = spec.axis
+        self.forward = spec.comp.forward
+        self.reverse = spec.comp.reverse
+        self.take = Follower(ts_s)
+        self.take.start(0.0, *spec.take_up)
+        self.on = False
+        self.up = True               # the direction the set-point last moved
+        self.offset = 0.0            # the home offset: machine position = set-point - offset
+        self.last = float("nan")     # the set-point of the last cycle
+        self.curve = 0.0             # the curve's part of the last correction
+        self.value = 0.0             # the correction sent last (curve + take-up)
+
+    def shift(self, step: float) -> None:
+        """The curve's part changes by ``step`` at once: the take-up takes it back."""
+        f = self.take
+        f.p -= step
+        f.y -= step
+        f.total -= step * f.n
+        np.subtract(f.buf, step, out=f.buf)
+        f.still = 0
+
+    def step(self, ref: float) -> float:
+        up = ref > self.last if ref != self.last and self.last == self.last else self.up  # (nan: first)
+        self.last = ref
+        curve = 0.0
+        if self.on:
+            x = ref - self.offset
+            curve = self.forward(x) if up else self.reverse(x)
+            if up != self.up:
+                # a reversal switches curves: their difference at x is a step the take-up absorbs
+                self.shift(curve - (self.forward(x) if self.up else self.reverse(x)))
+        self.up = up
+        self.curve = curve
+        self.value = curve + self.take.step(0.0 if self.on else self.take.stop_point())
+        return self.value
+
+
+class Compensation:
+    """Every compensated axis of the loop; ``live`` (one float per axis) shows the correction
+    sent last, ``live_on`` whether it is on."""
+
+    def __init__(self, specs: tuple[CompSpec, ...], n_axes: int, ts_s: float, history: int,
+                 live: np.ndarray | None = None, live_on: np.ndarray | None = None) -> None:
+        self.axes = [_Axis(s, ts_s) for s in specs]
+        self.by_axis: dict[int, _Axis] = {a.i: a for a in self.axes}     # (one each: WorkerConfig)
+        self.active = bool(self.axes)
+        self.value = np.zeros(n_axes)
+        self.hist = np.zeros((history, n_axes))
+        self.rows = [self.hist[k] for k in range(history)]
+        self.live = live if live is not None else np.zeros(n_axes)
+        self.live_on = live_on if live_on is not None else np.zeros(n_axes, dtype=np.int64)
+
+    def switch(self, axis: int, on: bool, home_offset: float) -> bool:
+        """Compensation of ``axis`` on (homed, machine position = set-point - ``home_offset``) or
+        off; the step it makes is taken up. False: the axis has none."""
+        a = self.by_axis.get(axis)
+        if a is None:
+            return False
+        if on == a.on and (not on or home_offset == a.offset):
+            return True
+        before = a.curve
+        a.on, a.offset = on, home_offset
+        after = 0.0
+        if on and a.last == a.last:
+            x = a.last - home_offset
+            after = a.forward(x) if a.up else a.reverse(x)
+        a.shift(after - before)
+        a.curve = after
+        self.live_on[axis] = int(on)
+        return True
+
+    def command(self, ref: np.ndarray, out: np.ndarray, row: int) -> None:
+        """``out`` := ``ref`` + the corrections of this cycle, kept in history row ``row``."""
+        np.copyto(out, ref)
+        if self.active:
+            value = self.value
+            for a in self.axes:
+                value[a.i] = a.step(float(ref[a.i]))
+            np.add(out, value, out=out)
+            np.copyto(self.live, value)
+        np.copyto(self.rows[row], self.value)
+
+    def hold(self, row: int) -> None:
+        """A cycle without set-points (drives off, homing by the drive): the corrections stay."""
+        np.copyto(self.rows[row], self.value)
+
+    def nominal(self, raw: np.ndarray, row: int) -> None:
+        """``raw`` (the drives' positions) less the corrections sent with the set-points they
+        answer (history row ``row``), in place."""
+        if self.active:
+            np.subtract(raw, self.rows[row], out=raw)
