@@ -13,6 +13,11 @@ Terminals beside the drives (``terminals``: couplers, digital I/O, encoders; see
 ``terminal_outputs``, and an encoder's ``terminal_counts`` / ``terminal_latches`` /
 ``terminal_set_counts``; index = position in ``terminals``.
 
+Spindle drives (``spindles``: CiA 402 drives in a velocity mode, not axes) have their own
+arrays: ``spindle_controlword``, ``spindle_target_velocity`` (0x60FF), ``spindle_modes``
+(0x6060) out; ``spindle_statusword``, ``spindle_velocity_actual`` (0x606C),
+``spindle_error_code`` in; index = position in ``spindles``.
+
 The worker writes the output arrays in place, calls `exchange()` once per cycle (send
 and receive one frame; returns the working counter, -1 when no frame came back) and
 reads the input arrays in place. Inputs are only updated when the frame came back.
@@ -85,6 +90,35 @@ class DriveSpec:
 
 
 @dataclass(frozen=True, slots=True)
+class SpindleDriveSpec:
+    """A CiA 402 drive that turns the spindle in a velocity mode (``[spindle] drive``).
+
+    position: slave position on the bus.
+    velocity_per_rpm: the drive's velocity units (0x60FF, 0x606C) per spindle rpm (counts/s
+    of a 10,000-count encoder on the spindle: 10000 / 60).
+    mode: 9 cyclic synchronous velocity (the master ramps the speed) or 3 profile velocity
+    (the drive ramps it with its 0x6083 and 0x6084).
+    vendor_id / product_code: expected identity (0 = do not check).
+    """
+
+    position: int
+    velocity_per_rpm: float = 10_000.0 / 60.0
+    mode: int = 9
+    vendor_id: int = 0
+    product_code: int = 0
+
+    def __post_init__(self) -> None:
+        if self.position < 0:
+            raise ConfigurationError(f"spindle drive: position must be >= 0, got {self.position}")
+        if not (self.velocity_per_rpm > 0.0 and self.velocity_per_rpm < 1e9):
+            raise ConfigurationError(f"spindle drive: velocity_per_rpm must be > 0, "
+                                     f"got {self.velocity_per_rpm}")
+        if self.mode not in (3, 9):
+            raise ConfigurationError(f"spindle drive: mode {self.mode}: 9 (cyclic synchronous velocity) or 3 "
+                                     "(profile velocity)")
+
+
+@dataclass(frozen=True, slots=True)
 class SlaveInfo:
     """Identity and state of one slave as found on the bus."""
 
@@ -119,9 +153,13 @@ class Bus(abc.ABC):
     kind: str = ""
 
     def __init__(self, drives: Sequence[DriveSpec], cycle_time_s: float = 0.001,
-                 terminals: Sequence[TerminalSpec] = ()) -> None:
+                 terminals: Sequence[TerminalSpec] = (), spindles: Sequence[SpindleDriveSpec] = ()) -> None:
         self.drives = check_drives(drives)
-        self.terminals = check_terminals(terminals, [d.position for d in self.drives])
+        self.spindles = tuple(spindles)
+        taken = [d.position for d in self.drives] + [s.position for s in self.spindles]
+        if len(set(taken)) != len(taken):
+            raise ConfigurationError(f"a spindle drive's position is another drive's: {taken}")
+        self.terminals = check_terminals(terminals, taken)
         #: what the start-up adapted to (a drive's own mapping, objects it lacks), one line each
         self.notes: list[str] = []
         if not 0.000_1 <= cycle_time_s <= 0.1:
@@ -150,6 +188,14 @@ class Bus(abc.ABC):
         self.terminal_counts = np.zeros(m, dtype=np.int32)
         self.terminal_latches = np.zeros(m, dtype=np.int32)
         self.terminal_set_counts = np.zeros(m, dtype=np.int32)
+        # spindle drives (velocity modes): outputs, then inputs
+        k = len(self.spindles)
+        self.spindle_controlword = np.zeros(k, dtype=np.uint16)
+        self.spindle_target_velocity = np.zeros(k, dtype=np.int32)
+        self.spindle_modes = np.array([s.mode for s in self.spindles], dtype=np.int8)
+        self.spindle_statusword = np.zeros(k, dtype=np.uint16)
+        self.spindle_velocity_actual = np.zeros(k, dtype=np.int32)
+        self.spindle_error_code = np.zeros(k, dtype=np.uint16)
         self._is_open = False
 
     # ------------------------------------------------------------------ life cycle

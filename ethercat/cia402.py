@@ -39,11 +39,15 @@ class ModeOfOperation(enum.IntEnum):
 
     NONE = 0
     PROFILE_POSITION = 1
+    PROFILE_VELOCITY = 3
     HOMING = 6
     CYCLIC_SYNC_POSITION = 8
+    CYCLIC_SYNC_VELOCITY = 9
 
 
 CSP = ModeOfOperation.CYCLIC_SYNC_POSITION
+CSV = ModeOfOperation.CYCLIC_SYNC_VELOCITY
+PV = ModeOfOperation.PROFILE_VELOCITY
 HOMING = ModeOfOperation.HOMING
 
 # Controlword commands (CiA 402 table "device control commands"; bits 0-3 and 7).

@@ -1,7 +1,8 @@
-"""A simulated CiA 402 servo drive (one axis): object dictionary, power state machine,
-cyclic synchronous position (CSP, mode 8) and homing (mode 6), a position loop over a
-velocity- and acceleration-limited motor, encoder quantisation, following-error
-monitoring and fault injection.
+"""A simulated CiA 402 servo drive (one axis or a spindle): object dictionary, power state
+machine, cyclic synchronous position (CSP, mode 8), homing (mode 6), cyclic synchronous
+velocity (CSV, mode 9) and profile velocity (PV, mode 3), a position loop over a velocity- and
+acceleration-limited motor, encoder quantisation, following-error monitoring, a load that
+slows the motor (``set_load``) and fault injection.
 
 Shared by `SimBus` (ethercat/sim_bus.py) and the software EtherCAT slave
 (ethercat/emulator): both write the RxPDO values, call `step(dt_s)` once per cycle and
@@ -12,6 +13,7 @@ Process data (hot path; plain attributes and properties, no allocation):
     model.controlword = 0x0F            # 0x6040, uint16
     model.target_position = 12345       # 0x607A, int32 counts
     model.modes_of_operation = 8        # 0x6060, int8
+    model.target_velocity = 50_000      # 0x60FF, int32 counts/s (modes 9 and 3)
     model.step(0.001)                   # advance the drive by dt_s
     model.statusword                    # 0x6041, uint16
     model.position_actual               # 0x6064, int32 counts (quantised encoder)
@@ -142,6 +144,7 @@ class DriveModel:
         self.digital_outputs = 0
         self.digital_inputs = 0          # 0x60FD: limit switches, home switch, probe (bits 0-2, 16+)
         self.touch_probe_function = 0    # 0x60B8 (touch probe 1: bits 0, 1, 2-3, 4)
+        self.target_velocity = 0         # 0x60FF, counts/s (modes 3 and 9)
         # touch probe 1: status 0x60B9 (bit 0 enabled, bit 1 positive edge stored), its value
         # 0x60BA, and the function it was armed with (re-armed when that changes)
         self.touch_probe_status = 0
@@ -158,6 +161,9 @@ class DriveModel:
             (0x6099, 1): int(min(0xFFFF_FFFF, p.v_max_counts_s * 0.05)),
             (0x6099, 2): int(min(0xFFFF_FFFF, p.v_max_counts_s * 0.005)),
             (0x609A, 0): int(min(0xFFFF_FFFF, p.a_max_counts_s2 * 0.1)),
+            (0x606D, 0): int(min(0xFFFF, max(1.0, p.v_max_counts_s * 0.01))),
+            (0x6083, 0): int(min(0xFFFF_FFFF, p.a_max_counts_s2 * 0.1)),
+            (0x6084, 0): int(min(0xFFFF_FFFF, p.a_max_counts_s2 * 0.1)),
         }
         # State
         self.state = S.NOT_READY_TO_SWITCH_ON
@@ -185,6 +191,8 @@ class DriveModel:
         self._homing_velocity = 0.0
         self._homing_start_counts = 0.0
         self._homing_edge_counts = 0.0
+        self._pv_ref = 0.0                # profile velocity mode: the ramped velocity demand
+        self._load_cap = math.inf         # a load holds the motor at or below this speed
         self.time_s = 0.0
 
     # ------------------------------------------------------------------ process data
@@ -227,6 +235,12 @@ class DriveModel:
         if self._internal_limit:
             sw |= SW_INTERNAL_LIMIT
         if self.state is S.OPERATION_ENABLED:
+            mode = self.modes_of_operation_display
+            if mode == ModeOfOperation.CYCLIC_SYNC_VELOCITY:
+                sw |= SW_OP_SPECIFIC_12            # drive follows the command value
+            elif mode == ModeOfOperation.PROFILE_VELOCITY:
+                if abs(self._velocity_counts_s - self.target_velocity) <= self._rw[(0x606D, 0)]:
+                    sw |= SW_TARGET_REACHED
             if self.modes_of_operation_display == ModeOfOperation.CYCLIC_SYNC_POSITION:
                 sw |= SW_OP_SPECIFIC_12            # drive follows the command value
                 if self._following_error_flag:
@@ -274,6 +288,11 @@ class DriveModel:
         if jammed:
             self._velocity_counts_s = 0.0
 
+    def set_load(self, max_speed_counts_s: float | None) -> None:
+        """A load on the motor (a spindle bogged down in the cut): it turns at most this fast
+        whatever it is commanded (None: no load)."""
+        self._load_cap = math.inf if max_speed_counts_s is None else abs(float(max_speed_counts_s))
+
     def watchdog_expired(self) -> None:
         """Process data stopped arriving (SM watchdog): fault with error code 0x8700."""
         if self.state not in (S.FAULT, S.FAULT_REACTION_ACTIVE):
@@ -313,6 +332,7 @@ class DriveModel:
             (0x6064, 0): self.position_actual,
             (0x606C, 0): self.velocity_actual,
             (0x607A, 0): self.target_position,
+            (0x60FF, 0): self.target_velocity,
             (0x6099, 0): 2,
             (0x60F4, 0): self.following_error_actual,
             (0x60B8, 0): self.touch_probe_function,
@@ -339,6 +359,8 @@ class DriveModel:
             self.controlword = value
         elif index == 0x607A:
             self.target_position = value
+        elif index == 0x60FF:
+            self.target_velocity = value
         elif index == 0x6060:
             self.modes_of_operation = value
         elif index == 0x60FE:
@@ -466,7 +488,8 @@ class DriveModel:
 
     def _enter_operation_enabled(self) -> None:
         window = self.params.enable_target_window_counts
-        if window and abs(self.target_position - self.position_actual) > window:
+        if (window and self.modes_of_operation == ModeOfOperation.CYCLIC_SYNC_POSITION
+                and abs(self.target_position - self.position_actual) > window):
             self._trip(ERROR_FOLLOWING)
             return
         self.state = S.OPERATION_ENABLED
@@ -474,6 +497,7 @@ class DriveModel:
         self._prev_demand_counts = self._motor_counts
         self._csp_start_counts = self._motor_counts
         self._fe_time_s = 0.0
+        self._pv_ref = self._velocity_counts_s
         self._prev_homing_bit = bool(self.controlword & CW_HOMING_START)
 
     def _decelerate(self, decel_counts_s2: float, h: float) -> None:
@@ -513,6 +537,9 @@ class DriveModel:
             self._homing_phase = 0 if self._homing_phase in (1, 2, 3) else self._homing_phase
             return
         mode = self.modes_of_operation_display
+        if mode == ModeOfOperation.CYCLIC_SYNC_VELOCITY or mode == ModeOfOperation.PROFILE_VELOCITY:
+            self._velocity_mode(h, mode == ModeOfOperation.PROFILE_VELOCITY)
+            return
         if mode == ModeOfOperation.CYCLIC_SYNC_POSITION:
             start = self._csp_start_counts
             demand = start + (float(self.target_position - self._offset_counts) - start) * frac
@@ -534,6 +561,29 @@ class DriveModel:
         else:
             self._following_error_flag = False
             self._fe_time_s = 0.0
+
+    def _velocity_mode(self, h: float, profile: bool) -> None:
+        """Modes 9 and 3: the motor follows 0x60FF, at once (cyclic synchronous velocity) or
+        along a ramp at 0x6083 up and 0x6084 down (profile velocity), within its own limits
+        and a load's; the position demand follows the motor (no following error)."""
+        p = self.params
+        target = float(self.target_velocity)
+        if profile:
+            r = self._pv_ref
+            up = abs(target) > abs(r) and target * r >= 0.0
+            rate = float(self._rw[(0x6083 if up else 0x6084, 0)]) * h
+            r = target if abs(target - r) <= rate else r + math.copysign(rate, target - r)
+            self._pv_ref = target = r
+        cap = min(p.v_max_counts_s, self._load_cap)
+        if abs(target) > cap:
+            target = math.copysign(cap, target)
+            self._internal_limit = True
+        v = self._velocity_counts_s
+        a = max(-p.a_max_counts_s2, min(p.a_max_counts_s2, (target - v) / max(p.velocity_lag_s, h)))
+        v_new = 0.0 if self._jammed else v + a * h
+        self._motor_counts += 0.5 * (v + v_new) * h
+        self._velocity_counts_s = v_new
+        self._demand_counts = self._prev_demand_counts = self._motor_counts
 
     def _servo(self, h: float) -> None:
         """Position loop (P + velocity feed-forward) over a lagging, limited motor."""

@@ -73,8 +73,11 @@ OBJECTS: dict[tuple[int, int], ObjectEntry] = _entries(
     (0x6065, 0, "following error window", "u32", "rw", False),
     (0x6066, 0, "following error time out", "u16", "rw", False),
     (0x606C, 0, "velocity actual value", "i32", "ro", True),
+    (0x606D, 0, "velocity window", "u16", "rw", False),
     (0x607A, 0, "target position", "i32", "rw", True),
     (0x607C, 0, "home offset", "i32", "rw", False),
+    (0x6083, 0, "profile acceleration", "u32", "rw", False),
+    (0x6084, 0, "profile deceleration", "u32", "rw", False),
     (0x6085, 0, "quick stop deceleration", "u32", "rw", False),
     (0x6098, 0, "homing method", "i8", "rw", False),
     (0x6099, 0, "homing speeds: number of entries", "u8", "ro", False),
@@ -88,6 +91,7 @@ OBJECTS: dict[tuple[int, int], ObjectEntry] = _entries(
     (0x60FD, 0, "digital inputs", "u32", "ro", True),
     (0x60FE, 0, "digital outputs: number of entries", "u8", "ro", False),
     (0x60FE, 1, "digital outputs: physical outputs", "u32", "rw", True),
+    (0x60FF, 0, "target velocity", "i32", "rw", True),
 )
 
 OBJECT_INDICES = frozenset(i for i, _ in OBJECTS)
@@ -104,7 +108,6 @@ CIA402_EXTRA: dict[tuple[int, int], ObjectEntry] = _entries(
     (0x60B0, 0, "position offset", "i32", "rw", True),
     (0x60B1, 0, "velocity offset", "i32", "rw", True),
     (0x60B2, 0, "torque offset", "i16", "rw", True),
-    (0x60FF, 0, "target velocity", "i32", "rw", True),
     (0x6502, 0, "supported drive modes", "u32", "ro", False),
 )
 

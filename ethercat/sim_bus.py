@@ -32,6 +32,10 @@ Terminals and the simulated machine's switches and buttons (``ethercat.sim_io``)
     encoder_add k, n                                        an encoder terminal counts n more
     lose_terminal k / restore_terminal k                    terminal k stops answering / is back,
                                                             powered again (an encoder counts from 0)
+Spindle drives (``spindles``, each a `DriveModel` in a velocity mode):
+    spindle_load k, rpm / spindle_unload k                  a load holds spindle k at or below
+                                                            rpm (it loses speed in the cut) / lets go
+    spindle_fault k, code                                   spindle k's drive trips a fault
 Limits: no AL state machine beyond that (OP while open), no DC, SDOs are instantaneous.
 """
 
@@ -39,10 +43,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
-from .bus import Bus, DriveSpec, SlaveInfo
+from .bus import Bus, DriveSpec, SlaveInfo, SpindleDriveSpec
 from .drive_model import DriveModel, DriveParams
 from .errors import ConfigurationError, SdoAbortError
 from .object_dictionary import ERROR_OVERCURRENT, OBJECTS, decode_object, encode_object
@@ -54,7 +59,7 @@ from .terminals import TerminalSpec
 INJECTIONS = ("drive_fault", "persistent_fault", "clear_fault", "jam", "unjam", "drop_frames",
               "lose_slave", "restore_slave", "probe_surface", "probe_off", "probe_part_value", "probe_part",
               "probe_part_off", "terminal_input", "drive_input", "encoder_add", "lose_terminal",
-              "restore_terminal")
+              "restore_terminal", "spindle_load", "spindle_unload", "spindle_fault")
 #: ``inject("probe_surface", i, value)``: value = ``probe_surface_value(...)``
 PROBE_SURFACE_SCALE = 1e6
 
@@ -93,8 +98,8 @@ class SimBus(Bus):
                  watchdog_s: float = 0.1, unmapped_objects: Sequence[int] = (),
                  terminals: Sequence[TerminalSpec] = (), switches: Sequence[SimSwitch] = (),
                  input_rest: Sequence[int] = (), index_pitch_units: Sequence[float] = (),
-                 **_ignored: object) -> None:
-        super().__init__(drives, cycle_time_s, terminals)
+                 spindles: Sequence[SpindleDriveSpec] = (), **_ignored: object) -> None:
+        super().__init__(drives, cycle_time_s, terminals, spindles)
         self.io = SimIo(self.terminals, self.n_drives,
                         [1.0 / (d.counts_per_unit * d.direction) for d in self.drives], switches, input_rest)
         # objects left out of the simulated process data, as a drive that cannot map them
@@ -123,6 +128,7 @@ class SimBus(Bus):
         self.models: tuple[DriveModel, ...] = tuple(
             DriveModel(p, position=d.position) for p, d in zip(params, self.drives))
         self._by_position = {d.position: i for i, d in enumerate(self.drives)}
+        self.spindle_models = tuple(_spindle_model(s) for s in self.spindles)
         self._lost = [False] * n
         self._terminal_lost = np.zeros(len(self.terminals), dtype=bool)
         self._terminal_wkc = np.array([t.type.working_counter for t in self.terminals], dtype=np.int64)
@@ -143,10 +149,10 @@ class SimBus(Bus):
     # ------------------------------------------------------------------ backend
     @property
     def expected_wkc(self) -> int:
-        return 3 * self.n_drives + sum(t.type.working_counter for t in self.terminals)
+        return 3 * (self.n_drives + len(self.spindles)) + sum(t.type.working_counter for t in self.terminals)
 
     def _open(self) -> None:
-        for m in self.models:
+        for m in (*self.models, *self.spindle_models):
             m.controlword = 0
             m.step(self.cycle_time_s)            # NOT READY -> SWITCH ON DISABLED
         self._lost = [False] * self.n_drives
@@ -159,7 +165,7 @@ class SimBus(Bus):
         self.target_position[:] = self.position_actual
 
     def _close(self) -> None:
-        for m in self.models:
+        for m in (*self.models, *self.spindle_models):
             m.controlword = 0
             m.step(self.cycle_time_s)
 
@@ -267,7 +273,21 @@ class SimBus(Bus):
             wkc += 3
         if io_words is not None:
             wkc += self._exchange_terminals(io_words)
+        if self.spindle_models:
+            wkc += self._exchange_spindles(dt, lost_frame)
         return -1 if lost_frame else wkc
+
+    def _exchange_spindles(self, dt: float, lost_frame: bool) -> int:
+        for k, m in enumerate(self.spindle_models):
+            if not lost_frame:
+                self.spindle_statusword[k] = m.statusword
+                self.spindle_velocity_actual[k] = m.velocity_actual
+                self.spindle_error_code[k] = m.error_code
+                m.controlword = int(self.spindle_controlword[k])
+                m.target_velocity = int(self.spindle_target_velocity[k])
+                m.modes_of_operation = int(self.spindle_modes[k])
+            m.step(dt)
+        return 3 * len(self.spindle_models)
 
     def _io_words(self) -> np.ndarray | None:
         """This cycle's input words of the terminals and drives, None without terminals or
@@ -306,9 +326,15 @@ class SimBus(Bus):
                 revision=m.params.revision, serial=m.params.serial,
                 state="INIT" if self._init[i] else "SAFE-OP" if self._lost[i] else "OP",
                 al_status_code=0x001B if self._lost[i] else 0))
+        out += [SlaveInfo(position=s.position, name="SimSpindle", vendor_id=m.params.vendor_id,
+                          product_code=m.params.product_code, revision=m.params.revision, state="OP")
+                for s, m in zip(self.spindles, self.spindle_models)]
         return tuple(sorted(out, key=lambda s: s.position))
 
     def _model_at(self, position: int) -> DriveModel:
+        for s, m in zip(self.spindles, self.spindle_models):
+            if s.position == position:
+                return m
         try:
             return self.models[self._by_position[position]]
         except KeyError:
@@ -317,7 +343,7 @@ class SimBus(Bus):
     def _sdo_upload(self, position: int, index: int, subindex: int) -> bytes:
         m = self._model_at(position)
         if (index, subindex) in ((0x1018, 1), (0x1018, 2)):
-            info = self._slaves()[self._by_position[position]]
+            info = next(s for s in self._slaves() if s.position == position)
             value = info.vendor_id if subindex == 1 else info.product_code
         else:
             value = m.read_object(index, subindex)
@@ -423,6 +449,14 @@ class SimBus(Bus):
             self.io.force(self.n_terminals + index, value)
         elif name == "encoder_add":
             self.io.encoder_add(index, value - (1 << 31) if value >= 1 << 31 else value)
+        elif name in ("spindle_load", "spindle_unload", "spindle_fault"):
+            if not 0 <= index < len(self.spindles):
+                raise ConfigurationError(f"spindle drive {index}: there are {len(self.spindles)}")
+            m = self.spindle_models[index]
+            if name == "spindle_fault":
+                m.inject_fault(value or ERROR_OVERCURRENT)
+            else:
+                m.set_load(value * self.spindles[index].velocity_per_rpm if name == "spindle_load" else None)
         elif name in ("lose_terminal", "restore_terminal"):
             if not 0 <= index < self.n_terminals:
                 raise ConfigurationError(f"terminal {index}: there are {self.n_terminals}")
@@ -433,11 +467,31 @@ class SimBus(Bus):
             raise ConfigurationError(f"unknown injection {name!r}; known: {INJECTIONS}")
 
 
+#: the simulated spindle: its motor's top speed and acceleration (rpm, rpm/s) and the lag of its
+#: speed loop (the spindle's inertia)
+SIM_SPINDLE_RPM = 30_000.0
+SIM_SPINDLE_RPM_S = 8_000.0
+SIM_SPINDLE_LAG_S = 0.05
+
+
+def _spindle_model(s: SpindleDriveSpec) -> DriveModel:
+    """A simulated spindle drive; its profile velocity ramps (0x6083, 0x6084) at its motor's
+    acceleration."""
+    a = SIM_SPINDLE_RPM_S * s.velocity_per_rpm
+    params = DriveParams(v_max_counts_s=SIM_SPINDLE_RPM * s.velocity_per_rpm, a_max_counts_s2=a,
+                         velocity_lag_s=SIM_SPINDLE_LAG_S, quick_stop_deceleration_counts_s2=int(a))
+    if s.vendor_id or s.product_code:
+        params = replace(params, vendor_id=s.vendor_id, product_code=s.product_code)
+    m = DriveModel(params, position=s.position)
+    for index in (0x6083, 0x6084):
+        m.write_object(index, 0, int(a))
+    m.modes_of_operation = s.mode
+    return m
+
+
 def _replace_index(p: DriveParams, pitch_counts: float) -> DriveParams:
     """The drive's encoder with a zero impulse every ``pitch_counts`` (0: none), one of them a
     third of a pitch from the counts' zero (an index is never where a switch is put)."""
-    from dataclasses import replace
-
     pitch = abs(pitch_counts)
     if not math.isfinite(pitch):
         raise ConfigurationError(f"index pitch {pitch_counts} is not finite")
@@ -445,8 +499,6 @@ def _replace_index(p: DriveParams, pitch_counts: float) -> DriveParams:
 
 
 def _replace_initial(p: DriveParams, initial_counts: float) -> DriveParams:
-    from dataclasses import replace
-
     if not math.isfinite(initial_counts):
         raise ConfigurationError(f"initial position {initial_counts} is not finite")
     return replace(p, initial_position_counts=initial_counts)

@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from .bus import Bus, DriveSpec, SlaveInfo
+from .bus import Bus, DriveSpec, SlaveInfo, SpindleDriveSpec
 from .drive_setup import DriveSetup, MappingPolicy, StartupStep
 from .errors import (
     AlStateError,
@@ -107,7 +107,12 @@ class SoemBus(Bus):
                  receive_timeout_us: int = 2000,
                  setups: Mapping[int, DriveSetup] | Sequence[tuple[int, DriveSetup]] | None = None,
                  mode_timeout_s: float = 1.0, terminals: Sequence[TerminalSpec] = (),
-                 **_ignored: object) -> None:
+                 spindles: Sequence[SpindleDriveSpec] = (), **_ignored: object) -> None:
+        if spindles:
+            raise ConfigurationError(
+                f"a spindle drive (slave {spindles[0].position}) runs on the simulated bus only: SoemBus "
+                "does not map velocity-mode drives yet; use the spindle's output bits ([controller] "
+                "spindle_drive)")
         super().__init__(drives, cycle_time_s, terminals)
         self.adapter = adapter
         self.mappings: dict[tuple[int, int], PdoMapping] = {**DRIVE_MAPPINGS, **(mappings or {})}

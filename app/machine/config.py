@@ -34,6 +34,7 @@ import tomlkit.items
 
 from app.machine.compensation import compensation_of
 from app.machine.errors import ConfigError
+from app.machine.spindle_settings import SpindleDriveSettings, spindle_lines
 from app.machine.wiring import (
     Direction,
     MachineWiring,
@@ -279,6 +280,8 @@ class MachineConfig:
     wiring: MachineWiring = field(default_factory=MachineWiring)
     # the compensated axes' corrections, read with the file (``app.machine.compensation``)
     compensation: tuple[CompSpec, ...] = ()
+    # the spindle on its own drive (``[spindle]``; its drive None: the output bits)
+    spindle: SpindleDriveSettings = field(default_factory=SpindleDriveSettings)
 
     def __post_init__(self) -> None:
         # what the interpreter takes from the panel's settings: the shipped subroutines' folder
@@ -324,15 +327,21 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
     bus = BusSettings(kind=b["kind"], adapter=b["adapter"], wkc_error_limit=b["wkc_error_limit"],
                       drives=drives)
     controller, probe = ControllerSettings(**c), ProbeSettings(**valid["probe"])
+    spindle = SpindleDriveSettings.from_valid(valid["spindle"])
     try:
         wiring = wiring_from_valid(valid, machine, loc, homing.method,
                                    _reserved_bits(machine, controller, probe))
+        taken = {a.drive_position: "an axis' drive" for a in machine.axes}
+        taken.update({t.position: f"a {t.type}" for t in wiring.terminals})
+        if spindle.drive in taken:
+            raise loc.fail(("spindle", "drive"), f"slave {spindle.drive} is {taken[spindle.drive]}: the "
+                           "spindle's drive needs a slave position of its own")
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=controller, probe=probe,
                          toolchange=ToolChangeSettings(**valid["toolchange"]),
                          opcua=OpcUaSettings.from_valid(valid["opcua"]), path=where, wiring=wiring,
-                         compensation=compensation)
+                         compensation=compensation, spindle=spindle)
 
 
 def _reserved_bits(machine: MachineSpec, controller: ControllerSettings, probe: ProbeSettings
@@ -498,6 +507,7 @@ def config_to_toml(config: MachineConfig) -> str:
         out += drive_lines(d)
     out += terminal_lines(config.wiring)
     out += [""] + signal_lines(config.wiring) + handwheel_lines(config.wiring)
+    out += [""] + spindle_lines(config.spindle)
     c = config.controller
     out += ["", "[controller]", f"jog_speed_mm_s = {_fmt(float(c.jog_speed_mm_s))}",
             f"lead_s = {_fmt(float(c.lead_s))}", f"accel_reserve = {_fmt(float(c.accel_reserve))}",

@@ -256,6 +256,7 @@ class MachineController(QObject):
                                  run)
         poller.on_poll(io.poll)
         poller.on_poll(wheel.poll)
+        poller.on_poll(spindle.poll)
         poller.on_poll(homing.poll)
         poller.on_poll(prober.place_simulated_surface)
         poller.on_poll(prober.place_simulated_part)

@@ -17,6 +17,7 @@ from .compensation import CompSpec
 from .handwheel import HandwheelMode, WheelState, stop_distance
 from .messages import error_code_text
 from .realtime import PROCESS_SPIN_S
+from .spindle import SpindleState
 from .types import (
     Alarm,
     AlarmCode,
@@ -46,5 +47,5 @@ __all__ = [
     "HomingStep", "InputWatch", "ProbeLatch", "ProbeState", "ReplaceResult", "SwitchHoming", "TimingStats",
     "TraceChunk", "TrackingStats", "WatchAction",
     "WorkerConfig", "WorkerEvent",
-    "WheelState", "WorkerSnapshot", "WorkerState", "error_code_text", "stop_distance",
+    "SpindleState", "WheelState", "WorkerSnapshot", "WorkerState", "error_code_text", "stop_distance",
 ]

@@ -360,6 +360,13 @@ class CyclicWorker:
         self._live()
         return self._command(Command.HANDWHEEL, -1)
 
+    def spindle(self, rpm: float, ramp_rpm_s: float) -> bool:
+        """The spindle's own drive to ``rpm`` (signed: negative turns counter-clockwise; 0 stops
+        and then disables it), the speed ramped at ``ramp_rpm_s`` (mode 9; in mode 3 the drive
+        ramps). False when refused: no spindle drive, or it is quick-stopping or faulted."""
+        self._live()
+        return self._command_result(Command.SPINDLE, reals=[float(rpm), float(ramp_rpm_s)]) is Result.OK
+
     def compensate(self, axis: int | str, on: bool, home_offset: float = 0.0) -> bool:
         """Leadscrew compensation of ``axis`` on (the axis is homed: its machine position is the
         set-point less ``home_offset``) or off; the step it makes is taken up within the axis'
@@ -662,6 +669,10 @@ class CyclicWorker:
             handwheel_state=int(s["wheel_state"]), handwheel_axis=int(s["wheel_axis"]),
             compensation=tuple(float(x) for x in s["comp"]),
             compensation_on=tuple(bool(x) for x in s["comp_on"]),
+            spindle_state=int(s["spindle_state"]),
+            spindle_drive_state=Cia402State(int(s["spindle_drive"])) if cfg.spindle else None,
+            spindle_rpm_command=float(s["spindle_cmd"]), spindle_rpm_actual=float(s["spindle_rpm"]),
+            spindle_error_code=int(s["spindle_error"]),
         )
 
     def drain_trace(self) -> TraceChunk:

@@ -30,6 +30,7 @@ from .homing import Homing, HomingPhase, HomingResult
 from .messages import INJECT_NAMES, Command, Result
 from .ring import replace_queued
 from .shared import ALARM_SLOTS, SharedBlock
+from .spindle import SpindleLoop
 from .switch_homing import SwitchHomer
 from .tracking import Tracker
 from .types import REF_HISTORY, AlarmCode, EventCode, WorkerConfig, WorkerState
@@ -123,6 +124,7 @@ class CycleLoop:
                                spec.max_counts_per_cycle if spec else 1, lv.wheel_state, lv.wheel_axis)
         self.wheel_terminal = spec.terminal if spec else -1
         self.wheel_slave = config.terminals[spec.terminal].position if spec else -1
+        self.spindle = SpindleLoop(config.spindle, config.ts_s, config.enable_timeout_s, lv)
 
     # ------------------------------------------------------------------ bus
     def open_bus(self) -> None:
@@ -131,7 +133,7 @@ class CycleLoop:
         if cfg.bus_kind == "soem":
             options.setdefault("adapter", cfg.adapter)
         self.bus = make_bus(cfg.bus_kind, cfg.drives, cycle_time_s=cfg.ts_s, terminals=cfg.terminals,
-                            **options)
+                            spindles=(cfg.spindle,) if cfg.spindle else (), **options)
         self.bus.open()
         bus = self.bus
         self.lv.wkc_expected[...] = bus.expected_wkc
@@ -155,6 +157,7 @@ class CycleLoop:
             if bus.is_open:
                 for _ in range(5):          # leave drives disabled (best effort)
                     cia402.DISABLE_LUT.take(self.states, out=bus.controlword)
+                    bus.spindle_controlword.fill(cia402.CW_QUICK_STOP)
                     bus.target_position[:] = bus.position_actual
                     bus.exchange()
                     cia402.decode_states(bus.statusword, self.states, self.scratch_i)
@@ -209,6 +212,7 @@ class CycleLoop:
         self._alarm(code, axis, a, b, f)
         self._flush()
         self.wheel.off()
+        self.spindle.quick_stop()
         self.homing.cancel()
         if self.bus is not None:
             self.bus.modes_of_operation[:] = cia402.CSP
@@ -245,12 +249,14 @@ class CycleLoop:
         elif code == Command.DISABLE:
             self._flush()
             self.wheel.off()
+            self.spindle.quick_stop()
             bus.modes_of_operation[:] = cia402.CSP
             self.homing.cancel()
             if st not in (WorkerState.FAULT, WorkerState.FAULT_RESET, WorkerState.ERROR):
                 self._set_state(WorkerState.DISABLED)
         elif code == Command.FAULT_RESET:
             self._flush()
+            self.spindle.fault_reset()
             self.fault_reset_cycle = 0
             self.wkc_bad_run = 0
             self.wkc_alarmed = False
@@ -307,6 +313,10 @@ class CycleLoop:
             return self._arm_probe(a, b)
         elif code == Command.HANDWHEEL:
             return self._handwheel(a, b)
+        elif code == Command.SPINDLE:      # turning only with the machine's drives on
+            rpm, ramp = float(self.ctl.cmd_f[0]), float(self.ctl.cmd_f[1])
+            if (rpm != 0.0 and st is not WorkerState.ENABLED) or not self.spindle.command(rpm, ramp):
+                return Result.REFUSED
         elif code == Command.COMPENSATE:
             return Result.OK if self.comp.switch(a, bool(b), float(self.ctl.cmd_f[0])) else Result.REFUSED
         elif code == Command.STOP:
@@ -424,6 +434,8 @@ class CycleLoop:
                 cia402.QUICK_STOP_LUT.take(states, out=bus.controlword)
         np.copyto(self.ref_rows[cycle % REF_HISTORY], self.ref)
         self.serial_hist[cycle % REF_HISTORY] = int(lv.consumed) - 1
+        if self.spindle.present:
+            self.spindle.outputs(bus)
         # ---- exchange
         wkc = bus.exchange()
         lv.wkc[...] = wkc
@@ -449,6 +461,12 @@ class CycleLoop:
             np.copyto(self.words_t, bus.terminal_inputs, casting="unsafe")
             np.copyto(lv.tin[:self.m], bus.terminal_inputs, casting="unsafe")
             np.copyto(lv.tcount[:self.m], bus.terminal_counts, casting="unsafe")
+        spindle = self.spindle
+        if spindle.present:
+            spindle.inputs(bus)
+            if spindle.fault is not None:
+                self._alarm(AlarmCode.SPINDLE, -1, *spindle.fault)
+                spindle.fault = None
         watches = self.watches
         if watches.evaluate(self.words) or watches.chain_was_open or watches.override:
             self._watched_inputs()

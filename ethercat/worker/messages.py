@@ -35,6 +35,7 @@ class Command(enum.IntEnum):
     OVERRIDE_LIMITS = 16    # a: 1 on, 0 off
     HANDWHEEL = 17          # a: the axis (-1: off), b: the mode; cmd_f: scale, v, a, j, lowest, highest
     COMPENSATE = 18         # a: the axis, b: 1 on (homed) / 0 off; cmd_f[0]: its home offset
+    SPINDLE = 19            # cmd_f: the spindle's speed (rpm, signed) and its ramp (rpm/s)
 
 
 class Result(enum.IntEnum):
@@ -156,6 +157,12 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
                     "axis again to go on")
         return (f"handwheel on axis {axis}: its encoder terminal stopped answering: the axis stopped; "
                 "select the axis again once it answers")
+    if code is AlarmCode.SPINDLE:
+        if a == 2:
+            return (f"the spindle's drive did not enable within the enable time (it stays in "
+                    f"{Cia402State(b).name if 0 <= b < len(Cia402State) else b}): the spindle is off")
+        what = f"error code 0x{b:04X} {error_code_text(b)}".rstrip() if b else "it left OPERATION ENABLED"
+        return f"the spindle's drive faulted ({what}): the spindle is off; reset the fault to turn it again"
     if code is AlarmCode.BUS_ERROR:
         return f"bus error in the cyclic loop ({detail}): worker stopped"
     return code.name

@@ -91,6 +91,10 @@ def live_dtype(n: int, m: int = 0, w: int = 0) -> np.dtype:
         ("wheel_state", "i8"), ("wheel_axis", "i8"),
         # leadscrew compensation: the correction sent last per axis, and whether it is on
         ("comp", "f8", (n,)), ("comp_on", "i8", (n,)),
+        # the spindle's drive: ``spindle.SpindleState``, its CiA 402 state, the speed commanded
+        # and read (rpm), its error code
+        ("spindle_state", "i8"), ("spindle_drive", "i8"), ("spindle_cmd", "f8"), ("spindle_rpm", "f8"),
+        ("spindle_error", "i8"),
     ], align=True)
 
 
@@ -195,6 +199,11 @@ class LiveFields(_Fields):
     wheel_axis: np.ndarray
     comp: np.ndarray
     comp_on: np.ndarray
+    spindle_state: np.ndarray
+    spindle_drive: np.ndarray
+    spindle_cmd: np.ndarray
+    spindle_rpm: np.ndarray
+    spindle_error: np.ndarray
 
 
 class SharedBlock:

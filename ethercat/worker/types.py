@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..bus import DriveSpec, check_drives
+from ..bus import DriveSpec, SpindleDriveSpec, check_drives
 from ..cia402 import Cia402State
 from ..errors import ConfigurationError
 from ..terminals import TerminalKind, TerminalSpec, check_terminals
@@ -58,6 +58,7 @@ class AlarmCode(enum.IntEnum):
     LIMIT_SWITCH = 13      # an axis ran onto a limit switch (a: +1 / -1 the side)
     HOMING_SWITCH = 14     # homing to the switch failed (a: the step, b: why)
     HANDWHEEL = 15         # the handwheel stopped (a: ``WheelFault``, b: the counts of a jump)
+    SPINDLE = 16           # the spindle's drive (a: ``spindle.SpindleFault``, b: 0x603F or its state)
 
 
 class EventCode(enum.IntEnum):
@@ -283,6 +284,11 @@ class WorkerSnapshot:
     handwheel_axis: int = -1           # the axis it moves (-1: none)
     compensation: tuple[float, ...] = ()       # per axis: the leadscrew correction sent last
     compensation_on: tuple[bool, ...] = ()     # per axis: compensation on (the axis homed)
+    spindle_state: int = 0             # ``spindle.SpindleState`` of the spindle's own drive
+    spindle_drive_state: Cia402State | None = None   # its CiA 402 state (None: no spindle drive)
+    spindle_rpm_command: float = 0.0   # the speed sent (rpm, signed)
+    spindle_rpm_actual: float = 0.0    # the speed its drive reads (0x606C, rpm)
+    spindle_error_code: int = 0
 
     @property
     def enabled(self) -> bool:
@@ -376,11 +382,14 @@ class WorkerConfig:
     switch_homing: tuple[SwitchHoming, ...] = ()
     handwheel: HandwheelSpec | None = None
     compensation: tuple[CompSpec, ...] = ()
+    spindle: SpindleDriveSpec | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "drives", check_drives(self.drives))
-        object.__setattr__(self, "terminals",
-                           check_terminals(self.terminals, [d.position for d in self.drives]))
+        taken = [d.position for d in self.drives] + ([self.spindle.position] if self.spindle else [])
+        if len(set(taken)) != len(taken):
+            raise ConfigurationError(f"the spindle drive's position is an axis drive's: {taken}")
+        object.__setattr__(self, "terminals", check_terminals(self.terminals, taken))
         wheel = self.handwheel
         if wheel is not None and not (0 <= wheel.terminal < len(self.terminals)
                                       and self.terminals[wheel.terminal].kind is TerminalKind.ENCODER):

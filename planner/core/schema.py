@@ -241,6 +241,20 @@ MACHINE_FILE = Table("", tables=(
         Key("steps", "floats", [0.001, 0.01, 0.1], 1e-6, 100.0),
         Key("max_counts_per_cycle", "int", 256, 1, 32_767),
     )),
+    # the spindle on its own CiA 402 drive (left out: the output bits of [controller]
+    # spindle_drive): its slave position, velocity mode (9 cyclic synchronous, 3 profile), the
+    # drive's velocity units per rpm, the ramp (rpm/s), at speed within at_speed_pct of the
+    # speed commanded, and below that band for speed_loss_s while turning at speed: a hold
+    Table("spindle", (
+        Key("drive", "int", None, 0, 65535),
+        Key("mode", "int", 9, choices=(9, 3)),
+        Key("velocity_per_rpm", "float", 10_000.0 / 60.0, 1e-6, 1e8),
+        Key("accel_rpm_s", "float", 2000.0, 1.0, 1e6),
+        Key("at_speed_pct", "float", 5.0, 0.1, 50.0),
+        Key("speed_loss_s", "float", 0.5, 0.01, 60.0),
+        Key("vendor_id", "int", 0, 0, 0xFFFF_FFFF),
+        Key("product_code", "int", 0, 0, 0xFFFF_FFFF),
+    )),
     # what the machine's interlocks do: air or lube pressure lost ("stop": the motion stops
     # along its path, an alarm; "warning": an alarm only); the jog speed allowed with the
     # door open (mm/s; 0: no jog with the door open)

@@ -1,5 +1,8 @@
 """Spindle on CW/CCW/off and speed, by hand and from the program: the drive's digital outputs
-(bit 0 on, bit 1 counter-clockwise).
+(bit 0 on, bit 1 counter-clockwise), or the spindle's own CiA 402 drive in a velocity mode
+(``[spindle] drive``): then the speed (S x override, signed) goes to that drive, at speed is
+the speed its drive reads within ``at_speed_pct`` of it, and a spindle that falls below that
+band for ``speed_loss_s`` while a program turns it at speed holds the program with an alarm.
 """
 
 from __future__ import annotations
@@ -14,8 +17,10 @@ from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.model import CommandResult, MachineState, Severity, SpindleState
 from app.machine.motion.spinup import spins_up
 from app.machine.ports import AlarmSink, Settings, SignalValues
+from app.machine.spindle_settings import SpindleDriveSettings
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
+from ethercat.worker import WorkerSnapshot
 
 __all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl"]
 
@@ -46,6 +51,7 @@ class SpindleControl:
         self._outputs = outputs
         self._alarms = alarms
         self._out = out
+        self._events = events
         self.spindle = SpindleState()
         self.override_pct = 100.0
         # the running program turned the spindle override off here (tapping, M49, M51 P0): the
@@ -55,6 +61,12 @@ class SpindleControl:
         # program goes on (``restart_after_hold``)
         self.stopped_for_hold: SpindleState | None = None
         self._at_speed_late = False
+        #: the spindle's own drive as last read: the speed commanded and read (rpm, signed),
+        #: whether it has been at speed since its last change, and since when it is not
+        self.drive_rpm = (0.0, 0.0)
+        self._reached = False
+        self._below_since: float | None = None
+        self._lost_told = False
         events.estop.connect(lambda _reason: self._stop_for_good())
         events.fault.connect(lambda _cause: self._stop_for_good())
         events.reset.connect(lambda _state: self._stop_for_good())
@@ -75,10 +87,18 @@ class SpindleControl:
         top = 100.0 * self._max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
         return min(100.0 if self.program_lock else self.override_pct, top)
 
+    @property
+    def _drive(self) -> SpindleDriveSettings | None:
+        s = self._settings.config.spindle
+        return s if s.drive is not None else None
+
     def apply_spindle(self, sp: SpindleState) -> None:
         rpm = min(abs(sp.rpm), self._max_rpm)
         sp = SpindleState(direction=int(np.sign(sp.direction)), rpm=rpm, override_pct=self._override_for(rpm))
-        if self._drives.attached:
+        drive = self._drive
+        if drive is not None:
+            self._apply_drive(sp, drive)
+        elif self._drives.attached:
             bits = 0 if sp.direction == 0 else (0b01 | (0b10 if sp.direction < 0 else 0))
             try:
                 self._outputs.set_bits(self._settings.config.controller.spindle_drive, 0b11, bits)
@@ -92,6 +112,49 @@ class SpindleControl:
                 self._outputs.set_signal("spindle_enable", sp.on)
         self.spindle = sp
         self._out.spindleChanged.emit(sp)
+
+    def _apply_drive(self, sp: SpindleState, drive: SpindleDriveSettings) -> None:
+        """The spindle's own drive to S x override, signed by the direction (0: it stops)."""
+        rpm = sp.direction * sp.rpm * sp.override_pct / 100.0
+        if rpm != self.drive_rpm[0]:
+            self._reached = False
+            self._below_since = None
+        if not self._drives.attached:
+            return
+        if not self._drives.spindle(rpm, drive.accel_rpm_s) and sp.on:
+            why = "the spindle's drive refused to turn (faulted, stopping, or the drives are off)"
+            if self._states.state in (MachineState.RUNNING, MachineState.HOLD):
+                self._alarms.alarm_stop(why, "spindle", "spindle")
+            else:
+                self._alarms.raise_alarm("spindle", why, Severity.WARNING, "spindle")
+        if self._settings.config.wiring.has("spindle_enable"):
+            self._outputs.set_signal("spindle_enable", sp.on)
+
+    def poll(self, snap: WorkerSnapshot) -> None:
+        """The spindle's own drive as read: its speeds; a loss of speed while a program turns it
+        at speed is a STOP alarm (the program holds where it is, resumable)."""
+        drive = self._drive
+        if drive is None:
+            return
+        cmd, act = float(snap.spindle_rpm_command), float(snap.spindle_rpm_actual)
+        self.drive_rpm = (cmd, act)
+        target = self.spindle.direction * self.spindle.rpm * self.spindle.override_pct / 100.0
+        if not self.spindle.on or cmd != target:
+            self._reached, self._below_since = False, None
+            return
+        now = float(snap.time_s)
+        if drive.at_speed(cmd, act):
+            self._reached, self._below_since, self._lost_told = True, None, False
+        elif self._reached:
+            if self._below_since is None:
+                self._below_since = now
+            elif (now - self._below_since >= drive.speed_loss_s and not self._lost_told
+                  and self._states.state is MachineState.RUNNING):
+                self._lost_told = True
+                self._alarms.alarm_stop(
+                    f"the spindle lost speed: {abs(act):.0f} rpm read against {abs(cmd):.0f} commanded for "
+                    f"{drive.speed_loss_s:g} s (a band of {drive.at_speed_pct:g} %)", "spindle",
+                    "spindle_speed")
 
     def _stop_for_good(self) -> None:
         self.stopped_for_hold = None
@@ -129,7 +192,7 @@ class SpindleControl:
         time the drive takes to see the new speed (its signal may still be true from before)."""
         if not spins_up(self.spindle, new):
             return 0.0
-        if self._settings.config.wiring.has("spindle_at_speed"):
+        if self._drive is not None or self._settings.config.wiring.has("spindle_at_speed"):
             return AT_SPEED_MIN_S
         return float(self._settings.config.controller.spindle_spinup_s)
 
@@ -139,16 +202,22 @@ class SpindleControl:
         ``at_speed_timeout_s`` of that is a STOP alarm (the motion stays at rest)."""
         if now_s < until_s:
             return False
-        if not self._settings.config.wiring.has("spindle_at_speed"):
+        drive = self._drive
+        if drive is None and not self._settings.config.wiring.has("spindle_at_speed"):
             return True
-        if self._signals.value("spindle_at_speed"):
+        if self._reached if drive is not None else self._signals.value("spindle_at_speed"):
             self._at_speed_late = False
             return True
-        timeout = at_speed_timeout_s(self._settings.config.controller.spindle_spinup_s)
+        spinup = self._settings.config.controller.spindle_spinup_s
+        if drive is not None:
+            spinup = max(spinup, drive.spin_up_s(0.0, self._max_rpm))
+        timeout = at_speed_timeout_s(spinup)
         if now_s > until_s + timeout and not self._at_speed_late:
             self._at_speed_late = True
-            self._alarms.alarm_stop(f"the spindle did not report at speed (spindle_at_speed) within "
-                                    f"{timeout:g} s", "spindle", "spindle_at_speed")
+            why = (f"the spindle did not reach its speed within {timeout:g} s: its drive reads "
+                   f"{abs(self.drive_rpm[1]):.0f} rpm" if drive is not None else
+                   f"the spindle did not report at speed (spindle_at_speed) within {timeout:g} s")
+            self._alarms.alarm_stop(why, "spindle", "spindle_at_speed")
         return False
 
     def set_override(self, percent: float) -> CommandResult:
@@ -160,7 +229,15 @@ class SpindleControl:
                 Action.SET_SPINDLE_OVERRIDE,
                 f"spindle override must be {OVERRIDE_MIN_PCT:g}-{OVERRIDE_MAX_PCT:g} %, got {p:g}")
         self.override_pct = p
+        before = self.drive_rpm[1]
         self.apply_spindle(self.spindle)
+        drive = self._drive
+        rpm = self.spindle.direction * self.spindle.rpm * self.spindle.override_pct / 100.0
+        if (drive is not None and self.spindle.on and self._states.state is MachineState.RUNNING
+                and not drive.at_speed(rpm, before)):
+            self._out.message.emit(f"spindle override {p:g} %: the feed waits until the spindle turns at "
+                                   f"{abs(rpm):.0f} rpm")
+            self._events.spindle_speed_changed.emit()
         if self.program_lock:
             self._out.message.emit(f"spindle override {p:g} % not applied now: the program turned it off "
                                    "(tapping, M49 or M51 P0); it applies once the program turns it on")

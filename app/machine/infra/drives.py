@@ -186,6 +186,12 @@ class DriveLink:
         with self._lock:
             return self._worker.handwheel_off() if self._worker is not None else True
 
+    def spindle(self, rpm: float, ramp_rpm_s: float) -> bool:
+        """The spindle's own drive to ``rpm`` (signed) along ``ramp_rpm_s``
+        (``CyclicWorker.spindle``); False when refused or disconnected."""
+        with self._lock:
+            return self._worker.spindle(rpm, ramp_rpm_s) if self._worker is not None else False
+
     def compensate(self, axis: int, on: bool, home_offset: float) -> bool:
         """Leadscrew compensation of ``axis`` on or off (``CyclicWorker.compensate``); False when
         the axis has none or nothing is connected."""

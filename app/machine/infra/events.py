@@ -140,6 +140,9 @@ class MachineEvents:
     # at start: the last run was cut by a power loss or a kill (its program's file, the line it
     # was at, when the position was last saved)
     run_interrupted: Channel[str, int, float] = field(default_factory=_ch)
+    # the operator's override changed the speed of the turning spindle beyond the band it is at
+    # speed in: the running motion holds along its path until the spindle reads its new speed
+    spindle_speed_changed: Channel[()] = field(default_factory=_ch)
     # the drives' status is wanted at once (a command changed them): the poller polls
     poll_now: Channel[()] = field(default_factory=_ch)
     # the worker was started and its drives are about to be enabled

@@ -110,6 +110,7 @@ class Streamer:
         events.fault.connect(lambda cause: self.abandon(cause, keep_point=cause))
         events.alarm_stop.connect(self._alarm_stop)
         events.reset.connect(self._reset)
+        events.spindle_speed_changed.connect(self._wait_for_spindle)
         events.program_let_go.connect(self.forget_resume_point)
         events.program_loaded.connect(lambda _info: self.forget_resume_point())
         events.program_refused.connect(self.forget_resume_point)
@@ -417,6 +418,17 @@ class Streamer:
             job = self.job
             if job is not None:
                 self._queue.change(job, change, self._lead_samples)
+
+    def _wait_for_spindle(self) -> None:
+        """The spindle's speed changed under a running program or MDI block (its override): the
+        feed holds along the path and goes on once the spindle reads its new speed (``poll``)."""
+        job = self.job
+        snap = self._drives.last_snapshot
+        if (job is None or snap is None or job.kind not in (Activity.PROGRAM, Activity.MDI)
+                or job.executor.hold or job.resume_at_s is not None):
+            return
+        self.change_motion(lambda ex: setattr(ex, "hold", True))
+        job.resume_at_s = float(snap.time_s)
 
     def hold_motion(self, wait_for_tap: bool = False) -> None:
         """The running job's executor to hold (sigma -> 0 / the time-optimal path stop), from a

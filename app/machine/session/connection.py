@@ -258,6 +258,7 @@ class Connection:
             switch_homing=io.switch_homing,
             handwheel=io.handwheel,
             compensation=cfg.compensation,
+            spindle=cfg.spindle.spec,
             buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s,
                                           ramp_bound_s(cfg.machine, self._settings.budget)),
         )

@@ -131,6 +131,8 @@ class AlarmLog:
                     react(AlarmReaction.ESTOP, "E-stop chain open", True)
             elif a.code is AlarmCode.QUICK_STOP and self._state is MachineState.ESTOP:
                 continue
+            elif a.code is AlarmCode.SPINDLE:         # the spindle stopped: the axes stop on the path
+                self.alarm_stop(a.message, "spindle", "spindle_drive")
             elif a.code is AlarmCode.HANDWHEEL:       # the wheel stopped; nothing else did
                 self.raise_alarm("handwheel", a.message, Severity.WARNING, "handwheel")
             elif a.code in (AlarmCode.HOMING_ERROR, AlarmCode.HOMING_SWITCH):

@@ -1,0 +1,170 @@
+"""A spindle on its own CiA 402 drive through the real controller on simulated drives (manual
+clock): ``[spindle]`` read and checked at its line, S x override sent to the drive, the first
+feed move after M3 waiting until the speed the drive reads is in the band, a spindle that loses
+speed in the cut holding the program with an alarm, its drive's fault stopping the motion, and
+E-stop stopping it."""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.machine.config import config_from_dict, config_to_toml, load_config
+from app.machine.controller import MachineController
+from app.machine.errors import ConfigError
+from app.machine.model import MachineState
+from ethercat.worker import SpindleState
+from resources import shipped_machine
+from tests.machine.conftest import TEST_LEAD_S, make_controller, run_to_idle
+
+MILL = shipped_machine("xyz_mill").read_text(encoding="utf-8")
+SPINDLE = "[spindle]\ndrive = 8\naccel_rpm_s = 4000\nat_speed_pct = 5\nspeed_loss_s = 0.3\n"
+
+
+def _config(tmp_path: Path, spindle: str = SPINDLE) -> Path:
+    p = tmp_path / "machine.toml"
+    p.write_text(MILL + f"\n{spindle}\n[controller]\nlead_s = {TEST_LEAD_S}\n", encoding="utf-8")
+    return p
+
+
+@pytest.fixture
+def sctl(qapp, tmp_path: Path):  # type: ignore[no-untyped-def]
+    state = tmp_path / "state"
+    state.mkdir()
+    c = make_controller(_config(tmp_path), state)
+    yield c
+    c.shutdown()
+
+
+def test_the_spindle_section_is_read_round_trip_and_checked_at_its_line(tmp_path: Path) -> None:
+    cfg = load_config(_config(tmp_path))
+    s = cfg.spindle
+    assert (s.drive, s.mode, s.accel_rpm_s, s.speed_loss_s) == (8, 9, 4000.0, 0.3)
+    assert s.spec is not None and s.spec.position == 8
+    assert s.spec.velocity_per_rpm == pytest.approx(10_000 / 60)
+    again = config_from_dict(tomllib.loads(config_to_toml(cfg)), str(tmp_path / "machine.toml"))
+    assert again.spindle == cfg.spindle
+    assert load_config(shipped_machine("xyz_mill")).spindle.spec is None       # left out: the bits
+    p = _config(tmp_path, "[spindle]\ndrive = 7\n")                             # the handwheel's EL5101
+    with pytest.raises(ConfigError) as err:
+        load_config(p)
+    line = p.read_text().splitlines().index("drive = 7") + 1
+    assert f"machine.toml:{line}: spindle.drive: slave 7 is a EL5101" in str(err.value)
+    p = _config(tmp_path, "[spindle]\ndrive = 8\nmode = 8\n")
+    with pytest.raises(ConfigError, match="spindle.mode"):
+        load_config(p)
+
+
+def _record(c: MachineController, seconds: float, step_s: float = 0.005) -> dict[str, np.ndarray]:
+    rows = []
+    for _ in range(int(round(seconds / step_s))):
+        c.advance(step_s)
+        s = c.worker.snapshot()
+        rows.append((float(s.time_s), float(s.reference_position[0]), s.spindle_rpm_command,
+                     s.spindle_rpm_actual))
+    a = np.array(rows)
+    return {"t": a[:, 0], "x": a[:, 1], "cmd": a[:, 2], "rpm": a[:, 3]}
+
+
+def test_the_first_feed_move_waits_until_the_drive_reads_the_speed(sctl: MachineController) -> None:
+    """M3 S6000 then a feed move: the drive is commanded 6,000 rpm (ramped at 4,000 rpm/s), and X
+    does not move before the speed read is within 5 % of it; the override scales the speed sent."""
+    c = sctl
+    x0 = float(c.reference_position[0])
+    assert c.mdi("M3 S6000 G1 X10 F600")
+    rec = _record(c, 3.0)
+    moving = np.flatnonzero(np.abs(rec["x"] - x0) > 1e-9)
+    assert len(moving) > 0
+    first = int(moving[0])
+    assert rec["rpm"][first] >= 0.95 * 6000 and rec["rpm"][:first].min() < 0.95 * 6000
+    assert rec["t"][first] - rec["t"][0] >= 6000 / 4000 * 0.95     # the ramp took its time
+    run_to_idle(c)
+    assert c.spindle.on and c.worker.snapshot().spindle_state == SpindleState.RUNNING
+    assert c.set_spindle_override(120)
+    c.advance(1.0)
+    s = c.worker.snapshot()
+    assert s.spindle_rpm_command == pytest.approx(7200.0)
+    assert s.spindle_rpm_actual == pytest.approx(7200, abs=2)
+    assert c.mdi("M4")
+    c.advance(4.0)
+    assert c.worker.snapshot().spindle_rpm_actual == pytest.approx(-7200, abs=2)
+    assert c.mdi("M5")
+    c.advance(3.0)
+    s = c.worker.snapshot()
+    assert s.spindle_state == SpindleState.OFF and abs(s.spindle_rpm_actual) < 1.0
+
+
+def test_an_override_change_holds_the_feed_until_the_spindle_reads_its_new_speed(
+        sctl: MachineController) -> None:
+    """At speed in the cut, the override from 100 to 150 %: X slows to a stand along its path,
+    stands while the spindle reads below 95 % of the new speed, and moves again once it is
+    there; a change within the band does not stop the feed."""
+    c = sctl
+    messages: list[str] = []
+    c.message.connect(messages.append)
+    assert c.load_program("M3 S4000\nG1 X80 F600\nM5\nM30\n", wait=True)
+    assert c.cycle_start()
+    c.advance(2.5)
+    assert c.state is MachineState.RUNNING and float(c.reference_position[0]) > 1.0
+    assert c.set_spindle_override(150)
+    assert "spindle override 150 %: the feed waits until the spindle turns at 6000 rpm" in messages
+    rec = _record(c, 2.0)
+    v = np.abs(np.diff(rec["x"]))
+    slow = rec["rpm"][1:] < 0.95 * 6000
+    assert v[slow][-5:].max() == 0.0                      # standing while below the band
+    assert v[-20:].min() > 0.0 and rec["rpm"][-1] >= 0.95 * 6000        # moving again at speed
+    assert c.state is MachineState.RUNNING
+    n = len(messages)
+    assert c.set_spindle_override(147)                    # 5880 rpm: within 5 % of 6000
+    rec = _record(c, 0.3)
+    assert np.abs(np.diff(rec["x"])).min() > 0.0 and len(messages) == n
+
+
+def test_a_spindle_that_loses_speed_in_the_cut_holds_the_program_with_an_alarm(
+        sctl: MachineController) -> None:
+    c = sctl
+    assert c.load_program("M3 S8000\nG1 X60 F300\nM5\nM30\n", wait=True)
+    assert c.cycle_start()
+    c.advance(3.5)
+    assert c.state is MachineState.RUNNING and float(c.reference_position[0]) > 0.5
+    c.worker.inject("spindle_load", 0, 3000)                 # bogged down to 3,000 rpm
+    c.advance(1.5)
+    assert c.state is MachineState.ALARM
+    alarm = next(a for a in c.alarms if a.code == "spindle_speed")
+    assert re.fullmatch(r"the spindle lost speed: (\d+) rpm read against 8000 commanded for 0\.3 s "
+                        r"\(a band of 5 %\)", alarm.cause)
+    assert int(alarm.cause.split()[4]) < 0.95 * 8000
+    x = float(c.reference_position[0])
+    c.advance(1.0)
+    assert float(c.reference_position[0]) == x and x < 59.0                  # X stands, short of the end
+
+
+def test_a_fault_of_the_spindle_drive_stops_the_motion_and_e_stop_stops_the_spindle(
+        sctl: MachineController) -> None:
+    c = sctl
+    assert c.load_program("M3 S5000\nG1 X60 F300\nM30\n", wait=True)
+    assert c.cycle_start()
+    c.advance(3.0)
+    assert c.state is MachineState.RUNNING
+    c.worker.inject("spindle_fault", 0, 0x2310)
+    c.advance(1.0)
+    assert c.state is MachineState.ALARM
+    assert any("the spindle's drive faulted (error code 0x2310" in a.cause for a in c.alarms)
+    x = float(c.reference_position[0])
+    c.advance(0.5)
+    assert float(c.reference_position[0]) == x
+
+
+def test_e_stop_quick_stops_the_spindle_drive(sctl: MachineController) -> None:
+    c = sctl
+    assert c.spindle_on(True, 9000)
+    c.advance(3.0)
+    assert c.worker.snapshot().spindle_rpm_actual == pytest.approx(9000, abs=2)
+    assert c.estop("test")
+    c.advance(2.0)
+    s = c.worker.snapshot()
+    assert abs(s.spindle_rpm_actual) < 1.0 and s.spindle_state == SpindleState.OFF and not c.spindle.on
