@@ -125,6 +125,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('spindle override must be {0}-{1} %, got {2}'),
     N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
     N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
+    N_('spindle override {0} %: the feed waits until the spindle turns at {1} rpm'),
     N_('stopped by the operator'),
     N_('the 1 ms loop refused the handwheel (the axis is moving, or set-points are queued)'),
     N_('the E-stop chain (safety relay) is closed; open: E-stop, no reset until closed'),
@@ -164,8 +165,11 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the program {0} is still being checked (wait until it is loaded)'),
     N_("the set-points ran out after {0} (the control's process fell behind): the axes braked to rest along the path within their limits"),  # noqa: E501
     N_('the slow probe feed F{0} must be below the fast one F{1} mm/min: the edge is read at the slow one'),  # noqa: E501
+    N_('the spindle did not reach its speed within {0} s: its drive reads {1} rpm'),
     N_('the spindle did not report at speed (spindle_at_speed) within {0} s'),
     N_('the spindle drive reports the commanded speed'),
+    N_('the spindle lost speed: {0} rpm read against {1} commanded for {2} s (a band of {3} %)'),
+    N_("the spindle's drive refused to turn (faulted, stopping, or the drives are off)"),
     N_('the surface height must be a number'),
     N_('the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again'),  # noqa: E501
     N_('the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked'),  # noqa: E501

@@ -80,6 +80,7 @@ class MachineApi(Protocol):
     message: SignalInstance  # informational text for the status line
     probingFinished: SignalInstance  # ProbingResult: what a probing wizard found (and wrote)
     handwheelChanged: SignalInstance  # HandwheelStatus: its axis, step, whether it is live and why not
+    spindleSample: SignalInstance  # (time s, rpm commanded, rpm read) of the spindle's own drive, <= 30 Hz
     # ControllerSnapshot: the status in one object, published when anything in it changed (at
     # most once an event-loop turn); ``snapshot()`` makes one now
     statusChanged: SignalInstance

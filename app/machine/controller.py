@@ -196,6 +196,7 @@ class MachineController(QObject):
     message = Signal(str)
     probingFinished = Signal(object)
     handwheelChanged = Signal(object)
+    spindleSample = Signal(float, float, float)
     statusChanged = Signal(object)   # ControllerSnapshot, at most once an event-loop turn
 
     def __init__(

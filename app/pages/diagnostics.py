@@ -14,11 +14,13 @@ from app.context import PanelContext
 from app.dialogs import connect_or_disconnect
 from app.format import format_duration
 from app.i18n import N_, tr
+from app.machine.config import MachineConfig
 from app.path_profile import PathProfile, path_profile
 from app.widgets.bus_view import BusView
 from app.widgets.production_view import ProductionView
 from app.widgets.profile_plots import ProfilePlots
 from app.widgets.signals_view import SignalsView
+from app.widgets.spindle_view import SpindleView
 from app.widgets.tracking_view import TrackingView, load_trace
 
 REDRAW_MS = 33  # 30 Hz
@@ -65,8 +67,10 @@ class DiagnosticsPage(QWidget):
         self.tabs.addTab(self.production, "")
         self.signals = SignalsView(i18n)
         self.tabs.addTab(self.signals, "")
+        self.spindle = SpindleView(i18n, _band(c.config))
+        self.tabs.addTab(self.spindle, "")
         for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"),
-                                      N_("Production"), N_("Signals"))):
+                                      N_("Production"), N_("Signals"), N_("Spindle"))):
             i18n.bind(self.tabs, text, functools.partial(self.tabs.setTabText, index))
 
         self.profile: PathProfile | None = None
@@ -75,6 +79,8 @@ class DiagnosticsPage(QWidget):
         self._profile_stale = False   # the program changed while the page was not shown
         context.program.changed.connect(self.compute_profile)
         c.trackingSample.connect(self.tracking.add_sample)
+        c.spindleSample.connect(self.spindle.add_sample)
+        c.configChanged.connect(lambda cfg: self.spindle.set_band(_band(cfg)))
         c.trackingUpdated.connect(self.tracking.set_report)
         c.programFinished.connect(self._on_finished)
         c.busStateChanged.connect(lambda bus: self.bus.set_state(bus, c.config))
@@ -91,6 +97,7 @@ class DiagnosticsPage(QWidget):
         self.timer = QTimer(self)
         self.timer.setInterval(REDRAW_MS)
         self.timer.timeout.connect(self.tracking.redraw)
+        self.timer.timeout.connect(self.spindle.redraw)
         self.timer.timeout.connect(self._show_signals)
         self.compute_profile()
 
@@ -191,6 +198,11 @@ class DiagnosticsPage(QWidget):
             trace = load_trace(str(getattr(report, "trace_path", "") or ""))
             if trace is not None:
                 self.tracking.show_trace(trace)
+
+
+def _band(config: MachineConfig) -> float | None:
+    """The at-speed band of the spindle's own drive (None: the spindle is output bits)."""
+    return config.spindle.at_speed_pct if config.spindle.drive is not None else None
 
 
 def create_page(context: PanelContext) -> QWidget:

@@ -72,6 +72,7 @@ class FakeController(QObject):
     message = Signal(str)
     probingFinished = Signal(object)
     handwheelChanged = Signal(object)
+    spindleSample = Signal(float, float, float)
     statusChanged = Signal(object)
 
     def __init__(self, config: MachineConfig | None = None) -> None:

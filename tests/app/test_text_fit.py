@@ -253,7 +253,7 @@ def test_no_text_is_cut_and_nothing_moves_on_any_page_or_tab_in_any_state(
                 fake_window.resize(*size)
             fc._set_state(MachineState.IDLE, "ready")
             qtbot.wait(10)
-    assert len(seen) == 18, seen           # 11 pages and the tabs of Part zero and Diagnostics
+    assert len(seen) == 19, seen           # 11 pages and the tabs of Part zero and Diagnostics
     assert not problems, "\n".join(problems[:40])
     assert (fake_window.width(), fake_window.height()) == size
 

@@ -122,11 +122,12 @@ class SpindleControl:
         if not self._drives.attached:
             return
         if not self._drives.spindle(rpm, drive.accel_rpm_s) and sp.on:
-            why = "the spindle's drive refused to turn (faulted, stopping, or the drives are off)"
             if self._states.state in (MachineState.RUNNING, MachineState.HOLD):
-                self._alarms.alarm_stop(why, "spindle", "spindle")
+                self._alarms.alarm_stop("the spindle's drive refused to turn (faulted, stopping, or the "
+                                        "drives are off)", "spindle", "spindle")
             else:
-                self._alarms.raise_alarm("spindle", why, Severity.WARNING, "spindle")
+                self._alarms.raise_alarm("spindle", "the spindle's drive refused to turn (faulted, stopping, "
+                                         "or the drives are off)", Severity.WARNING, "spindle")
         if self._settings.config.wiring.has("spindle_enable"):
             self._outputs.set_signal("spindle_enable", sp.on)
 
@@ -138,6 +139,7 @@ class SpindleControl:
             return
         cmd, act = float(snap.spindle_rpm_command), float(snap.spindle_rpm_actual)
         self.drive_rpm = (cmd, act)
+        self._out.spindleSample.emit(float(snap.time_s), cmd, act)
         target = self.spindle.direction * self.spindle.rpm * self.spindle.override_pct / 100.0
         if not self.spindle.on or cmd != target:
             self._reached, self._below_since = False, None
@@ -214,10 +216,13 @@ class SpindleControl:
         timeout = at_speed_timeout_s(spinup)
         if now_s > until_s + timeout and not self._at_speed_late:
             self._at_speed_late = True
-            why = (f"the spindle did not reach its speed within {timeout:g} s: its drive reads "
-                   f"{abs(self.drive_rpm[1]):.0f} rpm" if drive is not None else
-                   f"the spindle did not report at speed (spindle_at_speed) within {timeout:g} s")
-            self._alarms.alarm_stop(why, "spindle", "spindle_at_speed")
+            if drive is not None:
+                self._alarms.alarm_stop(f"the spindle did not reach its speed within {timeout:g} s: its "
+                                        f"drive reads {abs(self.drive_rpm[1]):.0f} rpm", "spindle",
+                                        "spindle_at_speed")
+            else:
+                self._alarms.alarm_stop(f"the spindle did not report at speed (spindle_at_speed) within "
+                                        f"{timeout:g} s", "spindle", "spindle_at_speed")
         return False
 
     def set_override(self, percent: float) -> CommandResult:

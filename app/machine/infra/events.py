@@ -94,6 +94,7 @@ class PanelChannels:
     message: Channel[str] = field(default_factory=_ch)
     probingFinished: Channel[ProbingResult] = field(default_factory=_ch)
     handwheelChanged: Channel[HandwheelStatus] = field(default_factory=_ch)
+    spindleSample: Channel[float, float, float] = field(default_factory=_ch)
 
     @classmethod
     def names(cls) -> tuple[str, ...]:
