@@ -16,7 +16,8 @@ Terminals beside the drives (``terminals``: couplers, digital I/O, encoders; see
 Spindle drives (``spindles``: CiA 402 drives in a velocity mode, not axes) have their own
 arrays: ``spindle_controlword``, ``spindle_target_velocity`` (0x60FF), ``spindle_modes``
 (0x6060) out; ``spindle_statusword``, ``spindle_velocity_actual`` (0x606C),
-``spindle_error_code`` in; index = position in ``spindles``.
+``spindle_error_code``, ``spindle_modes_display`` (0x6061) in; index = position in
+``spindles``.
 
 The worker writes the output arrays in place, calls `exchange()` once per cycle (send
 and receive one frame; returns the working counter, -1 when no frame came back) and
@@ -196,6 +197,7 @@ class Bus(abc.ABC):
         self.spindle_statusword = np.zeros(k, dtype=np.uint16)
         self.spindle_velocity_actual = np.zeros(k, dtype=np.int32)
         self.spindle_error_code = np.zeros(k, dtype=np.uint16)
+        self.spindle_modes_display = np.zeros(k, dtype=np.int8)
         self._is_open = False
 
     # ------------------------------------------------------------------ life cycle

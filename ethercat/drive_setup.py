@@ -120,7 +120,7 @@ def drive_table_problem(d: Mapping[str, Any]) -> tuple[tuple[str | int, ...], st
     """What is wrong with one ``[[bus.drives]]`` table of the machine configuration (already
     checked key by key), as the bring-up would find it: the key within the table and the
     reason, or None. Every reader of the configuration asks this, so they refuse alike."""
-    from .pdo import parse_entry
+    from .pdo import is_velocity, parse_entry
 
     entries: dict[str, list[Any]] = {}
     for key in ("rx", "tx"):
@@ -137,8 +137,8 @@ def drive_table_problem(d: Mapping[str, Any]) -> tuple[tuple[str | int, ...], st
         except EtherCATError as exc:
             return ("sdo", k), str(exc)
     try:
-        mapping = PdoMapping(tuple(entries["rx"]), tuple(entries["tx"]), d["rx_pdo"], d["tx_pdo"]) \
-            if entries["rx"] or entries["tx"] else None
+        mapping = PdoMapping(tuple(entries["rx"]), tuple(entries["tx"]), d["rx_pdo"], d["tx_pdo"],
+                             velocity=is_velocity(entries["rx"])) if entries["rx"] or entries["tx"] else None
         DriveSetup(mapping=mapping, policy=MappingPolicy(d["mapping"]), startup_sdos=tuple(sdos), dc=d["dc"],
                    sync0_shift_ns=d["sync0_shift_ns"], sync_mode=d["sync_mode"],
                    complete_access={"auto": None, "on": True, "off": False}[d["complete_access"]],

@@ -14,8 +14,8 @@ from .bus import Bus
 from .errors import ConfigurationError
 from .object_dictionary import KNOWN_OBJECTS
 
-__all__ = ["CSP_MAPPING", "DRIVE_MAPPINGS", "MANDATORY_RX", "MANDATORY_TX", "OPTIONAL_OBJECTS", "DriveIo",
-           "PdoEntry", "PdoMapping", "parse_entry"]
+__all__ = ["CSP_MAPPING", "DRIVE_MAPPINGS", "MANDATORY_RX", "MANDATORY_TX", "OPTIONAL_OBJECTS",
+           "VELOCITY_MAPPING", "DriveIo", "PdoEntry", "PdoMapping", "is_velocity", "parse_entry"]
 
 _TYPES = {8: "b", 16: "h", 32: "i", 64: "q"}
 
@@ -23,6 +23,9 @@ _TYPES = {8: "b", 16: "h", 32: "i", 64: "q"}
 #: obtained another way when the drive does not have it (see `OPTIONAL_OBJECTS`)
 MANDATORY_RX = frozenset({0x6040, 0x607A})
 MANDATORY_TX = frozenset({0x6041, 0x6064})
+#: ... and what a drive turning the spindle in a velocity mode must have
+VELOCITY_RX = frozenset({0x6040, 0x60FF})
+VELOCITY_TX = frozenset({0x6041, 0x606C})
 #: what the master does without each optional object in the process data
 OPTIONAL_OBJECTS = {
     0x6060: "modes of operation written once by SDO before OP",
@@ -79,6 +82,13 @@ class PdoEntry:
         return f"0x{self.index:04X}:{self.subindex:02X} {self.bits} bit{name}"
 
 
+def is_velocity(rx: tuple[PdoEntry, ...] | list[PdoEntry]) -> bool:
+    """Whether an RxPDO's entries are a velocity-mode drive's (target velocity 0x60FF and no
+    target position 0x607A): a spindle's drive, configured by its ``[[bus.drives]]`` table."""
+    objects = {e.index for e in rx}
+    return 0x60FF in objects and 0x607A not in objects
+
+
 def parse_entry(text: str) -> PdoEntry:
     """``"0x6040:0:16"`` (index:subindex:bits, numbers in any base) as a `PdoEntry`, for the
     machine configuration's mapping lists; an ``s`` after the bits marks a signed value of an
@@ -118,14 +128,25 @@ class PdoMapping:
     tx_pdo: int = 0x1A00
     complete_access: bool = False
     dc_sync_mode: bool = False
+    velocity: bool = False      # a spindle's drive in a velocity mode (not an axis in CSP)
+
+    @property
+    def mandatory(self) -> frozenset[int]:
+        """The objects this kind of drive cannot run without."""
+        return VELOCITY_RX | VELOCITY_TX if self.velocity else MANDATORY_RX | MANDATORY_TX
 
     def __post_init__(self) -> None:
         rx_objects = {e.index for e in self.rx}
         tx_objects = {e.index for e in self.tx}
-        if not MANDATORY_RX <= rx_objects:
+        if self.velocity:
+            if not (VELOCITY_RX <= rx_objects and VELOCITY_TX <= tx_objects):
+                raise ConfigurationError("a spindle drive's PDO mapping must contain controlword 0x6040 "
+                                         "and target velocity 0x60FF, statusword 0x6041 and velocity "
+                                         "actual 0x606C")
+        elif not MANDATORY_RX <= rx_objects:
             raise ConfigurationError("RxPDO mapping must contain controlword 0x6040 and target "
                                      "position 0x607A")
-        if not MANDATORY_TX <= tx_objects:
+        elif not MANDATORY_TX <= tx_objects:
             raise ConfigurationError("TxPDO mapping must contain statusword 0x6041 and position "
                                      "actual 0x6064")
         for e in self.rx + self.tx:
@@ -138,10 +159,10 @@ class PdoMapping:
 
     @classmethod
     def from_values(cls, rx: list[int] | tuple[int, ...], tx: list[int] | tuple[int, ...],
-                    rx_pdo: int = 0x1600, tx_pdo: int = 0x1A00) -> PdoMapping:
+                    rx_pdo: int = 0x1600, tx_pdo: int = 0x1A00, velocity: bool = False) -> PdoMapping:
         """A mapping from raw entry values as read from a drive (0x16xx/0x1Axx sub-indices)."""
         return cls(tuple(PdoEntry.from_value(v) for v in rx), tuple(PdoEntry.from_value(v) for v in tx),
-                   rx_pdo, tx_pdo)
+                   rx_pdo, tx_pdo, velocity=velocity)
 
     @property
     def objects(self) -> frozenset[int]:
@@ -179,6 +200,15 @@ CSP_MAPPING = PdoMapping(
         PdoEntry(0x60B9, 0, 16), PdoEntry(0x60BA, 0, 32, True)),
 )
 
+#: a spindle's drive in cyclic synchronous or profile velocity: controlword, target velocity,
+#: mode; statusword, velocity actual, error code, mode display
+VELOCITY_MAPPING = PdoMapping(
+    rx=(PdoEntry(0x6040, 0, 16), PdoEntry(0x60FF, 0, 32, True), PdoEntry(0x6060, 0, 8, True)),
+    tx=(PdoEntry(0x6041, 0, 16), PdoEntry(0x606C, 0, 32, True), PdoEntry(0x603F, 0, 16),
+        PdoEntry(0x6061, 0, 8, True)),
+    velocity=True,
+)
+
 #: drive model (vendor id, product code) -> mapping; extend for real drives. The
 #: emulator's drive (ethercat.drive_model.DriveParams defaults) uses complete access.
 DRIVE_MAPPINGS: dict[tuple[int, int], PdoMapping] = {
@@ -192,6 +222,10 @@ _RX_ARRAYS = {0x6040: "controlword", 0x607A: "target_position", 0x6060: "modes_o
 _TX_ARRAYS = {0x6041: "statusword", 0x6064: "position_actual", 0x60F4: "following_error",
               0x603F: "error_code", 0x6061: "modes_display", 0x60FD: "digital_inputs",
               0x60B9: "touch_probe_status", 0x60BA: "touch_probe_value"}
+# ... and a spindle drive's (its index in the bus's ``spindles``)
+_SPINDLE_RX = {0x6040: "spindle_controlword", 0x60FF: "spindle_target_velocity", 0x6060: "spindle_modes"}
+_SPINDLE_TX = {0x6041: "spindle_statusword", 0x606C: "spindle_velocity_actual", 0x603F: "spindle_error_code",
+               0x6061: "spindle_modes_display"}
 
 
 @dataclass(slots=True)
@@ -211,9 +245,11 @@ class DriveIo:
         self.rx = self.mapping.rx_struct
         self.tx = self.mapping.tx_struct
         # padding takes no value; objects the bus has no array for are written as 0 and not read
-        self.out_arrays = tuple(getattr(self.bus, _RX_ARRAYS[e.index]) if e.index in _RX_ARRAYS else None
+        velocity = self.mapping.velocity
+        rx_arrays, tx_arrays = (_SPINDLE_RX, _SPINDLE_TX) if velocity else (_RX_ARRAYS, _TX_ARRAYS)
+        self.out_arrays = tuple(getattr(self.bus, rx_arrays[e.index]) if e.index in rx_arrays else None
                                 for e in self.mapping.rx if not e.is_padding)
-        self.in_arrays = tuple(getattr(self.bus, _TX_ARRAYS[e.index]) if e.index in _TX_ARRAYS else None
+        self.in_arrays = tuple(getattr(self.bus, tx_arrays[e.index]) if e.index in tx_arrays else None
                                for e in self.mapping.tx if not e.is_padding)
 
     def write(self) -> None:

@@ -283,6 +283,7 @@ class SimBus(Bus):
                 self.spindle_statusword[k] = m.statusword
                 self.spindle_velocity_actual[k] = m.velocity_actual
                 self.spindle_error_code[k] = m.error_code
+                self.spindle_modes_display[k] = m.modes_of_operation_display
                 m.controlword = int(self.spindle_controlword[k])
                 m.target_velocity = int(self.spindle_target_velocity[k])
                 m.modes_of_operation = int(self.spindle_modes[k])

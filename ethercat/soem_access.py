@@ -232,14 +232,15 @@ def read_mapping(master: Any, position: int) -> Found:
     return out
 
 
-def mapping_from_found(found: Found) -> PdoMapping:
-    """The mapping a drive has (every assigned PDO in order) as a `PdoMapping`; raises
-    `ConfigurationError` naming what is missing or unusable."""
+def mapping_from_found(found: Found, velocity: bool = False) -> PdoMapping:
+    """The mapping a drive has (every assigned PDO in order) as a `PdoMapping` (of a spindle's
+    drive in a velocity mode when ``velocity``); raises `ConfigurationError` naming what is
+    missing or unusable."""
     rx = [v for _, entries in found["rx"] for v in entries]
     tx = [v for _, entries in found["tx"] for v in entries]
     rx_pdo = found["rx"][0][0] if found["rx"] else 0x1600
     tx_pdo = found["tx"][0][0] if found["tx"] else 0x1A00
-    return PdoMapping.from_values(rx, tx, rx_pdo, tx_pdo)
+    return PdoMapping.from_values(rx, tx, rx_pdo, tx_pdo, velocity=velocity)
 
 
 def found_matches(found: Found, mapping: PdoMapping) -> bool:

@@ -54,9 +54,8 @@ from .errors import (
 from .pdo import (
     CSP_MAPPING,
     DRIVE_MAPPINGS,
-    MANDATORY_RX,
-    MANDATORY_TX,
     OPTIONAL_OBJECTS,
+    VELOCITY_MAPPING,
     DriveIo,
     PdoMapping,
 )
@@ -108,12 +107,10 @@ class SoemBus(Bus):
                  setups: Mapping[int, DriveSetup] | Sequence[tuple[int, DriveSetup]] | None = None,
                  mode_timeout_s: float = 1.0, terminals: Sequence[TerminalSpec] = (),
                  spindles: Sequence[SpindleDriveSpec] = (), **_ignored: object) -> None:
-        if spindles:
-            raise ConfigurationError(
-                f"a spindle drive (slave {spindles[0].position}) runs on the simulated bus only: SoemBus "
-                "does not map velocity-mode drives yet; use the spindle's output bits ([controller] "
-                "spindle_drive)")
-        super().__init__(drives, cycle_time_s, terminals)
+        super().__init__(drives, cycle_time_s, terminals, spindles)
+        #: every CiA 402 drive's slave position (the axes', then the spindle's) and a spindle's spec
+        self._drive_positions = [d.position for d in self.drives] + [s.position for s in self.spindles]
+        self._spindle_at = {s.position: s for s in self.spindles}
         self.adapter = adapter
         self.mappings: dict[tuple[int, int], PdoMapping] = {**DRIVE_MAPPINGS, **(mappings or {})}
         self.default_mapping = default_mapping
@@ -176,11 +173,11 @@ class SoemBus(Bus):
         master = self.master
         with self._step(StartupStep.SCAN):
             self.n_slaves = n = config_init(master, self.adapter)
-            for d in self.drives:
-                if d.position >= n:
-                    raise ConfigurationError(f"drive {d.axis_name} is configured at slave position "
-                                             f"{d.position}, but only {n} slave(s) answered on "
-                                             f"{self.adapter!r}")
+            named = [(f"drive {d.axis_name}", d.position) for d in self.drives]
+            for what, position in named + [("the spindle's drive", s.position) for s in self.spindles]:
+                if position >= n:
+                    raise ConfigurationError(f"{what} is configured at slave position {position}, but only "
+                                             f"{n} slave(s) answered on {self.adapter!r}")
             for t in self.terminals:
                 if t.position >= n:
                     raise ConfigurationError(f"terminal {t.label} is configured at slave position "
@@ -191,15 +188,15 @@ class SoemBus(Bus):
         with self._step(StartupStep.IDENTITY):
             self._check_identities()
         with self._step(StartupStep.MAILBOX):
-            for d in self.drives:
-                self._check_complete_access(d.position)
+            for position in self._drive_positions:
+                self._check_complete_access(position)
         with self._step(StartupStep.MAPPING):
-            for d in self.drives:
-                self.slave_mappings[d.position] = self._choose_mapping(d.position)
+            for position in self._drive_positions:
+                self.slave_mappings[position] = self._choose_mapping(position)
         with self._step(StartupStep.STARTUP_SDO):
-            for d in self.drives:
-                self._startup_sdos(d.position)
-                self._write_watchdog(d.position)
+            for position in self._drive_positions:
+                self._startup_sdos(position)
+                self._write_watchdog(position)
         with self._step(StartupStep.PROCESS_DATA):
             try:
                 master.config_map()
@@ -207,8 +204,8 @@ class SoemBus(Bus):
                 self._judge_config_map_errors(list(getattr(exc, "error_list", []) or []))
             self._build_io()
             # a slave that lost its settings (power cycle) gets them again when it is recovered
-            for d in self.drives:
-                master.slaves[d.position].setup_func = self._make_hook(d.position)
+            for position in self._drive_positions:
+                master.slaves[position].setup_func = self._make_hook(position)
         # distributed clocks: SYNC0 = Ts on every slave (unless a drive's setup turns it off)
         with self._step(StartupStep.DC):
             if self.dc:
@@ -225,6 +222,7 @@ class SoemBus(Bus):
             self._wait_state(AL_SAFEOP, self.safeop_timeout_s, "SAFE-OP")
             # process data in SAFE-OP: inputs become valid, outputs safe (controlword 0)
             self.controlword[:] = 0
+            self.spindle_controlword[:] = 0
             self.modes_of_operation[:] = 8
             for _ in range(3):
                 self._cycle()
@@ -237,6 +235,7 @@ class SoemBus(Bus):
         np.copyto(self.target_position, self.position_actual)
         with self._step(StartupStep.MODE):
             self._wait_csp_mode()
+            self._wait_spindle_modes()
         self._io_ready = True
 
     def _check_identities(self) -> None:
@@ -249,6 +248,12 @@ class SoemBus(Bus):
             if ((d.vendor_id and d.vendor_id != found[0])
                     or (d.product_code and d.product_code != found[1])):
                 raise SlaveIdentityError(d.position, (d.vendor_id, d.product_code), found)
+        for sp in self.spindles:
+            s = master.slaves[sp.position]
+            found = (int(s.man), int(s.id))
+            if ((sp.vendor_id and sp.vendor_id != found[0])
+                    or (sp.product_code and sp.product_code != found[1])):
+                raise SlaveIdentityError(sp.position, (sp.vendor_id, sp.product_code), found)
         for t in self.terminals:
             s = master.slaves[t.position]
             found = (int(s.man), int(s.id))
@@ -278,8 +283,9 @@ class SoemBus(Bus):
         setup = self.setup_for(position)
         label = slave_label(master, position)
         found = read_mapping(master, position)
+        velocity = position in self._spindle_at
         try:
-            own: PdoMapping | None = mapping_from_found(found)
+            own: PdoMapping | None = mapping_from_found(found, velocity)
             own_problem = ""
         except ConfigurationError as exc:
             own, own_problem = None, str(exc)
@@ -290,10 +296,11 @@ class SoemBus(Bus):
             self.notes.append(f"{label}: using the drive's own PDO mapping (kept by configuration)")
             return own
         s = master.slaves[position]
-        wanted = setup.mapping or self.mapping_for(int(s.man), int(s.id))
+        wanted = setup.mapping or (VELOCITY_MAPPING if velocity
+                                   else self.mapping_for(int(s.man), int(s.id)))
         if setup.policy is MappingPolicy.ADAPT:
             optional = {(e.index, e.subindex) for e in wanted.rx + wanted.tx
-                        if not e.is_padding and e.index not in MANDATORY_RX | MANDATORY_TX}
+                        if not e.is_padding and e.index not in wanted.mandatory}
             missing = {index for index, sub in sorted(optional)
                        if not has_object(master, position, index, sub)}
             if missing:
@@ -337,8 +344,9 @@ class SoemBus(Bus):
         for sdo in setup.startup_sdos:
             sdo_download(self.master, position, sdo.index, sdo.subindex, sdo.data)
         mapping = self.slave_mappings[position]
+        spindle = self._spindle_at.get(position)
         if 0x6060 not in mapping.objects:
-            sdo_download(self.master, position, 0x6060, 0, struct.pack("<b", 8))
+            sdo_download(self.master, position, 0x6060, 0, struct.pack("<b", spindle.mode if spindle else 8))
         if setup.sync_mode is not None:
             sdo_download(self.master, position, 0x1C32, 1, struct.pack("<H", setup.sync_mode))
 
@@ -407,6 +415,21 @@ class SoemBus(Bus):
                     "position): the drive may not support CSP, or needs a start-up SDO")
             time.sleep(max(0.0, self.cycle_time_s - (time.monotonic() - t0)))
 
+    def _wait_spindle_modes(self) -> None:
+        """A spindle's drive shows its velocity mode in 0x6061 (when mapped) within `mode_timeout_s`."""
+        deadline = time.monotonic() + self.mode_timeout_s
+        for k, sp in enumerate(self.spindles):
+            if 0x6061 not in self.slave_mappings[sp.position].objects:
+                continue
+            while int(self.spindle_modes_display[k]) != sp.mode:
+                if time.monotonic() > deadline:
+                    raise ConfigurationError(
+                        f"{slave_label(self.master, sp.position)} (the spindle) shows mode "
+                        f"{int(self.spindle_modes_display[k])} in 0x6061 after {self.mode_timeout_s:.1f} s, "
+                        f"not {sp.mode}: the drive may not support it, or needs a start-up SDO")
+                self._cycle()
+                time.sleep(self.cycle_time_s)
+
     def _make_hook(self, position: int) -> Callable[[Any], int]:
         """Run by SOEM when it re-configures a slave that came back: the mapping written at
         start-up and the start-up SDOs, again (errors end up in SOEM's list)."""
@@ -427,7 +450,7 @@ class SoemBus(Bus):
     def _judge_config_map_errors(self, error_list: list[Any]) -> None:
         """SOEM's error list after config_map: SDO/mailbox errors of configured drives are
         fatal (their mapping failed); the rest (e.g. emergencies) become warnings."""
-        drive_positions = {d.position for d in self.drives}
+        drive_positions = set(self._drive_positions)
         fatal = []
         for err in error_list:
             pos = int(getattr(err, "slave_pos", 0)) - 1      # SOEM counts slaves from 1
@@ -458,6 +481,14 @@ class SoemBus(Bus):
                     f"input bytes, the PDO mapping needs {rx.size} / {tx.size}"
                     + (f" (SOEM reported: {'; '.join(self.warnings)})" if self.warnings else ""))
             self._io.append(DriveIo(self, i, s, mapping))
+        for k, sp in enumerate(self.spindles):
+            s = master.slaves[sp.position]
+            mapping = self.slave_mappings[sp.position]
+            if len(s.output) != mapping.rx_struct.size or len(s.input) != mapping.tx_struct.size:
+                raise ConfigurationError(f"slave {sp.position} ({s.name}): process data is {len(s.output)} "
+                                         f"output / {len(s.input)} input bytes, the spindle's PDO mapping "
+                                         f"needs {mapping.rx_struct.size} / {mapping.tx_struct.size}")
+            self._io.append(DriveIo(self, k, s, mapping))
         self._terminal_io = []
         for k, t in enumerate(self.terminals):
             s = master.slaves[t.position]

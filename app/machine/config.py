@@ -119,12 +119,13 @@ class DriveIdentity:
     def setup(self) -> DriveSetup:
         """The ``ethercat`` package's start-up settings of this drive."""
         from ethercat.drive_setup import DriveSetup, MappingPolicy, StartupSdo
-        from ethercat.pdo import PdoMapping, parse_entry
+        from ethercat.pdo import PdoMapping, is_velocity, parse_entry
 
         mapping = None
         if self.rx or self.tx:
-            mapping = PdoMapping(tuple(parse_entry(e) for e in self.rx),
-                                 tuple(parse_entry(e) for e in self.tx), self.rx_pdo, self.tx_pdo)
+            rx = tuple(parse_entry(e) for e in self.rx)
+            mapping = PdoMapping(rx, tuple(parse_entry(e) for e in self.tx), self.rx_pdo, self.tx_pdo,
+                                 velocity=is_velocity(rx))
         ca = {"auto": None, "on": True, "off": False}[self.complete_access]
         return DriveSetup(mapping=mapping, policy=MappingPolicy(self.mapping),
                           startup_sdos=tuple(StartupSdo(x.index, x.subindex, x.value, x.size)

@@ -39,7 +39,8 @@ MAX_PDO_BYTES = 32
 
 # Hot-path attribute names of the drive model for PDO entries.
 _RX_ATTR = {(0x6040, 0): "controlword", (0x607A, 0): "target_position",
-            (0x6060, 0): "modes_of_operation", (0x60FE, 1): "digital_outputs"}
+            (0x6060, 0): "modes_of_operation", (0x60FE, 1): "digital_outputs",
+            (0x60FF, 0): "target_velocity"}
 _TX_ATTR = {(0x6041, 0): "statusword", (0x6064, 0): "position_actual",
             (0x60F4, 0): "following_error_actual", (0x603F, 0): "error_code",
             (0x6061, 0): "modes_of_operation_display", (0x606C, 0): "velocity_actual",

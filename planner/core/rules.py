@@ -86,13 +86,15 @@ def check_sections(valid: dict[str, Any], loc: Locator, axes: tuple[AxisSpec, ..
     n = len(axes)
     names = tuple(a.name for a in axes)
     positions = {a.drive_position for a in axes}
+    spindle = valid.get("spindle", {}).get("drive")
     b = valid["bus"]
     for i, d in enumerate(b["drives"]):
         if d["position"] is None:
             d["position"] = i
-        if d["position"] not in positions:
-            raise loc.fail(("bus", "drives", i, "position"),
-                           f"{d['position']} is not the drive of any axis ({sorted(positions)})")
+        if d["position"] not in positions and d["position"] != spindle:
+            whose = f"any axis ({sorted(positions)})"
+            whose += f" or the spindle ({spindle})" if spindle is not None else ""
+            raise loc.fail(("bus", "drives", i, "position"), f"{d['position']} is not the drive of {whose}")
     for i, d in enumerate(b["drives"]):
         if bool(d["rx"]) != bool(d["tx"]):
             raise loc.fail(("bus", "drives", i, "rx" if not d["rx"] else "tx"),

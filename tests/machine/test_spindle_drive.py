@@ -59,6 +59,24 @@ def test_the_spindle_section_is_read_round_trip_and_checked_at_its_line(tmp_path
         load_config(p)
 
 
+def test_the_spindle_drive_may_have_its_own_bus_drives_table_with_a_velocity_mapping(tmp_path: Path) -> None:
+    """A ``[[bus.drives]]`` table at the spindle's position (its identity, start-up SDOs and a
+    mapping of its own: a velocity one) is read, and reaches the bus as that drive's setup; a
+    table at a position that is no drive's is refused naming the axes' and the spindle's."""
+    table = ('\n[[bus.drives]]\nposition = 8\nmapping = "write"\n'
+             'rx = ["0x6040:0:16", "0x60FF:0:32", "0x6060:0:8"]\n'
+             'tx = ["0x6041:0:16", "0x606C:0:32", "0x6061:0:8", "0:0:8"]\n')
+    cfg = load_config(_config(tmp_path, SPINDLE + table))
+    (d,) = [d for d in cfg.bus.drives if d.position == 8]
+    setup = d.setup()
+    assert setup.mapping is not None and setup.mapping.velocity
+    assert [e.index for e in setup.mapping.rx] == [0x6040, 0x60FF, 0x6060]
+    p = _config(tmp_path, SPINDLE + table.replace("position = 8", "position = 9"))
+    with pytest.raises(ConfigError, match=r"9 is not the drive of any axis \(\[0, 1, 2\]\) or the "
+                                          r"spindle \(8\)"):
+        load_config(p)
+
+
 def _record(c: MachineController, seconds: float, step_s: float = 0.005) -> dict[str, np.ndarray]:
     rows = []
     for _ in range(int(round(seconds / step_s))):
