@@ -4,11 +4,14 @@ Turkish, into ``resources/screenshots/all/`` (the README's gallery):
     python -m tools.screenshots [--out DIR] [--jobs N]
     python -m tools.screenshots --probing [--out DIR]
     python -m tools.screenshots --handwheel [--out DIR]
+    python -m tools.screenshots --spindle [--out DIR]
 
 ``--probing``: each probing wizard run on the demo machine against its simulated workpiece
 (the real controller on a manual clock, in this process), the Probe tab shown with the moves
 and what was found, into ``resources/screenshots/probing/``. ``--handwheel``: the Manual page with
 the handwheel live on X at x10, after 50 detents turned, into ``resources/screenshots/``.
+``--spindle``: the Diagnostics page's Spindle tab of the demo mill with a spindle drive, after
+M3 S8000, the override to 120 % and a load that bogs the spindle down for a second.
 
 Each picture is the real panel (``cnc-panel --demo --screenshot``), the Auto page after the
 demo program has run a few seconds (backplot, spindle and tool showing). The test suite checks
@@ -75,16 +78,17 @@ def shoot_probing(out: Path) -> list[str]:
     return [_shoot_wizard(app, out, *shot) for shot in PROBING_SHOTS]
 
 
-def _demo_window(app: Any, state: str) -> tuple[Any, Any]:
+def _demo_window(app: Any, state: str, config: Path | None = None) -> tuple[Any, Any]:
     """The demo panel (1280x800) on the real controller with a manual clock, through its
-    start-up (connected, the program loaded, the axes homed where the demo homes them)."""
+    start-up (connected, the program loaded, the axes homed where the demo homes them);
+    ``config``: another machine than the demo's."""
     from app.application import apply_theme
     from app.context import PanelOptions
     from app.context_factory import build_context
     from app.machine.controller import MachineController
     from app.main_window import MainWindow
 
-    ctl = MachineController(None, state_dir=state, worker_mode="manual")
+    ctl = MachineController(config, state_dir=state, worker_mode="manual")
     options = PanelOptions(demo=True, state_dir=Path(state))
     apply_theme(app)
     window = MainWindow(options, build_context(options, controller=ctl))
@@ -178,13 +182,57 @@ def shoot_handwheel(out: Path) -> str:
     return target.name
 
 
+def shoot_spindle(out: Path) -> str:
+    """The Diagnostics page's Spindle tab with the spindle's own drive (1280x800, English)."""
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from PySide6.QtWidgets import QApplication
+
+    from resources import shipped_machine
+
+    app = QApplication.instance() or QApplication([])
+    with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
+        config = Path(state) / "machine.toml"
+        config.write_text(shipped_machine("xyz_mill").read_text(encoding="utf-8")
+                          + "\n[spindle]\ndrive = 8\naccel_rpm_s = 4000\n", encoding="utf-8")
+        ctl, window = _demo_window(app, state, config)
+        if not all(ctl.homed):               # the demo starts unhomed: Home all, as the operator would
+            assert ctl.home_all()
+            ctl.run_until(lambda: all(ctl.homed) and ctl.state.value == "idle", 120)
+        diag = window.page("diagnostics")
+        window.show_page("diagnostics")
+        diag.tabs.setCurrentWidget(diag.spindle)
+        diag.spindle.set_band(ctl.config.spindle.at_speed_pct)      # the plot from here on
+        ctl.advance(0.5)
+        steps = [(lambda: ctl.spindle_on(True, 8000), 3.0), (lambda: ctl.set_spindle_override(120), 1.5),
+                 (lambda: ctl.worker.inject("spindle_load", 0, 5000), 1.0),
+                 (lambda: ctl.worker.inject("spindle_unload", 0), 1.5)]
+        for act, seconds in steps:
+            act()
+            for _ in range(int(seconds / 0.05)):
+                ctl.advance(0.05)
+                app.processEvents()  # type: ignore[attr-defined]
+        diag.spindle.redraw()
+        for _ in range(10):
+            app.processEvents()  # type: ignore[attr-defined]
+        target = out / "diagnostics_spindle.png"
+        window.grab().save(str(target))
+        window.close()
+        ctl.shutdown()
+    return target.name
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m tools.screenshots", description=__doc__.split("\n\n")[0])
     p.add_argument("--out", default=None)
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--probing", action="store_true", help="the probing wizards instead of the pages")
     p.add_argument("--handwheel", action="store_true", help="the Manual page with the handwheel live")
+    p.add_argument("--spindle", action="store_true", help="the Diagnostics page's Spindle tab")
     args = p.parse_args(argv)
+    if args.spindle:
+        out = Path(args.out or ROOT / "resources" / "screenshots")
+        print(shoot_spindle(out))
+        return 0
     if args.handwheel:
         out = Path(args.out or ROOT / "resources" / "screenshots")
         print(shoot_handwheel(out))

@@ -26,6 +26,7 @@ from ethercat.worker import (
     stop_distance,
 )
 from ethercat.worker.handwheel import Follower, Handwheel
+from tests.ethercat.manual_worker import enabled_worker
 
 TS = 0.001
 TERMINALS = (TerminalSpec(2, "EK1100"), TerminalSpec(3, "EL5101"))
@@ -98,12 +99,7 @@ def test_the_stop_distance_bounds_what_the_follower_travels_from_top_speed() -> 
 # ------------------------------------------------------------------------------ in the loop
 def _worker(bits: int = 16, **kw: object) -> CyclicWorker:
     cfg = WorkerConfig(DRIVES, mode="manual", terminals=TERMINALS, handwheel=HandwheelSpec(WHEEL, bits), **kw)  # type: ignore[arg-type]
-    w = CyclicWorker(cfg)
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
+    w = enabled_worker(cfg)
     w.drain_trace()
     return w
 

@@ -16,9 +16,10 @@ from hypothesis import strategies as st
 from ethercat.bus import DriveSpec
 from ethercat.errors import ConfigurationError
 from ethercat.screw_comp import MAX_CORRECTION, CompCurve, ScrewComp, read_comp_file, take_up_limits
-from ethercat.worker import CompSpec, CyclicWorker, WorkerConfig, WorkerState
+from ethercat.worker import CompSpec, CyclicWorker, WorkerConfig
 from ethercat.worker.compensation import Compensation
 from ethercat.worker.handwheel import Follower
+from tests.ethercat.manual_worker import enabled_worker
 
 TS = 0.001
 TRAVEL = (-50.0, 250.0)
@@ -187,13 +188,7 @@ def _worker(comp: ScrewComp) -> tuple[CyclicWorker, CompSpec]:
     spec = CompSpec(0, comp, take_up_limits(comp, TRAVEL, RATED, SHARE, TS))
     cfg = WorkerConfig((DriveSpec(0, "X"), DriveSpec(1, "Z", direction=-1)), mode="manual",
                        compensation=(spec,))
-    w = CyclicWorker(cfg)
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
-    return w, spec
+    return enabled_worker(cfg), spec
 
 
 def _path(rng: np.random.Generator, start: float, moves: int) -> np.ndarray:

@@ -12,7 +12,8 @@ from ethercat.bus import DriveSpec, SpindleDriveSpec
 from ethercat.cia402 import CSV, CW_ENABLE_OPERATION, CW_QUICK_STOP, PV, SW_TARGET_REACHED, Cia402State
 from ethercat.drive_model import DriveModel, DriveParams
 from ethercat.errors import ConfigurationError
-from ethercat.worker import AlarmCode, CyclicWorker, SpindleState, WorkerConfig, WorkerState
+from ethercat.worker import AlarmCode, CyclicWorker, SpindleState, WorkerConfig
+from tests.ethercat.manual_worker import enabled_worker
 
 TS = 0.001
 PER_RPM = 10_000.0 / 60.0          # counts/s per rpm of a 10,000-count spindle encoder
@@ -78,14 +79,8 @@ def test_a_load_holds_the_spindle_below_its_speed_and_a_quick_stop_brakes_it() -
 
 # ------------------------------------------------------------------------------ in the loop
 def _worker(mode: int = 9) -> CyclicWorker:
-    cfg = WorkerConfig((DriveSpec(0, "X"),), mode="manual", spindle=SpindleDriveSpec(1, PER_RPM, mode))
-    w = CyclicWorker(cfg)
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
-    return w
+    return enabled_worker(WorkerConfig((DriveSpec(0, "X"),), mode="manual",
+                                       spindle=SpindleDriveSpec(1, PER_RPM, mode)))
 
 
 def _watch(w: CyclicWorker, seconds: float) -> tuple[np.ndarray, np.ndarray]:
