@@ -34,7 +34,7 @@ from app.machine.model import (
 from app.machine.motion.feeding import SetpointQueue, SpliceInfo
 from app.machine.motion.jobs import Job, Reads, ResumePoint, merge_max
 from app.machine.motion.making import JobMaker
-from app.machine.motion.pauses import PauseHandlers
+from app.machine.motion.pauses import PauseHandlers, why_stopped
 from app.machine.motion.runs import save_trace, tracking_report
 from app.machine.motion.timescale import (
     SIGMA_MAX,
@@ -422,13 +422,11 @@ class Streamer:
     def _wait_for_spindle(self) -> None:
         """The spindle's speed changed under a running program or MDI block (its override): the
         feed holds along the path and goes on once the spindle reads its new speed (``poll``)."""
-        job = self.job
-        snap = self._drives.last_snapshot
-        if (job is None or snap is None or job.kind not in (Activity.PROGRAM, Activity.MDI)
-                or job.executor.hold or job.resume_at_s is not None):
-            return
-        self.change_motion(lambda ex: setattr(ex, "hold", True))
-        job.resume_at_s = float(snap.time_s)
+        job, snap = self.job, self._drives.last_snapshot
+        if (job is not None and snap is not None and job.kind in (Activity.PROGRAM, Activity.MDI)
+                and not job.executor.hold and job.resume_at_s is None):
+            self.change_motion(lambda ex: setattr(ex, "hold", True))
+            job.resume_at_s = float(snap.time_s)
 
     def hold_motion(self, wait_for_tap: bool = False) -> None:
         """The running job's executor to hold (sigma -> 0 / the time-optimal path stop), from a
@@ -588,16 +586,8 @@ class Streamer:
             # it first, this is the guard for a spindle the operator started meanwhile)
             self._spindle.stop_spindle()
         tool = int(p.value) if kind is PauseKind.TOOL_CHANGE else 0
-        label = self._tools.table.label(tool)
-        reason = {
-            PauseKind.PAUSE: f"program paused (M00, line {p.line}): press cycle start",
-            PauseKind.OPTIONAL_PAUSE: f"optional stop (M01, line {p.line}): press cycle start",
-            PauseKind.TOOL_CHANGE: (f"tool change (M06, line {p.line}): insert tool {label} and "
-                                    "press cycle start"),
-            PauseKind.SINGLE_BLOCK: f"single block: end of line {p.line}",
-        }.get(kind, str(kind))
-        if kind is PauseKind.TOOL_CHANGE and self._settings.config.machine.after_tool_change:
-            reason += f"; {label} is then measured on the tool setter"
+        reason = why_stopped(kind, p.line, self._tools.table.label(tool),
+                             bool(self._settings.config.machine.after_tool_change))
         hold = _OPERATOR_STOPS.get(kind, HoldKind.FEED_HOLD)
         if p.line > 0 and p.line != self.line:   # the line that stopped, not the next one
             self.line = p.line
