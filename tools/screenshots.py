@@ -155,6 +155,23 @@ def _shoot_wizard(app: object, out: Path, wizard_name: str, inputs: dict[str, ob
     return target.name
 
 
+def _home(ctl: Any) -> None:
+    """The demo starts unhomed: Home all, as the operator would."""
+    if not all(ctl.homed):
+        assert ctl.home_all()
+        ctl.run_until(lambda: all(ctl.homed) and ctl.state.value == "idle", 120)
+
+
+def _save(app: Any, ctl: Any, window: Any, target: Path) -> str:
+    """The window as drawn into ``target``; the window closed and the controller shut down."""
+    for _ in range(10):
+        app.processEvents()
+    window.grab().save(str(target))
+    window.close()
+    ctl.shutdown()
+    return target.name
+
+
 def shoot_handwheel(out: Path) -> str:
     """The Manual page with the handwheel live (1280x800, English)."""
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
@@ -163,9 +180,7 @@ def shoot_handwheel(out: Path) -> str:
     app = QApplication.instance() or QApplication([])
     with tempfile.TemporaryDirectory(prefix="cnc-shot-") as state:
         ctl, window = _demo_window(app, state)
-        if not all(ctl.homed):               # the demo starts unhomed: Home all, as the operator would
-            assert ctl.home_all()
-            ctl.run_until(lambda: all(ctl.homed) and ctl.state.value == "idle", 120)
+        _home(ctl)
         window.show_page("manual")
         box = window.page("manual").handwheel
         box.axis_buttons["X"].click()
@@ -173,13 +188,7 @@ def shoot_handwheel(out: Path) -> str:
         ctl.advance(0.1)
         ctl.turn_handwheel(4 * 50)
         ctl.advance(1.5)
-        for _ in range(10):
-            app.processEvents()  # type: ignore[attr-defined]
-        target = out / "manual_handwheel.png"
-        window.grab().save(str(target))
-        window.close()
-        ctl.shutdown()
-    return target.name
+        return _save(app, ctl, window, out / "manual_handwheel.png")
 
 
 def shoot_spindle(out: Path) -> str:
@@ -195,9 +204,7 @@ def shoot_spindle(out: Path) -> str:
         config.write_text(shipped_machine("xyz_mill").read_text(encoding="utf-8")
                           + "\n[spindle]\ndrive = 8\naccel_rpm_s = 4000\n", encoding="utf-8")
         ctl, window = _demo_window(app, state, config)
-        if not all(ctl.homed):               # the demo starts unhomed: Home all, as the operator would
-            assert ctl.home_all()
-            ctl.run_until(lambda: all(ctl.homed) and ctl.state.value == "idle", 120)
+        _home(ctl)
         diag = window.page("diagnostics")
         window.show_page("diagnostics")
         diag.tabs.setCurrentWidget(diag.spindle)
@@ -212,13 +219,7 @@ def shoot_spindle(out: Path) -> str:
                 ctl.advance(0.05)
                 app.processEvents()  # type: ignore[attr-defined]
         diag.spindle.redraw()
-        for _ in range(10):
-            app.processEvents()  # type: ignore[attr-defined]
-        target = out / "diagnostics_spindle.png"
-        window.grab().save(str(target))
-        window.close()
-        ctl.shutdown()
-    return target.name
+        return _save(app, ctl, window, out / "diagnostics_spindle.png")
 
 
 def main(argv: list[str] | None = None) -> int:

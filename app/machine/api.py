@@ -612,3 +612,8 @@ class MachineApi(Protocol):
     def turn_handwheel(self, counts: int) -> CommandResult:
         """A simulated machine's handwheel turned by ``counts`` (refused on a real bus)."""
         ...
+
+    def simulate_spindle_load(self, rpm: float | None) -> CommandResult:
+        """A simulated spindle drive bogged down to ``rpm`` by a load (None: off; refused without a
+        spindle drive or on a real bus)."""
+        ...

@@ -400,3 +400,4 @@ class MachineController(QObject):
     select_handwheel = forward(_wheel, HandwheelControl.select_handwheel)
     set_handwheel_step = forward(_wheel, HandwheelControl.set_handwheel_step)
     turn_handwheel = forward(_wheel, HandwheelControl.turn_handwheel)
+    simulate_spindle_load = forward(_spindle, SpindleControl.simulate_spindle_load)

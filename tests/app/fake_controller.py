@@ -446,6 +446,9 @@ class FakeController(QObject):
     def turn_handwheel(self, counts: int) -> CommandResult:
         return self._ok("turn_handwheel", counts)
 
+    def simulate_spindle_load(self, rpm: float | None) -> CommandResult:
+        return self._ok("simulate_spindle_load", rpm)
+
     # test helpers
     def raise_alarm(self, cause: str, source: str = "drive X") -> None:
         alarm = Alarm(len(self.alarms) + 1, 0.0, source, cause, Severity.QUICK_STOP)

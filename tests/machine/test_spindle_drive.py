@@ -15,8 +15,9 @@ import pytest
 
 from app.machine.config import config_from_dict, config_to_toml, load_config
 from app.machine.controller import MachineController
-from app.machine.errors import ConfigError
+from app.machine.errors import ConfigError, MachineError
 from app.machine.model import MachineState
+from app.machine.program.scenario import ScenarioRunner, parse_op
 from ethercat.worker import SpindleState
 from resources import shipped_machine
 from tests.machine.conftest import TEST_LEAD_S, make_controller, run_to_idle
@@ -149,7 +150,7 @@ def test_a_spindle_that_loses_speed_in_the_cut_holds_the_program_with_an_alarm(
     assert c.cycle_start()
     c.advance(3.5)
     assert c.state is MachineState.RUNNING and float(c.reference_position[0]) > 0.5
-    c.worker.inject("spindle_load", 0, 3000)                 # bogged down to 3,000 rpm
+    assert c.simulate_spindle_load(3000)                      # bogged down to 3,000 rpm
     c.advance(1.5)
     assert c.state is MachineState.ALARM
     alarm = next(a for a in c.alarms if a.code == "spindle_speed")
@@ -186,3 +187,35 @@ def test_e_stop_quick_stops_the_spindle_drive(sctl: MachineController) -> None:
     c.advance(2.0)
     s = c.worker.snapshot()
     assert abs(s.spindle_rpm_actual) < 1.0 and s.spindle_state == SpindleState.OFF and not c.spindle.on
+
+
+def test_a_script_bogs_the_spindle_down_and_the_run_holds_with_the_alarm(sctl: MachineController) -> None:
+    """``{"op": "spindle_load", "rpm": 2000}`` in a script: the program holds with the speed loss
+    alarm, the axes stand and then the spindle stops; the load taken off (null), the spindle
+    turns at its speed again."""
+    c = sctl
+    assert c.load_program("M3 S6000\nG1 X80 F300\nM5\nM30\n", wait=True)
+    assert c.cycle_start()
+    ops = tuple(parse_op(t, f"s:{k}") for k, t in enumerate((
+        '{"after_s": 3, "op": "spindle_load", "rpm": 2000}',
+        '{"after_s": 1.5, "op": "spindle_load", "rpm": null}'), 1))
+    runner = ScenarioRunner(c, ops, c.machine_time_s)
+    states = []
+    for _ in range(200):
+        runner.step()
+        c.advance(0.033)
+        states.append(c.state)
+    assert runner.done and all(r["ok"] for r in runner.results), runner.results
+    assert MachineState.ALARM in states and any(a.code == "spindle_speed" for a in c.alarms)
+    # the axes stood, then the spindle stopped too; the load is off: it turns at its speed again
+    assert not c.spindle.on and abs(c.worker.snapshot().spindle_rpm_actual) < 1.0
+    assert c.reset() and c.spindle_on(True, 6000)
+    c.advance(2.5)
+    assert c.worker.snapshot().spindle_rpm_actual == pytest.approx(6000, abs=2)
+    with pytest.raises(MachineError, match="spindle_load needs"):
+        parse_op('{"after_s": 0, "op": "spindle_load"}', "s:1")
+
+
+def test_loading_a_spindle_without_its_own_drive_is_refused_saying_why(ctl: MachineController) -> None:
+    r = ctl.simulate_spindle_load(1000)
+    assert not r and "no drive of its own ([spindle] drive)" in r.reason

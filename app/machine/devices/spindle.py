@@ -158,6 +158,30 @@ class SpindleControl:
                     f"{drive.speed_loss_s:g} s (a band of {drive.at_speed_pct:g} %)", "spindle",
                     "spindle_speed")
 
+    def simulate_spindle_load(self, rpm: float | None) -> CommandResult:
+        """A simulated machine's spindle drive bogged down by a load to at most ``rpm`` (None:
+        the load taken off): a spindle losing speed in the cut, for a demo or a script."""
+        why = self._load_refusal(rpm)
+        if why:
+            return self._states.refuse("simulate_spindle_load", why)
+        if rpm is None:
+            self._drives.inject("spindle_unload", 0, 0)
+        else:
+            self._drives.inject("spindle_load", 0, int(round(rpm)))
+        return self._states.ok("simulate_spindle_load")
+
+    def _load_refusal(self, rpm: float | None) -> str:
+        if self._drive is None:
+            return ("this machine's spindle has no drive of its own ([spindle] drive): no speed is read "
+                    "to lose")
+        if self._settings.config.bus.kind != "sim":
+            return "only a simulated spindle drive can be loaded"
+        if not self._drives.attached:
+            return "the bus is not connected"
+        if rpm is not None and not 0.0 <= rpm <= self._max_rpm:
+            return f"a load holds the spindle at 0-{self._max_rpm:g} rpm, got {rpm:g}"
+        return ""
+
     def _stop_for_good(self) -> None:
         self.stopped_for_hold = None
         self.stop_spindle()

@@ -16,7 +16,9 @@ Actions run in the order written, each when its trigger comes after the one befo
 false, or null to release it: ``{"after_s": 1, "op": "input", "signal": "door_closed", "value":
 false}``), and the handwheel: ``handwheel`` (``axis``: give it an axis, "" none),
 ``handwheel_step`` (``scale``: 0 x1, 1 x10, 2 x100) and ``mpg`` (simulated drives: the wheel
-turned by ``counts``, either way: ``{"after_s": 0.5, "op": "mpg", "counts": 100}``). Blank
+turned by ``counts``, either way: ``{"after_s": 0.5, "op": "mpg", "counts": 100}``), and
+``spindle_load`` (simulated drives: a load bogs the spindle's own drive down to ``rpm``, null
+takes it off: ``{"after_s": 2, "op": "spindle_load", "rpm": 3000}``). Blank
 lines and lines starting with ``#`` are skipped. Every mistake is an error naming the file,
 the line and the key.
 
@@ -50,6 +52,7 @@ OPS: dict[str, str] = {
     "cycle_start": "", "restart": "", "run_from_line": "line", "feed_override": "percent",
     "rapid_override": "percent", "spindle_override": "percent", "tool_changed": "", "override_limits": "",
     "input": "signal", "handwheel": "axis", "handwheel_step": "scale", "mpg": "counts",
+    "spindle_load": "rpm",
 }
 _TRIGGERS = ("at_line", "after_s")
 
@@ -67,13 +70,16 @@ class ScenarioOp:
     axis: str = ""               # handwheel: the axis given to it ("" none)
     scale: int = 0               # handwheel_step: 0 x1, 1 x10, 2 x100
     counts: int = 0              # mpg: the counts the wheel is turned by (- the other way)
+    rpm: float | None = None     # spindle_load: the speed a load bogs the spindle down to (None: off)
 
     def describe(self) -> str:
         trigger = f"at line {self.at_line}" if self.at_line is not None else f"after {self.after_s:g} s"
         extra = {"line": f" {self.line}", "percent": f" {self.percent:g} %",
                  "signal": f" {self.signal}={'released' if self.value is None else str(self.value).lower()}",
                  "axis": f" {self.axis or 'off'}", "scale": f" {('x1', 'x10', 'x100')[self.scale]}",
-                 "counts": f" {self.counts:+d}", "": ""}[OPS[self.op]]
+                 "counts": f" {self.counts:+d}",
+                 "rpm": f" {'off' if self.rpm is None else f'{self.rpm:g} rpm'}",
+                 "": ""}[OPS[self.op]]
         return f"{self.op}{extra} {trigger}"
 
 
@@ -149,6 +155,10 @@ def parse_op(text: str, where: str) -> ScenarioOp:
             raise MachineError(f"{where}: counts must be a whole number within +-{MAX_WHEEL_COUNTS}, got "
                                f"{counts!r}")
         kw["counts"] = counts
+    elif extra == "rpm":
+        if "rpm" not in data:
+            raise MachineError(f"{where}: spindle_load needs \"rpm\" (the speed it bogs down to, null: off)")
+        kw["rpm"] = None if data["rpm"] is None else _number(data["rpm"], where, "rpm", False)
     elif extra == "percent":
         if "percent" not in data:
             raise MachineError(f"{where}: {op} needs \"percent\"")
@@ -303,6 +313,8 @@ class ScenarioRunner:
             return c.set_handwheel_step(op.scale)
         if op.op == "mpg":
             return c.turn_handwheel(op.counts)
+        if op.op == "spindle_load":
+            return c.simulate_spindle_load(op.rpm)
         if op.op == "tool_changed":
             if c.hold_kind is not HoldKind.TOOL_CHANGE:
                 return _Refused(f"no tool change is waiting (machine {c.state.value})")
