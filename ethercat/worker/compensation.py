@@ -4,17 +4,20 @@ loop (the planner, the DRO, the following error) stays in nominal positions.
 
 For a compensated axis (``CompSpec``) the drive is sent
 
-    set-point + curve(x) + take-up          x = set-point - home offset (machine position)
+    set-point + curve(x) + take-up
 
 where ``curve`` is the forward or reverse correction (``ScrewComp``), chosen by the direction
-the set-point last moved (it keeps its direction while standing, as LinuxCNC's), and
-``take-up`` absorbs every step: when the direction reverses (forward to reverse at x: the
-backlash, the difference of the two curves) or the compensation is switched on or off, the
-take-up is shifted by the step so that the sum does not jump, and then runs to 0 along a
+the set-point last moved: it keeps its direction while standing, and is 0 until the axis
+first moves, as LinuxCNC's. ``x`` is the machine position (set-point - home offset) while the
+axis is homed; while it is not (before its first homing, during a homing) the table is read
+at a fixed position (where the axis was when it lost its homed state, else the table's first
+line), so that the direction's part of it (the backlash) still acts and every homing latches
+its switch with the same correction, whatever the axis did before. ``take-up`` absorbs every
+step: when the direction reverses (forward to reverse at x: the backlash, the difference of
+the two curves), when the axis first moves, or when homing changes where the table is read,
+the take-up is shifted by the step so that the sum does not jump, and then runs to 0 along a
 ``Follower`` (acceleration and jerk limited, lands exactly) with the limits ``take_up`` leaves
-from the axis' reserve. The compensation is on only for a homed axis (the table is in machine
-positions); switched off, its last value stays as a constant offset (a new homing latches
-through it). Nothing here allocates per cycle."""
+from the axis' reserve. Nothing here allocates per cycle."""
 
 from __future__ import annotations
 
@@ -26,7 +29,11 @@ from ..errors import ConfigurationError
 from ..screw_comp import ScrewComp
 from .handwheel import Follower
 
-__all__ = ["CompSpec", "Compensation"]
+__all__ = ["REVERSAL", "CompSpec", "Compensation"]
+
+#: a reversal of the set-point smaller than this share of (1 + |position|) is rounding, not a
+#: change of direction
+REVERSAL = 1e-9
 
 
 @dataclass(frozen=True, slots=True)
@@ -53,8 +60,10 @@ class _Axis:
         self.reverse = spec.comp.reverse
         self.take = Follower(ts_s)
         self.take.start(0.0, *spec.take_up)
-        self.on = False
-        self.up = True               # the direction the set-point last moved
+        self.on = False              # homed: the table read at the machine position
+        self.fixed = spec.comp.nominal[0]   # where it is read while not homed
+        self.up: bool | None = None  # the direction the set-point last moved (None: not yet)
+        self.turn = 0.0              # the furthest set-point in that direction
         self.offset = 0.0            # the home offset: machine position = set-point - offset
         self.last = float("nan")     # the set-point of the last cycle
         self.curve = 0.0             # the curve's part of the last correction
@@ -69,19 +78,42 @@ class _Axis:
         np.subtract(f.buf, step, out=f.buf)
         f.still = 0
 
+    def curve_at(self, ref: float, up: bool | None) -> float:
+        if up is None:
+            return 0.0
+        x = ref - self.offset if self.on else self.fixed
+        return self.forward(x) if up else self.reverse(x)
+
+    def direction(self, ref: float) -> bool | None:
+        """The direction after the set-point ``ref``: the first change sets it; a reversal
+        counts once the set-point is back from its furthest point by more than the rounding
+        of positions (``REVERSAL``), so noise in the last digits takes up no backlash."""
+        last, up = self.last, self.up
+        if last != last:
+            return up                                    # (nan: the first cycle)
+        if up is None:
+            if ref != last:
+                self.turn = ref
+                return ref > last
+            return None
+        eps = REVERSAL * (1.0 + abs(ref))
+        if (ref - self.turn > 0.0) == up:
+            self.turn = ref                              # further on the way it goes
+        elif abs(ref - self.turn) > eps:
+            self.turn = ref
+            return not up
+        return up
+
     def step(self, ref: float) -> float:
-        up = ref > self.last if ref != self.last and self.last == self.last else self.up  # (nan: first)
+        up = self.direction(ref)
         self.last = ref
-        curve = 0.0
-        if self.on:
-            x = ref - self.offset
-            curve = self.forward(x) if up else self.reverse(x)
-            if up != self.up:
-                # a reversal switches curves: their difference at x is a step the take-up absorbs
-                self.shift(curve - (self.forward(x) if self.up else self.reverse(x)))
-        self.up = up
+        curve = self.curve_at(ref, up)
+        if up != self.up:
+            # a reversal (or the first move) switches curves: the step at x is the take-up's
+            self.shift(curve - self.curve_at(ref, self.up))
+            self.up = up
         self.curve = curve
-        self.value = curve + self.take.step(0.0 if self.on else self.take.stop_point())
+        self.value = curve + self.take.step(0.0)
         return self.value
 
 
@@ -101,19 +133,20 @@ class Compensation:
         self.live_on = live_on if live_on is not None else np.zeros(n_axes, dtype=np.int64)
 
     def switch(self, axis: int, on: bool, home_offset: float) -> bool:
-        """Compensation of ``axis`` on (homed, machine position = set-point - ``home_offset``) or
-        off; the step it makes is taken up. False: the axis has none."""
+        """``axis`` homed (the table read at its machine position, set-point - ``home_offset``)
+        or not (read where it stands now); the step it makes is taken up. False: the axis has
+        no compensation."""
         a = self.by_axis.get(axis)
         if a is None:
             return False
         if on == a.on and (not on or home_offset == a.offset):
             return True
-        before = a.curve
+        ref = a.last if a.last == a.last else 0.0
+        before = a.curve_at(ref, a.up)
+        if a.on and not on:
+            a.fixed = ref - a.offset
         a.on, a.offset = on, home_offset
-        after = 0.0
-        if on and a.last == a.last:
-            x = a.last - home_offset
-            after = a.forward(x) if a.up else a.reverse(x)
+        after = a.curve_at(ref, a.up)
         a.shift(after - before)
         a.curve = after
         self.live_on[axis] = int(on)

@@ -17,7 +17,7 @@ from ethercat.bus import DriveSpec
 from ethercat.errors import ConfigurationError
 from ethercat.screw_comp import MAX_CORRECTION, CompCurve, ScrewComp, read_comp_file, take_up_limits
 from ethercat.worker import CompSpec, CyclicWorker, WorkerConfig
-from ethercat.worker.compensation import Compensation
+from ethercat.worker.compensation import REVERSAL, Compensation
 from ethercat.worker.handwheel import Follower
 from tests.ethercat.manual_worker import enabled_worker
 
@@ -250,18 +250,31 @@ def test_the_drive_gets_nominal_plus_table_and_reversals_keep_the_limits(tmp_pat
         # the counts are what was sent, rounded to the drive's resolution
         assert np.array_equal(counts, np.rint(cmd * 10_000.0).astype(np.int64))
         # what the table says, by the direction of the last move (standing keeps it)
+        # none until the first move (before it the worker's set-point stood at start)
+        # (a reversal counts once it is more than the rounding: REVERSAL)
+        moved = np.zeros(len(ref), dtype=bool)
         up = np.ones(len(ref), dtype=bool)
-        for k in range(1, len(ref)):
-            d = ref[k] - ref[k - 1]
-            up[k] = d > 0 if d != 0 else up[k - 1]
+        before, turn, going = start, start, None
+        for k in range(len(ref)):
+            q = float(ref[k])
+            if going is None:
+                if q != before:
+                    going, turn = q > before, q
+            elif (q - turn > 0) == going:
+                turn = q
+            elif abs(q - turn) > REVERSAL * (1 + abs(q)):
+                going, turn = not going, q
+            moved[k], up[k] = going is not None, bool(going)
+            before = q
         x = ref - HOME_OFFSET
-        expected = ref + np.where(up, [comp.forward(v) for v in x], [comp.reverse(v) for v in x])
-        take = cmd - expected
-        # a take-up of the engaging step and one per reversal; outside them exactly the table
+        table = np.where(up, [comp.forward(v) for v in x], [comp.reverse(v) for v in x])
+        take = cmd - (ref + np.where(moved, table, 0.0))
+        # a take-up of the first move's step and one per reversal; outside them exactly the table
         settle = spec_cycles(spec)
-        flips = np.flatnonzero(up[1:] != up[:-1]) + 1
+        flips = np.flatnonzero((up[1:] != up[:-1]) | (moved[1:] != moved[:-1])) + 1
+        if moved[0]:
+            flips = np.r_[0, flips]
         inside = np.zeros(len(ref), dtype=bool)
-        inside[:settle] = True
         for k in flips:
             inside[k:k + settle] = True
         assert len(flips) >= 3
@@ -286,33 +299,63 @@ def spec_cycles(spec: CompSpec) -> int:
     return int((d / v + 2 * v / a + 2 * a / j + 2 * np.sqrt(d / a)) / TS) + int(2 * a / (j * TS)) + 10
 
 
-def test_switching_on_and_off_takes_the_step_up_and_off_keeps_the_last_value(tmp_path: Path) -> None:
-    """Homed while standing: the drive goes to set-point + table within the limits and lands
-    exactly; unhomed: the correction stays as it is (a constant, nothing moves); the drive's
-    set-point for the other axis never changes."""
+def _steps(w: CyclicWorker, n: int) -> np.ndarray:
+    loop = w._loop
+    assert loop is not None
+    out = []
+    for _ in range(n):
+        w.step(1)
+        out.append(float(loop.cmd[0]))
+    return np.array(out)
+
+
+def test_no_correction_before_the_first_move_and_homing_reads_the_table_elsewhere(tmp_path: Path) -> None:
+    """Standing since start: no direction yet, no correction. The first move up
+    takes up the forward correction of the table's first line (unhomed: it is read there);
+    homed, it is read at the machine position, and the step between the two is taken up
+    within the limits, landing exactly; unhomed again, it is read where the axis stands, so
+    nothing moves; the drive's set-point for the other axis never changes."""
     comp = _table(tmp_path)
     w, _spec = _worker(comp)
     try:
         loop = w._loop
         assert loop is not None
-        standing = float(loop.ref[0])
+        start = float(loop.ref[0])
+        assert float(_steps(w, 100)[-1]) == start                       # no direction yet
+        f = Follower(TS)
+        f.start(start, *((1.0 - SHARE) * x for x in RATED))
+        move = [f.step(start + 0.01) for _ in range(400)]
+        assert move[-1] == start + 0.01
+        assert w.push(np.array([[q, 0.0] for q in move])) == len(move)
+        series = np.concatenate([[start], _steps(w, 1500)])
+        ref = start + 0.01
+        assert series[-1] == ref + comp.forward(comp.nominal[0])       # unhomed: its first line
         assert w.compensate(0, True, HOME_OFFSET)
-        cmds = []
-        for _ in range(2000):
-            w.step(1)
-            cmds.append(float(loop.cmd[0]))
-        series = np.array([standing] + cmds)
-        want = standing + comp.forward(standing - HOME_OFFSET)
+        series = np.concatenate([series, _steps(w, 1500)])
+        want = ref + comp.forward(ref - HOME_OFFSET)
         assert series[-1] == want
         v, a, j = _sampled(series)
         assert v <= RATED[0] and a <= RATED[1] and j <= RATED[2] * (1 + 1e-6)
         assert w.compensate(0, False)
-        w.step(500)
-        assert float(loop.cmd[0]) == want and not w.snapshot().compensation_on[0]
+        assert float(_steps(w, 500)[-1]) == want and not w.snapshot().compensation_on[0]
         assert float(loop.cmd[1]) == float(loop.ref[1])
         assert not w.compensate(1, True, 0.0)        # Z has none
     finally:
         w.stop()
+
+
+def test_rounding_in_the_last_digits_is_no_reversal() -> None:
+    """A set-point that goes back by the rounding of a position (1e-13 mm at 50 mm) keeps the
+    direction: no backlash is taken up; back by a micrometre, it is a reversal."""
+    loop = Compensation((CompSpec(0, ScrewComp.backlash(0.02), (5.0, 200.0, 4000.0)),), 1, TS, 8)
+    ref, out = np.zeros(1), np.zeros(1)
+    sent = []
+    for q in [50.0 + 0.01 * k for k in range(100)] + [50.99 - 1e-13] * 400 + [50.989] * 400:
+        ref[0] = q
+        loop.command(ref, out, 0)
+        sent.append(float(out[0]) - q)
+    assert sent[499] == pytest.approx(0.01, abs=1e-12)     # still up after the rounding
+    assert sent[-1] == pytest.approx(-0.01, abs=1e-12)     # down after the micrometre
 
 
 def test_a_worker_without_compensation_sends_the_set_points_unchanged() -> None:

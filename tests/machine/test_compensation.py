@@ -141,7 +141,7 @@ def test_on_while_homed_the_drive_gets_nominal_plus_backlash_and_the_dro_stays_n
         c.advance(0.5)
         snap = c.worker.snapshot()
         assert snap.compensation_on[0] and not any(snap.compensation_on[1:])
-        assert snap.compensation[0] == pytest.approx(0.025, abs=1e-12)      # moving up until it moved
+        assert snap.compensation[0] == 0.0               # X has not moved yet: no direction, none
         for target in (40.0, 5.0, 60.0, 59.9, 60.2):
             assert c.mdi(f"G0 X{target:g}")
             run_to_idle(c)
@@ -163,5 +163,38 @@ def test_on_while_homed_the_drive_gets_nominal_plus_backlash_and_the_dro_stays_n
         c.advance(0.5)
         assert c.homed[0] and c.worker.snapshot().compensation_on[0]
         assert c.machine_position[0] == pytest.approx(before, abs=2e-4)       # nothing jumped
+    finally:
+        c.shutdown()
+
+
+def test_homing_to_the_switches_latches_through_the_compensation_and_switches_it_on_after(
+        qapp, tmp_path: Path) -> None:
+    """Homed to its switch with backlash configured: every homing latches the switch with the
+    correction of the latch's direction, whatever X did before, so X ends at its home position
+    (0) with its drive at the same place both times (to a count): the first homing from
+    power-up, and a second one after X was left having moved up."""
+    state = tmp_path / "state"
+    state.mkdir()
+    c = make_controller(_config(tmp_path, "backlash = 0.05\n"), state, zero=False)
+    try:
+        ends, drive = [], []
+        for k in range(2):
+            if k:
+                for block in ("G0 X-20", "G0 X-10"):              # left having moved up
+                    assert c.mdi(block)
+                    run_to_idle(c)
+            assert c.home_all()
+            assert c.run_until(lambda: all(c.homed) and c.state.value == "idle", 120)
+            c.advance(0.5)
+            snap = c.worker.snapshot()
+            assert snap.compensation_on[0]
+            loop = c.worker._loop
+            assert loop is not None
+            # the last move to home (0) came from the switch at +245: down
+            assert float(loop.cmd[0]) == pytest.approx(float(loop.ref[0]) - 0.025, abs=1e-12)
+            ends.append(c.machine_position[0])
+            drive.append(float(loop.cmd[0]))
+        assert ends == pytest.approx([0.0, 0.0], abs=2e-4)
+        assert drive[1] == pytest.approx(drive[0], abs=1e-4)
     finally:
         c.shutdown()
