@@ -140,6 +140,7 @@ class BusStatus:
     jitter_hist_counts: tuple[int, ...] = ()  # counts per bin from 0 us (last bin = overflow)
     jitter_max_us: float = 0.0
     probe: str = ""  # the probe input (G38.x): "touching", "free", "" when the machine has none
+    spindle_state: str = ""  # CiA 402 state of the spindle's own drive ("" when it has none)
 
 
 @dataclass(frozen=True, slots=True)

@@ -61,7 +61,8 @@ class BusView(QWidget):
         states = tuple(getattr(bus, "drive_states", ()) or ())
         n = max(len(drives), len(states), len(axes))
         terminals = tuple(getattr(getattr(config, "wiring", None), "terminals", ()) or ())
-        self.table.setRowCount(n + len(terminals))
+        spindle = getattr(getattr(config, "spindle", None), "spec", None)    # its own drive, or None
+        self.table.setRowCount(n + len(terminals) + (spindle is not None))
         for row in range(n):
             d = drives[row] if row < len(drives) else None
             values = (
@@ -80,6 +81,12 @@ class BusView(QWidget):
                       f"0x{tt.vendor_id:08X}", f"0x{tt.product_code:08X}", "OP" if up else tr("unknown"))
             for col, text in enumerate(values):
                 self.table.setItem(n + k, col, QTableWidgetItem(text))
+        if spindle is not None:                  # the spindle's own drive, after them
+            state = str(getattr(bus, "spindle_state", "") or "") or tr("unknown")
+            values = (str(spindle.position), tr("spindle"), f"0x{spindle.vendor_id:08X}",
+                      f"0x{spindle.product_code:08X}", state)
+            for col, text in enumerate(values):
+                self.table.setItem(n + len(terminals), col, QTableWidgetItem(text))
         probe = str(getattr(bus, "probe", "") or "")
         self.probe.setText({"touching": tr("Probe input: touching"), "free": tr("Probe input: free")}.get(
             probe, tr("Probe input: none ([probe] drive in the machine configuration)")))

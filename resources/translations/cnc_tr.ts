@@ -149,7 +149,7 @@
       <translation>Veri yolu</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="87" />
+      <location filename="../../app/widgets/bus_view.py" line="94" />
       <source>Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}</source>
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
@@ -1541,17 +1541,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="84" />
+      <location filename="../../app/widgets/bus_view.py" line="91" />
       <source>Probe input: free</source>
       <translation>Prob girişi: serbest</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="85" />
+      <location filename="../../app/widgets/bus_view.py" line="92" />
       <source>Probe input: none ([probe] drive in the machine configuration)</source>
       <translation>Prob girişi: yok (makine yapılandırmasında [probe] drive)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="84" />
+      <location filename="../../app/widgets/bus_view.py" line="91" />
       <source>Probe input: touching</source>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
@@ -2838,7 +2838,7 @@ BIRAK</translation>
       <translation>yapılandırma</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="86" />
+      <location filename="../../app/widgets/bus_view.py" line="93" />
       <source>connected</source>
       <translation>bağlı</translation>
     </message>
@@ -4313,7 +4313,7 @@ BIRAK</translation>
       <translation>kapanmamış açıklama: ')' olmadan '('</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="72" />
+      <location filename="../../app/widgets/bus_view.py" line="85" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
     </message>

@@ -52,6 +52,12 @@ def test_the_spindle_tab_draws_the_speeds_the_drive_is_sent_and_reads(qtbot, spi
     assert read[-1] == pytest.approx(snap.spindle_rpm_actual, abs=1.0) and commanded[-1] == 6000.0
     assert commanded.min() < 6000.0 and read.min() < 0.95 * 6000      # the ramp was drawn too
     assert (t[1:] >= t[:-1]).all()
+    # the EtherCAT tab lists the spindle's drive after the axes' and the terminals, in its state
+    table = diag.bus.table
+    qtbot.waitUntil(lambda: table.item(table.rowCount() - 1, 4) is not None
+                    and table.item(table.rowCount() - 1, 4).text() == "OPERATION_ENABLED", timeout=5000)
+    last = table.rowCount() - 1
+    assert (table.item(last, 0).text(), table.item(last, 1).text()) == ("8", "spindle")
 
 
 def test_without_a_spindle_drive_the_tab_says_no_speed_is_read(demo_window) -> None:

@@ -103,6 +103,7 @@ class StatusPoller:
             jitter_hist_counts=tuple(tm.jitter_histogram),
             jitter_max_us=float(tm.jitter_max_s * 1e6),
             probe=self._probe_text(snap),
+            spindle_state=snap.spindle_drive_state.name if snap.spindle_drive_state is not None else "",
         )
         self.emit_bus(status)
 
