@@ -208,7 +208,7 @@ def shoot_spindle(out: Path) -> str:
         diag = window.page("diagnostics")
         window.show_page("diagnostics")
         diag.tabs.setCurrentWidget(diag.spindle)
-        diag.spindle.set_band(ctl.config.spindle.at_speed_pct)      # the plot from here on
+        diag.spindle.set_drive(ctl.config.spindle)      # the plot from here on
         ctl.advance(0.5)
         steps = [(lambda: ctl.spindle_on(True, 8000), 3.0), (lambda: ctl.set_spindle_override(120), 1.5),
                  (lambda: ctl.worker.inject("spindle_load", 0, 5000), 1.0),

@@ -10,6 +10,7 @@ from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 from app.i18n import I18n, tr
 from app.live_buffer import RingBuffer
+from app.machine.spindle_settings import SpindleDriveSettings
 
 __all__ = ["SpindleView"]
 
@@ -20,7 +21,7 @@ class SpindleView(QWidget):
     """``add_sample(t, commanded, read)`` from the controller's ``spindleSample``; ``redraw``
     on the page's timer."""
 
-    def __init__(self, i18n: I18n, band_pct: float | None, parent: QWidget | None = None) -> None:
+    def __init__(self, i18n: I18n, drive: SpindleDriveSettings | None, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         layout = QVBoxLayout(self)
         self.label = QLabel()
@@ -38,15 +39,15 @@ class SpindleView(QWidget):
         self.read = self.plot.plot(pen=pg.mkPen("#40e0d0", width=2), name=tr("read"))
         layout.addWidget(self.plot, 1)
         self.buffer = RingBuffer(LIVE_SECONDS * 30, 2)
-        self.band_pct = band_pct
+        self.drive = drive
         self._dirty = False
         self._last: tuple[float, float] | None = None
         i18n.languageChanged.connect(lambda _l: self._show())
         self._show()
 
-    def set_band(self, band_pct: float | None) -> None:
-        """The at-speed band of the configuration in force (None: no spindle drive)."""
-        self.band_pct = band_pct
+    def set_drive(self, drive: SpindleDriveSettings | None) -> None:
+        """The spindle drive of the configuration in force (None: none); the plot starts anew."""
+        self.drive = drive
         self.buffer.clear()
         self._last = None
         self._dirty = True
@@ -74,7 +75,7 @@ class SpindleView(QWidget):
         return self.label.text()
 
     def _show(self) -> None:
-        if self.band_pct is None:
+        if self.drive is None:
             self.label.setText(tr("No spindle drive: the spindle is switched by output bits; "
                                   "no speed is read"))
             return
@@ -82,8 +83,9 @@ class SpindleView(QWidget):
             self.label.setText(tr("Spindle drive: no speed read yet"))
             return
         cmd, act = self._last
-        at = abs(act - cmd) <= self.band_pct / 100.0 * abs(cmd) and cmd != 0.0
-        standing = cmd == 0.0 and abs(act) < 1.0
-        state = tr("at speed") if at else tr("stopped") if standing else tr("not at speed")
+        if cmd == 0.0 and abs(act) < 1.0:
+            state = tr("stopped")
+        else:
+            state = tr("at speed") if self.drive.at_speed(cmd, act) else tr("not at speed")
         self.label.setText(tr("Spindle drive: {0} rpm commanded, {1} rpm read: {2}").format(
             f"{cmd:.0f}", f"{act:.0f}", state))

@@ -66,17 +66,6 @@ class _Axis:
         self.turn = 0.0              # the furthest set-point in that direction
         self.offset = 0.0            # the home offset: machine position = set-point - offset
         self.last = float("nan")     # the set-point of the last cycle
-        self.curve = 0.0             # the curve's part of the last correction
-        self.value = 0.0             # the correction sent last (curve + take-up)
-
-    def shift(self, step: float) -> None:
-        """The curve's part changes by ``step`` at once: the take-up takes it back."""
-        f = self.take
-        f.p -= step
-        f.y -= step
-        f.total -= step * f.n
-        np.subtract(f.buf, step, out=f.buf)
-        f.still = 0
 
     def curve_at(self, ref: float, up: bool | None) -> float:
         if up is None:
@@ -110,11 +99,9 @@ class _Axis:
         curve = self.curve_at(ref, up)
         if up != self.up:
             # a reversal (or the first move) switches curves: the step at x is the take-up's
-            self.shift(curve - self.curve_at(ref, self.up))
+            self.take.shift(self.curve_at(ref, self.up) - curve)
             self.up = up
-        self.curve = curve
-        self.value = curve + self.take.step(0.0)
-        return self.value
+        return curve + self.take.step(0.0)
 
 
 class Compensation:
@@ -146,9 +133,7 @@ class Compensation:
         if a.on and not on:
             a.fixed = ref - a.offset
         a.on, a.offset = on, home_offset
-        after = a.curve_at(ref, a.up)
-        a.shift(after - before)
-        a.curve = after
+        a.take.shift(before - a.curve_at(ref, a.up))
         self.live_on[axis] = int(on)
         return True
 

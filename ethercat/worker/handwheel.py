@@ -129,8 +129,19 @@ class Follower:
         its top speed (velocity mode keeps the target within this)."""
         return _braking(self.step_max, self.acc) + self.step_max
 
+    def shift(self, step: float) -> None:
+        """Every stage moved by ``step`` at once (the output jumps by it): what a caller whose
+        own part jumped by -``step`` adds, so that the sum goes on without a jump."""
+        self.p += step
+        self.y += step
+        self.total += step * self.n
+        np.add(self.buf, step, out=self.buf)
+        self.still = 0
+
     def step(self, target: float) -> float:
         """One cycle toward ``target``: the output position."""
+        if self.u == 0.0 and target == self.p and self.still >= self.n:
+            return self.y                     # at rest on it: every stage stays as it is
         d = target - self.p
         dist, acc = abs(d), self.acc
         # the largest step u with u + (its braking distance) <= dist: k whole braking steps

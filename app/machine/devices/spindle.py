@@ -115,7 +115,7 @@ class SpindleControl:
 
     def _apply_drive(self, sp: SpindleState, drive: SpindleDriveSettings) -> None:
         """The spindle's own drive to S x override, signed by the direction (0: it stops)."""
-        rpm = sp.direction * sp.rpm * sp.override_pct / 100.0
+        rpm = sp.direction * sp.commanded_rpm
         if rpm != self.drive_rpm[0]:
             self._reached = False
             self._below_since = None
@@ -140,7 +140,7 @@ class SpindleControl:
         cmd, act = float(snap.spindle_rpm_command), float(snap.spindle_rpm_actual)
         self.drive_rpm = (cmd, act)
         self._out.spindleSample.emit(float(snap.time_s), cmd, act)
-        target = self.spindle.direction * self.spindle.rpm * self.spindle.override_pct / 100.0
+        target = self.spindle.direction * self.spindle.commanded_rpm
         if not self.spindle.on or cmd != target:
             self._reached, self._below_since = False, None
             return
@@ -261,7 +261,7 @@ class SpindleControl:
         before = self.drive_rpm[1]
         self.apply_spindle(self.spindle)
         drive = self._drive
-        rpm = self.spindle.direction * self.spindle.rpm * self.spindle.override_pct / 100.0
+        rpm = self.spindle.direction * self.spindle.commanded_rpm
         if (drive is not None and self.spindle.on and self._states.state is MachineState.RUNNING
                 and not drive.at_speed(rpm, before)):
             self._out.message.emit(f"spindle override {p:g} %: the feed waits until the spindle turns at "
