@@ -141,6 +141,7 @@ class BusStatus:
     jitter_max_us: float = 0.0
     probe: str = ""  # the probe input (G38.x): "touching", "free", "" when the machine has none
     spindle_state: str = ""  # CiA 402 state of the spindle's own drive ("" when it has none)
+    gantry_skew: tuple[float, ...] = ()  # per drive: a gantry's second side's skew (0 elsewhere)
 
 
 @dataclass(frozen=True, slots=True)

@@ -43,6 +43,7 @@ from app.machine.wiring import (
     signal_lines,
     terminal_lines,
     wiring_from_valid,
+    worker_drives,
 )
 from ethercat.drive_setup import drive_table_problem
 from opcua_server.settings import IDENTIFICATION_KEYS, OpcUaSettings
@@ -298,6 +299,12 @@ class MachineConfig:
     def axes(self) -> tuple[str, ...]:
         return self.machine.axis_names
 
+    @property
+    def drives(self) -> tuple[tuple[int, str], ...]:
+        """The 1 ms loop's drives in its order, (slave position, name): the axes', then each
+        gantry's second drive (``<axis>2``)."""
+        return worker_drives(self.machine)
+
     @staticmethod
     def default() -> MachineConfig:
         """The shipped 3-axis XYZ mill (resources/machines/xyz_mill.toml)."""
@@ -333,10 +340,17 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         wiring = wiring_from_valid(valid, machine, loc, homing.method,
                                    _reserved_bits(machine, controller, probe))
         taken = {a.drive_position: "an axis' drive" for a in machine.axes}
+        taken.update({a.gantry_drive: f"axis {a.name}'s second drive" for a in machine.axes
+                      if a.gantry_drive is not None})
         taken.update({t.position: f"a {t.type}" for t in wiring.terminals})
         if spindle.drive in taken:
             raise loc.fail(("spindle", "drive"), f"slave {spindle.drive} is {taken[spindle.drive]}: the "
                            "spindle's drive needs a slave position of its own")
+        gantry = next((i for i, a in enumerate(machine.axes) if a.gantry_drive is not None), None)
+        if gantry is not None and homing.method == "drive":
+            raise loc.fail(("axes", gantry, "gantry_drive"), "a gantry's two drives home together and square "
+                           "on their own switches: homing.method \"switches\" (or \"set_here\"), not "
+                           "\"drive\", which homes one drive at a time")
     except PlannerError as exc:
         raise ConfigError(str(exc), where) from None
     return MachineConfig(machine=machine, homing=homing, bus=bus, controller=controller, probe=probe,
@@ -463,6 +477,9 @@ def config_to_toml(config: MachineConfig) -> str:
             out += [f"comp_file = {_fmt(a.comp_file)}", f"comp_file_type = {a.comp_file_type}"]
         if a.compensated:
             out.append(f"comp_reserve = {_fmt(float(a.comp_reserve))}")
+        if a.gantry_drive is not None:
+            out += [f"gantry_drive = {a.gantry_drive}", f"gantry_direction = {a.gantry_direction}",
+                    f"gantry_skew_window = {_fmt(float(a.gantry_skew_window))}"]
         out += ["wrapped = true", ""] if a.wrapped else [""]
     lim = m.limits
     out += ["[limits]", f"v_max_mm_s = {_fmt(float(lim.v_max_mm_s))}",

@@ -8,7 +8,12 @@ and ``[[bus.terminals]]`` count them) and its bit (a terminal's channel from 0; 
 0x60FD for an input, of 0x60FE:1 for an output), with ``!`` in front when the bit reads 0
 while the signal is true (a normally closed contact: a broken wire then reads as the safe
 state). The limit and home switches of an axis default to the bits CiA 402 gives them in the
-axis' drive's 0x60FD (negative limit 0, positive limit 1, home 2).
+axis' drive's 0x60FD (negative limit 0, positive limit 1, home 2); a gantry's second side has
+its own (``limit_neg2_<axis>``, ``limit_pos2_<axis>``, ``home2_<axis>``), by default on its
+second drive's bits.
+
+The 1 ms loop numbers its drives as the machine's axes, then each gantry's second drive (named
+``<axis>2``, ``worker_drives``); its input words are those drives' 0x60FD, then the terminals'.
 
 The one check (``wiring_from_valid``) refuses, naming the key and its line: a slave that is not
 on the bus, a terminal channel that does not exist or points the wrong way (an input on an
@@ -25,19 +30,19 @@ import enum
 import math
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from ethercat.errors import ConfigurationError as BusConfigurationError
 from ethercat.sim_io import SimSwitch
 from ethercat.terminals import TerminalKind, TerminalSpec, TerminalType, terminal_type
-from ethercat.worker import HandwheelSpec, InputWatch, SwitchHoming, WatchAction
+from ethercat.worker import GantrySpec, HandwheelSpec, InputWatch, SwitchHoming, WatchAction
 from planner.core.machine import MachineSpec
 from planner.core.schema import Locator
 
 __all__ = [
     "AXIS_SIGNALS", "SIGNALS", "AxisHoming", "HandwheelSettings", "InterlockSettings", "MachineWiring",
-    "SignalDef", "SignalWire", "TerminalSetting", "WheelMode", "Wire", "WorkerIo", "axis_at",
+    "SignalDef", "SignalWire", "TerminalSetting", "WheelMode", "Wire", "WorkerIo", "axis_at", "worker_drives",
     "wiring_from_valid", "worker_io",
 ]
 
@@ -75,6 +80,11 @@ SIGNALS: tuple[SignalDef, ...] = (
     SignalDef("limit_pos", Direction.IN, False, "joint.N.pos-lim-sw-in", "the positive limit switch"),
     SignalDef("limit_neg", Direction.IN, False, "joint.N.neg-lim-sw-in", "the negative limit switch"),
     SignalDef("home", Direction.IN, False, "joint.N.home-sw-in", "the home switch"),
+    SignalDef("limit_pos2", Direction.IN, False, "joint.N.pos-lim-sw-in",
+              "a gantry's second side: its positive limit switch"),
+    SignalDef("limit_neg2", Direction.IN, False, "joint.N.neg-lim-sw-in",
+              "a gantry's second side: its negative limit switch"),
+    SignalDef("home2", Direction.IN, False, "joint.N.home-sw-in", "a gantry's second side: its home switch"),
     SignalDef("coolant_flood", Direction.OUT, False, "iocontrol.0.coolant-flood", "flood coolant (M8)"),
     SignalDef("coolant_mist", Direction.OUT, False, "iocontrol.0.coolant-mist", "mist coolant (M7)"),
     SignalDef("lube_pump", Direction.OUT, False, "iocontrol.0.lube",
@@ -87,9 +97,10 @@ SIGNALS: tuple[SignalDef, ...] = (
     SignalDef("jog_scale_x100", Direction.IN, False, "", "the handwheel's step selector stands on x100"),
 )
 _BY_NAME = {s.name: s for s in SIGNALS}
-AXIS_SIGNALS = ("limit_pos", "limit_neg", "home", "jog_enable")
-#: CiA 402's bits of 0x60FD for an axis' switches
+AXIS_SIGNALS = ("limit_pos", "limit_neg", "home", "jog_enable", "limit_pos2", "limit_neg2", "home2")
+#: CiA 402's bits of 0x60FD for an axis' switches (and a gantry's second drive's)
 DRIVE_SWITCH_BITS = {"limit_neg": 0, "limit_pos": 1, "home": 2}
+SECOND_SWITCH_BITS = {"limit_neg2": 0, "limit_pos2": 1, "home2": 2}
 _WIRE = re.compile(r"\s*(!?)\s*(\d+)\s*:\s*(\d+)\s*")
 
 
@@ -156,6 +167,12 @@ class AxisHoming:
     ignore_limits: bool = False
     max_travel: float | None = None
     use_index: bool = False
+    gantry_offset: float | None = None
+
+    @property
+    def second_offset(self) -> float:
+        """A gantry's second side: its home switch's machine coordinate."""
+        return self.offset if self.gantry_offset is None else self.gantry_offset
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,7 +245,7 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
     """The wiring of a validated configuration, checked as one (the module docstring).
     ``reserved``: bits others use, as (what, direction, slave position, bit)."""
     drive_slave = {a.name: a.drive_position for a in machine.axes}
-    drives_at = {a.drive_position: a.name for a in machine.axes}
+    drives_at = dict(worker_drives(machine))
     terminals: list[TerminalSetting] = []
     for k, t in enumerate(valid["bus"]["terminals"]):
         path: tuple[str | int, ...] = ("bus", "terminals", k)
@@ -238,7 +255,7 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
         except BusConfigurationError as exc:
             raise loc.fail((*path, "type"), str(exc)) from None
         if setting.position in drives_at:
-            raise loc.fail((*path, "position"), f"slave {setting.position} is the drive of axis "
+            raise loc.fail((*path, "position"), f"slave {setting.position} is the drive "
                                                 f"{drives_at[setting.position]}")
         if any(o.position == setting.position for o in terminals):
             raise loc.fail((*path, "position"), f"slave {setting.position} is given twice")
@@ -270,6 +287,9 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
             base, _, axis = key.rpartition("_")
             if axis not in axes:
                 raise loc.fail(("signals", key), f"this machine has no axis {axis} (axes: {' '.join(axes)})")
+            if base in SECOND_SWITCH_BITS and machine.axes[axes.index(axis)].gantry_drive is None:
+                raise loc.fail(("signals", key), f"axis {axis} has one drive: {base} is a gantry's second "
+                                                 "side's switch ([[axes]] gantry_drive)")
         if not text:
             continue
         try:
@@ -282,6 +302,11 @@ def wiring_from_valid(valid: dict[str, Any], machine: MachineSpec, loc: Locator,
             key = f"{base}_{axis}"
             if key not in raw:
                 signals.append(SignalWire(key, _BY_NAME[base], axis, Wire(drive_slave[axis], bit), True))
+        second = machine.axes[axes.index(axis)].gantry_drive
+        for base, bit in SECOND_SWITCH_BITS.items():
+            key = f"{base}_{axis}"
+            if key not in raw and second is not None:
+                signals.append(SignalWire(key, _BY_NAME[base], axis, Wire(second, bit), True))
 
     used: dict[tuple[Direction, int, int], str] = {}
     for what, direction, slave, bit in reserved:
@@ -408,6 +433,8 @@ def homing_lines(wiring: MachineWiring) -> list[str]:
             out.append(f"max_travel = {float(h.max_travel)!r}")
         if h.use_index:
             out.append("use_index = true")
+        if h.gantry_offset is not None:
+            out.append(f"gantry_offset = {float(h.gantry_offset)!r}")
     return out
 
 
@@ -424,6 +451,7 @@ class WorkerIo:
     input_rest: tuple[int, ...]
     sim_index_pitch: tuple[float, ...] = ()
     handwheel: HandwheelSpec | None = None
+    gantry: tuple[GantrySpec, ...] = ()
 
 
 #: how far beyond its soft limit a simulated axis' limit switch closes (mm or deg)
@@ -433,36 +461,51 @@ SIM_INDEX_PITCH = 5.0
 _FAR = 1e9
 
 
+def worker_drives(machine: MachineSpec) -> tuple[tuple[int, str], ...]:
+    """The 1 ms loop's drives in its order, (slave position, name): the axes', then each
+    gantry's second drive (``<axis>2``)."""
+    return (*((a.drive_position, a.name) for a in machine.axes),
+            *((a.gantry_drive, f"{a.name}2") for a in machine.axes if a.gantry_drive is not None))
+
+
 def axis_at(machine: MachineSpec, position: int) -> int:
-    """The index of the axis whose drive is the slave at bus ``position``; -1 when none is."""
-    return next((i for i, a in enumerate(machine.axes) if a.drive_position == position), -1)
+    """The loop's index of the drive that is the slave at bus ``position`` (an axis', or after
+    them a gantry's second drive); -1 when none is."""
+    return next((i for i, (p, _name) in enumerate(worker_drives(machine)) if p == position), -1)
 
 
 def input_word(wiring: MachineWiring, machine: MachineSpec, s: SignalWire) -> tuple[int, int, bool]:
     """Where the worker reads a wired input: (word, bit, level read while the signal is true);
-    words 0..n-1 the axes' drives' 0x60FD, n.. the terminals'."""
+    words 0..n-1 the drives' 0x60FD (``worker_drives``), n.. the terminals'."""
     k = wiring.terminal_index(s.wire.slave)
     if k >= 0:
-        word = len(machine.axes) + k
+        word = len(worker_drives(machine)) + k
     else:
         word = axis_at(machine, s.wire.slave)
     return word, s.wire.bit, not s.wire.inverted
 
 
 def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, simulated: bool) -> WorkerIo:
-    """The worker's share of the wiring (see ``WorkerIo``)."""
+    """The worker's share of the wiring (see ``WorkerIo``). A gantry's second side is the
+    loop's drive ``followers[axis]``: its limits, its homing (with its leader's velocities) and
+    its simulated switches are its own."""
     axes = [a.name for a in machine.axes]
+    followers = {a.name: i for i, (_p, name) in enumerate(worker_drives(machine))
+                 for a in machine.axes if name == f"{a.name}2" and a.gantry_drive is not None}
     watches: list[InputWatch] = []
     chain = wiring.get("estop_chain_ok")
     if chain is not None:
         word, bit, level = input_word(wiring, machine, chain)
         watches.append(InputWatch(WatchAction.ESTOP_CHAIN, word, bit, not level, name=chain.key))
     for i, a in enumerate(axes):
-        for base, side in (("limit_pos", 1), ("limit_neg", -1)):
+        second = followers.get(a, -1)
+        for base, side, drive in (("limit_pos", 1, i), ("limit_neg", -1, i),
+                                  ("limit_pos2", 1, second), ("limit_neg2", -1, second)):
             s = wiring.get(f"{base}_{a}")
-            if s is not None:
+            if s is not None and drive >= 0:
                 word, bit, level = input_word(wiring, machine, s)
-                watches.append(InputWatch(WatchAction.LIMIT, word, bit, level, axis=i, side=side, name=s.key))
+                watches.append(InputWatch(WatchAction.LIMIT, word, bit, level, axis=drive, side=side,
+                                          name=s.key))
     homing: list[SwitchHoming] = []
     if homing_method == "switches":
         for h in wiring.homing:
@@ -477,6 +520,15 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
                 travel = 720.0                    # a rotary axis without end: two turns
             homing.append(SwitchHoming(i, word, bit, level, h.search_vel, h.latch_vel, travel,
                                        float(ax.a_motion), float(ax.j_motion), h.ignore_limits, h.use_index))
+            switch2 = wiring.get(f"home2_{h.axis}")
+            if h.axis in followers and switch2 is not None:
+                word, bit, level = input_word(wiring, machine, switch2)
+                homing.append(SwitchHoming(followers[h.axis], word, bit, level, h.search_vel, h.latch_vel,
+                                           travel, float(ax.a_motion), float(ax.j_motion), h.ignore_limits,
+                                           h.use_index))
+    gantry = tuple(GantrySpec(axes.index(a), f, machine.axes[axes.index(a)].gantry_skew_window,
+                              _switch_offset(wiring.homing_of(a), homing_method))
+                   for a, f in followers.items())
     switches: list[SimSwitch] = []
     rest = [0] * len(wiring.terminals)
     if simulated:
@@ -491,18 +543,28 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
                 continue
             i = axes.index(s.axis)
             ax = machine.axes[i]
-            lo, hi = _sim_range(s.signal.name, float(ax.min_pos), float(ax.max_pos), wiring.homing_of(s.axis))
+            name, homing_s = s.signal.name, wiring.homing_of(s.axis)
+            if name.endswith("2"):            # a gantry's second side: its drive, its switch's place
+                i, name = followers[s.axis], name[:-1]
+                if homing_s is not None:
+                    homing_s = replace(homing_s, offset=homing_s.second_offset)
+            lo, hi = _sim_range(name, float(ax.min_pos), float(ax.max_pos), homing_s)
             if lo is None or hi is None:
                 continue
-            place = {"terminal": k} if k >= 0 else {"drive": i}
+            place = {"terminal": k} if k >= 0 else {"drive": axis_at(machine, s.wire.slave)}
             switches.append(SimSwitch(i, s.wire.bit, lo, hi, not s.wire.inverted, **place))
     pitch = tuple(SIM_INDEX_PITCH if simulated and any(h.axis == i and h.use_index for h in homing) else 0.0
-                  for i in range(len(axes)))
+                  for i in range(len(worker_drives(machine))))
     wheel = wiring.handwheel
     spec = None if wheel.terminal is None else HandwheelSpec(wiring.terminal_index(wheel.terminal),
                                                              max_counts_per_cycle=wheel.max_counts_per_cycle)
     return WorkerIo(tuple(t.spec() for t in wiring.terminals), tuple(watches), tuple(homing), tuple(switches),
-                    tuple(rest), pitch if any(pitch) else (), spec)
+                    tuple(rest), pitch if any(pitch) else (), spec, gantry)
+
+
+def _switch_offset(h: AxisHoming | None, homing_method: str) -> float:
+    """How much further along the axis a gantry's second home switch is than its first."""
+    return h.second_offset - h.offset if h is not None and homing_method == "switches" else 0.0
 
 
 def _sim_range(name: str, lo: float, hi: float,

@@ -56,18 +56,23 @@ class BusView(QWidget):
         self.histogram.setLabel("left", tr(N_("cycles")))
         if bus is None or config is None:
             return
-        drives = tuple(getattr(getattr(config, "bus", None), "drives", ()) or ())
-        axes = getattr(config, "axes", ())
+        # the loop's drives: the axes', then each gantry's second drive; their identities by position
+        ids = {d.position: d for d in tuple(getattr(getattr(config, "bus", None), "drives", ()) or ())}
+        drives = tuple(getattr(config, "drives", ()) or ())
         states = tuple(getattr(bus, "drive_states", ()) or ())
-        n = max(len(drives), len(states), len(axes))
+        skews = tuple(getattr(bus, "gantry_skew", ()) or ())
+        n = max(len(drives), len(states))
         terminals = tuple(getattr(getattr(config, "wiring", None), "terminals", ()) or ())
         spindle = getattr(getattr(config, "spindle", None), "spec", None)    # its own drive, or None
         self.table.setRowCount(n + len(terminals) + (spindle is not None))
         for row in range(n):
-            d = drives[row] if row < len(drives) else None
+            position, name = drives[row] if row < len(drives) else (row, "")
+            d = ids.get(position)
+            if row < len(skews) and name.endswith("2"):       # a gantry's second side and its skew
+                name = tr("{0} (gantry {1}, skew {2:+.4f})").format(name, name[:-1], skews[row])
             values = (
-                str(d.position if d is not None else row),
-                axes[row] if row < len(axes) else "",
+                str(position),
+                name,
                 f"0x{d.vendor_id:08X}" if d is not None else "",
                 f"0x{d.product_code:08X}" if d is not None else "",
                 states[row] if row < len(states) else tr("unknown"),

@@ -5,6 +5,7 @@ One file per concern: ``types`` (states, codes, records, configuration), ``share
 shared block and its ordering rules), ``cycle`` (the loop), ``clocked`` (the loop on its clock),
 ``homing`` (drive-side homing), ``switch_homing`` (homing to switches in position mode),
 ``watches`` (E-stop chain, limits), ``handwheel`` (an encoder's counts moving one axis),
+``gantry`` (one axis on two drives), ``compensation`` (leadscrew), ``spindle`` (its own drive),
 ``ring`` (replacing queued set-points),
 ``acyclic`` (SDO and recovery beside the cycle), ``realtime`` (core, priority, sleeping),
 ``process`` (the worker's own process), ``messages`` (commands and alarm texts) and
@@ -14,6 +15,7 @@ shared block and its ordering rules), ``cycle`` (the loop), ``clocked`` (the loo
 from ..bus import DriveSpec
 from .client import CyclicWorker
 from .compensation import CompSpec
+from .gantry import GantrySpec
 from .handwheel import HandwheelMode, WheelState, stop_distance
 from .messages import error_code_text
 from .realtime import PROCESS_SPIN_S
@@ -42,7 +44,7 @@ from .types import (
 
 __all__ = [
     "PROCESS_SPIN_S", "Alarm", "AlarmCode", "CompSpec", "CyclicWorker", "DriveSpec", "EventCode",
-    "HandwheelMode",
+    "GantrySpec", "HandwheelMode",
     "HandwheelSpec", "HomingState",
     "HomingStep", "InputWatch", "ProbeLatch", "ProbeState", "ReplaceResult", "SwitchHoming", "TimingStats",
     "TraceChunk", "TrackingStats", "WatchAction",

@@ -42,6 +42,7 @@ import numpy as np
 from ..cia402 import Cia402State
 from ..errors import ConfigurationError, WorkerError, WorkerTimeoutError
 from .cycle import CycleLoop
+from .gantry import widen, with_followers
 from .messages import INJECT_NAMES, Command, Result, alarm_message, event_message
 from .process import process_main, start_without_main
 from .shared import ALARM_SLOTS, HIST_BIN_S, SharedBlock, Status, require_ordered_stores, trace_columns
@@ -320,6 +321,7 @@ class CyclicWorker:
         mask = 0
         for axis in axes:
             mask |= 1 << self._axis_index(axis)
+        mask = with_followers(mask, self.config.gantry)          # a gantry homes both its sides
         if not self._command(Command.HOME_SWITCH, mask):
             names = " ".join(self.config.axis_names[i] for i in range(self.config.n_axes) if mask >> i & 1)
             snap = self.snapshot()
@@ -440,18 +442,17 @@ class CyclicWorker:
         return self.config.buffer_capacity - (int(ctl.head) - int(ctl.tail))
 
     def buffer_level(self) -> int:
-        ctl = self._live().ctl
-        return int(ctl.head) - int(ctl.tail)
+        return int(self._live().ctl.head) - int(self._live().ctl.tail)
 
     def _setpoints(self, q: np.ndarray, what: str) -> np.ndarray:
         q = np.asarray(q, dtype=np.float64)
-        if q.ndim == 1:
-            q = q.reshape(1, -1)
-        if q.ndim != 2 or q.shape[1] != self.config.n_axes:
-            raise ConfigurationError(f"{what} expects (N, {self.config.n_axes}) set-points, got {q.shape}")
+        q = q.reshape(1, -1) if q.ndim == 1 else q
+        m = self.config.n_motion_axes              # a gantry's follower has no column
+        if q.ndim != 2 or q.shape[1] != m:
+            raise ConfigurationError(f"{what} expects (N, {m}) set-points, got {q.shape}")
         if not np.isfinite(q).all():
             raise ConfigurationError(f"{what}: set-points must be finite")
-        return q
+        return widen(q, self.config.gantry)
 
     def push(self, q: np.ndarray) -> int:
         """Append set-points (N, n_axes) in axis units (mm | deg), one per cycle. Returns how
@@ -672,7 +673,7 @@ class CyclicWorker:
             spindle_state=int(s["spindle_state"]),
             spindle_drive_state=Cia402State(int(s["spindle_drive"])) if cfg.spindle else None,
             spindle_rpm_command=float(s["spindle_cmd"]), spindle_rpm_actual=float(s["spindle_rpm"]),
-            spindle_error_code=int(s["spindle_error"]),
+            spindle_error_code=int(s["spindle_error"]), gantry_skew=tuple(float(x) for x in s["skew"]),
         )
 
     def drain_trace(self) -> TraceChunk:

@@ -25,6 +25,7 @@ from ..errors import EtherCATError
 from .acyclic import AcyclicHelper, SlaveRecovery
 from .clocked import run_clocked
 from .compensation import Compensation
+from .gantry import Gantry
 from .handwheel import Handwheel, WheelFault, WheelState
 from .homing import Homing, HomingPhase, HomingResult
 from .messages import INJECT_NAMES, Command, Result
@@ -118,7 +119,8 @@ class CycleLoop:
         self.watches = Watches(config.watches, lv.watch)
         self.switch_homer = SwitchHomer(config.switch_homing, config.ts_s, lv.homing, lv.homed,
                                         lv.home_step, lv.home_latch,
-                                        int(config.homing_timeout_s / config.ts_s))
+                                        int(config.homing_timeout_s / config.ts_s), config.gantry)
+        self.gantry = Gantry(config.gantry, lv.skew, config.following_error_cycles)
         spec = config.handwheel
         self.wheel = Handwheel(config.ts_s, spec.counter_bits if spec else 16,
                                spec.max_counts_per_cycle if spec else 1, lv.wheel_state, lv.wheel_axis)
@@ -169,6 +171,8 @@ class CycleLoop:
 
     # ------------------------------------------------------------------ helpers
     def _set_state(self, st: WorkerState) -> None:
+        if st is WorkerState.ENABLED:
+            self.gantry.hold(self.ref)       # the pairs as they stand: square from now on
         self.state = st
         self.state_cycles = 0
         self.lv.state[...] = int(st)
@@ -364,10 +368,7 @@ class CycleLoop:
         cia402.units_to_counts(self.cmd, self.gain, self.offset, bus.target_position, self.tmp2)
 
     def _axis_of(self, position: int) -> int:
-        for i, d in enumerate(self.cfg.drives):
-            if d.position == position:
-                return i
-        return -1
+        return next((i for i, d in enumerate(self.cfg.drives) if d.position == position), -1)
 
     # ------------------------------------------------------------------ the cycle
     def cycle(self) -> None:
@@ -396,6 +397,7 @@ class CycleLoop:
                     self._alarm(AlarmCode.HANDWHEEL, wheel.axis, int(WheelFault.JUMP), wheel.fault_counts)
             elif head > tail:
                 np.copyto(self.ref, self.ring_rows[tail % self.cap])
+                self.gantry.follow(self.ref)     # before judging the motion: the pairs' offsets
                 ctl.tail[...] = tail + 1
                 lv.consumed[...] = int(lv.consumed) + 1
                 np.subtract(self.ref, self.prev_ref, out=self.tmp)
@@ -406,6 +408,7 @@ class CycleLoop:
                 self.moving = False
                 lv.underruns[...] = int(lv.underruns) + 1
                 self._alarm(AlarmCode.UNDERRUN, -1, int(lv.consumed))
+            self.gantry.follow(self.ref)         # (the handwheel's axis may be a gantry's)
             self._send_ref(bus, cycle % REF_HISTORY)
             bus.controlword.fill(cia402.CW_ENABLE_OPERATION)
         elif st is WorkerState.HOMING:
@@ -640,6 +643,10 @@ class CycleLoop:
             self._reaction(AlarmCode.FOLLOWING_ERROR, i, f=float(self.fe[i]))
             return
         if st is WorkerState.ENABLED:
+            f = self.gantry.check(self.act)
+            if f >= 0:
+                self._reaction(AlarmCode.GANTRY_SKEW, f, f=float(self.lv.skew[f]))
+                return
             # a drive leaving OPERATION ENABLED on its own (e.g. its quick stop input)
             _NOT_ENABLED_LUT.take(self.states, out=self.bool_tmp)
             if self.bool_tmp.any():
@@ -674,16 +681,10 @@ class CycleLoop:
         following error computed in ``cycle``), and its trace row."""
         cycle = int(self.lv.cycle)
         back = (cycle - self.cfg.tracking_delay_cycles) % REF_HISTORY
-        ref_d = self.ref_rows[back]
         self.tracker.add(self.fe)
         if self.trace_cap:
-            h = int(self.ctl.trace_head)
-            row = self.trace[h % self.trace_cap]
-            row[0] = cycle
-            row[1:1 + self.n] = ref_d
-            row[1 + self.n:1 + 2 * self.n] = self.act
-            row[-1] = self.serial_hist[back]
-            self.ctl.trace_head[...] = h + 1
+            self.tracker.trace_row(self.ctl, self.trace, cycle, self.ref_rows[back], self.act,
+                                   int(self.serial_hist[back]))
 
     # ------------------------------------------------------------------ running
     def publish(self) -> None:

@@ -148,8 +148,16 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
                    else "the switch did not change within the search travel"),
                2: "a limit switch tripped", 3: "timeout",
                4: ("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data "
-                   "for the index")}.get(b, "unknown cause")
+                   "for the index"),
+               5: "squaring the gantry would move this side further than its homing travel",
+               6: "a gantry's side homes only together with its other side"}.get(b, "unknown cause")
         return f"homing of axis {axis} failed at step '{step}': {why}; quick stop of all axes"
+    if code is AlarmCode.GANTRY_SKEW:
+        g = next((g for g in config.gantry if g.follower == axis_i), None)
+        lead = config.drives[g.axis].axis_name if g else "?"
+        window = f" exceeds its window {g.skew_window:g}" if g else ""
+        return (f"gantry {lead}: its drives {lead} and {axis} are {f:+.4f} apart from square{window} "
+                f"for more than {config.following_error_cycles} cycles: quick stop of all axes")
     if code is AlarmCode.HANDWHEEL:
         if a == 1:
             return (f"handwheel on axis {axis}: its counter jumped by {b} counts in one cycle (a terminal "

@@ -95,6 +95,8 @@ def live_dtype(n: int, m: int = 0, w: int = 0) -> np.dtype:
         # and read (rpm), its error code
         ("spindle_state", "i8"), ("spindle_drive", "i8"), ("spindle_cmd", "f8"), ("spindle_rpm", "f8"),
         ("spindle_error", "i8"),
+        # gantries: each follower's skew from its leader (0 at the other axes)
+        ("skew", "f8", (n,)),
     ], align=True)
 
 
@@ -204,6 +206,7 @@ class LiveFields(_Fields):
     spindle_cmd: np.ndarray
     spindle_rpm: np.ndarray
     spindle_error: np.ndarray
+    skew: np.ndarray
 
 
 class SharedBlock:

@@ -16,6 +16,11 @@ The set-point of a homing axis is made here, one per cycle, from its velocity; s
 home at once (LinuxCNC's equal HOME_SEQUENCE). What the latched position means (the switch's
 machine coordinate, where to go next) is the controller's: the loop only reports it.
 
+A gantry's two sides (``gantry.GantrySpec``) home together, each latching its own switch;
+the follower then waits for its leader to stand latched and moves alone (step SQUARE, with the
+handwheel's jerk-limited ``Follower``, landing exactly) until the two stand as far apart as
+their latches less the two switches' offset: square.
+
 The positions here are axis units of the drive's own count (``act``/``ref``).
 """
 
@@ -27,14 +32,19 @@ import numpy as np
 
 from ..bus import Bus
 from ..cia402 import TP_ENABLED, TP_INDEX_FIRST_POSITIVE, TP_POSITIVE_STORED
+from .gantry import GantrySpec
+from .handwheel import Follower
 from .types import HomingState, HomingStep, SwitchHoming
 
-__all__ = ["SwitchHomer", "FAIL_NOT_FOUND", "FAIL_LIMIT", "FAIL_TIMEOUT", "FAIL_NO_INDEX"]
+__all__ = ["SwitchHomer", "FAIL_NOT_FOUND", "FAIL_LIMIT", "FAIL_TIMEOUT", "FAIL_NO_INDEX", "FAIL_SQUARE",
+           "FAIL_GANTRY_ALONE"]
 
 FAIL_NOT_FOUND = 1      # the switch (or the index) did not change within max_travel
 FAIL_LIMIT = 2          # a limit switch tripped (and the axis does not ignore limits)
 FAIL_TIMEOUT = 3
 FAIL_NO_INDEX = 4       # homing to the index on a drive without touch probe 1 in its process data
+FAIL_SQUARE = 5         # squaring a gantry would move its follower further than max_travel
+FAIL_GANTRY_ALONE = 6   # one side of a gantry asked to home without the other
 
 _INDEX_STORED = TP_ENABLED | TP_POSITIVE_STORED
 _TOUCH_PROBE_OBJECTS = (0x60B8, 0x60B9, 0x60BA)
@@ -44,9 +54,9 @@ class _Axis:
     """One axis' homing: its step, velocity and acceleration, the position its move began."""
 
     __slots__ = ("spec", "step", "v", "a", "v_target", "stopping", "start", "mask", "closed_level",
-                 "next_step")
+                 "next_step", "gantry", "leader", "follower", "target")
 
-    def __init__(self, spec: SwitchHoming) -> None:
+    def __init__(self, spec: SwitchHoming, gantry: GantrySpec | None = None) -> None:
         self.spec = spec
         self.step = HomingStep.IDLE
         self.v = 0.0
@@ -57,15 +67,24 @@ class _Axis:
         self.mask = 1 << spec.bit
         self.closed_level = spec.level
         self.next_step = HomingStep.IDLE
+        #: a gantry's follower: its pair, its leader's homing (``begin``), the squaring move
+        self.gantry = gantry
+        self.leader: _Axis | None = None
+        self.follower: Follower | None = None
+        self.target = 0.0
 
 
 class SwitchHomer:
     """Homing to switches of the axes asked (see the module docstring)."""
 
     def __init__(self, specs: tuple[SwitchHoming, ...], ts_s: float, homing_state: np.ndarray,
-                 homed: np.ndarray, steps: np.ndarray, latched: np.ndarray, timeout_cycles: int) -> None:
+                 homed: np.ndarray, steps: np.ndarray, latched: np.ndarray, timeout_cycles: int,
+                 gantries: tuple[GantrySpec, ...] = ()) -> None:
         self.ts = ts_s
         self.by_axis: dict[int, SwitchHoming] = {s.axis: s for s in specs}
+        self.gantry_of: dict[int, GantrySpec] = {g.follower: g for g in gantries}
+        self.sides: dict[int, int] = {**{g.axis: g.follower for g in gantries},
+                                      **{g.follower: g.axis for g in gantries}}
         self.axes: list[_Axis] = []
         self.state = homing_state
         self.homed = homed
@@ -117,10 +136,18 @@ class SwitchHomer:
         if not wanted or any(a not in self.by_axis for a in wanted):
             return False
         for a in wanted:
+            if a in self.sides and self.sides[a] not in wanted:
+                self.failure, self.failed_axis, self.failed_step = FAIL_GANTRY_ALONE, a, HomingStep.IDLE
+                return False
             if self.by_axis[a].use_index and not (a < len(self.has_touch_probe) and self.has_touch_probe[a]):
                 self.failure, self.failed_axis, self.failed_step = FAIL_NO_INDEX, a, HomingStep.INDEX
                 return False                      # refused, and ``failure`` says why
-        self.axes = [_Axis(self.by_axis[a]) for a in wanted]
+        self.axes = [_Axis(self.by_axis[a], self.gantry_of.get(a)) for a in wanted]
+        by_axis = {h.spec.axis: h for h in self.axes}
+        for h in self.axes:
+            if h.gantry is not None:
+                h.leader = by_axis[h.gantry.axis]
+                h.follower = Follower(self.ts)
         self.cycles = 0
         for h in self.axes:
             self.tp_function[h.spec.axis] = 0
@@ -199,6 +226,10 @@ class SwitchHomer:
             if step is HomingStep.DONE:
                 done += 1
                 continue
+            if step is HomingStep.SQUARE:
+                if not self._square(h, ref):
+                    return self._fail(h, FAIL_SQUARE)
+                continue
             closed = self._closed(h, words)
             if not h.stopping:
                 if step is HomingStep.SEARCH and closed:
@@ -227,7 +258,10 @@ class SwitchHomer:
             ref[a] += h.v * self.ts
             if h.stopping and h.v == 0.0 and h.a == 0.0:
                 nxt = h.next_step
-                if nxt is HomingStep.DONE:
+                if nxt is HomingStep.DONE and h.gantry is not None:
+                    self._go(h, HomingStep.SQUARE, float(ref[a]))
+                    h.target = math.nan
+                elif nxt is HomingStep.DONE:
                     h.step = HomingStep.DONE
                     self.steps[a] = HomingStep.DONE
                     self.state[a] = HomingState.DONE
@@ -236,6 +270,28 @@ class SwitchHomer:
                     self._go(h, nxt, float(ref[a]))
         if done == len(self.axes):
             self.axes = []
+        return True
+
+    def _square(self, h: _Axis, ref: np.ndarray) -> bool:
+        """A gantry's follower, latched: once its leader stands latched too, it moves alone
+        until the pair is square, then it is done. False: that move is too long."""
+        leader, g, follower = h.leader, h.gantry, h.follower
+        assert leader is not None and g is not None and follower is not None
+        if leader.step is not HomingStep.DONE:
+            return True                            # the leader still homes: wait where latched
+        a = h.spec.axis
+        if math.isnan(h.target):
+            l = g.axis
+            h.target = float(ref[l]) + float(self.latched[a]) - float(self.latched[l]) - g.switch_offset
+            if abs(h.target - float(ref[a])) > h.spec.max_travel:
+                return False
+            follower.start(float(ref[a]), abs(h.spec.search_vel), h.spec.accel, h.spec.jerk)
+        ref[a] = follower.step(h.target)
+        if follower.at_rest and ref[a] == h.target:
+            h.step = HomingStep.DONE
+            self.steps[a] = HomingStep.DONE
+            self.state[a] = HomingState.DONE
+            self.homed[a] = 1
         return True
 
     def limit_tripped(self, axis: int) -> bool:

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .shared import LiveFields
+from .shared import ControlFields, LiveFields
 
 __all__ = ["Tracker"]
 
@@ -57,3 +57,16 @@ class Tracker:
             self.block_acc_n = 0
             self.blocks.sum(axis=0, out=lv.win_e2)
             lv.window_n[...] = int(self.blocks_n.sum())
+
+    def trace_row(self, ctl: ControlFields, trace: np.ndarray, cycle: int, ref: np.ndarray,
+                  act: np.ndarray, serial: int) -> None:
+        """One row of the trace ring: the cycle, the set-point its actual position answers, that
+        position, the set-point's serial."""
+        n = len(ref)
+        h = int(ctl.trace_head)
+        row = trace[h % len(trace)]
+        row[0] = cycle
+        row[1:1 + n] = ref
+        row[1 + n:1 + 2 * n] = act
+        row[-1] = serial
+        ctl.trace_head[...] = h + 1

@@ -14,6 +14,7 @@ from ..cia402 import Cia402State
 from ..errors import ConfigurationError
 from ..terminals import TerminalKind, TerminalSpec, check_terminals
 from .compensation import CompSpec
+from .gantry import GantrySpec, check_gantries
 
 __all__ = [
     "Alarm", "AlarmCode", "DriveSpec", "EventCode", "HomingState", "HomingStep", "InputWatch", "SwitchHoming",
@@ -59,6 +60,7 @@ class AlarmCode(enum.IntEnum):
     HOMING_SWITCH = 14     # homing to the switch failed (a: the step, b: why)
     HANDWHEEL = 15         # the handwheel stopped (a: ``WheelFault``, b: the counts of a jump)
     SPINDLE = 16           # the spindle's drive (a: ``spindle.SpindleFault``, b: 0x603F or its state)
+    GANTRY_SKEW = 17       # a gantry's sides apart beyond its window (axis: the follower, f: the skew)
 
 
 class EventCode(enum.IntEnum):
@@ -86,6 +88,7 @@ class HomingStep(enum.IntEnum):
     LATCH = 4          # at the latch velocity until the switch edge: the position latched
     DONE = 5
     INDEX = 6          # on at the latch velocity past the edge to the encoder's index: latched there
+    SQUARE = 7         # a gantry's follower, latched: moving alone until the pair is square
 
 
 class WatchAction(enum.IntEnum):
@@ -289,6 +292,7 @@ class WorkerSnapshot:
     spindle_rpm_command: float = 0.0   # the speed sent (rpm, signed)
     spindle_rpm_actual: float = 0.0    # the speed its drive reads (0x606C, rpm)
     spindle_error_code: int = 0
+    gantry_skew: tuple[float, ...] = ()        # per axis: a gantry follower's skew (0 elsewhere)
 
     @property
     def enabled(self) -> bool:
@@ -316,7 +320,8 @@ class TraceChunk:
 class WorkerConfig:
     """Configuration of the cyclic worker.
 
-    drives: the machine's drives (axis order = column order of `push`).
+    drives: the machine's drives (axis order = column order of `push`); a gantry's second
+    drives (``gantry``) come last, and `push` has no column for them.
     ts_s: cycle time; bus_kind "sim" | "soem"; adapter: network interface for "soem".
     wkc_error_limit: working counter may be wrong for this many consecutive cycles.
     buffer_capacity: set-points the ring holds (2000 = 2 s ahead at 1 ms).
@@ -383,9 +388,11 @@ class WorkerConfig:
     handwheel: HandwheelSpec | None = None
     compensation: tuple[CompSpec, ...] = ()
     spindle: SpindleDriveSpec | None = None
+    gantry: tuple[GantrySpec, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "drives", check_drives(self.drives))
+        check_gantries(self.gantry, len(self.drives))
         taken = [d.position for d in self.drives] + ([self.spindle.position] if self.spindle else [])
         if len(set(taken)) != len(taken):
             raise ConfigurationError(f"the spindle drive's position is an axis drive's: {taken}")
@@ -428,6 +435,12 @@ class WorkerConfig:
     @property
     def n_axes(self) -> int:
         return len(self.drives)
+
+    @property
+    def n_motion_axes(self) -> int:
+        """The axes set-points are pushed for: every axis but the gantries' followers (the
+        last ones), whose set-points the loop makes from their leaders'."""
+        return len(self.drives) - len(self.gantry)
 
     @property
     def n_terminals(self) -> int:

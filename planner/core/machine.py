@@ -54,6 +54,11 @@ class AxisSpec:
     comp_file: str = ""
     comp_file_type: int = 0
     comp_reserve: float = 0.1
+    # a gantry: the second drive (its slave position; None: one drive), its motor's direction
+    # and the largest skew of the two sides while they move
+    gantry_drive: int | None = None
+    gantry_direction: int = 1
+    gantry_skew_window: float = 0.5
 
     @property
     def unit(self) -> str:
@@ -256,7 +261,8 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
             v_max=a["v_max"], a_max=a["a_max"], j_max=a["j_max"],
             following_error_window=a["following_error_window"],
             backlash=a["backlash"], comp_file=a["comp_file"], comp_file_type=a["comp_file_type"],
-            comp_reserve=a["comp_reserve"],
+            comp_reserve=a["comp_reserve"], gantry_drive=a["gantry_drive"],
+            gantry_direction=a["gantry_direction"], gantry_skew_window=a["gantry_skew_window"],
         ))
         if a["backlash"] > 0.0 and a["comp_file"]:
             raise loc.fail(("axes", i, "backlash"),
@@ -270,6 +276,11 @@ def machine_from_valid(valid: dict[str, Any], loc: Locator, extra: SectionRule |
     j = _first_repeat(positions)
     if j is not None:
         raise loc.fail(("axes", j, "drive_position"), f"drive positions must be unique, got {positions}")
+    for i, a in enumerate(axes):
+        if a.gantry_drive is not None and a.gantry_drive in positions + [
+                b.gantry_drive for b in axes[:i]]:
+            raise loc.fail(("axes", i, "gantry_drive"), f"slave {a.gantry_drive} already drives an axis: "
+                                                        f"a gantry's second drive is a slave of its own")
     lim = valid["limits"]
     def angular(key: str) -> float:
         return math.inf if lim.get(key) is None else float(lim[key])

@@ -86,6 +86,7 @@ def check_sections(valid: dict[str, Any], loc: Locator, axes: tuple[AxisSpec, ..
     n = len(axes)
     names = tuple(a.name for a in axes)
     positions = {a.drive_position for a in axes}
+    positions |= {a.gantry_drive for a in axes if a.gantry_drive is not None}
     spindle = valid.get("spindle", {}).get("drive")
     b = valid["bus"]
     for i, d in enumerate(b["drives"]):

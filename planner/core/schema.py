@@ -100,6 +100,11 @@ MACHINE_FILE = Table("", tables=(
         Key("comp_file", "str", ""),
         Key("comp_file_type", "int", 0, choices=(0, 1)),
         Key("comp_reserve", "float", 0.1, 0.02, 0.5),
+        # a gantry: the axis' second drive (its slave position), that motor's direction, and
+        # the largest skew of the two sides while they move (axis units) before both stop
+        Key("gantry_drive", "int", None, 0, 65535),
+        Key("gantry_direction", "int", 1, choices=(1, -1)),
+        Key("gantry_skew_window", "float", 0.5, 1e-6, 1e3),
     ), array=True, required=True),
     Table("limits", (
         Key("v_max_mm_s", "float", 30.0, 1e-3, 1e5),
@@ -179,6 +184,9 @@ MACHINE_FILE = Table("", tables=(
             # HOME_USE_INDEX: past the switch edge on to the encoder's index pulse (latched by
             # the drive's touch probe 1, 0x60B8-0x60BA); offset is then the index' coordinate
             Key("use_index", "bool", False),
+            # a gantry's second side: its own home switch's machine coordinate (LinuxCNC's
+            # HOME_OFFSET of the second joint; left out, the same as offset)
+            Key("gantry_offset", "float", None, -_LIN, _LIN),
         ), array=True),
     )),
     Table("bus", (
@@ -223,9 +231,11 @@ MACHINE_FILE = Table("", tables=(
     # a terminal's channel counted from 0, a drive's bit of 0x60FD in / 0x60FE:1 out), "!" in
     # front when the bit reads 0 while the signal is true (a normally closed contact); ""
     # not wired. limit_pos_<axis>, limit_neg_<axis> and home_<axis> default to bits 1, 0 and 2
-    # of the axis' drive's 0x60FD (CiA 402)
+    # of the axis' drive's 0x60FD (CiA 402); limit_pos2_, limit_neg2_ and home2_<axis> are a
+    # gantry's second side's, by default those bits of its second drive
     Table("signals", tuple(Key(name, "str", "") for name in SIGNAL_NAMES),
-          pattern=r"(?:limit_pos|limit_neg|home|jog_enable)_[XYZABC]", pattern_key=Key("", "str", None)),
+          pattern=r"(?:limit_pos2?|limit_neg2?|home2?|jog_enable)_[XYZABC]",
+          pattern_key=Key("", "str", None)),
     # the handwheel (MPG): the bus position of the encoder terminal it is wired to (an EL5101 of
     # [[bus.terminals]]; unset: no handwheel), the counts of one detent (a wheel read in
     # quadrature: 4), "position" (every detent moves its step; turned faster than the axis

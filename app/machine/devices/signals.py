@@ -73,7 +73,7 @@ class MachineSignals:
                 where = f"{t.name or t.type} (slave {t.position}) channel {s.wire.bit}"
             else:
                 i = axis_at(cfg.machine, s.wire.slave)
-                axis = cfg.machine.axes[i].name if i >= 0 else "?"
+                axis = cfg.drives[i][1] if i >= 0 else "?"
                 obj = "0x60FE:1" if s.signal.direction is Direction.OUT else "0x60FD"
                 where = f"drive {axis} (slave {s.wire.slave}) {obj} bit {s.wire.bit}"
             if s.wire.inverted:

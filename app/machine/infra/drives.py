@@ -6,10 +6,16 @@ takes: ``detach`` waits for a call in flight (the feeder thread's push, say) and
 after it finds no worker and does nothing (a push takes none, a snapshot is None). The worker
 is itself safe to call from the controller's thread and the feeder thread at once (its own
 lock orders the commands and the set-point ring).
+
+The controller sees the machine's axes: a gantry's second drive (the loop's drive after the
+axes) is part of its axis. Snapshots, traces and probe latches are cut to the axes
+(``machine_view``); the per-drive fields (states, status words, inputs, the gantries' skews)
+keep every drive, for Diagnostics.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 from collections.abc import Sequence
 
@@ -17,6 +23,8 @@ import numpy as np
 
 from ethercat.worker import (
     CyclicWorker,
+    HomingState,
+    HomingStep,
     ReplaceResult,
     TraceChunk,
     WorkerEvent,
@@ -24,7 +32,35 @@ from ethercat.worker import (
     WorkerState,
 )
 
-__all__ = ["DriveLink"]
+__all__ = ["DriveLink", "machine_view"]
+
+
+def machine_view(snap: WorkerSnapshot, worker: CyclicWorker) -> WorkerSnapshot:
+    """``snap`` with its per-axis fields for the machine's axes only: a gantry axis is homed
+    when both its sides are, homes while either does, and shows its second side's step while
+    that side squares the pair."""
+    cfg = worker.config
+    m = cfg.n_motion_axes
+    if m == cfg.n_axes:
+        return snap
+    homing, homed = list(snap.homing[:m]), list(snap.homed[:m])
+    steps = list(snap.homing_steps[:m])
+    for g in cfg.gantry:
+        i, f = g.axis, g.follower
+        both = (snap.homing[i], snap.homing[f])
+        for state in (HomingState.ERROR, HomingState.RUNNING):
+            if state in both:
+                homing[i] = state
+                break
+        homed[i] = snap.homed[i] and snap.homed[f]
+        if steps[i] is HomingStep.DONE and snap.homing_steps[f] is not HomingStep.DONE:
+            steps[i] = snap.homing_steps[f]
+    probe = dataclasses.replace(snap.probe, position=snap.probe.position[:m])
+    return dataclasses.replace(
+        snap, actual_position=snap.actual_position[:m], reference_position=snap.reference_position[:m],
+        following_error=snap.following_error[:m], homing=tuple(homing), homed=tuple(homed),
+        homing_steps=tuple(steps), home_latched=snap.home_latched[:m], compensation=snap.compensation[:m],
+        compensation_on=snap.compensation_on[:m], probe=probe)
 
 
 class DriveLink:
@@ -75,7 +111,7 @@ class DriveLink:
         with self._lock:
             if self._worker is None:
                 return None
-            snap = self._worker.snapshot()
+            snap = machine_view(self._worker.snapshot(), self._worker)
             self.last_snapshot = snap
             return snap
 
@@ -84,8 +120,16 @@ class DriveLink:
             return self._worker.events() if self._worker is not None else ()
 
     def drain_trace(self) -> TraceChunk | None:
+        """The trace since the last drain, the machine's axes' columns."""
         with self._lock:
-            return self._worker.drain_trace() if self._worker is not None else None
+            w = self._worker
+            if w is None:
+                return None
+            t = w.drain_trace()
+            m = w.config.n_motion_axes
+            if m == w.config.n_axes:
+                return t
+            return dataclasses.replace(t, reference=t.reference[:, :m], actual=t.actual[:, :m])
 
     def bus_notes(self) -> tuple[str, ...]:
         w = self._worker
@@ -102,7 +146,9 @@ class DriveLink:
 
     def probe_latched(self) -> tuple[float, ...] | None:
         with self._lock:
-            return self._worker.probe_latched() if self._worker is not None else None
+            w = self._worker
+            latched = w.probe_latched() if w is not None else None
+            return latched[:w.config.n_motion_axes] if w is not None and latched is not None else None
 
     # ---------------------------------------------------------------- set-points
     def push(self, q: np.ndarray) -> int:

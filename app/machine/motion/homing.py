@@ -28,7 +28,8 @@ from ethercat.worker import HomingState, HomingStep, WorkerSnapshot, WorkerState
 #: the operator's words for the steps of homing to a switch
 STEP_TEXT = {HomingStep.OFF_SWITCH: "moving off the switch", HomingStep.SEARCH: "searching the switch",
              HomingStep.BACK_OFF: "backing off the switch", HomingStep.LATCH: "latching the switch edge",
-             HomingStep.INDEX: "searching the index pulse", HomingStep.DONE: "at the switch"}
+             HomingStep.INDEX: "searching the index pulse", HomingStep.DONE: "at the switch",
+             HomingStep.SQUARE: "squaring the gantry"}
 
 __all__ = ["Homing"]
 

@@ -79,11 +79,14 @@ class Positions:
         says why)."""
         self._homed = [False] * len(self._homed)
 
-    def take_actual(self, actual: Sequence[float] | np.ndarray, tolerance: float) -> list[int]:
-        """The drives' positions at connect: an axis that reports another position than saved
-        loses its homed state (the indices are returned)."""
+    def take_actual(self, actual: Sequence[float] | np.ndarray, tolerance: float,
+                    unknown: Sequence[int] = ()) -> list[int]:
+        """The drives' positions at connect: an axis that reports another position than saved,
+        or whose place the positions cannot tell (``unknown``), loses its homed state (the
+        indices are returned)."""
         now = np.asarray(actual, dtype=float)
         moved = np.abs(now - self.raw_pos) > max(tolerance, 1e-9)
+        moved[list(unknown)] = True
         lost = [i for i, (h, m) in enumerate(zip(self._homed, moved)) if h and m]
         if lost:
             for i in lost:

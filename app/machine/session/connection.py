@@ -220,15 +220,26 @@ class Connection:
                 product_code=ids[a.drive_position].product_code if a.drive_position in ids else 0,
             )
             for a in cfg.machine.axes
+        ) + tuple(                       # each gantry's second drive, after the axes
+            DriveSpec(
+                position=a.gantry_drive,
+                axis_name=f"{a.name}2",
+                counts_per_unit=a.counts_per_unit,
+                direction=a.gantry_direction,
+                following_error_window=a.following_error_window,
+                vendor_id=ids[a.gantry_drive].vendor_id if a.gantry_drive in ids else 0,
+                product_code=ids[a.gantry_drive].product_code if a.gantry_drive in ids else 0,
+            )
+            for a in cfg.machine.axes if a.gantry_drive is not None
         )
         io = worker_io(cfg.wiring, cfg.machine, cfg.homing.method, cfg.bus.kind == "sim")
         options: tuple[tuple[str, Any], ...] = ()
         if cfg.bus.kind == "soem":
             options = (("setups", tuple((d.position, d.setup()) for d in cfg.bus.drives)),)
         if cfg.bus.kind == "sim":
-            counts = tuple(
-                float(a.direction * a.counts_per_unit * x)
-                for a, x in zip(cfg.machine.axes, self._positions.raw_pos)
+            raw = dict(zip((a.name for a in cfg.machine.axes), self._positions.raw_pos))
+            counts = tuple(                 # a gantry's second side starts where its first stands
+                float(d.direction * d.counts_per_unit * raw[d.axis_name.rstrip("2")]) for d in drives
             )
             # the simulated machine's switches and the rest state of its inputs
             options = (("initial_positions_counts", counts), ("switches", io.sim_switches),
@@ -257,6 +268,7 @@ class Connection:
             watches=io.watches,
             switch_homing=io.switch_homing,
             handwheel=io.handwheel,
+            gantry=io.gantry,
             compensation=cfg.compensation,
             spindle=cfg.spindle.spec,
             buffer_capacity=ring_capacity(cfg.machine.planner.ts_s, cfg.controller.lead_s,
@@ -293,14 +305,25 @@ class Connection:
             return self._states.refuse(action, f"drives cannot be enabled: {exc}")
         snap = self._drives.snapshot()
         assert snap is not None
-        lost = self._positions.take_actual(snap.actual_position,
-                                           self._settings.config.controller.position_tolerance)
-        if lost:
-            names = " ".join(self._settings.config.axes[i] for i in lost)
+        cfg = self._settings.config
+        # a gantry's two sides may have been racked while the power was off, and only homing
+        # squares them again: such an axis is never homed from the saved state
+        gantries = [i for i, a in enumerate(cfg.machine.axes) if a.gantry_drive is not None]
+        homed = self._positions.homed
+        lost = self._positions.take_actual(snap.actual_position, cfg.controller.position_tolerance, gantries)
+        moved = [i for i in lost if i not in gantries]
+        if moved:
+            names = " ".join(cfg.axes[i] for i in moved)
             self._alarms.raise_alarm(
                 "controller",
                 f"axes {names} report another position than saved: homed state cleared, home again",
                 Severity.WARNING, "position_lost")
+        racked = [i for i in gantries if homed[i]]
+        if racked:
+            names = " ".join(cfg.axes[i] for i in racked)
+            self._alarms.raise_alarm(
+                "controller", f"gantry {names}: homed state cleared at connecting: only homing squares "
+                "its two sides again, home it", Severity.WARNING, "gantry_unhomed")
         self._motion.reset_serials()
         self._states.set_state(MachineState.IDLE, "ready")
         if self._drives.realtime:

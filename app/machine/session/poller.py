@@ -104,6 +104,7 @@ class StatusPoller:
             jitter_max_us=float(tm.jitter_max_s * 1e6),
             probe=self._probe_text(snap),
             spindle_state=snap.spindle_drive_state.name if snap.spindle_drive_state is not None else "",
+            gantry_skew=snap.gantry_skew if len(snap.gantry_skew) > len(self._settings.config.axes) else (),
         )
         self.emit_bus(status)
 
@@ -124,5 +125,10 @@ class StatusPoller:
             status.connected,
             status.late_cycles,
             status.probe,
-        ) or abs(old.buffer_level - status.buffer_level) > 50:
+        ) or abs(old.buffer_level - status.buffer_level) > 50 or _moved(old.gantry_skew, status.gantry_skew):
             self._out.busStateChanged.emit(status)
+
+
+def _moved(old: tuple[float, ...], new: tuple[float, ...]) -> bool:
+    """A gantry's skew changed by a micrometre or more (or appeared, or went)."""
+    return len(old) != len(new) or any(abs(a - b) >= 1e-3 for a, b in zip(old, new))
