@@ -106,11 +106,16 @@ TEMPLATES: tuple[str, ...] = (
     N_("axis {0} is on its positive limit switch: it may only jog away from it ({1})"),
     N_("axis {0} is on its negative limit switch: it may only jog away from it ({1})"),
     N_("homing of axis {0} failed at step '{1}': {2}; quick stop of all axes"),
-    N_("off switch"), N_("search"), N_("back off"), N_("latch"), N_("index"),
+    N_("off switch"), N_("search"), N_("back off"), N_("latch"), N_("index"), N_("square"),
     N_("the switch did not change within the search travel"), N_("a limit switch tripped"),
     N_("timeout"), N_("no index pulse within the search travel"),
     N_("its drive has no touch probe (0x60B8, 0x60B9, 0x60BA) in its process data for the index"),
     N_("homing {0}"),
+    # gantries
+    N_("gantry {0}: its drives {1} and {2} are {3} out of square (window {4}) for more than {5} cycles: "
+       "quick stop of all axes"),
+    N_("squaring the gantry would move this side further than its homing travel"),
+    N_("a gantry's side homes only together with its other side"),
     # the handwheel
     N_("handwheel on axis {0}: its counter jumped by {1} counts in one cycle (a terminal restarted or a wire "
        "is loose): the jump moved nothing, the axis stopped; select the axis again to go on"),
@@ -119,6 +124,7 @@ TEMPLATES: tuple[str, ...] = (
     # the homing steps as Machine zero shows them ("homing Z searching the switch")
     N_("{0} moving off the switch"), N_("{0} searching the switch"), N_("{0} backing off the switch"),
     N_("{0} latching the switch edge"), N_("{0} searching the index pulse"), N_("{0} at the switch"),
+    N_("{0} squaring the gantry"),
     # lists, causes and places: each part said in the panel's language
     N_("{0}, {1}"), N_("{0}: {1}"), N_("{0} ({1})"),
     # where a signal is wired (the Signals tab)

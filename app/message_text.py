@@ -44,6 +44,9 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('Z surface'),
     N_('a bore'),
     N_('a boss'),
+    N_("a gantry's second side: its home switch"),
+    N_("a gantry's second side: its negative limit switch"),
+    N_("a gantry's second side: its positive limit switch"),
     N_('a load holds the spindle at 0-{0} rpm, got {1}'),
     N_('a probe move ended without the probe armed: the program stops here'),
     N_('acknowledge the active alarms first'),
@@ -83,6 +86,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("feed override {0} % capped at {1} % here: the machine's speed, acceleration or jerk limit"),
     N_('feed override {0} % not applied here: the program turned it off (tapping, M49 or M50 P0) and runs its own feed'),  # noqa: E501
     N_('flood coolant (M8)'),
+    N_('gantry {0}: homed state cleared at connecting: only homing squares its two sides again, home it'),  # noqa: E501
     N_('homing cannot be stopped mid-way: use E-stop'),
     N_('homing refused: {0}'),
     N_('increment must be one of {0}, got {1}'),
@@ -128,6 +132,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_("spindle override {0} % capped at {1} %: the spindle's maximum is {2} rpm"),
     N_('spindle override {0} % not applied now: the program turned it off (tapping, M49 or M51 P0); it applies once the program turns it on'),  # noqa: E501
     N_('spindle override {0} %: the feed waits until the spindle turns at {1} rpm'),
+    N_('squaring the gantry'),
     N_('stopped by the operator'),
     N_('the 1 ms loop refused the handwheel (the axis is moving, or set-points are queued)'),
     N_('the E-stop chain (safety relay) is closed; open: E-stop, no reset until closed'),
@@ -173,6 +178,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('the spindle drive reports the commanded speed'),
     N_('the spindle lost speed: {0} rpm read against {1} commanded for {2} s (a band of {3} %)'),
     N_("the spindle's drive refused to turn (faulted, stopping, or the drives are off)"),
+    N_("the spindle's speed output failed: {0}"),
     N_('the surface height must be a number'),
     N_('the target of {0} part(s) is reached: reset the part counter (or raise the target) to run again'),  # noqa: E501
     N_('the tool table cannot change while the machine is {0}: a program reads the offsets when it is checked'),  # noqa: E501

@@ -185,7 +185,7 @@ class Bus(abc.ABC):
         # terminals
         m = len(self.terminals)
         self.terminal_inputs = np.zeros(m, dtype=np.uint32)
-        self.terminal_outputs = np.zeros(m, dtype=np.uint32)
+        self.terminal_outputs = np.zeros(m, dtype=np.uint64)      # (4 analog channels of 16 bits)
         self.terminal_counts = np.zeros(m, dtype=np.int32)
         self.terminal_latches = np.zeros(m, dtype=np.int32)
         self.terminal_set_counts = np.zeros(m, dtype=np.int32)

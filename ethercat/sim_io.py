@@ -101,7 +101,7 @@ class SimIo:
         self.forced_mask = np.zeros(m + n_drives, dtype=np.int64)
         self.forced_bits = np.zeros(m + n_drives, dtype=np.int64)
         self.counts = np.zeros(m, dtype=np.int64)
-        self.outputs = np.zeros(m, dtype=np.uint32)
+        self.outputs = np.zeros(m, dtype=np.uint64)
 
     @property
     def active(self) -> bool:

@@ -11,6 +11,8 @@ reads and writes terminals as it reads drives: by index into preallocated arrays
              ``terminal_latches[k]``  EL5101: latch value (0x6000:3, 16 bit, unsigned)
     outputs  ``terminal_outputs[k]``  EL2xxx: channel c at bit c (0x7000 + 0x10 c : 1)
                                       EL5101: its control byte (0x7000:1)
+                                      EL4xxx: channel c's value at bits 16 c .. 16 c + 15
+                                      (0x7000 + 0x10 c : 0x11, INT16: 0x7FFF = 10 V)
 
 Beckhoff's EL terminals have vendor id 2 and product code (type number << 16) | 0x3052;
 EK couplers (type << 16) | 0x2C52 (linuxcnc-ethercat's drivers list the same codes).
@@ -26,7 +28,8 @@ from typing import Any
 
 from .errors import ConfigurationError
 
-__all__ = ["BECKHOFF", "TERMINAL_TYPES", "TerminalIo", "TerminalKind", "TerminalSpec", "TerminalType",
+__all__ = ["ANALOG_FULL_SCALE", "ANALOG_FULL_SCALE_V", "BECKHOFF", "TERMINAL_TYPES", "analog_channels",
+           "analog_word", "TerminalIo", "TerminalKind", "TerminalSpec", "TerminalType",
            "terminal_type", "type_of_identity"]
 
 BECKHOFF = 0x0000_0002
@@ -37,6 +40,7 @@ class TerminalKind(enum.Enum):
     DIGITAL_IN = "digital in"      # EL1xxx
     DIGITAL_OUT = "digital out"    # EL2xxx
     ENCODER = "encoder"            # EL5101: incremental encoder with latch
+    ANALOG_OUT = "analog out"      # EL4xxx: 0-10 V outputs, one INT16 a channel
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,6 +91,31 @@ def _digital_out(number: int, channels: int) -> TerminalType:
                         description=f"{channels} digital outputs 24 V 0.5 A")
 
 
+def _analog_out(number: int, channels: int, bits: int) -> TerminalType:
+    return TerminalType(f"EL{number}", _el(number), TerminalKind.ANALOG_OUT, channels, "h" * channels, "",
+                        description=f"{channels} analog outputs 0-10 V, {bits} bit")
+
+
+#: an analog output's full scale: INT16 0x7FFF is 10 V (Beckhoff's EL40xx/EL41xx)
+ANALOG_FULL_SCALE = 0x7FFF
+ANALOG_FULL_SCALE_V = 10.0
+
+
+def analog_word(word: int, channel: int, value: int) -> int:
+    """An analog terminal's output word with channel ``channel`` set to ``value`` (INT16)."""
+    shift = 16 * channel
+    return (word & ~(0xFFFF << shift)) | ((value & 0xFFFF) << shift)
+
+
+def analog_channels(word: int, channels: int) -> tuple[int, ...]:
+    """The INT16 values of an analog terminal's output word."""
+    out = []
+    for c in range(channels):
+        v = (word >> 16 * c) & 0xFFFF
+        out.append(v - 0x10000 if v & 0x8000 else v)
+    return tuple(out)
+
+
 #: the terminals the bus knows, by name
 TERMINAL_TYPES: dict[str, TerminalType] = {t.name: t for t in (
     TerminalType("EK1100", 0x044C_2C52, TerminalKind.COUPLER, 0, description="EtherCAT coupler"),
@@ -95,6 +124,8 @@ TERMINAL_TYPES: dict[str, TerminalType] = {t.name: t for t in (
     _digital_in(1002, 2), _digital_in(1004, 4), _digital_in(1008, 8), _digital_in(1014, 4),
     _digital_in(1018, 8), _digital_in(1809, 16),
     _digital_out(2002, 2), _digital_out(2004, 4), _digital_out(2008, 8), _digital_out(2809, 16),
+    _analog_out(4001, 1, 12), _analog_out(4002, 2, 12), _analog_out(4004, 4, 12), _analog_out(4102, 2, 16),
+    _analog_out(4104, 4, 16),
     # status u8, counter value u16, latch value u16 / control u8, set counter value u16
     TerminalType("EL5101", _el(5101), TerminalKind.ENCODER, 1, "BH", "BHH",
                  description="incremental encoder interface, 16 bit counter, latch"),
@@ -185,6 +216,9 @@ class TerminalIo:
         if self.type.kind is TerminalKind.ENCODER:
             self.slave.output = rx.pack(int(self.bus.terminal_outputs[k]) & 0xFF,
                                         int(self.bus.terminal_set_counts[k]) & 0xFFFF)
+        elif self.type.kind is TerminalKind.ANALOG_OUT:
+            word = int(self.bus.terminal_outputs[k])
+            self.slave.output = rx.pack(*analog_channels(word, self.type.channels))
         else:
             self.slave.output = rx.pack(int(self.bus.terminal_outputs[k]) & ((1 << 8 * rx.size) - 1))
 

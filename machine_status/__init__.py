@@ -142,6 +142,7 @@ class BusStatus:
     probe: str = ""  # the probe input (G38.x): "touching", "free", "" when the machine has none
     spindle_state: str = ""  # CiA 402 state of the spindle's own drive ("" when it has none)
     gantry_skew: tuple[float, ...] = ()  # per drive: a gantry's second side's skew (0 elsewhere)
+    compensation: tuple[float, ...] = ()  # per axis: the leadscrew correction sent (() without any)
 
 
 @dataclass(frozen=True, slots=True)

@@ -38,6 +38,7 @@ from app.machine.spindle_settings import SpindleDriveSettings, spindle_lines
 from app.machine.wiring import (
     Direction,
     MachineWiring,
+    analog_place,
     handwheel_lines,
     homing_lines,
     signal_lines,
@@ -346,6 +347,15 @@ def config_from_dict(data: dict[str, Any], where: str = "<config>", text: str | 
         if spindle.drive in taken:
             raise loc.fail(("spindle", "drive"), f"slave {spindle.drive} is {taken[spindle.drive]}: the "
                            "spindle's drive needs a slave position of its own")
+        if spindle.analog_out:
+            if spindle.drive is not None:
+                raise loc.fail(("spindle", "analog_out"), f"the spindle is on its own drive (slave "
+                               f"{spindle.drive}), which takes its speed: an analog output is for a VFD "
+                               "run by the output bits; one or the other")
+            try:
+                analog_place(wiring, spindle.analog_out)
+            except ValueError as exc:
+                raise loc.fail(("spindle", "analog_out"), str(exc)) from None
         gantry = next((i for i, a in enumerate(machine.axes) if a.gantry_drive is not None), None)
         if gantry is not None and homing.method == "drive":
             raise loc.fail(("axes", gantry, "gantry_drive"), "a gantry's two drives home together and square "

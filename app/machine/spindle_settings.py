@@ -1,5 +1,6 @@
 """``[spindle]``: a spindle on its own CiA 402 drive in a velocity mode (left out, the spindle
-is the pair of output bits of ``[controller] spindle_drive``).
+is the pair of output bits of ``[controller] spindle_drive``), or a VFD whose speed is set by an
+analog output (``analog_out``) beside those bits.
 
     [spindle]
     drive = 4                  # its slave position on the bus
@@ -8,6 +9,10 @@ is the pair of output bits of ``[controller] spindle_drive``).
     accel_rpm_s = 2000         # the ramp of the speed (mode 9), rpm/s
     at_speed_pct = 5           # at speed: the speed read within this share of the speed commanded
     speed_loss_s = 0.5         # below that band this long while turning at speed: the program holds
+
+    [spindle]                  # or: a VFD run by the output bits, its speed from 0-10 V
+    analog_out = "9:0"         # an EL4xxx's slave position and channel
+    analog_rpm_at_10v = 24000  # the speed at 10 V (left out: [controller] spindle_max_rpm)
 """
 
 from __future__ import annotations
@@ -30,6 +35,8 @@ class SpindleDriveSettings:
     speed_loss_s: float = 0.5
     vendor_id: int = 0
     product_code: int = 0
+    analog_out: str = ""
+    analog_rpm_at_10v: float | None = None
 
     @classmethod
     def from_valid(cls, s: dict[str, Any]) -> SpindleDriveSettings:
@@ -53,6 +60,11 @@ class SpindleDriveSettings:
 
 
 def spindle_lines(s: SpindleDriveSettings) -> list[str]:
+    if s.analog_out:
+        out = ["[spindle]", f'analog_out = "{s.analog_out}"']
+        if s.analog_rpm_at_10v is not None:
+            out.append(f"analog_rpm_at_10v = {s.analog_rpm_at_10v!r}")
+        return out + [""]
     if s.drive is None:
         return []
     out = ["[spindle]", f"drive = {s.drive}", f"mode = {s.mode}",

@@ -42,7 +42,8 @@ from planner.core.schema import Locator
 
 __all__ = [
     "AXIS_SIGNALS", "SIGNALS", "AxisHoming", "HandwheelSettings", "InterlockSettings", "MachineWiring",
-    "SignalDef", "SignalWire", "TerminalSetting", "WheelMode", "Wire", "WorkerIo", "axis_at", "worker_drives",
+    "SignalDef", "SignalWire", "TerminalSetting", "WheelMode", "Wire", "WorkerIo", "analog_place", "axis_at",
+    "worker_drives",
     "wiring_from_valid", "worker_io",
 ]
 
@@ -371,6 +372,23 @@ def _handwheel(h: dict[str, Any], by_position: dict[int, TerminalSetting], loc: 
                                                   "terminal (an EL5101 in [[bus.terminals]])")
     return HandwheelSettings(h["terminal"], h["counts_per_detent"], WheelMode(h["mode"]),
                              (steps[0], steps[1], steps[2]), h["max_counts_per_cycle"])
+
+
+def analog_place(wiring: MachineWiring, text: str) -> tuple[int, int]:
+    """Where ``"<slave>:<channel>"`` is: (the index of its analog output terminal in
+    ``wiring.terminals``, the channel); ValueError saying why it is not one."""
+    wire = Wire.parse(text)
+    if wire.inverted:
+        raise ValueError(f"{text!r}: an analog output has no normally closed contact (no \"!\")")
+    k = wiring.terminal_index(wire.slave)
+    kind = wiring.terminals[k].terminal_type if k >= 0 else None
+    if kind is None or kind.kind is not TerminalKind.ANALOG_OUT:
+        found = f"a {kind.name}" if kind is not None else "no terminal"
+        raise ValueError(f"slave {wire.slave} is {found}, not an analog output terminal (an EL4xxx in "
+                         "[[bus.terminals]])")
+    if not 0 <= wire.bit < kind.channels:
+        raise ValueError(f"a {kind.name} has channels 0..{kind.channels - 1}, not {wire.bit}")
+    return k, wire.bit
 
 
 def _may_share(s: SignalWire, other: str, homing: tuple[AxisHoming, ...]) -> bool:

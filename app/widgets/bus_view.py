@@ -61,6 +61,8 @@ class BusView(QWidget):
         drives = tuple(getattr(config, "drives", ()) or ())
         states = tuple(getattr(bus, "drive_states", ()) or ())
         skews = tuple(getattr(bus, "gantry_skew", ()) or ())
+        comp = tuple(getattr(bus, "compensation", ()) or ())
+        compensated = {spec.axis for spec in getattr(config, "compensation", ()) or ()}
         n = max(len(drives), len(states))
         terminals = tuple(getattr(getattr(config, "wiring", None), "terminals", ()) or ())
         spindle = getattr(getattr(config, "spindle", None), "spec", None)    # its own drive, or None
@@ -70,6 +72,8 @@ class BusView(QWidget):
             d = ids.get(position)
             if row < len(skews) and name.endswith("2"):       # a gantry's second side and its skew
                 name = tr("{0} (gantry {1}, skew {2:+.4f})").format(name, name[:-1], skews[row])
+            elif row < len(comp) and row in compensated:      # the leadscrew correction it is sent
+                name = tr("{0} (compensation {1:+.4f})").format(name, comp[row])
             values = (
                 str(position),
                 name,

@@ -22,13 +22,16 @@ __all__ = ["TerminalObjects", "terminal_layout"]
 def terminal_layout(t: TerminalType, position: int) -> SiiLayout:
     """The SII of a terminal: its identity, no mailbox, the process data sync managers and
     its PDOs (EL1xxx: one entry of 1 bit per channel, 0x6000 + 0x10 c : 1; EL2xxx: 0x7000 +
-    0x10 c : 1; EL5101: 0x6000:1 u8, :2 u16, :3 u16 in, 0x7000:1 u8, :2 u16 out)."""
+    0x10 c : 1; EL4xxx: 0x7000 + 0x10 c : 0x11 INT16 out; EL5101: 0x6000:1 u8, :2 u16, :3 u16
+    in, 0x7000:1 u8, :2 u16 out)."""
     rx: list[tuple[int, int, int, tuple[tuple[int, int, int], ...]]] = []
     tx: list[tuple[int, int, int, tuple[tuple[int, int, int], ...]]] = []
     if t.kind is TerminalKind.DIGITAL_IN:
         tx = [(0x1A00 + c, 3, 1, ((0x6000 + 0x10 * c, 1, 1),)) for c in range(t.channels)]
     elif t.kind is TerminalKind.DIGITAL_OUT:
         rx = [(0x1600 + c, 2, 1, ((0x7000 + 0x10 * c, 1, 1),)) for c in range(t.channels)]
+    elif t.kind is TerminalKind.ANALOG_OUT:
+        rx = [(0x1600 + 2 * c, 2, 1, ((0x7000 + 0x10 * c, 0x11, 16),)) for c in range(t.channels)]
     elif t.kind is TerminalKind.ENCODER:
         rx = [(0x1600, 2, 1, ((0x7000, 1, 8), (0x7000, 2, 16)))]
         tx = [(0x1A00, 3, 1, ((0x6000, 1, 8), (0x6000, 2, 16), (0x6000, 3, 16)))]
@@ -61,8 +64,13 @@ class TerminalObjects:
     def make_output_setter(self, layout: PdoLayout) -> Callable[[bytes | memoryview], None]:
         unpack = layout.fmt.unpack_from
 
+        analog = self.type.kind is TerminalKind.ANALOG_OUT
+
         def apply(data: bytes | memoryview) -> None:
             values = unpack(data)
+            if analog:                    # the channels' INT16 values in one word, 16 bits each
+                self.outputs = sum((int(v) & 0xFFFF) << 16 * c for c, v in enumerate(values))
+                return
             self.outputs = int(values[0])
             if len(values) > 1:
                 self.set_value = int(values[1])

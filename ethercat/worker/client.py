@@ -332,9 +332,10 @@ class CyclicWorker:
 
     def set_terminal_output(self, terminal: int, word: int) -> None:
         """Terminal ``terminal``'s outputs (index in ``WorkerConfig.terminals``), from the next
-        cycle on."""
+        cycle on (an analog terminal's four 16-bit channels: a 64-bit word, sent as signed)."""
         self._live()
-        if not self._command(Command.TOUT, int(terminal), int(word)):
+        word = int(word) - (1 << 64) if int(word) >= 1 << 63 else int(word)
+        if not self._command(Command.TOUT, int(terminal), word):
             raise WorkerError(f"terminal {terminal} does not exist ({self.config.n_terminals} configured)")
 
     def override_limits(self, on: bool) -> None:

@@ -289,7 +289,7 @@ class CycleLoop:
         elif code == Command.TOUT:
             if not 0 <= a < self.m:
                 return Result.REFUSED
-            bus.terminal_outputs[a] = b
+            bus.terminal_outputs[a] = b & 0xFFFF_FFFF_FFFF_FFFF      # (an analog word as unsigned)
             self.lv.tout[a] = b
         elif code == Command.OVERRIDE_LIMITS:
             self.watches.override = bool(a)

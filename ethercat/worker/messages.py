@@ -155,8 +155,8 @@ def alarm_message(config: WorkerConfig, code: AlarmCode, axis: str, axis_i: int,
     if code is AlarmCode.GANTRY_SKEW:
         g = next((g for g in config.gantry if g.follower == axis_i), None)
         lead = config.drives[g.axis].axis_name if g else "?"
-        window = f" exceeds its window {g.skew_window:g}" if g else ""
-        return (f"gantry {lead}: its drives {lead} and {axis} are {f:+.4f} apart from square{window} "
+        window = f" (window {g.skew_window:g})" if g else ""
+        return (f"gantry {lead}: its drives {lead} and {axis} are {f:+.4f} out of square{window} "
                 f"for more than {config.following_error_cycles} cycles: quick stop of all axes")
     if code is AlarmCode.HANDWHEEL:
         if a == 1:

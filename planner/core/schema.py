@@ -264,6 +264,11 @@ MACHINE_FILE = Table("", tables=(
         Key("speed_loss_s", "float", 0.5, 0.01, 60.0),
         Key("vendor_id", "int", 0, 0, 0xFFFF_FFFF),
         Key("product_code", "int", 0, 0, 0xFFFF_FFFF),
+        # a VFD instead of a drive: its speed from an analog output terminal's channel
+        # ("<slave>:<channel>" of an EL4xxx, 0-10 V), 10 V at analog_rpm_at_10v (default
+        # [controller] spindle_max_rpm); its run and direction from the spindle's output bits
+        Key("analog_out", "str", ""),
+        Key("analog_rpm_at_10v", "float", None, 1.0, 1e6),
     )),
     # what the machine's interlocks do: air or lube pressure lost ("stop": the motion stops
     # along its path, an alarm; "warning": an alarm only); the jog speed allowed with the

@@ -12,7 +12,15 @@ from ethercat.bus import DriveSpec
 from ethercat.errors import ConfigurationError, WorkerError
 from ethercat.sim_bus import SimBus
 from ethercat.sim_io import SimSwitch, input_value
-from ethercat.terminals import TERMINAL_TYPES, TerminalIo, TerminalSpec, type_of_identity
+from ethercat.terminals import (
+    TERMINAL_TYPES,
+    TerminalIo,
+    TerminalKind,
+    TerminalSpec,
+    analog_channels,
+    analog_word,
+    type_of_identity,
+)
 from ethercat.worker import (
     AlarmCode,
     CyclicWorker,
@@ -88,6 +96,37 @@ def test_the_soem_terminal_io_packs_and_unpacks_the_real_images() -> None:
     bus.terminal_outputs[3], bus.terminal_set_counts[3] = 0x04, 500
     enc.write()
     assert enc.slave.output == struct.pack("<BH", 0x04, 500)
+
+
+def test_an_analog_output_terminal_carries_each_channel_as_int16_in_16_bits_of_its_word() -> None:
+    """EL4002: two INT16 outputs (0x7000:11, 0x7010:11; 0x7FFF = 10 V). The bus keeps both in
+    one word, 16 bits a channel; a real bus writes them as the terminal's two INT16, a negative
+    value (a +-10 V terminal) included."""
+    t = TERMINAL_TYPES["EL4002"]
+    assert (t.kind, t.channels, t.rx_bytes, t.tx_bytes, t.working_counter) == \
+        (TerminalKind.ANALOG_OUT, 2, 4, 0, 2)
+    assert t.product_code == 0x0FA23052 and TERMINAL_TYPES["EL4102"].product_code == 0x10063052
+    word = analog_word(analog_word(0, 0, 16_384), 1, -2)
+    assert analog_channels(word, 2) == (16_384, -2)
+    assert analog_channels(analog_word(word, 0, 0x7FFF), 2) == (0x7FFF, -2)     # the other kept
+    terminals = (TerminalSpec(2, "EK1100"), TerminalSpec(3, "EL4002"))
+    bus = SimBus(DRIVES, terminals=terminals)
+    aout = TerminalIo(bus, 1, _Slave(b""), terminals[1].type)
+    bus.terminal_outputs[1] = word
+    aout.write()
+    assert aout.slave.output == struct.pack("<hh", 16_384, -2)
+    # through the loop's command: the word as the terminal's outputs, and in the snapshot
+    cfg = WorkerConfig(DRIVES, mode="manual", terminals=terminals)
+    w = CyclicWorker(cfg)
+    w.start()
+    try:
+        w.step(3)
+        w.set_terminal_output(1, analog_word(0, 1, 0x7FFF))
+        w.step(2)
+        assert w.snapshot().terminal_outputs[1] == 0x7FFF << 16
+        assert int(w._loop.bus.terminal_outputs[1]) == 0x7FFF << 16    # type: ignore[union-attr]
+    finally:
+        w.stop()
 
 
 def _worker(**kw: object) -> CyclicWorker:

@@ -44,10 +44,13 @@ def test_the_gantry_homes_square_shows_one_axis_and_moves_as_one(qapp, tmp_path:
     try:
         assert len(c.machine_position) == 3
         steps: list[HomingStep] = []
+        told: set[str] = set()
         c.poller.on_poll(lambda snap: steps.append(snap.homing_steps[1]))
+        c.stateChanged.connect(lambda _state, reason: told.add(reason))
         assert c.home_all()
         assert c.run_until(lambda: c.state is MachineState.IDLE and all(c.homed), 120)
         assert HomingStep.SQUARE in steps
+        assert any("Y squaring the gantry" in t for t in told), told
         snap = c.worker.snapshot()
         latched = snap.home_latched
         want = latched[SECOND] - latched[1] - SQUARE_OFFSET
@@ -138,3 +141,72 @@ def test_the_shipped_gantry_mill_is_the_xyz_mill_with_a_second_y_drive(tmp_path:
     gantry = load_config(tmp_path / "g.toml")
     assert [a.name for a in gantry.machine.axes] == [a.name for a in mill.machine.axes]
     assert [a.gantry_drive for a in gantry.machine.axes] == [None, 8, None]
+
+
+def test_the_second_sides_limit_switch_stops_the_gantry_and_only_a_jog_away_follows(
+        qapp, tmp_path: Path, state_dir: Path) -> None:
+    """Y2's own positive limit switch (its drive's 0x60FD bit 1 by default) trips while Y moves:
+    the machine stops with the alarm naming Y2, the reset asks for the override, and then Y
+    may only jog away from it, both sides together."""
+    c = make_controller(_config(tmp_path), state_dir)
+    try:
+        c.load_program("G90 G1 Y40 F1200\nM2\n", wait=True)
+        assert c.cycle_start()
+        assert c.run_until(lambda: c.machine_position[1] > 5.0, 10)
+        assert c.simulate_input("limit_pos2_Y", True)
+        c.advance(0.05)
+        assert c.state is MachineState.ALARM
+        alarm = next(a for a in c.active_alarms if a.code == "limit_switch")
+        assert "axis Y2 on its positive limit switch" in alarm.cause
+        c.advance(0.5)
+        r = c.reset()
+        assert not r and "axis Y2 is on its positive limit switch: override limits" in r.reason
+        assert c.override_limits(True) and c.reset()
+        r = c.jog_increment("Y", 1.0, 1)
+        assert not r and "may only jog away from it (Y-)" in r.reason
+        before = _drives(c)
+        assert c.jog_increment("Y", 1.0, -1)
+        run_to_idle(c)
+        after = _drives(c)
+        assert after[1] - before[1] == pytest.approx(-1.0, abs=1e-6)
+        assert after[SECOND] - before[SECOND] == pytest.approx(-1.0, abs=1e-6)
+    finally:
+        c.shutdown()
+
+
+def test_the_controller_sees_the_machines_axes_and_diagnostics_every_drive(qapp, tmp_path: Path,
+                                                                           state_dir: Path) -> None:
+    """``machine_view``: the per-axis fields of the loop's snapshot cut to X, Y, Z (Y homed once
+    both its sides are, showing its second side's step while that squares); the per-drive
+    fields keep all four drives."""
+    import dataclasses
+
+    from app.machine.infra.drives import machine_view
+
+    c = make_controller(_config(tmp_path), state_dir)
+    try:
+        full = c.worker.snapshot()
+        view = machine_view(full, c.worker)
+        assert full.axis_names == ("X", "Y", "Z", "Y2")
+        assert len(full.actual_position) == 4 and len(view.actual_position) == 3
+        assert view.actual_position[1] == full.actual_position[1]
+        for field in ("rmse", "mse", "max_abs", "window_rmse", "window_mse"):
+            assert len(getattr(view.tracking, field)) == 3, field
+        assert len(view.probe.position) == 3 and len(view.home_latched) == 3
+        assert view.drive_states == full.drive_states and len(view.gantry_skew) == 4
+        half = dataclasses.replace(full, homed=(True, True, True, False),
+                                   homing_steps=(HomingStep.IDLE, HomingStep.DONE, HomingStep.IDLE,
+                                                 HomingStep.SQUARE))
+        view = machine_view(half, c.worker)
+        assert view.homed == (True, False, True) and view.homing_steps[1] is HomingStep.SQUARE
+        done = dataclasses.replace(half, homed=(True,) * 4, homing_steps=(HomingStep.DONE,) * 4)
+        assert machine_view(done, c.worker).homed == (True, True, True)
+        # the trace too: the axes' columns
+        c.load_program("G91 G1 Y2 F600\nM2\n", wait=True)
+        assert c.cycle_start()
+        run_to_idle(c)
+        c.advance(0.05)
+        trace = c.drives.drain_trace()
+        assert trace is not None and trace.reference.shape[1] == 3 and trace.actual.shape[1] == 3
+    finally:
+        c.shutdown()

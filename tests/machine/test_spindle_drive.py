@@ -143,6 +143,28 @@ def test_an_override_change_holds_the_feed_until_the_spindle_reads_its_new_speed
     assert np.abs(np.diff(rec["x"])).min() > 0.0 and len(messages) == n
 
 
+def test_an_override_changed_during_a_feed_hold_holds_the_resume_until_the_spindle_reads_it(
+        sctl: MachineController) -> None:
+    """In a feed hold the override goes from 100 to 150 %, and cycle start is pressed at once:
+    the program is running again, but X stands until the spindle reads within 5 % of 6000 rpm,
+    then moves."""
+    c = sctl
+    assert c.load_program("M3 S4000\nG1 X80 F600\nM5\nM30\n", wait=True)
+    assert c.cycle_start()
+    c.advance(2.5)
+    assert c.feed_hold()
+    assert c.run_until(lambda: c.state is MachineState.HOLD, 5)
+    c.advance(0.5)
+    assert c.set_spindle_override(150)
+    c.advance(0.01)
+    assert c.resume() and c.state is MachineState.RUNNING
+    rec = _record(c, 1.5)
+    v = np.abs(np.diff(rec["x"]))
+    slow = rec["rpm"][1:] < 0.95 * 6000
+    assert slow[:10].all() and v[slow].max() == 0.0        # standing while below the band
+    assert v[-20:].min() > 0.0 and rec["rpm"][-1] >= 0.95 * 6000
+
+
 def test_a_spindle_that_loses_speed_in_the_cut_holds_the_program_with_an_alarm(
         sctl: MachineController) -> None:
     c = sctl

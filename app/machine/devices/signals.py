@@ -108,10 +108,11 @@ class MachineSignals:
         return wiring.has(f"limit_pos_{name}") and wiring.has(f"limit_neg_{name}")
 
     def limit_side(self, axis: int) -> int:
-        """+1 / -1 when axis ``axis`` stands on its positive / negative limit switch, else 0."""
+        """+1 / -1 when axis ``axis`` stands on its positive / negative limit switch (either
+        side's, on a gantry), else 0."""
         name = self._settings.config.axes[axis]
-        if self.value(f"limit_pos_{name}"):
+        if self.value(f"limit_pos_{name}") or self.value(f"limit_pos2_{name}"):
             return 1
-        if self.value(f"limit_neg_{name}"):
+        if self.value(f"limit_neg_{name}") or self.value(f"limit_neg2_{name}"):
             return -1
         return 0

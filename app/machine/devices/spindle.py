@@ -1,8 +1,10 @@
 """Spindle on CW/CCW/off and speed, by hand and from the program: the drive's digital outputs
-(bit 0 on, bit 1 counter-clockwise), or the spindle's own CiA 402 drive in a velocity mode
-(``[spindle] drive``): then the speed (S x override, signed) goes to that drive, at speed is
-the speed its drive reads within ``at_speed_pct`` of it, and a spindle that falls below that
-band for ``speed_loss_s`` while a program turns it at speed holds the program with an alarm.
+(bit 0 on, bit 1 counter-clockwise), with a VFD's speed on an analog output terminal's channel
+(``[spindle] analog_out``: 0-10 V for 0 to ``analog_rpm_at_10v``); or the spindle's own CiA 402
+drive in a velocity mode (``[spindle] drive``): then the speed (S x override, signed) goes to
+that drive, at speed is the speed its drive reads within ``at_speed_pct`` of it, and a spindle
+that falls below that band for ``speed_loss_s`` while a program turns it at speed holds the
+program with an alarm.
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ from app.machine.ports import AlarmSink, Settings, SignalValues
 from app.machine.spindle_settings import SpindleDriveSettings
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
+from app.machine.wiring import analog_place
+from ethercat.terminals import ANALOG_FULL_SCALE
 from ethercat.worker import WorkerSnapshot
 
 __all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl"]
@@ -110,8 +114,27 @@ class SpindleControl:
                                              "spindle")
             if self._settings.config.wiring.has("spindle_enable"):
                 self._outputs.set_signal("spindle_enable", sp.on)
+            if self._settings.config.spindle.analog_out:
+                self._set_analog(sp)
         self.spindle = sp
         self._out.spindleChanged.emit(sp)
+
+    def analog_value(self, sp: SpindleState) -> int:
+        """The VFD's analog output for ``sp``: S x override over the speed at 10 V, in the
+        terminal's INT16 (0x7FFF = 10 V), 0 while it stands; never beyond 10 V."""
+        cfg = self._settings.config
+        top = cfg.spindle.analog_rpm_at_10v or cfg.controller.spindle_max_rpm
+        share = min(1.0, sp.commanded_rpm / top) if sp.on else 0.0
+        return round(ANALOG_FULL_SCALE * share)
+
+    def _set_analog(self, sp: SpindleState) -> None:
+        k, channel = analog_place(self._settings.config.wiring, self._settings.config.spindle.analog_out)
+        shift = 16 * channel
+        try:
+            self._outputs.set_terminal_bits(k, 0xFFFF << shift, self.analog_value(sp) << shift)
+        except Exception as exc:  # noqa: BLE001 - told as the bits' failure is
+            self._alarms.raise_alarm("spindle", f"the spindle's speed output failed: {exc}", Severity.WARNING,
+                                     "spindle")
 
     def _apply_drive(self, sp: SpindleState, drive: SpindleDriveSettings) -> None:
         """The spindle's own drive to S x override, signed by the direction (0: it stops)."""
@@ -194,11 +217,14 @@ class SpindleControl:
             self.stop_spindle()
 
     def restart_after_hold(self) -> float:
-        """Leaving a hold in which the door stopped the spindle: it turns again as before;
-        returns how long the motion waits for it to be at speed (0: nothing to restart)."""
+        """Leaving a hold: a spindle the door stopped turns again as before; one on its own
+        drive that does not read its speed (the override changed during the hold) is waited
+        for. Returns how long the motion waits at least before it asks ``at_speed`` (0: it
+        goes on at once)."""
         before, self.stopped_for_hold = self.stopped_for_hold, None
         if before is None or self.spindle.on:
-            return 0.0
+            waits = self._drive is not None and self.spindle.on and not self._reached
+            return AT_SPEED_MIN_S if waits else 0.0
         wait = self.spin_up_s(before)
         self.apply_spindle(SpindleState(direction=before.direction, rpm=before.rpm))
         return wait

@@ -56,11 +56,14 @@ def machine_view(snap: WorkerSnapshot, worker: CyclicWorker) -> WorkerSnapshot:
         if steps[i] is HomingStep.DONE and snap.homing_steps[f] is not HomingStep.DONE:
             steps[i] = snap.homing_steps[f]
     probe = dataclasses.replace(snap.probe, position=snap.probe.position[:m])
+    t = snap.tracking
+    tracking = dataclasses.replace(t, rmse=t.rmse[:m], mse=t.mse[:m], max_abs=t.max_abs[:m],
+                                   window_rmse=t.window_rmse[:m], window_mse=t.window_mse[:m])
     return dataclasses.replace(
         snap, actual_position=snap.actual_position[:m], reference_position=snap.reference_position[:m],
         following_error=snap.following_error[:m], homing=tuple(homing), homed=tuple(homed),
         homing_steps=tuple(steps), home_latched=snap.home_latched[:m], compensation=snap.compensation[:m],
-        compensation_on=snap.compensation_on[:m], probe=probe)
+        compensation_on=snap.compensation_on[:m], probe=probe, tracking=tracking)
 
 
 class DriveLink:

@@ -105,6 +105,7 @@ class StatusPoller:
             probe=self._probe_text(snap),
             spindle_state=snap.spindle_drive_state.name if snap.spindle_drive_state is not None else "",
             gantry_skew=snap.gantry_skew if len(snap.gantry_skew) > len(self._settings.config.axes) else (),
+            compensation=snap.compensation if self._settings.config.compensation else (),
         )
         self.emit_bus(status)
 
@@ -125,10 +126,12 @@ class StatusPoller:
             status.connected,
             status.late_cycles,
             status.probe,
-        ) or abs(old.buffer_level - status.buffer_level) > 50 or _moved(old.gantry_skew, status.gantry_skew):
+        ) or abs(old.buffer_level - status.buffer_level) > 50 or _moved(old.gantry_skew, status.gantry_skew) \
+                or _moved(old.compensation, status.compensation):
             self._out.busStateChanged.emit(status)
 
 
 def _moved(old: tuple[float, ...], new: tuple[float, ...]) -> bool:
-    """A gantry's skew changed by a micrometre or more (or appeared, or went)."""
-    return len(old) != len(new) or any(abs(a - b) >= 1e-3 for a, b in zip(old, new))
+    """A gantry's skew or a leadscrew correction changed by half the last digit Diagnostics
+    shows (0.05 µm) or more, or appeared, or went."""
+    return len(old) != len(new) or any(abs(a - b) >= 5e-5 for a, b in zip(old, new))
