@@ -114,6 +114,23 @@ def make_window(qtbot, qapp, options, dialogs, controller):
     return window
 
 
+def window_on(qtbot, qapp, tmp_path, dialogs, config_text: str):  # type: ignore[no-untyped-def]
+    """The panel over a real controller (manual clock) on the configuration ``config_text``
+    (the test lead appended), connected and zeroed where the axes stand: (window, controller);
+    the caller shuts the controller down."""
+    from app.context import PanelOptions
+    from app.machine.controller import MachineController
+    from tests.machine.conftest import TEST_LEAD_S
+
+    config = tmp_path / "machine.toml"
+    config.write_text(config_text + f"\n[controller]\nlead_s = {TEST_LEAD_S}\n", encoding="utf-8")
+    state = tmp_path / "state"
+    state.mkdir()
+    c = MachineController(config, state_dir=state, worker_mode="manual")
+    assert c.connect_bus() and c.set_machine_zero_here()
+    return make_window(qtbot, qapp, PanelOptions(state_dir=state), dialogs, c), c
+
+
 @pytest.fixture
 def demo_window(qtbot, qapp, state_dir, dialogs, real_controller):
     """``cnc-panel --demo`` on the real controller (manual clock): connected, pocket.nc loaded, and

@@ -9,26 +9,17 @@ from pathlib import Path
 import pytest
 
 from resources import shipped_machine
-from tests.app.conftest import make_window
-from tests.machine.conftest import TEST_LEAD_S, run_to_idle
+from tests.app.conftest import window_on
+from tests.machine.conftest import run_to_idle
 
 X_KEYS = "following_error_window = 1.0\n"          # the end of X's table in the shipped mill
 
 
 @pytest.fixture
 def comp_window(qtbot, qapp, tmp_path: Path, dialogs):  # type: ignore[no-untyped-def]
-    from app.context import PanelOptions
-    from app.machine.controller import MachineController
-
     text = shipped_machine("xyz_mill").read_text(encoding="utf-8")
     text = text.replace(X_KEYS, X_KEYS + "backlash = 0.02\n", 1)
-    config = tmp_path / "machine.toml"
-    config.write_text(text + f"\n[controller]\nlead_s = {TEST_LEAD_S}\n", encoding="utf-8")
-    state = tmp_path / "state"
-    state.mkdir()
-    c = MachineController(config, state_dir=state, worker_mode="manual")
-    assert c.connect_bus() and c.set_machine_zero_here()
-    window = make_window(qtbot, qapp, PanelOptions(state_dir=state), dialogs, c)
+    window, c = window_on(qtbot, qapp, tmp_path, dialogs, text)
     yield window, c
     c.shutdown()
 

@@ -9,24 +9,14 @@ from pathlib import Path
 import pytest
 
 from resources import shipped_machine
-from tests.app.conftest import make_window
-from tests.machine.conftest import TEST_LEAD_S
+from tests.app.conftest import window_on
 
 
 @pytest.fixture
 def spindle_window(qtbot, qapp, tmp_path: Path, dialogs):  # type: ignore[no-untyped-def]
-    from app.context import PanelOptions
-    from app.machine.controller import MachineController
-
-    config = tmp_path / "machine.toml"
     spindle = "\n[spindle]\ndrive = 8\naccel_rpm_s = 4000\n"
-    config.write_text(shipped_machine("xyz_mill").read_text(encoding="utf-8") + spindle
-                      + f"\n[controller]\nlead_s = {TEST_LEAD_S}\n", encoding="utf-8")
-    state = tmp_path / "state"
-    state.mkdir()
-    c = MachineController(config, state_dir=state, worker_mode="manual")
-    assert c.connect_bus() and c.set_machine_zero_here()
-    window = make_window(qtbot, qapp, PanelOptions(state_dir=state), dialogs, c)
+    window, c = window_on(qtbot, qapp, tmp_path, dialogs,
+                          shipped_machine("xyz_mill").read_text(encoding="utf-8") + spindle)
     yield window, c
     c.shutdown()
 

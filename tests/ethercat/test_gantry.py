@@ -22,6 +22,7 @@ from ethercat.worker import (
     WorkerConfig,
     WorkerState,
 )
+from tests.ethercat.manual_worker import enabled_worker
 
 COUNTS = 10_000.0                  # counts per mm (DriveSpec's default)
 COUNT = 1.0 / COUNTS
@@ -53,13 +54,7 @@ def _worker(y0: float, y2_0: float, latch_vel: float = -0.5) -> CyclicWorker:
         bus_options=(("switches", switches),
                      ("initial_positions_counts", (0.0, y0 * COUNTS, -y2_0 * COUNTS))),
     )
-    w = CyclicWorker(cfg)
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
-    return w
+    return enabled_worker(cfg)
 
 
 def _home(w: CyclicWorker) -> tuple[list[np.ndarray], set[HomingStep]]:
