@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from planner.core.movestore import MoveColumns, MoveStore
+from planner.core.movestore import MoveColumns
 from planner.core.program import MoveKind, Program, turn_xy
 
 ARC_STEP_RAD = math.radians(6.0)
@@ -212,13 +212,13 @@ def _straight(starts: np.ndarray, ends: np.ndarray, idx: np.ndarray) -> Polyline
     return Polylines(pts, connect, move_index, n)
 
 
-def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns | None) -> Polylines:
+def _arcs(program: Program, idx: np.ndarray, cols: MoveColumns) -> Polylines:
     """Sample every arc at once: per-arc point counts, then one vectorised evaluation."""
     moves = program.moves
     n_axes = len(program.axes)
     if len(idx) == 0:
         return _empty(n_axes)
-    if cols is not None and np.array_equal(cols.arc_rows, idx):  # the program's columns
+    if np.array_equal(cols.arc_rows, idx):  # the program's columns
         arcs = list(cols.arcs)
         start, end = cols.start[idx], cols.end[idx]
     else:
@@ -304,13 +304,9 @@ def build_toolpath(program: Program) -> ToolPath:
     n_axes = len(program.axes)
     moves = program.moves
     n = len(moves)
-    # a program read from G-code keeps its moves as columns: no Move object is made here
-    cols = moves.columns() if isinstance(moves, MoveStore) else None
-    if cols is not None:
-        kinds, lines = cols.kind, cols.line.astype(np.int32, copy=False)   # the program's own
-    else:
-        kinds = np.fromiter((m.kind for m in moves), dtype=np.int8, count=n)
-        lines = np.fromiter((m.line for m in moves), dtype=np.int32, count=n)
+    # the program's moves are columns: no Move object is made here
+    cols = moves.columns()
+    kinds, lines = cols.kind, cols.line.astype(np.int32, copy=False)   # the program's own
     arc_idx = np.flatnonzero(kinds == MoveKind.ARC)
     blend_idx = np.flatnonzero(kinds == MoveKind.BLEND)
     counts = {MoveKind.RAPID: int(np.count_nonzero(kinds == MoveKind.RAPID)),
@@ -318,18 +314,14 @@ def build_toolpath(program: Program) -> ToolPath:
               MoveKind.ARC: len(arc_idx) + len(blend_idx)}
 
     def straight(idx: np.ndarray) -> Polylines:
-        if cols is not None and len(idx) == n:  # every move: the columns themselves, no copy
+        if len(idx) == n:                       # every move: the columns themselves, no copy
             return _straight(cols.start, cols.end, idx)
-        if cols is not None:
-            return _straight(cols.start[idx], cols.end[idx], idx)
-        return _straight(np.array([moves[i].start for i in idx]).reshape(-1, n_axes),
-                         np.array([moves[i].end for i in idx]).reshape(-1, n_axes), idx)
+        return _straight(cols.start[idx], cols.end[idx], idx)
 
     own_points = True      # the points are this path's (not the program's, which stay as read)
-    if not counts[MoveKind.ARC] and cols is not None and n:
+    if not counts[MoveKind.ARC] and n:
         # lines and rapids only (a CAM raster): one point a move, the program's own joint
         # positions in program order (each move ends where the next starts), drawn as one run
-        assert isinstance(moves, MoveStore)     # its columns were taken above
         positions = moves.positions
         move_index: Any = JointMoves(n)
         connect = np.ones(n + 1, bool)

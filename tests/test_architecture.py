@@ -5,6 +5,7 @@ statement, and at run time by importing every module in a clean interpreter."""
 from __future__ import annotations
 
 import ast
+import dataclasses
 import json
 import re
 import subprocess
@@ -193,6 +194,26 @@ def test_programs_are_read_by_the_one_load_alone() -> None:
     pipeline = (ROOT / "planner" / "pipeline.py").read_text(encoding="utf-8")
     assert "parse_program(" in pipeline
     assert not calls, calls
+
+
+def test_a_programs_moves_have_one_shape() -> None:
+    """``Program.moves`` is a ``MoveStore`` whoever made the program (Move objects given are
+    stored as columns where the program is made): no code asks which shape it has."""
+    asked = []
+    for root in ("app", "cli", "planner", "opcua_server", "tools"):
+        for path in sorted((ROOT / root).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+                if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                        and node.func.id == "isinstance" and len(node.args) == 2
+                        and "MoveStore" in ast.unparse(node.args[1])):
+                    asked.append(str(path.relative_to(ROOT)))
+    assert asked == ["planner/core/program.py"], asked          # where Move objects are stored
+    from planner.pipeline import parse_program
+
+    program = parse_program("G1 X1 F600\nG1 Y1\n")
+    again = dataclasses.replace(program, moves=tuple(program.moves))
+    assert type(program.moves).__name__ == type(again.moves).__name__ == "MoveStore"
+    assert [m.end.tolist() for m in again.moves] == [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]
 
 
 def test_no_lock_is_taken_from_outside_its_owner() -> None:

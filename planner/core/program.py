@@ -17,14 +17,16 @@ import bisect
 import enum
 import functools
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from planner.core.curves import Blend, blend_eval
 from planner.core.frames import Frame
+
+if TYPE_CHECKING:
+    from planner.core.movestore import MoveStore
 
 __all__ = [
     "AnalogOutput",
@@ -454,7 +456,8 @@ class Program:
     name: str
     axes: tuple[str, ...]
     rotary: tuple[bool, ...]
-    moves: Sequence[Move]  # a tuple, or planner.core.movestore.MoveStore (columns)
+    # the moves as columns (``planner.core.movestore``); Move objects given are stored so
+    moves: MoveStore
     events: tuple[Event, ...]
     start_position: np.ndarray  # machine position before the first move
     # Additions (not in the minimal contract):
@@ -500,6 +503,12 @@ class Program:
     # as one NURBS_FEED call (moves as read: indexes into the interpreter's moves, before path
     # blending)
     splines: tuple[Curve, ...] = ()
+
+    def __post_init__(self) -> None:
+        from planner.core.movestore import MoveStore  # that module reads Move from this one
+
+        if not isinstance(self.moves, MoveStore):    # Move objects given (a test's): as columns
+            object.__setattr__(self, "moves", MoveStore.from_moves(tuple(self.moves), self.start_position))
 
     @functools.cached_property
     def override_locks(self) -> np.ndarray | None:

@@ -705,7 +705,6 @@ def remap_program(program: Program, new: list[Move], spans: list[tuple[int, int]
     for k, (lo, hi) in enumerate(spans):
         first_new[lo:hi + 1] = np.minimum(first_new[lo:hi + 1], k)
         last_new[lo:hi + 1] = np.maximum(last_new[lo:hi + 1], k)
-    new = [replace(m, index=k) if m.index != k else m for k, m in enumerate(new)]
 
     def first(i: int) -> int:
         return int(first_new[i]) if i < n else len(new)
@@ -720,7 +719,7 @@ def remap_program(program: Program, new: list[Move], spans: list[tuple[int, int]
         else:
             move_offsets = offsets[np.array([hi for _, hi in spans], dtype=np.int64)]
             move_offsets.setflags(write=False)
-    return replace(program, moves=tuple(new), events=events,
+    return replace(program, moves=MoveStore.from_moves(new, program.start_position), events=events,
                    modal=tuple((first(f), t) for f, t in program.modal),
                    offset_parts=tuple((first(p[0]), *p[1:]) for p in program.offset_parts),
                    blend_tolerance=tuple((first(f), v) for f, v in program.blend_tolerance),
@@ -765,17 +764,10 @@ def merge_naive_cam(program: Program) -> Program:
         q_tol[first:nxt] = value
     d = len(program.axes)
     rotary = np.array(program.rotary, dtype=bool) if program.rotary else np.zeros(d, bool)
-    if isinstance(moves, MoveStore):  # columns: no Move object for the moves that stay
-        cols = moves.columns()
-        start, end, feed, exact_stop = cols.start, cols.end, cols.feed, cols.exact_stop
-        chainable = cols.kind == int(MoveKind.LINE)
-        chainable[cols.blend_rows] = False
-    else:
-        start = np.array([m.start for m in moves], dtype=float).reshape(n, d)
-        end = np.array([m.end for m in moves], dtype=float).reshape(n, d)
-        feed = np.array([m.feed_mm_s for m in moves])
-        exact_stop = np.array([m.exact_stop for m in moves])
-        chainable = np.array([m.kind == MoveKind.LINE and m.blend is None for m in moves])
+    cols = moves.columns()                # no Move object for the moves that stay
+    start, end, feed, exact_stop = cols.start, cols.end, cols.feed, cols.exact_stop
+    chainable = cols.kind == int(MoveKind.LINE)
+    chainable[cols.blend_rows] = False
     chainable &= (q_tol > 0.0) & ~np.any((end - start)[:, rotary] != 0.0, axis=1)
     # cont[i]: move i may continue a chain that holds move i - 1
     cont = np.zeros(n, dtype=bool)
@@ -869,12 +861,8 @@ class BlendReport:
 
 
 def blend_report(program: Program) -> BlendReport:
-    moves = program.moves
-    if isinstance(moves, MoveStore):  # columns: only the blends are looked at
-        cols = moves.columns()
-        found = [(b, int(cols.line[r])) for r, b in zip(cols.blend_rows.tolist(), cols.blends)]
-    else:
-        found = [(m.blend, m.line) for m in moves if m.blend is not None]
+    cols = program.moves.columns()     # only the blends are looked at
+    found = [(b, int(cols.line[r])) for r, b in zip(cols.blend_rows.tolist(), cols.blends)]
     best, line = 0.0, 0
     for blend, at in found:
         if blend.deviation_mm > best:

@@ -112,13 +112,17 @@ class MoveTable:
     bl_dk: np.ndarray  # largest |dkappa/ds| of a blend (1/mm^2)
 
     @staticmethod
+    def from_store(moves: MoveStore, n_axes: int) -> MoveTable:
+        """The table of a program's moves (or a slice of them), from its columns."""
+        c = moves.columns()
+        n = len(moves)
+        return MoveTable._build(np.arange(c.first, c.first + n, dtype=np.int64), c.line, c.kind,
+                                c.start, c.end, c.length, c.feed, c.exact_stop, c.arc_rows, c.arcs,
+                                c.blend_rows, c.blends, n_axes)
+
+    @staticmethod
     def from_moves(moves: Sequence[Move], n_axes: int) -> MoveTable:
-        if isinstance(moves, MoveStore):
-            c = moves.columns()
-            n = len(moves)
-            return MoveTable._build(np.arange(c.first, c.first + n, dtype=np.int64), c.line, c.kind,
-                                    c.start, c.end, c.length, c.feed, c.exact_stop, c.arc_rows, c.arcs,
-                                    c.blend_rows, c.blends, n_axes)
+        """The table of Move objects (a few picked out of a program, or made by hand)."""
         moves = tuple(moves)
         n = len(moves)
         if n:

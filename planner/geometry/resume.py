@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from planner.core.errors import PlannerError
+from planner.core.movestore import MoveStore
 from planner.core.program import (
     Arc,
     Event,
@@ -118,13 +119,12 @@ def head_move(move: Move, u_mm: float, at: tuple[np.ndarray, float] | None = Non
 
 def program_from_moves(template: Program, moves: list[Move], events: list[Event],
                        start_position: np.ndarray, name: str | None = None) -> Program:
-    """A Program with ``moves`` re-indexed 0..n-1 (events' ``after_move`` must already refer
-    to the new indices). What events name by their value (parameter sets, tools, probes) is
-    the template's."""
-    moves = [replace(m, index=i) for i, m in enumerate(moves)]
+    """A Program of ``moves`` as a store, numbered 0..n-1 (events' ``after_move`` must already
+    refer to the new indices). What events name by their value (parameter sets, tools, probes)
+    is the template's."""
+    start = np.asarray(start_position, dtype=float).copy()
     return Program(name=name or template.name, axes=template.axes, rotary=template.rotary,
-                   moves=tuple(moves), events=tuple(events),
-                   start_position=np.asarray(start_position, dtype=float).copy(),
+                   moves=MoveStore.from_moves(moves, start), events=tuple(events), start_position=start,
                    move_offsets=None, line_count=template.line_count,
                    parameter_sets=template.parameter_sets, tool_sets=template.tool_sets,
                    probes=template.probes, inputs=template.inputs)

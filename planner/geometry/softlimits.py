@@ -16,7 +16,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from planner.core.machine import MachineSpec
-from planner.core.movestore import MoveStore
 from planner.core.program import Arc, Move, Program
 
 __all__ = [
@@ -119,46 +118,30 @@ def _turned_extreme_angles(arc: Arc, lo: float, hi: float) -> np.ndarray:
 PIECE_MOVES = 1 << 18
 
 
-def move_bounds_pieces(program: Program, piece: int = PIECE_MOVES,
-                       chunk: int = 2048) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+def move_bounds_pieces(program: Program,
+                       piece: int = PIECE_MOVES) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
     """Per-move bounds a piece of moves at a time: (first move, lo (m, n_axes), hi (m, n_axes)),
     arcs exact: NumPy over lines and rapids (their end points), ``move_bounds`` for arcs and
-    blends. Made in chunks so that a load in a worker thread never holds the GIL for long."""
+    blends. Made a piece at a time so that a load in a worker thread never holds the GIL for
+    long."""
     moves = program.moves
-    n = len(program.axes) if program.axes else len(program.start_position)
-    if isinstance(moves, MoveStore):
-        # columns: straight moves by their end points at once, only arcs and blends one by one
-        pos = moves.positions
-        cols = moves.columns()
-        special = np.union1d(cols.arc_rows, cols.blend_rows)
-        for a in range(0, len(moves), piece):
-            b = min(a + piece, len(moves))
-            lo = np.minimum(pos[a:b], pos[a + 1:b + 1])
-            hi = np.maximum(pos[a:b], pos[a + 1:b + 1])
-            for k in special[np.searchsorted(special, a):np.searchsorted(special, b)].tolist():
-                lo[k - a], hi[k - a], _ = move_bounds(moves[k])
-            yield a, lo, hi
-        return
+    # straight moves by their end points at once, only arcs and blends one by one
+    pos = moves.positions
+    cols = moves.columns()
+    special = np.union1d(cols.arc_rows, cols.blend_rows)
     for a in range(0, len(moves), piece):
         b = min(a + piece, len(moves))
-        lo = np.empty((b - a, n))
-        hi = np.empty((b - a, n))
-        for k in range(a, b, chunk):
-            part = moves[k:min(k + chunk, b)]
-            starts = np.array([m.start for m in part], dtype=float).reshape(len(part), n)
-            ends = np.array([m.end for m in part], dtype=float).reshape(len(part), n)
-            np.minimum(starts, ends, out=lo[k - a:k - a + len(part)])
-            np.maximum(starts, ends, out=hi[k - a:k - a + len(part)])
-            for i, m in enumerate(part):
-                if m.arc is not None or m.blend is not None:
-                    lo[k - a + i], hi[k - a + i], _ = move_bounds(m)
+        lo = np.minimum(pos[a:b], pos[a + 1:b + 1])
+        hi = np.maximum(pos[a:b], pos[a + 1:b + 1])
+        for k in special[np.searchsorted(special, a):np.searchsorted(special, b)].tolist():
+            lo[k - a], hi[k - a], _ = move_bounds(moves[k])
         yield a, lo, hi
 
 
-def move_bounds_table(program: Program, chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
+def move_bounds_table(program: Program) -> tuple[np.ndarray, np.ndarray]:
     """Per-move bounds of the whole program (lo (M, n_axes), hi (M, n_axes)), arcs exact."""
     n = len(program.axes) if program.axes else len(program.start_position)
-    pieces = list(move_bounds_pieces(program, chunk=chunk))
+    pieces = list(move_bounds_pieces(program))
     if not pieces:
         return np.empty((0, n)), np.empty((0, n))
     return np.concatenate([p[1] for p in pieces]), np.concatenate([p[2] for p in pieces])

@@ -464,14 +464,14 @@ def _window(program: Program, lim: LimitSet, mode: str, a: int, b: int, stop: np
     the path stops after each of them."""
     caps = np.empty(b - a + 1)
     if mode == "paper" or b - a < 2:
-        table = MoveTable.from_moves(program.moves[a:b], len(program.axes))
+        table = MoveTable.from_store(program.moves[a:b], len(program.axes))
         ml = move_limits(table, lim, mode)
         caps[1:-1] = joint_caps(table, ml, lim, mode)
     else:
         # the joints' groups reach GROUP_JOINTS moves either side: compute them with that
         # context, so that a window's caps are the whole program's
         lo, hi = max(0, a - GROUP_JOINTS), min(len(program.moves), b + GROUP_JOINTS)
-        wide = MoveTable.from_moves(program.moves[lo:hi], len(program.axes))
+        wide = MoveTable.from_store(program.moves[lo:hi], len(program.axes))
         wide_ml = move_limits(wide, lim, mode)
         caps[1:-1] = joint_caps(wide, wide_ml, lim, mode)[a - lo:a - lo + b - a - 1]
         rows = slice(a - lo, b - lo)

@@ -21,7 +21,6 @@ import numpy as np
 
 from planner.core.errors import PlannerError
 from planner.core.machine import MachineSpec
-from planner.core.movestore import MoveStore
 from planner.core.program import MoveKind, Program
 from planner.geometry.movetable import MoveTable, concat_tables, contour_error, take_rows
 from planner.motion.interpolate import (
@@ -263,12 +262,9 @@ def plan_program(program: Program, machine: MachineSpec, mode: str | None = None
     # planned in segments and joined as they come: the same plan, with the temporaries of a
     # segment; segments of 16,384 moves: the progress moves often enough to be seen
     moves = program.moves
-    if isinstance(moves, MoveStore):
-        cols = moves.columns()
-        join = SegmentJoin(len(moves), moves.positions,
-                           {name: getattr(cols, name) for name in SegmentJoin.PROGRAM_COLUMNS})
-    else:
-        join = SegmentJoin(len(moves))
+    cols = moves.columns()
+    join = SegmentJoin(len(moves), moves.positions,
+                       {name: getattr(cols, name) for name in SegmentJoin.PROGRAM_COLUMNS})
     for seg in plan_segments(program, machine, mode, interpolation, window, segment_moves=16_384):
         join.add(seg)
         if progress is not None:
@@ -293,9 +289,7 @@ def _extent(program: Program) -> float:
     moves = program.moves
     if not len(moves):
         return 1.0
-    if isinstance(moves, MoveStore):
-        return float(np.max(np.abs(moves.positions[1:])))
-    return float(max(np.max(np.abs(m.end)) for m in moves))
+    return float(np.max(np.abs(moves.positions[1:])))
 
 
 def report_segments(program: Program, machine: MachineSpec, interpolation: str, segments: Iterable[Segment],

@@ -59,8 +59,8 @@ def test_a_store_of_moves_made_one_by_one_is_the_same(program):
 
 def test_tables_and_bounds_from_columns_equal_those_from_move_objects(program):
     objects = replace(program, moves=tuple(program.moves))
-    a = MoveTable.from_moves(program.moves[3:40], 3)
-    b = MoveTable.from_moves(objects.moves[3:40], 3)
+    a = MoveTable.from_store(program.moves[3:40], 3)
+    b = MoveTable.from_moves(list(objects.moves[3:40]), 3)
     for name in MoveTable.__slots__:
         np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
     for x, y in zip(move_bounds_table(program), move_bounds_table(objects)):

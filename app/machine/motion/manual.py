@@ -28,6 +28,7 @@ from app.machine.ports import (
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
+from planner.core.movestore import MoveStore
 from planner.core.program import EventKind, Move, MoveKind, Program
 from planner.gcode.lexer import LexError, compact
 from planner.pipeline import SoftLimitError, load
@@ -86,7 +87,7 @@ class ManualMotion:
             name=name,
             axes=cfg.axes,
             rotary=rotary,
-            moves=(move,),
+            moves=MoveStore.from_moves((move,), cur),
             events=(),
             start_position=cur.copy(),
             line_count=0,

@@ -11,7 +11,6 @@ from dataclasses import dataclass, replace
 
 from app.machine.motion.timescale import Budget, reduced_machine
 from planner.core.machine import MachineSpec
-from planner.core.movestore import MoveStore
 from planner.core.program import Program
 from planner.motion.plan import Plan, plan_program
 from planner.motion.window import PlanWindow
@@ -25,10 +24,7 @@ WINDOWED_RUN_MOVES = 200_000
 
 def single_block_program(program: Program) -> Program:
     """The program with an exact stop (G61) at every block end: single block's plan."""
-    moves = program.moves
-    if isinstance(moves, MoveStore):        # millions of moves: the columns, not Move objects
-        return replace(program, moves=moves.with_exact_stops())
-    return replace(program, moves=tuple(replace(m, exact_stop=True) for m in moves))
+    return replace(program, moves=program.moves.with_exact_stops())
 
 
 @dataclass(frozen=True, eq=False)

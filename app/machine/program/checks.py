@@ -26,7 +26,6 @@ from app.toolpath import build_toolpath
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.heap import trim_heap
 from planner.core.machine import MachineSpec
-from planner.core.movestore import MoveStore
 from planner.core.program import EventKind, MoveKind, Program
 from planner.core.tools import ToolTable
 from planner.gcode.interpreter import read_program
@@ -186,14 +185,9 @@ def spindle_stopped_cuts(program: Program, start: SpindleState) -> tuple[Program
     changes = [e for e in program.events if e.kind in (EventKind.TOOL_CHANGE, EventKind.SPINDLE)]
     if not any(e.kind is EventKind.TOOL_CHANGE for e in changes):
         return ()
-    moves = program.moves
-    n = len(moves)
-    if isinstance(moves, MoveStore):
-        cols = moves.columns()
-        kinds, lines = cols.kind, cols.line
-    else:
-        kinds = np.fromiter((int(m.kind) for m in moves), np.int8, n)
-        lines = np.fromiter((m.line for m in moves), np.int64, n)
+    n = len(program.moves)
+    cols = program.moves.columns()
+    kinds, lines = cols.kind, cols.line
     feed = np.flatnonzero(kinds != int(MoveKind.RAPID))
     # a probe move is made with the spindle stopped on purpose (the tool measured on the setter
     # after the M6, a probe's search): no cut to ask about
