@@ -139,14 +139,23 @@ def test_vectorised_bounds_table_matches_move_bounds() -> None:
 
     from planner.core.machine import load_machine
     from planner.gcode.interpreter import parse_program
-    from planner.geometry.softlimits import check_program, move_bounds, move_bounds_table, program_bounds
+    from planner.geometry.softlimits import (
+        check_program,
+        move_bounds,
+        move_bounds_pieces,
+        move_bounds_table,
+        program_bounds,
+    )
     from resources import shipped_machine
 
     machine = load_machine(shipped_machine("xyz_mill"))
     tail = "G0 X0 Y0\nG2 X0 Y0 I0 J-300 F600\nG1 X400 Y10 Z-700\nG3 X380 Y-10 R30\n"  # 3 beyond travel
     text = big_program(2500).replace("M30\n", "") + tail
     program = parse_program(text, "t.nc", machine=machine)
-    lo, hi = move_bounds_table(program, chunk=700)
+    pieces = list(move_bounds_pieces(program, piece=700))       # pieces that end amid the moves
+    lo, hi = np.concatenate([p[1] for p in pieces]), np.concatenate([p[2] for p in pieces])
+    whole = move_bounds_table(program)
+    assert np.array_equal(whole[0], lo) and np.array_equal(whole[1], hi)
     for i, m in enumerate(program.moves):
         a, b, _ = move_bounds(m)
         assert np.array_equal(lo[i], a) and np.array_equal(hi[i], b), i
