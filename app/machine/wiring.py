@@ -508,8 +508,8 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
     loop's drive ``followers[axis]``: its limits, its homing (with its leader's velocities) and
     its simulated switches are its own."""
     axes = [a.name for a in machine.axes]
-    followers = {a.name: i for i, (_p, name) in enumerate(worker_drives(machine))
-                 for a in machine.axes if name == f"{a.name}2" and a.gantry_drive is not None}
+    seconds = [a.name for a in machine.axes if a.gantry_drive is not None]
+    followers = {name: len(axes) + k for k, name in enumerate(seconds)}     # as ``worker_drives``
     watches: list[InputWatch] = []
     chain = wiring.get("estop_chain_ok")
     if chain is not None:

@@ -60,6 +60,7 @@ class BusView(QWidget):
         ids = {d.position: d for d in tuple(getattr(getattr(config, "bus", None), "drives", ()) or ())}
         drives = tuple(getattr(config, "drives", ()) or ())
         states = tuple(getattr(bus, "drive_states", ()) or ())
+        n_axes = len(getattr(config, "axes", ()) or ())
         skews = tuple(getattr(bus, "gantry_skew", ()) or ())
         comp = tuple(getattr(bus, "compensation", ()) or ())
         compensated = {spec.axis for spec in getattr(config, "compensation", ()) or ()}
@@ -70,7 +71,7 @@ class BusView(QWidget):
         for row in range(n):
             position, name = drives[row] if row < len(drives) else (row, "")
             d = ids.get(position)
-            if row < len(skews) and name.endswith("2"):       # a gantry's second side and its skew
+            if n_axes <= row < len(skews):                   # a gantry's second side and its skew
                 name = tr("{0} (gantry {1}, skew {2:+.4f})").format(name, name[:-1], skews[row])
             elif row < len(comp) and row in compensated:      # the leadscrew correction it is sent
                 name = tr("{0} (compensation {1:+.4f})").format(name, comp[row])

@@ -237,9 +237,10 @@ class Connection:
         if cfg.bus.kind == "soem":
             options = (("setups", tuple((d.position, d.setup()) for d in cfg.bus.drives)),)
         if cfg.bus.kind == "sim":
-            raw = dict(zip((a.name for a in cfg.machine.axes), self._positions.raw_pos))
-            counts = tuple(                 # a gantry's second side starts where its first stands
-                float(d.direction * d.counts_per_unit * raw[d.axis_name.rstrip("2")]) for d in drives
+            at = tuple(zip(cfg.machine.axes, self._positions.raw_pos))
+            counts = tuple(float(a.direction * a.counts_per_unit * x) for a, x in at) + tuple(
+                # a gantry's second side starts where its first stands
+                float(a.gantry_direction * a.counts_per_unit * x) for a, x in at if a.gantry_drive is not None
             )
             # the simulated machine's switches and the rest state of its inputs
             options = (("initial_positions_counts", counts), ("switches", io.sim_switches),
