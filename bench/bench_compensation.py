@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import time
 
 import numpy as np
 
+from bench.stepped import cycle_us, enabled
 from ethercat.bus import DriveSpec
 from ethercat.screw_comp import CompCurve, ScrewComp, take_up_limits
-from ethercat.worker import CompSpec, CyclicWorker, WorkerConfig, WorkerState
+from ethercat.worker import CompSpec, CyclicWorker, WorkerConfig
 
 RATED = (100.0, 2000.0, 40_000.0)
 TRAVEL = (-250.0, 250.0)
@@ -38,31 +38,16 @@ def _worker(lines: int) -> CyclicWorker:
         table = _table(lines)
         take = take_up_limits(table, TRAVEL, RATED, 0.1, 0.001)
         comp = tuple(CompSpec(i, table, take) for i in range(3))
-    w = CyclicWorker(WorkerConfig(drives, mode="manual", compensation=comp, trace_capacity=1 << 10))
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
+    w = enabled(WorkerConfig(drives, mode="manual", compensation=comp, trace_capacity=1 << 10))
     for i in range(len(comp)):
         assert w.compensate(i, True, 0.0)
     return w
 
 
 def _per_cycle_us(w: CyclicWorker, cycles: int) -> float:
-    loop = w._loop                      # the cycle itself, without the client's per-call overhead
-    assert loop is not None
     t = np.arange(cycles) * 0.001
     path = np.repeat((5.0 * np.sin(2 * np.pi * t))[:, None], 3, axis=1)    # reversals every 0.5 s
-    t0 = time.perf_counter()
-    for start in range(0, cycles, 1000):
-        chunk = path[start:start + 1000]
-        assert w.push(chunk) == len(chunk)
-        for _ in range(len(chunk)):
-            loop.cycle()
-    elapsed = time.perf_counter() - t0
-    loop.publish()
-    return elapsed / cycles * 1e6
+    return cycle_us(w, cycles, path)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import time
 
 import numpy as np
 
+from bench.stepped import cycle_us, enabled
 from ethercat.bus import DriveSpec
 from ethercat.worker import CyclicWorker, GantrySpec, WorkerConfig, WorkerState
 
@@ -24,30 +24,13 @@ from ethercat.worker import CyclicWorker, GantrySpec, WorkerConfig, WorkerState
 def _worker(gantry: bool) -> CyclicWorker:
     drives = tuple(DriveSpec(i, name) for i, name in enumerate(("X", "Y", "Z", "Y2" if gantry else "A")))
     spec = (GantrySpec(1, 3, 0.5),) if gantry else ()
-    w = CyclicWorker(WorkerConfig(drives, mode="manual", gantry=spec, trace_capacity=1 << 10))
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
-    return w
+    return enabled(WorkerConfig(drives, mode="manual", gantry=spec, trace_capacity=1 << 10))
 
 
 def _per_cycle_us(w: CyclicWorker, cycles: int) -> float:
-    loop = w._loop                      # the cycle itself, without the client's per-call overhead
-    assert loop is not None
-    m = w.config.n_motion_axes
     t = np.arange(cycles) * 0.001
-    path = np.repeat((5.0 * np.sin(2 * np.pi * t))[:, None], m, axis=1)
-    t0 = time.perf_counter()
-    for start in range(0, cycles, 1000):
-        chunk = path[start:start + 1000]
-        assert w.push(chunk) == len(chunk)
-        for _ in range(len(chunk)):
-            loop.cycle()
-    elapsed = time.perf_counter() - t0
-    loop.publish()
-    return elapsed / cycles * 1e6
+    path = np.repeat((5.0 * np.sin(2 * np.pi * t))[:, None], w.config.n_motion_axes, axis=1)
+    return cycle_us(w, cycles, path)
 
 
 def main(argv: list[str] | None = None) -> int:

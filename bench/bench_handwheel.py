@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import time
 
+from bench.stepped import cycle_us, enabled
 from ethercat.bus import DriveSpec
 from ethercat.terminals import TerminalSpec
-from ethercat.worker import CyclicWorker, HandwheelMode, HandwheelSpec, WorkerConfig, WorkerState
+from ethercat.worker import CyclicWorker, HandwheelMode, HandwheelSpec, WorkerConfig
 
 WHEEL = 1
 
@@ -27,28 +27,13 @@ def _worker() -> CyclicWorker:
     terminals = (TerminalSpec(3, "EK1100"), TerminalSpec(4, "EL5101"))
     cfg = WorkerConfig(drives, mode="manual", terminals=terminals, handwheel=HandwheelSpec(WHEEL),
                        trace_capacity=1 << 10)
-    w = CyclicWorker(cfg)
-    w.start()
-    w.step(3)
-    w.enable()
-    w.step(20)
-    assert w.state() is WorkerState.ENABLED
-    return w
+    return enabled(cfg)
 
 
 def _per_cycle_us(w: CyclicWorker, cycles: int, turning: bool) -> float:
-    loop = w._loop                      # the cycle itself, without the client's per-call overhead
-    assert loop is not None
-    bus = loop.bus
-    assert bus is not None
-    t0 = time.perf_counter()
-    for _ in range(cycles):
-        if turning:
-            bus.inject("encoder_add", WHEEL, 8)
-        loop.cycle()
-    elapsed = time.perf_counter() - t0
-    loop.publish()                      # the snapshot as the cycles left it
-    return elapsed / cycles * 1e6
+    assert w._loop is not None and w._loop.bus is not None
+    bus = w._loop.bus
+    return cycle_us(w, cycles, before=(lambda: bus.inject("encoder_add", WHEEL, 8)) if turning else None)
 
 
 def main(argv: list[str] | None = None) -> int:
