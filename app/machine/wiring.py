@@ -508,8 +508,7 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
     loop's drive ``followers[axis]``: its limits, its homing (with its leader's velocities) and
     its simulated switches are its own."""
     axes = [a.name for a in machine.axes]
-    seconds = [a.name for a in machine.axes if a.gantry_drive is not None]
-    followers = {name: len(axes) + k for k, name in enumerate(seconds)}     # as ``worker_drives``
+    followers = {name[:-1]: i for i, (_p, name) in enumerate(worker_drives(machine)) if i >= len(axes)}
     watches: list[InputWatch] = []
     chain = wiring.get("estop_chain_ok")
     if chain is not None:
@@ -536,14 +535,13 @@ def worker_io(wiring: MachineWiring, machine: MachineSpec, homing_method: str, s
             travel = h.max_travel if h.max_travel is not None else 1.2 * (ax.max_pos - ax.min_pos)
             if not math.isfinite(travel) or travel <= 0.0:
                 travel = 720.0                    # a rotary axis without end: two turns
-            homing.append(SwitchHoming(i, word, bit, level, h.search_vel, h.latch_vel, travel,
-                                       float(ax.a_motion), float(ax.j_motion), h.ignore_limits, h.use_index))
+            first = SwitchHoming(i, word, bit, level, h.search_vel, h.latch_vel, travel,
+                                 float(ax.a_motion), float(ax.j_motion), h.ignore_limits, h.use_index)
+            homing.append(first)
             switch2 = wiring.get(f"home2_{h.axis}")
-            if h.axis in followers and switch2 is not None:
+            if h.axis in followers and switch2 is not None:   # the second side: its own switch
                 word, bit, level = input_word(wiring, machine, switch2)
-                homing.append(SwitchHoming(followers[h.axis], word, bit, level, h.search_vel, h.latch_vel,
-                                           travel, float(ax.a_motion), float(ax.j_motion), h.ignore_limits,
-                                           h.use_index))
+                homing.append(replace(first, axis=followers[h.axis], word=word, bit=bit, level=level))
     gantry = tuple(GantrySpec(axes.index(a), f, machine.axes[axes.index(a)].gantry_skew_window,
                               _switch_offset(wiring.homing_of(a), homing_method))
                    for a, f in followers.items())

@@ -439,11 +439,11 @@ class CyclicWorker:
     # ------------------------------------------------------------------ set-points
     def free_space(self) -> int:
         """Set-points ``push`` can accept now."""
-        ctl = self._live().ctl
-        return self.config.buffer_capacity - (int(ctl.head) - int(ctl.tail))
+        return self.config.buffer_capacity - self.buffer_level()
 
     def buffer_level(self) -> int:
-        return int(self._live().ctl.head) - int(self._live().ctl.tail)
+        ctl = self._live().ctl
+        return int(ctl.head) - int(ctl.tail)
 
     def _setpoints(self, q: np.ndarray, what: str) -> np.ndarray:
         q = np.asarray(q, dtype=np.float64)

@@ -91,7 +91,6 @@ class Gantry:
     at the followers' places (the snapshot's ``gantry_skew``)."""
 
     def __init__(self, specs: tuple[GantrySpec, ...], skew: np.ndarray, limit_cycles: int) -> None:
-        self.present = bool(specs)
         self.leaders = [s.axis for s in specs]
         self.followers = [s.follower for s in specs]
         self.windows = [s.skew_window for s in specs]

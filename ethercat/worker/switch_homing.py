@@ -71,7 +71,7 @@ class _Axis:
         self.gantry = gantry
         self.leader: _Axis | None = None
         self.follower: Follower | None = None
-        self.target = 0.0
+        self.target = math.nan                   # where squaring takes it (NaN: not yet known)
 
 
 class SwitchHomer:
@@ -260,12 +260,8 @@ class SwitchHomer:
                 nxt = h.next_step
                 if nxt is HomingStep.DONE and h.gantry is not None:
                     self._go(h, HomingStep.SQUARE, float(ref[a]))
-                    h.target = math.nan
                 elif nxt is HomingStep.DONE:
-                    h.step = HomingStep.DONE
-                    self.steps[a] = HomingStep.DONE
-                    self.state[a] = HomingState.DONE
-                    self.homed[a] = 1
+                    self._done(h)
                 else:
                     self._go(h, nxt, float(ref[a]))
         if done == len(self.axes):
@@ -288,11 +284,15 @@ class SwitchHomer:
             follower.start(float(ref[a]), abs(h.spec.search_vel), h.spec.accel, h.spec.jerk)
         ref[a] = follower.step(h.target)
         if follower.at_rest and ref[a] == h.target:
-            h.step = HomingStep.DONE
-            self.steps[a] = HomingStep.DONE
-            self.state[a] = HomingState.DONE
-            self.homed[a] = 1
+            self._done(h)
         return True
+
+    def _done(self, h: _Axis) -> None:
+        a = h.spec.axis
+        h.step = HomingStep.DONE
+        self.steps[a] = HomingStep.DONE
+        self.state[a] = HomingState.DONE
+        self.homed[a] = 1
 
     def limit_tripped(self, axis: int) -> bool:
         """A limit switch of ``axis`` tripped while it homes: the homing fails (False) unless the

@@ -150,8 +150,10 @@ class DriveLink:
     def probe_latched(self) -> tuple[float, ...] | None:
         with self._lock:
             w = self._worker
-            latched = w.probe_latched() if w is not None else None
-            return latched[:w.config.n_motion_axes] if w is not None and latched is not None else None
+            if w is None:
+                return None
+            latched = w.probe_latched()
+            return None if latched is None else latched[:w.config.n_motion_axes]
 
     # ---------------------------------------------------------------- set-points
     def push(self, q: np.ndarray) -> int:

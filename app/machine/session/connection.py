@@ -37,7 +37,7 @@ from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from app.machine.wiring import worker_io
 from ethercat.worker import CyclicWorker, DriveSpec, WorkerConfig, WorkerSnapshot
-from planner.core.machine import WORK_OFFSET_NAMES
+from planner.core.machine import WORK_OFFSET_NAMES, AxisSpec
 
 __all__ = ["Connection", "PERSIST_EVERY_S", "RAMP_DOWN_TIMEOUT_S"]
 
@@ -209,29 +209,19 @@ class Connection:
 
         cfg = self._settings.config
         ids = {d.position: d for d in cfg.bus.drives}
-        drives = tuple(
-            DriveSpec(
-                position=a.drive_position,
-                axis_name=a.name,
-                counts_per_unit=a.counts_per_unit,
-                direction=a.direction,
-                following_error_window=a.following_error_window,
-                vendor_id=ids[a.drive_position].vendor_id if a.drive_position in ids else 0,
-                product_code=ids[a.drive_position].product_code if a.drive_position in ids else 0,
-            )
-            for a in cfg.machine.axes
-        ) + tuple(                       # each gantry's second drive, after the axes
-            DriveSpec(
-                position=a.gantry_drive,
-                axis_name=f"{a.name}2",
-                counts_per_unit=a.counts_per_unit,
-                direction=a.gantry_direction,
-                following_error_window=a.following_error_window,
-                vendor_id=ids[a.gantry_drive].vendor_id if a.gantry_drive in ids else 0,
-                product_code=ids[a.gantry_drive].product_code if a.gantry_drive in ids else 0,
-            )
-            for a in cfg.machine.axes if a.gantry_drive is not None
-        )
+
+        def drive(a: AxisSpec, position: int, name: str, direction: int) -> DriveSpec:
+            ident = ids.get(position)
+            return DriveSpec(position=position, axis_name=name, counts_per_unit=a.counts_per_unit,
+                             direction=direction, following_error_window=a.following_error_window,
+                             vendor_id=ident.vendor_id if ident is not None else 0,
+                             product_code=ident.product_code if ident is not None else 0)
+
+        axes = cfg.machine.axes
+        drives = tuple(drive(a, a.drive_position, a.name, a.direction) for a in axes) + tuple(
+            # each gantry's second drive, after the axes (``MachineConfig.drives``)
+            drive(a, a.gantry_drive, f"{a.name}2", a.gantry_direction)
+            for a in axes if a.gantry_drive is not None)
         io = worker_io(cfg.wiring, cfg.machine, cfg.homing.method, cfg.bus.kind == "sim")
         options: tuple[tuple[str, Any], ...] = ()
         if cfg.bus.kind == "soem":
