@@ -20,7 +20,7 @@ import numpy as np
 from planner.core.errors import PlannerError, ProgramError, SourceError
 from planner.core.heap import trim_heap
 from planner.core.machine import MachineSpec
-from planner.core.program import EventKind, ProbeResult, Program
+from planner.core.program import Coolant, CoolantSwitch, EventKind, ProbeResult, Program
 from planner.core.tools import ToolTable
 from planner.gcode.interpreter import parse_program, read_program_bytes
 from planner.geometry.blend import BlendReport, blend_report
@@ -81,11 +81,11 @@ def refusal(program: Program, abilities: Abilities) -> tuple[int, str, str]:
         for ev in program.events:
             if ev.kind is not EventKind.COOLANT:
                 continue
-            bits = int(ev.value)
-            if bits & 1 and not abilities.coolant_mist:
+            switch = ev.payload_as(CoolantSwitch).switch
+            if switch is Coolant.MIST_ON and not abilities.coolant_mist:
                 return ev.line, "M7", ("M7 switches mist coolant on, and this machine has no mist coolant "
                                        "output ([signals] coolant_mist in the machine configuration)")
-            if bits & 2 and not abilities.coolant_flood:
+            if switch is Coolant.FLOOD_ON and not abilities.coolant_flood:
                 return ev.line, "M8", ("M8 switches flood coolant on, and this machine has no flood coolant "
                                        "output ([signals] coolant_flood in the machine configuration)")
     if program.analog_outputs and not abilities.analog_outputs:

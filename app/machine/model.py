@@ -27,6 +27,7 @@ from machine_status import (
     SpindleState,
     TrackingReport,
 )
+from planner.core.program import PAYLOAD_OF, EventKind, EventPayload, PayloadT, check_payload, payload_as
 
 if TYPE_CHECKING:
     import numpy as np
@@ -142,22 +143,32 @@ class PauseKind(enum.StrEnum):
     SINGLE_BLOCK = "single_block"       # a block end in single block
 
 
+#: the pause points a program's event makes (the others: a block end, the program's end)
+_EVENT_PAUSES = frozenset(k for k in PauseKind if k.value in {e.value for e in EventKind})
+
+
 @dataclass(frozen=True, slots=True)
 class PausePoint:
-    """A planned full stop where tau halts; ``value`` dwell s / spindle rpm / tool / the
-    overrides from here (tapping) / an index into the program's tables (probes, inputs,
-    parameter sets, tools) / an output (its number, or -(number + 1) to switch it off)."""
+    """A planned full stop where tau halts; ``payload`` what the program's event there carries
+    (``planner.core.program.PAYLOAD_OF``: the dwell, the spindle, the tool, an output, the
+    overrides from here, an entry of the program's tables), None for a block end."""
 
     tau_s: float
     kind: PauseKind     # a string of its values is taken as the kind
     line: int
     move: int
-    value: float = 0.0
+    payload: EventPayload | None = None
     message: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.kind, PauseKind):
             object.__setattr__(self, "kind", PauseKind(self.kind))
+        want = PAYLOAD_OF[EventKind(self.kind.value)] if self.kind in _EVENT_PAUSES else None
+        check_payload(self.kind, self.payload, want)
+
+    def payload_as(self, cls: type[PayloadT]) -> PayloadT:
+        """The payload as ``cls`` (the one the program's event of this kind carries)."""
+        return payload_as(self.kind, self.payload, cls)
 
 
 @dataclass(frozen=True, slots=True, eq=False)

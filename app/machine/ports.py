@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     )
     from planner.core.frames import Frame
     from planner.core.machine import MachineSpec
-    from planner.core.program import Program
+    from planner.core.program import Coolant, Program
     from planner.core.tools import Tool, ToolTable
 
 __all__ = [
@@ -223,7 +223,7 @@ class OutputSwitch(Protocol):
 
     def set_output(self, number: int, on: bool) -> str: ...
 
-    def set_coolant(self, bits: int) -> str: ...
+    def set_coolant(self, switch: Coolant) -> str: ...
 
 
 class ToolsView(Protocol):

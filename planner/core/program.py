@@ -18,11 +18,12 @@ import enum
 import functools
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
 from planner.core.curves import Blend, blend_eval
+from planner.core.errors import PlannerError
 from planner.core.frames import Frame
 
 if TYPE_CHECKING:
@@ -31,19 +32,31 @@ if TYPE_CHECKING:
 __all__ = [
     "AnalogOutput",
     "Arc",
+    "Coolant",
+    "CoolantSwitch",
     "Curve",
+    "Dwell",
     "Event",
     "EventKind",
+    "EventPayload",
+    "FEED_HOLD_DEFERRED",
     "FEED_OVERRIDE_OFF",
     "SPINDLE_OVERRIDE_OFF",
     "InputRequest",
     "Move",
     "MoveKind",
+    "OutputLevel",
+    "OverrideLocks",
+    "PAYLOAD_OF",
+    "PayloadT",
     "ProbeRequest",
     "ProbeResult",
     "Program",
     "STOPPING_EVENTS",
+    "SpindleSpeed",
     "SynchronisedMotion",
+    "TableRef",
+    "ToolNumber",
     "arc_length_mm",
     "arc_param_at_length",
     "spiral_length_mm",
@@ -434,19 +447,155 @@ class ProbeRequest:
         return self.code in (382, 384)
 
 
+class Coolant(enum.Enum):
+    """What a coolant event switches: M7 mist on, M8 flood on (the other stays as it is), M9
+    both off."""
+
+    MIST_ON = "M7"
+    FLOOD_ON = "M8"
+    ALL_OFF = "M9"
+
+
+@dataclass(frozen=True, slots=True)
+class Dwell:
+    """G4 P: the motion stands ``seconds``."""
+
+    seconds: float
+
+
+@dataclass(frozen=True, slots=True)
+class SpindleSpeed:
+    """The spindle from here: ``direction`` +1 clockwise (M3), -1 counter-clockwise (M4), 0
+    stopped; ``rpm`` its speed, 0 when stopped."""
+
+    direction: int
+    rpm: float
+
+    def __post_init__(self) -> None:
+        if self.direction not in (-1, 0, 1) or not self.rpm >= 0.0:
+            raise ValueError(f"spindle direction {self.direction} and speed {self.rpm} rpm: "
+                             "the direction is -1, 0 or 1 and the speed at least 0")
+        if self.direction == 0:
+            object.__setattr__(self, "rpm", 0.0)
+
+    @property
+    def signed_rpm(self) -> float:
+        """The speed with the direction's sign (the way the DRO and a restart's preview show it)."""
+        return self.direction * self.rpm
+
+
+@dataclass(frozen=True, slots=True)
+class ToolNumber:
+    """A tool by its number: selected (T), changed to (M6) or in the spindle (M61)."""
+
+    number: int
+
+
+@dataclass(frozen=True, slots=True)
+class CoolantSwitch:
+    """M7, M8 or M9."""
+
+    switch: Coolant
+
+
+@dataclass(frozen=True, slots=True)
+class OutputLevel:
+    """M62-M65 or a user M-code: digital output ``number`` switched ``on`` or off."""
+
+    number: int
+    on: bool
+
+
+@dataclass(frozen=True, slots=True)
+class TableRef:
+    """An entry of one of the program's tables, which the event's kind names: OFFSETS
+    ``Program.parameter_sets``, TOOL_DATA ``tool_sets``, PROBE_START and PROBE ``probes``,
+    INPUT ``inputs``."""
+
+    index: int
+
+
+@dataclass(frozen=True, slots=True)
+class OverrideLocks:
+    """M48-M53 and taps: the overrides the motion follows from here, as the OVERRIDES bits
+    (``FEED_OVERRIDE_OFF``, ``SPINDLE_OVERRIDE_OFF``, ``FEED_HOLD_DEFERRED``; 0 all on)."""
+
+    bits: int
+
+    @property
+    def feed_off(self) -> bool:
+        return bool(self.bits & FEED_OVERRIDE_OFF)
+
+    @property
+    def spindle_off(self) -> bool:
+        return bool(self.bits & SPINDLE_OVERRIDE_OFF)
+
+
+#: what an event carries besides its kind, line and text
+EventPayload = Dwell | SpindleSpeed | ToolNumber | CoolantSwitch | OutputLevel | TableRef | OverrideLocks
+
+#: the payload each kind of event carries (None: only its text)
+PAYLOAD_OF: dict[EventKind, type[EventPayload] | None] = {
+    EventKind.DWELL: Dwell,
+    EventKind.PAUSE: None,
+    EventKind.OPTIONAL_PAUSE: None,
+    EventKind.END: None,
+    EventKind.TOOL_CHANGE: ToolNumber,
+    EventKind.SPINDLE: SpindleSpeed,
+    EventKind.TOOL: ToolNumber,
+    EventKind.COOLANT: CoolantSwitch,
+    EventKind.TOOL_SET: ToolNumber,
+    EventKind.MESSAGE: None,
+    EventKind.OFFSETS: TableRef,
+    EventKind.OUTPUT: OutputLevel,
+    EventKind.TOOL_DATA: TableRef,
+    EventKind.PROBE_START: TableRef,
+    EventKind.PROBE: TableRef,
+    EventKind.INPUT: TableRef,
+    EventKind.OVERRIDES: OverrideLocks,
+    EventKind.TAPPING: OverrideLocks,
+}
+
+#: one kind of payload, as a caller asks for it
+PayloadT = TypeVar("PayloadT", bound=EventPayload)
+
+
+def check_payload(kind: enum.Enum, payload: EventPayload | None, want: type[EventPayload] | None) -> None:
+    """Refuses a payload that is not the one ``kind`` carries (a programming error)."""
+    if (payload is None) if want is None else type(payload) is want:
+        return
+    raise PlannerError(f"internal error: a {kind.value} event carries "
+                       f"{want.__name__ if want else 'no payload'}, not {payload!r}")
+
+
+def payload_as(kind: enum.Enum, payload: EventPayload | None, cls: type[PayloadT]) -> PayloadT:
+    """``payload`` as ``cls``, which the caller knows ``kind`` carries."""
+    if not isinstance(payload, cls):
+        raise PlannerError(f"internal error: a {kind.value} event carries {payload!r}, not {cls.__name__}")
+    return payload
+
+
 @dataclass(frozen=True, slots=True)
 class Event:
-    """A non-motion action between moves; stopping kinds force a full stop after ``after_move``."""
+    """A non-motion action between moves; stopping kinds force a full stop after ``after_move``.
+    ``payload`` is what the kind carries (``PAYLOAD_OF``), checked when made."""
 
     kind: EventKind
     line: int
     after_move: int  # index of the move before it, -1 if none
-    value: float = 0.0
+    payload: EventPayload | None = None
     message: str = ""
+
+    def __post_init__(self) -> None:
+        check_payload(self.kind, self.payload, PAYLOAD_OF[self.kind])
 
     @property
     def stops(self) -> bool:
         return self.kind in STOPPING_EVENTS
+
+    def payload_as(self, cls: type[PayloadT]) -> PayloadT:
+        """The payload as ``cls`` (the one this kind carries, ``PAYLOAD_OF``)."""
+        return payload_as(self.kind, self.payload, cls)
 
 
 @dataclass(frozen=True, eq=False)
@@ -515,7 +664,7 @@ class Program:
         """Per move, the OVERRIDES bits in force for it (``FEED_OVERRIDE_OFF``,
         ``SPINDLE_OVERRIDE_OFF``); None when the program never turns an override off. Made
         once: the run's time scale and its spindle both read it."""
-        changes = [(e.after_move + 1, int(e.value)) for e in self.events
+        changes = [(e.after_move + 1, e.payload_as(OverrideLocks).bits) for e in self.events
                    if e.kind in (EventKind.OVERRIDES, EventKind.TAPPING)]
         if not any(bits for _, bits in changes):
             return None

@@ -27,7 +27,7 @@ from typing import Any, BinaryIO
 import numpy as np
 
 from planner.core.files import write_output
-from planner.core.program import EventKind, MoveKind, Program, turn_xy
+from planner.core.program import EventKind, MoveKind, Program, TableRef, turn_xy
 
 __all__ = ["canon_records", "iter_canon_records", "write_canon"]
 
@@ -104,8 +104,9 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
     move_offsets = program.move_offsets
     # G38.x: LinuxCNC's call names the programmed end point; the move ends where the probe stopped
     # (by the PROBE event, which follows the move when blending renumbers the moves)
-    probe_targets = {e.after_move: program.probes[int(e.value)].target for e in program.events
-                     if e.kind is EventKind.PROBE and program.probes[int(e.value)].move_index >= 0}
+    probes = [(e.after_move, program.probes[e.payload_as(TableRef).index]) for e in program.events
+              if e.kind is EventKind.PROBE]
+    probe_targets = {after: probe.target for after, probe in probes if probe.move_index >= 0}
     taps = set(program.taps)
     back_out = {i + 1 for i in taps}
     for i, move in enumerate(program.moves):

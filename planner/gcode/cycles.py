@@ -10,10 +10,14 @@ import numpy as np
 
 from planner.core.errors import BlockError, PlannerError
 from planner.core.program import (
+    Dwell,
     Event,
     EventKind,
+    EventPayload,
     ProbeRequest,
+    SpindleSpeed,
     SynchronisedMotion,
+    TableRef,
 )
 from planner.gcode.codes import (
     CYCLE_NEEDS_P,
@@ -152,8 +156,8 @@ class CycleCodes(MotionCodes):
                 target[na] = c + off[na]
             self.straight(target, rapid, line_no)
 
-        def event(kind: EventKind, value: float, text: str) -> None:
-            self.rec.events.append(Event(kind, line_no, len(self.rec.out) - 1, value, text))
+        def event(kind: EventKind, payload: EventPayload, text: str) -> None:
+            self.rec.events.append(Event(kind, line_no, len(self.rec.out) - 1, payload, text))
 
         if old_cc < r:                         # below the R plane: straight up to it first
             go(here_prog[fa], here_prog[sa], r, True)
@@ -161,7 +165,7 @@ class CycleCodes(MotionCodes):
         clear_cc = r if self.modal.retract_r_plane else old_cc
         saved_stop = self.modal.exact_stop
         self.modal.exact_stop = True
-        rpm = self.modal.spindle_dir * self.modal.spindle_rpm
+        direction, rpm = self.modal.spindle_dir, self.modal.spindle_rpm
         try:
             for k in range(int(repeats)):
                 aa += aa_inc
@@ -203,26 +207,28 @@ class CycleCodes(MotionCodes):
                                          "off while tapping", TAP_LOCK,
                                          EventKind.TAPPING)
                     go(aa, bb, cc, False)
-                    event(EventKind.SPINDLE, -rpm, f"{name}: spindle reversed to back the tap out (tapping "
-                          "as feed moves at F, not synchronised with the spindle: use a floating tap holder)")
+                    event(EventKind.SPINDLE, SpindleSpeed(-direction, rpm),
+                          f"{name}: spindle reversed to back the tap out (tapping as feed moves at F, not "
+                          "synchronised with the spindle: use a floating tap holder)")
                     if self.cycle.p > 0.0:
-                        event(EventKind.DWELL, self.cycle.p, f"dwell {self.cycle.p:g} s")
+                        event(EventKind.DWELL, Dwell(self.cycle.p), f"dwell {self.cycle.p:g} s")
                     go(aa, bb, clear_cc, False)
-                    event(EventKind.SPINDLE, rpm, f"{name}: spindle turning forward again")
+                    event(EventKind.SPINDLE, SpindleSpeed(direction, rpm),
+                          f"{name}: spindle turning forward again")
                     self.overrides_event(line_no, len(self.rec.out) - 1,
                                          f"{name}: overrides as before the tap",
                                          kind=EventKind.TAPPING)
                 else:
                     go(aa, bb, cc, False)
                     if motion in (G.G82, G.G86, G.G89) and self.cycle.p > 0.0:
-                        event(EventKind.DWELL, self.cycle.p, f"dwell {self.cycle.p:g} s")
+                        event(EventKind.DWELL, Dwell(self.cycle.p), f"dwell {self.cycle.p:g} s")
                     if motion == G.G85:
                         go(aa, bb, r, False)
                         go(aa, bb, clear_cc, True)
                     elif motion == G.G86:
-                        event(EventKind.SPINDLE, 0.0, "G86: spindle stopped to retract")
+                        event(EventKind.SPINDLE, SpindleSpeed(0, 0.0), "G86: spindle stopped to retract")
                         go(aa, bb, clear_cc, True)
-                        event(EventKind.SPINDLE, rpm, "G86: spindle restarted")
+                        event(EventKind.SPINDLE, SpindleSpeed(direction, rpm), "G86: spindle restarted")
                     elif motion == G.G89:
                         go(aa, bb, clear_cc, False)
                     else:                      # G81, G82
@@ -300,7 +306,7 @@ class CycleCodes(MotionCodes):
             end, trip, tripped = list(result.stop_position), list(result.trip_position), result.tripped
         else:
             end, trip, tripped = list(target), list(target), False
-        self.rec.events.append(Event(EventKind.PROBE_START, line_no, len(self.rec.out) - 1, float(k),
+        self.rec.events.append(Event(EventKind.PROBE_START, line_no, len(self.rec.out) - 1, TableRef(k),
                                      f"{name}: probe armed"))
         length = self.path_length(self.pos, end)
         moved = length > ZERO_LEN
@@ -308,7 +314,7 @@ class CycleCodes(MotionCodes):
             self.emit(end, LINE, self.modal.feed_mm_s, length, None, line_no)
         self.rec.probes.append(ProbeRequest(code, line_no, len(self.rec.out) - 1 if moved else -1,
                                             tuple(float(v) for v in target), known))
-        self.rec.events.append(Event(EventKind.PROBE, line_no, len(self.rec.out) - 1, float(k),
+        self.rec.events.append(Event(EventKind.PROBE, line_no, len(self.rec.out) - 1, TableRef(k),
                                      f"{name}: probe result"))
         # #5061-#5069 in the coordinates of the system in use, in the program's units (an axis the
         # machine does not have reads 0)
@@ -356,13 +362,13 @@ class CycleCodes(MotionCodes):
         try:
             self.emit(target, LINE, into, length, None, line_no, fixed_feed=True)
             self.rec.events.append(Event(EventKind.SPINDLE, line_no, len(self.rec.out) - 1,
-                                         -self.modal.spindle_dir * rpm * speed_up,
+                                         SpindleSpeed(-self.modal.spindle_dir, rpm * speed_up),
                                          "G33.1: spindle reversed to back the tap out (tapping as feed "
                                          "moves at the pitch, not synchronised with the spindle: use a "
                                          "floating tap holder)"))
             self.emit(start, LINE, into * speed_up, length, None, line_no, fixed_feed=True)
             self.rec.events.append(Event(EventKind.SPINDLE, line_no, len(self.rec.out) - 1,
-                                         self.modal.spindle_dir * rpm,
+                                         SpindleSpeed(self.modal.spindle_dir, rpm),
                                          "G33.1: spindle turning forward again"))
         finally:
             self.overrides_event(line_no, len(self.rec.out) - 1, "G33.1: overrides as before the tap",

@@ -11,7 +11,18 @@ from __future__ import annotations
 import math
 
 from planner.core.errors import BlockError
-from planner.core.program import AnalogOutput, Event, EventKind, InputRequest, WaitMode
+from planner.core.program import (
+    AnalogOutput,
+    Coolant,
+    CoolantSwitch,
+    Dwell,
+    Event,
+    EventKind,
+    InputRequest,
+    SpindleSpeed,
+    TableRef,
+    WaitMode,
+)
 from planner.gcode.codes import (
     CYCLES,
     LATHE_CYCLES,
@@ -37,7 +48,7 @@ from planner.geometry.arcs import MM_PER_INCH
 __all__ = ["Executor"]
 
 _SPINDLE_DIRECTION: dict[int, int] = {M.M3: 1, M.M4: -1, M.M5: 0}
-_COOLANT_VALUE: dict[int, float] = {M.M7: 1.0, M.M8: 2.0, M.M9: 0.0}
+_COOLANT: dict[int, Coolant] = {M.M7: Coolant.MIST_ON, M.M8: Coolant.FLOOD_ON, M.M9: Coolant.ALL_OFF}
 
 
 class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
@@ -154,7 +165,8 @@ class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
         if modal.feed_mode == G.G95:
             modal.feed_mm_s = modal.feed_per_rev * s / 60.0
         if changed and modal.spindle_dir != 0 and not switched:
-            self.rec.events.append(Event(EventKind.SPINDLE, b.line, after, modal.spindle_dir * s))
+            self.rec.events.append(Event(EventKind.SPINDLE, b.line, after,
+                                         SpindleSpeed(modal.spindle_dir, s)))
 
     def convert_spindle(self, b: Block, after: int) -> None:
         """M3/M4/M5."""
@@ -163,15 +175,15 @@ class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
             return
         modal = self.modal
         modal.spindle_dir = _SPINDLE_DIRECTION[code]
-        self.rec.events.append(Event(EventKind.SPINDLE, b.line, after, modal.spindle_dir * modal.spindle_rpm,
-                                     f"M0{code}"))
+        self.rec.events.append(Event(EventKind.SPINDLE, b.line, after,
+                                     SpindleSpeed(modal.spindle_dir, modal.spindle_rpm), f"M0{code}"))
 
     def convert_coolant(self, b: Block, after: int) -> None:
         """M7 (mist) / M8 (flood) on, M9 both off."""
         code = b.mgroups.get(MGroup.COOLANT)
         if code is None:
             return
-        self.rec.events.append(Event(EventKind.COOLANT, b.line, after, _COOLANT_VALUE[code],
+        self.rec.events.append(Event(EventKind.COOLANT, b.line, after, CoolantSwitch(_COOLANT[code]),
                                      f"M0{code}"))
         modal = self.modal
         modal.coolant = 0 if code == M.M9 else modal.coolant | (1 if code == M.M7 else 2)
@@ -233,7 +245,7 @@ class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
         request = InputRequest(line_no, number, WaitMode(mode_n), timeout if mode_n else 0.0,
                                value is not None)
         self.rec.inputs_read.append(request)
-        self.rec.events.append(Event(EventKind.INPUT, line_no, len(self.rec.out) - 1, float(k),
+        self.rec.events.append(Event(EventKind.INPUT, line_no, len(self.rec.out) - 1, TableRef(k),
                                      f"M66 P{number}"))
         self.params.numbered[P_INPUT] = float(request.assumed_value if value is None else value)
 
@@ -252,11 +264,11 @@ class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
         action, message, output, on = self.setup.mcodes[user]
         text = f"M{user}" + (f": {message}" if message else "")
         if action == "pause":
-            self.rec.events.append(Event(EventKind.PAUSE, b.line, after, 0.0, text))
+            self.rec.events.append(Event(EventKind.PAUSE, b.line, after, None, text))
         elif action == "output":
             self.output_event(output, on, b.line, after, text)
         else:
-            self.rec.events.append(Event(EventKind.MESSAGE, b.line, after, 0.0,
+            self.rec.events.append(Event(EventKind.MESSAGE, b.line, after, None,
                                          f"{text} (does nothing on this machine)"))
 
     def convert_dwell(self, b: Block, after: int) -> None:
@@ -268,7 +280,7 @@ class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
             raise BlockError("G04 needs a P word (dwell time in seconds)", "G4")
         if p < 0.0:
             raise BlockError(f"negative dwell time P{p:g}", "P")
-        self.rec.events.append(Event(EventKind.DWELL, b.line, after, p, f"dwell {p:g} s"))
+        self.rec.events.append(Event(EventKind.DWELL, b.line, after, Dwell(p), f"dwell {p:g} s"))
 
     # ------------------------------------------------------------------ the modes
     def convert_plane(self, b: Block) -> None:
@@ -443,7 +455,7 @@ class Executor(OffsetCodes, ToolCodes, CurveCodes, CycleCodes, LatheCodes):
             return
         self.comp.stop(self)
         kind = STOP_EVENTS[code]
-        self.rec.events.append(Event(kind, b.line, len(self.rec.out) - 1, 0.0, f"M{code:02d}"))
+        self.rec.events.append(Event(kind, b.line, len(self.rec.out) - 1, None, f"M{code:02d}"))
         if kind is EventKind.END:
             if self.curve.nurbs is not None:
                 raise BlockError(f"the program ends with the NURBS begun at line {self.curve.line} "

@@ -13,8 +13,13 @@ from planner.core.errors import BlockError
 from planner.core.program import (
     FEED_OVERRIDE_OFF,
     SPINDLE_OVERRIDE_OFF,
+    Coolant,
+    CoolantSwitch,
     Event,
     EventKind,
+    OutputLevel,
+    OverrideLocks,
+    SpindleSpeed,
 )
 from planner.gcode.codes import PLANE_NAMES, SYSTEMS, G, M, gname
 from planner.gcode.state import (
@@ -58,7 +63,7 @@ class ModeCodes(InterpBase):
                 | (0 if self.modal.spindle_override_on else SPINDLE_OVERRIDE_OFF) | lock)
         if bits != self.rec.override_bits:
             self.rec.override_bits = bits
-            self.rec.events.append(Event(kind, line_no, after, float(bits), text))
+            self.rec.events.append(Event(kind, line_no, after, OverrideLocks(bits), text))
 
     def override_codes(self, code: int, vals: dict[str, float], line_no: int, after: int) -> None:
         """M48-M53 as LinuxCNC 2.9 reads them (refused with compensation on, as there)."""
@@ -122,11 +127,11 @@ class ModeCodes(InterpBase):
         if self.css_max_rpm != self.modal.spindle_rpm:
             self.modal.spindle_rpm = self.css_max_rpm
             if self.modal.spindle_dir != 0 and not switched:   # an M3/M4/M5 here tells it
-                rpm = self.modal.spindle_dir * self.modal.spindle_rpm
-                self.rec.events.append(Event(EventKind.SPINDLE, line_no, after, rpm))
+                speed = SpindleSpeed(self.modal.spindle_dir, self.modal.spindle_rpm)
+                self.rec.events.append(Event(EventKind.SPINDLE, line_no, after, speed))
         unit = "ft/min" if self.modal.inch else "m/min"
         limit = f" up to {abs(d):g} rpm" if d else ""
-        self.rec.events.append(Event(EventKind.MESSAGE, line_no, after, 0.0,
+        self.rec.events.append(Event(EventKind.MESSAGE, line_no, after, None,
                                      f"G96 constant surface speed S{vals['S']:g} {unit}{limit}: this spindle "
                                      "has no speed output to follow X; counted at "
                                      f"{self.modal.spindle_rpm:g} rpm"))
@@ -175,22 +180,23 @@ class ModeCodes(InterpBase):
         after = len(self.rec.out) - 1
         if (self.modal.spindle_dir, self.modal.spindle_rpm) != spindle_before:
             self.rec.events.append(Event(EventKind.SPINDLE, line_no, after,
-                                         self.modal.spindle_dir * self.modal.spindle_rpm,
+                                         SpindleSpeed(self.modal.spindle_dir, self.modal.spindle_rpm),
                                          "M72: spindle as saved"))
         if self.modal.coolant != coolant_before:
             if coolant_before & ~self.modal.coolant:    # something to switch off: all off, then back on
-                self.rec.events.append(Event(EventKind.COOLANT, line_no, after, 0.0, "M72: coolant as saved"))
+                self.rec.events.append(Event(EventKind.COOLANT, line_no, after,
+                                             CoolantSwitch(Coolant.ALL_OFF), "M72: coolant as saved"))
                 coolant_before = 0
-            for bit in (1, 2):
+            for bit, on in ((1, Coolant.MIST_ON), (2, Coolant.FLOOD_ON)):
                 if self.modal.coolant & bit and not coolant_before & bit:
-                    self.rec.events.append(Event(EventKind.COOLANT, line_no, after, float(bit),
+                    self.rec.events.append(Event(EventKind.COOLANT, line_no, after, CoolantSwitch(on),
                                                  "M72: coolant as saved"))
         self.overrides_event(line_no, after, "M72: overrides as saved")
         self.note_modal()
 
     def output_event(self, number: int, on: bool, line_no: int, after: int, text: str) -> None:
-        """An OUTPUT event: value = number for on, -(number + 1) for off."""
-        self.rec.events.append(Event(EventKind.OUTPUT, line_no, after, float(number if on else -(number + 1)),
+        """An OUTPUT event: output ``number`` switched on or off."""
+        self.rec.events.append(Event(EventKind.OUTPUT, line_no, after, OutputLevel(number, on),
                                      f"{text}: output {number} {'on' if on else 'off'}"))
 
     def messages(self, raw: str, line_no: int) -> None:
@@ -203,7 +209,7 @@ class ModeCodes(InterpBase):
                 text = PARAM_TEXT_RE.sub(self.param_text, text)
             if kind == "ABORT":
                 raise BlockError(f"the program aborts here (ABORT comment): {text.strip()}", col=1)
-            self.rec.events.append(Event(EventKind.MESSAGE, line_no, len(self.rec.out) - 1, 0.0, text.strip()
+            self.rec.events.append(Event(EventKind.MESSAGE, line_no, len(self.rec.out) - 1, None, text.strip()
                                      if kind == "MSG" else text))
 
     def param_text(self, m: re.Match[str]) -> str:

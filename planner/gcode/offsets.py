@@ -12,6 +12,7 @@ from planner.core.errors import BlockError, PlannerError
 from planner.core.program import (
     Event,
     EventKind,
+    TableRef,
 )
 from planner.core.tools import Tool, ToolTable
 from planner.gcode.codes import (
@@ -220,7 +221,7 @@ class OffsetCodes(MotionCodes):
         self.rec.tool_sets.append(tool)
         text = f"G10 L{l_word}: {tool.label()} offsets set"
         self.rec.events.append(Event(EventKind.TOOL_DATA, line_no, len(self.rec.out) - 1,
-                                     float(len(self.rec.tool_sets) - 1), text))
+                                     TableRef(len(self.rec.tool_sets) - 1), text))
 
     def set_g92(self, g92: tuple[float, ...], on: bool) -> None:
         self.offsets.g92 = g92
@@ -236,7 +237,7 @@ class OffsetCodes(MotionCodes):
         num = self.params.numbered
         self.rec.parameter_sets.append({p: num.get(p, 0.0) for p in sorted(PERSISTENT_PARAMETERS)})
         self.rec.events.append(Event(EventKind.OFFSETS, line_no, len(self.rec.out) - 1,
-                                     float(len(self.rec.parameter_sets) - 1), text))
+                                     TableRef(len(self.rec.parameter_sets) - 1), text))
 
     def position_parameter(self, number: int) -> float | None:
         """#5420-#5428 the current position in program coordinates, #5021-#5029 the machine

@@ -8,6 +8,8 @@ from planner.core.errors import BlockError
 from planner.core.program import (
     Event,
     EventKind,
+    SpindleSpeed,
+    ToolNumber,
 )
 from planner.gcode.codes import (
     PLANE_NAMES,
@@ -113,7 +115,8 @@ class ToolCodes(MotionCodes):
         if t < 0 or t != int(t):
             raise BlockError(f"tool number T{t:g} must be a whole number >= 0", "T")
         self.selected = self.known_tool(int(t), "T")
-        self.rec.events.append(Event(EventKind.TOOL, b.line, after, float(t), f"tool T{int(t)} selected"))
+        self.rec.events.append(Event(EventKind.TOOL, b.line, after, ToolNumber(int(t)),
+                                     f"tool T{int(t)} selected"))
 
     def convert_tool_change(self, b: Block, after: int) -> None:
         """M6: the spindle stops (LinuxCNC's STOP_SPINDLE_TURNING, then CHANGE_TOOL) and stays
@@ -127,12 +130,12 @@ class ToolCodes(MotionCodes):
                 return
             if self.modal.spindle_dir != 0:
                 self.modal.spindle_dir = 0
-                self.rec.events.append(Event(EventKind.SPINDLE, b.line, after, 0.0,
+                self.rec.events.append(Event(EventKind.SPINDLE, b.line, after, SpindleSpeed(0, 0.0),
                                              "M06: the spindle stops for the tool change"))
             self.tool = self.selected
             self.calls.tool_changed = bool(self.setup.after_tool_change)
             self.rec.events.append(Event(
-                EventKind.TOOL_CHANGE, b.line, after, float(self.tool),
+                EventKind.TOOL_CHANGE, b.line, after, ToolNumber(self.tool),
                 f"M06: change to tool {self.tool_label(self.tool)} by hand, then press cycle start"))
         elif code == M.M61:
             q = b.vals.get("Q")
@@ -141,7 +144,7 @@ class ToolCodes(MotionCodes):
             if q < 0 or q != int(q):
                 raise BlockError(f"tool number Q{q:g} must be a whole number >= 0", "Q")
             self.tool = self.selected = self.known_tool(int(q), "Q")
-            self.rec.events.append(Event(EventKind.TOOL_SET, b.line, after, float(self.tool),
+            self.rec.events.append(Event(EventKind.TOOL_SET, b.line, after, ToolNumber(self.tool),
                                          f"M61: tool {self.tool_label(self.tool)} is in the spindle"))
 
     def convert_cutter_comp(self, b: Block) -> None:

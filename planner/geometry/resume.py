@@ -21,7 +21,11 @@ from planner.core.program import (
     EventKind,
     Move,
     MoveKind,
+    OverrideLocks,
     Program,
+    SpindleSpeed,
+    TableRef,
+    ToolNumber,
     arc_length_mm,
     arc_param_at_length,
 )
@@ -169,8 +173,8 @@ def carry_overrides(program: Program, first_move: int, events: list[Event]) -> l
         return events
     bits = int(locks[first_move])
     line = program.moves[first_move].line
-    return [Event(EventKind.OVERRIDES, line, -1, float(bits), "overrides off as before the restart point"),
-            *events]
+    return [Event(EventKind.OVERRIDES, line, -1, OverrideLocks(bits),
+                  "overrides off as before the restart point"), *events]
 
 
 def reads_before(program: Program, move_index: int, line: int) -> list[Event]:
@@ -183,32 +187,32 @@ def reads_before(program: Program, move_index: int, line: int) -> list[Event]:
 
 def probe_move_at(program: Program, move_index: int) -> Event | None:
     """The PROBE event of move ``move_index`` when it is a probe move (G38.x), else None."""
-    starts = {int(e.value) for e in program.events
+    starts = {e.payload_as(TableRef).index for e in program.events
               if e.kind is EventKind.PROBE_START and e.after_move == move_index - 1}
     return next((e for e in program.events if e.kind is EventKind.PROBE and e.after_move == move_index
-                 and int(e.value) in starts), None)
+                 and e.payload_as(TableRef).index in starts), None)
 
 
 @dataclass(frozen=True, slots=True)
 class ModalState:
     """What a run from a line must restore (positions and offsets are already in the moves)."""
 
-    spindle_rpm: float = 0.0  # + CW (M03), - CCW (M04), 0 off
+    spindle: SpindleSpeed = SpindleSpeed(0, 0.0)
     tool: int = 0
     feed_mm_s: float = 0.0  # feed of the first move at or after the line (0 if none)
 
 
-def _spindle_and_tool(events: Iterable[Event], reached: Callable[[Event], bool]) -> tuple[float, int]:
-    """Spindle speed (signed rpm) and tool after the events before the first ``reached`` one."""
-    spindle = 0.0
+def _spindle_and_tool(events: Iterable[Event], reached: Callable[[Event], bool]) -> tuple[SpindleSpeed, int]:
+    """The spindle and the tool after the events before the first ``reached`` one."""
+    spindle = SpindleSpeed(0, 0.0)
     tool = 0
     for e in events:
         if reached(e):
             break
         if e.kind is EventKind.SPINDLE:
-            spindle = float(e.value)
+            spindle = e.payload_as(SpindleSpeed)
         elif e.kind in (EventKind.TOOL_CHANGE, EventKind.TOOL_SET):   # in the spindle (T only selects)
-            tool = int(e.value)
+            tool = e.payload_as(ToolNumber).number
     return spindle, tool
 
 
@@ -220,7 +224,7 @@ def modal_state_at(program: Program, line: int) -> ModalState:
         if m.line >= line and m.kind is not MoveKind.RAPID:
             feed = float(m.feed_mm_s)
             break
-    return ModalState(spindle_rpm=spindle, tool=tool, feed_mm_s=feed)
+    return ModalState(spindle=spindle, tool=tool, feed_mm_s=feed)
 
 
 def modal_state_before_move(program: Program, move_index: int) -> ModalState:
@@ -229,7 +233,7 @@ def modal_state_before_move(program: Program, move_index: int) -> ModalState:
     spindle, tool = _spindle_and_tool(program.events, lambda e: e.after_move >= move_index)
     m = program.moves[move_index] if 0 <= move_index < len(program.moves) else None
     feed = float(m.feed_mm_s) if m is not None and m.kind is not MoveKind.RAPID else 0.0
-    return ModalState(spindle_rpm=spindle, tool=tool, feed_mm_s=feed)
+    return ModalState(spindle=spindle, tool=tool, feed_mm_s=feed)
 
 
 def locate(program: Program, line: int) -> int:

@@ -79,7 +79,7 @@ from planner.core.limits import (
     joint_step_budget,
     kink_caps,
 )
-from planner.core.program import EventKind, Program
+from planner.core.program import Dwell, EventKind, Program
 from planner.geometry.movetable import MoveTable, take_rows
 from planner.motion.profile import reachable_speed_lower_bound, reachable_speed_scalar
 
@@ -385,10 +385,11 @@ def stops_and_dwells(program: Program) -> StopsAndDwells:
     for ev in program.events:
         i = ev.after_move
         if ev.kind == EventKind.DWELL:
+            seconds = max(ev.payload_as(Dwell).seconds, 0.0)
             if i < 0:
-                before += max(ev.value, 0.0)
+                before += seconds
             elif i < n:
-                dwell[i] = dwell.get(i, 0.0) + max(ev.value, 0.0)
+                dwell[i] = dwell.get(i, 0.0) + seconds
         if ev.stops and 0 <= i < n:
             stops.add(i)
     if n:

@@ -842,12 +842,17 @@ def test_spin_ups_are_starts_reversals_and_speed_ups_and_a_tool_change_leaves_it
     from app.machine.model import SpindleState
     from app.machine.motion.spinup import spin_up_waits
     from app.machine.motion.timescale import PausePoint
+    from planner.core.program import Dwell, SpindleSpeed, ToolNumber
 
-    def at(tau: float, kind: str, value: float = 0.0) -> PausePoint:
-        return PausePoint(tau, kind, 1, 0, value)
+    def at(tau: float, kind: str, payload: object) -> PausePoint:
+        return PausePoint(tau, kind, 1, 0, payload)
 
-    pauses = [at(1, "spindle", 1000), at(2, "spindle", 800), at(3, "tool_change", 2), at(4, "spindle", -800),
-              at(5, "spindle", 0), at(6, "tool_change", 3), at(7, "dwell", 2.0), at(8, "spindle", 900)]
+    def turn(rpm: float) -> SpindleSpeed:
+        return SpindleSpeed(int(np.sign(rpm)), abs(rpm))
+
+    pauses = [at(1, "spindle", turn(1000)), at(2, "spindle", turn(800)), at(3, "tool_change", ToolNumber(2)),
+              at(4, "spindle", turn(-800)), at(5, "spindle", turn(0)), at(6, "tool_change", ToolNumber(3)),
+              at(7, "dwell", Dwell(2.0)), at(8, "spindle", turn(900))]
     # 1000: a start; 800: slower; M6: stopped, not started again; -800: a start; 900 after the
     # second M6 and a dwell: a start
     assert spin_up_waits(pauses, SpindleState(), 2.5) == [(1, 2.5), (4, 2.5), (8, 2.5)]

@@ -87,9 +87,9 @@ def test_remaining_program_and_modal_state(machine) -> None:
     assert rest.moves[0].line == 5
     np.testing.assert_allclose(rest.start_position, [10.0, 2.5, 0.0], atol=1e-12)
     np.testing.assert_array_equal(rest.end_position, prog.end_position)
-    assert modal_state_at(prog, 3).spindle_rpm == 1200.0
-    assert modal_state_at(prog, 5).spindle_rpm == 0.0
-    assert modal_state_at(prog, 7).spindle_rpm == -800.0
+    assert modal_state_at(prog, 3).spindle.signed_rpm == 1200.0
+    assert modal_state_at(prog, 5).spindle.signed_rpm == 0.0
+    assert modal_state_at(prog, 7).spindle.signed_rpm == -800.0
 
 
 def test_approach_goes_up_to_the_clearance_across_then_down_at_feed(machine) -> None:

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from planner.core.errors import ProgramError
 from planner.core.machine import AxisSpec, MachineSpec
-from planner.core.program import EventKind, Program
+from planner.core.program import Dwell, EventKind, Program, SpindleSpeed
 from planner.gcode.canon import canon_records
 from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, canon_calls
@@ -49,9 +49,9 @@ def project_calls(program: Program) -> list[tuple]:
     after: dict[int, list[tuple]] = {}
     for e in program.events:
         if e.kind is EventKind.DWELL:
-            after.setdefault(e.after_move, []).append(("dwell", float(e.value)))
+            after.setdefault(e.after_move, []).append(("dwell", e.payload_as(Dwell).seconds))
         elif e.kind is EventKind.SPINDLE:
-            after.setdefault(e.after_move, []).append(("spindle", int(np.sign(e.value))))
+            after.setdefault(e.after_move, []).append(("spindle", e.payload_as(SpindleSpeed).direction))
     out = list(after.get(-1, []))
     for i, rec in enumerate(records):
         out.append((rec["call"], tuple(round(v, 3) for v in rec["args"][:3])))
@@ -156,7 +156,7 @@ def test_boring_cycles_feed_dwell_and_retract_as_documented(code: str, tail: lis
 
 def test_g74_needs_the_spindle_counterclockwise_and_reverses_it() -> None:
     p = read("G21 G90 G99 F100 S500 M4\nG0 X0 Y0 Z5\nG74 X1 Y1 Z-3 R2\nM2\n")
-    spindle = [e.value for e in p.events if e.kind is EventKind.SPINDLE]
+    spindle = [e.payload_as(SpindleSpeed).signed_rpm for e in p.events if e.kind is EventKind.SPINDLE]
     assert spindle == [-500.0, 500.0, -500.0]
     assert "floating tap holder" in [e.message for e in p.events if e.kind is EventKind.SPINDLE][1]
     assert moves(p)[-2:] == [("feed", (1, 1, -3)), ("feed", (1, 1, 2))]

@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planner.core.errors import ProgramError
-from planner.core.program import EventKind
+from planner.core.program import EventKind, SpindleSpeed
 from planner.gcode.interpreter import parse_program
 
 
@@ -53,13 +53,15 @@ def test_constant_surface_speed_is_a_mode_the_motion_does_not_see() -> None:
     commands near X0: D, else the spindle's highest; G97 S is rpm again."""
     p = parse_program("G21 F100\nG96 M3 S200\nG1 X10\nG96 D2500 S100\nG1 X20\nG97 S1000\nG1 X30\nM2\n")
     assert [m.end[0] for m in p.moves] == [10, 20, 30]
-    assert [e.value for e in p.events if e.kind is EventKind.SPINDLE][:3] == [24000.0, 2500.0, 1000.0]
+    assert [e.payload_as(SpindleSpeed).signed_rpm for e in p.events
+            if e.kind is EventKind.SPINDLE][:3] == [24000.0, 2500.0, 1000.0]
     notes = [e.message for e in p.events if e.kind is EventKind.MESSAGE]
     assert notes[0].startswith("G96 constant surface speed S200 m/min: this spindle has no speed output")
     assert "S100 m/min up to 2500 rpm" in notes[1] and "counted at 2500 rpm" in notes[1]
     # a surface speed is no spindle speed: S in G96 leaves the speed counted alone
     q = parse_program("G20 F10\nG96 D900 S300 M4\nS400\nG1 X1\n")
-    assert [e.value for e in q.events if e.kind is EventKind.SPINDLE] == [-900.0]
+    assert [e.payload_as(SpindleSpeed).signed_rpm for e in q.events
+            if e.kind is EventKind.SPINDLE] == [-900.0]
     assert "S300 ft/min" in [e.message for e in q.events if e.kind is EventKind.MESSAGE][0]
 
 

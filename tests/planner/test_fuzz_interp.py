@@ -271,8 +271,8 @@ def _same(a, b) -> None:
             mb.exact_stop,
         )
         assert np.array_equal(ma.end, mb.end) and ma.arc == mb.arc
-    assert [(e.kind, e.line, e.after_move, e.value) for e in a.events] == [
-        (e.kind, e.line, e.after_move, e.value) for e in b.events
+    assert [(e.kind, e.line, e.after_move, e.payload) for e in a.events] == [
+        (e.kind, e.line, e.after_move, e.payload) for e in b.events
     ]
 
 

@@ -10,7 +10,7 @@ import pytest
 
 from planner.core.errors import ProgramError
 from planner.core.machine import MachineSpec, load_machine
-from planner.core.program import EventKind, MoveKind
+from planner.core.program import Coolant, CoolantSwitch, Dwell, EventKind, MoveKind, SpindleSpeed, ToolNumber
 from planner.gcode.interpreter import parse_program
 from resources import shipped_machine
 
@@ -203,13 +203,14 @@ def test_g64_tolerances_are_kept_and_shown():
 def test_g04_dwell_event():
     p = P("G1 X1 F60\nG4 P0.5\nG1 X2\n")
     (ev,) = p.events
-    assert ev.kind is EventKind.DWELL and ev.value == 0.5 and ev.after_move == 0 and ev.line == 2
+    assert ev.kind is EventKind.DWELL and ev.payload == Dwell(0.5) and ev.after_move == 0 and ev.line == 2
     assert ev.stops
 
 
 def test_spindle_events():
     p = P("S1000 M3\nG1 X1 F60\nS2000\nM4\nM5\nS500\n")
-    sp = [(e.value, e.after_move, e.line) for e in p.events if e.kind is EventKind.SPINDLE]
+    sp = [(e.payload_as(SpindleSpeed).signed_rpm, e.after_move, e.line) for e in p.events
+          if e.kind is EventKind.SPINDLE]
     assert sp == [(1000, -1, 1), (2000, 0, 3), (-2000, 0, 4), (0, 0, 5)]  # S500 while off: no event
 
 
@@ -224,19 +225,20 @@ def test_program_stops_and_end():
 def test_tool_and_m06_tool_change():
     p = P("T3 M6\nG0 X1\nT4\n")
     t, tc, t4 = p.events
-    assert t.kind is EventKind.TOOL and t.value == 3
-    assert tc.kind is EventKind.TOOL_CHANGE and tc.value == 3 and tc.stops
+    assert t.kind is EventKind.TOOL and t.payload == ToolNumber(3)
+    assert tc.kind is EventKind.TOOL_CHANGE and tc.payload == ToolNumber(3)
+    assert tc.stops
     assert "by hand" in tc.message and "T3" in tc.message
     assert t4.after_move == 0 and not t4.stops
 
 
 def test_coolant_events():
     p = P("M8\nM9\nM7\nM8\n")
-    assert [(e.kind, e.value) for e in p.events] == [
-        (EventKind.COOLANT, 2),
-        (EventKind.COOLANT, 0),
-        (EventKind.COOLANT, 1),
-        (EventKind.COOLANT, 2),
+    assert [(e.kind, e.payload) for e in p.events] == [
+        (EventKind.COOLANT, CoolantSwitch(Coolant.FLOOD_ON)),
+        (EventKind.COOLANT, CoolantSwitch(Coolant.ALL_OFF)),
+        (EventKind.COOLANT, CoolantSwitch(Coolant.MIST_ON)),
+        (EventKind.COOLANT, CoolantSwitch(Coolant.FLOOD_ON)),
     ]
     assert not p.events[0].stops
 

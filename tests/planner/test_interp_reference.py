@@ -30,7 +30,7 @@ from pathlib import Path
 import pytest
 
 from planner.core.errors import ProgramError
-from planner.core.program import EventKind
+from planner.core.program import Dwell, EventKind
 from planner.gcode.canon import canon_records
 from planner.gcode.interpreter import Interpreter, parse_file, parse_program
 
@@ -160,7 +160,7 @@ def test_cam_program_against_linuxcnc(rel, path_kind, monkeypatch):
     ours = canon_records(program)
     feeds = [m.feed_mm_s * 60.0 for m in program.moves]
     compare(ours, feeds, ref)
-    ours_dwells = [(e.line, e.value) for e in program.events if e.kind is EventKind.DWELL]
+    ours_dwells = [(e.line, e.payload_as(Dwell).seconds) for e in program.events if e.kind is EventKind.DWELL]
     assert ours_dwells == dwells
 
 

@@ -263,13 +263,15 @@ def test_paper_table3_cases(text, expected, case):
 def test_the_stops_and_dwells_of_a_window_are_the_programs(events, a, b):
     # kept as the few rows they are; any window of moves reads them as one flag and one dwell
     # a move, as the look-ahead wants them
-    from planner.core.program import Event, EventKind
+    from planner.core.program import Coolant, CoolantSwitch, Dwell, Event, EventKind
     from planner.motion.lookahead import stops_and_dwells
 
     a, b = min(a, b), max(a, b)
     kinds = {"dwell": EventKind.DWELL, "pause": EventKind.PAUSE, "coolant": EventKind.COOLANT}
     prog = parse_program("G1 F600\n" + "".join(f"X{i + 1}\n" for i in range(30)))
-    evs = tuple(Event(kinds[k], 1, i, v, "") for i, k, v in events)
+    payloads = {"dwell": Dwell, "pause": lambda _v: None,
+                "coolant": lambda _v: CoolantSwitch(Coolant.FLOOD_ON)}
+    evs = tuple(Event(kinds[k], 1, i, payloads[k](v), "") for i, k, v in events)
     prog = replace(prog, events=evs)
     stop = np.zeros(30, bool)
     dwell = np.zeros(30)
@@ -277,9 +279,9 @@ def test_the_stops_and_dwells_of_a_window_are_the_programs(events, a, b):
     for ev in evs:                          # one after the last move (30) acts nowhere
         if ev.kind is EventKind.DWELL:
             if ev.after_move < 0:
-                before += ev.value
+                before += ev.payload_as(Dwell).seconds
             elif ev.after_move < 30:
-                dwell[ev.after_move] += ev.value
+                dwell[ev.after_move] += ev.payload_as(Dwell).seconds
         if ev.stops and 0 <= ev.after_move < 30:
             stop[ev.after_move] = True
     stop[-1] = True

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from planner.core.errors import ProgramError
-from planner.core.program import EventKind
+from planner.core.program import EventKind, TableRef
 from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, refused_alike, run_linuxcnc
 
@@ -31,7 +31,8 @@ def test_m66_stops_the_motion_and_5399_reads_the_awaited_value_until_known() -> 
     assert [(q.line, q.number, q.mode.name, q.timeout_s, q.known) for q in p.inputs] == [
         (3, 1, "HIGH", 5.0, False), (6, 0, "IMMEDIATE", 0.0, False)]
     waits = [e for e in p.events if e.kind is EventKind.INPUT]
-    assert [(e.after_move, e.value) for e in waits] == [(0, 0.0), (1, 1.0)] and all(e.stops for e in waits)
+    assert [(e.after_move, e.payload) for e in waits] == [(0, TableRef(0)), (1, TableRef(1))]
+    assert all(e.stops for e in waits)
     assert _debug(p) == ["1.000000", "0.000000"]
     assert p.moves[1].end[0] == 11.0
 

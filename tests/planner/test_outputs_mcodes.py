@@ -12,6 +12,7 @@ from app.machine.config import config_from_dict
 from app.machine.errors import ConfigError
 from planner.core.errors import ProgramError
 from planner.core.machine import MachineSpec
+from planner.core.program import OutputLevel
 from planner.gcode.interpreter import parse_program
 from resources import shipped_machine
 
@@ -20,22 +21,24 @@ MACHINE = replace(MachineSpec.default(), output_bits={1: (0, 4, "vacuum"), 2: (1
                           103: ("ignore", "", -1, True)})
 
 
-def events(text: str) -> list[tuple[str, int, float, str]]:
+def events(text: str) -> list[tuple[str, int, object, str]]:
     p = parse_program(text, machine=MACHINE)
-    return [(e.kind.name, e.after_move, e.value, e.message) for e in p.events]
+    return [(e.kind.name, e.after_move, e.payload, e.message) for e in p.events]
 
 
 def test_outputs_switch_where_the_path_is() -> None:
     got = events("G21 F100\nG1 X1\nM64 P1\nG1 X2\nM65 P1\nM62 P2\nM63 P2\n")
-    assert got == [("OUTPUT", 0, 1.0, "M64: output 1 on"), ("OUTPUT", 1, -2.0, "M65: output 1 off"),
-                   ("OUTPUT", 1, 2.0, "M62: output 2 on"), ("OUTPUT", 1, -3.0, "M63: output 2 off")]
+    assert got == [("OUTPUT", 0, OutputLevel(1, True), "M64: output 1 on"),
+                   ("OUTPUT", 1, OutputLevel(1, False), "M65: output 1 off"),
+                   ("OUTPUT", 1, OutputLevel(2, True), "M62: output 2 on"),
+                   ("OUTPUT", 1, OutputLevel(2, False), "M63: output 2 off")]
 
 
 def test_user_m_codes_do_what_the_machine_says() -> None:
     got = events("G21 F100\nG1 X1\nM101\nM102\nM103\n")
-    assert got == [("PAUSE", 0, 0.0, "M101: check the clamp"),
-                   ("OUTPUT", 0, 2.0, "M102: air on: output 2 on"),
-                   ("MESSAGE", 0, 0.0, "M103 (does nothing on this machine)")]
+    assert got == [("PAUSE", 0, None, "M101: check the clamp"),
+                   ("OUTPUT", 0, OutputLevel(2, True), "M102: air on: output 2 on"),
+                   ("MESSAGE", 0, None, "M103 (does nothing on this machine)")]
 
 
 @pytest.mark.parametrize("text, col, words", [

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 import planner.gcode.flow as flow
 from planner.core.errors import ProgramError
 from planner.core.machine import AxisSpec, MachineSpec
-from planner.core.program import EventKind, Program
+from planner.core.program import Coolant, CoolantSwitch, EventKind, Program
 from planner.gcode.canon import canon_records
 from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, canon_calls, motion_alike, refused_alike
@@ -285,7 +285,9 @@ def test_linuxcnc_m70_m73_modal_state_save_and_restore(name: str) -> None:
         value = {"MIST_ON()": 1.0, "FLOOD_ON()": 2.0, "MIST_OFF()": 0.0, "FLOOD_OFF()": 0.0}.get(call)
         if value is not None and not (value == 0.0 and lc_coolant[-1:] == [0.0]):
             lc_coolant.append(value)
-    assert [e.value for e in program.events if e.kind is EventKind.COOLANT] == lc_coolant
+    as_number = {Coolant.MIST_ON: 1.0, Coolant.FLOOD_ON: 2.0, Coolant.ALL_OFF: 0.0}
+    assert [as_number[e.payload_as(CoolantSwitch).switch] for e in program.events
+            if e.kind is EventKind.COOLANT] == lc_coolant
     if name == "m73-flood-mist-restore.0":      # this one is about coolant only
         assert lc_coolant == [1.0, 2.0, 0.0, 1.0, 2.0]
 

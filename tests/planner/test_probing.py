@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from planner.core.errors import ProgramError
-from planner.core.program import EventKind, ProbeResult
+from planner.core.program import EventKind, ProbeResult, TableRef
 from planner.gcode.interpreter import parse_program
 from tools.linuxcnc_oracle import RS274, refused_alike
 
@@ -50,8 +50,8 @@ def test_a_loop_probing_while_it_touches_ends_when_read_before_the_run() -> None
 def test_the_probe_stops_the_motion_before_and_after_its_move() -> None:
     p = parse_program(PROGRAM)
     probing = (EventKind.PROBE_START, EventKind.PROBE)
-    kinds = [(e.kind, e.after_move, e.value) for e in p.events if e.kind in probing]
-    assert kinds == [(EventKind.PROBE_START, 0, 0.0), (EventKind.PROBE, 1, 0.0)]
+    kinds = [(e.kind, e.after_move, e.payload) for e in p.events if e.kind in probing]
+    assert kinds == [(EventKind.PROBE_START, 0, TableRef(0)), (EventKind.PROBE, 1, TableRef(0))]
     assert all(e.stops for e in p.events if e.kind in (EventKind.PROBE_START, EventKind.PROBE))
 
 

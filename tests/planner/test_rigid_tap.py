@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from planner.core.program import EventKind
+from planner.core.program import EventKind, SpindleSpeed
 from planner.gcode.interpreter import parse_program
 from tests.planner.refusals import refused_at
 from tools.linuxcnc_oracle import RS274, motion_alike
@@ -20,7 +20,8 @@ def test_rigid_tapping_runs_as_feed_moves_at_the_pitch_and_backs_out_to_its_star
     assert into.feed_mm_s == pytest.approx(1.25 * 500 / 60)
     assert out.feed_mm_s == pytest.approx(2 * into.feed_mm_s)
     assert into.exact_stop and out.exact_stop
-    spindle = [(e.after_move, e.value) for e in p.events if e.kind is EventKind.SPINDLE and e.line == 3]
+    spindle = [(e.after_move, e.payload_as(SpindleSpeed).signed_rpm) for e in p.events
+               if e.kind is EventKind.SPINDLE and e.line == 3]
     assert spindle == [(1, -1000.0), (2, 500.0)]               # reversed I times faster, then forward
     assert p.taps == (1,)
 
@@ -28,7 +29,8 @@ def test_rigid_tapping_runs_as_feed_moves_at_the_pitch_and_backs_out_to_its_star
 def test_rigid_tapping_in_inches_and_counterclockwise() -> None:
     p = parse_program("G20 S600 M4\nG33.1 Z-0.5 K0.05\nM2\n")
     assert p.moves[0].feed_mm_s == pytest.approx(0.05 * 25.4 * 600 / 60)
-    assert [e.value for e in p.events if e.kind is EventKind.SPINDLE and e.line == 2] == [600.0, -600.0]
+    assert [e.payload_as(SpindleSpeed).signed_rpm for e in p.events
+            if e.kind is EventKind.SPINDLE and e.line == 2] == [600.0, -600.0]
 
 
 @pytest.mark.parametrize(("text", "col_word", "reason"), [

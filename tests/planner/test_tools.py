@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planner.core.errors import PlannerError, ProgramError
-from planner.core.program import EventKind
+from planner.core.program import EventKind, ToolNumber
 from planner.core.tools import Tool, ToolTable, format_tbl, parse_tbl
 from planner.gcode.interpreter import parse_program
 
@@ -96,7 +96,7 @@ def test_m61_sets_the_tool_in_the_spindle_without_a_change() -> None:
     prog = parse_program("M61 Q2\nG43\nG0 Z0\n", "t.nc", tools=TABLE)
     assert prog.moves[0].end[2] == -3.5
     (ev,) = [e for e in prog.events if e.kind is EventKind.TOOL_SET]
-    assert ev.value == 2 and ev.stops
+    assert ev.payload == ToolNumber(2) and ev.stops
 
 
 def test_the_tool_in_the_spindle_at_the_start_is_used_by_g43() -> None:

@@ -15,7 +15,7 @@ from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import CoordinatesView, Settings
 from ethercat.worker import WorkerSnapshot
 from planner.core.machine import io_place
-from planner.core.program import EventKind, InputRequest, WaitMode
+from planner.core.program import EventKind, InputRequest, TableRef, WaitMode
 
 __all__ = ["InputWaiter"]
 
@@ -50,7 +50,7 @@ class InputWaiter:
         self.wait = None
 
     def _at_input(self, job: Job, point: PausePoint, snap: WorkerSnapshot) -> bool:
-        self.at_pause(job, int(point.value), snap)
+        self.at_pause(job, point.payload_as(TableRef).index, snap)
         return False
 
     def at_pause(self, job: Job, index: int, snap: WorkerSnapshot) -> None:

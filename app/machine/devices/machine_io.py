@@ -39,7 +39,7 @@ from app.machine.state.states import StateMachine
 from app.machine.wiring import Direction, axis_at
 from ethercat.sim_io import input_value
 from ethercat.worker import WorkerSnapshot
-from planner.core.program import EventKind
+from planner.core.program import Coolant, CoolantSwitch, EventKind
 
 __all__ = ["Buttons", "MachineIo"]
 
@@ -75,7 +75,7 @@ class MachineIo:
         self._last: dict[str, bool | None] = {}
         # the job whose coolant events are followed, and those not switched yet: (after move, bits)
         self._job: Job | None = None
-        self._coolant: collections.deque[tuple[int, int]] = collections.deque()
+        self._coolant: collections.deque[tuple[int, Coolant]] = collections.deque()
         self._ended: Job | None = None          # the job that ended last, until the machine stands
         motion.on_poll(self._follow_job)
         motion.on_job_end(self._job_ended)
@@ -190,8 +190,8 @@ class MachineIo:
             self._job = job
             program = getattr(job.plan, "program", None)
             events = program.events if program is not None else ()
-            self._coolant = collections.deque((ev.after_move, int(ev.value)) for ev in events
-                                              if ev.kind is EventKind.COOLANT)
+            self._coolant = collections.deque((ev.after_move, ev.payload_as(CoolantSwitch).switch)
+                                              for ev in events if ev.kind is EventKind.COOLANT)
         if not self._coolant:
             return
         snap = self._drives.last_snapshot
@@ -201,8 +201,8 @@ class MachineIo:
         while self._coolant and self._coolant[0][0] < move:
             self._switch(self._coolant.popleft()[1])
 
-    def _switch(self, bits: int) -> None:
-        why = self._outputs.set_coolant(bits)
+    def _switch(self, switch: Coolant) -> None:
+        why = self._outputs.set_coolant(switch)
         if why:
             self._alarms.alarm_stop(why, "coolant", "coolant")
 
@@ -214,8 +214,8 @@ class MachineIo:
         pending, self._coolant = self._coolant, collections.deque()
         self._ended = job
         if job is not None and job.kind is not Activity.PROGRAM:
-            for _after, bits in pending:
-                self._switch(bits)
+            for _after, switch in pending:
+                self._switch(switch)
 
     def _transition(self, _old: MachineState, new: MachineState) -> None:
         """A program ended or stopped (the machine stands in IDLE): coolant off."""
@@ -223,5 +223,5 @@ class MachineIo:
             return
         ended, self._ended = self._ended, None
         if ended is not None and ended.kind is Activity.PROGRAM and any(self.coolant):
-            self._switch(0)                   # M9
+            self._switch(Coolant.ALL_OFF)
 

@@ -20,6 +20,7 @@ from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import AlarmSink, Settings
 from app.machine.wiring import Direction, axis_at
 from planner.core.machine import io_place
+from planner.core.program import Coolant, OutputLevel
 
 __all__ = ["DigitalOutputs"]
 
@@ -74,13 +75,13 @@ class DigitalOutputs:
         self.signals_on[key] = on
         return ""
 
-    def set_coolant(self, bits: int) -> str:
-        """As a program's coolant event: M7 (bit 1) switches mist on, M8 (bit 2) flood, the other
-        stays as it is; M9 (0) switches both off. "" when done, else why not."""
-        if bits:
-            return self.set_coolant_state(bool(bits & 2) or self.signal_on("coolant_flood"),
-                                          bool(bits & 1) or self.signal_on("coolant_mist"))
-        return self.set_coolant_state(False, False)
+    def set_coolant(self, switch: Coolant) -> str:
+        """As a program's coolant event: M7 switches mist on, M8 flood, the other stays as it
+        is; M9 switches both off. "" when done, else why not."""
+        if switch is Coolant.ALL_OFF:
+            return self.set_coolant_state(False, False)
+        return self.set_coolant_state(switch is Coolant.FLOOD_ON or self.signal_on("coolant_flood"),
+                                      switch is Coolant.MIST_ON or self.signal_on("coolant_mist"))
 
     def set_coolant_state(self, flood: bool, mist: bool) -> str:
         """Flood and mist coolant as given. "" when done, else why not."""
@@ -131,10 +132,10 @@ class DigitalOutputs:
         return why
 
     def at_pause(self, _job: object, point: PausePoint, _snap: object) -> bool:
-        """M62-M65 or a user M-code reached by the motion: the output switches here (the value
-        is its number, or -(number + 1) to switch it off); the motion goes on when it did."""
-        number = int(point.value) if point.value >= 0 else -int(point.value) - 1
-        return not self.set_output(number, point.value >= 0)
+        """M62-M65 or a user M-code reached by the motion: the output switches here; the motion
+        goes on when it did."""
+        output = point.payload_as(OutputLevel)
+        return not self.set_output(output.number, output.on)
 
     def label(self, number: int) -> str:
         spec = self._settings.config.machine.output_bits.get(number)

@@ -37,7 +37,7 @@ from app.machine.motion.timescale import PauseKind, PausePoint
 from app.machine.ports import PositionsView, Settings, ToolsView
 from ethercat.sim_part import SimPart
 from ethercat.worker import WorkerSnapshot
-from planner.core.program import EventKind, ProbeRequest, ProbeResult
+from planner.core.program import EventKind, ProbeRequest, ProbeResult, TableRef
 
 __all__ = ["ProbeRun", "Prober"]
 
@@ -77,7 +77,7 @@ class Prober:
 
     # ------------------------------------------------------------------ before the move
     def _at_start(self, job: Job, point: PausePoint, _snap: WorkerSnapshot) -> bool:
-        why = self.arm(job, int(point.value))
+        why = self.arm(job, point.payload_as(TableRef).index)
         if why:
             self.fail(why)
             return False

@@ -19,7 +19,7 @@ from app.machine.motion.streamer import Streamer
 from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Settings
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
-from planner.core.program import EventKind, ProbeResult, Program
+from planner.core.program import EventKind, ProbeResult, Program, TableRef
 from planner.gcode.modes import ABORT_MARK
 from planner.geometry.resume import carry_overrides, program_from_moves
 
@@ -106,7 +106,8 @@ def after_event(full: Program, kind: EventKind, index: int) -> Program | None:
     """What follows read ``index`` of ``kind`` in ``full``: its later moves, from where the move
     before the event ended, with the events that come after it in the program (a message right
     after it included; those before it were done already)."""
-    at = next((k for k, e in enumerate(full.events) if e.kind is kind and int(e.value) == index), -1)
+    at = next((k for k, e in enumerate(full.events)
+               if e.kind is kind and e.payload_as(TableRef).index == index), -1)
     if at < 0:
         return None
     after = full.events[at].after_move

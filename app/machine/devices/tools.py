@@ -21,6 +21,7 @@ from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from ethercat.worker import WorkerSnapshot
 from planner.core.errors import PlannerError
+from planner.core.program import TableRef, ToolNumber
 from planner.core.tools import Tool, ToolTable, read_tbl
 
 __all__ = ["ToolControl"]
@@ -181,12 +182,13 @@ class ToolControl:
     # ------------------------------------------------------------------ at pause points
     def at_tool_set(self, _job: Job, point: PausePoint, _snap: WorkerSnapshot) -> bool:
         """M61 Q reached: the program says which tool is in; the motion goes on."""
-        self.loaded_by_program(int(point.value))
+        self.loaded_by_program(point.payload_as(ToolNumber).number)
         return True
 
     def at_tool_data(self, job: Job, point: PausePoint, _snap: WorkerSnapshot) -> bool:
         """G10 L1/L10/L11 reached: the table takes the tool; the motion goes on."""
         tools = job.plan.program.tool_sets
-        if 0 <= int(point.value) < len(tools):
-            self.set_by_program(tools[int(point.value)])
+        index = point.payload_as(TableRef).index
+        if 0 <= index < len(tools):
+            self.set_by_program(tools[index])
         return True

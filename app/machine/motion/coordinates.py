@@ -34,7 +34,7 @@ from app.machine.state.states import StateMachine
 from ethercat.worker import WorkerSnapshot
 from planner.core.frames import PARAMETER_AXES, Frame, system_parameter_base
 from planner.core.machine import WORK_OFFSET_NAMES, MachineSpec
-from planner.core.program import Program
+from planner.core.program import Program, TableRef
 from planner.gcode.codes import G
 
 __all__ = ["Coordinates"]
@@ -375,8 +375,9 @@ class Coordinates:
     def _at_offsets(self, job: Job, point: PausePoint, _snap: WorkerSnapshot) -> bool:
         """G10, G92, G52, G28.1 ... reached by the motion: the machine keeps them; it goes on."""
         sets = job.plan.program.parameter_sets
-        if 0 <= int(point.value) < len(sets):
-            self.apply_parameters(sets[int(point.value)])
+        index = point.payload_as(TableRef).index
+        if 0 <= index < len(sets):
+            self.apply_parameters(sets[index])
         return True
 
     def _changed(self) -> None:

@@ -7,8 +7,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-import numpy as np
-
 from app.machine.errors import MachineError
 from app.machine.model import Activity, CommandResult, SpindleState
 from app.machine.motion.jobs import Job, JobTerms, Reread
@@ -29,7 +27,17 @@ from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.movestore import MoveStore
-from planner.core.program import EventKind, Move, MoveKind, Program
+from planner.core.program import (
+    CoolantSwitch,
+    EventKind,
+    Move,
+    MoveKind,
+    OutputLevel,
+    Program,
+    SpindleSpeed,
+    TableRef,
+    ToolNumber,
+)
 from planner.gcode.lexer import LexError, compact
 from planner.pipeline import SoftLimitError, load
 
@@ -275,27 +283,27 @@ class ManualMotion:
         if not prog.moves:
             for ev in prog.events:
                 if ev.kind is EventKind.SPINDLE:
-                    self._spindle.apply_spindle(SpindleState(direction=int(np.sign(ev.value)),
-                                                             rpm=abs(ev.value)))
+                    speed = ev.payload_as(SpindleSpeed)
+                    self._spindle.apply_spindle(SpindleState(direction=speed.direction, rpm=speed.rpm))
                 elif ev.kind is EventKind.TOOL_SET:
-                    res = self._tools.set_tool_in_spindle(int(ev.value))
+                    res = self._tools.set_tool_in_spindle(ev.payload_as(ToolNumber).number)
                     if not res:
                         return states.refuse(action, res.reason)
                 elif ev.kind is EventKind.OUTPUT:      # M64 P1 ... typed in MDI
-                    number = int(ev.value) if ev.value >= 0 else -int(ev.value) - 1
-                    why = self._outputs.set_output(number, ev.value >= 0)
+                    output = ev.payload_as(OutputLevel)
+                    why = self._outputs.set_output(output.number, output.on)
                     if why:
                         return states.refuse(action, why)
                 elif ev.kind is EventKind.COOLANT:     # M7, M8, M9 typed in MDI
-                    why = self._outputs.set_coolant(int(ev.value))
+                    why = self._outputs.set_coolant(ev.payload_as(CoolantSwitch).switch)
                     if why:
                         return states.refuse(action, why)
                 elif ev.kind is EventKind.MESSAGE:     # (MSG,...) typed in MDI
                     self._motion.show_message(ev.message)
                 elif ev.kind is EventKind.TOOL_DATA:   # G10 L1/L10/L11 typed in MDI
-                    self._tools.set_by_program(prog.tool_sets[int(ev.value)])
+                    self._tools.set_by_program(prog.tool_sets[ev.payload_as(TableRef).index])
                 elif ev.kind is EventKind.OFFSETS:     # G10, G92, G52, G28.1 ... typed in MDI
-                    self._coordinates.apply_parameters(prog.parameter_sets[int(ev.value)])
+                    self._coordinates.apply_parameters(prog.parameter_sets[ev.payload_as(TableRef).index])
                 elif ev.kind is EventKind.END:  # M2/M30: the end of a program: spindle off, reset
                     self._spindle.apply_spindle(SpindleState(direction=0, rpm=self._spindle.spindle.rpm))
                     states.reset()
@@ -343,8 +351,9 @@ def _mdi_stands_alone(prog: Program, block: str) -> str:
 def _mdi_refusal(prog: Program, spindle_max_rpm: float) -> str:
     kinds = {ev.kind for ev in prog.events}
     for ev in prog.events:
-        if ev.kind is EventKind.SPINDLE and abs(ev.value) > spindle_max_rpm:
-            return (f"S{abs(ev.value):g} is over the spindle's maximum of {spindle_max_rpm:g} rpm "
+        rpm = ev.payload_as(SpindleSpeed).rpm if ev.kind is EventKind.SPINDLE else 0.0
+        if rpm > spindle_max_rpm:
+            return (f"S{rpm:g} is over the spindle's maximum of {spindle_max_rpm:g} rpm "
                     "([controller] spindle_max_rpm)")
     for kind, why in _NOT_IN_MDI.items():        # in this order: "M6 T5" is about M6
         if kind in kinds:

@@ -5,10 +5,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-import numpy as np
-
 from app.machine.model import SpindleState
 from app.machine.motion.timescale import PauseKind, PausePoint
+from planner.core.program import SpindleSpeed
 
 __all__ = ["spin_up_waits", "spins_up"]
 
@@ -30,7 +29,8 @@ def spin_up_waits(pauses: Iterable[PausePoint], start: SpindleState,
     state = start
     for p in pauses:
         if p.kind is PauseKind.SPINDLE:
-            new = SpindleState(direction=int(np.sign(p.value)), rpm=abs(float(p.value)))
+            speed = p.payload_as(SpindleSpeed)
+            new = SpindleState(direction=speed.direction, rpm=speed.rpm)
             if spins_up(state, new) and spin_up_s > 0.0:
                 waits.append((float(p.tau_s), spin_up_s))
             state = new

@@ -54,7 +54,7 @@ from app.machine.ports import (
 from app.machine.state.states import StateMachine
 from ethercat.worker import TraceChunk, WorkerSnapshot, WorkerState
 from planner.core.errors import PlannerError
-from planner.core.program import EventKind, Program
+from planner.core.program import Dwell, EventKind, Program, SpindleSpeed, TableRef, ToolNumber
 from planner.geometry.resume import remaining_program
 
 __all__ = ["Streamer"]
@@ -194,14 +194,14 @@ class Streamer:
         their pause points, then its messages are shown."""
         output, snap = self._pauses.get(PauseKind.OUTPUT), self._drives.last_snapshot
         for ev in rest.events:
-            if ev.kind is EventKind.OFFSETS and 0 <= int(ev.value) < len(rest.parameter_sets):
-                self._coordinates.apply_parameters(rest.parameter_sets[int(ev.value)])
-            elif ev.kind is EventKind.TOOL_DATA and 0 <= int(ev.value) < len(rest.tool_sets):
-                self._tools.set_by_program(rest.tool_sets[int(ev.value)])
+            if ev.kind is EventKind.OFFSETS and 0 <= ev.payload_as(TableRef).index < len(rest.parameter_sets):
+                self._coordinates.apply_parameters(rest.parameter_sets[ev.payload_as(TableRef).index])
+            elif ev.kind is EventKind.TOOL_DATA and 0 <= ev.payload_as(TableRef).index < len(rest.tool_sets):
+                self._tools.set_by_program(rest.tool_sets[ev.payload_as(TableRef).index])
             elif ev.kind is EventKind.TOOL_SET:
-                self._tools.loaded_by_program(int(ev.value))
+                self._tools.loaded_by_program(ev.payload_as(ToolNumber).number)
             elif ev.kind is EventKind.OUTPUT and output is not None and snap is not None:
-                output(job, PausePoint(0.0, PauseKind.OUTPUT, ev.line, -1, ev.value), snap)
+                output(job, PausePoint(0.0, PauseKind.OUTPUT, ev.line, -1, ev.payload), snap)
         job.messages.clear()
         job.messages.extend((e.line, e.message) for e in rest.events if e.kind is EventKind.MESSAGE)
         self._finish_job(job, self._drives.last_snapshot)
@@ -335,7 +335,7 @@ class Streamer:
             job.executor.hold = False
             if job.pause is not None and job.waiting:
                 if job.pause.kind is PauseKind.TOOL_CHANGE:      # the operator has put the tool in
-                    self._tools.loaded_by_program(int(job.pause.value))
+                    self._tools.loaded_by_program(job.pause.payload_as(ToolNumber).number)
                 self.release(job)
             return ""
 
@@ -556,15 +556,15 @@ class Streamer:
             return
         handler = self._pauses.get(kind)
         if kind is PauseKind.SPINDLE:
-            self.start_spindle(job, SpindleState(direction=int(np.sign(p.value)), rpm=abs(p.value)),
-                               float(snap.time_s))
+            speed = p.payload_as(SpindleSpeed)
+            self.start_spindle(job, SpindleState(speed.direction, speed.rpm), float(snap.time_s))
         elif kind is PauseKind.TAPPING:          # a tap's overrides change here, at rest
             self._spindle_lock_at(job, p.move + 1)
             self.release(job)
         elif kind is PauseKind.DWELL:
             if job.dwell_until is None:
-                job.dwell_until = snap.time_s + p.value
-                job.dwell_total_s += p.value
+                job.dwell_until = snap.time_s + p.payload_as(Dwell).seconds
+                job.dwell_total_s += p.payload_as(Dwell).seconds
             elif snap.time_s >= job.dwell_until:
                 job.dwell_until = None
                 self.release(job)
@@ -585,7 +585,7 @@ class Streamer:
             # M3/M4 (LinuxCNC's M6: STOP_SPINDLE_TURNING, CHANGE_TOOL; the program's M6 stops
             # it first, this is the guard for a spindle the operator started meanwhile)
             self._spindle.stop_spindle()
-        tool = int(p.value) if kind is PauseKind.TOOL_CHANGE else 0
+        tool = p.payload_as(ToolNumber).number if kind is PauseKind.TOOL_CHANGE else 0
         reason = why_stopped(kind, p.line, self._tools.table.label(tool),
                              bool(self._settings.config.machine.after_tool_change))
         hold = _OPERATOR_STOPS.get(kind, HoldKind.FEED_HOLD)

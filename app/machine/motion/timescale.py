@@ -93,7 +93,7 @@ import numpy as np
 from app.machine.model import Budget, PauseKind, PausePoint
 from app.machine.motion.plan_stats import BLOCK, BlockStats
 from planner.core.machine import MachineSpec
-from planner.core.program import FEED_HOLD_DEFERRED, EventKind, Program
+from planner.core.program import FEED_HOLD_DEFERRED, Dwell, EventKind, Program
 from planner.motion.interpolate import Interpolator, Segment
 from planner.motion.meter import check_limits
 from planner.motion.plan import Plan
@@ -307,7 +307,8 @@ class TimeScaledExecutor:
         """Continue after a pause point (M00, single block, dwell elapsed, ...)."""
         if self.paused is not None:
             if self.paused.kind is PauseKind.DWELL:
-                self.tau = min(self.tau + self.paused.value, self.t_end)  # the dwell is timed by the caller
+                # the dwell is timed by the caller
+                self.tau = min(self.tau + self.paused.payload_as(Dwell).seconds, self.t_end)
             self.paused = None
             self.sigma_start = True
 
@@ -674,8 +675,7 @@ class PauseFeed:
             self._next += 1
             i = ev.after_move
             tau = float(t_end_move[i - lo]) if i >= 0 else 0.0
-            pts.append(PausePoint(tau, _PAUSE_KINDS[ev.kind], ev.line, max(i, 0), float(ev.value),
-                                  ev.message))
+            pts.append(PausePoint(tau, _PAUSE_KINDS[ev.kind], ev.line, max(i, 0), ev.payload, ev.message))
         if self.single_block:
             lines = seg.table.line
             pts.extend(PausePoint(float(t_end_move[r]), PauseKind.SINGLE_BLOCK, int(lines[r]), lo + r)

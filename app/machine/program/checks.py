@@ -26,7 +26,7 @@ from app.toolpath import build_toolpath
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.heap import trim_heap
 from planner.core.machine import MachineSpec
-from planner.core.program import EventKind, MoveKind, Program
+from planner.core.program import EventKind, MoveKind, Program, SpindleSpeed
 from planner.core.tools import ToolTable
 from planner.gcode.interpreter import read_program
 from planner.gcode.source import count_lines
@@ -201,7 +201,7 @@ def spindle_stopped_cuts(program: Program, start: SpindleState) -> tuple[Program
         if e.kind is EventKind.TOOL_CHANGE:
             on, stopped_by = False, e.line
         else:
-            on = e.value != 0.0
+            on = e.payload_as(SpindleSpeed).signed_rpm != 0.0
         if on or not stopped_by:
             continue
         nxt = bounds[k + 1]

@@ -22,7 +22,7 @@ from app.machine.program.switches import RunSwitches
 from app.machine.state.gate import Action, guarded
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError
-from planner.core.program import Event, EventKind, Program
+from planner.core.program import Event, EventKind, Program, ToolNumber
 from planner.geometry.resume import (
     Approach,
     approach_moves,
@@ -403,9 +403,10 @@ class ProgramRunner:
         modal = modal_state_before_move(prog, point.move_index)
         loads = (EventKind.TOOL_CHANGE, EventKind.TOOL_SET)
         changes = [e for e in prog.events if e.kind in loads and e.after_move < point.move_index]
-        if changes and int(changes[-1].value) != self._tools.in_spindle:
+        need = changes[-1].payload_as(ToolNumber).number if changes else self._tools.in_spindle
+        if need != self._tools.in_spindle:
             # the program from here was checked with that tool's length: never cut with another
-            need, have = int(changes[-1].value), self._tools.in_spindle
+            have = self._tools.in_spindle
             return self._states.refuse(
                 action, f"line {point.line} needs T{need} in the spindle (T{have} is in it): put it in and "
                         f"set it on the Tools page, or run from the M6 line {changes[-1].line}")
@@ -416,7 +417,7 @@ class ProgramRunner:
             return self._states.refuse(action, f"approach move: {exc}")
         # the spindle as of the restart point, on (and at speed) before the tool goes below the
         # clearance height: in the approach after its last move at the top, or first thing
-        spindle_event = Event(EventKind.SPINDLE, point.line, approach.spindle_after, float(modal.spindle_rpm))
+        spindle_event = Event(EventKind.SPINDLE, point.line, approach.spindle_after, modal.spindle)
         way = None
         if approach.moves:
             way = program_from_moves(prog, list(approach.moves), [spindle_event], cur, name="approach")
@@ -487,7 +488,7 @@ class ProgramRunner:
             return str(exc)
         path = np.array([cur, *(m.end for m in approach.moves)])
         return RestartPreview(line=at_line, cause=cause, path=path, clearance_mm=self._clearance(),
-                              spindle_rpm=float(modal.spindle_rpm),
+                              spindle_rpm=modal.spindle.signed_rpm,
                               tool=int(modal.tool) if modal.tool else self._tools.in_spindle)
 
     def _clearance(self) -> float:
