@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from planner.core.frames import Frame
 from planner.core.movestore import MoveColumns
 from planner.core.program import MoveKind, Program, turn_xy
 
@@ -140,9 +141,17 @@ class ToolPath:
     # one point a move (move k runs from point k to point k + 1: 40 MB less at 10,000,000)
     move_first_point: np.ndarray | None
     bounds: tuple[np.ndarray, np.ndarray]  # (min, max) per axis
-    # (n_moves, n_axes) offset subtracted from machine positions to draw each move in the
-    # program's (work) coordinates: work offset and tool length offset of that move
-    move_offsets: np.ndarray | None = None
+    # the program's frames (``Program.frames``) and, per move, the one it is drawn through
+    # from machine positions into the program's (work) coordinates, as the DRO shows them
+    # (coordinate system, XY rotation, G92, tool length offset); none: machine coordinates
+    frames: tuple[Frame, ...] = ()
+    move_frames: np.ndarray | None = None
+
+    def frame_of(self, k: int) -> Frame | None:
+        """The frame move ``k`` is drawn through (None: none recorded, or no such move)."""
+        if self.move_frames is None or not 0 <= k < len(self.move_frames):
+            return None
+        return self.frames[int(self.move_frames[k])]
 
     def column(self, name: str) -> int | None:
         return self.axes.index(name) if name in self.axes else None
@@ -318,8 +327,13 @@ def build_toolpath(program: Program) -> ToolPath:
             return _straight(cols.start, cols.end, idx)
         return _straight(cols.start[idx], cols.end[idx], idx)
 
+    frames = tuple(c.frame for c in program.frames)
+    move_frames = program.move_frames
+    # a point two moves share is drawn in one frame: where the frame changes between moves
+    # (G92, G43, another system), each move has its own two points
+    one_frame = move_frames is None or len({frames[int(f)] for f in np.unique(move_frames)}) <= 1
     own_points = True      # the points are this path's (not the program's, which stay as read)
-    if not counts[MoveKind.ARC] and n:
+    if not counts[MoveKind.ARC] and n and one_frame:
         # lines and rapids only (a CAM raster): one point a move, the program's own joint
         # positions in program order (each move ends where the next starts), drawn as one run
         positions = moves.positions
@@ -332,7 +346,7 @@ def build_toolpath(program: Program) -> ToolPath:
         point_kind[-1] = kinds[-1]
         own_points = False
     elif not counts[MoveKind.ARC]:
-        # lines and rapids given as Move objects: two points a move
+        # lines and rapids in more than one frame: two points a move
         everything = straight(np.arange(n))
         point_kind = np.repeat(kinds.astype(np.int8), 2)
     else:
@@ -342,19 +356,10 @@ def build_toolpath(program: Program) -> ToolPath:
                  straight(np.flatnonzero(kinds == MoveKind.LINE)), curved]
         everything, point_kind = _merge(parts, n_axes, [int(k) for k in DRAWN_KINDS])
         del parts, curved
-    offsets = program.move_offsets
-    if offsets is not None and n and len(everything.points):
-        # drawn in work coordinates (what the program says, where the operator set part zero)
-        offsets = np.asarray(offsets, dtype=float)
-        if offsets.strides[0] == 0:  # one offset throughout: in place where the points are ours
-            if offsets[0].any() and own_points:
-                np.subtract(everything.points, offsets[0], out=everything.points)
-            elif offsets[0].any():
-                everything = Polylines(everything.points - offsets[0], everything.connect,
-                                       everything.move_index, everything.count)
-        else:
-            everything = Polylines(everything.points - offsets[everything.move_index],
-                                   everything.connect, everything.move_index, everything.count)
+    if move_frames is not None and n and len(everything.points):
+        # drawn in work coordinates (what the program says, where the operator set part zero),
+        # each move through its own frame as the DRO reads the machine there
+        everything = _in_frames(everything, frames, move_frames, own_points)
     first_point: np.ndarray | None = None   # one point a move: move k starts at point k
     if own_points:
         first_point = np.searchsorted(everything.move_index, np.arange(n, dtype=np.int32))
@@ -365,7 +370,27 @@ def build_toolpath(program: Program) -> ToolPath:
     else:
         lo = hi = np.asarray(program.start_position, float)
     return ToolPath(tuple(program.axes), everything, point_kind, counts, lines, first_point, (lo, hi),
-                    offsets)
+                    frames, move_frames)
+
+
+def _in_frames(pl: Polylines, frames: tuple[Frame, ...], move_frames: np.ndarray, own: bool) -> Polylines:
+    """``pl``'s machine points in the program's coordinates, each move's through its frame
+    (in place where the points are ``own``; one frame throughout: one conversion)."""
+    present = [int(f) for f in np.unique(move_frames)]
+    used = [f for f in present if not frames[f].is_identity]
+    if not used:
+        return pl
+    drawn = pl.points if own else pl.points.astype(float, copy=True)
+    if len({frames[f] for f in present}) == 1:          # one frame throughout (given again)
+        frames[used[0]].to_program_in_place(drawn)
+    else:
+        of_point = move_frames[np.asarray(pl.move_index)]
+        for f in used:
+            at = of_point == f
+            part = drawn[at]
+            frames[f].to_program_in_place(part)
+            drawn[at] = part
+    return pl if own else Polylines(drawn, pl.connect, pl.move_index, pl.count)
 
 
 def joined_runs(pl: Polylines) -> Polylines:

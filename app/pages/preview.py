@@ -79,19 +79,12 @@ class PreviewPage(QWidget):
         self.turn_button.setEnabled(plane == VIEW_3D)
         self.tilt_button.setEnabled(plane == VIEW_3D)
 
-    def _work_offset(self) -> np.ndarray:
-        """What is subtracted from the machine position to draw the tool: the offsets of the
-        move being run (work and tool length, as the path), else the active work offset."""
-        c = self.ctx.controller
-        path = self.plot.path
-        k = self.plot._done_move
-        if path is not None and path.move_offsets is not None and 0 <= k < len(path.move_offsets):
-            return np.asarray(path.move_offsets[k], float)
-        return np.asarray(c.work_offsets.get(c.active_offset, (0.0,) * len(c.axes)), float)
-
-    def _on_position(self, machine: object, _work: object) -> None:
-        pos = np.asarray(machine, float)
-        self.plot.set_tool_position(pos - self._work_offset()[: len(pos)])
+    def _on_position(self, _machine: object, work: object) -> None:
+        """The tool where the DRO reads it: the machine position through the offsets in force
+        (``Frame``: while a program runs, its frame at the move being run, through which that
+        move is drawn), so the tool sits on the path it is cutting."""
+        pos = self.ctx.controller.work_position if work is None else work
+        self.plot.set_tool_position(np.asarray(pos, float))
 
     def _update_frame(self) -> None:
         """The machine's travel in the active work coordinates, and the note saying so."""
@@ -107,7 +100,7 @@ class PreviewPage(QWidget):
     def _on_program(self) -> None:
         self.plot.set_toolpath(self.ctx.program.toolpath)
         self._update_frame()
-        self._on_position(self.ctx.controller.machine_position, None)
+        self._on_position(None, None)
         self.line_label.setText("")
         self.show_line_button.setEnabled(False)
 

@@ -80,19 +80,43 @@ class Frame:
             return None
         return self.axes.index("X"), self.axes.index("Y")
 
+    @property
+    def is_identity(self) -> bool:
+        """Program coordinates are the machine's (no offset, no rotation)."""
+        return not (any(self.g5x) or any(self.g92) or any(self.tool) or self.rotation_deg)
+
     def to_program(self, machine: Sequence[float] | np.ndarray) -> np.ndarray:
         """Program coordinates of machine position(s) (one row per position, or one vector):
         R(-rotation) (machine - G5x - tool) - G92."""
-        q = np.array(machine, dtype=float)
-        rel = q - np.asarray(self.g5x) - np.asarray(self.tool)
+        rel = np.array(machine, dtype=float)
+        self.to_program_in_place(rel)
+        return rel
+
+    def to_program_in_place(self, points: np.ndarray) -> None:
+        """``to_program`` written over ``points`` (float rows, or one vector): a drawn path of
+        millions of points is converted without a copy of it."""
+        points -= np.asarray(self.g5x)
+        points -= np.asarray(self.tool)
         xy = self._xy()
         if xy is not None:
             ix, iy = xy
             c, s = math.cos(math.radians(self.rotation_deg)), math.sin(math.radians(self.rotation_deg))
-            x, y = rel[..., ix].copy(), rel[..., iy].copy()
-            rel[..., ix] = c * x + s * y
-            rel[..., iy] = -s * x + c * y
-        return rel - np.asarray(self.g92)
+            x, y = points[..., ix].copy(), points[..., iy].copy()
+            points[..., ix] = c * x + s * y
+            points[..., iy] = -s * x + c * y
+        points -= np.asarray(self.g92)
+
+    def point_to_program(self, machine: Sequence[float]) -> list[float]:
+        """``to_program`` of one position, in plain floats (the same operations in the same
+        order: a reader that converts one point at a time pays no array per point)."""
+        rel = [q - w - t for q, w, t in zip(machine, self.g5x, self.tool)]
+        xy = self._xy()
+        if xy is not None:
+            ix, iy = xy
+            c, s = math.cos(math.radians(self.rotation_deg)), math.sin(math.radians(self.rotation_deg))
+            x, y = rel[ix], rel[iy]
+            rel[ix], rel[iy] = c * x + s * y, -s * x + c * y
+        return [r - g for r, g in zip(rel, self.g92)]
 
     def to_machine(self, program: Sequence[float] | np.ndarray) -> np.ndarray:
         """Machine coordinates of program position(s): R(rotation) (program + G92) + G5x + tool."""

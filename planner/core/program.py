@@ -38,6 +38,7 @@ __all__ = [
     "Dwell",
     "Event",
     "EventKind",
+    "FrameChange",
     "EventPayload",
     "FEED_HOLD_DEFERRED",
     "FEED_OVERRIDE_OFF",
@@ -598,6 +599,15 @@ class Event:
         return payload_as(self.kind, self.payload, cls)
 
 
+@dataclass(frozen=True, slots=True)
+class FrameChange:
+    """The offsets a program sets on source ``line``, in force from move ``first`` on."""
+
+    first: int
+    line: int
+    frame: Frame
+
+
 @dataclass(frozen=True, eq=False)
 class Program:
     """An interpreted, fully checked program."""
@@ -610,7 +620,6 @@ class Program:
     events: tuple[Event, ...]
     start_position: np.ndarray  # machine position before the first move
     # Additions (not in the minimal contract):
-    move_offsets: np.ndarray | None = None  # (n_moves, n_axes) work offset active per move
     line_count: int = 0  # number of source lines
     # the active modal codes as the operator reads them ("G17 G21 G90 G94 G54 G40 G49 G64"),
     # from move ``first`` on: ((first, text), ...) at each change
@@ -618,11 +627,10 @@ class Program:
     # the persistent parameters (planner.gcode.interpreter.PERSISTENT_PARAMETERS) after each OFFSETS
     # event, by the event's value
     parameter_sets: tuple[dict[int, float], ...] = ()
-    # the offsets in parts, as LinuxCNC's canonical calls set them: (first move, line,
-    # coordinate system 1-9, G5x offset, G92 offset, tool length offset, XY rotation in degrees),
-    # machine units
-    offset_parts: tuple[tuple[int, int, int, tuple[float, ...], tuple[float, ...],
-                              tuple[float, ...], float], ...] = ()
+    # the offsets in force (``Frame``: the coordinate system, G5x, G92, tool length offset, XY
+    # rotation), one entry at the start and one at each change, as LinuxCNC's canonical calls
+    # set them; a move runs in the last one whose ``first`` is at or before it (``move_frames``)
+    frames: tuple[FrameChange, ...] = ()
     # tools changed by G10 L1/L10/L11, by the TOOL_DATA event's value (planner.core.tools.Tool)
     tool_sets: tuple[Any, ...] = ()
     # the G64 P path tolerance (mm) from move ``first`` on: ((first, tolerance), ...) at each
@@ -707,9 +715,19 @@ class Program:
             delta = np.abs(np.array([np.asarray(m.end) - np.asarray(m.start) for m in moves], dtype=float))
         return np.asarray(~(delta[:, ~rotary] > 0.0).any(axis=1) & (delta[:, rotary] > 0.0).any(axis=1))
 
+    @functools.cached_property
+    def move_frames(self) -> np.ndarray | None:
+        """Per move, the index into ``frames`` of the offsets it runs in; None when the
+        program recorded none (machine coordinates)."""
+        if not self.frames:
+            return None
+        firsts = np.array([c.first for c in self.frames], dtype=np.int64)
+        at = np.searchsorted(firsts, np.arange(len(self.moves)), side="right") - 1
+        return np.maximum(at, 0).astype(np.int32)
+
     def frame_at(self, index: int) -> Frame:
         """The offsets in force for move ``index`` (before the first move: at the start), as
-        the program set them (``offset_parts``); no offsets when it recorded none."""
+        the program set them (``frames``); no offsets when it recorded none."""
         return self._frame_in_force(index, math.inf)
 
     def frame_before(self, index: int, line: int) -> Frame:
@@ -719,16 +737,15 @@ class Program:
         return self._frame_in_force(index, line)
 
     def _frame_in_force(self, index: int, line: float) -> Frame:
-        """The last offset part for move ``index`` set on or before ``line`` (the first part
-        before any move)."""
-        parts = self.offset_parts
-        if not parts:
+        """The last frame for move ``index`` set on or before ``line`` (the first one before
+        any move)."""
+        changes = self.frames
+        if not changes:
             return Frame.identity(self.axes)
-        k = bisect.bisect_right([p[0] for p in parts], max(index, 0)) - 1
-        while k > 0 and parts[k][0] == index and parts[k][1] > line:
+        k = bisect.bisect_right([c.first for c in changes], max(index, 0)) - 1
+        while k > 0 and changes[k].first == index and changes[k].line > line:
             k -= 1
-        _first, _line, system, work, g92, tlo, rotation = parts[max(k, 0)]
-        return Frame(tuple(self.axes), tuple(work), tuple(g92), tuple(tlo), float(rotation), int(system))
+        return changes[max(k, 0)].frame
 
     def modal_at_move(self, index: int) -> str:
         """The modal codes in force for move ``index`` ("" when not recorded)."""

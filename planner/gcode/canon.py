@@ -19,14 +19,14 @@ in machine units; the motion stays in program coordinates (the offsets taken off
 from __future__ import annotations
 
 import json
-import math
 import os
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import Any, BinaryIO
 
 import numpy as np
 
 from planner.core.files import write_output
+from planner.core.frames import Frame
 from planner.core.program import EventKind, MoveKind, Program, TableRef, turn_xy
 
 __all__ = ["canon_records", "iter_canon_records", "write_canon"]
@@ -47,8 +47,10 @@ def _offset_records(program: Program, cols: list[int]) -> dict[int, list[dict[st
     def nine(values: tuple[float, ...]) -> list[float]:
         return [float(values[c]) if c >= 0 else 0.0 for c in cols]
 
-    for first, line, system, work, g92, tlo, rotation in program.offset_parts:
-        recs = out.setdefault(first, [])
+    for change in program.frames:
+        f = change.frame
+        line, system, work, g92, tlo, rotation = change.line, f.system, f.g5x, f.g92, f.tool, f.rotation_deg
+        recs = out.setdefault(change.first, [])
         if last is None or (system, work) != (last[0], last[1]):
             recs.append({"line": line, "call": "set_g5x_offset", "args": [system, *nine(work)]})
         if last is None or g92 != last[2]:
@@ -61,32 +63,11 @@ def _offset_records(program: Program, cols: list[int]) -> dict[int, list[dict[st
     return out
 
 
-def _unrotate(program: Program, cols: list[int]) -> list[tuple[float, tuple[float, ...], tuple[float, ...],
-                                                                    tuple[float, ...]] | None]:
-    """Per move: (rotation, G5x, G92, tool) when the XY plane is rotated there, else None."""
-    out: list[Any] = [None] * len(program.moves)
-    parts = sorted(program.offset_parts, key=lambda p: p[0])
-    current = None
-    k = 0
-    for i in range(len(program.moves)):
-        while k < len(parts) and parts[k][0] <= i:
-            current = parts[k]
-            k += 1
-        if current is not None and current[6] != 0.0:
-            out[i] = (current[6], current[3], current[4], current[5])
-    return out
-
-
-def _to_program(pos: list[float], cols: list[int], spec: tuple[Any, ...]) -> list[float]:
-    """Program coordinates of a machine position in the canonical axis order, the XY rotation
-    undone: R(-rotation) (machine - G5x - tool) - G92 for X and Y, the offsets off the rest."""
-    rotation, work, g92, tlo = spec
-    out = [pos[c] - work[c] - g92[c] - tlo[c] if c >= 0 else 0.0 for c in cols]
-    ix, iy = cols[0], cols[1]
-    dx, dy = pos[ix] - work[ix] - tlo[ix], pos[iy] - work[iy] - tlo[iy]
-    c, s = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
-    out[0], out[1] = c * dx + s * dy - g92[ix], -s * dx + c * dy - g92[iy]
-    return out
+def _to_program(pos: Sequence[float], cols: list[int], frame: Frame) -> list[float]:
+    """Program coordinates of a machine position in the canonical axis order (``Frame.to_program``;
+    an axis the machine lacks reads 0)."""
+    prog = frame.point_to_program(pos)
+    return [prog[c] if c >= 0 else 0.0 for c in cols]
 
 
 def canon_records(program: Program, offsets: bool = False) -> list[dict[str, Any]]:
@@ -100,8 +81,8 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
     """``canon_records`` one by one (a program of millions of moves is never held as dicts)."""
     cols = [program.axes.index(a) if a in program.axes else -1 for a in _CANON_AXES]
     offsets_before = _offset_records(program, cols) if offsets else {}
-    rotated = _unrotate(program, cols) if any(p[6] for p in program.offset_parts) else None
-    move_offsets = program.move_offsets
+    frames = [c.frame for c in program.frames] or [Frame.identity(program.axes)]
+    move_frames = program.move_frames
     # G38.x: LinuxCNC's call names the programmed end point; the move ends where the probe stopped
     # (by the PROBE event, which follows the move when blending renumbers the moves)
     probes = [(e.after_move, program.probes[e.payload_as(TableRef).index]) for e in program.events
@@ -114,43 +95,35 @@ def iter_canon_records(program: Program, offsets: bool = False) -> Iterator[dict
         if i in back_out:                   # G33.1 back out: part of its RIGID_TAP call
             continue
         end = move.end.tolist()
-        off = move_offsets[i].tolist() if move_offsets is not None else [0.0] * len(end)
-        spec = rotated[i] if rotated is not None else None
-        wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
+        frame = frames[int(move_frames[i])] if move_frames is not None else frames[0]
+        wcs = _to_program(end, cols, frame)
         arc = move.arc
         if i in taps:
-            end = move.end.tolist()
-            wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
             yield {"line": move.line, "call": "rigid_tap", "args": wcs}
             continue
         if probe_targets and i in probe_targets:
-            end = list(probe_targets[i])
-            wcs = _to_program(end, cols, spec) if spec else [end[c] - off[c] if c >= 0 else 0.0 for c in cols]
+            wcs = _to_program(probe_targets[i], cols, frame)
             yield {"line": move.line, "call": "straight_probe", "args": wcs}
             continue
         if arc is None:
             call = "straight_traverse" if move.kind == MoveKind.RAPID else "straight_feed"
             yield {"line": move.line, "call": call, "args": wcs}
             continue
-        f, s, n = arc.first_axis, arc.second_axis, arc.normal_axis
+        f, s = arc.first_axis, arc.second_axis
         rotation = arc.turns if arc.sweep_rad > 0 else -arc.turns
-        if spec:
-            # the centre as a machine point, in program coordinates as the end is. A G18/G19
-            # arc's centre is in its turned frame: put there and turned back, the frame's X (or
-            # Y) becomes the program's; the other of X and Y, the plane's normal, is not read
-            centre = np.array([end])
-            centre[0, f], centre[0, s] = arc.center
-            turned = arc.turned_xy
-            if turned is not None:
-                turn_xy(centre, turned[0], turned[1], arc.xy_turn_rad)
-            cprog = _to_program(centre[0].tolist(), cols, spec)
-            fi, si, ni = _PLANE_CANON[arc.plane]
-            first_c, second_c = cprog[fi], cprog[si]
-            first_e, second_e, normal_e = wcs[fi], wcs[si], wcs[ni]
-        else:
-            first_c, second_c = arc.center[0] - off[f], arc.center[1] - off[s]
-            first_e, second_e = end[f] - off[f], end[s] - off[s]
-            normal_e = end[n] - off[n] if n >= 0 else 0.0
+        # the centre as a machine point, in program coordinates as the end is. A G18/G19 arc's
+        # centre in a rotated system is in its turned frame: put there and turned back, the
+        # frame's X (or Y) becomes the program's; the other of X and Y, the plane's normal, is
+        # not read
+        centre = np.array([end])
+        centre[0, f], centre[0, s] = arc.center
+        turned = arc.turned_xy
+        if turned is not None:
+            turn_xy(centre, turned[0], turned[1], arc.xy_turn_rad)
+        cprog = _to_program(centre[0].tolist(), cols, frame)
+        fi, si, ni = _PLANE_CANON[arc.plane]
+        first_c, second_c = cprog[fi], cprog[si]
+        first_e, second_e, normal_e = wcs[fi], wcs[si], wcs[ni]
         args = [
             first_e,
             second_e,

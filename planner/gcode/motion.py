@@ -119,8 +119,7 @@ class MotionCodes(ModeCodes):
         self.pos = self.rec.out.last_end()
         self.rec.events[:] = [replace(e, after_move=e.after_move - 1) if e.after_move >= i else e
                               for e in self.rec.events]
-        self.rec.offset_changes[:] = [(f - 1 if f > i else f, o) for f, o in self.rec.offset_changes]
-        self.rec.offset_parts[:] = [(p[0] - 1 if p[0] > i else p[0], *p[1:]) for p in self.rec.offset_parts]
+        self.rec.frames[:] = [replace(c, first=c.first - 1) if c.first > i else c for c in self.rec.frames]
         self.rec.modal_changes[:] = [(f - 1 if f > i else f, t) for f, t in self.rec.modal_changes]
         self.rec.taps[:] = [t - 1 if t > i else t for t in self.rec.taps]
         self.rec.probes[:] = [replace(p, move_index=p.move_index - 1) if p.move_index > i else p

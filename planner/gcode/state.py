@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from planner.core.errors import BlockError, PlannerError, SourceError
+from planner.core.frames import Frame as CoordinateFrame
 from planner.core.machine import MachineSpec
 from planner.core.movestore import MoveBuffer
 from planner.core.program import (
@@ -31,6 +32,7 @@ from planner.core.program import (
     AnalogOutput,
     Curve,
     Event,
+    FrameChange,
     InputRequest,
     MoveKind,
     ProbeRequest,
@@ -269,10 +271,7 @@ class Record:
     move it applies to."""
 
     out: MoveBuffer
-    offset_changes: list[tuple[int, tuple[float, ...]]]
-    # each change of an offset part, for --canon: (first move, line, system 1-9, G5x, G92, tool,
-    # XY rotation in degrees)
-    offset_parts: list[tuple[int, int, int, tuple[float, ...], tuple[float, ...], tuple[float, ...], float]]
+    frames: list[FrameChange]         # the offsets at the start and at each change
     modal_changes: list[tuple[int, str]]
     blend_changes: list[tuple[int, float]]
     naive_changes: list[tuple[int, float]]
@@ -289,17 +288,6 @@ class Record:
 
     def build(self, name: str, setup: Setup, line_count: int) -> Program:
         moves = self.out.store()
-        n_moves, n = len(moves), setup.n
-        changes: list[tuple[int, tuple[float, ...] | None]] = [*self.offset_changes, (n_moves, None)]
-        if len(changes) == 2 and changes[0][0] == 0:
-            # one offset for the whole program (the usual case): one row seen n times, not
-            # 24 bytes a move
-            offsets = np.broadcast_to(np.array(changes[0][1], dtype=float), (n_moves, n))
-        else:
-            offsets = np.empty((n_moves, n))
-            for (first, off), (nxt, _) in zip(changes[:-1], changes[1:]):
-                offsets[first:nxt] = off
-            offsets.setflags(write=False)
         start = np.array(setup.start, dtype=float)
         start.setflags(write=False)
         return Program(
@@ -309,11 +297,10 @@ class Record:
             moves=moves,
             events=tuple(self.events),
             start_position=start,
-            move_offsets=offsets,
             line_count=line_count,
             modal=tuple(self.modal_changes),
             parameter_sets=tuple(self.parameter_sets),
-            offset_parts=tuple(self.offset_parts),
+            frames=tuple(self.frames),
             tool_sets=tuple(self.tool_sets),
             blend_tolerance=tuple(self.blend_changes),
             naive_cam_tolerance=tuple(self.naive_changes),
@@ -405,8 +392,9 @@ class InterpBase(ABC):
         self.calls = CallStack()
         o = self.offsets
         self.rec = Record(
-            out=MoveBuffer(setup.start), offset_changes=[(0, o.total)],
-            offset_parts=[(0, 0, 1, o.work, o.g92, o.tlo, o.rotation)], modal_changes=[],
+            out=MoveBuffer(setup.start),
+            frames=[FrameChange(0, 0, CoordinateFrame(setup.axes, o.work, o.g92, o.tlo, o.rotation))],
+            modal_changes=[],
             blend_changes=[(0, blend_default_mm)], naive_changes=[(0, blend_default_mm)])
         # the motion: where the tool is (machine coordinates), the motion mode (None: G80),
         # G96's speed counted (rpm: D, else the spindle's highest; None in G97)
@@ -476,14 +464,9 @@ class InterpBase(ABC):
             o.tlo = tlo
         total = tuple(w + g + t for w, g, t in zip(o.work, o.g92, o.tlo))
         o.total = total
-        rec = self.rec
-        first = len(rec.out)
-        rec.offset_parts.append((first, self.current_line, SYSTEMS.index(self.modal.work_code) + 1,
-                                 o.work, o.g92, o.tlo, o.rotation))
-        if rec.offset_changes[-1][0] == first:
-            rec.offset_changes[-1] = (first, total)
-        else:
-            rec.offset_changes.append((first, total))
+        frame = CoordinateFrame(self.setup.axes, o.work, o.g92, o.tlo, o.rotation,
+                                SYSTEMS.index(self.modal.work_code) + 1)
+        self.rec.frames.append(FrameChange(len(self.rec.out), self.current_line, frame))
 
     def prog_xy(self, pos: Sequence[float], work: Sequence[float] | None = None,
                 rotation: float | None = None, g92: Sequence[float] | None = None) -> tuple[float, float]:

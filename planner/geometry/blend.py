@@ -697,7 +697,7 @@ def _rebuild(program: Program, joints: np.ndarray, a_pts: np.ndarray, b_pts: np.
 def remap_program(program: Program, new: list[Move], spans: list[tuple[int, int]]) -> Program:
     """The program with moves ``new``; ``spans[k]``: the old moves new move k comes from.
 
-    Events after old move i go after the last new move of i; modal texts, offset parts and
+    Events after old move i go after the last new move of i; modal texts, frames and
     tolerances changing at old move i change at its first new move (each keeps its place)."""
     n = len(program.moves)
     first_new = np.full(n, len(new), dtype=np.int64)
@@ -711,20 +711,11 @@ def remap_program(program: Program, new: list[Move], spans: list[tuple[int, int]
 
     events = tuple(replace(e, after_move=int(last_new[e.after_move])) if 0 <= e.after_move < n else e
                    for e in program.events)
-    move_offsets = None
-    if program.move_offsets is not None:
-        offsets = np.asarray(program.move_offsets)
-        if offsets.ndim == 2 and offsets.shape[0] and offsets.strides[0] == 0:  # one offset throughout
-            move_offsets = np.broadcast_to(offsets[0], (len(spans), offsets.shape[1]))
-        else:
-            move_offsets = offsets[np.array([hi for _, hi in spans], dtype=np.int64)]
-            move_offsets.setflags(write=False)
     return replace(program, moves=MoveStore.from_moves(new, program.start_position), events=events,
                    modal=tuple((first(f), t) for f, t in program.modal),
-                   offset_parts=tuple((first(p[0]), *p[1:]) for p in program.offset_parts),
+                   frames=tuple(replace(c, first=first(c.first)) for c in program.frames),
                    blend_tolerance=tuple((first(f), v) for f, v in program.blend_tolerance),
-                   naive_cam_tolerance=tuple((first(f), v) for f, v in program.naive_cam_tolerance),
-                   move_offsets=move_offsets)
+                   naive_cam_tolerance=tuple((first(f), v) for f, v in program.naive_cam_tolerance))
 
 
 #: LinuxCNC's chain limit: at most this many points are joined into one line
@@ -732,10 +723,11 @@ NAIVE_CAM_MAX_POINTS = 101
 
 
 def _changes_at(program: Program) -> set[int]:
-    """Moves where a modal text, an offset part or a tolerance changes (a chain stops there)."""
+    """Moves where a modal text, the offsets or a tolerance changes (a chain stops there)."""
     out: set[int] = set()
-    for seq in (program.modal, program.offset_parts, program.blend_tolerance, program.naive_cam_tolerance):
+    for seq in (program.modal, program.blend_tolerance, program.naive_cam_tolerance):
         out.update(int(item[0]) for item in seq[1:])
+    out.update(c.first for c in program.frames[1:])
     return out
 
 

@@ -129,7 +129,7 @@ def program_from_moves(template: Program, moves: list[Move], events: list[Event]
     start = np.asarray(start_position, dtype=float).copy()
     return Program(name=name or template.name, axes=template.axes, rotary=template.rotary,
                    moves=MoveStore.from_moves(moves, start), events=tuple(events), start_position=start,
-                   move_offsets=None, line_count=template.line_count,
+                   line_count=template.line_count,
                    parameter_sets=template.parameter_sets, tool_sets=template.tool_sets,
                    probes=template.probes, inputs=template.inputs)
 

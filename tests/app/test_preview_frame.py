@@ -23,7 +23,8 @@ def test_the_path_is_drawn_in_work_coordinates() -> None:
     path = build_toolpath(parse_program(PROGRAM, machine=machine))
     pts = path.all.points
     assert pts[:, 0].max() == pytest.approx(20.0) and pts[:, 1].max() == pytest.approx(5.0)
-    assert path.move_offsets is not None and tuple(path.move_offsets[-1]) == (-5.0, 100.0, 0.0)
+    frame = path.frame_of(path.move_count - 1)
+    assert frame is not None and frame.g5x == (-5.0, 100.0, 0.0)
 
 
 def test_work_zero_travel_and_the_live_tool(fake_window, fake_controller) -> None:

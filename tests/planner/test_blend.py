@@ -271,7 +271,7 @@ def test_events_at_a_joint_keep_it_sharp_and_keep_their_place() -> None:
     first_g91 = next(first for first, modal in bl.modal if "G91" in modal)
     assert bl.moves[first_g91].line == 7 and bl.moves[first_g91].kind is MoveKind.LINE
     assert bl.moves[first_g91 - 1].kind is MoveKind.BLEND
-    assert len(bl.move_offsets) == len(bl.moves)
+    assert len(bl.move_frames) == len(bl.moves)
 
 
 def assert_resume_follows(prog, m, fraction: float) -> None:

@@ -89,8 +89,8 @@ def assert_same_reading(a, b) -> None:
     np.testing.assert_allclose(ca.length, cb.length, rtol=4.5e-16, atol=0)  # one rounding (math.dist vs sqrt)
     assert ca.arcs == cb.arcs
     assert a.events == b.events
-    assert a.modal == b.modal and a.offset_parts == b.offset_parts
-    np.testing.assert_array_equal(a.move_offsets, b.move_offsets)
+    assert a.modal == b.modal and a.frames == b.frames
+    np.testing.assert_array_equal(a.move_frames, b.move_frames)
     assert a.line_count == b.line_count
 
 

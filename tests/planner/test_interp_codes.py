@@ -163,21 +163,21 @@ def test_work_offsets_g54_g59_and_g53():
     assert e[2] == [0, 0, 0]  # machine coordinates for one block
     assert e[3] == [-3, 0, 0]  # back to G55 (modal): X2 + (-5), Y/Z stay
     assert e[4] == [3, 0, 0]  # G59 offsets are zero in the default machine
-    np.testing.assert_array_equal(p.move_offsets[0], [100, 50, -20])
-    np.testing.assert_array_equal(p.move_offsets[1], [-5, 0, 1])
+    np.testing.assert_array_equal(p.frame_at(0).to_machine([0, 0, 0]), [100, 50, -20])
+    np.testing.assert_array_equal(p.frame_at(1).to_machine([0, 0, 0]), [-5, 0, 1])
+    assert (p.frame_at(0).system_name, p.frame_at(1).system_name) == ("G54", "G55")
 
 
-def test_one_offset_throughout_is_one_row_seen_for_every_move():
-    """A program that never changes its offset keeps one row for all its moves (no 24 bytes a
-    move); one that changes it keeps a row per move."""
+def test_one_offset_throughout_is_one_frame_for_every_move():
+    """A program that never changes its offsets keeps one frame for all its moves; one that
+    changes them keeps a frame per change, and each move names the one it runs in."""
     m = _machine_with_offsets()
-    one = P("G0 X1 Y1 Z1\nG1 X2 F100\nG1 X3\n", machine=m).move_offsets
-    assert one.shape == (3, 3) and one.strides[0] == 0
-    np.testing.assert_array_equal(one, [[100, 50, -20]] * 3)
-    assert not one.flags.writeable
-    two = P("G0 X1 Y1 Z1\nG55 G0 X1\nG1 X3 F100\n", machine=m).move_offsets
-    assert two.strides[0] != 0 and not two.flags.writeable
-    np.testing.assert_array_equal(two, [[100, 50, -20], [-5, 0, 1], [-5, 0, 1]])
+    one = P("G0 X1 Y1 Z1\nG1 X2 F100\nG1 X3\n", machine=m)
+    assert len(one.frames) == 1 and one.move_frames.tolist() == [0, 0, 0]
+    assert one.frames[0].frame.g5x == (100, 50, -20)
+    two = P("G0 X1 Y1 Z1\nG55 G0 X1\nG1 X3 F100\n", machine=m)
+    assert [c.frame.g5x for c in two.frames] == [(100, 50, -20), (-5, 0, 1)]
+    assert two.move_frames.tolist() == [0, 1, 1] and two.frames[1].line == 2
 
 
 def test_g90_1_centre_uses_work_offset():

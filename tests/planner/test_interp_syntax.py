@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
@@ -181,7 +179,7 @@ def test_empty_program():
     p = parse_program("")
     assert len(p.moves) == 0 and p.events == ()
     np.testing.assert_array_equal(p.end_position, [0, 0, 0])
-    assert math.isclose(len(p.move_offsets), 0)
+    assert len(p.move_frames) == 0 and p.frame_at(0).is_identity
 
 
 def test_a_byte_order_mark_before_the_first_line_is_no_gcode(tmp_path) -> None:

@@ -105,7 +105,7 @@ def test_the_tool_in_the_spindle_at_the_start_is_used_by_g43() -> None:
 
 def test_the_work_position_subtracts_the_tool_offset_like_linuxcncs_relative_dro() -> None:
     prog = parse_program("G43 H1\nG0 Z5\n", "t.nc", tools=TABLE)
-    assert prog.move_offsets is None or np.allclose(prog.move_offsets[-1], (0.0, 0.0, 10.0))
+    assert np.allclose(prog.frame_at(len(prog.moves) - 1).tool, (0.0, 0.0, 10.0))
 
 
 @pytest.mark.parametrize("text, where", [
