@@ -327,13 +327,8 @@ def build_toolpath(program: Program) -> ToolPath:
             return _straight(cols.start, cols.end, idx)
         return _straight(cols.start[idx], cols.end[idx], idx)
 
-    frames = tuple(c.frame for c in program.frames)
-    move_frames = program.move_frames
-    # a point two moves share is drawn in one frame: where the frame changes between moves
-    # (G92, G43, another system), each move has its own two points
-    one_frame = move_frames is None or len({frames[int(f)] for f in np.unique(move_frames)}) <= 1
     own_points = True      # the points are this path's (not the program's, which stay as read)
-    if not counts[MoveKind.ARC] and n and one_frame:
+    if not counts[MoveKind.ARC] and n:
         # lines and rapids only (a CAM raster): one point a move, the program's own joint
         # positions in program order (each move ends where the next starts), drawn as one run
         positions = moves.positions
@@ -346,7 +341,7 @@ def build_toolpath(program: Program) -> ToolPath:
         point_kind[-1] = kinds[-1]
         own_points = False
     elif not counts[MoveKind.ARC]:
-        # lines and rapids in more than one frame: two points a move
+        # lines and rapids given as Move objects: two points a move
         everything = straight(np.arange(n))
         point_kind = np.repeat(kinds.astype(np.int8), 2)
     else:
@@ -356,6 +351,8 @@ def build_toolpath(program: Program) -> ToolPath:
                  straight(np.flatnonzero(kinds == MoveKind.LINE)), curved]
         everything, point_kind = _merge(parts, n_axes, [int(k) for k in DRAWN_KINDS])
         del parts, curved
+    frames = tuple(c.frame for c in program.frames)
+    move_frames = program.move_frames
     if move_frames is not None and n and len(everything.points):
         # drawn in work coordinates (what the program says, where the operator set part zero),
         # each move through its own frame as the DRO reads the machine there
@@ -375,7 +372,10 @@ def build_toolpath(program: Program) -> ToolPath:
 
 def _in_frames(pl: Polylines, frames: tuple[Frame, ...], move_frames: np.ndarray, own: bool) -> Polylines:
     """``pl``'s machine points in the program's coordinates, each move's through its frame
-    (in place where the points are ``own``; one frame throughout: one conversion)."""
+    (in place where the points are ``own``; one frame throughout: one conversion). A point
+    two moves share (one point a move) ends the move before it and is drawn through that
+    move's frame: each move's end is where the DRO reads it, and the move after a change of
+    frame (G92, G43, another system) is drawn from there to its own end."""
     present = [int(f) for f in np.unique(move_frames)]
     used = [f for f in present if not frames[f].is_identity]
     if not used:
@@ -384,7 +384,10 @@ def _in_frames(pl: Polylines, frames: tuple[Frame, ...], move_frames: np.ndarray
     if len({frames[f] for f in present}) == 1:          # one frame throughout (given again)
         frames[used[0]].to_program_in_place(drawn)
     else:
-        of_point = move_frames[np.asarray(pl.move_index)]
+        if isinstance(pl.move_index, JointMoves):
+            of_point = move_frames[np.maximum(np.arange(len(drawn)) - 1, 0)]
+        else:
+            of_point = move_frames[pl.move_index]
         for f in used:
             at = of_point == f
             part = drawn[at]

@@ -58,7 +58,8 @@ def test_arc_points_lie_on_the_exact_geometry(path) -> None:
 @pytest.mark.parametrize("rotation", [30.0, -72.5, 90.0, 160.0])
 def test_arcs_in_a_rotated_system_are_drawn_in_their_turned_plane(rotation: float) -> None:
     """G18/G19 arcs (a helix among them) while the XY plane is rotated (G10 L2 R) lie in planes
-    turned about Z: the preview's points are the move's own, in and out of the turned frame."""
+    turned about Z: the preview draws the move's own points in the program's coordinates (the
+    rotation undone, as the DRO reads them), where they swing in the program's X (Y) and Z."""
     text = (f"G21 G17 G90 F600\nG10 L2 P1 R{rotation}\nG0 X5 Y3 Z2\n"
             "G18 G2 X15 Z2 I5 K0\nG19 G3 Y13 Z2 X7 J5 K0\nG17\nM2\n")
     program = parse_program(text, name="t.nc")
@@ -69,10 +70,13 @@ def test_arcs_in_a_rotated_system_are_drawn_in_their_turned_plane(rotation: floa
         assert move.arc.xy_turn_rad == pytest.approx(np.radians(rotation))
         pts = drawn.points[drawn.move_index == move.index]
         u = np.linspace(0.0, move.length_mm, len(pts))
-        np.testing.assert_allclose(pts, move.evaluate(u)[0], atol=1e-9)
-        # turned back, the points swing in the program's X (Y) and Z about the programmed centre
+        machine = move.evaluate(u)[0]
         c, s = np.cos(np.radians(rotation)), np.sin(np.radians(rotation))
-        px, py = c * pts[:, 0] + s * pts[:, 1], -s * pts[:, 0] + c * pts[:, 1]
+        np.testing.assert_allclose(pts[:, 0], c * machine[:, 0] + s * machine[:, 1], atol=1e-9)
+        np.testing.assert_allclose(pts[:, 1], -s * machine[:, 0] + c * machine[:, 1], atol=1e-9)
+        np.testing.assert_allclose(pts[:, 2], machine[:, 2], atol=1e-9)
+        # the points swing in the program's X (Y) and Z about the programmed centre
+        px, py = pts[:, 0], pts[:, 1]
         swing = px if move.arc.plane == "ZX" else py
         np.testing.assert_allclose(np.hypot(swing - (10.0 if move.arc.plane == "ZX" else 8.0),
                                             pts[:, 2] - 2.0), 5.0, atol=1e-9)
