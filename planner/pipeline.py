@@ -13,7 +13,7 @@ import math
 import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Generic, TypeVar
+from typing import Generic, Protocol, TypeVar
 
 import numpy as np
 
@@ -27,7 +27,8 @@ from planner.geometry.blend import BlendReport, blend_report
 from planner.geometry.softlimits import LimitViolation, check_and_bound
 from planner.motion.blending import blend_program
 
-__all__ = ["Abilities", "Loaded", "Refused", "SoftLimitError", "load", "refusal"]
+__all__ = ["Abilities", "Loaded", "Refused", "Reread", "Rereading", "SoftLimitError", "load", "refusal",
+           "travel"]
 
 P = TypeVar("P")
 
@@ -56,6 +57,17 @@ class SoftLimitError(PlannerError):
     def __init__(self, violations: Sequence[LimitViolation]) -> None:
         self.violations = tuple(violations)
         super().__init__(f"soft limit: {self.violations[0]}")
+
+
+def travel(program: Program, machine: MachineSpec) -> tuple[np.ndarray, np.ndarray]:
+    """The load's travel stage: ``program``'s bounds (machine coordinates, every move's
+    extremes, arcs exact, a piece of the program at a time); ``SoftLimitError`` naming every
+    violation when its path leaves the travel. A program the controller makes (the approach of
+    a restart) is checked by the same stage."""
+    violations, lo, hi = check_and_bound(program, machine)
+    if violations:
+        raise SoftLimitError(violations)
+    return lo, hi
 
 
 def refusal(program: Program, abilities: Abilities) -> tuple[int, str, str]:
@@ -120,7 +132,27 @@ class Loaded(Generic[P]):
     bounds: tuple[np.ndarray, np.ndarray] | None
     blends: BlendReport
     plan: P
-    reread: Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program]
+    reread: Reread
+
+
+@dataclass(frozen=True, eq=False)
+class Rereading:
+    """A program read again with what the machine read: the whole of it (``program``, blended
+    as the first reading was) and ``part``, what runs from here (checked against the travel;
+    None when the caller's cut found nothing)."""
+
+    program: Program
+    part: Program | None
+
+
+class Reread(Protocol):
+    """``Loaded.reread``: the same program from the same start, read with the probe results
+    (G38.x) and the inputs' values (M66), through the load's stages in its order: refused as
+    the load refuses, blended as it was blended, ``part`` of it cut (the whole when None),
+    and that part checked against the travel. Raises as ``load`` raises."""
+
+    def __call__(self, probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...],
+                 part: Callable[[Program], Program | None] | None = None) -> Rereading: ...
 
 
 def load(source: str | os.PathLike[str], name: str, machine: MachineSpec, plan: Callable[[Program], P], *,
@@ -156,34 +188,38 @@ def load(source: str | os.PathLike[str], name: str, machine: MachineSpec, plan: 
                              input_results=waits, block_delete=block_delete, progress=report, utf8=utf8,
                              tool_offset=tool_offset)
 
-    def reread(probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...]) -> Program:
-        """The same program from the same start, read with the probe results (G38.x) and the
-        values of the inputs (M66), blended as the first reading was."""
+    def refuse(programmed: Program) -> None:
+        at, code, why = refusal(programmed, abilities)
+        if why:
+            whole = text if text is not None else (utf8 or b"").decode("utf-8", "replace")
+            raise Refused([SourceError(name, at, _column(whole, at, code), why)])
+
+    def blended(programmed: Program) -> Program:
+        return blend_program(programmed, machine) if do_blend else programmed
+
+    def reread(probes: tuple[ProbeResult | None, ...], waits: tuple[float | None, ...],
+               part: Callable[[Program], Program | None] | None = None) -> Rereading:
         again = read(probes, waits)
-        return blend_program(again, machine) if do_blend else again
+        refuse(again)
+        whole = blended(again)
+        piece = part(whole) if part is not None else whole
+        if check_travel and piece is not None and piece.moves:
+            travel(piece, machine)
+        return Rereading(whole, piece)
 
     try:
         programmed = read(report=progress)
     finally:
         trim_heap()   # the reading's freed temporaries back to the system
-    at, code, why = refusal(programmed, abilities)
-    if why:
-        whole = text if text is not None else (utf8 or b"").decode("utf-8", "replace")
-        raise Refused([SourceError(name, at, _column(whole, at, code), why)])
-    program = blend_program(programmed, machine) if do_blend else programmed
+    refuse(programmed)
+    program = blended(programmed)
     if require_motion and not program.moves:
         raise Refused([SourceError(name, 0, 0, "the program moves no axis: nothing to run (spindle, tool "
                                                     "and coolant codes alone are given in MDI, M61 Q for "
                                                     "the tool in the spindle)")])
     between()
     report = blend_report(program)
-    bounds = None
-    if check_travel:
-        # every move's extremes, arcs exact, a piece of the program at a time
-        violations, lo, hi = check_and_bound(program, machine)
-        if violations:
-            raise SoftLimitError(violations)
-        bounds = (lo, hi)
+    bounds = travel(program, machine) if check_travel else None
     between()
     planned = plan(program)
     return Loaded(programmed, program, bounds, report, planned, reread)

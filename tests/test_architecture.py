@@ -176,24 +176,37 @@ def test_no_part_is_wired_after_it_is_made() -> None:
     assert not found, found
 
 
+def _calls(path: Path, names: tuple[str, ...]) -> list[str]:
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Call):
+            f = node.func
+            name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else ""
+            # ``x.refusal(action)`` is a command's refusal (the state machine's), not the stage
+            if name in names and not (name == "refusal" and isinstance(f, ast.Attribute)):
+                out.append(f"{path.relative_to(ROOT)}:{node.lineno} {name}")
+    return out
+
+
+#: the load's stages: read, refuse, blend, the travel
+_STAGES = ("parse_program", "parse_file", "refusal", "pipeline_refusal", "blend_program", "check_and_bound")
+
+
 def test_programs_are_read_by_the_one_load_alone() -> None:
-    """A program, an MDI block, a wizard's routine and the editor's text are read through
-    ``planner.pipeline.load`` (read, refuse, blend, limits, plan, in that order, each stage an
-    option): no part of the panel, the controller or the tools calls the interpreter itself."""
+    """A program, an MDI block, a wizard's routine, the editor's text and a program read again
+    with what the machine read (a probe, an input) go through ``planner.pipeline.load`` (read,
+    refuse, blend, limits, plan, in that order, each stage an option; ``Loaded.reread`` the same
+    stages again): no part of the panel, the controller or the tools calls a stage itself, and
+    the pipeline calls each stage in one place."""
     calls = []
     for root in ("app", "cli", "planner"):
         for path in sorted((ROOT / root).rglob("*.py")):
-            if path.parent.name == "gcode" or path.name == "pipeline.py":
-                continue
-            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-                if isinstance(node, ast.Call):
-                    f = node.func
-                    name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else ""
-                    if name in ("parse_program", "parse_file"):
-                        calls.append(f"{path.relative_to(ROOT)}:{node.lineno}")
-    pipeline = (ROOT / "planner" / "pipeline.py").read_text(encoding="utf-8")
-    assert "parse_program(" in pipeline
+            if path.parent.name in ("gcode", "geometry", "motion") or path.name == "pipeline.py":
+                continue                    # where the stages are made, and the pipeline
+            calls += _calls(path, _STAGES)
     assert not calls, calls
+    staged = [c.split()[1] for c in _calls(ROOT / "planner" / "pipeline.py", _STAGES)]
+    assert sorted(staged) == ["blend_program", "check_and_bound", "parse_program", "refusal"], staged
 
 
 def test_a_programs_moves_have_one_shape() -> None:
@@ -214,6 +227,29 @@ def test_a_programs_moves_have_one_shape() -> None:
     again = dataclasses.replace(program, moves=tuple(program.moves))
     assert type(program.moves).__name__ == type(again.moves).__name__ == "MoveStore"
     assert [m.end.tolist() for m in again.moves] == [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]
+
+
+#: offset or rotation maths by hand: a part of an offset added or taken off an indexed
+#: coordinate, or the cosine or sine of a coordinate system's rotation
+_BY_HAND = re.compile(r"(g5x|g92|tlo|\.tool|work)\[\w+\]\s*[-+]|[-+]\s*[\w.]*(g5x|g92|tlo)\[|"
+                      r"(cos|sin|radians)\([^)]*rotation")
+
+
+def test_offsets_and_rotations_are_composed_by_the_frame_alone() -> None:
+    """The interpreter, the canonical calls, the panel's touch-off and tool setter, the preview
+    and the backplot convert between machine and program coordinates through
+    ``planner.core.frames.Frame``: nowhere else is an offset added, taken off or turned."""
+    found = []
+    for root in ("app", "cli", "planner", "opcua_server"):
+        for path in sorted((ROOT / root).rglob("*.py")):
+            if path == ROOT / "planner" / "core" / "frames.py":
+                continue
+            for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if _BY_HAND.search(line.split("#")[0]):
+                    found.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()}")
+    assert not found, "\n".join(found)
+    frames = (ROOT / "planner" / "core" / "frames.py").read_text(encoding="utf-8")
+    assert _BY_HAND.search(frames)               # the pattern finds what the frame does
 
 
 def test_no_lock_is_taken_from_outside_its_owner() -> None:

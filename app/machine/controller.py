@@ -244,7 +244,7 @@ class MachineController(QObject):
         self.jobs_log = job_log = JobLog(store.dir, alarms, loader, out, events)
         self.run = run = ProgramRunner(settings, states, positions, tools, loader, stream, jobs, switches,
                                        alarms, out, events, job_log.refusal)
-        read_again = ReadAgain(settings, states, positions, coords, stream, alarms, out)
+        read_again = ReadAgain(states, positions, stream, alarms, out)
         self.prober = prober = Prober(settings, drives, positions, stream, read_again, pauses, tools)
         self.waiter = InputWaiter(settings, coords, stream, read_again, pauses)
         self.manual = manual = ManualMotion(settings, states, positions, coords, tools, spindle, outputs,

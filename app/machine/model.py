@@ -36,6 +36,7 @@ if TYPE_CHECKING:
     from app.toolpath import ToolPath
     from planner.core.program import ProbeResult, Program
     from planner.motion.plan import Plan
+    from planner.pipeline import Reread
 
 __all__ = ["WIZARD", "WIZARDS", "WizardAim", "WizardSpec",
            "Activity", "Alarm", "AlarmState", "Budget", "BusStatus", "CommandResult", "ControllerSnapshot",
@@ -102,10 +103,8 @@ class ProgramInfo:
     blends: int = 0
     path_deviation_mm: float = 0.0
     # G38.x, M66: the program read again, from the same text and starting state, with the probe
-    # results and the inputs' values (``planner.gcode.interpreter.parse_program(probe_results=,
-    # input_results=)``), blended as ``program``
-    reread: Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program] | None = field(
-        default=None, repr=False, compare=False)
+    # results and the inputs' values, through the load's stages (``planner.pipeline.Reread``)
+    reread: Reread | None = field(default=None, repr=False, compare=False)
     # the plan's own end (planned time, without the spin-up waits ``cycle_time_s`` counts) and
     # its pause points, made with the check
     plan_end_s: float = 0.0

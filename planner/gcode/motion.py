@@ -191,9 +191,7 @@ class MotionCodes(ModeCodes):
                 di = ci * scale if ci is not None else 0.0
                 dj = cj * scale if cj is not None else 0.0
                 if self.offsets.rotation != 0.0 and not turned:   # the centre offset turns with the system
-                    theta = math.radians(self.offsets.rotation)
-                    di, dj = (di * math.cos(theta) - dj * math.sin(theta),
-                              di * math.sin(theta) + dj * math.cos(theta))
+                    di, dj = self.frame.turn(di, dj)
                 cx = x0 + di
                 cy = y0 + dj
             r0, r1 = check_center_radii(x0, y0, x1, y1, cx, cy, self.modal.inch, letters)
@@ -220,9 +218,7 @@ class MotionCodes(ModeCodes):
 
     def frame_xy(self, x: float, y: float) -> tuple[float, float]:
         """Machine X and Y turned back by the XY rotation: the frame of a G18/G19 arc there."""
-        theta = math.radians(self.offsets.rotation)
-        c, s = math.cos(theta), math.sin(theta)
-        return c * x + s * y, -s * x + c * y
+        return self.frame.turn_back(x, y)
 
     def arc(self, target: list[float], vals: dict[str, float], cw: bool, scale: float, line_no: int) -> None:
         pname, fa, sa, na, fc, sc, bad, letters = self.plane_axes()
@@ -242,7 +238,7 @@ class MotionCodes(ModeCodes):
         if self.offsets.rotation != 0.0 and self.modal.plane != G.G17:
             # a G18/G19 arc in a rotated system: its plane holds Z and a turned X or Y, so it is
             # made in the frame turned with the system, where that plane is an axis plane
-            turn = math.radians(self.offsets.rotation)
+            turn = self.frame.rotation_rad
             ix, iy = self.setup.axis_index["X"], self.setup.axis_index["Y"]
             frame_pos, frame_target = list(pos), list(target)
             frame_pos[ix], frame_pos[iy] = self.frame_xy(pos[ix], pos[iy])

@@ -5,7 +5,6 @@ read positions (#5420-, #5021-, #<_x> ...), as LinuxCNC 2.9 keeps them.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 from planner.core.errors import BlockError, PlannerError
@@ -104,26 +103,17 @@ class OffsetCodes(MotionCodes):
             if self.modal.comp_code != G.G40 and system == self.modal.work_code:
                 raise BlockError("cannot change the offsets of the coordinate system in use with cutter "
                                  "compensation on", "G10")
-            new = list(self.offsets.systems[system])
             theta = num.get(base + 9, 0.0)
-            for letter in axis_words:
-                i = self.setup.axis_index[letter]
-                if l_word == 2:
-                    new[i] = value(letter)
-                elif theta == 0.0 or letter not in "XY":
-                    # L20: the current position reads the given value in that system
-                    new[i] = self.pos[i] - self.offsets.g92[i] - self.offsets.tlo[i] - value(letter)
-            if l_word == 20 and theta != 0.0 and ("X" in axis_words or "Y" in axis_words):
-                # in a rotated system X and Y go together: the position read there keeps the
-                # axis not given, and the origin moves so that both read as wanted
-                ix, iy = self.setup.axis_index["X"], self.setup.axis_index["Y"]
-                px, py = self.prog_xy(self.pos, work=self.offsets.systems[system], rotation=theta)
-                px = value("X") if "X" in axis_words else px
-                py = value("Y") if "Y" in axis_words else py
-                u, v = px + self.offsets.g92[ix], py + self.offsets.g92[iy]
-                c, s = math.cos(math.radians(theta)), math.sin(math.radians(theta))
-                new[ix] = self.pos[ix] - self.offsets.tlo[ix] - (c * u - s * v)
-                new[iy] = self.pos[iy] - self.offsets.tlo[iy] - (s * u + c * v)
+            given = {self.setup.axis_index[letter]: value(letter) for letter in axis_words}
+            if l_word == 2:
+                new = list(self.offsets.systems[system])
+                for i, v in given.items():
+                    new[i] = v
+            else:
+                # L20: the current position reads the given values in that system (in a rotated
+                # one, X and Y together)
+                new = list(replace(self.frame, g5x=self.offsets.systems[system],
+                                   rotation_deg=theta).origin_reading(self.pos, given))
             for i, p_index in enumerate(self.setup.axis_param):
                 num[base + p_index] = new[i]
             self.offsets.systems[system] = tuple(new)
@@ -137,17 +127,13 @@ class OffsetCodes(MotionCodes):
                 num[base + p] = self.pos[i]
             self.parameters_changed(line_no, f"{gname(code)}: position stored for {gname(code - 1)}")
         elif code in (G.G52, G.G92):
-            g92 = list(self.offsets.g92)
-            unrotated = self.prog_xy(self.pos,
-                                     g92=(0.0,) * self.setup.n) if self.offsets.rotation != 0.0 else None
-            for letter in axis_words:
-                i = self.setup.axis_index[letter]
-                if code == G.G52:         # G52: the offset itself
-                    g92[i] = value(letter)
-                elif unrotated is not None and letter in "XY":
-                    g92[i] = unrotated["XY".index(letter)] - value(letter)
-                else:                   # G92: the current position reads the given value
-                    g92[i] = self.pos[i] - self.offsets.work[i] - self.offsets.tlo[i] - value(letter)
+            given = {self.setup.axis_index[letter]: value(letter) for letter in axis_words}
+            if code == G.G52:             # G52: the offsets themselves
+                g92 = list(self.offsets.g92)
+                for i, v in given.items():
+                    g92[i] = v
+            else:                         # G92: the current position reads the given values
+                g92 = list(self.frame.g92_reading(self.pos, given))
             self.set_g92(tuple(g92), True)
             self.parameters_changed(line_no, f"{gname(code)}: axis offsets set")
         elif code == G.G92_1:               # G92.1: offsets and their parameters to zero
@@ -187,29 +173,25 @@ class OffsetCodes(MotionCodes):
         else:
             work, g92 = self.offsets.work, self.offsets.g92
             rotation = self.offsets.rotation
-        xy = l_word != 1 and ("X" in axis_words or "Y" in axis_words) and "X" in self.setup.axis_index \
-            and "Y" in self.setup.axis_index
-        for letter in axis_words:
-            if xy and letter in "XY":
-                continue
-            i = self.setup.axis_index[letter]
-            given = vals[letter] if self.setup.rotary[i] else vals[letter] * scale
-            # L10/L11: the position in that system without any tool offset, minus the value
-            value = given if l_word == 1 else self.pos[i] - work[i] - g92[i] - given
-            tool = tool.with_offset(letter, value)
-        if xy:
-            # X and Y as LinuxCNC's convert_setup_tool: the position read in the (possibly
-            # rotated) system without tool offset, minus the values, turned back to the machine's
-            # frame; an axis not given keeps the old offset's component along it
-            ix, iy = self.setup.axis_index["X"], self.setup.axis_index["Y"]
-            c, s = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
-            dx, dy = self.pos[ix] - work[ix], self.pos[iy] - work[iy]
-            tx, ty = c * dx + s * dy - g92[ix], -s * dx + c * dy - g92[iy]
-            ox, oy = tool.offset("X"), tool.offset("Y")
-            old_u, old_v = c * ox + s * oy, -s * ox + c * oy          # the old offset, system frame
-            u = tx - vals["X"] * scale if "X" in axis_words else old_u
-            v = ty - vals["Y"] * scale if "Y" in axis_words else old_v
-            tool = tool.with_offset("X", c * u - s * v).with_offset("Y", s * u + c * v)
+        index = self.setup.axis_index
+        given = {index[letter]: vals[letter] if self.setup.rotary[index[letter]] else vals[letter] * scale
+                 for letter in axis_words}
+        written = list(axis_words)
+        if l_word == 1:
+            values = [0.0] * self.setup.n
+            for i, v in given.items():
+                values[i] = v
+        else:
+            # L10/L11: the position in that system without any tool offset, minus the values;
+            # X and Y as LinuxCNC's convert_setup_tool, in the (possibly rotated) system, both
+            # written when one is given
+            old = [tool.offset(a) for a in self.setup.axes]
+            values = list(replace(self.frame, g5x=work, g92=g92, rotation_deg=rotation)
+                          .tool_reading(self.pos, given, old))
+            if ("X" in axis_words or "Y" in axis_words) and "X" in index and "Y" in index:
+                written += [letter for letter in "XY" if letter not in written]
+        for letter in written:
+            tool = tool.with_offset(letter, values[index[letter]])
         if "R" in vals:
             if vals["R"] < 0:
                 raise BlockError(f"G10 L{l_word} R{vals['R']:g}: the tool radius cannot be negative", "R")

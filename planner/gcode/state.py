@@ -12,7 +12,6 @@ in its own module (``motion``, ``offsets``, ``tools``, ``cycles`` ...), put toge
 
 from __future__ import annotations
 
-import math
 import re
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Sequence
@@ -391,10 +390,10 @@ class InterpBase(ABC):
         self.curve = CurveState()
         self.calls = CallStack()
         o = self.offsets
+        self.frame = CoordinateFrame(setup.axes, o.work, o.g92, o.tlo, o.rotation)   # the one in force
         self.rec = Record(
             out=MoveBuffer(setup.start),
-            frames=[FrameChange(0, 0, CoordinateFrame(setup.axes, o.work, o.g92, o.tlo, o.rotation))],
-            modal_changes=[],
+            frames=[FrameChange(0, 0, self.frame)], modal_changes=[],
             blend_changes=[(0, blend_default_mm)], naive_changes=[(0, blend_default_mm)])
         # the motion: where the tool is (machine coordinates), the motion mode (None: G80),
         # G96's speed counted (rpm: D, else the spindle's highest; None in G97)
@@ -462,40 +461,21 @@ class InterpBase(ABC):
             o.work = work
         if tlo is not None:
             o.tlo = tlo
-        total = tuple(w + g + t for w, g, t in zip(o.work, o.g92, o.tlo))
-        o.total = total
-        frame = CoordinateFrame(self.setup.axes, o.work, o.g92, o.tlo, o.rotation,
-                                SYSTEMS.index(self.modal.work_code) + 1)
-        self.rec.frames.append(FrameChange(len(self.rec.out), self.current_line, frame))
+        self.frame = CoordinateFrame(self.setup.axes, o.work, o.g92, o.tlo, o.rotation,
+                                     SYSTEMS.index(self.modal.work_code) + 1)
+        o.total = self.frame.total
+        self.rec.frames.append(FrameChange(len(self.rec.out), self.current_line, self.frame))
 
-    def prog_xy(self, pos: Sequence[float], work: Sequence[float] | None = None,
-                rotation: float | None = None, g92: Sequence[float] | None = None) -> tuple[float, float]:
-        """X and Y of a machine position in program coordinates (mm), the XY rotation undone:
-        R(-rotation) (machine - G5x - tool) - G92, as LinuxCNC's canon composes them."""
+    def prog_xy(self, pos: Sequence[float]) -> tuple[float, float]:
+        """X and Y of a machine position in program coordinates (mm), the XY rotation undone
+        (``Frame.xy_to_program`` of the frame in force)."""
         ix, iy = self.setup.axis_index["X"], self.setup.axis_index["Y"]
-        o = self.offsets
-        work = o.work if work is None else work
-        g92 = o.g92 if g92 is None else g92
-        theta = math.radians(o.rotation if rotation is None else rotation)
-        dx, dy = pos[ix] - work[ix] - o.tlo[ix], pos[iy] - work[iy] - o.tlo[iy]
-        c, s = math.cos(theta), math.sin(theta)
-        return c * dx + s * dy - g92[ix], -s * dx + c * dy - g92[iy]
+        return self.frame.xy_to_program(pos[ix], pos[iy])
 
     def machine_xy(self, x: float, y: float) -> tuple[float, float]:
-        """Machine X and Y of program X and Y (mm): R(rotation) (program + G92) + G5x + tool."""
-        ix, iy = self.setup.axis_index["X"], self.setup.axis_index["Y"]
-        o = self.offsets
-        u, v = x + o.g92[ix], y + o.g92[iy]
-        theta = math.radians(o.rotation)
-        c, s = math.cos(theta), math.sin(theta)
-        return (c * u - s * v + o.work[ix] + o.tlo[ix], s * u + c * v + o.work[iy] + o.tlo[iy])
+        """Machine X and Y of program X and Y (mm) (``Frame.xy_to_machine``)."""
+        return self.frame.xy_to_machine(x, y)
 
     def program_position(self, p: Sequence[float]) -> list[float]:
-        """Program coordinates (mm, deg) of machine position ``p``: the offsets taken off, an XY
-        rotation of the coordinate system undone."""
-        total = self.offsets.total
-        q = [p[i] - total[i] for i in range(self.setup.n)]
-        if self.offsets.rotation != 0.0:
-            ix, iy = self.setup.axis_index["X"], self.setup.axis_index["Y"]
-            q[ix], q[iy] = self.prog_xy(p)
-        return q
+        """Program coordinates (mm, deg) of machine position ``p`` (``Frame.point_to_program``)."""
+        return self.frame.point_to_program(p)

@@ -148,7 +148,7 @@ class Probing:
         """What the routine reported, read from it with every contact the machine made."""
         if job.reread is None:
             return None
-        full = job.reread(job.probe_results, job.wait_results)
+        full = job.reread(job.probe_results, job.wait_results).program
         reported = [e.message for e in full.events
                     if e.kind is EventKind.MESSAGE and _RESULT.search(e.message)]
         if not reported:

@@ -14,14 +14,15 @@ import numpy as np
 from app.machine.infra.events import PanelChannels
 from app.machine.model import Activity, MachineState
 from app.machine.motion.jobs import Job
-from app.machine.motion.refusals import limit_issues, refusal
+from app.machine.motion.refusals import violation_issues
 from app.machine.motion.streamer import Streamer
-from app.machine.ports import AlarmSink, CoordinatesView, PositionsView, Settings
+from app.machine.ports import AlarmSink, PositionsView
 from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.program import EventKind, ProbeResult, Program, TableRef
 from planner.gcode.modes import ABORT_MARK
 from planner.geometry.resume import carry_overrides, program_from_moves
+from planner.pipeline import Refused, SoftLimitError
 
 __all__ = ["ReadAgain"]
 
@@ -29,13 +30,10 @@ __all__ = ["ReadAgain"]
 class ReadAgain:
     """The program read again with what the machine read, and the run going on with it."""
 
-    def __init__(self, settings: Settings, states: StateMachine, positions: PositionsView,
-                 coordinates: CoordinatesView, motion: Streamer, alarms: AlarmSink,
+    def __init__(self, states: StateMachine, positions: PositionsView, motion: Streamer, alarms: AlarmSink,
                  out: PanelChannels) -> None:
-        self._settings = settings
         self._states = states
         self._positions = positions
-        self._coordinates = coordinates
         self._motion = motion
         self._alarms = alarms
         self._out = out
@@ -57,7 +55,14 @@ class ReadAgain:
             fail(f"{where}: the program cannot be read again with the result")
             return
         try:
-            full = job.reread(probes, waits)
+            again = job.reread(probes, waits, part=lambda full: after_event(full, kind, index))
+        except Refused as exc:               # a branch the first reading did not take
+            e = exc.errors[0]
+            fail(f"{where}: with the result, line {e.line}: {e.message}")
+            return
+        except SoftLimitError as exc:
+            fail(f"{where}: with the result, {violation_issues(list(exc.violations))[0]}")
+            return
         except ProgramError as exc:
             e = exc.errors[0]
             if job.reason and not job.steps and os.path.isabs(e.file):
@@ -72,21 +77,13 @@ class ReadAgain:
         except PlannerError as exc:
             fail(f"{where}: with the result the program reads: {exc}")
             return
-        rest = after_event(full, kind, index)
+        full, rest = again.program, again.part
         if rest is None:
             fail(f"{where}: the program read again does not have it")
             return
         here = self._positions.reference_pos()
         if rest.moves and float(np.max(np.abs(rest.start_position - here))) > 1e-6:
             fail(f"{where}: the program read again does not go on from where the machine stands")
-            return
-        issues = limit_issues(rest, self._coordinates.machine()) if rest.moves else []
-        if issues:
-            fail(f"{where}: with the result, {issues[0]}")
-            return
-        at, why = refusal(full, self._settings.config)
-        if why:                              # a branch the first reading did not take
-            fail(f"{where}: with the result, line {at}: {why}")
             return
         if not rest.moves:                   # nothing moves after it: the program ends here
             self._motion.finish_now(job, rest)

@@ -60,8 +60,8 @@ class ToolSetter:
         c = cfg.controller
         clear = z_axis.max_pos if c.restart_clearance_mm is None else c.restart_clearance_mm
         # program Z of a machine Z: the routine runs in the active coordinate system, without G43
-        frame = self._coordinates.frame()
-        shift = float(frame.g5x[k]) + float(frame.g92[k])
+        frame = self._coordinates.frame().without_tool()
+        shift = frame.total[k]
         fast = probe.max_feed_mm_min
         overtravel = probe_overtravel_mm(fast, cfg.machine.limits.j_max_mm_s3)
         bottom = max(sz - 1.0, z_axis.min_pos) - shift

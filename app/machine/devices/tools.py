@@ -134,10 +134,11 @@ class ToolControl:
         if cfg.homing.required and not all(self._positions.homed):
             return self._states.refuse(action, "axes not homed: the machine Z is not known")
         k = cfg.axes.index("Z")
-        machine_z = float(self._positions.machine_pos()[k])
-        # the work Z of the gauge line here (G5x and G92; the tool's own length left out)
+        # the tool length with which the tip here reads the surface's height (G5x and G92; the
+        # tool's own length what is measured)
         frame = self._coordinates.panel_frame()
-        length = round(machine_z - float(frame.g5x[k]) - float(frame.g92[k]) - float(surface_z_mm), 6) + 0.0
+        machine = [float(v) for v in self._positions.machine_pos()]
+        length = round(frame.tool_reading(machine, {k: float(surface_z_mm)}, frame.tool)[k], 6) + 0.0
         why = self._length_outside_travel(number, length)
         if why:
             return self._states.refuse(action, why)

@@ -17,6 +17,7 @@ from planner.core.program import SPINDLE_OVERRIDE_OFF, EventKind, ProbeResult, P
 from planner.motion.meter import LimitMeter, PathSpeedLimits
 from planner.motion.plan import Plan
 from planner.motion.window import PlanWindow
+from planner.pipeline import Reread
 
 __all__ = ["NO_TERMS", "ChunkRecord", "Job", "JobTerms", "Reads", "Reread", "ResumePoint", "SentLimits",
            "merge_max"]
@@ -37,8 +38,6 @@ class ChunkRecord:
 
 #: the probe results and the values of the inputs read so far in a run (by index)
 Reads = tuple[tuple[ProbeResult | None, ...], tuple[float | None, ...]]
-#: reads the whole program again with the probe results and the values of the inputs so far
-Reread = Callable[[tuple[ProbeResult | None, ...], tuple[float | None, ...]], Program]
 
 
 @dataclass(frozen=True, slots=True)

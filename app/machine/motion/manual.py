@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 from app.machine.errors import MachineError
 from app.machine.model import Activity, CommandResult, SpindleState
-from app.machine.motion.jobs import Job, JobTerms, Reread
+from app.machine.motion.jobs import Job, JobTerms
 from app.machine.motion.making import JobMaker
 from app.machine.motion.refusals import machine_abilities, violation_issues
 from app.machine.motion.streamer import Streamer
@@ -39,7 +39,7 @@ from planner.core.program import (
     ToolNumber,
 )
 from planner.gcode.lexer import LexError, compact
-from planner.pipeline import SoftLimitError, load
+from planner.pipeline import Reread, SoftLimitError, load
 
 __all__ = ["JOG_INCREMENTS", "ManualMotion"]
 

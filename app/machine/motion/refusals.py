@@ -1,18 +1,15 @@
-"""What this machine cannot run, said at the line that asks for it (``planner.pipeline.refusal``
-with this machine's abilities: a probe input when ``[probe] drive`` is set, no spindle encoder,
-no analog outputs), and a path beyond the soft limits."""
+"""This machine's abilities, which the load's refusal stage reads (``planner.pipeline.refusal``:
+a probe input when ``[probe] drive`` is set, no spindle encoder, no analog outputs, the coolant
+outputs wired), and the load's soft-limit violations as the program's issues at their lines."""
 
 from __future__ import annotations
 
 from app.machine.config import MachineConfig
 from app.machine.model import ProgramIssue
-from planner.core.machine import MachineSpec
-from planner.core.program import Program
-from planner.geometry.softlimits import LimitViolation, check_program
+from planner.geometry.softlimits import LimitViolation
 from planner.pipeline import Abilities
-from planner.pipeline import refusal as pipeline_refusal
 
-__all__ = ["limit_issues", "machine_abilities", "refusal", "violation_issues"]
+__all__ = ["machine_abilities", "violation_issues"]
 
 
 def machine_abilities(cfg: MachineConfig) -> Abilities:
@@ -26,17 +23,6 @@ def machine_abilities(cfg: MachineConfig) -> Abilities:
                      coolant_flood=cfg.wiring.has("coolant_flood"))
 
 
-def refusal(program: Program, cfg: MachineConfig) -> tuple[int, str]:
-    """(line, why) of the first thing in ``program`` this machine cannot run, (0, "") when none."""
-    at, _code, why = pipeline_refusal(program, machine_abilities(cfg))
-    return at, why
-
-
 def violation_issues(violations: list[LimitViolation]) -> tuple[ProgramIssue, ...]:
     """The soft-limit violations as the program's issues, at their lines."""
     return tuple(ProgramIssue(v.line, 1, str(v).split(": ", 1)[1], v.axis) for v in violations)
-
-
-def limit_issues(program: Program, machine: MachineSpec) -> list[ProgramIssue]:
-    """Soft-limit issues of a program's whole path (MDI, run from line, a read again)."""
-    return list(violation_issues(check_program(program, machine)))

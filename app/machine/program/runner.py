@@ -13,7 +13,7 @@ from app.machine.infra.events import MachineEvents, PanelChannels
 from app.machine.model import Activity, CommandResult, HoldKind, MachineState, ProgramInfo, RestartPreview
 from app.machine.motion.jobs import JobTerms, ResumePoint
 from app.machine.motion.making import JobMaker
-from app.machine.motion.refusals import limit_issues
+from app.machine.motion.refusals import violation_issues
 from app.machine.motion.streamer import Streamer
 from app.machine.motion.timescale import SIGMA_MAX
 from app.machine.ports import AlarmSink, PositionsView, Settings, ToolView
@@ -34,6 +34,7 @@ from planner.geometry.resume import (
     reads_before,
     remaining_program,
 )
+from planner.pipeline import SoftLimitError, travel
 
 __all__ = ["ProgramRunner"]
 
@@ -421,9 +422,11 @@ class ProgramRunner:
         way = None
         if approach.moves:
             way = program_from_moves(prog, list(approach.moves), [spindle_event], cur, name="approach")
-            issues = limit_issues(way, self._jobs.machine())
-            if issues:
-                return self._states.refuse(action, f"approach move: soft limit: {issues[0]}")
+            try:
+                travel(way, self._jobs.machine())
+            except SoftLimitError as exc:
+                issue = violation_issues(list(exc.violations))[0]
+                return self._states.refuse(action, f"approach move: soft limit: {issue}")
         else:
             rest = replace(rest, events=(spindle_event, *rest.events))
         info: ProgramInfo | None = self._loader.program_info
