@@ -259,24 +259,9 @@ class CycleCodes(MotionCodes):
         z[per - 1::per] = depths + rapid_delta
         ends = np.repeat(np.asarray([self.pos], dtype=float), len(z), axis=0)
         ends[:, na] = z + off_na
-        before = np.concatenate(([self.pos[na]], ends[:-1, na]))
-        length = np.abs(ends[:, na] - before)
         rapid = np.ones(len(z), dtype=bool)
         rapid[0::per] = False
-        keep = length > ZERO_LEN
-        if not keep.all():
-            # a move left out leaves the tool where it was, and the next one starts there (rare:
-            # a back-off landing within 1e-9 mm of the R plane): measured one by one
-            at = self.pos[na]
-            for i in range(len(z)):
-                length[i] = abs(ends[i, na] - at)
-                keep[i] = length[i] > ZERO_LEN
-                if keep[i]:
-                    at = ends[i, na]
-        feed = np.where(rapid, math.inf, self.modal.feed_mm_s)
-        self.rec.out.extend(ends[keep], np.full(int(keep.sum()), line_no), np.where(rapid[keep], 0, 1),
-                            feed[keep], length[keep], True)
-        self.pos = ends[-1].tolist()
+        self.straight_runs(ends, rapid, np.full(len(z), line_no), np.full(len(z), self.modal.feed_mm_s))
 
     def probe(self, code: int, target: list[float], line_no: int) -> None:
         """G38.2-G38.5 as LinuxCNC 2.9 runs them: a straight move at the feed, the probe armed at
@@ -308,10 +293,7 @@ class CycleCodes(MotionCodes):
             end, trip, tripped = list(target), list(target), False
         self.rec.events.append(Event(EventKind.PROBE_START, line_no, len(self.rec.out) - 1, TableRef(k),
                                      f"{name}: probe armed"))
-        length = self.path_length(self.pos, end)
-        moved = length > ZERO_LEN
-        if moved:
-            self.emit(end, LINE, self.modal.feed_mm_s, length, None, line_no)
+        moved = self.straight_one(end, LINE, self.modal.feed_mm_s, line_no)
         self.rec.probes.append(ProbeRequest(code, line_no, len(self.rec.out) - 1 if moved else -1,
                                             tuple(float(v) for v in target), known))
         self.rec.events.append(Event(EventKind.PROBE, line_no, len(self.rec.out) - 1, TableRef(k),
@@ -387,9 +369,7 @@ class CycleCodes(MotionCodes):
 
     def synchronised_move(self, target: list[float], feed: float, line_no: int) -> None:
         """A feed move of G33 or G76 at ``feed`` (mm/s), whatever F and the feed mode say."""
-        length = self.path_length(self.pos, target)
-        if length > ZERO_LEN:
-            self.emit(target, LINE, feed, length, None, line_no, fixed_feed=True)
+        self.straight_one(target, LINE, feed, line_no, fixed_feed=True)
 
     def synchronised_feed(self, target: list[float], vals: dict[str, float], scale: float,
                           line_no: int) -> None:

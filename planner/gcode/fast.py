@@ -6,7 +6,6 @@ and hands any other to the general path.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -203,12 +202,9 @@ class FastPaths(MotionCodes):
             self.cycle.il = None
         self.motion = None if motion[cut - 1] < 0.0 else int(motion[cut - 1])
         self.modal.feed_mm_s = float(feed[cut - 1])
-        if moving.size:
-            rapid = motion[moving] == 0.0
-            self.rec.out.extend(targets[1:][moving], moving + first_line, np.where(rapid, 0, 1),
-                                np.where(rapid, math.inf, feed[moving]), length[moving],
-                                self.modal.exact_stop)
-            self.pos = targets[moving[-1] + 1].tolist()
+        if moving.size:       # none of them short now: the recorder keeps them all
+            self.straight_runs(targets[1:][moving], motion[moving] == 0.0, moving + first_line, feed[moving],
+                               length[moving])
         return cut
 
     def run_bulk(self, text: str | None, utf8: bytes | None = None) -> bool:

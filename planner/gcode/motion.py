@@ -1,6 +1,7 @@
 """Motion and arcs: G00/G01 straight moves, G02/G03 arcs in the three planes (R or centre words,
 turns, the XY rotation), the target of a block's axis words, polar words; every move reaches the
-program through ``emit``.
+program through ``emit``, straight moves through the recorder of straight runs
+(``straight_runs``, and ``straight_one`` for a move at a time).
 """
 
 from __future__ import annotations
@@ -8,6 +9,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import replace
+from typing import Any
+
+import numpy as np
 
 from planner.core.errors import BlockError
 from planner.core.program import (
@@ -84,8 +88,9 @@ class MotionCodes(ModeCodes):
 
     def straight(self, target: list[float], rapid: bool, line_no: int) -> None:
         """G00 (``rapid``) or G01 to ``target``: under cutter compensation, its offset path;
-        a move shorter than ``ZERO_LEN`` is dropped (LinuxCNC refuses a G01 without a feed
-        even then)."""
+        else the straight-move recorder's rules for one move (``straight_runs``), in plain
+        floats: a move shorter than ``ZERO_LEN`` is dropped (LinuxCNC refuses a G01 without a
+        feed even then)."""
         comp = self.comp
         feed = math.inf if rapid else self.modal.feed_mm_s
         if comp.busy:
@@ -97,20 +102,85 @@ class MotionCodes(ModeCodes):
             comp.straight_done()
         if feed <= 0.0:
             raise BlockError(ZERO_FEED, "G")
+        self.straight_one(target, RAPID if rapid else LINE, feed, line_no)
+
+    def straight_one(self, target: list[float], kind: MoveKind, feed: float, line_no: int,
+                     fixed_feed: bool = False) -> bool:
+        """One straight move to ``target`` by the rules of ``straight_runs``, in plain floats (the
+        interpreter reads most lines one at a time: no array a move): left out when no longer
+        than ``ZERO_LEN`` (the tool stays where it is), else recorded by ``emit``. Whether it
+        was recorded."""
         length = math.dist(self.pos, target) if self.setup.all_linear else self.path_length(self.pos, target)
         if length <= ZERO_LEN:
-            return  # zero-length move: dropped (position unchanged)
-        self.emit(target, RAPID if rapid else LINE, feed, length, None, line_no)
+            return False
+        self.emit(target, kind, feed, length, None, line_no, fixed_feed)
+        return True
 
     def emit(self, target: list[float], kind: MoveKind, feed: float, length: float, arc: Arc | None,
              line_no: int, fixed_feed: bool = False) -> None:
-        """Every move the program makes: G93's feed from the move's length, the move recorded,
-        the tool there."""
+        """Every move the program makes one at a time: G93's feed from the move's length, the
+        move recorded (stopping exactly where the modal G61 says), the tool there."""
         modal = self.modal
         if modal.feed_mode == _G93 and kind is not RAPID and not fixed_feed:
-            feed = length * modal.inverse_f / 60.0      # the move takes 1/F minutes
+            feed = self.inverse_time_feed(length)
         self.rec.out.append(target, line_no, kind, feed, length, arc, modal.exact_stop)
         self.pos = target
+
+    def inverse_time_feed(self, length: float | np.ndarray) -> Any:
+        """G93: the feed (mm/s) of a feed move of ``length`` that takes 1/F minutes."""
+        return length * self.modal.inverse_f / 60.0
+
+    def path_lengths(self, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+        """``path_length`` of many moves (rows): over the linear axes, or over the rotary ones
+        when the linear part is shorter than ``ZERO_LEN``."""
+        d = ends - starts
+        if self.setup.all_linear:
+            return np.sqrt(np.einsum("ij,ij->i", d, d))
+        lin, rot = list(self.setup.linear_idx), list(self.setup.rotary_idx)
+        length = np.sqrt(np.einsum("ij,ij->i", d[:, lin], d[:, lin])) if lin else np.zeros(len(d))
+        if rot:
+            turned = np.sqrt(np.einsum("ij,ij->i", d[:, rot], d[:, rot]))
+            length = np.where((length <= ZERO_LEN) & (turned > ZERO_LEN), turned, length)
+        return length
+
+    def straight_runs(self, ends: np.ndarray, rapid: np.ndarray, lines: np.ndarray, feed_mm_s: np.ndarray,
+                      lengths: np.ndarray | None = None, fixed_feed: bool = False) -> int:
+        """The recorder of straight runs: moves from where the tool is through each row of
+        ``ends`` (machine coordinates) at ``feed_mm_s`` (inf for a rapid), all at once, with the
+        rules ``straight`` follows for one: a move no longer than ``ZERO_LEN`` is left out and
+        the tool stays where it was (the next one measured from there); a feed move in G93
+        takes 1/F minutes (unless ``fixed_feed``); each stops exactly where the modal G61 says.
+        ``lengths``: the moves' lengths as the caller measured them (``path_lengths``). Returns
+        how many moves were recorded."""
+        n = len(ends)
+        if not n:
+            return 0
+        if lengths is None:
+            lengths = self.path_lengths(np.vstack(([self.pos], ends[:-1])), ends)
+        keep = lengths > ZERO_LEN
+        if not keep.all():
+            # a move left out leaves the tool where it was, and the next one starts there (rare:
+            # a back-off landing within 1e-9 mm of where it started): measured one by one
+            lengths = lengths.copy()
+            at = list(self.pos)
+            for i in range(n):
+                lengths[i] = self.path_length(at, ends[i])
+                keep[i] = lengths[i] > ZERO_LEN
+                if keep[i]:
+                    at = ends[i]
+        if not keep.any():
+            return 0
+        feed = np.where(rapid, math.inf, feed_mm_s)
+        if self.modal.feed_mode == _G93 and not fixed_feed:
+            feed = np.where(rapid, math.inf, self.inverse_time_feed(lengths))
+        kept = int(np.count_nonzero(keep))
+        if kept == n:
+            self.rec.out.extend(ends, lines, np.where(rapid, 0, 1), feed, lengths, self.modal.exact_stop)
+        else:
+            self.rec.out.extend(ends[keep], lines[keep], np.where(rapid[keep], 0, 1), feed[keep],
+                                lengths[keep], self.modal.exact_stop)
+        self.pos = ends[np.flatnonzero(keep)[-1]].tolist()
+        return kept
 
     def drop_move(self, i: int) -> None:
         """Remove move ``i`` (cutter compensation cut it to nothing); what refers to later moves
