@@ -123,6 +123,7 @@ from app.machine.session.connection import RAMP_DOWN_TIMEOUT_S, Connection
 from app.machine.session.monitoring import RemoteMonitoring
 from app.machine.session.poller import StatusPoller
 from app.machine.state.alarms import AlarmLog
+from app.machine.state.overrides import Overrides
 from app.machine.state.states import TRANSITIONS, StateMachine
 from app.machine.state.status import StatusBoard
 from app.paths import DEFAULT_STATE_DIR
@@ -232,10 +233,11 @@ class MachineController(QObject):
         self.coordinates = coords = Coordinates(settings, states, positions, store, alarms, out, events,
                                                 pauses)
         self.outputs = outputs = DigitalOutputs(settings, drives, alarms, events, pauses)
+        self.overrides = overrides = Overrides()
         self.spindle_ctl = spindle = SpindleControl(settings, states, drives, outputs, alarms, out, events,
-                                                    signals)
+                                                    signals, overrides)
         self.tools = tools = ToolControl(settings, states, positions, coords, store, alarms, out, pauses)
-        self.switches = switches = RunSwitches(out, events)
+        self.switches = switches = RunSwitches(out, events, overrides)
         self.stream = stream = Streamer(settings, states, drives, positions, coords, spindle, tools, switches,
                                         alarms, pauses, str(store.path("last_run.npz")), out, events)
         jobs = stream.jobs

@@ -21,16 +21,15 @@ from app.machine.motion.spinup import spins_up
 from app.machine.ports import AlarmSink, Settings, SignalValues
 from app.machine.spindle_settings import SpindleDriveSettings
 from app.machine.state.gate import Action, guarded
+from app.machine.state.overrides import Override, Overrides
 from app.machine.state.states import StateMachine
 from app.machine.wiring import analog_place
 from ethercat.terminals import ANALOG_FULL_SCALE
 from ethercat.worker import WorkerSnapshot
 
-__all__ = ["OVERRIDE_MAX_PCT", "OVERRIDE_MIN_PCT", "SpindleControl"]
+__all__ = ["SpindleControl"]
 
 # never below half: a slowed spindle under the same feed overloads the cutter
-OVERRIDE_MIN_PCT = 50.0
-OVERRIDE_MAX_PCT = 150.0
 
 
 #: with the at-speed signal wired: the least wait after a spin-up command (the drive sees it)
@@ -43,12 +42,15 @@ def at_speed_timeout_s(spinup_s: float) -> float:
 
 
 class SpindleControl:
-    """The spindle: its state, the operator's override, and whether the program turned the
-    override off (``controller.spindle_ctl``). It stops on E-stop, faults and reset."""
+    """The spindle: its state, turned at S times the override the override model gives it
+    (``Overrides.spindle_pct_at``: the knob, the program's lock, the cap) (``controller.spindle_ctl``).
+    It stops on E-stop, faults and reset."""
 
     def __init__(self, settings: Settings, states: StateMachine, drives: DriveLink, outputs: DigitalOutputs,
-                 alarms: AlarmSink, out: PanelChannels, events: MachineEvents, signals: SignalValues) -> None:
+                 alarms: AlarmSink, out: PanelChannels, events: MachineEvents, signals: SignalValues,
+                 overrides: Overrides) -> None:
         self._settings = settings
+        self._overrides = overrides
         self._signals = signals
         self._states = states
         self._drives = drives
@@ -57,10 +59,6 @@ class SpindleControl:
         self._out = out
         self._events = events
         self.spindle = SpindleState()
-        self.override_pct = 100.0
-        # the running program turned the spindle override off here (tapping, M49, M51 P0): the
-        # spindle turns at S whatever the knob says, and back at the knob once it turns it on
-        self.program_lock = False
         # what turned before the door opened in a hold: it turns again, at speed, before the
         # program goes on (``restart_after_hold``)
         self.stopped_for_hold: SpindleState | None = None
@@ -86,10 +84,7 @@ class SpindleControl:
         return float(self._settings.config.controller.spindle_max_rpm)
 
     def _override_for(self, rpm: float) -> float:
-        """The override the spindle takes at ``rpm``: the knob's, or 100 % where the program
-        turned it off; capped so S x override never exceeds the maximum."""
-        top = 100.0 * self._max_rpm / rpm if rpm > 0 else OVERRIDE_MAX_PCT
-        return min(100.0 if self.program_lock else self.override_pct, top)
+        return self._overrides.spindle_pct_at(rpm, self._max_rpm)
 
     @property
     def _drive(self) -> SpindleDriveSettings | None:
@@ -232,8 +227,7 @@ class SpindleControl:
     def set_program_lock(self, locked: bool) -> None:
         """The program turned the spindle override off (True) or on again from here: the speed
         follows; the outputs (direction) stay as they are."""
-        if locked != self.program_lock:
-            self.program_lock = locked
+        if self._overrides.lock_spindle(locked):
             self.spindle = replace(self.spindle, override_pct=self._override_for(self.spindle.rpm))
             self._out.spindleChanged.emit(self.spindle)
 
@@ -279,11 +273,9 @@ class SpindleControl:
         """Spindle override 50-150 %: the speed the program asks for times this, at once
         (capped at the spindle's maximum speed, and the operator told so)."""
         p = float(percent)
-        if not OVERRIDE_MIN_PCT <= p <= OVERRIDE_MAX_PCT:
-            return self._states.refuse(
-                Action.SET_SPINDLE_OVERRIDE,
-                f"spindle override must be {OVERRIDE_MIN_PCT:g}-{OVERRIDE_MAX_PCT:g} %, got {p:g}")
-        self.override_pct = p
+        why = self._overrides.set(Override.SPINDLE, p)
+        if why:
+            return self._states.refuse(Action.SET_SPINDLE_OVERRIDE, why)
         before = self.drive_rpm[1]
         self.apply_spindle(self.spindle)
         drive = self._drive
@@ -293,7 +285,7 @@ class SpindleControl:
             self._out.message.emit(f"spindle override {p:g} %: the feed waits until the spindle turns at "
                                    f"{abs(rpm):.0f} rpm")
             self._events.spindle_speed_changed.emit()
-        if self.program_lock:
+        if self._overrides.spindle_locked:
             self._out.message.emit(f"spindle override {p:g} % not applied now: the program turned it off "
                                    "(tapping, M49 or M51 P0); it applies once the program turns it on")
         elif self.spindle.override_pct < p:

@@ -92,6 +92,7 @@ import numpy as np
 
 from app.machine.model import Budget, PauseKind, PausePoint
 from app.machine.motion.plan_stats import BLOCK, BlockStats
+from app.machine.state.overrides import FEED_MAX_PCT
 from planner.core.machine import MachineSpec
 from planner.core.program import FEED_HOLD_DEFERRED, Dwell, EventKind, Program
 from planner.motion.interpolate import Interpolator, Segment
@@ -103,7 +104,7 @@ from planner.motion.window import PlanWindow
 __all__ = ["Budget", "PauseKind", "PausePoint", "ScaledChunk", "TimeScaledExecutor", "braking_rates",
            "pause_points", "ramp_bound_s", "reduced_machine"]
 
-SIGMA_MAX = 2.0  # the largest feed override; above 1 the machine's limits cap it (3)
+SIGMA_MAX = FEED_MAX_PCT / 100.0  # the largest feed override; above 1 the machine's limits cap it (3)
 # planned time a plan made as it runs is held behind tau: a splice rewinds to the first
 # set-point still queued in the worker, at most ``lead_s`` (1 s, the configuration's bound) and
 # a chunk of real time back, 2 s of plan at 200 %

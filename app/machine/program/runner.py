@@ -15,7 +15,6 @@ from app.machine.motion.jobs import JobTerms, ResumePoint
 from app.machine.motion.making import JobMaker
 from app.machine.motion.refusals import violation_issues
 from app.machine.motion.streamer import Streamer
-from app.machine.motion.timescale import SIGMA_MAX
 from app.machine.ports import AlarmSink, PositionsView, Settings, ToolView
 from app.machine.program.loader import ProgramLoader
 from app.machine.program.switches import RunSwitches
@@ -515,20 +514,17 @@ class ProgramRunner:
         limits, and the controller says so (``message``) where they cap it.
         """
         p = float(percent)
-        top = 100.0 * SIGMA_MAX
-        if not 0.0 <= p <= top:
-            return self._states.refuse(Action.SET_FEED_OVERRIDE,
-                                       f"feed override must be 0-{top:g} %, got {p:g}")
-        self._switches.set_overrides(feed_pct=p)
+        why = self._switches.set_overrides(feed_pct=p)
+        if why:
+            return self._states.refuse(Action.SET_FEED_OVERRIDE, why)
         self._motion.set_overrides(feed=p / 100.0)
         return self._states.ok(Action.SET_FEED_OVERRIDE)
 
     def set_rapid_override(self, percent: float) -> CommandResult:
         """Rapid override 0-100 % (rapid moves only), applied like the feed override."""
         p = float(percent)
-        if not 0.0 <= p <= 100.0:
-            return self._states.refuse(Action.SET_RAPID_OVERRIDE,
-                                       f"rapid override must be 0-100 %, got {p:g}")
-        self._switches.set_overrides(rapid_pct=p)
+        why = self._switches.set_overrides(rapid_pct=p)
+        if why:
+            return self._states.refuse(Action.SET_RAPID_OVERRIDE, why)
         self._motion.set_overrides(rapid=p / 100.0)
         return self._states.ok(Action.SET_RAPID_OVERRIDE)

@@ -1,5 +1,6 @@
-"""The operator's switches for a run: feed and rapid override, single block, optional stop and
-block delete (``controller.switches``).
+"""The operator's switches for a run: feed and rapid override (the override model's knobs,
+``app.machine.state.overrides``), single block, optional stop and block delete
+(``controller.switches``).
 
 They are this part's alone: the motion, the job maker and the loader read them (``RunModes``);
 the runner's commands check a change and make it here (``set_*``); the panel hears every change
@@ -9,6 +10,7 @@ the runner's commands check a change and make it here (``set_*``); the panel hea
 from __future__ import annotations
 
 from app.machine.infra.events import MachineEvents, PanelChannels
+from app.machine.state.overrides import Override, Overrides
 
 __all__ = ["RunSwitches"]
 
@@ -16,10 +18,9 @@ __all__ = ["RunSwitches"]
 class RunSwitches:
     """Feed and rapid override (percent), single block, optional stop (M01), block delete."""
 
-    def __init__(self, out: PanelChannels, events: MachineEvents) -> None:
+    def __init__(self, out: PanelChannels, events: MachineEvents, overrides: Overrides) -> None:
         self._out = out
-        self.feed_pct = 100.0
-        self.rapid_pct = 100.0
+        self._overrides = overrides
         self.single_block = False
         self.optional_stop = False
         # lines starting with '/' skipped; off as LinuxCNC starts. The program is read whole
@@ -27,13 +28,23 @@ class RunSwitches:
         self.block_delete = False
         events.announce.connect(self._announce)
 
-    def set_overrides(self, feed_pct: float | None = None, rapid_pct: float | None = None) -> None:
-        """Checked values (the runner's commands): stored, and the panel told."""
-        if feed_pct is not None:
-            self.feed_pct = float(feed_pct)
-        if rapid_pct is not None:
-            self.rapid_pct = float(rapid_pct)
+    @property
+    def feed_pct(self) -> float:
+        return self._overrides.feed_pct
+
+    @property
+    def rapid_pct(self) -> float:
+        return self._overrides.rapid_pct
+
+    def set_overrides(self, feed_pct: float | None = None, rapid_pct: float | None = None) -> str:
+        """The feed and rapid knobs (the runner's commands): set, and the panel told; why not
+        ("" when set: a value outside its range is refused, the knobs as they were)."""
+        why = ""
+        for override, pct in ((Override.FEED, feed_pct), (Override.RAPID, rapid_pct)):
+            if pct is not None and not why:
+                why = self._overrides.set(override, pct)
         self._out.overridesChanged.emit(self.feed_pct, self.rapid_pct)
+        return why
 
     def set_modes(self, single_block: bool | None = None, optional_stop: bool | None = None,
                   block_delete: bool | None = None) -> None:
