@@ -173,8 +173,7 @@ class ModeCodes(InterpBase):
         saved, work, tlo, rotation = state
         for f in fields(Modal):
             setattr(self.modal, f.name, getattr(saved, f.name))
-        self.offsets.work, self.offsets.tlo, self.offsets.rotation = work, tlo, rotation
-        self.set_offset()
+        self.set_offset(work=work, tlo=tlo, rotation=rotation)
         self.note_blend_tolerance()
         self.params.numbered[P_SYSTEM] = float(SYSTEMS.index(self.modal.work_code) + 1)
         after = len(self.rec.out) - 1

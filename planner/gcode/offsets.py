@@ -118,8 +118,7 @@ class OffsetCodes(MotionCodes):
                 num[base + p_index] = new[i]
             self.offsets.systems[system] = tuple(new)
             if system == self.modal.work_code:
-                self.offsets.rotation = theta
-                self.set_offset(work=tuple(new))
+                self.set_offset(work=tuple(new), rotation=theta)
             self.parameters_changed(line_no, f"G10 L{l_word:g}: {gname(system)} offsets set")
         elif code in (G.G28_1, G.G30_1):
             base = P_G28 if code == G.G28_1 else P_G30
@@ -140,14 +139,12 @@ class OffsetCodes(MotionCodes):
             self.set_g92((0.0,) * self.setup.n, False)
             self.parameters_changed(line_no, "G92.1: axis offsets cleared")
         elif code == G.G92_2:               # G92.2: offsets off, parameters kept
-            self.offsets.g92 = (0.0,) * self.setup.n
             num[P_G92_ON] = 0.0
-            self.set_offset()
+            self.set_offset(g92=(0.0,) * self.setup.n)
             self.parameters_changed(line_no, "G92.2: axis offsets suspended")
         else:                           # G92.3: back from the parameters
-            self.offsets.g92 = tuple(num.get(P_G92 + p, 0.0) for p in self.setup.axis_param)
             num[P_G92_ON] = 1.0
-            self.set_offset()
+            self.set_offset(g92=tuple(num.get(P_G92 + p, 0.0) for p in self.setup.axis_param))
             self.parameters_changed(line_no, "G92.3: axis offsets restored")
 
     def g10_tool(self, l_word: int, vals: dict[str, float], axis_words: list[str], scale: float,
@@ -206,12 +203,11 @@ class OffsetCodes(MotionCodes):
                                      TableRef(len(self.rec.tool_sets) - 1), text))
 
     def set_g92(self, g92: tuple[float, ...], on: bool) -> None:
-        self.offsets.g92 = g92
         num = self.params.numbered
         for i, p in enumerate(self.setup.axis_param):
             num[P_G92 + p] = g92[i]
         num[P_G92_ON] = 1.0 if on else 0.0
-        self.set_offset()
+        self.set_offset(g92=g92)
 
     def parameters_changed(self, line_no: int, text: str) -> None:
         """An OFFSETS event: the machine takes the persistent parameters as they are now when
@@ -314,6 +310,6 @@ class OffsetCodes(MotionCodes):
             return
         self.comp_refuses("change the coordinate system", gname(code))
         self.modal.work_code = code
-        self.offsets.rotation = self.params.numbered.get(system_base(code) + 9, 0.0)
-        self.set_offset(work=self.offsets.systems[code])
+        self.set_offset(work=self.offsets.systems[code],
+                        rotation=self.params.numbered.get(system_base(code) + 9, 0.0))
         self.params.numbered[P_SYSTEM] = float(SYSTEMS.index(code) + 1)

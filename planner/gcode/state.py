@@ -181,19 +181,33 @@ class Modal:
 
 @dataclass(slots=True)
 class Offsets:
-    """Program coordinates to the machine's: the coordinate systems' offsets (G54-G59.3), the
-    one in use and its XY rotation (G10 L2 R, degrees about its origin), G92/G52, the tool
-    length offset (G43...), and their sum ``total`` (machine = program + total, rotation aside)."""
+    """Program coordinates to the machine's: the coordinate systems' offsets (G54-G59.3) and
+    the frame in force (``planner.core.frames.Frame``: the origin of the system in use and its
+    XY rotation, G92/G52, the tool length offset), changed only by ``set_offset``; ``total``
+    its sum (machine = program + total, rotation aside), kept for the moves' targets."""
 
     systems: dict[int, tuple[float, ...]]
-    work: tuple[float, ...]
-    g92: tuple[float, ...]
-    tlo: tuple[float, ...]
-    rotation: float = 0.0
+    frame: CoordinateFrame
     total: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
-        self.total = tuple(w + g + t for w, g, t in zip(self.work, self.g92, self.tlo))
+        self.total = self.frame.total
+
+    @property
+    def work(self) -> tuple[float, ...]:
+        return self.frame.g5x
+
+    @property
+    def g92(self) -> tuple[float, ...]:
+        return self.frame.g92
+
+    @property
+    def tlo(self) -> tuple[float, ...]:
+        return self.frame.tool
+
+    @property
+    def rotation(self) -> float:
+        return self.frame.rotation_deg
 
 
 @dataclass(slots=True)
@@ -380,20 +394,17 @@ class InterpBase(ABC):
             tlo_code, tlo = tool_offset[0], tuple(float(v) for v in tool_offset[1])
             if len(tlo) != n or tlo_code not in (G.G43, G.G43_1, G.G43_2, G.G49):
                 raise PlannerError(f"tool_offset {tool_offset!r}: G43, G43.1, G43.2 or G49 and {n} values")
-        self.offsets = Offsets(
-            systems=systems, work=systems[G.G54],
-            g92=tuple(num.get(P_G92 + p, 0.0) if on else 0.0 for p in setup.axis_param),
-            tlo=tlo, rotation=num.get(system_base(G.G54) + 9, 0.0))
+        g92 = tuple(num.get(P_G92 + p, 0.0) if on else 0.0 for p in setup.axis_param)
+        self.offsets = Offsets(systems, CoordinateFrame(setup.axes, systems[G.G54], g92, tlo,
+                                                        num.get(system_base(G.G54) + 9, 0.0)))
         self.modal = Modal(blend_tol_mm=blend_default_mm, naive_cam_mm=blend_default_mm,
                            spindle_dir=int(spindle[0]), spindle_rpm=float(spindle[1]), tlo_code=tlo_code)
         self.cycle = CycleState()
         self.curve = CurveState()
         self.calls = CallStack()
-        o = self.offsets
-        self.frame = CoordinateFrame(setup.axes, o.work, o.g92, o.tlo, o.rotation)   # the one in force
         self.rec = Record(
             out=MoveBuffer(setup.start),
-            frames=[FrameChange(0, 0, self.frame)], modal_changes=[],
+            frames=[FrameChange(0, 0, self.offsets.frame)], modal_changes=[],
             blend_changes=[(0, blend_default_mm)], naive_changes=[(0, blend_default_mm)])
         # the motion: where the tool is (machine coordinates), the motion mode (None: G80),
         # G96's speed counted (rpm: D, else the spindle's highest; None in G97)
@@ -454,17 +465,24 @@ class InterpBase(ABC):
                              "program G40 first", letter)
 
     # ------------------------------------------------------------------ coordinates
-    def set_offset(self, work: tuple[float, ...] | None = None, tlo: tuple[float, ...] | None = None) -> None:
-        """Change the work offset and/or the tool length offset; moves from now on use both."""
+    def set_offset(self, work: tuple[float, ...] | None = None, tlo: tuple[float, ...] | None = None,
+                   g92: tuple[float, ...] | None = None, rotation: float | None = None) -> None:
+        """The frame in force from the next move on: the origin of the system in use (``work``),
+        the tool length offset, G92 and the XY rotation as given (the others as they are), in
+        the coordinate system the modal state names; the program records the change."""
         o = self.offsets
-        if work is not None:
-            o.work = work
-        if tlo is not None:
-            o.tlo = tlo
-        self.frame = CoordinateFrame(self.setup.axes, o.work, o.g92, o.tlo, o.rotation,
-                                     SYSTEMS.index(self.modal.work_code) + 1)
-        o.total = self.frame.total
-        self.rec.frames.append(FrameChange(len(self.rec.out), self.current_line, self.frame))
+        f = o.frame
+        o.frame = CoordinateFrame(self.setup.axes, f.g5x if work is None else work,
+                                  f.g92 if g92 is None else g92, f.tool if tlo is None else tlo,
+                                  f.rotation_deg if rotation is None else rotation,
+                                  SYSTEMS.index(self.modal.work_code) + 1)
+        o.total = o.frame.total
+        self.rec.frames.append(FrameChange(len(self.rec.out), self.current_line, o.frame))
+
+    @property
+    def frame(self) -> CoordinateFrame:
+        """The frame in force."""
+        return self.offsets.frame
 
     def prog_xy(self, pos: Sequence[float]) -> tuple[float, float]:
         """X and Y of a machine position in program coordinates (mm), the XY rotation undone
