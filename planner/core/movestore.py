@@ -181,6 +181,19 @@ class MoveStore(Sequence[Move]):
     def __repr__(self) -> str:
         return f"MoveStore({self._n} moves from {self._base})"
 
+    def numbered_from_zero(self) -> MoveStore:
+        """These moves as a store of their own, its moves numbered from 0 (a piece of a program
+        that runs as a program: what follows a probe). The columns are shared, the arcs and
+        blends renumbered; no Move object is made."""
+        lo, hi = self._base, self._base + self._n
+        store = self._view(0, self._n)
+        store._arcs = {k - lo: v for k, v in self._arcs.items() if lo <= k < hi}
+        store._arc_keys = np.array(sorted(store._arcs), dtype=np.int64)
+        store._blends = {k - lo: v for k, v in self._blends.items() if lo <= k < hi}
+        store._blend_keys = np.array(sorted(store._blends), dtype=np.int64)
+        store._base = 0
+        return store
+
     def with_exact_stops(self) -> MoveStore:
         """The same moves, each ending at rest (single block's plan), over the same columns
         but that one."""

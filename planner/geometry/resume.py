@@ -41,6 +41,7 @@ __all__ = [
     "probe_move_at",
     "carry_overrides",
     "program_from_moves",
+    "program_from_store",
     "reads_before",
     "remaining_program",
     "split_move",
@@ -123,12 +124,19 @@ def head_move(move: Move, u_mm: float, at: tuple[np.ndarray, float] | None = Non
 
 def program_from_moves(template: Program, moves: list[Move], events: list[Event],
                        start_position: np.ndarray, name: str | None = None) -> Program:
-    """A Program of ``moves`` as a store, numbered 0..n-1 (events' ``after_move`` must already
-    refer to the new indices). What events name by their value (parameter sets, tools, probes)
-    is the template's."""
+    """A Program of ``moves`` as a store, numbered 0..n-1 (``program_from_store``)."""
+    return program_from_store(template, MoveStore.from_moves(moves, np.asarray(start_position, dtype=float)),
+                              events, start_position, name)
+
+
+def program_from_store(template: Program, moves: MoveStore, events: list[Event],
+                       start_position: np.ndarray, name: str | None = None) -> Program:
+    """A Program of the moves of ``moves`` (a piece of another program's store is taken as it
+    is, no move made of it), numbered 0..n-1 (events' ``after_move`` must already refer to the
+    new indices). What events name (parameter sets, tools, probes) is the template's."""
     start = np.asarray(start_position, dtype=float).copy()
     return Program(name=name or template.name, axes=template.axes, rotary=template.rotary,
-                   moves=MoveStore.from_moves(moves, start), events=tuple(events), start_position=start,
+                   moves=moves, events=tuple(events), start_position=start,
                    line_count=template.line_count,
                    parameter_sets=template.parameter_sets, tool_sets=template.tool_sets,
                    probes=template.probes, inputs=template.inputs)

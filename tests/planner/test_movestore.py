@@ -57,6 +57,21 @@ def test_a_store_of_moves_made_one_by_one_is_the_same(program):
     assert [_fields(m) for m in again] == [_fields(m) for m in program.moves]
 
 
+@pytest.mark.parametrize("first", [0, 1, 13, 40])
+def test_a_piece_numbered_from_zero_is_the_store_made_of_its_moves(program, first: int) -> None:
+    """What follows a probe runs as a program of its own: the piece of the store, numbered from
+    0, reads as the store made of its moves one by one (arcs and blends where they were)."""
+    piece = program.moves[first:]
+    own = piece.numbered_from_zero()
+    made = MoveStore.from_moves(list(piece), piece.positions[0])
+    assert [_fields(m) for m in own] == [_fields(m) for m in made]
+    assert [m.index for m in own] == list(range(len(piece)))
+    a, b = own.columns(), made.columns()
+    assert a.first == b.first == 0 and a.arcs == b.arcs
+    np.testing.assert_array_equal(a.arc_rows, b.arc_rows)
+    assert own.nbytes == program.moves.nbytes               # the columns shared, not copied
+
+
 def test_tables_and_bounds_from_columns_equal_those_from_move_objects(program):
     objects = replace(program, moves=tuple(program.moves))
     a = MoveTable.from_store(program.moves[3:40], 3)

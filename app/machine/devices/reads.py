@@ -21,7 +21,7 @@ from app.machine.state.states import StateMachine
 from planner.core.errors import PlannerError, ProgramError
 from planner.core.program import EventKind, ProbeResult, Program, TableRef
 from planner.gcode.modes import ABORT_MARK
-from planner.geometry.resume import carry_overrides, program_from_moves
+from planner.geometry.resume import carry_overrides, program_from_store
 from planner.pipeline import Refused, SoftLimitError
 
 __all__ = ["ReadAgain"]
@@ -112,4 +112,4 @@ def after_event(full: Program, kind: EventKind, index: int) -> Program | None:
     events = carry_overrides(full, first, [replace(e, after_move=e.after_move - first)
                                            for e in full.events[at + 1:]])
     start = full.moves[after].end if after >= 0 else full.start_position
-    return program_from_moves(full, list(full.moves[first:]), events, start)
+    return program_from_store(full, full.moves[first:].numbered_from_zero(), events, start)
