@@ -119,7 +119,7 @@ CONTROLLER_TEMPLATES: tuple[str, ...] = (
     N_('output {0} could not be switched off: {1}'),
     N_('planner: {0}'),
     N_('probing a part needs X, Y and Z axes'),
-    N_('rapid override must be 0-100 %, got {0}'),
+    N_('rapid override must be 0-{0} %, got {1}'),
     N_('reset not possible: machine is {0}'),
     N_('searching the index pulse'),
     N_('searching the switch'),

@@ -54,6 +54,13 @@ class SpindleDriveSettings:
         """Whether the speed read is within the band of the one commanded (signed: the right way)."""
         return abs(actual_rpm - commanded_rpm) <= self.at_speed_pct / 100.0 * abs(commanded_rpm)
 
+    def analog_share(self, commanded_rpm: float, on: bool, max_rpm: float) -> float:
+        """A VFD's analog output as a share of 10 V: S x override (``commanded_rpm``) over the
+        speed at 10 V (``analog_rpm_at_10v``, else the spindle's maximum ``max_rpm``), 0 while
+        it stands; never beyond 10 V."""
+        top = self.analog_rpm_at_10v or max_rpm
+        return min(1.0, abs(commanded_rpm) / top) if on and top > 0 else 0.0
+
     def spin_up_s(self, from_rpm: float, to_rpm: float) -> float:
         """How long the ramp from one speed to the other takes (its least wait)."""
         return abs(to_rpm - from_rpm) / self.accel_rpm_s

@@ -14,8 +14,6 @@ from app.context import PanelContext
 from app.dialogs import connect_or_disconnect
 from app.format import format_duration
 from app.i18n import N_, tr
-from app.machine.config import MachineConfig
-from app.machine.spindle_settings import SpindleDriveSettings
 from app.path_profile import PathProfile, path_profile
 from app.widgets.bus_view import BusView
 from app.widgets.production_view import ProductionView
@@ -68,7 +66,7 @@ class DiagnosticsPage(QWidget):
         self.tabs.addTab(self.production, "")
         self.signals = SignalsView(i18n)
         self.tabs.addTab(self.signals, "")
-        self.spindle = SpindleView(i18n, _drive(c.config))
+        self.spindle = SpindleView(i18n, c.config.spindle, c.config.controller.spindle_max_rpm)
         self.tabs.addTab(self.spindle, "")
         for index, text in enumerate((N_("Path v / a / j"), N_("Tracking"), N_("EtherCAT"),
                                       N_("Production"), N_("Signals"), N_("Spindle"))):
@@ -81,7 +79,9 @@ class DiagnosticsPage(QWidget):
         context.program.changed.connect(self.compute_profile)
         c.trackingSample.connect(self.tracking.add_sample)
         c.spindleSample.connect(self.spindle.add_sample)
-        c.configChanged.connect(lambda cfg: self.spindle.set_drive(_drive(cfg)))
+        c.configChanged.connect(
+            lambda cfg: self.spindle.set_settings(cfg.spindle, cfg.controller.spindle_max_rpm))
+        c.spindleChanged.connect(self.spindle.set_spindle)
         c.trackingUpdated.connect(self.tracking.set_report)
         c.programFinished.connect(self._on_finished)
         c.busStateChanged.connect(lambda bus: self.bus.set_state(bus, c.config))
@@ -199,11 +199,6 @@ class DiagnosticsPage(QWidget):
             trace = load_trace(str(getattr(report, "trace_path", "") or ""))
             if trace is not None:
                 self.tracking.show_trace(trace)
-
-
-def _drive(config: MachineConfig) -> SpindleDriveSettings | None:
-    """The spindle's own drive (None: the spindle is output bits)."""
-    return config.spindle if config.spindle.drive is not None else None
 
 
 def create_page(context: PanelContext) -> QWidget:

@@ -149,7 +149,7 @@
       <translation>Veri yolu</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="103" />
+      <location filename="../../app/widgets/bus_view.py" line="104" />
       <source>Bus {0} ({1}): {2}. Buffer {3} set-points, late cycles {4}, period p99 {5:.1f} µs, max jitter {7:.0f} µs. {6}</source>
       <translation>Veri yolu {0} ({1}): {2}. Tampon {3} hedef nokta, geciken çevrim {4}, periyot p99 {5:.1f} µs, en büyük sapma {7:.0f} µs. {6}</translation>
     </message>
@@ -494,7 +494,7 @@
       <translation>Giriş</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="73" />
+      <location filename="../../app/pages/diagnostics.py" line="71" />
       <source>EtherCAT</source>
       <translation>EtherCAT</translation>
     </message>
@@ -1286,7 +1286,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Çizilecek hareket yok</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="79" />
+      <location filename="../../app/pages/diagnostics.py" line="77" />
       <source>No program loaded.</source>
       <translation>Yüklü program yok.</translation>
     </message>
@@ -1296,7 +1296,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Bağlı sinyal yok (makine yapılandırmasında [signals]).</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="79" />
+      <location filename="../../app/widgets/spindle_view.py" line="106" />
       <source>No spindle drive: the spindle is switched by output bits; no speed is read</source>
       <translation>İş mili sürücüsü yok: iş mili çıkış bitleriyle açılıp kapanır; hız okunmaz</translation>
     </message>
@@ -1496,7 +1496,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Yol hızı Vmax</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="73" />
+      <location filename="../../app/pages/diagnostics.py" line="71" />
       <source>Path v / a / j</source>
       <translation>Yol v / a / j</translation>
     </message>
@@ -1541,17 +1541,17 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Prob</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="100" />
+      <location filename="../../app/widgets/bus_view.py" line="101" />
       <source>Probe input: free</source>
       <translation>Prob girişi: serbest</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="101" />
+      <location filename="../../app/widgets/bus_view.py" line="102" />
       <source>Probe input: none ([probe] drive in the machine configuration)</source>
       <translation>Prob girişi: yok (makine yapılandırmasında [probe] drive)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="100" />
+      <location filename="../../app/widgets/bus_view.py" line="101" />
       <source>Probe input: touching</source>
       <translation>Prob girişi: temas ediyor</translation>
     </message>
@@ -1566,7 +1566,7 @@ Kalan {2}   Yol hızı {3}</translation>
       <translation>Ürün</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="74" />
+      <location filename="../../app/pages/diagnostics.py" line="72" />
       <source>Production</source>
       <translation>Üretim</translation>
     </message>
@@ -1863,7 +1863,7 @@ BIRAK</translation>
       <translation>Sinyal</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="74" />
+      <location filename="../../app/pages/diagnostics.py" line="72" />
       <source>Signals</source>
       <translation>Sinyaller</translation>
     </message>
@@ -1893,17 +1893,17 @@ BIRAK</translation>
       <translation>Boşluk</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="74" />
+      <location filename="../../app/pages/diagnostics.py" line="72" />
       <source>Spindle</source>
       <translation>İş mili</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="83" />
+      <location filename="../../app/widgets/spindle_view.py" line="110" />
       <source>Spindle drive: no speed read yet</source>
       <translation>İş mili sürücüsü: henüz hız okunmadı</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="90" />
+      <location filename="../../app/widgets/spindle_view.py" line="117" />
       <source>Spindle drive: {0} rpm commanded, {1} rpm read: {2}</source>
       <translation>İş mili sürücüsü: {0} dev/dak istendi, {1} dev/dak okundu: {2}</translation>
     </message>
@@ -1911,6 +1911,11 @@ BIRAK</translation>
       <location filename="../../app/pages/auto.py" line="497" />
       <source>Spindle off</source>
       <translation>İş mili durdu</translation>
+    </message>
+    <message>
+      <location filename="../../app/widgets/spindle_view.py" line="101" />
+      <source>Spindle on a VFD (analog output {0}): {1} rpm commanded, {2} V sent; no speed is read</source>
+      <translation>İş mili bir frekans çeviricide (analog çıkış {0}): {1} dev/dak istendi, {2} V gönderildi; hız okunmuyor</translation>
     </message>
     <message>
       <location filename="../../app/pages/auto.py" line="144" />
@@ -2138,7 +2143,7 @@ BIRAK</translation>
       <translation>{0} dokunarak sıfırla: buradaki iş koordinatı</translation>
     </message>
     <message>
-      <location filename="../../app/pages/diagnostics.py" line="73" />
+      <location filename="../../app/pages/diagnostics.py" line="71" />
       <source>Tracking</source>
       <translation>Takip</translation>
     </message>
@@ -2258,7 +2263,7 @@ BIRAK</translation>
       <translation>İş = takım ucu, {0}</translation>
     </message>
     <message>
-      <location filename="../../app/pages/preview.py" line="104" />
+      <location filename="../../app/pages/preview.py" line="97" />
       <source>Work coordinates ({0}): the cross is the work zero, the dashed box the machine's travel.</source>
       <translation>İş koordinatları ({0}): artı işareti iş sıfırı, kesikli kutu makinenin hareket alanı.</translation>
     </message>
@@ -2513,7 +2518,7 @@ BIRAK</translation>
       <translation>yaydan doğruya hareket, telafili takımın oyuk açmadan sığamayacağı bir köşe yapar</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="89" />
+      <location filename="../../app/widgets/spindle_view.py" line="116" />
       <source>at speed</source>
       <translation>hızında</translation>
     </message>
@@ -2843,7 +2848,7 @@ BIRAK</translation>
       <translation>sütun {0}: {1}</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="38" />
+      <location filename="../../app/widgets/spindle_view.py" line="42" />
       <source>commanded</source>
       <translation>istenen</translation>
     </message>
@@ -2858,7 +2863,7 @@ BIRAK</translation>
       <translation>yapılandırma</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="102" />
+      <location filename="../../app/widgets/bus_view.py" line="103" />
       <source>connected</source>
       <translation>bağlı</translation>
     </message>
@@ -3373,7 +3378,7 @@ BIRAK</translation>
       <translation>yok</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="89" />
+      <location filename="../../app/widgets/spindle_view.py" line="116" />
       <source>not at speed</source>
       <translation>hızında değil</translation>
     </message>
@@ -3634,11 +3639,11 @@ BIRAK</translation>
     </message>
     <message>
       <location filename="../../app/message_text.py" line="122" />
-      <source>rapid override must be 0-100 %, got {0}</source>
-      <translation>hızlı hareket oranı %0-100 olmalı, {0} verildi</translation>
+      <source>rapid override must be 0-{0} %, got {1}</source>
+      <translation>hızlı hareket oranı %0-{0} olmalı, {1} verildi</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/spindle_view.py" line="39" />
+      <location filename="../../app/widgets/spindle_view.py" line="43" />
       <source>read</source>
       <translation>okunan</translation>
     </message>
@@ -4363,7 +4368,7 @@ BIRAK</translation>
       <translation>kapanmamış açıklama: ')' olmadan '('</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="94" />
+      <location filename="../../app/widgets/bus_view.py" line="95" />
       <source>unknown</source>
       <translation>bilinmiyor</translation>
     </message>
@@ -4438,12 +4443,12 @@ BIRAK</translation>
       <translation>{0} (denetleniyor…)</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="76" />
+      <location filename="../../app/widgets/bus_view.py" line="77" />
       <source>{0} (compensation {1:+.4f})</source>
       <translation>{0} (kompanzasyon {1:+.4f})</translation>
     </message>
     <message>
-      <location filename="../../app/widgets/bus_view.py" line="74" />
+      <location filename="../../app/widgets/bus_view.py" line="75" />
       <source>{0} (gantry {1}, skew {2:+.4f})</source>
       <translation>{0} (gantri {1}, kayma {2:+.4f})</translation>
     </message>

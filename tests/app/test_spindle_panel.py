@@ -53,3 +53,31 @@ def test_the_spindle_tab_draws_the_speeds_the_drive_is_sent_and_reads(qtbot, spi
 def test_without_a_spindle_drive_the_tab_says_no_speed_is_read(demo_window) -> None:
     diag = demo_window.page("diagnostics")
     assert diag.spindle.text == "No spindle drive: the spindle is switched by output bits; no speed is read"
+
+
+def test_a_vfd_spindle_shows_the_speed_commanded_and_the_volts_sent(qtbot, qapp, tmp_path: Path,
+                                                                    dialogs) -> None:  # type: ignore[no-untyped-def]
+    """A spindle on a VFD's analog input: the tab says what the analog output is sent (S x
+    override over the speed at 10 V), the volts the bus carries on that channel."""
+    from ethercat.terminals import ANALOG_FULL_SCALE, analog_channels
+
+    vfd = ('\n[[bus.terminals]]\nposition = 8\ntype = "EL4002"\nname = "spindle speed"\n'
+           '\n[spindle]\nanalog_out = "8:1"\nanalog_rpm_at_10v = 20000.0\n')
+    window, c = window_on(qtbot, qapp, tmp_path, dialogs,
+                          shipped_machine("xyz_mill").read_text(encoding="utf-8") + vfd)
+    try:
+        view = window.page("diagnostics").spindle
+        assert view.text == ("Spindle on a VFD (analog output 8:1): 0 rpm commanded, 0.00 V sent; "
+                             "no speed is read")
+        assert c.mdi("M3 S6000") and c.set_spindle_override(120)
+        c.advance(0.2)
+        qtbot.waitUntil(lambda: "7200 rpm" in view.text, timeout=5000)
+        assert view.text == ("Spindle on a VFD (analog output 8:1): 7200 rpm commanded, 3.60 V sent; "
+                             "no speed is read")
+        k = [t.position for t in c.config.wiring.terminals].index(8)
+        word = c.worker.snapshot().terminal_outputs[k]
+        assert analog_channels(word, 2)[1] * 10.0 / ANALOG_FULL_SCALE == pytest.approx(3.60, abs=0.01)
+        assert c.mdi("M5")
+        qtbot.waitUntil(lambda: "0.00 V sent" in view.text, timeout=5000)
+    finally:
+        c.shutdown()

@@ -118,9 +118,8 @@ class SpindleControl:
         """The VFD's analog output for ``sp``: S x override over the speed at 10 V, in the
         terminal's INT16 (0x7FFF = 10 V), 0 while it stands; never beyond 10 V."""
         cfg = self._settings.config
-        top = cfg.spindle.analog_rpm_at_10v or cfg.controller.spindle_max_rpm
-        share = min(1.0, sp.commanded_rpm / top) if sp.on else 0.0
-        return round(ANALOG_FULL_SCALE * share)
+        return round(ANALOG_FULL_SCALE * cfg.spindle.analog_share(sp.commanded_rpm, sp.on,
+                                                                  cfg.controller.spindle_max_rpm))
 
     def _set_analog(self, sp: SpindleState) -> None:
         k, channel = analog_place(self._settings.config.wiring, self._settings.config.spindle.analog_out)

@@ -25,7 +25,6 @@ SPINDLE_MAX_PCT = 150.0
 
 @dataclass(frozen=True, slots=True)
 class _Range:
-    name: str
     low_pct: float
     high_pct: float
 
@@ -33,16 +32,21 @@ class _Range:
 class Override(enum.Enum):
     """One of the three overrides, with its range."""
 
-    FEED = _Range("feed override", 0.0, FEED_MAX_PCT)
-    RAPID = _Range("rapid override", 0.0, 100.0)
-    SPINDLE = _Range("spindle override", SPINDLE_MIN_PCT, SPINDLE_MAX_PCT)
+    FEED = _Range(0.0, FEED_MAX_PCT)
+    RAPID = _Range(0.0, 100.0)
+    SPINDLE = _Range(SPINDLE_MIN_PCT, SPINDLE_MAX_PCT)
 
     def refusal(self, percent: float) -> str:
-        """Why ``percent`` cannot be set ("" when it can)."""
+        """Why ``percent`` cannot be set ("" when it can); each sentence whole, as the panel
+        translates it."""
         r = self.value
         if r.low_pct <= percent <= r.high_pct:
             return ""
-        return f"{r.name} must be {r.low_pct:g}-{r.high_pct:g} %, got {percent:g}"
+        if self is Override.FEED:
+            return f"feed override must be 0-{r.high_pct:g} %, got {percent:g}"
+        if self is Override.RAPID:
+            return f"rapid override must be 0-{r.high_pct:g} %, got {percent:g}"
+        return f"spindle override must be {r.low_pct:g}-{r.high_pct:g} %, got {percent:g}"
 
 
 class Overrides:
