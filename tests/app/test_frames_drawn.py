@@ -8,82 +8,40 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
+from hypothesis import given, settings
 
 from app.toolpath import build_toolpath
 from planner.core.tools import parse_tbl
 from planner.gcode.interpreter import parse_program
+from tests.planner.test_frame_model import programs
 
 TOOLS = parse_tbl("T1 P1 Z10 D6\nT2 P2 X0.5 Y-0.25 Z-3.5 D3\n", "tools.tbl")
 
 
-def _num(v: float) -> str:
-    return f"{v:.6f}"
-
-
-@st.composite
-def programs(draw: st.DrawFn) -> tuple[str, list[tuple[float, float, float]]]:
-    """A program of absolute moves with offset changes between them, at one of the scales
-    x0.001 to x1000, and the programmed end point of each move (program coordinates)."""
-    scale = draw(st.sampled_from([0.001, 1.0, 1000.0]))
-    coord = st.floats(-50.0, 50.0, allow_nan=False).map(lambda v: round(v * scale, 6))
-    lines = ["G21 G90 G17 F600"]
-    ends: list[tuple[float, float, float]] = []
-    here: tuple[float, float, float] | None = None
-    for _ in range(draw(st.integers(2, 12))):
-        change = draw(st.sampled_from(["move", "move", "g10", "g92", "g52", "g43", "g49", "system",
-                                       "g92.1"]))
-        if change == "g10":
-            p = draw(st.integers(1, 2))
-            x, y, z = draw(coord), draw(coord), draw(coord)
-            r = draw(st.floats(-180.0, 180.0, allow_nan=False).map(lambda v: round(v, 3)))
-            lines.append(f"G10 L2 P{p} X{_num(x)} Y{_num(y)} Z{_num(z)} R{r}")
-        elif change in ("g92", "g52"):
-            if here is None:            # G92 names where the tool stands: it must have moved
-                continue
-            x, y, z = draw(coord), draw(coord), draw(coord)
-            lines.append(f"{change.upper()} X{_num(x)} Y{_num(y)} Z{_num(z)}")
-        elif change == "g43":
-            lines.append(f"G43 H{draw(st.integers(1, 2))}")
-        elif change == "g49":
-            lines.append("G49")
-        elif change == "g92.1":
-            lines.append("G92.1")
-        elif change == "system":
-            lines.append(draw(st.sampled_from(["G54", "G55"])))
-        else:
-            end = (draw(coord), draw(coord), draw(coord))
-            lines.append(f"G{draw(st.integers(0, 1))} X{_num(end[0])} Y{_num(end[1])} Z{_num(end[2])}")
-            ends.append(end)
-            here = end
-    return "\n".join(lines) + "\nM2\n", ends
-
-
+@settings(max_examples=120, deadline=None)
 @given(programs())
 def test_every_move_is_drawn_and_read_where_the_program_put_it(case) -> None:  # type: ignore[no-untyped-def]
-    text, ends = case
-    program = parse_program(text, "frames.ngc", tools=TOOLS)
+    """The programs of the frame model's test (every coordinate system with its rotation, G52,
+    G92, G43 / G43 H / G43.1 / G43.2 / G49, tools of both signs, x0.001 to x1000): each move's
+    end as the preview and the backplot draw it (the tool path) is the point its line asked
+    for, and so is what the DRO reads with the machine standing there."""
+    text, moves, scale, tools, in_spindle = case
+    program = parse_program(text, tools=tools, tool_in_spindle=in_spindle)
     path = build_toolpath(program)
-    # a move of no length is dropped: each move kept is compared with the end programmed on
-    # its own line
-    assert len(program.moves) <= len(ends)
-    drawn, read, wanted = [], [], []
-    for k, move in enumerate(program.moves):
-        drawn.append(path.all.points[path.move_points(k)[1] - 1])
-        read.append(program.frame_at(k).to_program(move.end))       # the DRO standing there
+    by_line = {m.line: m for m in program.moves}
+    checked = 0
+    tol = 1e-9 * max(scale, 1.0) * 1000
+    for line, target in moves:
+        move = by_line.get(line)
+        if move is None:              # no motion (already there)
+            continue
+        k = move.index
         assert path.frame_of(k) == program.frame_at(k)
-        wanted.append(_programmed_on(text, move.line))
-    if not wanted:
-        return
-    tol = 1e-9 * max(1.0, float(np.max(np.abs(wanted))))
-    np.testing.assert_allclose(drawn, wanted, atol=tol, rtol=0)
-    np.testing.assert_allclose(read, wanted, atol=tol, rtol=0)
-
-
-def _programmed_on(text: str, line: int) -> tuple[float, float, float]:
-    words = dict((w[0], float(w[1:])) for w in text.splitlines()[line - 1].split()[1:])
-    return words["X"], words["Y"], words["Z"]
+        drawn = path.all.points[path.move_points(k)[1] - 1]
+        np.testing.assert_allclose(drawn, target, atol=tol, rtol=1e-12)
+        np.testing.assert_allclose(program.frame_at(k).to_program(move.end), target, atol=tol, rtol=1e-12)
+        checked += 1
+    assert checked or not by_line
 
 
 def test_a_turned_system_with_g92_and_a_tool_offset_is_drawn_in_program_coordinates() -> None:
