@@ -1,6 +1,7 @@
-"""The 1 ms loop stepped by hand in the bench's own process, for the benches that measure what
-a feature adds to the cycle: the time is the cycle's own work and the simulated drives', not
-the client's per-call overhead or a clock's sleeps."""
+"""The 1 ms loop stepped by hand in the caller's own process: for the benches that measure what
+a feature adds to the cycle (the time is the cycle's own work and the simulated drives', not
+the client's per-call overhead or a clock's sleeps), and for the tests of what runs in the
+loop (``enabled``: a worker in mode "manual" started with its drives enabled)."""
 
 from __future__ import annotations
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bench.stepped import enabled as enabled_worker
 from ethercat.bus import DriveSpec
 from ethercat.errors import ConfigurationError
 from ethercat.sim_io import SimSwitch
@@ -22,7 +23,6 @@ from ethercat.worker import (
     WorkerConfig,
     WorkerState,
 )
-from tests.ethercat.manual_worker import enabled_worker
 
 COUNTS = 10_000.0                  # counts per mm (DriveSpec's default)
 COUNT = 1.0 / COUNTS

@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from bench.stepped import enabled as enabled_worker
 from ethercat.bus import DriveSpec
 from ethercat.terminals import TerminalSpec
 from ethercat.worker import (
@@ -26,7 +27,6 @@ from ethercat.worker import (
     stop_distance,
 )
 from ethercat.worker.handwheel import Follower, Handwheel
-from tests.ethercat.manual_worker import enabled_worker
 
 TS = 0.001
 TERMINALS = (TerminalSpec(2, "EK1100"), TerminalSpec(3, "EL5101"))

@@ -13,13 +13,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from bench.stepped import enabled as enabled_worker
 from ethercat.bus import DriveSpec
 from ethercat.errors import ConfigurationError
 from ethercat.screw_comp import MAX_CORRECTION, CompCurve, ScrewComp, read_comp_file, take_up_limits
 from ethercat.worker import CompSpec, CyclicWorker, WorkerConfig
 from ethercat.worker.compensation import REVERSAL, Compensation
 from ethercat.worker.handwheel import Follower
-from tests.ethercat.manual_worker import enabled_worker
 
 TS = 0.001
 TRAVEL = (-50.0, 250.0)

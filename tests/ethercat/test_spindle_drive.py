@@ -8,12 +8,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bench.stepped import enabled as enabled_worker
 from ethercat.bus import DriveSpec, SpindleDriveSpec
 from ethercat.cia402 import CSV, CW_ENABLE_OPERATION, CW_QUICK_STOP, PV, SW_TARGET_REACHED, Cia402State
 from ethercat.drive_model import DriveModel, DriveParams
 from ethercat.errors import ConfigurationError
 from ethercat.worker import AlarmCode, CyclicWorker, SpindleState, WorkerConfig
-from tests.ethercat.manual_worker import enabled_worker
 
 TS = 0.001
 PER_RPM = 10_000.0 / 60.0          # counts/s per rpm of a 10,000-count spindle encoder
