@@ -376,7 +376,7 @@ def _in_frames(pl: Polylines, frames: tuple[Frame, ...], move_frames: np.ndarray
     two moves share (one point a move) ends the move before it and is drawn through that
     move's frame: each move's end is where the DRO reads it, and the move after a change of
     frame (G92, G43, another system) is drawn from there to its own end."""
-    present = [int(f) for f in np.unique(move_frames)]
+    present = np.flatnonzero(np.bincount(move_frames, minlength=len(frames))).tolist()   # O(n), no sort
     used = [f for f in present if not frames[f].is_identity]
     if not used:
         return pl

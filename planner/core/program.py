@@ -721,9 +721,13 @@ class Program:
         program recorded none (machine coordinates)."""
         if not self.frames:
             return None
-        firsts = np.array([c.first for c in self.frames], dtype=np.int64)
-        at = np.searchsorted(firsts, np.arange(len(self.moves)), side="right") - 1
-        return np.maximum(at, 0).astype(np.int32)
+        n = len(self.moves)
+        # the changes' firsts never go down: each frame runs up to the next change's first (a
+        # frame changed again before any move runs none)
+        firsts = np.clip([c.first for c in self.frames], 0, n)
+        firsts[0] = 0
+        runs = np.diff(np.append(firsts, n))
+        return np.repeat(np.arange(len(self.frames), dtype=np.int32), runs)
 
     def frame_at(self, index: int) -> Frame:
         """The offsets in force for move ``index`` (before the first move: at the start), as
