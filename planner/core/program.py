@@ -474,8 +474,8 @@ class SpindleSpeed:
 
     def __post_init__(self) -> None:
         if self.direction not in (-1, 0, 1) or not self.rpm >= 0.0:
-            raise ValueError(f"spindle direction {self.direction} and speed {self.rpm} rpm: "
-                             "the direction is -1, 0 or 1 and the speed at least 0")
+            raise PlannerError(f"spindle direction {self.direction} and speed {self.rpm} rpm: "
+                               "the direction is -1, 0 or 1 and the speed at least 0")
         if self.direction == 0:
             object.__setattr__(self, "rpm", 0.0)
 
@@ -522,14 +522,6 @@ class OverrideLocks:
     (``FEED_OVERRIDE_OFF``, ``SPINDLE_OVERRIDE_OFF``, ``FEED_HOLD_DEFERRED``; 0 all on)."""
 
     bits: int
-
-    @property
-    def feed_off(self) -> bool:
-        return bool(self.bits & FEED_OVERRIDE_OFF)
-
-    @property
-    def spindle_off(self) -> bool:
-        return bool(self.bits & SPINDLE_OVERRIDE_OFF)
 
 
 #: what an event carries besides its kind, line and text
